@@ -1,0 +1,33 @@
+//! Build script: generates glrt's OpenGL surface from the Khronos registry (gl.xml and glx.xml as
+//! shipped by the `khronos_api` crate, read through `gl_generator`'s `Registry`).
+//!
+//! Outputs (all in `OUT_DIR`, included by the modules named):
+//! - `gl_types.rs`, `gl_enums.rs`: C types and every `GL_*` constant (`translate::gl`);
+//! - `dispatch.rs`: per command, the display-list and `glBegin`/`glEnd` rules and the call into
+//!   `translate::Context`; the `Call` enum of commands recorded into display lists
+//!   (`translate::dispatch`);
+//! - `exports.rs`: the C ABI shim of every exported name and the `glXGetProcAddress` table
+//!   (`gl_entry::exports`).
+//!
+//! A command is implemented when `translate` defines a method with exactly its C name
+//! (`fn glVertex4f(`); the generator finds these by scanning the sources, so exporting a new
+//! command is writing its method. Commands without one are exported as functions that raise
+//! `GL_INVALID_OPERATION` and log their name once.
+
+mod emit;
+mod model;
+mod overlay;
+mod scan;
+
+use std::path::PathBuf;
+
+fn main() {
+    let out = PathBuf::from(std::env::var("OUT_DIR").expect("OUT_DIR"));
+    for input in ["build", "src/translate", "src/gl_entry"] {
+        println!("cargo:rerun-if-changed={input}");
+    }
+    let model = model::Model::load();
+    emit::write_all(&model, &out).expect("writing generated sources");
+    // The library is a drop-in libGL.so.1.
+    println!("cargo:rustc-cdylib-link-arg=-Wl,-soname,libGL.so.1");
+}

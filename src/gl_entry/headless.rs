@@ -1,0 +1,75 @@
+//! Contexts without any window system, for replay, tests and `glrt-demo --headless`:
+//! `glrtCreateContext`, `glrtMakeCurrent`, `glrtSwapBuffers`, `glrtDestroyContext`.
+//! Programs reach them with `dlsym` or `glXGetProcAddress`.
+
+use std::ffi::c_void;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::Arc;
+
+use parking_lot::Mutex;
+
+use super::current::{self, SharedContext};
+use super::shim::with_current;
+use crate::render;
+use crate::translate::Context;
+use crate::translate::context::ContextConfig;
+
+/// What an application-visible context handle points to.
+pub struct ContextHandle {
+    /// The context.
+    pub context: SharedContext,
+}
+
+impl ContextHandle {
+    /// Creates a context sharing objects with `share` (a handle, or null) and returns its
+    /// handle.
+    pub fn create(share: *const ContextHandle) -> *mut ContextHandle {
+        // Safety: a non-null share handle came from this function and was not destroyed.
+        let share = unsafe { share.as_ref() }.map(|h| h.context.lock().shared.clone());
+        let context = Context::new(ContextConfig { share, sink: render::default_sink() });
+        Box::into_raw(Box::new(ContextHandle { context: Arc::new(Mutex::new(context)) }))
+    }
+}
+
+/// Creates a headless context; `share` is another glrt context handle or null.
+#[unsafe(no_mangle)]
+pub extern "C" fn glrtCreateContext(share: *mut c_void) -> *mut c_void {
+    catch_unwind(|| ContextHandle::create(share.cast()).cast()).unwrap_or(std::ptr::null_mut())
+}
+
+/// Makes a headless context current on this thread with an off-screen drawable of
+/// `width` × `height`; null releases the current context. Returns 1 on success.
+#[unsafe(no_mangle)]
+pub extern "C" fn glrtMakeCurrent(ctx: *mut c_void, width: i32, height: i32) -> u8 {
+    catch_unwind(AssertUnwindSafe(|| {
+        // Safety: a non-null handle came from glrtCreateContext and was not destroyed.
+        let handle = unsafe { ctx.cast::<ContextHandle>().as_ref() };
+        let ok = current::make_current(ctx as usize, handle.map(|h| &h.context));
+        if ok && handle.is_some() {
+            with_current("glrtMakeCurrent", |c| c.bind_drawable(width, height));
+        }
+        u8::from(ok)
+    }))
+    .unwrap_or(0)
+}
+
+/// Ends the current frame of this thread's context (the headless `glXSwapBuffers`).
+#[unsafe(no_mangle)]
+pub extern "C" fn glrtSwapBuffers() {
+    with_current("glrtSwapBuffers", Context::end_frame);
+}
+
+/// Destroys a headless context (it is released first if current on this thread).
+#[unsafe(no_mangle)]
+pub extern "C" fn glrtDestroyContext(ctx: *mut c_void) {
+    if ctx.is_null() {
+        return;
+    }
+    let _ = catch_unwind(AssertUnwindSafe(|| {
+        if current::current_handle() == ctx as usize {
+            current::make_current(0, None);
+        }
+        // Safety: the handle came from glrtCreateContext and is destroyed once.
+        drop(unsafe { Box::from_raw(ctx.cast::<ContextHandle>()) });
+    }));
+}

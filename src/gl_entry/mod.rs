@@ -1,0 +1,9 @@
+//! The C ABI: every exported `gl*` and `glX*` symbol and `glXGetProcAddress`. Each entry is a
+//! thin shim (catch panics, find the current context, call `translate`); the GL list is
+//! generated from the Khronos registry by `build/`.
+
+pub mod current;
+pub mod exports;
+pub mod glx_types;
+pub mod headless;
+pub mod shim;

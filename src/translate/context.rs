@@ -1,0 +1,76 @@
+//! The context: every piece of OpenGL state, grouped by the module that owns it, plus the
+//! objects shared with other contexts of the same share group.
+
+use std::sync::Arc;
+
+use parking_lot::Mutex;
+
+use super::error::ErrorState;
+use super::lists::{ListState, ListTable};
+use crate::frame::Frame;
+use crate::render::FrameSink;
+
+/// Objects shared by the contexts of one share group (`glXCreateContext`'s `shareList`):
+/// display lists, texture objects, buffer objects.
+#[derive(Default)]
+pub struct SharedObjects {
+    /// Display lists by name.
+    pub lists: ListTable,
+}
+
+/// How a context is created.
+pub struct ContextConfig {
+    /// Objects to share with (another context's [`Context::shared`]), or a new share group.
+    pub share: Option<Arc<Mutex<SharedObjects>>>,
+    /// Where finished frames go.
+    pub sink: Box<dyn FrameSink>,
+}
+
+/// An OpenGL 1.5 rendering context.
+pub struct Context {
+    pub(crate) errors: ErrorState,
+    /// Display-list compilation state.
+    pub lists: ListState,
+    /// Objects shared with the share group.
+    pub shared: Arc<Mutex<SharedObjects>>,
+    /// Immediate-mode assembly (`glBegin`/`glEnd`).
+    pub(crate) immediate: super::immediate::ImmediateState,
+    /// The frame being assembled since the last swap.
+    pub(crate) frame: Frame,
+    sink: Box<dyn FrameSink>,
+    /// Size of the drawable last made current, `(width, height)`.
+    pub(crate) drawable_size: Option<(i32, i32)>,
+}
+
+impl Context {
+    /// Creates a context with the initial state of the specification.
+    pub fn new(config: ContextConfig) -> Context {
+        Context {
+            errors: ErrorState::default(),
+            lists: ListState::default(),
+            shared: config.share.unwrap_or_default(),
+            immediate: Default::default(),
+            frame: Frame::default(),
+            sink: config.sink,
+            drawable_size: None,
+        }
+    }
+
+    /// Whether a `glBegin` is open (the `glBegin`/`glEnd` rule of section 2.6.3).
+    pub fn inside_begin_end(&self) -> bool {
+        self.immediate.primitive.is_some()
+    }
+
+    /// Called when the context is made current on a drawable of `width` × `height` pixels.
+    /// The first time, the viewport and scissor box take the drawable's size (GLX 1.4, 3.3.7).
+    pub fn bind_drawable(&mut self, width: i32, height: i32) {
+        self.drawable_size = Some((width, height));
+    }
+
+    /// Ends the frame (`glXSwapBuffers`): hands the assembled [`Frame`] to the renderer.
+    pub fn end_frame(&mut self) {
+        let number = self.frame.number + 1;
+        let frame = std::mem::replace(&mut self.frame, Frame { number, ..Frame::default() });
+        self.sink.present(frame);
+    }
+}

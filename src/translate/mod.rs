@@ -1,0 +1,23 @@
+//! OpenGL 1.x semantics on the CPU: the context state machine, its errors and queries, and the
+//! per-frame scene ([`crate::frame::Frame`]) it hands to the renderer. No Vulkan here.
+//!
+//! Each GL command is a method of [`Context`] named exactly after the C function
+//! (`Context::glVertex4f`), in the module that owns its state; the build script finds these
+//! methods and generates the C exports and the [`dispatch`] layer (display-list recording and
+//! the `glBegin`/`glEnd` rule) around them. Methods that take client pointers are `unsafe`: the
+//! pointer must be valid for what the command reads or writes, as the GL specification says.
+
+// GL commands are methods named exactly after their C functions (`glVertex4f`): the build script
+// finds them by that name, and the names match the specification and the reference pages.
+#![allow(non_snake_case)]
+
+pub mod context;
+pub mod convert;
+pub mod dispatch;
+pub mod error;
+pub mod get;
+pub mod gl;
+pub mod immediate;
+pub mod lists;
+
+pub use context::Context;
