@@ -8,7 +8,7 @@ use parking_lot::Mutex;
 use super::error::ErrorState;
 use super::lists::{ListState, ListTable};
 use crate::frame::Frame;
-use crate::render::FrameSink;
+use crate::render::{FrameSink, RecordingSink};
 
 /// Objects shared by the contexts of one share group (`glXCreateContext`'s `shareList`):
 /// display lists, texture objects, buffer objects.
@@ -33,6 +33,12 @@ pub struct Context {
     pub lists: ListState,
     /// Objects shared with the share group.
     pub shared: Arc<Mutex<SharedObjects>>,
+    /// Capabilities (`glEnable`).
+    pub enables: super::enable::EnableState,
+    /// Active texture units.
+    pub texunit: super::texunit::TexUnitState,
+    /// Matrix stacks.
+    pub transform: super::transform::TransformState,
     /// Immediate-mode assembly (`glBegin`/`glEnd`).
     pub(crate) immediate: super::immediate::ImmediateState,
     /// The frame being assembled since the last swap.
@@ -49,11 +55,20 @@ impl Context {
             errors: ErrorState::default(),
             lists: ListState::default(),
             shared: config.share.unwrap_or_default(),
+            enables: Default::default(),
+            texunit: Default::default(),
+            transform: Default::default(),
             immediate: Default::default(),
             frame: Frame::default(),
             sink: config.sink,
             drawable_size: None,
         }
+    }
+
+    /// A context whose frames go to a [`RecordingSink`] (returned), for tests.
+    pub fn with_recording() -> (Context, RecordingSink) {
+        let sink = RecordingSink::default();
+        (Context::new(ContextConfig { share: None, sink: Box::new(sink.clone()) }), sink)
     }
 
     /// Whether a `glBegin` is open (the `glBegin`/`glEnd` rule of section 2.6.3).

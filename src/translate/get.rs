@@ -61,8 +61,9 @@ impl Value {
             Value::Normalized(v) => v
                 .iter()
                 .map(|&x| {
-                    let scaled = ((x.clamp(-1.0, 1.0) * 4294967295.0) - 1.0) / 2.0;
-                    scaled.round().clamp(f64::from(i32::MIN), f64::from(i32::MAX)) as GLint
+                    let x = x.clamp(-1.0, 1.0);
+                    let scale = if x >= 0.0 { f64::from(i32::MAX) } else { -f64::from(i32::MIN) };
+                    (x * scale).round() as GLint
                 })
                 .collect(),
         }
@@ -81,7 +82,10 @@ impl Value {
 impl Context {
     /// The value of `pname`, asking each state module in turn; `None` for an unknown name.
     pub fn query(&self, pname: GLenum) -> Option<Value> {
-        self.query_lists(pname)
+        None.or_else(|| self.query_enables(pname))
+            .or_else(|| self.query_transform(pname))
+            .or_else(|| self.query_texunit(pname))
+            .or_else(|| self.query_lists(pname))
     }
 
     fn query_lists(&self, pname: GLenum) -> Option<Value> {

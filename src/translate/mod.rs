@@ -14,10 +14,14 @@
 pub mod context;
 pub mod convert;
 pub mod dispatch;
+pub mod enable;
 pub mod error;
 pub mod get;
 pub mod gl;
 pub mod immediate;
+pub mod limits;
 pub mod lists;
+pub mod texunit;
+pub mod transform;
 
 pub use context::Context;
