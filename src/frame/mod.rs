@@ -1,6 +1,15 @@
 //! The per-frame scene that `translate` hands to `render` at `glXSwapBuffers` (or at a
-//! read-back that needs pixels): draws in object space with their state, lights, fog, clears
-//! and viewport. No GL enums here: `translate` converts them to these types.
+//! read-back that needs pixels): draws in object space with their state, clears, and what the
+//! renderer needs to resolve textures. No GL enums here: `translate` converts them to these
+//! types.
+
+pub mod state;
+pub mod texture;
+
+use std::sync::Arc;
+
+pub use state::RasterState;
+pub use texture::TextureRef;
 
 /// One frame of the program's rendering.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -9,6 +18,8 @@ pub struct Frame {
     pub number: u64,
     /// Draws in program order.
     pub draws: Vec<Draw>,
+    /// Clears, in program order, each placed before a draw index.
+    pub clears: Vec<Clear>,
 }
 
 /// One draw: primitives of one state.
@@ -16,4 +27,23 @@ pub struct Frame {
 pub struct Draw {
     /// Vertex count.
     pub vertex_count: usize,
+    /// Raster state of the draw.
+    pub state: Arc<RasterState>,
+    /// Bound texture of each unit that texturing uses.
+    pub textures: Vec<Option<TextureRef>>,
+}
+
+/// A `glClear`: which buffers, with which values, before which draw.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Clear {
+    /// Index in [`Frame::draws`] of the first draw after the clear.
+    pub before_draw: usize,
+    /// Colour buffers are cleared to this value.
+    pub color: Option<[f32; 4]>,
+    /// The depth buffer is cleared to this value.
+    pub depth: Option<f64>,
+    /// The stencil buffer is cleared to this value.
+    pub stencil: Option<i32>,
+    /// The accumulation buffer is cleared to this value.
+    pub accum: Option<[f32; 4]>,
 }

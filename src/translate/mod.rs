@@ -21,6 +21,7 @@ pub mod gl;
 pub mod immediate;
 pub mod limits;
 pub mod lists;
+pub mod snapshot;
 pub mod texunit;
 pub mod transform;
 
