@@ -39,6 +39,8 @@ pub struct Context {
     pub texunit: super::texunit::TexUnitState,
     /// Matrix stacks.
     pub transform: super::transform::TransformState,
+    /// Viewport, depth range and scissor box.
+    pub viewport: super::viewport::ViewportState,
     /// Immediate-mode assembly (`glBegin`/`glEnd`).
     pub(crate) immediate: super::immediate::ImmediateState,
     /// The frame being assembled since the last swap.
@@ -58,6 +60,7 @@ impl Context {
             enables: Default::default(),
             texunit: Default::default(),
             transform: Default::default(),
+            viewport: super::viewport::ViewportState::new(),
             immediate: Default::default(),
             frame: Frame::default(),
             sink: config.sink,
@@ -80,6 +83,7 @@ impl Context {
     /// The first time, the viewport and scissor box take the drawable's size (GLX 1.4, 3.3.7).
     pub fn bind_drawable(&mut self, width: i32, height: i32) {
         self.drawable_size = Some((width, height));
+        self.init_viewport(width, height);
     }
 
     /// Ends the frame (`glXSwapBuffers`): hands the assembled [`Frame`] to the renderer.

@@ -85,6 +85,7 @@ impl Context {
         None.or_else(|| self.query_enables(pname))
             .or_else(|| self.query_transform(pname))
             .or_else(|| self.query_texunit(pname))
+            .or_else(|| self.query_viewport(pname))
             .or_else(|| self.query_lists(pname))
     }
 

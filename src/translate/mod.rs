@@ -24,5 +24,6 @@ pub mod lists;
 pub mod snapshot;
 pub mod texunit;
 pub mod transform;
+pub mod viewport;
 
 pub use context::Context;
