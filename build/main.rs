@@ -7,7 +7,9 @@
 //!   `translate::Context`; the `Call` enum of commands recorded into display lists
 //!   (`translate::dispatch`);
 //! - `exports.rs`: the C ABI shim of every exported name and the `glXGetProcAddress` table
-//!   (`gl_entry::exports`).
+//!   (`gl_entry::exports`);
+//! - `fuzz_calls.rs`: a random-argument caller of every served command, for the robustness
+//!   test (`translate::robustness`).
 //!
 //! A command is implemented when `translate` defines a method with exactly its C name
 //! (`fn glVertex4f(`); the generator finds these by scanning the sources, so exporting a new
@@ -15,6 +17,7 @@
 //! `GL_INVALID_OPERATION` and log their name once.
 
 mod emit;
+mod emit_fuzz;
 mod model;
 mod overlay;
 mod scan;

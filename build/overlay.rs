@@ -84,6 +84,8 @@ pub struct Family {
     pub normalized: bool,
     /// A leading non-component parameter (`target` of `glMultiTexCoord`).
     pub leading: bool,
+    /// Allowed between `glBegin` and `glEnd` (all but `glRasterPos` and `glWindowPos`).
+    pub inside_begin_end: bool,
 }
 
 const fn family(
@@ -93,7 +95,7 @@ const fn family(
     defaults: [&'static str; 4],
     normalized: bool,
 ) -> Family {
-    Family { base, canonical, components, defaults, normalized, leading: false }
+    Family { base, canonical, components, defaults, normalized, leading: false, inside_begin_end: true }
 }
 
 /// Every attribute family of OpenGL 1.5 and the implemented extensions.
@@ -107,14 +109,21 @@ pub const FAMILIES: &[Family] = &[
         defaults: ["0.0", "0.0", "0.0", "1.0"],
         normalized: false,
         leading: true,
+        inside_begin_end: true,
     },
     family("Color", "Color4f", 4, ["0.0", "0.0", "0.0", "1.0"], true),
     family("SecondaryColor", "SecondaryColor3f", 3, ["0.0", "0.0", "0.0", "0.0"], true),
     family("Normal", "Normal3f", 3, ["0.0", "0.0", "0.0", "0.0"], true),
     family("FogCoord", "FogCoordf", 1, ["0.0", "0.0", "0.0", "0.0"], false),
     family("Index", "Indexf", 1, ["0.0", "0.0", "0.0", "0.0"], false),
-    family("RasterPos", "RasterPos4f", 4, ["0.0", "0.0", "0.0", "1.0"], false),
-    family("WindowPos", "WindowPos3f", 3, ["0.0", "0.0", "0.0", "0.0"], false),
+    Family {
+        inside_begin_end: false,
+        ..family("RasterPos", "RasterPos4f", 4, ["0.0", "0.0", "0.0", "1.0"], false)
+    },
+    Family {
+        inside_begin_end: false,
+        ..family("WindowPos", "WindowPos3f", 3, ["0.0", "0.0", "0.0", "0.0"], false)
+    },
     family("EvalCoord1", "EvalCoord1f", 1, ["0.0", "0.0", "0.0", "0.0"], false),
     family("EvalCoord2", "EvalCoord2f", 2, ["0.0", "0.0", "0.0", "0.0"], false),
 ];

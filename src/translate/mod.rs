@@ -21,6 +21,8 @@ pub mod gl;
 pub mod immediate;
 pub mod limits;
 pub mod lists;
+#[cfg(test)]
+mod robustness;
 pub mod snapshot;
 pub mod texunit;
 pub mod transform;
