@@ -143,6 +143,13 @@ mod tests {
         unsafe { ctx.glGetDoublev(gl::GL_DEPTH_CLEAR_VALUE, &mut depth) };
         assert_eq!(depth, 0.5);
         assert_eq!(ctx.query(gl::GL_STENCIL_CLEAR_VALUE).unwrap().to_ints(), [0x1ff]);
+        let mut color = [0i32; 4];
+        unsafe { ctx.glGetIntegerv(gl::GL_COLOR_CLEAR_VALUE, color.as_mut_ptr()) };
+        assert_eq!([color[2], color[3]], [i32::MAX, i32::MAX]);
+        assert!((color[0] - i32::MAX / 4).abs() <= 1, "{color:?}");
+        let mut accum = [0.0f32; 4];
+        unsafe { ctx.glGetFloatv(gl::GL_ACCUM_CLEAR_VALUE, accum.as_mut_ptr()) };
+        assert_eq!(accum, [-1.0, 0.0, 0.0, 0.5]);
         ctx.glDrawBuffer(gl::GL_NONE);
         ctx.glClear(gl::GL_COLOR_BUFFER_BIT);
         assert_eq!(ctx.frame.clears.len(), 2, "nothing to clear with no draw buffer");

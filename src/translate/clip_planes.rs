@@ -78,4 +78,19 @@ mod tests {
         unsafe { ctx.glClipPlane(gl::GL_LIGHT0, eq.as_ptr()) };
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
     }
+
+    #[test]
+    fn compiled_plane_uses_the_modelview_when_the_list_runs() {
+        let (mut ctx, _) = Context::with_recording();
+        unsafe {
+            dispatch::glNewList(&mut ctx, 1, gl::GL_COMPILE);
+            dispatch::glClipPlane(&mut ctx, gl::GL_CLIP_PLANE5, [0.0, 1.0, 0.0, 0.0].as_ptr());
+            dispatch::glEndList(&mut ctx);
+        }
+        ctx.glTranslatef(0.0, -4.0, 0.0);
+        unsafe { dispatch::glCallList(&mut ctx, 1) };
+        let mut eq = [0.0f64; 4];
+        unsafe { ctx.glGetClipPlane(gl::GL_CLIP_PLANE5, eq.as_mut_ptr()) };
+        assert_eq!(eq, [0.0, 1.0, 0.0, 4.0]);
+    }
 }

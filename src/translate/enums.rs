@@ -12,18 +12,18 @@ pub(crate) struct EnumTable<T: 'static>(pub &'static [(GLenum, T)]);
 
 impl<T: Copy + PartialEq> EnumTable<T> {
     /// The value of `e`; `None` when the command does not accept it.
-    pub fn from_gl(&self, e: GLenum) -> Option<T> {
+    pub fn parse(&self, e: GLenum) -> Option<T> {
         self.0.iter().find(|(g, _)| *g == e).map(|&(_, v)| v)
     }
 
     /// The GL enum of `v` (every table lists each value of its type).
-    pub fn to_gl(&self, v: T) -> GLenum {
+    pub fn gl_enum(&self, v: T) -> GLenum {
         self.0.iter().find(|(_, x)| *x == v).map_or(gl::GL_NONE, |&(g, _)| g)
     }
 
     /// `glGet` value of `v`.
     pub fn value(&self, v: T) -> super::get::Value {
-        super::get::Value::int(self.to_gl(v))
+        super::get::Value::int(self.gl_enum(v))
     }
 }
 
@@ -142,12 +142,12 @@ mod tests {
 
     #[test]
     fn tables_round_trip() {
-        assert_eq!(COMPARE.from_gl(gl::GL_LEQUAL), Some(CompareFunc::LessEqual));
-        assert_eq!(COMPARE.to_gl(CompareFunc::GreaterEqual), gl::GL_GEQUAL);
-        assert_eq!(COMPARE.from_gl(gl::GL_FRONT), None);
+        assert_eq!(COMPARE.parse(gl::GL_LEQUAL), Some(CompareFunc::LessEqual));
+        assert_eq!(COMPARE.gl_enum(CompareFunc::GreaterEqual), gl::GL_GEQUAL);
+        assert_eq!(COMPARE.parse(gl::GL_FRONT), None);
         for &(g, v) in LOGIC_OP.0 {
-            assert_eq!(LOGIC_OP.to_gl(v), g);
+            assert_eq!(LOGIC_OP.gl_enum(v), g);
         }
-        assert!(!valid_dst_factor(BLEND_DST.from_gl(gl::GL_SRC_ALPHA_SATURATE).unwrap()));
+        assert!(!valid_dst_factor(BLEND_DST.parse(gl::GL_SRC_ALPHA_SATURATE).unwrap()));
     }
 }

@@ -68,10 +68,12 @@ impl Context {
     /// depends on changed.
     pub fn raster_snapshot(&mut self) -> Arc<RasterState> {
         let (fixed, enables, viewport) = (self.fixed.version, self.enables.version, self.viewport);
-        if let Some(c) = &self.fixed.snapshot {
-            if c.fixed == fixed && c.enables == enables && c.viewport == viewport {
-                return c.state.clone();
-            }
+        if let Some(c) = &self.fixed.snapshot
+            && c.fixed == fixed
+            && c.enables == enables
+            && c.viewport == viewport
+        {
+            return c.state.clone();
         }
         let state = Arc::new(self.build_raster_state());
         self.fixed.snapshot = Some(SnapshotCache { fixed, enables, viewport, state: state.clone() });

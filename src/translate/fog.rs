@@ -33,15 +33,15 @@ impl Context {
     fn set_fog(&mut self, pname: GLenum, v: [f32; 4], command: &'static str) {
         let x = v[0];
         match pname {
-            gl::GL_FOG_MODE => match FOG_MODE.from_gl(x as GLenum) {
+            gl::GL_FOG_MODE => match FOG_MODE.parse(x as GLenum) {
                 Some(m) => self.fixed_mut().fog.fog.mode = m,
                 None => self.set_error_in(gl::GL_INVALID_ENUM, command),
             },
-            gl::GL_FOG_COORD_SRC => match FOG_SOURCE.from_gl(x as GLenum) {
+            gl::GL_FOG_COORD_SRC => match FOG_SOURCE.parse(x as GLenum) {
                 Some(s) => self.fixed_mut().fog.fog.source = s,
                 None => self.set_error_in(gl::GL_INVALID_ENUM, command),
             },
-            gl::GL_FOG_DENSITY if !(x >= 0.0) => self.set_error_in(gl::GL_INVALID_VALUE, command),
+            gl::GL_FOG_DENSITY if x.is_nan() || x < 0.0 => self.set_error_in(gl::GL_INVALID_VALUE, command),
             gl::GL_FOG_DENSITY => self.fixed_mut().fog.fog.density = x,
             gl::GL_FOG_START => self.fixed_mut().fog.fog.start = x,
             gl::GL_FOG_END => self.fixed_mut().fog.fog.end = x,

@@ -54,7 +54,7 @@ fn mask_value(mask: u32) -> Value {
 impl Context {
     /// `glAlphaFunc`: the reference clamps to [0, 1].
     pub fn glAlphaFunc(&mut self, func: GLenum, reference: GLclampf) {
-        match COMPARE.from_gl(func) {
+        match COMPARE.parse(func) {
             Some(f) => self.fixed_mut().fragment.alpha = (f, reference.clamp(0.0, 1.0)),
             None => self.set_error_in(gl::GL_INVALID_ENUM, "glAlphaFunc"),
         }
@@ -73,7 +73,7 @@ impl Context {
     /// Sets `[src rgb, dst rgb, src alpha, dst alpha]`; `GL_INVALID_ENUM` for an unknown
     /// factor or `GL_SRC_ALPHA_SATURATE` as a destination (table 4.2).
     fn set_blend_func(&mut self, factors: [GLenum; 4], command: &'static str) {
-        let parsed = factors.map(|f| BLEND_DST.from_gl(f));
+        let parsed = factors.map(|f| BLEND_DST.parse(f));
         let [Some(sr), Some(dr), Some(sa), Some(da)] = parsed else {
             return self.set_error_in(gl::GL_INVALID_ENUM, command);
         };
@@ -91,7 +91,7 @@ impl Context {
 
     /// `glBlendEquation`: add, subtract, reverse subtract, min, max.
     pub fn glBlendEquation(&mut self, mode: GLenum) {
-        match BLEND_EQUATION.from_gl(mode) {
+        match BLEND_EQUATION.parse(mode) {
             Some(e) => self.fixed_mut().fragment.blend.equation = e,
             None => self.set_error_in(gl::GL_INVALID_ENUM, "glBlendEquation"),
         }
@@ -99,7 +99,7 @@ impl Context {
 
     /// `glLogicOp`.
     pub fn glLogicOp(&mut self, opcode: GLenum) {
-        match LOGIC_OP.from_gl(opcode) {
+        match LOGIC_OP.parse(opcode) {
             Some(op) => self.fixed_mut().fragment.logic_op = op,
             None => self.set_error_in(gl::GL_INVALID_ENUM, "glLogicOp"),
         }
@@ -107,7 +107,7 @@ impl Context {
 
     /// `glDepthFunc`.
     pub fn glDepthFunc(&mut self, func: GLenum) {
-        match COMPARE.from_gl(func) {
+        match COMPARE.parse(func) {
             Some(f) => self.fixed_mut().fragment.depth_func = f,
             None => self.set_error_in(gl::GL_INVALID_ENUM, "glDepthFunc"),
         }
@@ -120,7 +120,7 @@ impl Context {
 
     /// `glStencilFunc`: the reference clamps to [0, 2^s − 1] for the s = 8 stencil bits.
     pub fn glStencilFunc(&mut self, func: GLenum, reference: GLint, mask: GLuint) {
-        let Some(f) = COMPARE.from_gl(func) else { return self.set_error_in(gl::GL_INVALID_ENUM, "glStencilFunc") };
+        let Some(f) = COMPARE.parse(func) else { return self.set_error_in(gl::GL_INVALID_ENUM, "glStencilFunc") };
         let s = &mut self.fixed_mut().fragment.stencil;
         s.func = f;
         s.reference = reference.clamp(0, (1 << STENCIL_BITS) - 1);
@@ -129,7 +129,7 @@ impl Context {
 
     /// `glStencilOp`, with OpenGL 1.4's `GL_INCR_WRAP` and `GL_DECR_WRAP`.
     pub fn glStencilOp(&mut self, fail: GLenum, zfail: GLenum, zpass: GLenum) {
-        let [Some(f), Some(zf), Some(zp)] = [fail, zfail, zpass].map(|o| STENCIL_OP.from_gl(o)) else {
+        let [Some(f), Some(zf), Some(zp)] = [fail, zfail, zpass].map(|o| STENCIL_OP.parse(o)) else {
             return self.set_error_in(gl::GL_INVALID_ENUM, "glStencilOp");
         };
         let s = &mut self.fixed_mut().fragment.stencil;

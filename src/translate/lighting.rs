@@ -70,7 +70,7 @@ fn material_shape(pname: GLenum) -> Option<Shape> {
     Some(match pname {
         gl::GL_SHININESS => Shape::SCALAR,
         gl::GL_COLOR_INDEXES => Shape::plain(3),
-        _ if COLOR_MATERIAL_MODE.from_gl(pname).is_some() => Shape::COLOR,
+        _ if COLOR_MATERIAL_MODE.parse(pname).is_some() => Shape::COLOR,
         _ => return None,
     })
 }
@@ -123,7 +123,7 @@ impl Context {
             gl::GL_SPOT_EXPONENT => !(0.0..=128.0).contains(&v[0]),
             gl::GL_SPOT_CUTOFF => !((0.0..=90.0).contains(&v[0]) || v[0] == 180.0),
             gl::GL_CONSTANT_ATTENUATION | gl::GL_LINEAR_ATTENUATION | gl::GL_QUADRATIC_ATTENUATION => {
-                !(v[0] >= 0.0)
+                v[0].is_nan() || v[0] < 0.0
             }
             _ => false,
         };
@@ -329,7 +329,7 @@ impl Context {
     /// face, `GL_INVALID_VALUE` for a shininess outside [0, 128]. Allowed inside
     /// `glBegin`/`glEnd`.
     fn set_material(&mut self, face: GLenum, pname: GLenum, v: [f32; 4], command: &'static str) {
-        let Some(face) = FACE.from_gl(face) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
+        let Some(face) = FACE.parse(face) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         if pname == gl::GL_SHININESS && !(0.0..=128.0).contains(&v[0]) {
             return self.set_error_in(gl::GL_INVALID_VALUE, command);
         }
@@ -339,7 +339,7 @@ impl Context {
                 gl::GL_SHININESS => lighting.materials[i].shininess = v[0],
                 gl::GL_COLOR_INDEXES => lighting.color_indexes[i] = rgb(v),
                 _ => {
-                    if let Some(mode) = COLOR_MATERIAL_MODE.from_gl(pname) {
+                    if let Some(mode) = COLOR_MATERIAL_MODE.parse(pname) {
                         set_material_color(&mut lighting.materials[i], mode, v);
                     }
                 }
@@ -449,7 +449,7 @@ impl Context {
 
     /// `glColorMaterial` (section 2.14.3).
     pub fn glColorMaterial(&mut self, face: GLenum, mode: GLenum) {
-        match (FACE.from_gl(face), COLOR_MATERIAL_MODE.from_gl(mode)) {
+        match (FACE.parse(face), COLOR_MATERIAL_MODE.parse(mode)) {
             (Some(face), Some(mode)) => self.fixed_mut().lighting.color_material = ColorMaterial { face, mode },
             _ => self.set_error_in(gl::GL_INVALID_ENUM, "glColorMaterial"),
         }
@@ -472,7 +472,7 @@ impl Context {
 
     /// `glShadeModel`.
     pub fn glShadeModel(&mut self, mode: GLenum) {
-        match SHADE_MODEL.from_gl(mode) {
+        match SHADE_MODEL.parse(mode) {
             Some(m) => self.fixed_mut().lighting.shade_model = m,
             None => self.set_error_in(gl::GL_INVALID_ENUM, "glShadeModel"),
         }

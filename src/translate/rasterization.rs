@@ -62,7 +62,7 @@ fn point_shape(pname: GLenum) -> Option<Shape> {
 impl Context {
     /// `glCullFace`.
     pub fn glCullFace(&mut self, mode: GLenum) {
-        match FACE.from_gl(mode) {
+        match FACE.parse(mode) {
             Some(f) => self.fixed_mut().raster.cull_face = f,
             None => self.set_error_in(gl::GL_INVALID_ENUM, "glCullFace"),
         }
@@ -70,7 +70,7 @@ impl Context {
 
     /// `glFrontFace`.
     pub fn glFrontFace(&mut self, mode: GLenum) {
-        match WINDING.from_gl(mode) {
+        match WINDING.parse(mode) {
             Some(w) => self.fixed_mut().raster.front_face = w,
             None => self.set_error_in(gl::GL_INVALID_ENUM, "glFrontFace"),
         }
@@ -78,7 +78,7 @@ impl Context {
 
     /// `glPolygonMode`.
     pub fn glPolygonMode(&mut self, face: GLenum, mode: GLenum) {
-        let (Some(face), Some(mode)) = (FACE.from_gl(face), POLYGON_MODE.from_gl(mode)) else {
+        let (Some(face), Some(mode)) = (FACE.parse(face), POLYGON_MODE.parse(mode)) else {
             return self.set_error_in(gl::GL_INVALID_ENUM, "glPolygonMode");
         };
         let modes = &mut self.fixed_mut().raster.polygon_mode;
@@ -96,7 +96,7 @@ impl Context {
 
     /// `glLineWidth`: `GL_INVALID_VALUE` unless positive.
     pub fn glLineWidth(&mut self, width: GLfloat) {
-        if !(width > 0.0) {
+        if width.is_nan() || width <= 0.0 {
             return self.set_error_in(gl::GL_INVALID_VALUE, "glLineWidth");
         }
         self.fixed_mut().raster.line_width = width;
@@ -109,7 +109,7 @@ impl Context {
 
     /// `glPointSize`: `GL_INVALID_VALUE` unless positive.
     pub fn glPointSize(&mut self, size: GLfloat) {
-        if !(size > 0.0) {
+        if size.is_nan() || size <= 0.0 {
             return self.set_error_in(gl::GL_INVALID_VALUE, "glPointSize");
         }
         self.fixed_mut().raster.point.size = size;
@@ -118,7 +118,7 @@ impl Context {
     /// Sets a point parameter (section 3.3): `GL_INVALID_VALUE` for a negative size or
     /// threshold.
     fn set_point_parameter(&mut self, pname: GLenum, v: [f32; 4], command: &'static str) {
-        if pname != gl::GL_POINT_DISTANCE_ATTENUATION && !(v[0] >= 0.0) {
+        if pname != gl::GL_POINT_DISTANCE_ATTENUATION && (v[0].is_nan() || v[0] < 0.0) {
             return self.set_error_in(gl::GL_INVALID_VALUE, command);
         }
         let p = &mut self.fixed_mut().raster.point;
@@ -205,7 +205,7 @@ impl Context {
         Some(match pname {
             gl::GL_CULL_FACE_MODE => FACE.value(r.cull_face),
             gl::GL_FRONT_FACE => WINDING.value(r.front_face),
-            gl::GL_POLYGON_MODE => Value::Int(r.polygon_mode.iter().map(|&m| i64::from(POLYGON_MODE.to_gl(m))).collect()),
+            gl::GL_POLYGON_MODE => Value::Int(r.polygon_mode.iter().map(|&m| i64::from(POLYGON_MODE.gl_enum(m))).collect()),
             gl::GL_POLYGON_OFFSET_FACTOR => Value::float(r.offset.0),
             gl::GL_POLYGON_OFFSET_UNITS => Value::float(r.offset.1),
             gl::GL_LINE_WIDTH => Value::float(r.line_width),
