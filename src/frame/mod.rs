@@ -46,4 +46,13 @@ pub struct Clear {
     pub stencil: Option<i32>,
     /// The accumulation buffer is cleared to this value.
     pub accum: Option<[f32; 4]>,
+    /// Only this window rectangle (x, y, width, height) is cleared: the scissor box, when the
+    /// scissor test is on (OpenGL 1.5 section 4.2.3).
+    pub scissor: Option<[i32; 4]>,
+    /// Colour channels written (`glColorMask`).
+    pub color_mask: [bool; 4],
+    /// Depth writes enabled (`glDepthMask`).
+    pub depth_mask: bool,
+    /// Stencil bits written (`glStencilMask`).
+    pub stencil_mask: u32,
 }

@@ -1,6 +1,539 @@
-//! The raster state of a draw, as plain Rust values (placeholder until the fixed-function
-//! state snapshot lands).
+//! The raster state of a draw, as plain Rust values: everything a renderer needs to draw a
+//! primitive the way OpenGL 1.5 would (per-fragment operations, rasterization, lighting, fog,
+//! clip planes, viewport). `translate` converts GL enums to these types when a command is
+//! called and snapshots them per draw (`Context::raster_snapshot`).
+//!
+//! Texture environments, coordinate generation and bindings are not here: they travel with
+//! the texture snapshot of the draw ([`super::Draw::textures`]), owned by the texture module.
+//! Default values are the initial values of the OpenGL 1.5 state tables (6.x).
 
-/// Snapshot of the state a draw is rasterized or traced with.
+/// The largest point size and line width glrt draws (the renderer expands points and wide
+/// lines to triangles, so this is a choice, not a device limit).
+pub const MAX_POINT_SIZE: f32 = 64.0;
+
+/// A comparison of the alpha, depth and stencil tests (OpenGL 1.5 sections 4.1.4 to 4.1.6).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum CompareFunc {
+    /// Never passes.
+    Never,
+    /// Passes if the incoming value is less.
+    Less,
+    /// Passes if equal.
+    Equal,
+    /// Passes if less or equal.
+    LessEqual,
+    /// Passes if greater.
+    Greater,
+    /// Passes if not equal.
+    NotEqual,
+    /// Passes if greater or equal.
+    GreaterEqual,
+    /// Always passes.
+    #[default]
+    Always,
+}
+
+/// A blend factor (section 4.1.8, table 4.2).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[allow(missing_docs)] // The names are the factors of table 4.2.
+pub enum BlendFactor {
+    Zero,
+    #[default]
+    One,
+    SrcColor,
+    OneMinusSrcColor,
+    DstColor,
+    OneMinusDstColor,
+    SrcAlpha,
+    OneMinusSrcAlpha,
+    DstAlpha,
+    OneMinusDstAlpha,
+    ConstantColor,
+    OneMinusConstantColor,
+    ConstantAlpha,
+    OneMinusConstantAlpha,
+    SrcAlphaSaturate,
+}
+
+/// How source and destination are combined (section 4.1.8, table 4.1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum BlendEquation {
+    /// `s·S + d·D`.
+    #[default]
+    Add,
+    /// `s·S − d·D`.
+    Subtract,
+    /// `d·D − s·S`.
+    ReverseSubtract,
+    /// `min(S, D)`.
+    Min,
+    /// `max(S, D)`.
+    Max,
+}
+
+/// Blending, when enabled.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Blend {
+    /// Source factor of the colour channels.
+    pub src_rgb: BlendFactor,
+    /// Destination factor of the colour channels.
+    pub dst_rgb: BlendFactor,
+    /// Source factor of alpha.
+    pub src_alpha: BlendFactor,
+    /// Destination factor of alpha.
+    pub dst_alpha: BlendFactor,
+    /// Equation of every channel.
+    pub equation: BlendEquation,
+    /// The constant colour (`glBlendColor`).
+    pub color: [f32; 4],
+}
+
+impl Default for Blend {
+    fn default() -> Blend {
+        Blend {
+            src_rgb: BlendFactor::One,
+            dst_rgb: BlendFactor::Zero,
+            src_alpha: BlendFactor::One,
+            dst_alpha: BlendFactor::Zero,
+            equation: BlendEquation::Add,
+            color: [0.0; 4],
+        }
+    }
+}
+
+/// A stencil operation (section 4.1.5).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[allow(missing_docs)] // The names are those of section 4.1.5.
+pub enum StencilOp {
+    #[default]
+    Keep,
+    Zero,
+    Replace,
+    Incr,
+    Decr,
+    Invert,
+    IncrWrap,
+    DecrWrap,
+}
+
+/// Stencil test and update (section 4.1.5).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Stencil {
+    /// The comparison.
+    pub func: CompareFunc,
+    /// The reference value, clamped to the stencil range.
+    pub reference: i32,
+    /// Mask applied to the reference and the stored value before comparing.
+    pub value_mask: u32,
+    /// Operation when the stencil test fails.
+    pub fail: StencilOp,
+    /// Operation when the stencil test passes and the depth test fails.
+    pub depth_fail: StencilOp,
+    /// Operation when both pass.
+    pub depth_pass: StencilOp,
+    /// Bits of the stencil buffer that may be written.
+    pub write_mask: u32,
+}
+
+impl Default for Stencil {
+    fn default() -> Stencil {
+        Stencil {
+            func: CompareFunc::Always,
+            reference: 0,
+            value_mask: u32::MAX,
+            fail: StencilOp::Keep,
+            depth_fail: StencilOp::Keep,
+            depth_pass: StencilOp::Keep,
+            write_mask: u32::MAX,
+        }
+    }
+}
+
+/// A logic operation on colour indices or RGBA values (section 4.1.10, table 4.5).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[allow(missing_docs)] // The names are the operations of table 4.5.
+pub enum LogicOp {
+    Clear,
+    And,
+    AndReverse,
+    #[default]
+    Copy,
+    AndInverted,
+    Noop,
+    Xor,
+    Or,
+    Nor,
+    Equiv,
+    Invert,
+    OrReverse,
+    CopyInverted,
+    OrInverted,
+    Nand,
+    Set,
+}
+
+/// Which polygon faces a setting applies to.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Face {
+    /// Front faces.
+    Front,
+    /// Back faces.
+    #[default]
+    Back,
+    /// Both.
+    FrontAndBack,
+}
+
+/// The winding of front faces (`glFrontFace`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Winding {
+    /// Clockwise.
+    Cw,
+    /// Counter-clockwise.
+    #[default]
+    Ccw,
+}
+
+/// How polygons are rasterized (`glPolygonMode`, section 3.5.4).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PolygonMode {
+    /// Vertices as points.
+    Point,
+    /// Edges as lines.
+    Line,
+    /// Filled.
+    #[default]
+    Fill,
+}
+
+/// Polygon depth offset (section 3.5.5).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PolygonOffset {
+    /// Slope factor.
+    pub factor: f32,
+    /// Constant offset, in units of the smallest resolvable depth difference.
+    pub units: f32,
+    /// Applies to filled polygons (`GL_POLYGON_OFFSET_FILL`).
+    pub fill: bool,
+    /// Applies to polygons drawn as lines.
+    pub line: bool,
+    /// Applies to polygons drawn as points.
+    pub point: bool,
+}
+
+/// Line rasterization (section 3.4).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Line {
+    /// Width in pixels.
+    pub width: f32,
+    /// Stipple `(repeat factor, 16-bit pattern)` when `GL_LINE_STIPPLE` is on.
+    pub stipple: Option<(i32, u16)>,
+    /// `GL_LINE_SMOOTH`.
+    pub smooth: bool,
+}
+
+impl Default for Line {
+    fn default() -> Line {
+        Line { width: 1.0, stipple: None, smooth: false }
+    }
+}
+
+/// Point rasterization (section 3.3, with the point parameters of OpenGL 1.4).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point {
+    /// Size in pixels.
+    pub size: f32,
+    /// Smallest size after attenuation.
+    pub size_min: f32,
+    /// Largest size after attenuation.
+    pub size_max: f32,
+    /// Below this size, points fade instead of shrinking.
+    pub fade_threshold: f32,
+    /// Constant, linear and quadratic distance attenuation coefficients.
+    pub attenuation: [f32; 3],
+    /// `GL_POINT_SMOOTH`.
+    pub smooth: bool,
+}
+
+impl Default for Point {
+    fn default() -> Point {
+        Point {
+            size: 1.0,
+            size_min: 0.0,
+            size_max: MAX_POINT_SIZE,
+            fade_threshold: 1.0,
+            attenuation: [1.0, 0.0, 0.0],
+            smooth: false,
+        }
+    }
+}
+
+/// `glShadeModel`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ShadeModel {
+    /// The provoking vertex's colour for the whole primitive.
+    Flat,
+    /// Colours interpolated.
+    #[default]
+    Smooth,
+}
+
+/// One light source (section 2.14.1), position and direction in eye space as they were when
+/// specified.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    /// Ambient intensity.
+    pub ambient: [f32; 4],
+    /// Diffuse intensity.
+    pub diffuse: [f32; 4],
+    /// Specular intensity.
+    pub specular: [f32; 4],
+    /// Homogeneous eye-space position; `w = 0` is a directional light.
+    pub position: [f32; 4],
+    /// Eye-space spot direction.
+    pub spot_direction: [f32; 3],
+    /// Spot exponent, in [0, 128].
+    pub spot_exponent: f32,
+    /// Spot cutoff angle in degrees, in [0, 90], or 180 for no spot.
+    pub spot_cutoff: f32,
+    /// Constant, linear and quadratic attenuation.
+    pub attenuation: [f32; 3],
+}
+
+impl Light {
+    /// The initial state of light `index`: light 0 is white, the others black (table 6.x).
+    pub fn initial(index: usize) -> Light {
+        let white = if index == 0 { [1.0; 4] } else { [0.0, 0.0, 0.0, 1.0] };
+        Light {
+            ambient: [0.0, 0.0, 0.0, 1.0],
+            diffuse: white,
+            specular: white,
+            position: [0.0, 0.0, 1.0, 0.0],
+            spot_direction: [0.0, 0.0, -1.0],
+            spot_exponent: 0.0,
+            spot_cutoff: 180.0,
+            attenuation: [1.0, 0.0, 0.0],
+        }
+    }
+}
+
+/// Material properties of one face (section 2.14.1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material {
+    /// Ambient reflectance.
+    pub ambient: [f32; 4],
+    /// Diffuse reflectance.
+    pub diffuse: [f32; 4],
+    /// Specular reflectance.
+    pub specular: [f32; 4],
+    /// Emitted light.
+    pub emission: [f32; 4],
+    /// Specular exponent, in [0, 128].
+    pub shininess: f32,
+}
+
+impl Default for Material {
+    fn default() -> Material {
+        Material {
+            ambient: [0.2, 0.2, 0.2, 1.0],
+            diffuse: [0.8, 0.8, 0.8, 1.0],
+            specular: [0.0, 0.0, 0.0, 1.0],
+            emission: [0.0, 0.0, 0.0, 1.0],
+            shininess: 0.0,
+        }
+    }
+}
+
+/// Which material property follows the current colour (`glColorMaterial`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[allow(missing_docs)] // The names are the material properties.
+pub enum ColorMaterialMode {
+    Emission,
+    Ambient,
+    Diffuse,
+    Specular,
+    #[default]
+    AmbientAndDiffuse,
+}
+
+/// Colour material (section 2.14.3).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ColorMaterial {
+    /// Faces whose material tracks the colour.
+    pub face: Face,
+    /// Which property tracks it.
+    pub mode: ColorMaterialMode,
+}
+
+impl Default for ColorMaterial {
+    fn default() -> ColorMaterial {
+        ColorMaterial { face: Face::FrontAndBack, mode: ColorMaterialMode::AmbientAndDiffuse }
+    }
+}
+
+/// The light model (section 2.14.1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightModel {
+    /// Scene ambient light.
+    pub ambient: [f32; 4],
+    /// Specular highlights computed from the eye position rather than along −z.
+    pub local_viewer: bool,
+    /// Back faces lit with the back material and reversed normals.
+    pub two_side: bool,
+    /// `GL_SEPARATE_SPECULAR_COLOR`: specular goes to the secondary colour.
+    pub separate_specular: bool,
+}
+
+impl Default for LightModel {
+    fn default() -> LightModel {
+        LightModel { ambient: [0.2, 0.2, 0.2, 1.0], local_viewer: false, two_side: false, separate_specular: false }
+    }
+}
+
+/// Lighting, when `GL_LIGHTING` is on.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct RasterState {}
+pub struct Lighting {
+    /// The enabled lights with their index (`GL_LIGHTi`).
+    pub lights: Vec<(usize, Light)>,
+    /// The light model.
+    pub model: LightModel,
+    /// Front material.
+    pub front: Material,
+    /// Back material.
+    pub back: Material,
+    /// Colour material, when `GL_COLOR_MATERIAL` is on.
+    pub color_material: Option<ColorMaterial>,
+}
+
+/// The fog equation (section 3.10).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FogMode {
+    /// `(end − c) / (end − start)`.
+    Linear,
+    /// `exp(−density·c)`.
+    #[default]
+    Exp,
+    /// `exp(−(density·c)²)`.
+    Exp2,
+}
+
+/// Where the fog distance `c` comes from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum FogSource {
+    /// The eye-space distance to the fragment.
+    #[default]
+    FragmentDepth,
+    /// The fog coordinate of the vertices.
+    FogCoord,
+}
+
+/// Fog (section 3.10).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fog {
+    /// Equation.
+    pub mode: FogMode,
+    /// Density of the exponential modes.
+    pub density: f32,
+    /// Start of linear fog.
+    pub start: f32,
+    /// End of linear fog.
+    pub end: f32,
+    /// Fog colour.
+    pub color: [f32; 4],
+    /// Distance source.
+    pub source: FogSource,
+}
+
+impl Default for Fog {
+    fn default() -> Fog {
+        Fog { mode: FogMode::Exp, density: 1.0, start: 0.0, end: 1.0, color: [0.0; 4], source: FogSource::FragmentDepth }
+    }
+}
+
+/// Snapshot of the state a draw is rasterized or traced with. `None` means disabled.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RasterState {
+    /// Alpha test: comparison and reference value.
+    pub alpha_test: Option<(CompareFunc, f32)>,
+    /// Blending.
+    pub blend: Option<Blend>,
+    /// RGBA logic operation (replaces blending when on).
+    pub logic_op: Option<LogicOp>,
+    /// Depth test.
+    pub depth_test: Option<CompareFunc>,
+    /// Depth writes (`glDepthMask`).
+    pub depth_write: bool,
+    /// Stencil test.
+    pub stencil: Option<Stencil>,
+    /// Colour channels written (`glColorMask`).
+    pub color_mask: [bool; 4],
+    /// Faces culled.
+    pub cull: Option<Face>,
+    /// Winding of front faces.
+    pub front_face: Winding,
+    /// Polygon mode of front and back faces.
+    pub polygon_mode: [PolygonMode; 2],
+    /// Polygon offset.
+    pub polygon_offset: PolygonOffset,
+    /// Polygon stipple rows, bottom row first, bit 31 is the leftmost pixel.
+    pub polygon_stipple: Option<[u32; 32]>,
+    /// Lines.
+    pub line: Line,
+    /// Points.
+    pub point: Point,
+    /// Shading.
+    pub shade_model: ShadeModel,
+    /// Lighting.
+    pub lighting: Option<Lighting>,
+    /// `GL_COLOR_SUM`: the secondary colour is added after texturing.
+    pub color_sum: bool,
+    /// Fog.
+    pub fog: Option<Fog>,
+    /// Enabled user clip planes in eye space, with their index.
+    pub clip_planes: Vec<(usize, [f64; 4])>,
+    /// Scissor box (x, y, width, height) when the scissor test is on.
+    pub scissor: Option<[i32; 4]>,
+    /// Viewport (x, y, width, height).
+    pub viewport: [i32; 4],
+    /// Depth range (near, far).
+    pub depth_range: [f64; 2],
+    /// `GL_NORMALIZE`.
+    pub normalize: bool,
+    /// `GL_RESCALE_NORMAL`.
+    pub rescale_normal: bool,
+    /// `GL_DITHER`.
+    pub dither: bool,
+}
+
+impl Default for RasterState {
+    /// The initial OpenGL state, with a zero viewport.
+    fn default() -> RasterState {
+        RasterState {
+            alpha_test: None,
+            blend: None,
+            logic_op: None,
+            depth_test: None,
+            depth_write: true,
+            stencil: None,
+            color_mask: [true; 4],
+            cull: None,
+            front_face: Winding::Ccw,
+            polygon_mode: [PolygonMode::Fill; 2],
+            polygon_offset: PolygonOffset::default(),
+            polygon_stipple: None,
+            line: Line::default(),
+            point: Point::default(),
+            shade_model: ShadeModel::Smooth,
+            lighting: None,
+            color_sum: false,
+            fog: None,
+            clip_planes: Vec::new(),
+            scissor: None,
+            viewport: [0; 4],
+            depth_range: [0.0, 1.0],
+            normalize: false,
+            rescale_normal: false,
+            dither: true,
+        }
+    }
+}

@@ -41,6 +41,9 @@ pub struct Context {
     pub transform: super::transform::TransformState,
     /// Viewport, depth range and scissor box.
     pub viewport: super::viewport::ViewportState,
+    /// Fixed-function state: lighting, fog, per-fragment operations, rasterization, clip
+    /// planes, hints, clear values, buffers, attribute stack.
+    pub fixed: super::fixed::FixedState,
     /// Immediate-mode assembly (`glBegin`/`glEnd`).
     pub(crate) immediate: super::immediate::ImmediateState,
     /// The frame being assembled since the last swap.
@@ -61,6 +64,7 @@ impl Context {
             texunit: Default::default(),
             transform: Default::default(),
             viewport: super::viewport::ViewportState::new(),
+            fixed: Default::default(),
             immediate: Default::default(),
             frame: Frame::default(),
             sink: config.sink,

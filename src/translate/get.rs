@@ -87,6 +87,15 @@ impl Context {
             .or_else(|| self.query_texunit(pname))
             .or_else(|| self.query_viewport(pname))
             .or_else(|| self.query_lists(pname))
+            .or_else(|| self.query_lighting(pname))
+            .or_else(|| self.query_fog(pname))
+            .or_else(|| self.query_fragment(pname))
+            .or_else(|| self.query_rasterization(pname))
+            .or_else(|| self.query_clear(pname))
+            .or_else(|| self.query_buffers(pname))
+            .or_else(|| self.query_hints(pname))
+            .or_else(|| self.query_attrib(pname))
+            .or_else(|| self.query_implementation(pname))
     }
 
     fn query_lists(&self, pname: GLenum) -> Option<Value> {

@@ -11,19 +11,34 @@
 // finds them by that name, and the names match the specification and the reference pages.
 #![allow(non_snake_case)]
 
+pub mod attrib;
+pub mod buffers;
+pub mod clear;
+pub mod clip_planes;
 pub mod context;
 pub mod convert;
 pub mod dispatch;
 pub mod enable;
+pub mod enums;
 pub mod error;
+pub mod fixed;
+pub mod fog;
+pub mod fragment;
 pub mod get;
 pub mod gl;
+pub mod hints;
 pub mod immediate;
+pub mod implementation;
+pub mod lighting;
 pub mod limits;
 pub mod lists;
+pub mod params;
+pub mod rasterization;
 #[cfg(test)]
 mod robustness;
 pub mod snapshot;
+pub mod stipple;
+pub mod strings;
 pub mod texunit;
 pub mod transform;
 pub mod viewport;

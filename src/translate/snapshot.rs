@@ -1,17 +1,10 @@
-//! Snapshots of the context state taken when a draw is emitted (placeholders until the
-//! fixed-function state and texture modules provide them).
-
-use std::sync::Arc;
+//! Texture snapshot taken when a draw is emitted (placeholder until the texture module
+//! provides it). The raster-state snapshot is `Context::raster_snapshot` in `fixed.rs`.
 
 use super::Context;
-use crate::frame::{RasterState, TextureRef};
+use crate::frame::TextureRef;
 
 impl Context {
-    /// The raster state for the next draw.
-    pub fn raster_snapshot(&mut self) -> Arc<RasterState> {
-        Arc::default()
-    }
-
     /// The texture each unit would sample for the next draw.
     pub fn texture_snapshot(&mut self) -> Vec<Option<TextureRef>> {
         Vec::new()

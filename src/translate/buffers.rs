@@ -1,0 +1,111 @@
+//! Colour buffer selection (OpenGL 1.5 sections 4.2.1 and 4.3.2) for glrt's visual, which is
+//! double-buffered RGBA without stereo or auxiliary buffers, and `glFlush`/`glFinish` (5.5).
+
+use super::Context;
+use super::get::Value;
+use super::gl::{self, GLenum};
+
+/// `glDrawBuffer` and `glReadBuffer` state.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BufferState {
+    /// `GL_DRAW_BUFFER`.
+    pub draw: GLenum,
+    /// `GL_READ_BUFFER`.
+    pub read: GLenum,
+}
+
+impl Default for BufferState {
+    /// `GL_BACK` for both in a double-buffered visual.
+    fn default() -> BufferState {
+        BufferState { draw: gl::GL_BACK, read: gl::GL_BACK }
+    }
+}
+
+/// Buffers of the visual (left front and back) that a name selects.
+const EXISTING: &[GLenum] =
+    &[gl::GL_FRONT_LEFT, gl::GL_BACK_LEFT, gl::GL_FRONT, gl::GL_BACK, gl::GL_LEFT, gl::GL_FRONT_AND_BACK, gl::GL_NONE];
+
+/// Names that are valid enums but select buffers the visual lacks (right buffers without
+/// stereo, auxiliary buffers).
+const MISSING: &[GLenum] =
+    &[gl::GL_FRONT_RIGHT, gl::GL_BACK_RIGHT, gl::GL_RIGHT, gl::GL_AUX0, gl::GL_AUX1, gl::GL_AUX2, gl::GL_AUX3];
+
+/// `Ok` if `buf` selects buffers of the visual, else the error: `GL_INVALID_OPERATION` for a
+/// valid name of a missing buffer, `GL_INVALID_ENUM` otherwise.
+fn check_buffer(buf: GLenum) -> Result<(), GLenum> {
+    if EXISTING.contains(&buf) {
+        Ok(())
+    } else if MISSING.contains(&buf) {
+        Err(gl::GL_INVALID_OPERATION)
+    } else {
+        Err(gl::GL_INVALID_ENUM)
+    }
+}
+
+impl Context {
+    /// `glDrawBuffer`.
+    pub fn glDrawBuffer(&mut self, buf: GLenum) {
+        match check_buffer(buf) {
+            Ok(()) => self.fixed_mut().buffers.draw = buf,
+            Err(e) => self.set_error_in(e, "glDrawBuffer"),
+        }
+    }
+
+    /// `glReadBuffer`: `GL_NONE` and `GL_FRONT_AND_BACK` are not sources (`GL_INVALID_ENUM`).
+    pub fn glReadBuffer(&mut self, src: GLenum) {
+        let result = match src {
+            gl::GL_NONE | gl::GL_FRONT_AND_BACK => Err(gl::GL_INVALID_ENUM),
+            _ => check_buffer(src),
+        };
+        match result {
+            Ok(()) => self.fixed_mut().buffers.read = src,
+            Err(e) => self.set_error_in(e, "glReadBuffer"),
+        }
+    }
+
+    /// `glFlush`: commands are already complete from the program's point of view; the frame
+    /// is handed to the renderer at `glXSwapBuffers` or at a read-back, so there is nothing
+    /// to push here.
+    pub fn glFlush(&mut self) {}
+
+    /// `glFinish`: a read-back point, like `glReadPixels`. The renderer wires the hand-over of
+    /// the partial frame here (it must return once every earlier command's pixels exist).
+    pub fn glFinish(&mut self) {}
+
+    /// Buffer selection queries (tables 6.19 and 6.20).
+    pub(crate) fn query_buffers(&self, pname: GLenum) -> Option<Value> {
+        Some(match pname {
+            gl::GL_DRAW_BUFFER => Value::int(self.fixed.buffers.draw),
+            gl::GL_READ_BUFFER => Value::int(self.fixed.buffers.read),
+            _ => return None,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::translate::Context;
+    use crate::translate::gl;
+
+    #[test]
+    fn draw_and_read_buffer_errors() {
+        let (mut ctx, _) = Context::with_recording();
+        assert_eq!(ctx.query(gl::GL_DRAW_BUFFER).unwrap().to_ints(), [gl::GL_BACK as i32]);
+        ctx.glDrawBuffer(gl::GL_FRONT_AND_BACK);
+        ctx.glReadBuffer(gl::GL_FRONT);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        assert_eq!(ctx.query(gl::GL_DRAW_BUFFER).unwrap().to_ints(), [gl::GL_FRONT_AND_BACK as i32]);
+        assert_eq!(ctx.query(gl::GL_READ_BUFFER).unwrap().to_ints(), [gl::GL_FRONT as i32]);
+        ctx.glDrawBuffer(gl::GL_AUX0);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+        ctx.glDrawBuffer(gl::GL_BACK_RIGHT);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+        ctx.glDrawBuffer(gl::GL_TEXTURE_2D);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glReadBuffer(gl::GL_NONE);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glReadBuffer(gl::GL_AUX1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+        assert_eq!(ctx.query(gl::GL_READ_BUFFER).unwrap().to_ints(), [gl::GL_FRONT as i32]);
+    }
+}

@@ -1,0 +1,169 @@
+//! The polygon stipple pattern (OpenGL 1.5 section 3.5.2): `glPolygonStipple` unpacks a 32×32
+//! bitmap like `glBitmap` data (section 3.6.4, type `GL_BITMAP`), `glGetPolygonStipple` packs
+//! it back (section 4.3.2).
+//!
+//! Seam with the pixel-store module: both commands use [`BitmapLayout::DEFAULT_STORE`], the
+//! layout of the initial `glPixelStore` state (alignment 4, no row length or skips,
+//! most-significant bit first). When the pixel-store state lands, build the layout from it
+//! with [`BitmapLayout::new`] (unpack state in `glPolygonStipple` and its compile method, pack
+//! state in `glGetPolygonStipple`).
+
+use super::Context;
+use super::convert::read_slice;
+use super::gl::GLubyte;
+use super::lists::ListOp;
+
+/// Where the bits of a bitmap lie in client memory.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BitmapLayout {
+    /// Bytes from one row to the next.
+    pub row_stride: usize,
+    /// Byte offset of the first row (`SKIP_ROWS`).
+    pub first_row: usize,
+    /// Bit offset of the first pixel in a row (`SKIP_PIXELS`).
+    pub first_bit: usize,
+    /// `LSB_FIRST`: the leftmost pixel is bit 0 of a byte rather than bit 7.
+    pub lsb_first: bool,
+}
+
+/// Side of the stipple pattern, in pixels.
+const SIDE: usize = 32;
+
+impl BitmapLayout {
+    /// The layout of the initial pixel-store state for a 32-pixel-wide bitmap.
+    pub const DEFAULT_STORE: BitmapLayout = BitmapLayout { row_stride: 4, first_row: 0, first_bit: 0, lsb_first: false };
+
+    /// The layout of a 32-pixel-wide bitmap for pixel-store values (section 3.6.4): rows of
+    /// `ROW_LENGTH` (or 32) bits padded to `alignment` bytes. Negative values count as 0 and a
+    /// bad alignment as 1 (`glPixelStore` rejects both before they get here).
+    pub fn new(alignment: i32, row_length: i32, skip_rows: i32, skip_pixels: i32, lsb_first: bool) -> BitmapLayout {
+        let a = if matches!(alignment, 1 | 2 | 4 | 8) { alignment as usize } else { 1 };
+        let bits = if row_length > 0 { row_length as usize } else { SIDE };
+        let row_stride = a * bits.div_ceil(8 * a);
+        BitmapLayout {
+            row_stride,
+            first_row: row_stride * skip_rows.max(0) as usize,
+            first_bit: skip_pixels.max(0) as usize,
+            lsb_first,
+        }
+    }
+
+    /// Byte index and bit mask of pixel `col` of row `row`.
+    fn bit(&self, row: usize, col: usize) -> (usize, u8) {
+        let bit = self.first_bit + col;
+        let mask = if self.lsb_first { 1 << (bit % 8) } else { 0x80 >> (bit % 8) };
+        (self.first_row + row * self.row_stride + bit / 8, mask)
+    }
+
+    /// Bytes spanned by the 32×32 bitmap.
+    fn len(&self) -> usize {
+        self.bit(SIDE - 1, SIDE - 1).0 + 1
+    }
+}
+
+/// Unpacks a 32×32 bitmap into rows (bit 31 = leftmost pixel); `None` for a null pointer.
+///
+/// # Safety
+/// A non-null `ptr` must point to the bytes the layout spans.
+unsafe fn unpack(ptr: *const GLubyte, layout: &BitmapLayout) -> Option<[u32; SIDE]> {
+    let bytes = unsafe { read_slice(ptr, layout.len()) }?;
+    Some(std::array::from_fn(|row| {
+        (0..SIDE).fold(0u32, |acc, col| {
+            let (i, mask) = layout.bit(row, col);
+            acc | (u32::from(bytes[i] & mask != 0) << (31 - col))
+        })
+    }))
+}
+
+impl Context {
+    /// Replaces the pattern.
+    fn set_polygon_stipple(&mut self, rows: [u32; SIDE]) {
+        self.fixed_mut().raster.stipple = rows;
+    }
+
+    /// `glPolygonStipple`.
+    ///
+    /// # Safety
+    /// `mask` must point to the 32×32 bitmap as the unpack state lays it out.
+    pub unsafe fn glPolygonStipple(&mut self, mask: *const GLubyte) {
+        match unsafe { unpack(mask, &BitmapLayout::DEFAULT_STORE) } {
+            Some(rows) => self.set_polygon_stipple(rows),
+            None => self.null_pointer("glPolygonStipple"),
+        }
+    }
+
+    /// `glPolygonStipple` in a display list: unpacked when compiled (section 5.4).
+    ///
+    /// # Safety
+    /// As [`Context::glPolygonStipple`].
+    pub unsafe fn compile_glPolygonStipple(&mut self, mask: *const GLubyte) {
+        match unsafe { unpack(mask, &BitmapLayout::DEFAULT_STORE) } {
+            Some(rows) => self.lists.record(ListOp::Deferred(Box::new(move |ctx| ctx.set_polygon_stipple(rows)))),
+            None => self.null_pointer("glPolygonStipple"),
+        }
+    }
+
+    /// `glGetPolygonStipple`: writes only the bits of the pattern, leaving padding bytes and
+    /// skipped bits as they were.
+    ///
+    /// # Safety
+    /// `mask` must point to writable memory for the 32×32 bitmap as the pack state lays it out.
+    pub unsafe fn glGetPolygonStipple(&mut self, mask: *mut GLubyte) {
+        if mask.is_null() {
+            return self.null_pointer("glGetPolygonStipple");
+        }
+        let layout = BitmapLayout::DEFAULT_STORE;
+        let rows = self.fixed.raster.stipple;
+        for (row, bits) in rows.iter().enumerate() {
+            for col in 0..SIDE {
+                let (i, m) = layout.bit(row, col);
+                // Safety: non-null, and the caller guarantees the layout's bytes are writable.
+                unsafe {
+                    let p = mask.add(i);
+                    let byte = p.read();
+                    p.write(if bits & (1 << (31 - col)) != 0 { byte | m } else { byte & !m });
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{BitmapLayout, unpack};
+    use crate::translate::Context;
+    use crate::translate::{dispatch, gl};
+
+    #[test]
+    fn stipple_round_trips_and_is_compiled_unpacked() {
+        let (mut ctx, _) = Context::with_recording();
+        let pattern: Vec<u8> = (0..128u32).map(|i| (i * 37 % 256) as u8).collect();
+        unsafe { ctx.glPolygonStipple(pattern.as_ptr()) };
+        assert_eq!(ctx.fixed.raster.stipple[0], u32::from_be_bytes([0, 37, 74, 111]));
+        let mut back = [0u8; 128];
+        unsafe { ctx.glGetPolygonStipple(back.as_mut_ptr()) };
+        assert_eq!(back.to_vec(), pattern);
+
+        let zeros = [0u8; 128];
+        unsafe {
+            dispatch::glNewList(&mut ctx, 5, gl::GL_COMPILE);
+            dispatch::glPolygonStipple(&mut ctx, zeros.as_ptr());
+            dispatch::glEndList(&mut ctx);
+        }
+        assert_eq!(ctx.fixed.raster.stipple[0], u32::from_be_bytes([0, 37, 74, 111]));
+        unsafe { dispatch::glCallList(&mut ctx, 5) };
+        assert_eq!(ctx.fixed.raster.stipple, [0; 32]);
+    }
+
+    #[test]
+    fn layout_follows_pixel_store_values() {
+        let l = BitmapLayout::new(8, 0, 1, 4, true);
+        assert_eq!((l.row_stride, l.first_row, l.first_bit), (8, 8, 4));
+        let mut bytes = vec![0u8; 8 * 33];
+        bytes[8] = 0x10; // row 0, pixel 0 is bit 4 (LSB first, 4 pixels skipped)
+        let rows = unsafe { unpack(bytes.as_ptr(), &l) }.unwrap();
+        assert_eq!(rows[0], 1 << 31);
+        assert_eq!(rows[1], 0);
+        assert_eq!(BitmapLayout::new(4, 0, 0, 0, false), BitmapLayout::DEFAULT_STORE);
+    }
+}
