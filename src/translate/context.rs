@@ -41,6 +41,8 @@ pub struct Context {
     pub transform: super::transform::TransformState,
     /// Viewport, depth range and scissor box.
     pub viewport: super::viewport::ViewportState,
+    /// Evaluator maps and grids.
+    pub eval: super::eval::EvalState,
     /// Immediate-mode assembly (`glBegin`/`glEnd`).
     pub(crate) immediate: super::immediate::ImmediateState,
     /// The frame being assembled since the last swap.
@@ -61,6 +63,7 @@ impl Context {
             texunit: Default::default(),
             transform: Default::default(),
             viewport: super::viewport::ViewportState::new(),
+            eval: Default::default(),
             immediate: Default::default(),
             frame: Frame::default(),
             sink: config.sink,

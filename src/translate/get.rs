@@ -87,6 +87,7 @@ impl Context {
             .or_else(|| self.query_texunit(pname))
             .or_else(|| self.query_viewport(pname))
             .or_else(|| self.query_lists(pname))
+            .or_else(|| self.query_eval(pname))
     }
 
     fn query_lists(&self, pname: GLenum) -> Option<Value> {

@@ -16,6 +16,7 @@ pub mod convert;
 pub mod dispatch;
 pub mod enable;
 pub mod error;
+pub mod eval;
 pub mod get;
 pub mod gl;
 pub mod immediate;
