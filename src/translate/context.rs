@@ -43,6 +43,8 @@ pub struct Context {
     pub viewport: super::viewport::ViewportState,
     /// Evaluator maps and grids.
     pub eval: super::eval::EvalState,
+    /// Render mode, selection and feedback.
+    pub render_mode: super::render_mode::RenderModeState,
     /// Immediate-mode assembly (`glBegin`/`glEnd`).
     pub(crate) immediate: super::immediate::ImmediateState,
     /// The frame being assembled since the last swap.
@@ -64,6 +66,7 @@ impl Context {
             transform: Default::default(),
             viewport: super::viewport::ViewportState::new(),
             eval: Default::default(),
+            render_mode: Default::default(),
             immediate: Default::default(),
             frame: Frame::default(),
             sink: config.sink,

@@ -88,6 +88,7 @@ impl Context {
             .or_else(|| self.query_viewport(pname))
             .or_else(|| self.query_lists(pname))
             .or_else(|| self.query_eval(pname))
+            .or_else(|| self.query_render_mode(pname))
     }
 
     fn query_lists(&self, pname: GLenum) -> Option<Value> {
