@@ -22,6 +22,7 @@ pub mod gl;
 pub mod immediate;
 pub mod limits;
 pub mod lists;
+pub mod queries;
 pub mod render_mode;
 pub mod snapshot;
 pub mod texunit;
