@@ -17,7 +17,7 @@ pub mod feedback;
 pub mod pipeline;
 pub mod select;
 
-pub use pipeline::{CpuPrimitive, CpuVertex, PolygonRules, WindowVertex};
+pub use pipeline::{CpuPrimitive, CpuVertex, RasterRules, WindowVertex};
 
 use super::Context;
 use super::get::Value;
@@ -106,7 +106,7 @@ impl Context {
     /// caller draws it as usual) and `true` when selection or feedback consumed it (nothing
     /// may reach the frame). `rules` is the culling and polygon-mode state; `clip_planes` the
     /// enabled user clip planes in eye coordinates.
-    pub fn render_mode_primitive(&mut self, prim: &CpuPrimitive, rules: &PolygonRules, clip_planes: &[[f32; 4]]) -> bool {
+    pub fn render_mode_primitive(&mut self, prim: &CpuPrimitive, rules: &RasterRules, clip_planes: &[[f32; 4]]) -> bool {
         if self.render_mode.mode == RenderMode::Render {
             return false;
         }

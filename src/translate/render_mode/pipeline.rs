@@ -36,21 +36,24 @@ pub struct CpuPrimitive<'a> {
     pub vertices: &'a [CpuVertex],
 }
 
-/// Polygon rasterization state that decides what feedback and selection see (section 3.5).
+/// Rasterization state that decides what feedback and selection see (section 3.5).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct PolygonRules {
+pub struct RasterRules {
     /// `glCullFace` mode when `GL_CULL_FACE` is enabled, `None` when it is disabled.
     pub cull: Option<GLenum>,
     /// `glFrontFace`: `GL_CCW` or `GL_CW`.
     pub front_face: GLenum,
     /// `glPolygonMode` of front and back faces: `GL_POINT`, `GL_LINE` or `GL_FILL`.
     pub mode: [GLenum; 2],
+    /// `glShadeModel(GL_FLAT)`: each line and polygon takes its provoking vertex's colour.
+    pub flat_shading: bool,
 }
 
-impl Default for PolygonRules {
-    /// The initial state: no culling, counter-clockwise front faces, both faces filled.
-    fn default() -> PolygonRules {
-        PolygonRules { cull: None, front_face: gl::GL_CCW, mode: [gl::GL_FILL; 2] }
+impl Default for RasterRules {
+    /// The initial state: no culling, counter-clockwise front faces, both faces filled,
+    /// smooth shading.
+    fn default() -> RasterRules {
+        RasterRules { cull: None, front_face: gl::GL_CCW, mode: [gl::GL_FILL; 2], flat_shading: false }
     }
 }
 
@@ -89,6 +92,50 @@ pub enum Shape {
     Line { ends: [WindowVertex; 2], reset: bool },
     /// A filled polygon (at least three vertices).
     Polygon(Vec<WindowVertex>),
+}
+
+/// One point, segment or polygon of a primitive, by vertex index (section 2.6.1).
+enum Part {
+    Point(usize),
+    /// A segment, whether it restarts the line stipple, and its provoking vertex.
+    Line { ends: [usize; 2], reset: bool, provoking: usize },
+    /// Corners with the edge flag of the edge each starts, and the provoking vertex.
+    Polygon { corners: Vec<(usize, bool)>, provoking: usize },
+}
+
+/// Splits a primitive into points, segments and polygons. Edge flags count only for
+/// independent triangles, quads and polygons (section 2.6.2); elsewhere every edge is a
+/// boundary. Odd triangles of a strip are reordered so all keep the strip's orientation.
+fn assemble(prim: &CpuPrimitive) -> Vec<Part> {
+    let n = prim.vertices.len();
+    let flag = |k: usize| prim.vertices[k].edge_flag;
+    let line = |a: usize, b: usize, reset: bool, provoking: usize| Part::Line { ends: [a, b], reset, provoking };
+    let flagged = |idx: &[usize]| Part::Polygon { corners: idx.iter().map(|&k| (k, flag(k))).collect(), provoking: idx[idx.len() - 1] };
+    let plain = |idx: &[usize], provoking: usize| Part::Polygon { corners: idx.iter().map(|&k| (k, true)).collect(), provoking };
+    match prim.mode {
+        gl::GL_POINTS => (0..n).map(Part::Point).collect(),
+        gl::GL_LINES => (0..n / 2).map(|i| line(2 * i, 2 * i + 1, true, 2 * i + 1)).collect(),
+        gl::GL_LINE_STRIP | gl::GL_LINE_LOOP if n >= 2 => {
+            let mut parts: Vec<Part> = (0..n - 1).map(|i| line(i, i + 1, i == 0, i + 1)).collect();
+            if prim.mode == gl::GL_LINE_LOOP {
+                parts.push(line(n - 1, 0, false, 0));
+            }
+            parts
+        }
+        gl::GL_TRIANGLES => (0..n / 3).map(|i| flagged(&[3 * i, 3 * i + 1, 3 * i + 2])).collect(),
+        gl::GL_TRIANGLE_STRIP => (0..n.saturating_sub(2))
+            .map(|i| plain(&if i % 2 == 0 { [i, i + 1, i + 2] } else { [i + 1, i, i + 2] }, i + 2))
+            .collect(),
+        gl::GL_TRIANGLE_FAN => (1..n.saturating_sub(1)).map(|i| plain(&[0, i, i + 1], i + 1)).collect(),
+        gl::GL_QUADS => (0..n / 4).map(|i| flagged(&[4 * i, 4 * i + 1, 4 * i + 2, 4 * i + 3])).collect(),
+        gl::GL_QUAD_STRIP => (0..(n / 2).saturating_sub(1))
+            .map(|i| plain(&[2 * i, 2 * i + 1, 2 * i + 3, 2 * i + 2], 2 * i + 3))
+            .collect(),
+        gl::GL_POLYGON if n >= 3 => {
+            vec![Part::Polygon { corners: (0..n).map(|k| (k, flag(k))).collect(), provoking: 0 }]
+        }
+        _ => Vec::new(),
+    }
 }
 
 /// A vertex during clipping: clip and eye coordinates plus the attributes to interpolate.
@@ -188,58 +235,39 @@ impl Transforms<'_> {
     }
 
     /// Runs `prim` through the pipeline and returns what rasterization would draw.
-    pub fn shapes(&self, prim: &CpuPrimitive, rules: &PolygonRules) -> Vec<Shape> {
+    pub fn shapes(&self, prim: &CpuPrimitive, rules: &RasterRules) -> Vec<Shape> {
         let v: Vec<ClipVertex> = prim.vertices.iter().map(|x| self.to_clip(x)).collect();
-        let flag = |i: usize| prim.vertices[i].edge_flag;
-        let n = v.len();
-        let mut out = Vec::new();
-        let line = |out: &mut Vec<Shape>, a: usize, b: usize, reset: bool| {
-            if let Some([a, b]) = clip_line(v[a], v[b], self.clip_planes) {
-                out.push(Shape::Line { ends: [self.to_window(&a), self.to_window(&b)], reset });
-            }
+        // With flat shading every vertex takes the provoking vertex's colour (table 2.8).
+        let vertex = |k: usize, provoking: usize| ClipVertex {
+            color: if rules.flat_shading { v[provoking].color } else { v[k].color },
+            ..v[k]
         };
-        match prim.mode {
-            gl::GL_POINTS => {
-                let inside = |p: &ClipVertex| (0..6 + self.clip_planes.len()).all(|k| distance(p, k, self.clip_planes) >= 0.0);
-                out.extend(v.iter().filter(|p| inside(p)).map(|p| Shape::Point(self.to_window(p))));
-            }
-            gl::GL_LINES => (0..n / 2).for_each(|i| line(&mut out, 2 * i, 2 * i + 1, true)),
-            gl::GL_LINE_STRIP | gl::GL_LINE_LOOP if n >= 2 => {
-                (0..n - 1).for_each(|i| line(&mut out, i, i + 1, i == 0));
-                if prim.mode == gl::GL_LINE_LOOP {
-                    line(&mut out, n - 1, 0, false);
+        let mut out = Vec::new();
+        for part in assemble(prim) {
+            match part {
+                Part::Point(k) => {
+                    let p = v[k];
+                    if (0..6 + self.clip_planes.len()).all(|plane| distance(&p, plane, self.clip_planes) >= 0.0) {
+                        out.push(Shape::Point(self.to_window(&p)));
+                    }
+                }
+                Part::Line { ends: [a, b], reset, provoking } => {
+                    if let Some([a, b]) = clip_line(vertex(a, provoking), vertex(b, provoking), self.clip_planes) {
+                        out.push(Shape::Line { ends: [self.to_window(&a), self.to_window(&b)], reset });
+                    }
+                }
+                Part::Polygon { corners, provoking } => {
+                    let poly = corners.iter().map(|&(k, flag)| (vertex(k, provoking), flag)).collect();
+                    self.polygon(&mut out, rules, poly);
                 }
             }
-            gl::GL_TRIANGLES => (0..n / 3).for_each(|i| {
-                self.polygon(&mut out, rules, &[3 * i, 3 * i + 1, 3 * i + 2].map(|k| (v[k], flag(k))));
-            }),
-            gl::GL_TRIANGLE_STRIP => (0..n.saturating_sub(2)).for_each(|i| {
-                let idx = if i % 2 == 0 { [i, i + 1, i + 2] } else { [i + 1, i, i + 2] };
-                self.polygon(&mut out, rules, &idx.map(|k| (v[k], true)));
-            }),
-            gl::GL_TRIANGLE_FAN => (1..n.saturating_sub(1)).for_each(|i| {
-                self.polygon(&mut out, rules, &[0, i, i + 1].map(|k| (v[k], true)));
-            }),
-            gl::GL_QUADS => (0..n / 4).for_each(|i| {
-                let idx = [4 * i, 4 * i + 1, 4 * i + 2, 4 * i + 3];
-                self.polygon(&mut out, rules, &idx.map(|k| (v[k], flag(k))));
-            }),
-            gl::GL_QUAD_STRIP => (0..(n / 2).saturating_sub(1)).for_each(|i| {
-                let idx = [2 * i, 2 * i + 1, 2 * i + 3, 2 * i + 2];
-                self.polygon(&mut out, rules, &idx.map(|k| (v[k], true)));
-            }),
-            gl::GL_POLYGON if n >= 3 => {
-                let poly: Vec<_> = (0..n).map(|k| (v[k], flag(k))).collect();
-                self.polygon(&mut out, rules, &poly);
-            }
-            _ => {}
         }
         out
     }
 
     /// Clips one polygon, then applies culling and the polygon mode (sections 3.5.1, 3.5.4).
-    fn polygon(&self, out: &mut Vec<Shape>, rules: &PolygonRules, poly: &[(ClipVertex, bool)]) {
-        let clipped = clip_polygon(poly.to_vec(), self.clip_planes);
+    fn polygon(&self, out: &mut Vec<Shape>, rules: &RasterRules, poly: Vec<(ClipVertex, bool)>) {
+        let clipped = clip_polygon(poly, self.clip_planes);
         if clipped.len() < 3 {
             return;
         }

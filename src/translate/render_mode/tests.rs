@@ -3,7 +3,7 @@
 
 use super::feedback::{GL_2D, GL_3D, GL_3D_COLOR, GL_4D_COLOR_TEXTURE};
 use super::select::depth_to_uint;
-use super::{CpuPrimitive, CpuVertex, PolygonRules, RasterEvent, WindowVertex};
+use super::{CpuPrimitive, CpuVertex, RasterRules, RasterEvent, WindowVertex};
 use crate::translate::Context;
 use crate::translate::dispatch;
 use crate::translate::gl::{self, GLenum};
@@ -20,7 +20,7 @@ fn v(x: f32, y: f32, z: f32) -> CpuVertex {
 }
 
 fn draw(c: &mut Context, mode: GLenum, vs: &[CpuVertex]) -> bool {
-    c.render_mode_primitive(&CpuPrimitive { mode, vertices: vs }, &PolygonRules::default(), &[])
+    c.render_mode_primitive(&CpuPrimitive { mode, vertices: vs }, &RasterRules::default(), &[])
 }
 
 fn tok(t: GLenum) -> f32 {
@@ -75,7 +75,7 @@ fn user_clip_plane_limits_hits() {
         dispatch::glPushName(&mut c, 1);
     }
     let keep_right = [[1.0, 0.0, 0.0, 0.0]]; // x ≥ 0 in eye space
-    let rules = PolygonRules::default();
+    let rules = RasterRules::default();
     // Entirely on the clipped side.
     let left = [v(-0.9, 0.0, 0.0), v(-0.1, 0.0, 0.0), v(-0.5, 0.5, 0.0)];
     c.render_mode_primitive(&CpuPrimitive { mode: gl::GL_TRIANGLES, vertices: &left }, &rules, &keep_right);
@@ -142,7 +142,7 @@ fn feedback_polygons_clipped_and_culled() {
     feedback(&mut c, GL_2D, &mut buf);
     let ccw = [v(0.0, 0.0, 0.0), v(0.5, 0.0, 0.0), v(0.0, 0.5, 0.0)];
     let cw = [ccw[0], ccw[2], ccw[1]];
-    let rules = PolygonRules { cull: Some(gl::GL_BACK), mode: [gl::GL_LINE, gl::GL_FILL], ..PolygonRules::default() };
+    let rules = RasterRules { cull: Some(gl::GL_BACK), mode: [gl::GL_LINE, gl::GL_FILL], ..RasterRules::default() };
     c.render_mode_primitive(&CpuPrimitive { mode: gl::GL_TRIANGLES, vertices: &cw }, &rules, &[]);
     let mut flagged = ccw;
     flagged[1].edge_flag = false; // edge 1 → 2 is not a boundary
@@ -258,4 +258,20 @@ fn render_mode_errors_and_queries() {
         assert_eq!(c.glGetError(), gl::GL_INVALID_OPERATION);
         dispatch::glEnd(&mut c);
     }
+}
+
+#[test]
+fn flat_shading_feeds_back_the_provoking_colour() {
+    let mut c = ctx();
+    let mut buf = [0.0f32; 32];
+    feedback(&mut c, GL_3D_COLOR, &mut buf);
+    let mut a = v(0.0, 0.0, 0.0);
+    a.color = [0.0, 0.0, 1.0, 1.0];
+    let b = v(0.5, 0.0, 0.0);
+    let rules = RasterRules { flat_shading: true, ..RasterRules::default() };
+    c.render_mode_primitive(&CpuPrimitive { mode: gl::GL_LINES, vertices: &[a, b] }, &rules, &[]);
+    assert_eq!(unsafe { dispatch::glRenderMode(&mut c, gl::GL_RENDER) }, 15);
+    // The second vertex provokes an independent line: both ends get its colour.
+    assert_eq!(&buf[4..8], &[1.0, 0.5, 0.0, 1.0]);
+    assert_eq!(&buf[11..15], &[1.0, 0.5, 0.0, 1.0]);
 }
