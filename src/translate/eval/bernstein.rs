@@ -93,7 +93,7 @@ mod tests {
         let expected = 0.421875 + 3.0 * 0.140625 + 2.0 * 0.015625;
         assert!(close(&p.value, &[expected]), "{:?}", p.value);
         // Derivative: 3 * sum of B_i^2(t) * (P_{i+1} - P_i), B^2 at 0.25 = 0.5625, 0.375, 0.0625.
-        let d = 3.0 * (0.5625 * 1.0 + 0.375 * 2.0 + 0.0625 * -1.0);
+        let d = 3.0 * (0.5625 * 1.0 + 0.375 * 2.0 - 0.0625 * 1.0);
         assert!(close(&p.derivative, &[d]), "{:?}", p.derivative);
         assert!(close(&curve(&pts, 1, 4, 0.0).value, &[0.0]));
         assert!(close(&curve(&pts, 1, 4, 1.0).value, &[2.0]));

@@ -135,6 +135,7 @@ impl Context {
     ///
     /// # Safety
     /// `points` must hold `uorder` × `vorder` control points at the given strides.
+    #[allow(clippy::too_many_arguments)] // the C signature of the GL command
     pub unsafe fn glMap2f(
         &mut self, target: GLenum, u1: GLfloat, u2: GLfloat, ustride: GLint, uorder: GLint,
         v1: GLfloat, v2: GLfloat, vstride: GLint, vorder: GLint, points: *const GLfloat,
@@ -147,6 +148,7 @@ impl Context {
     ///
     /// # Safety
     /// `points` must hold `uorder` × `vorder` control points at the given strides.
+    #[allow(clippy::too_many_arguments)] // the C signature of the GL command
     pub unsafe fn glMap2d(
         &mut self, target: GLenum, u1: GLdouble, u2: GLdouble, ustride: GLint, uorder: GLint,
         v1: GLdouble, v2: GLdouble, vstride: GLint, vorder: GLint, points: *const GLdouble,
@@ -174,6 +176,7 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glMap2f`].
+    #[allow(clippy::too_many_arguments)] // the C signature of the GL command
     pub unsafe fn compile_glMap2f(
         &mut self, target: GLenum, u1: GLfloat, u2: GLfloat, ustride: GLint, uorder: GLint,
         v1: GLfloat, v2: GLfloat, vstride: GLint, vorder: GLint, points: *const GLfloat,
@@ -186,6 +189,7 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glMap2d`].
+    #[allow(clippy::too_many_arguments)] // the C signature of the GL command
     pub unsafe fn compile_glMap2d(
         &mut self, target: GLenum, u1: GLdouble, u2: GLdouble, ustride: GLint, uorder: GLint,
         v1: GLdouble, v2: GLdouble, vstride: GLint, vorder: GLint, points: *const GLdouble,

@@ -216,7 +216,7 @@ fn clip_polygon(mut poly: Vec<(ClipVertex, bool)>, user: &[[f32; 4]]) -> Vec<(Cl
 }
 
 impl Transforms<'_> {
-    fn to_clip(&self, v: &CpuVertex) -> ClipVertex {
+    fn clip_vertex(&self, v: &CpuVertex) -> ClipVertex {
         let eye = self.modelview * Vec4::from_array(v.position);
         ClipVertex {
             clip: self.projection * eye,
@@ -227,7 +227,7 @@ impl Transforms<'_> {
     }
 
     /// Perspective division and viewport (equations 2.12, 2.13).
-    fn to_window(&self, v: &ClipVertex) -> WindowVertex {
+    fn window_vertex(&self, v: &ClipVertex) -> WindowVertex {
         let c = v.clip;
         let w = if c.w == 0.0 { f32::MIN_POSITIVE } else { c.w };
         let [x, y, z] = self.viewport.to_window([c.x / w, c.y / w, c.z / w]);
@@ -236,7 +236,7 @@ impl Transforms<'_> {
 
     /// Runs `prim` through the pipeline and returns what rasterization would draw.
     pub fn shapes(&self, prim: &CpuPrimitive, rules: &RasterRules) -> Vec<Shape> {
-        let v: Vec<ClipVertex> = prim.vertices.iter().map(|x| self.to_clip(x)).collect();
+        let v: Vec<ClipVertex> = prim.vertices.iter().map(|x| self.clip_vertex(x)).collect();
         // With flat shading every vertex takes the provoking vertex's colour (table 2.8).
         let vertex = |k: usize, provoking: usize| ClipVertex {
             color: if rules.flat_shading { v[provoking].color } else { v[k].color },
@@ -248,12 +248,12 @@ impl Transforms<'_> {
                 Part::Point(k) => {
                     let p = v[k];
                     if (0..6 + self.clip_planes.len()).all(|plane| distance(&p, plane, self.clip_planes) >= 0.0) {
-                        out.push(Shape::Point(self.to_window(&p)));
+                        out.push(Shape::Point(self.window_vertex(&p)));
                     }
                 }
                 Part::Line { ends: [a, b], reset, provoking } => {
                     if let Some([a, b]) = clip_line(vertex(a, provoking), vertex(b, provoking), self.clip_planes) {
-                        out.push(Shape::Line { ends: [self.to_window(&a), self.to_window(&b)], reset });
+                        out.push(Shape::Line { ends: [self.window_vertex(&a), self.window_vertex(&b)], reset });
                     }
                 }
                 Part::Polygon { corners, provoking } => {
@@ -271,7 +271,7 @@ impl Transforms<'_> {
         if clipped.len() < 3 {
             return;
         }
-        let win: Vec<WindowVertex> = clipped.iter().map(|(v, _)| self.to_window(v)).collect();
+        let win: Vec<WindowVertex> = clipped.iter().map(|(v, _)| self.window_vertex(v)).collect();
         let area: f32 = (0..win.len())
             .map(|i| {
                 let (a, b) = (win[i].window, win[(i + 1) % win.len()].window);
