@@ -20,6 +20,10 @@ pub struct Frame {
     pub draws: Vec<Draw>,
     /// Clears, in program order, each placed before a draw index.
     pub clears: Vec<Clear>,
+    /// Occlusion queries ended in this frame: query name and the draws (indices into
+    /// [`Frame::draws`]) between its `glBeginQuery` and `glEndQuery`; the renderer counts their
+    /// samples that pass and answers through [`crate::render::FrameSink::occlusion_result`].
+    pub occlusion_queries: Vec<(u32, std::ops::Range<usize>)>,
 }
 
 /// One draw: primitives of one state.

@@ -11,6 +11,20 @@ use crate::frame::Frame;
 pub trait FrameSink: Send {
     /// Takes the frame that `glXSwapBuffers` (or a read-back) ended.
     fn present(&mut self, frame: Frame);
+
+    /// Samples that passed for occlusion query `query` of frame number `frame` (listed in
+    /// that frame's [`Frame::occlusion_queries`]), once that frame was presented; `None` while
+    /// unknown. A renderer whose [`FrameSink::occlusion_counter_bits`] is not 0 must answer
+    /// every query of a presented frame eventually. The default counts nothing.
+    fn occlusion_result(&mut self, _frame: u64, _query: u32) -> Option<u64> {
+        None
+    }
+
+    /// Bits of the renderer's sample counter (`GL_QUERY_COUNTER_BITS`); 0 when it does not
+    /// count samples (the default).
+    fn occlusion_counter_bits(&self) -> u32 {
+        0
+    }
 }
 
 /// Drops frames, keeping only how many were presented (used when no renderer is available).

@@ -44,11 +44,17 @@ pub struct Context {
     /// Fixed-function state: lighting, fog, per-fragment operations, rasterization, clip
     /// planes, hints, clear values, buffers, attribute stack.
     pub fixed: super::fixed::FixedState,
+    /// Evaluator maps and grids.
+    pub eval: super::eval::EvalState,
+    /// Render mode, selection and feedback.
+    pub render_mode: super::render_mode::RenderModeState,
+    /// Occlusion query objects.
+    pub queries: super::queries::QueryState,
     /// Immediate-mode assembly (`glBegin`/`glEnd`).
     pub(crate) immediate: super::immediate::ImmediateState,
     /// The frame being assembled since the last swap.
     pub(crate) frame: Frame,
-    sink: Box<dyn FrameSink>,
+    pub(crate) sink: Box<dyn FrameSink>,
     /// Size of the drawable last made current, `(width, height)`.
     pub(crate) drawable_size: Option<(i32, i32)>,
 }
@@ -65,6 +71,9 @@ impl Context {
             transform: Default::default(),
             viewport: super::viewport::ViewportState::new(),
             fixed: Default::default(),
+            eval: Default::default(),
+            render_mode: Default::default(),
+            queries: Default::default(),
             immediate: Default::default(),
             frame: Frame::default(),
             sink: config.sink,

@@ -96,6 +96,8 @@ impl Context {
             .or_else(|| self.query_hints(pname))
             .or_else(|| self.query_attrib(pname))
             .or_else(|| self.query_implementation(pname))
+            .or_else(|| self.query_eval(pname))
+            .or_else(|| self.query_render_mode(pname))
     }
 
     fn query_lists(&self, pname: GLenum) -> Option<Value> {

@@ -21,6 +21,7 @@ pub mod dispatch;
 pub mod enable;
 pub mod enums;
 pub mod error;
+pub mod eval;
 pub mod fixed;
 pub mod fog;
 pub mod fragment;
@@ -33,14 +34,16 @@ pub mod lighting;
 pub mod limits;
 pub mod lists;
 pub mod params;
+pub mod queries;
 pub mod rasterization;
-#[cfg(test)]
-mod robustness;
+pub mod render_mode;
 pub mod snapshot;
 pub mod stipple;
 pub mod strings;
 pub mod texunit;
 pub mod transform;
 pub mod viewport;
+#[cfg(test)]
+mod robustness;
 
 pub use context::Context;
