@@ -27,6 +27,7 @@ pub struct ContextHandle {
 impl ContextHandle {
     /// A context presenting to the default sink, sharing objects with `share`'s share group.
     pub fn new(share: Option<&ContextHandle>) -> ContextHandle {
+        crate::logging::init();
         let share = share.map(|h| h.shared.clone());
         let context = Context::new(ContextConfig { share, sink: render::default_sink() });
         let shared = context.shared.clone();
