@@ -11,7 +11,7 @@ use x11_dl::glx::*;
 use x11_dl::xlib;
 
 use super::glx::config::{self, FbConfig, read_pairs};
-use super::glx::context::{self, GlxContext};
+use super::glx::context;
 use super::glx::{BAD_MATCH, BAD_VALUE, GlxError, XError, connection, guard, report};
 use super::glx_config::config_of_visual;
 use super::glx_types::types;
@@ -20,7 +20,7 @@ use crate::gl_entry::current;
 /// Creates a context of `config` or reports why not (to the application's X error handler).
 fn create(dpy: *mut types::Display, name: &'static str, config: Option<&FbConfig>, share: types::GLXContext) -> types::GLXContext {
     let created = match config {
-        Some(config) => context::create(config, share.cast()),
+        Some(config) => context::create(config, share as usize),
         None => Err(BAD_VALUE),
     };
     match created {
@@ -158,7 +158,7 @@ pub unsafe extern "C" fn glXCreateContextAttribsARB(
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXDestroyContext(dpy: *mut types::Display, ctx: types::GLXContext) {
     guard("glXDestroyContext", || {
-        if !context::destroy(ctx.cast_mut().cast()) {
+        if !context::destroy(ctx as usize) {
             // Safety: as documented.
             unsafe { report(dpy.cast(), "glXDestroyContext", XError::Glx(GlxError::BadContext), ctx as c_ulong) };
         }
@@ -179,7 +179,7 @@ pub unsafe extern "C" fn glXMakeContextCurrent(
     guard("glXMakeContextCurrent", || {
         let Some((x, xdpy)) = connection(dpy.cast()) else { return xlib::False };
         // Safety: as documented.
-        match unsafe { context::make_current(x, xdpy, draw, read, ctx.cast_mut().cast()) } {
+        match unsafe { context::make_current(x, xdpy, draw, read, ctx as usize) } {
             Ok(()) => xlib::True,
             Err(e) => {
                 // Safety: as documented.
@@ -207,7 +207,7 @@ pub unsafe extern "C" fn glXMakeCurrent(
 /// `glXIsDirect`: True for every glrt context (rendering happens in the client).
 #[unsafe(no_mangle)]
 pub extern "C" fn glXIsDirect(_dpy: *mut types::Display, ctx: types::GLXContext) -> types::Bool {
-    guard("glXIsDirect", || c_int::from(context::get(ctx.cast()).is_some()))
+    guard("glXIsDirect", || c_int::from(context::get(ctx as usize).is_some()))
 }
 
 /// `glXGetCurrentContext`: this thread's current context, or null.
@@ -247,7 +247,7 @@ pub unsafe extern "C" fn glXQueryContext(
     value: *mut c_int,
 ) -> c_int {
     guard("glXQueryContext", || {
-        let Some(c) = context::get(ctx.cast::<GlxContext>()) else { return GLX_BAD_CONTEXT };
+        let Some(c) = context::get(ctx as usize) else { return GLX_BAD_CONTEXT };
         let v = match attribute {
             GLX_FBCONFIG_ID => c.config_id,
             GLX_RENDER_TYPE => GLX_RGBA_TYPE,

@@ -219,7 +219,7 @@ unsafe fn query(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID, attribute: c_int) 
     let state = drawable::get(dpy, xid).unwrap_or(Drawable::new(Kind::X, 0));
     let current_config = || context::binding().filter(|b| b.display == dpy && b.draw == xid);
     let config_id = match state.config_id {
-        0 => current_config().and_then(|b| context::get(b.context as *const _)).map_or(0, |c| c.config_id),
+        0 => current_config().and_then(|b| context::get(b.context)).map_or(0, |c| c.config_id),
         id => id,
     };
     let (preserved, largest) = match state.kind {

@@ -33,7 +33,7 @@ pub unsafe extern "C" fn glXSwapBuffers(dpy: *mut types::Display, drawable: type
             return unsafe { report(xdpy, "glXSwapBuffers", XError::Glx(GlxError::BadDrawable), drawable) };
         };
         let Some(binding) = context::binding().filter(|b| b.display == xdpy && b.draw == drawable) else { return };
-        let double = context::get(binding.context as *const _).is_some_and(|c| c.double_buffer);
+        let double = context::get(binding.context).is_some_and(|c| c.double_buffer);
         let pixmap = matches!(drawable::get(xdpy, drawable).map(|d| d.kind), Some(Kind::Pixmap(_)));
         if double && !pixmap {
             with_current("glXSwapBuffers", |c| {

@@ -36,8 +36,11 @@ impl ContextHandle {
 
     /// Creates a context sharing objects with `share` (a handle, or null) and returns its
     /// handle.
-    pub fn create(share: *const ContextHandle) -> *mut ContextHandle {
-        // Safety: a non-null share handle came from this function and was not destroyed.
+    ///
+    /// # Safety
+    /// A non-null `share` came from this function and was not destroyed.
+    pub unsafe fn create(share: *const ContextHandle) -> *mut ContextHandle {
+        // Safety: as documented.
         Box::into_raw(Box::new(ContextHandle::new(unsafe { share.as_ref() })))
     }
 }
@@ -45,7 +48,8 @@ impl ContextHandle {
 /// Creates a headless context; `share` is another glrt context handle or null.
 #[unsafe(no_mangle)]
 pub extern "C" fn glrtCreateContext(share: *mut c_void) -> *mut c_void {
-    catch_unwind(|| ContextHandle::create(share.cast()).cast()).unwrap_or(std::ptr::null_mut())
+    // Safety: a non-null share handle came from glrtCreateContext and was not destroyed.
+    catch_unwind(|| unsafe { ContextHandle::create(share.cast()) }.cast()).unwrap_or(std::ptr::null_mut())
 }
 
 /// Makes a headless context current on this thread with an off-screen drawable of

@@ -40,10 +40,10 @@ fn with_live<R>(f: impl FnOnce(&mut HashSet<usize>) -> R) -> R {
     f(LIVE.lock().get_or_insert_with(HashSet::new))
 }
 
-/// Creates a context of `config`, sharing display lists and objects with `share` (null or a
-/// live context); `GLXBadContext` for a bad share context.
-pub fn create(config: &FbConfig, share: *const GlxContext) -> Result<*mut GlxContext, XError> {
-    let share = if share.is_null() { None } else { Some(get(share).ok_or(XError::Glx(GlxError::BadContext))?) };
+/// Creates a context of `config`, sharing display lists and objects with `share` (0 or a
+/// live context's handle); `GLXBadContext` for a bad share context.
+pub fn create(config: &FbConfig, share: usize) -> Result<*mut GlxContext, XError> {
+    let share = if share == 0 { None } else { Some(get(share).ok_or(XError::Glx(GlxError::BadContext))?) };
     let context = Box::new(GlxContext {
         handle: ContextHandle::new(share.map(|s| &s.handle)),
         config_id: config.id,
@@ -56,23 +56,24 @@ pub fn create(config: &FbConfig, share: *const GlxContext) -> Result<*mut GlxCon
     Ok(ptr)
 }
 
-/// The context `ptr` points to, when it is live and not destroyed.
-pub fn get(ptr: *const GlxContext) -> Option<&'static GlxContext> {
-    if !with_live(|live| live.contains(&(ptr as usize))) {
+/// The context a handle (`GLXContext` as an address) points to, when it is live and not
+/// destroyed.
+pub fn get(handle: usize) -> Option<&'static GlxContext> {
+    if !with_live(|live| live.contains(&handle)) {
         return None;
     }
     // Safety: live handles point to contexts created by `create` and not yet freed; a context
     // is freed only by `destroy`/`release`, which GLX forbids racing with its use.
-    let context = unsafe { &*ptr };
+    let context = unsafe { &*(handle as *const GlxContext) };
     (!context.destroyed.load(Ordering::Acquire)).then_some(context)
 }
 
 /// `glXDestroyContext`: frees the context now, or when it is released if it is current on
 /// some thread. Returns false for a handle that is not a live context.
-pub fn destroy(ptr: *mut GlxContext) -> bool {
-    let Some(context) = get(ptr) else { return false };
+pub fn destroy(handle: usize) -> bool {
+    let Some(context) = get(handle) else { return false };
     context.destroyed.store(true, Ordering::Release);
-    free_if_released(ptr as usize);
+    free_if_released(handle);
     true
 }
 
@@ -125,10 +126,10 @@ pub unsafe fn make_current(
     dpy: *mut XDisplay,
     draw: xlib::XID,
     read: xlib::XID,
-    ctx: *mut GlxContext,
+    ctx: usize,
 ) -> Result<(), XError> {
     let previous = current::current_handle();
-    if ctx.is_null() {
+    if ctx == 0 {
         if draw != 0 || read != 0 {
             return Err(super::BAD_MATCH);
         }
@@ -146,12 +147,12 @@ pub unsafe fn make_current(
     if read != draw && unsafe { drawable::size(x, dpy, read) }.is_none() {
         return Err(XError::Glx(GlxError::BadDrawable));
     }
-    if !current::make_current(ctx as usize, Some(&context.handle.context)) {
+    if !current::make_current(ctx, Some(&context.handle.context)) {
         return Err(super::BAD_ACCESS);
     }
     with_current("glXMakeCurrent", |c| c.bind_drawable(width, height));
-    BINDING.set(Some(Binding { display: dpy, draw, read, context: ctx as usize }));
-    if previous != ctx as usize {
+    BINDING.set(Some(Binding { display: dpy, draw, read, context: ctx }));
+    if previous != ctx {
         free_if_released(previous);
     }
     Ok(())
