@@ -315,8 +315,22 @@ fn glx_on_xvfb() {
         unsafe { glXDestroyContext(dpy, c) };
     }
     assert_eq!(take_error(), 0);
+    // Closing the display forgets its drawables: a new connection (perhaps at the same
+    // address) does not see the old pbuffer.
+    let pbuffer = unsafe { glXCreatePbuffer(dpy, fbconfig, pb_attribs.as_ptr()) };
+    assert_eq!(query(pbuffer, GLX_WIDTH), 64);
     unsafe {
         (x.XFree)(vis.cast());
         (x.XCloseDisplay)(xdpy);
     }
+    let dpy = open_display(&x, &server.display).cast::<types::Display>();
+    let mut width = u32::MAX;
+    unsafe { glXQueryDrawable(dpy, pbuffer, GLX_WIDTH, &mut width) };
+    assert_eq!(width, u32::MAX);
+    assert_eq!(take_error() as c_int, error_base + 2, "GLXBadDrawable");
+    let again = unsafe { glXGetFBConfigs(dpy, 0, &mut n) };
+    assert!(!again.is_null());
+    assert_eq!(n as usize, all.len());
+    unsafe { (x.XFree)(again.cast()) };
+    unsafe { (x.XCloseDisplay)(dpy.cast()) };
 }

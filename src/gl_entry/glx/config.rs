@@ -17,6 +17,7 @@
 use std::cmp::Ordering;
 use std::collections::HashMap;
 use std::ffi::{c_int, c_ulong, c_void};
+use std::sync::atomic::{self, AtomicUsize};
 
 use parking_lot::Mutex;
 use x11_dl::glx::*;
@@ -93,7 +94,8 @@ impl FbConfig {
 
 /// The configurations of one screen of one display.
 pub struct ScreenConfigs {
-    display: usize,
+    /// The display's address; 0 once it is closed.
+    display: AtomicUsize,
     screen: c_int,
     /// The configurations, in `glXGetFBConfigs` order.
     pub configs: Vec<FbConfig>,
@@ -126,7 +128,7 @@ impl ScreenConfigs {
                 });
             }
         }
-        ScreenConfigs { display, screen, configs, chosen: Mutex::new(HashMap::new()) }
+        ScreenConfigs { display: AtomicUsize::new(display), screen, configs, chosen: Mutex::new(HashMap::new()) }
     }
 
     /// The configuration a visual stands for (see the module documentation).
@@ -158,7 +160,7 @@ pub unsafe fn screen_configs(x: &Xlib, dpy: *mut XDisplay, screen: c_int) -> Opt
         return None;
     }
     let mut screens = SCREENS.lock();
-    if let Some(found) = screens.iter().find(|s| s.display == dpy as usize && s.screen == screen) {
+    if let Some(found) = screens.iter().find(|s| s.display.load(atomic::Ordering::Relaxed) == dpy as usize && s.screen == screen) {
         return Some(found);
     }
     // Safety: a zeroed XVisualInfo is a valid template; Xlib allocates the result.
@@ -180,6 +182,13 @@ pub unsafe fn screen_configs(x: &Xlib, dpy: *mut XDisplay, screen: c_int) -> Opt
     let table: &'static ScreenConfigs = Box::leak(Box::new(ScreenConfigs::build(dpy as usize, screen, &visuals)));
     screens.push(table);
     Some(table)
+}
+
+/// Detaches the tables of a closed display (their entries stay valid for stale handles).
+pub fn forget_display(dpy: usize) {
+    for s in SCREENS.lock().iter() {
+        let _ = s.display.compare_exchange(dpy, 0, atomic::Ordering::Relaxed, atomic::Ordering::Relaxed);
+    }
 }
 
 /// The configuration a `GLXFBConfig` handle points to, `None` for anything else

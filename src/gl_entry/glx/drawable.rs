@@ -78,6 +78,11 @@ pub fn update(dpy: *mut XDisplay, xid: xlib::XID, f: impl FnOnce(&mut Drawable))
     with_table(|t| f(t.entry((dpy as usize, xid)).or_insert_with(|| Drawable::new(Kind::X, 0))));
 }
 
+/// Forgets every drawable of a closed display (their XIDs died with the connection).
+pub fn forget_display(dpy: usize) {
+    with_table(|t| t.retain(|&(d, _), _| d != dpy));
+}
+
 /// Whether some GLX drawable of `dpy` is already made from the X drawable `target`.
 pub fn wraps(dpy: *mut XDisplay, target: xlib::XID) -> bool {
     with_table(|t| {

@@ -11,6 +11,7 @@ pub mod context;
 pub mod drawable;
 pub mod xfont;
 
+use std::collections::HashSet;
 use std::ffi::{c_int, c_uchar, c_ulong, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::OnceLock;
@@ -40,9 +41,43 @@ pub fn guard<R: ReturnDefault>(name: &'static str, f: impl FnOnce() -> R) -> R {
     })
 }
 
-/// Xlib and the display, when the display is not null and Xlib is available.
+/// Xlib and the display, when the display is not null and Xlib is available. The first time
+/// a display is seen, glrt asks to be told when it closes (see [`forget_display`]).
 pub fn connection(dpy: *mut c_void) -> Option<(&'static Xlib, *mut XDisplay)> {
-    if dpy.is_null() { None } else { xlib().map(|x| (x, dpy.cast())) }
+    let x = xlib().filter(|_| !dpy.is_null())?;
+    let dpy = dpy.cast::<XDisplay>();
+    let mut watched = WATCHED.lock();
+    let watched = watched.get_or_insert_with(HashSet::new);
+    if watched.insert(dpy as usize) {
+        // Safety: `dpy` is the application's live display; Xlib calls the hook from
+        // XCloseDisplay, before the display is freed.
+        unsafe {
+            let codes = (x.XAddExtension)(dpy);
+            if !codes.is_null() {
+                (x.XESetCloseDisplay)(dpy, (*codes).extension, Some(display_closed));
+            }
+        }
+    }
+    Some((x, dpy))
+}
+
+/// Displays whose closing glrt watches.
+static WATCHED: Mutex<Option<HashSet<usize>>> = Mutex::new(None);
+
+unsafe extern "C" fn display_closed(dpy: *mut XDisplay, _codes: *mut xlib::XExtCodes) -> c_int {
+    guard("XCloseDisplay", || forget_display(dpy as usize));
+    0
+}
+
+/// Forgets the state of a closed display, so that a display opened later at the same
+/// address (or a new server reusing its XIDs) starts afresh. Configuration handles of the
+/// closed display stay readable.
+pub fn forget_display(dpy: usize) {
+    if let Some(watched) = WATCHED.lock().as_mut() {
+        watched.remove(&dpy);
+    }
+    config::forget_display(dpy);
+    drawable::forget_display(dpy);
 }
 
 /// Memory the application releases with `XFree` (which is `free`).
