@@ -332,5 +332,13 @@ fn glx_on_xvfb() {
     assert!(!again.is_null());
     assert_eq!(n as usize, all.len());
     unsafe { (x.XFree)(again.cast()) };
+
+    // With Xlib's default handler (which exits) errors are only logged: the program lives.
+    unsafe { (x.XSetErrorHandler)(None) };
+    unsafe { glXDestroyPbuffer(dpy, pbuffer) };
+    let ctx = unsafe { glXCreateNewContext(dpy, all[0], GLX_RGBA_TYPE, std::ptr::null(), 1) };
+    assert_eq!(unsafe { glXMakeCurrent(dpy, 0x7fff_fff0, ctx) }, 0);
+    unsafe { (x.XSync)(dpy.cast(), 0) };
+    unsafe { glXDestroyContext(dpy, ctx) };
     unsafe { (x.XCloseDisplay)(dpy.cast()) };
 }
