@@ -290,6 +290,10 @@ fn glx_on_xvfb() {
     let attribs_ctx = unsafe { glXCreateContextAttribsARB(dpy, fbconfig, std::ptr::null(), 1, legacy.as_ptr()) };
     assert!(!attribs_ctx.is_null());
 
+    // Releasing needs no display.
+    assert_eq!(unsafe { glXMakeCurrent(std::ptr::null_mut(), 0, std::ptr::null()) }, 1);
+    assert!(glXGetCurrentContext().is_null() && glXGetCurrentDisplay().is_null());
+
     // glXUseXFont: one list per character.
     assert_eq!(unsafe { glXMakeCurrent(dpy, win, ctx) }, 1);
     let font = unsafe { (x.XLoadQueryFont)(xdpy, c"fixed".as_ptr()) };

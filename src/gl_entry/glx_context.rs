@@ -177,6 +177,11 @@ pub unsafe extern "C" fn glXMakeContextCurrent(
     ctx: types::GLXContext,
 ) -> types::Bool {
     guard("glXMakeContextCurrent", || {
+        if ctx.is_null() && draw == 0 && read == 0 {
+            // Releasing needs no display (some programs pass none).
+            context::release();
+            return xlib::True;
+        }
         let Some((x, xdpy)) = connection(dpy.cast()) else { return xlib::False };
         // Safety: as documented.
         match unsafe { context::make_current(x, xdpy, draw, read, ctx as usize) } {

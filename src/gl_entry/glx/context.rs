@@ -115,6 +115,15 @@ pub fn binding() -> Option<Binding> {
     BINDING.get().filter(|b| b.context == current::current_handle())
 }
 
+/// Releases this thread's current context (`glXMakeCurrent(dpy, None, NULL)`), freeing it
+/// if it was destroyed while current.
+pub fn release() {
+    let previous = current::current_handle();
+    current::make_current(0, None);
+    BINDING.set(None);
+    free_if_released(previous);
+}
+
 /// `glXMakeContextCurrent` (GLX 1.4 section 3.3.7): binds `ctx` to `draw` and `read`, sizing
 /// the context's viewport from the draw drawable on its first binding; a null `ctx` with no
 /// drawables releases the current context.
@@ -128,16 +137,10 @@ pub unsafe fn make_current(
     read: xlib::XID,
     ctx: usize,
 ) -> Result<(), XError> {
-    let previous = current::current_handle();
     if ctx == 0 {
-        if draw != 0 || read != 0 {
-            return Err(super::BAD_MATCH);
-        }
-        current::make_current(0, None);
-        BINDING.set(None);
-        free_if_released(previous);
-        return Ok(());
+        return if draw != 0 || read != 0 { Err(super::BAD_MATCH) } else { Ok(release()) };
     }
+    let previous = current::current_handle();
     let context = get(ctx).ok_or(XError::Glx(GlxError::BadContext))?;
     if draw == 0 || read == 0 {
         return Err(super::BAD_MATCH);
