@@ -271,14 +271,45 @@ fn glx_on_xvfb() {
     assert_eq!(unsafe { glXCreatePbuffer(dpy, fbconfig, too_big.as_ptr()) }, 0);
     assert_eq!(take_error(), 11, "BadAlloc");
 
-    // A GLX window: its own XID, the X window's size.
-    let glx_win = unsafe { glXCreateWindow(dpy, fbconfig, win, std::ptr::null()) };
-    assert!(glx_win != 0 && glx_win != win);
-    assert_eq!(query(glx_win, GLX_WIDTH), 320);
-    assert_eq!(unsafe { glXCreateWindow(dpy, fbconfig, win, std::ptr::null()) }, 0);
-    assert_eq!(take_error(), 11, "a second GLX window on one X window is BadAlloc");
+    // A GLX window on a window of the configuration's visual: its own XID, the X window's
+    // size; BadMatch for a configuration of another visual, BadAlloc for a second one.
+    let fb_vis = unsafe { glXGetVisualFromFBConfig(dpy, fbconfig) };
+    let fb_win = create_window(&x, xdpy, unsafe { &*fb_vis.cast() }, 100, 50);
+    let visual_id = unsafe { (*fb_vis).visualid };
+    unsafe { (x.XFree)(fb_vis.cast()) };
+    let other = all.iter().find(|&&c| fb_attrib(dpy, c, GLX_VISUAL_ID) as c_ulong != visual_id).unwrap();
+    assert_eq!(unsafe { glXCreateWindow(dpy, *other, fb_win, std::ptr::null()) }, 0);
+    assert_eq!(take_error(), 8, "BadMatch");
+    let glx_win = unsafe { glXCreateWindow(dpy, fbconfig, fb_win, std::ptr::null()) };
+    assert!(glx_win != 0 && glx_win != fb_win);
+    assert_eq!((query(glx_win, GLX_WIDTH), query(glx_win, GLX_HEIGHT)), (100, 50));
+    assert_eq!(unsafe { glXCreateWindow(dpy, fbconfig, fb_win, std::ptr::null()) }, 0);
+    assert_eq!(take_error(), 11, "BadAlloc");
+    assert_eq!(unsafe { glXMakeContextCurrent(dpy, glx_win, glx_win, pb_ctx) }, 1);
+    assert_eq!(glXGetCurrentDrawable(), glx_win);
     unsafe { glXDestroyWindow(dpy, glx_win) };
     assert_eq!(take_error(), 0);
+    unsafe { glXDestroyWindow(dpy, glx_win) };
+    assert_eq!(take_error() as c_int, error_base + 12, "GLXBadWindow");
+
+    // GLX pixmaps (1.2 and 1.3 styles) take the X pixmap's size; a depth-1 pixmap is BadMatch.
+    let root = unsafe { (x.XRootWindow)(xdpy, 0) };
+    let pixmap = unsafe { (x.XCreatePixmap)(xdpy, root, 40, 30, 24) };
+    let glx_pixmap = unsafe { glXCreateGLXPixmap(dpy, vis, pixmap) };
+    assert_ne!(glx_pixmap, 0);
+    assert_eq!((query(glx_pixmap, GLX_WIDTH), query(glx_pixmap, GLX_HEIGHT)), (40, 30));
+    let pixmap_ctx = unsafe { glXCreateContext(dpy, vis, std::ptr::null(), 1) };
+    assert_eq!(unsafe { glXMakeCurrent(dpy, glx_pixmap, pixmap_ctx) }, 1);
+    assert_eq!(viewport(), [0, 0, 40, 30]);
+    unsafe { glXDestroyGLXPixmap(dpy, glx_pixmap) };
+    let bitmap = unsafe { (x.XCreatePixmap)(xdpy, root, 8, 8, 1) };
+    assert_eq!(unsafe { glXCreatePixmap(dpy, fbconfig, bitmap, std::ptr::null()) }, 0);
+    assert_eq!(take_error(), 8, "BadMatch");
+    let glx_pixmap = unsafe { glXCreatePixmap(dpy, fbconfig, pixmap, std::ptr::null()) };
+    assert_ne!(glx_pixmap, 0);
+    unsafe { glXDestroyPixmap(dpy, glx_pixmap) };
+    assert_eq!(take_error(), 0);
+    unsafe { glXDestroyContext(dpy, pixmap_ctx) };
 
     // Errors of bad arguments go to the application's handler and do not kill it.
     assert_eq!(unsafe { glXMakeCurrent(dpy, 0x7fff_fff0, ctx) }, 0);

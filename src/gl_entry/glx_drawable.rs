@@ -25,19 +25,29 @@ pub const MAX_SWAP_INTERVAL: c_int = 1000;
 /// # Safety
 /// `dpy` is a live display.
 unsafe fn create(x: &Xlib, dpy: *mut XDisplay, config: &FbConfig, kind: Kind) -> Result<xlib::XID, XError> {
-    if let Kind::Window(target) | Kind::Pixmap(target) = kind {
-        let bad = match kind {
-            Kind::Window(_) => XError::Glx(GlxError::BadWindow),
-            _ => XError::Glx(GlxError::BadPixmap),
-        };
-        // Safety: `dpy` is live.
-        let (_, _, depth) = unsafe { drawable::x_geometry(x, dpy, target) }.ok_or(bad)?;
-        if matches!(kind, Kind::Pixmap(_)) && depth != 24 && depth != 32 {
-            return Err(BAD_MATCH);
+    // Section 3.3.5: the X drawable must exist (GLXBadWindow / GLXBadPixmap), match the
+    // configuration (BadMatch: a window of its visual, a pixmap of its depth) and not be
+    // wrapped already (BadAlloc).
+    // Safety (all): `dpy` is live.
+    let target = match kind {
+        Kind::Window(w) => {
+            let visual = unsafe { drawable::window_visual(x, dpy, w) }.ok_or(XError::Glx(GlxError::BadWindow))?;
+            if visual != config.visual_id {
+                return Err(BAD_MATCH);
+            }
+            Some(w)
         }
-        if drawable::wraps(dpy, target) {
-            return Err(BAD_ALLOC);
+        Kind::Pixmap(p) => {
+            let (_, _, depth) = unsafe { drawable::x_geometry(x, dpy, p) }.ok_or(XError::Glx(GlxError::BadPixmap))?;
+            if depth as c_int != config.visual_depth {
+                return Err(BAD_MATCH);
+            }
+            Some(p)
         }
+        _ => None,
+    };
+    if target.is_some_and(|t| drawable::wraps(dpy, t)) {
+        return Err(BAD_ALLOC);
     }
     // Safety: `dpy` is live and the configuration's screen is one of its screens.
     let name = unsafe { drawable::new_name(x, dpy, config.screen) }.ok_or(BAD_ALLOC)?;

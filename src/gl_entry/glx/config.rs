@@ -42,6 +42,8 @@ pub struct FbConfig {
     pub visual_id: c_ulong,
     /// `GLX_X_VISUAL_TYPE`: `GLX_TRUE_COLOR` or `GLX_DIRECT_COLOR`.
     pub visual_type: c_int,
+    /// Depth of the X visual (of windows and pixmaps drawn with this configuration).
+    pub visual_depth: c_int,
     /// Red, green, blue and alpha bits.
     pub rgba: [c_int; 4],
     /// `GLX_DOUBLEBUFFER`.
@@ -120,6 +122,7 @@ impl ScreenConfigs {
                     screen,
                     visual_id: v.visualid,
                     visual_type,
+                    visual_depth: v.depth,
                     rgba,
                     double_buffer,
                     depth: if ancillary { 24 } else { 0 },

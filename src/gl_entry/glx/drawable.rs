@@ -136,6 +136,22 @@ pub unsafe fn x_geometry(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID) -> Option
     matches!(status, Ok(s) if s != 0).then_some((w as c_int, h as c_int, depth))
 }
 
+/// The visual of X window `window`, `None` when it does not exist.
+///
+/// # Safety
+/// `dpy` is a live display.
+pub unsafe fn window_visual(x: &Xlib, dpy: *mut XDisplay, window: xlib::Window) -> Option<c_ulong> {
+    // Safety: a zeroed XWindowAttributes is a valid out-parameter; errors are trapped.
+    unsafe {
+        let mut attrs: xlib::XWindowAttributes = std::mem::zeroed();
+        let status = super::trapped(x, dpy, || (x.XGetWindowAttributes)(dpy, window, &mut attrs));
+        match status {
+            Ok(s) if s != 0 && !attrs.visual.is_null() => Some((x.XVisualIDFromVisual)(attrs.visual)),
+            _ => None,
+        }
+    }
+}
+
 /// Size of a drawable (a GLX drawable or a plain X window or pixmap); `None` when it does not
 /// exist (`GLXBadDrawable`).
 ///
