@@ -242,7 +242,6 @@ unsafe fn query(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID, attribute: c_int) 
         GLX_PRESERVED_CONTENTS => c_int::from(preserved),
         GLX_LARGEST_PBUFFER => c_int::from(largest),
         GLX_FBCONFIG_ID => config_id,
-        GLX_EVENT_MASK => state.event_mask as c_int,
         GLX_SWAP_INTERVAL_EXT => state.swap_interval,
         GLX_MAX_SWAP_INTERVAL_EXT => MAX_SWAP_INTERVAL,
         _ => return Ok(None),

@@ -138,7 +138,11 @@ pub unsafe fn make_current(
     ctx: usize,
 ) -> Result<(), XError> {
     if ctx == 0 {
-        return if draw != 0 || read != 0 { Err(super::BAD_MATCH) } else { Ok(release()) };
+        if draw != 0 || read != 0 {
+            return Err(super::BAD_MATCH);
+        }
+        release();
+        return Ok(());
     }
     let previous = current::current_handle();
     let context = get(ctx).ok_or(XError::Glx(GlxError::BadContext))?;
