@@ -41,7 +41,7 @@ pub unsafe extern "C" fn glXChooseVisual(
     attribList: *mut c_int,
 ) -> *mut types::XVisualInfo {
     guard("glXChooseVisual", || {
-        let Some((x, dpy)) = connection(dpy.cast()) else { return std::ptr::null_mut() };
+        let Some((x, dpy)) = (unsafe { connection(dpy.cast()) }) else { return std::ptr::null_mut() };
         // Safety: as documented.
         let Some(table) = (unsafe { config::screen_configs(x, dpy, screen) }) else { return std::ptr::null_mut() };
         let Some(request) = (unsafe { Request::visual(attribList) }) else { return std::ptr::null_mut() };
@@ -81,7 +81,7 @@ pub unsafe extern "C" fn glXGetConfig(
     value: *mut c_int,
 ) -> c_int {
     guard("glXGetConfig", || {
-        let Some((x, dpy)) = connection(dpy.cast()) else { return GLX_NO_EXTENSION };
+        let Some((x, dpy)) = (unsafe { connection(dpy.cast()) }) else { return GLX_NO_EXTENSION };
         if value.is_null() || visual.is_null() {
             return GLX_BAD_VALUE;
         }
@@ -129,7 +129,7 @@ pub unsafe extern "C" fn glXChooseFBConfig(
     nelements: *mut c_int,
 ) -> *mut types::GLXFBConfig {
     guard("glXChooseFBConfig", || {
-        let chosen = connection(dpy.cast()).and_then(|(x, dpy)| {
+        let chosen = unsafe { connection(dpy.cast()) }.and_then(|(x, dpy)| {
             // Safety: as documented.
             let table = unsafe { config::screen_configs(x, dpy, screen) }?;
             Some(unsafe { Request::fbconfig(attrib_list) }.choose(&table.configs))
@@ -149,7 +149,7 @@ pub unsafe extern "C" fn glXGetFBConfigs(
     nelements: *mut c_int,
 ) -> *mut types::GLXFBConfig {
     guard("glXGetFBConfigs", || {
-        let all = connection(dpy.cast()).and_then(|(x, dpy)| {
+        let all = unsafe { connection(dpy.cast()) }.and_then(|(x, dpy)| {
             // Safety: as documented.
             let table = unsafe { config::screen_configs(x, dpy, screen) }?;
             Some(table.configs.iter().collect::<Vec<_>>())
@@ -193,7 +193,7 @@ pub unsafe extern "C" fn glXGetVisualFromFBConfig(
     config: types::GLXFBConfig,
 ) -> *mut types::XVisualInfo {
     guard("glXGetVisualFromFBConfig", || {
-        let (Some((x, dpy)), Some(config)) = (connection(dpy.cast()), config::lookup(config)) else {
+        let (Some((x, dpy)), Some(config)) = (unsafe { connection(dpy.cast()) }, config::lookup(config)) else {
             return std::ptr::null_mut();
         };
         // Safety: as documented.

@@ -46,7 +46,7 @@ pub unsafe extern "C" fn glXCreateContext(
     _direct: types::Bool,
 ) -> types::GLXContext {
     guard("glXCreateContext", || {
-        let Some((x, xdpy)) = connection(dpy.cast()) else { return std::ptr::null() };
+        let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return std::ptr::null() };
         // Safety: as documented.
         let config = unsafe { config_of_visual(x, xdpy, vis) };
         create(dpy, "glXCreateContext", config, shareList)
@@ -182,7 +182,7 @@ pub unsafe extern "C" fn glXMakeContextCurrent(
             context::release();
             return xlib::True;
         }
-        let Some((x, xdpy)) = connection(dpy.cast()) else { return xlib::False };
+        let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return xlib::False };
         // Safety: as documented.
         match unsafe { context::make_current(x, xdpy, draw, read, ctx as usize) } {
             Ok(()) => xlib::True,

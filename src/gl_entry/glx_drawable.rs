@@ -56,8 +56,11 @@ unsafe fn create(x: &Xlib, dpy: *mut XDisplay, config: &FbConfig, kind: Kind) ->
 }
 
 /// Runs a creation and reports its error; returns the new XID or `None` (0).
-fn created(dpy: *mut types::Display, name: &'static str, f: impl FnOnce(&Xlib, *mut XDisplay) -> Result<xlib::XID, XError>) -> xlib::XID {
-    let Some((x, xdpy)) = connection(dpy.cast()) else { return 0 };
+///
+/// # Safety
+/// `dpy` is null or a live display.
+unsafe fn created(dpy: *mut types::Display, name: &'static str, f: impl FnOnce(&Xlib, *mut XDisplay) -> Result<xlib::XID, XError>) -> xlib::XID {
+    let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return 0 };
     f(x, xdpy).unwrap_or_else(|e| {
         // Safety: `xdpy` is the application's live display.
         unsafe { report(xdpy, name, e, 0) };
@@ -83,7 +86,9 @@ pub unsafe extern "C" fn glXCreateWindow(
 ) -> types::GLXWindow {
     guard("glXCreateWindow", || {
         // Safety: as documented.
-        created(dpy, "glXCreateWindow", |x, d| unsafe { create(x, d, fbconfig(config)?, Kind::Window(win)) })
+        let make = |x: &Xlib, d: *mut XDisplay| unsafe { create(x, d, fbconfig(config)?, Kind::Window(win)) };
+        // Safety: as documented.
+        unsafe { created(dpy, "glXCreateWindow", make) }
     })
 }
 
@@ -100,7 +105,9 @@ pub unsafe extern "C" fn glXCreatePixmap(
 ) -> types::GLXPixmap {
     guard("glXCreatePixmap", || {
         // Safety: as documented.
-        created(dpy, "glXCreatePixmap", |x, d| unsafe { create(x, d, fbconfig(config)?, Kind::Pixmap(pixmap)) })
+        let make = |x: &Xlib, d: *mut XDisplay| unsafe { create(x, d, fbconfig(config)?, Kind::Pixmap(pixmap)) };
+        // Safety: as documented.
+        unsafe { created(dpy, "glXCreatePixmap", make) }
     })
 }
 
@@ -115,11 +122,13 @@ pub unsafe extern "C" fn glXCreateGLXPixmap(
     pixmap: types::Pixmap,
 ) -> types::GLXPixmap {
     guard("glXCreateGLXPixmap", || {
-        created(dpy, "glXCreateGLXPixmap", |x, d| {
+        let make = |x: &Xlib, d: *mut XDisplay| {
             // Safety: as documented.
             let config = unsafe { config_of_visual(x, d, visual) }.ok_or(BAD_VALUE)?;
             unsafe { create(x, d, config, Kind::Pixmap(pixmap)) }
-        })
+        };
+        // Safety: as documented.
+        unsafe { created(dpy, "glXCreateGLXPixmap", make) }
     })
 }
 
@@ -136,7 +145,7 @@ pub unsafe extern "C" fn glXCreatePbuffer(
     attrib_list: *const c_int,
 ) -> types::GLXPbuffer {
     guard("glXCreatePbuffer", || {
-        created(dpy, "glXCreatePbuffer", |x, d| {
+        let make = |x: &Xlib, d: *mut XDisplay| {
             let config = fbconfig(config)?;
             let (mut width, mut height, mut preserved, mut largest) = (0, 0, true, false);
             // Safety: as documented.
@@ -160,13 +169,18 @@ pub unsafe extern "C" fn glXCreatePbuffer(
             }
             // Safety: as documented.
             unsafe { create(x, d, config, Kind::Pbuffer { width, height, preserved, largest }) }
-        })
+        };
+        // Safety: as documented.
+        unsafe { created(dpy, "glXCreatePbuffer", make) }
     })
 }
 
 /// Destroys a GLX drawable of the kind `accept` recognises, or reports `error`.
-fn destroy(dpy: *mut types::Display, name: &'static str, xid: xlib::XID, error: GlxError, accept: fn(&Kind) -> bool) {
-    let Some((x, xdpy)) = connection(dpy.cast()) else { return };
+///
+/// # Safety
+/// `dpy` is null or a live display.
+unsafe fn destroy(dpy: *mut types::Display, name: &'static str, xid: xlib::XID, error: GlxError, accept: fn(&Kind) -> bool) {
+    let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return };
     // Safety: the application's display is live.
     unsafe {
         if !drawable::destroy(x, xdpy, xid, accept) {
@@ -182,7 +196,7 @@ fn destroy(dpy: *mut types::Display, name: &'static str, xid: xlib::XID, error: 
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXDestroyWindow(dpy: *mut types::Display, win: types::GLXWindow) {
     guard("glXDestroyWindow", || {
-        destroy(dpy, "glXDestroyWindow", win, GlxError::BadWindow, |k| matches!(k, Kind::Window(_)))
+        unsafe { destroy(dpy, "glXDestroyWindow", win, GlxError::BadWindow, |k| matches!(k, Kind::Window(_))) }
     })
 }
 
@@ -193,7 +207,7 @@ pub unsafe extern "C" fn glXDestroyWindow(dpy: *mut types::Display, win: types::
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXDestroyPixmap(dpy: *mut types::Display, pixmap: types::GLXPixmap) {
     guard("glXDestroyPixmap", || {
-        destroy(dpy, "glXDestroyPixmap", pixmap, GlxError::BadPixmap, |k| matches!(k, Kind::Pixmap(_)))
+        unsafe { destroy(dpy, "glXDestroyPixmap", pixmap, GlxError::BadPixmap, |k| matches!(k, Kind::Pixmap(_))) }
     })
 }
 
@@ -204,7 +218,7 @@ pub unsafe extern "C" fn glXDestroyPixmap(dpy: *mut types::Display, pixmap: type
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXDestroyGLXPixmap(dpy: *mut types::Display, pixmap: types::GLXPixmap) {
     guard("glXDestroyGLXPixmap", || {
-        destroy(dpy, "glXDestroyGLXPixmap", pixmap, GlxError::BadPixmap, |k| matches!(k, Kind::Pixmap(_)))
+        unsafe { destroy(dpy, "glXDestroyGLXPixmap", pixmap, GlxError::BadPixmap, |k| matches!(k, Kind::Pixmap(_))) }
     })
 }
 
@@ -215,7 +229,7 @@ pub unsafe extern "C" fn glXDestroyGLXPixmap(dpy: *mut types::Display, pixmap: t
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXDestroyPbuffer(dpy: *mut types::Display, pbuf: types::GLXPbuffer) {
     guard("glXDestroyPbuffer", || {
-        destroy(dpy, "glXDestroyPbuffer", pbuf, GlxError::BadPbuffer, |k| matches!(k, Kind::Pbuffer { .. }))
+        unsafe { destroy(dpy, "glXDestroyPbuffer", pbuf, GlxError::BadPbuffer, |k| matches!(k, Kind::Pbuffer { .. })) }
     })
 }
 
@@ -262,7 +276,7 @@ pub unsafe extern "C" fn glXQueryDrawable(
     value: *mut c_uint,
 ) {
     guard("glXQueryDrawable", || {
-        let Some((x, xdpy)) = connection(dpy.cast()) else { return };
+        let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return };
         // Safety: as documented.
         match unsafe { query(x, xdpy, draw, attribute) } {
             Ok(Some(v)) if !value.is_null() => unsafe { *value = v },

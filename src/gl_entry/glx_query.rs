@@ -37,7 +37,7 @@ fn string(name: c_int) -> *const c_char {
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXQueryVersion(dpy: *mut types::Display, maj: *mut c_int, min: *mut c_int) -> types::Bool {
     guard("glXQueryVersion", || {
-        if connection(dpy.cast()).is_none() {
+        if unsafe { connection(dpy.cast()) }.is_none() {
             return xlib::False;
         }
         // Safety: as documented.
@@ -61,7 +61,7 @@ pub unsafe extern "C" fn glXQueryVersion(dpy: *mut types::Display, maj: *mut c_i
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXQueryExtension(dpy: *mut types::Display, errorb: *mut c_int, event: *mut c_int) -> types::Bool {
     guard("glXQueryExtension", || {
-        let Some((x, xdpy)) = connection(dpy.cast()) else { return xlib::False };
+        let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return xlib::False };
         // Safety: as documented.
         let (_, event_base, error_base) = unsafe { glx_extension(x, xdpy) }.unwrap_or((0, 0, 0));
         unsafe {

@@ -27,7 +27,7 @@ use super::shim::with_current;
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXSwapBuffers(dpy: *mut types::Display, drawable: types::GLXDrawable) {
     guard("glXSwapBuffers", || {
-        let Some((x, xdpy)) = connection(dpy.cast()) else { return };
+        let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return };
         // Safety: as documented.
         let Some((width, height)) = (unsafe { drawable::size(x, xdpy, drawable) }) else {
             return unsafe { report(xdpy, "glXSwapBuffers", XError::Glx(GlxError::BadDrawable), drawable) };
@@ -54,7 +54,7 @@ pub extern "C" fn glXWaitGL() {}
 #[unsafe(no_mangle)]
 pub extern "C" fn glXWaitX() {
     guard("glXWaitX", || {
-        if let Some((x, dpy)) = context::binding().and_then(|b| connection(b.display.cast())) {
+        if let Some((x, dpy)) = context::binding().and_then(|b| unsafe { connection(b.display.cast()) }) {
             // Safety: the display of the current context is live.
             unsafe { (x.XSync)(dpy, xlib::False) };
         }
@@ -69,7 +69,7 @@ pub extern "C" fn glXWaitX() {
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXSwapIntervalEXT(dpy: *mut types::Display, drawable: types::GLXDrawable, interval: c_int) {
     guard("glXSwapIntervalEXT", || {
-        let Some((x, xdpy)) = connection(dpy.cast()) else { return };
+        let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return };
         // Safety (all): as documented.
         if interval < 0 {
             return unsafe { report(xdpy, "glXSwapIntervalEXT", BAD_VALUE, drawable) };

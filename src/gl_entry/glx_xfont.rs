@@ -17,7 +17,7 @@ pub extern "C" fn glXUseXFont(font: types::Font, first: c_int, count: c_int, lis
         let Some(b) = binding() else {
             return log::info!("glXUseXFont: no current context");
         };
-        let Some((x, dpy)) = connection(b.display.cast()) else { return };
+        let Some((x, dpy)) = (unsafe { connection(b.display.cast()) }) else { return };
         // Safety: the current context's display is live.
         unsafe { xfont::use_x_font(x, dpy, font, first, count, list) }
     })

@@ -43,7 +43,10 @@ pub fn guard<R: ReturnDefault>(name: &'static str, f: impl FnOnce() -> R) -> R {
 
 /// Xlib and the display, when the display is not null and Xlib is available. The first time
 /// a display is seen, glrt asks to be told when it closes (see [`forget_display`]).
-pub fn connection(dpy: *mut c_void) -> Option<(&'static Xlib, *mut XDisplay)> {
+///
+/// # Safety
+/// `dpy` is null or a live display.
+pub unsafe fn connection(dpy: *mut c_void) -> Option<(&'static Xlib, *mut XDisplay)> {
     let x = xlib().filter(|_| !dpy.is_null())?;
     let dpy = dpy.cast::<XDisplay>();
     let mut watched = WATCHED.lock();
