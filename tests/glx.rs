@@ -40,27 +40,40 @@ impl Drop for Server {
     }
 }
 
-fn start_xvfb() -> Server {
-    let number = (90..400)
-        .find(|n| !std::path::Path::new(&format!("/tmp/.X{n}-lock")).exists())
-        .expect("no free X display number");
-    let display = format!(":{number}");
-    let child = Command::new("Xvfb")
-        .args([display.as_str(), "-screen", "0", "640x480x24", "-nolisten", "tcp"])
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap_or_else(|e| panic!("cannot start Xvfb ({e}): run the project's setup script to install it"));
-    Server { child, display }
+/// Starts `Xvfb` on a free display number and connects to it. A number whose lock file
+/// exists is skipped; if another server takes the number first, ours exits and the next
+/// number is tried.
+fn start_xvfb(x: &Xlib) -> (Server, *mut xlib::Display) {
+    for number in 90..400 {
+        if std::path::Path::new(&format!("/tmp/.X{number}-lock")).exists() {
+            continue;
+        }
+        let display = format!(":{number}");
+        let child = Command::new("Xvfb")
+            .args([display.as_str(), "-screen", "0", "640x480x24", "-nolisten", "tcp"])
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap_or_else(|e| panic!("cannot start Xvfb ({e}): run the project's setup script to install it"));
+        let mut server = Server { child, display };
+        if let Some(dpy) = open_display(x, &mut server) {
+            return (server, dpy);
+        }
+    }
+    panic!("no free X display number");
 }
 
-fn open_display(x: &Xlib, name: &str) -> *mut xlib::Display {
-    let name = CString::new(name).unwrap();
+/// Connects to `server` once it accepts connections; `None` if it exited (number taken).
+fn open_display(x: &Xlib, server: &mut Server) -> Option<*mut xlib::Display> {
+    let name = CString::new(server.display.as_str()).unwrap();
     let deadline = Instant::now() + Duration::from_secs(10);
     loop {
+        if server.child.try_wait().ok().flatten().is_some() {
+            return None;
+        }
         let dpy = unsafe { (x.XOpenDisplay)(name.as_ptr()) };
         if !dpy.is_null() {
-            return dpy;
+            return Some(dpy);
         }
         assert!(Instant::now() < deadline, "Xvfb did not start");
         std::thread::sleep(Duration::from_millis(50));
@@ -119,9 +132,8 @@ fn create_window(x: &Xlib, dpy: *mut xlib::Display, vis: &xlib::XVisualInfo, w: 
 
 #[test]
 fn glx_on_xvfb() {
-    let server = start_xvfb();
     let x = Xlib::open().expect("libX11");
-    let xdpy = open_display(&x, &server.display);
+    let (mut server, xdpy) = start_xvfb(&x);
     let dpy = xdpy.cast::<types::Display>();
     unsafe { (x.XSetErrorHandler)(Some(record_error)) };
     let usable = server_visuals(&x, xdpy);
@@ -358,7 +370,7 @@ fn glx_on_xvfb() {
         (x.XFree)(vis.cast());
         (x.XCloseDisplay)(xdpy);
     }
-    let dpy = open_display(&x, &server.display).cast::<types::Display>();
+    let dpy = open_display(&x, &mut server).expect("reconnecting").cast::<types::Display>();
     let mut width = u32::MAX;
     unsafe { glXQueryDrawable(dpy, pbuffer, GLX_WIDTH, &mut width) };
     assert_eq!(width, u32::MAX);
