@@ -243,6 +243,20 @@ impl Context {
         self.fixed.attrib.0.push(restores);
     }
 
+    /// Copies the attribute groups of `mask` from this context to `dst` (`glXCopyContext`,
+    /// GLX 1.4 section 3.3.7: the same groups as `glPushAttrib`).
+    pub fn copy_attributes_to(&self, dst: &mut Context, mask: GLbitfield) {
+        let mut restores = Vec::new();
+        for &(bit, save) in GROUPS {
+            if mask & bit != 0 {
+                save(self, &mut restores);
+            }
+        }
+        for restore in restores {
+            restore(dst);
+        }
+    }
+
     /// `glPopAttrib`: `GL_STACK_UNDERFLOW` when the stack is empty.
     pub fn glPopAttrib(&mut self) {
         let Some(restores) = self.fixed.attrib.0.pop() else {
@@ -266,6 +280,19 @@ mod tests {
 
     fn ints(ctx: &Context, pname: gl::GLenum) -> Vec<i32> {
         ctx.query(pname).unwrap().to_ints()
+    }
+
+    #[test]
+    fn copy_attributes_copies_only_the_masked_groups() {
+        let (mut src, _) = Context::with_recording();
+        let (mut dst, _) = Context::with_recording();
+        src.glLineWidth(5.0);
+        src.glEnable(gl::GL_FOG);
+        src.copy_attributes_to(&mut dst, gl::GL_LINE_BIT);
+        assert_eq!(ints(&dst, gl::GL_LINE_WIDTH), vec![5]);
+        assert_eq!(dst.glIsEnabled(gl::GL_FOG), 0);
+        src.copy_attributes_to(&mut dst, gl::GL_ENABLE_BIT);
+        assert_eq!(dst.glIsEnabled(gl::GL_FOG), 1);
     }
 
     #[test]
