@@ -111,12 +111,6 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
         assert_eq!(ctx.query(gl::GL_READ_BUFFER).unwrap().to_ints(), [gl::GL_FRONT as i32]);
     }
-}
-
-#[cfg(test)]
-mod tests_flush {
-    use crate::translate::Context;
-    use crate::translate::gl;
 
     #[test]
     fn single_buffered_contexts_end_frames_at_flush() {
