@@ -3,6 +3,7 @@
 //! renderer needs to resolve textures. No GL enums here: `translate` converts them to these
 //! types.
 
+pub mod pixels;
 pub mod state;
 pub mod texture;
 
@@ -20,6 +21,8 @@ pub struct Frame {
     pub draws: Vec<Draw>,
     /// Clears, in program order, each placed before a draw index.
     pub clears: Vec<Clear>,
+    /// Bitmaps, pixel images and copies, in program order with the draws.
+    pub pixels: Vec<pixels::PixelOp>,
 }
 
 /// One draw: primitives of one state.

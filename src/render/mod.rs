@@ -6,11 +6,20 @@ use std::sync::Arc;
 use parking_lot::Mutex;
 
 use crate::frame::Frame;
+use crate::frame::pixels::PixelBuffer;
 
 /// Receives each finished frame.
 pub trait FrameSink: Send {
     /// Takes the frame that `glXSwapBuffers` (or a read-back) ended.
     fn present(&mut self, frame: Frame);
+
+    /// Renders `frame` so far (it is not ended) and reads the rectangle `rect` (x, y, width,
+    /// height, window coordinates) of `buffer`: RGBA for colour, the value in the first
+    /// component for depth and stencil; rows bottom to top. `None` when the sink cannot
+    /// render (the caller leaves the client's memory untouched).
+    fn read_pixels(&mut self, _frame: &Frame, _buffer: PixelBuffer, _rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        None
+    }
 }
 
 /// Drops frames, keeping only how many were presented (used when no renderer is available).

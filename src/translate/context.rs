@@ -16,6 +16,8 @@ use crate::render::{FrameSink, RecordingSink};
 pub struct SharedObjects {
     /// Display lists by name.
     pub lists: ListTable,
+    /// Texture objects by name.
+    pub textures: super::texture::TextureTable,
 }
 
 /// How a context is created.
@@ -41,11 +43,15 @@ pub struct Context {
     pub transform: super::transform::TransformState,
     /// Viewport, depth range and scissor box.
     pub viewport: super::viewport::ViewportState,
+    /// Texture units: bindings, environments, coordinate generation.
+    pub texture: super::texture::TextureState,
+    /// Pixel storage, transfer, zoom and the raster position.
+    pub pixels: super::pixels::PixelState,
     /// Immediate-mode assembly (`glBegin`/`glEnd`).
     pub(crate) immediate: super::immediate::ImmediateState,
     /// The frame being assembled since the last swap.
     pub(crate) frame: Frame,
-    sink: Box<dyn FrameSink>,
+    pub(crate) sink: Box<dyn FrameSink>,
     /// Size of the drawable last made current, `(width, height)`.
     pub(crate) drawable_size: Option<(i32, i32)>,
 }
@@ -61,6 +67,8 @@ impl Context {
             texunit: Default::default(),
             transform: Default::default(),
             viewport: super::viewport::ViewportState::new(),
+            texture: Default::default(),
+            pixels: Default::default(),
             immediate: Default::default(),
             frame: Frame::default(),
             sink: config.sink,

@@ -1,19 +1,14 @@
-//! Snapshots of the context state taken when a draw is emitted (placeholders until the
-//! fixed-function state and texture modules provide them).
+//! Snapshots of the context state taken when a draw is emitted (placeholder until the
+//! fixed-function state module provides it; textures: `texture::snapshot`).
 
 use std::sync::Arc;
 
 use super::Context;
-use crate::frame::{RasterState, TextureRef};
+use crate::frame::RasterState;
 
 impl Context {
     /// The raster state for the next draw.
     pub fn raster_snapshot(&mut self) -> Arc<RasterState> {
         Arc::default()
-    }
-
-    /// The texture each unit would sample for the next draw.
-    pub fn texture_snapshot(&mut self) -> Vec<Option<TextureRef>> {
-        Vec::new()
     }
 }
