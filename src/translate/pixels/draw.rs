@@ -243,13 +243,14 @@ mod tests {
     fn bitmaps_in_display_lists_keep_their_bits() {
         let (mut ctx, _) = Context::with_recording();
         ctx.glPixelStorei(gl::GL_UNPACK_ALIGNMENT, 1);
-        let mut bits = [0xffu8];
+        let mut bits = vec![0xffu8];
         unsafe {
             dispatch::glNewList(&mut ctx, 1, gl::GL_COMPILE);
             dispatch::glBitmap(&mut ctx, 4, 1, 0.0, 0.0, 4.0, 0.0, bits.as_ptr());
             dispatch::glEndList(&mut ctx);
         }
         bits[0] = 0;
+        drop(bits);
         ctx.glPixelStorei(gl::GL_UNPACK_LSB_FIRST, 1);
         ctx.glWindowPos3f(0.0, 0.0, 0.0);
         unsafe { dispatch::glCallList(&mut ctx, 1) };

@@ -40,14 +40,14 @@ impl Context {
     unsafe fn compressed_tex_image(&mut self, dims: usize, target: GLenum, level: GLint, internalformat: GLenum, size: [GLsizei; 3], border: GLint, image_size_: GLsizei, data: *const c_void, command: &'static str) {
         let Some(dest) = image_target(dims, target) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let Some(format) = s3tc_for(dims, internalformat) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
+        if border != 0 {
+            return self.set_error_in(gl::GL_INVALID_OPERATION, command);
+        }
         let checked = check_level(dest.target, level).and_then(|l| Ok((l, check_size(dest.target, l, size, border)?)));
         let (level, fit) = match checked {
             Ok(v) => v,
             Err(e) => return self.set_error_in(e, command),
         };
-        if border != 0 {
-            return self.set_error_in(gl::GL_INVALID_OPERATION, command);
-        }
         let size = match fit {
             SizeCheck::Fits(s) => s,
             SizeCheck::TooLarge if dest.proxy => return self.store_level(dest, level, None),

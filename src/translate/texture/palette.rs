@@ -250,6 +250,7 @@ mod tests {
     fn paletted_texture_resolves_and_follows_palette_changes() {
         let (mut ctx, _) = Context::with_recording();
         ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+        ctx.glPixelStorei(gl::GL_UNPACK_ALIGNMENT, 1);
         let palette: Vec<u8> = (0..256u32).flat_map(|i| [i as u8, 0, 255 - i as u8]).collect();
         unsafe {
             dispatch::glColorTableEXT(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_RGB, 256, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, palette.as_ptr().cast());
@@ -261,7 +262,7 @@ mod tests {
         assert_eq!(texels[12..16], [255, 0, 0, 255]);
         assert_eq!(texels[4..8], [1, 0, 254, 255]);
         let red = [9u8, 8, 7];
-        unsafe { dispatch::glColorSubTableEXT(&mut ctx, gl::GL_TEXTURE_2D, 1, 1, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, red.as_ptr().cast()) };
+        unsafe { ctx.glColorSubTableEXT(gl::GL_TEXTURE_2D, 1, 1, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, red.as_ptr().cast()) };
         let (texels, v2) = ctx.with_bound(super::Target::D2, |o| (o.level(0, 0).unwrap().image.texels.clone(), o.version));
         assert_eq!(texels[4..8], [9, 8, 7, 255]);
         assert!(v2 > v1);
