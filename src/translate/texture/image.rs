@@ -587,3 +587,200 @@ impl Context {
         unsafe { self.compile_glTexImage3D(target, level, internal, width, height, depth, border, format, type_, pixels) }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::frame::pixels::PixelKind;
+    use crate::translate::{Context, dispatch, gl};
+
+    fn level_param(ctx: &mut Context, target: u32, level: i32, pname: u32) -> i32 {
+        let mut v = -7;
+        unsafe { ctx.glGetTexLevelParameteriv(target, level, pname, &mut v) };
+        v
+    }
+
+    #[test]
+    fn packed_formats_round_trip_through_get_tex_image() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+        ctx.glPixelStorei(gl::GL_UNPACK_ALIGNMENT, 1);
+        ctx.glPixelStorei(gl::GL_PACK_ALIGNMENT, 1);
+        // Values every packed field represents exactly after an 8-bit round trip.
+        for (format, type_, words) in [
+            (gl::GL_RGBA, gl::GL_UNSIGNED_SHORT_4_4_4_4, vec![0x1234u32, 0xfedc]),
+            (gl::GL_BGRA, gl::GL_UNSIGNED_SHORT_4_4_4_4_REV, vec![0x1234, 0xfedc]),
+            (gl::GL_RGBA, gl::GL_UNSIGNED_SHORT_5_5_5_1, vec![0x8421, 0xffff]),
+            (gl::GL_BGRA, gl::GL_UNSIGNED_SHORT_1_5_5_5_REV, vec![0x8421, 0x7fff]),
+            (gl::GL_RGB, gl::GL_UNSIGNED_SHORT_5_6_5, vec![0xf81f, 0x07e0]),
+            (gl::GL_RGB, gl::GL_UNSIGNED_SHORT_5_6_5_REV, vec![0x1234, 0xabcd]),
+            (gl::GL_RGBA, gl::GL_UNSIGNED_INT_8_8_8_8, vec![0x11223344, 0xaabbccdd]),
+            (gl::GL_BGRA, gl::GL_UNSIGNED_INT_8_8_8_8_REV, vec![0x11223344, 0xaabbccdd]),
+            (gl::GL_RGB, gl::GL_UNSIGNED_BYTE_3_3_2, vec![0xa5, 0x3c]),
+            (gl::GL_RGB, gl::GL_UNSIGNED_BYTE_2_3_3_REV, vec![0xa5, 0x3c]),
+            (gl::GL_RGBA, gl::GL_UNSIGNED_INT_2_10_10_10_REV, vec![0xc0000000, 0x3ff]),
+            (gl::GL_RGBA, gl::GL_UNSIGNED_INT_10_10_10_2, vec![0xffc00003, 0x0]),
+        ] {
+            let size = match type_ {
+                gl::GL_UNSIGNED_BYTE_3_3_2 | gl::GL_UNSIGNED_BYTE_2_3_3_REV => 1,
+                gl::GL_UNSIGNED_INT_8_8_8_8 | gl::GL_UNSIGNED_INT_8_8_8_8_REV | gl::GL_UNSIGNED_INT_2_10_10_10_REV | gl::GL_UNSIGNED_INT_10_10_10_2 => 4,
+                _ => 2,
+            };
+            let bytes: Vec<u8> = words.iter().flat_map(|&w| w.to_ne_bytes()[..size].to_vec()).collect();
+            let bytes: Vec<u8> = match size {
+                2 => words.iter().flat_map(|&w| (w as u16).to_ne_bytes()).collect(),
+                4 => words.iter().flat_map(|&w| w.to_ne_bytes()).collect(),
+                _ => bytes,
+            };
+            let internal = if format == gl::GL_RGB { gl::GL_RGB8 } else { gl::GL_RGBA8 } as i32;
+            unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, internal, 2, 1, 0, format, type_, bytes.as_ptr().cast()) };
+            assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR, "{type_:#x}");
+            let mut back = vec![0u8; bytes.len()];
+            unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 0, format, type_, back.as_mut_ptr().cast()) };
+            assert_eq!(back, bytes, "{type_:#x}");
+        }
+    }
+
+    #[test]
+    fn unpack_modes_select_the_texels() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+        // A 4×3 image of big-endian shorts; the texture is its 2×2 corner at (1, 1).
+        let src: Vec<u16> = (0..12u16).map(|i| i * 0x1111).collect();
+        let bytes: Vec<u8> = src.iter().flat_map(|v| v.to_be_bytes()).collect();
+        ctx.glPixelStorei(gl::GL_UNPACK_SWAP_BYTES, i32::from(cfg!(target_endian = "little")));
+        ctx.glPixelStorei(gl::GL_UNPACK_ROW_LENGTH, 4);
+        ctx.glPixelStorei(gl::GL_UNPACK_SKIP_PIXELS, 1);
+        ctx.glPixelStorei(gl::GL_UNPACK_SKIP_ROWS, 1);
+        ctx.glPixelStorei(gl::GL_UNPACK_ALIGNMENT, 8);
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_LUMINANCE as i32, 2, 2, 0, gl::GL_LUMINANCE, gl::GL_UNSIGNED_SHORT, bytes.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        let mut out = [0u8; 4];
+        ctx.glPixelStorei(gl::GL_PACK_ALIGNMENT, 1);
+        unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 0, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+        // Source values 5, 6, 9, 10 × 0x1111 → 0x55, 0x66, 0x99, 0xaa as bytes.
+        assert_eq!(out, [0x55, 0x66, 0x99, 0xaa]);
+        // Pack: skip pixels and row length on the way out, padding left as it was.
+        ctx.glPixelStorei(gl::GL_PACK_ROW_LENGTH, 3);
+        ctx.glPixelStorei(gl::GL_PACK_SKIP_PIXELS, 1);
+        let mut wide = [0xeeu8; 6];
+        unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 0, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, wide.as_mut_ptr().cast()) };
+        assert_eq!(wide, [0xee, 0x55, 0x66, 0xee, 0x99, 0xaa]);
+    }
+
+    #[test]
+    fn image_errors() {
+        let (mut ctx, _) = Context::with_recording();
+        let px = [0u8; 256];
+        let tex = |ctx: &mut Context, target, level, internal: u32, w, h, border, format, type_| {
+            unsafe { dispatch::glTexImage2D(ctx, target, level, internal as i32, w, h, border, format, type_, px.as_ptr().cast()) };
+            ctx.glGetError()
+        };
+        let (t2, rgba, ub) = (gl::GL_TEXTURE_2D, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE);
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, 3, 4, 0, rgba, ub), gl::GL_INVALID_VALUE);
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, 5, 4, 1, rgba, ub), gl::GL_INVALID_VALUE);
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, 6, 4, 1, rgba, ub), gl::GL_NO_ERROR);
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, -2, 4, 0, rgba, ub), gl::GL_INVALID_VALUE);
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, 4, 4, 2, rgba, ub), gl::GL_INVALID_VALUE);
+        assert_eq!(tex(&mut ctx, t2, -1, rgba, 4, 4, 0, rgba, ub), gl::GL_INVALID_VALUE);
+        assert_eq!(tex(&mut ctx, t2, 14, rgba, 1, 1, 0, rgba, ub), gl::GL_INVALID_VALUE);
+        assert_eq!(tex(&mut ctx, t2, 13, rgba, 2, 2, 0, rgba, ub), gl::GL_INVALID_VALUE);
+        assert_eq!(tex(&mut ctx, t2, 13, rgba, 1, 1, 0, rgba, ub), gl::GL_NO_ERROR);
+        assert_eq!(tex(&mut ctx, gl::GL_TEXTURE_3D, 0, rgba, 4, 4, 0, rgba, ub), gl::GL_INVALID_ENUM);
+        assert_eq!(tex(&mut ctx, t2, 0, 5, 4, 4, 0, rgba, ub), gl::GL_INVALID_VALUE);
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, 4, 4, 0, gl::GL_STENCIL_INDEX, ub), gl::GL_INVALID_ENUM);
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, 4, 4, 0, rgba, gl::GL_UNSIGNED_SHORT_5_6_5), gl::GL_INVALID_OPERATION);
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, 4, 4, 0, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT), gl::GL_INVALID_OPERATION);
+        assert_eq!(tex(&mut ctx, t2, 0, gl::GL_DEPTH_COMPONENT, 2, 2, 0, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT), gl::GL_NO_ERROR);
+        assert_eq!(tex(&mut ctx, gl::GL_TEXTURE_CUBE_MAP_NEGATIVE_Y, 0, rgba, 4, 2, 0, rgba, ub), gl::GL_INVALID_VALUE);
+        assert_eq!(tex(&mut ctx, gl::GL_TEXTURE_2D, 0, rgba, 16384, 1, 0, rgba, ub), gl::GL_INVALID_VALUE);
+        // Sub-images: outside the level, or into a level never specified.
+        ctx.glBindTexture(t2, 2);
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, 2, 2, 0, rgba, ub), gl::GL_NO_ERROR);
+        unsafe { dispatch::glTexSubImage2D(&mut ctx, t2, 0, 1, 1, 2, 1, rgba, ub, px.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        unsafe { dispatch::glTexSubImage2D(&mut ctx, t2, 1, 0, 0, 1, 1, rgba, ub, px.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+        unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_PROXY_TEXTURE_2D, 0, 0, 0, 1, 1, rgba, ub, px.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        let mut out = [0u8; 4];
+        unsafe { ctx.glGetTexImage(t2, 0, gl::GL_COLOR_INDEX, ub, out.as_mut_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        assert_eq!(level_param(&mut ctx, t2, 0, gl::GL_TEXTURE_COMPRESSED_IMAGE_SIZE), -7);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+    }
+
+    #[test]
+    fn proxies_record_sizes_only() {
+        let (mut ctx, _) = Context::with_recording();
+        let p = gl::GL_PROXY_TEXTURE_2D;
+        unsafe { dispatch::glTexImage2D(&mut ctx, p, 0, gl::GL_RGB5 as i32, 64, 32, 0, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        assert_eq!((level_param(&mut ctx, p, 0, gl::GL_TEXTURE_WIDTH), level_param(&mut ctx, p, 0, gl::GL_TEXTURE_HEIGHT)), (64, 32));
+        assert_eq!(level_param(&mut ctx, p, 0, gl::GL_TEXTURE_INTERNAL_FORMAT) as u32, gl::GL_RGB5);
+        assert_eq!(level_param(&mut ctx, p, 0, gl::GL_TEXTURE_GREEN_SIZE), 8);
+        assert_eq!(level_param(&mut ctx, p, 0, gl::GL_TEXTURE_ALPHA_SIZE), 0);
+        // Too large: every parameter becomes 0, without an error.
+        unsafe { dispatch::glTexImage2D(&mut ctx, p, 0, gl::GL_RGBA as i32, 16384, 16384, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        assert_eq!(level_param(&mut ctx, p, 0, gl::GL_TEXTURE_WIDTH), 0);
+        assert_eq!(level_param(&mut ctx, p, 0, gl::GL_TEXTURE_RED_SIZE), 0);
+        let p3 = gl::GL_PROXY_TEXTURE_3D;
+        unsafe { dispatch::glTexImage3D(&mut ctx, p3, 1, gl::GL_ALPHA as i32, 1024, 1024, 2, 0, gl::GL_ALPHA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        assert_eq!((level_param(&mut ctx, p3, 1, gl::GL_TEXTURE_DEPTH), level_param(&mut ctx, p3, 1, gl::GL_TEXTURE_WIDTH)), (2, 1024));
+        unsafe { dispatch::glTexImage3D(&mut ctx, p3, 1, gl::GL_ALPHA as i32, 2048, 2, 2, 0, gl::GL_ALPHA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        assert_eq!(level_param(&mut ctx, p3, 1, gl::GL_TEXTURE_WIDTH), 0);
+        // Proxies do not touch the bound texture; unspecified levels read as zero.
+        assert_eq!(level_param(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_TEXTURE_WIDTH), 0);
+        assert_eq!(level_param(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_TEXTURE_INTERNAL_FORMAT), 1);
+        // Proxy commands in display lists run at once.
+        unsafe {
+            dispatch::glNewList(&mut ctx, 1, gl::GL_COMPILE);
+            dispatch::glTexImage2D(&mut ctx, p, 0, gl::GL_RGBA as i32, 8, 8, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null());
+            dispatch::glEndList(&mut ctx);
+        }
+        assert_eq!(level_param(&mut ctx, p, 0, gl::GL_TEXTURE_WIDTH), 8);
+    }
+
+    #[test]
+    fn generated_mipmaps_box_filter_the_base() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+        ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_GENERATE_MIPMAP, 1);
+        let px: [u8; 16] = [0, 10, 20, 30, 40, 50, 60, 70, 80, 90, 100, 110, 120, 130, 140, 250];
+        ctx.glPixelStorei(gl::GL_UNPACK_ALIGNMENT, 1);
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_LUMINANCE as i32, 4, 4, 0, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, px.as_ptr().cast()) };
+        let mut l1 = [0u8; 4];
+        let mut l2 = [0u8; 1];
+        ctx.glPixelStorei(gl::GL_PACK_ALIGNMENT, 1);
+        unsafe {
+            ctx.glGetTexImage(gl::GL_TEXTURE_2D, 1, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, l1.as_mut_ptr().cast());
+            ctx.glGetTexImage(gl::GL_TEXTURE_2D, 2, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, l2.as_mut_ptr().cast());
+        }
+        // (0 + 10 + 40 + 50) / 4 = 25, (20 + 30 + 60 + 70) / 4 = 45, (80 + 90 + 120 + 130) / 4 = 105,
+        // (100 + 110 + 140 + 250) / 4 = 150; then (25 + 45 + 105 + 150) / 4 = 81.25 → 81.
+        assert_eq!(l1, [25, 45, 105, 150]);
+        assert_eq!(l2, [81]);
+        assert_eq!(level_param(&mut ctx, gl::GL_TEXTURE_2D, 2, gl::GL_TEXTURE_WIDTH), 1);
+        assert_eq!(level_param(&mut ctx, gl::GL_TEXTURE_2D, 3, gl::GL_TEXTURE_WIDTH), 0);
+    }
+
+    #[test]
+    fn copy_tex_image_records_framebuffer_copy() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 9);
+        ctx.glCopyTexImage2D(gl::GL_TEXTURE_2D, 0, gl::GL_RGB, 10, 20, 16, 8, 0);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        ctx.glCopyTexImage2D(gl::GL_TEXTURE_2D, 0, 3, 10, 20, 16, 8, 0);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        ctx.glCopyTexImage2D(gl::GL_PROXY_TEXTURE_2D, 0, gl::GL_RGB, 0, 0, 16, 8, 0);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glCopyTexSubImage2D(gl::GL_TEXTURE_2D, 0, 8, 4, 1, 2, 8, 4);
+        ctx.glCopyTexSubImage2D(gl::GL_TEXTURE_2D, 0, 9, 4, 1, 2, 8, 4);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        assert_eq!(level_param(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_TEXTURE_WIDTH), 16);
+        let version = ctx.with_bound(super::Target::D2, |o| o.version);
+        let ops: Vec<_> = ctx.frame.pixels.iter().map(|p| p.kind.clone()).collect();
+        assert_eq!(ops.len(), 2);
+        let PixelKind::TextureCopy { texture, offset, src, version: v, .. } = &ops[1] else { panic!("not a copy") };
+        assert_eq!((*texture, *offset, *src, *v), (9, [8, 4, 0], [1, 2, 8, 4], version));
+    }
+}
