@@ -402,8 +402,8 @@ mod tests {
     fn packed_types_round_trip_every_field() {
         let m = StoreModes::default();
         for (fmt, ty, raw) in [
-            (gl::GL_RGB, gl::GL_UNSIGNED_BYTE_3_3_2, 0b101_010_01u32),
-            (gl::GL_RGB, gl::GL_UNSIGNED_BYTE_2_3_3_REV, 0b01_010_101),
+            (gl::GL_RGB, gl::GL_UNSIGNED_BYTE_3_3_2, 0b1010_1001u32),
+            (gl::GL_RGB, gl::GL_UNSIGNED_BYTE_2_3_3_REV, 0b0101_0101),
             (gl::GL_RGB, gl::GL_UNSIGNED_SHORT_5_6_5, 0xf81f),
             (gl::GL_RGB, gl::GL_UNSIGNED_SHORT_5_6_5_REV, 0x07e0),
             (gl::GL_RGBA, gl::GL_UNSIGNED_SHORT_4_4_4_4, 0x1234),

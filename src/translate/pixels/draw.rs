@@ -41,6 +41,7 @@ impl Context {
     ///
     /// # Safety
     /// A non-null `bitmap` must point to the bits the unpack modes describe.
+    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glBitmap(&mut self, width: GLsizei, height: GLsizei, xorig: GLfloat, yorig: GLfloat, xmove: GLfloat, ymove: GLfloat, bitmap: *const GLubyte) {
         let Some([w, h]) = size2(self, width, height, "glBitmap") else { return };
         if !self.pixels.raster.valid {
@@ -72,6 +73,7 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glBitmap`].
+    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glBitmap(&mut self, width: GLsizei, height: GLsizei, xorig: GLfloat, yorig: GLfloat, xmove: GLfloat, ymove: GLfloat, bitmap: *const GLubyte) {
         let run = move |ctx: &mut Context, p: *const c_void| unsafe {
             super::super::dispatch::exec_glBitmap(ctx, width, height, xorig, yorig, xmove, ymove, p.cast())
@@ -136,6 +138,7 @@ impl Context {
     ///
     /// # Safety
     /// A non-null `pixels` must point to writable memory as the pack modes describe.
+    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glReadPixels(&mut self, x: GLint, y: GLint, width: GLsizei, height: GLsizei, format: GLenum, type_: GLenum, pixels: *mut c_void) {
         let Some([w, h]) = size2(self, width, height, "glReadPixels") else { return };
         let Some((f, t)) = self.parse_pixel_format(format, type_, "glReadPixels") else { return };

@@ -3,6 +3,9 @@
 //! `glGetCompressedTexImage`. The blocks are kept for read-back and decoded to canonical
 //! texels. S3TC formats exist for 2D images only, so the 1D and 3D commands accept no format.
 
+// GL commands keep the parameter lists of their C functions.
+#![allow(clippy::too_many_arguments)]
+
 use std::ffi::c_void;
 use std::sync::Arc;
 
@@ -36,7 +39,6 @@ impl Context {
     /// `glCompressedTexImage*`: `GL_INVALID_ENUM` for a bad target or a format that is not a
     /// compressed format of that dimensionality, `GL_INVALID_VALUE` for bad level or sizes or
     /// an `imageSize` that does not match, `GL_INVALID_OPERATION` for a non-zero border.
-    #[allow(clippy::too_many_arguments)]
     unsafe fn compressed_tex_image(&mut self, dims: usize, target: GLenum, level: GLint, internalformat: GLenum, size: [GLsizei; 3], border: GLint, image_size_: GLsizei, data: *const c_void, command: &'static str) {
         let Some(dest) = image_target(dims, target) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let Some(format) = s3tc_for(dims, internalformat) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
@@ -73,7 +75,6 @@ impl Context {
     ///
     /// # Safety
     /// `data` must point to `imageSize` bytes.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glCompressedTexImage1D(&mut self, target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, border: GLint, imageSize: GLsizei, data: *const c_void) {
         unsafe { self.compressed_tex_image(1, target, level, internalformat, [width, 1, 1], border, imageSize, data, "glCompressedTexImage1D") }
     }
@@ -82,7 +83,6 @@ impl Context {
     ///
     /// # Safety
     /// `data` must point to `imageSize` bytes.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glCompressedTexImage2D(&mut self, target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, border: GLint, imageSize: GLsizei, data: *const c_void) {
         unsafe { self.compressed_tex_image(2, target, level, internalformat, [width, height, 1], border, imageSize, data, "glCompressedTexImage2D") }
     }
@@ -91,7 +91,6 @@ impl Context {
     ///
     /// # Safety
     /// `data` must point to `imageSize` bytes.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glCompressedTexImage3D(&mut self, target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei, border: GLint, imageSize: GLsizei, data: *const c_void) {
         unsafe { self.compressed_tex_image(3, target, level, internalformat, [width, height, depth], border, imageSize, data, "glCompressedTexImage3D") }
     }
@@ -99,7 +98,6 @@ impl Context {
     /// `glCompressedTexSubImage*`: the region checks of `glTexSubImage`; `GL_INVALID_ENUM` for
     /// a format that is not S3TC, `GL_INVALID_OPERATION` when it differs from the level's or
     /// the region is not made of whole blocks, `GL_INVALID_VALUE` for a wrong `imageSize`.
-    #[allow(clippy::too_many_arguments)]
     unsafe fn compressed_tex_sub_image(&mut self, dims: usize, target: GLenum, level: GLint, offset: [GLint; 3], size: [GLsizei; 3], format: GLenum, image_size_: GLsizei, data: *const c_void, command: &'static str) {
         let Some((dest, level, off, sz, _)) = self.check_sub_image(dims, target, level, offset, size, command) else { return };
         let Some(fmt) = s3tc_for(dims, format) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
@@ -144,7 +142,6 @@ impl Context {
     ///
     /// # Safety
     /// `data` must point to `imageSize` bytes.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glCompressedTexSubImage1D(&mut self, target: GLenum, level: GLint, xoffset: GLint, width: GLsizei, format: GLenum, imageSize: GLsizei, data: *const c_void) {
         unsafe { self.compressed_tex_sub_image(1, target, level, [xoffset, 0, 0], [width, 1, 1], format, imageSize, data, "glCompressedTexSubImage1D") }
     }
@@ -153,7 +150,6 @@ impl Context {
     ///
     /// # Safety
     /// `data` must point to `imageSize` bytes.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glCompressedTexSubImage2D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, imageSize: GLsizei, data: *const c_void) {
         unsafe { self.compressed_tex_sub_image(2, target, level, [xoffset, yoffset, 0], [width, height, 1], format, imageSize, data, "glCompressedTexSubImage2D") }
     }
@@ -162,7 +158,6 @@ impl Context {
     ///
     /// # Safety
     /// `data` must point to `imageSize` bytes.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glCompressedTexSubImage3D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, zoffset: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, format: GLenum, imageSize: GLsizei, data: *const c_void) {
         unsafe { self.compressed_tex_sub_image(3, target, level, [xoffset, yoffset, zoffset], [width, height, depth], format, imageSize, data, "glCompressedTexSubImage3D") }
     }
@@ -180,7 +175,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glCompressedTexImage1D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glCompressedTexImage1D(&mut self, target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, border: GLint, imageSize: GLsizei, data: *const c_void) {
         let proxy = image_target(1, target).is_some_and(|d| d.proxy);
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexImage1D(target, level, internalformat, width, border, imageSize, p) };
@@ -191,7 +185,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glCompressedTexImage2D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glCompressedTexImage2D(&mut self, target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, border: GLint, imageSize: GLsizei, data: *const c_void) {
         let proxy = image_target(2, target).is_some_and(|d| d.proxy);
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexImage2D(target, level, internalformat, width, height, border, imageSize, p) };
@@ -202,7 +195,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glCompressedTexImage3D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glCompressedTexImage3D(&mut self, target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei, border: GLint, imageSize: GLsizei, data: *const c_void) {
         let proxy = image_target(3, target).is_some_and(|d| d.proxy);
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexImage3D(target, level, internalformat, width, height, depth, border, imageSize, p) };
@@ -213,7 +205,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glCompressedTexSubImage1D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glCompressedTexSubImage1D(&mut self, target: GLenum, level: GLint, xoffset: GLint, width: GLsizei, format: GLenum, imageSize: GLsizei, data: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexSubImage1D(target, level, xoffset, width, format, imageSize, p) };
         unsafe { self.compile_compressed(false, imageSize, data, run) }
@@ -223,7 +214,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glCompressedTexSubImage2D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glCompressedTexSubImage2D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, imageSize: GLsizei, data: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexSubImage2D(target, level, xoffset, yoffset, width, height, format, imageSize, p) };
         unsafe { self.compile_compressed(false, imageSize, data, run) }
@@ -233,7 +223,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glCompressedTexSubImage3D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glCompressedTexSubImage3D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, zoffset: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, format: GLenum, imageSize: GLsizei, data: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexSubImage3D(target, level, xoffset, yoffset, zoffset, width, height, depth, format, imageSize, p) };
         unsafe { self.compile_compressed(false, imageSize, data, run) }

@@ -3,6 +3,9 @@
 //! `glGetTexImage`, `glGetTexLevelParameter{if}v`, with the argument checks of the
 //! specification, proxy targets and `GL_GENERATE_MIPMAP`.
 
+// GL commands keep the parameter lists of their C functions.
+#![allow(clippy::too_many_arguments)]
+
 use std::ffi::c_void;
 use std::sync::Arc;
 
@@ -52,6 +55,10 @@ pub fn image_target(dims: usize, target: GLenum) -> Option<Dest> {
 pub fn any_image_target(target: GLenum) -> Option<Dest> {
     (1..=3).find_map(|d| image_target(d, target))
 }
+
+/// A checked sub-image region: destination, level, offset (border included), size, and the
+/// level's base format.
+pub type SubImage = (Dest, usize, [usize; 3], [usize; 3], Base);
 
 /// The outcome of the size checks.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -139,10 +146,8 @@ fn write_region(level: &mut Level, offset: [usize; 3], size: [usize; 3], texels:
                 if let (Some(d), Some(s)) = (image.texels.get_mut(dst * 4..dst * 4 + 4), texels.get(src * 4..src * 4 + 4)) {
                     d.copy_from_slice(s);
                 }
-                if let (Some(li), Some(si)) = (level_indices.as_deref_mut(), indices) {
-                    if let (Some(d), Some(&s)) = (li.get_mut(dst), si.get(src)) {
-                        *d = s;
-                    }
+                if let (Some(d), Some(&s)) = (level_indices.as_deref_mut().and_then(|li| li.get_mut(dst)), indices.and_then(|si| si.get(src))) {
+                    *d = s;
                 }
                 src += 1;
             }
@@ -192,7 +197,6 @@ impl Context {
     }
 
     /// `glTexImage1D/2D/3D`.
-    #[allow(clippy::too_many_arguments)]
     unsafe fn tex_image(
         &mut self,
         dims: usize,
@@ -238,7 +242,6 @@ impl Context {
     ///
     /// # Safety
     /// A non-null `pixels` must point to the image the unpack modes describe.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glTexImage1D(&mut self, target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, border: GLint, format: GLenum, type_: GLenum, pixels: *const c_void) {
         unsafe { self.tex_image(1, target, level, internalformat, [width, 1, 1], border, format, type_, pixels, "glTexImage1D") }
     }
@@ -251,7 +254,6 @@ impl Context {
     ///
     /// # Safety
     /// A non-null `pixels` must point to the image the unpack modes describe.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glTexImage2D(&mut self, target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, height: GLsizei, border: GLint, format: GLenum, type_: GLenum, pixels: *const c_void) {
         unsafe { self.tex_image(2, target, level, internalformat, [width, height, 1], border, format, type_, pixels, "glTexImage2D") }
     }
@@ -260,7 +262,6 @@ impl Context {
     ///
     /// # Safety
     /// A non-null `pixels` must point to the image the unpack modes describe.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glTexImage3D(&mut self, target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, border: GLint, format: GLenum, type_: GLenum, pixels: *const c_void) {
         unsafe { self.tex_image(3, target, level, internalformat, [width, height, depth], border, format, type_, pixels, "glTexImage3D") }
     }
@@ -278,7 +279,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glTexImage1D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glTexImage1D(&mut self, target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, border: GLint, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexImage1D(target, level, internalformat, width, border, format, type_, p) };
         unsafe { self.compile_tex_image(1, target, format, type_, [width, 1, 1], pixels, run) }
@@ -288,7 +288,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glTexImage2D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glTexImage2D(&mut self, target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, height: GLsizei, border: GLint, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexImage2D(target, level, internalformat, width, height, border, format, type_, p) };
         unsafe { self.compile_tex_image(2, target, format, type_, [width, height, 1], pixels, run) }
@@ -298,7 +297,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glTexImage3D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glTexImage3D(&mut self, target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, border: GLint, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexImage3D(target, level, internalformat, width, height, depth, border, format, type_, p) };
         unsafe { self.compile_tex_image(3, target, format, type_, [width, height, depth], pixels, run) }
@@ -309,7 +307,7 @@ impl Context {
     /// image (border included), `GL_INVALID_OPERATION` when the level was never specified.
     /// Returns the destination, level, the region's offset (border included) and size, and
     /// the level's base format.
-    pub(crate) fn check_sub_image(&mut self, dims: usize, target: GLenum, level: GLint, offset: [GLint; 3], size: [GLsizei; 3], command: &'static str) -> Option<(Dest, usize, [usize; 3], [usize; 3], Base)> {
+    pub(crate) fn check_sub_image(&mut self, dims: usize, target: GLenum, level: GLint, offset: [GLint; 3], size: [GLsizei; 3], command: &'static str) -> Option<SubImage> {
         let result = (|| {
             let dest = image_target(dims, target).filter(|d| !d.proxy).ok_or(gl::GL_INVALID_ENUM)?;
             let level = check_level(dest.target, level)?;
@@ -332,7 +330,6 @@ impl Context {
     }
 
     /// `glTexSubImage1D/2D/3D`.
-    #[allow(clippy::too_many_arguments)]
     unsafe fn tex_sub_image(&mut self, dims: usize, target: GLenum, level: GLint, offset: [GLint; 3], size: [GLsizei; 3], format: GLenum, type_: GLenum, pixels: *const c_void, command: &'static str) {
         let Some((dest, level, off, sz, base)) = self.check_sub_image(dims, target, level, offset, size, command) else { return };
         let Some(ft) = self.parse_pixel_format(format, type_, command) else { return };
@@ -359,7 +356,6 @@ impl Context {
     ///
     /// # Safety
     /// A non-null `pixels` must point to the image the unpack modes describe.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glTexSubImage1D(&mut self, target: GLenum, level: GLint, xoffset: GLint, width: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         unsafe { self.tex_sub_image(1, target, level, [xoffset, 0, 0], [width, 1, 1], format, type_, pixels, "glTexSubImage1D") }
     }
@@ -369,7 +365,6 @@ impl Context {
     ///
     /// # Safety
     /// A non-null `pixels` must point to the image the unpack modes describe.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glTexSubImage2D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         unsafe { self.tex_sub_image(2, target, level, [xoffset, yoffset, 0], [width, height, 1], format, type_, pixels, "glTexSubImage2D") }
     }
@@ -378,7 +373,6 @@ impl Context {
     ///
     /// # Safety
     /// A non-null `pixels` must point to the image the unpack modes describe.
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glTexSubImage3D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, zoffset: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         unsafe { self.tex_sub_image(3, target, level, [xoffset, yoffset, zoffset], [width, height, depth], format, type_, pixels, "glTexSubImage3D") }
     }
@@ -387,7 +381,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glTexSubImage1D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glTexSubImage1D(&mut self, target: GLenum, level: GLint, xoffset: GLint, width: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexSubImage1D(target, level, xoffset, width, format, type_, p) };
         unsafe { self.compile_image_command(format, type_, [width, 1, 1], pixels, run) }
@@ -397,7 +390,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glTexSubImage2D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glTexSubImage2D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexSubImage2D(target, level, xoffset, yoffset, width, height, format, type_, p) };
         unsafe { self.compile_image_command(format, type_, [width, height, 1], pixels, run) }
@@ -407,7 +399,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glTexSubImage3D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glTexSubImage3D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, zoffset: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexSubImage3D(target, level, xoffset, yoffset, zoffset, width, height, depth, format, type_, p) };
         unsafe { self.compile_image_command(format, type_, [width, height, depth], pixels, run) }
@@ -432,7 +423,6 @@ impl Context {
     /// `glCopyTexImage1D/2D`: like `glTexImage`, with the pixels from the framebuffer
     /// (`GL_INVALID_VALUE` also for the internal formats 1–4 and colour indices). The level is
     /// allocated zero-filled and the copy is recorded in the frame.
-    #[allow(clippy::too_many_arguments)]
     fn copy_tex_image(&mut self, dims: usize, target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, size: [GLsizei; 2], border: GLint, command: &'static str) {
         let Some(dest) = image_target(dims, target).filter(|d| !d.proxy) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let internal = formats::internal_format(internalformat).filter(|i| !(1..=4).contains(&internalformat) && i.base != Base::ColorIndex && S3tc::of(internalformat).is_none());
@@ -454,7 +444,6 @@ impl Context {
     }
 
     /// `glCopyTexImage2D`.
-    #[allow(clippy::too_many_arguments)]
     pub fn glCopyTexImage2D(&mut self, target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, width: GLsizei, height: GLsizei, border: GLint) {
         self.copy_tex_image(2, target, level, internalformat, x, y, [width, height], border, "glCopyTexImage2D");
     }
@@ -474,13 +463,11 @@ impl Context {
     }
 
     /// `glCopyTexSubImage2D`.
-    #[allow(clippy::too_many_arguments)]
     pub fn glCopyTexSubImage2D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, x: GLint, y: GLint, width: GLsizei, height: GLsizei) {
         self.copy_tex_sub_image(2, target, level, [xoffset, yoffset, 0], [x, y, width, height], "glCopyTexSubImage2D");
     }
 
     /// `glCopyTexSubImage3D`: copies into slice `zoffset`.
-    #[allow(clippy::too_many_arguments)]
     pub fn glCopyTexSubImage3D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, zoffset: GLint, x: GLint, y: GLint, width: GLsizei, height: GLsizei) {
         self.copy_tex_sub_image(3, target, level, [xoffset, yoffset, zoffset], [x, y, width, height], "glCopyTexSubImage3D");
     }
@@ -571,7 +558,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glTexImage3D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glTexImage3DEXT(&mut self, target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei, border: GLint, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let internal = GLint::try_from(internalformat).unwrap_or(-1);
         unsafe { self.glTexImage3D(target, level, internal, width, height, depth, border, format, type_, pixels) }
@@ -581,7 +567,6 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glTexImage3D`].
-    #[allow(clippy::too_many_arguments)]
     pub unsafe fn compile_glTexImage3DEXT(&mut self, target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei, border: GLint, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let internal = GLint::try_from(internalformat).unwrap_or(-1);
         unsafe { self.compile_glTexImage3D(target, level, internal, width, height, depth, border, format, type_, pixels) }

@@ -21,8 +21,8 @@ pub fn downsample(src: &[u8], size: [usize; 3]) -> (Vec<u8>, [usize; 3]) {
                     for dy in 0..step[1] {
                         for dx in 0..step[0] {
                             let i = (((z * step[2] + dz) * size[1] + y * step[1] + dy) * size[0] + x * step[0] + dx) * 4;
-                            for c in 0..4 {
-                                sum[c] += u32::from(src.get(i + c).copied().unwrap_or(0));
+                            for (c, s) in sum.iter_mut().enumerate() {
+                                *s += u32::from(src.get(i + c).copied().unwrap_or(0));
                             }
                         }
                     }
@@ -58,10 +58,7 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
     let Some(top) = obj.level(face, base).cloned() else { return };
     let dims = obj.target.map_or(2, |t| t.dims());
     let border = top.border;
-    let mut size = [0; 3];
-    for i in 0..3 {
-        size[i] = if i < dims { top.size[i] - 2 * border } else { 1 };
-    }
+    let mut size: [usize; 3] = std::array::from_fn(|i| if i < dims { top.size[i] - 2 * border } else { 1 });
     let mut texels = interior(&top.image, top.size, border);
     let base_format = match top.base {
         Base::ColorIndex => Base::Texel(TexelFormat::Rgba),

@@ -119,7 +119,7 @@ pub struct Level {
 }
 
 /// A texture object.
-#[derive(Clone, Debug, Default)]
+#[derive(Clone, Debug)]
 pub struct TextureObject {
     /// The target it was first bound to; `None` for a name from `glGenTextures` not bound yet.
     pub target: Option<Target>,
@@ -135,10 +135,23 @@ pub struct TextureObject {
     pub(crate) snapshot: Option<(u64, TextureRef)>,
 }
 
+impl Default for TextureObject {
+    fn default() -> TextureObject {
+        TextureObject {
+            target: None,
+            params: TexParams::default(),
+            faces: Vec::new(),
+            palette: Palette::default(),
+            version: next_version(),
+            snapshot: None,
+        }
+    }
+}
+
 impl TextureObject {
-    /// A new object with the initial state of table 6.16 (no images).
+    /// A new object with the initial state of table 6.16 (no images) and a fresh version.
     pub fn new() -> TextureObject {
-        TextureObject { version: next_version(), ..TextureObject::default() }
+        TextureObject::default()
     }
 
     /// Marks a change of images, parameters or palette.
@@ -219,8 +232,8 @@ impl Context {
         let mut names = Vec::with_capacity(count.min(1 << 16));
         let mut candidate: GLuint = 1;
         while names.len() < count {
-            if !objects.contains_key(&candidate) {
-                objects.insert(candidate, TextureObject::new());
+            if let std::collections::hash_map::Entry::Vacant(slot) = objects.entry(candidate) {
+                slot.insert(TextureObject::new());
                 names.push(candidate);
             }
             let Some(next) = candidate.checked_add(1) else { break };
@@ -256,7 +269,7 @@ impl Context {
         if texture != 0 {
             let shared = self.shared.clone();
             let mut shared = shared.lock();
-            let obj = shared.textures.objects.entry(texture).or_insert_with(TextureObject::new);
+            let obj = shared.textures.objects.entry(texture).or_default();
             match obj.target {
                 Some(existing) if existing != t => {
                     drop(shared);

@@ -61,10 +61,8 @@ fn level_image(level: &Level, shared: Option<&Palette>) -> Arc<TexImage> {
 /// Builds the reference of `obj` for a draw, reusing the cached one while nothing changed.
 fn texture_ref(name: u32, obj: &mut TextureObject, target: Target, shared: Option<(&Palette, u64)>) -> TextureRef {
     let key = shared.map_or(obj.version, |(_, v)| v.max(obj.version) ^ (1 << 63));
-    if let Some((k, r)) = &obj.snapshot {
-        if *k == key {
-            return r.clone();
-        }
+    if let Some((_, r)) = obj.snapshot.as_ref().filter(|(k, _)| *k == key) {
+        return r.clone();
     }
     let palette = shared.map(|(p, _)| p);
     let faces = (0..target.faces())
