@@ -296,3 +296,49 @@ mod tests {
         assert_eq!((ctx.glGetError(), out), (gl::GL_NO_ERROR, [7; 4]));
     }
 }
+
+#[cfg(test)]
+mod readback_tests {
+    use crate::frame::Frame;
+    use crate::frame::pixels::PixelBuffer;
+    use crate::render::FrameSink;
+    use crate::translate::context::ContextConfig;
+    use crate::translate::{Context, dispatch, gl};
+
+    /// A renderer whose pixel (x, y) has colour (x / 4, y / 4, 0.5, 1) and depth 0.25.
+    struct Gradient;
+
+    impl FrameSink for Gradient {
+        fn present(&mut self, _frame: Frame) {}
+        fn read_pixels(&mut self, _frame: &Frame, buffer: PixelBuffer, [x, y, w, h]: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+            let mut out = Vec::new();
+            for j in y..y + h {
+                for i in x..x + w {
+                    out.push(match buffer {
+                        PixelBuffer::Color => [i as f32 / 4.0, j as f32 / 4.0, 0.5, 1.0],
+                        _ => [0.25, 0.0, 0.0, 0.0],
+                    });
+                }
+            }
+            Some(out)
+        }
+    }
+
+    #[test]
+    fn read_pixels_packs_what_the_renderer_returns() {
+        let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(Gradient) });
+        ctx.glPixelStorei(gl::GL_PACK_ALIGNMENT, 1);
+        let mut rgb = [0u8; 2 * 2 * 3];
+        unsafe { dispatch::glReadPixels(&mut ctx, 1, 2, 2, 2, gl::GL_BGR, gl::GL_UNSIGNED_BYTE, rgb.as_mut_ptr().cast()) };
+        assert_eq!(rgb[..6], [128, 128, 64, 128, 128, 128]);
+        assert_eq!(rgb[6..9], [128, 191, 64]);
+        ctx.glPixelTransferf(gl::GL_RED_SCALE, 0.0);
+        let mut lum = [0u8; 1];
+        unsafe { dispatch::glReadPixels(&mut ctx, 2, 0, 1, 1, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, lum.as_mut_ptr().cast()) };
+        assert_eq!(lum, [128]);
+        ctx.glPixelTransferf(gl::GL_DEPTH_SCALE, 2.0);
+        let mut depth = [0u16; 1];
+        unsafe { dispatch::glReadPixels(&mut ctx, 0, 0, 1, 1, gl::GL_DEPTH_COMPONENT, gl::GL_UNSIGNED_SHORT, depth.as_mut_ptr().cast()) };
+        assert_eq!(depth, [32768]);
+    }
+}

@@ -769,3 +769,65 @@ mod tests {
         assert_eq!((*texture, *offset, *src, *v), (9, [8, 4, 0], [1, 2, 8, 4], version));
     }
 }
+
+#[cfg(test)]
+mod more_tests {
+    use crate::translate::{Context, dispatch, gl};
+
+    #[test]
+    fn display_lists_keep_the_image_unpacked_at_compile_time() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_1D, 1);
+        ctx.glPixelStorei(gl::GL_UNPACK_SKIP_PIXELS, 1);
+        let mut px = vec![1u8, 2, 3];
+        unsafe {
+            dispatch::glNewList(&mut ctx, 1, gl::GL_COMPILE);
+            dispatch::glTexImage1D(&mut ctx, gl::GL_TEXTURE_1D, 0, gl::GL_ALPHA as i32, 2, 0, gl::GL_ALPHA, gl::GL_UNSIGNED_BYTE, px.as_ptr().cast());
+            dispatch::glEndList(&mut ctx);
+        }
+        px[1] = 99;
+        drop(px);
+        ctx.glPixelStorei(gl::GL_UNPACK_SKIP_PIXELS, 0);
+        unsafe { dispatch::glCallList(&mut ctx, 1) };
+        let mut out = [0u8; 2];
+        ctx.glPixelStorei(gl::GL_PACK_ALIGNMENT, 1);
+        unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_1D, 0, gl::GL_ALPHA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+        assert_eq!(out, [2, 3]);
+        assert_eq!(ctx.pixels.store.unpack.skip_pixels, 0);
+    }
+
+    #[test]
+    fn three_d_images_use_image_height_and_skip_images() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_3D, 1);
+        ctx.glPixelStorei(gl::GL_UNPACK_ALIGNMENT, 1);
+        ctx.glPixelStorei(gl::GL_UNPACK_IMAGE_HEIGHT, 3);
+        ctx.glPixelStorei(gl::GL_UNPACK_SKIP_IMAGES, 1);
+        // Images of 2×3 bytes; the texture is 2×2×2 from image 1 on, rows 0–1 of each.
+        let src: Vec<u8> = (0..18).collect();
+        unsafe { dispatch::glTexImage3D(&mut ctx, gl::GL_TEXTURE_3D, 0, gl::GL_LUMINANCE as i32, 2, 2, 2, 0, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, src.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        let mut out = [0u8; 8];
+        ctx.glPixelStorei(gl::GL_PACK_ALIGNMENT, 1);
+        unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_3D, 0, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+        assert_eq!(out, [6, 7, 8, 9, 12, 13, 14, 15]);
+        ctx.glPixelStorei(gl::GL_UNPACK_SKIP_IMAGES, 0);
+        ctx.glPixelStorei(gl::GL_UNPACK_IMAGE_HEIGHT, 0);
+        let one = [200u8];
+        unsafe { dispatch::glTexSubImage3D(&mut ctx, gl::GL_TEXTURE_3D, 0, 1, 0, 1, 1, 1, 1, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, one.as_ptr().cast()) };
+        unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_3D, 0, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+        assert_eq!(out, [6, 7, 8, 9, 12, 200, 14, 15]);
+    }
+
+    #[test]
+    fn bordered_textures_are_complete_and_sampled() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+        ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_LINEAR as i32);
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 4, 3, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        ctx.glEnable(gl::GL_TEXTURE_2D);
+        let r = ctx.texture_snapshot()[0].clone().expect("complete");
+        let image = r.content.faces[0][0].clone().unwrap();
+        assert_eq!((image.width, image.height, image.border, image.texels.len()), (4, 3, 1, 48));
+    }
+}

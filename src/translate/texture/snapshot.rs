@@ -22,7 +22,7 @@ pub fn is_complete(obj: &TextureObject, target: Target) -> bool {
     let max = obj.params.levels[1].max(0) as usize;
     let faces = target.faces();
     let Some(first) = obj.level(0, base) else { return false };
-    let inner = |l: &Level| l.size.map(|s| s - 2 * l.border).map(|s| s.max(1));
+    let inner = |l: &Level| l.size.map(|s| s.saturating_sub(2 * l.border).max(1));
     let top = inner(first);
     if top.contains(&0) || first.size[0] == 0 {
         return false;
