@@ -51,7 +51,8 @@ impl Context {
             let (format, ty) = (codec::format(gl::GL_COLOR_INDEX), codec::pixel_type(gl::GL_BITMAP));
             let (Some(format), Some(ty)) = (format, ty) else { return };
             let modes = self.pixels.store.unpack;
-            let Some(layout) = ty.layout(format, &modes, w, h, 1) else { return self.set_error_in(gl::GL_OUT_OF_MEMORY, "glBitmap") };
+            let layout = ty.layout(format, &modes, w, h, 1).filter(|_| w.checked_mul(h).is_some_and(|n| n <= super::MAX_DECODED_VALUES));
+            let Some(layout) = layout else { return self.set_error_in(gl::GL_OUT_OF_MEMORY, "glBitmap") };
             // Safety: the caller guarantees the bits the unpack modes describe.
             let bytes = unsafe { std::slice::from_raw_parts(bitmap, layout.span) };
             let bits = Codec { format, ty, layout, modes: &modes }.decode(bytes, w, h, 1);

@@ -22,6 +22,10 @@ use codec::{Codec, Format, Type};
 pub use store::PixelStore;
 pub use transfer::{PixelTransfer, Unpacked};
 
+/// Most pixel components one command decodes (1 GiB of `f32`); larger images raise
+/// `GL_OUT_OF_MEMORY`.
+pub const MAX_DECODED_VALUES: usize = 1 << 28;
+
 /// Pixel state of a context.
 #[derive(Clone, Debug)]
 pub struct PixelState {
@@ -83,7 +87,9 @@ impl Context {
         command: &'static str,
     ) -> Result<Option<Unpacked>, ()> {
         let modes = self.pixels.store.unpack;
-        let Some(layout) = ty.layout(format, &modes, w, h, d) else {
+        let values = w.checked_mul(h).and_then(|v| v.checked_mul(d)).and_then(|v| v.checked_mul(format.components));
+        let layout = ty.layout(format, &modes, w, h, d).filter(|_| values.is_some_and(|v| v <= MAX_DECODED_VALUES));
+        let Some(layout) = layout else {
             self.set_error_in(gl::GL_OUT_OF_MEMORY, command);
             return Err(());
         };

@@ -52,8 +52,9 @@ impl Context {
         };
         let size = match fit {
             SizeCheck::Fits(s) => s,
-            SizeCheck::TooLarge if dest.proxy => return self.store_level(dest, level, None),
+            SizeCheck::TooLarge | SizeCheck::OutOfMemory if dest.proxy => return self.store_level(dest, level, None),
             SizeCheck::TooLarge => return self.set_error_in(gl::GL_INVALID_VALUE, command),
+            SizeCheck::OutOfMemory => return self.set_error_in(gl::GL_OUT_OF_MEMORY, command),
         };
         let expected = image_size(format, size);
         if usize::try_from(image_size_).ok() != Some(expected) {

@@ -67,7 +67,12 @@ pub enum SizeCheck {
     Fits([usize; 3]),
     /// Valid but larger than the implementation supports at that level.
     TooLarge,
+    /// Valid, but more texels than glrt stores in one image ([`MAX_IMAGE_TEXELS`]).
+    OutOfMemory,
 }
+
+/// Most texels one image may have (1 GiB of canonical RGBA8).
+pub const MAX_IMAGE_TEXELS: usize = 1 << 28;
 
 /// Checks a level number: `GL_INVALID_VALUE` when negative or beyond the largest image.
 pub fn check_level(target: Target, level: GLint) -> Result<usize, GLenum> {
@@ -93,7 +98,13 @@ pub fn check_size(target: Target, level: usize, size: [GLsizei; 3], border: GLin
     if target == Target::Cube && size[0] != size[1] {
         return Err(gl::GL_INVALID_VALUE);
     }
-    Ok(if too_large { SizeCheck::TooLarge } else { SizeCheck::Fits(out) })
+    Ok(if too_large {
+        SizeCheck::TooLarge
+    } else if out[0] * out[1] * out[2] > MAX_IMAGE_TEXELS {
+        SizeCheck::OutOfMemory
+    } else {
+        SizeCheck::Fits(out)
+    })
 }
 
 /// Resolves colour indices to canonical texels with `palette`.
@@ -225,8 +236,9 @@ impl Context {
         let border = border as usize;
         let size = match fit {
             SizeCheck::Fits(s) => s,
-            SizeCheck::TooLarge if dest.proxy => return self.store_level(dest, level, None),
+            SizeCheck::TooLarge | SizeCheck::OutOfMemory if dest.proxy => return self.store_level(dest, level, None),
             SizeCheck::TooLarge => return self.set_error_in(gl::GL_INVALID_VALUE, command),
+            SizeCheck::OutOfMemory => return self.set_error_in(gl::GL_OUT_OF_MEMORY, command),
         };
         if dest.proxy {
             let proxy = Level { image: Arc::default(), size, border, internal_format: internal.reported, base: internal.base, compressed: None, indices: None };
@@ -431,6 +443,7 @@ impl Context {
         let (level, size3) = match checked {
             Ok((l, SizeCheck::Fits(s))) => (l, s),
             Ok((_, SizeCheck::TooLarge)) => return self.set_error_in(gl::GL_INVALID_VALUE, command),
+            Ok((_, SizeCheck::OutOfMemory)) => return self.set_error_in(gl::GL_OUT_OF_MEMORY, command),
             Err(e) => return self.set_error_in(e, command),
         };
         let image = build_level(internal, size3, border as usize, None, &Palette::default());
@@ -678,6 +691,8 @@ mod tests {
         assert_eq!(tex(&mut ctx, t2, 0, gl::GL_DEPTH_COMPONENT, 2, 2, 0, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT), gl::GL_NO_ERROR);
         assert_eq!(tex(&mut ctx, gl::GL_TEXTURE_CUBE_MAP_NEGATIVE_Y, 0, rgba, 4, 2, 0, rgba, ub), gl::GL_INVALID_VALUE);
         assert_eq!(tex(&mut ctx, gl::GL_TEXTURE_2D, 0, rgba, 16384, 1, 0, rgba, ub), gl::GL_INVALID_VALUE);
+        unsafe { dispatch::glTexImage3D(&mut ctx, gl::GL_TEXTURE_3D, 0, rgba as i32, 2048, 2048, 2048, 0, rgba, ub, std::ptr::null()) };
+        assert_eq!(ctx.glGetError(), gl::GL_OUT_OF_MEMORY);
         // Sub-images: outside the level, or into a level never specified.
         ctx.glBindTexture(t2, 2);
         assert_eq!(tex(&mut ctx, t2, 0, rgba, 2, 2, 0, rgba, ub), gl::GL_NO_ERROR);
