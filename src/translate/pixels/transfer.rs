@@ -70,9 +70,8 @@ impl Default for PixelTransfer {
             scale: [1.0; 4],
             bias: [0.0; 4],
             depth: [1.0, 0.0],
-            maps: Default::default(),
+            maps: std::array::from_fn(|_| vec![0.0]),
         }
-        .with_default_maps()
     }
 }
 
@@ -90,14 +89,6 @@ pub enum Unpacked {
 }
 
 impl PixelTransfer {
-    fn with_default_maps(mut self) -> PixelTransfer {
-        self.maps = Default::default();
-        for m in &mut self.maps {
-            m.push(0.0);
-        }
-        self
-    }
-
     /// Looks `v` up in a colour map (`[0, 1]` scaled to the map size).
     fn lookup_color(&self, map: usize, v: f32) -> f32 {
         let m = &self.maps[map];

@@ -387,3 +387,32 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
     }
 }
+
+#[cfg(test)]
+mod share_tests {
+    use crate::render::NullSink;
+    use crate::translate::context::ContextConfig;
+    use crate::translate::{Context, dispatch, gl};
+
+    #[test]
+    fn share_group_sees_objects_but_not_bindings() {
+        let (mut a, _) = Context::with_recording();
+        let mut b = Context::new(ContextConfig { share: Some(a.shared.clone()), sink: Box::new(NullSink::default()) });
+        a.glBindTexture(gl::GL_TEXTURE_2D, 5);
+        let px = [1u8, 2, 3, 4];
+        unsafe { dispatch::glTexImage2D(&mut a, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 1, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, px.as_ptr().cast()) };
+        assert_eq!(b.glIsTexture(5), 1);
+        assert_eq!(b.texture.bindings[0][1], 0);
+        b.glBindTexture(gl::GL_TEXTURE_2D, 5);
+        let mut out = [0u8; 4];
+        unsafe { b.glGetTexImage(gl::GL_TEXTURE_2D, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+        assert_eq!(out, px);
+        // The default texture is per context.
+        b.glBindTexture(gl::GL_TEXTURE_2D, 0);
+        unsafe { dispatch::glTexImage2D(&mut b, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        a.glBindTexture(gl::GL_TEXTURE_2D, 0);
+        let mut w = 0;
+        unsafe { a.glGetTexLevelParameteriv(gl::GL_TEXTURE_2D, 0, gl::GL_TEXTURE_WIDTH, &mut w) };
+        assert_eq!(w, 0);
+    }
+}
