@@ -197,3 +197,60 @@ impl Context {
         self.pixels.store = saved;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::translate::{Context, gl};
+
+    fn get_i(ctx: &mut Context, pname: u32) -> Vec<i32> {
+        let mut v = [-1i32; 8];
+        unsafe { ctx.glGetIntegerv(pname, v.as_mut_ptr()) };
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR, "{pname:#x}");
+        v.to_vec()
+    }
+
+    #[test]
+    fn pixel_and_texture_state_answers_glget() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glPixelStorei(gl::GL_UNPACK_ROW_LENGTH, 17);
+        ctx.glPixelStorei(gl::GL_PACK_LSB_FIRST, 1);
+        ctx.glPixelZoom(2.0, -3.0);
+        ctx.glPixelTransferf(gl::GL_ALPHA_BIAS, 0.5);
+        ctx.glPixelTransferi(gl::GL_MAP_STENCIL, 1);
+        ctx.glActiveTexture(gl::GL_TEXTURE2);
+        ctx.glBindTexture(gl::GL_TEXTURE_CUBE_MAP, 12);
+        assert_eq!(get_i(&mut ctx, gl::GL_UNPACK_ROW_LENGTH)[0], 17);
+        assert_eq!(get_i(&mut ctx, gl::GL_PACK_LSB_FIRST)[0], 1);
+        assert_eq!(get_i(&mut ctx, gl::GL_UNPACK_ALIGNMENT)[0], 4);
+        assert_eq!(get_i(&mut ctx, gl::GL_ZOOM_Y)[0], -3);
+        assert_eq!(get_i(&mut ctx, gl::GL_MAP_STENCIL)[0], 1);
+        assert_eq!(get_i(&mut ctx, gl::GL_PIXEL_MAP_A_TO_A_SIZE)[0], 1);
+        assert_eq!(get_i(&mut ctx, gl::GL_MAX_PIXEL_MAP_TABLE)[0], 256);
+        assert_eq!(get_i(&mut ctx, gl::GL_TEXTURE_BINDING_CUBE_MAP)[0], 12);
+        assert_eq!(get_i(&mut ctx, gl::GL_MAX_TEXTURE_SIZE)[0], 8192);
+        assert_eq!(get_i(&mut ctx, gl::GL_MAX_3D_TEXTURE_SIZE)[0], 2048);
+        assert_eq!(get_i(&mut ctx, gl::GL_MAX_CUBE_MAP_TEXTURE_SIZE)[0], 8192);
+        assert_eq!(get_i(&mut ctx, gl::GL_COMPRESSED_TEXTURE_FORMATS)[..4], [0x83f0, 0x83f1, 0x83f2, 0x83f3]);
+        let mut bias = 0.0f32;
+        unsafe { ctx.glGetFloatv(gl::GL_ALPHA_BIAS, &mut bias) };
+        assert_eq!(bias, 0.5);
+        assert_eq!(get_i(&mut ctx, gl::GL_CURRENT_RASTER_POSITION_VALID)[0], 1);
+        ctx.glActiveTexture(gl::GL_TEXTURE0);
+        assert_eq!(get_i(&mut ctx, gl::GL_TEXTURE_BINDING_CUBE_MAP)[0], 0);
+    }
+
+    #[test]
+    fn attribute_groups_round_trip() {
+        let (mut ctx, _) = Context::with_recording();
+        let mode = ctx.save_pixel_mode();
+        let store = ctx.save_pixel_store();
+        ctx.glPixelZoom(3.0, 3.0);
+        ctx.glPixelTransferf(gl::GL_DEPTH_BIAS, 1.0);
+        ctx.glPixelStorei(gl::GL_UNPACK_SKIP_ROWS, 4);
+        ctx.restore_pixel_mode(mode);
+        assert_eq!((ctx.pixels.zoom, ctx.pixels.transfer.depth), ([1.0, 1.0], [1.0, 0.0]));
+        assert_eq!(ctx.pixels.store.unpack.skip_rows, 4);
+        ctx.restore_pixel_store(store);
+        assert_eq!(ctx.pixels.store.unpack.skip_rows, 0);
+    }
+}
