@@ -194,3 +194,114 @@ impl Default for Sampler {
         }
     }
 }
+
+/// Texture function of a unit (`GL_TEXTURE_ENV_MODE`, OpenGL 1.5 section 3.8.13).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum EnvMode {
+    /// Colour × texture.
+    #[default]
+    Modulate,
+    /// Texture replaces.
+    Replace,
+    /// Texture blended over by its alpha.
+    Decal,
+    /// Blend with the environment colour.
+    Blend,
+    /// Colour + texture.
+    Add,
+    /// The combiner ([`TextureEnv::combine_rgb`] ...).
+    Combine,
+}
+
+/// Combiner function (`GL_COMBINE_RGB`, `GL_COMBINE_ALPHA`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CombineFn {
+    /// Arg0.
+    Replace,
+    /// Arg0 × Arg1.
+    #[default]
+    Modulate,
+    /// Arg0 + Arg1.
+    Add,
+    /// Arg0 + Arg1 − 0.5.
+    AddSigned,
+    /// Arg0 × Arg2 + Arg1 × (1 − Arg2).
+    Interpolate,
+    /// Arg0 − Arg1.
+    Subtract,
+    /// 4 × dot(Arg0 − 0.5, Arg1 − 0.5) into RGB.
+    Dot3Rgb,
+    /// The same into RGBA.
+    Dot3Rgba,
+}
+
+/// Combiner source (`GL_SOURCEn_RGB`, `GL_SOURCEn_ALPHA`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CombineSource {
+    /// This unit's texture.
+    #[default]
+    Texture,
+    /// The texture of another unit (crossbar).
+    TextureUnit(u8),
+    /// The environment colour.
+    Constant,
+    /// The fragment's primary colour.
+    PrimaryColor,
+    /// The previous unit's result.
+    Previous,
+}
+
+/// Combiner operand (`GL_OPERANDn_RGB`, `GL_OPERANDn_ALPHA`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CombineOperand {
+    /// The colour.
+    #[default]
+    SrcColor,
+    /// One minus the colour.
+    OneMinusSrcColor,
+    /// The alpha.
+    SrcAlpha,
+    /// One minus the alpha.
+    OneMinusSrcAlpha,
+}
+
+/// The texture environment of a unit, as the renderer applies it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TextureEnv {
+    /// Texture function.
+    pub mode: EnvMode,
+    /// Environment colour.
+    pub color: [f32; 4],
+    /// RGB combiner function.
+    pub combine_rgb: CombineFn,
+    /// Alpha combiner function.
+    pub combine_alpha: CombineFn,
+    /// RGB sources 0–2.
+    pub source_rgb: [CombineSource; 3],
+    /// Alpha sources 0–2.
+    pub source_alpha: [CombineSource; 3],
+    /// RGB operands 0–2.
+    pub operand_rgb: [CombineOperand; 3],
+    /// Alpha operands 0–2.
+    pub operand_alpha: [CombineOperand; 3],
+    /// Scales of the combiner results (1, 2 or 4).
+    pub scale: [f32; 2],
+    /// Level-of-detail bias of the unit.
+    pub lod_bias: f32,
+}
+
+/// How one texture coordinate is generated (section 2.10.4); planes in the space they apply
+/// in (object plane on object coordinates, eye plane on eye coordinates).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TexGenMode {
+    /// dot(plane, object position).
+    ObjectLinear([f32; 4]),
+    /// dot(plane, eye position).
+    EyeLinear([f32; 4]),
+    /// Sphere map from the eye-space reflection vector.
+    SphereMap,
+    /// The eye-space normal.
+    NormalMap,
+    /// The eye-space reflection vector.
+    ReflectionMap,
+}

@@ -389,6 +389,34 @@ mod tests {
     }
 
     #[test]
+    fn every_plain_type_swaps_bytes() {
+        let swap = StoreModes { swap_bytes: true, alignment: 1, ..StoreModes::default() };
+        let plain = StoreModes { alignment: 1, ..StoreModes::default() };
+        // Each value written in the opposite byte order decodes with swapping, and as the
+        // byte-reversed value without.
+        let cases: [(GLenum, Vec<u8>, f32); 7] = [
+            (gl::GL_UNSIGNED_BYTE, vec![7], 7.0),
+            (gl::GL_BYTE, vec![0xf9], -7.0),
+            (gl::GL_UNSIGNED_SHORT, 0x0102u16.to_ne_bytes().into_iter().rev().collect(), 258.0),
+            (gl::GL_SHORT, (-300i16).to_ne_bytes().into_iter().rev().collect(), -300.0),
+            (gl::GL_UNSIGNED_INT, 0x01020304u32.to_ne_bytes().into_iter().rev().collect(), 16909060.0),
+            (gl::GL_INT, (-70000i32).to_ne_bytes().into_iter().rev().collect(), -70000.0),
+            (gl::GL_FLOAT, 1.5f32.to_ne_bytes().into_iter().rev().collect(), 1.5),
+        ];
+        for (ty, bytes, value) in cases {
+            let c = codec(gl::GL_COLOR_INDEX, ty, &swap, 1, 1);
+            assert_eq!(c.decode(&bytes, 1, 1, 1), [value], "{ty:#x}");
+            let mut back = vec![0u8; bytes.len()];
+            c.encode(&mut back, &[value], 1, 1, 1);
+            assert_eq!(back, bytes, "{ty:#x}");
+            if bytes.len() > 1 {
+                let unswapped = codec(gl::GL_COLOR_INDEX, ty, &plain, 1, 1).decode(&bytes, 1, 1, 1);
+                assert_ne!(unswapped, [value], "{ty:#x}");
+            }
+        }
+    }
+
+    #[test]
     fn alignment_and_skips_select_bytes() {
         let m = StoreModes { alignment: 4, skip_pixels: 1, skip_rows: 1, row_length: 3, ..StoreModes::default() };
         let c = codec(gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, &m, 2, 2);

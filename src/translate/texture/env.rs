@@ -290,3 +290,101 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
     }
 }
+
+/// Conversion of the environment to the renderer's types.
+mod convert {
+    use super::super::super::gl::{self, GLenum};
+    use super::TexEnv;
+    use crate::frame::texture::{CombineFn, CombineOperand, CombineSource, EnvMode, TextureEnv};
+
+    fn mode(m: GLenum) -> EnvMode {
+        match m {
+            gl::GL_REPLACE => EnvMode::Replace,
+            gl::GL_DECAL => EnvMode::Decal,
+            gl::GL_BLEND => EnvMode::Blend,
+            gl::GL_ADD => EnvMode::Add,
+            gl::GL_COMBINE => EnvMode::Combine,
+            _ => EnvMode::Modulate,
+        }
+    }
+
+    fn combine(f: GLenum) -> CombineFn {
+        match f {
+            gl::GL_REPLACE => CombineFn::Replace,
+            gl::GL_ADD => CombineFn::Add,
+            gl::GL_ADD_SIGNED => CombineFn::AddSigned,
+            gl::GL_INTERPOLATE => CombineFn::Interpolate,
+            gl::GL_SUBTRACT => CombineFn::Subtract,
+            gl::GL_DOT3_RGB => CombineFn::Dot3Rgb,
+            gl::GL_DOT3_RGBA => CombineFn::Dot3Rgba,
+            _ => CombineFn::Modulate,
+        }
+    }
+
+    fn source(s: GLenum) -> CombineSource {
+        match s {
+            gl::GL_CONSTANT => CombineSource::Constant,
+            gl::GL_PRIMARY_COLOR => CombineSource::PrimaryColor,
+            gl::GL_PREVIOUS => CombineSource::Previous,
+            gl::GL_TEXTURE => CombineSource::Texture,
+            unit => CombineSource::TextureUnit(unit.saturating_sub(gl::GL_TEXTURE0).min(u32::from(u8::MAX)) as u8),
+        }
+    }
+
+    fn operand(o: GLenum) -> CombineOperand {
+        match o {
+            gl::GL_ONE_MINUS_SRC_COLOR => CombineOperand::OneMinusSrcColor,
+            gl::GL_SRC_ALPHA => CombineOperand::SrcAlpha,
+            gl::GL_ONE_MINUS_SRC_ALPHA => CombineOperand::OneMinusSrcAlpha,
+            _ => CombineOperand::SrcColor,
+        }
+    }
+
+    impl TexEnv {
+        /// The environment as the renderer applies it.
+        pub fn to_frame(&self) -> TextureEnv {
+            TextureEnv {
+                mode: mode(self.mode),
+                color: self.color,
+                combine_rgb: combine(self.combine_rgb),
+                combine_alpha: combine(self.combine_alpha),
+                source_rgb: self.source_rgb.map(source),
+                source_alpha: self.source_alpha.map(source),
+                operand_rgb: self.operand_rgb.map(operand),
+                operand_alpha: self.operand_alpha.map(operand),
+                scale: [self.rgb_scale, self.alpha_scale],
+                lod_bias: self.lod_bias,
+            }
+        }
+    }
+}
+
+impl Context {
+    /// The texture environment of every unit for the next draw, in the renderer's types.
+    pub fn texenv_snapshot(&self) -> [crate::frame::texture::TextureEnv; MAX_TEXTURE_UNITS] {
+        self.texture.env.map(|e| e.to_frame())
+    }
+}
+
+#[cfg(test)]
+mod snapshot_tests {
+    use crate::frame::texture::{CombineFn, CombineOperand, CombineSource, EnvMode};
+    use crate::translate::{Context, gl};
+
+    #[test]
+    fn environment_snapshot_uses_frame_types() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glActiveTexture(gl::GL_TEXTURE1);
+        ctx.glTexEnvi(gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_COMBINE as i32);
+        ctx.glTexEnvi(gl::GL_TEXTURE_ENV, gl::GL_COMBINE_ALPHA, gl::GL_INTERPOLATE as i32);
+        ctx.glTexEnvi(gl::GL_TEXTURE_ENV, gl::GL_SOURCE2_RGB, gl::GL_TEXTURE3 as i32);
+        ctx.glTexEnvi(gl::GL_TEXTURE_ENV, gl::GL_OPERAND0_ALPHA, gl::GL_ONE_MINUS_SRC_ALPHA as i32);
+        ctx.glTexEnvf(gl::GL_TEXTURE_ENV, gl::GL_ALPHA_SCALE, 2.0);
+        let s = ctx.texenv_snapshot();
+        assert_eq!(s[0].mode, EnvMode::Modulate);
+        assert_eq!((s[1].mode, s[1].combine_alpha, s[1].combine_rgb), (EnvMode::Combine, CombineFn::Interpolate, CombineFn::Modulate));
+        assert_eq!(s[1].source_rgb, [CombineSource::Texture, CombineSource::Previous, CombineSource::TextureUnit(3)]);
+        assert_eq!(s[1].operand_alpha[0], CombineOperand::OneMinusSrcAlpha);
+        assert_eq!(s[1].scale, [1.0, 2.0]);
+    }
+}

@@ -154,9 +154,11 @@ impl TextureObject {
         TextureObject::default()
     }
 
-    /// Marks a change of images, parameters or palette.
+    /// Marks a change of images, parameters or palette. The cached snapshot is dropped, so
+    /// images held only by it are changed in place by the next update instead of copied.
     pub fn touch(&mut self) {
         self.version = next_version();
+        self.snapshot = None;
     }
 
     /// The slot of level `level` of `face` (allocated on first use). Both must be in range
