@@ -24,6 +24,21 @@ pub fn image_size(format: S3tc, size: [usize; 3]) -> usize {
     size[0].div_ceil(4) * size[1].div_ceil(4) * size[2] * format.block_bytes()
 }
 
+/// Compresses a level whose internal format is S3TC from its texels, and replaces the texels
+/// with the decoded blocks (2D levels with texels only; others are left as they are).
+pub fn recompress(level: &mut Level) {
+    let Some(format) = S3tc::of(level.internal_format) else { return };
+    let [w, h, d] = level.size;
+    if d != 1 || level.image.texels.len() != w * h * 4 {
+        return;
+    }
+    let blocks = s3tc::encode(format, w, h, &level.image.texels);
+    if let Some(texels) = s3tc::decode(format, w, h, &blocks) {
+        Arc::make_mut(&mut level.image).texels = texels;
+    }
+    level.compressed = Some(blocks.into());
+}
+
 /// The S3TC format of a compressed command, which needs a 2D image target.
 fn s3tc_for(dims: usize, internal: GLenum) -> Option<S3tc> {
     S3tc::of(internal).filter(|_| dims == 2)
@@ -293,5 +308,33 @@ mod tests {
         let mut n = 0;
         unsafe { ctx.glGetIntegerv(gl::GL_NUM_COMPRESSED_TEXTURE_FORMATS, &mut n) };
         assert_eq!(n, 4);
+    }
+
+    #[test]
+    fn uncompressed_images_with_s3tc_formats_are_compressed() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+        ctx.glPixelStorei(gl::GL_UNPACK_ALIGNMENT, 1);
+        // 4×4: left half red, right half blue (exact in 565).
+        let px: Vec<u8> = (0..16).flat_map(|i| if i % 4 < 2 { [255u8, 0, 0] } else { [0, 0, 255] }).collect();
+        let f = gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT;
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, f as i32, 4, 4, 0, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, px.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        let (mut compressed, mut size) = (0, 0);
+        unsafe {
+            ctx.glGetTexLevelParameteriv(gl::GL_TEXTURE_2D, 0, gl::GL_TEXTURE_COMPRESSED, &mut compressed);
+            ctx.glGetTexLevelParameteriv(gl::GL_TEXTURE_2D, 0, gl::GL_TEXTURE_COMPRESSED_IMAGE_SIZE, &mut size);
+        }
+        assert_eq!((compressed, size), (1, 16));
+        let mut blocks = [0u8; 16];
+        unsafe { ctx.glGetCompressedTexImage(gl::GL_TEXTURE_2D, 0, blocks.as_mut_ptr().cast()) };
+        let decoded = super::s3tc::decode(super::S3tc::Dxt5, 4, 4, &blocks).unwrap();
+        let mut back = [0u8; 48];
+        ctx.glPixelStorei(gl::GL_PACK_ALIGNMENT, 1);
+        unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 0, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, back.as_mut_ptr().cast()) };
+        assert_eq!(back.to_vec(), px);
+        assert_eq!(decoded.chunks(4).flat_map(|c| c[..3].to_vec()).collect::<Vec<_>>(), px);
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, f as i32, 6, 6, 1, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, px.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
     }
 }

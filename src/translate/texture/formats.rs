@@ -59,9 +59,9 @@ pub const COMPRESSED_FORMATS: [GLenum; 4] = [
 /// An accepted internal format.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Internal {
-    /// What `GL_TEXTURE_INTERNAL_FORMAT` reports. Uncompressed images given with a compressed
-    /// internal format are stored uncompressed, so they report their base format (allowed by
-    /// ARB_texture_compression for the generic formats; glrt does the same for S3TC).
+    /// What `GL_TEXTURE_INTERNAL_FORMAT` reports: the format given, except that the generic
+    /// compressed formats (`GL_COMPRESSED_RGB`...) are stored uncompressed and report their
+    /// base format, as ARB_texture_compression allows. S3TC formats are compressed.
     pub reported: GLenum,
     /// Base format.
     pub base: Base,
@@ -102,7 +102,7 @@ pub fn internal_format(internal: GLenum) -> Option<Internal> {
         | gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT => texel(Rgba),
         _ => return None,
     };
-    let generic = matches!(internal, gl::GL_COMPRESSED_ALPHA..=gl::GL_COMPRESSED_RGBA) || S3tc::of(internal).is_some();
+    let generic = matches!(internal, gl::GL_COMPRESSED_ALPHA..=gl::GL_COMPRESSED_RGBA);
     let reported = if generic { base_enum(base) } else { internal };
     Some(Internal { reported, base })
 }
@@ -177,7 +177,8 @@ mod tests {
     fn internal_formats_map_to_bases() {
         assert_eq!(internal_format(3).unwrap().base, Base::Texel(TexelFormat::Rgb));
         assert_eq!(internal_format(gl::GL_LUMINANCE8_ALPHA8).unwrap().reported, gl::GL_LUMINANCE8_ALPHA8);
-        assert_eq!(internal_format(gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT).unwrap().reported, gl::GL_RGBA);
+        assert_eq!(internal_format(gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT).unwrap().reported, gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT);
+        assert_eq!(internal_format(gl::GL_COMPRESSED_LUMINANCE).unwrap().reported, gl::GL_LUMINANCE);
         assert_eq!(internal_format(gl::GL_COLOR_INDEX8_EXT).unwrap().base, Base::ColorIndex);
         assert!(internal_format(5).is_none());
         assert!(internal_format(gl::GL_BGRA).is_none());

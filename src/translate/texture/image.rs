@@ -133,7 +133,7 @@ fn build_level(internal: Internal, size: [usize; 3], border: usize, data: Option
     let count = size[0] * size[1] * size[2];
     let (texels, indices) = texels_of(internal.base, data, count, palette);
     let [w, h, d] = size.map(|v| v as u32);
-    Level {
+    let mut level = Level {
         image: Arc::new(TexImage { width: w, height: h, depth: d, border: border as u32, texels }),
         size,
         border,
@@ -141,6 +141,18 @@ fn build_level(internal: Internal, size: [usize; 3], border: usize, data: Option
         base: internal.base,
         compressed: None,
         indices,
+    };
+    super::compressed::recompress(&mut level);
+    level
+}
+
+/// S3TC internal formats need 2D images (`GL_INVALID_ENUM`) without border
+/// (`GL_INVALID_OPERATION`).
+fn check_compressed_internal(internal: GLenum, dims: usize, border: GLint) -> Result<(), GLenum> {
+    match S3tc::of(internal) {
+        Some(_) if dims != 2 => Err(gl::GL_INVALID_ENUM),
+        Some(_) if border != 0 => Err(gl::GL_INVALID_OPERATION),
+        _ => Ok(()),
     }
 }
 
@@ -228,7 +240,8 @@ impl Context {
         };
         let checked = check_level(dest.target, level)
             .and_then(|l| Ok((l, check_size(dest.target, l, size, border)?)))
-            .and_then(|v| check_format_pair(ft.0, internal.base).map(|()| v));
+            .and_then(|v| check_format_pair(ft.0, internal.base).map(|()| v))
+            .and_then(|v| check_compressed_internal(internalformat as GLenum, dims, border).map(|()| v));
         let (level, fit) = match checked {
             Ok(v) => v,
             Err(e) => return self.set_error_in(e, command),
@@ -355,6 +368,7 @@ impl Context {
             let (texels, indices) = texels_of(base, Some(data), count, palette);
             if let Some(l) = obj.level_slot(dest.face, level).as_mut() {
                 write_region(l, off, sz, &texels, indices.as_deref().map(|v| v.as_slice()));
+                super::compressed::recompress(l);
             }
             let base_level = obj.params.levels[0].max(0) as usize;
             if obj.params.generate_mipmap && level == base_level {
@@ -437,9 +451,11 @@ impl Context {
     /// allocated zero-filled and the copy is recorded in the frame.
     fn copy_tex_image(&mut self, dims: usize, target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, size: [GLsizei; 2], border: GLint, command: &'static str) {
         let Some(dest) = image_target(dims, target).filter(|d| !d.proxy) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
-        let internal = formats::internal_format(internalformat).filter(|i| !(1..=4).contains(&internalformat) && i.base != Base::ColorIndex && S3tc::of(internalformat).is_none());
+        let internal = formats::internal_format(internalformat).filter(|i| !(1..=4).contains(&internalformat) && i.base != Base::ColorIndex);
         let Some(internal) = internal else { return self.set_error_in(gl::GL_INVALID_VALUE, command) };
-        let checked = check_level(dest.target, level).and_then(|l| Ok((l, check_size(dest.target, l, [size[0], size[1], 1], border)?)));
+        let checked = check_level(dest.target, level)
+            .and_then(|l| Ok((l, check_size(dest.target, l, [size[0], size[1], 1], border)?)))
+            .and_then(|v| check_compressed_internal(internalformat, dims, border).map(|()| v));
         let (level, size3) = match checked {
             Ok((l, SizeCheck::Fits(s))) => (l, s),
             Ok((_, SizeCheck::TooLarge)) => return self.set_error_in(gl::GL_INVALID_VALUE, command),

@@ -69,7 +69,7 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
         let (next, next_size) = downsample(&texels, size);
         level += 1;
         let [w, h, d] = next_size.map(|v| v as u32);
-        *obj.level_slot(face, level) = Some(Level {
+        let mut generated = Level {
             image: Arc::new(TexImage { width: w, height: h, depth: d, border: 0, texels: next.clone() }),
             size: next_size,
             border: 0,
@@ -77,7 +77,9 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
             base: base_format,
             compressed: None,
             indices: None,
-        });
+        };
+        super::compressed::recompress(&mut generated);
+        *obj.level_slot(face, level) = Some(generated);
         texels = next;
         size = next_size;
     }
