@@ -124,12 +124,11 @@ pub fn base_enum(base: Base) -> GLenum {
 }
 
 /// Bits of each stored component, for `glGetTexLevelParameter` (`GL_TEXTURE_RED_SIZE` ...
-/// `GL_TEXTURE_INTENSITY_SIZE`, `GL_TEXTURE_DEPTH_SIZE`, `GL_TEXTURE_INDEX_SIZE_EXT`): glrt
-/// stores 8 bits for each component the base format has.
+/// `GL_TEXTURE_INTENSITY_SIZE`, `GL_TEXTURE_DEPTH_SIZE`): glrt stores 8 bits for each
+/// component the base format has.
 pub fn component_bits(base: Base, pname: GLenum) -> Option<i64> {
     use TexelFormat::*;
     let has = match (pname, base) {
-        (gl::GL_TEXTURE_INDEX_SIZE_EXT, b) => b == Base::ColorIndex,
         (_, Base::ColorIndex) => false,
         (gl::GL_TEXTURE_RED_SIZE | gl::GL_TEXTURE_GREEN_SIZE | gl::GL_TEXTURE_BLUE_SIZE, Base::Texel(f)) => matches!(f, Rgb | Rgba),
         (gl::GL_TEXTURE_ALPHA_SIZE, Base::Texel(f)) => matches!(f, Alpha | LuminanceAlpha | Rgba),
@@ -139,6 +138,19 @@ pub fn component_bits(base: Base, pname: GLenum) -> Option<i64> {
         _ => return None,
     };
     Some(if has { 8 } else { 0 })
+}
+
+/// Bits of the indices of a paletted internal format (`GL_TEXTURE_INDEX_SIZE_EXT`); 16 for
+/// any other.
+pub fn index_bits(internal: GLenum) -> u32 {
+    match internal {
+        gl::GL_COLOR_INDEX1_EXT => 1,
+        gl::GL_COLOR_INDEX2_EXT => 2,
+        gl::GL_COLOR_INDEX4_EXT => 4,
+        gl::GL_COLOR_INDEX8_EXT => 8,
+        gl::GL_COLOR_INDEX12_EXT => 12,
+        _ => 16,
+    }
 }
 
 /// The canonical texel of an RGBA colour (or a depth value in R) for a base format: table

@@ -113,11 +113,13 @@ pub fn resolve_indices(indices: &[u16], palette: &Palette) -> Vec<u8> {
 }
 
 /// Canonical texels (and indices for paletted formats) of unpacked pixels.
-fn texels_of(base: Base, data: Option<Unpacked>, count: usize, palette: &Palette) -> (Vec<u8>, Option<Arc<Vec<u16>>>) {
+/// Indices keep the low `index_bits` bits.
+fn texels_of(base: Base, data: Option<Unpacked>, count: usize, index_bits: u32, palette: &Palette) -> (Vec<u8>, Option<Arc<Vec<u16>>>) {
     match (base, data) {
         (Base::ColorIndex, data) => {
+            let mask = (1i64 << index_bits) - 1;
             let indices: Vec<u16> = match data {
-                Some(Unpacked::Index(ix)) => ix.iter().map(|&i| (i as i64 & 0xffff) as u16).collect(),
+                Some(Unpacked::Index(ix)) => ix.iter().map(|&i| (i as i64 & mask) as u16).collect(),
                 _ => vec![0; count],
             };
             (resolve_indices(&indices, palette), Some(Arc::new(indices)))
@@ -131,7 +133,7 @@ fn texels_of(base: Base, data: Option<Unpacked>, count: usize, palette: &Palette
 /// Builds a level of `size` (border included) from unpacked pixels (zeros when `None`).
 fn build_level(internal: Internal, size: [usize; 3], border: usize, data: Option<Unpacked>, palette: &Palette) -> Level {
     let count = size[0] * size[1] * size[2];
-    let (texels, indices) = texels_of(internal.base, data, count, palette);
+    let (texels, indices) = texels_of(internal.base, data, count, formats::index_bits(internal.reported), palette);
     let [w, h, d] = size.map(|v| v as u32);
     let mut level = Level {
         image: Arc::new(TexImage { width: w, height: h, depth: d, border: border as u32, texels }),
@@ -365,8 +367,8 @@ impl Context {
         let Some(data) = data else { return self.null_pointer(command) };
         self.with_dest(dest, |obj, palette| {
             let count = sz[0] * sz[1] * sz[2];
-            let (texels, indices) = texels_of(base, Some(data), count, palette);
             if let Some(l) = obj.level_slot(dest.face, level).as_mut() {
+                let (texels, indices) = texels_of(base, Some(data), count, formats::index_bits(l.internal_format), palette);
                 write_region(l, off, sz, &texels, indices.as_deref().map(|v| v.as_slice()));
                 super::compressed::recompress(l);
             }
@@ -547,6 +549,10 @@ impl Context {
             gl::GL_TEXTURE_BORDER => Value::int(lvl.as_ref().map_or(0, |l| l.border as i64)),
             gl::GL_TEXTURE_INTERNAL_FORMAT => Value::int(lvl.as_ref().map_or(1, |l| l.internal_format)),
             gl::GL_TEXTURE_COMPRESSED => Value::bool(s3tc.is_some()),
+            gl::GL_TEXTURE_INDEX_SIZE_EXT => {
+                let paletted = lvl.as_ref().filter(|l| l.base == Base::ColorIndex);
+                Value::int(paletted.map_or(0, |l| i64::from(formats::index_bits(l.internal_format))))
+            }
             gl::GL_TEXTURE_COMPRESSED_IMAGE_SIZE => {
                 let (Some(l), Some(fmt)) = (lvl.as_ref(), s3tc) else { return Err(gl::GL_INVALID_OPERATION) };
                 Value::int((super::compressed::image_size(fmt, l.size) as i64).min(i64::from(i32::MAX)))

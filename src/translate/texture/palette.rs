@@ -275,6 +275,12 @@ mod tests {
         let mut size = 0;
         unsafe { ctx.glGetTexLevelParameteriv(gl::GL_TEXTURE_2D, 0, gl::GL_TEXTURE_INDEX_SIZE_EXT, &mut size) };
         assert_eq!(size, 8);
+        // COLOR_INDEX4: indices keep their low four bits.
+        let idx = [0x13u8];
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 1, gl::GL_COLOR_INDEX4_EXT as i32, 1, 1, 0, gl::GL_COLOR_INDEX, gl::GL_UNSIGNED_BYTE, idx.as_ptr().cast()) };
+        unsafe { ctx.glGetTexLevelParameteriv(gl::GL_TEXTURE_2D, 1, gl::GL_TEXTURE_INDEX_SIZE_EXT, &mut size) };
+        let texel = ctx.with_bound(super::Target::D2, |o| o.level(0, 1).unwrap().image.texels.clone());
+        assert_eq!((size, texel[0]), (4, 3));
         unsafe { dispatch::glColorTableEXT(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_RGB, 100, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, palette.as_ptr().cast()) };
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
     }
