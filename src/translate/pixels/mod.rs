@@ -176,25 +176,16 @@ impl Context {
         }
     }
 
-    /// Captures `GL_PIXEL_MODE_BIT` (`glPushAttrib`).
-    pub fn save_pixel_mode(&self) -> PixelModeAttrib {
+    /// Captures `GL_PIXEL_MODE_BIT` (`glPushAttrib`; the read buffer is the framebuffer
+    /// module's).
+    pub fn save_pixel_mode_attrib(&self) -> PixelModeAttrib {
         PixelModeAttrib { transfer: self.pixels.transfer.clone(), zoom: self.pixels.zoom }
     }
 
     /// Restores `GL_PIXEL_MODE_BIT` (`glPopAttrib`).
-    pub fn restore_pixel_mode(&mut self, saved: PixelModeAttrib) {
+    pub fn restore_pixel_mode_attrib(&mut self, saved: PixelModeAttrib) {
         self.pixels.transfer = saved.transfer;
         self.pixels.zoom = saved.zoom;
-    }
-
-    /// Captures `GL_CLIENT_PIXEL_STORE_BIT` (`glPushClientAttrib`).
-    pub fn save_pixel_store(&self) -> PixelStore {
-        self.pixels.store
-    }
-
-    /// Restores `GL_CLIENT_PIXEL_STORE_BIT` (`glPopClientAttrib`).
-    pub fn restore_pixel_store(&mut self, saved: PixelStore) {
-        self.pixels.store = saved;
     }
 }
 
@@ -242,15 +233,12 @@ mod tests {
     #[test]
     fn attribute_groups_round_trip() {
         let (mut ctx, _) = Context::with_recording();
-        let mode = ctx.save_pixel_mode();
-        let store = ctx.save_pixel_store();
+        let mode = ctx.save_pixel_mode_attrib();
         ctx.glPixelZoom(3.0, 3.0);
         ctx.glPixelTransferf(gl::GL_DEPTH_BIAS, 1.0);
         ctx.glPixelStorei(gl::GL_UNPACK_SKIP_ROWS, 4);
-        ctx.restore_pixel_mode(mode);
+        ctx.restore_pixel_mode_attrib(mode);
         assert_eq!((ctx.pixels.zoom, ctx.pixels.transfer.depth), ([1.0, 1.0], [1.0, 0.0]));
         assert_eq!(ctx.pixels.store.unpack.skip_rows, 4);
-        ctx.restore_pixel_store(store);
-        assert_eq!(ctx.pixels.store.unpack.skip_rows, 0);
     }
 }

@@ -1,7 +1,7 @@
-//! Save and restore of `GL_TEXTURE_BIT` for `glPushAttrib`/`glPopAttrib` (OpenGL 1.5 table
-//! 6.14–6.18): the active unit, each unit's bindings, environment and coordinate generation,
-//! and the parameters of the textures bound at push time. The texture enables are saved with
-//! the enable bits by the enable module.
+//! Save and restore of `GL_TEXTURE_BIT` for `glPushAttrib`/`glPopAttrib` (OpenGL 1.5 tables
+//! 6.14–6.18): each unit's bindings, environment and coordinate generation, and the parameters
+//! of the textures bound at push time. The per-unit enables and the active unit belong to the
+//! attribute-stack module, which saves them with this group.
 
 use super::super::Context;
 use super::super::limits::MAX_TEXTURE_UNITS;
@@ -13,7 +13,6 @@ use super::texgen::TexGen;
 /// Saved `GL_TEXTURE_BIT` state.
 #[derive(Clone, Debug)]
 pub struct TextureAttrib {
-    active: usize,
     bindings: [[u32; 4]; MAX_TEXTURE_UNITS],
     env: [TexEnv; MAX_TEXTURE_UNITS],
     texgen: [TexGen; MAX_TEXTURE_UNITS],
@@ -23,18 +22,20 @@ pub struct TextureAttrib {
 
 impl Context {
     /// Captures `GL_TEXTURE_BIT`.
-    pub fn save_texture_attrib(&mut self) -> TextureAttrib {
+    pub fn save_texture_attrib(&self) -> TextureAttrib {
         let bindings = self.texture.bindings;
+        let shared = self.shared.lock();
         let mut params = Vec::new();
         for unit in &bindings {
             for t in Target::ALL {
                 let name = unit[t.index()];
                 if !params.iter().any(|&(n, tt, _)| n == name && tt == t) {
-                    params.push((name, t, self.with_object(t, name, |o| o.params)));
+                    let object = shared.textures.get(name).filter(|_| name != 0).unwrap_or(&self.texture.defaults[t.index()]);
+                    params.push((name, t, object.params));
                 }
             }
         }
-        TextureAttrib { active: self.texunit.active, bindings, env: self.texture.env, texgen: self.texture.texgen, params }
+        TextureAttrib { bindings, env: self.texture.env, texgen: self.texture.texgen, params }
     }
 
     /// Restores `GL_TEXTURE_BIT`: textures deleted since are bound as the default texture;
@@ -55,7 +56,6 @@ impl Context {
         let shared = shared.lock();
         self.texture.bindings = saved.bindings.map(|unit| unit.map(|n| if n == 0 || shared.textures.get(n).is_some() { n } else { 0 }));
         drop(shared);
-        self.texunit.active = saved.active;
         self.texture.env = saved.env;
         self.texture.texgen = saved.texgen;
     }
@@ -75,9 +75,10 @@ mod tests {
         ctx.glTexEnvi(gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_REPLACE as i32);
         ctx.glActiveTexture(gl::GL_TEXTURE2);
         ctx.glBindTexture(gl::GL_TEXTURE_2D, 4);
+        ctx.glActiveTexture(gl::GL_TEXTURE0);
         ctx.restore_texture_attrib(saved);
-        assert_eq!(ctx.active_texture_unit(), 0);
         assert_eq!(ctx.texture.bindings[2][1], 0);
+        assert_eq!(ctx.texture.bindings[0][1], 3);
         assert_eq!(ctx.texture.env[0].mode, gl::GL_MODULATE);
         let mut mag = 0;
         unsafe { ctx.glGetTexParameteriv(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, &mut mag) };
