@@ -16,6 +16,8 @@ use crate::render::{FrameSink, RecordingSink};
 pub struct SharedObjects {
     /// Display lists by name.
     pub lists: ListTable,
+    /// Texture objects by name.
+    pub textures: super::texture::TextureTable,
 }
 
 /// How a context is created.
@@ -50,6 +52,10 @@ pub struct Context {
     pub render_mode: super::render_mode::RenderModeState,
     /// Occlusion query objects.
     pub queries: super::queries::QueryState,
+    /// Texture units: bindings, environments, coordinate generation.
+    pub texture: super::texture::TextureState,
+    /// Pixel storage, transfer, zoom and the raster position.
+    pub pixels: super::pixels::PixelState,
     /// Immediate-mode assembly (`glBegin`/`glEnd`).
     pub(crate) immediate: super::immediate::ImmediateState,
     /// The frame being assembled since the last swap.
@@ -76,6 +82,8 @@ impl Context {
             eval: Default::default(),
             render_mode: Default::default(),
             queries: Default::default(),
+            texture: Default::default(),
+            pixels: Default::default(),
             immediate: Default::default(),
             frame: Frame::default(),
             sink: config.sink,
