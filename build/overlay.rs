@@ -20,6 +20,7 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_ARB_vertex_buffer_object",
     "GL_EXT_paletted_texture",
     "GL_EXT_shared_texture_palette",
+    "GL_EXT_color_subtable",
     "GL_EXT_fog_coord",
     "GL_EXT_secondary_color",
     "GL_ARB_texture_cube_map",

@@ -7,10 +7,6 @@
 //! line each, with a saver of type [`Saver`] written in the owning module:
 //! - `GL_CURRENT_BIT`: `Context::save_current_attrib` (current colour, secondary colour,
 //!   index, normal, texture coordinates, raster position, edge flag);
-//! - `GL_TEXTURE_BIT`: `Context::save_texture_attrib` (bindings, environments, coordinate
-//!   generation planes and modes; the per-unit enables and the active unit are saved here);
-//! - `GL_PIXEL_MODE_BIT`: `Context::save_pixel_mode_attrib` (pixel transfer, maps, zoom;
-//!   the read buffer is saved here).
 
 use super::Context;
 use super::gl::{self, GLbitfield, GLenum};
@@ -48,7 +44,9 @@ const GROUPS: &[(GLbitfield, Saver)] = &[
     (gl::GL_LIST_BIT, save_list),
     (gl::GL_MULTISAMPLE_BIT, save_multisample),
     (gl::GL_TEXTURE_BIT, save_texture_enables),
+    (gl::GL_TEXTURE_BIT, save_texture_objects),
     (gl::GL_PIXEL_MODE_BIT, save_read_buffer),
+    (gl::GL_PIXEL_MODE_BIT, save_pixel_mode),
 ];
 
 /// Per-unit capabilities of the texture group.
@@ -221,6 +219,16 @@ fn save_texture_enables(ctx: &Context, out: &mut Vec<Restore>) {
         }
         ctx.texunit.active = active;
     }));
+}
+
+/// Bindings, environments and coordinate generation (the texture module).
+fn save_texture_objects(ctx: &Context, out: &mut Vec<Restore>) {
+    out.push(value(ctx.save_texture_attrib(), Context::restore_texture_attrib));
+}
+
+/// Pixel transfer, maps and zoom (the pixel module).
+fn save_pixel_mode(ctx: &Context, out: &mut Vec<Restore>) {
+    out.push(value(ctx.save_pixel_mode_attrib(), Context::restore_pixel_mode_attrib));
 }
 
 fn save_read_buffer(ctx: &Context, out: &mut Vec<Restore>) {

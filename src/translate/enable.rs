@@ -55,6 +55,7 @@ const GLOBAL_CAPS: &[GLenum] = &[
     gl::GL_SAMPLE_ALPHA_TO_ONE,
     gl::GL_SAMPLE_COVERAGE,
     gl::GL_SCISSOR_TEST,
+    gl::GL_SHARED_TEXTURE_PALETTE_EXT,
     gl::GL_STENCIL_TEST,
 ];
 

@@ -1,14 +1,11 @@
 //! The polygon stipple pattern (OpenGL 1.5 section 3.5.2): `glPolygonStipple` unpacks a 32×32
 //! bitmap like `glBitmap` data (section 3.6.4, type `GL_BITMAP`), `glGetPolygonStipple` packs
 //! it back (section 4.3.2).
-//!
-//! Seam with the pixel-store module: both commands use [`BitmapLayout::DEFAULT_STORE`], the
-//! layout of the initial `glPixelStore` state (alignment 4, no row length or skips,
-//! most-significant bit first). When the pixel-store state lands, build the layout from it
-//! with [`BitmapLayout::new`] (unpack state in `glPolygonStipple` and its compile method, pack
-//! state in `glGetPolygonStipple`).
+//! Both honour the pixel-store state: the unpack modes when the pattern is given, the pack
+//! modes when it is read back.
 
 use super::Context;
+use super::pixels::store::StoreModes;
 use super::convert::read_slice;
 use super::gl::GLubyte;
 use super::lists::ListOp;
@@ -30,8 +27,10 @@ pub struct BitmapLayout {
 const SIDE: usize = 32;
 
 impl BitmapLayout {
-    /// The layout of the initial pixel-store state for a 32-pixel-wide bitmap.
-    pub const DEFAULT_STORE: BitmapLayout = BitmapLayout { row_stride: 4, first_row: 0, first_bit: 0, lsb_first: false };
+    /// The layout the storage modes `m` give a 32-pixel-wide bitmap.
+    pub fn of(m: &StoreModes) -> BitmapLayout {
+        BitmapLayout::new(m.alignment, m.row_length, m.skip_rows, m.skip_pixels, m.lsb_first)
+    }
 
     /// The layout of a 32-pixel-wide bitmap for pixel-store values (section 3.6.4): rows of
     /// `ROW_LENGTH` (or 32) bits padded to `alignment` bytes. Negative values count as 0 and a
@@ -86,7 +85,7 @@ impl Context {
     /// # Safety
     /// `mask` must point to the 32×32 bitmap as the unpack state lays it out.
     pub unsafe fn glPolygonStipple(&mut self, mask: *const GLubyte) {
-        match unsafe { unpack(mask, &BitmapLayout::DEFAULT_STORE) } {
+        match unsafe { unpack(mask, &BitmapLayout::of(&self.pixels.store.unpack)) } {
             Some(rows) => self.set_polygon_stipple(rows),
             None => self.null_pointer("glPolygonStipple"),
         }
@@ -97,7 +96,7 @@ impl Context {
     /// # Safety
     /// As [`Context::glPolygonStipple`].
     pub unsafe fn compile_glPolygonStipple(&mut self, mask: *const GLubyte) {
-        match unsafe { unpack(mask, &BitmapLayout::DEFAULT_STORE) } {
+        match unsafe { unpack(mask, &BitmapLayout::of(&self.pixels.store.unpack)) } {
             Some(rows) => self.lists.record(ListOp::Deferred(Box::new(move |ctx| ctx.set_polygon_stipple(rows)))),
             None => self.null_pointer("glPolygonStipple"),
         }
@@ -112,7 +111,7 @@ impl Context {
         if mask.is_null() {
             return self.null_pointer("glGetPolygonStipple");
         }
-        let layout = BitmapLayout::DEFAULT_STORE;
+        let layout = BitmapLayout::of(&self.pixels.store.pack);
         let rows = self.fixed.raster.stipple;
         for (row, bits) in rows.iter().enumerate() {
             for col in 0..SIDE {
@@ -164,6 +163,6 @@ mod tests {
         let rows = unsafe { unpack(bytes.as_ptr(), &l) }.unwrap();
         assert_eq!(rows[0], 1 << 31);
         assert_eq!(rows[1], 0);
-        assert_eq!(BitmapLayout::new(4, 0, 0, 0, false), BitmapLayout::DEFAULT_STORE);
+        assert_eq!(BitmapLayout::new(4, 0, 0, 0, false), BitmapLayout::of(&Default::default()));
     }
 }
