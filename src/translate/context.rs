@@ -16,6 +16,8 @@ use crate::render::{FrameSink, RecordingSink};
 pub struct SharedObjects {
     /// Display lists by name.
     pub lists: ListTable,
+    /// Buffer objects by name.
+    pub buffers: super::buffers::BufferTable,
 }
 
 /// How a context is created.
@@ -43,6 +45,10 @@ pub struct Context {
     pub viewport: super::viewport::ViewportState,
     /// Immediate-mode assembly (`glBegin`/`glEnd`).
     pub(crate) immediate: super::immediate::ImmediateState,
+    /// Client vertex arrays and buffer bindings.
+    pub(crate) arrays: super::arrays::ArrayState,
+    /// `glPushClientAttrib` stack.
+    pub(crate) client_attrib: super::client_attrib::ClientAttribStack,
     /// The frame being assembled since the last swap.
     pub(crate) frame: Frame,
     sink: Box<dyn FrameSink>,
@@ -62,6 +68,8 @@ impl Context {
             transform: Default::default(),
             viewport: super::viewport::ViewportState::new(),
             immediate: Default::default(),
+            arrays: Default::default(),
+            client_attrib: Default::default(),
             frame: Frame::default(),
             sink: config.sink,
             drawable_size: None,
@@ -86,10 +94,12 @@ impl Context {
         self.init_viewport(width, height);
     }
 
-    /// Ends the frame (`glXSwapBuffers`): hands the assembled [`Frame`] to the renderer.
+    /// Ends the frame (`glXSwapBuffers`): hands the assembled [`Frame`] to the renderer. The
+    /// next frame's draw list starts with the capacity this one needed.
     pub fn end_frame(&mut self) {
         let number = self.frame.number + 1;
-        let frame = std::mem::replace(&mut self.frame, Frame { number, ..Frame::default() });
+        let draws = Vec::with_capacity(self.frame.draws.len());
+        let frame = std::mem::replace(&mut self.frame, Frame { number, draws, ..Frame::default() });
         self.sink.present(frame);
     }
 }

@@ -87,6 +87,8 @@ impl Context {
             .or_else(|| self.query_texunit(pname))
             .or_else(|| self.query_viewport(pname))
             .or_else(|| self.query_lists(pname))
+            .or_else(|| self.query_vertex(pname))
+            .or_else(|| self.query_arrays(pname))
     }
 
     fn query_lists(&self, pname: GLenum) -> Option<Value> {

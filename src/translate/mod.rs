@@ -11,11 +11,16 @@
 // finds them by that name, and the names match the specification and the reference pages.
 #![allow(non_snake_case)]
 
+pub mod arrays;
+pub mod assemble;
+pub mod buffers;
+pub mod client_attrib;
 pub mod context;
 pub mod convert;
 pub mod dispatch;
 pub mod enable;
 pub mod error;
+pub mod frame_builder;
 pub mod get;
 pub mod gl;
 pub mod immediate;
