@@ -1105,3 +1105,327 @@ impl Context {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::ffi::c_void;
+
+    use crate::frame::{DrawSource, Topology};
+    use crate::translate::{Context, dispatch, gl};
+
+    fn int(ctx: &mut Context, pname: gl::GLenum) -> i32 {
+        let mut v = -1;
+        unsafe { ctx.glGetIntegerv(pname, &mut v) };
+        v
+    }
+
+    /// A unit square as a triangle fan of 4 vertices `(x, y)`.
+    const SQUARE: [f32; 8] = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+
+    #[test]
+    fn draw_arrays_reads_client_memory() {
+        let (mut ctx, _) = Context::with_recording();
+        let colors: [u8; 16] = [255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255];
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, SQUARE.as_ptr().cast());
+        ctx.glColorPointer(4, gl::GL_UNSIGNED_BYTE, 0, colors.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        ctx.glEnableClientState(gl::GL_COLOR_ARRAY);
+        ctx.glDrawArrays(gl::GL_TRIANGLE_FAN, 0, 4);
+        let d = &ctx.frame.draws[0];
+        assert_eq!(d.source, DrawSource::Arrays);
+        assert_eq!(d.indices, vec![0, 1, 2, 0, 2, 3]);
+        assert_eq!(d.vertices.position[2], [1.0, 1.0, 0.0, 1.0]);
+        assert_eq!(d.vertices.color.get(1), Some([0.0, 1.0, 0.0, 1.0]));
+        assert!(d.vertices.normal.is_constant(), "a disabled array gives the current value");
+        ctx.glDrawArrays(gl::GL_POINTS, 1, 2);
+        assert_eq!(ctx.frame.draws[1].vertices.position[0], [1.0, 0.0, 0.0, 1.0]);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        ctx.glDisableClientState(gl::GL_VERTEX_ARRAY);
+        ctx.glDrawArrays(gl::GL_POINTS, 0, 4);
+        assert_eq!(ctx.frame.draws.len(), 2, "nothing is drawn without the vertex array");
+    }
+
+    #[test]
+    fn draw_elements_each_index_type() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, SQUARE.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        let ub: [u8; 6] = [0, 1, 2, 2, 3, 0];
+        let us: [u16; 6] = [0, 1, 2, 2, 3, 0];
+        let ui: [u32; 6] = [0, 1, 2, 2, 3, 0];
+        let lists: [(gl::GLenum, *const c_void); 3] = [
+            (gl::GL_UNSIGNED_BYTE, ub.as_ptr().cast()),
+            (gl::GL_UNSIGNED_SHORT, us.as_ptr().cast()),
+            (gl::GL_UNSIGNED_INT, ui.as_ptr().cast()),
+        ];
+        for (i, (ty, ptr)) in lists.into_iter().enumerate() {
+            ctx.glLoadIdentity();
+            ctx.glTranslatef(i as f32, 0.0, 0.0);
+            unsafe { ctx.glDrawElements(gl::GL_TRIANGLES, 6, ty, ptr) };
+            let d = ctx.frame.draws.last().unwrap();
+            assert_eq!(d.vertex_count(), 4, "shared vertices are fetched once");
+            assert_eq!(d.indices, vec![0, 1, 2, 2, 3, 0]);
+            assert_eq!(d.vertices.position[3], [0.0, 1.0, 0.0, 1.0]);
+        }
+        assert_eq!(ctx.frame.draws.len(), 3);
+        unsafe { ctx.glDrawElements(gl::GL_TRIANGLES, 6, gl::GL_FLOAT, ui.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        unsafe { ctx.glDrawElements(gl::GL_TRIANGLES, -1, gl::GL_UNSIGNED_INT, ui.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        unsafe { ctx.glDrawRangeElements(gl::GL_TRIANGLES, 3, 0, 6, gl::GL_UNSIGNED_INT, ui.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE, "end < start");
+        unsafe { ctx.glDrawRangeElements(gl::GL_LINES, 0, 3, 2, gl::GL_UNSIGNED_INT, ui[1..].as_ptr().cast()) };
+        let d = ctx.frame.draws.last().unwrap();
+        assert_eq!((d.topology, d.vertex_count(), d.indices.clone()), (Topology::Lines, 2, vec![0, 1]));
+        ctx.glDrawArrays(gl::GL_POLYGON + 1, 0, 3);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glDrawArrays(gl::GL_TRIANGLES, 0, -3);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+    }
+
+    #[test]
+    fn sparse_indices_fetch_per_index() {
+        let (mut ctx, _) = Context::with_recording();
+        let far: Vec<f32> = (0..2000).map(|i| i as f32).collect();
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, far.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        let idx: [u16; 2] = [0, 999];
+        unsafe { ctx.glDrawElements(gl::GL_LINES, 2, gl::GL_UNSIGNED_SHORT, idx.as_ptr().cast()) };
+        let d = &ctx.frame.draws[0];
+        assert_eq!(d.vertex_count(), 2);
+        assert_eq!(d.vertices.position[1], [1998.0, 1999.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn buffer_object_draws() {
+        let (mut ctx, _) = Context::with_recording();
+        // Two floats of padding, then the square.
+        let mut data = vec![9.0f32, 9.0];
+        data.extend_from_slice(&SQUARE);
+        ctx.glBindBuffer(gl::GL_ARRAY_BUFFER, 1);
+        unsafe { ctx.glBufferData(gl::GL_ARRAY_BUFFER, 40, data.as_ptr().cast(), gl::GL_STATIC_DRAW) };
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 8, 8 as *const c_void);
+        ctx.glBindBuffer(gl::GL_ARRAY_BUFFER, 0);
+        assert_eq!(int(&mut ctx, gl::GL_VERTEX_ARRAY_BUFFER_BINDING), 1);
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        let idx: [u16; 4] = [0, 1, 2, 3];
+        ctx.glBindBuffer(gl::GL_ELEMENT_ARRAY_BUFFER, 2);
+        unsafe { ctx.glBufferData(gl::GL_ELEMENT_ARRAY_BUFFER, 8, idx.as_ptr().cast(), gl::GL_STATIC_DRAW) };
+        unsafe { ctx.glDrawElements(gl::GL_QUADS, 4, gl::GL_UNSIGNED_SHORT, 0 as *const c_void) };
+        let d = &ctx.frame.draws[0];
+        assert_eq!(d.vertices.position, vec![
+            [0.0, 0.0, 0.0, 1.0],
+            [1.0, 0.0, 0.0, 1.0],
+            [1.0, 1.0, 0.0, 1.0],
+            [0.0, 1.0, 0.0, 1.0]
+        ]);
+        assert_eq!(d.indices, vec![0, 1, 3, 1, 2, 3]);
+        // Past the end of the store: elements read as zero, no crash.
+        ctx.glDrawArrays(gl::GL_POINTS, 3, 3);
+        assert_eq!(ctx.frame.draws.last().unwrap().vertices.position[2], [0.0; 4]);
+        // Indices past the end of the element buffer: nothing drawn.
+        let before = ctx.frame.draws.len();
+        unsafe { ctx.glDrawElements(gl::GL_POINTS, 8, gl::GL_UNSIGNED_SHORT, 0 as *const c_void) };
+        assert_eq!(ctx.frame.draws.len(), before);
+        // A mapped buffer cannot be drawn from.
+        ctx.glBindBuffer(gl::GL_ARRAY_BUFFER, 1);
+        ctx.glMapBuffer(gl::GL_ARRAY_BUFFER, gl::GL_READ_ONLY);
+        ctx.glDrawArrays(gl::GL_POINTS, 0, 1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+        assert_eq!(ctx.frame.draws.len(), before);
+    }
+
+    #[test]
+    fn compiled_draws_keep_the_data_of_compile_time() {
+        let (mut ctx, _) = Context::with_recording();
+        let mut verts = SQUARE;
+        let idx: [u8; 3] = [0, 1, 2];
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, verts.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        unsafe {
+            dispatch::glNewList(&mut ctx, 7, gl::GL_COMPILE);
+            dispatch::glDrawArrays(&mut ctx, gl::GL_TRIANGLES, 0, 3);
+            dispatch::glDrawElements(&mut ctx, gl::GL_LINES, 2, gl::GL_UNSIGNED_BYTE, idx[1..].as_ptr().cast());
+            dispatch::glBegin(&mut ctx, gl::GL_POINTS);
+            dispatch::glArrayElement(&mut ctx, 3);
+            dispatch::glEnd(&mut ctx);
+            dispatch::glEndList(&mut ctx);
+        }
+        assert!(ctx.frame.draws.is_empty(), "GL_COMPILE draws nothing");
+        verts.fill(-5.0);
+        std::hint::black_box(&verts);
+        unsafe {
+            dispatch::glColor3f(&mut ctx, 0.0, 0.0, 1.0);
+            dispatch::glCallList(&mut ctx, 7);
+        }
+        let draws = &ctx.frame.draws;
+        assert_eq!(draws.len(), 3);
+        assert_eq!(draws[0].source, DrawSource::List(7));
+        assert_eq!(draws[0].vertices.position[1], [1.0, 0.0, 0.0, 1.0]);
+        assert_eq!(draws[0].vertices.color.get(0), Some([0.0, 0.0, 1.0, 1.0]), "current colour at execution");
+        assert_eq!(draws[1].vertices.position, vec![[1.0, 0.0, 0.0, 1.0], [1.0, 1.0, 0.0, 1.0]]);
+        assert_eq!(draws[2].vertices.position, vec![[0.0, 1.0, 0.0, 1.0]]);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    }
+
+    #[test]
+    fn multi_draw() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, SQUARE.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        let (first, count) = ([0, 2], [2, 2]);
+        unsafe { ctx.glMultiDrawArrays(gl::GL_LINES, first.as_ptr(), count.as_ptr(), 2) };
+        let d = &ctx.frame.draws[0];
+        assert_eq!((d.vertex_count(), d.indices.len()), (4, 4), "the two draws merge");
+        let a: [u32; 1] = [3];
+        let b: [u32; 2] = [0, 1];
+        let ptrs: [*const c_void; 2] = [a.as_ptr().cast(), b.as_ptr().cast()];
+        unsafe { ctx.glMultiDrawElements(gl::GL_POINTS, [1, 2].as_ptr(), gl::GL_UNSIGNED_INT, ptrs.as_ptr(), 2) };
+        let d = &ctx.frame.draws[1];
+        assert_eq!(d.vertices.position[0], [0.0, 1.0, 0.0, 1.0]);
+        assert_eq!(d.vertex_count(), 3);
+        unsafe { ctx.glMultiDrawArrays(gl::GL_LINES, first.as_ptr(), count.as_ptr(), -1) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+    }
+
+    #[test]
+    fn array_element_sets_current_values() {
+        let (mut ctx, _) = Context::with_recording();
+        let normals: [i8; 6] = [0, 127, 0, 0, 0, -128];
+        ctx.glNormalPointer(gl::GL_BYTE, 0, normals.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_NORMAL_ARRAY);
+        ctx.glArrayElement(1);
+        let mut n = [0.0f32; 3];
+        unsafe { ctx.glGetFloatv(gl::GL_CURRENT_NORMAL, n.as_mut_ptr()) };
+        assert_eq!(n, [0.0f32.max(1.0 / 255.0), 1.0 / 255.0, -1.0]);
+        ctx.glArrayElement(-1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+    }
+
+    #[test]
+    fn edge_flag_array_masks_edges() {
+        let (mut ctx, _) = Context::with_recording();
+        let flags: [u8; 4] = [0, 1, 1, 1];
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, SQUARE.as_ptr().cast());
+        ctx.glEdgeFlagPointer(0, flags.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        ctx.glEnableClientState(gl::GL_EDGE_FLAG_ARRAY);
+        ctx.glDrawArrays(gl::GL_QUADS, 0, 4);
+        assert_eq!(ctx.frame.draws[0].edge_masks, vec![0b100, 0b011]);
+    }
+
+    #[test]
+    fn interleaved_formats_set_the_arrays() {
+        let (mut ctx, _) = Context::with_recording();
+        // (format, tex size, colour size, colour type, normal, vertex size, stride, pc, pn, pv)
+        let table: [(gl::GLenum, i32, i32, gl::GLenum, bool, i32, i32, usize, usize, usize); 14] = [
+            (gl::GL_V2F, 0, 0, 0, false, 2, 8, 0, 0, 0),
+            (gl::GL_V3F, 0, 0, 0, false, 3, 12, 0, 0, 0),
+            (gl::GL_C4UB_V2F, 0, 4, gl::GL_UNSIGNED_BYTE, false, 2, 12, 0, 0, 4),
+            (gl::GL_C4UB_V3F, 0, 4, gl::GL_UNSIGNED_BYTE, false, 3, 16, 0, 0, 4),
+            (gl::GL_C3F_V3F, 0, 3, gl::GL_FLOAT, false, 3, 24, 0, 0, 12),
+            (gl::GL_N3F_V3F, 0, 0, 0, true, 3, 24, 0, 0, 12),
+            (gl::GL_C4F_N3F_V3F, 0, 4, gl::GL_FLOAT, true, 3, 40, 0, 16, 28),
+            (gl::GL_T2F_V3F, 2, 0, 0, false, 3, 20, 0, 0, 8),
+            (gl::GL_T4F_V4F, 4, 0, 0, false, 4, 32, 0, 0, 16),
+            (gl::GL_T2F_C4UB_V3F, 2, 4, gl::GL_UNSIGNED_BYTE, false, 3, 24, 8, 0, 12),
+            (gl::GL_T2F_C3F_V3F, 2, 3, gl::GL_FLOAT, false, 3, 32, 8, 0, 20),
+            (gl::GL_T2F_N3F_V3F, 2, 0, 0, true, 3, 32, 0, 8, 20),
+            (gl::GL_T2F_C4F_N3F_V3F, 2, 4, gl::GL_FLOAT, true, 3, 48, 8, 24, 36),
+            (gl::GL_T4F_C4F_N3F_V4F, 4, 4, gl::GL_FLOAT, true, 4, 60, 16, 32, 44),
+        ];
+        let base = 0x1000usize;
+        for (format, tex, color, color_type, normal, vertex, stride, pc, pn, pv) in table {
+            ctx.glEnableClientState(gl::GL_EDGE_FLAG_ARRAY);
+            ctx.glInterleavedArrays(format, 0, base as *const c_void);
+            let name = gl::enum_name(format).unwrap();
+            assert_eq!(int(&mut ctx, gl::GL_EDGE_FLAG_ARRAY), 0, "{name}");
+            assert_eq!(int(&mut ctx, gl::GL_VERTEX_ARRAY), 1, "{name}");
+            assert_eq!(int(&mut ctx, gl::GL_VERTEX_ARRAY_SIZE), vertex, "{name}");
+            assert_eq!(int(&mut ctx, gl::GL_VERTEX_ARRAY_STRIDE), stride, "{name}");
+            assert_eq!(ctx.arrays.vertex.pointer, base + pv, "{name}");
+            assert_eq!(int(&mut ctx, gl::GL_TEXTURE_COORD_ARRAY), i32::from(tex != 0), "{name}");
+            assert_eq!(int(&mut ctx, gl::GL_COLOR_ARRAY), i32::from(color != 0), "{name}");
+            assert_eq!(int(&mut ctx, gl::GL_NORMAL_ARRAY), i32::from(normal), "{name}");
+            if tex != 0 {
+                assert_eq!(int(&mut ctx, gl::GL_TEXTURE_COORD_ARRAY_SIZE), tex, "{name}");
+                assert_eq!(ctx.arrays.texcoord[0].pointer, base, "{name}");
+            }
+            if color != 0 {
+                assert_eq!(int(&mut ctx, gl::GL_COLOR_ARRAY_SIZE), color, "{name}");
+                assert_eq!(int(&mut ctx, gl::GL_COLOR_ARRAY_TYPE), color_type as i32, "{name}");
+                assert_eq!(ctx.arrays.color.pointer, base + pc, "{name}");
+            }
+            if normal {
+                assert_eq!(ctx.arrays.normal.pointer, base + pn, "{name}");
+            }
+        }
+        // A real draw through T2F_C4UB_V3F.
+        #[repr(C)]
+        struct V {
+            t: [f32; 2],
+            c: [u8; 4],
+            v: [f32; 3],
+        }
+        let data = [V { t: [0.5, 0.25], c: [255, 0, 0, 255], v: [1.0, 2.0, 3.0] }, V {
+            t: [1.0, 1.0],
+            c: [0, 255, 0, 255],
+            v: [4.0, 5.0, 6.0],
+        }];
+        ctx.glInterleavedArrays(gl::GL_T2F_C4UB_V3F, 0, data.as_ptr().cast());
+        ctx.glDrawArrays(gl::GL_LINES, 0, 2);
+        let d = &ctx.frame.draws[0];
+        assert_eq!(d.vertices.position[1], [4.0, 5.0, 6.0, 1.0]);
+        assert_eq!(d.vertices.texcoords[0].get(0), Some([0.5, 0.25, 0.0, 1.0]));
+        assert_eq!(d.vertices.color.get(1), Some([0.0, 1.0, 0.0, 1.0]));
+        ctx.glInterleavedArrays(gl::GL_RGBA, 0, std::ptr::null());
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glInterleavedArrays(gl::GL_V2F, -4, std::ptr::null());
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+    }
+
+    #[test]
+    fn pointer_errors_queries_and_lock() {
+        let (mut ctx, _) = Context::with_recording();
+        let p = 0x40 as *const c_void;
+        let cases: [(fn(&mut Context), gl::GLenum); 12] = [
+            (|c| c.glVertexPointer(1, gl::GL_FLOAT, 0, std::ptr::null()), gl::GL_INVALID_VALUE),
+            (|c| c.glVertexPointer(3, gl::GL_UNSIGNED_BYTE, 0, std::ptr::null()), gl::GL_INVALID_ENUM),
+            (|c| c.glVertexPointer(3, gl::GL_FLOAT, -1, std::ptr::null()), gl::GL_INVALID_VALUE),
+            (|c| c.glNormalPointer(gl::GL_UNSIGNED_BYTE, 0, std::ptr::null()), gl::GL_INVALID_ENUM),
+            (|c| c.glColorPointer(2, gl::GL_FLOAT, 0, std::ptr::null()), gl::GL_INVALID_VALUE),
+            (|c| c.glSecondaryColorPointer(4, gl::GL_FLOAT, 0, std::ptr::null()), gl::GL_INVALID_VALUE),
+            (|c| c.glIndexPointer(gl::GL_BYTE, 0, std::ptr::null()), gl::GL_INVALID_ENUM),
+            (|c| c.glTexCoordPointer(5, gl::GL_FLOAT, 0, std::ptr::null()), gl::GL_INVALID_VALUE),
+            (|c| c.glFogCoordPointer(gl::GL_INT, 0, std::ptr::null()), gl::GL_INVALID_ENUM),
+            (|c| c.glEdgeFlagPointer(-1, std::ptr::null()), gl::GL_INVALID_VALUE),
+            (|c| c.glEnableClientState(gl::GL_LIGHTING), gl::GL_INVALID_ENUM),
+            (|c| c.glUnlockArraysEXT(), gl::GL_INVALID_OPERATION),
+        ];
+        for (i, (f, error)) in cases.into_iter().enumerate() {
+            f(&mut ctx);
+            assert_eq!(ctx.glGetError(), error, "case {i}");
+        }
+        ctx.glClientActiveTexture(gl::GL_TEXTURE1);
+        ctx.glTexCoordPointer(2, gl::GL_SHORT, 4, p);
+        ctx.glEnableClientState(gl::GL_TEXTURE_COORD_ARRAY);
+        assert_eq!(ctx.glIsEnabled(gl::GL_TEXTURE_COORD_ARRAY), 1);
+        assert_eq!(int(&mut ctx, gl::GL_TEXTURE_COORD_ARRAY_TYPE), gl::GL_SHORT as i32);
+        let mut got = std::ptr::null_mut();
+        unsafe { ctx.glGetPointerv(gl::GL_TEXTURE_COORD_ARRAY_POINTER, &mut got) };
+        assert_eq!(got as usize, 0x40);
+        ctx.glClientActiveTexture(gl::GL_TEXTURE0);
+        assert_eq!(ctx.glIsEnabled(gl::GL_TEXTURE_COORD_ARRAY), 0);
+        assert_eq!(int(&mut ctx, gl::GL_TEXTURE_COORD_ARRAY_SIZE), 4);
+        unsafe { ctx.glGetPointerv(gl::GL_LIGHTING, &mut got) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glLockArraysEXT(2, 100);
+        assert_eq!(int(&mut ctx, gl::GL_ARRAY_ELEMENT_LOCK_COUNT_EXT), 100);
+        ctx.glLockArraysEXT(0, 1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+        ctx.glUnlockArraysEXT();
+        ctx.glLockArraysEXT(0, 0);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        assert_eq!(int(&mut ctx, gl::GL_ARRAY_ELEMENT_LOCK_COUNT_EXT), 0);
+    }
+}
