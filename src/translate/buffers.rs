@@ -331,7 +331,7 @@ mod tests {
         assert_eq!(param(&mut ctx, gl::GL_BUFFER_MAPPED), 1);
         assert_eq!(param(&mut ctx, gl::GL_BUFFER_ACCESS), gl::GL_WRITE_ONLY as i32);
         let mut q = std::ptr::null_mut();
-        unsafe { ctx.glGetBufferPointerv(gl::GL_ARRAY_BUFFER, gl::GL_BUFFER_MAP_POINTER, &mut q) };
+        unsafe { ctx.glGetBufferPointerv(gl::GL_ARRAY_BUFFER, gl::GL_BUFFER_MAP_POINTER, &raw mut q) };
         assert_eq!(q.cast::<u8>(), p);
         unsafe { ctx.glBufferSubData(gl::GL_ARRAY_BUFFER, 0, 1, [0u8].as_ptr().cast()) };
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "sub-data of a mapped buffer");

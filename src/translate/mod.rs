@@ -11,11 +11,13 @@
 // finds them by that name, and the names match the specification and the reference pages.
 #![allow(non_snake_case)]
 
+pub mod array_fetch;
 pub mod arrays;
 pub mod assemble;
 pub mod buffers;
 pub mod client_attrib;
 pub mod context;
+pub mod draw_arrays;
 pub mod convert;
 pub mod dispatch;
 pub mod enable;
