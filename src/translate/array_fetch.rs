@@ -93,8 +93,10 @@ pub(crate) struct Sources {
 /// A resolved array uses a mapped buffer (`GL_INVALID_OPERATION`, section 2.9.3).
 struct MappedBuffer;
 
+/// Where an enabled array's elements are; `None` for a disabled one.
 fn resolve(array: &ArrayPointer, normalized: bool, buffers: &BufferTable) -> Result<Option<Source>, MappedBuffer> {
-    if !array.enabled {
+    // A null client pointer would fault: the array is ignored, as if disabled.
+    if !array.enabled || (array.buffer == 0 && array.pointer == 0) {
         return Ok(None);
     }
     let size = array.size.max(1) as usize;

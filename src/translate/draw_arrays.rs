@@ -393,6 +393,10 @@ mod tests {
         ctx.glDisableClientState(gl::GL_VERTEX_ARRAY);
         ctx.glDrawArrays(gl::GL_POINTS, 0, 4);
         assert_eq!(ctx.frame.draws.len(), 2, "nothing is drawn without the vertex array");
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, std::ptr::null());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        ctx.glDrawArrays(gl::GL_POINTS, 0, 4);
+        assert_eq!(ctx.frame.draws.len(), 2, "a null client pointer is ignored, not read");
     }
 
     #[test]

@@ -5,11 +5,14 @@
 
 use std::sync::Arc;
 
+use glam::Mat4;
+
 use super::Context;
 use super::assemble::Assembled;
+use super::enable::EnableState;
 use super::gl;
 use super::limits::MAX_TEXTURE_UNITS;
-use crate::frame::{Draw, DrawSource, Frame, Topology, Vertices};
+use crate::frame::{Draw, DrawSource, Frame, RasterState, TextureRef, Topology, Vertices};
 
 /// A merged draw never grows past this many vertices, so its indices stay far from `u32`
 /// overflow and the renderer's uploads stay bounded.
@@ -18,6 +21,45 @@ pub const MAX_MERGED_VERTICES: usize = 1 << 22;
 /// Texture targets whose enable makes a unit use its texture matrix.
 const TEXTURE_TARGETS: [gl::GLenum; 4] =
     [gl::GL_TEXTURE_1D, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_3D, gl::GL_TEXTURE_CUBE_MAP];
+
+/// Everything a batch is drawn with besides its vertices; batches with equal keys merge.
+/// Built without allocation (but for the snapshots), so that a `glBegin`/`glEnd` per quad
+/// stays cheap.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BatchKey {
+    /// Topology.
+    pub topology: Topology,
+    /// Source.
+    pub source: DrawSource,
+    /// Modelview matrix.
+    pub modelview: Mat4,
+    /// Projection matrix.
+    pub projection: Mat4,
+    /// Texture matrix of each unit with a texture target enabled.
+    pub texture_matrices: [Option<Mat4>; MAX_TEXTURE_UNITS],
+    /// Raster state snapshot.
+    pub state: Arc<RasterState>,
+    /// Texture snapshot.
+    pub textures: Vec<Option<TextureRef>>,
+}
+
+/// Which texture units have a texture target enabled, for the capability state it was
+/// computed from (compared by value, so restoring saved state cannot make it stale).
+#[derive(Default)]
+pub struct TexturingCache {
+    enables: Option<EnableState>,
+    units: [bool; MAX_TEXTURE_UNITS],
+}
+
+impl TexturingCache {
+    fn units(&mut self, enables: &EnableState) -> [bool; MAX_TEXTURE_UNITS] {
+        if self.enables.as_ref() != Some(enables) {
+            self.units = std::array::from_fn(|u| TEXTURE_TARGETS.iter().any(|&t| enables.unit_on(u, t)));
+            self.enables = Some(enables.clone());
+        }
+        self.units
+    }
+}
 
 impl Context {
     /// The single entry of assembled primitives into the frame: `vertices` in object space,
@@ -34,8 +76,8 @@ impl Context {
         if assembled.indices.is_empty() {
             return;
         }
-        let header = self.draw_header(topology, source);
-        push_batch(&mut self.frame, header, vertices, assembled);
+        let key = self.batch_key(topology, source);
+        push_batch(&mut self.frame, key, vertices, assembled);
     }
 
     /// The source of immediate-mode geometry: the display list being executed, if any.
@@ -48,49 +90,50 @@ impl Context {
         self.lists.executing_list().map_or(DrawSource::Arrays, DrawSource::List)
     }
 
-    /// A draw without vertices carrying everything else a batch is drawn with.
-    fn draw_header(&mut self, topology: Topology, source: DrawSource) -> Draw {
+    /// The key of a batch emitted now.
+    fn batch_key(&mut self, topology: Topology, source: DrawSource) -> BatchKey {
+        let units = self.immediate.texturing.units(&self.enables);
         let transform = &self.transform;
-        let texture_matrices = (0..MAX_TEXTURE_UNITS)
-            .map(|unit| {
-                TEXTURE_TARGETS
-                    .iter()
-                    .any(|&t| self.enables.unit_on(unit, t))
-                    .then(|| transform.texture_matrix(unit))
-            })
-            .collect();
-        Draw {
+        BatchKey {
             topology,
+            source,
             modelview: transform.modelview(),
             projection: transform.projection(),
-            texture_matrices,
-            source,
+            texture_matrices: std::array::from_fn(|u| units[u].then(|| transform.texture_matrix(u))),
             state: self.raster_snapshot(),
             textures: self.texture_snapshot(),
-            ..Draw::default()
         }
     }
 }
 
-/// Whether a batch with `header` can be appended to `last` (`extra` more vertices).
-fn mergeable(last: &Draw, header: &Draw, extra: usize) -> bool {
-    last.topology == header.topology
-        && last.source == header.source
-        && last.modelview == header.modelview
-        && last.projection == header.projection
-        && last.texture_matrices == header.texture_matrices
-        && (Arc::ptr_eq(&last.state, &header.state) || last.state == header.state)
-        && last.textures == header.textures
+/// Whether a batch with `key` can be appended to `last` (`extra` more vertices).
+fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
+    last.topology == key.topology
+        && last.source == key.source
+        && last.modelview == key.modelview
+        && last.projection == key.projection
+        && last.texture_matrices == key.texture_matrices
+        && (Arc::ptr_eq(&last.state, &key.state) || last.state == key.state)
+        && last.textures == key.textures
         && last.vertices.len() + extra <= MAX_MERGED_VERTICES
 }
 
 /// Appends a batch to `frame`: into its last draw when [`mergeable`] and no clear came after
-/// that draw, else as a new draw made from `header`.
-pub fn push_batch(frame: &mut Frame, header: Draw, vertices: &Vertices, assembled: &Assembled) {
+/// that draw, else as a new draw.
+pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembled: &Assembled) {
     let cleared_since = frame.clears.last().is_some_and(|c| c.before_draw >= frame.draws.len());
-    let merge = !cleared_since && frame.draws.last().is_some_and(|last| mergeable(last, &header, vertices.len()));
+    let merge = !cleared_since && frame.draws.last().is_some_and(|last| mergeable(last, &key, vertices.len()));
     if !merge {
-        frame.draws.push(header);
+        frame.draws.push(Draw {
+            topology: key.topology,
+            source: key.source,
+            modelview: key.modelview,
+            projection: key.projection,
+            texture_matrices: key.texture_matrices.to_vec(),
+            state: key.state,
+            textures: key.textures,
+            ..Draw::default()
+        });
     }
     let draw = frame.draws.last_mut().expect("a draw was just pushed or merged into");
     let base = draw.vertices.len() as u32;
@@ -180,12 +223,12 @@ mod tests {
             v.push([i as f32, 0.0, 0.0, 1.0], &values.values());
         }
         let a = Assembled { indices: vec![0, 1, 2], edge_masks: vec![0b101] };
-        push_batch(&mut frame, Draw::default(), &v, &a);
-        push_batch(&mut frame, Draw::default(), &v, &a);
+        push_batch(&mut frame, BatchKey::default(), &v, &a);
+        push_batch(&mut frame, BatchKey::default(), &v, &a);
         assert_eq!(frame.draws.len(), 1);
         assert_eq!(frame.draws[0].indices, vec![0, 1, 2, 3, 4, 5]);
         assert_eq!(frame.draws[0].edge_masks, vec![0b101, 0b101]);
-        let other = Draw { source: DrawSource::List(3), ..Draw::default() };
+        let other = BatchKey { source: DrawSource::List(3), ..BatchKey::default() };
         push_batch(&mut frame, other, &v, &a);
         assert_eq!(frame.draws.len(), 2, "another source starts another draw");
     }

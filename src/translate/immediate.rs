@@ -110,6 +110,8 @@ pub struct ImmediateState {
     pub batch: Batch,
     /// Decomposition of the batch, reused.
     pub assembled: Assembled,
+    /// Which units texture, for the batch keys of [`super::frame_builder`].
+    pub texturing: super::frame_builder::TexturingCache,
 }
 
 impl Context {
