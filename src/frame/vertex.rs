@@ -105,23 +105,6 @@ pub struct Vertices {
     pub color_index: Attrib<f32>,
 }
 
-/// The current value of every attribute, as pushed with one vertex.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct VertexValues<'a> {
-    /// Normal.
-    pub normal: [f32; 3],
-    /// Primary colour.
-    pub color: [f32; 4],
-    /// Secondary colour.
-    pub secondary_color: [f32; 3],
-    /// Texture coordinates per unit.
-    pub texcoords: &'a [[f32; 4]],
-    /// Fog coordinate.
-    pub fog_coord: f32,
-    /// Colour index.
-    pub color_index: f32,
-}
-
 impl Vertices {
     /// Vertices with storage for the attributes of `units` texture units.
     pub fn with_units(units: usize) -> Vertices {
@@ -154,21 +137,6 @@ impl Vertices {
         }
         self.fog_coord.truncate(count);
         self.color_index.truncate(count);
-    }
-
-    /// Appends one vertex.
-    #[inline]
-    pub fn push(&mut self, position: [f32; 4], v: &VertexValues<'_>) {
-        let n = self.position.len();
-        self.position.push(position);
-        self.normal.push(v.normal, n);
-        self.color.push(v.color, n);
-        self.secondary_color.push(v.secondary_color, n);
-        for (t, &value) in self.texcoords.iter_mut().zip(v.texcoords) {
-            t.push(value, n);
-        }
-        self.fog_coord.push(v.fog_coord, n);
-        self.color_index.push(v.color_index, n);
     }
 
     /// Appends every vertex of `other`.

@@ -14,7 +14,7 @@ use super::array_fetch::{FromArrays, decode_indices, index_size};
 use super::assemble::{Primitive, assemble};
 use super::convert::read_slice;
 use super::gl::{self, GLenum, GLint, GLsizei, GLuint};
-use super::immediate::{Batch, CurrentAttribs};
+use super::immediate::{Batch, CurrentAttribs, bits};
 use super::lists::ListOp;
 
 /// Which array elements a draw reads, in primitive order.
@@ -77,7 +77,7 @@ impl Context {
         let Ok(i) = usize::try_from(i) else {
             return self.set_error_in(gl::GL_INVALID_VALUE, "glArrayElement");
         };
-        let vertex = self.with_sources("glArrayElement", |s, ctx| s.element(i, &mut ctx.immediate.current));
+        let vertex = self.with_sources("glArrayElement", |s, ctx| s.element(i, ctx.immediate.current_mut()));
         if let Some(Some([x, y, z, w])) = vertex {
             self.glVertex4f(x, y, z, w);
         }
@@ -92,7 +92,7 @@ impl Context {
         let Ok(i) = usize::try_from(i) else {
             return self.set_error_in(gl::GL_INVALID_VALUE, "glArrayElement");
         };
-        let current = self.immediate.current;
+        let current = *self.immediate.current();
         if let Some(calls) = self.with_sources("glArrayElement", |s, _| s.element_calls(i, &current)) {
             for call in calls {
                 self.lists.record(ListOp::Call(call));
@@ -102,7 +102,7 @@ impl Context {
 
     /// Fetches the vertices of a draw; `None` (after raising any error) when nothing is drawn.
     fn fetch(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str, mut batch: Batch) -> Option<Fetched> {
-        let current = self.immediate.current;
+        let current = *self.immediate.current();
         let fetched = self.with_sources(command, |s, _| {
             s.vertex?;
             let from_arrays = s.provided();
@@ -110,7 +110,7 @@ impl Context {
             let mut cur = current;
             let mut push = |i: usize| {
                 let position = s.element(i, &mut cur).unwrap_or([0.0, 0.0, 0.0, 1.0]);
-                batch.push(position, &cur);
+                batch.push(position, &cur, bits::ALL);
             };
             let order = match elements {
                 Elements::Range(first, count) => {
@@ -170,7 +170,7 @@ impl Context {
                 return ctx.set_error_in(gl::GL_INVALID_OPERATION, command);
             }
             let mut f = fetched.clone();
-            f.take_current(&ctx.immediate.current);
+            f.take_current(ctx.immediate.current());
             ctx.submit(&f);
         })));
     }

@@ -147,6 +147,7 @@ mod tests {
     use super::*;
     use crate::frame::Clear;
     use crate::translate::dispatch;
+    use crate::translate::immediate::{Batch, CurrentAttribs};
 
     fn quad(ctx: &mut Context, x: f32) {
         unsafe {
@@ -217,19 +218,20 @@ mod tests {
     #[test]
     fn push_batch_offsets_indices_and_keeps_masks() {
         let mut frame = Frame::default();
-        let mut v = Vertices::with_units(1);
-        let values = crate::translate::immediate::CurrentAttribs::default();
+        let mut batch = Batch::default();
+        let current = CurrentAttribs::default();
         for i in 0..3 {
-            v.push([i as f32, 0.0, 0.0, 1.0], &values.values());
+            batch.push([i as f32, 0.0, 0.0, 1.0], &current, 0);
         }
+        let v = &batch.vertices;
         let a = Assembled { indices: vec![0, 1, 2], edge_masks: vec![0b101] };
-        push_batch(&mut frame, BatchKey::default(), &v, &a);
-        push_batch(&mut frame, BatchKey::default(), &v, &a);
+        push_batch(&mut frame, BatchKey::default(), v, &a);
+        push_batch(&mut frame, BatchKey::default(), v, &a);
         assert_eq!(frame.draws.len(), 1);
         assert_eq!(frame.draws[0].indices, vec![0, 1, 2, 3, 4, 5]);
         assert_eq!(frame.draws[0].edge_masks, vec![0b101, 0b101]);
         let other = BatchKey { source: DrawSource::List(3), ..BatchKey::default() };
-        push_batch(&mut frame, other, &v, &a);
+        push_batch(&mut frame, other, v, &a);
         assert_eq!(frame.draws.len(), 2, "another source starts another draw");
     }
 }

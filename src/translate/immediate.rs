@@ -13,7 +13,6 @@ use super::get::Value;
 use super::gl::{self, GLboolean, GLenum, GLfloat};
 use super::limits::MAX_TEXTURE_UNITS;
 use super::texunit::unit_index;
-use crate::frame::vertex::VertexValues;
 use crate::frame::{Attrib, Vertices};
 
 /// The current values of the vertex attributes (section 2.7, table 6.5).
@@ -49,18 +48,25 @@ impl Default for CurrentAttribs {
     }
 }
 
-impl CurrentAttribs {
-    /// The values a vertex pushed now takes.
-    pub fn values(&self) -> VertexValues<'_> {
-        VertexValues {
-            normal: self.normal,
-            color: self.color,
-            secondary_color: self.secondary_color,
-            texcoords: &self.texcoords,
-            fog_coord: self.fog_coord,
-            color_index: self.color_index,
-        }
-    }
+/// Bits naming the attributes of a vertex, for [`ImmediateState::dirty`] and
+/// [`Batch::per_vertex`].
+pub mod bits {
+    /// Normal.
+    pub const NORMAL: u16 = 1;
+    /// Primary colour.
+    pub const COLOR: u16 = 1 << 1;
+    /// Secondary colour.
+    pub const SECONDARY_COLOR: u16 = 1 << 2;
+    /// Fog coordinate.
+    pub const FOG_COORD: u16 = 1 << 3;
+    /// Colour index.
+    pub const COLOR_INDEX: u16 = 1 << 4;
+    /// Edge flag.
+    pub const EDGE_FLAG: u16 = 1 << 5;
+    /// Texture coordinates of unit 0; unit `u` is `TEXCOORD0 << u`.
+    pub const TEXCOORD0: u16 = 1 << 6;
+    /// Every attribute.
+    pub const ALL: u16 = u16::MAX;
 }
 
 /// Vertices being assembled, with their edge flags.
@@ -70,11 +76,27 @@ pub struct Batch {
     pub vertices: Vertices,
     /// Edge flag of each vertex (section 2.6.2).
     pub edge_flags: Attrib<bool>,
+    /// Attributes already stored once per vertex ([`bits`]).
+    per_vertex: u16,
 }
 
 impl Default for Batch {
     fn default() -> Batch {
-        Batch { vertices: Vertices::with_units(MAX_TEXTURE_UNITS), edge_flags: Attrib::default() }
+        Batch { vertices: Vertices::with_units(MAX_TEXTURE_UNITS), edge_flags: Attrib::default(), per_vertex: 0 }
+    }
+}
+
+/// Appends `value` to an attribute: pushed when it is stored per vertex, compared with the
+/// shared value when it `changed`, untouched otherwise.
+#[inline(always)]
+fn update<T: Copy + PartialEq>(a: &mut Attrib<T>, value: T, n: usize, bit: u16, changed: u16, per_vertex: &mut u16) {
+    if *per_vertex & bit != 0 {
+        a.values.push(value);
+    } else if changed & bit != 0 {
+        a.push(value, n);
+        if !a.is_constant() {
+            *per_vertex |= bit;
+        }
     }
 }
 
@@ -83,14 +105,43 @@ impl Batch {
     pub fn clear(&mut self) {
         self.vertices.clear();
         self.edge_flags.truncate(0);
+        self.per_vertex = 0;
     }
 
-    /// Appends a vertex with the values of `current`.
+    /// Appends a vertex with the values of `current`; `changed` names the attributes that may
+    /// differ from the previous vertex ([`bits`]). Attributes that never change cost one bit
+    /// test per vertex.
     #[inline]
-    pub fn push(&mut self, position: [f32; 4], current: &CurrentAttribs) {
-        let n = self.vertices.len();
-        self.vertices.push(position, &current.values());
-        self.edge_flags.push(current.edge_flag, n);
+    pub fn push(&mut self, position: [f32; 4], c: &CurrentAttribs, changed: u16) {
+        let v = &mut self.vertices;
+        let n = v.position.len();
+        v.position.push(position);
+        if n == 0 {
+            v.normal.set_constant(c.normal);
+            v.color.set_constant(c.color);
+            v.secondary_color.set_constant(c.secondary_color);
+            v.fog_coord.set_constant(c.fog_coord);
+            v.color_index.set_constant(c.color_index);
+            for (t, &value) in v.texcoords.iter_mut().zip(&c.texcoords) {
+                t.set_constant(value);
+            }
+            self.edge_flags.set_constant(c.edge_flag);
+            self.per_vertex = 0;
+            return;
+        }
+        if (changed | self.per_vertex) == 0 {
+            return;
+        }
+        let pv = &mut self.per_vertex;
+        update(&mut v.normal, c.normal, n, bits::NORMAL, changed, pv);
+        update(&mut v.color, c.color, n, bits::COLOR, changed, pv);
+        update(&mut v.secondary_color, c.secondary_color, n, bits::SECONDARY_COLOR, changed, pv);
+        update(&mut v.fog_coord, c.fog_coord, n, bits::FOG_COORD, changed, pv);
+        update(&mut v.color_index, c.color_index, n, bits::COLOR_INDEX, changed, pv);
+        update(&mut self.edge_flags, c.edge_flag, n, bits::EDGE_FLAG, changed, pv);
+        for (u, (t, &value)) in v.texcoords.iter_mut().zip(&c.texcoords).enumerate() {
+            update(t, value, n, bits::TEXCOORD0 << u, changed, pv);
+        }
     }
 
     /// The edge flag of vertex `i` (true when unknown).
@@ -104,14 +155,37 @@ impl Batch {
 pub struct ImmediateState {
     /// The primitive of the open `glBegin`, if any.
     pub primitive: Option<Primitive>,
-    /// Current vertex attributes.
-    pub current: CurrentAttribs,
+    /// Current vertex attributes (read with [`ImmediateState::current`]).
+    current: CurrentAttribs,
+    /// Attributes changed since the last vertex ([`bits`]).
+    dirty: u16,
     /// Vertices since `glBegin`.
     pub batch: Batch,
     /// Decomposition of the batch, reused.
     pub assembled: Assembled,
     /// Which units texture, for the batch keys of [`super::frame_builder`].
     pub texturing: super::frame_builder::TexturingCache,
+}
+
+impl ImmediateState {
+    /// The current vertex attributes.
+    pub fn current(&self) -> &CurrentAttribs {
+        &self.current
+    }
+
+    /// The current vertex attributes, to change them: every attribute counts as changed for
+    /// the next vertex.
+    pub fn current_mut(&mut self) -> &mut CurrentAttribs {
+        self.dirty = bits::ALL;
+        &mut self.current
+    }
+
+    /// Changes one attribute (`bit` of [`bits`]).
+    #[inline]
+    fn set(&mut self, bit: u16, f: impl FnOnce(&mut CurrentAttribs)) {
+        self.dirty |= bit;
+        f(&mut self.current);
+    }
 }
 
 impl Context {
@@ -145,51 +219,52 @@ impl Context {
     pub fn glVertex4f(&mut self, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat) {
         if self.immediate.primitive.is_some() {
             let im = &mut self.immediate;
-            im.batch.push([x, y, z, w], &im.current);
+            im.batch.push([x, y, z, w], &im.current, im.dirty);
+            im.dirty = 0;
         }
     }
 
     /// `glColor4f`.
     pub fn glColor4f(&mut self, red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat) {
-        self.immediate.current.color = [red, green, blue, alpha];
+        self.immediate.set(bits::COLOR, |c| c.color = [red, green, blue, alpha]);
     }
 
     /// `glSecondaryColor3f`.
     pub fn glSecondaryColor3f(&mut self, red: GLfloat, green: GLfloat, blue: GLfloat) {
-        self.immediate.current.secondary_color = [red, green, blue];
+        self.immediate.set(bits::SECONDARY_COLOR, |c| c.secondary_color = [red, green, blue]);
     }
 
     /// `glNormal3f`.
     pub fn glNormal3f(&mut self, nx: GLfloat, ny: GLfloat, nz: GLfloat) {
-        self.immediate.current.normal = [nx, ny, nz];
+        self.immediate.set(bits::NORMAL, |c| c.normal = [nx, ny, nz]);
     }
 
     /// `glTexCoord4f`: texture coordinates of unit 0 (section 2.7).
     pub fn glTexCoord4f(&mut self, s: GLfloat, t: GLfloat, r: GLfloat, q: GLfloat) {
-        self.immediate.current.texcoords[0] = [s, t, r, q];
+        self.immediate.set(bits::TEXCOORD0, |c| c.texcoords[0] = [s, t, r, q]);
     }
 
     /// `glMultiTexCoord4f`: `GL_INVALID_ENUM` for a unit glrt does not have.
     pub fn glMultiTexCoord4f(&mut self, target: GLenum, s: GLfloat, t: GLfloat, r: GLfloat, q: GLfloat) {
         match unit_index(target) {
-            Some(unit) => self.immediate.current.texcoords[unit] = [s, t, r, q],
+            Some(unit) => self.immediate.set(bits::TEXCOORD0 << unit, |c| c.texcoords[unit] = [s, t, r, q]),
             None => self.set_error_in(gl::GL_INVALID_ENUM, "glMultiTexCoord"),
         }
     }
 
     /// `glFogCoordf`.
     pub fn glFogCoordf(&mut self, coord: GLfloat) {
-        self.immediate.current.fog_coord = coord;
+        self.immediate.set(bits::FOG_COORD, |c| c.fog_coord = coord);
     }
 
     /// `glIndexf`.
     pub fn glIndexf(&mut self, c: GLfloat) {
-        self.immediate.current.color_index = c;
+        self.immediate.set(bits::COLOR_INDEX, |cur| cur.color_index = c);
     }
 
     /// `glEdgeFlag`.
     pub fn glEdgeFlag(&mut self, flag: GLboolean) {
-        self.immediate.current.edge_flag = flag != 0;
+        self.immediate.set(bits::EDGE_FLAG, |c| c.edge_flag = flag != 0);
     }
 
     /// `glEdgeFlagv`.
@@ -324,6 +399,30 @@ mod tests {
         assert_eq!(draw.vertices.color.get(1), Some([1.0, 0.0, 0.0, 1.0]));
         assert_eq!(draw.vertices.color.get(2), Some([0.0, 1.0, 0.0, 1.0]));
         assert!(draw.vertices.normal.is_constant(), "an unchanged normal is stored once");
+    }
+
+    #[test]
+    fn only_changing_attributes_are_stored_per_vertex() {
+        let (mut ctx, _) = Context::with_recording();
+        unsafe {
+            dispatch::glBegin(&mut ctx, gl::GL_POINTS);
+            dispatch::glColor3f(&mut ctx, 0.5, 0.5, 0.5);
+            dispatch::glVertex2f(&mut ctx, 0.0, 0.0);
+            dispatch::glColor3f(&mut ctx, 0.5, 0.5, 0.5);
+            dispatch::glVertex2f(&mut ctx, 1.0, 0.0);
+            dispatch::glMultiTexCoord1f(&mut ctx, gl::GL_TEXTURE3, 7.0);
+            dispatch::glEdgeFlag(&mut ctx, 0);
+            dispatch::glVertex2f(&mut ctx, 2.0, 0.0);
+            dispatch::glVertex2f(&mut ctx, 3.0, 0.0);
+            dispatch::glEnd(&mut ctx);
+        }
+        let v = &ctx.frame.draws[0].vertices;
+        assert_eq!(v.color.values, vec![[0.5, 0.5, 0.5, 1.0]], "setting an equal colour keeps it shared");
+        assert_eq!(v.texcoords[3].values.len(), 4);
+        assert_eq!(v.texcoords[3].get(1), Some([0.0, 0.0, 0.0, 1.0]));
+        assert_eq!(v.texcoords[3].get(3), Some([7.0, 0.0, 0.0, 1.0]));
+        assert!(v.texcoords[0].is_constant());
+        assert_eq!(ctx.immediate.batch.edge_flags.values, vec![true, true, false, false]);
     }
 
     #[test]
