@@ -12,7 +12,7 @@ use super::Context;
 use super::convert::write_slice;
 use super::get::Value;
 use super::gl::{self, GLenum, GLint, GLsizei, GLuint};
-use super::limits::{MAX_ELEMENTS, MAX_TEXTURE_UNITS};
+use super::limits::MAX_TEXTURE_UNITS;
 
 /// One vertex array: its pointer state (table 6.8) and enable.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -502,7 +502,6 @@ impl Context {
             gl::GL_ELEMENT_ARRAY_BUFFER_BINDING => Value::int(a.element_buffer),
             gl::GL_ARRAY_ELEMENT_LOCK_FIRST_EXT => Value::int(a.lock.map_or(0, |l| l.0)),
             gl::GL_ARRAY_ELEMENT_LOCK_COUNT_EXT => Value::int(a.lock.map_or(0, |l| l.1)),
-            gl::GL_MAX_ELEMENTS_VERTICES | gl::GL_MAX_ELEMENTS_INDICES => Value::int(MAX_ELEMENTS),
             _ => return self.query_client_attrib(pname),
         })
     }

@@ -4,7 +4,7 @@
 //! Each pushed entry is a list of restore actions, one per group the mask selected; each
 //! action owns a copy of the state it puts back. A group is added with one
 //! [`ClientAttribEntry::save`] call in [`Context::glPushClientAttrib`], for example
-//! `if mask & gl::GL_CLIENT_PIXEL_STORE_BIT != 0 { entry.save(self, |c| &mut c.pixel_store) }`.
+//! `if mask & gl::GL_CLIENT_PIXEL_STORE_BIT != 0 { entry.save(self, |c| &mut c.pixels.store) }`.
 
 use super::Context;
 use super::get::Value;

@@ -299,6 +299,14 @@ impl Context {
         self.glEnd();
     }
 
+    /// Saves the current values of `GL_CURRENT_BIT` this module owns (colours, normal, texture
+    /// coordinates, fog coordinate, index, edge flag; not the raster position) for
+    /// `glPopAttrib`: pushes one closure that puts them back.
+    pub fn save_current_attrib(&self, out: &mut Vec<Box<dyn FnOnce(&mut Context) + Send>>) {
+        let saved = self.immediate.current;
+        out.push(Box::new(move |ctx| *ctx.immediate.current_mut() = saved));
+    }
+
     /// The current-attribute parameters of `glGet` (table 6.5).
     pub(crate) fn query_vertex(&self, pname: GLenum) -> Option<Value> {
         let c = &self.immediate.current;
@@ -357,6 +365,23 @@ mod tests {
         unsafe { ctx.glGetIntegerv(gl::GL_CURRENT_COLOR, i.as_mut_ptr()) };
         assert_eq!(i[0], i32::MAX, "colours read as integers map 1.0 to the largest integer");
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    }
+
+    #[test]
+    fn saved_current_values_come_back() {
+        let (mut ctx, _) = Context::with_recording();
+        let mut saved = Vec::new();
+        unsafe { dispatch::glColor4f(&mut ctx, 0.25, 0.5, 0.75, 1.0) };
+        ctx.save_current_attrib(&mut saved);
+        unsafe {
+            dispatch::glColor4f(&mut ctx, 0.0, 0.0, 0.0, 0.0);
+            dispatch::glEdgeFlag(&mut ctx, 0);
+        }
+        for restore in saved {
+            restore(&mut ctx);
+        }
+        assert_eq!(floats(&mut ctx, gl::GL_CURRENT_COLOR), vec![0.25, 0.5, 0.75, 1.0]);
+        assert_eq!(floats(&mut ctx, gl::GL_EDGE_FLAG)[0], 1.0);
     }
 
     #[test]
