@@ -11,8 +11,9 @@ use super::get::Value;
 use super::gl::{self, GLbitfield, GLenum};
 use super::limits::MAX_CLIENT_ATTRIB_STACK_DEPTH;
 
-/// Puts back one saved piece of client state.
-type Restore = Box<dyn FnOnce(&mut Context) + Send>;
+/// Puts back one saved piece of state (also the type of the server attribute stack's
+/// restores).
+pub type Restore = Box<dyn FnOnce(&mut Context) + Send>;
 
 /// One `glPushClientAttrib`: what to restore.
 #[derive(Default)]

@@ -302,7 +302,7 @@ impl Context {
     /// Saves the current values of `GL_CURRENT_BIT` this module owns (colours, normal, texture
     /// coordinates, fog coordinate, index, edge flag; not the raster position) for
     /// `glPopAttrib`: pushes one closure that puts them back.
-    pub fn save_current_attrib(&self, out: &mut Vec<Box<dyn FnOnce(&mut Context) + Send>>) {
+    pub fn save_current_attrib(&self, out: &mut Vec<super::client_attrib::Restore>) {
         let saved = self.immediate.current;
         out.push(Box::new(move |ctx| *ctx.immediate.current_mut() = saved));
     }
