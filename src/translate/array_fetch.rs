@@ -59,6 +59,17 @@ pub(crate) struct Source {
 }
 
 impl Source {
+    /// How many elements the array has: those that fit in a buffer store, unbounded for
+    /// client memory.
+    pub(crate) fn len(&self) -> usize {
+        let elem = self.size * type_size(self.type_);
+        match self.available {
+            usize::MAX => usize::MAX,
+            n if n < elem => 0,
+            n => (n - elem) / self.stride.max(1) + 1,
+        }
+    }
+
     /// Element `i`, missing components from `(0, 0, 0, 1)`; zero past the end of a buffer.
     #[inline]
     fn read(&self, i: usize) -> [f32; 4] {

@@ -104,7 +104,9 @@ impl Context {
     fn fetch(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str, mut batch: Batch) -> Option<Fetched> {
         let current = *self.immediate.current();
         let fetched = self.with_sources(command, |s, _| {
-            s.vertex?;
+            // Elements past the end of a vertex buffer would all be zero: not fetched, so a
+            // wrong count cannot allocate without bound.
+            let vertex_count = s.vertex?.len();
             let from_arrays = s.provided();
             batch.clear();
             let mut cur = current;
@@ -114,7 +116,7 @@ impl Context {
             };
             let order = match elements {
                 Elements::Range(first, count) => {
-                    (first..first.saturating_add(count)).for_each(&mut push);
+                    (first..first.saturating_add(count).min(vertex_count.max(first))).for_each(&mut push);
                     None
                 }
                 Elements::Indices(indices) => {
@@ -474,9 +476,19 @@ mod tests {
             [0.0, 1.0, 0.0, 1.0]
         ]);
         assert_eq!(d.indices, vec![0, 1, 3, 1, 2, 3]);
-        // Past the end of the store: elements read as zero, no crash.
-        ctx.glDrawArrays(gl::GL_POINTS, 3, 3);
-        assert_eq!(ctx.frame.draws.last().unwrap().vertices.position[2], [0.0; 4]);
+        // Past the end of the store: elements are not fetched, whatever the count.
+        ctx.glDrawArrays(gl::GL_POINTS, 3, i32::MAX);
+        assert_eq!(ctx.frame.draws.last().unwrap().vertex_count(), 1);
+        let count = ctx.frame.draws.len();
+        ctx.glDrawArrays(gl::GL_POINTS, 30, 3);
+        assert_eq!(ctx.frame.draws.len(), count, "nothing drawn from past the end");
+        // Indices past the end of the vertex buffer read as zero.
+        ctx.glBindBuffer(gl::GL_ELEMENT_ARRAY_BUFFER, 0);
+        let far: [u32; 2] = [1, 100];
+        unsafe { ctx.glDrawElements(gl::GL_LINES, 2, gl::GL_UNSIGNED_INT, far.as_ptr().cast()) };
+        let d = ctx.frame.draws.last().unwrap();
+        assert_eq!(d.vertices.position, vec![[1.0, 0.0, 0.0, 1.0], [0.0; 4]]);
+        ctx.glBindBuffer(gl::GL_ELEMENT_ARRAY_BUFFER, 2);
         // Indices past the end of the element buffer: nothing drawn.
         let before = ctx.frame.draws.len();
         unsafe { ctx.glDrawElements(gl::GL_POINTS, 8, gl::GL_UNSIGNED_SHORT, std::ptr::null()) };
