@@ -13,6 +13,7 @@
 
 pub mod array_fetch;
 pub mod arrays;
+pub mod arrays_ext;
 pub mod assemble;
 pub mod buffers;
 pub mod client_attrib;
