@@ -34,6 +34,8 @@ pub struct Frame {
 /// **last** index, as with `VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT`.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Draw {
+    /// Vertex count: `vertices.len()` (kept as a field for the consumers that only count).
+    pub vertex_count: usize,
     /// Triangles, lines or points.
     pub topology: Topology,
     /// Object-space vertices and their attributes.
@@ -58,13 +60,6 @@ pub struct Draw {
     pub state: Arc<RasterState>,
     /// Bound texture of each unit that texturing uses.
     pub textures: Vec<Option<TextureRef>>,
-}
-
-impl Draw {
-    /// Vertex count.
-    pub fn vertex_count(&self) -> usize {
-        self.vertices.len()
-    }
 }
 
 /// The primitives of a draw.

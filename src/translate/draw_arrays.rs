@@ -419,7 +419,7 @@ mod tests {
             ctx.glTranslatef(i as f32, 0.0, 0.0);
             unsafe { ctx.glDrawElements(gl::GL_TRIANGLES, 6, ty, ptr) };
             let d = ctx.frame.draws.last().unwrap();
-            assert_eq!(d.vertex_count(), 4, "shared vertices are fetched once");
+            assert_eq!(d.vertex_count, 4, "shared vertices are fetched once");
             assert_eq!(d.indices, vec![0, 1, 2, 2, 3, 0]);
             assert_eq!(d.vertices.position[3], [0.0, 1.0, 0.0, 1.0]);
         }
@@ -432,7 +432,7 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE, "end < start");
         unsafe { ctx.glDrawRangeElements(gl::GL_LINES, 0, 3, 2, gl::GL_UNSIGNED_INT, ui[1..].as_ptr().cast()) };
         let d = ctx.frame.draws.last().unwrap();
-        assert_eq!((d.topology, d.vertex_count(), d.indices.clone()), (Topology::Lines, 2, vec![0, 1]));
+        assert_eq!((d.topology, d.vertex_count, d.indices.clone()), (Topology::Lines, 2, vec![0, 1]));
         ctx.glDrawArrays(gl::GL_POLYGON + 1, 0, 3);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glDrawArrays(gl::GL_TRIANGLES, 0, -3);
@@ -448,7 +448,7 @@ mod tests {
         let idx: [u16; 2] = [0, 999];
         unsafe { ctx.glDrawElements(gl::GL_LINES, 2, gl::GL_UNSIGNED_SHORT, idx.as_ptr().cast()) };
         let d = &ctx.frame.draws[0];
-        assert_eq!(d.vertex_count(), 2);
+        assert_eq!(d.vertex_count, 2);
         assert_eq!(d.vertices.position[1], [1998.0, 1999.0, 0.0, 1.0]);
     }
 
@@ -478,7 +478,7 @@ mod tests {
         assert_eq!(d.indices, vec![0, 1, 3, 1, 2, 3]);
         // Past the end of the store: elements are not fetched, whatever the count.
         ctx.glDrawArrays(gl::GL_POINTS, 3, i32::MAX);
-        assert_eq!(ctx.frame.draws.last().unwrap().vertex_count(), 1);
+        assert_eq!(ctx.frame.draws.last().unwrap().vertex_count, 1);
         let count = ctx.frame.draws.len();
         ctx.glDrawArrays(gl::GL_POINTS, 30, 3);
         assert_eq!(ctx.frame.draws.len(), count, "nothing drawn from past the end");
@@ -542,14 +542,14 @@ mod tests {
         let (first, count) = ([0, 2], [2, 2]);
         unsafe { ctx.glMultiDrawArrays(gl::GL_LINES, first.as_ptr(), count.as_ptr(), 2) };
         let d = &ctx.frame.draws[0];
-        assert_eq!((d.vertex_count(), d.indices.len()), (4, 4), "the two draws merge");
+        assert_eq!((d.vertex_count, d.indices.len()), (4, 4), "the two draws merge");
         let a: [u32; 1] = [3];
         let b: [u32; 2] = [0, 1];
         let ptrs: [*const c_void; 2] = [a.as_ptr().cast(), b.as_ptr().cast()];
         unsafe { ctx.glMultiDrawElements(gl::GL_POINTS, [1, 2].as_ptr(), gl::GL_UNSIGNED_INT, ptrs.as_ptr(), 2) };
         let d = &ctx.frame.draws[1];
         assert_eq!(d.vertices.position[0], [0.0, 1.0, 0.0, 1.0]);
-        assert_eq!(d.vertex_count(), 3);
+        assert_eq!(d.vertex_count, 3);
         unsafe { ctx.glMultiDrawArrays(gl::GL_LINES, first.as_ptr(), count.as_ptr(), -1) };
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
     }

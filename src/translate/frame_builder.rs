@@ -138,6 +138,7 @@ pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembl
     let draw = frame.draws.last_mut().expect("a draw was just pushed or merged into");
     let base = draw.vertices.len() as u32;
     draw.vertices.append(vertices);
+    draw.vertex_count = draw.vertices.len();
     draw.indices.extend(assembled.indices.iter().map(|&i| i + base));
     draw.edge_masks.extend_from_slice(&assembled.edge_masks);
 }
@@ -174,7 +175,7 @@ mod tests {
         let frames = sink.frames.lock();
         let draw = &frames[0].draws;
         assert_eq!(draw.len(), 1);
-        assert_eq!(draw[0].vertex_count(), 4000);
+        assert_eq!(draw[0].vertex_count, 4000);
         assert_eq!(draw[0].indices.len(), 6000);
         assert_eq!(draw[0].edge_masks.len(), 2000);
         assert_eq!(draw[0].indices[6 * 999..6 * 999 + 3], [3996, 3997, 3999]);
@@ -205,7 +206,7 @@ mod tests {
         }
         let draws = &ctx.frame.draws;
         assert_eq!(draws.len(), 4);
-        assert_eq!(draws[0].vertex_count(), 8);
+        assert_eq!(draws[0].vertex_count, 8);
         assert_eq!(draws[1].modelview.w_axis.x, 1.0);
         assert_eq!(draws[2].topology, Topology::Lines);
         assert_eq!(draws[3].topology, Topology::Lines);
