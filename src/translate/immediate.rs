@@ -451,6 +451,26 @@ mod tests {
     }
 
     #[test]
+    fn incomplete_primitives_draw_nothing_and_lists_are_the_source() {
+        let (mut ctx, _) = Context::with_recording();
+        unsafe {
+            dispatch::glBegin(&mut ctx, gl::GL_TRIANGLES);
+            dispatch::glVertex2f(&mut ctx, 0.0, 0.0);
+            dispatch::glVertex2f(&mut ctx, 1.0, 0.0);
+            dispatch::glEnd(&mut ctx);
+        }
+        assert!(ctx.frame.draws.is_empty());
+        unsafe {
+            dispatch::glNewList(&mut ctx, 4, gl::GL_COMPILE_AND_EXECUTE);
+            dispatch::glRectf(&mut ctx, 0.0, 0.0, 1.0, 1.0);
+            dispatch::glEndList(&mut ctx);
+            dispatch::glCallList(&mut ctx, 4);
+        }
+        let sources: Vec<_> = ctx.frame.draws.iter().map(|d| d.source).collect();
+        assert_eq!(sources, vec![crate::frame::DrawSource::Immediate, crate::frame::DrawSource::List(4)]);
+    }
+
+    #[test]
     fn rect_is_a_polygon() {
         let (mut ctx, _) = Context::with_recording();
         unsafe { dispatch::glRecti(&mut ctx, 1, 2, 3, 4) };
