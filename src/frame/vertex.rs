@@ -147,7 +147,9 @@ impl Vertices {
         self.color.append(n, &other.color, m);
         self.secondary_color.append(n, &other.secondary_color, m);
         if self.texcoords.len() < other.texcoords.len() {
-            self.texcoords.resize(other.texcoords.len(), Attrib::default());
+            // Units these vertices lacked had the initial coordinates (0, 0, 0, 1).
+            let initial = Attrib { values: if n == 0 { Vec::new() } else { vec![[0.0, 0.0, 0.0, 1.0]] } };
+            self.texcoords.resize(other.texcoords.len(), initial);
         }
         for (t, o) in self.texcoords.iter_mut().zip(&other.texcoords) {
             t.append(n, o, m);
@@ -159,7 +161,7 @@ impl Vertices {
 
 #[cfg(test)]
 mod tests {
-    use super::Attrib;
+    use super::{Attrib, Vertices};
 
     #[test]
     fn attrib_stays_shared_until_it_changes() {
@@ -179,5 +181,16 @@ mod tests {
         c.push(5.0f32, 0);
         c.append(3, &b, 2);
         assert_eq!(c.values, vec![5.0], "equal shared values stay shared");
+    }
+
+    #[test]
+    fn vertices_append_fills_missing_units() {
+        let mut a = Vertices::with_units(0);
+        a.position.push([0.0; 4]);
+        let mut b = Vertices::with_units(1);
+        b.position.push([1.0; 4]);
+        b.texcoords[0].push([5.0, 0.0, 0.0, 1.0], 0);
+        a.append(&b);
+        assert_eq!(a.texcoords[0].values, vec![[0.0, 0.0, 0.0, 1.0], [5.0, 0.0, 0.0, 1.0]]);
     }
 }
