@@ -3,7 +3,7 @@
 //! their display-list forms, which read the arrays when compiled (section 5.4).
 //!
 //! A draw fetches the array elements it uses into a batch, decomposes it with
-//! [`super::assemble`] and hands it to [`Context::emit_batch`]. `glDrawElements` fetches the
+//! [`super::assemble`] and hands it to `Context::emit_batch`. `glDrawElements` fetches the
 //! index range `min..=max` once and keeps the program's indices (shared vertices stay shared),
 //! unless that range is much wider than the index count; then it fetches one vertex per index.
 

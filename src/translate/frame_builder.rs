@@ -1,4 +1,4 @@
-//! Where assembled primitives enter the frame: [`Context::emit_batch`] takes the state
+//! Where assembled primitives enter the frame: `Context::emit_batch` takes the state
 //! snapshots of a batch and appends it to the frame, merging it into the previous draw when
 //! nothing but the vertices differs. Programs that issue one `glBegin`/`glEnd` per quad thus
 //! produce one draw per state change, not one per quad.
@@ -118,7 +118,7 @@ fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
         && last.vertices.len() + extra <= MAX_MERGED_VERTICES
 }
 
-/// Appends a batch to `frame`: into its last draw when [`mergeable`] and no clear came after
+/// Appends a batch to `frame`: into its last draw when `mergeable` and no clear came after
 /// that draw, else as a new draw.
 pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembled: &Assembled) {
     let cleared_since = frame.clears.last().is_some_and(|c| c.before_draw >= frame.draws.len());

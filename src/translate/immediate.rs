@@ -3,9 +3,13 @@
 //!
 //! Vertices between `glBegin` and `glEnd` are appended to a batch whose storage is reused from
 //! one `glBegin` to the next; an attribute that does not change inside the batch is stored
-//! once (see [`crate::frame::Attrib`]), so the per-vertex cost is a few comparisons and pushes,
-//! without allocation once the storage has grown. `glEnd` decomposes the batch
-//! ([`super::assemble`]) and hands it to [`Context::emit_batch`].
+//! once (see [`crate::frame::Attrib`]). The attribute commands set a bit in a changed-mask, so
+//! `glVertex` tests one bit for each attribute that is still shared and pushes the ones already
+//! stored per vertex: no allocation once the storage has grown, no lookup per vertex. `glEnd`
+//! decomposes the batch ([`super::assemble`]) and hands it to `Context::emit_batch`.
+//!
+//! Other modules read the current values with [`ImmediateState::current`] and change them
+//! with [`ImmediateState::current_mut`] (which marks them all changed), never directly.
 
 use super::Context;
 use super::assemble::{Assembled, Primitive, assemble};
@@ -48,8 +52,8 @@ impl Default for CurrentAttribs {
     }
 }
 
-/// Bits naming the attributes of a vertex, for [`ImmediateState::dirty`] and
-/// [`Batch::per_vertex`].
+/// Bits naming the attributes of a vertex, for `ImmediateState::dirty` and
+/// `Batch::per_vertex`.
 pub mod bits {
     /// Normal.
     pub const NORMAL: u16 = 1;
