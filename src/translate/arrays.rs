@@ -134,18 +134,15 @@ impl ArrayState {
     }
 
     /// Every array.
-    fn all_mut(&mut self) -> impl Iterator<Item = &mut ArrayPointer> {
-        [
-            &mut self.vertex,
-            &mut self.normal,
-            &mut self.color,
-            &mut self.secondary_color,
-            &mut self.index,
-            &mut self.edge_flag,
-            &mut self.fog_coord,
-        ]
-        .into_iter()
-        .chain(self.texcoord.iter_mut())
+    fn all(&self) -> impl Iterator<Item = &ArrayPointer> {
+        [&self.vertex, &self.normal, &self.color, &self.secondary_color, &self.index, &self.edge_flag, &self.fog_coord]
+            .into_iter()
+            .chain(&self.texcoord)
+    }
+
+    /// Whether an enabled array reads a buffer object.
+    pub fn reads_buffers(&self) -> bool {
+        self.all().any(|a| a.enabled && a.buffer != 0)
     }
 
     /// Forgets a deleted buffer: bindings and array buffer bindings naming it become 0.
@@ -155,7 +152,18 @@ impl ArrayState {
                 *binding = 0;
             }
         }
-        for array in self.all_mut() {
+        for array in [
+            &mut self.vertex,
+            &mut self.normal,
+            &mut self.color,
+            &mut self.secondary_color,
+            &mut self.index,
+            &mut self.edge_flag,
+            &mut self.fog_coord,
+        ]
+        .into_iter()
+        .chain(&mut self.texcoord)
+        {
             if array.buffer == name {
                 array.buffer = 0;
             }
