@@ -26,11 +26,10 @@ enum Elements<'a> {
     Indices(&'a [u32]),
 }
 
-/// A draw's vertices fetched from the arrays: the batch, the batch vertex of each element in
-/// primitive order (`None`: in order), and which attributes came from arrays.
+/// A compiled draw's vertices, fetched from the arrays: the batch, the batch vertex of each
+/// element in primitive order (`None`: in order), and which attributes came from arrays.
 #[derive(Clone)]
 struct Fetched {
-    primitive: Primitive,
     batch: Batch,
     order: Option<Vec<u32>>,
     from_arrays: FromArrays,
@@ -100,14 +99,15 @@ impl Context {
         }
     }
 
-    /// Fetches the vertices of a draw; `None` (after raising any error) when nothing is drawn.
-    fn fetch(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str, mut batch: Batch) -> Option<Fetched> {
+    /// Fetches the vertices of a draw into `batch`; returns the batch vertex of each element
+    /// (`None`: in order) and which attributes came from arrays, or `None` (after raising any
+    /// error) when nothing is drawn.
+    fn fetch(&mut self, elements: Elements<'_>, command: &'static str, batch: &mut Batch) -> Option<(Option<Vec<u32>>, FromArrays)> {
         let current = *self.immediate.current();
         let fetched = self.with_sources(command, |s, _| {
             // Elements past the end of a vertex buffer would all be zero: not fetched, so a
             // wrong count cannot allocate without bound.
             let vertex_count = s.vertex?.len();
-            let from_arrays = s.provided();
             batch.clear();
             let mut cur = current;
             let mut push = |i: usize| {
@@ -132,48 +132,47 @@ impl Context {
                     }
                 }
             };
-            Some(Fetched { primitive, batch, order, from_arrays })
+            Some((order, s.provided()))
         });
         fetched.flatten()
     }
 
-    /// Decomposes fetched vertices and emits them.
-    fn submit(&mut self, fetched: &Fetched) {
+    /// Decomposes fetched vertices (element `k` is batch vertex `order[k]`, or `k`) and emits
+    /// them.
+    fn submit(&mut self, primitive: Primitive, batch: &Batch, order: Option<&[u32]>) {
         let mut assembled = std::mem::take(&mut self.immediate.assembled);
         assembled.clear();
-        let batch = &fetched.batch;
-        match &fetched.order {
-            None => assemble(fetched.primitive, batch.vertices.len(), |k| k as u32, |k| batch.edge_flag(k as u32), &mut assembled),
-            Some(order) => assemble(fetched.primitive, order.len(), |k| order[k], |k| batch.edge_flag(order[k]), &mut assembled),
+        match order {
+            None => assemble(primitive, batch.vertices.len(), |k| k as u32, |k| batch.edge_flag(k as u32), &mut assembled),
+            Some(order) => assemble(primitive, order.len(), |k| order[k], |k| batch.edge_flag(order[k]), &mut assembled),
         }
         let source = self.arrays_source();
-        self.emit_batch(fetched.primitive.topology(), &batch.vertices, &assembled, source);
+        self.emit_batch(primitive.topology(), &batch.vertices, &assembled, source);
         self.immediate.assembled = assembled;
     }
 
     /// Draws `elements` now, reusing the immediate-mode batch storage.
     fn draw_now(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str) {
-        let storage = std::mem::take(&mut self.immediate.batch);
-        match self.fetch(primitive, elements, command, storage) {
-            Some(fetched) => {
-                self.submit(&fetched);
-                self.immediate.batch = fetched.batch;
-            }
-            None => self.immediate.batch = Batch::default(),
+        let mut batch = std::mem::take(&mut self.immediate.batch);
+        if let Some((order, _)) = self.fetch(elements, command, &mut batch) {
+            self.submit(primitive, &batch, order.as_deref());
         }
+        self.immediate.batch = batch;
     }
 
     /// Records a draw whose arrays were read now (section 5.4): at execution, attributes not
     /// taken from arrays use the then-current values.
     fn draw_compiled(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str) {
-        let Some(fetched) = self.fetch(primitive, elements, command, Batch::default()) else { return };
+        let mut batch = Batch::default();
+        let Some((order, from_arrays)) = self.fetch(elements, command, &mut batch) else { return };
+        let fetched = Fetched { batch, order, from_arrays };
         self.lists.record(ListOp::Deferred(Box::new(move |ctx| {
             if ctx.inside_begin_end() {
                 return ctx.set_error_in(gl::GL_INVALID_OPERATION, command);
             }
             let mut f = fetched.clone();
             f.take_current(ctx.immediate.current());
-            ctx.submit(&f);
+            ctx.submit(primitive, &f.batch, f.order.as_deref());
         })));
     }
 
