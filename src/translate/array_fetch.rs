@@ -266,7 +266,11 @@ impl Context {
     /// Resolves the enabled arrays and runs `f` on them under the share-group lock;
     /// `GL_INVALID_OPERATION` when one reads a mapped buffer. Client arrays alone are resolved
     /// without taking the lock (`glArrayElement` runs once per vertex).
-    pub(crate) fn with_sources<R>(&mut self, command: &'static str, f: impl FnOnce(&Sources, &mut Self) -> R) -> Option<R> {
+    pub(crate) fn with_sources<R>(
+        &mut self,
+        command: &'static str,
+        f: impl FnOnce(&Sources, &mut Self) -> R,
+    ) -> Option<R> {
         if !self.arrays.reads_buffers() {
             let sources = Sources::new(&self.arrays, &BufferTable::default()).ok()?;
             return Some(f(&sources, self));

@@ -218,70 +218,94 @@ const FOG_COORD_RULES: PointerRules =
 
 /// `glGet` names of an array: enable, size, type, stride, buffer binding, pointer (0: none).
 const ARRAY_PNAMES: [(ArrayKind, [GLenum; 6]); 8] = [
-    (ArrayKind::Vertex, [
-        gl::GL_VERTEX_ARRAY,
-        gl::GL_VERTEX_ARRAY_SIZE,
-        gl::GL_VERTEX_ARRAY_TYPE,
-        gl::GL_VERTEX_ARRAY_STRIDE,
-        gl::GL_VERTEX_ARRAY_BUFFER_BINDING,
-        gl::GL_VERTEX_ARRAY_POINTER,
-    ]),
-    (ArrayKind::Normal, [
-        gl::GL_NORMAL_ARRAY,
-        0,
-        gl::GL_NORMAL_ARRAY_TYPE,
-        gl::GL_NORMAL_ARRAY_STRIDE,
-        gl::GL_NORMAL_ARRAY_BUFFER_BINDING,
-        gl::GL_NORMAL_ARRAY_POINTER,
-    ]),
-    (ArrayKind::Color, [
-        gl::GL_COLOR_ARRAY,
-        gl::GL_COLOR_ARRAY_SIZE,
-        gl::GL_COLOR_ARRAY_TYPE,
-        gl::GL_COLOR_ARRAY_STRIDE,
-        gl::GL_COLOR_ARRAY_BUFFER_BINDING,
-        gl::GL_COLOR_ARRAY_POINTER,
-    ]),
-    (ArrayKind::SecondaryColor, [
-        gl::GL_SECONDARY_COLOR_ARRAY,
-        gl::GL_SECONDARY_COLOR_ARRAY_SIZE,
-        gl::GL_SECONDARY_COLOR_ARRAY_TYPE,
-        gl::GL_SECONDARY_COLOR_ARRAY_STRIDE,
-        gl::GL_SECONDARY_COLOR_ARRAY_BUFFER_BINDING,
-        gl::GL_SECONDARY_COLOR_ARRAY_POINTER,
-    ]),
-    (ArrayKind::Index, [
-        gl::GL_INDEX_ARRAY,
-        0,
-        gl::GL_INDEX_ARRAY_TYPE,
-        gl::GL_INDEX_ARRAY_STRIDE,
-        gl::GL_INDEX_ARRAY_BUFFER_BINDING,
-        gl::GL_INDEX_ARRAY_POINTER,
-    ]),
-    (ArrayKind::EdgeFlag, [
-        gl::GL_EDGE_FLAG_ARRAY,
-        0,
-        0,
-        gl::GL_EDGE_FLAG_ARRAY_STRIDE,
-        gl::GL_EDGE_FLAG_ARRAY_BUFFER_BINDING,
-        gl::GL_EDGE_FLAG_ARRAY_POINTER,
-    ]),
-    (ArrayKind::FogCoord, [
-        gl::GL_FOG_COORD_ARRAY,
-        0,
-        gl::GL_FOG_COORD_ARRAY_TYPE,
-        gl::GL_FOG_COORD_ARRAY_STRIDE,
-        gl::GL_FOG_COORD_ARRAY_BUFFER_BINDING,
-        gl::GL_FOG_COORD_ARRAY_POINTER,
-    ]),
-    (ArrayKind::TexCoord(0), [
-        gl::GL_TEXTURE_COORD_ARRAY,
-        gl::GL_TEXTURE_COORD_ARRAY_SIZE,
-        gl::GL_TEXTURE_COORD_ARRAY_TYPE,
-        gl::GL_TEXTURE_COORD_ARRAY_STRIDE,
-        gl::GL_TEXTURE_COORD_ARRAY_BUFFER_BINDING,
-        gl::GL_TEXTURE_COORD_ARRAY_POINTER,
-    ]),
+    (
+        ArrayKind::Vertex,
+        [
+            gl::GL_VERTEX_ARRAY,
+            gl::GL_VERTEX_ARRAY_SIZE,
+            gl::GL_VERTEX_ARRAY_TYPE,
+            gl::GL_VERTEX_ARRAY_STRIDE,
+            gl::GL_VERTEX_ARRAY_BUFFER_BINDING,
+            gl::GL_VERTEX_ARRAY_POINTER,
+        ],
+    ),
+    (
+        ArrayKind::Normal,
+        [
+            gl::GL_NORMAL_ARRAY,
+            0,
+            gl::GL_NORMAL_ARRAY_TYPE,
+            gl::GL_NORMAL_ARRAY_STRIDE,
+            gl::GL_NORMAL_ARRAY_BUFFER_BINDING,
+            gl::GL_NORMAL_ARRAY_POINTER,
+        ],
+    ),
+    (
+        ArrayKind::Color,
+        [
+            gl::GL_COLOR_ARRAY,
+            gl::GL_COLOR_ARRAY_SIZE,
+            gl::GL_COLOR_ARRAY_TYPE,
+            gl::GL_COLOR_ARRAY_STRIDE,
+            gl::GL_COLOR_ARRAY_BUFFER_BINDING,
+            gl::GL_COLOR_ARRAY_POINTER,
+        ],
+    ),
+    (
+        ArrayKind::SecondaryColor,
+        [
+            gl::GL_SECONDARY_COLOR_ARRAY,
+            gl::GL_SECONDARY_COLOR_ARRAY_SIZE,
+            gl::GL_SECONDARY_COLOR_ARRAY_TYPE,
+            gl::GL_SECONDARY_COLOR_ARRAY_STRIDE,
+            gl::GL_SECONDARY_COLOR_ARRAY_BUFFER_BINDING,
+            gl::GL_SECONDARY_COLOR_ARRAY_POINTER,
+        ],
+    ),
+    (
+        ArrayKind::Index,
+        [
+            gl::GL_INDEX_ARRAY,
+            0,
+            gl::GL_INDEX_ARRAY_TYPE,
+            gl::GL_INDEX_ARRAY_STRIDE,
+            gl::GL_INDEX_ARRAY_BUFFER_BINDING,
+            gl::GL_INDEX_ARRAY_POINTER,
+        ],
+    ),
+    (
+        ArrayKind::EdgeFlag,
+        [
+            gl::GL_EDGE_FLAG_ARRAY,
+            0,
+            0,
+            gl::GL_EDGE_FLAG_ARRAY_STRIDE,
+            gl::GL_EDGE_FLAG_ARRAY_BUFFER_BINDING,
+            gl::GL_EDGE_FLAG_ARRAY_POINTER,
+        ],
+    ),
+    (
+        ArrayKind::FogCoord,
+        [
+            gl::GL_FOG_COORD_ARRAY,
+            0,
+            gl::GL_FOG_COORD_ARRAY_TYPE,
+            gl::GL_FOG_COORD_ARRAY_STRIDE,
+            gl::GL_FOG_COORD_ARRAY_BUFFER_BINDING,
+            gl::GL_FOG_COORD_ARRAY_POINTER,
+        ],
+    ),
+    (
+        ArrayKind::TexCoord(0),
+        [
+            gl::GL_TEXTURE_COORD_ARRAY,
+            gl::GL_TEXTURE_COORD_ARRAY_SIZE,
+            gl::GL_TEXTURE_COORD_ARRAY_TYPE,
+            gl::GL_TEXTURE_COORD_ARRAY_STRIDE,
+            gl::GL_TEXTURE_COORD_ARRAY_BUFFER_BINDING,
+            gl::GL_TEXTURE_COORD_ARRAY_POINTER,
+        ],
+    ),
 ];
 
 /// One row of table 2.5 (`glInterleavedArrays`): texture coordinate, colour, normal and
@@ -334,7 +358,15 @@ const INTERLEAVED: [Interleaved; 14] = [
 
 impl Context {
     /// Sets an array pointer after checking `rules` (section 2.8 errors).
-    fn set_pointer(&mut self, kind: ArrayKind, rules: &PointerRules, size: GLint, type_: GLenum, stride: GLsizei, pointer: *const c_void) {
+    fn set_pointer(
+        &mut self,
+        kind: ArrayKind,
+        rules: &PointerRules,
+        size: GLint,
+        type_: GLenum,
+        stride: GLsizei,
+        pointer: *const c_void,
+    ) {
         if !rules.sizes.contains(&size) || stride < 0 {
             return self.set_error_in(gl::GL_INVALID_VALUE, rules.command);
         }
@@ -585,11 +617,10 @@ mod tests {
             c: [u8; 4],
             v: [f32; 3],
         }
-        let data = [V { t: [0.5, 0.25], c: [255, 0, 0, 255], v: [1.0, 2.0, 3.0] }, V {
-            t: [1.0, 1.0],
-            c: [0, 255, 0, 255],
-            v: [4.0, 5.0, 6.0],
-        }];
+        let data = [
+            V { t: [0.5, 0.25], c: [255, 0, 0, 255], v: [1.0, 2.0, 3.0] },
+            V { t: [1.0, 1.0], c: [0, 255, 0, 255], v: [4.0, 5.0, 6.0] },
+        ];
         ctx.glInterleavedArrays(gl::GL_T2F_C4UB_V3F, 0, data.as_ptr().cast());
         ctx.glDrawArrays(gl::GL_LINES, 0, 2);
         let d = &ctx.frame.draws[0];

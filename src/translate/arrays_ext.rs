@@ -19,7 +19,14 @@ impl Context {
     }
 
     /// `glVertexPointerEXT`.
-    pub fn glVertexPointerEXT(&mut self, size: GLint, type_: GLenum, stride: GLsizei, count: GLsizei, pointer: *const c_void) {
+    pub fn glVertexPointerEXT(
+        &mut self,
+        size: GLint,
+        type_: GLenum,
+        stride: GLsizei,
+        count: GLsizei,
+        pointer: *const c_void,
+    ) {
         if self.ext_count_ok(count, "glVertexPointerEXT") {
             self.glVertexPointer(size, type_, stride, pointer);
         }
@@ -33,7 +40,14 @@ impl Context {
     }
 
     /// `glColorPointerEXT`.
-    pub fn glColorPointerEXT(&mut self, size: GLint, type_: GLenum, stride: GLsizei, count: GLsizei, pointer: *const c_void) {
+    pub fn glColorPointerEXT(
+        &mut self,
+        size: GLint,
+        type_: GLenum,
+        stride: GLsizei,
+        count: GLsizei,
+        pointer: *const c_void,
+    ) {
         if self.ext_count_ok(count, "glColorPointerEXT") {
             self.glColorPointer(size, type_, stride, pointer);
         }
@@ -47,7 +61,14 @@ impl Context {
     }
 
     /// `glTexCoordPointerEXT`.
-    pub fn glTexCoordPointerEXT(&mut self, size: GLint, type_: GLenum, stride: GLsizei, count: GLsizei, pointer: *const c_void) {
+    pub fn glTexCoordPointerEXT(
+        &mut self,
+        size: GLint,
+        type_: GLenum,
+        stride: GLsizei,
+        count: GLsizei,
+        pointer: *const c_void,
+    ) {
         if self.ext_count_ok(count, "glTexCoordPointerEXT") {
             self.glTexCoordPointer(size, type_, stride, pointer);
         }
@@ -64,7 +85,14 @@ impl Context {
     ///
     /// # Safety
     /// None beyond the command's (the pointer is only stored).
-    pub unsafe fn compile_glVertexPointerEXT(&mut self, size: GLint, type_: GLenum, stride: GLsizei, count: GLsizei, pointer: *const c_void) {
+    pub unsafe fn compile_glVertexPointerEXT(
+        &mut self,
+        size: GLint,
+        type_: GLenum,
+        stride: GLsizei,
+        count: GLsizei,
+        pointer: *const c_void,
+    ) {
         self.glVertexPointerEXT(size, type_, stride, count, pointer);
     }
 
@@ -72,7 +100,13 @@ impl Context {
     ///
     /// # Safety
     /// None beyond the command's (the pointer is only stored).
-    pub unsafe fn compile_glNormalPointerEXT(&mut self, type_: GLenum, stride: GLsizei, count: GLsizei, pointer: *const c_void) {
+    pub unsafe fn compile_glNormalPointerEXT(
+        &mut self,
+        type_: GLenum,
+        stride: GLsizei,
+        count: GLsizei,
+        pointer: *const c_void,
+    ) {
         self.glNormalPointerEXT(type_, stride, count, pointer);
     }
 
@@ -80,7 +114,14 @@ impl Context {
     ///
     /// # Safety
     /// None beyond the command's (the pointer is only stored).
-    pub unsafe fn compile_glColorPointerEXT(&mut self, size: GLint, type_: GLenum, stride: GLsizei, count: GLsizei, pointer: *const c_void) {
+    pub unsafe fn compile_glColorPointerEXT(
+        &mut self,
+        size: GLint,
+        type_: GLenum,
+        stride: GLsizei,
+        count: GLsizei,
+        pointer: *const c_void,
+    ) {
         self.glColorPointerEXT(size, type_, stride, count, pointer);
     }
 
@@ -88,7 +129,13 @@ impl Context {
     ///
     /// # Safety
     /// None beyond the command's (the pointer is only stored).
-    pub unsafe fn compile_glIndexPointerEXT(&mut self, type_: GLenum, stride: GLsizei, count: GLsizei, pointer: *const c_void) {
+    pub unsafe fn compile_glIndexPointerEXT(
+        &mut self,
+        type_: GLenum,
+        stride: GLsizei,
+        count: GLsizei,
+        pointer: *const c_void,
+    ) {
         self.glIndexPointerEXT(type_, stride, count, pointer);
     }
 
@@ -96,7 +143,14 @@ impl Context {
     ///
     /// # Safety
     /// None beyond the command's (the pointer is only stored).
-    pub unsafe fn compile_glTexCoordPointerEXT(&mut self, size: GLint, type_: GLenum, stride: GLsizei, count: GLsizei, pointer: *const c_void) {
+    pub unsafe fn compile_glTexCoordPointerEXT(
+        &mut self,
+        size: GLint,
+        type_: GLenum,
+        stride: GLsizei,
+        count: GLsizei,
+        pointer: *const c_void,
+    ) {
         self.glTexCoordPointerEXT(size, type_, stride, count, pointer);
     }
 

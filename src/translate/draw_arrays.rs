@@ -102,7 +102,12 @@ impl Context {
     /// Fetches the vertices of a draw into `batch`; returns the batch vertex of each element
     /// (`None`: in order) and which attributes came from arrays, or `None` (after raising any
     /// error) when nothing is drawn.
-    fn fetch(&mut self, elements: Elements<'_>, command: &'static str, batch: &mut Batch) -> Option<(Option<Vec<u32>>, FromArrays)> {
+    fn fetch(
+        &mut self,
+        elements: Elements<'_>,
+        command: &'static str,
+        batch: &mut Batch,
+    ) -> Option<(Option<Vec<u32>>, FromArrays)> {
         let current = *self.immediate.current();
         let fetched = self.with_sources(command, |s, _| {
             // Elements past the end of a vertex buffer would all be zero: not fetched, so a
@@ -143,8 +148,12 @@ impl Context {
         let mut assembled = std::mem::take(&mut self.immediate.assembled);
         assembled.clear();
         match order {
-            None => assemble(primitive, batch.vertices.len(), |k| k as u32, |k| batch.edge_flag(k as u32), &mut assembled),
-            Some(order) => assemble(primitive, order.len(), |k| order[k], |k| batch.edge_flag(order[k]), &mut assembled),
+            None => {
+                assemble(primitive, batch.vertices.len(), |k| k as u32, |k| batch.edge_flag(k as u32), &mut assembled)
+            }
+            Some(order) => {
+                assemble(primitive, order.len(), |k| order[k], |k| batch.edge_flag(order[k]), &mut assembled)
+            }
         }
         let source = self.arrays_source();
         self.emit_batch(primitive.topology(), &batch.vertices, &assembled, source);
@@ -177,7 +186,12 @@ impl Context {
     }
 
     /// Checks `glDrawArrays` arguments: the mode and the element range.
-    fn draw_arrays_args(&mut self, mode: GLenum, first: GLint, count: GLsizei) -> Option<(Primitive, Elements<'static>)> {
+    fn draw_arrays_args(
+        &mut self,
+        mode: GLenum,
+        first: GLint,
+        count: GLsizei,
+    ) -> Option<(Primitive, Elements<'static>)> {
         let Some(primitive) = Primitive::from_gl(mode) else {
             self.set_error_in(gl::GL_INVALID_ENUM, "glDrawArrays");
             return None;
@@ -208,7 +222,14 @@ impl Context {
 
     /// Checks `glDrawElements` arguments and reads the indices (from the client or the
     /// element array buffer).
-    unsafe fn read_elements(&mut self, mode: GLenum, count: GLsizei, type_: GLenum, indices: *const c_void, command: &'static str) -> Option<(Primitive, Vec<u32>)> {
+    unsafe fn read_elements(
+        &mut self,
+        mode: GLenum,
+        count: GLsizei,
+        type_: GLenum,
+        indices: *const c_void,
+        command: &'static str,
+    ) -> Option<(Primitive, Vec<u32>)> {
         let Some(primitive) = Primitive::from_gl(mode) else {
             self.set_error_in(gl::GL_INVALID_ENUM, command);
             return None;
@@ -257,7 +278,13 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glDrawElements`].
-    pub unsafe fn compile_glDrawElements(&mut self, mode: GLenum, count: GLsizei, type_: GLenum, indices: *const c_void) {
+    pub unsafe fn compile_glDrawElements(
+        &mut self,
+        mode: GLenum,
+        count: GLsizei,
+        type_: GLenum,
+        indices: *const c_void,
+    ) {
         if let Some((p, idx)) = unsafe { self.read_elements(mode, count, type_, indices, "glDrawElements") } {
             self.draw_compiled(p, Elements::Indices(&idx), "glDrawElements");
         }
@@ -267,7 +294,15 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glDrawElements`].
-    pub unsafe fn glDrawRangeElements(&mut self, mode: GLenum, start: GLuint, end: GLuint, count: GLsizei, type_: GLenum, indices: *const c_void) {
+    pub unsafe fn glDrawRangeElements(
+        &mut self,
+        mode: GLenum,
+        start: GLuint,
+        end: GLuint,
+        count: GLsizei,
+        type_: GLenum,
+        indices: *const c_void,
+    ) {
         if end < start {
             return self.set_error_in(gl::GL_INVALID_VALUE, "glDrawRangeElements");
         }
@@ -280,7 +315,15 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glDrawElements`].
-    pub unsafe fn compile_glDrawRangeElements(&mut self, mode: GLenum, start: GLuint, end: GLuint, count: GLsizei, type_: GLenum, indices: *const c_void) {
+    pub unsafe fn compile_glDrawRangeElements(
+        &mut self,
+        mode: GLenum,
+        start: GLuint,
+        end: GLuint,
+        count: GLsizei,
+        type_: GLenum,
+        indices: *const c_void,
+    ) {
         if end < start {
             return self.set_error_in(gl::GL_INVALID_VALUE, "glDrawRangeElements");
         }
@@ -291,7 +334,12 @@ impl Context {
 
     /// The `(first, count)` pairs of `glMultiDrawArrays`; `GL_INVALID_VALUE` for a negative
     /// `drawcount`.
-    unsafe fn multi_ranges(&mut self, first: *const GLint, count: *const GLsizei, drawcount: GLsizei) -> Option<Vec<(GLint, GLsizei)>> {
+    unsafe fn multi_ranges(
+        &mut self,
+        first: *const GLint,
+        count: *const GLsizei,
+        drawcount: GLsizei,
+    ) -> Option<Vec<(GLint, GLsizei)>> {
         let Ok(n) = usize::try_from(drawcount) else {
             self.set_error_in(gl::GL_INVALID_VALUE, "glMultiDrawArrays");
             return None;
@@ -307,7 +355,13 @@ impl Context {
     ///
     /// # Safety
     /// `first` and `count` must point to `drawcount` values; the arrays must hold the elements.
-    pub unsafe fn glMultiDrawArrays(&mut self, mode: GLenum, first: *const GLint, count: *const GLsizei, drawcount: GLsizei) {
+    pub unsafe fn glMultiDrawArrays(
+        &mut self,
+        mode: GLenum,
+        first: *const GLint,
+        count: *const GLsizei,
+        drawcount: GLsizei,
+    ) {
         for (f, c) in unsafe { self.multi_ranges(first, count, drawcount) }.unwrap_or_default() {
             self.glDrawArrays(mode, f, c);
         }
@@ -317,19 +371,31 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glMultiDrawArrays`].
-    pub unsafe fn compile_glMultiDrawArrays(&mut self, mode: GLenum, first: *const GLint, count: *const GLsizei, drawcount: GLsizei) {
+    pub unsafe fn compile_glMultiDrawArrays(
+        &mut self,
+        mode: GLenum,
+        first: *const GLint,
+        count: *const GLsizei,
+        drawcount: GLsizei,
+    ) {
         for (f, c) in unsafe { self.multi_ranges(first, count, drawcount) }.unwrap_or_default() {
             unsafe { self.compile_glDrawArrays(mode, f, c) };
         }
     }
 
     /// The `(count, indices)` pairs of `glMultiDrawElements`.
-    unsafe fn multi_elements(&mut self, count: *const GLsizei, indices: *const *const c_void, drawcount: GLsizei) -> Option<Vec<(GLsizei, *const c_void)>> {
+    unsafe fn multi_elements(
+        &mut self,
+        count: *const GLsizei,
+        indices: *const *const c_void,
+        drawcount: GLsizei,
+    ) -> Option<Vec<(GLsizei, *const c_void)>> {
         let Ok(n) = usize::try_from(drawcount) else {
             self.set_error_in(gl::GL_INVALID_VALUE, "glMultiDrawElements");
             return None;
         };
-        let (Some(counts), Some(pointers)) = (unsafe { read_slice(count, n) }, unsafe { read_slice(indices, n) }) else {
+        let (Some(counts), Some(pointers)) = (unsafe { read_slice(count, n) }, unsafe { read_slice(indices, n) })
+        else {
             self.null_pointer("glMultiDrawElements");
             return None;
         };
@@ -341,7 +407,14 @@ impl Context {
     /// # Safety
     /// `count` and `indices` must point to `drawcount` values, each index list as
     /// [`Context::glDrawElements`] requires.
-    pub unsafe fn glMultiDrawElements(&mut self, mode: GLenum, count: *const GLsizei, type_: GLenum, indices: *const *const c_void, drawcount: GLsizei) {
+    pub unsafe fn glMultiDrawElements(
+        &mut self,
+        mode: GLenum,
+        count: *const GLsizei,
+        type_: GLenum,
+        indices: *const *const c_void,
+        drawcount: GLsizei,
+    ) {
         for (c, p) in unsafe { self.multi_elements(count, indices, drawcount) }.unwrap_or_default() {
             unsafe { self.glDrawElements(mode, c, type_, p) };
         }
@@ -351,7 +424,14 @@ impl Context {
     ///
     /// # Safety
     /// As [`Context::glMultiDrawElements`].
-    pub unsafe fn compile_glMultiDrawElements(&mut self, mode: GLenum, count: *const GLsizei, type_: GLenum, indices: *const *const c_void, drawcount: GLsizei) {
+    pub unsafe fn compile_glMultiDrawElements(
+        &mut self,
+        mode: GLenum,
+        count: *const GLsizei,
+        type_: GLenum,
+        indices: *const *const c_void,
+        drawcount: GLsizei,
+    ) {
         for (c, p) in unsafe { self.multi_elements(count, indices, drawcount) }.unwrap_or_default() {
             unsafe { self.compile_glDrawElements(mode, c, type_, p) };
         }
@@ -468,12 +548,10 @@ mod tests {
         unsafe { ctx.glBufferData(gl::GL_ELEMENT_ARRAY_BUFFER, 8, idx.as_ptr().cast(), gl::GL_STATIC_DRAW) };
         unsafe { ctx.glDrawElements(gl::GL_QUADS, 4, gl::GL_UNSIGNED_SHORT, std::ptr::null()) };
         let d = &ctx.frame.draws[0];
-        assert_eq!(d.vertices.position, vec![
-            [0.0, 0.0, 0.0, 1.0],
-            [1.0, 0.0, 0.0, 1.0],
-            [1.0, 1.0, 0.0, 1.0],
-            [0.0, 1.0, 0.0, 1.0]
-        ]);
+        assert_eq!(
+            d.vertices.position,
+            vec![[0.0, 0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0], [1.0, 1.0, 0.0, 1.0], [0.0, 1.0, 0.0, 1.0]]
+        );
         assert_eq!(d.indices, vec![0, 1, 3, 1, 2, 3]);
         // Past the end of the store: elements are not fetched, whatever the count.
         ctx.glDrawArrays(gl::GL_POINTS, 3, i32::MAX);
@@ -578,5 +656,4 @@ mod tests {
         ctx.glDrawArrays(gl::GL_QUADS, 0, 4);
         assert_eq!(ctx.frame.draws[0].edge_masks, vec![0b100, 0b011]);
     }
-
 }
