@@ -34,7 +34,9 @@ impl<T: Copy + PartialEq> Attrib<T> {
         } else if self.values.len() == 1 && count > 0 {
             let first = self.values[0];
             if first != value {
-                self.values.resize(count, first);
+                if count > 1 {
+                    self.values.resize(count, first);
+                }
                 self.values.push(value);
             }
         } else {

@@ -162,7 +162,7 @@ impl Context {
 
     /// Draws `elements` now, reusing the immediate-mode batch storage.
     fn draw_now(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str) {
-        let mut batch = std::mem::take(&mut self.immediate.batch);
+        let mut batch = self.immediate.take_batch();
         if let Some((order, _)) = self.fetch(elements, command, &mut batch) {
             self.submit(primitive, &batch, order.as_deref());
         }

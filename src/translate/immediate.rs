@@ -105,6 +105,11 @@ fn update<T: Copy + PartialEq>(a: &mut Attrib<T>, value: T, n: usize, bit: u16, 
 }
 
 impl Batch {
+    /// A batch without storage (no texture units), to stand in while the real one is lent.
+    fn unallocated() -> Batch {
+        Batch { vertices: Vertices::default(), edge_flags: Attrib::default(), per_vertex: 0 }
+    }
+
     /// Removes every vertex, keeping the storage.
     pub fn clear(&mut self) {
         self.vertices.clear();
@@ -172,6 +177,11 @@ pub struct ImmediateState {
 }
 
 impl ImmediateState {
+    /// Lends the batch storage (put it back when done); no allocation.
+    pub fn take_batch(&mut self) -> Batch {
+        std::mem::replace(&mut self.batch, Batch::unallocated())
+    }
+
     /// The current vertex attributes.
     pub fn current(&self) -> &CurrentAttribs {
         &self.current
@@ -208,7 +218,7 @@ impl Context {
             return self.set_error_in(gl::GL_INVALID_OPERATION, "glEnd");
         };
         let mut assembled = std::mem::take(&mut self.immediate.assembled);
-        let batch = std::mem::take(&mut self.immediate.batch);
+        let batch = self.immediate.take_batch();
         assembled.clear();
         assemble(primitive, batch.vertices.len(), |k| k as u32, |k| batch.edge_flag(k as u32), &mut assembled);
         let source = self.immediate_source();
