@@ -9,11 +9,12 @@ use crate::model::{Command, Model, Route};
 /// The argument expression for a parameter of Rust type `ty`, or `None` for a type the
 /// fuzzer cannot produce.
 fn argument(ty: &str) -> Option<String> {
+    // gl_generator spells `void **params` (written by glGetPointerv) `*const *mut c_void`.
+    if ty.starts_with("*mut") || ty.starts_with("*const *mut") {
+        return Some(format!("args.out_ptr() as {ty}"));
+    }
     if ty.starts_with("*const") {
         return Some(format!("args.in_ptr() as {ty}"));
-    }
-    if ty.starts_with("*mut") {
-        return Some(format!("args.out_ptr() as {ty}"));
     }
     let name = ty.trim_start_matches("types::");
     Some(match name {

@@ -15,6 +15,7 @@ pub struct Param {
 }
 
 /// How an exported command is served.
+#[derive(Clone)]
 pub enum Route {
     /// `translate` implements it under its own name.
     Method,
@@ -248,6 +249,19 @@ fn parse_variant(short: &str, base: &str, default_count: usize) -> Option<(usize
 /// Routes that lean on another command (family variants, `glRect` variants, then aliases)
 /// whose target is not served become missing themselves.
 fn resolve_aliases(commands: &mut [Command]) {
+    // An alias of a family or glRect variant (`glMultiTexCoord2fARB`) is that variant itself.
+    let variants: BTreeMap<String, Route> = commands
+        .iter()
+        .filter(|c| matches!(c.route, Route::Family { .. } | Route::Rect { .. }))
+        .map(|c| (c.name.clone(), c.route.clone()))
+        .collect();
+    for c in commands.iter_mut() {
+        if let Route::Alias(target) = &c.route {
+            if let Some(route) = variants.get(target) {
+                c.route = route.clone();
+            }
+        }
+    }
     for pass_aliases in [false, true] {
         let served: BTreeSet<String> = commands
             .iter()

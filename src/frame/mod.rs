@@ -6,11 +6,15 @@
 pub mod pixels;
 pub mod state;
 pub mod texture;
+pub mod vertex;
 
 use std::sync::Arc;
 
+use glam::Mat4;
+
 pub use state::RasterState;
 pub use texture::TextureRef;
+pub use vertex::{Attrib, Vertices};
 
 /// One frame of the program's rendering.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -29,15 +33,64 @@ pub struct Frame {
     pub pixels: Vec<pixels::PixelOp>,
 }
 
-/// One draw: primitives of one state.
+/// One draw: indexed primitives of one topology, one state, one set of matrices. Consecutive
+/// batches that share all of these are merged into one draw (`translate::frame_builder`).
+///
+/// Index order: every primitive keeps the winding of the program's vertices, and its
+/// **provoking vertex** (the one whose colour flat shading uses, section 2.14.7) is always its
+/// **last** index, as with `VK_PROVOKING_VERTEX_MODE_LAST_VERTEX_EXT`.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Draw {
-    /// Vertex count.
+    /// Vertex count: `vertices.len()` (kept as a field for the consumers that only count).
     pub vertex_count: usize,
+    /// Triangles, lines or points.
+    pub topology: Topology,
+    /// Object-space vertices and their attributes.
+    pub vertices: Vertices,
+    /// Three indices per triangle, two per line, one per point, into `vertices`.
+    pub indices: Vec<u32>,
+    /// For triangles, one mask per triangle: bit `k` set when the edge from its index `k` to
+    /// index `(k + 1) % 3` is a boundary edge of the program's polygon (drawn in polygon mode
+    /// `GL_LINE`, section 3.5.4); diagonals added by decomposing quads and polygons, and edges
+    /// whose edge flag was false, are clear. Empty for lines and points.
+    pub edge_masks: Vec<u8>,
+    /// Modelview matrix.
+    pub modelview: Mat4,
+    /// Projection matrix.
+    pub projection: Mat4,
+    /// Texture matrix of each texture unit that has a texture target enabled (`None` for the
+    /// others).
+    pub texture_matrices: Vec<Option<Mat4>>,
+    /// Where the geometry came from.
+    pub source: DrawSource,
     /// Raster state of the draw.
     pub state: Arc<RasterState>,
     /// Bound texture of each unit that texturing uses.
     pub textures: Vec<Option<TextureRef>>,
+}
+
+/// The primitives of a draw.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Topology {
+    /// Separate triangles.
+    #[default]
+    Triangles,
+    /// Separate line segments.
+    Lines,
+    /// Points.
+    Points,
+}
+
+/// Which commands produced a draw.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DrawSource {
+    /// `glBegin`/`glEnd` (and `glRect`, `glArrayElement`).
+    #[default]
+    Immediate,
+    /// `glDrawArrays`, `glDrawElements` and their variants.
+    Arrays,
+    /// Executing the display list of this name (the innermost when lists nest).
+    List(u32),
 }
 
 /// A `glClear`: which buffers, with which values, before which draw.

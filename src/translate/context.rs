@@ -18,6 +18,8 @@ pub struct SharedObjects {
     pub lists: ListTable,
     /// Texture objects by name.
     pub textures: super::texture::TextureTable,
+    /// Buffer objects by name.
+    pub buffers: super::buffer_objects::BufferTable,
 }
 
 /// How a context is created.
@@ -58,6 +60,10 @@ pub struct Context {
     pub pixels: super::pixels::PixelState,
     /// Immediate-mode assembly (`glBegin`/`glEnd`).
     pub(crate) immediate: super::immediate::ImmediateState,
+    /// Client vertex arrays and buffer bindings.
+    pub(crate) arrays: super::arrays::ArrayState,
+    /// `glPushClientAttrib` stack.
+    pub(crate) client_attrib: super::client_attrib::ClientAttribStack,
     /// The frame being assembled since the last swap.
     pub(crate) frame: Frame,
     pub(crate) sink: Box<dyn FrameSink>,
@@ -85,6 +91,8 @@ impl Context {
             texture: Default::default(),
             pixels: Default::default(),
             immediate: Default::default(),
+            arrays: Default::default(),
+            client_attrib: Default::default(),
             frame: Frame::default(),
             sink: config.sink,
             single_buffered: false,
@@ -135,10 +143,12 @@ impl Context {
         }
     }
 
-    /// Ends the frame (`glXSwapBuffers`): hands the assembled [`Frame`] to the renderer.
+    /// Ends the frame (`glXSwapBuffers`): hands the assembled [`Frame`] to the renderer. The
+    /// next frame's draw list starts with the capacity this one needed.
     pub fn end_frame(&mut self) {
         let number = self.frame.number + 1;
-        let frame = std::mem::replace(&mut self.frame, Frame { number, ..Frame::default() });
+        let draws = Vec::with_capacity(self.frame.draws.len());
+        let frame = std::mem::replace(&mut self.frame, Frame { number, draws, ..Frame::default() });
         self.sink.present(frame);
     }
 }

@@ -100,6 +100,8 @@ impl Context {
             .or_else(|| self.query_render_mode(pname))
             .or_else(|| self.query_texture(pname))
             .or_else(|| self.query_pixels(pname))
+            .or_else(|| self.query_vertex(pname))
+            .or_else(|| self.query_arrays(pname))
     }
 
     fn query_lists(&self, pname: GLenum) -> Option<Value> {

@@ -43,6 +43,8 @@ pub struct ListState {
     base: GLuint,
     /// Current `glCallList` nesting depth.
     depth: u32,
+    /// Name of the innermost list being executed, 0 when none.
+    executing_name: GLuint,
 }
 
 impl ListState {
@@ -54,6 +56,11 @@ impl ListState {
     /// Whether compiled commands are also executed (`GL_COMPILE_AND_EXECUTE`, or no list).
     pub fn executing(&self) -> bool {
         self.compiling.as_ref().is_none_or(|c| c.execute)
+    }
+
+    /// The innermost display list being executed by `glCallList`, if any.
+    pub fn executing_list(&self) -> Option<GLuint> {
+        (self.executing_name != 0).then_some(self.executing_name)
     }
 
     /// Appends a command to the list being compiled.
@@ -146,12 +153,14 @@ impl Context {
         }
         let Some(ops) = self.shared.lock().lists.lists.get(&list).cloned() else { return };
         self.lists.depth += 1;
+        let outer = std::mem::replace(&mut self.lists.executing_name, list);
         for op in ops.iter() {
             match op {
                 ListOp::Call(call) => dispatch::execute(self, call),
                 ListOp::Deferred(f) => f(self),
             }
         }
+        self.lists.executing_name = outer;
         self.lists.depth -= 1;
     }
 

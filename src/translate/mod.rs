@@ -11,13 +11,20 @@
 // finds them by that name, and the names match the specification and the reference pages.
 #![allow(non_snake_case)]
 
+pub mod array_fetch;
+pub mod arrays;
+pub mod arrays_ext;
+pub mod assemble;
 pub mod attrib;
+pub mod buffer_objects;
 pub mod buffers;
 pub mod clear;
+pub mod client_attrib;
 pub mod clip_planes;
 pub mod context;
 pub mod convert;
 pub mod dispatch;
+pub mod draw_arrays;
 pub mod enable;
 pub mod enums;
 pub mod error;
@@ -25,6 +32,7 @@ pub mod eval;
 pub mod fixed;
 pub mod fog;
 pub mod fragment;
+pub mod frame_builder;
 pub mod get;
 pub mod gl;
 pub mod hints;

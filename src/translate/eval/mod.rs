@@ -9,7 +9,6 @@
 
 pub mod bernstein;
 pub mod issue;
-mod interim_vertex;
 pub mod mesh;
 pub mod state;
 

@@ -202,7 +202,7 @@ impl Context {
         if dest.proxy {
             return f(&mut self.texture.proxies[dest.target.index()], &shared_palette);
         }
-        self.with_bound(dest.target, |obj| {
+        self.with_bound_texture(dest.target, |obj| {
             let palette = obj.palette.clone();
             let palette = if palette.entries.is_empty() { &shared_palette } else { &palette };
             f(obj, palette)
@@ -799,7 +799,7 @@ mod tests {
         ctx.glCopyTexSubImage2D(gl::GL_TEXTURE_2D, 0, 9, 4, 1, 2, 8, 4);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
         assert_eq!(level_param(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_TEXTURE_WIDTH), 16);
-        let version = ctx.with_bound(super::Target::D2, |o| o.version);
+        let version = ctx.with_bound_texture(super::Target::D2, |o| o.version);
         let ops: Vec<_> = ctx.frame.pixels.iter().map(|p| p.kind.clone()).collect();
         assert_eq!(ops.len(), 2);
         let PixelKind::TextureCopy { texture, offset, src, version: v, .. } = &ops[1] else { panic!("not a copy") };

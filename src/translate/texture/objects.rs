@@ -214,7 +214,7 @@ impl Context {
     }
 
     /// Runs `f` on the texture bound to `target` on the active unit.
-    pub(crate) fn with_bound<R>(&mut self, target: Target, f: impl FnOnce(&mut TextureObject) -> R) -> R {
+    pub(crate) fn with_bound_texture<R>(&mut self, target: Target, f: impl FnOnce(&mut TextureObject) -> R) -> R {
         let name = self.bound_texture(target);
         self.with_object(target, name, f)
     }

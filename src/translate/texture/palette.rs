@@ -88,7 +88,7 @@ impl Context {
             PaletteTarget::Proxy(t) => f(&mut self.texture.proxies[t.index()].palette),
             PaletteTarget::Texture(t) => {
                 let shared = self.texture.shared_palette.clone();
-                self.with_bound(t, |obj| {
+                self.with_bound_texture(t, |obj| {
                     let before = obj.palette.clone();
                     let r = f(&mut obj.palette);
                     if obj.palette != before {
@@ -258,12 +258,12 @@ mod tests {
             dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_COLOR_INDEX8_EXT as i32, 2, 2, 0, gl::GL_COLOR_INDEX, gl::GL_UNSIGNED_BYTE, idx.as_ptr().cast());
         }
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
-        let (texels, v1) = ctx.with_bound(super::Target::D2, |o| (o.level(0, 0).unwrap().image.texels.clone(), o.version));
+        let (texels, v1) = ctx.with_bound_texture(super::Target::D2, |o| (o.level(0, 0).unwrap().image.texels.clone(), o.version));
         assert_eq!(texels[12..16], [255, 0, 0, 255]);
         assert_eq!(texels[4..8], [1, 0, 254, 255]);
         let red = [9u8, 8, 7];
         unsafe { ctx.glColorSubTableEXT(gl::GL_TEXTURE_2D, 1, 1, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, red.as_ptr().cast()) };
-        let (texels, v2) = ctx.with_bound(super::Target::D2, |o| (o.level(0, 0).unwrap().image.texels.clone(), o.version));
+        let (texels, v2) = ctx.with_bound_texture(super::Target::D2, |o| (o.level(0, 0).unwrap().image.texels.clone(), o.version));
         assert_eq!(texels[4..8], [9, 8, 7, 255]);
         assert!(v2 > v1);
         let mut width = 0;
@@ -279,7 +279,7 @@ mod tests {
         let idx = [0x13u8];
         unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 1, gl::GL_COLOR_INDEX4_EXT as i32, 1, 1, 0, gl::GL_COLOR_INDEX, gl::GL_UNSIGNED_BYTE, idx.as_ptr().cast()) };
         unsafe { ctx.glGetTexLevelParameteriv(gl::GL_TEXTURE_2D, 1, gl::GL_TEXTURE_INDEX_SIZE_EXT, &mut size) };
-        let texel = ctx.with_bound(super::Target::D2, |o| o.level(0, 1).unwrap().image.texels.clone());
+        let texel = ctx.with_bound_texture(super::Target::D2, |o| o.level(0, 1).unwrap().image.texels.clone());
         assert_eq!((size, texel[0]), (4, 3));
         unsafe { dispatch::glColorTableEXT(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_RGB, 100, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, palette.as_ptr().cast()) };
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);

@@ -173,7 +173,7 @@ impl Context {
     /// Sets a parameter of the texture bound to `target`.
     fn tex_parameter(&mut self, target: GLenum, pname: GLenum, values: &[f64], command: &'static str) {
         let Some(t) = Target::from_gl(target) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
-        if let Err(e) = self.with_bound(t, |obj| {
+        if let Err(e) = self.with_bound_texture(t, |obj| {
             let mut params = obj.params;
             params.set(pname, values)?;
             if params != obj.params {
@@ -244,7 +244,7 @@ impl Context {
     /// The value of a parameter of the texture bound to `target`, raising `GL_INVALID_ENUM`
     /// for an unknown target or name.
     fn tex_parameter_value(&mut self, target: GLenum, pname: GLenum, command: &'static str) -> Option<Value> {
-        let value = Target::from_gl(target).and_then(|t| self.with_bound(t, |obj| obj.params.get(pname)));
+        let value = Target::from_gl(target).and_then(|t| self.with_bound_texture(t, |obj| obj.params.get(pname)));
         if value.is_none() {
             self.set_error_in(gl::GL_INVALID_ENUM, command);
         }
@@ -281,14 +281,14 @@ mod tests {
     fn parameters_round_trip_and_check() {
         let (mut ctx, _) = Context::with_recording();
         ctx.glBindTexture(gl::GL_TEXTURE_2D, 5);
-        let version = ctx.with_bound(super::Target::D2, |o| o.version);
+        let version = ctx.with_bound_texture(super::Target::D2, |o| o.version);
         ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_WRAP_T, gl::GL_MIRRORED_REPEAT as i32);
         ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_LINEAR as i32);
         ctx.glTexParameterf(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAX_LOD, 3.5);
         ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_GENERATE_MIPMAP, 1);
         let border = [0.5f32, 2.0, -1.0, 1.0];
         unsafe { dispatch::glTexParameterfv(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BORDER_COLOR, border.as_ptr()) };
-        assert!(ctx.with_bound(super::Target::D2, |o| o.version) > version);
+        assert!(ctx.with_bound_texture(super::Target::D2, |o| o.version) > version);
         let mut i = [0i32; 4];
         unsafe { ctx.glGetTexParameteriv(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_WRAP_T, i.as_mut_ptr()) };
         assert_eq!(i[0], gl::GL_MIRRORED_REPEAT as i32);
@@ -307,7 +307,7 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glTexParameteri(gl::GL_TEXTURE_CUBE_MAP_POSITIVE_X, gl::GL_TEXTURE_MIN_FILTER, gl::GL_LINEAR as i32);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
-        let s = ctx.with_bound(super::Target::D2, |o| o.params.sampler());
+        let s = ctx.with_bound_texture(super::Target::D2, |o| o.params.sampler());
         assert_eq!(s.wrap[1], crate::frame::texture::Wrap::MirroredRepeat);
         assert_eq!(s.min_filter.mipmap, None);
     }

@@ -1,0 +1,289 @@
+//! Reading vertex arrays (OpenGL 1.5 section 2.8): each enabled array resolved to where its
+//! elements are (client memory, or a buffer object's store read under the share-group lock
+//! and bounds-checked: elements past its end read as zero) and converted to floats as table
+//! 2.9 says; `glArrayElement`'s effect on the current values; index decoding.
+
+use super::Context;
+use super::arrays::{ArrayPointer, ArrayState};
+use super::buffer_objects::BufferTable;
+use super::convert::{norm_i8, norm_i16, norm_i32, norm_u8, norm_u16, norm_u32};
+use super::dispatch::Call;
+use super::gl::{self, GLenum};
+use super::immediate::CurrentAttribs;
+use super::limits::MAX_TEXTURE_UNITS;
+
+/// Bytes of one component of `type_`.
+fn type_size(type_: GLenum) -> usize {
+    match type_ {
+        gl::GL_BYTE | gl::GL_UNSIGNED_BYTE => 1,
+        gl::GL_SHORT | gl::GL_UNSIGNED_SHORT => 2,
+        gl::GL_DOUBLE => 8,
+        _ => 4,
+    }
+}
+
+/// Reads one component; integer types map to [-1, 1] / [0, 1] when `normalized` (table 2.9).
+///
+/// # Safety
+/// `p` must point to a readable component of `type_`.
+#[inline]
+unsafe fn component(p: *const u8, type_: GLenum, normalized: bool) -> f32 {
+    macro_rules! int {
+        ($t:ty, $norm:ident) => {{
+            let c = unsafe { p.cast::<$t>().read_unaligned() };
+            if normalized { $norm(c) } else { c as f32 }
+        }};
+    }
+    match type_ {
+        gl::GL_BYTE => int!(i8, norm_i8),
+        gl::GL_UNSIGNED_BYTE => int!(u8, norm_u8),
+        gl::GL_SHORT => int!(i16, norm_i16),
+        gl::GL_UNSIGNED_SHORT => int!(u16, norm_u16),
+        gl::GL_INT => int!(i32, norm_i32),
+        gl::GL_UNSIGNED_INT => int!(u32, norm_u32),
+        gl::GL_DOUBLE => unsafe { p.cast::<f64>().read_unaligned() as f32 },
+        _ => unsafe { p.cast::<f32>().read_unaligned() },
+    }
+}
+
+/// An enabled array resolved for reading: where its elements are and how to convert them.
+#[derive(Clone, Copy)]
+pub(crate) struct Source {
+    base: *const u8,
+    /// Bytes readable from `base` (unbounded for client memory).
+    available: usize,
+    stride: usize,
+    size: usize,
+    type_: GLenum,
+    normalized: bool,
+}
+
+impl Source {
+    /// How many elements the array has: those that fit in a buffer store, unbounded for
+    /// client memory.
+    pub(crate) fn len(&self) -> usize {
+        let elem = self.size * type_size(self.type_);
+        match self.available {
+            usize::MAX => usize::MAX,
+            n if n < elem => 0,
+            n => (n - elem) / self.stride.max(1) + 1,
+        }
+    }
+
+    /// Element `i`, missing components from `(0, 0, 0, 1)`; zero past the end of a buffer.
+    #[inline]
+    fn read(&self, i: usize) -> [f32; 4] {
+        let mut out = [0.0, 0.0, 0.0, 1.0];
+        let width = type_size(self.type_);
+        let start = i.checked_mul(self.stride);
+        let in_range = start.and_then(|s| s.checked_add(self.size * width)).is_some_and(|end| end <= self.available);
+        if !in_range {
+            return [0.0; 4];
+        }
+        let start = start.unwrap_or(0);
+        for (k, slot) in out.iter_mut().enumerate().take(self.size) {
+            // Safety: in range of a buffer store, or client memory the program vouches for.
+            *slot = unsafe { component(self.base.wrapping_add(start + k * width), self.type_, self.normalized) };
+        }
+        out
+    }
+}
+
+/// The enabled arrays of a draw, resolved.
+pub(crate) struct Sources {
+    pub(crate) vertex: Option<Source>,
+    pub(crate) normal: Option<Source>,
+    pub(crate) color: Option<Source>,
+    pub(crate) secondary_color: Option<Source>,
+    pub(crate) index: Option<Source>,
+    pub(crate) edge_flag: Option<Source>,
+    pub(crate) fog_coord: Option<Source>,
+    pub(crate) texcoord: [Option<Source>; MAX_TEXTURE_UNITS],
+}
+
+/// A resolved array uses a mapped buffer (`GL_INVALID_OPERATION`, section 2.9.3).
+struct MappedBuffer;
+
+/// Where an enabled array's elements are; `None` for a disabled one.
+fn resolve(array: &ArrayPointer, normalized: bool, buffers: &BufferTable) -> Result<Option<Source>, MappedBuffer> {
+    // A null client pointer would fault: the array is ignored, as if disabled.
+    if !array.enabled || (array.buffer == 0 && array.pointer == 0) {
+        return Ok(None);
+    }
+    let size = array.size.max(1) as usize;
+    let elem = size * type_size(array.type_);
+    let stride = if array.stride > 0 { array.stride as usize } else { elem };
+    let (base, available) = if array.buffer == 0 {
+        (array.pointer as *const u8, usize::MAX)
+    } else {
+        let Some(buffer) = buffers.get(array.buffer) else { return Ok(None) };
+        if buffer.mapped {
+            return Err(MappedBuffer);
+        }
+        let offset = array.pointer.min(buffer.data.len());
+        (buffer.data[offset..].as_ptr(), buffer.data.len() - offset)
+    };
+    Ok(Some(Source { base, available, stride, size, type_: array.type_, normalized }))
+}
+
+impl Sources {
+    fn new(arrays: &ArrayState, buffers: &BufferTable) -> Result<Sources, MappedBuffer> {
+        let mut texcoord = [None; MAX_TEXTURE_UNITS];
+        for (slot, array) in texcoord.iter_mut().zip(&arrays.texcoord) {
+            *slot = resolve(array, false, buffers)?;
+        }
+        Ok(Sources {
+            vertex: resolve(&arrays.vertex, false, buffers)?,
+            normal: resolve(&arrays.normal, true, buffers)?,
+            color: resolve(&arrays.color, true, buffers)?,
+            secondary_color: resolve(&arrays.secondary_color, true, buffers)?,
+            index: resolve(&arrays.index, false, buffers)?,
+            edge_flag: resolve(&arrays.edge_flag, false, buffers)?,
+            fog_coord: resolve(&arrays.fog_coord, false, buffers)?,
+            texcoord,
+        })
+    }
+
+    /// Which attributes these arrays provide.
+    pub(crate) fn provided(&self) -> FromArrays {
+        FromArrays {
+            normal: self.normal.is_some(),
+            color: self.color.is_some(),
+            secondary_color: self.secondary_color.is_some(),
+            index: self.index.is_some(),
+            edge_flag: self.edge_flag.is_some(),
+            fog_coord: self.fog_coord.is_some(),
+            texcoord: self.texcoord.map(|t| t.is_some()),
+        }
+    }
+
+    /// Stores element `i` of every enabled array but the vertex array in `current`, and returns
+    /// the vertex array's element (section 2.8, `ArrayElement`).
+    #[inline]
+    pub(crate) fn element(&self, i: usize, current: &mut CurrentAttribs) -> Option<[f32; 4]> {
+        if let Some(s) = &self.normal {
+            let [x, y, z, _] = s.read(i);
+            current.normal = [x, y, z];
+        }
+        if let Some(s) = &self.color {
+            current.color = s.read(i);
+        }
+        if let Some(s) = &self.secondary_color {
+            let [r, g, b, _] = s.read(i);
+            current.secondary_color = [r, g, b];
+        }
+        if let Some(s) = &self.index {
+            current.color_index = s.read(i)[0];
+        }
+        if let Some(s) = &self.edge_flag {
+            current.edge_flag = s.read(i)[0] != 0.0;
+        }
+        if let Some(s) = &self.fog_coord {
+            current.fog_coord = s.read(i)[0];
+        }
+        for (slot, s) in current.texcoords.iter_mut().zip(&self.texcoord) {
+            if let Some(s) = s {
+                *slot = s.read(i);
+            }
+        }
+        self.vertex.as_ref().map(|s| s.read(i))
+    }
+
+    /// The display-list commands `glArrayElement(i)` stands for, in the order of section 2.8.
+    pub(crate) fn element_calls(&self, i: usize, current: &CurrentAttribs) -> Vec<Call> {
+        let mut c = *current;
+        let vertex = self.element(i, &mut c);
+        let mut calls = Vec::new();
+        if self.edge_flag.is_some() {
+            calls.push(Call::EdgeFlag(u8::from(c.edge_flag)));
+        }
+        for (unit, s) in self.texcoord.iter().enumerate() {
+            if s.is_some() {
+                let [s, t, r, q] = c.texcoords[unit];
+                calls.push(Call::MultiTexCoord4f(gl::GL_TEXTURE0 + unit as u32, s, t, r, q));
+            }
+        }
+        if self.color.is_some() {
+            let [r, g, b, a] = c.color;
+            calls.push(Call::Color4f(r, g, b, a));
+        }
+        if self.secondary_color.is_some() {
+            let [r, g, b] = c.secondary_color;
+            calls.push(Call::SecondaryColor3f(r, g, b));
+        }
+        if self.fog_coord.is_some() {
+            calls.push(Call::FogCoordf(c.fog_coord));
+        }
+        if self.index.is_some() {
+            calls.push(Call::Indexf(c.color_index));
+        }
+        if self.normal.is_some() {
+            let [x, y, z] = c.normal;
+            calls.push(Call::Normal3f(x, y, z));
+        }
+        if let Some([x, y, z, w]) = vertex {
+            calls.push(Call::Vertex4f(x, y, z, w));
+        }
+        calls
+    }
+}
+
+/// Which attributes a fetched batch took from arrays (the others take current values).
+#[derive(Clone, Copy, Default)]
+pub(crate) struct FromArrays {
+    pub(crate) normal: bool,
+    pub(crate) color: bool,
+    pub(crate) secondary_color: bool,
+    pub(crate) index: bool,
+    pub(crate) edge_flag: bool,
+    pub(crate) fog_coord: bool,
+    pub(crate) texcoord: [bool; MAX_TEXTURE_UNITS],
+}
+
+/// Index types of `glDrawElements`.
+pub(crate) fn index_size(type_: GLenum) -> Option<usize> {
+    match type_ {
+        gl::GL_UNSIGNED_BYTE => Some(1),
+        gl::GL_UNSIGNED_SHORT => Some(2),
+        gl::GL_UNSIGNED_INT => Some(4),
+        _ => None,
+    }
+}
+
+pub(crate) fn decode_indices(bytes: &[u8], width: usize) -> Vec<u32> {
+    bytes
+        .chunks_exact(width)
+        .map(|b| match *b {
+            [x] => u32::from(x),
+            [x, y] => u32::from(u16::from_ne_bytes([x, y])),
+            [x, y, z, w] => u32::from_ne_bytes([x, y, z, w]),
+            _ => 0,
+        })
+        .collect()
+}
+
+impl Context {
+    /// Resolves the enabled arrays and runs `f` on them under the share-group lock;
+    /// `GL_INVALID_OPERATION` when one reads a mapped buffer. Client arrays alone are resolved
+    /// without taking the lock (`glArrayElement` runs once per vertex).
+    pub(crate) fn with_sources<R>(
+        &mut self,
+        command: &'static str,
+        f: impl FnOnce(&Sources, &mut Self) -> R,
+    ) -> Option<R> {
+        if !self.arrays.reads_buffers() {
+            let sources = Sources::new(&self.arrays, &BufferTable::default()).ok()?;
+            return Some(f(&sources, self));
+        }
+        let shared = self.shared.clone();
+        let guard = shared.lock();
+        match Sources::new(&self.arrays, &guard.buffers) {
+            Ok(sources) => Some(f(&sources, self)),
+            Err(MappedBuffer) => {
+                drop(guard);
+                self.set_error_in(gl::GL_INVALID_OPERATION, command);
+                None
+            }
+        }
+    }
+}

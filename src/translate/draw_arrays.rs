@@ -1,0 +1,659 @@
+//! Drawing from vertex arrays (OpenGL 1.5 section 2.8): `glArrayElement`, `glDrawArrays`,
+//! `glDrawElements`, `glDrawRangeElements`, `glMultiDrawArrays`, `glMultiDrawElements`, and
+//! their display-list forms, which read the arrays when compiled (section 5.4).
+//!
+//! A draw fetches the array elements it uses into a batch, decomposes it with
+//! [`super::assemble`] and hands it to `Context::emit_batch`. `glDrawElements` fetches the
+//! index range `min..=max` once and keeps the program's indices (shared vertices stay shared),
+//! unless that range is much wider than the index count; then it fetches one vertex per index.
+
+use std::ffi::c_void;
+
+use super::Context;
+use super::array_fetch::{FromArrays, decode_indices, index_size};
+use super::assemble::{Primitive, assemble};
+use super::convert::read_slice;
+use super::gl::{self, GLenum, GLint, GLsizei, GLuint};
+use super::immediate::{Batch, CurrentAttribs, bits};
+use super::lists::ListOp;
+
+/// Which array elements a draw reads, in primitive order.
+#[derive(Clone, Copy)]
+enum Elements<'a> {
+    /// `first..first + count`.
+    Range(usize, usize),
+    /// Program indices.
+    Indices(&'a [u32]),
+}
+
+/// A compiled draw's vertices, fetched from the arrays: the batch, the batch vertex of each
+/// element in primitive order (`None`: in order), and which attributes came from arrays.
+#[derive(Clone)]
+struct Fetched {
+    batch: Batch,
+    order: Option<Vec<u32>>,
+    from_arrays: FromArrays,
+}
+
+impl Fetched {
+    /// Replaces the attributes that did not come from arrays by `current` (a compiled draw
+    /// uses the current values of the moment it is executed).
+    fn take_current(&mut self, current: &CurrentAttribs) {
+        let (v, f) = (&mut self.batch.vertices, &self.from_arrays);
+        if !f.normal {
+            v.normal.set_constant(current.normal);
+        }
+        if !f.color {
+            v.color.set_constant(current.color);
+        }
+        if !f.secondary_color {
+            v.secondary_color.set_constant(current.secondary_color);
+        }
+        if !f.index {
+            v.color_index.set_constant(current.color_index);
+        }
+        if !f.fog_coord {
+            v.fog_coord.set_constant(current.fog_coord);
+        }
+        if !f.edge_flag {
+            self.batch.edge_flags.set_constant(current.edge_flag);
+        }
+        for ((t, &from), &value) in v.texcoords.iter_mut().zip(&f.texcoord).zip(&current.texcoords) {
+            if !from {
+                t.set_constant(value);
+            }
+        }
+    }
+}
+
+/// Indices ranges wider than this many times the index count are fetched per index.
+const SPARSE_FACTOR: usize = 4;
+
+impl Context {
+    /// `glArrayElement`: the attribute commands of element `i` of every enabled array, then
+    /// its vertex (section 2.8).
+    pub fn glArrayElement(&mut self, i: GLint) {
+        let Ok(i) = usize::try_from(i) else {
+            return self.set_error_in(gl::GL_INVALID_VALUE, "glArrayElement");
+        };
+        let vertex = self.with_sources("glArrayElement", |s, ctx| s.element(i, ctx.immediate.current_mut()));
+        if let Some(Some([x, y, z, w])) = vertex {
+            self.glVertex4f(x, y, z, w);
+        }
+    }
+
+    /// `glArrayElement` in a display list: the element's values are recorded as the attribute
+    /// and vertex commands it stands for.
+    ///
+    /// # Safety
+    /// The enabled client arrays must hold element `i`.
+    pub unsafe fn compile_glArrayElement(&mut self, i: GLint) {
+        let Ok(i) = usize::try_from(i) else {
+            return self.set_error_in(gl::GL_INVALID_VALUE, "glArrayElement");
+        };
+        let current = *self.immediate.current();
+        if let Some(calls) = self.with_sources("glArrayElement", |s, _| s.element_calls(i, &current)) {
+            for call in calls {
+                self.lists.record(ListOp::Call(call));
+            }
+        }
+    }
+
+    /// Fetches the vertices of a draw into `batch`; returns the batch vertex of each element
+    /// (`None`: in order) and which attributes came from arrays, or `None` (after raising any
+    /// error) when nothing is drawn.
+    fn fetch(
+        &mut self,
+        elements: Elements<'_>,
+        command: &'static str,
+        batch: &mut Batch,
+    ) -> Option<(Option<Vec<u32>>, FromArrays)> {
+        let current = *self.immediate.current();
+        let fetched = self.with_sources(command, |s, _| {
+            // Elements past the end of a vertex buffer would all be zero: not fetched, so a
+            // wrong count cannot allocate without bound.
+            let vertex_count = s.vertex?.len();
+            batch.clear();
+            let mut cur = current;
+            let mut push = |i: usize| {
+                let position = s.element(i, &mut cur).unwrap_or([0.0, 0.0, 0.0, 1.0]);
+                batch.push(position, &cur, bits::ALL);
+            };
+            let order = match elements {
+                Elements::Range(first, count) => {
+                    (first..first.saturating_add(count).min(vertex_count.max(first))).for_each(&mut push);
+                    None
+                }
+                Elements::Indices(indices) => {
+                    let min = indices.iter().copied().min().unwrap_or(0);
+                    let max = indices.iter().copied().max().unwrap_or(0);
+                    let span = (max - min) as usize + 1;
+                    if span <= indices.len().saturating_mul(SPARSE_FACTOR).max(64) {
+                        (min as usize..=max as usize).for_each(&mut push);
+                        Some(indices.iter().map(|&i| i - min).collect())
+                    } else {
+                        indices.iter().for_each(|&i| push(i as usize));
+                        None
+                    }
+                }
+            };
+            Some((order, s.provided()))
+        });
+        fetched.flatten()
+    }
+
+    /// Decomposes fetched vertices (element `k` is batch vertex `order[k]`, or `k`) and emits
+    /// them.
+    fn submit(&mut self, primitive: Primitive, batch: &Batch, order: Option<&[u32]>) {
+        let mut assembled = std::mem::take(&mut self.immediate.assembled);
+        assembled.clear();
+        match order {
+            None => {
+                assemble(primitive, batch.vertices.len(), |k| k as u32, |k| batch.edge_flag(k as u32), &mut assembled)
+            }
+            Some(order) => {
+                assemble(primitive, order.len(), |k| order[k], |k| batch.edge_flag(order[k]), &mut assembled)
+            }
+        }
+        let source = self.arrays_source();
+        self.emit_batch(primitive.topology(), &batch.vertices, &assembled, source);
+        self.immediate.assembled = assembled;
+    }
+
+    /// Draws `elements` now, reusing the immediate-mode batch storage.
+    fn draw_now(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str) {
+        let mut batch = self.immediate.take_batch();
+        if let Some((order, _)) = self.fetch(elements, command, &mut batch) {
+            self.submit(primitive, &batch, order.as_deref());
+        }
+        self.immediate.batch = batch;
+    }
+
+    /// Records a draw whose arrays were read now (section 5.4): at execution, attributes not
+    /// taken from arrays use the then-current values.
+    fn draw_compiled(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str) {
+        let mut batch = Batch::default();
+        let Some((order, from_arrays)) = self.fetch(elements, command, &mut batch) else { return };
+        let fetched = Fetched { batch, order, from_arrays };
+        self.lists.record(ListOp::Deferred(Box::new(move |ctx| {
+            if ctx.inside_begin_end() {
+                return ctx.set_error_in(gl::GL_INVALID_OPERATION, command);
+            }
+            let mut f = fetched.clone();
+            f.take_current(ctx.immediate.current());
+            ctx.submit(primitive, &f.batch, f.order.as_deref());
+        })));
+    }
+
+    /// Checks `glDrawArrays` arguments: the mode and the element range.
+    fn draw_arrays_args(
+        &mut self,
+        mode: GLenum,
+        first: GLint,
+        count: GLsizei,
+    ) -> Option<(Primitive, Elements<'static>)> {
+        let Some(primitive) = Primitive::from_gl(mode) else {
+            self.set_error_in(gl::GL_INVALID_ENUM, "glDrawArrays");
+            return None;
+        };
+        let (Ok(first), Ok(count)) = (usize::try_from(first), usize::try_from(count)) else {
+            self.set_error_in(gl::GL_INVALID_VALUE, "glDrawArrays");
+            return None;
+        };
+        Some((primitive, Elements::Range(first, count)))
+    }
+
+    /// `glDrawArrays`.
+    pub fn glDrawArrays(&mut self, mode: GLenum, first: GLint, count: GLsizei) {
+        if let Some((p, e)) = self.draw_arrays_args(mode, first, count) {
+            self.draw_now(p, e, "glDrawArrays");
+        }
+    }
+
+    /// `glDrawArrays` in a display list.
+    ///
+    /// # Safety
+    /// The enabled client arrays must hold the drawn elements.
+    pub unsafe fn compile_glDrawArrays(&mut self, mode: GLenum, first: GLint, count: GLsizei) {
+        if let Some((p, e)) = self.draw_arrays_args(mode, first, count) {
+            self.draw_compiled(p, e, "glDrawArrays");
+        }
+    }
+
+    /// Checks `glDrawElements` arguments and reads the indices (from the client or the
+    /// element array buffer).
+    unsafe fn read_elements(
+        &mut self,
+        mode: GLenum,
+        count: GLsizei,
+        type_: GLenum,
+        indices: *const c_void,
+        command: &'static str,
+    ) -> Option<(Primitive, Vec<u32>)> {
+        let Some(primitive) = Primitive::from_gl(mode) else {
+            self.set_error_in(gl::GL_INVALID_ENUM, command);
+            return None;
+        };
+        let Ok(count) = usize::try_from(count) else {
+            self.set_error_in(gl::GL_INVALID_VALUE, command);
+            return None;
+        };
+        let Some(width) = index_size(type_) else {
+            self.set_error_in(gl::GL_INVALID_ENUM, command);
+            return None;
+        };
+        let bytes_len = count.checked_mul(width)?;
+        if self.arrays.element_buffer == 0 {
+            let Some(bytes) = (unsafe { read_slice(indices.cast::<u8>(), bytes_len) }) else {
+                self.null_pointer(command);
+                return None;
+            };
+            return Some((primitive, decode_indices(&bytes, width)));
+        }
+        let shared = self.shared.clone();
+        let guard = shared.lock();
+        let buffer = guard.buffers.get(self.arrays.element_buffer)?;
+        if buffer.mapped {
+            drop(guard);
+            self.set_error_in(gl::GL_INVALID_OPERATION, command);
+            return None;
+        }
+        let start = indices as usize;
+        let bytes = buffer.data.get(start..start.checked_add(bytes_len)?)?;
+        Some((primitive, decode_indices(bytes, width)))
+    }
+
+    /// `glDrawElements`.
+    ///
+    /// # Safety
+    /// Without an element array buffer, `indices` must point to `count` indices of `type_`;
+    /// the enabled client arrays must hold the elements they name.
+    pub unsafe fn glDrawElements(&mut self, mode: GLenum, count: GLsizei, type_: GLenum, indices: *const c_void) {
+        if let Some((p, idx)) = unsafe { self.read_elements(mode, count, type_, indices, "glDrawElements") } {
+            self.draw_now(p, Elements::Indices(&idx), "glDrawElements");
+        }
+    }
+
+    /// `glDrawElements` in a display list.
+    ///
+    /// # Safety
+    /// As [`Context::glDrawElements`].
+    pub unsafe fn compile_glDrawElements(
+        &mut self,
+        mode: GLenum,
+        count: GLsizei,
+        type_: GLenum,
+        indices: *const c_void,
+    ) {
+        if let Some((p, idx)) = unsafe { self.read_elements(mode, count, type_, indices, "glDrawElements") } {
+            self.draw_compiled(p, Elements::Indices(&idx), "glDrawElements");
+        }
+    }
+
+    /// `glDrawRangeElements`: `GL_INVALID_VALUE` when `end < start`.
+    ///
+    /// # Safety
+    /// As [`Context::glDrawElements`].
+    pub unsafe fn glDrawRangeElements(
+        &mut self,
+        mode: GLenum,
+        start: GLuint,
+        end: GLuint,
+        count: GLsizei,
+        type_: GLenum,
+        indices: *const c_void,
+    ) {
+        if end < start {
+            return self.set_error_in(gl::GL_INVALID_VALUE, "glDrawRangeElements");
+        }
+        if let Some((p, idx)) = unsafe { self.read_elements(mode, count, type_, indices, "glDrawRangeElements") } {
+            self.draw_now(p, Elements::Indices(&idx), "glDrawRangeElements");
+        }
+    }
+
+    /// `glDrawRangeElements` in a display list.
+    ///
+    /// # Safety
+    /// As [`Context::glDrawElements`].
+    pub unsafe fn compile_glDrawRangeElements(
+        &mut self,
+        mode: GLenum,
+        start: GLuint,
+        end: GLuint,
+        count: GLsizei,
+        type_: GLenum,
+        indices: *const c_void,
+    ) {
+        if end < start {
+            return self.set_error_in(gl::GL_INVALID_VALUE, "glDrawRangeElements");
+        }
+        if let Some((p, idx)) = unsafe { self.read_elements(mode, count, type_, indices, "glDrawRangeElements") } {
+            self.draw_compiled(p, Elements::Indices(&idx), "glDrawRangeElements");
+        }
+    }
+
+    /// The `(first, count)` pairs of `glMultiDrawArrays`; `GL_INVALID_VALUE` for a negative
+    /// `drawcount`.
+    unsafe fn multi_ranges(
+        &mut self,
+        first: *const GLint,
+        count: *const GLsizei,
+        drawcount: GLsizei,
+    ) -> Option<Vec<(GLint, GLsizei)>> {
+        let Ok(n) = usize::try_from(drawcount) else {
+            self.set_error_in(gl::GL_INVALID_VALUE, "glMultiDrawArrays");
+            return None;
+        };
+        let (Some(firsts), Some(counts)) = (unsafe { read_slice(first, n) }, unsafe { read_slice(count, n) }) else {
+            self.null_pointer("glMultiDrawArrays");
+            return None;
+        };
+        Some(firsts.into_iter().zip(counts).collect())
+    }
+
+    /// `glMultiDrawArrays`: `glDrawArrays` for each range.
+    ///
+    /// # Safety
+    /// `first` and `count` must point to `drawcount` values; the arrays must hold the elements.
+    pub unsafe fn glMultiDrawArrays(
+        &mut self,
+        mode: GLenum,
+        first: *const GLint,
+        count: *const GLsizei,
+        drawcount: GLsizei,
+    ) {
+        for (f, c) in unsafe { self.multi_ranges(first, count, drawcount) }.unwrap_or_default() {
+            self.glDrawArrays(mode, f, c);
+        }
+    }
+
+    /// `glMultiDrawArrays` in a display list.
+    ///
+    /// # Safety
+    /// As [`Context::glMultiDrawArrays`].
+    pub unsafe fn compile_glMultiDrawArrays(
+        &mut self,
+        mode: GLenum,
+        first: *const GLint,
+        count: *const GLsizei,
+        drawcount: GLsizei,
+    ) {
+        for (f, c) in unsafe { self.multi_ranges(first, count, drawcount) }.unwrap_or_default() {
+            unsafe { self.compile_glDrawArrays(mode, f, c) };
+        }
+    }
+
+    /// The `(count, indices)` pairs of `glMultiDrawElements`.
+    unsafe fn multi_elements(
+        &mut self,
+        count: *const GLsizei,
+        indices: *const *const c_void,
+        drawcount: GLsizei,
+    ) -> Option<Vec<(GLsizei, *const c_void)>> {
+        let Ok(n) = usize::try_from(drawcount) else {
+            self.set_error_in(gl::GL_INVALID_VALUE, "glMultiDrawElements");
+            return None;
+        };
+        let (Some(counts), Some(pointers)) = (unsafe { read_slice(count, n) }, unsafe { read_slice(indices, n) })
+        else {
+            self.null_pointer("glMultiDrawElements");
+            return None;
+        };
+        Some(counts.into_iter().zip(pointers).collect())
+    }
+
+    /// `glMultiDrawElements`: `glDrawElements` for each index list.
+    ///
+    /// # Safety
+    /// `count` and `indices` must point to `drawcount` values, each index list as
+    /// [`Context::glDrawElements`] requires.
+    pub unsafe fn glMultiDrawElements(
+        &mut self,
+        mode: GLenum,
+        count: *const GLsizei,
+        type_: GLenum,
+        indices: *const *const c_void,
+        drawcount: GLsizei,
+    ) {
+        for (c, p) in unsafe { self.multi_elements(count, indices, drawcount) }.unwrap_or_default() {
+            unsafe { self.glDrawElements(mode, c, type_, p) };
+        }
+    }
+
+    /// `glMultiDrawElements` in a display list.
+    ///
+    /// # Safety
+    /// As [`Context::glMultiDrawElements`].
+    pub unsafe fn compile_glMultiDrawElements(
+        &mut self,
+        mode: GLenum,
+        count: *const GLsizei,
+        type_: GLenum,
+        indices: *const *const c_void,
+        drawcount: GLsizei,
+    ) {
+        for (c, p) in unsafe { self.multi_elements(count, indices, drawcount) }.unwrap_or_default() {
+            unsafe { self.compile_glDrawElements(mode, c, type_, p) };
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::ffi::c_void;
+
+    use crate::frame::{DrawSource, Topology};
+    use crate::translate::{Context, dispatch, gl};
+
+    fn int(ctx: &mut Context, pname: gl::GLenum) -> i32 {
+        let mut v = -1;
+        unsafe { ctx.glGetIntegerv(pname, &mut v) };
+        v
+    }
+
+    /// A unit square as a triangle fan of 4 vertices `(x, y)`.
+    const SQUARE: [f32; 8] = [0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
+    #[test]
+    fn draw_arrays_reads_client_memory() {
+        let (mut ctx, _) = Context::with_recording();
+        let colors: [u8; 16] = [255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255];
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, SQUARE.as_ptr().cast());
+        ctx.glColorPointer(4, gl::GL_UNSIGNED_BYTE, 0, colors.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        ctx.glEnableClientState(gl::GL_COLOR_ARRAY);
+        ctx.glDrawArrays(gl::GL_TRIANGLE_FAN, 0, 4);
+        let d = &ctx.frame.draws[0];
+        assert_eq!(d.source, DrawSource::Arrays);
+        assert_eq!(d.indices, vec![0, 1, 2, 0, 2, 3]);
+        assert_eq!(d.vertices.position[2], [1.0, 1.0, 0.0, 1.0]);
+        assert_eq!(d.vertices.color.get(1), Some([0.0, 1.0, 0.0, 1.0]));
+        assert!(d.vertices.normal.is_constant(), "a disabled array gives the current value");
+        ctx.glDrawArrays(gl::GL_POINTS, 1, 2);
+        assert_eq!(ctx.frame.draws[1].vertices.position[0], [1.0, 0.0, 0.0, 1.0]);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        ctx.glDisableClientState(gl::GL_VERTEX_ARRAY);
+        ctx.glDrawArrays(gl::GL_POINTS, 0, 4);
+        assert_eq!(ctx.frame.draws.len(), 2, "nothing is drawn without the vertex array");
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, std::ptr::null());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        ctx.glDrawArrays(gl::GL_POINTS, 0, 4);
+        assert_eq!(ctx.frame.draws.len(), 2, "a null client pointer is ignored, not read");
+    }
+
+    #[test]
+    fn draw_elements_each_index_type() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, SQUARE.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        let ub: [u8; 6] = [0, 1, 2, 2, 3, 0];
+        let us: [u16; 6] = [0, 1, 2, 2, 3, 0];
+        let ui: [u32; 6] = [0, 1, 2, 2, 3, 0];
+        let lists: [(gl::GLenum, *const c_void); 3] = [
+            (gl::GL_UNSIGNED_BYTE, ub.as_ptr().cast()),
+            (gl::GL_UNSIGNED_SHORT, us.as_ptr().cast()),
+            (gl::GL_UNSIGNED_INT, ui.as_ptr().cast()),
+        ];
+        for (i, (ty, ptr)) in lists.into_iter().enumerate() {
+            ctx.glLoadIdentity();
+            ctx.glTranslatef(i as f32, 0.0, 0.0);
+            unsafe { ctx.glDrawElements(gl::GL_TRIANGLES, 6, ty, ptr) };
+            let d = ctx.frame.draws.last().unwrap();
+            assert_eq!(d.vertex_count, 4, "shared vertices are fetched once");
+            assert_eq!(d.indices, vec![0, 1, 2, 2, 3, 0]);
+            assert_eq!(d.vertices.position[3], [0.0, 1.0, 0.0, 1.0]);
+        }
+        assert_eq!(ctx.frame.draws.len(), 3);
+        unsafe { ctx.glDrawElements(gl::GL_TRIANGLES, 6, gl::GL_FLOAT, ui.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        unsafe { ctx.glDrawElements(gl::GL_TRIANGLES, -1, gl::GL_UNSIGNED_INT, ui.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        unsafe { ctx.glDrawRangeElements(gl::GL_TRIANGLES, 3, 0, 6, gl::GL_UNSIGNED_INT, ui.as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE, "end < start");
+        unsafe { ctx.glDrawRangeElements(gl::GL_LINES, 0, 3, 2, gl::GL_UNSIGNED_INT, ui[1..].as_ptr().cast()) };
+        let d = ctx.frame.draws.last().unwrap();
+        assert_eq!((d.topology, d.vertex_count, d.indices.clone()), (Topology::Lines, 2, vec![0, 1]));
+        ctx.glDrawArrays(gl::GL_POLYGON + 1, 0, 3);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glDrawArrays(gl::GL_TRIANGLES, 0, -3);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+    }
+
+    #[test]
+    fn sparse_indices_fetch_per_index() {
+        let (mut ctx, _) = Context::with_recording();
+        let far: Vec<f32> = (0..2000).map(|i| i as f32).collect();
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, far.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        let idx: [u16; 2] = [0, 999];
+        unsafe { ctx.glDrawElements(gl::GL_LINES, 2, gl::GL_UNSIGNED_SHORT, idx.as_ptr().cast()) };
+        let d = &ctx.frame.draws[0];
+        assert_eq!(d.vertex_count, 2);
+        assert_eq!(d.vertices.position[1], [1998.0, 1999.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn buffer_object_draws() {
+        let (mut ctx, _) = Context::with_recording();
+        // Two floats of padding, then the square.
+        let mut data = vec![9.0f32, 9.0];
+        data.extend_from_slice(&SQUARE);
+        ctx.glBindBuffer(gl::GL_ARRAY_BUFFER, 1);
+        unsafe { ctx.glBufferData(gl::GL_ARRAY_BUFFER, 40, data.as_ptr().cast(), gl::GL_STATIC_DRAW) };
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 8, 8 as *const c_void);
+        ctx.glBindBuffer(gl::GL_ARRAY_BUFFER, 0);
+        assert_eq!(int(&mut ctx, gl::GL_VERTEX_ARRAY_BUFFER_BINDING), 1);
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        let idx: [u16; 4] = [0, 1, 2, 3];
+        ctx.glBindBuffer(gl::GL_ELEMENT_ARRAY_BUFFER, 2);
+        unsafe { ctx.glBufferData(gl::GL_ELEMENT_ARRAY_BUFFER, 8, idx.as_ptr().cast(), gl::GL_STATIC_DRAW) };
+        unsafe { ctx.glDrawElements(gl::GL_QUADS, 4, gl::GL_UNSIGNED_SHORT, std::ptr::null()) };
+        let d = &ctx.frame.draws[0];
+        assert_eq!(
+            d.vertices.position,
+            vec![[0.0, 0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0], [1.0, 1.0, 0.0, 1.0], [0.0, 1.0, 0.0, 1.0]]
+        );
+        assert_eq!(d.indices, vec![0, 1, 3, 1, 2, 3]);
+        // Past the end of the store: elements are not fetched, whatever the count.
+        ctx.glDrawArrays(gl::GL_POINTS, 3, i32::MAX);
+        assert_eq!(ctx.frame.draws.last().unwrap().vertex_count, 1);
+        let count = ctx.frame.draws.len();
+        ctx.glDrawArrays(gl::GL_POINTS, 30, 3);
+        assert_eq!(ctx.frame.draws.len(), count, "nothing drawn from past the end");
+        // Indices past the end of the vertex buffer read as zero.
+        ctx.glBindBuffer(gl::GL_ELEMENT_ARRAY_BUFFER, 0);
+        let far: [u32; 2] = [1, 100];
+        unsafe { ctx.glDrawElements(gl::GL_LINES, 2, gl::GL_UNSIGNED_INT, far.as_ptr().cast()) };
+        let d = ctx.frame.draws.last().unwrap();
+        assert_eq!(d.vertices.position, vec![[1.0, 0.0, 0.0, 1.0], [0.0; 4]]);
+        ctx.glBindBuffer(gl::GL_ELEMENT_ARRAY_BUFFER, 2);
+        // Indices past the end of the element buffer: nothing drawn.
+        let before = ctx.frame.draws.len();
+        unsafe { ctx.glDrawElements(gl::GL_POINTS, 8, gl::GL_UNSIGNED_SHORT, std::ptr::null()) };
+        assert_eq!(ctx.frame.draws.len(), before);
+        // A mapped buffer cannot be drawn from.
+        ctx.glBindBuffer(gl::GL_ARRAY_BUFFER, 1);
+        ctx.glMapBuffer(gl::GL_ARRAY_BUFFER, gl::GL_READ_ONLY);
+        ctx.glDrawArrays(gl::GL_POINTS, 0, 1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+        assert_eq!(ctx.frame.draws.len(), before);
+    }
+
+    #[test]
+    fn compiled_draws_keep_the_data_of_compile_time() {
+        let (mut ctx, _) = Context::with_recording();
+        let mut verts = SQUARE;
+        let idx: [u8; 3] = [0, 1, 2];
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, verts.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        unsafe {
+            dispatch::glNewList(&mut ctx, 7, gl::GL_COMPILE);
+            dispatch::glDrawArrays(&mut ctx, gl::GL_TRIANGLES, 0, 3);
+            dispatch::glDrawElements(&mut ctx, gl::GL_LINES, 2, gl::GL_UNSIGNED_BYTE, idx[1..].as_ptr().cast());
+            dispatch::glBegin(&mut ctx, gl::GL_POINTS);
+            dispatch::glArrayElement(&mut ctx, 3);
+            dispatch::glEnd(&mut ctx);
+            dispatch::glEndList(&mut ctx);
+        }
+        assert!(ctx.frame.draws.is_empty(), "GL_COMPILE draws nothing");
+        verts.fill(-5.0);
+        std::hint::black_box(&verts);
+        unsafe {
+            dispatch::glColor3f(&mut ctx, 0.0, 0.0, 1.0);
+            dispatch::glCallList(&mut ctx, 7);
+        }
+        let draws = &ctx.frame.draws;
+        assert_eq!(draws.len(), 3);
+        assert_eq!(draws[0].source, DrawSource::List(7));
+        assert_eq!(draws[0].vertices.position[1], [1.0, 0.0, 0.0, 1.0]);
+        assert_eq!(draws[0].vertices.color.get(0), Some([0.0, 0.0, 1.0, 1.0]), "current colour at execution");
+        assert_eq!(draws[1].vertices.position, vec![[1.0, 0.0, 0.0, 1.0], [1.0, 1.0, 0.0, 1.0]]);
+        assert_eq!(draws[2].vertices.position, vec![[0.0, 1.0, 0.0, 1.0]]);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    }
+
+    #[test]
+    fn multi_draw() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, SQUARE.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        let (first, count) = ([0, 2], [2, 2]);
+        unsafe { ctx.glMultiDrawArrays(gl::GL_LINES, first.as_ptr(), count.as_ptr(), 2) };
+        let d = &ctx.frame.draws[0];
+        assert_eq!((d.vertex_count, d.indices.len()), (4, 4), "the two draws merge");
+        let a: [u32; 1] = [3];
+        let b: [u32; 2] = [0, 1];
+        let ptrs: [*const c_void; 2] = [a.as_ptr().cast(), b.as_ptr().cast()];
+        unsafe { ctx.glMultiDrawElements(gl::GL_POINTS, [1, 2].as_ptr(), gl::GL_UNSIGNED_INT, ptrs.as_ptr(), 2) };
+        let d = &ctx.frame.draws[1];
+        assert_eq!(d.vertices.position[0], [0.0, 1.0, 0.0, 1.0]);
+        assert_eq!(d.vertex_count, 3);
+        unsafe { ctx.glMultiDrawArrays(gl::GL_LINES, first.as_ptr(), count.as_ptr(), -1) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+    }
+
+    #[test]
+    fn array_element_sets_current_values() {
+        let (mut ctx, _) = Context::with_recording();
+        let normals: [i8; 6] = [0, 127, 0, 0, 0, -128];
+        ctx.glNormalPointer(gl::GL_BYTE, 0, normals.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_NORMAL_ARRAY);
+        ctx.glArrayElement(1);
+        let mut n = [0.0f32; 3];
+        unsafe { ctx.glGetFloatv(gl::GL_CURRENT_NORMAL, n.as_mut_ptr()) };
+        assert_eq!(n, [0.0f32.max(1.0 / 255.0), 1.0 / 255.0, -1.0]);
+        ctx.glArrayElement(-1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+    }
+
+    #[test]
+    fn edge_flag_array_masks_edges() {
+        let (mut ctx, _) = Context::with_recording();
+        let flags: [u8; 4] = [0, 1, 1, 1];
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, SQUARE.as_ptr().cast());
+        ctx.glEdgeFlagPointer(0, flags.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        ctx.glEnableClientState(gl::GL_EDGE_FLAG_ARRAY);
+        ctx.glDrawArrays(gl::GL_QUADS, 0, 4);
+        assert_eq!(ctx.frame.draws[0].edge_masks, vec![0b100, 0b011]);
+    }
+}

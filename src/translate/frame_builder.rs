@@ -1,0 +1,238 @@
+//! Where assembled primitives enter the frame: `Context::emit_batch` takes the state
+//! snapshots of a batch and appends it to the frame, merging it into the previous draw when
+//! nothing but the vertices differs. Programs that issue one `glBegin`/`glEnd` per quad thus
+//! produce one draw per state change, not one per quad.
+
+use std::sync::Arc;
+
+use glam::Mat4;
+
+use super::Context;
+use super::assemble::Assembled;
+use super::enable::EnableState;
+use super::gl;
+use super::limits::MAX_TEXTURE_UNITS;
+use crate::frame::{Draw, DrawSource, Frame, RasterState, TextureRef, Topology, Vertices};
+
+/// A merged draw never grows past this many vertices, so its indices stay far from `u32`
+/// overflow and the renderer's uploads stay bounded.
+pub const MAX_MERGED_VERTICES: usize = 1 << 22;
+
+/// Texture targets whose enable makes a unit use its texture matrix.
+const TEXTURE_TARGETS: [gl::GLenum; 4] =
+    [gl::GL_TEXTURE_1D, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_3D, gl::GL_TEXTURE_CUBE_MAP];
+
+/// Everything a batch is drawn with besides its vertices; batches with equal keys merge.
+/// Built without allocation (but for the snapshots), so that a `glBegin`/`glEnd` per quad
+/// stays cheap.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BatchKey {
+    /// Topology.
+    pub topology: Topology,
+    /// Source.
+    pub source: DrawSource,
+    /// Modelview matrix.
+    pub modelview: Mat4,
+    /// Projection matrix.
+    pub projection: Mat4,
+    /// Texture matrix of each unit with a texture target enabled.
+    pub texture_matrices: [Option<Mat4>; MAX_TEXTURE_UNITS],
+    /// Raster state snapshot.
+    pub state: Arc<RasterState>,
+    /// Texture snapshot.
+    pub textures: Vec<Option<TextureRef>>,
+}
+
+/// Which texture units have a texture target enabled, for the capability state it was
+/// computed from (compared by value, so restoring saved state cannot make it stale).
+#[derive(Default)]
+pub struct TexturingCache {
+    enables: Option<EnableState>,
+    units: [bool; MAX_TEXTURE_UNITS],
+}
+
+impl TexturingCache {
+    fn units(&mut self, enables: &EnableState) -> [bool; MAX_TEXTURE_UNITS] {
+        if self.enables.as_ref() != Some(enables) {
+            self.units = std::array::from_fn(|u| TEXTURE_TARGETS.iter().any(|&t| enables.unit_on(u, t)));
+            self.enables = Some(enables.clone());
+        }
+        self.units
+    }
+}
+
+impl Context {
+    /// The single entry of assembled primitives into the frame: `vertices` in object space,
+    /// decomposed into `assembled` (indices into `vertices` and, for triangles, edge masks)
+    /// with the given `topology`, produced by `source`. Takes the matrices and the raster and
+    /// texture snapshots now. Empty batches are dropped.
+    pub(crate) fn emit_batch(
+        &mut self,
+        topology: Topology,
+        vertices: &Vertices,
+        assembled: &Assembled,
+        source: DrawSource,
+    ) {
+        if assembled.indices.is_empty() {
+            return;
+        }
+        let key = self.batch_key(topology, source);
+        push_batch(&mut self.frame, key, vertices, assembled);
+    }
+
+    /// The source of immediate-mode geometry: the display list being executed, if any.
+    pub(crate) fn immediate_source(&self) -> DrawSource {
+        self.lists.executing_list().map_or(DrawSource::Immediate, DrawSource::List)
+    }
+
+    /// The source of vertex-array geometry.
+    pub(crate) fn arrays_source(&self) -> DrawSource {
+        self.lists.executing_list().map_or(DrawSource::Arrays, DrawSource::List)
+    }
+
+    /// The key of a batch emitted now.
+    fn batch_key(&mut self, topology: Topology, source: DrawSource) -> BatchKey {
+        let units = self.immediate.texturing.units(&self.enables);
+        let transform = &self.transform;
+        BatchKey {
+            topology,
+            source,
+            modelview: transform.modelview(),
+            projection: transform.projection(),
+            texture_matrices: std::array::from_fn(|u| units[u].then(|| transform.texture_matrix(u))),
+            state: self.raster_snapshot(),
+            textures: self.texture_snapshot(),
+        }
+    }
+}
+
+/// Whether a batch with `key` can be appended to `last` (`extra` more vertices).
+fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
+    last.topology == key.topology
+        && last.source == key.source
+        && last.modelview == key.modelview
+        && last.projection == key.projection
+        && last.texture_matrices == key.texture_matrices
+        && (Arc::ptr_eq(&last.state, &key.state) || last.state == key.state)
+        && last.textures == key.textures
+        && last.vertices.len() + extra <= MAX_MERGED_VERTICES
+}
+
+/// Appends a batch to `frame`: into its last draw when `mergeable` and no clear came after
+/// that draw, else as a new draw.
+pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembled: &Assembled) {
+    let cleared_since = frame.clears.last().is_some_and(|c| c.before_draw >= frame.draws.len());
+    let merge = !cleared_since && frame.draws.last().is_some_and(|last| mergeable(last, &key, vertices.len()));
+    if !merge {
+        frame.draws.push(Draw {
+            topology: key.topology,
+            source: key.source,
+            modelview: key.modelview,
+            projection: key.projection,
+            texture_matrices: key.texture_matrices.to_vec(),
+            state: key.state,
+            textures: key.textures,
+            ..Draw::default()
+        });
+    }
+    let draw = frame.draws.last_mut().expect("a draw was just pushed or merged into");
+    let base = draw.vertices.len() as u32;
+    draw.vertices.append(vertices);
+    draw.vertex_count = draw.vertices.len();
+    draw.indices.extend(assembled.indices.iter().map(|&i| i + base));
+    draw.edge_masks.extend_from_slice(&assembled.edge_masks);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::Clear;
+    use crate::translate::dispatch;
+    use crate::translate::immediate::{Batch, CurrentAttribs};
+
+    fn quad(ctx: &mut Context, x: f32) {
+        unsafe {
+            dispatch::glBegin(ctx, gl::GL_QUADS);
+            dispatch::glTexCoord2f(ctx, 0.0, 0.0);
+            dispatch::glVertex2f(ctx, x, 0.0);
+            dispatch::glTexCoord2f(ctx, 1.0, 0.0);
+            dispatch::glVertex2f(ctx, x + 1.0, 0.0);
+            dispatch::glTexCoord2f(ctx, 1.0, 1.0);
+            dispatch::glVertex2f(ctx, x + 1.0, 1.0);
+            dispatch::glTexCoord2f(ctx, 0.0, 1.0);
+            dispatch::glVertex2f(ctx, x, 1.0);
+            dispatch::glEnd(ctx);
+        }
+    }
+
+    #[test]
+    fn thousand_quads_merge_into_one_draw() {
+        let (mut ctx, sink) = Context::with_recording();
+        for i in 0..1000 {
+            quad(&mut ctx, i as f32);
+        }
+        ctx.end_frame();
+        let frames = sink.frames.lock();
+        let draw = &frames[0].draws;
+        assert_eq!(draw.len(), 1);
+        assert_eq!(draw[0].vertex_count, 4000);
+        assert_eq!(draw[0].indices.len(), 6000);
+        assert_eq!(draw[0].edge_masks.len(), 2000);
+        assert_eq!(draw[0].indices[6 * 999..6 * 999 + 3], [3996, 3997, 3999]);
+        assert_eq!(draw[0].vertices.position[3999], [999.0, 1.0, 0.0, 1.0]);
+        assert_eq!(draw[0].vertices.texcoords[0].get(3998), Some([1.0, 1.0, 0.0, 1.0]));
+    }
+
+    #[test]
+    fn state_topology_matrix_and_clear_split_draws() {
+        let (mut ctx, _) = Context::with_recording();
+        quad(&mut ctx, 0.0);
+        quad(&mut ctx, 1.0);
+        ctx.glTranslatef(1.0, 0.0, 0.0);
+        quad(&mut ctx, 2.0);
+        unsafe {
+            dispatch::glBegin(&mut ctx, gl::GL_LINES);
+            dispatch::glVertex2f(&mut ctx, 0.0, 0.0);
+            dispatch::glVertex2f(&mut ctx, 1.0, 0.0);
+            dispatch::glEnd(&mut ctx);
+        }
+        let before = ctx.frame.draws.len();
+        ctx.frame.clears.push(Clear { before_draw: before, ..Clear::default() });
+        unsafe {
+            dispatch::glBegin(&mut ctx, gl::GL_LINES);
+            dispatch::glVertex2f(&mut ctx, 0.0, 0.0);
+            dispatch::glVertex2f(&mut ctx, 1.0, 0.0);
+            dispatch::glEnd(&mut ctx);
+        }
+        let draws = &ctx.frame.draws;
+        assert_eq!(draws.len(), 4);
+        assert_eq!(draws[0].vertex_count, 8);
+        assert_eq!(draws[1].modelview.w_axis.x, 1.0);
+        assert_eq!(draws[2].topology, Topology::Lines);
+        assert_eq!(draws[3].topology, Topology::Lines);
+        ctx.glEnable(gl::GL_TEXTURE_2D);
+        quad(&mut ctx, 0.0);
+        assert_eq!(ctx.frame.draws.len(), 5, "enabling a texture target adds its matrix");
+        assert!(ctx.frame.draws[4].texture_matrices[0].is_some());
+    }
+
+    #[test]
+    fn push_batch_offsets_indices_and_keeps_masks() {
+        let mut frame = Frame::default();
+        let mut batch = Batch::default();
+        let current = CurrentAttribs::default();
+        for i in 0..3 {
+            batch.push([i as f32, 0.0, 0.0, 1.0], &current, 0);
+        }
+        let v = &batch.vertices;
+        let a = Assembled { indices: vec![0, 1, 2], edge_masks: vec![0b101] };
+        push_batch(&mut frame, BatchKey::default(), v, &a);
+        push_batch(&mut frame, BatchKey::default(), v, &a);
+        assert_eq!(frame.draws.len(), 1);
+        assert_eq!(frame.draws[0].indices, vec![0, 1, 2, 3, 4, 5]);
+        assert_eq!(frame.draws[0].edge_masks, vec![0b101, 0b101]);
+        let other = BatchKey { source: DrawSource::List(3), ..BatchKey::default() };
+        push_batch(&mut frame, other, v, &a);
+        assert_eq!(frame.draws.len(), 2, "another source starts another draw");
+    }
+}
