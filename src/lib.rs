@@ -6,5 +6,6 @@
 
 pub mod frame;
 pub mod gl_entry;
+pub mod logging;
 pub mod render;
 pub mod translate;

@@ -13,28 +13,43 @@ use super::shim::with_current;
 use crate::render;
 use crate::translate::Context;
 use crate::translate::context::ContextConfig;
+use crate::translate::context::SharedObjects;
 
 /// What an application-visible context handle points to.
 pub struct ContextHandle {
     /// The context.
     pub context: SharedContext,
+    /// Its share group, kept outside the context's lock: a context current on this thread
+    /// (locked by it) can still be named as the share list of a new one.
+    pub shared: Arc<Mutex<SharedObjects>>,
 }
 
 impl ContextHandle {
+    /// A context presenting to the default sink, sharing objects with `share`'s share group.
+    pub fn new(share: Option<&ContextHandle>) -> ContextHandle {
+        crate::logging::init();
+        let share = share.map(|h| h.shared.clone());
+        let context = Context::new(ContextConfig { share, sink: render::default_sink() });
+        let shared = context.shared.clone();
+        ContextHandle { context: Arc::new(Mutex::new(context)), shared }
+    }
+
     /// Creates a context sharing objects with `share` (a handle, or null) and returns its
     /// handle.
-    pub fn create(share: *const ContextHandle) -> *mut ContextHandle {
-        // Safety: a non-null share handle came from this function and was not destroyed.
-        let share = unsafe { share.as_ref() }.map(|h| h.context.lock().shared.clone());
-        let context = Context::new(ContextConfig { share, sink: render::default_sink() });
-        Box::into_raw(Box::new(ContextHandle { context: Arc::new(Mutex::new(context)) }))
+    ///
+    /// # Safety
+    /// A non-null `share` came from this function and was not destroyed.
+    pub unsafe fn create(share: *const ContextHandle) -> *mut ContextHandle {
+        // Safety: as documented.
+        Box::into_raw(Box::new(ContextHandle::new(unsafe { share.as_ref() })))
     }
 }
 
 /// Creates a headless context; `share` is another glrt context handle or null.
 #[unsafe(no_mangle)]
 pub extern "C" fn glrtCreateContext(share: *mut c_void) -> *mut c_void {
-    catch_unwind(|| ContextHandle::create(share.cast()).cast()).unwrap_or(std::ptr::null_mut())
+    // Safety: a non-null share handle came from glrtCreateContext and was not destroyed.
+    catch_unwind(|| unsafe { ContextHandle::create(share.cast()) }.cast()).unwrap_or(std::ptr::null_mut())
 }
 
 /// Makes a headless context current on this thread with an off-screen drawable of

@@ -4,6 +4,13 @@
 
 pub mod current;
 pub mod exports;
+pub mod glx;
+pub mod glx_config;
+pub mod glx_context;
+pub mod glx_drawable;
+pub mod glx_query;
+pub mod glx_swap;
 pub mod glx_types;
+pub mod glx_xfont;
 pub mod headless;
 pub mod shim;

@@ -1,6 +1,8 @@
 //! Rendering: consumes [`Frame`]s. The Vulkan back ends come here; for now the sinks that keep
 //! frames for tests and for programs run without a renderer.
 
+pub mod frame_log;
+
 use std::sync::Arc;
 
 use parking_lot::Mutex;
@@ -53,8 +55,9 @@ impl FrameSink for RecordingSink {
     }
 }
 
-/// The sink a new context presents to: the renderer chosen by the configuration. Until the
-/// Vulkan back end exists this is the [`NullSink`].
+/// The sink a new context presents to: the renderer chosen by the configuration (until the
+/// Vulkan back end exists, the [`NullSink`]), behind the frame log when `GLRT_FRAME_LOG` is
+/// set (see [`frame_log`]).
 pub fn default_sink() -> Box<dyn FrameSink> {
-    Box::new(NullSink::default())
+    frame_log::wrap_from_env(Box::new(NullSink::default()))
 }

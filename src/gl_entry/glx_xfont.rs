@@ -1,0 +1,24 @@
+//! The `glXUseXFont` export (GLX 1.4 section 3.5.5); the work is in [`super::glx::xfont`].
+
+#![allow(non_snake_case)]
+
+use std::ffi::c_int;
+
+use super::glx::context::binding;
+use super::glx::{connection, guard, xfont};
+use super::glx_types::types;
+
+/// `glXUseXFont`: display lists `list .. list + count` draw characters `first ..` of `font`
+/// with `glBitmap`. Needs a current context (its display is used); without one it does
+/// nothing (there is no display to report an error on).
+#[unsafe(no_mangle)]
+pub extern "C" fn glXUseXFont(font: types::Font, first: c_int, count: c_int, list: c_int) {
+    guard("glXUseXFont", || {
+        let Some(b) = binding() else {
+            return log::info!("glXUseXFont: no current context");
+        };
+        let Some((x, dpy)) = (unsafe { connection(b.display.cast()) }) else { return };
+        // Safety: the current context's display is live.
+        unsafe { xfont::use_x_font(x, dpy, font, first, count, list) }
+    })
+}

@@ -1,0 +1,92 @@
+//! The frame log: with `GLRT_FRAME_LOG=path`, every presented frame appends one JSON line
+//! `{"frame":N,"draws":D,"vertices":V,"clears":C}` to `path` before going on to the
+//! renderer. Tests use it to check the per-frame draw counts of real programs.
+//!
+//! The file is opened in append mode and each line is written with one `write` call, so the
+//! contexts of a program (each with its own sink) can share it.
+
+use std::fs::{File, OpenOptions};
+use std::io::Write;
+use std::path::Path;
+
+use super::FrameSink;
+use crate::frame::Frame;
+
+/// The environment variable naming the log file.
+pub const VARIABLE: &str = "GLRT_FRAME_LOG";
+
+/// A sink that logs each frame, then hands it to `inner`.
+pub struct FrameLog {
+    inner: Box<dyn FrameSink>,
+    file: File,
+}
+
+impl FrameLog {
+    /// Logs to `path` (created if needed, appended to) in front of `inner`.
+    pub fn open(path: &Path, inner: Box<dyn FrameSink>) -> std::io::Result<FrameLog> {
+        Ok(FrameLog { inner, file: append(path)? })
+    }
+}
+
+fn append(path: &Path) -> std::io::Result<File> {
+    OpenOptions::new().create(true).append(true).open(path)
+}
+
+/// The log line of a frame (with its newline).
+pub fn line(frame: &Frame) -> String {
+    let vertices: usize = frame.draws.iter().map(|d| d.vertex_count).sum();
+    format!(
+        "{{\"frame\":{},\"draws\":{},\"vertices\":{},\"clears\":{}}}\n",
+        frame.number,
+        frame.draws.len(),
+        vertices,
+        frame.clears.len()
+    )
+}
+
+impl FrameSink for FrameLog {
+    fn present(&mut self, frame: Frame) {
+        if let Err(e) = self.file.write_all(line(&frame).as_bytes()) {
+            log::warn!("{VARIABLE}: {e}");
+        }
+        self.inner.present(frame);
+    }
+}
+
+/// `inner` wrapped in a [`FrameLog`] when `GLRT_FRAME_LOG` names a file that can be opened
+/// (a failure is logged), else `inner` itself.
+pub fn wrap_from_env(inner: Box<dyn FrameSink>) -> Box<dyn FrameSink> {
+    let Some(path) = std::env::var_os(VARIABLE).filter(|p| !p.is_empty()) else { return inner };
+    match append(Path::new(&path)) {
+        Ok(file) => Box::new(FrameLog { inner, file }),
+        Err(e) => {
+            log::warn!("{VARIABLE}={}: {e}", Path::new(&path).display());
+            inner
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::{Clear, Draw};
+    use crate::render::RecordingSink;
+
+    #[test]
+    fn one_line_per_frame_and_frames_go_on_to_the_inner_sink() {
+        let dir = std::env::temp_dir().join(format!("glrt-frame-log-{}", std::process::id()));
+        let _ = std::fs::remove_file(&dir);
+        let recording = RecordingSink::default();
+        let mut log = FrameLog::open(&dir, Box::new(recording.clone())).unwrap();
+        let draw = |n| Draw { vertex_count: n, ..Draw::default() };
+        log.present(Frame { number: 0, draws: vec![draw(3), draw(6)], clears: vec![Clear::default()] });
+        log.present(Frame { number: 1, ..Frame::default() });
+        let text = std::fs::read_to_string(&dir).unwrap();
+        let _ = std::fs::remove_file(&dir);
+        assert_eq!(
+            text,
+            "{\"frame\":0,\"draws\":2,\"vertices\":9,\"clears\":1}\n{\"frame\":1,\"draws\":0,\"vertices\":0,\"clears\":0}\n"
+        );
+        assert_eq!(recording.frames.lock().len(), 2);
+    }
+}
