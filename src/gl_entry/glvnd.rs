@@ -304,3 +304,138 @@ pub unsafe extern "C" fn __glx_Main(
         1
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicPtr as Ptr, AtomicUsize};
+
+    /// The vendor handle the fake libGLX reports as current.
+    static CURRENT_VENDOR: Ptr<c_void> = Ptr::new(std::ptr::null_mut());
+    /// The last `(vendor, index)` the fake `fetchDispatchEntry` was asked for.
+    static FETCHED: [AtomicUsize; 2] = [AtomicUsize::new(0), AtomicUsize::new(0)];
+    /// The interval the fake vendor's `glXSwapIntervalSGI` received.
+    static RECEIVED: AtomicI32 = AtomicI32::new(0);
+
+    unsafe extern "C" fn fake_current_vendor() -> *mut VendorInfo {
+        CURRENT_VENDOR.load(Ordering::SeqCst)
+    }
+
+    unsafe extern "C" fn fake_swap_interval_sgi(interval: c_int) -> c_int {
+        RECEIVED.store(interval, Ordering::SeqCst);
+        42
+    }
+
+    unsafe extern "C" fn fake_fetch(vendor: *mut VendorInfo, index: c_int) -> ExtFuncPtr {
+        FETCHED[0].store(vendor as usize, Ordering::SeqCst);
+        FETCHED[1].store(index as usize, Ordering::SeqCst);
+        fake_swap_interval_sgi as *const c_void
+    }
+
+    /// A libGLX exports table with the entries the dispatchers use.
+    static FAKE_EXPORTS: GlxApiExports = GlxApiExports {
+        getDynDispatch: None,
+        getCurrentDynDispatch: Some(fake_current_vendor),
+        fetchDispatchEntry: Some(fake_fetch),
+        getCurrentContext: None,
+        addVendorContextMapping: None,
+        removeVendorContextMapping: None,
+        vendorFromContext: None,
+        addVendorFBConfigMapping: None,
+        removeVendorFBConfigMapping: None,
+        vendorFromFBConfig: None,
+        addVendorDrawableMapping: None,
+        removeVendorDrawableMapping: None,
+        vendorFromDrawable: None,
+    };
+
+    fn empty_imports() -> GlxApiImports {
+        GlxApiImports {
+            isScreenSupported: None,
+            getProcAddress: None,
+            getDispatchAddress: None,
+            setDispatchIndex: None,
+            notifyError: None,
+            isPatchSupported: None,
+            initiatePatch: None,
+            releasePatch: None,
+            patchThreadAttach: None,
+        }
+    }
+
+    fn glx_main(version: u32, imports: &mut GlxApiImports) -> Bool {
+        // Safety: a static exports table and a writable imports table.
+        unsafe { __glx_Main(version, &FAKE_EXPORTS, std::ptr::null_mut(), imports) }
+    }
+
+    #[test]
+    fn layouts_match_the_header() {
+        // 13 and 9 function pointers, in the header's order.
+        let word = std::mem::size_of::<usize>();
+        assert_eq!(std::mem::size_of::<GlxApiExports>(), 13 * word);
+        assert_eq!(std::mem::size_of::<GlxApiImports>(), 9 * word);
+        assert_eq!(std::mem::offset_of!(GlxApiExports, vendorFromDrawable), 12 * word);
+        assert_eq!(std::mem::offset_of!(GlxApiImports, patchThreadAttach), 8 * word);
+    }
+
+    #[test]
+    fn another_major_version_is_refused() {
+        let mut imports = empty_imports();
+        assert_eq!(glx_main(2 << 16, &mut imports), 0);
+        assert_eq!(glx_main(0, &mut imports), 0);
+        assert!(imports.getProcAddress.is_none() && imports.isScreenSupported.is_none());
+        // Safety: a null imports table is refused, not written.
+        assert_eq!(unsafe { __glx_Main(1 << 16, &FAKE_EXPORTS, std::ptr::null_mut(), std::ptr::null_mut()) }, 0);
+    }
+
+    #[test]
+    fn imports_are_filled_for_any_1_x() {
+        for version in [1 << 16, (1 << 16) | 7] {
+            let mut imports = empty_imports();
+            assert_eq!(glx_main(version, &mut imports), 1);
+            let get = imports.getProcAddress.expect("getProcAddress");
+            let dispatch = imports.getDispatchAddress.expect("getDispatchAddress");
+            // Safety: NUL-terminated names; null display is not read.
+            unsafe {
+                assert_eq!(imports.isScreenSupported.expect("isScreenSupported")(std::ptr::null_mut(), 0), 1);
+                assert_eq!(get(c"glBegin".as_ptr().cast()) as *const (), proc_address(b"glBegin"));
+                assert!(!get(c"glXCreateContext".as_ptr().cast()).is_null());
+                assert!(get(c"glXImportContextEXT".as_ptr().cast()).is_null());
+                assert!(get(c"glXCreateGLXPixmapMESA".as_ptr().cast()).is_null());
+                assert!(get(c"glNoSuchFunction".as_ptr().cast()).is_null());
+                assert!(get(std::ptr::null()).is_null());
+                assert_eq!(
+                    dispatch(c"glXSwapIntervalEXT".as_ptr().cast()) as *const (),
+                    dispatch_swap_interval_ext as *const ()
+                );
+                assert!(dispatch(c"glBegin".as_ptr().cast()).is_null());
+                assert!(dispatch(c"glXCreateContext".as_ptr().cast()).is_null());
+            }
+            assert!(imports.setDispatchIndex.is_some() && imports.notifyError.is_none());
+            assert!(imports.isPatchSupported.is_none() && imports.initiatePatch.is_none());
+        }
+    }
+
+    #[test]
+    fn every_function_libglx_fetches_exists() {
+        for name in STATIC_GLX.iter().chain(EXTENSIONS.iter().map(|e| &e.name)) {
+            assert!(!vendor_proc_address(name.as_bytes()).is_null(), "{name}");
+        }
+    }
+
+    #[test]
+    fn extension_dispatch_reaches_the_current_vendor_at_its_index() {
+        let mut imports = empty_imports();
+        assert_eq!(glx_main(1 << 16, &mut imports), 1);
+        // Safety: a NUL-terminated name.
+        unsafe { imports.setDispatchIndex.expect("setDispatchIndex")(c"glXSwapIntervalSGI".as_ptr().cast(), 7) };
+        CURRENT_VENDOR.store(std::ptr::null_mut(), Ordering::SeqCst);
+        assert_eq!(dispatch_swap_interval_sgi(3), GLX_BAD_CONTEXT);
+        let vendor = 0x1234usize as *mut c_void;
+        CURRENT_VENDOR.store(vendor, Ordering::SeqCst);
+        assert_eq!(dispatch_swap_interval_sgi(3), 42);
+        assert_eq!(RECEIVED.load(Ordering::SeqCst), 3);
+        assert_eq!(FETCHED[0].load(Ordering::SeqCst), 0x1234);
+        assert_eq!(FETCHED[1].load(Ordering::SeqCst), 7);
+    }
+}

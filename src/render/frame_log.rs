@@ -79,7 +79,7 @@ mod tests {
         let recording = RecordingSink::default();
         let mut log = FrameLog::open(&dir, Box::new(recording.clone())).unwrap();
         let draw = |n| Draw { vertex_count: n, ..Draw::default() };
-        log.present(Frame { number: 0, draws: vec![draw(3), draw(6)], clears: vec![Clear::default()] });
+        log.present(Frame { number: 0, draws: vec![draw(3), draw(6)], clears: vec![Clear::default()], ..Frame::default() });
         log.present(Frame { number: 1, ..Frame::default() });
         let text = std::fs::read_to_string(&dir).unwrap();
         let _ = std::fs::remove_file(&dir);
