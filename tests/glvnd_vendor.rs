@@ -13,7 +13,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Output, Stdio};
 
 use x11_dl::glx::*;
-use x11_dl::xlib::Xlib;
+use x11_dl::xlib::{self, Xlib};
 
 /// Set in the environment of the child run of [`glvnd_child`].
 const CHILD_VAR: &str = "GLRT_GLVND_CHILD";
@@ -130,17 +130,22 @@ fn glxinfo_reports_glrt_through_glvnd() {
 }
 
 #[test]
-fn gl_and_glx_extensions_dispatch_through_glvnd() {
+fn gl_and_glx_calls_reach_glrt_through_glvnd() {
     let server = Server::start();
     let vendor = VendorDir::new("child");
     let exe = std::env::current_exe().expect("test executable path");
+    let frame_log = vendor.0.join("frames.jsonl");
     let mut command = Command::new(exe);
-    command.args(["--ignored", "--exact", "glvnd_child", "--nocapture", "--test-threads=1"]).env(CHILD_VAR, "1");
+    command.args(["--ignored", "--exact", "glvnd_child", "--nocapture", "--test-threads=1"]);
+    command.env(CHILD_VAR, "1").env("GLRT_FRAME_LOG", &frame_log);
     let out = vendor.run(&server, command, true);
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success() && stdout.contains("1 passed"), "the child failed:\n{stdout}\n{stderr}");
     assert!(loaded_through_glvnd(&stderr, &vendor.0), "glrt was not loaded by libGLX.so.0:\n{stderr}");
+    // The window's one frame, with its clear, presented by glXSwapBuffers through libGLX.
+    let frames = std::fs::read_to_string(&frame_log).expect("the frame log");
+    assert_eq!(frames, "{\"frame\":0,\"draws\":0,\"vertices\":0,\"clears\":1}\n");
 }
 
 /// A GL or GLX function from glvnd's `glXGetProcAddress`, as type `F`.
@@ -154,12 +159,12 @@ unsafe fn proc<F: Copy>(glx: &Glx, name: &CStr) -> F {
     unsafe { std::mem::transmute_copy(&f) }
 }
 
-/// Run by [`gl_and_glx_extensions_dispatch_through_glvnd`] in a child process whose
+/// Run by [`gl_and_glx_calls_reach_glrt_through_glvnd`] in a child process whose
 /// `libGL.so.1` is glvnd's and whose GLX vendor is glrt.
 #[test]
-#[ignore = "run as a child process by gl_and_glx_extensions_dispatch_through_glvnd"]
+#[ignore = "run as a child process by gl_and_glx_calls_reach_glrt_through_glvnd"]
 fn glvnd_child() {
-    assert_eq!(std::env::var(CHILD_VAR).as_deref(), Ok("1"), "run by gl_and_glx_extensions_dispatch_through_glvnd");
+    assert_eq!(std::env::var(CHILD_VAR).as_deref(), Ok("1"), "run by gl_and_glx_calls_reach_glrt_through_glvnd");
     let x = Xlib::open().expect("libX11");
     let glx = Glx::open().expect("glvnd's libGL.so.1");
     unsafe {
@@ -212,6 +217,31 @@ fn glvnd_child() {
         assert_eq!(get_mesa(), 0);
         (glx.glXDestroyContext)(dpy.cast(), context);
         (glx.glXDestroyPbuffer)(dpy.cast(), pbuffer);
+
+        // The legacy path (SDL2, GLUT): a visual, a window, glXCreateContext, one cleared frame.
+        let mut attrs = [GLX_RGBA, GLX_DOUBLEBUFFER, 0];
+        let visual = (glx.glXChooseVisual)(dpy.cast(), screen, attrs.as_mut_ptr());
+        assert!(!visual.is_null(), "no double-buffered RGBA visual");
+        let root = (x.XRootWindow)(dpy, screen);
+        let mut wa: xlib::XSetWindowAttributes = std::mem::zeroed();
+        wa.colormap = (x.XCreateColormap)(dpy, root, (*visual).visual.cast(), xlib::AllocNone);
+        let window = (x.XCreateWindow)(
+            dpy, root, 0, 0, 80, 60, 0, (*visual).depth, xlib::InputOutput as c_uint,
+            (*visual).visual.cast(), xlib::CWColormap, &mut wa,
+        );
+        let context = (glx.glXCreateContext)(dpy.cast(), visual, std::ptr::null_mut(), 1);
+        assert!(!context.is_null());
+        assert_eq!((glx.glXMakeCurrent)(dpy.cast(), window, context), 1);
+        get_integerv(0x0BA2, viewport.as_mut_ptr()); // GL_VIEWPORT
+        assert_eq!(viewport, [0, 0, 80, 60], "the initial viewport is the window's size");
+        let clear: unsafe extern "C" fn(c_uint) = proc(&glx, c"glClear");
+        clear(0x4000); // GL_COLOR_BUFFER_BIT
+        (glx.glXSwapBuffers)(dpy.cast(), window);
+        assert_eq!((glx.glXMakeCurrent)(dpy.cast(), 0, std::ptr::null_mut()), 1);
+        (glx.glXDestroyContext)(dpy.cast(), context);
+        (x.XDestroyWindow)(dpy, window);
+        (x.XFreeColormap)(dpy, wa.colormap);
+        (x.XFree)(visual.cast());
         (x.XFree)(configs.cast());
         (x.XCloseDisplay)(dpy);
     }
