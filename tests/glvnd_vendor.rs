@@ -51,15 +51,16 @@ impl Drop for Server {
     }
 }
 
-/// A directory holding `libGLX_glrt.so.0` → the built `target/<profile>/libglrt.so`.
+/// A directory holding `libGLX_glrt.so.0` → the `libglrt.so` built with this test.
 struct VendorDir(PathBuf);
 
 impl VendorDir {
     fn new(tag: &str) -> VendorDir {
         let exe = std::env::current_exe().expect("test executable path");
-        // target/<profile>/deps/<test> → target/<profile>/libglrt.so
-        let lib = exe.parent().and_then(Path::parent).expect("target directory").join("libglrt.so");
-        assert!(lib.exists(), "{} is missing: build the library first (cargo build --lib)", lib.display());
+        // The library cargo built with this test: target/<profile>/deps/libglrt.so, next to it
+        // (cargo copies it to target/<profile>/ only for `cargo build`).
+        let lib = exe.with_file_name("libglrt.so");
+        assert!(lib.exists(), "{} is missing: cargo builds it with the tests", lib.display());
         let dir = std::env::temp_dir().join(format!("glrt-glvnd-{tag}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).expect("creating the vendor directory");
