@@ -173,11 +173,18 @@ fn dispatch(model: &Model) -> String {
     }
 
     for c in model.commands.iter().filter(|c| c.in_surface) {
+        let vector = matches!(c.route, Route::Family { vector: true, .. } | Route::Rect { vector: true, .. });
+        // A vector variant returns early on a null pointer; the glBegin/glEnd rule comes first.
+        let rule = if vector && !allowed_inside_begin_end(c) {
+            "    if ctx.inside_begin_end() && ctx.lists.executing() { return ctx.set_error(super::gl::GL_INVALID_OPERATION); }\n"
+        } else {
+            ""
+        };
         let body = match &c.route {
             Route::Family { family, count, suffix, vector } => {
-                family_body(c, family, *count, suffix, *vector)
+                format!("{rule}{}", family_body(c, family, *count, suffix, *vector))
             }
-            Route::Rect { suffix, vector } => rect_body(c, suffix, *vector),
+            Route::Rect { suffix, vector } => format!("{rule}{}", rect_body(c, suffix, *vector)),
             Route::Alias(target) => format!("    unsafe {{ {target}(ctx, {}) }}\n", arg_list(c)),
             _ => continue,
         };

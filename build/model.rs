@@ -98,6 +98,16 @@ impl Model {
         names.extend(hand.keys().cloned());
 
         let mut commands = Vec::new();
+        for (name, params, ret) in overlay::EXTRA_COMMANDS {
+            commands.push(Command {
+                name: (*name).to_owned(),
+                params: params.iter().map(|(n, t)| Param { name: (*n).to_owned(), ty: (*t).to_owned() }).collect(),
+                ret: (*ret).to_owned(),
+                route: if methods.contains(*name) { Route::Method } else { Route::Missing },
+                in_surface: true,
+                is_glx: false,
+            });
+        }
         for name in names {
             if let Some(module) = hand.get(&name) {
                 commands.push(Command {
@@ -142,6 +152,7 @@ impl Model {
                 is_glx,
             });
         }
+        commands.sort_by(|a, b| a.name.cmp(&b.name));
         resolve_aliases(&mut commands);
 
         let mut seen = BTreeSet::new();

@@ -40,7 +40,7 @@ pub const EXTENSIONS: &[&str] = &[
 /// Commands allowed between `glBegin` and `glEnd` besides the attribute families
 /// (OpenGL 1.5, section 2.6.3). Every other command there raises `GL_INVALID_OPERATION`.
 pub const INSIDE_BEGIN_END: &[&str] = &[
-    "End", "ArrayElement", "EvalPoint1", "EvalPoint2", "Materialf", "Materialfv", "Materiali",
+    "End", "ArrayElement", "MTexCoord2fSGIS", "EvalPoint1", "EvalPoint2", "Materialf", "Materialfv", "Materiali",
     "Materialiv", "EdgeFlag", "EdgeFlagv", "CallList", "CallLists",
 ];
 
@@ -126,4 +126,12 @@ pub const FAMILIES: &[Family] = &[
     },
     family("EvalCoord1", "EvalCoord1f", 1, ["0.0", "0.0", "0.0", "0.0"], false),
     family("EvalCoord2", "EvalCoord2f", 2, ["0.0", "0.0", "0.0", "0.0"], false),
+];
+
+/// Commands of extensions withdrawn before the registry was written, which GL 1.x games still
+/// use: `(C name, parameters as (name, Rust type), Rust return type)`. GLQuake and Quake 2 use
+/// `GL_SGIS_multitexture`.
+pub const EXTRA_COMMANDS: &[(&str, &[(&str, &str)], &str)] = &[
+    ("glSelectTextureSGIS", &[("target", "types::GLenum")], "()"),
+    ("glMTexCoord2fSGIS", &[("target", "types::GLenum"), ("s", "types::GLfloat"), ("t", "types::GLfloat")], "()"),
 ];

@@ -3,6 +3,7 @@
 //! renderer needs to resolve textures. No GL enums here: `translate` converts them to these
 //! types.
 
+pub mod pixels;
 pub mod state;
 pub mod texture;
 
@@ -24,6 +25,8 @@ pub struct Frame {
     /// [`Frame::draws`]) between its `glBeginQuery` and `glEndQuery`; the renderer counts their
     /// samples that pass and answers through [`crate::render::FrameSink::occlusion_result`].
     pub occlusion_queries: Vec<(u32, std::ops::Range<usize>)>,
+    /// Bitmaps, pixel images and copies, in program order with the draws.
+    pub pixels: Vec<pixels::PixelOp>,
 }
 
 /// One draw: primitives of one state.

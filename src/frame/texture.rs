@@ -1,10 +1,307 @@
-//! References from draws to texture content (placeholder until texture objects land).
+//! Textures as draws use them: a reference (object name + content version) that carries the
+//! resolved texel data, so the renderer uploads each content version once and reuses it while
+//! the version is unchanged.
+//!
+//! Texels are canonical RGBA8 laid out as the base format expands them (OpenGL 1.5 table 3.15:
+//! alpha → (0, 0, 0, A), luminance → (L, L, L, 1), luminance-alpha → (L, L, L, A), intensity →
+//! (I, I, I, I), RGB → (R, G, B, 1), depth → (D, D, D, 1)); [`TexelFormat`] says which base
+//! format it was, because texture environments treat them differently.
 
-/// A texture as a draw uses it: object name and content version.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+use std::sync::Arc;
+
+/// A texture as a draw uses it. Two references are equal when name and version are: the
+/// version is unique across every texture of the process, so a renderer keys its uploads on it.
+#[derive(Clone, Debug)]
 pub struct TextureRef {
-    /// Texture object name.
+    /// Texture object name (0 for a default texture).
     pub id: u32,
-    /// Bumped by every change of the texture's images or parameters.
+    /// Content version: changes whenever images, parameters or the palette change.
     pub version: u64,
+    /// What to upload for this version.
+    pub content: Arc<TextureContent>,
+}
+
+impl PartialEq for TextureRef {
+    fn eq(&self, other: &TextureRef) -> bool {
+        self.id == other.id && self.version == other.version
+    }
+}
+impl Eq for TextureRef {}
+impl std::hash::Hash for TextureRef {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        (self.id, self.version).hash(state);
+    }
+}
+
+/// The dimensionality of a texture.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum TextureKind {
+    /// One-dimensional.
+    D1,
+    /// Two-dimensional.
+    #[default]
+    D2,
+    /// Three-dimensional.
+    D3,
+    /// Cube map: six faces in the order +X, −X, +Y, −Y, +Z, −Z.
+    Cube,
+}
+
+/// The base format the texels were specified with (table 3.15).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum TexelFormat {
+    /// Alpha only.
+    Alpha,
+    /// Luminance.
+    Luminance,
+    /// Luminance and alpha.
+    LuminanceAlpha,
+    /// Intensity.
+    Intensity,
+    /// RGB.
+    Rgb,
+    /// RGBA.
+    #[default]
+    Rgba,
+    /// Depth, replicated as `DEPTH_TEXTURE_MODE` says at sampling time.
+    Depth,
+}
+
+/// Everything a renderer needs to build a texture and its sampler.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TextureContent {
+    /// Dimensionality.
+    pub kind: TextureKind,
+    /// Base format of the base level.
+    pub format: TexelFormat,
+    /// `faces[face][level]`: one face except for cube maps.
+    pub faces: Vec<Vec<Option<Arc<TexImage>>>>,
+    /// Sampling parameters.
+    pub sampler: Sampler,
+}
+
+/// One mipmap level: canonical RGBA8 texels, border included, rows bottom to top, slices
+/// front to back.
+#[derive(Clone, Default, PartialEq)]
+pub struct TexImage {
+    /// Width including the border.
+    pub width: u32,
+    /// Height including the border (1 for 1D).
+    pub height: u32,
+    /// Depth including the border (1 for 1D and 2D).
+    pub depth: u32,
+    /// Border width, 0 or 1.
+    pub border: u32,
+    /// `width * height * depth * 4` bytes.
+    pub texels: Vec<u8>,
+}
+
+impl std::fmt::Debug for TexImage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "TexImage({}x{}x{}, border {})", self.width, self.height, self.depth, self.border)
+    }
+}
+
+/// Magnification filter.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Filter {
+    /// Nearest texel.
+    Nearest,
+    /// Bilinear.
+    #[default]
+    Linear,
+}
+
+/// Minification filter: texel filter and mipmap filter (`None` = base level only).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub struct MinFilter {
+    /// Filter within a level.
+    pub texel: Filter,
+    /// Filter between levels; `None` when mipmapping is off.
+    pub mipmap: Option<Filter>,
+}
+
+/// Wrap mode of one coordinate.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Wrap {
+    /// `GL_REPEAT`.
+    #[default]
+    Repeat,
+    /// `GL_CLAMP` (legacy: blends with the border colour at the edge).
+    Clamp,
+    /// `GL_CLAMP_TO_EDGE`.
+    ClampToEdge,
+    /// `GL_CLAMP_TO_BORDER`.
+    ClampToBorder,
+    /// `GL_MIRRORED_REPEAT`.
+    MirroredRepeat,
+}
+
+/// Depth comparison function (`GL_TEXTURE_COMPARE_FUNC`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CompareFunc {
+    /// r ≤ D passes.
+    #[default]
+    LessEqual,
+    /// r ≥ D passes.
+    GreaterEqual,
+}
+
+/// How a depth texel becomes a colour (`GL_DEPTH_TEXTURE_MODE`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DepthMode {
+    /// (D, D, D, 1).
+    #[default]
+    Luminance,
+    /// (D, D, D, D).
+    Intensity,
+    /// (0, 0, 0, D).
+    Alpha,
+}
+
+/// Sampler state of a texture object (OpenGL 1.5 table 6.16).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sampler {
+    /// Minification.
+    pub min_filter: MinFilter,
+    /// Magnification.
+    pub mag_filter: Filter,
+    /// Wrap of s, t, r.
+    pub wrap: [Wrap; 3],
+    /// Border colour.
+    pub border_color: [f32; 4],
+    /// Level-of-detail clamp, min and max.
+    pub lod: [f32; 2],
+    /// Base and max level.
+    pub levels: [u32; 2],
+    /// Depth comparison, when `GL_TEXTURE_COMPARE_MODE` is `GL_COMPARE_R_TO_TEXTURE`.
+    pub compare: Option<CompareFunc>,
+    /// Depth texel expansion.
+    pub depth_mode: DepthMode,
+}
+
+impl Default for Sampler {
+    fn default() -> Sampler {
+        Sampler {
+            min_filter: MinFilter { texel: Filter::Nearest, mipmap: Some(Filter::Linear) },
+            mag_filter: Filter::Linear,
+            wrap: [Wrap::Repeat; 3],
+            border_color: [0.0; 4],
+            lod: [-1000.0, 1000.0],
+            levels: [0, 1000],
+            compare: None,
+            depth_mode: DepthMode::Luminance,
+        }
+    }
+}
+
+/// Texture function of a unit (`GL_TEXTURE_ENV_MODE`, OpenGL 1.5 section 3.8.13).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum EnvMode {
+    /// Colour × texture.
+    #[default]
+    Modulate,
+    /// Texture replaces.
+    Replace,
+    /// Texture blended over by its alpha.
+    Decal,
+    /// Blend with the environment colour.
+    Blend,
+    /// Colour + texture.
+    Add,
+    /// The combiner ([`TextureEnv::combine_rgb`] ...).
+    Combine,
+}
+
+/// Combiner function (`GL_COMBINE_RGB`, `GL_COMBINE_ALPHA`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CombineFn {
+    /// Arg0.
+    Replace,
+    /// Arg0 × Arg1.
+    #[default]
+    Modulate,
+    /// Arg0 + Arg1.
+    Add,
+    /// Arg0 + Arg1 − 0.5.
+    AddSigned,
+    /// Arg0 × Arg2 + Arg1 × (1 − Arg2).
+    Interpolate,
+    /// Arg0 − Arg1.
+    Subtract,
+    /// 4 × dot(Arg0 − 0.5, Arg1 − 0.5) into RGB.
+    Dot3Rgb,
+    /// The same into RGBA.
+    Dot3Rgba,
+}
+
+/// Combiner source (`GL_SOURCEn_RGB`, `GL_SOURCEn_ALPHA`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CombineSource {
+    /// This unit's texture.
+    #[default]
+    Texture,
+    /// The texture of another unit (crossbar).
+    TextureUnit(u8),
+    /// The environment colour.
+    Constant,
+    /// The fragment's primary colour.
+    PrimaryColor,
+    /// The previous unit's result.
+    Previous,
+}
+
+/// Combiner operand (`GL_OPERANDn_RGB`, `GL_OPERANDn_ALPHA`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CombineOperand {
+    /// The colour.
+    #[default]
+    SrcColor,
+    /// One minus the colour.
+    OneMinusSrcColor,
+    /// The alpha.
+    SrcAlpha,
+    /// One minus the alpha.
+    OneMinusSrcAlpha,
+}
+
+/// The texture environment of a unit, as the renderer applies it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TextureEnv {
+    /// Texture function.
+    pub mode: EnvMode,
+    /// Environment colour.
+    pub color: [f32; 4],
+    /// RGB combiner function.
+    pub combine_rgb: CombineFn,
+    /// Alpha combiner function.
+    pub combine_alpha: CombineFn,
+    /// RGB sources 0–2.
+    pub source_rgb: [CombineSource; 3],
+    /// Alpha sources 0–2.
+    pub source_alpha: [CombineSource; 3],
+    /// RGB operands 0–2.
+    pub operand_rgb: [CombineOperand; 3],
+    /// Alpha operands 0–2.
+    pub operand_alpha: [CombineOperand; 3],
+    /// Scales of the combiner results (1, 2 or 4).
+    pub scale: [f32; 2],
+    /// Level-of-detail bias of the unit.
+    pub lod_bias: f32,
+}
+
+/// How one texture coordinate is generated (section 2.10.4); planes in the space they apply
+/// in (object plane on object coordinates, eye plane on eye coordinates).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum TexGenMode {
+    /// dot(plane, object position).
+    ObjectLinear([f32; 4]),
+    /// dot(plane, eye position).
+    EyeLinear([f32; 4]),
+    /// Sphere map from the eye-space reflection vector.
+    SphereMap,
+    /// The eye-space normal.
+    NormalMap,
+    /// The eye-space reflection vector.
+    ReflectionMap,
 }

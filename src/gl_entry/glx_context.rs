@@ -12,7 +12,7 @@ use x11_dl::xlib;
 
 use super::glx::config::{self, FbConfig, read_pairs};
 use super::glx::context;
-use super::glx::{BAD_MATCH, BAD_VALUE, GlxError, XError, connection, guard, report};
+use super::glx::{BAD_ACCESS, BAD_MATCH, BAD_VALUE, GlxError, XError, connection, guard, report};
 use super::glx_config::config_of_visual;
 use super::glx_types::types;
 use crate::gl_entry::current;
@@ -287,4 +287,36 @@ mod tests {
         assert_eq!(check_attribs(&[(GLX_CONTEXT_FLAGS_ARB, 0x80)]), Err(BAD_VALUE));
         assert_eq!(check_attribs(&[(0x7777, 1)]), Err(BAD_VALUE));
     }
+}
+
+/// `glXCopyContext` (section 3.3.7): copies the attribute groups of `mask` (the
+/// `glPushAttrib` bits) from `src` to `dst`. `BadAccess` when `dst` is current to some thread
+/// or `src` is current to another thread; `GLXBadContext` for a handle that is not a context.
+///
+/// # Safety
+/// `dpy` is a live display.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn glXCopyContext(
+    dpy: *mut types::Display,
+    src: types::GLXContext,
+    dst: types::GLXContext,
+    mask: c_ulong,
+) {
+    guard("glXCopyContext", || {
+        let fail = |error, resource: types::GLXContext| {
+            // Safety: as documented.
+            unsafe { report(dpy.cast(), "glXCopyContext", error, resource as c_ulong) }
+        };
+        let (Some(from), Some(to)) = (context::get(src as usize), context::get(dst as usize)) else {
+            return fail(XError::Glx(GlxError::BadContext), if context::get(src as usize).is_none() { src } else { dst });
+        };
+        let Some(mut target) = to.handle.context.try_lock() else { return fail(BAD_ACCESS, dst) };
+        let mask = mask as u32;
+        if current::current_handle() == src as usize {
+            crate::gl_entry::shim::with_current("glXCopyContext", |ctx| ctx.copy_attributes_to(&mut target, mask));
+        } else {
+            let Some(source) = from.handle.context.try_lock() else { return fail(BAD_ACCESS, src) };
+            source.copy_attributes_to(&mut target, mask);
+        }
+    })
 }

@@ -8,6 +8,7 @@ use std::sync::Arc;
 use parking_lot::Mutex;
 
 use crate::frame::Frame;
+use crate::frame::pixels::PixelBuffer;
 
 /// Receives each finished frame.
 pub trait FrameSink: Send {
@@ -26,6 +27,13 @@ pub trait FrameSink: Send {
     /// count samples (the default).
     fn occlusion_counter_bits(&self) -> u32 {
         0
+    }
+    /// Renders `frame` so far (it is not ended) and reads the rectangle `rect` (x, y, width,
+    /// height, window coordinates) of `buffer`: RGBA for colour, the value in the first
+    /// component for depth and stencil; rows bottom to top. `None` when the sink cannot
+    /// render (the caller leaves the client's memory untouched).
+    fn read_pixels(&mut self, _frame: &Frame, _buffer: PixelBuffer, _rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        None
     }
 }
 

@@ -7,8 +7,6 @@
 //! line each, with a saver of type [`Saver`] written in the owning module:
 //! - `GL_CURRENT_BIT`: `Context::save_current_attrib` (current colour, secondary colour,
 //!   index, normal, texture coordinates, raster position, edge flag);
-//! - `GL_EVAL_BIT`: `Context::save_eval_attrib` (maps and grids; the map enables and
-//!   `GL_AUTO_NORMAL` are saved here);
 //! - `GL_TEXTURE_BIT`: `Context::save_texture_attrib` (bindings, environments, coordinate
 //!   generation planes and modes; the per-unit enables and the active unit are saved here);
 //! - `GL_PIXEL_MODE_BIT`: `Context::save_pixel_mode_attrib` (pixel transfer, maps, zoom;
@@ -46,7 +44,7 @@ const GROUPS: &[(GLbitfield, Saver)] = &[
     (gl::GL_VIEWPORT_BIT, save_viewport),
     (gl::GL_TRANSFORM_BIT, save_transform),
     (gl::GL_HINT_BIT, save_hints),
-    (gl::GL_EVAL_BIT, save_eval_enables),
+    (gl::GL_EVAL_BIT, save_eval),
     (gl::GL_LIST_BIT, save_list),
     (gl::GL_MULTISAMPLE_BIT, save_multisample),
     (gl::GL_TEXTURE_BIT, save_texture_enables),
@@ -194,31 +192,10 @@ fn save_hints(ctx: &Context, out: &mut Vec<Restore>) {
     out.push(value(ctx.fixed.hints, |ctx, v| ctx.fixed_mut().hints = v));
 }
 
-fn save_eval_enables(ctx: &Context, out: &mut Vec<Restore>) {
-    out.push(caps(
-        ctx,
-        [
-            gl::GL_AUTO_NORMAL,
-            gl::GL_MAP1_COLOR_4,
-            gl::GL_MAP1_INDEX,
-            gl::GL_MAP1_NORMAL,
-            gl::GL_MAP1_TEXTURE_COORD_1,
-            gl::GL_MAP1_TEXTURE_COORD_2,
-            gl::GL_MAP1_TEXTURE_COORD_3,
-            gl::GL_MAP1_TEXTURE_COORD_4,
-            gl::GL_MAP1_VERTEX_3,
-            gl::GL_MAP1_VERTEX_4,
-            gl::GL_MAP2_COLOR_4,
-            gl::GL_MAP2_INDEX,
-            gl::GL_MAP2_NORMAL,
-            gl::GL_MAP2_TEXTURE_COORD_1,
-            gl::GL_MAP2_TEXTURE_COORD_2,
-            gl::GL_MAP2_TEXTURE_COORD_3,
-            gl::GL_MAP2_TEXTURE_COORD_4,
-            gl::GL_MAP2_VERTEX_3,
-            gl::GL_MAP2_VERTEX_4,
-        ],
-    ));
+/// The evaluator group: map enables, `GL_AUTO_NORMAL` and the grids (the evaluator module).
+fn save_eval(ctx: &Context, out: &mut Vec<Restore>) {
+    let saved = ctx.capture_eval_attrib();
+    out.push(Box::new(move |ctx| ctx.restore_eval_attrib(&saved)));
 }
 
 fn save_list(ctx: &Context, out: &mut Vec<Restore>) {
@@ -266,6 +243,20 @@ impl Context {
         self.fixed.attrib.0.push(restores);
     }
 
+    /// Copies the attribute groups of `mask` from this context to `dst` (`glXCopyContext`,
+    /// GLX 1.4 section 3.3.7: the same groups as `glPushAttrib`).
+    pub fn copy_attributes_to(&self, dst: &mut Context, mask: GLbitfield) {
+        let mut restores = Vec::new();
+        for &(bit, save) in GROUPS {
+            if mask & bit != 0 {
+                save(self, &mut restores);
+            }
+        }
+        for restore in restores {
+            restore(dst);
+        }
+    }
+
     /// `glPopAttrib`: `GL_STACK_UNDERFLOW` when the stack is empty.
     pub fn glPopAttrib(&mut self) {
         let Some(restores) = self.fixed.attrib.0.pop() else {
@@ -289,6 +280,19 @@ mod tests {
 
     fn ints(ctx: &Context, pname: gl::GLenum) -> Vec<i32> {
         ctx.query(pname).unwrap().to_ints()
+    }
+
+    #[test]
+    fn copy_attributes_copies_only_the_masked_groups() {
+        let (mut src, _) = Context::with_recording();
+        let (mut dst, _) = Context::with_recording();
+        src.glLineWidth(5.0);
+        src.glEnable(gl::GL_FOG);
+        src.copy_attributes_to(&mut dst, gl::GL_LINE_BIT);
+        assert_eq!(ints(&dst, gl::GL_LINE_WIDTH), vec![5]);
+        assert_eq!(dst.glIsEnabled(gl::GL_FOG), 0);
+        src.copy_attributes_to(&mut dst, gl::GL_ENABLE_BIT);
+        assert_eq!(dst.glIsEnabled(gl::GL_FOG), 1);
     }
 
     #[test]

@@ -63,14 +63,17 @@ impl Context {
         }
     }
 
-    /// `glFlush`: commands are already complete from the program's point of view; the frame
-    /// is handed to the renderer at `glXSwapBuffers` or at a read-back, so there is nothing
-    /// to push here.
-    pub fn glFlush(&mut self) {}
+    /// `glFlush`: a program drawing to the front buffer shows its picture now, so the frame so
+    /// far goes to the renderer; otherwise frames end at `glXSwapBuffers` or a read-back.
+    pub fn glFlush(&mut self) {
+        self.flush_front();
+    }
 
-    /// `glFinish`: a read-back point, like `glReadPixels`. The renderer wires the hand-over of
-    /// the partial frame here (it must return once every earlier command's pixels exist).
-    pub fn glFinish(&mut self) {}
+    /// `glFinish`: like `glFlush`; once a renderer draws frames asynchronously it also waits
+    /// here until every earlier command's pixels exist.
+    pub fn glFinish(&mut self) {
+        self.flush_front();
+    }
 
     /// Buffer selection queries (tables 6.19 and 6.20).
     pub(crate) fn query_buffers(&self, pname: GLenum) -> Option<Value> {
@@ -107,5 +110,21 @@ mod tests {
         ctx.glReadBuffer(gl::GL_AUX1);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
         assert_eq!(ctx.query(gl::GL_READ_BUFFER).unwrap().to_ints(), [gl::GL_FRONT as i32]);
+    }
+
+    #[test]
+    fn single_buffered_contexts_end_frames_at_flush() {
+        let (mut ctx, sink) = Context::with_recording();
+        ctx.set_double_buffered(false);
+        assert_eq!(ctx.query(gl::GL_DRAW_BUFFER).unwrap().to_ints(), vec![gl::GL_FRONT as i32]);
+        ctx.glFlush();
+        assert_eq!(sink.frames.lock().len(), 0, "nothing drawn, no frame");
+        ctx.glClear(gl::GL_COLOR_BUFFER_BIT);
+        ctx.glFlush();
+        assert_eq!(sink.frames.lock().len(), 1);
+        ctx.set_double_buffered(true);
+        ctx.glClear(gl::GL_COLOR_BUFFER_BIT);
+        ctx.glFinish();
+        assert_eq!(sink.frames.lock().len(), 1, "double-buffered: frames end at swaps");
     }
 }

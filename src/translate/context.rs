@@ -16,6 +16,8 @@ use crate::render::{FrameSink, RecordingSink};
 pub struct SharedObjects {
     /// Display lists by name.
     pub lists: ListTable,
+    /// Texture objects by name.
+    pub textures: super::texture::TextureTable,
 }
 
 /// How a context is created.
@@ -50,11 +52,17 @@ pub struct Context {
     pub render_mode: super::render_mode::RenderModeState,
     /// Occlusion query objects.
     pub queries: super::queries::QueryState,
+    /// Texture units: bindings, environments, coordinate generation.
+    pub texture: super::texture::TextureState,
+    /// Pixel storage, transfer, zoom and the raster position.
+    pub pixels: super::pixels::PixelState,
     /// Immediate-mode assembly (`glBegin`/`glEnd`).
     pub(crate) immediate: super::immediate::ImmediateState,
     /// The frame being assembled since the last swap.
     pub(crate) frame: Frame,
     pub(crate) sink: Box<dyn FrameSink>,
+    /// Whether the drawables are single-buffered (see [`Context::set_double_buffered`]).
+    single_buffered: bool,
     /// Size of the drawable last made current, `(width, height)`.
     pub(crate) drawable_size: Option<(i32, i32)>,
 }
@@ -74,9 +82,12 @@ impl Context {
             eval: Default::default(),
             render_mode: Default::default(),
             queries: Default::default(),
+            texture: Default::default(),
+            pixels: Default::default(),
             immediate: Default::default(),
             frame: Frame::default(),
             sink: config.sink,
+            single_buffered: false,
             drawable_size: None,
         }
     }
@@ -97,6 +108,31 @@ impl Context {
     pub fn bind_drawable(&mut self, width: i32, height: i32) {
         self.drawable_size = Some((width, height));
         self.init_viewport(width, height);
+    }
+
+    /// Declares whether the drawables of this context are double-buffered (from its GLX
+    /// configuration). Single-buffered contexts draw to `GL_FRONT` by default (section 4.2.1)
+    /// and end a frame at `glFlush`/`glFinish` instead of at swaps.
+    pub fn set_double_buffered(&mut self, double: bool) {
+        if self.single_buffered == double {
+            self.single_buffered = !double;
+            let initial = if double { super::gl::GL_BACK } else { super::gl::GL_FRONT };
+            self.fixed.buffers.draw = initial;
+            self.fixed.buffers.read = initial;
+        }
+    }
+
+    /// `glFlush`/`glFinish`: when the program draws to the front buffer (a single-buffered
+    /// context, or `glDrawBuffer(GL_FRONT)`), what it drew so far is a frame to show.
+    pub(crate) fn flush_front(&mut self) {
+        let front = matches!(
+            self.fixed.buffers.draw,
+            super::gl::GL_FRONT | super::gl::GL_FRONT_LEFT | super::gl::GL_FRONT_AND_BACK | super::gl::GL_LEFT
+        );
+        let drew = !self.frame.draws.is_empty() || !self.frame.clears.is_empty();
+        if (self.single_buffered || front) && drew {
+            self.end_frame();
+        }
     }
 
     /// Ends the frame (`glXSwapBuffers`): hands the assembled [`Frame`] to the renderer.

@@ -98,6 +98,8 @@ impl Context {
             .or_else(|| self.query_implementation(pname))
             .or_else(|| self.query_eval(pname))
             .or_else(|| self.query_render_mode(pname))
+            .or_else(|| self.query_texture(pname))
+            .or_else(|| self.query_pixels(pname))
     }
 
     fn query_lists(&self, pname: GLenum) -> Option<Value> {

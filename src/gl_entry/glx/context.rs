@@ -157,7 +157,11 @@ pub unsafe fn make_current(
     if !current::make_current(ctx, Some(&context.handle.context)) {
         return Err(super::BAD_ACCESS);
     }
-    with_current("glXMakeCurrent", |c| c.bind_drawable(width, height));
+    let double = context.double_buffer;
+    with_current("glXMakeCurrent", |c| {
+        c.set_double_buffered(double);
+        c.bind_drawable(width, height);
+    });
     BINDING.set(Some(Binding { display: dpy, draw, read, context: ctx }));
     if previous != ctx {
         free_if_released(previous);

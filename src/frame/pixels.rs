@@ -1,0 +1,131 @@
+//! Pixel operations of the frame, in program order with the draws: bitmaps (HUD text),
+//! `glDrawPixels` images, `glCopyPixels`, copies from the framebuffer into textures and
+//! accumulation-buffer operations. Positions are window coordinates (OpenGL 1.5 sections
+//! 3.6–3.7, 4.2.4, 4.3).
+
+use std::sync::Arc;
+
+/// One pixel operation and where it falls among the draws.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PixelOp {
+    /// Index in [`super::Frame::draws`] of the first draw after the operation.
+    pub before_draw: usize,
+    /// What to do.
+    pub kind: PixelKind,
+}
+
+/// Which framebuffer contents an operation reads or writes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum PixelBuffer {
+    /// The colour buffer.
+    #[default]
+    Color,
+    /// The depth buffer (values in [0, 1]).
+    Depth,
+    /// The stencil buffer.
+    Stencil,
+}
+
+/// Data of a `glDrawPixels` image, rows bottom to top.
+#[derive(Clone, PartialEq)]
+pub enum PixelData {
+    /// Colours after pixel transfer, RGBA8.
+    Rgba8(Arc<[u8]>),
+    /// Depth values after scale and bias.
+    Depth(Arc<[f32]>),
+    /// Stencil indices after shift, offset and map.
+    Stencil(Arc<[u32]>),
+}
+
+impl std::fmt::Debug for PixelData {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            PixelData::Rgba8(d) => write!(f, "Rgba8({} bytes)", d.len()),
+            PixelData::Depth(d) => write!(f, "Depth({} values)", d.len()),
+            PixelData::Stencil(d) => write!(f, "Stencil({} values)", d.len()),
+        }
+    }
+}
+
+/// Accumulation-buffer operation (`glAccum`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum AccumOp {
+    /// accum = colour × value.
+    Load,
+    /// accum += colour × value.
+    Accum,
+    /// colour = accum × value.
+    Return,
+    /// accum ×= value.
+    Mult,
+    /// accum += value.
+    Add,
+}
+
+/// A pixel operation.
+#[derive(Clone, Debug, PartialEq)]
+pub enum PixelKind {
+    /// `glBitmap`: set pixels take `color`; `mask` has one byte per pixel (0 or 255), rows
+    /// bottom to top; the lower-left corner is at `window_pos` (raster position − origin).
+    Bitmap {
+        /// Lower-left corner and depth.
+        window_pos: [f32; 3],
+        /// Width and height in pixels.
+        size: [u32; 2],
+        /// Current raster colour.
+        color: [f32; 4],
+        /// Coverage, 0 or 255 per pixel.
+        mask: Arc<[u8]>,
+    },
+    /// `glDrawPixels`.
+    Image {
+        /// Lower-left corner (the raster position) and depth.
+        window_pos: [f32; 3],
+        /// `glPixelZoom` factors.
+        zoom: [f32; 2],
+        /// Width and height in pixels.
+        size: [u32; 2],
+        /// Current raster colour (used for depth and stencil images).
+        color: [f32; 4],
+        /// The pixels.
+        data: PixelData,
+    },
+    /// `glCopyPixels`: the rectangle `src` (x, y, width, height) of `buffer` is drawn at
+    /// `window_pos` with `zoom`.
+    Copy {
+        /// Source rectangle.
+        src: [i32; 4],
+        /// Destination lower-left corner and depth.
+        window_pos: [f32; 3],
+        /// Zoom factors.
+        zoom: [f32; 2],
+        /// Which buffer is copied.
+        buffer: PixelBuffer,
+    },
+    /// `glCopyTexImage*`/`glCopyTexSubImage*`: the renderer copies `src` (x, y, width, height)
+    /// of the colour (or depth, for depth textures) buffer into the texture `texture`, whose
+    /// content version became `version` with this copy, at `face`, `level`, `offset`.
+    TextureCopy {
+        /// Texture object name.
+        texture: u32,
+        /// Content version the copy produces.
+        version: u64,
+        /// Cube face (0 for other kinds).
+        face: u32,
+        /// Mipmap level.
+        level: u32,
+        /// Destination texel offset (x, y, z), border included.
+        offset: [i32; 3],
+        /// Source rectangle.
+        src: [i32; 4],
+        /// Which buffer is read.
+        buffer: PixelBuffer,
+    },
+    /// `glAccum`.
+    Accum {
+        /// The operation.
+        op: AccumOp,
+        /// Its value.
+        value: f32,
+    },
+}

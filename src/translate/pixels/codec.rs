@@ -1,0 +1,497 @@
+//! Client pixel formats and types (OpenGL 1.5 tables 3.5, 3.6 and 3.8): parsing and checking
+//! `format`/`type` pairs, and decoding or encoding pixel groups in client memory laid out as
+//! [`Layout`] says, with byte swapping and bit order.
+
+use super::super::convert::{norm_i8, norm_i16, norm_i32, norm_u8, norm_u16, norm_u32};
+use super::super::gl::{self, GLenum};
+use super::store::{Layout, StoreModes};
+
+/// What a format's values mean.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    /// Colour components (normalized).
+    Color,
+    /// Colour indices (integers).
+    Index,
+    /// Stencil indices (integers).
+    Stencil,
+    /// Depth values (normalized).
+    Depth,
+}
+
+/// A client pixel format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Format {
+    /// The GL enum.
+    pub gl: GLenum,
+    /// Elements per group.
+    pub components: usize,
+    /// Meaning of the elements.
+    pub kind: Kind,
+}
+
+/// A packed pixel type (table 3.8): the bit fields of components 0..n, most significant
+/// first for the plain types, least significant first for the `_REV` types.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Packed {
+    /// Bytes of one packed pixel.
+    pub size: usize,
+    /// (shift, bits) of each component in format order.
+    pub fields: &'static [(u32, u32)],
+}
+
+/// A client pixel type.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Type {
+    /// `GL_UNSIGNED_BYTE`.
+    U8,
+    /// `GL_BYTE`.
+    I8,
+    /// `GL_UNSIGNED_SHORT`.
+    U16,
+    /// `GL_SHORT`.
+    I16,
+    /// `GL_UNSIGNED_INT`.
+    U32,
+    /// `GL_INT`.
+    I32,
+    /// `GL_FLOAT`.
+    F32,
+    /// `GL_BITMAP`: one bit a pixel.
+    Bitmap,
+    /// A packed type.
+    Packed(Packed),
+}
+
+const P332: &[(u32, u32)] = &[(5, 3), (2, 3), (0, 2)];
+const P233R: &[(u32, u32)] = &[(0, 3), (3, 3), (6, 2)];
+const P565: &[(u32, u32)] = &[(11, 5), (5, 6), (0, 5)];
+const P565R: &[(u32, u32)] = &[(0, 5), (5, 6), (11, 5)];
+const P4444: &[(u32, u32)] = &[(12, 4), (8, 4), (4, 4), (0, 4)];
+const P4444R: &[(u32, u32)] = &[(0, 4), (4, 4), (8, 4), (12, 4)];
+const P5551: &[(u32, u32)] = &[(11, 5), (6, 5), (1, 5), (0, 1)];
+const P1555R: &[(u32, u32)] = &[(0, 5), (5, 5), (10, 5), (15, 1)];
+const P8888: &[(u32, u32)] = &[(24, 8), (16, 8), (8, 8), (0, 8)];
+const P8888R: &[(u32, u32)] = &[(0, 8), (8, 8), (16, 8), (24, 8)];
+const P1010102: &[(u32, u32)] = &[(22, 10), (12, 10), (2, 10), (0, 2)];
+const P2101010R: &[(u32, u32)] = &[(0, 10), (10, 10), (20, 10), (30, 2)];
+
+/// The format `format`, if it is one of table 3.5.
+pub fn format(format: GLenum) -> Option<Format> {
+    let (components, kind) = match format {
+        gl::GL_COLOR_INDEX => (1, Kind::Index),
+        gl::GL_STENCIL_INDEX => (1, Kind::Stencil),
+        gl::GL_DEPTH_COMPONENT => (1, Kind::Depth),
+        gl::GL_RED | gl::GL_GREEN | gl::GL_BLUE | gl::GL_ALPHA | gl::GL_LUMINANCE => (1, Kind::Color),
+        gl::GL_LUMINANCE_ALPHA => (2, Kind::Color),
+        gl::GL_RGB | gl::GL_BGR => (3, Kind::Color),
+        gl::GL_RGBA | gl::GL_BGRA => (4, Kind::Color),
+        _ => return None,
+    };
+    Some(Format { gl: format, components, kind })
+}
+
+/// The type `type_`, if it is one of tables 3.6 and 3.8.
+pub fn pixel_type(type_: GLenum) -> Option<Type> {
+    let packed = |size, fields| Some(Type::Packed(Packed { size, fields }));
+    match type_ {
+        gl::GL_UNSIGNED_BYTE => Some(Type::U8),
+        gl::GL_BYTE => Some(Type::I8),
+        gl::GL_UNSIGNED_SHORT => Some(Type::U16),
+        gl::GL_SHORT => Some(Type::I16),
+        gl::GL_UNSIGNED_INT => Some(Type::U32),
+        gl::GL_INT => Some(Type::I32),
+        gl::GL_FLOAT => Some(Type::F32),
+        gl::GL_BITMAP => Some(Type::Bitmap),
+        gl::GL_UNSIGNED_BYTE_3_3_2 => packed(1, P332),
+        gl::GL_UNSIGNED_BYTE_2_3_3_REV => packed(1, P233R),
+        gl::GL_UNSIGNED_SHORT_5_6_5 => packed(2, P565),
+        gl::GL_UNSIGNED_SHORT_5_6_5_REV => packed(2, P565R),
+        gl::GL_UNSIGNED_SHORT_4_4_4_4 => packed(2, P4444),
+        gl::GL_UNSIGNED_SHORT_4_4_4_4_REV => packed(2, P4444R),
+        gl::GL_UNSIGNED_SHORT_5_5_5_1 => packed(2, P5551),
+        gl::GL_UNSIGNED_SHORT_1_5_5_5_REV => packed(2, P1555R),
+        gl::GL_UNSIGNED_INT_8_8_8_8 => packed(4, P8888),
+        gl::GL_UNSIGNED_INT_8_8_8_8_REV => packed(4, P8888R),
+        gl::GL_UNSIGNED_INT_10_10_10_2 => packed(4, P1010102),
+        gl::GL_UNSIGNED_INT_2_10_10_10_REV => packed(4, P2101010R),
+        _ => None,
+    }
+}
+
+/// Parses and checks a `format`/`type` pair: `GL_INVALID_ENUM` for unknown values or
+/// `GL_BITMAP` with a format other than an index, `GL_INVALID_OPERATION` for a packed type
+/// whose component count differs from the format's (section 3.6.4).
+pub fn parse(format_: GLenum, type_: GLenum) -> Result<(Format, Type), GLenum> {
+    let (Some(f), Some(t)) = (format(format_), pixel_type(type_)) else { return Err(gl::GL_INVALID_ENUM) };
+    match t {
+        Type::Bitmap if !matches!(f.kind, Kind::Index | Kind::Stencil) => Err(gl::GL_INVALID_ENUM),
+        Type::Packed(p) if !(f.kind == Kind::Color && f.components == p.fields.len() && f.components >= 3) => {
+            Err(gl::GL_INVALID_OPERATION)
+        }
+        _ => Ok((f, t)),
+    }
+}
+
+impl Type {
+    /// Bytes of one element (0 for bitmaps; the packed size for packed types).
+    pub fn element_size(self) -> usize {
+        match self {
+            Type::U8 | Type::I8 => 1,
+            Type::U16 | Type::I16 => 2,
+            Type::U32 | Type::I32 | Type::F32 => 4,
+            Type::Bitmap => 0,
+            Type::Packed(p) => p.size,
+        }
+    }
+
+    /// Elements per group of `format`.
+    pub fn elements(self, format: Format) -> usize {
+        if matches!(self, Type::Packed(_)) { 1 } else { format.components }
+    }
+
+    /// The layout of a `w` × `h` × `d` image of `format` with `modes`.
+    pub fn layout(self, format: Format, modes: &StoreModes, w: usize, h: usize, d: usize) -> Option<Layout> {
+        modes.layout(self.element_size(), self.elements(format), w, h, d)
+    }
+}
+
+/// Reads one element of `size` bytes at `at`, swapping bytes when asked.
+fn read_uint(bytes: &[u8], at: usize, size: usize, swap: bool) -> u32 {
+    let mut b = [0u8; 4];
+    for (i, slot) in b.iter_mut().take(size).enumerate() {
+        *slot = bytes.get(at + i).copied().unwrap_or(0);
+    }
+    if swap {
+        b[..size].reverse();
+    }
+    match size {
+        1 => u32::from(b[0]),
+        2 => u32::from(u16::from_ne_bytes([b[0], b[1]])),
+        _ => u32::from_ne_bytes(b),
+    }
+}
+
+fn write_uint(bytes: &mut [u8], at: usize, size: usize, swap: bool, v: u32) {
+    let mut b = match size {
+        1 => vec![v as u8],
+        2 => (v as u16).to_ne_bytes().to_vec(),
+        _ => v.to_ne_bytes().to_vec(),
+    };
+    if swap {
+        b.reverse();
+    }
+    for (i, x) in b.into_iter().enumerate() {
+        if let Some(slot) = bytes.get_mut(at + i) {
+            *slot = x;
+        }
+    }
+}
+
+/// Decodes element `raw` (as read) of type `t` to a value: normalized (table 2.9) for colour
+/// and depth, the integer itself for indices, the float itself for `GL_FLOAT`.
+fn decode_element(t: Type, raw: u32, normalized: bool) -> f32 {
+    match (t, normalized) {
+        (Type::F32, _) => f32::from_bits(raw),
+        (Type::U8, true) => norm_u8(raw as u8),
+        (Type::I8, true) => norm_i8(raw as u8 as i8),
+        (Type::U16, true) => norm_u16(raw as u16),
+        (Type::I16, true) => norm_i16(raw as u16 as i16),
+        (Type::U32, true) => norm_u32(raw),
+        (Type::I32, true) => norm_i32(raw as i32),
+        (Type::I8, false) => f32::from(raw as u8 as i8),
+        (Type::I16, false) => f32::from(raw as u16 as i16),
+        (Type::I32, false) => raw as i32 as f32,
+        _ => raw as f32,
+    }
+}
+
+/// Encodes `v` as element of type `t` (equation 4.1's inverse of table 2.9 for normalized
+/// values; integer values are wrapped to the type).
+fn encode_element(t: Type, v: f32, normalized: bool) -> u32 {
+    let unsigned = |max: f64| (f64::from(v).clamp(0.0, 1.0) * max).round() as u32;
+    let signed = |max: f64| ((f64::from(v).clamp(-1.0, 1.0) * max - 1.0) / 2.0).round() as i64 as u32;
+    match (t, normalized) {
+        (Type::F32, _) => v.to_bits(),
+        (Type::U8, true) => unsigned(255.0),
+        (Type::U16, true) => unsigned(65535.0),
+        (Type::U32, true) => unsigned(4294967295.0),
+        (Type::I8, true) => signed(255.0) & 0xff,
+        (Type::I16, true) => signed(65535.0) & 0xffff,
+        (Type::I32, true) => signed(4294967295.0),
+        _ => v as i64 as u32,
+    }
+}
+
+/// A group of elements and how to find them in client memory.
+pub struct Codec<'a> {
+    /// Format of the groups.
+    pub format: Format,
+    /// Type of the elements.
+    pub ty: Type,
+    /// Where pixels lie.
+    pub layout: Layout,
+    /// Storage modes (swap bytes, LSB first).
+    pub modes: &'a StoreModes,
+}
+
+impl Codec<'_> {
+    fn normalized(&self) -> bool {
+        matches!(self.format.kind, Kind::Color | Kind::Depth)
+    }
+
+    fn bit_position(&self, bit: usize) -> (usize, u32) {
+        let shift = if self.modes.lsb_first { bit % 8 } else { 7 - bit % 8 };
+        (bit / 8, shift as u32)
+    }
+
+    /// Decodes the `w` × `h` × `d` image in `bytes` (the client memory from the pointer on,
+    /// [`Layout::span`] bytes): `format.components` values a pixel, in format order.
+    pub fn decode(&self, bytes: &[u8], w: usize, h: usize, d: usize) -> Vec<f32> {
+        let n = self.format.components;
+        let mut out = Vec::with_capacity(w * h * d * n);
+        let size = self.ty.element_size();
+        let swap = self.modes.swap_bytes && size > 1;
+        for z in 0..d {
+            for y in 0..h {
+                for x in 0..w {
+                    let at = self.layout.offset(x, y, z);
+                    match self.ty {
+                        Type::Bitmap => {
+                            let (byte, shift) = self.bit_position(at);
+                            out.push(f32::from((bytes.get(byte).copied().unwrap_or(0) >> shift) & 1));
+                        }
+                        Type::Packed(p) => {
+                            let raw = read_uint(bytes, at, size, swap);
+                            for &(shift, bits) in p.fields {
+                                let max = (1u32 << bits) - 1;
+                                out.push(((raw >> shift) & max) as f32 / max as f32);
+                            }
+                        }
+                        t => {
+                            for c in 0..n {
+                                out.push(decode_element(t, read_uint(bytes, at + c * size, size, swap), self.normalized()));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Encodes `values` (`format.components` a pixel, in format order) into `bytes`, leaving
+    /// padding and skipped pixels as they were.
+    pub fn encode(&self, bytes: &mut [u8], values: &[f32], w: usize, h: usize, d: usize) {
+        let n = self.format.components;
+        let size = self.ty.element_size();
+        let swap = self.modes.swap_bytes && size > 1;
+        let mut groups = values.chunks_exact(n);
+        for z in 0..d {
+            for y in 0..h {
+                for x in 0..w {
+                    let Some(g) = groups.next() else { return };
+                    let at = self.layout.offset(x, y, z);
+                    match self.ty {
+                        Type::Bitmap => {
+                            let (byte, shift) = self.bit_position(at);
+                            if let Some(b) = bytes.get_mut(byte) {
+                                let bit = (g[0] as i64 & 1) as u8;
+                                *b = (*b & !(1 << shift)) | (bit << shift);
+                            }
+                        }
+                        Type::Packed(p) => {
+                            let mut raw = 0u32;
+                            for (&(shift, bits), &v) in p.fields.iter().zip(g) {
+                                let max = (1u32 << bits) - 1;
+                                raw |= ((f64::from(v).clamp(0.0, 1.0) * f64::from(max)).round() as u32) << shift;
+                            }
+                            write_uint(bytes, at, size, swap, raw);
+                        }
+                        t => {
+                            for (c, &v) in g.iter().enumerate() {
+                                write_uint(bytes, at + c * size, size, swap, encode_element(t, v, self.normalized()));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Expands a colour group of `format` to RGBA (section 3.6.4, "Conversion to RGB" and "Final
+/// Expansion to RGBA"): luminance is copied to R, G and B, missing components are 0, alpha 1.
+pub fn to_rgba(format: GLenum, g: &[f32]) -> [f32; 4] {
+    let c = |i: usize| g.get(i).copied().unwrap_or(0.0);
+    match format {
+        gl::GL_RED => [c(0), 0.0, 0.0, 1.0],
+        gl::GL_GREEN => [0.0, c(0), 0.0, 1.0],
+        gl::GL_BLUE => [0.0, 0.0, c(0), 1.0],
+        gl::GL_ALPHA => [0.0, 0.0, 0.0, c(0)],
+        gl::GL_LUMINANCE => [c(0), c(0), c(0), 1.0],
+        gl::GL_LUMINANCE_ALPHA => [c(0), c(0), c(0), c(1)],
+        gl::GL_RGB => [c(0), c(1), c(2), 1.0],
+        gl::GL_BGR => [c(2), c(1), c(0), 1.0],
+        gl::GL_BGRA => [c(2), c(1), c(0), c(3)],
+        _ => [c(0), c(1), c(2), c(3)],
+    }
+}
+
+/// Selects the components of `format` from an RGBA colour (section 4.3.2, "Conversion to L"):
+/// luminance is R + G + B clamped to [0, 1].
+pub fn from_rgba(format: GLenum, c: [f32; 4], out: &mut Vec<f32>) {
+    let l = (c[0] + c[1] + c[2]).clamp(0.0, 1.0);
+    match format {
+        gl::GL_RED => out.push(c[0]),
+        gl::GL_GREEN => out.push(c[1]),
+        gl::GL_BLUE => out.push(c[2]),
+        gl::GL_ALPHA => out.push(c[3]),
+        gl::GL_LUMINANCE => out.push(l),
+        gl::GL_LUMINANCE_ALPHA => out.extend([l, c[3]]),
+        gl::GL_RGB => out.extend([c[0], c[1], c[2]]),
+        gl::GL_BGR => out.extend([c[2], c[1], c[0]]),
+        gl::GL_BGRA => out.extend([c[2], c[1], c[0], c[3]]),
+        _ => out.extend(c),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn codec(format_: GLenum, type_: GLenum, modes: &StoreModes, w: usize, h: usize) -> Codec<'_> {
+        let (format, ty) = parse(format_, type_).unwrap();
+        let layout = ty.layout(format, modes, w, h, 1).unwrap();
+        Codec { format, ty, layout, modes }
+    }
+
+    #[test]
+    fn plain_types_decode_with_swap_bytes() {
+        let swap = StoreModes { swap_bytes: true, alignment: 1, ..StoreModes::default() };
+        let c = codec(gl::GL_LUMINANCE, gl::GL_UNSIGNED_SHORT, &swap, 2, 1);
+        let bytes = [0xff, 0xff, 0x00, 0x80];
+        let v = c.decode(&bytes, 2, 1, 1);
+        assert_eq!(v[0], 1.0);
+        // Swapped 0x00 0x80 is 0x0080 = 128.
+        assert_eq!(v[1], 128.0 / 65535.0);
+        let plain = StoreModes { alignment: 1, ..StoreModes::default() };
+        let c = codec(gl::GL_LUMINANCE, gl::GL_UNSIGNED_SHORT, &plain, 2, 1);
+        assert_eq!(c.decode(&bytes, 2, 1, 1)[1], f32::from(u16::from_ne_bytes([0x00, 0x80])) / 65535.0);
+        let c = codec(gl::GL_RGBA, gl::GL_BYTE, &plain, 1, 1);
+        assert_eq!(c.decode(&[127, 0x80, 0, 1], 1, 1, 1)[..2], [1.0, -1.0]);
+        let c = codec(gl::GL_COLOR_INDEX, gl::GL_INT, &plain, 1, 1);
+        assert_eq!(c.decode(&(-5i32).to_ne_bytes(), 1, 1, 1), [-5.0]);
+        let c = codec(gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT, &swap, 1, 1);
+        let mut be = 0.25f32.to_ne_bytes();
+        be.reverse();
+        assert_eq!(c.decode(&be, 1, 1, 1), [0.25]);
+    }
+
+    #[test]
+    fn every_plain_type_swaps_bytes() {
+        let swap = StoreModes { swap_bytes: true, alignment: 1, ..StoreModes::default() };
+        let plain = StoreModes { alignment: 1, ..StoreModes::default() };
+        // Each value written in the opposite byte order decodes with swapping, and as the
+        // byte-reversed value without.
+        let cases: [(GLenum, Vec<u8>, f32); 7] = [
+            (gl::GL_UNSIGNED_BYTE, vec![7], 7.0),
+            (gl::GL_BYTE, vec![0xf9], -7.0),
+            (gl::GL_UNSIGNED_SHORT, 0x0102u16.to_ne_bytes().into_iter().rev().collect(), 258.0),
+            (gl::GL_SHORT, (-300i16).to_ne_bytes().into_iter().rev().collect(), -300.0),
+            (gl::GL_UNSIGNED_INT, 0x01020304u32.to_ne_bytes().into_iter().rev().collect(), 16909060.0),
+            (gl::GL_INT, (-70000i32).to_ne_bytes().into_iter().rev().collect(), -70000.0),
+            (gl::GL_FLOAT, 1.5f32.to_ne_bytes().into_iter().rev().collect(), 1.5),
+        ];
+        for (ty, bytes, value) in cases {
+            let c = codec(gl::GL_COLOR_INDEX, ty, &swap, 1, 1);
+            assert_eq!(c.decode(&bytes, 1, 1, 1), [value], "{ty:#x}");
+            let mut back = vec![0u8; bytes.len()];
+            c.encode(&mut back, &[value], 1, 1, 1);
+            assert_eq!(back, bytes, "{ty:#x}");
+            if bytes.len() > 1 {
+                let unswapped = codec(gl::GL_COLOR_INDEX, ty, &plain, 1, 1).decode(&bytes, 1, 1, 1);
+                assert_ne!(unswapped, [value], "{ty:#x}");
+            }
+        }
+    }
+
+    #[test]
+    fn alignment_and_skips_select_bytes() {
+        let m = StoreModes { alignment: 4, skip_pixels: 1, skip_rows: 1, row_length: 3, ..StoreModes::default() };
+        let c = codec(gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, &m, 2, 2);
+        // Rows of 3 bytes padded to 4; start at row 1, pixel 1.
+        let bytes: Vec<u8> = (0..12).map(|i| i * 10).collect();
+        let v: Vec<u8> = c.decode(&bytes, 2, 2, 1).iter().map(|x| (x * 255.0).round() as u8).collect();
+        assert_eq!(v, [50, 60, 90, 100]);
+    }
+
+    #[test]
+    fn packed_types_round_trip_every_field() {
+        let m = StoreModes::default();
+        for (fmt, ty, raw) in [
+            (gl::GL_RGB, gl::GL_UNSIGNED_BYTE_3_3_2, 0b1010_1001u32),
+            (gl::GL_RGB, gl::GL_UNSIGNED_BYTE_2_3_3_REV, 0b0101_0101),
+            (gl::GL_RGB, gl::GL_UNSIGNED_SHORT_5_6_5, 0xf81f),
+            (gl::GL_RGB, gl::GL_UNSIGNED_SHORT_5_6_5_REV, 0x07e0),
+            (gl::GL_RGBA, gl::GL_UNSIGNED_SHORT_4_4_4_4, 0x1234),
+            (gl::GL_BGRA, gl::GL_UNSIGNED_SHORT_4_4_4_4_REV, 0x1234),
+            (gl::GL_RGBA, gl::GL_UNSIGNED_SHORT_5_5_5_1, 0x8421),
+            (gl::GL_BGRA, gl::GL_UNSIGNED_SHORT_1_5_5_5_REV, 0x8421),
+            (gl::GL_RGBA, gl::GL_UNSIGNED_INT_8_8_8_8, 0x11223344),
+            (gl::GL_BGRA, gl::GL_UNSIGNED_INT_8_8_8_8_REV, 0x11223344),
+            (gl::GL_RGBA, gl::GL_UNSIGNED_INT_10_10_10_2, 0xdeadbeef),
+            (gl::GL_RGBA, gl::GL_UNSIGNED_INT_2_10_10_10_REV, 0xdeadbeef),
+        ] {
+            let c = codec(fmt, ty, &m, 1, 1);
+            let size = c.ty.element_size();
+            let mut bytes = vec![0u8; 4];
+            write_uint(&mut bytes, 0, size, false, raw);
+            let v = c.decode(&bytes, 1, 1, 1);
+            let mut back = vec![0u8; 4];
+            c.encode(&mut back, &v, 1, 1, 1);
+            assert_eq!(back, bytes, "{ty:#x}");
+        }
+        // 5_6_5: red in the top five bits.
+        let c = codec(gl::GL_RGB, gl::GL_UNSIGNED_SHORT_5_6_5, &m, 1, 1);
+        assert_eq!(c.decode(&0xf800u16.to_ne_bytes(), 1, 1, 1), [1.0, 0.0, 0.0]);
+        // 8_8_8_8_REV: first component in the low byte.
+        let c = codec(gl::GL_RGBA, gl::GL_UNSIGNED_INT_8_8_8_8_REV, &m, 1, 1);
+        assert_eq!(c.decode(&0x000000ffu32.to_ne_bytes(), 1, 1, 1), [1.0, 0.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn bitmaps_follow_lsb_first() {
+        let msb = StoreModes { alignment: 1, ..StoreModes::default() };
+        let c = codec(gl::GL_COLOR_INDEX, gl::GL_BITMAP, &msb, 3, 1);
+        assert_eq!(c.decode(&[0b1010_0000], 3, 1, 1), [1.0, 0.0, 1.0]);
+        let lsb = StoreModes { lsb_first: true, alignment: 1, ..StoreModes::default() };
+        let c = codec(gl::GL_COLOR_INDEX, gl::GL_BITMAP, &lsb, 3, 1);
+        assert_eq!(c.decode(&[0b0000_0110], 3, 1, 1), [0.0, 1.0, 1.0]);
+        let mut out = [0xffu8];
+        c.encode(&mut out, &[0.0, 1.0, 0.0], 3, 1, 1);
+        assert_eq!(out, [0b1111_1010]);
+    }
+
+    #[test]
+    fn format_type_errors() {
+        assert_eq!(parse(gl::GL_RGBA, gl::GL_UNSIGNED_SHORT_5_6_5), Err(gl::GL_INVALID_OPERATION));
+        assert_eq!(parse(gl::GL_RGB, gl::GL_BITMAP), Err(gl::GL_INVALID_ENUM));
+        assert_eq!(parse(gl::GL_TEXTURE_2D, gl::GL_FLOAT), Err(gl::GL_INVALID_ENUM));
+        assert!(parse(gl::GL_BGRA, gl::GL_UNSIGNED_INT_8_8_8_8_REV).is_ok());
+    }
+
+    #[test]
+    fn signed_encoding_inverts_table_2_9() {
+        let m = StoreModes::default();
+        let c = codec(gl::GL_RGBA, gl::GL_BYTE, &m, 1, 1);
+        let mut out = [0u8; 4];
+        c.encode(&mut out, &[1.0, -1.0, 0.5, -0.5], 1, 1, 1);
+        assert_eq!(out.map(|b| b as i8), [127, -128, 63, -64]);
+        let mut v = Vec::new();
+        from_rgba(gl::GL_BGR, [0.1, 0.2, 0.3, 1.0], &mut v);
+        from_rgba(gl::GL_LUMINANCE, [0.5, 0.25, 0.5, 1.0], &mut v);
+        assert_eq!(v, [0.3, 0.2, 0.1, 1.0]);
+        assert_eq!(to_rgba(gl::GL_LUMINANCE_ALPHA, &[0.5, 0.25]), [0.5, 0.5, 0.5, 0.25]);
+    }
+}

@@ -1,0 +1,244 @@
+//! The pixel path of OpenGL 1.5 (sections 3.6–3.7, 4.3): pixel storage modes, pixel transfer
+//! and maps, the raster position, `glBitmap`, `glDrawPixels`, `glCopyPixels`,
+//! `glReadPixels`, `glPixelZoom` and `glAccum`. Images are read from client memory here
+//! ([`Context::unpack_client`]) for texture uploads too, and written back by
+//! [`Context::pack_client`].
+//!
+//! Bitmaps, images and copies go into [`crate::frame::Frame::pixels`] in order with the draws;
+//! read-backs ask the renderer through [`crate::render::FrameSink::read_pixels`].
+
+pub mod codec;
+pub mod draw;
+pub mod raster;
+pub mod store;
+pub mod transfer;
+
+use std::ffi::c_void;
+
+use super::Context;
+use super::get::Value;
+use super::gl::{self, GLenum};
+use codec::{Codec, Format, Type};
+pub use store::PixelStore;
+pub use transfer::{PixelTransfer, Unpacked};
+
+/// Most pixel components one command decodes (1 GiB of `f32`); larger images raise
+/// `GL_OUT_OF_MEMORY`.
+pub const MAX_DECODED_VALUES: usize = 1 << 28;
+
+/// Pixel state of a context.
+#[derive(Clone, Debug)]
+pub struct PixelState {
+    /// `glPixelStore` (client state).
+    pub store: PixelStore,
+    /// `glPixelTransfer`, `glPixelMap`.
+    pub transfer: PixelTransfer,
+    /// `glPixelZoom`: x and y factors.
+    pub zoom: [f32; 2],
+    /// The current raster position.
+    pub raster: raster::RasterPos,
+    /// Whether a failed read-back has been logged.
+    pub(crate) readback_logged: bool,
+}
+
+impl Default for PixelState {
+    fn default() -> PixelState {
+        PixelState {
+            store: PixelStore::default(),
+            transfer: PixelTransfer::default(),
+            zoom: [1.0, 1.0],
+            raster: raster::RasterPos::default(),
+            readback_logged: false,
+        }
+    }
+}
+
+/// Saved `GL_PIXEL_MODE_BIT` state (transfer, maps and zoom).
+#[derive(Clone, Debug)]
+pub struct PixelModeAttrib {
+    transfer: PixelTransfer,
+    zoom: [f32; 2],
+}
+
+impl Context {
+    /// Parses a `format`/`type` pair, raising the error of [`codec::parse`].
+    pub(crate) fn parse_pixel_format(&mut self, format: GLenum, type_: GLenum, command: &'static str) -> Option<(Format, Type)> {
+        match codec::parse(format, type_) {
+            Ok(v) => Some(v),
+            Err(e) => {
+                self.set_error_in(e, command);
+                None
+            }
+        }
+    }
+
+    /// Reads a `w` × `h` × `d` image from client memory with the unpack modes and applies
+    /// pixel transfer. `Ok(None)` for a null pointer; `Err(())` (after `GL_OUT_OF_MEMORY`) when
+    /// the image is too large to read. Sizes must have been checked non-negative.
+    ///
+    /// # Safety
+    /// A non-null `pixels` must point to the memory the unpack modes describe.
+    pub(crate) unsafe fn unpack_client(
+        &mut self,
+        (format, ty): (Format, Type),
+        [w, h, d]: [usize; 3],
+        pixels: *const c_void,
+        keep_index: bool,
+        command: &'static str,
+    ) -> Result<Option<Unpacked>, ()> {
+        let modes = self.pixels.store.unpack;
+        let values = w.checked_mul(h).and_then(|v| v.checked_mul(d)).and_then(|v| v.checked_mul(format.components));
+        let layout = ty.layout(format, &modes, w, h, d).filter(|_| values.is_some_and(|v| v <= MAX_DECODED_VALUES));
+        let Some(layout) = layout else {
+            self.set_error_in(gl::GL_OUT_OF_MEMORY, command);
+            return Err(());
+        };
+        if pixels.is_null() {
+            return Ok(None);
+        }
+        // Safety: the caller guarantees `layout.span` readable bytes.
+        let bytes = unsafe { std::slice::from_raw_parts(pixels.cast::<u8>(), layout.span) };
+        let groups = Codec { format, ty, layout, modes: &modes }.decode(bytes, w, h, d);
+        Ok(Some(self.pixels.transfer.apply(format, &groups, keep_index)))
+    }
+
+    /// Writes `values` (groups of `format`, in format order) to client memory with the pack
+    /// modes, leaving bytes between pixels untouched.
+    ///
+    /// # Safety
+    /// A non-null `pixels` must point to writable memory as the pack modes describe.
+    pub(crate) unsafe fn pack_client(
+        &mut self,
+        (format, ty): (Format, Type),
+        [w, h, d]: [usize; 3],
+        pixels: *mut c_void,
+        values: &[f32],
+        command: &'static str,
+    ) {
+        let modes = self.pixels.store.pack;
+        let Some(layout) = ty.layout(format, &modes, w, h, d) else { return self.set_error_in(gl::GL_OUT_OF_MEMORY, command) };
+        if pixels.is_null() {
+            return self.null_pointer(command);
+        }
+        // Safety: the caller guarantees `layout.span` writable bytes.
+        let bytes = unsafe { std::slice::from_raw_parts_mut(pixels.cast::<u8>(), layout.span) };
+        Codec { format, ty, layout, modes: &modes }.encode(bytes, values, w, h, d);
+    }
+
+    /// Copies the client memory a pixel command reads, for display lists (section 5.4: the
+    /// image is unpacked when the list is compiled). `None` when the arguments are invalid or
+    /// the pointer is null: the recorded command then raises the error when it runs.
+    ///
+    /// # Safety
+    /// A non-null `pixels` must point to the memory the unpack modes describe.
+    pub(crate) unsafe fn copy_client_image(&self, format: GLenum, type_: GLenum, dims: [i32; 3], pixels: *const c_void) -> Option<Vec<u8>> {
+        let (f, t) = codec::parse(format, type_).ok()?;
+        let [w, h, d] = dims.map(|v| usize::try_from(v).ok());
+        let layout = t.layout(f, &self.pixels.store.unpack, w?, h?, d?)?;
+        if pixels.is_null() {
+            return None;
+        }
+        // Safety: the caller guarantees `layout.span` readable bytes.
+        Some(unsafe { std::slice::from_raw_parts(pixels.cast::<u8>(), layout.span) }.to_vec())
+    }
+
+    /// Records a command that reads an image, with a copy of that image; when the list runs,
+    /// the command reads the copy with the unpack modes of compile time.
+    ///
+    /// # Safety
+    /// As [`Context::copy_client_image`].
+    pub(crate) unsafe fn compile_image_command(
+        &mut self,
+        format: GLenum,
+        type_: GLenum,
+        dims: [i32; 3],
+        pixels: *const c_void,
+        run: impl Fn(&mut Context, *const c_void) + Send + Sync + 'static,
+    ) {
+        let copy = unsafe { self.copy_client_image(format, type_, dims, pixels) };
+        let unpack = self.pixels.store.unpack;
+        self.lists.record(super::lists::ListOp::Deferred(Box::new(move |ctx| {
+            let saved = std::mem::replace(&mut ctx.pixels.store.unpack, unpack);
+            run(ctx, copy.as_ref().map_or(std::ptr::null(), |v| v.as_ptr().cast()));
+            ctx.pixels.store.unpack = saved;
+        })));
+    }
+
+    /// `glGet` values of the pixel path: storage modes, transfer, maps, zoom, raster position.
+    pub(crate) fn query_pixels(&self, pname: GLenum) -> Option<Value> {
+        if let Some(v) = self.pixel_store_value(pname) {
+            return Some(if Self::pixel_store_is_bool(pname) { Value::bool(v != 0) } else { Value::int(v) });
+        }
+        match pname {
+            gl::GL_ZOOM_X => Some(Value::float(self.pixels.zoom[0])),
+            gl::GL_ZOOM_Y => Some(Value::float(self.pixels.zoom[1])),
+            _ => self.query_transfer(pname).or_else(|| self.query_raster(pname)),
+        }
+    }
+
+    /// Captures `GL_PIXEL_MODE_BIT` (`glPushAttrib`; the read buffer is the framebuffer
+    /// module's).
+    pub fn save_pixel_mode_attrib(&self) -> PixelModeAttrib {
+        PixelModeAttrib { transfer: self.pixels.transfer.clone(), zoom: self.pixels.zoom }
+    }
+
+    /// Restores `GL_PIXEL_MODE_BIT` (`glPopAttrib`).
+    pub fn restore_pixel_mode_attrib(&mut self, saved: PixelModeAttrib) {
+        self.pixels.transfer = saved.transfer;
+        self.pixels.zoom = saved.zoom;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::translate::{Context, gl};
+
+    fn get_i(ctx: &mut Context, pname: u32) -> Vec<i32> {
+        let mut v = [-1i32; 8];
+        unsafe { ctx.glGetIntegerv(pname, v.as_mut_ptr()) };
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR, "{pname:#x}");
+        v.to_vec()
+    }
+
+    #[test]
+    fn pixel_and_texture_state_answers_glget() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glPixelStorei(gl::GL_UNPACK_ROW_LENGTH, 17);
+        ctx.glPixelStorei(gl::GL_PACK_LSB_FIRST, 1);
+        ctx.glPixelZoom(2.0, -3.0);
+        ctx.glPixelTransferf(gl::GL_ALPHA_BIAS, 0.5);
+        ctx.glPixelTransferi(gl::GL_MAP_STENCIL, 1);
+        ctx.glActiveTexture(gl::GL_TEXTURE2);
+        ctx.glBindTexture(gl::GL_TEXTURE_CUBE_MAP, 12);
+        assert_eq!(get_i(&mut ctx, gl::GL_UNPACK_ROW_LENGTH)[0], 17);
+        assert_eq!(get_i(&mut ctx, gl::GL_PACK_LSB_FIRST)[0], 1);
+        assert_eq!(get_i(&mut ctx, gl::GL_UNPACK_ALIGNMENT)[0], 4);
+        assert_eq!(get_i(&mut ctx, gl::GL_ZOOM_Y)[0], -3);
+        assert_eq!(get_i(&mut ctx, gl::GL_MAP_STENCIL)[0], 1);
+        assert_eq!(get_i(&mut ctx, gl::GL_PIXEL_MAP_A_TO_A_SIZE)[0], 1);
+        assert_eq!(get_i(&mut ctx, gl::GL_MAX_PIXEL_MAP_TABLE)[0], 256);
+        assert_eq!(get_i(&mut ctx, gl::GL_TEXTURE_BINDING_CUBE_MAP)[0], 12);
+        assert_eq!(get_i(&mut ctx, gl::GL_MAX_TEXTURE_SIZE)[0], 8192);
+        assert_eq!(get_i(&mut ctx, gl::GL_MAX_3D_TEXTURE_SIZE)[0], 2048);
+        assert_eq!(get_i(&mut ctx, gl::GL_MAX_CUBE_MAP_TEXTURE_SIZE)[0], 8192);
+        assert_eq!(get_i(&mut ctx, gl::GL_COMPRESSED_TEXTURE_FORMATS)[..4], [0x83f0, 0x83f1, 0x83f2, 0x83f3]);
+        let mut bias = 0.0f32;
+        unsafe { ctx.glGetFloatv(gl::GL_ALPHA_BIAS, &mut bias) };
+        assert_eq!(bias, 0.5);
+        assert_eq!(get_i(&mut ctx, gl::GL_CURRENT_RASTER_POSITION_VALID)[0], 1);
+        ctx.glActiveTexture(gl::GL_TEXTURE0);
+        assert_eq!(get_i(&mut ctx, gl::GL_TEXTURE_BINDING_CUBE_MAP)[0], 0);
+    }
+
+    #[test]
+    fn attribute_groups_round_trip() {
+        let (mut ctx, _) = Context::with_recording();
+        let mode = ctx.save_pixel_mode_attrib();
+        ctx.glPixelZoom(3.0, 3.0);
+        ctx.glPixelTransferf(gl::GL_DEPTH_BIAS, 1.0);
+        ctx.glPixelStorei(gl::GL_UNPACK_SKIP_ROWS, 4);
+        ctx.restore_pixel_mode_attrib(mode);
+        assert_eq!((ctx.pixels.zoom, ctx.pixels.transfer.depth), ([1.0, 1.0], [1.0, 0.0]));
+        assert_eq!(ctx.pixels.store.unpack.skip_rows, 4);
+    }
+}

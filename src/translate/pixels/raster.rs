@@ -1,0 +1,154 @@
+//! The current raster position (OpenGL 1.5 section 2.13): `glRasterPos4f` (every
+//! `glRasterPos*` variant is generated from it) transforms a point like a vertex, clips it and
+//! maps it to the window; `glWindowPos3f` sets it in window coordinates directly.
+
+use glam::Vec4;
+
+use super::super::Context;
+use super::super::get::Value;
+use super::super::gl::{self, GLenum, GLfloat};
+use super::super::limits::MAX_TEXTURE_UNITS;
+
+/// The current values a raster position takes along (colour, texture coordinates...).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RasterInputs {
+    /// Primary colour (after lighting when enabled).
+    pub color: [f32; 4],
+    /// Secondary colour.
+    pub secondary: [f32; 4],
+    /// Colour index.
+    pub index: f32,
+    /// Texture coordinates of each unit, before the texture matrix.
+    pub texcoords: [[f32; 4]; MAX_TEXTURE_UNITS],
+}
+
+impl Default for RasterInputs {
+    fn default() -> RasterInputs {
+        RasterInputs {
+            color: [1.0; 4],
+            secondary: [0.0, 0.0, 0.0, 1.0],
+            index: 1.0,
+            texcoords: [[0.0, 0.0, 0.0, 1.0]; MAX_TEXTURE_UNITS],
+        }
+    }
+}
+
+/// The current raster position and its associated data (table 6.9).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RasterPos {
+    /// Window x, y, z and clip w.
+    pub window: [f32; 4],
+    /// `GL_CURRENT_RASTER_POSITION_VALID`.
+    pub valid: bool,
+    /// `GL_CURRENT_RASTER_DISTANCE`.
+    pub distance: f32,
+    /// Colour, secondary colour, index and texture coordinates (texture matrix applied).
+    pub data: RasterInputs,
+}
+
+impl Default for RasterPos {
+    fn default() -> RasterPos {
+        RasterPos { window: [0.0, 0.0, 0.0, 1.0], valid: true, distance: 0.0, data: RasterInputs::default() }
+    }
+}
+
+impl Context {
+    /// The current colour, index and texture coordinates that a raster position takes.
+    /// The current-attribute module owns them; until it provides them here, these are the
+    /// initial values of table 6.5.
+    pub(crate) fn raster_inputs(&self) -> RasterInputs {
+        RasterInputs::default()
+    }
+
+    /// The raster inputs with each unit's texture matrix applied.
+    fn transformed_raster_inputs(&self) -> RasterInputs {
+        let mut data = self.raster_inputs();
+        for (unit, tc) in data.texcoords.iter_mut().enumerate() {
+            *tc = (self.transform.texture_matrix(unit) * Vec4::from_array(*tc)).to_array();
+        }
+        data
+    }
+
+    /// `glRasterPos4f`: the point goes through the modelview and projection matrices; if the
+    /// clip volume rejects it the raster position becomes invalid, otherwise it is mapped to
+    /// window coordinates with the viewport and depth range.
+    pub fn glRasterPos4f(&mut self, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat) {
+        let eye = self.transform.modelview() * Vec4::new(x, y, z, w);
+        let clip = self.transform.projection() * eye;
+        let inside = (0..3).all(|i| -clip.w <= clip[i] && clip[i] <= clip.w) && clip.w != 0.0;
+        if !inside {
+            self.pixels.raster.valid = false;
+            return;
+        }
+        let ndc = [clip.x / clip.w, clip.y / clip.w, clip.z / clip.w];
+        let [wx, wy, wz] = self.viewport.to_window(ndc);
+        self.pixels.raster = RasterPos {
+            window: [wx, wy, wz, clip.w],
+            valid: true,
+            distance: eye.truncate().length(),
+            data: self.transformed_raster_inputs(),
+        };
+    }
+
+    /// `glWindowPos3f` (section 2.13): the position is given in window coordinates; z maps
+    /// into the depth range; the raster position is always valid.
+    pub fn glWindowPos3f(&mut self, x: GLfloat, y: GLfloat, z: GLfloat) {
+        let [n, f] = self.viewport.depth_range.map(|v| v as f32);
+        self.pixels.raster = RasterPos {
+            window: [x, y, n + z.clamp(0.0, 1.0) * (f - n), 1.0],
+            valid: true,
+            distance: 0.0,
+            data: self.raster_inputs(),
+        };
+    }
+
+    pub(crate) fn query_raster(&self, pname: GLenum) -> Option<Value> {
+        let r = &self.pixels.raster;
+        Some(match pname {
+            gl::GL_CURRENT_RASTER_POSITION => Value::floats(&r.window),
+            gl::GL_CURRENT_RASTER_POSITION_VALID => Value::bool(r.valid),
+            gl::GL_CURRENT_RASTER_DISTANCE => Value::float(r.distance),
+            gl::GL_CURRENT_RASTER_COLOR => Value::normalized(&r.data.color),
+            gl::GL_CURRENT_RASTER_SECONDARY_COLOR => Value::normalized(&r.data.secondary),
+            gl::GL_CURRENT_RASTER_INDEX => Value::float(r.data.index),
+            gl::GL_CURRENT_RASTER_TEXTURE_COORDS => Value::floats(&r.data.texcoords[self.active_texture_unit()]),
+            _ => return None,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::translate::Context;
+    use crate::translate::gl;
+
+    fn raster(ctx: &mut Context) -> [f32; 4] {
+        let mut v = [0.0f32; 4];
+        unsafe { ctx.glGetFloatv(gl::GL_CURRENT_RASTER_POSITION, v.as_mut_ptr()) };
+        v
+    }
+
+    #[test]
+    fn raster_position_goes_through_matrices_and_viewport() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.bind_drawable(200, 100);
+        ctx.glMatrixMode(gl::GL_PROJECTION);
+        ctx.glOrtho(0.0, 200.0, 0.0, 100.0, -1.0, 1.0);
+        ctx.glMatrixMode(gl::GL_MODELVIEW);
+        ctx.glTranslatef(10.0, 5.0, 0.0);
+        ctx.glRasterPos4f(20.0, 30.0, 0.5, 1.0);
+        let p = raster(&mut ctx);
+        assert!((p[0] - 30.0).abs() < 1e-4 && (p[1] - 35.0).abs() < 1e-4, "{p:?}");
+        // z = 0.5 in eye space, ortho maps it to ndc −0.5, window 0.25.
+        assert!((p[2] - 0.25).abs() < 1e-5 && p[3] == 1.0, "{p:?}");
+        let mut valid = 0u8;
+        unsafe { ctx.glGetBooleanv(gl::GL_CURRENT_RASTER_POSITION_VALID, &mut valid) };
+        assert_eq!(valid, 1);
+        ctx.glRasterPos4f(1000.0, 0.0, 0.0, 1.0);
+        unsafe { ctx.glGetBooleanv(gl::GL_CURRENT_RASTER_POSITION_VALID, &mut valid) };
+        assert_eq!(valid, 0);
+        ctx.glWindowPos3f(3.0, 4.0, 1.0);
+        assert_eq!(raster(&mut ctx), [3.0, 4.0, 1.0, 1.0]);
+        assert!(ctx.pixels.raster.valid);
+    }
+}

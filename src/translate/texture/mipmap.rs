@@ -1,0 +1,101 @@
+//! `GL_GENERATE_MIPMAP` (OpenGL 1.5 section 3.8.8, "Automatic Mipmap Generation"): each level
+//! below the changed base level is a 2×2(×2) box filter of the one above, down to 1×1.
+
+use std::sync::Arc;
+
+use super::formats::Base;
+use super::objects::{Level, TextureObject};
+use crate::frame::texture::{TexImage, TexelFormat};
+
+/// Halves `src` (`size` without border) with a box filter, rounding to nearest.
+pub fn downsample(src: &[u8], size: [usize; 3]) -> (Vec<u8>, [usize; 3]) {
+    let out_size = size.map(|s| (s / 2).max(1));
+    let step = size.map(|s| if s > 1 { 2 } else { 1 });
+    let n = (step[0] * step[1] * step[2]) as u32;
+    let mut out = Vec::with_capacity(out_size[0] * out_size[1] * out_size[2] * 4);
+    for z in 0..out_size[2] {
+        for y in 0..out_size[1] {
+            for x in 0..out_size[0] {
+                let mut sum = [0u32; 4];
+                for dz in 0..step[2] {
+                    for dy in 0..step[1] {
+                        for dx in 0..step[0] {
+                            let i = (((z * step[2] + dz) * size[1] + y * step[1] + dy) * size[0] + x * step[0] + dx) * 4;
+                            for (c, s) in sum.iter_mut().enumerate() {
+                                *s += u32::from(src.get(i + c).copied().unwrap_or(0));
+                            }
+                        }
+                    }
+                }
+                out.extend(sum.map(|s| ((s + n / 2) / n) as u8));
+            }
+        }
+    }
+    (out, out_size)
+}
+
+/// Removes the border of a texel block.
+fn interior(image: &TexImage, size: [usize; 3], border: usize) -> Vec<u8> {
+    if border == 0 {
+        return image.texels.clone();
+    }
+    let inner = [size[0] - 2, size[1].saturating_sub(2).max(1), size[2].saturating_sub(2).max(1)];
+    let b = |i: usize| if size[i] > 1 { 1 } else { 0 };
+    let mut out = Vec::with_capacity(inner[0] * inner[1] * inner[2] * 4);
+    for z in 0..inner[2] {
+        for y in 0..inner[1] {
+            let row = ((z + b(2)) * size[1] + y + b(1)) * size[0] + 1;
+            out.extend_from_slice(image.texels.get(row * 4..(row + inner[0]) * 4).unwrap_or(&[]));
+        }
+    }
+    out
+}
+
+/// Regenerates the levels below `base` of `face` from it. Generated levels have no border
+/// (their border texels would be zero) and keep the base level's internal format; those of a
+/// paletted base are stored as RGBA texels.
+pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
+    let Some(top) = obj.level(face, base).cloned() else { return };
+    let dims = obj.target.map_or(2, |t| t.dims());
+    let border = top.border;
+    let mut size: [usize; 3] = std::array::from_fn(|i| if i < dims { top.size[i] - 2 * border } else { 1 });
+    let mut texels = interior(&top.image, top.size, border);
+    let base_format = match top.base {
+        Base::ColorIndex => Base::Texel(TexelFormat::Rgba),
+        b => b,
+    };
+    let mut level = base;
+    while size.iter().any(|&s| s > 1) && level + 1 < obj.faces.first().map_or(0, Vec::len) {
+        let (next, next_size) = downsample(&texels, size);
+        level += 1;
+        let [w, h, d] = next_size.map(|v| v as u32);
+        let mut generated = Level {
+            image: Arc::new(TexImage { width: w, height: h, depth: d, border: 0, texels: next.clone() }),
+            size: next_size,
+            border: 0,
+            internal_format: top.internal_format,
+            base: base_format,
+            compressed: None,
+            indices: None,
+        };
+        super::compressed::recompress(&mut generated);
+        *obj.level_slot(face, level) = Some(generated);
+        texels = next;
+        size = next_size;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::downsample;
+
+    #[test]
+    fn box_filter_averages_and_rounds() {
+        // 2×2 → 1×1: (10 + 20 + 30 + 41) / 4 = 25.25 → 25; alpha (255 × 3 + 0) / 4 = 191.25 → 191.
+        let src = [10, 0, 0, 255, 20, 0, 0, 255, 30, 0, 0, 255, 41, 0, 0, 0];
+        assert_eq!(downsample(&src, [2, 2, 1]), (vec![25, 0, 0, 191], [1, 1, 1]));
+        // 4×1 → 2×1: pairs only horizontally.
+        let row = [0, 0, 0, 0, 100, 100, 100, 100, 1, 1, 1, 1, 2, 2, 2, 2];
+        assert_eq!(downsample(&row, [4, 1, 1]), (vec![50, 50, 50, 50, 2, 2, 2, 2], [2, 1, 1]));
+    }
+}

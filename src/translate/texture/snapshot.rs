@@ -1,0 +1,148 @@
+//! What each texture unit samples for the next draw: the texture of the highest-priority
+//! enabled target (cube map, 3D, 2D, 1D; OpenGL 1.5 section 3.8.15), if it is complete
+//! (section 3.8.10), as a [`TextureRef`] whose content is built once per content version.
+
+use std::sync::Arc;
+
+use super::super::Context;
+use super::super::gl;
+use super::super::limits::MAX_TEXTURE_UNITS;
+use super::formats::Base;
+use super::image::resolve_indices;
+use super::objects::{Level, Target, TextureObject, next_version};
+use super::palette::Palette;
+use super::params::uses_mipmaps;
+use crate::frame::texture::{TexImage, TexelFormat, TextureContent, TextureKind, TextureRef};
+
+/// Whether `obj` is complete: its base level exists on every face with a non-zero size (cube
+/// faces square and equal), and, when its minification filter uses mipmaps, every level from
+/// the base to the 1×1 level (or the max level) halves the one above.
+pub fn is_complete(obj: &TextureObject, target: Target) -> bool {
+    let base = obj.params.levels[0].max(0) as usize;
+    let max = obj.params.levels[1].max(0) as usize;
+    let faces = target.faces();
+    let Some(first) = obj.level(0, base) else { return false };
+    let inner = |l: &Level| l.size.map(|s| s.saturating_sub(2 * l.border).max(1));
+    let top = inner(first);
+    if top.contains(&0) || first.size[0] == 0 {
+        return false;
+    }
+    for face in 0..faces {
+        let Some(l) = obj.level(face, base) else { return false };
+        if inner(l) != top || (target == Target::Cube && top[0] != top[1]) {
+            return false;
+        }
+        if !uses_mipmaps(obj.params.min_filter) {
+            continue;
+        }
+        let mut size = top;
+        let mut level = base;
+        while size.iter().any(|&s| s > 1) && level < max {
+            level += 1;
+            size = size.map(|s| (s / 2).max(1));
+            match obj.level(face, level) {
+                Some(l) if inner(l) == size => {}
+                _ => return false,
+            }
+        }
+    }
+    true
+}
+
+/// The image the renderer samples for a level: paletted levels resolved with `shared` when the
+/// shared palette is in use.
+fn level_image(level: &Level, shared: Option<&Palette>) -> Arc<TexImage> {
+    match (&level.indices, shared) {
+        (Some(indices), Some(palette)) => Arc::new(TexImage { texels: resolve_indices(indices, palette), ..(*level.image).clone() }),
+        _ => level.image.clone(),
+    }
+}
+
+/// Builds the reference of `obj` for a draw, reusing the cached one while nothing changed.
+fn texture_ref(name: u32, obj: &mut TextureObject, target: Target, shared: Option<(&Palette, u64)>) -> TextureRef {
+    let key = shared.map_or(obj.version, |(_, v)| v.max(obj.version) ^ (1 << 63));
+    if let Some((_, r)) = obj.snapshot.as_ref().filter(|(k, _)| *k == key) {
+        return r.clone();
+    }
+    let palette = shared.map(|(p, _)| p);
+    let faces = (0..target.faces())
+        .map(|f| obj.faces.get(f).map_or_else(Vec::new, |levels| levels.iter().map(|l| l.as_ref().map(|l| level_image(l, palette))).collect()))
+        .collect();
+    let base = obj.params.levels[0].max(0) as usize;
+    let format = match obj.level(0, base).map(|l| l.base) {
+        Some(Base::Texel(f)) => f,
+        _ => TexelFormat::Rgba,
+    };
+    let kind = match target {
+        Target::D1 => TextureKind::D1,
+        Target::D2 => TextureKind::D2,
+        Target::D3 => TextureKind::D3,
+        Target::Cube => TextureKind::Cube,
+    };
+    let version = if shared.is_some() { next_version() } else { obj.version };
+    let content = Arc::new(TextureContent { kind, format, faces, sampler: obj.params.sampler() });
+    let r = TextureRef { id: name, version, content };
+    obj.snapshot = Some((key, r.clone()));
+    r
+}
+
+impl Context {
+    /// The enabled target of `unit` with the highest priority.
+    fn enabled_target(&self, unit: usize) -> Option<Target> {
+        [Target::Cube, Target::D3, Target::D2, Target::D1].into_iter().find(|t| self.enables.unit_on(unit, t.gl()))
+    }
+
+    /// The texture each unit samples for the next draw (`None` where texturing is off or the
+    /// texture is incomplete). Content versions are unique: the renderer uploads a
+    /// `(id, version)` once and reuses it.
+    pub fn texture_snapshot(&mut self) -> Vec<Option<TextureRef>> {
+        let use_shared = self.enables.is_on(gl::GL_SHARED_TEXTURE_PALETTE_EXT) && !self.texture.shared_palette.entries.is_empty();
+        let shared = use_shared.then(|| (self.texture.shared_palette.clone(), self.texture.shared_palette_version));
+        (0..MAX_TEXTURE_UNITS)
+            .map(|unit| {
+                let target = self.enabled_target(unit)?;
+                let name = self.texture.bindings[unit][target.index()];
+                self.with_object(target, name, |obj| {
+                    is_complete(obj, target).then(|| texture_ref(name, obj, target, shared.as_ref().map(|(p, v)| (p, *v))))
+                })
+            })
+            .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::translate::{Context, dispatch, gl};
+
+    #[test]
+    fn snapshot_follows_enables_priority_and_versions() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 7);
+        let px = [255u8, 0, 0, 255];
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 1, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, px.as_ptr().cast()) };
+        assert_eq!(ctx.texture_snapshot(), vec![None; 4]);
+        ctx.glEnable(gl::GL_TEXTURE_2D);
+        let first = ctx.texture_snapshot()[0].clone().expect("unit 0 samples texture 7");
+        assert_eq!(first.id, 7);
+        assert_eq!(first.content.faces[0][0].as_ref().unwrap().texels, px);
+        let again = ctx.texture_snapshot()[0].clone().unwrap();
+        assert!(std::sync::Arc::ptr_eq(&first.content, &again.content));
+        unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, 0, 0, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, [0u8, 255, 0, 255].as_ptr().cast()) };
+        let changed = ctx.texture_snapshot()[0].clone().unwrap();
+        assert!(changed.version > first.version);
+        assert_eq!(changed.content.faces[0][0].as_ref().unwrap().texels, [0, 255, 0, 255]);
+        // The frame keeps the old texels.
+        assert_eq!(first.content.faces[0][0].as_ref().unwrap().texels, px);
+        // Mipmapping filter with one level: incomplete.
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 8);
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        assert_eq!(ctx.texture_snapshot()[0], None);
+        ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_GENERATE_MIPMAP, 1);
+        unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, 0, 0, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, px.as_ptr().cast()) };
+        let mip = ctx.texture_snapshot()[0].clone().expect("complete after generation");
+        assert_eq!(mip.content.faces[0][1].as_ref().unwrap().texels, [64, 0, 0, 64]);
+        // A cube map enabled as well wins over 2D, but it is incomplete.
+        ctx.glEnable(gl::GL_TEXTURE_CUBE_MAP);
+        assert_eq!(ctx.texture_snapshot()[0], None);
+    }
+}
