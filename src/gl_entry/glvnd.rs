@@ -11,6 +11,8 @@
 use std::ffi::{CStr, c_char, c_int, c_uint, c_ulong, c_void};
 use std::sync::atomic::{AtomicI32, AtomicPtr, Ordering};
 
+use x11_dl::glx::GLX_BAD_CONTEXT;
+
 use super::exports::proc_address;
 use super::glx::guard;
 use super::shim::Proc;
@@ -32,9 +34,6 @@ type ExtFuncPtr = *const c_void;
 pub const ABI_MAJOR_VERSION: u32 = 1;
 /// `GLX_VENDOR_ABI_MINOR_VERSION` of the header glrt follows.
 pub const ABI_MINOR_VERSION: u32 = 0;
-/// `GLX_BAD_CONTEXT` (GLX 1.4, table 3.x errors), returned by the swap-interval setters without
-/// a current context.
-const GLX_BAD_CONTEXT: c_int = 5;
 
 /// `__GLXapiExports`: the functions libGLX gives a vendor's dispatch functions (field order and
 /// types exactly as in `libglxabi.h`; fields glrt does not call are still declared for layout).
@@ -231,7 +230,8 @@ unsafe extern "C" fn dispatch_swap_interval_ext(dpy: *mut Display, drawable: Glx
 }
 
 /// Dispatches a `glXSwapInterval{MESA,SGI}`-like setter of extension `which` to the current vendor;
-/// `GLX_BAD_CONTEXT` without one.
+/// without one, `GLX_BAD_CONTEXT` (GLX_SGI_swap_control, GLX_MESA_swap_control), as glrt's own
+/// setters answer.
 fn dispatch_current_setter(which: usize, interval: c_int) -> c_int {
     match vendor_function(which, current_vendor) {
         Some(f) => {
