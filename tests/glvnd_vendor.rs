@@ -38,8 +38,14 @@ impl Server {
         let stdout = child.stdout.take().expect("piped stdout");
         let read = BufReader::new(stdout).read_line(&mut line);
         let number = line.trim().to_owned();
-        let server = Server { child, display: format!(":{number}") };
-        assert!(read.is_ok() && !number.is_empty(), "Xvfb did not report a display number");
+        let server = Server {
+            child,
+            display: format!(":{number}"),
+        };
+        assert!(
+            read.is_ok() && !number.is_empty(),
+            "Xvfb did not report a display number"
+        );
         server
     }
 }
@@ -60,7 +66,11 @@ impl VendorDir {
         // The library cargo built with this test: target/<profile>/deps/libglrt.so, next to it
         // (cargo copies it to target/<profile>/ only for `cargo build`).
         let lib = exe.with_file_name("libglrt.so");
-        assert!(lib.exists(), "{} is missing: cargo builds it with the tests", lib.display());
+        assert!(
+            lib.exists(),
+            "{} is missing: cargo builds it with the tests",
+            lib.display()
+        );
         let dir = std::env::temp_dir().join(format!("glrt-glvnd-{tag}-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&dir);
         std::fs::create_dir_all(&dir).expect("creating the vendor directory");
@@ -71,7 +81,10 @@ impl VendorDir {
     /// `command` run on `server` with glrt as the GLX vendor (`with_vendor_dir`: whether the
     /// vendor library can be found at all).
     fn run(&self, server: &Server, mut command: Command, with_vendor_dir: bool) -> Output {
-        command.env("DISPLAY", &server.display).env("__GLX_VENDOR_LIBRARY_NAME", "glrt").env("LD_DEBUG", "files");
+        command
+            .env("DISPLAY", &server.display)
+            .env("__GLX_VENDOR_LIBRARY_NAME", "glrt")
+            .env("LD_DEBUG", "files");
         if with_vendor_dir {
             command.env("LD_LIBRARY_PATH", &self.0);
         } else {
@@ -92,9 +105,9 @@ impl Drop for VendorDir {
 fn loaded_through_glvnd(stderr: &str, vendor_dir: &Path) -> bool {
     let vendor = format!("calling init: {}/libGLX_glrt.so.0", vendor_dir.display());
     let init = |l: &str| l.split_once("calling init: ").map(|(_, path)| path.to_owned());
-    let by_libglx = stderr
-        .lines()
-        .any(|l| l.contains("file=libGLX_glrt.so.0") && l.contains("dynamically loaded by") && l.contains("/libGLX.so.0"));
+    let by_libglx = stderr.lines().any(|l| {
+        l.contains("file=libGLX_glrt.so.0") && l.contains("dynamically loaded by") && l.contains("/libGLX.so.0")
+    });
     let system_libgl = stderr
         .lines()
         .filter_map(init)
@@ -105,7 +118,10 @@ fn loaded_through_glvnd(stderr: &str, vendor_dir: &Path) -> bool {
 #[test]
 fn glxinfo_reports_glrt_through_glvnd() {
     let glxinfo = Path::new("/usr/bin/glxinfo");
-    assert!(glxinfo.exists(), "/usr/bin/glxinfo is missing: install mesa-utils (apt-get install mesa-utils)");
+    assert!(
+        glxinfo.exists(),
+        "/usr/bin/glxinfo is missing: install mesa-utils (apt-get install mesa-utils)"
+    );
     let server = Server::start();
     let vendor = VendorDir::new("glxinfo");
 
@@ -113,7 +129,10 @@ fn glxinfo_reports_glrt_through_glvnd() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "glxinfo failed: {stdout}\n{stderr}");
-    assert!(loaded_through_glvnd(&stderr, &vendor.0), "glrt was not loaded by libGLX.so.0:\n{stderr}");
+    assert!(
+        loaded_through_glvnd(&stderr, &vendor.0),
+        "glrt was not loaded by libGLX.so.0:\n{stderr}"
+    );
     for expected in [
         "server glx vendor string: glrt",
         "client glx vendor string: glrt",
@@ -121,13 +140,19 @@ fn glxinfo_reports_glrt_through_glvnd() {
         "OpenGL vendor string: glrt",
         "OpenGL version string: 1.5 glrt",
     ] {
-        assert!(stdout.lines().any(|l| l.trim() == expected || l.starts_with(expected)), "no {expected:?} in:\n{stdout}");
+        assert!(
+            stdout.lines().any(|l| l.trim() == expected || l.starts_with(expected)),
+            "no {expected:?} in:\n{stdout}"
+        );
     }
 
     // Control: without the vendor library on the search path, glvnd cannot pick glrt.
     let out = vendor.run(&server, Command::new(glxinfo), false);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(!stdout.contains("OpenGL vendor string: glrt"), "glrt answered without its vendor library:\n{stdout}");
+    assert!(
+        !stdout.contains("OpenGL vendor string: glrt"),
+        "glrt answered without its vendor library:\n{stdout}"
+    );
 }
 
 #[test]
@@ -142,8 +167,14 @@ fn gl_and_glx_calls_reach_glrt_through_glvnd() {
     let out = vendor.run(&server, command, true);
     let stdout = String::from_utf8_lossy(&out.stdout);
     let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(out.status.success() && stdout.contains("1 passed"), "the child failed:\n{stdout}\n{stderr}");
-    assert!(loaded_through_glvnd(&stderr, &vendor.0), "glrt was not loaded by libGLX.so.0:\n{stderr}");
+    assert!(
+        out.status.success() && stdout.contains("1 passed"),
+        "the child failed:\n{stdout}\n{stderr}"
+    );
+    assert!(
+        loaded_through_glvnd(&stderr, &vendor.0),
+        "glrt was not loaded by libGLX.so.0:\n{stderr}"
+    );
     // The window's one frame, with its clear, presented by glXSwapBuffers through libGLX.
     let frames = std::fs::read_to_string(&frame_log).expect("the frame log");
     assert_eq!(frames, "{\"frame\":0,\"draws\":0,\"vertices\":0,\"clears\":1}\n");
@@ -165,7 +196,11 @@ unsafe fn proc<F: Copy>(glx: &Glx, name: &CStr) -> F {
 #[test]
 #[ignore = "run as a child process by gl_and_glx_calls_reach_glrt_through_glvnd"]
 fn glvnd_child() {
-    assert_eq!(std::env::var(CHILD_VAR).as_deref(), Ok("1"), "run by gl_and_glx_calls_reach_glrt_through_glvnd");
+    assert_eq!(
+        std::env::var(CHILD_VAR).as_deref(),
+        Ok("1"),
+        "run by gl_and_glx_calls_reach_glrt_through_glvnd"
+    );
     let x = Xlib::open().expect("libX11");
     let glx = Glx::open().expect("glvnd's libGL.so.1");
     unsafe {
@@ -177,7 +212,11 @@ fn glvnd_child() {
         let configs = (glx.glXChooseFBConfig)(dpy.cast(), screen, attrs.as_ptr(), &mut n);
         assert!(!configs.is_null() && n > 0, "no pbuffer configuration");
         let config = *configs;
-        let pbuffer = (glx.glXCreatePbuffer)(dpy.cast(), config, [GLX_PBUFFER_WIDTH, 64, GLX_PBUFFER_HEIGHT, 32, 0].as_ptr());
+        let pbuffer = (glx.glXCreatePbuffer)(
+            dpy.cast(),
+            config,
+            [GLX_PBUFFER_WIDTH, 64, GLX_PBUFFER_HEIGHT, 32, 0].as_ptr(),
+        );
         assert_ne!(pbuffer, 0);
         let context = (glx.glXCreateNewContext)(dpy.cast(), config, GLX_RGBA_TYPE, std::ptr::null_mut(), 1);
         assert!(!context.is_null());
@@ -227,8 +266,18 @@ fn glvnd_child() {
         let mut wa: xlib::XSetWindowAttributes = std::mem::zeroed();
         wa.colormap = (x.XCreateColormap)(dpy, root, (*visual).visual.cast(), xlib::AllocNone);
         let window = (x.XCreateWindow)(
-            dpy, root, 0, 0, 80, 60, 0, (*visual).depth, xlib::InputOutput as c_uint,
-            (*visual).visual.cast(), xlib::CWColormap, &mut wa,
+            dpy,
+            root,
+            0,
+            0,
+            80,
+            60,
+            0,
+            (*visual).depth,
+            xlib::InputOutput as c_uint,
+            (*visual).visual.cast(),
+            xlib::CWColormap,
+            &mut wa,
         );
         let context = (glx.glXCreateContext)(dpy.cast(), visual, std::ptr::null_mut(), 1);
         assert!(!context.is_null());

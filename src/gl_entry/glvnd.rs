@@ -61,8 +61,7 @@ pub struct GlxApiExports {
     /// `vendorFromFBConfig(dpy, config)`.
     pub vendorFromFBConfig: Option<unsafe extern "C" fn(*mut Display, Handle) -> *mut VendorInfo>,
     /// `addVendorDrawableMapping(dpy, drawable, vendor)`.
-    pub addVendorDrawableMapping:
-        Option<unsafe extern "C" fn(*mut Display, GlxDrawable, *mut VendorInfo) -> c_int>,
+    pub addVendorDrawableMapping: Option<unsafe extern "C" fn(*mut Display, GlxDrawable, *mut VendorInfo) -> c_int>,
     /// `removeVendorDrawableMapping(dpy, drawable)`.
     pub removeVendorDrawableMapping: Option<unsafe extern "C" fn(*mut Display, GlxDrawable)>,
     /// `vendorFromDrawable(dpy, drawable)`: the vendor of a drawable.
@@ -97,14 +96,39 @@ pub struct GlxApiImports {
 /// `libglxmapping.c`): the 32 required GLX 1.4 functions, then the optional
 /// `glXCreateContextAttribsARB` (glrt does not offer `glXImportContextEXT`/`glXFreeContextEXT`).
 const STATIC_GLX: [&str; 33] = [
-    "glXChooseFBConfig", "glXChooseVisual", "glXCopyContext", "glXCreateContext",
-    "glXCreateContextAttribsARB", "glXCreateGLXPixmap", "glXCreateNewContext", "glXCreatePbuffer",
-    "glXCreatePixmap", "glXCreateWindow", "glXDestroyContext", "glXDestroyGLXPixmap",
-    "glXDestroyPbuffer", "glXDestroyPixmap", "glXDestroyWindow", "glXGetClientString",
-    "glXGetConfig", "glXGetFBConfigAttrib", "glXGetFBConfigs", "glXGetSelectedEvent",
-    "glXGetVisualFromFBConfig", "glXIsDirect", "glXMakeContextCurrent", "glXMakeCurrent",
-    "glXQueryContext", "glXQueryDrawable", "glXQueryExtensionsString", "glXQueryServerString",
-    "glXSelectEvent", "glXSwapBuffers", "glXUseXFont", "glXWaitGL", "glXWaitX",
+    "glXChooseFBConfig",
+    "glXChooseVisual",
+    "glXCopyContext",
+    "glXCreateContext",
+    "glXCreateContextAttribsARB",
+    "glXCreateGLXPixmap",
+    "glXCreateNewContext",
+    "glXCreatePbuffer",
+    "glXCreatePixmap",
+    "glXCreateWindow",
+    "glXDestroyContext",
+    "glXDestroyGLXPixmap",
+    "glXDestroyPbuffer",
+    "glXDestroyPixmap",
+    "glXDestroyWindow",
+    "glXGetClientString",
+    "glXGetConfig",
+    "glXGetFBConfigAttrib",
+    "glXGetFBConfigs",
+    "glXGetSelectedEvent",
+    "glXGetVisualFromFBConfig",
+    "glXIsDirect",
+    "glXMakeContextCurrent",
+    "glXMakeCurrent",
+    "glXQueryContext",
+    "glXQueryDrawable",
+    "glXQueryExtensionsString",
+    "glXQueryServerString",
+    "glXSelectEvent",
+    "glXSwapBuffers",
+    "glXUseXFont",
+    "glXWaitGL",
+    "glXWaitX",
 ];
 
 /// A GLX extension function libGLX does not know: its name, glrt's dispatcher, and the dispatch
@@ -117,14 +141,21 @@ struct Extension {
 
 impl Extension {
     const fn new(name: &'static str, dispatcher: Proc) -> Self {
-        Extension { name, dispatcher, index: AtomicI32::new(-1) }
+        Extension {
+            name,
+            dispatcher,
+            index: AtomicI32::new(-1),
+        }
     }
 }
 
 /// The GLX extension functions glrt implements beyond libGLX's own (the swap-interval
 /// extensions glrt advertises), each with its dispatcher.
 static EXTENSIONS: [Extension; 4] = [
-    Extension::new("glXGetSwapIntervalMESA", Proc(dispatch_get_swap_interval_mesa as *const ())),
+    Extension::new(
+        "glXGetSwapIntervalMESA",
+        Proc(dispatch_get_swap_interval_mesa as *const ()),
+    ),
     Extension::new("glXSwapIntervalEXT", Proc(dispatch_swap_interval_ext as *const ())),
     Extension::new("glXSwapIntervalMESA", Proc(dispatch_swap_interval_mesa as *const ())),
     Extension::new("glXSwapIntervalSGI", Proc(dispatch_swap_interval_sgi as *const ())),
@@ -199,10 +230,7 @@ unsafe extern "C" fn set_dispatch_index(name: *const u8, index: c_int) {
 
 /// The implementation of extension `EXTENSIONS[which]` offered by the vendor that `vendor`
 /// picks from libGLX's exports, or `None` (not loaded yet, no vendor, vendor lacks it).
-fn vendor_function(
-    which: usize,
-    vendor: impl FnOnce(&GlxApiExports) -> *mut VendorInfo,
-) -> Option<ExtFuncPtr> {
+fn vendor_function(which: usize, vendor: impl FnOnce(&GlxApiExports) -> *mut VendorInfo) -> Option<ExtFuncPtr> {
     // Safety: libGLX keeps its exports alive while the vendor is loaded.
     let exports = unsafe { API_EXPORTS.load(Ordering::Acquire).as_ref() }?;
     let index = EXTENSIONS.get(which)?.index.load(Ordering::Relaxed);
@@ -221,7 +249,10 @@ fn current_vendor(e: &GlxApiExports) -> *mut VendorInfo {
 /// Dispatches `glXSwapIntervalEXT` to the vendor owning `drawable`.
 unsafe extern "C" fn dispatch_swap_interval_ext(dpy: *mut Display, drawable: GlxDrawable, interval: c_int) {
     // Safety: the application's display and drawable.
-    let vendor = |e: &GlxApiExports| e.vendorFromDrawable.map_or(std::ptr::null_mut(), |f| unsafe { f(dpy, drawable) });
+    let vendor = |e: &GlxApiExports| {
+        e.vendorFromDrawable
+            .map_or(std::ptr::null_mut(), |f| unsafe { f(dpy, drawable) })
+    };
     if let Some(f) = vendor_function(SWAP_INTERVAL_EXT, vendor) {
         // Safety: the vendor's glXSwapIntervalEXT, which has this signature.
         let f: unsafe extern "C" fn(*mut Display, GlxDrawable, c_int) = unsafe { std::mem::transmute(f) };
@@ -385,7 +416,10 @@ mod tests {
         assert_eq!(glx_main(0, &mut imports), 0);
         assert!(imports.getProcAddress.is_none() && imports.isScreenSupported.is_none());
         // Safety: a null imports table is refused, not written.
-        assert_eq!(unsafe { __glx_Main(1 << 16, &FAKE_EXPORTS, std::ptr::null_mut(), std::ptr::null_mut()) }, 0);
+        assert_eq!(
+            unsafe { __glx_Main(1 << 16, &FAKE_EXPORTS, std::ptr::null_mut(), std::ptr::null_mut()) },
+            0
+        );
     }
 
     #[test]
@@ -397,7 +431,10 @@ mod tests {
             let dispatch = imports.getDispatchAddress.expect("getDispatchAddress");
             // Safety: NUL-terminated names; null display is not read.
             unsafe {
-                assert_eq!(imports.isScreenSupported.expect("isScreenSupported")(std::ptr::null_mut(), 0), 1);
+                assert_eq!(
+                    imports.isScreenSupported.expect("isScreenSupported")(std::ptr::null_mut(), 0),
+                    1
+                );
                 assert_eq!(get(c"glBegin".as_ptr().cast()) as *const (), proc_address(b"glBegin"));
                 assert!(!get(c"glXCreateContext".as_ptr().cast()).is_null());
                 assert!(get(c"glXImportContextEXT".as_ptr().cast()).is_null());
