@@ -33,4 +33,7 @@ fn main() {
     emit::write_all(&model, &out).expect("writing generated sources");
     // The library is a drop-in libGL.so.1.
     println!("cargo:rustc-cdylib-link-arg=-Wl,-soname,libGL.so.1");
+    // Its own gl*/glX* symbols bind inside it: loaded as a glvnd vendor, libGL.so.1's and
+    // libGLX.so.0's same-named entry points must not replace the addresses it hands out.
+    println!("cargo:rustc-cdylib-link-arg=-Wl,-Bsymbolic");
 }

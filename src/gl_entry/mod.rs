@@ -4,6 +4,7 @@
 
 pub mod current;
 pub mod exports;
+pub mod glvnd;
 pub mod glx;
 pub mod glx_config;
 pub mod glx_context;
