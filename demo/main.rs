@@ -4,7 +4,7 @@
 //! and draws a room with pillars (display list), a swinging door, an animated mesh (client
 //! arrays), glass, a sky, lights, fog and a HUD (`glBitmap` text).
 //!
-//! Usage: `glrt-demo [--frames N] [--size WxH] [--headless] [--lib PATH]
+//! Usage: `glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH]
 //! [--bench-immediate [VERTICES]]`. At the end it prints the frame count and frame times.
 
 mod bench;
@@ -23,6 +23,8 @@ use window::{HeadlessContext, Surface, X11Window};
 /// Command-line options.
 struct Options {
     frames: u64,
+    /// Scene frame number of the first frame drawn (to look at a given moment).
+    first_frame: u64,
     width: i32,
     height: i32,
     headless: bool,
@@ -31,11 +33,12 @@ struct Options {
     bench_vertices: Option<u64>,
 }
 
-const USAGE: &str = "usage: glrt-demo [--frames N] [--size WxH] [--headless] [--lib PATH] [--bench-immediate [VERTICES]]";
+const USAGE: &str = "usage: glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH] [--bench-immediate [VERTICES]]";
 
 fn parse_args(args: &[String]) -> Result<Options, String> {
     let mut o = Options {
         frames: u64::MAX,
+        first_frame: 0,
         width: 640,
         height: 480,
         headless: false,
@@ -47,6 +50,9 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         let mut value = |what: &str| it.next().cloned().ok_or(format!("{arg} needs {what}"));
         match arg.as_str() {
             "--frames" => o.frames = value("a count")?.parse().map_err(|e| format!("--frames: {e}"))?,
+            "--first-frame" => {
+                o.first_frame = value("a frame number")?.parse().map_err(|e| format!("--first-frame: {e}"))?
+            }
             "--size" => {
                 let v = value("WxH")?;
                 let (w, h) = v.split_once(['x', 'X']).ok_or("--size: expected WxH")?;
@@ -113,13 +119,11 @@ fn run(o: &Options) -> Result<(), String> {
     }
     let mut scene = scene::Scene::new(&api, o.width, o.height);
     let mut times = FrameTimes::default();
-    let mut frame = 0;
-    while frame < o.frames {
+    for frame in (0..o.frames).map(|n| o.first_frame.saturating_add(n)) {
         let start = Instant::now();
         scene.draw(&api, frame);
         surface.swap();
         times.add(start.elapsed().as_secs_f64() * 1000.0);
-        frame += 1;
     }
     scene.delete(&api);
     times.print();
@@ -162,8 +166,8 @@ mod tests {
 
     #[test]
     fn parses_flags() {
-        let o = parse_args(&args("--frames 60 --size 320x200 --headless --lib /x/libGL.so.1")).unwrap();
-        assert_eq!((o.frames, o.width, o.height, o.headless), (60, 320, 200, true));
+        let o = parse_args(&args("--frames 60 --size 320x200 --headless --lib /x/libGL.so.1 --first-frame 7")).unwrap();
+        assert_eq!((o.frames, o.first_frame, o.width, o.height, o.headless), (60, 7, 320, 200, true));
         assert_eq!(o.lib, "/x/libGL.so.1");
         assert_eq!(o.bench_vertices, None);
         assert_eq!(parse_args(&args("--bench-immediate")).unwrap().bench_vertices, Some(10_000_000));

@@ -6,7 +6,10 @@
 //! - `glrt-demo` in an X11 window with GLX, under Xvfb;
 //! - Mesa's `glxgears` under Xvfb.
 //!
-//! These need the whole library (the frame log and GLX come from other modules); they pass
+//! Two more check the demo itself against the system's (Mesa's) libGL: it runs under Xvfb,
+//! and `--headless` refuses a libGL without glrt's headless API.
+//!
+//! The glrt runs need the whole library (the frame log and GLX come from other modules); they pass
 //! once every branch is merged. The Xvfb tests fail with a clear message when Xvfb (or
 //! glxgears) is missing: `bash scripts/setup.sh` installs them.
 
@@ -243,4 +246,31 @@ fn glxgears_draws_three_gears_every_frame() {
         assert_within("vertices", f.vertices, GEARS_VERTICES, f.frame);
         assert_eq!((f.draws, f.vertices), (frames[0].draws, frames[0].vertices), "frame {} differs", f.frame);
     }
+}
+
+/// The system libGL (Mesa through glvnd), whatever `LD_LIBRARY_PATH` cargo set up.
+fn with_system_libgl(extra: &[&str]) -> Command {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_glrt-demo"));
+    cmd.env_remove("LD_LIBRARY_PATH").args(extra);
+    cmd
+}
+
+#[test]
+fn demo_runs_on_the_system_libgl_under_xvfb() {
+    let x = Xvfb::start();
+    let mut cmd = with_system_libgl(&["--frames", "30", "--size", "320x240"]);
+    cmd.env("DISPLAY", &x.display);
+    let (out, stopped) = run_for(cmd, Duration::from_secs(120));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(!stopped && out.status.success(), "{:?}\n{stdout}\n{}", out.status, String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("frames: 30 "), "summary line missing:\n{stdout}");
+}
+
+#[test]
+fn headless_needs_glrt() {
+    let (out, stopped) = run_for(with_system_libgl(&["--headless", "--frames", "1"]), Duration::from_secs(60));
+    assert!(!stopped);
+    assert_eq!(out.status.code(), Some(2), "exit status for a libGL without glrtCreateContext");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("no headless context API"), "message: {stderr}");
 }

@@ -102,6 +102,31 @@ fn every_glvnd_libgl_name_is_exported() {
     assert!(missing.is_empty(), "{} glvnd names not exported, e.g. {:?}", missing.len(), &missing[..missing.len().min(10)]);
 }
 
+/// The dynamic symbol table holds the GL surface and nothing else: glvnd's names, the
+/// `glXGetProcAddress` table's names, glrt's headless API (`glrt*`) and the glvnd vendor entry.
+#[test]
+fn exports_nothing_but_the_gl_surface() {
+    let out = Command::new("nm").args(["-D", "--defined-only"]).arg(library_path()).output().expect("run nm (binutils)");
+    assert!(out.status.success(), "nm failed: {}", String::from_utf8_lossy(&out.stderr));
+    let glvnd: std::collections::HashSet<&str> =
+        include_str!("../src/gl_entry/glvnd_libgl_exports.txt").lines().map(str::trim).collect();
+    let text = String::from_utf8_lossy(&out.stdout);
+    let names: Vec<&str> = text.lines().filter_map(|l| l.split_whitespace().nth(2)).collect();
+    let stray: Vec<_> = names
+        .iter()
+        .filter(|n| {
+            !glvnd.contains(*n)
+                && exports::proc_address(n.as_bytes()).is_null()
+                && !n.starts_with("glrt")
+                && **n != "__glx_Main"
+        })
+        .collect();
+    assert!(stray.is_empty(), "unexpected exports: {stray:?}");
+    for name in ["glrtCreateContext", "glrtMakeCurrent", "glrtSwapBuffers", "glrtDestroyContext"] {
+        assert!(names.contains(&name), "{name} not exported");
+    }
+}
+
 #[test]
 fn soname_is_libgl_so_1() {
     let out = Command::new("readelf").arg("-d").arg(library_path()).output().expect("run readelf (binutils)");
