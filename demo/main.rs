@@ -92,15 +92,34 @@ fn main() -> ExitCode {
     };
     match run(&options) {
         Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("glrt-demo: {e}");
-            ExitCode::from(if e.contains("headless context API") { 2 } else { 1 })
+        Err(Failure { code, message }) => {
+            eprintln!("glrt-demo: {message}");
+            ExitCode::from(code)
         }
     }
 }
 
-fn run(o: &Options) -> Result<(), String> {
+/// Why the demo stopped: exit status and message.
+struct Failure {
+    code: u8,
+    message: String,
+}
+
+impl From<String> for Failure {
+    fn from(message: String) -> Self {
+        Self { code: 1, message }
+    }
+}
+
+fn run(o: &Options) -> Result<(), Failure> {
     let lib = GlLibrary::open(&o.lib)?;
+    if o.headless && lib.symbol("glrtCreateContext").is_null() {
+        let message = format!(
+            "{} has no headless context API (glrtCreateContext): --headless needs glrt's libGL",
+            lib.name
+        );
+        return Err(Failure { code: 2, message });
+    }
     let surface = if o.headless {
         Surface::Headless(HeadlessContext::open(&lib, o.width, o.height)?)
     } else {

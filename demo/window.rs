@@ -147,11 +147,9 @@ pub struct HeadlessContext {
 
 impl HeadlessContext {
     /// Creates a headless context with a `width` × `height` drawable and makes it current.
-    /// Fails when the library is not glrt (no `glrtCreateContext`).
+    /// Fails when the library is not glrt (no `glrt*` functions).
     pub fn open(lib: &GlLibrary, width: i32, height: i32) -> Result<Self, String> {
-        let api = Headless::load(|name| lib.symbol(name)).map_err(|e| {
-            format!("{} has no headless context API ({e}); --headless needs glrt's libGL", lib.name)
-        })?;
+        let api = Headless::load(|name| lib.symbol(name))?;
         // Safety: glrt's headless API; the handle is checked before use.
         unsafe {
             let context = api.glrtCreateContext(null_mut());

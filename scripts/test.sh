@@ -8,4 +8,4 @@ cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 cargo build
 ln -sf libglrt.so target/debug/libGL.so.1
-cargo test "$@"
+cargo test --no-fail-fast "$@"
