@@ -83,7 +83,15 @@ impl Font {
             gl.glRasterPos2i(x, y);
             for c in text.chars() {
                 let bitmap = self.glyph(c.to_ascii_uppercase());
-                gl.glBitmap(BITMAP as i32, BITMAP as i32, 0.0, 0.0, ADVANCE as f32, 0.0, bitmap.as_ptr());
+                gl.glBitmap(
+                    BITMAP as i32,
+                    BITMAP as i32,
+                    0.0,
+                    0.0,
+                    ADVANCE as f32,
+                    0.0,
+                    bitmap.as_ptr(),
+                );
             }
         }
     }

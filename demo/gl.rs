@@ -3,8 +3,6 @@
 //! (`GL_ARB_multitexture`, `GL_EXT_compiled_vertex_array`) from `glXGetProcAddressARB` after a
 //! context is current, and only when the extension string lists them.
 
-#![allow(non_upper_case_globals)]
-
 use std::ffi::{CStr, c_char, c_void};
 
 use crate::loader::{GlLibrary, fn_table};

@@ -71,8 +71,6 @@ impl GlLibrary {
     /// `dlsym(name)`, or null when the library does not export it.
     pub fn symbol(&self, name: &str) -> *mut c_void {
         // Safety: the symbol is only read as an address, never called with a guessed type.
-        unsafe { self.lib.get::<*mut c_void>(name) }
-            .map(|s| *s)
-            .unwrap_or(std::ptr::null_mut())
+        unsafe { self.lib.get::<*mut c_void>(name) }.map(|s| *s).unwrap_or(std::ptr::null_mut())
     }
 }

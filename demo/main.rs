@@ -49,9 +49,12 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
     while let Some(arg) = it.next() {
         let mut value = |what: &str| it.next().cloned().ok_or(format!("{arg} needs {what}"));
         match arg.as_str() {
-            "--frames" => o.frames = value("a count")?.parse().map_err(|e| format!("--frames: {e}"))?,
+            "--frames" => {
+                o.frames = value("a count")?.parse().map_err(|e| format!("--frames: {e}"))?
+            }
             "--first-frame" => {
-                o.first_frame = value("a frame number")?.parse().map_err(|e| format!("--first-frame: {e}"))?
+                o.first_frame =
+                    value("a frame number")?.parse().map_err(|e| format!("--first-frame: {e}"))?
             }
             "--size" => {
                 let v = value("WxH")?;
@@ -185,12 +188,24 @@ mod tests {
 
     #[test]
     fn parses_flags() {
-        let o = parse_args(&args("--frames 60 --size 320x200 --headless --lib /x/libGL.so.1 --first-frame 7")).unwrap();
-        assert_eq!((o.frames, o.first_frame, o.width, o.height, o.headless), (60, 7, 320, 200, true));
+        let o = parse_args(&args(
+            "--frames 60 --size 320x200 --headless --lib /x/libGL.so.1 --first-frame 7",
+        ))
+        .unwrap();
+        assert_eq!(
+            (o.frames, o.first_frame, o.width, o.height, o.headless),
+            (60, 7, 320, 200, true)
+        );
         assert_eq!(o.lib, "/x/libGL.so.1");
         assert_eq!(o.bench_vertices, None);
-        assert_eq!(parse_args(&args("--bench-immediate")).unwrap().bench_vertices, Some(10_000_000));
-        assert_eq!(parse_args(&args("--bench-immediate 300 --headless")).unwrap().bench_vertices, Some(300));
+        assert_eq!(
+            parse_args(&args("--bench-immediate")).unwrap().bench_vertices,
+            Some(10_000_000)
+        );
+        assert_eq!(
+            parse_args(&args("--bench-immediate 300 --headless")).unwrap().bench_vertices,
+            Some(300)
+        );
     }
 
     #[test]

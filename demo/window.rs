@@ -80,8 +80,17 @@ impl X11Window {
             }
             let screen = (xlib.XDefaultScreen)(display);
             let mut attribs = [
-                GLX_RGBA, GLX_DOUBLEBUFFER, GLX_RED_SIZE, 5, GLX_GREEN_SIZE, 5, GLX_BLUE_SIZE, 5,
-                GLX_DEPTH_SIZE, 16, 0,
+                GLX_RGBA,
+                GLX_DOUBLEBUFFER,
+                GLX_RED_SIZE,
+                5,
+                GLX_GREEN_SIZE,
+                5,
+                GLX_BLUE_SIZE,
+                5,
+                GLX_DEPTH_SIZE,
+                16,
+                0,
             ];
             let visual = glx.glXChooseVisual(display, screen, attribs.as_mut_ptr());
             if visual.is_null() {
@@ -93,9 +102,18 @@ impl X11Window {
             swa.colormap = (xlib.XCreateColormap)(display, root, (*visual).visual, xlib::AllocNone);
             swa.event_mask = xlib::ExposureMask | xlib::StructureNotifyMask | xlib::KeyPressMask;
             let window = (xlib.XCreateWindow)(
-                display, root, 0, 0, width as u32, height as u32, 0, (*visual).depth,
-                xlib::InputOutput as u32, (*visual).visual,
-                xlib::CWColormap | xlib::CWEventMask, &mut swa,
+                display,
+                root,
+                0,
+                0,
+                width as u32,
+                height as u32,
+                0,
+                (*visual).depth,
+                xlib::InputOutput as u32,
+                (*visual).visual,
+                xlib::CWColormap | xlib::CWEventMask,
+                &mut swa,
             );
             let ctitle = std::ffi::CString::new(title).unwrap_or_default();
             (xlib.XStoreName)(display, window, ctitle.as_ptr());

@@ -71,16 +71,27 @@ fn read_frame_log(path: &Path) -> Vec<FrameRecord> {
     text.lines()
         .filter(|l| !l.trim().is_empty())
         .map(|l| {
-            let get = |k| json_u64(l, k).unwrap_or_else(|| panic!("no \"{k}\" in frame log line {l}"));
-            FrameRecord { frame: get("frame"), draws: get("draws"), vertices: get("vertices"), clears: get("clears") }
+            let get =
+                |k| json_u64(l, k).unwrap_or_else(|| panic!("no \"{k}\" in frame log line {l}"));
+            FrameRecord {
+                frame: get("frame"),
+                draws: get("draws"),
+                vertices: get("vertices"),
+                clears: get("clears"),
+            }
         })
         .collect()
 }
 
 /// `target/<profile>/`, holding glrt-demo and libglrt.so; makes the `libGL.so.1` symlink.
 fn lib_dir() -> PathBuf {
-    let dir = Path::new(env!("CARGO_BIN_EXE_glrt-demo")).parent().expect("target dir").to_path_buf();
-    assert!(dir.join("libglrt.so").exists(), "{}/libglrt.so missing: run `cargo build`", dir.display());
+    let dir =
+        Path::new(env!("CARGO_BIN_EXE_glrt-demo")).parent().expect("target dir").to_path_buf();
+    assert!(
+        dir.join("libglrt.so").exists(),
+        "{}/libglrt.so missing: run `cargo build`",
+        dir.display()
+    );
     let link = dir.join("libGL.so.1");
     if std::fs::symlink_metadata(&link).is_err() {
         // Another test may create it at the same time; either link is fine.
@@ -141,7 +152,9 @@ impl Xvfb {
                 .spawn();
             let mut child = match spawned {
                 Ok(c) => c,
-                Err(e) => panic!("cannot start Xvfb ({e}): install it with `bash scripts/setup.sh`"),
+                Err(e) => {
+                    panic!("cannot start Xvfb ({e}): install it with `bash scripts/setup.sh`")
+                }
             };
             let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
             let start = Instant::now();
@@ -182,7 +195,11 @@ fn check_demo_log(frames: &[FrameRecord]) {
         assert_eq!(f.clears, 1, "frame {i}: the demo clears colour and depth once");
         assert_within("draws", f.draws, DEMO_DRAWS, f.frame);
         assert_within("vertices", f.vertices, DEMO_VERTICES, f.frame);
-        assert_eq!((f.draws, f.vertices), (frames[0].draws, frames[0].vertices), "frame {i} differs from frame 0");
+        assert_eq!(
+            (f.draws, f.vertices),
+            (frames[0].draws, frames[0].vertices),
+            "frame {i} differs from frame 0"
+        );
     }
 }
 
@@ -230,21 +247,34 @@ fn x11_demo_draws_the_scene_every_frame() {
 
 #[test]
 fn glxgears_draws_three_gears_every_frame() {
-    assert!(Path::new("/usr/bin/glxgears").exists(), "glxgears missing: run `bash scripts/setup.sh` (mesa-utils-bin)");
+    assert!(
+        Path::new("/usr/bin/glxgears").exists(),
+        "glxgears missing: run `bash scripts/setup.sh` (mesa-utils-bin)"
+    );
     let x = Xvfb::start();
     let log = temp_log("glxgears");
     let mut cmd = through_glrt("/usr/bin/glxgears", &log);
     cmd.env("DISPLAY", &x.display);
     // glxgears has no frame-count flag: let it run for 5 seconds.
     let (out, stopped) = run_for(cmd, Duration::from_secs(5));
-    assert!(stopped, "glxgears exited early: {:?}\n{}", out.status, String::from_utf8_lossy(&out.stderr));
+    assert!(
+        stopped,
+        "glxgears exited early: {:?}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
     let frames = read_frame_log(&log);
     assert!(frames.len() >= 10, "only {} frames in 5 s", frames.len());
     for f in &frames {
         assert_eq!(f.clears, 1, "frame {}: glxgears clears once", f.frame);
         assert_within("draws", f.draws, GEARS_DRAWS, f.frame);
         assert_within("vertices", f.vertices, GEARS_VERTICES, f.frame);
-        assert_eq!((f.draws, f.vertices), (frames[0].draws, frames[0].vertices), "frame {} differs", f.frame);
+        assert_eq!(
+            (f.draws, f.vertices),
+            (frames[0].draws, frames[0].vertices),
+            "frame {} differs",
+            f.frame
+        );
     }
 }
 
@@ -262,13 +292,19 @@ fn demo_runs_on_the_system_libgl_under_xvfb() {
     cmd.env("DISPLAY", &x.display);
     let (out, stopped) = run_for(cmd, Duration::from_secs(120));
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(!stopped && out.status.success(), "{:?}\n{stdout}\n{}", out.status, String::from_utf8_lossy(&out.stderr));
+    assert!(
+        !stopped && out.status.success(),
+        "{:?}\n{stdout}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(stdout.contains("frames: 30 "), "summary line missing:\n{stdout}");
 }
 
 #[test]
 fn headless_needs_glrt() {
-    let (out, stopped) = run_for(with_system_libgl(&["--headless", "--frames", "1"]), Duration::from_secs(60));
+    let (out, stopped) =
+        run_for(with_system_libgl(&["--headless", "--frames", "1"]), Duration::from_secs(60));
     assert!(!stopped);
     assert_eq!(out.status.code(), Some(2), "exit status for a libGL without glrtCreateContext");
     let stderr = String::from_utf8_lossy(&out.stderr);

@@ -43,7 +43,9 @@ fn registry_lists_the_gl_1_5_surface() {
     let names = gl_1_5_commands();
     // GL 1.0: 306 commands, 1.1: +30, 1.2: +4, 1.3: +46, 1.4: +47, 1.5: +19 = 452 (gl.xml).
     assert!(names.len() > 440, "only {} GL 1.0-1.5 commands in the registry", names.len());
-    for expected in ["glBegin", "glDrawRangeElements", "glActiveTexture", "glWindowPos3f", "glBufferData"] {
+    for expected in
+        ["glBegin", "glDrawRangeElements", "glActiveTexture", "glWindowPos3f", "glBufferData"]
+    {
         assert!(names.iter().any(|n| n == expected), "{expected} missing from the registry list");
     }
 }
@@ -73,8 +75,10 @@ fn get_proc_address_table_has_every_gl_1_5_function_and_nothing_unknown() {
 fn exported_get_proc_address_returns_the_exported_functions() {
     let lib = open_library();
     // Safety: glXGetProcAddressARB has this C signature.
-    let gpa = unsafe { lib.get::<unsafe extern "C" fn(*const u8) -> *const c_void>("glXGetProcAddressARB") }
-        .expect("glXGetProcAddressARB exported");
+    let gpa = unsafe {
+        lib.get::<unsafe extern "C" fn(*const u8) -> *const c_void>("glXGetProcAddressARB")
+    }
+    .expect("glXGetProcAddressARB exported");
     let lookup = |name: &str| {
         let cname = std::ffi::CString::new(name).expect("no NUL in GL names");
         // Safety: cname is NUL-terminated.
@@ -88,25 +92,40 @@ fn exported_get_proc_address_returns_the_exported_functions() {
             wrong.push(name);
         }
     }
-    assert!(wrong.is_empty(), "glXGetProcAddressARB disagrees with dlsym for {} names, e.g. {:?}", wrong.len(), &wrong[..wrong.len().min(10)]);
+    assert!(
+        wrong.is_empty(),
+        "glXGetProcAddressARB disagrees with dlsym for {} names, e.g. {:?}",
+        wrong.len(),
+        &wrong[..wrong.len().min(10)]
+    );
     assert!(lookup("glNotAFunction").is_null());
 }
 
 #[test]
 fn every_glvnd_libgl_name_is_exported() {
     let list = include_str!("../src/gl_entry/glvnd_libgl_exports.txt");
-    let names: Vec<&str> = list.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#')).collect();
+    let names: Vec<&str> =
+        list.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#')).collect();
     assert!(names.len() >= 3400, "glvnd list has only {} names", names.len());
     let lib = open_library();
     let missing: Vec<_> = names.iter().filter(|n| !is_exported(&lib, n)).collect();
-    assert!(missing.is_empty(), "{} glvnd names not exported, e.g. {:?}", missing.len(), &missing[..missing.len().min(10)]);
+    assert!(
+        missing.is_empty(),
+        "{} glvnd names not exported, e.g. {:?}",
+        missing.len(),
+        &missing[..missing.len().min(10)]
+    );
 }
 
 /// The dynamic symbol table holds the GL surface and nothing else: glvnd's names, the
 /// `glXGetProcAddress` table's names, glrt's headless API (`glrt*`) and the glvnd vendor entry.
 #[test]
 fn exports_nothing_but_the_gl_surface() {
-    let out = Command::new("nm").args(["-D", "--defined-only"]).arg(library_path()).output().expect("run nm (binutils)");
+    let out = Command::new("nm")
+        .args(["-D", "--defined-only"])
+        .arg(library_path())
+        .output()
+        .expect("run nm (binutils)");
     assert!(out.status.success(), "nm failed: {}", String::from_utf8_lossy(&out.stderr));
     let glvnd: std::collections::HashSet<&str> =
         include_str!("../src/gl_entry/glvnd_libgl_exports.txt").lines().map(str::trim).collect();
@@ -129,7 +148,11 @@ fn exports_nothing_but_the_gl_surface() {
 
 #[test]
 fn soname_is_libgl_so_1() {
-    let out = Command::new("readelf").arg("-d").arg(library_path()).output().expect("run readelf (binutils)");
+    let out = Command::new("readelf")
+        .arg("-d")
+        .arg(library_path())
+        .output()
+        .expect("run readelf (binutils)");
     assert!(out.status.success(), "readelf failed: {}", String::from_utf8_lossy(&out.stderr));
     let text = String::from_utf8_lossy(&out.stdout);
     let soname = text

@@ -67,7 +67,8 @@ impl Mesh {
                 // At the poles d/dtheta vanishes: fall back to the radial direction.
                 self.normals[i] = normalize_or(cross(dt, dp), normalize_or(p, [0.0, 1.0, 0.0]));
                 self.positions[i] = [p[0] + CENTRE[0], p[1] + CENTRE[1], p[2] + CENTRE[2]];
-                self.texcoords[i] = [seg as f32 / SEGMENTS as f32 * 4.0, ring as f32 / RINGS as f32 * 2.0];
+                self.texcoords[i] =
+                    [seg as f32 / SEGMENTS as f32 * 4.0, ring as f32 / RINGS as f32 * 2.0];
             }
         }
     }

@@ -27,7 +27,10 @@ impl Pillars {
             gl.glMaterialfv(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE, grey.as_ptr());
             for (x, z) in PLACES {
                 gl.glBegin(GL_QUADS);
-                let (min, max) = ([x - HALF_SIZE, 0.0, z - HALF_SIZE], [x + HALF_SIZE, super::room::HEIGHT, z + HALF_SIZE]);
+                let (min, max) = (
+                    [x - HALF_SIZE, 0.0, z - HALF_SIZE],
+                    [x + HALF_SIZE, super::room::HEIGHT, z + HALF_SIZE],
+                );
                 cuboid(gl, min, max);
                 gl.glEnd();
             }

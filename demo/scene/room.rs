@@ -39,13 +39,25 @@ pub fn draw(gl: &Gl, mt: Option<&Multitexture>, textures: &Textures) {
         }
         gl.glBindTexture(GL_TEXTURE_2D, textures.checker);
         gl.glBegin(GL_QUADS);
-        let floor = Grid { origin: [-w, 0.0, d], u: [2.0 * w, 0.0, 0.0], v: [0.0, 0.0, -2.0 * d], nu: 16, nv: 20 };
+        let floor = Grid {
+            origin: [-w, 0.0, d],
+            u: [2.0 * w, 0.0, 0.0],
+            v: [0.0, 0.0, -2.0 * d],
+            nu: 16,
+            nv: 20,
+        };
         grid(gl, &tex, &floor, |_, _| false);
         gl.glEnd();
 
         gl.glBindTexture(GL_TEXTURE_2D, textures.brick);
         gl.glBegin(GL_QUADS);
-        let ceiling = Grid { origin: [-w, h, -d], u: [2.0 * w, 0.0, 0.0], v: [0.0, 0.0, 2.0 * d], nu: 16, nv: 20 };
+        let ceiling = Grid {
+            origin: [-w, h, -d],
+            u: [2.0 * w, 0.0, 0.0],
+            v: [0.0, 0.0, 2.0 * d],
+            nu: 16,
+            nv: 20,
+        };
         grid(gl, &tex, &ceiling, |_, _| false);
         gl.glEnd();
 

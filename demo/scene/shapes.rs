@@ -100,12 +100,12 @@ pub fn cuboid(gl: &Gl, min: V3, max: V3) {
     let d = [max[0] - min[0], max[1] - min[1], max[2] - min[2]];
     let (x, y, z) = ([d[0], 0.0, 0.0], [0.0, d[1], 0.0], [0.0, 0.0, d[2]]);
     let faces: [(V3, V3, V3); 6] = [
-        (min, z, y),                      // -x
-        (add(min, x), y, z),              // +x
-        (min, x, z),                      // -y
-        (add(min, y), z, x),              // +y
-        (min, y, x),                      // -z
-        (add(min, z), x, y),              // +z
+        (min, z, y),         // -x
+        (add(min, x), y, z), // +x
+        (min, x, z),         // -y
+        (add(min, y), z, x), // +y
+        (min, y, x),         // -z
+        (add(min, z), x, y), // +z
     ];
     for (origin, u, v) in faces {
         grid(gl, &TexCoords::Single, &Grid { origin, u, v, nu: 1, nv: 1 }, |_, _| false);

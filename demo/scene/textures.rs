@@ -99,7 +99,17 @@ fn upload(gl: &Gl, rgb: &[u8]) -> GLuint {
         gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT as GLint);
         gl.glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT as GLint);
         let size = SIZE as GLsizei;
-        gl.glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB as GLint, size, size, 0, GL_RGB, GL_UNSIGNED_BYTE, rgb.as_ptr().cast());
+        gl.glTexImage2D(
+            GL_TEXTURE_2D,
+            0,
+            GL_RGB as GLint,
+            size,
+            size,
+            0,
+            GL_RGB,
+            GL_UNSIGNED_BYTE,
+            rgb.as_ptr().cast(),
+        );
     }
     name
 }
