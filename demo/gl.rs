@@ -38,6 +38,7 @@ pub const GL_NORMALIZE: GLenum = 0x0BA1;
 pub const GL_BLEND: GLenum = 0x0BE2;
 pub const GL_PERSPECTIVE_CORRECTION_HINT: GLenum = 0x0C50;
 pub const GL_UNPACK_ALIGNMENT: GLenum = 0x0CF5;
+pub const GL_PACK_ALIGNMENT: GLenum = 0x0D05;
 pub const GL_TEXTURE_2D: GLenum = 0x0DE1;
 pub const GL_NICEST: GLenum = 0x1102;
 pub const GL_DIFFUSE: GLenum = 0x1201;
@@ -134,6 +135,7 @@ fn_table!(
         fn glDrawElements(mode: GLenum, count: GLsizei, ty: GLenum, indices: *const c_void);
         fn glRasterPos2i(x: GLint, y: GLint);
         fn glBitmap(w: GLsizei, h: GLsizei, xorig: GLfloat, yorig: GLfloat, xmove: GLfloat, ymove: GLfloat, bitmap: *const u8);
+        fn glReadPixels(x: GLint, y: GLint, w: GLsizei, h: GLsizei, format: GLenum, ty: GLenum, pixels: *mut c_void);
         fn glFinish();
     }
 );

@@ -5,13 +5,14 @@
 //! arrays), glass, a sky, lights, fog and a HUD (`glBitmap` text).
 //!
 //! Usage: `glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH]
-//! [--bench-immediate [VERTICES]]`. At the end it prints the frame count and frame times.
+//! [--screenshot PNG] [--bench-immediate [VERTICES]]`. At the end it prints the frame count and frame times.
 
 mod bench;
 mod font;
 mod gl;
 mod loader;
 mod scene;
+mod screenshot;
 mod window;
 
 use std::process::ExitCode;
@@ -29,11 +30,13 @@ struct Options {
     height: i32,
     headless: bool,
     lib: String,
+    /// `--screenshot`: PNG file for the last frame.
+    screenshot: Option<String>,
     /// `--bench-immediate`: vertex count of the throughput benchmark instead of the scene.
     bench_vertices: Option<u64>,
 }
 
-const USAGE: &str = "usage: glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH] [--bench-immediate [VERTICES]]";
+const USAGE: &str = "usage: glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH] [--screenshot PNG] [--bench-immediate [VERTICES]]";
 
 fn parse_args(args: &[String]) -> Result<Options, String> {
     let mut o = Options {
@@ -43,6 +46,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         height: 480,
         headless: false,
         lib: "libGL.so.1".into(),
+        screenshot: None,
         bench_vertices: None,
     };
     let mut it = args.iter().peekable();
@@ -67,6 +71,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
             }
             "--headless" => o.headless = true,
             "--lib" => o.lib = value("a path")?,
+            "--screenshot" => o.screenshot = Some(value("a path")?),
             "--bench-immediate" => {
                 let n = match it.peek() {
                     Some(n) if !n.starts_with("--") => {
@@ -141,9 +146,16 @@ fn run(o: &Options) -> Result<(), Failure> {
     }
     let mut scene = scene::Scene::new(&api, o.width, o.height);
     let mut times = FrameTimes::default();
-    for frame in (0..o.frames).map(|n| o.first_frame.saturating_add(n)) {
+    for n in 0..o.frames {
         let start = Instant::now();
-        scene.draw(&api, frame);
+        scene.draw(&api, o.first_frame.saturating_add(n));
+        if n + 1 == o.frames
+            && let Some(path) = &o.screenshot
+        {
+            let rgb = screenshot::read(&api.gl, o.width, o.height);
+            let png = screenshot::png(o.width as u32, o.height as u32, &rgb);
+            std::fs::write(path, png).map_err(|e| format!("cannot write {path}: {e}"))?;
+        }
         surface.swap();
         times.add(start.elapsed().as_secs_f64() * 1000.0);
     }
@@ -189,9 +201,10 @@ mod tests {
     #[test]
     fn parses_flags() {
         let o = parse_args(&args(
-            "--frames 60 --size 320x200 --headless --lib /x/libGL.so.1 --first-frame 7",
+            "--frames 60 --size 320x200 --headless --lib /x/libGL.so.1 --first-frame 7 --screenshot s.png",
         ))
         .unwrap();
+        assert_eq!(o.screenshot.as_deref(), Some("s.png"));
         assert_eq!(
             (o.frames, o.first_frame, o.width, o.height, o.headless),
             (60, 7, 320, 200, true)

@@ -285,10 +285,54 @@ fn with_system_libgl(extra: &[&str]) -> Command {
     cmd
 }
 
+/// Decodes the PNG glrt-demo writes (8-bit RGB, stored deflate blocks, no filters): width,
+/// height and RGB rows, top first.
+fn decode_demo_png(png: &[u8]) -> (usize, usize, Vec<u8>) {
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n", "PNG signature");
+    let (mut pos, mut size, mut idat) = (8, (0, 0), Vec::new());
+    while pos + 8 <= png.len() {
+        let len = u32::from_be_bytes(png[pos..pos + 4].try_into().unwrap()) as usize;
+        let body = &png[pos + 8..pos + 8 + len];
+        match &png[pos + 4..pos + 8] {
+            b"IHDR" => {
+                let be = |i: usize| u32::from_be_bytes(body[i..i + 4].try_into().unwrap()) as usize;
+                assert_eq!(&body[8..10], &[8, 2], "8-bit RGB");
+                size = (be(0), be(4));
+            }
+            b"IDAT" => idat.extend_from_slice(body),
+            _ => {}
+        }
+        pos += 12 + len;
+    }
+    // zlib header, then stored blocks: final flag byte, LEN, NLEN, data.
+    let (mut raw, mut at) = (Vec::new(), 2);
+    loop {
+        let last = idat[at] & 1 == 1;
+        assert_eq!(idat[at] & 6, 0, "stored blocks only");
+        let len = u16::from_le_bytes([idat[at + 1], idat[at + 2]]) as usize;
+        raw.extend_from_slice(&idat[at + 5..at + 5 + len]);
+        at += 5 + len;
+        if last {
+            break;
+        }
+    }
+    let row = size.0 * 3;
+    assert_eq!(raw.len(), size.1 * (row + 1), "image data size");
+    let rgb = raw.chunks_exact(row + 1).flat_map(|r| r[1..].to_vec()).collect();
+    (size.0, size.1, rgb)
+}
+
+/// Runs the demo on the system's libGL (Mesa) in a window under Xvfb, 30 frames from frame
+/// 206 (the door is then open), and checks the last frame read back with `--screenshot`:
+/// the scene's colours are all there.
 #[test]
 fn demo_runs_on_the_system_libgl_under_xvfb() {
     let x = Xvfb::start();
-    let mut cmd = with_system_libgl(&["--frames", "30", "--size", "320x240"]);
+    let shot = std::env::temp_dir().join(format!("glrt-demo-mesa-{}.png", std::process::id()));
+    let shot_arg = shot.to_string_lossy().into_owned();
+    let args =
+        ["--frames", "30", "--first-frame", "206", "--size", "320x240", "--screenshot", &shot_arg];
+    let mut cmd = with_system_libgl(&args);
     cmd.env("DISPLAY", &x.display);
     let (out, stopped) = run_for(cmd, Duration::from_secs(120));
     let stdout = String::from_utf8_lossy(&out.stdout);
@@ -299,6 +343,27 @@ fn demo_runs_on_the_system_libgl_under_xvfb() {
         String::from_utf8_lossy(&out.stderr)
     );
     assert!(stdout.contains("frames: 30 "), "summary line missing:\n{stdout}");
+
+    let (w, h, rgb) = decode_demo_png(&std::fs::read(&shot).expect("screenshot written"));
+    assert_eq!((w, h), (320, 240));
+    let pixels: Vec<[i32; 3]> =
+        rgb.chunks_exact(3).map(|p| [p[0] as i32, p[1] as i32, p[2] as i32]).collect();
+    let count = |rows: std::ops::Range<usize>, f: &dyn Fn([i32; 3]) -> bool| {
+        rows.flat_map(|y| (0..w).map(move |x| y * w + x)).filter(|&i| f(pixels[i])).count()
+    };
+    // HUD text (yellow, 1.0 0.9 0.3) in the bar over the top 52 pixels.
+    let yellow = count(0..52, &|[r, g, b]| r > 180 && g > 160 && b < 120);
+    assert!(yellow > 50, "HUD text: {yellow} yellow pixels in the top bar");
+    // Brick walls: clearly red.
+    let brick = count(52..h, &|[r, g, b]| r > g + 50 && r > b + 50);
+    assert!(brick > w * h / 20, "brick walls: {brick} red pixels");
+    // Sky through the window (behind blue glass) and the doorway: light blue.
+    let sky = count(52..h, &|[r, g, b]| b > 170 && b > r + 15 && g > 120);
+    assert!(sky > 100, "sky: {sky} light blue pixels");
+    // The green glass pane over the room.
+    let green = count(52..h, &|[r, g, b]| g > r + 30 && g > b + 20);
+    assert!(green > 100, "green glass: {green} green pixels");
+    let _ = std::fs::remove_file(&shot);
 }
 
 #[test]
