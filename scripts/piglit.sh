@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs piglit's OpenGL 1.x tests (`spec@!opengl 1.0` ... `1.5` of the `opengl` profile, about
-# 370 tests) through glrt's libGL.so.1 under Xvfb, and prints pass/fail/skip/crash counts.
+# 370 tests) through glrt's libGL.so.1 under Xvfb, and prints pass/fail/skip/crash counts
+# (of subtests, as `piglit summary console -s` does, and of whole tests).
 #   bash scripts/piglit.sh            run the tests
 #   bash scripts/piglit.sh --list     only list the selected tests (dry run)
 # Environment: PIGLIT_FILTER (regex, default 'spec@!opengl 1\.'), PIGLIT_TIMEOUT (seconds per
@@ -49,4 +50,11 @@ LD_LIBRARY_PATH="$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
 if ((status == 124)); then
     echo "piglit.sh: stopped after PIGLIT_TOTAL_TIMEOUT; resuming only summarises what ran"
 fi
+# Subtests count separately in the summary; also count whole tests.
 piglit summary console -s "$results"
+python3 - "$results/results.json.bz2" <<'PY'
+import bz2, collections, json, sys
+tests = json.load(bz2.open(sys.argv[1]))["tests"]
+counts = collections.Counter(t["result"] for t in tests.values())
+print("tests:", len(tests), " ".join(f"{k}: {v}" for k, v in sorted(counts.items())))
+PY
