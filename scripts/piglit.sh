@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Runs piglit's OpenGL 1.x tests (`spec@!opengl 1.0` ... `1.5` of the `opengl` profile, about
+# 370 tests) through glrt's libGL.so.1 under Xvfb, and prints pass/fail/skip/crash counts
+# (of subtests, as `piglit summary console -s` does, and of whole tests).
+#   bash scripts/piglit.sh            run the tests
+#   bash scripts/piglit.sh --list     only list the selected tests (dry run)
+# Environment: PIGLIT_FILTER (regex, default 'spec@!opengl 1\.'), PIGLIT_TIMEOUT (seconds per
+# test, default 60), PIGLIT_TOTAL_TIMEOUT (seconds for the run, default 7200),
+# PIGLIT_BUILD=debug|release (default debug), PIGLIT_LIBGL (a libGL.so.1 to test instead of
+# glrt's, e.g. Mesa's, to compare).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/setup.sh
+if ! command -v piglit >/dev/null; then
+    echo "piglit.sh: installing piglit (about 2 GB)"
+    SUDO=""; [[ $(id -u) -eq 0 ]] || SUDO=sudo
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get -o DPkg::Lock::Timeout=900 install -y -qq --no-install-recommends piglit \
+        || { $SUDO apt-get -o DPkg::Lock::Timeout=900 update -qq && DEBIAN_FRONTEND=noninteractive $SUDO apt-get -o DPkg::Lock::Timeout=900 install -y -qq --no-install-recommends piglit; }
+fi
+
+build=${PIGLIT_BUILD:-debug}
+if [[ -n ${PIGLIT_LIBGL:-} ]]; then
+    libdir=$(mktemp -d)
+    ln -s "$(realpath "$PIGLIT_LIBGL")" "$libdir/libGL.so.1"
+    name=custom
+else
+    if [[ $build == release ]]; then cargo build --release; else cargo build; fi
+    libdir="$PWD/target/$build"
+    ln -sf libglrt.so "$libdir/libGL.so.1"
+    name=glrt
+fi
+
+filter=${PIGLIT_FILTER:-'spec@!opengl 1\.'}
+results="$PWD/target/piglit/$name"
+options=(-o -p glx -t "$filter" --timeout "${PIGLIT_TIMEOUT:-60}")
+
+if [[ ${1:-} == --list ]]; then
+    piglit run opengl "$PWD/target/piglit/list" "${options[@]}" -d -l verbose \
+        | sed -n 's/^dry-run: \(spec\/.*\)/\1/p' | sort -u | tee /dev/stderr | wc -l \
+        | xargs -I{} echo "piglit.sh: {} tests match '$filter'"
+    exit 0
+fi
+
+echo "piglit.sh: running '$filter' against $libdir/libGL.so.1; results in $results"
+status=0
+LD_LIBRARY_PATH="$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
+    timeout "${PIGLIT_TOTAL_TIMEOUT:-7200}" \
+    xvfb-run -a -s "-screen 0 1024x768x24" piglit run opengl "$results" "${options[@]}" -l quiet || status=$?
+if ((status == 124)); then
+    echo "piglit.sh: stopped after PIGLIT_TOTAL_TIMEOUT; resuming only summarises what ran"
+fi
+# Subtests count separately in the summary; also count whole tests.
+piglit summary console -s "$results"
+python3 - "$results/results.json.bz2" <<'PY'
+import bz2, collections, json, sys
+tests = json.load(bz2.open(sys.argv[1]))["tests"]
+counts = collections.Counter(t["result"] for t in tests.values())
+print("tests:", len(tests), " ".join(f"{k}: {v}" for k, v in sorted(counts.items())))
+PY

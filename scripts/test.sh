@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Installs what is missing, builds glrt (debug), links target/debug/libGL.so.1 and runs every
+# test. The integration tests that need an X server start their own Xvfb.
+#   bash scripts/test.sh [cargo test args...]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+bash scripts/setup.sh
+cargo build
+ln -sf libglrt.so target/debug/libGL.so.1
+cargo test --no-fail-fast "$@"
