@@ -46,6 +46,7 @@ pub mod pixels;
 pub mod queries;
 pub mod rasterization;
 pub mod render_mode;
+pub mod sgis_multitexture;
 pub mod stipple;
 pub mod strings;
 pub mod texture;
