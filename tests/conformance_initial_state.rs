@@ -93,8 +93,28 @@ fn check(rows: &[(GLenum, Want)]) -> Vec<String> {
         if err != GL_NO_ERROR {
             failures.push(format!("{}: query raised {}", name(pname), name(err)));
         }
+        failures.extend(every_getter_answers(pname));
     }
     failures
+}
+
+/// §6.1.1–6.1.2: every state variable can be read with each of `glGetBooleanv`,
+/// `glGetIntegerv`, `glGetFloatv` and `glGetDoublev`, converted; a line per getter that fails.
+fn every_getter_answers(pname: GLenum) -> Vec<String> {
+    let getters: [(&str, fn(GLenum)); 4] = [
+        ("glGetBooleanv", |p| drop(get_b(p))),
+        ("glGetIntegerv", |p| drop(get_i(p))),
+        ("glGetFloatv", |p| drop(get_f(p))),
+        ("glGetDoublev", |p| drop(get_d(p))),
+    ];
+    getters
+        .iter()
+        .filter_map(|(getter, get)| {
+            get(pname);
+            let err = error();
+            (err != GL_NO_ERROR).then(|| format!("{}: {getter} raised {}", name(pname), name(err)))
+        })
+        .collect()
 }
 
 /// Makes a context current and checks `rows`.
@@ -563,4 +583,61 @@ fn unknown_pname_is_invalid_enum() {
     let got = get_i(GL_TEXTURE_ENV_MODE);
     assert_eq!(error(), GL_INVALID_ENUM);
     assert_eq!(got[0], i32::MIN, "glGetIntegerv wrote an answer for an invalid pname");
+}
+
+/// §6.1.2 data conversions: booleans read as integers and floats are 0 or 1; non-zero
+/// values read as booleans are TRUE; floats read as integers are rounded, except colour
+/// components, depth range and depth clear values, which are mapped so that 1.0 becomes the
+/// largest integer and 0.0 becomes 0; enums read as floats are their values.
+#[test]
+fn query_conversions() {
+    make_current();
+    unsafe {
+        gl::glEnable(GL_LIGHTING);
+        gl::glLineWidth(2.6);
+        gl::glPolygonOffset(1.5, -2.5);
+        gl::glClearColor(1.0, 0.0, 1.0, 0.0);
+        gl::glDepthRange(0.0, 1.0);
+        gl::glFogf(GL_FOG_DENSITY, 0.5);
+        gl::glShadeModel(GL_FLAT);
+    }
+    let mut failures = Vec::new();
+    let mut expect = |what: &str, ok: bool, got: String| {
+        if !ok {
+            failures.push(format!("{what}: got {got}"));
+        }
+    };
+    let i = get_i(GL_LIGHTING)[0];
+    expect("glGetIntegerv(LIGHTING) after glEnable = 1", i == 1, format!("{i}"));
+    let f = get_f(GL_LIGHTING)[0];
+    expect("glGetFloatv(LIGHTING) = 1.0", f == 1.0, format!("{f}"));
+    let i = get_i(GL_LINE_WIDTH)[0];
+    expect("glGetIntegerv(LINE_WIDTH 2.6) rounds to 3", i == 3, format!("{i}"));
+    let i = &get_i(GL_POLYGON_OFFSET_FACTOR)[..1];
+    expect("glGetIntegerv(POLYGON_OFFSET_FACTOR 1.5) rounds to 2", i == [2], format!("{i:?}"));
+    let b = get_b(GL_FOG_DENSITY)[0];
+    expect("glGetBooleanv(FOG_DENSITY 0.5) = TRUE", b == Some(true), format!("{b:?}"));
+    let b = get_b(GL_POLYGON_OFFSET_UNITS)[0];
+    expect("glGetBooleanv(POLYGON_OFFSET_UNITS -2.5) = TRUE", b == Some(true), format!("{b:?}"));
+    let b = &get_b(GL_COLOR_CLEAR_VALUE)[..4];
+    let want = [Some(true), Some(false), Some(true), Some(false)];
+    expect("glGetBooleanv(COLOR_CLEAR_VALUE 1,0,1,0)", b == want, format!("{b:?}"));
+    let i = &get_i(GL_COLOR_CLEAR_VALUE)[..4];
+    expect("glGetIntegerv(COLOR_CLEAR_VALUE 1,0,1,0) maps 1.0 to 2^31-1", i == [i32::MAX, 0, i32::MAX, 0], format!("{i:?}"));
+    let i = &get_i(GL_DEPTH_RANGE)[..2];
+    expect("glGetIntegerv(DEPTH_RANGE 0,1) maps 1.0 to 2^31-1", i == [0, i32::MAX], format!("{i:?}"));
+    let i = get_i(GL_DEPTH_CLEAR_VALUE)[0];
+    expect("glGetIntegerv(DEPTH_CLEAR_VALUE 1) maps 1.0 to 2^31-1", i == i32::MAX, format!("{i}"));
+    let i = &get_i(GL_LIGHT_MODEL_AMBIENT)[..4];
+    let fifth = (f64::from(0.2f32) * f64::from(u32::MAX) - 1.0) / 2.0;
+    let near = |v: i32, w: f64| (f64::from(v) - w).abs() <= 256.0;
+    let ok = near(i[0], fifth) && near(i[1], fifth) && near(i[2], fifth) && i[3] == i32::MAX;
+    expect("glGetIntegerv(LIGHT_MODEL_AMBIENT 0.2,0.2,0.2,1) is mapped", ok, format!("{i:?}"));
+    let f = get_f(GL_SHADE_MODEL)[0];
+    expect("glGetFloatv(SHADE_MODEL) = GL_FLAT", f == GL_FLAT as f32, format!("{f}"));
+    let d = &get_d(GL_VIEWPORT)[..4];
+    expect("glGetDoublev(VIEWPORT)", d == [0.0, 0.0, f64::from(SIZE), f64::from(SIZE)], format!("{d:?}"));
+    let err = error();
+    expect("no error", err == GL_NO_ERROR, name(err));
+    assert_none("§6.1.2 conversions", &failures);
 }

@@ -11,12 +11,21 @@ pub use glrt::translate::gl::*;
 pub const SIZE: i32 = 64;
 
 /// Creates a headless context and makes it current on this thread (each `#[test]` runs on its
-/// own thread, so each test has its own context).
-pub fn make_current() {
+/// own thread, so each test has its own context); returns its handle.
+pub fn make_current() -> *mut std::ffi::c_void {
     let ctx = glrt::gl_entry::headless::glrtCreateContext(std::ptr::null_mut());
     assert!(!ctx.is_null(), "glrtCreateContext failed");
     assert_eq!(glrt::gl_entry::headless::glrtMakeCurrent(ctx, SIZE, SIZE), 1, "glrtMakeCurrent failed");
     assert_eq!(error(), GL_NO_ERROR, "error after making the context current");
+    ctx
+}
+
+/// Runs `f` in a new context current on this thread, destroyed afterwards.
+pub fn with_fresh_context<T>(f: impl FnOnce() -> T) -> T {
+    let ctx = make_current();
+    let result = f();
+    glrt::gl_entry::headless::glrtDestroyContext(ctx);
+    result
 }
 
 /// The name of a GL enum for messages (`GL_FOG_MODE`), or its hexadecimal value.
@@ -60,6 +69,14 @@ pub fn get_b(pname: GLenum) -> Vec<Option<bool>> {
         _ => None,
     })
     .collect()
+}
+
+/// `glGetDoublev`: the first values written.
+pub fn get_d(pname: GLenum) -> Vec<GLdouble> {
+    let mut v = [f64::NAN; ROOM];
+    // Safety: `v` has room for any state variable.
+    unsafe { gl::glGetDoublev(pname, v.as_mut_ptr()) };
+    v.to_vec()
 }
 
 /// `glIsEnabled`.
