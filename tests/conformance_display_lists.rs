@@ -167,8 +167,9 @@ fn errors_of_compiled_commands_come_at_execution() {
 }
 
 /// Lists call lists by name when executed: a `glCallList` compiled (not executed) in
-/// `GL_COMPILE`, the callee's definition at call time, undefined names ignored, and the
-/// nesting limit stopping a list that calls itself (§5.4, `MAX_LIST_NESTING`).
+/// `GL_COMPILE`, the callee's definition at call time, undefined names ignored, a list being
+/// redefined kept until `glEndList`, and the nesting limit stopping a list that calls itself
+/// (§5.4, `MAX_LIST_NESTING`).
 #[test]
 fn nested_lists() {
     make_current();
@@ -193,6 +194,22 @@ fn nested_lists() {
     unsafe { gl::glCallList(outer) };
     expect(&mut failures, "x after redefining the inner list", modelview_x(), 121.0);
     expect(&mut failures, "error", name(error()), name(GL_NO_ERROR));
+
+    // A list being redefined keeps its old contents until glEndList (§5.4).
+    unsafe { gl::glLoadIdentity() };
+    let (old, caller) = (24, 25);
+    define(old, &|| unsafe { gl::glTranslatef(1.0, 0.0, 0.0) });
+    define(caller, &|| unsafe { gl::glCallList(old) });
+    unsafe {
+        gl::glNewList(old, GL_COMPILE_AND_EXECUTE);
+        gl::glCallList(caller);
+        expect(&mut failures, "glIsList of a list being redefined", gl::glIsList(old), 1);
+        gl::glEndList();
+    }
+    expect(&mut failures, "x after calling a list while it is redefined", modelview_x(), 1.0);
+    define(old, &|| unsafe { gl::glTranslatef(2.0, 0.0, 0.0) });
+    unsafe { gl::glCallList(caller) };
+    expect(&mut failures, "x after the redefinition", modelview_x(), 3.0);
 
     // A list that calls itself stops at the nesting limit.
     unsafe { gl::glLoadIdentity() };

@@ -187,6 +187,71 @@ const INVALID_VALUES: &[Row] = &[
     row("glGenQueries(-1)", || unsafe { gl::glGenQueries(-1, (&raw mut SELECT).cast()) }, GL_INVALID_VALUE, 0),
 ];
 
+/// Queries with bad arguments (§6.1: the `glGet` commands of each object type).
+const QUERY_ERRORS: &[Row] = &[
+    row("glGetLightfv(GL_LIGHT0 + 8)", || unsafe { gl::glGetLightfv(GL_LIGHT0 + 8, GL_DIFFUSE, [0.0f32; 4].as_mut_ptr()) }, GL_INVALID_ENUM, 0),
+    row("glGetLightfv(GL_SHININESS)", || unsafe { gl::glGetLightfv(GL_LIGHT0, GL_SHININESS, [0.0f32; 4].as_mut_ptr()) }, GL_INVALID_ENUM, 0),
+    row(
+        "glGetMaterialfv(GL_FRONT_AND_BACK)",
+        || unsafe { gl::glGetMaterialfv(GL_FRONT_AND_BACK, GL_DIFFUSE, [0.0f32; 4].as_mut_ptr()) },
+        GL_INVALID_ENUM,
+        0,
+    ),
+    row(
+        "glGetMaterialfv(GL_SPOT_CUTOFF)",
+        || unsafe { gl::glGetMaterialfv(GL_FRONT, GL_SPOT_CUTOFF, [0.0f32; 4].as_mut_ptr()) },
+        GL_INVALID_ENUM,
+        0,
+    ),
+    row(
+        "glGetClipPlane(GL_CLIP_PLANE0 + 6)",
+        || unsafe { gl::glGetClipPlane(GL_CLIP_PLANE0 + 6, [0.0f64; 4].as_mut_ptr()) },
+        GL_INVALID_ENUM,
+        0,
+    ),
+    row("glGetMapfv(GL_TEXTURE_2D)", || unsafe { gl::glGetMapfv(GL_TEXTURE_2D, GL_ORDER, [0.0f32; 4].as_mut_ptr()) }, GL_INVALID_ENUM, 0),
+    row("glGetMapfv(query GL_FOG)", || unsafe { gl::glGetMapfv(GL_MAP1_VERTEX_3, GL_FOG, [0.0f32; 4].as_mut_ptr()) }, GL_INVALID_ENUM, 0),
+    row("glGetString(GL_FOG)", || unsafe { gl::glGetString(GL_FOG); }, GL_INVALID_ENUM, 0),
+    row(
+        "glGetQueryiv(target GL_TEXTURE_2D)",
+        || unsafe { gl::glGetQueryiv(GL_TEXTURE_2D, GL_CURRENT_QUERY, [0i32; 1].as_mut_ptr()) },
+        GL_INVALID_ENUM,
+        0,
+    ),
+    row(
+        "glGetQueryiv(pname GL_FOG)",
+        || unsafe { gl::glGetQueryiv(GL_SAMPLES_PASSED, GL_FOG, [0i32; 1].as_mut_ptr()) },
+        GL_INVALID_ENUM,
+        0,
+    ),
+    row(
+        "glGetQueryObjectiv(not a query)",
+        || unsafe { gl::glGetQueryObjectiv(5, GL_QUERY_RESULT, [0i32; 1].as_mut_ptr()) },
+        GL_INVALID_OPERATION,
+        0,
+    ),
+    row(
+        "glGetQueryObjectuiv(the active query)",
+        || unsafe {
+            gl::glBeginQuery(GL_SAMPLES_PASSED, 3);
+            gl::glGetQueryObjectuiv(3, GL_QUERY_RESULT_AVAILABLE, [0u32; 1].as_mut_ptr());
+        },
+        GL_INVALID_OPERATION,
+        0,
+    ),
+    row(
+        "glGetQueryObjectiv(pname GL_FOG)",
+        || unsafe {
+            gl::glBeginQuery(GL_SAMPLES_PASSED, 3);
+            gl::glEndQuery(GL_SAMPLES_PASSED);
+            gl::glGetQueryObjectiv(3, GL_FOG, [0i32; 1].as_mut_ptr());
+        },
+        GL_INVALID_ENUM,
+        0,
+    ),
+    row("glDeleteQueries(-1)", || unsafe { gl::glDeleteQueries(-1, [1u32].as_ptr()) }, GL_INVALID_VALUE, 0),
+];
+
 /// Operations not allowed in the current state (§2.5: `INVALID_OPERATION`).
 const INVALID_OPERATIONS: &[Row] = &[
     row("glEnd without glBegin", || unsafe { gl::glEnd() }, GL_INVALID_OPERATION, 0),
@@ -277,6 +342,45 @@ fn invalid_enums() {
 #[test]
 fn invalid_values() {
     assert_none("INVALID_VALUE rows", &check(INVALID_VALUES));
+}
+
+#[test]
+fn query_errors() {
+    assert_none("query rows", &check(QUERY_ERRORS));
+}
+
+/// Values the specification clamps instead of rejecting, read back as stored.
+const CLAMPED: &[(&str, unsafe fn(), GLenum, &[f32])] = &[
+    ("glDepthRange(-1, 2) (§2.11.1)", || unsafe { gl::glDepthRange(-1.0, 2.0) }, GL_DEPTH_RANGE, &[0.0, 1.0]),
+    ("glClearColor(-1, 2, .5, 0) (§4.2.3)", || unsafe { gl::glClearColor(-1.0, 2.0, 0.5, 0.0) }, GL_COLOR_CLEAR_VALUE, &[0.0, 1.0, 0.5, 0.0]),
+    ("glClearDepth(2) (§4.2.3)", || unsafe { gl::glClearDepth(2.0) }, GL_DEPTH_CLEAR_VALUE, &[1.0]),
+    ("glClearAccum(-2, 2, .5, 0) (§4.2.3)", || unsafe { gl::glClearAccum(-2.0, 2.0, 0.5, 0.0) }, GL_ACCUM_CLEAR_VALUE, &[-1.0, 1.0, 0.5, 0.0]),
+    ("glAlphaFunc(GL_LESS, 2) (§4.1.4)", || unsafe { gl::glAlphaFunc(GL_LESS, 2.0) }, GL_ALPHA_TEST_REF, &[1.0]),
+    ("glBlendColor(2, -1, .5, 0) (§4.1.8)", || unsafe { gl::glBlendColor(2.0, -1.0, 0.5, 0.0) }, GL_BLEND_COLOR, &[1.0, 0.0, 0.5, 0.0]),
+    ("glSampleCoverage(2) (§4.1.3)", || unsafe { gl::glSampleCoverage(2.0, 0) }, GL_SAMPLE_COVERAGE_VALUE, &[1.0]),
+    ("glFogfv(GL_FOG_COLOR, 2, -1, .5, 0) (§3.10)", || unsafe { gl::glFogfv(GL_FOG_COLOR, [2.0f32, -1.0, 0.5, 0.0].as_ptr()) }, GL_FOG_COLOR, &[1.0, 0.0, 0.5, 0.0]),
+    ("glLineStipple(0, p) (§3.4.2)", || unsafe { gl::glLineStipple(0, 0x0F0F) }, GL_LINE_STIPPLE_REPEAT, &[1.0]),
+    ("glLineStipple(300, p) (§3.4.2)", || unsafe { gl::glLineStipple(300, 0x0F0F) }, GL_LINE_STIPPLE_REPEAT, &[256.0]),
+];
+
+/// Out-of-range values the specification clamps: no error, the clamped value stored.
+#[test]
+fn out_of_range_values_are_clamped() {
+    let mut failures = Vec::new();
+    for &(what, call, pname, want) in CLAMPED {
+        with_fresh_context(|| {
+            unsafe { call() };
+            let got = &get_f(pname)[..want.len()];
+            if got != want {
+                failures.push(format!("{what}: {} = {got:?}, spec {want:?}", name(pname)));
+            }
+            let err = error();
+            if err != GL_NO_ERROR {
+                failures.push(format!("{what}: raised {}", name(err)));
+            }
+        });
+    }
+    assert_none("clamped values", &failures);
 }
 
 #[test]

@@ -98,10 +98,13 @@ fn check(rows: &[(GLenum, Want)]) -> Vec<String> {
     failures
 }
 
+/// A `glGet*` command's name and a call of it that drops the answer.
+type Getter = (&'static str, fn(GLenum));
+
 /// §6.1.1–6.1.2: every state variable can be read with each of `glGetBooleanv`,
 /// `glGetIntegerv`, `glGetFloatv` and `glGetDoublev`, converted; a line per getter that fails.
 fn every_getter_answers(pname: GLenum) -> Vec<String> {
-    let getters: [(&str, fn(GLenum)); 4] = [
+    let getters: [Getter; 4] = [
         ("glGetBooleanv", |p| drop(get_b(p))),
         ("glGetIntegerv", |p| drop(get_i(p))),
         ("glGetFloatv", |p| drop(get_f(p))),
