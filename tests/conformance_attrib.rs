@@ -2,7 +2,7 @@
 //! bits): `glPushAttrib(group)` … change … `glPopAttrib` restores a state variable when the
 //! pushed mask holds one of its groups, and leaves it changed when the mask holds none of them
 //! (§6.1.14), through the C exports. Rows of state owned by modules still being merged are in
-//! `*_texture_module`.
+//! `*_vertex_module` and `*_texture_module`.
 
 mod common;
 
@@ -148,6 +148,17 @@ const TEXTURE_ROWS: &[Row] = &[
     row(GL_CURRENT_RASTER_POSITION, || unsafe { gl::glWindowPos2f(5.0, 6.0) }, GL_CURRENT_BIT),
 ];
 
+/// Rows of the `vertex` branch: current values (`CURRENT_BIT`).
+const VERTEX_ROWS: &[Row] = &[
+    row(GL_CURRENT_COLOR, || unsafe { gl::glColor4f(0.5, 0.25, 0.125, 0.0) }, GL_CURRENT_BIT),
+    row(GL_CURRENT_SECONDARY_COLOR, || unsafe { gl::glSecondaryColor3f(0.5, 0.25, 0.125) }, GL_CURRENT_BIT),
+    row(GL_CURRENT_INDEX, || unsafe { gl::glIndexf(3.0) }, GL_CURRENT_BIT),
+    row(GL_CURRENT_NORMAL, || unsafe { gl::glNormal3f(1.0, 0.0, 0.0) }, GL_CURRENT_BIT),
+    row(GL_CURRENT_TEXTURE_COORDS, || unsafe { gl::glTexCoord2f(0.5, 0.25) }, GL_CURRENT_BIT),
+    row(GL_CURRENT_FOG_COORD, || unsafe { gl::glFogCoordf(2.0) }, GL_CURRENT_BIT),
+    row(GL_EDGE_FLAG, || unsafe { gl::glEdgeFlag(0) }, GL_CURRENT_BIT),
+];
+
 /// Reads `pname` as floats (the values `glGetFloatv` wrote).
 fn read(pname: GLenum) -> Vec<f32> {
     get_f(pname).into_iter().take_while(|v| !v.is_nan()).collect()
@@ -196,6 +207,41 @@ fn check(rows: &[Row]) -> Vec<String> {
 #[test]
 fn attribute_groups() {
     assert_none("attribute groups (§6.1.14)", &check(ROWS));
+}
+
+#[test]
+fn attribute_groups_vertex_module() {
+    assert_none("attribute groups (§6.1.14)", &check(VERTEX_ROWS));
+}
+
+/// `glPushClientAttrib(CLIENT_VERTEX_ARRAY_BIT)` restores the array state and not the pixel
+/// store; `CLIENT_PIXEL_STORE_BIT` the reverse (§6.1.14, tables 6.6 and 6.22).
+#[test]
+fn client_attribute_groups_vertex_module() {
+    make_current();
+    let mut failures = Vec::new();
+    let state = || (is_enabled(GL_VERTEX_ARRAY), get_i(GL_UNPACK_ALIGNMENT)[0]);
+    let change = || unsafe {
+        gl::glEnableClientState(GL_VERTEX_ARRAY);
+        gl::glPixelStorei(GL_UNPACK_ALIGNMENT, 8);
+    };
+    unsafe { gl::glPushClientAttrib(GL_CLIENT_VERTEX_ARRAY_BIT) };
+    change();
+    unsafe { gl::glPopClientAttrib() };
+    if state() != (false, 8) {
+        failures.push(format!("after popping CLIENT_VERTEX_ARRAY_BIT: {:?}, spec (false, 8)", state()));
+    }
+    unsafe {
+        gl::glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        gl::glPushClientAttrib(GL_CLIENT_PIXEL_STORE_BIT);
+    }
+    change();
+    unsafe { gl::glPopClientAttrib() };
+    if state() != (true, 4) {
+        failures.push(format!("after popping CLIENT_PIXEL_STORE_BIT: {:?}, spec (true, 4)", state()));
+    }
+    expect_no_error(&mut failures);
+    assert_none("client attribute groups", &failures);
 }
 
 #[test]

@@ -349,8 +349,11 @@ fn query_errors() {
     assert_none("query rows", &check(QUERY_ERRORS));
 }
 
+/// A clamping row: what is called, the call, the state it sets, the clamped value.
+type Clamped = (&'static str, unsafe fn(), GLenum, &'static [f32]);
+
 /// Values the specification clamps instead of rejecting, read back as stored.
-const CLAMPED: &[(&str, unsafe fn(), GLenum, &[f32])] = &[
+const CLAMPED: &[Clamped] = &[
     ("glDepthRange(-1, 2) (§2.11.1)", || unsafe { gl::glDepthRange(-1.0, 2.0) }, GL_DEPTH_RANGE, &[0.0, 1.0]),
     ("glClearColor(-1, 2, .5, 0) (§4.2.3)", || unsafe { gl::glClearColor(-1.0, 2.0, 0.5, 0.0) }, GL_COLOR_CLEAR_VALUE, &[0.0, 1.0, 0.5, 0.0]),
     ("glClearDepth(2) (§4.2.3)", || unsafe { gl::glClearDepth(2.0) }, GL_DEPTH_CLEAR_VALUE, &[1.0]),
