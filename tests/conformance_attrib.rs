@@ -215,7 +215,8 @@ fn attribute_groups_vertex_module() {
 }
 
 /// `glPushClientAttrib(CLIENT_VERTEX_ARRAY_BIT)` restores the array state and not the pixel
-/// store; `CLIENT_PIXEL_STORE_BIT` the reverse (§6.1.14, tables 6.6 and 6.22).
+/// store; `CLIENT_PIXEL_STORE_BIT` the reverse (§6.1.14, tables 6.6 and 6.22). Needs the
+/// pixel store of the `texture` branch too.
 #[test]
 fn client_attribute_groups_vertex_module() {
     make_current();

@@ -583,7 +583,7 @@ fn miscellaneous() {
 #[test]
 fn unknown_pname_is_invalid_enum() {
     make_current();
-    let got = get_i(GL_TEXTURE_ENV_MODE);
+    let got = get_i(GL_TRIANGLES);
     assert_eq!(error(), GL_INVALID_ENUM);
     assert_eq!(got[0], i32::MIN, "glGetIntegerv wrote an answer for an invalid pname");
 }
