@@ -7,7 +7,7 @@
 use super::Context;
 use super::pixels::store::StoreModes;
 use super::convert::read_slice;
-use super::gl::GLubyte;
+use super::gl::{self, GLubyte};
 use super::lists::ListOp;
 
 /// Where the bits of a bitmap lie in client memory.
@@ -97,7 +97,13 @@ impl Context {
     /// As [`Context::glPolygonStipple`].
     pub unsafe fn compile_glPolygonStipple(&mut self, mask: *const GLubyte) {
         match unsafe { unpack(mask, &BitmapLayout::of(&self.pixels.store.unpack)) } {
-            Some(rows) => self.lists.record(ListOp::Deferred(Box::new(move |ctx| ctx.set_polygon_stipple(rows)))),
+            // Replayed by hand, so the Begin/End rule of section 2.6.3 is applied here.
+            Some(rows) => self.lists.record(ListOp::Deferred(Box::new(move |ctx| {
+                if ctx.inside_begin_end() {
+                    return ctx.set_error_in(gl::GL_INVALID_OPERATION, "glPolygonStipple");
+                }
+                ctx.set_polygon_stipple(rows)
+            }))),
             None => self.null_pointer("glPolygonStipple"),
         }
     }
@@ -152,6 +158,21 @@ mod tests {
         assert_eq!(ctx.fixed.raster.stipple[0], u32::from_be_bytes([0, 37, 74, 111]));
         unsafe { dispatch::glCallList(&mut ctx, 5) };
         assert_eq!(ctx.fixed.raster.stipple, [0; 32]);
+    }
+
+    #[test]
+    fn compiled_stipple_inside_begin_end_is_invalid_operation() {
+        let (mut ctx, _) = Context::with_recording();
+        unsafe {
+            dispatch::glNewList(&mut ctx, 5, gl::GL_COMPILE);
+            dispatch::glPolygonStipple(&mut ctx, [0x55u8; 128].as_ptr());
+            dispatch::glEndList(&mut ctx);
+            dispatch::glBegin(&mut ctx, gl::GL_POINTS);
+            dispatch::glCallList(&mut ctx, 5);
+            dispatch::glEnd(&mut ctx);
+        }
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+        assert_eq!(ctx.fixed.raster.stipple, [u32::MAX; 32], "the pattern changed inside Begin/End");
     }
 
     #[test]

@@ -214,3 +214,28 @@ fn eval_mesh_mode_errors() {
         dispatch::glEnd(&mut c);
     }
 }
+
+#[test]
+fn compiled_maps_inside_begin_end_are_invalid_operation() {
+    let mut c = ctx();
+    let pts: [f32; 8] = [0.0, 0.0, 1.0, 0.0, 5.0, 5.0, 9.0, 9.0];
+    let mut coeff = [0.0f32; 6];
+    unsafe {
+        dispatch::glNewList(&mut c, 3, gl::GL_COMPILE);
+        dispatch::glMap1f(&mut c, gl::GL_MAP1_VERTEX_3, 0.0, 1.0, 3, 2, pts.as_ptr());
+        dispatch::glMap2f(&mut c, gl::GL_MAP2_VERTEX_3, 0.0, 1.0, 3, 2, 0.0, 1.0, 6, 1, pts.as_ptr());
+        dispatch::glEndList(&mut c);
+        dispatch::glBegin(&mut c, gl::GL_POINTS);
+        dispatch::glCallList(&mut c, 3);
+        dispatch::glEnd(&mut c);
+        assert_eq!(c.glGetError(), gl::GL_INVALID_OPERATION);
+        dispatch::glGetMapfv(&mut c, gl::GL_MAP1_VERTEX_3, gl::GL_COEFF, coeff.as_mut_ptr());
+        assert_eq!(coeff[..3], [0.0, 0.0, 0.0], "glMap1f replayed inside Begin/End");
+        dispatch::glGetMapfv(&mut c, gl::GL_MAP2_VERTEX_3, gl::GL_COEFF, coeff.as_mut_ptr());
+        assert_eq!(coeff[..3], [0.0, 0.0, 0.0], "glMap2f replayed inside Begin/End");
+        dispatch::glCallList(&mut c, 3);
+        assert_eq!(c.glGetError(), gl::GL_NO_ERROR);
+        dispatch::glGetMapfv(&mut c, gl::GL_MAP1_VERTEX_3, gl::GL_COEFF, coeff.as_mut_ptr());
+        assert_eq!(coeff, [0.0, 0.0, 1.0, 0.0, 5.0, 5.0]);
+    }
+}
