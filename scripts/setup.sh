@@ -9,7 +9,8 @@ declare -A PROBES=(
     [xvfb]=/usr/bin/Xvfb
     [x11-utils]=/usr/bin/xwininfo
     [x11-apps]=/usr/bin/xwd
-    [mesa-utils-bin]=/usr/bin/glxgears
+    # glxinfo and glxgears (mesa-utils depends on mesa-utils-bin)
+    [mesa-utils]=/usr/bin/glxinfo
     [mesa-vulkan-drivers]=/usr/share/vulkan/icd.d/lvp_icd.x86_64.json
     [libvulkan1]=/usr/lib/x86_64-linux-gnu/libvulkan.so.1
     [vulkan-tools]=/usr/bin/vulkaninfo
