@@ -52,7 +52,8 @@ pub const CLIENT_SIDE: &[&str] = &[
     "EdgeFlagPointer", "FogCoordPointer", "SecondaryColorPointer", "InterleavedArrays",
     "EnableClientState", "DisableClientState", "ClientActiveTexture", "PixelStoref",
     "PixelStorei", "PushClientAttrib", "PopClientAttrib", "LockArraysEXT", "UnlockArraysEXT",
-    "GetPointerv",
+    "GetPointerv", "VertexPointerEXT", "NormalPointerEXT", "ColorPointerEXT", "IndexPointerEXT",
+    "TexCoordPointerEXT", "EdgeFlagPointerEXT",
 ];
 
 /// Commands executed immediately even while a display list is compiled (OpenGL 1.5, section

@@ -1,8 +1,7 @@
 //! The `EXT_vertex_array` pointer commands, which take an element count that OpenGL 1.1 dropped:
 //! glrt checks it (`GL_INVALID_VALUE` when negative, as the extension says) and sets the
 //! pointer like the core command. They are client state, so inside `glNewList` they take
-//! effect at once instead of being compiled (section 5.4): each `compile_` form runs the
-//! command (with `GL_COMPILE_AND_EXECUTE` it runs twice, which changes nothing).
+//! effect at once instead of being compiled (section 5.4; `CLIENT_SIDE` in `build/overlay.rs`).
 
 use std::ffi::c_void;
 
@@ -79,87 +78,6 @@ impl Context {
         if self.ext_count_ok(count, "glEdgeFlagPointerEXT") {
             self.glEdgeFlagPointer(stride, pointer.cast());
         }
-    }
-
-    /// `glVertexPointerEXT` while compiling: set at once.
-    ///
-    /// # Safety
-    /// None beyond the command's (the pointer is only stored).
-    pub unsafe fn compile_glVertexPointerEXT(
-        &mut self,
-        size: GLint,
-        type_: GLenum,
-        stride: GLsizei,
-        count: GLsizei,
-        pointer: *const c_void,
-    ) {
-        self.glVertexPointerEXT(size, type_, stride, count, pointer);
-    }
-
-    /// `glNormalPointerEXT` while compiling: set at once.
-    ///
-    /// # Safety
-    /// None beyond the command's (the pointer is only stored).
-    pub unsafe fn compile_glNormalPointerEXT(
-        &mut self,
-        type_: GLenum,
-        stride: GLsizei,
-        count: GLsizei,
-        pointer: *const c_void,
-    ) {
-        self.glNormalPointerEXT(type_, stride, count, pointer);
-    }
-
-    /// `glColorPointerEXT` while compiling: set at once.
-    ///
-    /// # Safety
-    /// None beyond the command's (the pointer is only stored).
-    pub unsafe fn compile_glColorPointerEXT(
-        &mut self,
-        size: GLint,
-        type_: GLenum,
-        stride: GLsizei,
-        count: GLsizei,
-        pointer: *const c_void,
-    ) {
-        self.glColorPointerEXT(size, type_, stride, count, pointer);
-    }
-
-    /// `glIndexPointerEXT` while compiling: set at once.
-    ///
-    /// # Safety
-    /// None beyond the command's (the pointer is only stored).
-    pub unsafe fn compile_glIndexPointerEXT(
-        &mut self,
-        type_: GLenum,
-        stride: GLsizei,
-        count: GLsizei,
-        pointer: *const c_void,
-    ) {
-        self.glIndexPointerEXT(type_, stride, count, pointer);
-    }
-
-    /// `glTexCoordPointerEXT` while compiling: set at once.
-    ///
-    /// # Safety
-    /// None beyond the command's (the pointer is only stored).
-    pub unsafe fn compile_glTexCoordPointerEXT(
-        &mut self,
-        size: GLint,
-        type_: GLenum,
-        stride: GLsizei,
-        count: GLsizei,
-        pointer: *const c_void,
-    ) {
-        self.glTexCoordPointerEXT(size, type_, stride, count, pointer);
-    }
-
-    /// `glEdgeFlagPointerEXT` while compiling: set at once.
-    ///
-    /// # Safety
-    /// None beyond the command's (the pointer is only stored).
-    pub unsafe fn compile_glEdgeFlagPointerEXT(&mut self, stride: GLsizei, count: GLsizei, pointer: *const GLboolean) {
-        self.glEdgeFlagPointerEXT(stride, count, pointer);
     }
 }
 
