@@ -150,7 +150,12 @@ fn dispatch(model: &Model) -> String {
                     "{name} reads client memory and is compiled into display lists: \
                      implement Context::compile_{name} in src/translate"
                 );
-                writeln!(s, "        unsafe {{ ctx.compile_{name}({args}) }};").unwrap();
+                let rule = if allowed_inside_begin_end(c) { "None".to_owned() } else { format!("Some(\"{name}\")") };
+                writeln!(
+                    s,
+                    "        super::lists::ListState::compile_with_rule(ctx, {rule}, |ctx| unsafe {{ ctx.compile_{name}({args}) }});"
+                )
+                .unwrap();
             } else {
                 let call = if c.params.is_empty() { short(c).to_owned() } else { format!("{}({args})", short(c)) };
                 writeln!(s, "        ctx.lists.record(ListOp::Call(Call::{call}));").unwrap();

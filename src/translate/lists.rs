@@ -45,6 +45,10 @@ pub struct ListState {
     depth: u32,
     /// Name of the innermost list being executed, 0 when none.
     executing_name: GLuint,
+    /// While a `compile_` method of a command that is not allowed between `glBegin` and
+    /// `glEnd` records, that command's name: its deferred operations then apply the rule of
+    /// section 2.6.3 when the list is executed (set by the generated dispatch).
+    outside_begin_end_only: Option<&'static str>,
 }
 
 impl ListState {
@@ -63,8 +67,33 @@ impl ListState {
         (self.executing_name != 0).then_some(self.executing_name)
     }
 
+    /// Runs `compile` (a command's `compile_` method) so that the deferred operations it
+    /// records raise `GL_INVALID_OPERATION` instead of running when the list is executed
+    /// between `glBegin` and `glEnd` (`Some(command)`), or run as they are (`None`).
+    /// A command that records nothing (a draw of zero vertices) still raises the error there.
+    pub fn compile_with_rule(ctx: &mut Context, rule: Option<&'static str>, compile: impl FnOnce(&mut Context)) {
+        let recorded = |lists: &ListState| lists.compiling.as_ref().map_or(0, |c| c.ops.len());
+        let before = recorded(&ctx.lists);
+        ctx.lists.outside_begin_end_only = rule;
+        compile(ctx);
+        if rule.is_some() && recorded(&ctx.lists) == before {
+            ctx.lists.record(ListOp::Deferred(Box::new(|_| {})));
+        }
+        ctx.lists.outside_begin_end_only = None;
+    }
+
     /// Appends a command to the list being compiled.
     pub fn record(&mut self, op: ListOp) {
+        let op = match (op, self.outside_begin_end_only) {
+            (ListOp::Deferred(run), Some(command)) => ListOp::Deferred(Box::new(move |ctx| {
+                if ctx.inside_begin_end() {
+                    ctx.set_error_in(gl::GL_INVALID_OPERATION, command);
+                } else {
+                    run(ctx);
+                }
+            })),
+            (op, _) => op,
+        };
         if let Some(c) = &mut self.compiling {
             c.ops.push(op);
         }

@@ -7,7 +7,7 @@
 use super::Context;
 use super::pixels::store::StoreModes;
 use super::convert::read_slice;
-use super::gl::{self, GLubyte};
+use super::gl::GLubyte;
 use super::lists::ListOp;
 
 /// Where the bits of a bitmap lie in client memory.
@@ -97,13 +97,7 @@ impl Context {
     /// As [`Context::glPolygonStipple`].
     pub unsafe fn compile_glPolygonStipple(&mut self, mask: *const GLubyte) {
         match unsafe { unpack(mask, &BitmapLayout::of(&self.pixels.store.unpack)) } {
-            // Replayed by hand, so the Begin/End rule of section 2.6.3 is applied here.
-            Some(rows) => self.lists.record(ListOp::Deferred(Box::new(move |ctx| {
-                if ctx.inside_begin_end() {
-                    return ctx.set_error_in(gl::GL_INVALID_OPERATION, "glPolygonStipple");
-                }
-                ctx.set_polygon_stipple(rows)
-            }))),
+            Some(rows) => self.lists.record(ListOp::Deferred(Box::new(move |ctx| ctx.set_polygon_stipple(rows)))),
             None => self.null_pointer("glPolygonStipple"),
         }
     }

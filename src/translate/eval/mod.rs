@@ -108,12 +108,7 @@ impl Context {
             None => (None, args.stride),
         };
         let replay = MapArgs { stride, ..args };
-        let command = if args.dim == MapDim::Two { "glMap2" } else { "glMap1" };
         self.lists.record(ListOp::Deferred(Box::new(move |ctx| {
-            // Replayed by hand, so the Begin/End rule of section 2.6.3 is applied here.
-            if ctx.inside_begin_end() {
-                return ctx.set_error_in(gl::GL_INVALID_OPERATION, command);
-            }
             let ptr = copied.as_ref().map_or(std::ptr::null(), |p| p.as_ptr());
             unsafe { ctx.map::<f64>(target, replay, ptr) }
         })));
