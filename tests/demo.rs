@@ -251,22 +251,34 @@ fn x11_demo_draws_the_scene_every_frame() {
 fn glxgears_draws_three_gears_every_frame() {
     assert!(
         Path::new("/usr/bin/glxgears").exists(),
-        "glxgears missing: run `bash scripts/setup.sh` (mesa-utils-bin)"
+        "glxgears missing: run `bash scripts/setup.sh` (mesa-utils)"
     );
     let x = Xvfb::start();
     let log = temp_log("glxgears");
-    let mut cmd = through_glrt("/usr/bin/glxgears", &log);
-    cmd.env("DISPLAY", &x.display);
-    // glxgears has no frame-count flag: let it run for 5 seconds.
-    let (out, stopped) = run_for(cmd, Duration::from_secs(5));
-    assert!(
-        stopped,
-        "glxgears exited early: {:?}\n{}",
-        out.status,
-        String::from_utf8_lossy(&out.stderr)
-    );
+    let mut child = through_glrt("/usr/bin/glxgears", &log)
+        .env("DISPLAY", &x.display)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("spawn glxgears");
+    // glxgears has no frame-count flag: wait for 300 frames, then press Escape, on which it
+    // quits with status 0.
+    let start = Instant::now();
+    let logged = || std::fs::read_to_string(&log).map_or(0, |t| t.lines().count());
+    while logged() < 300 && start.elapsed() < Duration::from_secs(120) && child.try_wait().unwrap().is_none() {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let pressed = press_escape(&x.display, "glxgears");
+    let quit = Instant::now();
+    while child.try_wait().unwrap().is_none() && quit.elapsed() < Duration::from_secs(10) {
+        std::thread::sleep(Duration::from_millis(50));
+    }
+    let _ = child.kill();
+    let out = child.wait_with_output().expect("glxgears output");
+    assert!(pressed, "no glxgears window found");
+    assert!(out.status.success(), "glxgears: {:?}\n{}", out.status, String::from_utf8_lossy(&out.stderr));
     let frames = read_frame_log(&log);
-    assert!(frames.len() >= 10, "only {} frames in 5 s", frames.len());
+    assert!(frames.len() >= 300, "only {} frames", frames.len());
     for f in &frames {
         assert_eq!(f.clears, 1, "frame {}: glxgears clears once", f.frame);
         assert_within("draws", f.draws, GEARS_DRAWS, f.frame);
@@ -277,6 +289,54 @@ fn glxgears_draws_three_gears_every_frame() {
             "frame {} differs",
             f.frame
         );
+    }
+}
+
+/// Sends an Escape key press to the top-level windows called `name` on `display`; false when
+/// there is none.
+fn press_escape(display: &str, name: &str) -> bool {
+    use std::ffi::{CStr, CString};
+    use x11_dl::{keysym, xlib};
+    let x = xlib::Xlib::open().expect("libX11");
+    let display = CString::new(display).unwrap();
+    // Safety: plain Xlib calls on a display this function opens and closes; every pointer
+    // Xlib returns is checked and freed with XFree.
+    unsafe {
+        let dpy = (x.XOpenDisplay)(display.as_ptr());
+        assert!(!dpy.is_null(), "cannot open the Xvfb display");
+        let root = (x.XDefaultRootWindow)(dpy);
+        let (mut root_ret, mut parent, mut children, mut count) = (0, 0, std::ptr::null_mut(), 0u32);
+        (x.XQueryTree)(dpy, root, &mut root_ret, &mut parent, &mut children, &mut count);
+        let keycode = (x.XKeysymToKeycode)(dpy, u64::from(keysym::XK_Escape));
+        let mut sent = false;
+        for i in 0..count as usize {
+            let window = *children.add(i);
+            let mut title = std::ptr::null_mut();
+            if (x.XFetchName)(dpy, window, &mut title) == 0 || title.is_null() {
+                continue;
+            }
+            if CStr::from_ptr(title).to_bytes() == name.as_bytes() {
+                let mut event: xlib::XEvent = std::mem::zeroed();
+                event.key = xlib::XKeyEvent {
+                    type_: xlib::KeyPress,
+                    display: dpy,
+                    window,
+                    root,
+                    same_screen: xlib::True,
+                    keycode: u32::from(keycode),
+                    ..std::mem::zeroed()
+                };
+                (x.XSendEvent)(dpy, window, xlib::True, xlib::KeyPressMask, &mut event);
+                sent = true;
+            }
+            (x.XFree)(title.cast());
+        }
+        if !children.is_null() {
+            (x.XFree)(children.cast());
+        }
+        (x.XFlush)(dpy);
+        (x.XCloseDisplay)(dpy);
+        sent
     }
 }
 
