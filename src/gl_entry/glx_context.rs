@@ -268,27 +268,6 @@ pub unsafe extern "C" fn glXQueryContext(
     })
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn create_context_attribs_accepts_legacy_versions_only() {
-        assert_eq!(check_attribs(&[]), Ok(()));
-        assert_eq!(check_attribs(&[(GLX_CONTEXT_MAJOR_VERSION_ARB, 1), (GLX_CONTEXT_MINOR_VERSION_ARB, 5)]), Ok(()));
-        assert_eq!(check_attribs(&[(GLX_CONTEXT_MINOR_VERSION_ARB, 6)]), Err(BAD_MATCH));
-        assert_eq!(check_attribs(&[(GLX_CONTEXT_MAJOR_VERSION_ARB, 2)]), Err(BAD_MATCH));
-        let core = [(GLX_CONTEXT_MAJOR_VERSION_ARB, 3), (GLX_CONTEXT_MINOR_VERSION_ARB, 3)];
-        assert_eq!(check_attribs(&core), Err(BAD_MATCH));
-        let bad_profile = [(GLX_CONTEXT_MAJOR_VERSION_ARB, 3), (GLX_CONTEXT_MINOR_VERSION_ARB, 2), (GLX_CONTEXT_PROFILE_MASK_ARB, 0)];
-        assert_eq!(check_attribs(&bad_profile), Err(XError::Glx(GlxError::BadProfile)));
-        // Below 3.2 the profile mask is ignored.
-        assert_eq!(check_attribs(&[(GLX_CONTEXT_PROFILE_MASK_ARB, 0)]), Ok(()));
-        assert_eq!(check_attribs(&[(GLX_CONTEXT_FLAGS_ARB, 0x80)]), Err(BAD_VALUE));
-        assert_eq!(check_attribs(&[(0x7777, 1)]), Err(BAD_VALUE));
-    }
-}
-
 /// `glXCopyContext` (section 3.3.7): copies the attribute groups of `mask` (the
 /// `glPushAttrib` bits) from `src` to `dst`. `BadAccess` when `dst` is current to some thread
 /// or `src` is current to another thread; `GLXBadContext` for a handle that is not a context.
@@ -320,3 +299,25 @@ pub unsafe extern "C" fn glXCopyContext(
         }
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn create_context_attribs_accepts_legacy_versions_only() {
+        assert_eq!(check_attribs(&[]), Ok(()));
+        assert_eq!(check_attribs(&[(GLX_CONTEXT_MAJOR_VERSION_ARB, 1), (GLX_CONTEXT_MINOR_VERSION_ARB, 5)]), Ok(()));
+        assert_eq!(check_attribs(&[(GLX_CONTEXT_MINOR_VERSION_ARB, 6)]), Err(BAD_MATCH));
+        assert_eq!(check_attribs(&[(GLX_CONTEXT_MAJOR_VERSION_ARB, 2)]), Err(BAD_MATCH));
+        let core = [(GLX_CONTEXT_MAJOR_VERSION_ARB, 3), (GLX_CONTEXT_MINOR_VERSION_ARB, 3)];
+        assert_eq!(check_attribs(&core), Err(BAD_MATCH));
+        let bad_profile = [(GLX_CONTEXT_MAJOR_VERSION_ARB, 3), (GLX_CONTEXT_MINOR_VERSION_ARB, 2), (GLX_CONTEXT_PROFILE_MASK_ARB, 0)];
+        assert_eq!(check_attribs(&bad_profile), Err(XError::Glx(GlxError::BadProfile)));
+        // Below 3.2 the profile mask is ignored.
+        assert_eq!(check_attribs(&[(GLX_CONTEXT_PROFILE_MASK_ARB, 0)]), Ok(()));
+        assert_eq!(check_attribs(&[(GLX_CONTEXT_FLAGS_ARB, 0x80)]), Err(BAD_VALUE));
+        assert_eq!(check_attribs(&[(0x7777, 1)]), Err(BAD_VALUE));
+    }
+}
+

@@ -1,6 +1,6 @@
 //! OpenGL C types and every `GL_*` constant, generated from gl.xml.
 
-#![allow(non_upper_case_globals, non_camel_case_types, dead_code, clippy::unreadable_literal)]
+#![allow(non_upper_case_globals, non_camel_case_types, dead_code, clippy::unreadable_literal, clippy::unnecessary_cast)]
 
 /// The C types the generated type aliases refer to.
 pub mod __gl_imports {
