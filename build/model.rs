@@ -212,17 +212,15 @@ fn route_of(name: &str, cmd: &Cmd, methods: &BTreeSet<String>, surface: &BTreeSe
     }
     let short = &name[2..];
     for family in overlay::FAMILIES {
-        if let Some((count, suffix, vector)) = parse_variant(short, family.base, family.components) {
-            if format!("gl{}", family.canonical) != name {
+        if let Some((count, suffix, vector)) = parse_variant(short, family.base, family.components)
+            && format!("gl{}", family.canonical) != name {
                 return Route::Family { family, count, suffix, vector };
             }
-        }
     }
-    if let Some((_, suffix, vector)) = parse_variant(short, "Rect", 4) {
-        if name != "glRectf" {
+    if let Some((_, suffix, vector)) = parse_variant(short, "Rect", 4)
+        && name != "glRectf" {
             return Route::Rect { suffix, vector };
         }
-    }
     match &cmd.alias {
         Some(alias) if surface.contains(&format!("gl{alias}")) => Route::Alias(format!("gl{alias}")),
         _ => Route::Missing,
@@ -256,11 +254,10 @@ fn resolve_aliases(commands: &mut [Command]) {
         .map(|c| (c.name.clone(), c.route.clone()))
         .collect();
     for c in commands.iter_mut() {
-        if let Route::Alias(target) = &c.route {
-            if let Some(route) = variants.get(target) {
+        if let Route::Alias(target) = &c.route
+            && let Some(route) = variants.get(target) {
                 c.route = route.clone();
             }
-        }
     }
     for pass_aliases in [false, true] {
         let served: BTreeSet<String> = commands

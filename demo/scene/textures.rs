@@ -53,12 +53,12 @@ fn noise(x: usize, y: usize) -> u8 {
 
 fn checker(x: usize, y: usize) -> [u8; 3] {
     let n = noise(x, y) / 2;
-    if (x / 16 + y / 16) % 2 == 0 { [200 + n, 200 + n, 190 + n] } else { [60 + n, 60 + n, 70 + n] }
+    if (x / 16 + y / 16).is_multiple_of(2) { [200 + n, 200 + n, 190 + n] } else { [60 + n, 60 + n, 70 + n] }
 }
 
 fn brick(x: usize, y: usize) -> [u8; 3] {
     let row = y / 16;
-    let offset = if row % 2 == 0 { 0 } else { 16 };
+    let offset = if row.is_multiple_of(2) { 0 } else { 16 };
     let mortar = y % 16 < 2 || (x + offset) % 32 < 2;
     let n = noise(x, y);
     if mortar { [170 + n / 2, 165 + n / 2, 150 + n / 2] } else { [150 + n, 60 + n / 2, 40 + n / 2] }

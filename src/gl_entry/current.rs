@@ -36,12 +36,11 @@ pub fn with_slot<R>(f: impl FnOnce(&mut Option<Current>) -> R) -> R {
 /// thread (GLX `BadAccess`).
 pub fn make_current(handle: usize, context: Option<&SharedContext>) -> bool {
     with_slot(|slot| {
-        if let (Some(cur), Some(ctx)) = (slot.as_ref(), context) {
-            if Arc::ptr_eq(ArcMutexGuard::mutex(&cur.context), ctx) {
+        if let (Some(cur), Some(ctx)) = (slot.as_ref(), context)
+            && Arc::ptr_eq(ArcMutexGuard::mutex(&cur.context), ctx) {
                 slot.as_mut().unwrap().handle = handle;
                 return true;
             }
-        }
         let Some(ctx) = context else {
             *slot = None;
             return true;

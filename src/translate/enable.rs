@@ -178,11 +178,10 @@ impl Context {
         if let Some(on) = self.enables.get(cap, self.active_texture_unit()) {
             return GLboolean::from(on);
         }
-        if CLIENT_CAPS.contains(&cap) {
-            if let Some(v) = self.query(cap) {
+        if CLIENT_CAPS.contains(&cap)
+            && let Some(v) = self.query(cap) {
                 return v.to_bools()[0];
             }
-        }
         self.set_error_in(gl::GL_INVALID_ENUM, "glIsEnabled");
         0
     }
