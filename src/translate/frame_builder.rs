@@ -8,11 +8,12 @@ use std::sync::Arc;
 use glam::Mat4;
 
 use super::Context;
-use super::assemble::Assembled;
+use super::assemble::{Assembled, Primitive};
 use super::enable::EnableState;
+use super::immediate::Batch;
 use super::gl;
 use super::limits::MAX_TEXTURE_UNITS;
-use crate::frame::{Draw, DrawSource, Frame, RasterState, TextureRef, Topology, Vertices};
+use crate::frame::{Draw, DrawSource, Frame, RasterState, TextureRef, TextureUnit, Topology, Vertices};
 
 /// A merged draw never grows past this many vertices, so its indices stay far from `u32`
 /// overflow and the renderer's uploads stay bounded.
@@ -41,6 +42,8 @@ pub struct BatchKey {
     pub state: Arc<RasterState>,
     /// Texture snapshot.
     pub textures: Vec<Option<TextureRef>>,
+    /// Environment and coordinate generation of each unit with a texture target enabled.
+    pub texture_units: [Option<TextureUnit>; MAX_TEXTURE_UNITS],
 }
 
 /// Which texture units have a texture target enabled, for the capability state it was
@@ -62,22 +65,25 @@ impl TexturingCache {
 }
 
 impl Context {
-    /// The single entry of assembled primitives into the frame: `vertices` in object space,
-    /// decomposed into `assembled` (indices into `vertices` and, for triangles, edge masks)
-    /// with the given `topology`, produced by `source`. Takes the matrices and the raster and
-    /// texture snapshots now. Empty batches are dropped.
+    /// The single entry of assembled primitives into the frame: the primitive `primitive` made
+    /// of `batch` (object space; vertex `order[k]`, or `k`, is its `k`-th vertex), decomposed
+    /// into `assembled` (indices into the batch and, for triangles, edge masks), produced by
+    /// `source`. In selection and feedback mode the primitive goes to
+    /// [`Context::render_mode_batch`] instead and nothing enters the frame. Takes the matrices
+    /// and the raster and texture snapshots now. Empty batches are dropped.
     pub(crate) fn emit_batch(
         &mut self,
-        topology: Topology,
-        vertices: &Vertices,
+        primitive: Primitive,
+        batch: &Batch,
+        order: Option<&[u32]>,
         assembled: &Assembled,
         source: DrawSource,
     ) {
-        if assembled.indices.is_empty() {
+        if self.render_mode_batch(primitive.to_gl(), batch, order) || assembled.indices.is_empty() {
             return;
         }
-        let key = self.batch_key(topology, source);
-        push_batch(&mut self.frame, key, vertices, assembled);
+        let key = self.batch_key(primitive.topology(), source);
+        push_batch(&mut self.frame, key, &batch.vertices, assembled);
     }
 
     /// The source of immediate-mode geometry: the display list being executed, if any.
@@ -102,7 +108,18 @@ impl Context {
             texture_matrices: std::array::from_fn(|u| units[u].then(|| transform.texture_matrix(u))),
             state: self.raster_snapshot(),
             textures: self.texture_snapshot(),
+            texture_units: self.texture_units_snapshot(units),
         }
+    }
+
+    /// The environment and coordinate generation of the units in `units` (those with a
+    /// texture target enabled; the others do not texture).
+    fn texture_units_snapshot(&self, units: [bool; MAX_TEXTURE_UNITS]) -> [Option<TextureUnit>; MAX_TEXTURE_UNITS] {
+        if !units.contains(&true) {
+            return [None; MAX_TEXTURE_UNITS];
+        }
+        let (env, texgen) = (self.texenv_snapshot(), self.texgen_snapshot());
+        std::array::from_fn(|u| units[u].then(|| TextureUnit { env: env[u], texgen: texgen[u] }))
     }
 }
 
@@ -115,6 +132,7 @@ fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
         && last.texture_matrices == key.texture_matrices
         && (Arc::ptr_eq(&last.state, &key.state) || last.state == key.state)
         && last.textures == key.textures
+        && last.texture_units == key.texture_units
         && last.vertices.len() + extra <= MAX_MERGED_VERTICES
 }
 
@@ -132,6 +150,7 @@ pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembl
             texture_matrices: key.texture_matrices.to_vec(),
             state: key.state,
             textures: key.textures,
+            texture_units: key.texture_units.to_vec(),
             ..Draw::default()
         });
     }
@@ -214,6 +233,33 @@ mod tests {
         quad(&mut ctx, 0.0);
         assert_eq!(ctx.frame.draws.len(), 5, "enabling a texture target adds its matrix");
         assert!(ctx.frame.draws[4].texture_matrices[0].is_some());
+    }
+
+    #[test]
+    fn texture_environment_splits_draws_and_reaches_the_frame() {
+        use crate::frame::texture::{EnvMode, TexGenMode};
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glEnable(gl::GL_TEXTURE_2D);
+        quad(&mut ctx, 0.0);
+        quad(&mut ctx, 1.0);
+        ctx.glTexEnvi(gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_REPLACE as i32);
+        quad(&mut ctx, 2.0);
+        ctx.glTexGeni(gl::GL_S, gl::GL_TEXTURE_GEN_MODE, gl::GL_SPHERE_MAP as i32);
+        ctx.glEnable(gl::GL_TEXTURE_GEN_S);
+        quad(&mut ctx, 3.0);
+        ctx.glDisable(gl::GL_TEXTURE_2D);
+        quad(&mut ctx, 4.0);
+        ctx.glTexEnvi(gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_DECAL as i32);
+        quad(&mut ctx, 5.0);
+        let draws = &ctx.frame.draws;
+        assert_eq!(draws.len(), 4, "an environment of a unit that does not texture does not split");
+        assert_eq!(draws[0].vertex_count, 8);
+        let unit0 = |d: &Draw| d.texture_units[0];
+        assert_eq!(unit0(&draws[0]).map(|u| (u.env.mode, u.texgen[0])), Some((EnvMode::Modulate, None)));
+        assert_eq!(unit0(&draws[1]).map(|u| u.env.mode), Some(EnvMode::Replace));
+        assert_eq!(unit0(&draws[2]).map(|u| u.texgen[0]), Some(Some(TexGenMode::SphereMap)));
+        assert_eq!(draws[2].texture_units[1], None);
+        assert_eq!(draws[3].texture_units, vec![None; MAX_TEXTURE_UNITS]);
     }
 
     #[test]
