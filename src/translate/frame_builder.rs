@@ -1,7 +1,8 @@
 //! Where assembled primitives enter the frame: `Context::emit_batch` takes the state
 //! snapshots of a batch and appends it to the frame, merging it into the previous draw when
 //! nothing but the vertices differs. Programs that issue one `glBegin`/`glEnd` per quad thus
-//! produce one draw per state change, not one per quad.
+//! produce one draw per state change, not one per quad. In selection and feedback mode the
+//! batch goes to [`super::render_mode`] instead of the frame.
 
 use std::sync::Arc;
 
@@ -12,6 +13,7 @@ use super::assemble::{Assembled, Primitive};
 use super::enable::EnableState;
 use super::immediate::Batch;
 use super::gl;
+use super::lighting::without_tracked_material;
 use super::limits::MAX_TEXTURE_UNITS;
 use crate::frame::{Draw, DrawSource, Frame, RasterState, TextureRef, TextureUnit, Topology, Vertices};
 
@@ -123,6 +125,19 @@ impl Context {
     }
 }
 
+/// Whether two raster states draw alike: equal, or different only in the material properties
+/// colour material takes from the vertex colours (each `glColor` with `GL_COLOR_MATERIAL` on
+/// changes the material, which must not split the draws of a `glBegin`/`glEnd` per quad).
+fn same_state(a: &Arc<RasterState>, b: &Arc<RasterState>) -> bool {
+    if Arc::ptr_eq(a, b) || a == b {
+        return true;
+    }
+    let (Some(la), Some(lb)) = (&a.lighting, &b.lighting) else { return false };
+    la.color_material.is_some()
+        && without_tracked_material(la) == without_tracked_material(lb)
+        && RasterState { lighting: None, ..(**a).clone() } == RasterState { lighting: None, ..(**b).clone() }
+}
+
 /// Whether a batch with `key` can be appended to `last` (`extra` more vertices).
 fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
     last.topology == key.topology
@@ -130,7 +145,7 @@ fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
         && last.modelview == key.modelview
         && last.projection == key.projection
         && last.texture_matrices == key.texture_matrices
-        && (Arc::ptr_eq(&last.state, &key.state) || last.state == key.state)
+        && same_state(&last.state, &key.state)
         && last.textures == key.textures
         && last.texture_units == key.texture_units
         && last.vertices.len() + extra <= MAX_MERGED_VERTICES
@@ -260,6 +275,28 @@ mod tests {
         assert_eq!(unit0(&draws[2]).map(|u| u.texgen[0]), Some(Some(TexGenMode::SphereMap)));
         assert_eq!(draws[2].texture_units[1], None);
         assert_eq!(draws[3].texture_units, vec![None; MAX_TEXTURE_UNITS]);
+    }
+
+    #[test]
+    fn colour_material_changes_merge_other_material_changes_split() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glEnable(gl::GL_LIGHTING);
+        ctx.glEnable(gl::GL_COLOR_MATERIAL);
+        for i in 0..3 {
+            unsafe { dispatch::glColor3f(&mut ctx, i as f32 / 2.0, 0.0, 0.0) };
+            quad(&mut ctx, i as f32);
+        }
+        assert_eq!(ctx.frame.draws.len(), 1, "the tracked material comes from the vertex colours");
+        unsafe { dispatch::glMaterialfv(&mut ctx, gl::GL_FRONT, gl::GL_SPECULAR, [1.0; 4].as_ptr()) };
+        quad(&mut ctx, 3.0);
+        assert_eq!(ctx.frame.draws.len(), 2, "an untracked property splits");
+        let lighting = ctx.frame.draws[1].state.lighting.as_ref().map(|l| l.front.specular);
+        assert_eq!(lighting, Some([1.0; 4]));
+        ctx.glDisable(gl::GL_COLOR_MATERIAL);
+        quad(&mut ctx, 4.0);
+        unsafe { dispatch::glMaterialfv(&mut ctx, gl::GL_FRONT, gl::GL_DIFFUSE, [0.5; 4].as_ptr()) };
+        quad(&mut ctx, 5.0);
+        assert_eq!(ctx.frame.draws.len(), 4, "without colour material the diffuse colour splits");
     }
 
     #[test]

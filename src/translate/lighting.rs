@@ -12,7 +12,7 @@ use super::get::Value;
 use super::gl::{self, GLenum, GLfloat, GLint};
 use super::limits::MAX_LIGHTS;
 use super::params::{Param, Shape};
-use crate::frame::state::{ColorMaterial, ColorMaterialMode, Face, Light, LightModel, Material, ShadeModel};
+use crate::frame::state::{ColorMaterial, ColorMaterialMode, Face, Light, LightModel, Lighting, Material, ShadeModel};
 
 /// Lighting state of a context.
 #[derive(Clone, Debug, PartialEq)]
@@ -107,6 +107,19 @@ fn set_material_color(m: &mut Material, mode: ColorMaterialMode, c: [f32; 4]) {
             m.diffuse = c;
         }
     }
+}
+
+/// `lighting` with the material properties that colour material tracks set to zero. Two
+/// lighting states equal this way light every vertex alike, as those properties come from each
+/// vertex's colour (section 2.14.3); draws that differ only there can merge.
+pub(crate) fn without_tracked_material(lighting: &Lighting) -> Lighting {
+    let mut l = lighting.clone();
+    if let Some(ColorMaterial { face, mode }) = l.color_material {
+        for &i in face_indices(face) {
+            set_material_color(if i == 0 { &mut l.front } else { &mut l.back }, mode, [0.0; 4]);
+        }
+    }
+    l
 }
 
 fn rgb(v: [f32; 4]) -> [f32; 3] {
