@@ -67,6 +67,19 @@ pub struct Draw {
     pub state: Arc<RasterState>,
     /// Bound texture of each unit that texturing uses.
     pub textures: Vec<Option<TextureRef>>,
+    /// Texture environment and coordinate generation of each texture unit that has a texture
+    /// target enabled (`None` for the others), indexed like [`Draw::texture_matrices`].
+    pub texture_units: Vec<Option<TextureUnit>>,
+}
+
+/// How one texture unit combines and generates coordinates in a draw (sections 2.10.4 and
+/// 3.8.13).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TextureUnit {
+    /// `glTexEnv` state.
+    pub env: texture::TextureEnv,
+    /// Generation of s, t, r, q (`None`: the coordinate is taken as issued).
+    pub texgen: [Option<texture::TexGenMode>; 4],
 }
 
 /// The primitives of a draw.

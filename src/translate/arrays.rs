@@ -512,13 +512,13 @@ impl Context {
         }
     }
 
-    /// `glGetPointerv`. Other modules' pointers (feedback and selection buffers) join the
-    /// chain with `.or_else(|| self.pointer_xxx(pname))`.
+    /// `glGetPointerv`: the array pointers, and the selection and feedback buffers
+    /// (`GL_SELECTION_BUFFER_POINTER`, `GL_FEEDBACK_BUFFER_POINTER`).
     ///
     /// # Safety
     /// `params` must have room for one pointer.
     pub unsafe fn glGetPointerv(&mut self, pname: GLenum, params: *const *mut c_void) {
-        match None.or_else(|| self.pointer_arrays(pname)) {
+        match self.pointer_arrays(pname).or_else(|| self.render_mode_pointer(pname)) {
             Some(p) => unsafe { write_slice(params.cast_mut(), &[p]) },
             None => self.set_error_in(gl::GL_INVALID_ENUM, "glGetPointerv"),
         }

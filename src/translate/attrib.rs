@@ -3,18 +3,17 @@
 //!
 //! Each group is a line of [`GROUPS`]: a bit and a saver that captures the group's state as a
 //! closure putting it back ([`Restore`]). A group whose state spans several modules has one
-//! line per module. Groups owned by modules that have not landed yet are wired by adding one
-//! line each, with a saver of type [`Saver`] written in the owning module:
-//! - `GL_CURRENT_BIT`: `Context::save_current_attrib` (current colour, secondary colour,
-//!   index, normal, texture coordinates, raster position, edge flag);
+//! line per module; savers of state other modules own are written there, with the type
+//! [`Saver`] (`GL_CURRENT_BIT`: the current values of the vertex module and the raster
+//! position of the pixel module).
 
 use super::Context;
 use super::gl::{self, GLbitfield, GLenum};
 use super::get::Value;
 use super::limits::{MAX_ATTRIB_STACK_DEPTH, MAX_CLIP_PLANES, MAX_LIGHTS, MAX_TEXTURE_UNITS};
 
-/// Puts back the state of one group as it was when saved.
-pub(crate) type Restore = Box<dyn FnOnce(&mut Context) + Send>;
+/// Puts back the state of one group as it was when saved (the client stack's type).
+pub(crate) use super::client_attrib::Restore;
 
 /// Saves the state of one group (or the part one module owns) into `out`.
 pub(crate) type Saver = fn(&Context, &mut Vec<Restore>);
@@ -25,6 +24,8 @@ pub(crate) struct AttribStack(Vec<Vec<Restore>>);
 
 /// Attribute groups and their savers (the "attribute" column of tables 6.5 to 6.28).
 const GROUPS: &[(GLbitfield, Saver)] = &[
+    (gl::GL_CURRENT_BIT, Context::save_current_attrib),
+    (gl::GL_CURRENT_BIT, Context::save_raster_attrib),
     (gl::GL_ENABLE_BIT, save_enables),
     (gl::GL_FOG_BIT, save_fog),
     (gl::GL_LIGHTING_BIT, save_lighting),
@@ -375,6 +376,29 @@ mod tests {
         ctx.glPopAttrib();
         assert_eq!(ctx.glIsEnabled(gl::GL_CULL_FACE), 0);
         assert!(!ctx.enables.unit_on(1, gl::GL_TEXTURE_2D));
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    }
+
+    #[test]
+    fn current_bit_restores_current_values_and_raster_position() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.bind_drawable(100, 100);
+        unsafe { crate::translate::dispatch::glColor4f(&mut ctx, 0.25, 0.5, 0.75, 1.0) };
+        ctx.glRasterPos4f(0.5, 0.0, 0.0, 1.0);
+        ctx.glPushAttrib(gl::GL_CURRENT_BIT);
+        unsafe {
+            crate::translate::dispatch::glColor3f(&mut ctx, 1.0, 0.0, 0.0);
+            crate::translate::dispatch::glNormal3f(&mut ctx, 1.0, 0.0, 0.0);
+        }
+        ctx.glRasterPos4f(9.0, 0.0, 0.0, 1.0);
+        assert_eq!(ints(&ctx, gl::GL_CURRENT_RASTER_POSITION_VALID), [0]);
+        ctx.glPopAttrib();
+        let floats = |ctx: &Context, p| ctx.query(p).unwrap().to_doubles();
+        assert_eq!(floats(&ctx, gl::GL_CURRENT_COLOR), [0.25, 0.5, 0.75, 1.0]);
+        assert_eq!(floats(&ctx, gl::GL_CURRENT_NORMAL), [0.0, 0.0, 1.0]);
+        assert_eq!(ints(&ctx, gl::GL_CURRENT_RASTER_POSITION_VALID), [1]);
+        assert_eq!(floats(&ctx, gl::GL_CURRENT_RASTER_POSITION), [75.0, 50.0, 0.5, 1.0]);
+        assert_eq!(floats(&ctx, gl::GL_CURRENT_RASTER_COLOR), [0.25, 0.5, 0.75, 1.0]);
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
     }
 }

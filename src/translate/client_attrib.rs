@@ -2,9 +2,9 @@
 //! `glPopClientAttrib`.
 //!
 //! Each pushed entry is a list of restore actions, one per group the mask selected; each
-//! action owns a copy of the state it puts back. A group is added with one
-//! [`ClientAttribEntry::save`] call in [`Context::glPushClientAttrib`], for example
-//! `if mask & gl::GL_CLIENT_PIXEL_STORE_BIT != 0 { entry.save(self, |c| &mut c.pixels.store) }`.
+//! action owns a copy of the state it puts back. A group is one or more
+//! [`ClientAttribEntry::save`] calls in [`Context::glPushClientAttrib`]: the vertex-array group
+//! (table 6.8) and the pixel-store group (table 6.17).
 
 use super::Context;
 use super::get::Value;
@@ -45,6 +45,9 @@ impl Context {
         if mask & gl::GL_CLIENT_VERTEX_ARRAY_BIT != 0 {
             entry.save(self, |c| &mut c.arrays);
             entry.save(self, |c| &mut c.texunit.client_active);
+        }
+        if mask & gl::GL_CLIENT_PIXEL_STORE_BIT != 0 {
+            entry.save(self, |c| &mut c.pixels.store);
         }
         self.client_attrib.entries.push(entry);
     }
@@ -100,6 +103,26 @@ mod tests {
         assert_eq!(int(&mut ctx, gl::GL_VERTEX_ARRAY_BUFFER_BINDING), 5);
         assert_eq!(int(&mut ctx, gl::GL_ARRAY_BUFFER_BINDING), 5);
         assert_eq!(int(&mut ctx, gl::GL_CLIENT_ACTIVE_TEXTURE), gl::GL_TEXTURE0 as i32);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    }
+
+    #[test]
+    fn push_pop_restores_pixel_store() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glPixelStorei(gl::GL_UNPACK_ALIGNMENT, 1);
+        ctx.glPixelStorei(gl::GL_PACK_ROW_LENGTH, 7);
+        ctx.glPushClientAttrib(gl::GL_CLIENT_PIXEL_STORE_BIT);
+        ctx.glPixelStorei(gl::GL_UNPACK_ALIGNMENT, 8);
+        ctx.glPixelStorei(gl::GL_PACK_ROW_LENGTH, 3);
+        ctx.glPixelStorei(gl::GL_UNPACK_SWAP_BYTES, 1);
+        ctx.glPopClientAttrib();
+        assert_eq!(int(&mut ctx, gl::GL_UNPACK_ALIGNMENT), 1);
+        assert_eq!(int(&mut ctx, gl::GL_PACK_ROW_LENGTH), 7);
+        assert_eq!(int(&mut ctx, gl::GL_UNPACK_SWAP_BYTES), 0);
+        ctx.glPushClientAttrib(gl::GL_CLIENT_VERTEX_ARRAY_BIT);
+        ctx.glPixelStorei(gl::GL_UNPACK_ALIGNMENT, 2);
+        ctx.glPopClientAttrib();
+        assert_eq!(int(&mut ctx, gl::GL_UNPACK_ALIGNMENT), 2, "the vertex-array group leaves pixel store alone");
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
     }
 

@@ -76,8 +76,12 @@ impl Context {
         let Ok(i) = usize::try_from(i) else {
             return self.set_error_in(gl::GL_INVALID_VALUE, "glArrayElement");
         };
-        let vertex = self.with_sources("glArrayElement", |s, ctx| s.element(i, ctx.immediate.current_mut()));
-        if let Some(Some([x, y, z, w])) = vertex {
+        let fetched = self.with_sources("glArrayElement", |s, ctx| (s.element(i, ctx.immediate.current_mut()), s.color.is_some()));
+        let Some((vertex, color_array)) = fetched else { return };
+        if color_array {
+            self.apply_color_material(self.immediate.current().color);
+        }
+        if let Some([x, y, z, w]) = vertex {
             self.glVertex4f(x, y, z, w);
         }
     }
@@ -143,8 +147,14 @@ impl Context {
     }
 
     /// Decomposes fetched vertices (element `k` is batch vertex `order[k]`, or `k`) and emits
-    /// them.
-    fn submit(&mut self, primitive: Primitive, batch: &Batch, order: Option<&[u32]>) {
+    /// them. With colours from an array, colour material (section 2.14.3) leaves the material
+    /// with the last element's colour, as the `glColor` of each `glArrayElement` would; the
+    /// renderer applies each vertex's colour to the draw.
+    fn submit(&mut self, primitive: Primitive, batch: &Batch, order: Option<&[u32]>, color_array: bool) {
+        let last = order.map_or(batch.vertices.position.len().checked_sub(1), |o| o.last().map(|&i| i as usize));
+        if let Some(color) = last.filter(|_| color_array).and_then(|k| batch.vertices.color.get(k)) {
+            self.apply_color_material(color);
+        }
         let mut assembled = std::mem::take(&mut self.immediate.assembled);
         assembled.clear();
         match order {
@@ -156,15 +166,15 @@ impl Context {
             }
         }
         let source = self.arrays_source();
-        self.emit_batch(primitive.topology(), &batch.vertices, &assembled, source);
+        self.emit_batch(primitive, batch, order, &assembled, source);
         self.immediate.assembled = assembled;
     }
 
     /// Draws `elements` now, reusing the immediate-mode batch storage.
     fn draw_now(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str) {
         let mut batch = self.immediate.take_batch();
-        if let Some((order, _)) = self.fetch(elements, command, &mut batch) {
-            self.submit(primitive, &batch, order.as_deref());
+        if let Some((order, from_arrays)) = self.fetch(elements, command, &mut batch) {
+            self.submit(primitive, &batch, order.as_deref(), from_arrays.color);
         }
         self.immediate.batch = batch;
     }
@@ -181,7 +191,7 @@ impl Context {
             }
             let mut f = fetched.clone();
             f.take_current(ctx.immediate.current());
-            ctx.submit(primitive, &f.batch, f.order.as_deref());
+            ctx.submit(primitive, &f.batch, f.order.as_deref(), f.from_arrays.color);
         })));
     }
 

@@ -163,9 +163,13 @@ impl Context {
         }
     }
 
-    /// `glEnable`.
+    /// `glEnable`; enabling `GL_COLOR_MATERIAL` gives the material the current colour at once
+    /// (section 2.14.3).
     pub fn glEnable(&mut self, cap: GLenum) {
         self.set_cap(cap, true, "glEnable");
+        if cap == gl::GL_COLOR_MATERIAL {
+            self.apply_color_material(self.immediate.current().color);
+        }
     }
 
     /// `glDisable`.

@@ -1,18 +1,21 @@
 //! Where assembled primitives enter the frame: `Context::emit_batch` takes the state
 //! snapshots of a batch and appends it to the frame, merging it into the previous draw when
 //! nothing but the vertices differs. Programs that issue one `glBegin`/`glEnd` per quad thus
-//! produce one draw per state change, not one per quad.
+//! produce one draw per state change, not one per quad. In selection and feedback mode the
+//! batch goes to [`super::render_mode`] instead of the frame.
 
 use std::sync::Arc;
 
 use glam::Mat4;
 
 use super::Context;
-use super::assemble::Assembled;
+use super::assemble::{Assembled, Primitive};
 use super::enable::EnableState;
+use super::immediate::Batch;
 use super::gl;
+use super::lighting::without_tracked_material;
 use super::limits::MAX_TEXTURE_UNITS;
-use crate::frame::{Draw, DrawSource, Frame, RasterState, TextureRef, Topology, Vertices};
+use crate::frame::{Draw, DrawSource, Frame, RasterState, TextureRef, TextureUnit, Topology, Vertices};
 
 /// A merged draw never grows past this many vertices, so its indices stay far from `u32`
 /// overflow and the renderer's uploads stay bounded.
@@ -41,6 +44,8 @@ pub struct BatchKey {
     pub state: Arc<RasterState>,
     /// Texture snapshot.
     pub textures: Vec<Option<TextureRef>>,
+    /// Environment and coordinate generation of each unit with a texture target enabled.
+    pub texture_units: [Option<TextureUnit>; MAX_TEXTURE_UNITS],
 }
 
 /// Which texture units have a texture target enabled, for the capability state it was
@@ -62,22 +67,25 @@ impl TexturingCache {
 }
 
 impl Context {
-    /// The single entry of assembled primitives into the frame: `vertices` in object space,
-    /// decomposed into `assembled` (indices into `vertices` and, for triangles, edge masks)
-    /// with the given `topology`, produced by `source`. Takes the matrices and the raster and
-    /// texture snapshots now. Empty batches are dropped.
+    /// The single entry of assembled primitives into the frame: the primitive `primitive` made
+    /// of `batch` (object space; vertex `order[k]`, or `k`, is its `k`-th vertex), decomposed
+    /// into `assembled` (indices into the batch and, for triangles, edge masks), produced by
+    /// `source`. In selection and feedback mode the primitive goes to
+    /// [`Context::render_mode_batch`] instead and nothing enters the frame. Takes the matrices
+    /// and the raster and texture snapshots now. Empty batches are dropped.
     pub(crate) fn emit_batch(
         &mut self,
-        topology: Topology,
-        vertices: &Vertices,
+        primitive: Primitive,
+        batch: &Batch,
+        order: Option<&[u32]>,
         assembled: &Assembled,
         source: DrawSource,
     ) {
-        if assembled.indices.is_empty() {
+        if self.render_mode_batch(primitive.to_gl(), batch, order) || assembled.indices.is_empty() {
             return;
         }
-        let key = self.batch_key(topology, source);
-        push_batch(&mut self.frame, key, vertices, assembled);
+        let key = self.batch_key(primitive.topology(), source);
+        push_batch(&mut self.frame, key, &batch.vertices, assembled);
     }
 
     /// The source of immediate-mode geometry: the display list being executed, if any.
@@ -102,8 +110,32 @@ impl Context {
             texture_matrices: std::array::from_fn(|u| units[u].then(|| transform.texture_matrix(u))),
             state: self.raster_snapshot(),
             textures: self.texture_snapshot(),
+            texture_units: self.texture_units_snapshot(units),
         }
     }
+
+    /// The environment and coordinate generation of the units in `units` (those with a
+    /// texture target enabled; the others do not texture).
+    fn texture_units_snapshot(&self, units: [bool; MAX_TEXTURE_UNITS]) -> [Option<TextureUnit>; MAX_TEXTURE_UNITS] {
+        if !units.contains(&true) {
+            return [None; MAX_TEXTURE_UNITS];
+        }
+        let (env, texgen) = (self.texenv_snapshot(), self.texgen_snapshot());
+        std::array::from_fn(|u| units[u].then(|| TextureUnit { env: env[u], texgen: texgen[u] }))
+    }
+}
+
+/// Whether two raster states draw alike: equal, or different only in the material properties
+/// colour material takes from the vertex colours (each `glColor` with `GL_COLOR_MATERIAL` on
+/// changes the material, which must not split the draws of a `glBegin`/`glEnd` per quad).
+fn same_state(a: &Arc<RasterState>, b: &Arc<RasterState>) -> bool {
+    if Arc::ptr_eq(a, b) || a == b {
+        return true;
+    }
+    let (Some(la), Some(lb)) = (&a.lighting, &b.lighting) else { return false };
+    la.color_material.is_some()
+        && without_tracked_material(la) == without_tracked_material(lb)
+        && RasterState { lighting: None, ..(**a).clone() } == RasterState { lighting: None, ..(**b).clone() }
 }
 
 /// Whether a batch with `key` can be appended to `last` (`extra` more vertices).
@@ -113,8 +145,9 @@ fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
         && last.modelview == key.modelview
         && last.projection == key.projection
         && last.texture_matrices == key.texture_matrices
-        && (Arc::ptr_eq(&last.state, &key.state) || last.state == key.state)
+        && same_state(&last.state, &key.state)
         && last.textures == key.textures
+        && last.texture_units == key.texture_units
         && last.vertices.len() + extra <= MAX_MERGED_VERTICES
 }
 
@@ -132,6 +165,7 @@ pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembl
             texture_matrices: key.texture_matrices.to_vec(),
             state: key.state,
             textures: key.textures,
+            texture_units: key.texture_units.to_vec(),
             ..Draw::default()
         });
     }
@@ -214,6 +248,55 @@ mod tests {
         quad(&mut ctx, 0.0);
         assert_eq!(ctx.frame.draws.len(), 5, "enabling a texture target adds its matrix");
         assert!(ctx.frame.draws[4].texture_matrices[0].is_some());
+    }
+
+    #[test]
+    fn texture_environment_splits_draws_and_reaches_the_frame() {
+        use crate::frame::texture::{EnvMode, TexGenMode};
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glEnable(gl::GL_TEXTURE_2D);
+        quad(&mut ctx, 0.0);
+        quad(&mut ctx, 1.0);
+        ctx.glTexEnvi(gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_REPLACE as i32);
+        quad(&mut ctx, 2.0);
+        ctx.glTexGeni(gl::GL_S, gl::GL_TEXTURE_GEN_MODE, gl::GL_SPHERE_MAP as i32);
+        ctx.glEnable(gl::GL_TEXTURE_GEN_S);
+        quad(&mut ctx, 3.0);
+        ctx.glDisable(gl::GL_TEXTURE_2D);
+        quad(&mut ctx, 4.0);
+        ctx.glTexEnvi(gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_DECAL as i32);
+        quad(&mut ctx, 5.0);
+        let draws = &ctx.frame.draws;
+        assert_eq!(draws.len(), 4, "an environment of a unit that does not texture does not split");
+        assert_eq!(draws[0].vertex_count, 8);
+        let unit0 = |d: &Draw| d.texture_units[0];
+        assert_eq!(unit0(&draws[0]).map(|u| (u.env.mode, u.texgen[0])), Some((EnvMode::Modulate, None)));
+        assert_eq!(unit0(&draws[1]).map(|u| u.env.mode), Some(EnvMode::Replace));
+        assert_eq!(unit0(&draws[2]).map(|u| u.texgen[0]), Some(Some(TexGenMode::SphereMap)));
+        assert_eq!(draws[2].texture_units[1], None);
+        assert_eq!(draws[3].texture_units, vec![None; MAX_TEXTURE_UNITS]);
+    }
+
+    #[test]
+    fn colour_material_changes_merge_other_material_changes_split() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glEnable(gl::GL_LIGHTING);
+        ctx.glEnable(gl::GL_COLOR_MATERIAL);
+        for i in 0..3 {
+            unsafe { dispatch::glColor3f(&mut ctx, i as f32 / 2.0, 0.0, 0.0) };
+            quad(&mut ctx, i as f32);
+        }
+        assert_eq!(ctx.frame.draws.len(), 1, "the tracked material comes from the vertex colours");
+        unsafe { dispatch::glMaterialfv(&mut ctx, gl::GL_FRONT, gl::GL_SPECULAR, [1.0; 4].as_ptr()) };
+        quad(&mut ctx, 3.0);
+        assert_eq!(ctx.frame.draws.len(), 2, "an untracked property splits");
+        let lighting = ctx.frame.draws[1].state.lighting.as_ref().map(|l| l.front.specular);
+        assert_eq!(lighting, Some([1.0; 4]));
+        ctx.glDisable(gl::GL_COLOR_MATERIAL);
+        quad(&mut ctx, 4.0);
+        unsafe { dispatch::glMaterialfv(&mut ctx, gl::GL_FRONT, gl::GL_DIFFUSE, [0.5; 4].as_ptr()) };
+        quad(&mut ctx, 5.0);
+        assert_eq!(ctx.frame.draws.len(), 4, "without colour material the diffuse colour splits");
     }
 
     #[test]

@@ -222,7 +222,7 @@ impl Context {
         assembled.clear();
         assemble(primitive, batch.vertices.len(), |k| k as u32, |k| batch.edge_flag(k as u32), &mut assembled);
         let source = self.immediate_source();
-        self.emit_batch(primitive.topology(), &batch.vertices, &assembled, source);
+        self.emit_batch(primitive, &batch, None, &assembled, source);
         self.immediate.assembled = assembled;
         self.immediate.batch = batch;
     }
@@ -238,9 +238,11 @@ impl Context {
         }
     }
 
-    /// `glColor4f`.
+    /// `glColor4f`; with `GL_COLOR_MATERIAL` on, the material follows (section 2.14.3).
     pub fn glColor4f(&mut self, red: GLfloat, green: GLfloat, blue: GLfloat, alpha: GLfloat) {
-        self.immediate.set(bits::COLOR, |c| c.color = [red, green, blue, alpha]);
+        let color = [red, green, blue, alpha];
+        self.immediate.set(bits::COLOR, |c| c.color = color);
+        self.apply_color_material(color);
     }
 
     /// `glSecondaryColor3f`.

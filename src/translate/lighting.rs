@@ -12,7 +12,7 @@ use super::get::Value;
 use super::gl::{self, GLenum, GLfloat, GLint};
 use super::limits::MAX_LIGHTS;
 use super::params::{Param, Shape};
-use crate::frame::state::{ColorMaterial, ColorMaterialMode, Face, Light, LightModel, Material, ShadeModel};
+use crate::frame::state::{ColorMaterial, ColorMaterialMode, Face, Light, LightModel, Lighting, Material, ShadeModel};
 
 /// Lighting state of a context.
 #[derive(Clone, Debug, PartialEq)]
@@ -107,6 +107,19 @@ fn set_material_color(m: &mut Material, mode: ColorMaterialMode, c: [f32; 4]) {
             m.diffuse = c;
         }
     }
+}
+
+/// `lighting` with the material properties that colour material tracks set to zero. Two
+/// lighting states equal this way light every vertex alike, as those properties come from each
+/// vertex's colour (section 2.14.3); draws that differ only there can merge.
+pub(crate) fn without_tracked_material(lighting: &Lighting) -> Lighting {
+    let mut l = lighting.clone();
+    if let Some(ColorMaterial { face, mode }) = l.color_material {
+        for &i in face_indices(face) {
+            set_material_color(if i == 0 { &mut l.front } else { &mut l.back }, mode, [0.0; 4]);
+        }
+    }
+    l
 }
 
 fn rgb(v: [f32; 4]) -> [f32; 3] {
@@ -447,26 +460,35 @@ impl Context {
         unsafe { self.get_material(face, pname, params, "glGetMaterialiv") }
     }
 
-    /// `glColorMaterial` (section 2.14.3).
+    /// `glColorMaterial` (section 2.14.3); while `GL_COLOR_MATERIAL` is on, the newly named
+    /// properties take the current colour at once.
     pub fn glColorMaterial(&mut self, face: GLenum, mode: GLenum) {
         match (FACE.parse(face), COLOR_MATERIAL_MODE.parse(mode)) {
-            (Some(face), Some(mode)) => self.fixed_mut().lighting.color_material = ColorMaterial { face, mode },
+            (Some(face), Some(mode)) => {
+                self.fixed_mut().lighting.color_material = ColorMaterial { face, mode };
+                self.apply_color_material(self.immediate.current().color);
+            }
             _ => self.set_error_in(gl::GL_INVALID_ENUM, "glColorMaterial"),
         }
     }
 
     /// Colour material (section 2.14.3): while `GL_COLOR_MATERIAL` is on, the current colour
-    /// is written to the material properties `glColorMaterial` names. The vertex module calls
-    /// this whenever the current colour changes (`glColor*`, colour arrays), and when
-    /// `GL_COLOR_MATERIAL` is enabled or `glColorMaterial` is called while it is on.
+    /// is written to the material properties `glColorMaterial` names. Called whenever the
+    /// current colour changes (`glColor*`, colour arrays), and when `GL_COLOR_MATERIAL` is
+    /// enabled or `glColorMaterial` is called while it is on. An unchanged material leaves the
+    /// state version alone, so repeating a colour keeps draws mergeable.
     pub fn apply_color_material(&mut self, color: [f32; 4]) {
         if !self.enables.is_on(gl::GL_COLOR_MATERIAL) {
             return;
         }
-        let lighting = &mut self.fixed_mut().lighting;
+        let lighting = &self.fixed.lighting;
         let ColorMaterial { face, mode } = lighting.color_material;
+        let mut materials = lighting.materials;
         for &i in face_indices(face) {
-            set_material_color(&mut lighting.materials[i], mode, color);
+            set_material_color(&mut materials[i], mode, color);
+        }
+        if materials != lighting.materials {
+            self.fixed_mut().lighting.materials = materials;
         }
     }
 
@@ -644,5 +666,65 @@ mod tests {
         assert_eq!(ctx.query(gl::GL_SHADE_MODEL).unwrap().to_ints(), [gl::GL_FLAT as i32]);
         ctx.glShadeModel(gl::GL_LINE);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+    }
+
+    fn material(ctx: &mut Context, face: gl::GLenum, pname: gl::GLenum) -> [f32; 4] {
+        let mut v = [f32::NAN; 4];
+        unsafe { dispatch::glGetMaterialfv(ctx, face, pname, v.as_mut_ptr()) };
+        v
+    }
+
+    #[test]
+    fn color_material_tracks_color_enable_and_mode_changes() {
+        let (mut ctx, _) = Context::with_recording();
+        let diffuse = [0.8, 0.8, 0.8, 1.0];
+        unsafe { dispatch::glColor4f(&mut ctx, 0.1, 0.2, 0.3, 0.4) };
+        assert_eq!(material(&mut ctx, gl::GL_FRONT, gl::GL_DIFFUSE), diffuse, "off: no tracking");
+        unsafe { dispatch::glEnable(&mut ctx, gl::GL_COLOR_MATERIAL) };
+        assert_eq!(material(&mut ctx, gl::GL_FRONT, gl::GL_DIFFUSE), [0.1, 0.2, 0.3, 0.4], "enable applies the current colour");
+        assert_eq!(material(&mut ctx, gl::GL_BACK, gl::GL_AMBIENT), [0.1, 0.2, 0.3, 0.4]);
+        unsafe { dispatch::glColor3f(&mut ctx, 1.0, 0.0, 0.0) };
+        assert_eq!(material(&mut ctx, gl::GL_BACK, gl::GL_DIFFUSE), [1.0, 0.0, 0.0, 1.0], "glColor updates it");
+        unsafe { dispatch::glColorMaterial(&mut ctx, gl::GL_FRONT, gl::GL_EMISSION) };
+        assert_eq!(material(&mut ctx, gl::GL_FRONT, gl::GL_EMISSION), [1.0, 0.0, 0.0, 1.0], "glColorMaterial applies it");
+        assert_eq!(material(&mut ctx, gl::GL_BACK, gl::GL_EMISSION), [0.0, 0.0, 0.0, 1.0]);
+        unsafe {
+            dispatch::glDisable(&mut ctx, gl::GL_COLOR_MATERIAL);
+            dispatch::glColor3f(&mut ctx, 0.0, 1.0, 0.0);
+        }
+        assert_eq!(material(&mut ctx, gl::GL_FRONT, gl::GL_EMISSION), [1.0, 0.0, 0.0, 1.0]);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    }
+
+    #[test]
+    fn color_material_follows_color_arrays() {
+        let (mut ctx, _) = Context::with_recording();
+        let positions: [f32; 6] = [0.0, 0.0, 1.0, 0.0, 0.0, 1.0];
+        let colors: [u8; 12] = [255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255];
+        unsafe {
+            dispatch::glEnable(&mut ctx, gl::GL_COLOR_MATERIAL);
+            dispatch::glVertexPointer(&mut ctx, 2, gl::GL_FLOAT, 0, positions.as_ptr().cast());
+            dispatch::glColorPointer(&mut ctx, 4, gl::GL_UNSIGNED_BYTE, 0, colors.as_ptr().cast());
+            dispatch::glEnableClientState(&mut ctx, gl::GL_VERTEX_ARRAY);
+            dispatch::glEnableClientState(&mut ctx, gl::GL_COLOR_ARRAY);
+            dispatch::glDrawArrays(&mut ctx, gl::GL_TRIANGLES, 0, 3);
+        }
+        let draw = &ctx.frame.draws[0];
+        assert_eq!(draw.vertices.color.get(1), Some([0.0, 1.0, 0.0, 1.0]), "each vertex keeps its colour");
+        assert_eq!(draw.vertices.color.get(2), Some([0.0, 0.0, 1.0, 1.0]));
+        assert_eq!(material(&mut ctx, gl::GL_FRONT, gl::GL_DIFFUSE), [0.0, 0.0, 1.0, 1.0], "the last element's colour");
+        unsafe {
+            dispatch::glBegin(&mut ctx, gl::GL_POINTS);
+            dispatch::glArrayElement(&mut ctx, 1);
+            dispatch::glEnd(&mut ctx);
+        }
+        assert_eq!(material(&mut ctx, gl::GL_BACK, gl::GL_AMBIENT), [0.0, 1.0, 0.0, 1.0], "glArrayElement sets it");
+        unsafe {
+            dispatch::glMaterialfv(&mut ctx, gl::GL_BACK, gl::GL_AMBIENT, [0.5; 4].as_ptr());
+            dispatch::glDisableClientState(&mut ctx, gl::GL_COLOR_ARRAY);
+            dispatch::glDrawArrays(&mut ctx, gl::GL_TRIANGLES, 0, 3);
+        }
+        assert_eq!(material(&mut ctx, gl::GL_BACK, gl::GL_AMBIENT), [0.5; 4], "no colour array: the material stays");
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
     }
 }

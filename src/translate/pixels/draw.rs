@@ -8,6 +8,7 @@ use std::sync::Arc;
 
 use super::super::Context;
 use super::super::gl::{self, GLenum, GLfloat, GLint, GLsizei, GLubyte};
+use super::super::render_mode::RasterEvent;
 use super::codec::{self, Codec, Kind};
 use super::transfer::Unpacked;
 use crate::frame::pixels::{AccumOp, PixelBuffer, PixelData, PixelKind, PixelOp};
@@ -37,7 +38,9 @@ impl Context {
 
     /// `glBitmap`: `GL_INVALID_VALUE` for a negative size; nothing happens while the raster
     /// position is invalid. The bitmap's lower-left corner is the raster position minus the
-    /// origin; afterwards the raster position moves by (`xmove`, `ymove`).
+    /// origin; afterwards the raster position moves by (`xmove`, `ymove`). In selection and
+    /// feedback mode nothing is drawn (feedback records `GL_BITMAP_TOKEN`, section 5.3), but
+    /// the raster position still moves.
     ///
     /// # Safety
     /// A non-null `bitmap` must point to the bits the unpack modes describe.
@@ -47,7 +50,8 @@ impl Context {
         if !self.pixels.raster.valid {
             return;
         }
-        if w > 0 && h > 0 && !bitmap.is_null() {
+        let drawn = !self.raster_event(RasterEvent::Bitmap);
+        if drawn && w > 0 && h > 0 && !bitmap.is_null() {
             let (format, ty) = (codec::format(gl::GL_COLOR_INDEX), codec::pixel_type(gl::GL_BITMAP));
             let (Some(format), Some(ty)) = (format, ty) else { return };
             let modes = self.pixels.store.unpack;
@@ -83,14 +87,15 @@ impl Context {
     }
 
     /// `glDrawPixels`: the image is unpacked and transferred now and drawn at the raster
-    /// position with the zoom (nothing while the raster position is invalid).
+    /// position with the zoom (nothing while the raster position is invalid; in feedback mode
+    /// `GL_DRAW_PIXEL_TOKEN` instead, nothing in selection mode).
     ///
     /// # Safety
     /// A non-null `pixels` must point to the image the unpack modes describe.
     pub unsafe fn glDrawPixels(&mut self, width: GLsizei, height: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let Some([w, h]) = size2(self, width, height, "glDrawPixels") else { return };
         let Some(ft) = self.parse_pixel_format(format, type_, "glDrawPixels") else { return };
-        if !self.pixels.raster.valid {
+        if !self.pixels.raster.valid || self.raster_event(RasterEvent::DrawPixels) {
             return;
         }
         let data = match unsafe { self.unpack_client(ft, [w, h, 1], pixels, false, "glDrawPixels") } {
@@ -121,10 +126,14 @@ impl Context {
     }
 
     /// `glCopyPixels`: `GL_INVALID_ENUM` for a type other than `GL_COLOR`, `GL_DEPTH`,
-    /// `GL_STENCIL`; `GL_INVALID_VALUE` for a negative size.
+    /// `GL_STENCIL`; `GL_INVALID_VALUE` for a negative size. In feedback mode
+    /// `GL_COPY_PIXEL_TOKEN` instead, nothing in selection mode.
     pub fn glCopyPixels(&mut self, x: GLint, y: GLint, width: GLsizei, height: GLsizei, type_: GLenum) {
         let Some(buffer) = buffer_of(type_) else { return self.set_error_in(gl::GL_INVALID_ENUM, "glCopyPixels") };
         if size2(self, width, height, "glCopyPixels").is_none() || !self.pixels.raster.valid {
+            return;
+        }
+        if self.raster_event(RasterEvent::CopyPixels) {
             return;
         }
         let r = &self.pixels.raster;

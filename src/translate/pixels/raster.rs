@@ -7,7 +7,9 @@ use glam::Vec4;
 use super::super::Context;
 use super::super::get::Value;
 use super::super::gl::{self, GLenum, GLfloat};
+use super::super::client_attrib::Restore;
 use super::super::limits::MAX_TEXTURE_UNITS;
+use super::super::render_mode::{RasterEvent, WindowVertex};
 
 /// The current values a raster position takes along (colour, texture coordinates...).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -53,11 +55,30 @@ impl Default for RasterPos {
 }
 
 impl Context {
-    /// The current colour, index and texture coordinates that a raster position takes.
-    /// The current-attribute module owns them; until it provides them here, these are the
-    /// initial values of table 6.5.
+    /// The current colour, secondary colour, index and texture coordinates, which a raster
+    /// position takes along (section 2.13). Lighting is the renderer's, so the colour is the
+    /// current colour even while lighting is on.
     pub(crate) fn raster_inputs(&self) -> RasterInputs {
-        RasterInputs::default()
+        let c = self.immediate.current();
+        let [r, g, b] = c.secondary_color;
+        RasterInputs { color: c.color, secondary: [r, g, b, 1.0], index: c.color_index, texcoords: c.texcoords }
+    }
+
+    /// Saves the raster position and its data, the part of `GL_CURRENT_BIT` this module owns
+    /// (table 6.5), for `glPopAttrib`.
+    pub(crate) fn save_raster_attrib(&self, out: &mut Vec<Restore>) {
+        let saved = self.pixels.raster;
+        out.push(Box::new(move |ctx| ctx.pixels.raster = saved));
+    }
+
+    /// Reports a raster event to selection and feedback with the current raster position
+    /// (nothing is recorded while it is invalid). Returns `true` in selection and feedback
+    /// mode, where pixels are not drawn.
+    pub(crate) fn raster_event(&mut self, event: RasterEvent) -> bool {
+        let r = &self.pixels.raster;
+        let vertex = WindowVertex { window: r.window, color: r.data.color, texcoord: r.data.texcoords[0] };
+        let valid = r.valid;
+        self.render_mode_raster_event(event, valid.then_some(&vertex))
     }
 
     /// The raster inputs with each unit's texture matrix applied.
@@ -71,7 +92,8 @@ impl Context {
 
     /// `glRasterPos4f`: the point goes through the modelview and projection matrices; if the
     /// clip volume rejects it the raster position becomes invalid, otherwise it is mapped to
-    /// window coordinates with the viewport and depth range.
+    /// window coordinates with the viewport and depth range (and is a selection hit in
+    /// `GL_SELECT` mode, section 5.2).
     pub fn glRasterPos4f(&mut self, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat) {
         let eye = self.transform.modelview() * Vec4::new(x, y, z, w);
         let clip = self.transform.projection() * eye;
@@ -88,10 +110,12 @@ impl Context {
             distance: eye.truncate().length(),
             data: self.transformed_raster_inputs(),
         };
+        self.raster_event(RasterEvent::Position);
     }
 
     /// `glWindowPos3f` (section 2.13): the position is given in window coordinates; z maps
-    /// into the depth range; the raster position is always valid.
+    /// into the depth range; the raster position is always valid (a selection hit in
+    /// `GL_SELECT` mode).
     pub fn glWindowPos3f(&mut self, x: GLfloat, y: GLfloat, z: GLfloat) {
         let [n, f] = self.viewport.depth_range.map(|v| v as f32);
         self.pixels.raster = RasterPos {
@@ -100,6 +124,7 @@ impl Context {
             distance: 0.0,
             data: self.raster_inputs(),
         };
+        self.raster_event(RasterEvent::Position);
     }
 
     pub(crate) fn query_raster(&self, pname: GLenum) -> Option<Value> {
@@ -150,5 +175,33 @@ mod tests {
         ctx.glWindowPos3f(3.0, 4.0, 1.0);
         assert_eq!(raster(&mut ctx), [3.0, 4.0, 1.0, 1.0]);
         assert!(ctx.pixels.raster.valid);
+    }
+
+    #[test]
+    fn raster_position_takes_the_current_values() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.bind_drawable(100, 100);
+        unsafe {
+            crate::translate::dispatch::glColor4f(&mut ctx, 0.25, 0.5, 0.75, 1.0);
+            crate::translate::dispatch::glSecondaryColor3f(&mut ctx, 0.5, 0.0, 0.25);
+            crate::translate::dispatch::glIndexf(&mut ctx, 3.0);
+            crate::translate::dispatch::glTexCoord2f(&mut ctx, 0.5, 2.0);
+        }
+        ctx.glMatrixMode(gl::GL_TEXTURE);
+        ctx.glScalef(2.0, 1.0, 1.0);
+        ctx.glRasterPos4f(0.0, 0.0, 0.0, 1.0);
+        let mut v = [0.0f32; 4];
+        unsafe { ctx.glGetFloatv(gl::GL_CURRENT_RASTER_COLOR, v.as_mut_ptr()) };
+        assert_eq!(v, [0.25, 0.5, 0.75, 1.0]);
+        unsafe { ctx.glGetFloatv(gl::GL_CURRENT_RASTER_SECONDARY_COLOR, v.as_mut_ptr()) };
+        assert_eq!(v, [0.5, 0.0, 0.25, 1.0]);
+        unsafe { ctx.glGetFloatv(gl::GL_CURRENT_RASTER_INDEX, v.as_mut_ptr()) };
+        assert_eq!(v[0], 3.0);
+        unsafe { ctx.glGetFloatv(gl::GL_CURRENT_RASTER_TEXTURE_COORDS, v.as_mut_ptr()) };
+        assert_eq!(v, [1.0, 2.0, 0.0, 1.0], "texture matrix applied");
+        unsafe { crate::translate::dispatch::glColor3f(&mut ctx, 1.0, 0.0, 0.0) };
+        ctx.glWindowPos3f(1.0, 1.0, 0.0);
+        unsafe { ctx.glGetFloatv(gl::GL_CURRENT_RASTER_COLOR, v.as_mut_ptr()) };
+        assert_eq!(v, [1.0, 0.0, 0.0, 1.0]);
     }
 }

@@ -2,7 +2,7 @@
 //! computed on the CPU.
 //!
 //! In `GL_SELECT` and `GL_FEEDBACK` mode nothing is drawn: the vertex pipeline hands each
-//! primitive to [`Context::render_mode_primitive`], which transforms, clips and rasterizes
+//! primitive ([`batch`]) to [`Context::render_mode_primitive`], which transforms, clips and rasterizes
 //! it as far as selection and feedback need ([`pipeline`]), then records a hit ([`select`])
 //! or writes tokens ([`feedback`]). Pixel rectangles and raster positions come through
 //! [`Context::render_mode_raster_event`].
@@ -12,6 +12,7 @@
 //! coordinates are those issued (texture-coordinate generation is the vertex pipeline's),
 //! transformed by the texture matrix of unit 0 here.
 
+pub mod batch;
 pub mod buffer;
 pub mod feedback;
 pub mod pipeline;
