@@ -66,6 +66,10 @@ impl Context {
         if mask & !CLEAR_BITS != 0 {
             return self.set_error_in(gl::GL_INVALID_VALUE, "glClear");
         }
+        if self.render_mode_active() {
+            // Selection and feedback modes write no pixels (sections 5.2, 5.3).
+            return;
+        }
         let f = &self.fixed;
         let has = |bit| mask & bit != 0;
         let clear = Clear {
@@ -103,6 +107,19 @@ mod tests {
     use crate::frame::Clear;
     use crate::translate::Context;
     use crate::translate::gl;
+
+    #[test]
+    fn clear_writes_nothing_in_selection_mode() {
+        let (mut ctx, _) = Context::with_recording();
+        let mut names = [0u32; 8];
+        unsafe { ctx.glSelectBuffer(8, names.as_mut_ptr()) };
+        ctx.glRenderMode(gl::GL_SELECT);
+        ctx.glClear(gl::GL_COLOR_BUFFER_BIT);
+        assert!(ctx.frame.clears.is_empty());
+        ctx.glRenderMode(gl::GL_RENDER);
+        ctx.glClear(gl::GL_COLOR_BUFFER_BIT);
+        assert_eq!(ctx.frame.clears.len(), 1);
+    }
 
     #[test]
     fn clear_records_values_masks_and_scissor() {

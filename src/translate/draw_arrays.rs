@@ -185,10 +185,8 @@ impl Context {
         let mut batch = Batch::default();
         let Some((order, from_arrays)) = self.fetch(elements, command, &mut batch) else { return };
         let fetched = Fetched { batch, order, from_arrays };
+        // The generated dispatch applies the glBegin/glEnd rule to this deferred draw.
         self.lists.record(ListOp::Deferred(Box::new(move |ctx| {
-            if ctx.inside_begin_end() {
-                return ctx.set_error_in(gl::GL_INVALID_OPERATION, command);
-            }
             let mut f = fetched.clone();
             f.take_current(ctx.immediate.current());
             ctx.submit(primitive, &f.batch, f.order.as_deref(), f.from_arrays.color);

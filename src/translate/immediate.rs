@@ -329,8 +329,9 @@ impl Context {
         Some(match pname {
             gl::GL_CURRENT_COLOR => Value::normalized(&c.color),
             gl::GL_CURRENT_SECONDARY_COLOR => {
+                // Table 6.5: the current secondary colour has alpha 1 (as Mesa reports).
                 let [r, g, b] = c.secondary_color;
-                Value::normalized(&[r, g, b, 0.0])
+                Value::normalized(&[r, g, b, 1.0])
             }
             gl::GL_CURRENT_NORMAL => Value::normalized(&c.normal),
             gl::GL_CURRENT_TEXTURE_COORDS => Value::floats(&c.texcoords[self.active_texture_unit()]),
@@ -369,7 +370,7 @@ mod tests {
             dispatch::glEdgeFlag(&mut ctx, 0);
         }
         assert_eq!(floats(&mut ctx, gl::GL_CURRENT_COLOR), vec![1.0, 0.0, 0.2, 1.0]);
-        assert_eq!(floats(&mut ctx, gl::GL_CURRENT_SECONDARY_COLOR), vec![0.5, 0.25, 0.0, 0.0]);
+        assert_eq!(floats(&mut ctx, gl::GL_CURRENT_SECONDARY_COLOR), vec![0.5, 0.25, 0.0, 1.0]);
         assert_eq!(floats(&mut ctx, gl::GL_CURRENT_NORMAL)[..3], [0.0, 1.0, 0.0]);
         assert_eq!(floats(&mut ctx, gl::GL_CURRENT_TEXTURE_COORDS), vec![0.0, 0.0, 0.0, 1.0]);
         ctx.glActiveTexture(gl::GL_TEXTURE1);
