@@ -21,6 +21,7 @@ pub mod buffers;
 pub mod clear;
 pub mod client_attrib;
 pub mod clip_planes;
+pub mod clip_test;
 pub mod context;
 pub mod convert;
 pub mod dispatch;
@@ -52,6 +53,8 @@ pub mod strings;
 pub mod texture;
 pub mod texunit;
 pub mod transform;
+pub mod vertex_lighting;
+pub mod vertex_texgen;
 pub mod viewport;
 #[cfg(test)]
 mod robustness;
