@@ -31,6 +31,7 @@ pub mod enums;
 pub mod error;
 pub mod eval;
 pub mod fixed;
+pub mod fixed_vertex;
 pub mod fog;
 pub mod fragment;
 pub mod frame_builder;

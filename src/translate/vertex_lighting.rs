@@ -55,7 +55,7 @@ fn rgb_mul(a: [f32; 4], b: [f32; 4]) -> Vec3 {
 
 /// Clamps a colour component to [0, 1]; NaN (from degenerate input) becomes 0.
 fn clamp01(x: f32) -> f32 {
-    x.max(0.0).min(1.0)
+    if x.is_nan() { 0.0 } else { x.clamp(0.0, 1.0) }
 }
 
 /// The attenuation factor of a positional light at distance `d` (infinite for a vertex at
