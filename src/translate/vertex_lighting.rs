@@ -102,7 +102,10 @@ impl Scene {
             } else if self.pos.w == 0.0 {
                 attenuation(light.attenuation, f32::INFINITY)
             } else {
-                attenuation(light.attenuation, (position.truncate() / position.w - self.pos.truncate() / self.pos.w).length())
+                attenuation(
+                    light.attenuation,
+                    (position.truncate() / position.w - self.pos.truncate() / self.pos.w).length(),
+                )
             };
             let factor = att * spot(light, -to_light);
             if factor == 0.0 {
@@ -189,7 +192,8 @@ impl Context {
             let m = l.materials[i];
             if tracked && self.enables.is_on(gl::GL_COLOR_MATERIAL) { track_color(m, cm.mode, color) } else { m }
         };
-        let lights = || (0..MAX_LIGHTS).filter(|&i| self.enables.is_on(gl::GL_LIGHT0 + i as GLenum)).map(|i| &l.lights[i]);
+        let lights =
+            || (0..MAX_LIGHTS).filter(|&i| self.enables.is_on(gl::GL_LIGHT0 + i as GLenum)).map(|i| &l.lights[i]);
         let front = scene.shade(&material(0), eye_normal, lights());
         let back = if l.model.two_side { scene.shade(&material(1), -eye_normal, lights()) } else { front };
         LitColors { front, back }

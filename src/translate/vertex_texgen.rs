@@ -11,7 +11,8 @@ use super::gl;
 use super::limits::MAX_TEXTURE_UNITS;
 
 /// `GL_TEXTURE_GEN_S` … `GL_TEXTURE_GEN_Q`, indexed like s, t, r, q.
-const GEN_CAPS: [gl::GLenum; 4] = [gl::GL_TEXTURE_GEN_S, gl::GL_TEXTURE_GEN_T, gl::GL_TEXTURE_GEN_R, gl::GL_TEXTURE_GEN_Q];
+const GEN_CAPS: [gl::GLenum; 4] =
+    [gl::GL_TEXTURE_GEN_S, gl::GL_TEXTURE_GEN_T, gl::GL_TEXTURE_GEN_R, gl::GL_TEXTURE_GEN_Q];
 
 /// `p · v` in double precision, the planes being stored as doubles.
 fn plane_dot(p: [f64; 4], v: Vec4) -> f32 {
@@ -36,7 +37,14 @@ impl Context {
     /// `m = 2·√(rx² + ry² + (rz + 1)²)`; `REFLECTION_MAP` the reflection vector `r`;
     /// `NORMAL_MAP` the eye normal. `unit` must be below `MAX_TEXTURE_UNITS`; other units
     /// return `current`.
-    pub fn generated_texcoord(&self, unit: usize, obj_pos: Vec4, eye_pos: Vec4, eye_normal: Vec3, current: [f32; 4]) -> [f32; 4] {
+    pub fn generated_texcoord(
+        &self,
+        unit: usize,
+        obj_pos: Vec4,
+        eye_pos: Vec4,
+        eye_normal: Vec3,
+        current: [f32; 4],
+    ) -> [f32; 4] {
         let Some(unit_gen) = self.texture.texgen.get(unit) else { return current };
         let r = reflection(eye_pos, eye_normal);
         let m = 2.0 * (r.x * r.x + r.y * r.y + (r.z + 1.0) * (r.z + 1.0)).sqrt();
@@ -61,7 +69,14 @@ impl Context {
 
     /// The final texture coordinates of `unit` for a vertex: [`Context::generated_texcoord`]
     /// times the unit's texture matrix (section 2.10.2).
-    pub fn vertex_texcoord(&self, unit: usize, obj_pos: Vec4, eye_pos: Vec4, eye_normal: Vec3, current: [f32; 4]) -> [f32; 4] {
+    pub fn vertex_texcoord(
+        &self,
+        unit: usize,
+        obj_pos: Vec4,
+        eye_pos: Vec4,
+        eye_normal: Vec3,
+        current: [f32; 4],
+    ) -> [f32; 4] {
         let tc = self.generated_texcoord(unit, obj_pos, eye_pos, eye_normal, current);
         if unit >= MAX_TEXTURE_UNITS {
             return tc;
@@ -90,7 +105,10 @@ mod tests {
         assert_eq!(ctx.generated_texcoord(0, obj, obj, Vec3::Z, CURRENT), CURRENT);
         // The default mode is EYE_LINEAR with s plane (1, 0, 0, 0): only s changes.
         ctx.glEnable(gl::GL_TEXTURE_GEN_S);
-        assert_eq!(ctx.generated_texcoord(0, obj, Vec4::new(7.0, 0.0, 0.0, 1.0), Vec3::Z, CURRENT), [7.0, 0.5, 0.75, 1.0]);
+        assert_eq!(
+            ctx.generated_texcoord(0, obj, Vec4::new(7.0, 0.0, 0.0, 1.0), Vec3::Z, CURRENT),
+            [7.0, 0.5, 0.75, 1.0]
+        );
         // Enables are per unit.
         assert_eq!(ctx.generated_texcoord(1, obj, Vec4::new(7.0, 0.0, 0.0, 1.0), Vec3::Z, CURRENT), CURRENT);
     }
