@@ -1,4 +1,4 @@
-//! The user clip-plane test of a single point (OpenGL 1.5 section 2.11.2), for the raster
+//! The user clip-plane test of a single point (OpenGL 1.5 section 2.12), for the raster
 //! position (section 2.13), which is invalid when any enabled plane rejects it.
 
 use glam::{DVec4, Vec4};

@@ -1,4 +1,4 @@
-//! The fixed-function vertex stage on the CPU for one vertex (OpenGL 1.5 sections 2.10 to
+//! The fixed-function vertex stage on the CPU for one vertex (OpenGL 1.5 sections 2.11 to
 //! 2.14): eye position, lit colours and final texture coordinates of every unit, from the
 //! object position and the vertex's attributes. The raster position (section 2.13) and
 //! feedback (section 5.3) use it; the renderer does the same work for drawn primitives.

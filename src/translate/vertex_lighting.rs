@@ -66,7 +66,8 @@ fn attenuation(k: [f32; 3], d: f32) -> f32 {
 }
 
 /// The spotlight factor of section 2.14.1 for a light whose unit vector to the vertex is
-/// `to_vertex`.
+/// `to_vertex`. The equation has no condition on the light's w, so it also applies to
+/// directional lights (Mesa skips it for them).
 fn spot(light: &Light, to_vertex: Vec3) -> f32 {
     if light.spot_cutoff == 180.0 {
         return 1.0;

@@ -1,4 +1,4 @@
-//! Per-vertex texture coordinates on the CPU (OpenGL 1.5 sections 2.10.2 and 2.11.4), for the
+//! Per-vertex texture coordinates on the CPU (OpenGL 1.5 sections 2.11.2 and 2.11.4), for the
 //! raster position (section 2.13) and feedback vertices (section 5.3): each coordinate whose
 //! `GL_TEXTURE_GEN_*` is on is generated with the unit's mode and planes (state of
 //! [`super::texture::texgen`]), the others keep the current value, and the result goes
@@ -68,7 +68,7 @@ impl Context {
     }
 
     /// The final texture coordinates of `unit` for a vertex: [`Context::generated_texcoord`]
-    /// times the unit's texture matrix (section 2.10.2).
+    /// times the unit's texture matrix (section 2.11.2).
     pub fn vertex_texcoord(
         &self,
         unit: usize,
