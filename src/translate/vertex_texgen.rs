@@ -57,11 +57,16 @@ impl Context {
                 gl::GL_OBJECT_LINEAR => plane_dot(g.object_plane, obj_pos),
                 gl::GL_EYE_LINEAR => plane_dot(g.eye_plane, eye_pos),
                 // glTexGen only accepts SPHERE_MAP for s and t, REFLECTION_MAP and NORMAL_MAP
-                // for s, t and r.
-                gl::GL_SPHERE_MAP if m != 0.0 => r[c] / m + 0.5,
-                gl::GL_SPHERE_MAP => 0.5,
-                gl::GL_REFLECTION_MAP => r[c],
-                gl::GL_NORMAL_MAP => eye_normal[c],
+                // for s, t and r. m = 0 (r = −z) has no limit: the centre of the map.
+                gl::GL_SPHERE_MAP if c < 2 => {
+                    if m != 0.0 {
+                        r[c] / m + 0.5
+                    } else {
+                        0.5
+                    }
+                }
+                gl::GL_REFLECTION_MAP if c < 3 => r[c],
+                gl::GL_NORMAL_MAP if c < 3 => eye_normal[c],
                 _ => current[c],
             }
         })
