@@ -25,13 +25,13 @@ pub struct FixedVertex {
 impl Context {
     /// Runs the vertex stage for a vertex at object position `obj_pos` whose attributes are
     /// `attribs` (the current values for a raster position, the vertex's own for a batch
-    /// vertex): [`Context::eye_normal`], [`Context::lit_colors`] (the secondary colour with
-    /// alpha 0) and [`Context::vertex_texcoord`] for each unit.
+    /// vertex): [`Context::eye_normal`], [`Context::lit_colors`] (the current secondary colour
+    /// with alpha 1, table 6.5) and [`Context::vertex_texcoord`] for each unit.
     pub fn fixed_vertex(&self, obj_pos: Vec4, attribs: &CurrentAttribs) -> FixedVertex {
         let eye = self.transform.modelview() * obj_pos;
         let normal = self.eye_normal(attribs.normal);
         let [r, g, b] = attribs.secondary_color;
-        let colors = self.lit_colors(eye, normal, attribs.color, [r, g, b, 0.0]);
+        let colors = self.lit_colors(eye, normal, attribs.color, [r, g, b, 1.0]);
         let texcoords =
             std::array::from_fn(|unit| self.vertex_texcoord(unit, obj_pos, eye, normal, attribs.texcoords[unit]));
         FixedVertex { eye, colors, texcoords }
@@ -68,6 +68,6 @@ mod tests {
         assert_eq!(&v.texcoords[0][1..], &[0.0, 0.0, 1.0]);
         ctx.glDisable(gl::GL_LIGHTING);
         let v = ctx.fixed_vertex(Vec4::new(0.0, 0.0, 0.0, 1.0), &attribs);
-        assert_eq!(v.colors.front.secondary, [0.5, 0.5, 0.5, 0.0], "unlit: the current secondary colour");
+        assert_eq!(v.colors.front.secondary, [0.5, 0.5, 0.5, 1.0], "unlit: the current secondary colour");
     }
 }

@@ -81,23 +81,18 @@ impl Context {
         self.render_mode_raster_event(event, valid.then_some(&vertex))
     }
 
-    /// The raster inputs with each unit's texture matrix applied.
-    fn transformed_raster_inputs(&self) -> RasterInputs {
-        let mut data = self.raster_inputs();
-        for (unit, tc) in data.texcoords.iter_mut().enumerate() {
-            *tc = (self.transform.texture_matrix(unit) * Vec4::from_array(*tc)).to_array();
-        }
-        data
-    }
-
     /// `glRasterPos4f`: the point goes through the modelview and projection matrices; if the
     /// clip volume rejects it the raster position becomes invalid, otherwise it is mapped to
     /// window coordinates with the viewport and depth range (and is a selection hit in
     /// `GL_SELECT` mode, section 5.2).
     pub fn glRasterPos4f(&mut self, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat) {
-        let eye = self.transform.modelview() * Vec4::new(x, y, z, w);
+        // Lit, with generated and transformed texture coordinates, like a vertex (2.13).
+        let v = self.fixed_vertex(Vec4::new(x, y, z, w), self.immediate.current());
+        let eye = v.eye;
         let clip = self.transform.projection() * eye;
-        let inside = (0..3).all(|i| -clip.w <= clip[i] && clip[i] <= clip.w) && clip.w != 0.0;
+        let inside = (0..3).all(|i| -clip.w <= clip[i] && clip[i] <= clip.w)
+            && clip.w != 0.0
+            && self.inside_user_clip_planes(eye);
         if !inside {
             self.pixels.raster.valid = false;
             return;
@@ -108,7 +103,12 @@ impl Context {
             window: [wx, wy, wz, clip.w],
             valid: true,
             distance: eye.truncate().length(),
-            data: self.transformed_raster_inputs(),
+            data: RasterInputs {
+                color: v.colors.front.primary,
+                secondary: v.colors.front.secondary,
+                index: self.immediate.current().color_index,
+                texcoords: v.texcoords,
+            },
         };
         self.raster_event(RasterEvent::Position);
     }
@@ -175,6 +175,27 @@ mod tests {
         ctx.glWindowPos3f(3.0, 4.0, 1.0);
         assert_eq!(raster(&mut ctx), [3.0, 4.0, 1.0, 1.0]);
         assert!(ctx.pixels.raster.valid);
+    }
+
+    #[test]
+    fn raster_position_is_lit_and_clipped_by_user_planes() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.bind_drawable(100, 100);
+        ctx.glEnable(gl::GL_LIGHTING);
+        ctx.glEnable(gl::GL_LIGHT0);
+        ctx.glRasterPos4f(0.0, 0.0, 0.0, 1.0);
+        let mut v = [0.0f32; 4];
+        unsafe { ctx.glGetFloatv(gl::GL_CURRENT_RASTER_COLOR, v.as_mut_ptr()) };
+        // Scene ambient 0.2 × material ambient 0.2 + light 0 diffuse 1 × material diffuse 0.8
+        // × N·L 1 (default normal and light direction along +z).
+        for (got, want) in v.iter().zip([0.84, 0.84, 0.84, 1.0]) {
+            assert!((got - want).abs() < 1e-6, "{v:?}");
+        }
+        let plane = [1.0f64, 0.0, 0.0, -0.5];
+        unsafe { ctx.glClipPlane(gl::GL_CLIP_PLANE0, plane.as_ptr()) };
+        ctx.glEnable(gl::GL_CLIP_PLANE0);
+        ctx.glRasterPos4f(0.0, 0.0, 0.0, 1.0);
+        assert_eq!(ctx.query(gl::GL_CURRENT_RASTER_POSITION_VALID).unwrap().to_ints(), [0]);
     }
 
     #[test]
