@@ -30,10 +30,20 @@ pub fn enum_name(value: u32) -> Option<&'static str> {
         .min_by_key(|n| (n.ends_with("_ARB") || n.ends_with("_EXT") || n.contains("_SGI"), n.len()))
 }
 
-// gl_generator drops the three enums whose names start with a digit after `GL_`.
+// gl_generator drops the enums whose names start with a digit after `GL_`.
 /// `glCallLists` type: two-byte big-endian names.
 pub const GL_2_BYTES: GLenum = 0x1407;
 /// `glCallLists` type: three-byte big-endian names.
 pub const GL_3_BYTES: GLenum = 0x1408;
 /// `glCallLists` type: four-byte big-endian names.
 pub const GL_4_BYTES: GLenum = 0x1409;
+/// `glFeedbackBuffer` type: x, y.
+pub const GL_2D: GLenum = 0x0600;
+/// `glFeedbackBuffer` type: x, y, z.
+pub const GL_3D: GLenum = 0x0601;
+/// `glFeedbackBuffer` type: x, y, z and colour.
+pub const GL_3D_COLOR: GLenum = 0x0602;
+/// `glFeedbackBuffer` type: x, y, z, colour and texture coordinates.
+pub const GL_3D_COLOR_TEXTURE: GLenum = 0x0603;
+/// `glFeedbackBuffer` type: x, y, z, w, colour and texture coordinates.
+pub const GL_4D_COLOR_TEXTURE: GLenum = 0x0604;

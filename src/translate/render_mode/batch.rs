@@ -7,6 +7,8 @@
 use super::{CpuPrimitive, CpuVertex, RasterRules};
 use crate::frame::state::ShadeModel;
 use crate::translate::Context;
+use glam::Vec4;
+
 use crate::translate::enums::{FACE, POLYGON_MODE, WINDING};
 use crate::translate::gl::GLenum;
 use crate::translate::immediate::Batch;
@@ -20,12 +22,26 @@ impl Context {
             return false;
         }
         let v = &batch.vertices;
+        let current = *self.immediate.current();
+        // Feedback reports lit colours and generated texture coordinates (section 5.3), so each
+        // vertex goes through the CPU vertex stage; the pipeline applies the texture matrix.
         let vertex = |i: u32| {
             let k = i as usize;
+            let position = *v.position.get(k)?;
+            let mut attribs = current;
+            attribs.color = v.color.get(k).unwrap_or(current.color);
+            attribs.secondary_color = v.secondary_color.get(k).unwrap_or(current.secondary_color);
+            attribs.normal = v.normal.get(k).unwrap_or(current.normal);
+            for (unit, t) in v.texcoords.iter().enumerate().take(attribs.texcoords.len()) {
+                attribs.texcoords[unit] = t.get(k).unwrap_or(current.texcoords[unit]);
+            }
+            let obj = Vec4::from_array(position);
+            let fixed = self.fixed_vertex(obj, &attribs);
+            let normal = self.eye_normal(attribs.normal);
             Some(CpuVertex {
-                position: *v.position.get(k)?,
-                color: v.color.get(k).unwrap_or([1.0; 4]),
-                texcoord: v.texcoords.first().and_then(|t| t.get(k)).unwrap_or([0.0, 0.0, 0.0, 1.0]),
+                position,
+                color: fixed.colors.front.primary,
+                texcoord: self.generated_texcoord(0, obj, fixed.eye, normal, attribs.texcoords[0]),
                 edge_flag: batch.edge_flag(i),
             })
         };
@@ -47,7 +63,7 @@ impl Context {
 
 #[cfg(test)]
 mod tests {
-    use crate::translate::render_mode::feedback::{GL_2D, GL_3D};
+    use crate::translate::gl::{GL_2D, GL_3D};
     use crate::translate::render_mode::select::depth_to_uint;
     use crate::translate::{Context, dispatch, gl};
 
@@ -109,6 +125,27 @@ mod tests {
         assert_eq!(unsafe { dispatch::glRenderMode(&mut c, gl::GL_RENDER) }, 11);
         let expected = [tok(gl::GL_POLYGON_TOKEN), 3.0, 50.0, 50.0, 0.5, 75.0, 50.0, 0.5, 50.0, 75.0, 0.5];
         assert_eq!(&buf[..11], &expected);
+    }
+
+    #[test]
+    fn feedback_reports_lit_colours() {
+        let mut c = ctx();
+        let mut buf = [0.0f32; 16];
+        unsafe {
+            dispatch::glFeedbackBuffer(&mut c, 16, gl::GL_3D_COLOR, buf.as_mut_ptr());
+            dispatch::glRenderMode(&mut c, gl::GL_FEEDBACK);
+            dispatch::glEnable(&mut c, gl::GL_LIGHTING);
+            dispatch::glEnable(&mut c, gl::GL_LIGHT0);
+            dispatch::glBegin(&mut c, gl::GL_POINTS);
+            dispatch::glVertex2f(&mut c, 0.0, 0.0);
+            dispatch::glEnd(&mut c);
+        }
+        assert_eq!(unsafe { dispatch::glRenderMode(&mut c, gl::GL_RENDER) }, 8);
+        // Scene ambient 0.04 + light 0 diffuse 1 × material diffuse 0.8 (normal and light on +z).
+        assert_eq!(buf[0], tok(gl::GL_POINT_TOKEN));
+        for (got, want) in buf[4..8].iter().zip([0.84, 0.84, 0.84, 1.0]) {
+            assert!((got - want).abs() < 1e-6, "{:?}", &buf[..8]);
+        }
     }
 
     #[test]

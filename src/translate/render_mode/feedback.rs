@@ -5,19 +5,7 @@ use super::buffer::ClientBuffer;
 use super::RenderMode;
 use super::pipeline::{Shape, WindowVertex};
 use crate::translate::Context;
-use crate::translate::gl::{self, GLenum, GLfloat, GLsizei};
-
-// gl_generator drops enums whose names start with a digit after `GL_` (see `gl.rs`).
-/// `glFeedbackBuffer` type: x, y.
-pub const GL_2D: GLenum = 0x0600;
-/// `glFeedbackBuffer` type: x, y, z.
-pub const GL_3D: GLenum = 0x0601;
-/// `glFeedbackBuffer` type: x, y, z and colour.
-pub const GL_3D_COLOR: GLenum = 0x0602;
-/// `glFeedbackBuffer` type: x, y, z, colour and texture coordinates.
-pub const GL_3D_COLOR_TEXTURE: GLenum = 0x0603;
-/// `glFeedbackBuffer` type: x, y, z, w, colour and texture coordinates.
-pub const GL_4D_COLOR_TEXTURE: GLenum = 0x0604;
+use crate::translate::gl::{self, GL_2D, GL_3D, GL_3D_COLOR, GL_3D_COLOR_TEXTURE, GL_4D_COLOR_TEXTURE, GLenum, GLfloat, GLsizei};
 
 /// What each fed-back vertex holds (table 5.2).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

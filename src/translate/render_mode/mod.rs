@@ -7,10 +7,9 @@
 //! or writes tokens ([`feedback`]). Pixel rectangles and raster positions come through
 //! [`Context::render_mode_raster_event`].
 //!
-//! Known gap: lighting is computed by the renderer, not on the CPU, so fed-back colours are
-//! the vertex colours as issued (the current colour), not lit colours; likewise texture
-//! coordinates are those issued (texture-coordinate generation is the vertex pipeline's),
-//! transformed by the texture matrix of unit 0 here.
+//! Fed-back colours are lit and texture coordinates generated on the CPU by the fixed-function
+//! vertex stage ([`Context::fixed_vertex`], front colours; two-sided back colours are not
+//! selected per polygon yet), and the texture matrix of unit 0 is applied here.
 
 pub mod batch;
 pub mod buffer;

@@ -14,8 +14,7 @@ use crate::translate::viewport::ViewportState;
 pub struct CpuVertex {
     /// Object-space position (x, y, z, w).
     pub position: [f32; 4],
-    /// The vertex colour (the current colour when the vertex was issued; see the module doc of
-    /// [`super`] for lighting).
+    /// The vertex colour, lit when lighting is enabled (see the module doc of [`super`]).
     pub color: [f32; 4],
     /// Texture coordinates of unit 0 as issued (or generated); the texture matrix of unit 0 is
     /// applied here.

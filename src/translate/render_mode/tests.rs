@@ -1,7 +1,7 @@
 //! Selection and feedback tests: hits, names and depths; token streams of every feedback type;
 //! clipping by the view volume and user planes; culling and polygon mode; overflow; errors.
 
-use super::feedback::{GL_2D, GL_3D, GL_3D_COLOR, GL_4D_COLOR_TEXTURE};
+use crate::translate::gl::{GL_2D, GL_3D, GL_3D_COLOR, GL_4D_COLOR_TEXTURE};
 use super::select::depth_to_uint;
 use super::{CpuPrimitive, CpuVertex, RasterRules, RasterEvent, WindowVertex};
 use crate::translate::Context;
