@@ -132,6 +132,15 @@ pub const FAMILIES: &[Family] = &[
 /// Commands of extensions withdrawn before the registry was written, which GL 1.x games still
 /// use: `(C name, parameters as (name, Rust type), Rust return type)`. GLQuake and Quake 2 use
 /// `GL_SGIS_multitexture`.
+/// Aliases the registry does not record: EXT_texture_object's commands, whose
+/// texture names the extension shares like OpenGL 1.1's (Mesa serves both by one function).
+pub const EXTRA_ALIASES: &[(&str, &str)] = &[
+    ("GenTexturesEXT", "GenTextures"),
+    ("DeleteTexturesEXT", "DeleteTextures"),
+    ("IsTextureEXT", "IsTexture"),
+    ("AreTexturesResidentEXT", "AreTexturesResident"),
+];
+
 pub const EXTRA_COMMANDS: &[(&str, &[(&str, &str)], &str)] = &[
     ("glSelectTextureSGIS", &[("target", "types::GLenum")], "()"),
     ("glMTexCoord2fSGIS", &[("target", "types::GLenum"), ("s", "types::GLfloat"), ("t", "types::GLfloat")], "()"),
