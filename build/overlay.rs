@@ -45,8 +45,9 @@ pub const INSIDE_BEGIN_END: &[&str] = &[
     "Materialiv", "EdgeFlag", "EdgeFlagv", "CallList", "CallLists",
 ];
 
-/// Client-side commands: the specification leaves their use between `glBegin` and `glEnd`
-/// undefined; like Mesa, glrt executes them without an error.
+/// Client-side commands: never compiled into display lists (section 5.4). Between `glBegin`
+/// and `glEnd` they raise `GL_INVALID_OPERATION` like every command section 2.6.3 does not
+/// allow there (Mesa does the same; piglit's `gl-1.0-beginend-coverage` checks it).
 pub const CLIENT_SIDE: &[&str] = &[
     "VertexPointer", "NormalPointer", "ColorPointer", "IndexPointer", "TexCoordPointer",
     "EdgeFlagPointer", "FogCoordPointer", "SecondaryColorPointer", "InterleavedArrays",

@@ -2,7 +2,7 @@
 //! `glGetTexParameter*`, and their conversion to the renderer's [`Sampler`].
 
 use super::super::Context;
-use super::super::convert::{norm_i32, read_slice, write_slice};
+use super::super::convert::{norm_i32, read_slice, scalar_as_vector, write_slice};
 use super::super::get::Value;
 use super::super::gl::{self, GLenum, GLfloat, GLint};
 use super::super::lists::ListOp;
@@ -186,16 +186,18 @@ impl Context {
         }
     }
 
-    /// `glTexParameterf`: `GL_INVALID_ENUM` for an unknown target or name, a bad enum value, or
-    /// `GL_TEXTURE_BORDER_COLOR` (which needs the vector form); `GL_INVALID_VALUE` for a
-    /// negative base or max level.
+    /// `glTexParameterf`: `GL_INVALID_ENUM` for an unknown target or name or a bad enum value;
+    /// `GL_INVALID_VALUE` for a negative base or max level. `GL_TEXTURE_BORDER_COLOR` becomes
+    /// (param, 0, 0, 0) (see [`scalar_as_vector`]).
     pub fn glTexParameterf(&mut self, target: GLenum, pname: GLenum, param: GLfloat) {
-        self.tex_parameter(target, pname, &[f64::from(param)], "glTexParameterf");
+        self.tex_parameter(target, pname, &scalar_as_vector(f64::from(param), param_count(pname)), "glTexParameterf");
     }
 
-    /// `glTexParameteri`.
+    /// `glTexParameteri`: as `glTexParameterf`; a border colour is normalized like
+    /// `glTexParameteriv`'s.
     pub fn glTexParameteri(&mut self, target: GLenum, pname: GLenum, param: GLint) {
-        self.tex_parameter(target, pname, &[f64::from(param)], "glTexParameteri");
+        let value = if pname == gl::GL_TEXTURE_BORDER_COLOR { f64::from(norm_i32(param)) } else { f64::from(param) };
+        self.tex_parameter(target, pname, &scalar_as_vector(value, param_count(pname)), "glTexParameteri");
     }
 
     /// `glTexParameterfv`.
@@ -303,8 +305,11 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BASE_LEVEL, -1);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
-        ctx.glTexParameterf(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BORDER_COLOR, 1.0);
-        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glTexParameterf(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BORDER_COLOR, 0.5);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        let mut border = [9.0f32; 4];
+        unsafe { ctx.glGetTexParameterfv(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BORDER_COLOR, border.as_mut_ptr()) };
+        assert_eq!(border, [0.5, 0.0, 0.0, 0.0]);
         ctx.glTexParameteri(gl::GL_TEXTURE_CUBE_MAP_POSITIVE_X, gl::GL_TEXTURE_MIN_FILTER, gl::GL_LINEAR as i32);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         let s = ctx.with_bound_texture(super::Target::D2, |o| o.params.sampler());
