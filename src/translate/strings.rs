@@ -11,7 +11,9 @@ const RENDERER: &str = "glrt (Vulkan path tracer)\0";
 const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 
 /// `GL_EXTENSIONS`: the extensions whose commands and enums are all implemented with their full
-/// semantics (programs enable code paths from this string), in alphabetical order. Left out
+/// semantics (programs enable code paths from this string), in alphabetical order, each
+/// followed by a space as in Mesa's string (piglit's `glinfo` prints it with spaces turned
+/// into newlines and needs the last one to end its line). Left out
 /// although partly there: `GL_EXT_texture_env_dot3` (its own `DOT3_*_EXT` enums are not
 /// accepted), `GL_EXT_shadow_funcs` (only `GL_LEQUAL`/`GL_GEQUAL` compare functions),
 /// `GL_ARB_multisample` (no multisampled visuals), `GL_EXT_color_subtable` (exported for
@@ -63,7 +65,7 @@ const EXTENSIONS: &str = concat!(
     "GL_NV_blend_square ",
     "GL_SGIS_generate_mipmap ",
     "GL_SGIS_texture_edge_clamp ",
-    "GL_SGIS_texture_lod",
+    "GL_SGIS_texture_lod ",
     "\0"
 );
 
@@ -103,7 +105,8 @@ mod tests {
         assert_eq!(string(&mut ctx, gl::GL_VERSION).unwrap(), format!("1.5 glrt {}", env!("CARGO_PKG_VERSION")));
         let ext = string(&mut ctx, gl::GL_EXTENSIONS).unwrap();
         assert!(ext.split(' ').any(|e| e == "GL_EXT_blend_minmax"), "{ext}");
-        assert!(!ext.ends_with(' '));
+        assert!(ext.split(' ').any(|e| e == "GL_ARB_window_pos"), "{ext}");
+        assert!(ext.ends_with(' ') && !ext.contains("  "), "{ext:?}");
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
         assert_eq!(string(&mut ctx, gl::GL_FOG), None);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
