@@ -15,7 +15,7 @@ const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 /// followed by a space as in Mesa's string (piglit's `glinfo` prints it with spaces turned
 /// into newlines and needs the last one to end its line). Left out
 /// although partly there: `GL_EXT_texture_env_dot3` (its own `DOT3_*_EXT` enums are not
-/// accepted), `GL_EXT_shadow_funcs` (only `GL_LEQUAL`/`GL_GEQUAL` compare functions),
+/// accepted),
 /// `GL_ARB_multisample` (no multisampled visuals), `GL_EXT_color_subtable` (exported for
 /// `GL_EXT_paletted_texture`, whose palettes it edits, but not announced on its own).
 const EXTENSIONS: &str = concat!(
@@ -51,6 +51,7 @@ const EXTENSIONS: &str = concat!(
     "GL_EXT_rescale_normal ",
     "GL_EXT_secondary_color ",
     "GL_EXT_separate_specular_color ",
+    "GL_EXT_shadow_funcs ",
     "GL_EXT_shared_texture_palette ",
     "GL_EXT_stencil_wrap ",
     "GL_EXT_texture3D ",
