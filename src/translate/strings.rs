@@ -12,12 +12,11 @@ const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 
 /// `GL_EXTENSIONS`: the extensions whose commands and enums are all implemented with their full
 /// semantics (programs enable code paths from this string), in alphabetical order, each
-/// followed by a space as in Mesa's string (piglit's `glinfo` prints it with spaces turned
-/// into newlines and needs the last one to end its line). Left out
-/// although partly there: `GL_EXT_texture_env_dot3` (its own `DOT3_*_EXT` enums are not
-/// accepted),
-/// `GL_ARB_multisample` (no multisampled visuals), `GL_EXT_color_subtable` (exported for
-/// `GL_EXT_paletted_texture`, whose palettes it edits, but not announced on its own).
+/// followed by a space as in Mesa's string (piglit's `glinfo` prints it with spaces turned into
+/// newlines and needs the last one to end its line). Left out although partly there:
+/// `GL_EXT_texture_env_dot3` (its own `DOT3_*_EXT` enums are not accepted), `GL_ARB_multisample`
+/// (no multisampled visuals), `GL_EXT_color_subtable` (exported for `GL_EXT_paletted_texture`,
+/// whose palettes it edits, but not announced on its own).
 const EXTENSIONS: &str = concat!(
     "GL_ARB_depth_texture ",
     "GL_ARB_multitexture ",
