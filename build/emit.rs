@@ -86,7 +86,6 @@ pub fn is_compiled(c: &Command) -> bool {
 pub fn allowed_inside_begin_end(c: &Command) -> bool {
     let s = served_by(c);
     overlay::INSIDE_BEGIN_END.contains(&s)
-        || overlay::CLIENT_SIDE.contains(&s)
         || overlay::FAMILIES.iter().any(|f| f.canonical == s && f.inside_begin_end)
 }
 
@@ -150,12 +149,13 @@ fn dispatch(model: &Model) -> String {
                     "{name} reads client memory and is compiled into display lists: \
                      implement Context::compile_{name} in src/translate"
                 );
-                let rule = if allowed_inside_begin_end(c) { "None".to_owned() } else { format!("Some(\"{name}\")") };
-                writeln!(
-                    s,
-                    "        super::lists::ListState::compile_with_rule(ctx, {rule}, |ctx| unsafe {{ ctx.compile_{name}({args}) }});"
-                )
-                .unwrap();
+                if allowed_inside_begin_end(c) {
+                    writeln!(s, "        unsafe {{ ctx.compile_{name}({args}) }};").unwrap();
+                } else {
+                    writeln!(s, "        let mark = ctx.lists.mark();").unwrap();
+                    writeln!(s, "        unsafe {{ ctx.compile_{name}({args}) }};").unwrap();
+                    writeln!(s, "        ctx.lists.guard_since(mark);").unwrap();
+                }
             } else {
                 let call = if c.params.is_empty() { short(c).to_owned() } else { format!("{}({args})", short(c)) };
                 writeln!(s, "        ctx.lists.record(ListOp::Call(Call::{call}));").unwrap();
@@ -180,8 +180,9 @@ fn dispatch(model: &Model) -> String {
     for c in model.commands.iter().filter(|c| c.in_surface) {
         let vector = matches!(c.route, Route::Family { vector: true, .. } | Route::Rect { vector: true, .. });
         // A vector variant returns early on a null pointer; the glBegin/glEnd rule comes first.
+        // While a list is compiled the canonical command records the call and applies the rule.
         let rule = if vector && !allowed_inside_begin_end(c) {
-            "    if ctx.inside_begin_end() && ctx.lists.executing() { return ctx.set_error(super::gl::GL_INVALID_OPERATION); }\n"
+            "    if ctx.inside_begin_end() && !ctx.lists.compiling() { return ctx.set_error(super::gl::GL_INVALID_OPERATION); }\n"
         } else {
             ""
         };

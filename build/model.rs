@@ -221,7 +221,8 @@ fn route_of(name: &str, cmd: &Cmd, methods: &BTreeSet<String>, surface: &BTreeSe
         && name != "glRectf" {
             return Route::Rect { suffix, vector };
         }
-    match &cmd.alias {
+    let extra = overlay::EXTRA_ALIASES.iter().find(|(n, _)| *n == short).map(|&(_, target)| target);
+    match cmd.alias.as_deref().or(extra) {
         Some(alias) if surface.contains(&format!("gl{alias}")) => Route::Alias(format!("gl{alias}")),
         _ => Route::Missing,
     }

@@ -45,8 +45,9 @@ pub const INSIDE_BEGIN_END: &[&str] = &[
     "Materialiv", "EdgeFlag", "EdgeFlagv", "CallList", "CallLists",
 ];
 
-/// Client-side commands: the specification leaves their use between `glBegin` and `glEnd`
-/// undefined; like Mesa, glrt executes them without an error.
+/// Client-side commands: never compiled into display lists (section 5.4). Between `glBegin`
+/// and `glEnd` they raise `GL_INVALID_OPERATION` like every command section 2.6.3 does not
+/// allow there (Mesa does the same; piglit's `gl-1.0-beginend-coverage` checks it).
 pub const CLIENT_SIDE: &[&str] = &[
     "VertexPointer", "NormalPointer", "ColorPointer", "IndexPointer", "TexCoordPointer",
     "EdgeFlagPointer", "FogCoordPointer", "SecondaryColorPointer", "InterleavedArrays",
@@ -133,6 +134,15 @@ pub const FAMILIES: &[Family] = &[
 /// Commands of extensions withdrawn before the registry was written, which GL 1.x games still
 /// use: `(C name, parameters as (name, Rust type), Rust return type)`. GLQuake and Quake 2 use
 /// `GL_SGIS_multitexture`.
+/// Aliases the registry does not record: EXT_texture_object's commands, whose
+/// texture names the extension shares like OpenGL 1.1's (Mesa serves both by one function).
+pub const EXTRA_ALIASES: &[(&str, &str)] = &[
+    ("GenTexturesEXT", "GenTextures"),
+    ("DeleteTexturesEXT", "DeleteTextures"),
+    ("IsTextureEXT", "IsTexture"),
+    ("AreTexturesResidentEXT", "AreTexturesResident"),
+];
+
 pub const EXTRA_COMMANDS: &[(&str, &[(&str, &str)], &str)] = &[
     ("glSelectTextureSGIS", &[("target", "types::GLenum")], "()"),
     ("glMTexCoord2fSGIS", &[("target", "types::GLenum"), ("s", "types::GLfloat"), ("t", "types::GLfloat")], "()"),

@@ -11,8 +11,9 @@
 /// lines to triangles, so this is a choice, not a device limit).
 pub const MAX_POINT_SIZE: f32 = 64.0;
 
-/// A comparison of the alpha, depth and stencil tests (OpenGL 1.5 sections 4.1.4 to 4.1.6).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// A comparison of the alpha, depth and stencil tests (OpenGL 1.5 sections 4.1.4 to 4.1.6) and
+/// of depth textures (`GL_TEXTURE_COMPARE_FUNC`, section 3.8.14).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum CompareFunc {
     /// Never passes.
     Never,

@@ -137,15 +137,9 @@ pub enum Wrap {
     MirroredRepeat,
 }
 
-/// Depth comparison function (`GL_TEXTURE_COMPARE_FUNC`).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
-pub enum CompareFunc {
-    /// r ≤ D passes.
-    #[default]
-    LessEqual,
-    /// r ≥ D passes.
-    GreaterEqual,
-}
+/// Depth comparison function (`GL_TEXTURE_COMPARE_FUNC`): any of the eight (EXT_shadow_funcs,
+/// core in OpenGL 1.5).
+pub use super::state::CompareFunc;
 
 /// How a depth texel becomes a colour (`GL_DEPTH_TEXTURE_MODE`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]

@@ -26,9 +26,18 @@ thread_local! {
     static CURRENT: RefCell<Option<Current>> = const { RefCell::new(None) };
 }
 
-/// Runs `f` with this thread's current-context slot.
+/// Runs `f` with this thread's current-context slot. Once the thread's storage is destroyed
+/// (at `exit`, glibc runs thread-local destructors before `atexit` handlers, and handlers such
+/// as waffle's teardown still call `glXMakeCurrent`), the slot reads as empty: the context it
+/// held was released when the slot was dropped.
 pub fn with_slot<R>(f: impl FnOnce(&mut Option<Current>) -> R) -> R {
-    CURRENT.with(|slot| f(&mut slot.borrow_mut()))
+    let mut f = Some(f);
+    let ran = CURRENT.try_with(|slot| f.take().map(|f| f(&mut slot.borrow_mut())));
+    match (ran, f) {
+        (Ok(Some(result)), _) => result,
+        (_, Some(f)) => f(&mut None),
+        (_, None) => unreachable!("the closure ran but returned nothing"),
+    }
 }
 
 /// Makes `context` (with application handle `handle`) current on this thread, releasing the
@@ -54,4 +63,38 @@ pub fn make_current(handle: usize, context: Option<&SharedContext>) -> bool {
 /// The handle of this thread's current context, 0 when none.
 pub fn current_handle() -> usize {
     with_slot(|slot| slot.as_ref().map_or(0, |c| c.handle))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    /// What `current_handle` returned from a destructor run after the slot was destroyed.
+    static SEEN_AT_EXIT: AtomicUsize = AtomicUsize::new(usize::MAX);
+
+    struct AtExit;
+    impl Drop for AtExit {
+        fn drop(&mut self) {
+            SEEN_AT_EXIT.store(current_handle(), Ordering::SeqCst);
+        }
+    }
+
+    thread_local! {
+        static PROBE: AtExit = const { AtExit };
+    }
+
+    #[test]
+    fn slot_reads_empty_after_thread_storage_is_destroyed() {
+        std::thread::spawn(|| {
+            // Registered before the slot, so destroyed after it (reverse order).
+            PROBE.with(|_| {});
+            let ctx: SharedContext = Arc::new(Mutex::new(Context::with_recording().0));
+            assert!(make_current(7, Some(&ctx)));
+            assert_eq!(current_handle(), 7);
+        })
+        .join()
+        .expect("no panic at thread exit");
+        assert_eq!(SEEN_AT_EXIT.load(Ordering::SeqCst), 0);
+    }
 }

@@ -62,6 +62,8 @@ pub struct Context {
     pub(crate) immediate: super::immediate::ImmediateState,
     /// Client vertex arrays and buffer bindings.
     pub(crate) arrays: super::arrays::ArrayState,
+    /// `EXT_vertex_array` element counts.
+    pub(crate) arrays_ext: super::arrays_ext::ArrayCounts,
     /// `glPushClientAttrib` stack.
     pub(crate) client_attrib: super::client_attrib::ClientAttribStack,
     /// The frame being assembled since the last swap.
@@ -92,6 +94,7 @@ impl Context {
             pixels: Default::default(),
             immediate: Default::default(),
             arrays: Default::default(),
+            arrays_ext: Default::default(),
             client_attrib: Default::default(),
             frame: Frame::default(),
             sink: config.sink,

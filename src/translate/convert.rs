@@ -64,6 +64,15 @@ pub unsafe fn write_slice<T: Copy>(ptr: *mut T, values: &[T]) {
     }
 }
 
+/// The values a scalar command (`glTexParameterf`, `glTexGenf`) gives a name that takes `count`
+/// values: `param`, then zeros. OpenGL 1.5 defines no error for a vector name given to the
+/// scalar form; Mesa reads (param, 0, 0, 0), which piglit's `gl-1.0-beginend-coverage` expects.
+pub fn scalar_as_vector(param: f64, count: usize) -> Vec<f64> {
+    let mut v = vec![0.0; count.max(1)];
+    v[0] = param;
+    v
+}
+
 /// The value a command returns when it raises an error or has no current context:
 /// zero, `GL_FALSE` or null.
 pub trait ReturnDefault {

@@ -102,6 +102,7 @@ impl Context {
             .or_else(|| self.query_pixels(pname))
             .or_else(|| self.query_vertex(pname))
             .or_else(|| self.query_arrays(pname))
+            .or_else(|| self.query_arrays_ext(pname))
     }
 
     fn query_lists(&self, pname: GLenum) -> Option<Value> {

@@ -45,10 +45,6 @@ pub struct ListState {
     depth: u32,
     /// Name of the innermost list being executed, 0 when none.
     executing_name: GLuint,
-    /// While a `compile_` method of a command that is not allowed between `glBegin` and
-    /// `glEnd` records, that command's name: its deferred operations then apply the rule of
-    /// section 2.6.3 when the list is executed (set by the generated dispatch).
-    outside_begin_end_only: Option<&'static str>,
 }
 
 impl ListState {
@@ -67,36 +63,33 @@ impl ListState {
         (self.executing_name != 0).then_some(self.executing_name)
     }
 
-    /// Runs `compile` (a command's `compile_` method) so that the deferred operations it
-    /// records raise `GL_INVALID_OPERATION` instead of running when the list is executed
-    /// between `glBegin` and `glEnd` (`Some(command)`), or run as they are (`None`).
-    /// A command that records nothing (a draw of zero vertices) still raises the error there.
-    pub fn compile_with_rule(ctx: &mut Context, rule: Option<&'static str>, compile: impl FnOnce(&mut Context)) {
-        let recorded = |lists: &ListState| lists.compiling.as_ref().map_or(0, |c| c.ops.len());
-        let before = recorded(&ctx.lists);
-        ctx.lists.outside_begin_end_only = rule;
-        compile(ctx);
-        if rule.is_some() && recorded(&ctx.lists) == before {
-            ctx.lists.record(ListOp::Deferred(Box::new(|_| {})));
-        }
-        ctx.lists.outside_begin_end_only = None;
-    }
-
     /// Appends a command to the list being compiled.
     pub fn record(&mut self, op: ListOp) {
-        let op = match (op, self.outside_begin_end_only) {
-            (ListOp::Deferred(run), Some(command)) => ListOp::Deferred(Box::new(move |ctx| {
-                if ctx.inside_begin_end() {
-                    ctx.set_error_in(gl::GL_INVALID_OPERATION, command);
-                } else {
-                    run(ctx);
-                }
-            })),
-            (op, _) => op,
-        };
         if let Some(c) = &mut self.compiling {
             c.ops.push(op);
         }
+    }
+
+    /// How many commands the list being compiled holds: a mark for [`ListState::guard_since`].
+    pub fn mark(&self) -> usize {
+        self.compiling.as_ref().map_or(0, |c| c.ops.len())
+    }
+
+    /// Groups the commands recorded since `mark` (by a command's `compile_` method, whose
+    /// closures call the command's method directly) into one that, when the list is executed
+    /// between `glBegin` and `glEnd`, raises `GL_INVALID_OPERATION` instead of running them
+    /// (section 2.6.3), as recorded scalar commands do through their `exec_` function. When
+    /// the method recorded nothing (a draw with no array enabled), the check alone is recorded.
+    pub fn guard_since(&mut self, mark: usize) {
+        let Some(c) = &mut self.compiling else { return };
+        let ops: Vec<ListOp> = c.ops.drain(mark..).collect();
+        c.ops.push(ListOp::Deferred(Box::new(move |ctx| {
+            if ctx.inside_begin_end() {
+                ctx.set_error(gl::GL_INVALID_OPERATION);
+            } else {
+                ctx.run_list_ops(&ops);
+            }
+        })));
     }
 }
 
@@ -183,14 +176,19 @@ impl Context {
         let Some(ops) = self.shared.lock().lists.lists.get(&list).cloned() else { return };
         self.lists.depth += 1;
         let outer = std::mem::replace(&mut self.lists.executing_name, list);
-        for op in ops.iter() {
+        self.run_list_ops(&ops);
+        self.lists.executing_name = outer;
+        self.lists.depth -= 1;
+    }
+
+    /// Executes recorded commands in order.
+    fn run_list_ops(&mut self, ops: &[ListOp]) {
+        for op in ops {
             match op {
                 ListOp::Call(call) => dispatch::execute(self, call),
                 ListOp::Deferred(f) => f(self),
             }
         }
-        self.lists.executing_name = outer;
-        self.lists.depth -= 1;
     }
 
     /// `glCallLists`: calls `base + offset` for each of `n` offsets of type `type_`.
@@ -278,5 +276,65 @@ impl Context {
     /// `glListBase` value.
     pub fn list_base(&self) -> GLuint {
         self.lists.base
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::translate::{Context, dispatch, gl};
+
+    /// Compiles `Begin(POINTS)`, `command`, `End` into list 1 with `mode`; returns the error
+    /// left by compiling and the one left by calling the list.
+    fn compile_and_call(ctx: &mut Context, mode: gl::GLenum, command: impl Fn(&mut Context)) -> [gl::GLenum; 2] {
+        unsafe {
+            dispatch::glNewList(ctx, 1, mode);
+            dispatch::glBegin(ctx, gl::GL_POINTS);
+            command(ctx);
+            dispatch::glEnd(ctx);
+            dispatch::glEndList(ctx);
+        }
+        let compiled = ctx.glGetError();
+        unsafe { dispatch::glCallList(ctx, 1) };
+        [compiled, ctx.glGetError()]
+    }
+
+    #[test]
+    fn pointer_commands_in_a_list_obey_the_begin_end_rule() {
+        let (mut ctx, _) = Context::with_recording();
+        let one = 1.0f32;
+        let tex_env = |c: &mut Context| unsafe {
+            dispatch::glTexEnvfv(c, gl::GL_TEXTURE_ENV, gl::GL_ALPHA_SCALE, &one);
+        };
+        let invalid = gl::GL_INVALID_OPERATION;
+        assert_eq!(compile_and_call(&mut ctx, gl::GL_COMPILE, tex_env), [gl::GL_NO_ERROR, invalid]);
+        assert_eq!(compile_and_call(&mut ctx, gl::GL_COMPILE_AND_EXECUTE, tex_env), [invalid, invalid]);
+        let raster = |c: &mut Context| unsafe { dispatch::glRasterPos2fv(c, [1.0f32, 2.0].as_ptr()) };
+        assert_eq!(compile_and_call(&mut ctx, gl::GL_COMPILE_AND_EXECUTE, raster), [invalid, invalid]);
+        // A draw with no array enabled records nothing to draw, but still the rule.
+        let draw = |c: &mut Context| unsafe { dispatch::glDrawArrays(c, gl::GL_POINTS, 0, 1) };
+        assert_eq!(compile_and_call(&mut ctx, gl::GL_COMPILE, draw), [gl::GL_NO_ERROR, invalid]);
+        // Outside Begin/End the guarded command runs when the list is called.
+        let two = 2.0f32;
+        unsafe {
+            dispatch::glNewList(&mut ctx, 2, gl::GL_COMPILE);
+            dispatch::glTexEnvfv(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_ALPHA_SCALE, &two);
+            dispatch::glEndList(&mut ctx);
+            dispatch::glCallList(&mut ctx, 2);
+        }
+        let mut scale = 0.0f32;
+        unsafe { ctx.glGetTexEnvfv(gl::GL_TEXTURE_ENV, gl::GL_ALPHA_SCALE, &mut scale) };
+        assert_eq!((scale, ctx.glGetError()), (2.0, gl::GL_NO_ERROR));
+    }
+
+    #[test]
+    fn client_side_commands_are_refused_inside_begin_end() {
+        let (mut ctx, _) = Context::with_recording();
+        unsafe {
+            dispatch::glBegin(&mut ctx, gl::GL_POINTS);
+            dispatch::glEnableClientState(&mut ctx, gl::GL_VERTEX_ARRAY);
+            dispatch::glEnd(&mut ctx);
+        }
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+        assert_eq!(ctx.glIsEnabled(gl::GL_VERTEX_ARRAY), gl::GL_FALSE);
     }
 }

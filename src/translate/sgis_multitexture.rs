@@ -13,7 +13,7 @@ pub const GL_TEXTURE0_SGIS: GLenum = 0x835E;
 /// The ARB unit enum for an SGIS unit enum, if the unit exists.
 fn arb_unit(target: GLenum) -> Option<GLenum> {
     let i = target.checked_sub(GL_TEXTURE0_SGIS)?;
-    ((i as usize) < MAX_TEXTURE_UNITS).then_some(gl::GL_TEXTURE0 + i)
+    ((i as usize) < MAX_TEXTURE_UNITS).then(|| gl::GL_TEXTURE0 + i)
 }
 
 impl Context {

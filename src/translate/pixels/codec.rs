@@ -338,10 +338,23 @@ pub fn to_rgba(format: GLenum, g: &[f32]) -> [f32; 4] {
     }
 }
 
-/// Selects the components of `format` from an RGBA colour (section 4.3.2, "Conversion to L"):
-/// luminance is R + G + B clamped to [0, 1].
-pub fn from_rgba(format: GLenum, c: [f32; 4], out: &mut Vec<f32>) {
-    let l = (c[0] + c[1] + c[2]).clamp(0.0, 1.0);
+/// How packing forms `GL_LUMINANCE` from a colour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Luminance {
+    /// R + G + B clamped to [0, 1]: `glReadPixels` (section 4.3.2, "Conversion to L").
+    Sum,
+    /// R alone: `glGetTexImage` and `glGetColorTable`, whose table 6.1 puts a luminance
+    /// texel in R (Mesa does the same; piglit's `getteximage-luminance` checks it).
+    Red,
+}
+
+/// Selects the components of `format` from an RGBA colour, luminance formed as `luminance`
+/// says.
+pub fn from_rgba(format: GLenum, c: [f32; 4], luminance: Luminance, out: &mut Vec<f32>) {
+    let l = match luminance {
+        Luminance::Sum => (c[0] + c[1] + c[2]).clamp(0.0, 1.0),
+        Luminance::Red => c[0],
+    };
     match format {
         gl::GL_RED => out.push(c[0]),
         gl::GL_GREEN => out.push(c[1]),
@@ -489,9 +502,10 @@ mod tests {
         c.encode(&mut out, &[1.0, -1.0, 0.5, -0.5], 1, 1, 1);
         assert_eq!(out.map(|b| b as i8), [127, -128, 63, -64]);
         let mut v = Vec::new();
-        from_rgba(gl::GL_BGR, [0.1, 0.2, 0.3, 1.0], &mut v);
-        from_rgba(gl::GL_LUMINANCE, [0.5, 0.25, 0.5, 1.0], &mut v);
-        assert_eq!(v, [0.3, 0.2, 0.1, 1.0]);
+        from_rgba(gl::GL_BGR, [0.1, 0.2, 0.3, 1.0], Luminance::Sum, &mut v);
+        from_rgba(gl::GL_LUMINANCE, [0.5, 0.25, 0.5, 1.0], Luminance::Sum, &mut v);
+        from_rgba(gl::GL_LUMINANCE_ALPHA, [0.5, 0.25, 0.125, 0.75], Luminance::Red, &mut v);
+        assert_eq!(v, [0.3, 0.2, 0.1, 1.0, 0.5, 0.75]);
         assert_eq!(to_rgba(gl::GL_LUMINANCE_ALPHA, &[0.5, 0.25]), [0.5, 0.5, 0.5, 0.25]);
     }
 }

@@ -174,17 +174,18 @@ impl Context {
         if read.len() != w * h {
             return log::warn!("glReadPixels: the renderer returned {} pixels instead of {}", read.len(), w * h);
         }
-        let values = self.transfer_for_pack(f, &read);
+        let values = self.transfer_for_pack(f, &read, codec::Luminance::Sum);
         unsafe { self.pack_client((f, t), [w, h, 1], pixels, &values, "glReadPixels") }
     }
 
     /// Pixel transfer for packing (section 4.3.2): colours are scaled, biased, mapped, clamped
-    /// and converted to `format`; depth and stencil values take their own transfer.
-    pub(crate) fn transfer_for_pack(&self, f: codec::Format, read: &[[f32; 4]]) -> Vec<f32> {
+    /// and converted to `format` (luminance formed as `luminance` says); depth and stencil
+    /// values take their own transfer.
+    pub(crate) fn transfer_for_pack(&self, f: codec::Format, read: &[[f32; 4]], luminance: codec::Luminance) -> Vec<f32> {
         let t = &self.pixels.transfer;
         let mut values = Vec::with_capacity(read.len() * f.components);
         match f.kind {
-            Kind::Color => read.iter().for_each(|&c| codec::from_rgba(f.gl, t.color(c), &mut values)),
+            Kind::Color => read.iter().for_each(|&c| codec::from_rgba(f.gl, t.color(c), luminance, &mut values)),
             _ => {
                 let first: Vec<f32> = read.iter().map(|c| c[0]).collect();
                 match t.apply(f, &first, true) {

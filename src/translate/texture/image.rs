@@ -14,7 +14,7 @@ use super::super::convert::write_slice;
 use super::super::get::Value;
 use super::super::gl::{self, GLenum, GLfloat, GLint, GLsizei};
 use super::super::pixels::Unpacked;
-use super::super::pixels::codec::{Format, Kind};
+use super::super::pixels::codec::{Format, Kind, Luminance};
 use super::formats::{self, Base, Internal, S3tc};
 use super::objects::{Level, Target, TextureObject};
 use super::palette::Palette;
@@ -531,7 +531,7 @@ impl Context {
             return self.set_error_in(gl::GL_INVALID_OPERATION, CMD);
         }
         let rgba: Vec<[f32; 4]> = lvl.image.texels.chunks_exact(4).map(|c| formats::texel_to_rgba(texel_format, [c[0], c[1], c[2], c[3]])).collect();
-        let values = self.transfer_for_pack(f, &rgba);
+        let values = self.transfer_for_pack(f, &rgba, Luminance::Red);
         unsafe { self.pack_client((f, t), lvl.size, pixels, &values, CMD) }
     }
 
@@ -854,6 +854,18 @@ mod more_tests {
         unsafe { dispatch::glTexSubImage3D(&mut ctx, gl::GL_TEXTURE_3D, 0, 1, 0, 1, 1, 1, 1, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, one.as_ptr().cast()) };
         unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_3D, 0, gl::GL_LUMINANCE, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
         assert_eq!(out, [6, 7, 8, 9, 12, 200, 14, 15]);
+    }
+
+    #[test]
+    fn rgba_texels_read_as_luminance_give_red() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+        let texel = [128u8, 64, 32, 255];
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 1, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texel.as_ptr().cast()) };
+        let mut out = [0u8; 4];
+        unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 0, gl::GL_LUMINANCE_ALPHA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+        assert_eq!(out[..2], [128, 255]);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
     }
 
     #[test]

@@ -11,7 +11,7 @@ use super::super::convert::write_slice;
 use super::super::get::Value;
 use super::super::gl::{self, GLenum, GLfloat, GLint, GLsizei};
 use super::super::pixels::Unpacked;
-use super::super::pixels::codec::Kind;
+use super::super::pixels::codec::{Kind, Luminance};
 use super::formats::{self, Base};
 use super::image::resolve_indices;
 use super::objects::{Target, TextureObject};
@@ -197,7 +197,7 @@ impl Context {
         let palette = self.with_palette(pt, |p| p.clone());
         let base = palette.base.unwrap_or(TexelFormat::Rgba);
         let rgba: Vec<[f32; 4]> = palette.entries.iter().map(|&e| formats::texel_to_rgba(base, e)).collect();
-        let values = self.transfer_for_pack(f, &rgba);
+        let values = self.transfer_for_pack(f, &rgba, Luminance::Red);
         unsafe { self.pack_client((f, t), [rgba.len(), 1, 1], data, &values, CMD) }
     }
 

@@ -2,11 +2,12 @@
 //! `glGetTexParameter*`, and their conversion to the renderer's [`Sampler`].
 
 use super::super::Context;
-use super::super::convert::{norm_i32, read_slice, write_slice};
+use super::super::convert::{norm_i32, read_slice, scalar_as_vector, write_slice};
 use super::super::get::Value;
 use super::super::gl::{self, GLenum, GLfloat, GLint};
 use super::super::lists::ListOp;
 use super::objects::Target;
+use super::super::enums::COMPARE;
 use crate::frame::texture::{CompareFunc, DepthMode, Filter, MinFilter, Sampler, Wrap};
 
 /// Parameters of a texture object.
@@ -86,7 +87,7 @@ impl TexParams {
             lod: self.lod,
             levels: self.levels.map(|l| l.max(0) as u32),
             compare: (self.compare_mode == gl::GL_COMPARE_R_TO_TEXTURE)
-                .then_some(if self.compare_func == gl::GL_GEQUAL { CompareFunc::GreaterEqual } else { CompareFunc::LessEqual }),
+                .then(|| COMPARE.parse(self.compare_func).unwrap_or(CompareFunc::LessEqual)),
             depth_mode: match self.depth_mode {
                 gl::GL_INTENSITY => DepthMode::Intensity,
                 gl::GL_ALPHA => DepthMode::Alpha,
@@ -134,7 +135,9 @@ impl TexParams {
             gl::GL_GENERATE_MIPMAP => self.generate_mipmap = first != 0.0,
             gl::GL_DEPTH_TEXTURE_MODE => self.depth_mode = pick(&[gl::GL_LUMINANCE, gl::GL_INTENSITY, gl::GL_ALPHA])?,
             gl::GL_TEXTURE_COMPARE_MODE => self.compare_mode = pick(&[gl::GL_NONE, gl::GL_COMPARE_R_TO_TEXTURE])?,
-            gl::GL_TEXTURE_COMPARE_FUNC => self.compare_func = pick(&[gl::GL_LEQUAL, gl::GL_GEQUAL])?,
+            gl::GL_TEXTURE_COMPARE_FUNC => {
+                self.compare_func = COMPARE.parse(as_enum).map(|_| as_enum).ok_or(gl::GL_INVALID_ENUM)?
+            }
             _ => return Err(gl::GL_INVALID_ENUM),
         }
         Ok(())
@@ -186,16 +189,18 @@ impl Context {
         }
     }
 
-    /// `glTexParameterf`: `GL_INVALID_ENUM` for an unknown target or name, a bad enum value, or
-    /// `GL_TEXTURE_BORDER_COLOR` (which needs the vector form); `GL_INVALID_VALUE` for a
-    /// negative base or max level.
+    /// `glTexParameterf`: `GL_INVALID_ENUM` for an unknown target or name or a bad enum value;
+    /// `GL_INVALID_VALUE` for a negative base or max level. `GL_TEXTURE_BORDER_COLOR` becomes
+    /// (param, 0, 0, 0) (see [`scalar_as_vector`]).
     pub fn glTexParameterf(&mut self, target: GLenum, pname: GLenum, param: GLfloat) {
-        self.tex_parameter(target, pname, &[f64::from(param)], "glTexParameterf");
+        self.tex_parameter(target, pname, &scalar_as_vector(f64::from(param), param_count(pname)), "glTexParameterf");
     }
 
-    /// `glTexParameteri`.
+    /// `glTexParameteri`: as `glTexParameterf`; a border colour is normalized like
+    /// `glTexParameteriv`'s.
     pub fn glTexParameteri(&mut self, target: GLenum, pname: GLenum, param: GLint) {
-        self.tex_parameter(target, pname, &[f64::from(param)], "glTexParameteri");
+        let value = if pname == gl::GL_TEXTURE_BORDER_COLOR { f64::from(norm_i32(param)) } else { f64::from(param) };
+        self.tex_parameter(target, pname, &scalar_as_vector(value, param_count(pname)), "glTexParameteri");
     }
 
     /// `glTexParameterfv`.
@@ -303,12 +308,33 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BASE_LEVEL, -1);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
-        ctx.glTexParameterf(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BORDER_COLOR, 1.0);
-        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glTexParameterf(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BORDER_COLOR, 0.5);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        let mut border = [9.0f32; 4];
+        unsafe { ctx.glGetTexParameterfv(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BORDER_COLOR, border.as_mut_ptr()) };
+        assert_eq!(border, [0.5, 0.0, 0.0, 0.0]);
         ctx.glTexParameteri(gl::GL_TEXTURE_CUBE_MAP_POSITIVE_X, gl::GL_TEXTURE_MIN_FILTER, gl::GL_LINEAR as i32);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         let s = ctx.with_bound_texture(super::Target::D2, |o| o.params.sampler());
         assert_eq!(s.wrap[1], crate::frame::texture::Wrap::MirroredRepeat);
         assert_eq!(s.min_filter.mipmap, None);
+    }
+
+    #[test]
+    fn every_compare_function_is_accepted() {
+        use crate::frame::texture::CompareFunc;
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+        ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_COMPARE_MODE, gl::GL_COMPARE_R_TO_TEXTURE as i32);
+        for (func, expected) in [(gl::GL_NOTEQUAL, CompareFunc::NotEqual), (gl::GL_NEVER, CompareFunc::Never)] {
+            ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_COMPARE_FUNC, func as i32);
+            let mut read = 0;
+            unsafe { ctx.glGetTexParameteriv(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_COMPARE_FUNC, &mut read) };
+            assert_eq!(read, func as i32);
+            let sampler = ctx.with_bound_texture(super::Target::D2, |o| o.params.sampler());
+            assert_eq!(sampler.compare, Some(expected));
+        }
+        ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_COMPARE_FUNC, gl::GL_FRONT as i32);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
     }
 }

@@ -5,7 +5,7 @@
 use glam::DVec4;
 
 use super::super::Context;
-use super::super::convert::{read_slice, write_slice};
+use super::super::convert::{read_slice, scalar_as_vector, write_slice};
 use super::super::gl::{self, GLdouble, GLenum, GLfloat, GLint};
 use super::super::lists::ListOp;
 
@@ -50,8 +50,7 @@ fn gen_count(pname: GLenum) -> usize {
 }
 
 impl Context {
-    /// Sets generation state: `GL_INVALID_ENUM` for an unknown coordinate or name, a plane
-    /// given to a scalar command, or a mode that coordinate cannot use (`SPHERE_MAP` for r and
+    /// Sets generation state: `GL_INVALID_ENUM` for an unknown coordinate or name, or a mode that coordinate cannot use (`SPHERE_MAP` for r and
     /// q, `NORMAL_MAP` and `REFLECTION_MAP` for q).
     fn tex_gen(&mut self, coord: GLenum, pname: GLenum, v: &[f64], command: &'static str) {
         let result = (|| {
@@ -89,17 +88,17 @@ impl Context {
         }
     }
 
-    /// `glTexGeni`.
+    /// `glTexGeni`: a plane becomes (param, 0, 0, 0) (see [`scalar_as_vector`]).
     pub fn glTexGeni(&mut self, coord: GLenum, pname: GLenum, param: GLint) {
-        self.tex_gen(coord, pname, &[f64::from(param)], "glTexGeni");
+        self.tex_gen(coord, pname, &scalar_as_vector(f64::from(param), gen_count(pname)), "glTexGeni");
     }
-    /// `glTexGenf`.
+    /// `glTexGenf`: as `glTexGeni`.
     pub fn glTexGenf(&mut self, coord: GLenum, pname: GLenum, param: GLfloat) {
-        self.tex_gen(coord, pname, &[f64::from(param)], "glTexGenf");
+        self.tex_gen(coord, pname, &scalar_as_vector(f64::from(param), gen_count(pname)), "glTexGenf");
     }
-    /// `glTexGend`.
+    /// `glTexGend`: as `glTexGeni`.
     pub fn glTexGend(&mut self, coord: GLenum, pname: GLenum, param: GLdouble) {
-        self.tex_gen(coord, pname, &[param], "glTexGend");
+        self.tex_gen(coord, pname, &scalar_as_vector(param, gen_count(pname)), "glTexGend");
     }
 
     /// Reads the values of a vector texgen command.
@@ -230,8 +229,10 @@ mod tests {
         let mut f = [0.0f32; 4];
         unsafe { ctx.glGetTexGenfv(gl::GL_Q, gl::GL_EYE_PLANE, f.as_mut_ptr()) };
         assert_eq!(f, [0.0, 0.0, 1.0, 5.0]);
-        ctx.glTexGenf(gl::GL_S, gl::GL_EYE_PLANE, 1.0);
-        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glTexGenf(gl::GL_S, gl::GL_OBJECT_PLANE, 2.0);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        unsafe { ctx.glGetTexGenfv(gl::GL_S, gl::GL_OBJECT_PLANE, f.as_mut_ptr()) };
+        assert_eq!(f, [2.0, 0.0, 0.0, 0.0]);
     }
 }
 
