@@ -58,7 +58,7 @@ impl Context {
 
     /// `glFogi`: scalar parameters only.
     pub fn glFogi(&mut self, pname: GLenum, param: GLint) {
-        self.scalar_param(fog_shape(pname), param as f32, "glFogi", |ctx, v| ctx.set_fog(pname, v, "glFogi"));
+        self.scalar_param(fog_shape(pname), param, "glFogi", |ctx, v| ctx.set_fog(pname, v, "glFogi"));
     }
 
     /// `glFogfv`.
@@ -130,7 +130,8 @@ mod tests {
         ctx.glFogi(gl::GL_FOG_MODE, gl::GL_LINE as i32);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glFogf(gl::GL_FOG_COLOR, 1.0);
-        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR, "a vector name takes (x, 0, 0, 0), as in Mesa");
+        assert_eq!(ctx.query(gl::GL_FOG_COLOR).unwrap().to_doubles(), [1.0, 0.0, 0.0, 0.0]);
         unsafe { ctx.glFogiv(gl::GL_FOG_COLOR, [i32::MAX, i32::MIN, i32::MAX, i32::MAX].as_ptr()) };
         let mut color = [0.0f32; 4];
         let mut ints = [0i32; 4];

@@ -170,7 +170,7 @@ impl Context {
 
     /// `glLighti`: scalar parameters only.
     pub fn glLighti(&mut self, light: GLenum, pname: GLenum, param: GLint) {
-        self.scalar_param(light_shape(pname), param as f32, "glLighti", |ctx, v| {
+        self.scalar_param(light_shape(pname), param, "glLighti", |ctx, v| {
             ctx.set_light(light, pname, v, "glLighti")
         });
     }
@@ -287,7 +287,7 @@ impl Context {
 
     /// `glLightModeli`: scalar parameters only.
     pub fn glLightModeli(&mut self, pname: GLenum, param: GLint) {
-        self.scalar_param(light_model_shape(pname), param as f32, "glLightModeli", |ctx, v| {
+        self.scalar_param(light_model_shape(pname), param, "glLightModeli", |ctx, v| {
             ctx.set_light_model(pname, v, "glLightModeli")
         });
     }
@@ -369,7 +369,7 @@ impl Context {
 
     /// `glMateriali`: `GL_SHININESS` only.
     pub fn glMateriali(&mut self, face: GLenum, pname: GLenum, param: GLint) {
-        self.scalar_param(material_shape(pname), param as f32, "glMateriali", |ctx, v| {
+        self.scalar_param(material_shape(pname), param, "glMateriali", |ctx, v| {
             ctx.set_material(face, pname, v, "glMateriali")
         });
     }
@@ -560,7 +560,7 @@ mod tests {
         ctx.glLightf(gl::GL_LIGHT0, gl::GL_LINEAR_ATTENUATION, -1.0);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
         ctx.glLightf(gl::GL_LIGHT0, gl::GL_AMBIENT, 1.0);
-        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR, "a vector name takes (x, 0, 0, 0), as in Mesa");
         ctx.glLightf(gl::GL_LIGHT0 + 8, gl::GL_SPOT_EXPONENT, 1.0);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glLighti(gl::GL_LIGHT2, gl::GL_SPOT_CUTOFF, 45);
@@ -650,8 +650,6 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
         ctx.glLightModeli(gl::GL_LIGHT_MODEL_COLOR_CONTROL, gl::GL_FRONT as i32);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
-        ctx.glLightModelf(gl::GL_LIGHT_MODEL_AMBIENT, 1.0);
-        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         assert_eq!(
             ctx.query(gl::GL_LIGHT_MODEL_COLOR_CONTROL).unwrap().to_ints(),
             [gl::GL_SEPARATE_SPECULAR_COLOR as i32]
@@ -662,6 +660,9 @@ mod tests {
         let expected = (0.2f64 * f64::from(i32::MAX)).round() as i32;
         assert!((ambient[0] - expected).abs() < 256, "{ambient:?}");
         assert_eq!(ambient[3], i32::MAX);
+        ctx.glLightModelf(gl::GL_LIGHT_MODEL_AMBIENT, 1.0);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR, "a vector name takes (x, 0, 0, 0), as in Mesa");
+        assert_eq!(ctx.query(gl::GL_LIGHT_MODEL_AMBIENT).unwrap().to_doubles(), [1.0, 0.0, 0.0, 0.0]);
         ctx.glShadeModel(gl::GL_FLAT);
         assert_eq!(ctx.query(gl::GL_SHADE_MODEL).unwrap().to_ints(), [gl::GL_FLAT as i32]);
         ctx.glShadeModel(gl::GL_LINE);

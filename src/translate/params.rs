@@ -69,18 +69,20 @@ pub(crate) unsafe fn read_params<T: Param>(ptr: *const T, shape: Shape) -> Optio
 }
 
 impl Context {
-    /// Runs a scalar form (`glLightf`): `set` gets `[value, 0, 0, 0]` when `shape` is a scalar
-    /// parameter; `GL_INVALID_ENUM` otherwise (vector or unknown parameter names).
-    pub(crate) fn scalar_param(
+    /// Runs a scalar form (`glLightf`, `glMateriali`): `set` gets `[value, 0, 0, 0]`, integer
+    /// colours mapped as in the vector form. A name that takes several values (`GL_AMBIENT`)
+    /// reads (value, 0, 0, 0) as Mesa does (OpenGL 1.5 defines no error for it; piglit's
+    /// `gl-1.0-beginend-coverage` expects it); `GL_INVALID_ENUM` for an unknown name.
+    pub(crate) fn scalar_param<T: Param>(
         &mut self,
         shape: Option<Shape>,
-        value: f32,
+        value: T,
         command: &'static str,
         set: impl FnOnce(&mut Context, [f32; 4]),
     ) {
         match shape {
-            Some(Shape::SCALAR) => set(self, [value, 0.0, 0.0, 0.0]),
-            _ => self.set_error_in(gl::GL_INVALID_ENUM, command),
+            Some(shape) => set(self, [value.to_f32(shape.color), 0.0, 0.0, 0.0]),
+            None => self.set_error_in(gl::GL_INVALID_ENUM, command),
         }
     }
 

@@ -139,7 +139,7 @@ impl Context {
 
     /// `glPointParameteri` (OpenGL 1.4).
     pub fn glPointParameteri(&mut self, pname: GLenum, param: GLint) {
-        self.scalar_param(point_shape(pname), param as f32, "glPointParameteri", |ctx, v| {
+        self.scalar_param(point_shape(pname), param, "glPointParameteri", |ctx, v| {
             ctx.set_point_parameter(pname, v, "glPointParameteri")
         });
     }
@@ -273,13 +273,14 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
         ctx.glPointParameterf(gl::GL_POINT_FADE_THRESHOLD_SIZE, -1.0);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
-        ctx.glPointParameterf(gl::GL_POINT_DISTANCE_ATTENUATION, 1.0);
-        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         assert_eq!(ctx.query(gl::GL_POINT_SIZE).unwrap().to_doubles(), [4.0]);
         assert_eq!(ctx.query(gl::GL_POINT_SIZE_MIN).unwrap().to_doubles(), [2.0]);
         assert_eq!(ctx.query(gl::GL_POINT_SIZE_MAX).unwrap().to_doubles(), [10.0]);
         assert_eq!(ctx.query(gl::GL_POINT_DISTANCE_ATTENUATION).unwrap().to_doubles(), [0.0, 0.5, 0.25]);
         assert_eq!(ctx.query(gl::GL_POINT_FADE_THRESHOLD_SIZE).unwrap().to_doubles(), [1.0]);
+        ctx.glPointParameterf(gl::GL_POINT_DISTANCE_ATTENUATION, 2.0);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR, "a vector name takes (x, 0, 0), as in Mesa");
+        assert_eq!(ctx.query(gl::GL_POINT_DISTANCE_ATTENUATION).unwrap().to_doubles(), [2.0, 0.0, 0.0]);
 
         // The vector form compiled into a list.
         unsafe {
