@@ -64,6 +64,7 @@ const EXTENSIONS: &str = concat!(
     "GL_IBM_texture_mirrored_repeat ",
     "GL_NV_blend_square ",
     "GL_SGIS_generate_mipmap ",
+    "GL_SGIS_multitexture ",
     "GL_SGIS_texture_edge_clamp ",
     "GL_SGIS_texture_lod ",
     "\0"
