@@ -124,7 +124,7 @@ fn check_attribs(pairs: &[(c_int, c_int)]) -> Result<(), XError> {
 }
 
 /// `glXCreateContextAttribsARB` (GLX_ARB_create_context): OpenGL 1.0 to 1.5 contexts; see
-/// [`check_attribs`] for what is refused. Errors go to the application's X error handler.
+/// `check_attribs` for what is refused. Errors go to the application's X error handler.
 ///
 /// # Safety
 /// `dpy` is a live display; `attrib_list` is null or `None`-terminated.

@@ -1,10 +1,10 @@
 //! The server attribute stack (OpenGL 1.5 section 6.1.14): `glPushAttrib` saves the groups
 //! its mask names, `glPopAttrib` restores them.
 //!
-//! Each group is a line of [`GROUPS`]: a bit and a saver that captures the group's state as a
+//! Each group is a line of `GROUPS`: a bit and a saver that captures the group's state as a
 //! closure putting it back ([`Restore`]). A group whose state spans several modules has one
 //! line per module; savers of state other modules own are written there, with the type
-//! [`Saver`] (`GL_CURRENT_BIT`: the current values of the vertex module and the raster
+//! `Saver` (`GL_CURRENT_BIT`: the current values of the vertex module and the raster
 //! position of the pixel module).
 
 use super::Context;

@@ -1,4 +1,4 @@
-//! The generated layer between the C exports and [`Context`](super::Context): for each command,
+//! The generated layer between the C exports and [`super::Context`]: for each command,
 //! display-list recording (OpenGL 1.5 section 5.4), the `glBegin`/`glEnd` rule (section 2.6.3),
 //! attribute-family conversions (`glColor3ub` → `glColor4f`, table 2.9) and aliases
 //! (`glActiveTextureARB` → `glActiveTexture`). See `build/` for the rules.

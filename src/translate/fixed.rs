@@ -2,7 +2,7 @@
 //! rasterization, clip planes, hints, clear values, buffer selection, the attribute stack)
 //! and its per-draw snapshot, [`RasterState`].
 //!
-//! Every change goes through [`Context::fixed_mut`], which bumps a version counter; with the
+//! Every change goes through `Context::fixed_mut`, which bumps a version counter; with the
 //! capability version (`ctx.enables.version`) and the viewport, it keys a cached snapshot, so
 //! [`Context::raster_snapshot`], called for every draw, only rebuilds after a change.
 

@@ -275,7 +275,7 @@ unsafe fn read_list(list: *const c_int) -> Vec<c_int> {
 /// `glXCreatePbuffer`, `glXCreateContextAttribsARB`).
 ///
 /// # Safety
-/// As [`read_list`].
+/// As `read_list`.
 pub unsafe fn read_pairs(list: *const c_int) -> Vec<(c_int, c_int)> {
     let mut out = Vec::new();
     if list.is_null() {

@@ -1,8 +1,8 @@
 //! The pixel path of OpenGL 1.5 (sections 3.6–3.7, 4.3): pixel storage modes, pixel transfer
 //! and maps, the raster position, `glBitmap`, `glDrawPixels`, `glCopyPixels`,
 //! `glReadPixels`, `glPixelZoom` and `glAccum`. Images are read from client memory here
-//! ([`Context::unpack_client`]) for texture uploads too, and written back by
-//! [`Context::pack_client`].
+//! (`Context::unpack_client`) for texture uploads too, and written back by
+//! `Context::pack_client`.
 //!
 //! Bitmaps, images and copies go into [`crate::frame::Frame::pixels`] in order with the draws;
 //! read-backs ask the renderer through [`crate::render::FrameSink::read_pixels`].

@@ -389,7 +389,7 @@ impl Context {
     }
 
     /// `glTexSubImage2D`: replaces a region of an existing level (errors as
-    /// [`Context::check_sub_image`] and the format checks of `glTexImage2D`).
+    /// `Context::check_sub_image` and the format checks of `glTexImage2D`).
     ///
     /// # Safety
     /// A non-null `pixels` must point to the image the unpack modes describe.
