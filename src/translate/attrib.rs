@@ -8,6 +8,7 @@
 //! position of the pixel module).
 
 use super::Context;
+use super::enable::UNIT_CAPS;
 use super::gl::{self, GLbitfield, GLenum};
 use super::get::Value;
 use super::limits::{MAX_ATTRIB_STACK_DEPTH, MAX_CLIP_PLANES, MAX_LIGHTS, MAX_TEXTURE_UNITS};
@@ -48,18 +49,6 @@ const GROUPS: &[(GLbitfield, Saver)] = &[
     (gl::GL_TEXTURE_BIT, save_texture_objects),
     (gl::GL_PIXEL_MODE_BIT, save_read_buffer),
     (gl::GL_PIXEL_MODE_BIT, save_pixel_mode),
-];
-
-/// Per-unit capabilities of the texture group.
-const TEXTURE_CAPS: [GLenum; 8] = [
-    gl::GL_TEXTURE_1D,
-    gl::GL_TEXTURE_2D,
-    gl::GL_TEXTURE_3D,
-    gl::GL_TEXTURE_CUBE_MAP,
-    gl::GL_TEXTURE_GEN_S,
-    gl::GL_TEXTURE_GEN_T,
-    gl::GL_TEXTURE_GEN_R,
-    gl::GL_TEXTURE_GEN_Q,
 ];
 
 /// Saves global capabilities.
@@ -210,11 +199,11 @@ fn save_multisample(ctx: &Context, out: &mut Vec<Restore>) {
 }
 
 fn save_texture_enables(ctx: &Context, out: &mut Vec<Restore>) {
-    let units: Vec<[bool; TEXTURE_CAPS.len()]> =
-        (0..MAX_TEXTURE_UNITS).map(|u| TEXTURE_CAPS.map(|c| ctx.enables.unit_on(u, c))).collect();
+    let units: Vec<[bool; UNIT_CAPS.len()]> =
+        (0..MAX_TEXTURE_UNITS).map(|u| UNIT_CAPS.map(|c| ctx.enables.unit_on(u, c))).collect();
     out.push(value((units, ctx.texunit.active), |ctx, (units, active)| {
         for (u, on) in units.iter().enumerate() {
-            for (&cap, &on) in TEXTURE_CAPS.iter().zip(on) {
+            for (&cap, &on) in UNIT_CAPS.iter().zip(on) {
                 ctx.enables.set(cap, u, on);
             }
         }

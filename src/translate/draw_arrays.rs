@@ -311,12 +311,7 @@ impl Context {
         type_: GLenum,
         indices: *const c_void,
     ) {
-        if end < start {
-            return self.set_error_in(gl::GL_INVALID_VALUE, "glDrawRangeElements");
-        }
-        if let Some((p, idx)) = unsafe { self.read_elements(mode, count, type_, indices, "glDrawRangeElements") } {
-            self.draw_now(p, Elements::Indices(&idx), "glDrawRangeElements");
-        }
+        unsafe { self.draw_range_elements(start, end, mode, count, type_, indices, Context::draw_now) }
     }
 
     /// `glDrawRangeElements` in a display list.
@@ -332,11 +327,26 @@ impl Context {
         type_: GLenum,
         indices: *const c_void,
     ) {
+        unsafe { self.draw_range_elements(start, end, mode, count, type_, indices, Context::draw_compiled) }
+    }
+
+    /// `glDrawRangeElements` checks, then `draw` (now, or into the list being compiled).
+    #[allow(clippy::too_many_arguments)] // the command's arguments and the draw to run
+    unsafe fn draw_range_elements(
+        &mut self,
+        start: GLuint,
+        end: GLuint,
+        mode: GLenum,
+        count: GLsizei,
+        type_: GLenum,
+        indices: *const c_void,
+        draw: fn(&mut Context, Primitive, Elements<'_>, &'static str),
+    ) {
         if end < start {
             return self.set_error_in(gl::GL_INVALID_VALUE, "glDrawRangeElements");
         }
         if let Some((p, idx)) = unsafe { self.read_elements(mode, count, type_, indices, "glDrawRangeElements") } {
-            self.draw_compiled(p, Elements::Indices(&idx), "glDrawRangeElements");
+            draw(self, p, Elements::Indices(&idx), "glDrawRangeElements");
         }
     }
 

@@ -60,7 +60,7 @@ const GLOBAL_CAPS: &[GLenum] = &[
 ];
 
 /// Capabilities of the active texture unit.
-const UNIT_CAPS: &[GLenum] = &[
+pub(crate) const UNIT_CAPS: [GLenum; 8] = [
     gl::GL_TEXTURE_1D,
     gl::GL_TEXTURE_2D,
     gl::GL_TEXTURE_3D,
