@@ -87,7 +87,7 @@ impl FuzzArgs for Args {
 
 #[test]
 fn random_calls_never_panic_and_raise_specified_errors() {
-    const CALLS: usize = 150_000;
+    const CALLS: usize = 200_000;
     let mut args = Args { state: 0x9E37_79B9_7F4A_7C15, input: vec![0; CLIENT_BYTES], output: vec![0; CLIENT_BYTES] };
     let (mut ctx, _sink) = Context::with_recording();
     ctx.bind_drawable(64, 64);
