@@ -41,6 +41,7 @@ impl Context {
             Some(CpuVertex {
                 position,
                 color: fixed.colors.front.primary,
+                back_color: fixed.colors.back.primary,
                 texcoord: self.generated_texcoord(0, obj, fixed.eye, normal, attribs.texcoords[0]),
                 edge_flag: batch.edge_flag(i),
             })
@@ -145,6 +146,47 @@ mod tests {
         assert_eq!(buf[0], tok(gl::GL_POINT_TOKEN));
         for (got, want) in buf[4..8].iter().zip([0.84, 0.84, 0.84, 1.0]) {
             assert!((got - want).abs() < 1e-6, "{:?}", &buf[..8]);
+        }
+    }
+
+    #[test]
+    fn two_sided_lighting_feeds_back_the_colour_of_the_visible_face() {
+        let mut c = ctx();
+        let mut buf = [0.0f32; 128];
+        let tri = |c: &mut Context, cw: bool| unsafe {
+            let (b, d) = if cw { (0.0, 0.5) } else { (0.5, 0.0) };
+            dispatch::glBegin(c, gl::GL_TRIANGLES);
+            dispatch::glVertex2f(c, 0.0, 0.0);
+            dispatch::glVertex2f(c, b, d);
+            dispatch::glVertex2f(c, d, b);
+            dispatch::glEnd(c);
+        };
+        let red = [1.0f32, 0.0, 0.0, 1.0];
+        let blue = [0.0f32, 0.0, 1.0, 1.0];
+        unsafe {
+            dispatch::glFeedbackBuffer(&mut c, 128, gl::GL_3D_COLOR, buf.as_mut_ptr());
+            dispatch::glRenderMode(&mut c, gl::GL_FEEDBACK);
+            dispatch::glEnable(&mut c, gl::GL_LIGHTING);
+            dispatch::glLightModeli(&mut c, gl::GL_LIGHT_MODEL_TWO_SIDE, 1);
+            let black = [0.0f32, 0.0, 0.0, 1.0];
+            dispatch::glLightModelfv(&mut c, gl::GL_LIGHT_MODEL_AMBIENT, black.as_ptr());
+            // No light is on: each face's colour is its material emission.
+            dispatch::glMaterialfv(&mut c, gl::GL_FRONT, gl::GL_EMISSION, red.as_ptr());
+            dispatch::glMaterialfv(&mut c, gl::GL_BACK, gl::GL_EMISSION, blue.as_ptr());
+        }
+        tri(&mut c, false); // counter-clockwise: front face
+        tri(&mut c, true); // clockwise: back face
+        unsafe { dispatch::glFrontFace(&mut c, gl::GL_CW) };
+        tri(&mut c, true); // clockwise is now the front face
+        unsafe { dispatch::glLightModeli(&mut c, gl::GL_LIGHT_MODEL_TWO_SIDE, 0) };
+        tri(&mut c, false); // a back face, but one-sided lighting: front colours
+        assert_eq!(unsafe { dispatch::glRenderMode(&mut c, gl::GL_RENDER) }, 4 * 23);
+        let colours: Vec<&[f32]> = buf[..4 * 23].chunks(23).map(|p| &p[2 + 3..2 + 7]).collect();
+        for (polygon, want) in buf[..4 * 23].chunks(23).zip([red, blue, red, red]) {
+            assert_eq!(polygon[..2], [tok(gl::GL_POLYGON_TOKEN), 3.0]);
+            for corner in polygon[2..].chunks(7) {
+                assert_eq!(corner[3..], want, "{colours:?}");
+            }
         }
     }
 

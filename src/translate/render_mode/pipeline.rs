@@ -14,8 +14,12 @@ use crate::translate::viewport::ViewportState;
 pub struct CpuVertex {
     /// Object-space position (x, y, z, w).
     pub position: [f32; 4],
-    /// The vertex colour, lit when lighting is enabled (see the module doc of [`super`]).
+    /// The vertex colour, lit when lighting is enabled (see the module doc of [`super`]); the
+    /// colour of points, lines and front-facing polygons.
     pub color: [f32; 4],
+    /// The colour of back-facing polygons: the back face's lit colour with two-sided lighting
+    /// (section 2.14.1), otherwise equal to `color`.
+    pub back_color: [f32; 4],
     /// Texture coordinates of unit 0 as issued (or generated); the texture matrix of unit 0 is
     /// applied here.
     pub texcoord: [f32; 4],
@@ -143,6 +147,7 @@ struct ClipVertex {
     clip: Vec4,
     eye: Vec4,
     color: Vec4,
+    back_color: Vec4,
     texcoord: Vec4,
 }
 
@@ -152,6 +157,7 @@ impl ClipVertex {
             clip: self.clip.lerp(other.clip, t),
             eye: self.eye.lerp(other.eye, t),
             color: self.color.lerp(other.color, t),
+            back_color: self.back_color.lerp(other.back_color, t),
             texcoord: self.texcoord.lerp(other.texcoord, t),
         }
     }
@@ -221,6 +227,7 @@ impl Transforms<'_> {
             clip: self.projection * eye,
             eye,
             color: Vec4::from_array(v.color),
+            back_color: Vec4::from_array(v.back_color),
             texcoord: self.texture * Vec4::from_array(v.texcoord),
         }
     }
@@ -236,10 +243,10 @@ impl Transforms<'_> {
     /// Runs `prim` through the pipeline and returns what rasterization would draw.
     pub fn shapes(&self, prim: &CpuPrimitive, rules: &RasterRules) -> Vec<Shape> {
         let v: Vec<ClipVertex> = prim.vertices.iter().map(|x| self.clip_vertex(x)).collect();
-        // With flat shading every vertex takes the provoking vertex's colour (table 2.8).
-        let vertex = |k: usize, provoking: usize| ClipVertex {
-            color: if rules.flat_shading { v[provoking].color } else { v[k].color },
-            ..v[k]
+        // With flat shading every vertex takes the provoking vertex's colours (table 2.8).
+        let vertex = |k: usize, provoking: usize| {
+            let source = if rules.flat_shading { v[provoking] } else { v[k] };
+            ClipVertex { color: source.color, back_color: source.back_color, ..v[k] }
         };
         let mut out = Vec::new();
         for part in assemble(prim) {
@@ -265,12 +272,13 @@ impl Transforms<'_> {
     }
 
     /// Clips one polygon, then applies culling and the polygon mode (sections 3.5.1, 3.5.4).
+    /// The window-space facing also picks the front or back colours (section 2.14.1).
     fn polygon(&self, out: &mut Vec<Shape>, rules: &RasterRules, poly: Vec<(ClipVertex, bool)>) {
         let clipped = clip_polygon(poly, self.clip_planes);
         if clipped.len() < 3 {
             return;
         }
-        let win: Vec<WindowVertex> = clipped.iter().map(|(v, _)| self.window_vertex(v)).collect();
+        let mut win: Vec<WindowVertex> = clipped.iter().map(|(v, _)| self.window_vertex(v)).collect();
         let area: f32 = (0..win.len())
             .map(|i| {
                 let (a, b) = (win[i].window, win[(i + 1) % win.len()].window);
@@ -286,6 +294,11 @@ impl Transforms<'_> {
         };
         if culled {
             return;
+        }
+        if !front {
+            for (w, (v, _)) in win.iter_mut().zip(&clipped) {
+                w.color = v.back_color.to_array();
+            }
         }
         let flags = clipped.iter().map(|(_, f)| *f);
         match rules.mode[usize::from(!front)] {

@@ -16,7 +16,7 @@ fn ctx() -> Context {
 }
 
 fn v(x: f32, y: f32, z: f32) -> CpuVertex {
-    CpuVertex { position: [x, y, z, 1.0], color: [1.0, 0.5, 0.0, 1.0], texcoord: [0.5, 0.25, 0.0, 1.0], edge_flag: true }
+    CpuVertex { position: [x, y, z, 1.0], color: [1.0, 0.5, 0.0, 1.0], back_color: [1.0, 0.5, 0.0, 1.0], texcoord: [0.5, 0.25, 0.0, 1.0], edge_flag: true }
 }
 
 fn draw(c: &mut Context, mode: GLenum, vs: &[CpuVertex]) -> bool {
