@@ -6,6 +6,12 @@
 //! alpha → (0, 0, 0, A), luminance → (L, L, L, 1), luminance-alpha → (L, L, L, A), intensity →
 //! (I, I, I, I), RGB → (R, G, B, 1), depth → (D, D, D, 1)); [`TexelFormat`] says which base
 //! format it was, because texture environments treat them differently.
+//!
+//! Depth levels also carry their values at full precision in [`TexImage::depth_values`] (one
+//! `f32` per texel, already rounded to the internal format's 16 or 24 bits; 32-bit formats keep
+//! the `f32`). A renderer reads depth levels from there (for example into a 32-bit float or
+//! `D32_SFLOAT` texture) when it compares (`GL_TEXTURE_COMPARE_MODE`) or expands them by
+//! [`DepthMode`]; the RGBA8 `texels` of a depth level are the same values at 8 bits.
 
 use std::sync::Arc;
 
@@ -94,6 +100,9 @@ pub struct TexImage {
     pub border: u32,
     /// `width * height * depth * 4` bytes.
     pub texels: Vec<u8>,
+    /// Depth formats: `width * height * depth` depth values in [0, 1], in the order of
+    /// `texels`; empty for colour formats (see the module doc).
+    pub depth_values: Vec<f32>,
 }
 
 impl std::fmt::Debug for TexImage {

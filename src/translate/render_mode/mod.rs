@@ -8,8 +8,10 @@
 //! [`Context::render_mode_raster_event`].
 //!
 //! Fed-back colours are lit and texture coordinates generated on the CPU by the fixed-function
-//! vertex stage ([`Context::fixed_vertex`], front colours; two-sided back colours are not
-//! selected per polygon yet), and the texture matrix of unit 0 is applied here.
+//! vertex stage ([`Context::fixed_vertex`]), and the texture matrix of unit 0 is applied here.
+//! Points, lines and front-facing polygons report the front colours; polygons whose window-space
+//! facing is back report the back colours, which differ only with two-sided lighting (section
+//! 2.14.1).
 
 pub mod batch;
 pub mod buffer;

@@ -80,7 +80,7 @@ impl Context {
         if !dest.proxy {
             let Some(bytes) = (unsafe { read_slice(data.cast::<u8>(), expected) }) else { return self.null_pointer(command) };
             let texels = s3tc::decode(format, size[0], size[1], &bytes).unwrap_or_default();
-            lvl.image = Arc::new(TexImage { width: size[0] as u32, height: size[1] as u32, depth: 1, border: 0, texels });
+            lvl.image = Arc::new(TexImage { width: size[0] as u32, height: size[1] as u32, depth: 1, border: 0, texels, depth_values: Vec::new() });
             lvl.compressed = Some(bytes.into());
         }
         self.store_level(dest, level, Some(lvl));

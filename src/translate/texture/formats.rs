@@ -1,6 +1,6 @@
 //! Texture internal formats (OpenGL 1.5 tables 3.15–3.16, ARB_texture_compression,
 //! EXT_texture_compression_s3tc, EXT_paletted_texture) and the conversion of pixels to the
-//! canonical RGBA8 texels glrt stores, and back (table 6.1).
+//! canonical RGBA8 texels glrt stores (depth also at full precision), and back (table 6.1).
 
 use super::super::gl::{self, GLenum};
 use crate::frame::texture::TexelFormat;
@@ -124,9 +124,9 @@ pub fn base_enum(base: Base) -> GLenum {
 }
 
 /// Bits of each stored component, for `glGetTexLevelParameter` (`GL_TEXTURE_RED_SIZE` ...
-/// `GL_TEXTURE_INTENSITY_SIZE`, `GL_TEXTURE_DEPTH_SIZE`): glrt stores 8 bits for each
-/// component the base format has.
-pub fn component_bits(base: Base, pname: GLenum) -> Option<i64> {
+/// `GL_TEXTURE_INTENSITY_SIZE`, `GL_TEXTURE_DEPTH_SIZE`): glrt stores 8 bits for each colour
+/// component the base format has, and depth with [`depth_bits`] of `internal`.
+pub fn component_bits(base: Base, internal: GLenum, pname: GLenum) -> Option<i64> {
     use TexelFormat::*;
     let has = match (pname, base) {
         (_, Base::ColorIndex) => false,
@@ -137,7 +137,34 @@ pub fn component_bits(base: Base, pname: GLenum) -> Option<i64> {
         (gl::GL_TEXTURE_DEPTH_SIZE, Base::Texel(f)) => f == Depth,
         _ => return None,
     };
-    Some(if has { 8 } else { 0 })
+    Some(match (has, pname) {
+        (false, _) => 0,
+        (true, gl::GL_TEXTURE_DEPTH_SIZE) => i64::from(depth_bits(internal)),
+        (true, _) => 8,
+    })
+}
+
+/// Bits of the depth values of a depth internal format: 16 and 32 as named, 24 for
+/// `GL_DEPTH_COMPONENT24` and the unsized `GL_DEPTH_COMPONENT`. 32-bit depth is kept as an
+/// `f32` (24 bits of mantissa).
+pub fn depth_bits(internal: GLenum) -> u32 {
+    match internal {
+        gl::GL_DEPTH_COMPONENT16 => 16,
+        gl::GL_DEPTH_COMPONENT32 => 32,
+        _ => 24,
+    }
+}
+
+/// A depth value as a depth internal format of `bits` stores it: clamped to [0, 1] and
+/// rounded to the nearest multiple of 1 / (2^bits − 1) for 16 and 24 bits (section 2.1.2's
+/// fixed-point conversion); 32-bit depth keeps the `f32`.
+pub fn stored_depth(d: f32, bits: u32) -> f32 {
+    let d = d.clamp(0.0, 1.0);
+    if bits >= 32 {
+        return d;
+    }
+    let max = f64::from((1u32 << bits) - 1);
+    ((f64::from(d) * max).round() / max) as f32
 }
 
 /// Bits of the indices of a paletted internal format (`GL_TEXTURE_INDEX_SIZE_EXT`); 16 for
@@ -196,6 +223,9 @@ mod tests {
         assert!(internal_format(gl::GL_BGRA).is_none());
         assert_eq!(texel(TexelFormat::Intensity, [0.5, 0.0, 0.0, 0.0]), [128; 4]);
         assert_eq!(texel_to_rgba(TexelFormat::LuminanceAlpha, [255, 255, 255, 0]), [1.0, 0.0, 0.0, 0.0]);
-        assert_eq!(component_bits(Base::Texel(TexelFormat::Alpha), gl::GL_TEXTURE_RED_SIZE), Some(0));
+        assert_eq!(component_bits(Base::Texel(TexelFormat::Alpha), gl::GL_ALPHA, gl::GL_TEXTURE_RED_SIZE), Some(0));
+        assert_eq!(stored_depth(0.5, 16), (32768.0 / 65535.0) as f32);
+        assert_eq!(stored_depth(-1.0, 24), 0.0);
+        assert_eq!(stored_depth(0.1, 32), 0.1);
     }
 }

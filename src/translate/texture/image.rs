@@ -112,31 +112,51 @@ pub fn resolve_indices(indices: &[u16], palette: &Palette) -> Vec<u8> {
     indices.iter().flat_map(|&i| palette.texel(i)).collect()
 }
 
-/// Canonical texels (and indices for paletted formats) of unpacked pixels.
-/// Indices keep the low `index_bits` bits.
-fn texels_of(base: Base, data: Option<Unpacked>, count: usize, index_bits: u32, palette: &Palette) -> (Vec<u8>, Option<Arc<Vec<u16>>>) {
+/// Pixels converted for storage in a level.
+struct Converted {
+    /// Canonical RGBA8 texels.
+    texels: Vec<u8>,
+    /// Depth values at the internal format's precision (depth formats only).
+    depth: Vec<f32>,
+    /// Colour indices (paletted formats only).
+    indices: Option<Arc<Vec<u16>>>,
+}
+
+/// Converts unpacked pixels (zeros when `None`) for a level of internal format `internal`
+/// (the reported enum) and base `base`. Indices keep the low bits of the paletted format,
+/// depth values are rounded to the bits of the depth format.
+fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, palette: &Palette) -> Converted {
+    let colour = |texels| Converted { texels, depth: Vec::new(), indices: None };
     match (base, data) {
         (Base::ColorIndex, data) => {
-            let mask = (1i64 << index_bits) - 1;
+            let mask = (1i64 << formats::index_bits(internal)) - 1;
             let indices: Vec<u16> = match data {
                 Some(Unpacked::Index(ix)) => ix.iter().map(|&i| (i as i64 & mask) as u16).collect(),
                 _ => vec![0; count],
             };
-            (resolve_indices(&indices, palette), Some(Arc::new(indices)))
+            Converted { texels: resolve_indices(&indices, palette), depth: Vec::new(), indices: Some(Arc::new(indices)) }
         }
-        (Base::Texel(f), Some(Unpacked::Rgba(c))) => (c.iter().flat_map(|&c| formats::texel(f, c)).collect(), None),
-        (Base::Texel(f), Some(Unpacked::Depth(d))) => (d.iter().flat_map(|&d| formats::texel(f, [d, d, d, 1.0])).collect(), None),
-        (Base::Texel(_), _) => (vec![0; count * 4], None),
+        (Base::Texel(TexelFormat::Depth), data) => {
+            let bits = formats::depth_bits(internal);
+            let depth: Vec<f32> = match data {
+                Some(Unpacked::Depth(d)) => d.iter().map(|&v| formats::stored_depth(v, bits)).collect(),
+                _ => vec![0.0; count],
+            };
+            let texels = depth.iter().flat_map(|&d| formats::texel(TexelFormat::Depth, [d, d, d, 1.0])).collect();
+            Converted { texels, depth, indices: None }
+        }
+        (Base::Texel(f), Some(Unpacked::Rgba(c))) => colour(c.iter().flat_map(|&c| formats::texel(f, c)).collect()),
+        (Base::Texel(_), _) => colour(vec![0; count * 4]),
     }
 }
 
 /// Builds a level of `size` (border included) from unpacked pixels (zeros when `None`).
 fn build_level(internal: Internal, size: [usize; 3], border: usize, data: Option<Unpacked>, palette: &Palette) -> Level {
     let count = size[0] * size[1] * size[2];
-    let (texels, indices) = texels_of(internal.base, data, count, formats::index_bits(internal.reported), palette);
+    let Converted { texels, depth, indices } = convert(internal.base, internal.reported, data, count, palette);
     let [w, h, d] = size.map(|v| v as u32);
     let mut level = Level {
-        image: Arc::new(TexImage { width: w, height: h, depth: d, border: border as u32, texels }),
+        image: Arc::new(TexImage { width: w, height: h, depth: d, border: border as u32, texels, depth_values: depth }),
         size,
         border,
         internal_format: internal.reported,
@@ -158,23 +178,26 @@ fn check_compressed_internal(internal: GLenum, dims: usize, border: GLint) -> Re
     }
 }
 
-/// Writes a region of texels (and indices) into a level; `offset` includes the border.
-fn write_region(level: &mut Level, offset: [usize; 3], size: [usize; 3], texels: &[u8], indices: Option<&[u16]>) {
+/// Writes a region of converted pixels into a level; `offset` includes the border.
+fn write_region(level: &mut Level, offset: [usize; 3], size: [usize; 3], src: &Converted) {
     let [lw, lh, _] = level.size;
     let image = Arc::make_mut(&mut level.image);
     let mut level_indices = level.indices.as_mut().map(Arc::make_mut);
-    let mut src = 0;
+    let mut i = 0;
     for z in 0..size[2] {
         for y in 0..size[1] {
             for x in 0..size[0] {
                 let dst = ((offset[2] + z) * lh + offset[1] + y) * lw + offset[0] + x;
-                if let (Some(d), Some(s)) = (image.texels.get_mut(dst * 4..dst * 4 + 4), texels.get(src * 4..src * 4 + 4)) {
+                if let (Some(d), Some(s)) = (image.texels.get_mut(dst * 4..dst * 4 + 4), src.texels.get(i * 4..i * 4 + 4)) {
                     d.copy_from_slice(s);
                 }
-                if let (Some(d), Some(&s)) = (level_indices.as_deref_mut().and_then(|li| li.get_mut(dst)), indices.and_then(|si| si.get(src))) {
+                if let (Some(d), Some(&s)) = (image.depth_values.get_mut(dst), src.depth.get(i)) {
                     *d = s;
                 }
-                src += 1;
+                if let (Some(d), Some(&s)) = (level_indices.as_deref_mut().and_then(|li| li.get_mut(dst)), src.indices.as_ref().and_then(|si| si.get(i))) {
+                    *d = s;
+                }
+                i += 1;
             }
         }
     }
@@ -368,8 +391,8 @@ impl Context {
         self.with_dest(dest, |obj, palette| {
             let count = sz[0] * sz[1] * sz[2];
             if let Some(l) = obj.level_slot(dest.face, level).as_mut() {
-                let (texels, indices) = texels_of(base, Some(data), count, formats::index_bits(l.internal_format), palette);
-                write_region(l, off, sz, &texels, indices.as_deref().map(|v| v.as_slice()));
+                let converted = convert(base, l.internal_format, Some(data), count, palette);
+                write_region(l, off, sz, &converted);
                 super::compressed::recompress(l);
             }
             let base_level = obj.params.levels[0].max(0) as usize;
@@ -530,7 +553,12 @@ impl Context {
         if (f.kind == Kind::Depth) != (texel_format == TexelFormat::Depth) {
             return self.set_error_in(gl::GL_INVALID_OPERATION, CMD);
         }
-        let rgba: Vec<[f32; 4]> = lvl.image.texels.chunks_exact(4).map(|c| formats::texel_to_rgba(texel_format, [c[0], c[1], c[2], c[3]])).collect();
+        // Depth levels answer from their full-precision values.
+        let rgba: Vec<[f32; 4]> = if texel_format == TexelFormat::Depth {
+            lvl.image.depth_values.iter().map(|&d| [d, 0.0, 0.0, 1.0]).collect()
+        } else {
+            lvl.image.texels.chunks_exact(4).map(|c| formats::texel_to_rgba(texel_format, [c[0], c[1], c[2], c[3]])).collect()
+        };
         let values = self.transfer_for_pack(f, &rgba, Luminance::Red);
         unsafe { self.pack_client((f, t), lvl.size, pixels, &values, CMD) }
     }
@@ -558,8 +586,8 @@ impl Context {
                 Value::int((super::compressed::image_size(fmt, l.size) as i64).min(i64::from(i32::MAX)))
             }
             _ => Value::int(match &lvl {
-                Some(l) => formats::component_bits(l.base, pname).ok_or(gl::GL_INVALID_ENUM)?,
-                None => formats::component_bits(Base::Texel(TexelFormat::Rgba), pname).map(|_| 0).ok_or(gl::GL_INVALID_ENUM)?,
+                Some(l) => formats::component_bits(l.base, l.internal_format, pname).ok_or(gl::GL_INVALID_ENUM)?,
+                None => formats::component_bits(Base::Texel(TexelFormat::Rgba), gl::GL_RGBA, pname).map(|_| 0).ok_or(gl::GL_INVALID_ENUM)?,
             }),
         })
     }

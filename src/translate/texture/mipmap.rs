@@ -7,45 +7,65 @@ use super::formats::Base;
 use super::objects::{Level, TextureObject};
 use crate::frame::texture::{TexImage, TexelFormat};
 
-/// Halves `src` (`size` without border) with a box filter, rounding to nearest.
-pub fn downsample(src: &[u8], size: [usize; 3]) -> (Vec<u8>, [usize; 3]) {
+/// The box-filter footprints of halving an image of `size` (without border): for each texel
+/// of the half-size image, in order, the indices of the 1 to 8 source texels it averages.
+fn footprints(size: [usize; 3]) -> (Vec<Vec<usize>>, [usize; 3]) {
     let out_size = size.map(|s| (s / 2).max(1));
     let step = size.map(|s| if s > 1 { 2 } else { 1 });
-    let n = (step[0] * step[1] * step[2]) as u32;
-    let mut out = Vec::with_capacity(out_size[0] * out_size[1] * out_size[2] * 4);
+    let mut out = Vec::with_capacity(out_size[0] * out_size[1] * out_size[2]);
     for z in 0..out_size[2] {
         for y in 0..out_size[1] {
             for x in 0..out_size[0] {
-                let mut sum = [0u32; 4];
+                let mut group = Vec::with_capacity(8);
                 for dz in 0..step[2] {
                     for dy in 0..step[1] {
                         for dx in 0..step[0] {
-                            let i = (((z * step[2] + dz) * size[1] + y * step[1] + dy) * size[0] + x * step[0] + dx) * 4;
-                            for (c, s) in sum.iter_mut().enumerate() {
-                                *s += u32::from(src.get(i + c).copied().unwrap_or(0));
-                            }
+                            group.push(((z * step[2] + dz) * size[1] + y * step[1] + dy) * size[0] + x * step[0] + dx);
                         }
                     }
                 }
-                out.extend(sum.map(|s| ((s + n / 2) / n) as u8));
+                out.push(group);
             }
         }
     }
     (out, out_size)
 }
 
-/// Removes the border of a texel block.
-fn interior(image: &TexImage, size: [usize; 3], border: usize) -> Vec<u8> {
+/// Halves RGBA8 texels `src` (`size` without border) with a box filter, rounding to nearest.
+pub fn downsample(src: &[u8], size: [usize; 3]) -> (Vec<u8>, [usize; 3]) {
+    let (groups, out_size) = footprints(size);
+    let mut out = Vec::with_capacity(groups.len() * 4);
+    for group in groups {
+        let n = group.len() as u32;
+        let mut sum = [0u32; 4];
+        for i in group {
+            for (c, s) in sum.iter_mut().enumerate() {
+                *s += u32::from(src.get(i * 4 + c).copied().unwrap_or(0));
+            }
+        }
+        out.extend(sum.map(|s| ((s + n / 2) / n) as u8));
+    }
+    (out, out_size)
+}
+
+/// Halves depth values `src` (`size` without border) with a box filter.
+pub fn downsample_depth(src: &[f32], size: [usize; 3]) -> Vec<f32> {
+    let (groups, _) = footprints(size);
+    groups.iter().map(|g| g.iter().map(|&i| src.get(i).copied().unwrap_or(0.0)).sum::<f32>() / g.len() as f32).collect()
+}
+
+/// Removes the border of an image whose texels are `per_texel` consecutive values of `data`.
+fn interior<T: Copy>(data: &[T], per_texel: usize, size: [usize; 3], border: usize) -> Vec<T> {
     if border == 0 {
-        return image.texels.clone();
+        return data.to_vec();
     }
     let inner = [size[0] - 2, size[1].saturating_sub(2).max(1), size[2].saturating_sub(2).max(1)];
     let b = |i: usize| if size[i] > 1 { 1 } else { 0 };
-    let mut out = Vec::with_capacity(inner[0] * inner[1] * inner[2] * 4);
+    let mut out = Vec::with_capacity(inner[0] * inner[1] * inner[2] * per_texel);
     for z in 0..inner[2] {
         for y in 0..inner[1] {
             let row = ((z + b(2)) * size[1] + y + b(1)) * size[0] + 1;
-            out.extend_from_slice(image.texels.get(row * 4..(row + inner[0]) * 4).unwrap_or(&[]));
+            out.extend_from_slice(data.get(row * per_texel..(row + inner[0]) * per_texel).unwrap_or(&[]));
         }
     }
     out
@@ -53,13 +73,15 @@ fn interior(image: &TexImage, size: [usize; 3], border: usize) -> Vec<u8> {
 
 /// Regenerates the levels below `base` of `face` from it. Generated levels have no border
 /// (their border texels would be zero) and keep the base level's internal format; those of a
-/// paletted base are stored as RGBA texels.
+/// paletted base are stored as RGBA texels. Depth levels also average their full-precision
+/// depth values.
 pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
     let Some(top) = obj.level(face, base).cloned() else { return };
     let dims = obj.target.map_or(2, |t| t.dims());
     let border = top.border;
     let mut size: [usize; 3] = std::array::from_fn(|i| if i < dims { top.size[i] - 2 * border } else { 1 });
-    let mut texels = interior(&top.image, top.size, border);
+    let mut texels = interior(&top.image.texels, 4, top.size, border);
+    let mut depth = interior(&top.image.depth_values, 1, top.size, border);
     let base_format = match top.base {
         Base::ColorIndex => Base::Texel(TexelFormat::Rgba),
         b => b,
@@ -67,10 +89,11 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
     let mut level = base;
     while size.iter().any(|&s| s > 1) && level + 1 < obj.faces.first().map_or(0, Vec::len) {
         let (next, next_size) = downsample(&texels, size);
+        let next_depth = if depth.is_empty() { Vec::new() } else { downsample_depth(&depth, size) };
         level += 1;
         let [w, h, d] = next_size.map(|v| v as u32);
         let mut generated = Level {
-            image: Arc::new(TexImage { width: w, height: h, depth: d, border: 0, texels: next.clone() }),
+            image: Arc::new(TexImage { width: w, height: h, depth: d, border: 0, texels: next.clone(), depth_values: next_depth.clone() }),
             size: next_size,
             border: 0,
             internal_format: top.internal_format,
@@ -81,13 +104,14 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
         super::compressed::recompress(&mut generated);
         *obj.level_slot(face, level) = Some(generated);
         texels = next;
+        depth = next_depth;
         size = next_size;
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::downsample;
+    use super::{downsample, downsample_depth};
 
     #[test]
     fn box_filter_averages_and_rounds() {
@@ -97,5 +121,8 @@ mod tests {
         // 4×1 → 2×1: pairs only horizontally.
         let row = [0, 0, 0, 0, 100, 100, 100, 100, 1, 1, 1, 1, 2, 2, 2, 2];
         assert_eq!(downsample(&row, [4, 1, 1]), (vec![50, 50, 50, 50, 2, 2, 2, 2], [2, 1, 1]));
+        // Depth averages without rounding to 8 bits.
+        assert_eq!(downsample_depth(&[0.125, 0.25, 0.5, 0.0], [2, 2, 1]), vec![0.21875]);
+        assert_eq!(downsample_depth(&[0.1, 0.3, 1.0, 0.5], [4, 1, 1]), vec![0.2, 0.75]);
     }
 }

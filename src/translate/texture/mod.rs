@@ -12,8 +12,10 @@
 //! Choices where the specification leaves room:
 //! - default textures (name 0) are per context, one per target, shared by the units of that
 //!   context (section 3.8.12); named objects belong to the share group;
-//! - every component is stored with 8 bits, depth included; `glGetTexLevelParameter` reports
-//!   those sizes;
+//! - every colour component is stored with 8 bits; depth is rounded to the bits of its internal
+//!   format (16, 24 for `GL_DEPTH_COMPONENT`, 32 kept as `f32`) and kept in
+//!   [`crate::frame::texture::TexImage::depth_values`] besides its 8-bit expansion;
+//!   `glGetTexLevelParameter` reports those sizes;
 //! - an uncompressed image given a generic compressed internal format (`GL_COMPRESSED_RGB`...)
 //!   is stored uncompressed and reports its base format, as ARB_texture_compression allows;
 //!   with an S3TC format it is compressed (glrt's own encoder) and the canonical texels are
@@ -29,6 +31,8 @@
 
 pub mod attrib;
 pub mod compressed;
+#[cfg(test)]
+mod depth_tests;
 pub mod env;
 pub mod formats;
 pub mod image;

@@ -205,7 +205,7 @@ impl Context {
     fn color_table_parameter(&mut self, target: GLenum, pname: GLenum) -> Option<Value> {
         let palette = self.with_palette(palette_target(target)?, |p| p.clone());
         let base = Base::Texel(palette.base.unwrap_or(TexelFormat::Rgba));
-        let bits = |tex_pname| formats::component_bits(base, tex_pname).map(|b| if palette.entries.is_empty() { 0 } else { b });
+        let bits = |tex_pname| formats::component_bits(base, palette.internal_format, tex_pname).map(|b| if palette.entries.is_empty() { 0 } else { b });
         Some(Value::int(match pname {
             gl::GL_COLOR_TABLE_FORMAT => i64::from(if palette.internal_format == 0 { gl::GL_RGBA } else { palette.internal_format }),
             gl::GL_COLOR_TABLE_WIDTH => palette.entries.len() as i64,
