@@ -70,6 +70,8 @@ fn print_param(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Comm
         format!("__t.enumerant(\"{label}\", {name}, {group});")
     } else if ty == "types::GLbitfield" && group_of(model, p).is_some() {
         format!("__t.bits(\"{label}\", {name}, {group});")
+    } else if ty == "types::GLint" && group_of(model, p).is_some() {
+        format!("__t.int_or_enum(\"{label}\", {name}, {group});")
     } else if ty.strip_prefix("*const ").is_some_and(is_scalar)
         && let Some(n) = lens.get(&(c.name.clone(), p.name.clone()))
     {
@@ -89,6 +91,10 @@ pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c:
     writeln!(s, "    if let Some(mut __t) = trace::begin(\"{}\") {{", c.name).unwrap();
     for p in &c.params {
         writeln!(s, "        {}", print_param(model, lens, c, p, prefix)).unwrap();
+    }
+    if c.ret == "()" {
+        s.push_str("        __t.observe(__call);\n        __t.end();\n        return;\n    }\n");
+        return s;
     }
     s.push_str("        let __r = __t.observe(__call);\n");
     if c.ret == "types::GLenum" {
@@ -112,7 +118,7 @@ pub fn groups(model: &Model, traced: &[&Command]) -> String {
     let used: BTreeSet<&str> = std::iter::once("ErrorCode")
         .chain(traced.iter()
         .flat_map(|c| &c.params)
-        .filter(|p| p.ty == "types::GLenum" || p.ty == "types::GLbitfield")
+        .filter(|p| ["types::GLenum", "types::GLbitfield", "types::GLint"].contains(&p.ty.as_str()))
         .filter_map(|p| group_of(model, p)))
         .collect();
     let mut s = String::from(HEADER);

@@ -6,6 +6,8 @@
 //! - `N glBegin(mode=GL_QUADS)`, `N glVertex3f(x=1.0, y=2.0, z=0.5)`;
 //! - enums by name, from the parameter's gl.xml group when it has one (`GL_POINTS`, not
 //!   `GL_NONE`), else the preferred name of the value ([`gl::enum_name`]), else hex;
+//! - `GLint` parameters of a gl.xml group (`glTexImage2D`'s `internalformat`) by the name of
+//!   the group member of that value, else as numbers;
 //! - bitfields of a gl.xml group as an OR of its names (`GL_COLOR_BUFFER_BIT|GL_DEPTH_BUFFER_BIT`),
 //!   with any bits no name covers in hex;
 //! - pointers: `NULL`, or the address; where gl.xml gives a fixed length (`glVertex3fv`: 3,
@@ -36,7 +38,7 @@ use std::sync::atomic::{AtomicU8, AtomicU64, Ordering};
 use parking_lot::Mutex;
 
 use super::current::with_slot;
-use crate::translate::gl::{self, GLbitfield, GLenum};
+use crate::translate::gl::{self, GLbitfield, GLenum, GLint};
 
 /// The gl.xml enum groups the log prints parameters by: `(name, value)` per member.
 #[allow(non_upper_case_globals)]
@@ -140,10 +142,10 @@ pub fn flush() {
 
 /// Runs a write on the log; on failure reports it once and turns tracing off.
 fn write_or_stop(log: &Log, f: impl FnOnce(&mut BufWriter<File>) -> io::Result<()>) {
-    if let Err(e) = f(&mut log.out.lock()) {
-        if STATE.swap(OFF, Ordering::Relaxed) == ON {
-            let _ = writeln!(io::stderr(), "glrt: GLRT_TRACE: write failed: {e}; tracing is off");
-        }
+    if let Err(e) = f(&mut log.out.lock())
+        && STATE.swap(OFF, Ordering::Relaxed) == ON
+    {
+        let _ = writeln!(io::stderr(), "glrt: GLRT_TRACE: write failed: {e}; tracing is off");
     }
 }
 
@@ -204,8 +206,12 @@ impl<T> Arg for *mut T {
 
 /// The name of `value` in `group`, else its preferred name among all constants.
 fn name_in(value: u64, group: &[(&'static str, u64)]) -> Option<&'static str> {
+    member(value, group).or_else(|| u32::try_from(value).ok().and_then(gl::enum_name))
+}
+
+/// The preferred name of `value` among the members of `group`.
+fn member(value: u64, group: &[(&'static str, u64)]) -> Option<&'static str> {
     gl::best_name(group.iter().filter(|(_, v)| *v == value).map(|(n, _)| *n))
-        .or_else(|| u32::try_from(value).ok().and_then(gl::enum_name))
 }
 
 /// Appends `value` by name (`GL_QUADS`), or in hex when no constant has that value.
@@ -270,6 +276,16 @@ impl Trace {
     /// A `GLbitfield` argument of enum group `group`.
     pub fn bits(&mut self, name: &str, value: GLbitfield, group: &[(&'static str, u64)]) {
         print_bits(self.next(name), value, group);
+    }
+
+    /// A `GLint` argument of enum group `group` (`glTexImage2D`'s `internalformat`): the
+    /// member's name when `value` is one, else the number (`internalformat=3`).
+    pub fn int_or_enum(&mut self, name: &str, value: GLint, group: &[(&'static str, u64)]) {
+        let out = self.next(name);
+        match u64::try_from(value).ok().and_then(|v| member(v, group)) {
+            Some(member) => out.push_str(member),
+            None => value.print(out),
+        }
     }
 
     /// An argument of a type the log does not print (`?`).
@@ -380,6 +396,14 @@ mod tests {
         let line = t.line;
         assert!(line.starts_with("0 glFoo(x=0.5, v=0x"), "{line}");
         assert!(line.ends_with("[1.0, 2.5, -3.0], w=NULL, cb=?"), "{line}");
+    }
+
+    #[test]
+    fn integers_of_a_group_print_members_by_name() {
+        let mut t = Trace { line: String::new(), args: 0 };
+        t.int_or_enum("internalformat", gl::GL_RGB as GLint, groups::InternalFormat);
+        t.int_or_enum("internalformat", 3, groups::InternalFormat);
+        assert_eq!(t.line, "internalformat=GL_RGB, internalformat=3");
     }
 
     #[test]
