@@ -1,5 +1,5 @@
 //! The call log: `GLRT_TRACE=path` writes one line per GL call the generated exports receive,
-//! and one line per frame boundary (`glXSwapBuffers`, `glrtSwapBuffers`).
+//! one per GLX call, and one per frame boundary (`glXSwapBuffers`, `glrtSwapBuffers`).
 //!
 //! Line format (`N` is the frame number, counted from 0 and raised at each frame boundary, over
 //! all contexts of the process):
@@ -17,6 +17,7 @@
 //!   (the latched error was `GL_NO_ERROR` before the call and is set after: an error raised
 //!   while an earlier one is still latched is dropped by GL, and not shown), ` (no current
 //!   context)` when the call had no context to run on;
+//! - `N glXMakeCurrent(...)` for the GLX functions: their name only, before the call;
 //! - `N == end of frame (glXSwapBuffers)` at a frame boundary.
 //!
 //! `GLRT_TRACE_FILTER=pattern` keeps the calls whose name contains `pattern` (a plain,
@@ -161,6 +162,15 @@ pub fn frame_end(name: &'static str) {
         writeln!(out, "{frame} == end of frame ({name})")?;
         out.flush()
     });
+}
+
+/// Logs a call to the GLX function `name`, whose arguments the log does not print yet:
+/// `N glXMakeCurrent(...)`.
+pub fn window_system_call(name: &'static str) {
+    if let Some(mut t) = begin(name) {
+        t.line.push_str("...)");
+        t.end();
+    }
 }
 
 /// The latched GL error of this thread's current context, `None` without one.
