@@ -141,13 +141,14 @@ fn errors_results_and_pointers_in_process() {
     let _ = std::fs::remove_file(&log);
     let lines: Vec<&str> = text.lines().collect();
     let addr = format!("{:p}", v.as_ptr());
+    let hash = xxhash_rust::xxh3::xxh3_64(&v.iter().flat_map(|f| f.to_ne_bytes()).collect::<Vec<u8>>());
     assert_eq!(
         lines,
         [
             "0 glEnable(cap=GL_TEXTURE_2D) (no current context)".to_owned(),
             "0 glBegin(mode=0x1234) -> GL_INVALID_ENUM".to_owned(),
             "0 glBegin(mode=GL_QUADS)".to_owned(),
-            format!("0 glVertex3fv(v={addr}[1.0, 2.5, -3.0])"),
+            format!("0 glVertex3fv(v={addr}(12 bytes, xxh3 {hash:016x})[1.0, 2.5, -3.0])"),
             "0 glVertex3fv(v=NULL)".to_owned(),
             "0 glEnd()".to_owned(),
             "0 glGetError() = GL_INVALID_ENUM".to_owned(),

@@ -11,8 +11,9 @@
 //! - bitfields of a gl.xml group as an OR of its names (`GL_COLOR_BUFFER_BIT|GL_DEPTH_BUFFER_BIT`),
 //!   with any bits no name covers in hex;
 //! - pointers: `NULL`, or the address; where gl.xml gives a fixed length (`glVertex3fv`: 3,
-//!   `glLoadMatrixf`: 16) also the values, `0x7ffc…[1.0, 0.0, 0.0]`. Pointers whose size
-//!   depends on other arguments or on GL state print the address only;
+//!   `glLoadMatrixf`: 16) also the bytes read, their xxh3 hash and the values,
+//!   `0x7ffc…(12 bytes, xxh3 …)[1.0, 0.0, 0.0]`. Pointers whose size depends on other
+//!   arguments or on GL state print the address only;
 //! - ` = value` for a command's result, ` -> GL_INVALID_ENUM` when the call raised an error
 //!   (the latched error was `GL_NO_ERROR` before the call and is set after: an error raised
 //!   while an earlier one is still latched is dropped by GL, and not shown), ` (no current
@@ -303,7 +304,8 @@ impl Trace {
         self.next(name).push('?');
     }
 
-    /// A pointer to `len` values: `NULL`, or the address and the values.
+    /// A pointer to `len` values: `NULL`, or the address, the bytes read and their hash, and
+    /// the values: `0x7ffd5c0e1a3c(12 bytes, xxh3 a1f7c2750768aadb)[1.0, 2.5, -3.0]`.
     ///
     /// # Safety
     /// A non-null `ptr` points to `len` readable values (what the command itself reads).
@@ -313,7 +315,9 @@ impl Trace {
         if ptr.is_null() {
             return;
         }
-        out.push('[');
+        // Safety: as documented; the values are plain data, any bytes are valid `u8`s.
+        let bytes = unsafe { std::slice::from_raw_parts(ptr.cast::<u8>(), len * size_of::<T>()) };
+        let _ = write!(out, "({} bytes, xxh3 {:016x})[", bytes.len(), xxhash_rust::xxh3::xxh3_64(bytes));
         for i in 0..len {
             if i > 0 {
                 out.push_str(", ");
@@ -405,7 +409,8 @@ mod tests {
         t.opaque("cb");
         let line = t.line;
         assert!(line.starts_with("0 glFoo(x=0.5, v=0x"), "{line}");
-        assert!(line.ends_with("[1.0, 2.5, -3.0], w=NULL, cb=?"), "{line}");
+        let hash = xxhash_rust::xxh3::xxh3_64(&v.iter().flat_map(|f| f.to_ne_bytes()).collect::<Vec<u8>>());
+        assert!(line.ends_with(&format!("(12 bytes, xxh3 {hash:016x})[1.0, 2.5, -3.0], w=NULL, cb=?")), "{line}");
     }
 
     #[test]
