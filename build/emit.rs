@@ -22,6 +22,8 @@ pub fn write_all(model: &Model, out: &Path) -> io::Result<()> {
     fs::write(out.join("gl_enums.rs"), enums(model))?;
     fs::write(out.join("dispatch.rs"), dispatch(model))?;
     fs::write(out.join("exports.rs"), exports(model))?;
+    let traced: Vec<&Command> = model.commands.iter().filter(|c| is_traced(c)).collect();
+    fs::write(out.join("trace_groups.rs"), crate::emit_trace::groups(model, &traced))?;
     fs::write(out.join("fuzz_calls.rs"), crate::emit_fuzz::fuzz_calls(model))?;
     Ok(())
 }
@@ -33,12 +35,17 @@ fn enums(model: &Model) -> String {
     }
     s.push_str("/// Every `GL_*` constant by name, for logs and tests.\npub static NAMES: &[(&str, u64)] = &[\n");
     for (name, ty, value) in &model.enums {
-        if ty.starts_with("types::") && !ty.ends_with("GLfloat") {
+        if is_integer_enum(ty) {
             writeln!(s, "    (\"{name}\", ({value}) as u64),").unwrap();
         }
     }
     s.push_str("];\n");
     s
+}
+
+/// Whether a constant of Rust type `ty` is an integer (listed in `NAMES`, printable by name).
+pub fn is_integer_enum(ty: &str) -> bool {
+    ty.starts_with("types::") && !ty.ends_with("GLfloat")
 }
 
 fn is_pointer(ty: &str) -> bool {
@@ -258,35 +265,56 @@ fn rect_body(c: &Command, suffix: &str, vector: bool) -> String {
     body
 }
 
+/// Whether the generated export of `c` writes the call log (`GLRT_TRACE`): every GL command
+/// but those exported by hand and the GLX names glrt does not implement.
+fn is_traced(c: &Command) -> bool {
+    !matches!(c.route, Route::Hand(_)) && !c.is_glx
+}
+
 fn exports(model: &Model) -> String {
     let mut s = String::from(HEADER);
     s.push_str(
         "#[allow(unused_imports)] use crate::translate::gl::{types, __gl_imports};\n\
          use crate::translate::dispatch;\n\
-         use super::shim;\n\n",
+         use super::{shim, trace};\n\n",
     );
+    let lens = crate::emit_trace::fixed_lengths();
     let mut glx_missing = String::new();
     let mut missing_index = 0usize;
     for c in &model.commands {
-        let (name, params, ret) = (&c.name, param_list(c), ret_suffix(c));
+        let (name, ret) = (&c.name, ret_suffix(c));
         match &c.route {
             Route::Hand(_) => {}
-            Route::Missing => {
+            Route::Missing if c.is_glx => {
                 let unused: Vec<String> = c.params.iter().map(|p| format!("_{}: {}", p.name, p.ty)).collect();
-                let f = format!(
-                    "/// `{name}`: not implemented; raises `GL_INVALID_OPERATION` and logs once.\n\
-                     #[unsafe(no_mangle)]\npub unsafe extern \"C\" fn {name}({}){ret} {{\n    {}::missing({missing_index}, \"{name}\")\n}}\n\n",
+                writeln!(
+                    glx_missing,
+                    "/// `{name}`: not implemented; logs once.\n\
+                     #[unsafe(no_mangle)]\npub unsafe extern \"C\" fn {name}({}){ret} {{\n    super::shim::missing({missing_index}, \"{name}\")\n}}\n",
                     unused.join(", "),
-                    if c.is_glx { "super::shim" } else { "shim" },
-                );
+                )
+                .unwrap();
                 missing_index += 1;
-                if c.is_glx { glx_missing.push_str(&f) } else { s.push_str(&f) }
             }
-            _ => {
-                writeln!(s, "/// `{name}` (OpenGL reference page of the same name).").unwrap();
+            route => {
+                // A missing command's parameters keep a `_` prefix: it uses them only to trace,
+                // and gl.xml names one `box`.
+                let prefix = if matches!(route, Route::Missing) { "_" } else { "" };
+                let params: Vec<String> = c.params.iter().map(|p| format!("{prefix}{}: {}", p.name, p.ty)).collect();
+                let params = params.join(", ");
+                let call = if matches!(route, Route::Missing) {
+                    missing_index += 1;
+                    writeln!(s, "/// `{name}`: not implemented; raises `GL_INVALID_OPERATION` and logs once.").unwrap();
+                    format!("shim::missing({}, \"{name}\")", missing_index - 1)
+                } else {
+                    writeln!(s, "/// `{name}` (OpenGL reference page of the same name).").unwrap();
+                    format!("shim::with_current(\"{name}\", |ctx| unsafe {{ dispatch::{name}(ctx, {}) }})", arg_list(c))
+                };
                 writeln!(s, "#[unsafe(no_mangle)]").unwrap();
                 writeln!(s, "pub unsafe extern \"C\" fn {name}({params}){ret} {{").unwrap();
-                writeln!(s, "    shim::with_current(\"{name}\", |ctx| unsafe {{ dispatch::{name}(ctx, {}) }})\n}}\n", arg_list(c)).unwrap();
+                writeln!(s, "    let __call = || {call};").unwrap();
+                s.push_str(&crate::emit_trace::traced_branch(model, &lens, c, prefix));
+                s.push_str("    __call()\n}\n\n");
             }
         }
     }

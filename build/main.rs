@@ -7,7 +7,9 @@
 //!   `translate::Context`; the `Call` enum of commands recorded into display lists
 //!   (`translate::dispatch`);
 //! - `exports.rs`: the C ABI shim of every exported name and the `glXGetProcAddress` table
-//!   (`gl_entry::exports`);
+//!   (`gl_entry::exports`), each writing the call log when `GLRT_TRACE` is set;
+//! - `trace_groups.rs`: the gl.xml enum groups the call log prints parameters by
+//!   (`gl_entry::trace::groups`);
 //! - `fuzz_calls.rs`: a random-argument caller of every served command, for the robustness
 //!   test (`translate::robustness`).
 //!
@@ -18,6 +20,7 @@
 
 mod emit;
 mod emit_fuzz;
+mod emit_trace;
 mod model;
 mod overlay;
 mod scan;

@@ -12,6 +12,8 @@ use crate::scan;
 pub struct Param {
     pub name: String,
     pub ty: String,
+    /// The gl.xml enum group (`group="PrimitiveType"`), which tells how the trace prints it.
+    pub group: Option<String>,
 }
 
 /// How an exported command is served.
@@ -52,6 +54,8 @@ pub struct Model {
     pub enums: Vec<(String, String, String)>,
     /// Commands with a `compile_` companion method in `translate`.
     pub compile_methods: BTreeSet<String>,
+    /// gl.xml enum groups by name: the names of their members.
+    pub groups: BTreeMap<String, Vec<String>>,
 }
 
 impl Model {
@@ -102,7 +106,7 @@ impl Model {
         for (name, params, ret) in overlay::EXTRA_COMMANDS {
             commands.push(Command {
                 name: (*name).to_owned(),
-                params: params.iter().map(|(n, t)| Param { name: (*n).to_owned(), ty: (*t).to_owned() }).collect(),
+                params: params.iter().map(|(n, t)| Param { name: (*n).to_owned(), ty: (*t).to_owned(), group: None }).collect(),
                 ret: (*ret).to_owned(),
                 route: if methods.contains(*name) { Route::Method } else { Route::Missing },
                 in_surface: true,
@@ -144,7 +148,7 @@ impl Model {
                 params: cmd
                     .params
                     .iter()
-                    .map(|p| Param { name: p.ident.clone(), ty: rust_type(&p.ty) })
+                    .map(|p| Param { name: p.ident.clone(), ty: rust_type(&p.ty), group: p.group.clone() })
                     .collect(),
                 ret: cmd.proto.ty.to_string(),
                 name,
@@ -173,7 +177,8 @@ impl Model {
                 enums.push((format!("GL_{}", ident.unwrap_or(&e.ident)), ty, value));
             }
         }
-        Model { commands, enums, compile_methods }
+        let groups = all.groups.values().map(|g| (g.ident.clone(), g.enums.clone())).collect();
+        Model { commands, enums, compile_methods, groups }
     }
 }
 

@@ -27,6 +27,7 @@ use super::shim::with_current;
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXSwapBuffers(dpy: *mut types::Display, drawable: types::GLXDrawable) {
     guard("glXSwapBuffers", || {
+        super::trace::frame_end("glXSwapBuffers");
         let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return };
         // Safety: as documented.
         let Some((width, height)) = (unsafe { drawable::size(x, xdpy, drawable) }) else {

@@ -71,6 +71,7 @@ pub extern "C" fn glrtMakeCurrent(ctx: *mut c_void, width: i32, height: i32) -> 
 /// Ends the current frame of this thread's context (the headless `glXSwapBuffers`).
 #[unsafe(no_mangle)]
 pub extern "C" fn glrtSwapBuffers() {
+    super::trace::frame_end("glrtSwapBuffers");
     with_current("glrtSwapBuffers", Context::end_frame);
 }
 

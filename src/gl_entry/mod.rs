@@ -15,3 +15,4 @@ pub mod glx_types;
 pub mod glx_xfont;
 pub mod headless;
 pub mod shim;
+pub mod trace;

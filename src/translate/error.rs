@@ -16,6 +16,11 @@ pub struct ErrorState {
 }
 
 impl Context {
+    /// The latched error, without clearing it (for the call log, `gl_entry::trace`).
+    pub(crate) fn latched_error(&self) -> GLenum {
+        self.errors.latched
+    }
+
     /// Records `error` unless one is already latched.
     pub fn set_error(&mut self, error: GLenum) {
         self.set_error_in(error, "");

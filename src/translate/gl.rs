@@ -23,11 +23,13 @@ include!(concat!(env!("OUT_DIR"), "/gl_enums.rs"));
 
 /// The name of a GL constant, preferring core names over extension aliases.
 pub fn enum_name(value: u32) -> Option<&'static str> {
-    NAMES
-        .iter()
-        .filter(|(_, v)| *v == u64::from(value))
-        .map(|(n, _)| *n)
-        .min_by_key(|n| (n.ends_with("_ARB") || n.ends_with("_EXT") || n.contains("_SGI"), n.len()))
+    best_name(NAMES.iter().filter(|(_, v)| *v == u64::from(value)).map(|(n, _)| *n))
+}
+
+/// The preferred of several names of one value: core names before extension aliases, then
+/// the shortest.
+pub fn best_name(names: impl Iterator<Item = &'static str>) -> Option<&'static str> {
+    names.min_by_key(|n| (n.ends_with("_ARB") || n.ends_with("_EXT") || n.contains("_SGI"), n.len()))
 }
 
 // gl_generator drops the enums whose names start with a digit after `GL_`.

@@ -33,8 +33,10 @@ pub fn xlib() -> Option<&'static Xlib> {
 }
 
 /// Runs the body of the export `name`: a panic is caught and logged, and the export returns
-/// zero (GLX functions never let a panic reach the application).
+/// zero (GLX functions never let a panic reach the application). The call is logged by name
+/// when `GLRT_TRACE` is set.
 pub fn guard<R: ReturnDefault>(name: &'static str, f: impl FnOnce() -> R) -> R {
+    super::trace::window_system_call(name);
     catch_unwind(AssertUnwindSafe(f)).unwrap_or_else(|_| {
         log::error!("internal error in {name}");
         R::return_default()

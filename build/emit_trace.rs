@@ -1,0 +1,135 @@
+//! The call-log side of the generated exports (`GLRT_TRACE`, `gl_entry::trace`): how each
+//! parameter of a command is printed, chosen from its C type, its gl.xml enum group and, for
+//! client pointers, the fixed length gl.xml gives (`len="3"`); and the tables of the enum groups
+//! the printing uses (`trace_groups.rs`, included as `gl_entry::trace::groups`).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fmt::Write as _;
+
+use crate::emit::HEADER;
+use crate::model::{Command, Model, Param};
+
+/// Scalar C types the trace prints by value (every other non-pointer type prints as `?`).
+const SCALARS: &[&str] = &[
+    "GLenum", "GLboolean", "GLbitfield", "GLbyte", "GLubyte", "GLshort", "GLushort", "GLint", "GLuint",
+    "GLsizei", "GLfloat", "GLclampf", "GLdouble", "GLclampd", "GLchar", "GLcharARB", "GLhalf",
+    "GLhalfARB", "GLhalfNV", "GLfixed", "GLclampx", "GLintptr", "GLsizeiptr", "GLintptrARB",
+    "GLsizeiptrARB", "GLint64", "GLuint64", "GLint64EXT", "GLuint64EXT", "GLhandleARB",
+];
+
+/// Whether `ty` (`types::GLfloat`) is a scalar the trace prints by value.
+fn is_scalar(ty: &str) -> bool {
+    ty.strip_prefix("types::").is_some_and(|t| SCALARS.contains(&t))
+}
+
+/// `(command, parameter) -> N` for every `const` pointer parameter gl.xml gives a numeric
+/// length (`<param len="16">const <ptype>GLfloat</ptype> *<name>m</name></param>`): the
+/// values the trace can print without knowing what the command does with them.
+pub fn fixed_lengths() -> BTreeMap<(String, String), usize> {
+    let xml = std::str::from_utf8(khronos_api::GL_XML).expect("gl.xml is UTF-8");
+    let mut lens = BTreeMap::new();
+    for command in xml.split("<command").skip(1) {
+        let Some(name) = between(command, "<name>", "</name>") else { continue };
+        for param in command.split("<param").skip(1) {
+            let Some(param) = param.split("</param>").next() else { continue };
+            let tag = param.split('>').next().unwrap_or("");
+            let len = between(tag, "len=\"", "\"").and_then(|l| l.parse::<usize>().ok());
+            let body = param.split_once('>').map_or("", |(_, b)| b);
+            if let (Some(len), Some(pname)) = (len, between(body, "<name>", "</name>"))
+                && body.trim_start().starts_with("const")
+                && body.contains('*')
+            {
+                lens.insert((name.to_owned(), pname.to_owned()), len);
+            }
+        }
+    }
+    lens
+}
+
+fn between<'a>(s: &'a str, start: &str, end: &str) -> Option<&'a str> {
+    let rest = &s[s.find(start)? + start.len()..];
+    Some(&rest[..rest.find(end)?])
+}
+
+/// The Rust path of a group's table in `trace_groups.rs`.
+fn group_path(group: &str) -> String {
+    format!("crate::gl_entry::trace::groups::{group}")
+}
+
+/// Whether `model` has a table for `p`'s group (gl.xml names some groups it never defines).
+fn group_of<'a>(model: &Model, p: &'a Param) -> Option<&'a str> {
+    p.group.as_deref().filter(|g| model.groups.contains_key(*g))
+}
+
+/// The statement that prints parameter `p` of command `c` into the trace `t`.
+fn print_param(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, p: &Param, prefix: &str) -> String {
+    let (label, ty) = (p.name.trim_matches('_'), p.ty.as_str());
+    let name = format!("{prefix}{}", p.name);
+    let group = group_of(model, p).map_or("&[]".to_owned(), group_path);
+    if ty == "types::GLenum" {
+        format!("__t.enumerant(\"{label}\", {name}, {group});")
+    } else if ty == "types::GLbitfield" && group_of(model, p).is_some() {
+        format!("__t.bits(\"{label}\", {name}, {group});")
+    } else if ty == "types::GLint" && group_of(model, p).is_some() {
+        format!("__t.int_or_enum(\"{label}\", {name}, {group});")
+    } else if ty.strip_prefix("*const ").is_some_and(is_scalar)
+        && let Some(n) = lens.get(&(c.name.clone(), p.name.clone()))
+    {
+        format!("unsafe {{ __t.values(\"{label}\", {name}, {n}) }};")
+    } else if is_scalar(ty) || ty.contains('*') {
+        format!("__t.arg(\"{label}\", {name});")
+    } else {
+        format!("let _ = &{name}; __t.opaque(\"{label}\");")
+    }
+}
+
+/// The traced branch of an export whose parameters are named `{prefix}{name}`: when tracing
+/// is on, prints the arguments, runs `__call` (a closure in scope) observing the GL error,
+/// prints the result and returns it.
+pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, prefix: &str) -> String {
+    let mut s = String::new();
+    writeln!(s, "    if let Some(mut __t) = trace::begin(\"{}\") {{", c.name).unwrap();
+    for p in &c.params {
+        writeln!(s, "        {}", print_param(model, lens, c, p, prefix)).unwrap();
+    }
+    if c.ret == "()" {
+        s.push_str("        __t.observe(__call);\n        __t.end();\n        return;\n    }\n");
+        return s;
+    }
+    s.push_str("        let __r = __t.observe(__call);\n");
+    if c.ret == "types::GLenum" {
+        s.push_str("        __t.returned_enum(__r);\n");
+    } else if is_scalar(&c.ret) || c.ret.contains('*') {
+        s.push_str("        __t.returned(__r);\n");
+    }
+    s.push_str("        __t.end();\n        return __r;\n    }\n");
+    s
+}
+
+/// `trace_groups.rs`: one table of `(name, value)` per enum group a traced parameter names.
+pub fn groups(model: &Model, traced: &[&Command]) -> String {
+    let integer: BTreeSet<&str> = model
+        .enums
+        .iter()
+        .filter(|(_, ty, _)| crate::emit::is_integer_enum(ty))
+        .map(|(n, _, _)| n.as_str())
+        .collect();
+    // ErrorCode: results of glGetError and the errors calls raise.
+    let used: BTreeSet<&str> = std::iter::once("ErrorCode")
+        .chain(traced.iter()
+        .flat_map(|c| &c.params)
+        .filter(|p| ["types::GLenum", "types::GLbitfield", "types::GLint"].contains(&p.ty.as_str()))
+        .filter_map(|p| group_of(model, p)))
+        .collect();
+    let mut s = String::from(HEADER);
+    s.push_str("use crate::translate::gl;\n\n");
+    for group in used {
+        writeln!(s, "/// gl.xml enum group `{group}`.\npub static {group}: &[(&str, u64)] = &[").unwrap();
+        let members: BTreeSet<String> = model.groups[group].iter().map(|e| format!("GL_{e}")).collect();
+        for m in members.iter().filter(|m| integer.contains(m.as_str())) {
+            writeln!(s, "    (\"{m}\", gl::{m} as u64),").unwrap();
+        }
+        s.push_str("];\n");
+    }
+    s
+}

@@ -1,0 +1,161 @@
+//! The call log (`GLRT_TRACE`, `gl_entry::trace`): `glrt-demo --headless` through glrt's
+//! `libGL.so.1` (`target/<profile>/libGL.so.1`, a symlink to `libglrt.so` made here when
+//! missing) writes the lines the module documents; and calls made in this process through the
+//! exports show the errors they raise.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use glrt::gl_entry::{exports as gl, headless};
+use glrt::translate::gl::{GL_INVALID_ENUM, GL_QUADS, GL_TEXTURE_2D};
+
+/// `target/<profile>/`, holding glrt-demo and libglrt.so; makes the `libGL.so.1` symlink.
+fn lib_dir() -> PathBuf {
+    let dir = Path::new(env!("CARGO_BIN_EXE_glrt-demo")).parent().expect("target dir").to_path_buf();
+    let link = dir.join("libGL.so.1");
+    if std::fs::symlink_metadata(&link).is_err() {
+        let _ = std::os::unix::fs::symlink("libglrt.so", &link);
+    }
+    dir
+}
+
+fn temp_path(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("glrt-trace-{}-{name}", std::process::id()))
+}
+
+/// Runs `glrt-demo --headless --frames 3` with `GLRT_TRACE` at a fresh file (and the extra
+/// environment); returns the run and the log's lines.
+fn demo_trace(name: &str, env: &[(&str, &str)]) -> (Output, Vec<String>) {
+    let log = temp_path(name);
+    let _ = std::fs::remove_file(&log);
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_glrt-demo"));
+    cmd.args(["--headless", "--frames", "3"]).env("LD_LIBRARY_PATH", lib_dir()).env("GLRT_TRACE", &log);
+    cmd.env_remove("GLRT_TRACE_FILTER");
+    for (k, v) in env {
+        cmd.env(k, v);
+    }
+    let out = cmd.output().expect("glrt-demo runs");
+    assert!(out.status.success(), "glrt-demo failed: {}", String::from_utf8_lossy(&out.stderr));
+    let text = std::fs::read_to_string(&log).unwrap_or_default();
+    let _ = std::fs::remove_file(&log);
+    (out, text.lines().map(str::to_owned).collect())
+}
+
+/// The frame-boundary lines.
+fn boundaries(lines: &[String]) -> Vec<&String> {
+    lines.iter().filter(|l| l.contains(" == end of frame (")).collect()
+}
+
+/// The values of `name=` arguments of a call line, parsed as floats.
+fn float_args(line: &str) -> Vec<f32> {
+    let args = line.split_once('(').and_then(|(_, r)| r.rsplit_once(')')).map_or("", |(a, _)| a);
+    args.split(", ").filter_map(|a| a.split_once('=')?.1.parse().ok()).collect()
+}
+
+#[test]
+fn demo_log_has_frames_enum_names_and_values() {
+    let (_, lines) = demo_trace("demo", &[]);
+    let frames = boundaries(&lines);
+    assert_eq!(
+        frames.iter().map(|l| l.as_str()).collect::<Vec<_>>(),
+        ["0 == end of frame (glrtSwapBuffers)", "1 == end of frame (glrtSwapBuffers)", "2 == end of frame (glrtSwapBuffers)"]
+    );
+    // Every call line starts with its frame number, in order.
+    let mut last = 0;
+    for line in &lines {
+        let frame: u64 = line.split(' ').next().and_then(|n| n.parse().ok()).unwrap_or_else(|| panic!("no frame: {line}"));
+        assert!(frame >= last && frame <= 3, "{line}");
+        last = frame;
+    }
+    for frame in 0..3 {
+        let begin = format!("{frame} glBegin(mode=GL_QUADS)");
+        assert!(lines.contains(&begin), "no {begin}");
+        let clear = format!("{frame} glClear(mask=GL_COLOR_BUFFER_BIT|GL_DEPTH_BUFFER_BIT)");
+        assert!(lines.contains(&clear), "no {clear}");
+    }
+    let vertex = lines.iter().find(|l| l.starts_with("0 glVertex3f(x=")).expect("a glVertex3f line");
+    assert_eq!(float_args(vertex).len(), 3, "{vertex}");
+    assert!(vertex.contains(", y=") && vertex.contains(", z="), "{vertex}");
+    // The demo's calls raise no error and all have a context.
+    assert!(lines.iter().all(|l| !l.contains(" -> ") && !l.contains("no current context")));
+}
+
+#[test]
+fn filter_keeps_only_matching_calls() {
+    let (_, all) = demo_trace("all", &[]);
+    let (_, lines) = demo_trace("filtered", &[("GLRT_TRACE_FILTER", "glVertex")]);
+    assert_eq!(boundaries(&lines).len(), 3);
+    let calls: Vec<&String> = lines.iter().filter(|l| !l.contains(" == end of frame (")).collect();
+    assert!(calls.iter().all(|l| l.split(' ').nth(1).is_some_and(|c| c.starts_with("glVertex"))), "{calls:?}");
+    // Exactly the glVertex* lines of the unfiltered log.
+    let expected = all.iter().filter(|l| l.split(' ').nth(1).is_some_and(|c| c.contains("glVertex"))).count();
+    assert!(expected > 0);
+    assert_eq!(calls.len(), expected);
+}
+
+#[test]
+fn unwritable_trace_file_disables_tracing() {
+    let dir = temp_path("no-such-dir");
+    let bad = dir.join("trace.log");
+    let out = Command::new(env!("CARGO_BIN_EXE_glrt-demo"))
+        .args(["--headless", "--frames", "3"])
+        .env("LD_LIBRARY_PATH", lib_dir())
+        .env("GLRT_TRACE", &bad)
+        .output()
+        .expect("glrt-demo runs");
+    assert!(out.status.success());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(stderr.matches("GLRT_TRACE: cannot create").count(), 1, "{stderr}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("frames: 3"));
+    assert!(!bad.exists());
+}
+
+/// The only test that calls glrt in this process: the log is opened at the first call.
+#[test]
+fn errors_results_and_pointers_in_process() {
+    let log = temp_path("in-process");
+    // Safety: no other test of this binary reads or writes the environment of this process.
+    unsafe {
+        std::env::set_var("GLRT_TRACE", &log);
+        std::env::remove_var("GLRT_TRACE_FILTER");
+    }
+    let v = [1.0f32, 2.5, -3.0];
+    unsafe {
+        gl::glEnable(GL_TEXTURE_2D); // no context yet
+        let ctx = headless::glrtCreateContext(std::ptr::null_mut());
+        assert_eq!(headless::glrtMakeCurrent(ctx, 64, 64), 1);
+        gl::glBegin(0x1234); // not a primitive
+        gl::glBegin(GL_QUADS);
+        gl::glVertex3fv(v.as_ptr());
+        gl::glVertex3fv(std::ptr::null());
+        gl::glEnd();
+        assert_eq!(gl::glGetError(), GL_INVALID_ENUM);
+        assert_eq!(gl::glGetError(), 0);
+        gl::glMatrixMode(0x1234);
+        gl::glEnable(GL_TEXTURE_2D);
+        headless::glrtSwapBuffers();
+        headless::glrtMakeCurrent(std::ptr::null_mut(), 0, 0);
+        headless::glrtDestroyContext(ctx);
+    }
+    let text = std::fs::read_to_string(&log).expect("the log was flushed at the swap");
+    let _ = std::fs::remove_file(&log);
+    let lines: Vec<&str> = text.lines().collect();
+    let addr = format!("{:p}", v.as_ptr());
+    let hash = xxhash_rust::xxh3::xxh3_64(&v.iter().flat_map(|f| f.to_ne_bytes()).collect::<Vec<u8>>());
+    assert_eq!(
+        lines,
+        [
+            "0 glEnable(cap=GL_TEXTURE_2D) (no current context)".to_owned(),
+            "0 glBegin(mode=0x1234) -> GL_INVALID_ENUM".to_owned(),
+            "0 glBegin(mode=GL_QUADS)".to_owned(),
+            format!("0 glVertex3fv(v={addr}(12 bytes, xxh3 {hash:016x})[1.0, 2.5, -3.0])"),
+            "0 glVertex3fv(v=NULL)".to_owned(),
+            "0 glEnd()".to_owned(),
+            "0 glGetError() = GL_INVALID_ENUM".to_owned(),
+            "0 glGetError() = GL_NO_ERROR".to_owned(),
+            "0 glMatrixMode(mode=0x1234) -> GL_INVALID_ENUM".to_owned(),
+            "0 glEnable(cap=GL_TEXTURE_2D)".to_owned(),
+            "0 == end of frame (glrtSwapBuffers)".to_owned(),
+        ]
+    );
+}
