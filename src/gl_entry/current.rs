@@ -40,6 +40,20 @@ pub fn with_slot<R>(f: impl FnOnce(&mut Option<Current>) -> R) -> R {
     }
 }
 
+/// Runs `f` with this thread's current context when there is one that is not broken and no
+/// other call is using it (re-entry); otherwise returns `None`. The GL calls' path: one
+/// thread-local access, no allocation.
+#[inline(always)]
+pub fn with_current_slot<R>(f: impl FnOnce(&mut Current) -> Option<R>) -> Option<R> {
+    CURRENT
+        .try_with(|slot| {
+            let mut slot = slot.try_borrow_mut().ok()?;
+            slot.as_mut().filter(|cur| !cur.broken).and_then(f)
+        })
+        .ok()
+        .flatten()
+}
+
 /// Makes `context` (with application handle `handle`) current on this thread, releasing the
 /// previous one; `None` releases only. Returns false when `context` is current on another
 /// thread (GLX `BadAccess`).

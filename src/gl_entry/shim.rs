@@ -4,7 +4,7 @@
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use super::current::with_slot;
+use super::current::with_current_slot;
 use crate::translate::Context;
 use crate::translate::convert::ReturnDefault;
 use crate::translate::gl;
@@ -18,29 +18,18 @@ unsafe impl Sync for Proc {}
 
 /// Calls `f` on the current context. Without a current context the call does nothing (GLX
 /// 1.4, 3.3.7) and returns zero; a panic is caught, logged once, and marks the context broken.
+/// A GL call made while another runs on the same thread (re-entry) does nothing either.
+#[inline(always)]
 pub fn with_current<R: ReturnDefault>(name: &'static str, f: impl FnOnce(&mut Context) -> R) -> R {
-    let result = catch_unwind(AssertUnwindSafe(|| {
-        with_slot(|slot| match slot {
-            Some(cur) if !cur.broken => Some(f(&mut cur.context)),
-            _ => None,
-        })
-    }));
-    match result {
-        Ok(Some(value)) => value,
-        Ok(None) => R::return_default(),
+    with_current_slot(|cur| match catch_unwind(AssertUnwindSafe(|| f(&mut cur.context))) {
+        Ok(value) => Some(value),
         Err(_) => {
             log::error!("internal error in {name}; this context ignores further GL calls");
-            // The slot's borrow ended during unwinding; mark the context broken.
-            let _ = catch_unwind(AssertUnwindSafe(|| {
-                with_slot(|slot| {
-                    if let Some(cur) = slot {
-                        cur.broken = true;
-                    }
-                })
-            }));
-            R::return_default()
+            cur.broken = true;
+            None
         }
-    }
+    })
+    .unwrap_or_else(R::return_default)
 }
 
 static MISSING_LOGGED: [AtomicBool; super::exports::MISSING_COUNT] =

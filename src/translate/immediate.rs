@@ -118,8 +118,8 @@ impl Batch {
     }
 
     /// Appends a vertex with the values of `current`; `changed` names the attributes that may
-    /// differ from the previous vertex ([`bits`]). Attributes that never change cost one bit
-    /// test per vertex.
+    /// differ from the previous vertex ([`bits`]). Attributes that never change cost nothing
+    /// per vertex: only the set bits of `changed` and of the per-vertex mask are visited.
     #[inline]
     pub fn push(&mut self, position: [f32; 4], c: &CurrentAttribs, changed: u16) {
         let v = &mut self.vertices;
@@ -138,18 +138,27 @@ impl Batch {
             self.per_vertex = 0;
             return;
         }
-        if (changed | self.per_vertex) == 0 {
-            return;
-        }
-        let pv = &mut self.per_vertex;
-        update(&mut v.normal, c.normal, n, bits::NORMAL, changed, pv);
-        update(&mut v.color, c.color, n, bits::COLOR, changed, pv);
-        update(&mut v.secondary_color, c.secondary_color, n, bits::SECONDARY_COLOR, changed, pv);
-        update(&mut v.fog_coord, c.fog_coord, n, bits::FOG_COORD, changed, pv);
-        update(&mut v.color_index, c.color_index, n, bits::COLOR_INDEX, changed, pv);
-        update(&mut self.edge_flags, c.edge_flag, n, bits::EDGE_FLAG, changed, pv);
-        for (u, (t, &value)) in v.texcoords.iter_mut().zip(&c.texcoords).enumerate() {
-            update(t, value, n, bits::TEXCOORD0 << u, changed, pv);
+        // Only the attributes stored per vertex or changed are visited, lowest bit first.
+        let mut todo = changed | self.per_vertex;
+        while todo != 0 {
+            let bit = todo & todo.wrapping_neg();
+            todo &= todo - 1;
+            let pv = &mut self.per_vertex;
+            match bit {
+                bits::NORMAL => update(&mut v.normal, c.normal, n, bit, changed, pv),
+                bits::COLOR => update(&mut v.color, c.color, n, bit, changed, pv),
+                bits::SECONDARY_COLOR => update(&mut v.secondary_color, c.secondary_color, n, bit, changed, pv),
+                bits::FOG_COORD => update(&mut v.fog_coord, c.fog_coord, n, bit, changed, pv),
+                bits::COLOR_INDEX => update(&mut v.color_index, c.color_index, n, bit, changed, pv),
+                bits::EDGE_FLAG => update(&mut self.edge_flags, c.edge_flag, n, bit, changed, pv),
+                _ => {
+                    // A texture unit's bit; bits past the last unit (in `bits::ALL`) name nothing.
+                    let unit = (bit / bits::TEXCOORD0).trailing_zeros() as usize;
+                    if let (Some(t), Some(&value)) = (v.texcoords.get_mut(unit), c.texcoords.get(unit)) {
+                        update(t, value, n, bit, changed, pv);
+                    }
+                }
+            }
         }
     }
 
