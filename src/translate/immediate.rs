@@ -97,10 +97,18 @@ fn update<T: Copy + PartialEq>(a: &mut Attrib<T>, value: T, n: usize, bit: u16, 
     if *per_vertex & bit != 0 {
         a.values.push(value);
     } else if changed & bit != 0 {
-        a.push(value, n);
-        if !a.is_constant() {
-            *per_vertex |= bit;
-        }
+        update_shared(a, value, n, bit, per_vertex);
+    }
+}
+
+/// [`update`] of a shared attribute that was set: compared with the shared value, and stored
+/// per vertex from now on when it differs. Kept out of line so that the per-vertex path of
+/// `Batch::push` does not carry the set-up of `Attrib::push`'s fill loop.
+#[inline(never)]
+fn update_shared<T: Copy + PartialEq>(a: &mut Attrib<T>, value: T, n: usize, bit: u16, per_vertex: &mut u16) {
+    a.push(value, n);
+    if !a.is_constant() {
+        *per_vertex |= bit;
     }
 }
 
