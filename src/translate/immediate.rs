@@ -485,6 +485,23 @@ mod tests {
     }
 
     #[test]
+    fn a_vertex_with_every_bit_changed_stores_only_what_differs() {
+        use super::{Batch, CurrentAttribs, bits};
+        let mut batch = Batch::default();
+        let mut c = CurrentAttribs::default();
+        batch.push([0.0, 0.0, 0.0, 1.0], &c, bits::ALL);
+        c.texcoords[3] = [5.0, 0.0, 0.0, 1.0];
+        c.fog_coord = 2.0;
+        // `bits::ALL` also has bits past the last texture unit: they name nothing.
+        batch.push([1.0, 0.0, 0.0, 1.0], &c, bits::ALL);
+        batch.push([2.0, 0.0, 0.0, 1.0], &c, 0);
+        let v = &batch.vertices;
+        assert_eq!(v.texcoords[3].values, vec![[0.0, 0.0, 0.0, 1.0], [5.0, 0.0, 0.0, 1.0], [5.0, 0.0, 0.0, 1.0]]);
+        assert_eq!(v.fog_coord.values, vec![0.0, 2.0, 2.0]);
+        assert!(v.color.is_constant() && v.normal.is_constant() && v.texcoords[0].is_constant());
+    }
+
+    #[test]
     fn incomplete_primitives_draw_nothing_and_lists_are_the_source() {
         let (mut ctx, _) = Context::with_recording();
         unsafe {
