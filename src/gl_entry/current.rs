@@ -30,7 +30,7 @@ thread_local! {
 /// (at `exit`, glibc runs thread-local destructors before `atexit` handlers, and handlers such
 /// as waffle's teardown still call `glXMakeCurrent`), the slot reads as empty: the context it
 /// held was released when the slot was dropped.
-pub fn with_slot<R>(f: impl FnOnce(&mut Option<Current>) -> R) -> R {
+fn with_slot<R>(f: impl FnOnce(&mut Option<Current>) -> R) -> R {
     let mut f = Some(f);
     let ran = CURRENT.try_with(|slot| f.take().map(|f| f(&mut slot.borrow_mut())));
     match (ran, f) {
@@ -38,6 +38,20 @@ pub fn with_slot<R>(f: impl FnOnce(&mut Option<Current>) -> R) -> R {
         (_, Some(f)) => f(&mut None),
         (_, None) => unreachable!("the closure ran but returned nothing"),
     }
+}
+
+/// Runs `f` with this thread's current context when there is one that is not broken and no
+/// other call is using it (re-entry); otherwise returns `None`. The GL calls' path: one
+/// thread-local access, no allocation.
+#[inline(always)]
+pub fn with_current_slot<R>(f: impl FnOnce(&mut Current) -> Option<R>) -> Option<R> {
+    CURRENT
+        .try_with(|slot| {
+            let mut slot = slot.try_borrow_mut().ok()?;
+            slot.as_mut().filter(|cur| !cur.broken).and_then(f)
+        })
+        .ok()
+        .flatten()
 }
 
 /// Makes `context` (with application handle `handle`) current on this thread, releasing the

@@ -97,10 +97,18 @@ fn update<T: Copy + PartialEq>(a: &mut Attrib<T>, value: T, n: usize, bit: u16, 
     if *per_vertex & bit != 0 {
         a.values.push(value);
     } else if changed & bit != 0 {
-        a.push(value, n);
-        if !a.is_constant() {
-            *per_vertex |= bit;
-        }
+        update_shared(a, value, n, bit, per_vertex);
+    }
+}
+
+/// [`update`] of a shared attribute that was set: compared with the shared value, and stored
+/// per vertex from now on when it differs. Kept out of line so that the per-vertex path of
+/// `Batch::push` does not carry the set-up of `Attrib::push`'s fill loop.
+#[inline(never)]
+fn update_shared<T: Copy + PartialEq>(a: &mut Attrib<T>, value: T, n: usize, bit: u16, per_vertex: &mut u16) {
+    a.push(value, n);
+    if !a.is_constant() {
+        *per_vertex |= bit;
     }
 }
 
@@ -118,8 +126,8 @@ impl Batch {
     }
 
     /// Appends a vertex with the values of `current`; `changed` names the attributes that may
-    /// differ from the previous vertex ([`bits`]). Attributes that never change cost one bit
-    /// test per vertex.
+    /// differ from the previous vertex ([`bits`]). Attributes that never change cost nothing
+    /// per vertex: only the set bits of `changed` and of the per-vertex mask are visited.
     #[inline]
     pub fn push(&mut self, position: [f32; 4], c: &CurrentAttribs, changed: u16) {
         let v = &mut self.vertices;
@@ -138,18 +146,27 @@ impl Batch {
             self.per_vertex = 0;
             return;
         }
-        if (changed | self.per_vertex) == 0 {
-            return;
-        }
-        let pv = &mut self.per_vertex;
-        update(&mut v.normal, c.normal, n, bits::NORMAL, changed, pv);
-        update(&mut v.color, c.color, n, bits::COLOR, changed, pv);
-        update(&mut v.secondary_color, c.secondary_color, n, bits::SECONDARY_COLOR, changed, pv);
-        update(&mut v.fog_coord, c.fog_coord, n, bits::FOG_COORD, changed, pv);
-        update(&mut v.color_index, c.color_index, n, bits::COLOR_INDEX, changed, pv);
-        update(&mut self.edge_flags, c.edge_flag, n, bits::EDGE_FLAG, changed, pv);
-        for (u, (t, &value)) in v.texcoords.iter_mut().zip(&c.texcoords).enumerate() {
-            update(t, value, n, bits::TEXCOORD0 << u, changed, pv);
+        // Only the attributes stored per vertex or changed are visited, lowest bit first.
+        let mut todo = changed | self.per_vertex;
+        while todo != 0 {
+            let bit = todo & todo.wrapping_neg();
+            todo &= todo - 1;
+            let pv = &mut self.per_vertex;
+            match bit {
+                bits::NORMAL => update(&mut v.normal, c.normal, n, bit, changed, pv),
+                bits::COLOR => update(&mut v.color, c.color, n, bit, changed, pv),
+                bits::SECONDARY_COLOR => update(&mut v.secondary_color, c.secondary_color, n, bit, changed, pv),
+                bits::FOG_COORD => update(&mut v.fog_coord, c.fog_coord, n, bit, changed, pv),
+                bits::COLOR_INDEX => update(&mut v.color_index, c.color_index, n, bit, changed, pv),
+                bits::EDGE_FLAG => update(&mut self.edge_flags, c.edge_flag, n, bit, changed, pv),
+                _ => {
+                    // A texture unit's bit; bits past the last unit (in `bits::ALL`) name nothing.
+                    let unit = (bit / bits::TEXCOORD0).trailing_zeros() as usize;
+                    if let (Some(t), Some(&value)) = (v.texcoords.get_mut(unit), c.texcoords.get(unit)) {
+                        update(t, value, n, bit, changed, pv);
+                    }
+                }
+            }
         }
     }
 
@@ -465,6 +482,23 @@ mod tests {
         assert_eq!(v.texcoords[3].get(3), Some([7.0, 0.0, 0.0, 1.0]));
         assert!(v.texcoords[0].is_constant());
         assert_eq!(ctx.immediate.batch.edge_flags.values, vec![true, true, false, false]);
+    }
+
+    #[test]
+    fn a_vertex_with_every_bit_changed_stores_only_what_differs() {
+        use super::{Batch, CurrentAttribs, bits};
+        let mut batch = Batch::default();
+        let mut c = CurrentAttribs::default();
+        batch.push([0.0, 0.0, 0.0, 1.0], &c, bits::ALL);
+        c.texcoords[3] = [5.0, 0.0, 0.0, 1.0];
+        c.fog_coord = 2.0;
+        // `bits::ALL` also has bits past the last texture unit: they name nothing.
+        batch.push([1.0, 0.0, 0.0, 1.0], &c, bits::ALL);
+        batch.push([2.0, 0.0, 0.0, 1.0], &c, 0);
+        let v = &batch.vertices;
+        assert_eq!(v.texcoords[3].values, vec![[0.0, 0.0, 0.0, 1.0], [5.0, 0.0, 0.0, 1.0], [5.0, 0.0, 0.0, 1.0]]);
+        assert_eq!(v.fog_coord.values, vec![0.0, 2.0, 2.0]);
+        assert!(v.color.is_constant() && v.normal.is_constant() && v.texcoords[0].is_constant());
     }
 
     #[test]
