@@ -30,7 +30,7 @@ thread_local! {
 /// (at `exit`, glibc runs thread-local destructors before `atexit` handlers, and handlers such
 /// as waffle's teardown still call `glXMakeCurrent`), the slot reads as empty: the context it
 /// held was released when the slot was dropped.
-fn with_slot<R>(f: impl FnOnce(&mut Option<Current>) -> R) -> R {
+pub(crate) fn with_slot<R>(f: impl FnOnce(&mut Option<Current>) -> R) -> R {
     let mut f = Some(f);
     let ran = CURRENT.try_with(|slot| f.take().map(|f| f(&mut slot.borrow_mut())));
     match (ran, f) {
