@@ -96,7 +96,7 @@ fn face_indices(face: Face) -> &'static [usize] {
 }
 
 /// Sets a colour property of a material.
-fn set_material_color(m: &mut Material, mode: ColorMaterialMode, c: [f32; 4]) {
+pub(crate) fn set_material_color(m: &mut Material, mode: ColorMaterialMode, c: [f32; 4]) {
     match mode {
         ColorMaterialMode::Emission => m.emission = c,
         ColorMaterialMode::Ambient => m.ambient = c,

@@ -8,6 +8,7 @@ use glam::{DMat3, DVec3, Vec3, Vec4};
 
 use super::Context;
 use super::gl::{self, GLenum};
+use super::lighting::set_material_color;
 use super::limits::MAX_LIGHTS;
 use crate::frame::state::{ColorMaterialMode, Face, Light, Material};
 
@@ -128,16 +129,7 @@ impl Scene {
 
 /// `m` with the material property `mode` replaced by the colour `c` (section 2.14.3).
 fn track_color(mut m: Material, mode: ColorMaterialMode, c: [f32; 4]) -> Material {
-    match mode {
-        ColorMaterialMode::Emission => m.emission = c,
-        ColorMaterialMode::Ambient => m.ambient = c,
-        ColorMaterialMode::Diffuse => m.diffuse = c,
-        ColorMaterialMode::Specular => m.specular = c,
-        ColorMaterialMode::AmbientAndDiffuse => {
-            m.ambient = c;
-            m.diffuse = c;
-        }
-    }
+    set_material_color(&mut m, mode, c);
     m
 }
 
