@@ -11,7 +11,8 @@
 //! - `trace_groups.rs`: the gl.xml enum groups the call log prints parameters by
 //!   (`gl_entry::trace::groups`);
 //! - `fuzz_calls.rs`: a random-argument caller of every served command, for the robustness
-//!   test (`translate::robustness`).
+//!   test (`translate::robustness`);
+//! - `shaders/*.spv`: the renderer's GLSL shaders compiled to SPIR-V (`shaders.rs`).
 //!
 //! A command is implemented when `translate` defines a method with exactly its C name
 //! (`fn glVertex4f(`); the generator finds these by scanning the sources, so exporting a new
@@ -24,6 +25,7 @@ mod emit_trace;
 mod model;
 mod overlay;
 mod scan;
+mod shaders;
 
 use std::path::PathBuf;
 
@@ -34,6 +36,7 @@ fn main() {
     }
     let model = model::Model::load();
     emit::write_all(&model, &out).expect("writing generated sources");
+    shaders::compile_all(&out);
     // The library is a drop-in libGL.so.1.
     println!("cargo:rustc-cdylib-link-arg=-Wl,-soname,libGL.so.1");
     // Its own gl*/glX* symbols bind inside it: loaded as a glvnd vendor, libGL.so.1's and

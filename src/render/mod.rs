@@ -2,6 +2,7 @@
 //! frames for tests and for programs run without a renderer.
 
 pub mod frame_log;
+pub mod raster;
 
 use std::sync::Arc;
 
