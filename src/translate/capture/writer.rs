@@ -1,0 +1,88 @@
+//! Writing a capture file: records are appended to an in-memory batch under a lock; full
+//! batches go to a background thread that LZ4-compresses them into the file, so the program
+//! only pays for encoding its calls.
+
+use std::fs::File;
+use std::io::{self, BufWriter, Write};
+use std::path::Path;
+use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
+use std::thread::JoinHandle;
+
+use lz4_flex::frame::{BlockMode, BlockSize, FrameEncoder, FrameInfo};
+use parking_lot::Mutex;
+
+use super::format;
+
+/// Bytes of records collected before a batch goes to the compressing thread.
+const BATCH: usize = 1 << 18;
+/// Batches in flight before the program waits for the compressor.
+const QUEUE: usize = 64;
+
+/// An open capture file.
+pub struct Writer {
+    state: Mutex<State>,
+}
+
+struct State {
+    batch: Vec<u8>,
+    /// `None` once finished.
+    queue: Option<SyncSender<Vec<u8>>>,
+    thread: Option<JoinHandle<io::Result<()>>>,
+}
+
+/// The LZ4 frame settings of capture bodies (fixed: captures of equal calls are equal files).
+fn frame_info() -> FrameInfo {
+    FrameInfo::new().block_size(BlockSize::Max256KB).block_mode(BlockMode::Linked).block_checksums(true).content_checksum(true)
+}
+
+impl Writer {
+    /// Creates `path` and writes the header describing `commands`.
+    pub fn create(path: &Path, commands: &[(&str, &str)]) -> io::Result<Writer> {
+        let mut file = BufWriter::with_capacity(1 << 16, File::create(path)?);
+        file.write_all(&format::header(&format::description(commands)))?;
+        let (queue, batches) = sync_channel::<Vec<u8>>(QUEUE);
+        let thread = std::thread::Builder::new().name("glrt-capture".into()).spawn(move || compress(file, batches))?;
+        Ok(Writer { state: Mutex::new(State { batch: Vec::with_capacity(BATCH), queue: Some(queue), thread: Some(thread) }) })
+    }
+
+    /// Appends one record, encoded by `encode`.
+    pub fn record(&self, encode: impl FnOnce(&mut Vec<u8>)) {
+        let mut state = self.state.lock();
+        if state.queue.is_none() {
+            return;
+        }
+        encode(&mut state.batch);
+        if state.batch.len() >= BATCH {
+            let full = std::mem::replace(&mut state.batch, Vec::with_capacity(BATCH));
+            if let Some(queue) = &state.queue {
+                let _ = queue.send(full);
+            }
+        }
+    }
+
+    /// Sends the last batch, waits until the file is complete and closed. Later records are
+    /// dropped. Returns the first write error.
+    pub fn finish(&self) -> io::Result<()> {
+        let (batch, queue, thread) = {
+            let mut state = self.state.lock();
+            (std::mem::take(&mut state.batch), state.queue.take(), state.thread.take())
+        };
+        if let Some(queue) = queue {
+            let _ = queue.send(batch);
+        }
+        match thread.map(JoinHandle::join) {
+            Some(Ok(result)) => result,
+            Some(Err(_)) => Err(io::Error::other("the capture thread failed")),
+            None => Ok(()),
+        }
+    }
+}
+
+/// The compressing thread: writes every batch into one LZ4 frame until the queue closes.
+fn compress(file: BufWriter<File>, batches: Receiver<Vec<u8>>) -> io::Result<()> {
+    let mut encoder = FrameEncoder::with_frame_info(frame_info(), file);
+    for batch in batches {
+        encoder.write_all(&batch)?;
+    }
+    encoder.finish().map_err(io::Error::other)?.flush()
+}
