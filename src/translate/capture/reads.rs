@@ -139,7 +139,8 @@ mod tests {
             note(data.as_ptr().wrapping_add(12), 4);
         });
         assert_eq!(ranges, vec![(data.as_ptr() as usize, 4), (data.as_ptr() as usize + 8, 4)]);
-        let ((), nested) = collect(|| collect(|| note(data.as_ptr(), 1)).1);
-        assert!(nested.is_empty());
+        let (nested, outer) = collect(|| collect(|| note(data.as_ptr(), 1)).1);
+        assert!(nested.is_empty(), "a nested collection collects nothing");
+        assert_eq!(outer, vec![(data.as_ptr() as usize, 1)], "the outer one keeps the read");
     }
 }
