@@ -73,3 +73,8 @@ fn round_trip(name: &str) {
 fn demo_replays_to_the_same_frames_and_the_same_file() {
     round_trip("demo");
 }
+
+#[test]
+fn glxgears_replays_to_the_same_frames_and_the_same_file() {
+    round_trip("glxgears");
+}
