@@ -1,15 +1,16 @@
 //! The capture file layout (format version [`VERSION`]); all integers little-endian.
 //!
 //! ```text
-//! header (uncompressed):
+//! header (uncompressed, 12 bytes):
 //!   magic        8 bytes  "GLRTCAP\0"
 //!   version      u32      FORMAT VERSION (a reader refuses any other)
+//! body: one LZ4 frame (block and content checksums on) holding
 //!   desc_len     u32      length of the description, at most MAX_DESCRIPTION
 //!   description  bytes    UTF-8: "glrt <crate version>\n", then per command id one line
 //!                         "<name> <signature>\n" (signature: one letter per parameter,
 //!                         `p` pointer, `v` value)
 //!   desc_hash    u64      xxh3 of the description
-//! body: one LZ4 frame (block checksums on) holding records, each starting with a tag byte:
+//!   records, each starting with a tag byte:
 //!   0x01 call         varint command id, one varint per parameter (the raw value: integer
 //!                     bits, float bits, address), varint read count, then per read
 //!                     varint address, varint length, the bytes
@@ -80,11 +81,14 @@ pub fn description(commands: &[(&str, &str)]) -> String {
     d
 }
 
-/// The complete header for `description`.
-pub fn header(description: &str) -> Vec<u8> {
-    let mut h = Vec::with_capacity(description.len() + 24);
-    h.extend_from_slice(MAGIC);
-    h.extend_from_slice(&VERSION.to_le_bytes());
+/// The uncompressed header.
+pub fn header() -> Vec<u8> {
+    [&MAGIC[..], &VERSION.to_le_bytes()].concat()
+}
+
+/// The start of the body: the description with its length and hash.
+pub fn described(description: &str) -> Vec<u8> {
+    let mut h = Vec::with_capacity(description.len() + 12);
     h.extend_from_slice(&(description.len() as u32).to_le_bytes());
     h.extend_from_slice(description.as_bytes());
     h.extend_from_slice(&xxhash_rust::xxh3::xxh3_64(description.as_bytes()).to_le_bytes());

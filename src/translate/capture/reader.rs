@@ -43,8 +43,10 @@ pub struct Capture {
     pub writer: String,
     /// File command id → this build's command id.
     ids: Vec<usize>,
-    /// The decompressed records.
+    /// The decompressed body.
     body: Vec<u8>,
+    /// Where the records start in `body` (after the description).
+    records_at: usize,
     /// Size of the file.
     pub file_len: usize,
 }
@@ -58,17 +60,22 @@ pub enum Record<'a> {
     Event(Event),
 }
 
-/// A cursor over the header bytes.
+/// A cursor over the header or the description.
 struct Cursor<'a> {
     bytes: &'a [u8],
     pos: usize,
+    in_body: bool,
 }
 
 impl<'a> Cursor<'a> {
+    fn error(&self, at: usize, cause: impl Into<String>) -> Error {
+        Error { offset: at as u64, in_body: self.in_body, cause: cause.into() }
+    }
+
     fn take(&mut self, n: usize, what: &str) -> Result<&'a [u8], Error> {
         let left = self.bytes.len() - self.pos;
         if n > left {
-            return Err(file_error(self.pos, format!("truncated: {what} needs {n} bytes, {left} left")));
+            return Err(self.error(self.pos, format!("truncated: {what} needs {n} bytes, {left} left")));
         }
         self.pos += n;
         Ok(&self.bytes[self.pos - n..self.pos])
@@ -98,7 +105,7 @@ impl Read for Counting<'_> {
 impl Capture {
     /// Reads a capture from its bytes.
     pub fn parse(bytes: &[u8]) -> Result<Capture, Error> {
-        let mut c = Cursor { bytes, pos: 0 };
+        let mut c = Cursor { bytes, pos: 0, in_body: false };
         if c.take(format::MAGIC.len(), "the magic")? != format::MAGIC {
             return Err(file_error(0, "not a glrt capture (wrong magic)"));
         }
@@ -109,21 +116,6 @@ impl Capture {
                 format!("format version {version}, this glrt reads version {} only", format::VERSION),
             ));
         }
-        let at = c.pos;
-        let len = c.u32("the description length")? as usize;
-        if len > format::MAX_DESCRIPTION {
-            return Err(file_error(at, format!("description of {len} bytes (at most {})", format::MAX_DESCRIPTION)));
-        }
-        let desc_at = c.pos;
-        let description = c.take(len, "the description")?;
-        let hash_at = c.pos;
-        let hash = c.take(8, "the description hash")?;
-        if xxhash_rust::xxh3::xxh3_64(description).to_le_bytes() != hash {
-            return Err(file_error(hash_at, "description hash mismatch (header corrupted)"));
-        }
-        let description =
-            std::str::from_utf8(description).map_err(|e| file_error(desc_at + e.valid_up_to(), "description is not UTF-8"))?;
-        let (writer, ids) = match_commands(description).map_err(|(line_at, cause)| file_error(desc_at + line_at, cause))?;
         let body_at = c.pos;
         let mut input = Counting { inner: &bytes[body_at..], consumed: 0 };
         let mut body = Vec::new();
@@ -137,7 +129,8 @@ impl Capture {
         if input.consumed != bytes.len() - body_at {
             return Err(file_error(body_at + input.consumed, "bytes after the end of the compressed body"));
         }
-        Ok(Capture { writer: writer.to_owned(), ids, body, file_len: bytes.len() })
+        let (writer, ids, records_at) = describe(&body)?;
+        Ok(Capture { writer, ids, body, records_at, file_len: bytes.len() })
     }
 
     /// Reads the capture file at `path`.
@@ -153,8 +146,26 @@ impl Capture {
 
     /// The records, in order.
     pub fn records(&self) -> Records<'_> {
-        Records { capture: self, pos: 0 }
+        Records { capture: self, pos: self.records_at }
     }
+}
+
+/// Reads the description at the start of the body: the writer's version line, the command
+/// ids, and where the records start.
+fn describe(body: &[u8]) -> Result<(String, Vec<usize>, usize), Error> {
+    let mut c = Cursor { bytes: body, pos: 0, in_body: true };
+    let len = c.u32("the description length")? as usize;
+    if len > format::MAX_DESCRIPTION {
+        return Err(c.error(0, format!("description of {len} bytes (at most {})", format::MAX_DESCRIPTION)));
+    }
+    let description = c.take(len, "the description")?;
+    let hash_at = c.pos;
+    if xxhash_rust::xxh3::xxh3_64(description).to_le_bytes() != c.take(8, "the description hash")? {
+        return Err(c.error(hash_at, "description hash mismatch (description corrupted)"));
+    }
+    let text = std::str::from_utf8(description).map_err(|e| c.error(4 + e.valid_up_to(), "description is not UTF-8"))?;
+    let (writer, ids) = match_commands(text).map_err(|(at, cause)| c.error(4 + at, cause))?;
+    Ok((writer.to_owned(), ids, c.pos))
 }
 
 /// Maps the description's commands to this build's ids: `(version line, ids)`, or the offset

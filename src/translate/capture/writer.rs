@@ -36,13 +36,16 @@ fn frame_info() -> FrameInfo {
 }
 
 impl Writer {
-    /// Creates `path` and writes the header describing `commands`.
+    /// Creates `path`, writes the header, and starts the body with the description of
+    /// `commands`.
     pub fn create(path: &Path, commands: &[(&str, &str)]) -> io::Result<Writer> {
         let mut file = BufWriter::with_capacity(1 << 16, File::create(path)?);
-        file.write_all(&format::header(&format::description(commands)))?;
+        file.write_all(&format::header())?;
         let (queue, batches) = sync_channel::<Vec<u8>>(QUEUE);
         let thread = std::thread::Builder::new().name("glrt-capture".into()).spawn(move || compress(file, batches))?;
-        Ok(Writer { state: Mutex::new(State { batch: Vec::with_capacity(BATCH), queue: Some(queue), thread: Some(thread) }) })
+        let mut batch = Vec::with_capacity(BATCH);
+        batch.extend_from_slice(&format::described(&format::description(commands)));
+        Ok(Writer { state: Mutex::new(State { batch, queue: Some(queue), thread: Some(thread) }) })
     }
 
     /// Appends one record, encoded by `encode`.
