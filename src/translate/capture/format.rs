@@ -19,7 +19,14 @@
 //!                     byte double-buffered (0/1)
 //!   0x04 swap         byte kind (0 glrtSwapBuffers, 1 glXSwapBuffers), and for glX the
 //!                     drawable size: zigzag width, zigzag height
+//! trailer (uncompressed, 24 bytes):
+//!   magic        8 bytes  "GLRTEND\0"
+//!   body_len     u64      bytes of the decompressed body
+//!   body_hash    u64      xxh3 of the decompressed body
 //! ```
+//!
+//! The trailer makes a truncated file (a capture that was not finished) an error even when
+//! the cut falls between LZ4 blocks.
 //!
 //! Varints are LEB128 (at most 10 bytes). A reader matches the description's command names
 //! with its own table, so a capture made by another glrt build replays when the commands it
@@ -29,6 +36,10 @@
 pub const MAGIC: &[u8; 8] = b"GLRTCAP\0";
 /// The format version this build writes and reads.
 pub const VERSION: u32 = 1;
+/// First bytes of the trailer, and its length.
+pub const TRAILER_MAGIC: &[u8; 8] = b"GLRTEND\0";
+pub const TRAILER_LEN: usize = 24;
+
 /// Largest description a reader accepts (bytes).
 pub const MAX_DESCRIPTION: usize = 1 << 20;
 

@@ -5,6 +5,7 @@
 use std::collections::HashMap;
 use std::fmt;
 use std::io::Read;
+use std::sync::OnceLock;
 
 use super::format::{self, Event, SwapKind};
 use super::table::COMMANDS;
@@ -126,11 +127,28 @@ impl Capture {
         if body.len() as u64 > MAX_BODY {
             return Err(file_error(body_at, format!("body larger than {MAX_BODY} bytes")));
         }
-        if input.consumed != bytes.len() - body_at {
-            return Err(file_error(body_at + input.consumed, "bytes after the end of the compressed body"));
+        let body_len = input.consumed;
+        let trailer_at = body_at + body_len;
+        let trailer = &bytes[trailer_at..];
+        if trailer.len() != format::TRAILER_LEN || &trailer[..8] != format::TRAILER_MAGIC {
+            return Err(file_error(trailer_at, format!(
+                "no end trailer after the compressed body ({} bytes there, {} expected): the file is truncated or the capture was not finished",
+                trailer.len(),
+                format::TRAILER_LEN
+            )));
         }
+        let le = |b: &[u8]| u64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
+        if le(&trailer[8..16]) != body.len() as u64 || le(&trailer[16..24]) != xxhash_rust::xxh3::xxh3_64(&body) {
+            return Err(file_error(trailer_at, "the body's length or hash differs from the end trailer's (file corrupted)"));
+        }
+        Capture::from_body(body, bytes.len())
+    }
+
+    /// A capture from its decompressed body (description and records), `file_len` bytes
+    /// long as a file.
+    pub fn from_body(body: Vec<u8>, file_len: usize) -> Result<Capture, Error> {
         let (writer, ids, records_at) = describe(&body)?;
-        Ok(Capture { writer, ids, body, records_at, file_len: bytes.len() })
+        Ok(Capture { writer, ids, body, records_at, file_len })
     }
 
     /// Reads the capture file at `path`.
@@ -171,7 +189,8 @@ fn describe(body: &[u8]) -> Result<(String, Vec<usize>, usize), Error> {
 /// Maps the description's commands to this build's ids: `(version line, ids)`, or the offset
 /// in the description and the cause.
 fn match_commands(description: &str) -> Result<(&str, Vec<usize>), (usize, String)> {
-    let ours: HashMap<&str, (usize, &str)> = COMMANDS.iter().enumerate().map(|(i, (n, s))| (*n, (i, *s))).collect();
+    static OURS: OnceLock<HashMap<&str, (usize, &str)>> = OnceLock::new();
+    let ours = OURS.get_or_init(|| COMMANDS.iter().enumerate().map(|(i, (n, s))| (*n, (i, *s))).collect());
     let mut lines = description.split_inclusive('\n');
     let writer = lines.next().unwrap_or("").trim_end();
     if !writer.starts_with("glrt ") {

@@ -81,11 +81,20 @@ impl Writer {
     }
 }
 
-/// The compressing thread: writes every batch into one LZ4 frame until the queue closes.
+/// The compressing thread: writes every batch into one LZ4 frame until the queue closes,
+/// then the trailer.
 fn compress(file: BufWriter<File>, batches: Receiver<Vec<u8>>) -> io::Result<()> {
     let mut encoder = FrameEncoder::with_frame_info(frame_info(), file);
+    let mut hash = xxhash_rust::xxh3::Xxh3::new();
+    let mut len = 0u64;
     for batch in batches {
+        hash.update(&batch);
+        len += batch.len() as u64;
         encoder.write_all(&batch)?;
     }
-    encoder.finish().map_err(io::Error::other)?.flush()
+    let mut file = encoder.finish().map_err(io::Error::other)?;
+    file.write_all(format::TRAILER_MAGIC)?;
+    file.write_all(&len.to_le_bytes())?;
+    file.write_all(&hash.digest().to_le_bytes())?;
+    file.flush()
 }
