@@ -4,7 +4,9 @@
 //!
 //! Fixtures in `tests/fixtures/`: `demo.glrtcap` (4 frames of `glrt-demo --headless`) and
 //! `glxgears.glrtcap` (frames of Mesa's glxgears under Xvfb, through glrt's libGL.so.1);
-//! `tests/fixtures/*.frames` are the frame logs of the live runs that made them.
+//! `tests/fixtures/*.frames` are the frame logs of the live runs that made them
+//! (`tests/fixtures/make.sh` remakes both). The range test runs `glrt-demo` through
+//! `target/<profile>/libglrt.so`: run `cargo build` first.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -223,4 +225,41 @@ fn damaged_records_never_panic_the_reader() {
         }
     }
     assert!(refusals > 100, "only {refusals} of 3000 mutations were refused");
+}
+
+/// `GLRT_CAPTURE_FRAMES=2..4`: frames 0 and 1 keep their state commands (and display list
+/// calls) but not their drawing, frames 2 and 3 are complete and replay as they were drawn live, and the file
+/// closes after frame 3.
+#[test]
+fn a_frame_range_drops_drawing_before_it_and_stops_after_it() {
+    let (capture, live) = (scratch("range.glrtcap"), scratch("range.live.frames"));
+    let lib = Path::new(env!("CARGO_BIN_EXE_glrt")).parent().unwrap().to_path_buf();
+    let so = lib.join("libGL.so.1");
+    if !so.exists() {
+        std::os::unix::fs::symlink("libglrt.so", &so).unwrap();
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_glrt-demo"))
+        .args(["--headless", "--frames", "6", "--size", "320x240"])
+        .env("LD_LIBRARY_PATH", &lib)
+        .env("GLRT_CAPTURE", &capture)
+        .env("GLRT_CAPTURE_FRAMES", "2..4")
+        .env("GLRT_FRAME_LOG", &live)
+        .output()
+        .expect("run glrt-demo");
+    assert!(out.status.success(), "glrt-demo: {}", String::from_utf8_lossy(&out.stderr));
+    let live = std::fs::read_to_string(&live).unwrap();
+    let live: Vec<&str> = live.lines().collect();
+    assert_eq!(live.len(), 6);
+    let (replayed, _) = replay_with_capture(&capture, "range");
+    let replayed: Vec<&str> = replayed.lines().collect();
+    assert_eq!(replayed.len(), 4, "the capture ends after frame 3: {replayed:?}");
+    // Before the range only display lists still draw (glCallList is kept: a list may set state).
+    for (i, line) in replayed[..2].iter().enumerate() {
+        let pillars = format!("{{\"frame\":{i},\"draws\":1,\"vertices\":96,\"clears\":0}}");
+        assert_eq!(*line, pillars, "frame {i}: no clear, no immediate-mode or array drawing");
+    }
+    assert_eq!(replayed[2..], live[2..4], "frames 2 and 3 replay as drawn live");
+    let full = std::fs::metadata(fixture("demo.glrtcap")).unwrap().len();
+    let ranged = std::fs::metadata(&capture).unwrap().len();
+    assert!(ranged < full * 3 / 4, "2 complete frames ({ranged} bytes) against 4 ({full} bytes)");
 }

@@ -23,8 +23,10 @@
 //! **Frame ranges.** `GLRT_CAPTURE_FRAMES=A..B` (frames count from 0, ended by swaps, `B`
 //! excluded) records frames `A` to `B - 1` completely; before `A` it drops the commands that
 //! only draw (the `glBegin`/`glEnd` pairs and vertices, `glDraw*`, `glClear`, evaluator
-//! draws, `glRect`, pixel drawing), keeping every state, texture, buffer and list command
-//! so frame `A` starts from the same state; after `B` the file is closed.
+//! draws, `glRect`, pixel drawing) unless a display list is being compiled, keeping every
+//! state, texture, buffer and list command so frame `A` starts from the same state; after
+//! `B` the file is closed. (Current attributes a dropped `glDrawArrays` would have left
+//! behind are not reproduced: OpenGL 1.5 section 2.8 leaves them indeterminate.)
 //!
 //! Limits: one recording thread is assumed (the calls of all threads go to one stream);
 //! contents a program writes through `glMapBuffer` pointers are not recorded.
@@ -222,6 +224,12 @@ fn canonical(address: u64) -> u64 {
     CANONICAL.read().as_ref().map_or(address, |s| s.original(address))
 }
 
+/// Whether this thread's current context is compiling a display list (whose drawing
+/// commands are state: they are kept before the first captured frame).
+fn compiling_list() -> bool {
+    crate::gl_entry::current::with_slot(|slot| slot.as_ref().is_some_and(|c| c.context.lists.compiling()))
+}
+
 /// A call being recorded; the record is written when it is dropped (after the call).
 pub struct CallRecord<const N: usize> {
     id: usize,
@@ -242,7 +250,7 @@ pub fn begin<const N: usize>(id: usize, args: impl FnOnce() -> [u64; N]) -> Opti
 fn begin_slow<const N: usize>(id: usize, args: [u64; N]) -> Option<CallRecord<N>> {
     let session = session()?;
     let frame = FRAME.load(Ordering::Relaxed);
-    if frame < session.first && session.draws_only.get(id).copied().unwrap_or(false) {
+    if frame < session.first && session.draws_only.get(id).copied().unwrap_or(false) && !compiling_list() {
         return None;
     }
     reads::open().then_some(CallRecord { id, args })
