@@ -28,6 +28,9 @@
 //! `B` the file is closed. (Current attributes a dropped `glDrawArrays` would have left
 //! behind are not reproduced: OpenGL 1.5 section 2.8 leaves them indeterminate.)
 //!
+//! Pointers stored in client memory (`glMultiDrawElements`' index lists) are mapped with
+//! [`client_pointer`].
+//!
 //! Limits: one recording thread is assumed (the calls of all threads go to one stream);
 //! contents a program writes through `glMapBuffer` pointers are not recorded.
 
@@ -228,6 +231,16 @@ fn canonical(address: u64) -> u64 {
 /// commands are state: they are kept before the first captured frame).
 fn compiling_list() -> bool {
     crate::gl_entry::current::with_slot(|slot| slot.as_ref().is_some_and(|c| c.context.lists.compiling()))
+}
+
+/// A pointer a command read from client memory (`glMultiDrawElements`' index lists): in a
+/// replay it holds a captured address, mapped here into the replay's shadow; otherwise it is
+/// returned as it is.
+pub fn client_pointer<T>(pointer: *const T) -> *const T {
+    match CANONICAL.try_read().as_deref() {
+        Some(Some(shadow)) => shadow.translate(pointer as u64) as usize as *const T,
+        _ => pointer,
+    }
 }
 
 /// A call being recorded; the record is written when it is dropped (after the call).
