@@ -263,3 +263,54 @@ fn a_frame_range_drops_drawing_before_it_and_stops_after_it() {
     let ranged = std::fs::metadata(&capture).unwrap().len();
     assert!(ranged < full * 3 / 4, "2 complete frames ({ranged} bytes) against 4 ({full} bytes)");
 }
+
+fn glrt(args: &[&str]) -> (bool, String, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_glrt")).args(args).output().expect("run glrt");
+    (out.status.success(), String::from_utf8_lossy(&out.stdout).into_owned(), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+#[test]
+fn info_summarises_a_capture() {
+    let (ok, out, err) = glrt(&["info", fixture("demo.glrtcap").to_str().unwrap()]);
+    assert!(ok, "{err}");
+    assert!(out.contains("\nframes: 4 ("), "{out}");
+    assert!(out.contains("\ncontexts: 1\n"), "{out}");
+    // The demo uploads 5 textures (the font and 4 scene textures) once, in frame 0.
+    assert!(out.contains("\ntexture uploads: 5\n"), "{out}");
+    assert_eq!(out.matches("  frame 0 glTexImage2D ").count(), 5, "{out}");
+    assert!(out.lines().any(|l| l.trim_start().starts_with("4 glClear")), "one clear per frame: {out}");
+    let (ok, out, _) = glrt(&["info"]);
+    assert!(ok && out.contains("exports: "), "info without a file describes the build: {out}");
+}
+
+#[test]
+fn dump_prints_the_call_log_of_a_capture() {
+    let (ok, out, err) = glrt(&["dump", fixture("glxgears.glrtcap").to_str().unwrap()]);
+    assert!(ok, "{err}");
+    let frames: Vec<&str> = out.lines().filter(|l| l.contains("== end of frame")).collect();
+    assert_eq!(frames.len(), 4, "{frames:?}");
+    assert_eq!(frames[3], "3 == end of frame (glXSwapBuffers)");
+    let capture = Capture::open(&fixture("glxgears.glrtcap")).unwrap();
+    let calls = capture.records().filter(|r| matches!(r, Ok((_, Record::Call { .. })))).count();
+    assert_eq!(out.lines().count(), calls + 4, "one line per call and per frame");
+    assert!(out.contains("0 glEnable(cap=GL_LIGHTING)\n"), "{}", &out[..out.len().min(2000)]);
+    assert!(out.lines().any(|l| l.starts_with("0 glBegin(mode=GL_QUAD_STRIP)")), "gears are compiled into lists");
+    assert_eq!(out.lines().filter(|l| l.starts_with("2 glCallList(")).count(), 3, "and called each frame");
+}
+
+#[test]
+fn replay_takes_a_frame_range_and_refuses_bad_files_and_options() {
+    let file = fixture("glxgears.glrtcap");
+    let (ok, out, err) = glrt(&["replay", file.to_str().unwrap(), "--frames", "0..2", "--size", "100x80"]);
+    assert!(ok, "{err}");
+    assert!(out.contains(", 2 frames"), "{out}");
+    let (ok, _, err) = glrt(&["replay", file.to_str().unwrap(), "--out", "/tmp"]);
+    assert!(!ok && err.contains("no renderer in this build produces pixels"), "{err}");
+    let (ok, _, err) = glrt(&["replay", file.to_str().unwrap(), "--size", "big"]);
+    assert!(!ok && err.contains("--size big: expected WxH"), "{err}");
+    let cut = scratch("cut.glrtcap");
+    let bytes = std::fs::read(&file).unwrap();
+    std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();
+    let (ok, _, err) = glrt(&["replay", cut.to_str().unwrap()]);
+    assert!(!ok && err.contains("bad capture at byte "), "{err}");
+}

@@ -18,7 +18,7 @@
 //! pointer arguments in those windows are translated into it, and each call's recorded bytes
 //! are written there before the call. Values below 4 GiB (buffer offsets, null) pass
 //! unchanged. A capture made during a replay maps addresses back through the same shadow
-//! ([`canonical`]), so replaying with `GLRT_CAPTURE` set writes a byte-identical file.
+//! ([`captured_address`]), so replaying with `GLRT_CAPTURE` set writes a byte-identical file.
 //!
 //! **Frame ranges.** `GLRT_CAPTURE_FRAMES=A..B` (frames count from 0, ended by swaps, `B`
 //! excluded) records frames `A` to `B - 1` completely; before `A` it drops the commands that
@@ -222,8 +222,10 @@ fn on() -> bool {
     STATE.load(Ordering::Relaxed) != OFF && session().is_some()
 }
 
-/// Maps an address seen during a replay back to the captured one (unchanged outside one).
-fn canonical(address: u64) -> u64 {
+/// The captured address of `address`: during a replay, shadow addresses map back to the
+/// addresses the captured program used; anything else is returned unchanged. (The call log
+/// can print pointers through this so that `glrt dump` shows the program's addresses.)
+pub fn captured_address(address: u64) -> u64 {
     CANONICAL.read().as_ref().map_or(address, |s| s.original(address))
 }
 
@@ -277,7 +279,7 @@ impl<const N: usize> Drop for CallRecord<N> {
         let mut args = self.args;
         for (a, kind) in args.iter_mut().zip(signature) {
             if *kind == b'p' {
-                *a = canonical(*a);
+                *a = captured_address(*a);
             }
         }
         // Safety: each range was reported by the call as client memory it read, and the
@@ -285,7 +287,7 @@ impl<const N: usize> Drop for CallRecord<N> {
         // returned to it yet.
         let reads: Vec<(u64, &[u8])> = ranges
             .iter()
-            .map(|&(address, len)| (canonical(address as u64), unsafe { std::slice::from_raw_parts(address as *const u8, len) }))
+            .map(|&(address, len)| (captured_address(address as u64), unsafe { std::slice::from_raw_parts(address as *const u8, len) }))
             .collect();
         session.writer.record(|out| format::put_call(out, self.id, &args, &reads));
     }

@@ -98,3 +98,43 @@ fn compress(file: BufWriter<File>, batches: Receiver<Vec<u8>>) -> io::Result<()>
     file.write_all(&hash.digest().to_le_bytes())?;
     file.flush()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::translate::capture::format::{Event, SwapKind};
+    use crate::translate::capture::reader::{Capture, Record};
+    use crate::translate::capture::table::COMMANDS;
+
+    #[test]
+    fn what_is_written_reads_back() {
+        let path = std::env::temp_dir().join(format!("glrt-writer-{}.glrtcap", std::process::id()));
+        let writer = Writer::create(&path, COMMANDS).unwrap();
+        let id = COMMANDS.iter().position(|c| c.0 == "glLightfv").unwrap();
+        let params = [1.0f32, 2.0, 3.0, 0.0].map(f32::to_ne_bytes).concat();
+        let events = [
+            Event::Context { id: 1, share: 0 },
+            Event::MakeCurrent { id: 1, width: 640, height: -1, double: false },
+            Event::Swap(SwapKind::Glx { width: 640, height: 480 }),
+            Event::Swap(SwapKind::Headless),
+        ];
+        writer.record(|out| format::put_event(out, events[0]));
+        writer.record(|out| format::put_event(out, events[1]));
+        // Enough records to fill several batches.
+        for _ in 0..20_000 {
+            writer.record(|out| format::put_call(out, id, &[0x4000, 0x1203, 0x7ffc_0000_1000], &[(0x7ffc_0000_1000, &params)]));
+        }
+        writer.record(|out| format::put_event(out, events[2]));
+        writer.record(|out| format::put_event(out, events[3]));
+        writer.finish().unwrap();
+        writer.record(|out| format::put_event(out, events[3]));
+        let capture = Capture::open(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        let records: Vec<Record> = capture.records().map(|r| r.unwrap().1).collect();
+        assert_eq!(records.len(), 20_004, "nothing is recorded after finish");
+        assert_eq!(records[..2], [Record::Event(events[0]), Record::Event(events[1])]);
+        assert_eq!(records[2], Record::Call { id, args: vec![0x4000, 0x1203, 0x7ffc_0000_1000], reads: vec![(0x7ffc_0000_1000, &params[..])] });
+        assert_eq!(records[20_002..], [Record::Event(events[2]), Record::Event(events[3])]);
+        assert_eq!(capture.writer, format!("glrt {}", env!("CARGO_PKG_VERSION")));
+    }
+}
