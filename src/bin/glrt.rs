@@ -1,7 +1,8 @@
 //! The `glrt` command:
 //! - `glrt info`: the build and how many functions it exports;
 //! - `glrt info FILE`: what a capture holds (frames, calls per function, bytes, textures);
-//! - `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH]`: replays a capture headless;
+//! - `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH]`: replays a capture headless
+//!   (frames before `A` are replayed too: they build the state; the replay stops after `B - 1`);
 //! - `glrt dump FILE`: the call log of a capture (the `GLRT_TRACE` format) on standard output.
 
 use std::process::ExitCode;
