@@ -65,7 +65,8 @@ pub fn table(model: &Model) -> String {
             .enumerate()
             .map(|(i, p)| if p.ty.contains('*') { format!("R::from_raw(ptr(a[{i}]))") } else { format!("R::from_raw(a[{i}])") })
             .collect();
-        writeln!(s, "        {id} => {{ let _ = unsafe {{ e::{}({}) }}; }}", c.name, args.join(", ")).unwrap();
+        let discard = if c.ret == "()" { "" } else { "let _ = " };
+        writeln!(s, "        {id} => {{ {discard}unsafe {{ e::{}({}) }}; }}", c.name, args.join(", ")).unwrap();
     }
     s.push_str("        _ => return false,\n    }\n    true\n}\n");
     s

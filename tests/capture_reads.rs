@@ -23,8 +23,11 @@ fn scratch(name: &str) -> PathBuf {
     path
 }
 
-/// The calls of a capture by name: `(name, reads as (address, bytes))`.
-fn calls(capture: &Capture) -> Vec<(&'static str, Vec<(u64, Vec<u8>)>)> {
+/// Client memory a call read: `(address, bytes)` per range.
+type Reads = Vec<(u64, Vec<u8>)>;
+
+/// The calls of a capture by name, with their reads.
+fn calls(capture: &Capture) -> Vec<(&'static str, Reads)> {
     capture
         .records()
         .filter_map(|r| match r.unwrap().1 {
