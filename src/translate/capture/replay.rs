@@ -30,27 +30,30 @@ pub struct Outcome {
     pub calls: u64,
 }
 
-/// The windows of captured addresses a capture uses: those its reads touch and those its
-/// pointer arguments point into.
-fn windows(capture: &Capture) -> Result<BTreeSet<u64>, String> {
-    let mut windows = BTreeSet::new();
+/// The address space a capture uses: the 4 GiB windows its reads touch and its pointer
+/// arguments point into, the pages below 4 GiB it read, and those pointer arguments below
+/// 4 GiB point into (buffer offsets, or a non-PIE program's data).
+fn layout(capture: &Capture) -> Result<Shadow, String> {
+    let (mut windows, mut read, mut pointed) = (BTreeSet::new(), BTreeSet::new(), BTreeSet::new());
     for record in capture.records() {
         let (_, record) = record.map_err(|e| e.to_string())?;
         let Record::Call { id, args, reads } = record else { continue };
         for (address, bytes) in reads {
             windows.extend(Shadow::windows_of(address, bytes.len() as u64));
+            read.extend(Shadow::low_pages_of(address, bytes.len() as u64));
         }
-        for (a, kind) in args.iter().zip(COMMANDS[id].1.bytes()) {
+        for (&a, kind) in args.iter().zip(COMMANDS[id].1.bytes()) {
             if kind == b'p' {
                 windows.insert(a >> 32);
+                pointed.extend(Shadow::low_pages_of(a, 1));
             }
         }
         if windows.len() > super::shadow::MAX_WINDOWS {
             break;
         }
     }
-    windows.remove(&0);
-    Ok(windows)
+    pointed.remove(&0);
+    Shadow::new(&windows, &read, &pointed)
 }
 
 /// Clears the replay's address mapping of capture when the replay ends, however it ends.
@@ -65,7 +68,7 @@ impl Drop for Mapping {
 /// Replays `capture` on this thread; the contexts it creates are released and destroyed at
 /// the end.
 pub fn run(capture: &Capture, options: &Options) -> Result<Outcome, String> {
-    let shadow = Arc::new(Shadow::new(&windows(capture)?)?);
+    let shadow = Arc::new(layout(capture)?);
     *super::CANONICAL.write() = Some(shadow.clone());
     let _mapping = Mapping;
     let mut contexts: HashMap<u32, *mut c_void> = HashMap::new();
