@@ -17,7 +17,8 @@
 //! each 4 GiB window of addresses the capture uses maps to a slot of one reserved region,
 //! pointer arguments in those windows are translated into it, and each call's recorded bytes
 //! are written there before the call. Values below 4 GiB (buffer offsets, null) pass
-//! unchanged. A capture made during a replay maps addresses back through the same shadow
+//! unchanged; memory below 4 GiB that the capture read (the data of a program that is not
+//! position independent) is mapped at its own address. A capture made during a replay maps addresses back through the same shadow
 //! ([`captured_address`]), so replaying with `GLRT_CAPTURE` set writes a byte-identical file.
 //!
 //! **Frame ranges.** `GLRT_CAPTURE_FRAMES=A..B` (frames count from 0, ended by swaps, `B`
@@ -32,7 +33,12 @@
 //! [`client_pointer`].
 //!
 //! Limits: one recording thread is assumed (the calls of all threads go to one stream);
-//! contents a program writes through `glMapBuffer` pointers are not recorded.
+//! contents a program writes through `glMapBuffer` pointers are not recorded; a program
+//! killed before the capture is finished (at exit, or after the last frame of
+//! `GLRT_CAPTURE_FRAMES`) leaves a file readers refuse. Replay checks every length in the
+//! file, but runs the recorded GL calls as they are: a hand-made capture whose arguments make
+//! a call read far past its recorded memory can crash the replay, as it would the program
+//! (the compressed body's checksums and the trailer's hash refuse accidental damage first).
 
 pub mod format;
 pub mod reader;
