@@ -8,7 +8,7 @@
 //! events that matter: context creation with its share group, make-current with the drawable
 //! size and buffering, and frame-ending swaps. Memory the GL writes (`glGet*`,
 //! `glReadPixels`, feedback and selection buffers) is not recorded; replay gives it writable
-//! memory at the same place. The file layout is in [`format`]; records are written by a
+//! memory at the same place. The file layout is in [`mod@format`]; records are written by a
 //! background thread ([`writer`]).
 //!
 //! **Replay** ([`replay`]) creates headless contexts of the captured sizes and calls the same
