@@ -276,7 +276,7 @@ fn exports(model: &Model) -> String {
     s.push_str(
         "#[allow(unused_imports)] use crate::translate::gl::{types, __gl_imports};\n\
          use crate::translate::dispatch;\n\
-         use super::{shim, trace};\n\n",
+         use super::shim;\n\n",
     );
     let lens = crate::emit_trace::fixed_lengths();
     let mut glx_missing = String::new();
@@ -290,8 +290,9 @@ fn exports(model: &Model) -> String {
                 writeln!(
                     glx_missing,
                     "/// `{name}`: not implemented; logs once.\n\
-                     #[unsafe(no_mangle)]\npub unsafe extern \"C\" fn {name}({}){ret} {{\n    super::shim::missing({missing_index}, \"{name}\")\n}}\n",
+                     #[unsafe(no_mangle)]\npub unsafe extern \"C\" fn {name}({}){ret} {{\n    let __call = || super::shim::missing({missing_index}, \"{name}\");\n{}    __call()\n}}\n",
                     unused.join(", "),
+                    crate::emit_trace::traced_branch(model, &lens, c, "_"),
                 )
                 .unwrap();
                 missing_index += 1;

@@ -83,26 +83,52 @@ fn print_param(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Comm
     }
 }
 
-/// The traced branch of an export whose parameters are named `{prefix}{name}`: when tracing
-/// is on, prints the arguments, runs `__call` (a closure in scope) observing the GL error,
-/// prints the result and returns it.
+/// The expression that forwards a call to `c` to the library of pass-through mode (its
+/// function of the same name, zero when it has none). Commands exported without a known
+/// prototype (newer than the registry) are not forwarded.
+fn forward(model: &Model, c: &Command, prefix: &str) -> String {
+    let known = !(c.params.is_empty() && c.ret == "usize");
+    let fallback = format!("crate::gl_entry::passthrough::not_forwarded(\"{}\", {known})", c.name);
+    if !known {
+        return fallback;
+    }
+    let index = model.commands.iter().position(|x| x.name == c.name).expect("a command of the model");
+    let tys: Vec<&str> = c.params.iter().map(|p| p.ty.as_str()).collect();
+    let args: Vec<String> = c.params.iter().map(|p| format!("{prefix}{}", p.name)).collect();
+    let ret = if c.ret == "()" { String::new() } else { format!(" -> {}", c.ret) };
+    format!(
+        "match crate::gl_entry::passthrough::real({index}) {{\n\
+         \x20           Some(__f) => unsafe {{ std::mem::transmute::<*const (), unsafe extern \"C\" fn({}){ret}>(__f)({}) }},\n\
+         \x20           None => {fallback},\n\
+         \x20       }}",
+        tys.join(", "),
+        args.join(", "),
+    )
+}
+
+/// The branch of an export (parameters named `{prefix}{name}`, glrt's own work in the closure
+/// `__call`) taken when the call log or pass-through mode is on ([`gl_entry::mode`]): the call
+/// goes to glrt or to the other library, and is logged with its arguments, result and error.
 pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, prefix: &str) -> String {
     let mut s = String::new();
-    writeln!(s, "    if let Some(mut __t) = trace::begin(\"{}\") {{", c.name).unwrap();
+    s.push_str("    if let Some(__mode) = crate::gl_entry::mode::special() {\n");
+    writeln!(s, "        let __call = || if __mode.passthrough() {{\n            {}\n        }} else {{\n            __call()\n        }};", forward(model, c, prefix)).unwrap();
+    writeln!(s, "        if let Some(mut __t) = crate::gl_entry::trace::begin(__mode, \"{}\") {{", c.name).unwrap();
     for p in &c.params {
-        writeln!(s, "        {}", print_param(model, lens, c, p, prefix)).unwrap();
+        writeln!(s, "            {}", print_param(model, lens, c, p, prefix)).unwrap();
     }
     if c.ret == "()" {
-        s.push_str("        __t.observe(__call);\n        __t.end();\n        return;\n    }\n");
-        return s;
+        s.push_str("            __t.observe(__mode, __call);\n            __t.end();\n            return;\n        }\n");
+    } else {
+        s.push_str("            let __r = __t.observe(__mode, __call);\n");
+        if c.ret == "types::GLenum" {
+            s.push_str("            __t.returned_enum(__r);\n");
+        } else if is_scalar(&c.ret) || c.ret.contains('*') {
+            s.push_str("            __t.returned(__r);\n");
+        }
+        s.push_str("            __t.end();\n            return __r;\n        }\n");
     }
-    s.push_str("        let __r = __t.observe(__call);\n");
-    if c.ret == "types::GLenum" {
-        s.push_str("        __t.returned_enum(__r);\n");
-    } else if is_scalar(&c.ret) || c.ret.contains('*') {
-        s.push_str("        __t.returned(__r);\n");
-    }
-    s.push_str("        __t.end();\n        return __r;\n    }\n");
+    s.push_str("        return __call();\n    }\n");
     s
 }
 

@@ -3,21 +3,15 @@
 //! missing) writes the lines the module documents; and calls made in this process through the
 //! exports show the errors they raise.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::PathBuf;
 use std::process::{Command, Output};
+
+use common::lib_dir;
 
 use glrt::gl_entry::{exports as gl, headless};
 use glrt::translate::gl::{GL_INVALID_ENUM, GL_QUADS, GL_TEXTURE_2D};
-
-/// `target/<profile>/`, holding glrt-demo and libglrt.so; makes the `libGL.so.1` symlink.
-fn lib_dir() -> PathBuf {
-    let dir = Path::new(env!("CARGO_BIN_EXE_glrt-demo")).parent().expect("target dir").to_path_buf();
-    let link = dir.join("libGL.so.1");
-    if std::fs::symlink_metadata(&link).is_err() {
-        let _ = std::os::unix::fs::symlink("libglrt.so", &link);
-    }
-    dir
-}
 
 fn temp_path(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("glrt-trace-{}-{name}", std::process::id()))

@@ -14,5 +14,7 @@ pub mod glx_swap;
 pub mod glx_types;
 pub mod glx_xfont;
 pub mod headless;
+pub mod mode;
+pub mod passthrough;
 pub mod shim;
 pub mod trace;

@@ -18,7 +18,8 @@
 //!   (the latched error was `GL_NO_ERROR` before the call and is set after: an error raised
 //!   while an earlier one is still latched is dropped by GL, and not shown), ` (no current
 //!   context)` when the call had no context to run on;
-//! - `N glXMakeCurrent(...)` for the GLX functions: their name only, before the call;
+//! - the GLX functions with their arguments and result, printed by `glx::entry`:
+//!   `N glXMakeCurrent(dpy=0x55d0c1a2e2a0, drawable=0x200002, ctx=0x55d0c1b3f010) = True`;
 //! - `N == end of frame (glXSwapBuffers)` at a frame boundary.
 //!
 //! `GLRT_TRACE_FILTER=pattern` keeps the calls whose name contains `pattern` (a plain,
@@ -35,11 +36,12 @@ use std::fs::File;
 use std::io::{self, BufWriter, Write as _};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::OnceLock;
-use std::sync::atomic::{AtomicU8, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use parking_lot::Mutex;
 
 use super::current::with_slot;
+use super::mode::{self, Mode};
 use crate::translate::gl::{self, GLbitfield, GLenum, GLint};
 
 /// The gl.xml enum groups the log prints parameters by: `(name, value)` per member.
@@ -47,13 +49,6 @@ use crate::translate::gl::{self, GLbitfield, GLenum, GLint};
 pub mod groups {
     include!(concat!(env!("OUT_DIR"), "/trace_groups.rs"));
 }
-
-/// Tracing state: the environment is not read yet, tracing is off, or on.
-const UNREAD: u8 = 0;
-const OFF: u8 = 1;
-const ON: u8 = 2;
-
-static STATE: AtomicU8 = AtomicU8::new(UNREAD);
 
 /// The current frame number.
 static FRAME: AtomicU64 = AtomicU64::new(0);
@@ -64,7 +59,8 @@ struct Log {
     filter: Option<String>,
 }
 
-static LOG: OnceLock<Option<Log>> = OnceLock::new();
+/// The log, once `GLRT_TRACE` named a file that could be created.
+static LOG: OnceLock<Log> = OnceLock::new();
 
 /// A call being logged: its line, written by [`Trace::end`].
 pub struct Trace {
@@ -73,19 +69,13 @@ pub struct Trace {
     args: usize,
 }
 
-/// Starts the log line of a call to `name`, or `None` when tracing is off or `name` does not
-/// match `GLRT_TRACE_FILTER`. The off path is one relaxed load.
-#[inline]
-pub fn begin(name: &'static str) -> Option<Trace> {
-    if STATE.load(Ordering::Relaxed) == OFF {
+/// Starts the log line of a call to `name`, or `None` when tracing is off in `mode` or
+/// `name` does not match `GLRT_TRACE_FILTER`.
+pub fn begin(mode: Mode, name: &'static str) -> Option<Trace> {
+    if !mode.tracing() {
         return None;
     }
-    begin_slow(name)
-}
-
-#[cold]
-fn begin_slow(name: &'static str) -> Option<Trace> {
-    let log = log()?;
+    let log = LOG.get()?;
     if !keeps(log.filter.as_deref(), name) {
         return None;
     }
@@ -99,14 +89,15 @@ fn keeps(filter: Option<&str>, name: &str) -> bool {
     filter.is_none_or(|f| name.contains(f))
 }
 
-/// The open log, opening it on the first call (reads `GLRT_TRACE` and `GLRT_TRACE_FILTER`).
-fn log() -> Option<&'static Log> {
-    LOG.get_or_init(|| {
-        let log = open();
-        STATE.store(if log.is_some() { ON } else { OFF }, Ordering::Relaxed);
-        log
-    })
-    .as_ref()
+/// Opens the log `GLRT_TRACE` names (with `GLRT_TRACE_FILTER`), at most once per process
+/// ([`super::mode`] calls it at the first GL call); true when it is open.
+pub(super) fn open_from_environment() -> bool {
+    if LOG.get().is_none()
+        && let Some(log) = open()
+    {
+        let _ = LOG.set(log);
+    }
+    LOG.get().is_some()
 }
 
 /// Opens the file `GLRT_TRACE` names, if any.
@@ -137,7 +128,7 @@ extern "C" fn flush_at_exit() {
 
 /// Writes buffered log lines to the file.
 pub fn flush() {
-    if let Some(Some(log)) = LOG.get() {
+    if let Some(log) = LOG.get() {
         write_or_stop(log, |out| out.flush());
     }
 }
@@ -145,7 +136,7 @@ pub fn flush() {
 /// Runs a write on the log; on failure reports it once and turns tracing off.
 fn write_or_stop(log: &Log, f: impl FnOnce(&mut BufWriter<File>) -> io::Result<()>) {
     if let Err(e) = f(&mut log.out.lock())
-        && STATE.swap(OFF, Ordering::Relaxed) == ON
+        && mode::stop_tracing()
     {
         let _ = writeln!(io::stderr(), "glrt: GLRT_TRACE: write failed: {e}; tracing is off");
     }
@@ -154,24 +145,12 @@ fn write_or_stop(log: &Log, f: impl FnOnce(&mut BufWriter<File>) -> io::Result<(
 /// Marks the end of a frame (`name` is the swap call): writes the boundary line, flushes, and
 /// counts the next frame.
 pub fn frame_end(name: &'static str) {
-    if STATE.load(Ordering::Relaxed) == OFF {
-        return;
-    }
-    let Some(log) = log() else { return };
+    let Some(log) = mode::special().filter(|m| m.tracing()).and_then(|_| LOG.get()) else { return };
     let frame = FRAME.fetch_add(1, Ordering::Relaxed);
     write_or_stop(log, |out| {
         writeln!(out, "{frame} == end of frame ({name})")?;
         out.flush()
     });
-}
-
-/// Logs a call to the GLX function `name`, whose arguments the log does not print yet:
-/// `N glXMakeCurrent(...)`.
-pub fn window_system_call(name: &'static str) {
-    if let Some(mut t) = begin(name) {
-        t.line.push_str("...)");
-        t.end();
-    }
 }
 
 /// The latched GL error of this thread's current context, `None` without one.
@@ -263,8 +242,8 @@ fn print_bits(out: &mut String, bits: GLbitfield, group: &[(&'static str, u64)])
 }
 
 impl Trace {
-    /// Starts the next argument, `name=`.
-    fn next(&mut self, name: &str) -> &mut String {
+    /// Starts the next argument, `name=`; the caller appends the value.
+    pub(crate) fn next(&mut self, name: &str) -> &mut String {
         if self.args > 0 {
             self.line.push_str(", ");
         }
@@ -329,8 +308,14 @@ impl Trace {
     }
 
     /// Runs the call, noting the error it raised (or that there was no current context).
-    pub fn observe<R>(&mut self, call: impl FnOnce() -> R) -> R {
+    /// In pass-through mode the call runs in another library, whose error glrt does not read
+    /// (calling its `glGetError` would clear the error before the program sees it): the line
+    /// shows the call only.
+    pub fn observe<R>(&mut self, mode: Mode, call: impl FnOnce() -> R) -> R {
         self.line.push(')');
+        if mode.passthrough() {
+            return call();
+        }
         let before = latched();
         let result = call();
         match (before, latched()) {
@@ -342,6 +327,16 @@ impl Trace {
             _ => {}
         }
         result
+    }
+
+    /// Ends the argument list (for calls not run through [`Trace::observe`]).
+    pub fn close_args(&mut self) {
+        self.line.push(')');
+    }
+
+    /// Appends the call's result as `print` writes it.
+    pub fn returned_with(&mut self, print: impl FnOnce(&mut String)) {
+        print(&mut self.line);
     }
 
     /// The call's result.
@@ -363,7 +358,7 @@ impl Trace {
     /// Writes the line.
     pub fn end(mut self) {
         self.line.push('\n');
-        if let Some(Some(log)) = LOG.get() {
+        if let Some(log) = LOG.get() {
             write_or_stop(log, |out| out.write_all(self.line.as_bytes()));
         }
     }
