@@ -66,7 +66,10 @@ fn print_param(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Comm
     let (label, ty) = (p.name.trim_matches('_'), p.ty.as_str());
     let name = format!("{prefix}{}", p.name);
     let group = group_of(model, p).map_or("&[]".to_owned(), group_path);
-    if ty == "types::GLenum" {
+    let has_pname = c.params.iter().any(|q| q.name == "pname" && q.ty == "types::GLenum");
+    if has_pname && p.name == "param" && ["types::GLint", "types::GLfloat", "types::GLdouble"].contains(&ty) {
+        format!("__t.param_of(\"{label}\", {prefix}pname, {name});")
+    } else if ty == "types::GLenum" {
         format!("__t.enumerant(\"{label}\", {name}, {group});")
     } else if ty == "types::GLbitfield" && group_of(model, p).is_some() {
         format!("__t.bits(\"{label}\", {name}, {group});")

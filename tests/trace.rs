@@ -11,7 +11,7 @@ use std::process::{Command, Output};
 use common::lib_dir;
 
 use glrt::gl_entry::{exports as gl, headless};
-use glrt::translate::gl::{GL_INVALID_ENUM, GL_QUADS, GL_TEXTURE_2D};
+use glrt::translate::gl::*;
 
 fn temp_path(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("glrt-trace-{}-{name}", std::process::id()))
@@ -127,6 +127,11 @@ fn errors_results_and_pointers_in_process() {
         assert_eq!(gl::glGetError(), 0);
         gl::glMatrixMode(0x1234);
         gl::glEnable(GL_TEXTURE_2D);
+        gl::glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR as i32);
+        gl::glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP as f32);
+        gl::glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE as i32);
+        gl::glFogi(GL_FOG_MODE, GL_EXP as i32);
+        gl::glFogf(GL_FOG_DENSITY, 2048.0); // numeric: GL_EXP's value, not its name
         headless::glrtSwapBuffers();
         headless::glrtMakeCurrent(std::ptr::null_mut(), 0, 0);
         headless::glrtDestroyContext(ctx);
@@ -149,6 +154,11 @@ fn errors_results_and_pointers_in_process() {
             "0 glGetError() = GL_NO_ERROR".to_owned(),
             "0 glMatrixMode(mode=0x1234) -> GL_INVALID_ENUM".to_owned(),
             "0 glEnable(cap=GL_TEXTURE_2D)".to_owned(),
+            "0 glTexParameteri(target=GL_TEXTURE_2D, pname=GL_TEXTURE_MIN_FILTER, param=GL_LINEAR)".to_owned(),
+            "0 glTexParameterf(target=GL_TEXTURE_2D, pname=GL_TEXTURE_WRAP_S, param=GL_CLAMP)".to_owned(),
+            "0 glTexEnvi(target=GL_TEXTURE_ENV, pname=GL_TEXTURE_ENV_MODE, param=GL_MODULATE)".to_owned(),
+            "0 glFogi(pname=GL_FOG_MODE, param=GL_EXP)".to_owned(),
+            "0 glFogf(pname=GL_FOG_DENSITY, param=2048.0)".to_owned(),
             "0 == end of frame (glrtSwapBuffers)".to_owned(),
         ]
     );

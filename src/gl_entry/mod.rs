@@ -18,3 +18,4 @@ pub mod mode;
 pub mod passthrough;
 pub mod shim;
 pub mod trace;
+pub mod trace_params;

@@ -8,6 +8,9 @@
 //!   `GL_NONE`), else the preferred name of the value ([`gl::enum_name`]), else hex;
 //! - `GLint` parameters of a gl.xml group (`glTexImage2D`'s `internalformat`) by the name of
 //!   the group member of that value, else as numbers;
+//! - `GLint`/`GLfloat` `param`s of a `pname` whose value is a constant
+//!   (`glTexParameterf(..., pname=GL_TEXTURE_MIN_FILTER, param=GL_LINEAR)`) by name, from the
+//!   table in [`super::trace_params`];
 //! - bitfields of a gl.xml group as an OR of its names (`GL_COLOR_BUFFER_BIT|GL_DEPTH_BUFFER_BIT`),
 //!   with any bits no name covers in hex;
 //! - pointers: `NULL`, or the address; where gl.xml gives a fixed length (`glVertex3fv`: 3,
@@ -274,6 +277,17 @@ impl Trace {
         let out = self.next(name);
         match u64::try_from(value).ok().and_then(|v| member(v, group)) {
             Some(member) => out.push_str(member),
+            None => value.print(out),
+        }
+    }
+
+    /// The scalar `param` of a command that takes a `pname` (`glTexParameterf`, `glFogi`): by
+    /// name when `pname` takes constants ([`super::trace_params`]) and `value` is one of
+    /// them, else as the number.
+    pub fn param_of<T: Arg + Into<f64>>(&mut self, name: &str, pname: GLenum, value: T) {
+        let out = self.next(name);
+        match super::trace_params::name_of(pname, value.into()) {
+            Some(constant) => out.push_str(constant),
             None => value.print(out),
         }
     }
