@@ -61,6 +61,37 @@ fn group_of<'a>(model: &Model, p: &'a Param) -> Option<&'a str> {
     p.group.as_deref().filter(|g| model.groups.contains_key(*g))
 }
 
+/// The vector state commands (`glLightfv`, `glTexParameteriv`...), whose `params` count
+/// depends on `pname` (`gl_entry::trace_sizes::values_of`).
+const PNAME_VECTORS: &[&str] =
+    &["glLight", "glLightModel", "glMaterial", "glFog", "glTexEnv", "glTexParameter", "glTexGen", "glPointParameter"];
+
+/// The printing of a `const` pointer parameter whose size depends on other arguments or on
+/// GL state (`gl_entry::trace_sizes`), `None` for other parameters.
+fn variable_size(c: &Command, p: &Param, prefix: &str) -> Option<String> {
+    let (label, name) = (p.name.trim_matches('_'), format!("{prefix}{}", p.name));
+    let has = |n: &str| c.params.iter().any(|q| q.name == n);
+    let arg = |n: &str| if has(n) { format!("{prefix}{n}") } else { "1".to_owned() };
+    let sizes = "crate::gl_entry::trace_sizes";
+    let base = c.name.trim_end_matches("ARB").trim_end_matches("EXT").strip_suffix('v').and_then(|n| n.strip_suffix(['f', 'i', 'd']));
+    if p.name == "params" && has("pname") && base.is_some_and(|b| PNAME_VECTORS.contains(&b)) {
+        return Some(format!("__t.values_if(\"{label}\", {name}, {sizes}::values_of({prefix}pname))"));
+    }
+    let typed = match (c.name.as_str(), p.name.as_str()) {
+        ("glCallLists", "lists") => format!("{sizes}::call_lists({prefix}n, {prefix}type_)"),
+        ("glDrawElements" | "glDrawRangeElements" | "glDrawRangeElementsEXT", "indices") => {
+            format!("{sizes}::indices({prefix}count, {prefix}type_)")
+        }
+        (_, "pixels") if c.name.starts_with("glTexImage") || c.name.starts_with("glTexSubImage") || c.name == "glDrawPixels" => {
+            let (w, h, d) = (arg("width"), arg("height"), arg("depth"));
+            let size = format!("{sizes}::image({prefix}format, {prefix}type_, {w}, {h}, {d})");
+            return Some(format!("__t.bytes(\"{label}\", {name}, {size})"));
+        }
+        _ => return None,
+    };
+    Some(format!("__t.typed(\"{label}\", {name}, {typed})"))
+}
+
 /// The statement that prints parameter `p` of command `c` into the trace `t`.
 fn print_param(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, p: &Param, prefix: &str) -> String {
     let (label, ty) = (p.name.trim_matches('_'), p.ty.as_str());
@@ -79,6 +110,8 @@ fn print_param(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Comm
         && let Some(n) = lens.get(&(c.name.clone(), p.name.clone()))
     {
         format!("unsafe {{ __t.values(\"{label}\", {name}, {n}) }};")
+    } else if let Some(size) = ty.starts_with("*const ").then(|| variable_size(c, p, prefix)).flatten() {
+        format!("unsafe {{ {size} }};")
     } else if is_scalar(ty) || ty.contains('*') {
         format!("__t.arg(\"{label}\", {name});")
     } else {

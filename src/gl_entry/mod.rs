@@ -19,3 +19,4 @@ pub mod passthrough;
 pub mod shim;
 pub mod trace;
 pub mod trace_params;
+pub mod trace_sizes;

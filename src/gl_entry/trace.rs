@@ -45,6 +45,7 @@ use parking_lot::Mutex;
 
 use super::current::with_slot;
 use super::mode::{self, Mode};
+use super::trace_sizes::{self, Typed};
 use crate::translate::gl::{self, GLbitfield, GLenum, GLint};
 
 /// The gl.xml enum groups the log prints parameters by: `(name, value)` per member.
@@ -197,6 +198,33 @@ impl<T> Arg for *mut T {
     }
 }
 
+/// How many elements or bytes of a variable-size pointer the log prints.
+pub const FIRST_VALUES: usize = 16;
+
+/// Appends the first [`FIRST_VALUES`] elements of `typed` in `bytes`: `[1, 2, 3]`, with `...`
+/// when there are more. `GL_2_BYTES`..`GL_4_BYTES` names are big-endian (section 5.4).
+fn print_elements(out: &mut String, bytes: &[u8], typed: Typed) {
+    let size = trace_sizes::element_size(typed.type_).unwrap_or(1);
+    out.push('[');
+    for (i, e) in bytes.chunks_exact(size).take(FIRST_VALUES).enumerate() {
+        if i > 0 {
+            out.push_str(", ");
+        }
+        // `e` has exactly the type's size (1, 2 or 4 bytes for these types).
+        let _ = match typed.type_ {
+            gl::GL_BYTE => write!(out, "{}", e[0] as i8),
+            gl::GL_SHORT => write!(out, "{}", i16::from_ne_bytes([e[0], e[1]])),
+            gl::GL_UNSIGNED_SHORT => write!(out, "{}", u16::from_ne_bytes([e[0], e[1]])),
+            gl::GL_INT => write!(out, "{}", i32::from_ne_bytes([e[0], e[1], e[2], e[3]])),
+            gl::GL_UNSIGNED_INT => write!(out, "{}", u32::from_ne_bytes([e[0], e[1], e[2], e[3]])),
+            gl::GL_FLOAT => write!(out, "{:?}", f32::from_ne_bytes([e[0], e[1], e[2], e[3]])),
+            // GL_UNSIGNED_BYTE and the big-endian GL_n_BYTES.
+            _ => write!(out, "{}", e.iter().fold(0u32, |v, &b| v << 8 | u32::from(b))),
+        };
+    }
+    out.push_str(if typed.count > FIRST_VALUES { ", ...]" } else { "]" });
+}
+
 /// The name of `value` in `group`, else its preferred name among all constants.
 fn name_in(value: u64, group: &[(&'static str, u64)]) -> Option<&'static str> {
     member(value, group).or_else(|| u32::try_from(value).ok().and_then(gl::enum_name))
@@ -303,14 +331,9 @@ impl Trace {
     /// # Safety
     /// A non-null `ptr` points to `len` readable values (what the command itself reads).
     pub unsafe fn values<T: Arg>(&mut self, name: &str, ptr: *const T, len: usize) {
-        let out = self.next(name);
-        ptr.print(out);
-        if ptr.is_null() {
-            return;
-        }
-        // Safety: as documented; the values are plain data, any bytes are valid `u8`s.
-        let bytes = unsafe { std::slice::from_raw_parts(ptr.cast::<u8>(), len * size_of::<T>()) };
-        let _ = write!(out, "({} bytes, xxh3 {:016x})[", bytes.len(), xxhash_rust::xxh3::xxh3_64(bytes));
+        // Safety: as documented.
+        let Some(out) = (unsafe { self.summary(name, ptr.cast(), len * size_of::<T>()) }) else { return };
+        out.push('[');
         for i in 0..len {
             if i > 0 {
                 out.push_str(", ");
@@ -319,6 +342,68 @@ impl Trace {
             unsafe { ptr.add(i).read_unaligned() }.print(out);
         }
         out.push(']');
+    }
+
+    /// [`Trace::values`] when the length is known (`Some`), else the address only.
+    ///
+    /// # Safety
+    /// As [`Trace::values`].
+    pub unsafe fn values_if<T: Arg>(&mut self, name: &str, ptr: *const T, len: Option<usize>) {
+        match len {
+            // Safety: as documented.
+            Some(len) => unsafe { self.values(name, ptr, len) },
+            None => self.arg(name, ptr),
+        }
+    }
+
+    /// A client array of GL-typed elements (`glCallLists` names, `glDrawElements` indices):
+    /// the summary and the first [`FIRST_VALUES`] elements; the address only when the size is
+    /// not known (`None`).
+    ///
+    /// # Safety
+    /// A non-null `ptr` points to the elements `typed` describes.
+    pub unsafe fn typed(&mut self, name: &str, ptr: *const std::ffi::c_void, typed: Option<Typed>) {
+        let Some(typed) = typed else { return self.arg(name, ptr) };
+        // Safety: as documented.
+        let Some(out) = (unsafe { self.summary(name, ptr, typed.bytes()) }) else { return };
+        // Safety: as documented.
+        let bytes = unsafe { std::slice::from_raw_parts(ptr.cast::<u8>(), typed.bytes()) };
+        print_elements(out, bytes, typed);
+    }
+
+    /// Client bytes of a known size (a pixel image): the summary and the first
+    /// [`FIRST_VALUES`] bytes in hex; the address only when the size is not known (`None`).
+    ///
+    /// # Safety
+    /// A non-null `ptr` points to `len` readable bytes.
+    pub unsafe fn bytes(&mut self, name: &str, ptr: *const std::ffi::c_void, len: Option<usize>) {
+        let Some(len) = len else { return self.arg(name, ptr) };
+        // Safety: as documented.
+        let Some(out) = (unsafe { self.summary(name, ptr, len) }) else { return };
+        // Safety: as documented.
+        let bytes = unsafe { std::slice::from_raw_parts(ptr.cast::<u8>(), len) };
+        out.push('[');
+        for (i, b) in bytes.iter().take(FIRST_VALUES).enumerate() {
+            let _ = write!(out, "{}{b:02x}", if i > 0 { " " } else { "" });
+        }
+        out.push_str(if len > FIRST_VALUES { " ...]" } else { "]" });
+    }
+
+    /// Starts pointer argument `name`: `NULL` (then `None`), or the address, the size and the
+    /// xxh3 hash of its `len` bytes, `0x7ffd5c0e1a3c(12 bytes, xxh3 a1f7c2750768aadb)`.
+    ///
+    /// # Safety
+    /// A non-null `ptr` points to `len` readable bytes.
+    unsafe fn summary(&mut self, name: &str, ptr: *const std::ffi::c_void, len: usize) -> Option<&mut String> {
+        let out = self.next(name);
+        ptr.print(out);
+        if ptr.is_null() {
+            return None;
+        }
+        // Safety: as documented; any bytes are valid `u8`s.
+        let bytes = unsafe { std::slice::from_raw_parts(ptr.cast::<u8>(), len) };
+        let _ = write!(out, "({len} bytes, xxh3 {:016x})", xxhash_rust::xxh3::xxh3_64(bytes));
+        Some(out)
     }
 
     /// Runs the call, noting the error it raised (or that there was no current context).
