@@ -127,21 +127,35 @@ fn glxgears_on_mesa_through_glrt_is_logged_and_drawn() {
     assert_eq!(outside, 0, "pixels drawn outside glxgears' window");
 }
 
-/// Pointing `GLRT_PASSTHROUGH` at glrt itself (which would call itself forever) is refused
-/// once on standard error, and glrt runs the program itself.
-#[test]
-fn passthrough_to_glrt_itself_is_refused() {
-    let own = lib_dir().join("libglrt.so");
+/// Runs `glrt-demo --headless --frames 2` through glrt with `GLRT_PASSTHROUGH=target`; returns
+/// its standard error after checking that the demo ran.
+fn demo_passthrough_to(target: &Path) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_glrt-demo"))
         .args(["--headless", "--frames", "2"])
         .env("LD_LIBRARY_PATH", lib_dir())
-        .env("GLRT_PASSTHROUGH", &own)
+        .env("GLRT_PASSTHROUGH", target)
         .env_remove("GLRT_TRACE")
         .output()
         .expect("glrt-demo runs");
-    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     assert!(out.status.success(), "{stderr}");
-    assert_eq!(stderr.matches("GLRT_PASSTHROUGH: ").count(), 1, "{stderr}");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("frames: 2"), "glrt ran the demo itself");
+    assert_eq!(stderr.matches("GLRT_PASSTHROUGH: ").count(), 1, "reported once: {stderr}");
+    stderr
+}
+
+/// `GLRT_PASSTHROUGH` naming a library the process has loaded already (here glrt's own file,
+/// as when glrt is a glvnd vendor behind the program's libGL) or another copy of glrt, either of
+/// which would call glrt forever, is refused once on standard error, and glrt runs the program.
+#[test]
+fn passthrough_back_to_glrt_is_refused() {
+    let own = lib_dir().join("libglrt.so");
+    let stderr = demo_passthrough_to(&own);
+    assert!(stderr.contains("already loaded in this process (the program's own libGL); glrt runs the calls itself"), "{stderr}");
+
+    let copy = temp_path("libglrt-copy.so");
+    std::fs::copy(&own, &copy).expect("copy of libglrt.so");
+    let stderr = demo_passthrough_to(&copy);
+    let _ = std::fs::remove_file(&copy);
     assert!(stderr.contains("this is glrt itself; glrt runs the calls itself"), "{stderr}");
-    assert!(String::from_utf8_lossy(&out.stdout).contains("frames: 2"));
 }

@@ -20,8 +20,9 @@
 //! - glrt's headless entry points (`glrtCreateContext`...) and the glvnd vendor entry
 //!   (`__glx_Main`) are not forwarded: they have no counterpart in another library.
 //!
-//! A path that cannot be opened, or that is glrt itself (which would call itself forever), is
-//! reported once on standard error and the mode stays off.
+//! A path that cannot be opened, that is glrt itself, or that the process has loaded already
+//! (glrt behind glvnd as a vendor: forwarding would come back to glrt) is reported once on
+//! standard error and the mode stays off.
 
 use std::ffi::{CStr, CString, OsStr, c_char, c_int};
 use std::io::Write as _;
@@ -35,6 +36,8 @@ use crate::translate::convert::ReturnDefault;
 
 /// glibc's `RTLD_DEEPBIND` (`<dlfcn.h>`): the library's own symbols before the global scope.
 const RTLD_DEEPBIND: c_int = 0x8;
+/// glibc's `RTLD_NOLOAD`: only find a library already loaded.
+const RTLD_NOLOAD: c_int = 0x4;
 
 /// The slot value of a function the library does not have.
 const MISSING: *mut () = std::ptr::without_provenance_mut(1);
@@ -73,6 +76,12 @@ pub(super) fn open_from_environment() -> bool {
 
 /// Loads the library at `path` (see the module documentation for the flags).
 fn open(path: &OsStr) -> Result<Real, String> {
+    // Already in the process, the library is the program's own libGL (glrt then runs as a glvnd
+    // vendor behind it), and forwarding to it would come back to glrt.
+    // Safety: with RTLD_NOLOAD nothing is loaded or initialised.
+    if unsafe { Library::open(Some(path), RTLD_NOW | RTLD_NOLOAD) }.is_ok() {
+        return Err("already loaded in this process (the program's own libGL)".into());
+    }
     // Safety: loading a library runs its initialisers; an OpenGL library's are meant to run in
     // any program that links it.
     let lib = unsafe { Library::open(Some(path), RTLD_NOW | RTLD_LOCAL | RTLD_DEEPBIND) }.map_err(|e| e.to_string())?;
