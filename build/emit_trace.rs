@@ -134,9 +134,9 @@ fn forward(model: &Model, c: &Command, prefix: &str) -> String {
     let ret = if c.ret == "()" { String::new() } else { format!(" -> {}", c.ret) };
     format!(
         "match crate::gl_entry::passthrough::real({index}) {{\n\
-         \x20           Some(__f) => unsafe {{ std::mem::transmute::<*const (), unsafe extern \"C\" fn({}){ret}>(__f)({}) }},\n\
-         \x20           None => {fallback},\n\
-         \x20       }}",
+         \x20                   Some(__f) => unsafe {{ std::mem::transmute::<*const (), unsafe extern \"C\" fn({}){ret}>(__f)({}) }},\n\
+         \x20                   None => {fallback},\n\
+         \x20               }}",
         tys.join(", "),
         args.join(", "),
     )
@@ -145,26 +145,38 @@ fn forward(model: &Model, c: &Command, prefix: &str) -> String {
 /// The branch of an export (parameters named `{prefix}{name}`, glrt's own work in the closure
 /// `__call`) taken when the call log or pass-through mode is on ([`gl_entry::mode`]): the call
 /// goes to glrt or to the other library, and is logged with its arguments, result and error.
+/// The branch is a function of its own, never inlined, so that the export's plain path stays
+/// as small as without it (one relaxed load more).
 pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, prefix: &str) -> String {
+    let ret = if c.ret == "()" { String::new() } else { format!(" -> {}", c.ret) };
+    let params: String = c.params.iter().map(|p| format!(", {prefix}{}: {}", p.name, p.ty)).collect();
+    let args: String = c.params.iter().map(|p| format!(", {prefix}{}", p.name)).collect();
     let mut s = String::new();
     s.push_str("    if let Some(__mode) = crate::gl_entry::mode::special() {\n");
-    writeln!(s, "        let __call = || if __mode.passthrough() {{\n            {}\n        }} else {{\n            __call()\n        }};", forward(model, c, prefix)).unwrap();
-    writeln!(s, "        if let Some(mut __t) = crate::gl_entry::trace::begin(__mode, \"{}\") {{", c.name).unwrap();
+    s.push_str("        #[cold]\n        #[inline(never)]\n");
+    writeln!(
+        s,
+        "        unsafe fn __special(__mode: crate::gl_entry::mode::Mode, __call: impl FnOnce(){ret}{params}){ret} {{"
+    )
+    .unwrap();
+    writeln!(s, "            let __call = || if __mode.passthrough() {{\n                {}\n            }} else {{\n                __call()\n            }};", forward(model, c, prefix)).unwrap();
+    writeln!(s, "            if let Some(mut __t) = crate::gl_entry::trace::begin(__mode, \"{}\") {{", c.name).unwrap();
     for p in &c.params {
-        writeln!(s, "            {}", print_param(model, lens, c, p, prefix)).unwrap();
+        writeln!(s, "                {}", print_param(model, lens, c, p, prefix)).unwrap();
     }
     if c.ret == "()" {
-        s.push_str("            __t.observe(__mode, __call);\n            __t.end();\n            return;\n        }\n");
+        s.push_str("                __t.observe(__mode, __call);\n                __t.end();\n                return;\n            }\n");
     } else {
-        s.push_str("            let __r = __t.observe(__mode, __call);\n");
+        s.push_str("                let __r = __t.observe(__mode, __call);\n");
         if c.ret == "types::GLenum" {
-            s.push_str("            __t.returned_enum(__r);\n");
+            s.push_str("                __t.returned_enum(__r);\n");
         } else if is_scalar(&c.ret) || c.ret.contains('*') {
-            s.push_str("            __t.returned(__r);\n");
+            s.push_str("                __t.returned(__r);\n");
         }
-        s.push_str("            __t.end();\n            return __r;\n        }\n");
+        s.push_str("                __t.end();\n                return __r;\n            }\n");
     }
-    s.push_str("        return __call();\n    }\n");
+    s.push_str("            __call()\n        }\n");
+    writeln!(s, "        return unsafe {{ __special(__mode, __call{args}) }};\n    }}").unwrap();
     s
 }
 
