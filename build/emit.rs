@@ -287,12 +287,13 @@ fn exports(model: &Model) -> String {
             Route::Hand(_) => {}
             Route::Missing if c.is_glx => {
                 let unused: Vec<String> = c.params.iter().map(|p| format!("_{}: {}", p.name, p.ty)).collect();
+                let call = format!("super::shim::missing({missing_index}, \"{name}\")");
                 writeln!(
                     glx_missing,
                     "/// `{name}`: not implemented; logs once.\n\
-                     #[unsafe(no_mangle)]\npub unsafe extern \"C\" fn {name}({}){ret} {{\n    let __call = || super::shim::missing({missing_index}, \"{name}\");\n{}    __call()\n}}\n",
+                     #[unsafe(no_mangle)]\npub unsafe extern \"C\" fn {name}({}){ret} {{\n    let __call = || {call};\n{}    __call()\n}}\n",
                     unused.join(", "),
-                    crate::emit_trace::traced_branch(model, &lens, c, "_"),
+                    crate::emit_trace::traced_branch(model, &lens, c, "_", &call),
                 )
                 .unwrap();
                 missing_index += 1;
@@ -314,7 +315,7 @@ fn exports(model: &Model) -> String {
                 writeln!(s, "#[unsafe(no_mangle)]").unwrap();
                 writeln!(s, "pub unsafe extern \"C\" fn {name}({params}){ret} {{").unwrap();
                 writeln!(s, "    let __call = || {call};").unwrap();
-                s.push_str(&crate::emit_trace::traced_branch(model, &lens, c, prefix));
+                s.push_str(&crate::emit_trace::traced_branch(model, &lens, c, prefix, &call));
                 s.push_str("    __call()\n}\n\n");
             }
         }

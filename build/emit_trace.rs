@@ -142,12 +142,13 @@ fn forward(model: &Model, c: &Command, prefix: &str) -> String {
     )
 }
 
-/// The branch of an export (parameters named `{prefix}{name}`, glrt's own work in the closure
-/// `__call`) taken when the call log or pass-through mode is on ([`gl_entry::mode`]): the call
+/// The branch of an export (parameters named `{prefix}{name}`, glrt's own work the expression
+/// `call`) taken when the call log or pass-through mode is on ([`gl_entry::mode`]): the call
 /// goes to glrt or to the other library, and is logged with its arguments, result and error.
-/// The branch is a function of its own, never inlined, so that the export's plain path stays
-/// as small as without it (one relaxed load more).
-pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, prefix: &str) -> String {
+/// The branch is a function of its own, never inlined, with its own copy of `call`: the
+/// export's plain path then has its one call of glrt's work, inlined as without the branch,
+/// and one relaxed load more.
+pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, prefix: &str, call: &str) -> String {
     let ret = if c.ret == "()" { String::new() } else { format!(" -> {}", c.ret) };
     let params: String = c.params.iter().map(|p| format!(", {prefix}{}: {}", p.name, p.ty)).collect();
     let args: String = c.params.iter().map(|p| format!(", {prefix}{}", p.name)).collect();
@@ -156,10 +157,10 @@ pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c:
     s.push_str("        #[cold]\n        #[inline(never)]\n");
     writeln!(
         s,
-        "        unsafe fn __special(__mode: crate::gl_entry::mode::Mode, __call: impl FnOnce(){ret}{params}){ret} {{"
+        "        unsafe fn __special(__mode: crate::gl_entry::mode::Mode{params}){ret} {{"
     )
     .unwrap();
-    writeln!(s, "            let __call = || if __mode.passthrough() {{\n                {}\n            }} else {{\n                __call()\n            }};", forward(model, c, prefix)).unwrap();
+    writeln!(s, "            let __call = || if __mode.passthrough() {{\n                {}\n            }} else {{\n                {call}\n            }};", forward(model, c, prefix)).unwrap();
     writeln!(s, "            if let Some(mut __t) = crate::gl_entry::trace::begin(__mode, \"{}\") {{", c.name).unwrap();
     for p in &c.params {
         writeln!(s, "                {}", print_param(model, lens, c, p, prefix)).unwrap();
@@ -176,7 +177,7 @@ pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c:
         s.push_str("                __t.end();\n                return __r;\n            }\n");
     }
     s.push_str("            __call()\n        }\n");
-    writeln!(s, "        return unsafe {{ __special(__mode, __call{args}) }};\n    }}").unwrap();
+    writeln!(s, "        return unsafe {{ __special(__mode{args}) }};\n    }}").unwrap();
     s
 }
 
