@@ -230,6 +230,7 @@ pub unsafe extern "C" fn glXMakeCurrent(
 
 /// `glXIsDirect`: True for every glrt context (rendering happens in the client).
 #[unsafe(no_mangle)]
+#[allow(clippy::not_unsafe_ptr_arg_deref)] // Safe to call from Rust: the display pointer is never read here, only handed to the pass-through library as the C caller gave it.
 pub extern "C" fn glXIsDirect(_dpy: *mut types::Display, ctx: types::GLXContext) -> types::Bool {
     glx_export!(glXIsDirect(_dpy, ctx) as Bool, c_int::from(context::get(ctx as usize).is_some()))
 }

@@ -80,18 +80,21 @@ pub unsafe extern "C" fn glXQueryExtension(dpy: *mut types::Display, errorb: *mu
 
 /// `glXQueryExtensionsString`: the extensions of every screen.
 #[unsafe(no_mangle)]
+#[allow(clippy::not_unsafe_ptr_arg_deref)] // Safe to call from Rust: the display pointer is never read here, only handed to the pass-through library as the C caller gave it.
 pub extern "C" fn glXQueryExtensionsString(_dpy: *mut types::Display, _screen: c_int) -> *const c_char {
     glx_export!(glXQueryExtensionsString(_dpy, _screen), EXTENSIONS.as_ptr())
 }
 
 /// `glXGetClientString`: `GLX_VENDOR`, `GLX_VERSION`, `GLX_EXTENSIONS`; null otherwise.
 #[unsafe(no_mangle)]
+#[allow(clippy::not_unsafe_ptr_arg_deref)] // Safe to call from Rust: the display pointer is never read here, only handed to the pass-through library as the C caller gave it.
 pub extern "C" fn glXGetClientString(_dpy: *mut types::Display, name: c_int) -> *const c_char {
     glx_export!(glXGetClientString(_dpy, name), string(name))
 }
 
 /// `glXQueryServerString`: as [`glXGetClientString`] (the GLX "server" is glrt).
 #[unsafe(no_mangle)]
+#[allow(clippy::not_unsafe_ptr_arg_deref)] // Safe to call from Rust: the display pointer is never read here, only handed to the pass-through library as the C caller gave it.
 pub extern "C" fn glXQueryServerString(_dpy: *mut types::Display, _screen: c_int, name: c_int) -> *const c_char {
     glx_export!(glXQueryServerString(_dpy, _screen, name), string(name))
 }
