@@ -10,6 +10,7 @@ use std::process::{Command, Output};
 
 use common::lib_dir;
 
+use glrt::gl_entry::glx_query::glXGetProcAddress;
 use glrt::gl_entry::{exports as gl, headless};
 use glrt::translate::gl::*;
 
@@ -122,6 +123,7 @@ fn errors_results_and_pointers_in_process() {
     let names = [7u16, 8, 9];
     let indices = [2u8, 1, 0];
     let image: Vec<u8> = (0..14).collect();
+    let proc_name = c"glBegin";
     unsafe {
         gl::glEnable(GL_TEXTURE_2D); // no context yet
         let ctx = headless::glrtCreateContext(std::ptr::null_mut());
@@ -145,6 +147,7 @@ fn errors_results_and_pointers_in_process() {
         gl::glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_BYTE, indices.as_ptr().cast());
         // 2 x 2 RGB bytes, rows aligned to 4: 8 + 6 bytes.
         gl::glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB as i32, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, image.as_ptr().cast());
+        glXGetProcAddress(proc_name.as_ptr().cast());
         headless::glrtSwapBuffers();
         headless::glrtMakeCurrent(std::ptr::null_mut(), 0, 0);
         headless::glrtDestroyContext(ctx);
@@ -180,6 +183,7 @@ fn errors_results_and_pointers_in_process() {
                 image.as_ptr(),
                 hash_of(&image)
             ),
+            format!("0 glXGetProcAddress(procName={:p}\"glBegin\") = {:p}", proc_name.as_ptr(), gl::glBegin as *const ()),
             "0 == end of frame (glrtSwapBuffers)".to_owned(),
         ]
     );

@@ -5,9 +5,16 @@
 //! ([`crate::gl_entry::passthrough`]).
 //!
 //! Printing: XIDs and masks (`c_ulong`) in hex, `int`s in decimal, pointers as addresses or
-//! `NULL`; `Bool` results as `True`/`False`.
+//! `NULL`, attribute lists (`const int *`) also as their pairs, `glXGetProcAddress`'s name
+//! also as text; `Bool` results as `True`/`False`.
 
+use std::ffi::{c_char, c_int, c_void};
 use std::fmt::Write as _;
+
+use x11_dl::glx::arb::*;
+use x11_dl::glx::*;
+
+use super::config::read_pairs;
 
 use crate::gl_entry::mode::{self, Mode};
 use crate::gl_entry::trace::{self, Trace};
@@ -51,20 +58,88 @@ impl GlxValue for u64 {
     }
 }
 
-impl<T> GlxValue for *const T {
+/// Appends a pointer: `NULL` or its address.
+fn print_address<T>(ptr: *const T, out: &mut String) {
+    if ptr.is_null() {
+        out.push_str("NULL");
+    } else {
+        let _ = write!(out, "{ptr:p}");
+    }
+}
+
+/// Handles (`GLXContext`, `GLXFBConfig`).
+impl GlxValue for *const c_void {
     fn print(self, out: &mut String) {
-        if self.is_null() {
-            out.push_str("NULL");
-        } else {
-            let _ = write!(out, "{self:p}");
+        print_address(self, out);
+    }
+}
+
+/// Strings glrt returns (`glXQueryExtensionsString`): the address (the text is long).
+impl GlxValue for *const c_char {
+    fn print(self, out: &mut String) {
+        print_address(self, out);
+    }
+}
+
+/// `glXGetProcAddress`'s name: the address and the text, `0x55d0c1a2e2a0"glXSwapIntervalMESA"`
+/// (at most [`MAX_NAME`] bytes are read).
+impl GlxValue for *const u8 {
+    fn print(self, out: &mut String) {
+        print_address(self, out);
+        if !self.is_null() {
+            // Safety: the caller passes a NUL-terminated string; reading stops at its end.
+            let name: Vec<u8> = (0..MAX_NAME).map(|i| unsafe { *self.add(i) }).take_while(|&b| b != 0).collect();
+            let _ = write!(out, "{:?}", String::from_utf8_lossy(&name));
         }
     }
 }
 
+/// Attribute lists (every `const int *` parameter of a GLX export is one): the address and
+/// the pairs, names by [`attribute_name`], `0x7ffd…[GLX_RENDER_TYPE=1, GLX_DOUBLEBUFFER=1]`.
+impl GlxValue for *const c_int {
+    fn print(self, out: &mut String) {
+        print_address(self, out);
+        if self.is_null() {
+            return;
+        }
+        out.push('[');
+        // Safety: the caller passes a None-terminated list of pairs.
+        for (i, (name, value)) in unsafe { read_pairs(self) }.into_iter().enumerate() {
+            let sep = if i > 0 { ", " } else { "" };
+            let _ = match attribute_name(name) {
+                Some(n) => write!(out, "{sep}{n}={value}"),
+                None => write!(out, "{sep}{name:#x}={value}"),
+            };
+        }
+        out.push(']');
+    }
+}
+
+/// Other pointers (displays, visuals, out-parameters): the address.
 impl<T> GlxValue for *mut T {
     fn print(self, out: &mut String) {
-        self.cast_const().print(out);
+        print_address(self.cast_const(), out);
     }
+}
+
+/// Longest `glXGetProcAddress` name the log reads.
+const MAX_NAME: usize = 256;
+
+/// The name of a GLX attribute of the lists the log prints (GLX 1.4 tables 3.1 and 3.5,
+/// GLX_ARB_create_context, GLX_ARB_multisample).
+fn attribute_name(attribute: c_int) -> Option<&'static str> {
+    macro_rules! names {
+        ($($c:ident),* $(,)?) => { match attribute { $($c => Some(stringify!($c)),)* _ => None } };
+    }
+    names![
+        GLX_BUFFER_SIZE, GLX_LEVEL, GLX_RGBA, GLX_DOUBLEBUFFER, GLX_STEREO, GLX_AUX_BUFFERS,
+        GLX_RED_SIZE, GLX_GREEN_SIZE, GLX_BLUE_SIZE, GLX_ALPHA_SIZE, GLX_DEPTH_SIZE, GLX_STENCIL_SIZE,
+        GLX_ACCUM_RED_SIZE, GLX_ACCUM_GREEN_SIZE, GLX_ACCUM_BLUE_SIZE, GLX_ACCUM_ALPHA_SIZE,
+        GLX_CONFIG_CAVEAT, GLX_X_VISUAL_TYPE, GLX_TRANSPARENT_TYPE, GLX_DRAWABLE_TYPE, GLX_RENDER_TYPE,
+        GLX_X_RENDERABLE, GLX_FBCONFIG_ID, GLX_SAMPLE_BUFFERS, GLX_SAMPLES, GLX_PBUFFER_WIDTH,
+        GLX_PBUFFER_HEIGHT, GLX_PRESERVED_CONTENTS, GLX_LARGEST_PBUFFER, GLX_CONTEXT_MAJOR_VERSION_ARB,
+        GLX_CONTEXT_MINOR_VERSION_ARB, GLX_CONTEXT_FLAGS_ARB, GLX_CONTEXT_PROFILE_MASK_ARB,
+    ]
 }
 
 impl GlxValue for () {
@@ -170,6 +245,14 @@ mod tests {
         assert_eq!(printed(2i32, true), "2");
         assert_eq!(printed(std::ptr::null::<u8>(), false), "NULL");
         assert_eq!(printed(0x1000 as *mut u8, false), "0x1000");
+        let name = c"glXSwapIntervalMESA";
+        let ptr = name.as_ptr().cast::<u8>();
+        assert_eq!(printed(ptr, false), format!("{ptr:p}\"glXSwapIntervalMESA\""));
+        let list = [GLX_RENDER_TYPE, GLX_RGBA_BIT, GLX_DOUBLEBUFFER, 1, 0x7777, 2, 0];
+        assert_eq!(
+            printed(list.as_ptr(), false),
+            format!("{:p}[GLX_RENDER_TYPE=1, GLX_DOUBLEBUFFER=1, 0x7777=2]", list.as_ptr())
+        );
         assert_eq!(printed((), false), "");
     }
 }
