@@ -277,7 +277,7 @@ fn exports(model: &Model) -> String {
     s.push_str(
         "#[allow(unused_imports)] use crate::translate::gl::{types, __gl_imports};\n\
          use crate::translate::dispatch;\n\
-         use super::{shim, trace};\n\n",
+         use super::shim;\n\n",
     );
     let lens = crate::emit_trace::fixed_lengths();
     let capture_ids = crate::emit_capture::ids(model);
@@ -289,11 +289,13 @@ fn exports(model: &Model) -> String {
             Route::Hand(_) => {}
             Route::Missing if c.is_glx => {
                 let unused: Vec<String> = c.params.iter().map(|p| format!("_{}: {}", p.name, p.ty)).collect();
+                let call = format!("super::shim::missing({missing_index}, \"{name}\")");
                 writeln!(
                     glx_missing,
                     "/// `{name}`: not implemented; logs once.\n\
-                     #[unsafe(no_mangle)]\npub unsafe extern \"C\" fn {name}({}){ret} {{\n    super::shim::missing({missing_index}, \"{name}\")\n}}\n",
+                     #[unsafe(no_mangle)]\npub unsafe extern \"C\" fn {name}({}){ret} {{\n    let __call = || {call};\n{}    __call()\n}}\n",
                     unused.join(", "),
+                    crate::emit_trace::traced_branch(model, &lens, c, "_", &call),
                 )
                 .unwrap();
                 missing_index += 1;
@@ -316,7 +318,7 @@ fn exports(model: &Model) -> String {
                 writeln!(s, "pub unsafe extern \"C\" fn {name}({params}){ret} {{").unwrap();
                 s.push_str(&crate::emit_capture::hook(c, &capture_ids, prefix));
                 writeln!(s, "    let __call = || {call};").unwrap();
-                s.push_str(&crate::emit_trace::traced_branch(model, &lens, c, prefix));
+                s.push_str(&crate::emit_trace::traced_branch(model, &lens, c, prefix, &call));
                 s.push_str("    __call()\n}\n\n");
             }
         }

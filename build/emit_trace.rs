@@ -61,12 +61,46 @@ fn group_of<'a>(model: &Model, p: &'a Param) -> Option<&'a str> {
     p.group.as_deref().filter(|g| model.groups.contains_key(*g))
 }
 
+/// The vector state commands (`glLightfv`, `glTexParameteriv`...), whose `params` count
+/// depends on `pname` (`gl_entry::trace_sizes::values_of`).
+const PNAME_VECTORS: &[&str] =
+    &["glLight", "glLightModel", "glMaterial", "glFog", "glTexEnv", "glTexParameter", "glTexGen", "glPointParameter"];
+
+/// The printing of a `const` pointer parameter whose size depends on other arguments or on
+/// GL state (`gl_entry::trace_sizes`), `None` for other parameters.
+fn variable_size(c: &Command, p: &Param, prefix: &str) -> Option<String> {
+    let (label, name) = (p.name.trim_matches('_'), format!("{prefix}{}", p.name));
+    let has = |n: &str| c.params.iter().any(|q| q.name == n);
+    let arg = |n: &str| if has(n) { format!("{prefix}{n}") } else { "1".to_owned() };
+    let sizes = "crate::gl_entry::trace_sizes";
+    let base = c.name.trim_end_matches("ARB").trim_end_matches("EXT").strip_suffix('v').and_then(|n| n.strip_suffix(['f', 'i', 'd']));
+    if p.name == "params" && has("pname") && base.is_some_and(|b| PNAME_VECTORS.contains(&b)) {
+        return Some(format!("__t.values_if(\"{label}\", {name}, {sizes}::values_of({prefix}pname))"));
+    }
+    let typed = match (c.name.as_str(), p.name.as_str()) {
+        ("glCallLists", "lists") => format!("{sizes}::call_lists({prefix}n, {prefix}type_)"),
+        ("glDrawElements" | "glDrawRangeElements" | "glDrawRangeElementsEXT", "indices") => {
+            format!("{sizes}::indices({prefix}count, {prefix}type_)")
+        }
+        (_, "pixels") if c.name.starts_with("glTexImage") || c.name.starts_with("glTexSubImage") || c.name == "glDrawPixels" => {
+            let (w, h, d) = (arg("width"), arg("height"), arg("depth"));
+            let size = format!("{sizes}::image({prefix}format, {prefix}type_, {w}, {h}, {d})");
+            return Some(format!("__t.bytes(\"{label}\", {name}, {size})"));
+        }
+        _ => return None,
+    };
+    Some(format!("__t.typed(\"{label}\", {name}, {typed})"))
+}
+
 /// The statement that prints parameter `p` of command `c` into the trace `t`.
 fn print_param(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, p: &Param, prefix: &str) -> String {
     let (label, ty) = (p.name.trim_matches('_'), p.ty.as_str());
     let name = format!("{prefix}{}", p.name);
     let group = group_of(model, p).map_or("&[]".to_owned(), group_path);
-    if ty == "types::GLenum" {
+    let has_pname = c.params.iter().any(|q| q.name == "pname" && q.ty == "types::GLenum");
+    if has_pname && p.name == "param" && ["types::GLint", "types::GLfloat", "types::GLdouble"].contains(&ty) {
+        format!("__t.param_of(\"{label}\", {prefix}pname, {name});")
+    } else if ty == "types::GLenum" {
         format!("__t.enumerant(\"{label}\", {name}, {group});")
     } else if ty == "types::GLbitfield" && group_of(model, p).is_some() {
         format!("__t.bits(\"{label}\", {name}, {group});")
@@ -76,6 +110,8 @@ fn print_param(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Comm
         && let Some(n) = lens.get(&(c.name.clone(), p.name.clone()))
     {
         format!("unsafe {{ __t.values(\"{label}\", {name}, {n}) }};")
+    } else if let Some(size) = ty.starts_with("*const ").then(|| variable_size(c, p, prefix)).flatten() {
+        format!("unsafe {{ {size} }};")
     } else if is_scalar(ty) || ty.contains('*') {
         format!("__t.arg(\"{label}\", {name});")
     } else {
@@ -83,26 +119,65 @@ fn print_param(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Comm
     }
 }
 
-/// The traced branch of an export whose parameters are named `{prefix}{name}`: when tracing
-/// is on, prints the arguments, runs `__call` (a closure in scope) observing the GL error,
-/// prints the result and returns it.
-pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, prefix: &str) -> String {
+/// The expression that forwards a call to `c` to the library of pass-through mode (its
+/// function of the same name, zero when it has none). Commands exported without a known
+/// prototype (newer than the registry) are not forwarded.
+fn forward(model: &Model, c: &Command, prefix: &str) -> String {
+    let known = !(c.params.is_empty() && c.ret == "usize");
+    let fallback = format!("crate::gl_entry::passthrough::not_forwarded(\"{}\", {known})", c.name);
+    if !known {
+        return fallback;
+    }
+    let index = model.commands.iter().position(|x| x.name == c.name).expect("a command of the model");
+    let tys: Vec<&str> = c.params.iter().map(|p| p.ty.as_str()).collect();
+    let args: Vec<String> = c.params.iter().map(|p| format!("{prefix}{}", p.name)).collect();
+    let ret = if c.ret == "()" { String::new() } else { format!(" -> {}", c.ret) };
+    format!(
+        "match crate::gl_entry::passthrough::real({index}) {{\n\
+         \x20                   Some(__f) => unsafe {{ std::mem::transmute::<*const (), unsafe extern \"C\" fn({}){ret}>(__f)({}) }},\n\
+         \x20                   None => {fallback},\n\
+         \x20               }}",
+        tys.join(", "),
+        args.join(", "),
+    )
+}
+
+/// The branch of an export (parameters named `{prefix}{name}`, glrt's own work the expression
+/// `call`) taken when the call log or pass-through mode is on ([`gl_entry::mode`]): the call
+/// goes to glrt or to the other library, and is logged with its arguments, result and error.
+/// The branch is a function of its own, never inlined, with its own copy of `call`: the
+/// export's plain path then has its one call of glrt's work, inlined as without the branch,
+/// and one relaxed load more.
+pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, prefix: &str, call: &str) -> String {
+    let ret = if c.ret == "()" { String::new() } else { format!(" -> {}", c.ret) };
+    let params: String = c.params.iter().map(|p| format!(", {prefix}{}: {}", p.name, p.ty)).collect();
+    let args: String = c.params.iter().map(|p| format!(", {prefix}{}", p.name)).collect();
     let mut s = String::new();
-    writeln!(s, "    if let Some(mut __t) = trace::begin(\"{}\") {{", c.name).unwrap();
+    s.push_str("    if let Some(__mode) = crate::gl_entry::mode::special() {\n");
+    s.push_str("        #[cold]\n        #[inline(never)]\n");
+    writeln!(
+        s,
+        "        unsafe fn __special(__mode: crate::gl_entry::mode::Mode{params}){ret} {{"
+    )
+    .unwrap();
+    writeln!(s, "            let __call = || if __mode.passthrough() {{\n                {}\n            }} else {{\n                {call}\n            }};", forward(model, c, prefix)).unwrap();
+    writeln!(s, "            if let Some(mut __t) = crate::gl_entry::trace::begin(__mode, \"{}\") {{", c.name).unwrap();
     for p in &c.params {
-        writeln!(s, "        {}", print_param(model, lens, c, p, prefix)).unwrap();
+        writeln!(s, "                {}", print_param(model, lens, c, p, prefix)).unwrap();
     }
     if c.ret == "()" {
-        s.push_str("        __t.observe(__call);\n        __t.end();\n        return;\n    }\n");
-        return s;
+        s.push_str("                __t.observe(__mode, __call);\n                __t.end();\n                return;\n            }\n");
+    } else {
+        s.push_str("                let __r = __t.observe(__mode, __call);\n");
+        if c.ret == "types::GLenum" {
+            s.push_str("                __t.returned_enum(__r);\n");
+        } else if is_scalar(&c.ret) || c.ret.contains('*') {
+            s.push_str("                __t.returned(__r);\n");
+        }
+        s.push_str("                __t.end();\n                return __r;\n            }\n");
     }
-    s.push_str("        let __r = __t.observe(__call);\n");
-    if c.ret == "types::GLenum" {
-        s.push_str("        __t.returned_enum(__r);\n");
-    } else if is_scalar(&c.ret) || c.ret.contains('*') {
-        s.push_str("        __t.returned(__r);\n");
-    }
-    s.push_str("        __t.end();\n        return __r;\n    }\n");
+    s.push_str("            __call()\n        }\n");
+    writeln!(s, "        return unsafe {{ __special(__mode{args}) }};\n    }}").unwrap();
     s
 }
 

@@ -3,21 +3,16 @@
 //! missing) writes the lines the module documents; and calls made in this process through the
 //! exports show the errors they raise.
 
-use std::path::{Path, PathBuf};
+mod common;
+
+use std::path::PathBuf;
 use std::process::{Command, Output};
 
-use glrt::gl_entry::{exports as gl, headless};
-use glrt::translate::gl::{GL_INVALID_ENUM, GL_QUADS, GL_TEXTURE_2D};
+use common::lib_dir;
 
-/// `target/<profile>/`, holding glrt-demo and libglrt.so; makes the `libGL.so.1` symlink.
-fn lib_dir() -> PathBuf {
-    let dir = Path::new(env!("CARGO_BIN_EXE_glrt-demo")).parent().expect("target dir").to_path_buf();
-    let link = dir.join("libGL.so.1");
-    if std::fs::symlink_metadata(&link).is_err() {
-        let _ = std::os::unix::fs::symlink("libglrt.so", &link);
-    }
-    dir
-}
+use glrt::gl_entry::glx_query::glXGetProcAddress;
+use glrt::gl_entry::{exports as gl, headless};
+use glrt::translate::gl::*;
 
 fn temp_path(name: &str) -> PathBuf {
     std::env::temp_dir().join(format!("glrt-trace-{}-{name}", std::process::id()))
@@ -110,6 +105,10 @@ fn unwritable_trace_file_disables_tracing() {
     assert!(!bad.exists());
 }
 
+fn hash_of(bytes: &[u8]) -> u64 {
+    xxhash_rust::xxh3::xxh3_64(bytes)
+}
+
 /// The only test that calls glrt in this process: the log is opened at the first call.
 #[test]
 fn errors_results_and_pointers_in_process() {
@@ -120,6 +119,11 @@ fn errors_results_and_pointers_in_process() {
         std::env::remove_var("GLRT_TRACE_FILTER");
     }
     let v = [1.0f32, 2.5, -3.0];
+    let light = [0.0f32, 1.0, 0.0, 0.0];
+    let names = [7u16, 8, 9];
+    let indices = [2u8, 1, 0];
+    let image: Vec<u8> = (0..14).collect();
+    let proc_name = c"glBegin";
     unsafe {
         gl::glEnable(GL_TEXTURE_2D); // no context yet
         let ctx = headless::glrtCreateContext(std::ptr::null_mut());
@@ -133,6 +137,17 @@ fn errors_results_and_pointers_in_process() {
         assert_eq!(gl::glGetError(), 0);
         gl::glMatrixMode(0x1234);
         gl::glEnable(GL_TEXTURE_2D);
+        gl::glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR as i32);
+        gl::glTexParameterf(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP as f32);
+        gl::glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE as i32);
+        gl::glFogi(GL_FOG_MODE, GL_EXP as i32);
+        gl::glFogf(GL_FOG_DENSITY, 2048.0); // numeric: GL_EXP's value, not its name
+        gl::glLightfv(GL_LIGHT0, GL_POSITION, light.as_ptr());
+        gl::glCallLists(3, GL_UNSIGNED_SHORT, names.as_ptr().cast());
+        gl::glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_BYTE, indices.as_ptr().cast());
+        // 2 x 2 RGB bytes, rows aligned to 4: 8 + 6 bytes.
+        gl::glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB as i32, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, image.as_ptr().cast());
+        glXGetProcAddress(proc_name.as_ptr().cast());
         headless::glrtSwapBuffers();
         headless::glrtMakeCurrent(std::ptr::null_mut(), 0, 0);
         headless::glrtDestroyContext(ctx);
@@ -141,7 +156,7 @@ fn errors_results_and_pointers_in_process() {
     let _ = std::fs::remove_file(&log);
     let lines: Vec<&str> = text.lines().collect();
     let addr = format!("{:p}", v.as_ptr());
-    let hash = xxhash_rust::xxh3::xxh3_64(&v.iter().flat_map(|f| f.to_ne_bytes()).collect::<Vec<u8>>());
+    let hash = hash_of(&v.map(f32::to_ne_bytes).concat());
     assert_eq!(
         lines,
         [
@@ -155,6 +170,20 @@ fn errors_results_and_pointers_in_process() {
             "0 glGetError() = GL_NO_ERROR".to_owned(),
             "0 glMatrixMode(mode=0x1234) -> GL_INVALID_ENUM".to_owned(),
             "0 glEnable(cap=GL_TEXTURE_2D)".to_owned(),
+            "0 glTexParameteri(target=GL_TEXTURE_2D, pname=GL_TEXTURE_MIN_FILTER, param=GL_LINEAR)".to_owned(),
+            "0 glTexParameterf(target=GL_TEXTURE_2D, pname=GL_TEXTURE_WRAP_S, param=GL_CLAMP)".to_owned(),
+            "0 glTexEnvi(target=GL_TEXTURE_ENV, pname=GL_TEXTURE_ENV_MODE, param=GL_MODULATE)".to_owned(),
+            "0 glFogi(pname=GL_FOG_MODE, param=GL_EXP)".to_owned(),
+            "0 glFogf(pname=GL_FOG_DENSITY, param=2048.0)".to_owned(),
+            format!("0 glLightfv(light=GL_LIGHT0, pname=GL_POSITION, params={:p}(16 bytes, xxh3 {:016x})[0.0, 1.0, 0.0, 0.0])", light.as_ptr(), hash_of(&light.map(f32::to_ne_bytes).concat())),
+            format!("0 glCallLists(n=3, type=GL_UNSIGNED_SHORT, lists={:p}(6 bytes, xxh3 {:016x})[7, 8, 9])", names.as_ptr(), hash_of(&names.map(u16::to_ne_bytes).concat())),
+            format!("0 glDrawElements(mode=GL_TRIANGLES, count=3, type=GL_UNSIGNED_BYTE, indices={:p}(3 bytes, xxh3 {:016x})[2, 1, 0])", indices.as_ptr(), hash_of(&indices)),
+            format!(
+                "0 glTexImage2D(target=GL_TEXTURE_2D, level=0, internalformat=GL_RGB, width=2, height=2, border=0, format=GL_RGB, type=GL_UNSIGNED_BYTE, pixels={:p}(14 bytes, xxh3 {:016x})[00 01 02 03 04 05 06 07 08 09 0a 0b 0c 0d])",
+                image.as_ptr(),
+                hash_of(&image)
+            ),
+            format!("0 glXGetProcAddress(procName={:p}\"glBegin\") = {:p}", proc_name.as_ptr(), gl::glBegin as *const ()),
             "0 == end of frame (glrtSwapBuffers)".to_owned(),
         ]
     );

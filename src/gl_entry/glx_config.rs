@@ -10,7 +10,8 @@ use x11_dl::glx::*;
 use x11_dl::xlib::{self, Xlib};
 
 use super::glx::config::{self, FbConfig, Request};
-use super::glx::{XDisplay, connection, guard, malloc_array};
+use super::glx::{XDisplay, connection, malloc_array};
+use super::glx::entry::glx_export;
 use super::glx_types::types;
 
 /// The `XVisualInfo` of visual `id` on `screen`, allocated by Xlib (the application frees it
@@ -40,7 +41,7 @@ pub unsafe extern "C" fn glXChooseVisual(
     screen: c_int,
     attribList: *mut c_int,
 ) -> *mut types::XVisualInfo {
-    guard("glXChooseVisual", || {
+    glx_export!(glXChooseVisual(dpy, screen, attribList), {
         let Some((x, dpy)) = (unsafe { connection(dpy.cast()) }) else { return std::ptr::null_mut() };
         // Safety: as documented.
         let Some(table) = (unsafe { config::screen_configs(x, dpy, screen) }) else { return std::ptr::null_mut() };
@@ -80,7 +81,7 @@ pub unsafe extern "C" fn glXGetConfig(
     attrib: c_int,
     value: *mut c_int,
 ) -> c_int {
-    guard("glXGetConfig", || {
+    glx_export!(glXGetConfig(dpy, visual, attrib, value), {
         let Some((x, dpy)) = (unsafe { connection(dpy.cast()) }) else { return GLX_NO_EXTENSION };
         if value.is_null() || visual.is_null() {
             return GLX_BAD_VALUE;
@@ -128,7 +129,7 @@ pub unsafe extern "C" fn glXChooseFBConfig(
     attrib_list: *const c_int,
     nelements: *mut c_int,
 ) -> *mut types::GLXFBConfig {
-    guard("glXChooseFBConfig", || {
+    glx_export!(glXChooseFBConfig(dpy, screen, attrib_list, nelements), {
         let chosen = unsafe { connection(dpy.cast()) }.and_then(|(x, dpy)| {
             // Safety: as documented.
             let table = unsafe { config::screen_configs(x, dpy, screen) }?;
@@ -148,7 +149,7 @@ pub unsafe extern "C" fn glXGetFBConfigs(
     screen: c_int,
     nelements: *mut c_int,
 ) -> *mut types::GLXFBConfig {
-    guard("glXGetFBConfigs", || {
+    glx_export!(glXGetFBConfigs(dpy, screen, nelements), {
         let all = unsafe { connection(dpy.cast()) }.and_then(|(x, dpy)| {
             // Safety: as documented.
             let table = unsafe { config::screen_configs(x, dpy, screen) }?;
@@ -170,7 +171,7 @@ pub unsafe extern "C" fn glXGetFBConfigAttrib(
     attribute: c_int,
     value: *mut c_int,
 ) -> c_int {
-    guard("glXGetFBConfigAttrib", || {
+    glx_export!(glXGetFBConfigAttrib(_dpy, config, attribute, value), {
         let Some(config) = config::lookup(config) else { return GLX_NO_EXTENSION };
         match config.attrib(attribute) {
             Some(v) if !value.is_null() => {
@@ -192,7 +193,7 @@ pub unsafe extern "C" fn glXGetVisualFromFBConfig(
     dpy: *mut types::Display,
     config: types::GLXFBConfig,
 ) -> *mut types::XVisualInfo {
-    guard("glXGetVisualFromFBConfig", || {
+    glx_export!(glXGetVisualFromFBConfig(dpy, config), {
         let (Some((x, dpy)), Some(config)) = (unsafe { connection(dpy.cast()) }, config::lookup(config)) else {
             return std::ptr::null_mut();
         };

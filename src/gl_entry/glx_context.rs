@@ -12,8 +12,9 @@ use x11_dl::xlib;
 
 use super::glx::config::{self, FbConfig, read_pairs};
 use super::glx::context;
-use super::glx::{BAD_ACCESS, BAD_MATCH, BAD_VALUE, GlxError, XError, connection, guard, report};
+use super::glx::{BAD_ACCESS, BAD_MATCH, BAD_VALUE, GlxError, XError, connection, report};
 use super::glx_config::config_of_visual;
+use super::glx::entry::glx_export;
 use super::glx_types::types;
 use crate::gl_entry::current;
 
@@ -45,7 +46,7 @@ pub unsafe extern "C" fn glXCreateContext(
     shareList: types::GLXContext,
     _direct: types::Bool,
 ) -> types::GLXContext {
-    guard("glXCreateContext", || {
+    glx_export!(glXCreateContext(dpy, vis, shareList, _direct), {
         let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return std::ptr::null() };
         // Safety: as documented.
         let config = unsafe { config_of_visual(x, xdpy, vis) };
@@ -66,7 +67,7 @@ pub unsafe extern "C" fn glXCreateNewContext(
     share_list: types::GLXContext,
     _direct: types::Bool,
 ) -> types::GLXContext {
-    guard("glXCreateNewContext", || {
+    glx_export!(glXCreateNewContext(dpy, config, render_type, share_list, _direct), {
         let checked = match (config::lookup(config), render_type) {
             (None, _) => Err(XError::Glx(GlxError::BadFbConfig)),
             (Some(c), GLX_RGBA_TYPE) => Ok(c),
@@ -136,7 +137,7 @@ pub unsafe extern "C" fn glXCreateContextAttribsARB(
     _direct: types::Bool,
     attrib_list: *const c_int,
 ) -> types::GLXContext {
-    guard("glXCreateContextAttribsARB", || {
+    glx_export!(glXCreateContextAttribsARB(dpy, config, share_context, _direct, attrib_list), {
         // Safety: as documented.
         let pairs = unsafe { read_pairs(attrib_list) };
         let checked = config::lookup(config).ok_or(XError::Glx(GlxError::BadFbConfig));
@@ -157,12 +158,41 @@ pub unsafe extern "C" fn glXCreateContextAttribsARB(
 /// `dpy` is a live display.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXDestroyContext(dpy: *mut types::Display, ctx: types::GLXContext) {
-    guard("glXDestroyContext", || {
+    glx_export!(glXDestroyContext(dpy, ctx), {
         if !context::destroy(ctx as usize) {
             // Safety: as documented.
             unsafe { report(dpy.cast(), "glXDestroyContext", XError::Glx(GlxError::BadContext), ctx as c_ulong) };
         }
     })
+}
+
+/// Makes `ctx` current with drawables `draw` and `read` (GLX 1.4 section 3.3.7), or releases
+/// the current context; False after reporting the error as `name`.
+///
+/// # Safety
+/// `dpy` is null or a live display.
+unsafe fn make_current(
+    name: &'static str,
+    dpy: *mut types::Display,
+    draw: types::GLXDrawable,
+    read: types::GLXDrawable,
+    ctx: types::GLXContext,
+) -> types::Bool {
+    if ctx.is_null() && draw == 0 && read == 0 {
+        // Releasing needs no display (some programs pass none).
+        context::release();
+        return xlib::True;
+    }
+    let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return xlib::False };
+    // Safety: as documented.
+    match unsafe { context::make_current(x, xdpy, draw, read, ctx as usize) } {
+        Ok(()) => xlib::True,
+        Err(e) => {
+            // Safety: as documented.
+            unsafe { report(xdpy, name, e, draw) };
+            xlib::False
+        }
+    }
 }
 
 /// `glXMakeContextCurrent` (section 3.3.7). Returns False after reporting the error.
@@ -176,22 +206,9 @@ pub unsafe extern "C" fn glXMakeContextCurrent(
     read: types::GLXDrawable,
     ctx: types::GLXContext,
 ) -> types::Bool {
-    guard("glXMakeContextCurrent", || {
-        if ctx.is_null() && draw == 0 && read == 0 {
-            // Releasing needs no display (some programs pass none).
-            context::release();
-            return xlib::True;
-        }
-        let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return xlib::False };
-        // Safety: as documented.
-        match unsafe { context::make_current(x, xdpy, draw, read, ctx as usize) } {
-            Ok(()) => xlib::True,
-            Err(e) => {
-                // Safety: as documented.
-                unsafe { report(xdpy, "glXMakeCurrent", e, draw) };
-                xlib::False
-            }
-        }
+    // Safety: as documented.
+    glx_export!(glXMakeContextCurrent(dpy, draw, read, ctx) as Bool, unsafe {
+        make_current("glXMakeContextCurrent", dpy, draw, read, ctx)
     })
 }
 
@@ -205,38 +222,41 @@ pub unsafe extern "C" fn glXMakeCurrent(
     drawable: types::GLXDrawable,
     ctx: types::GLXContext,
 ) -> types::Bool {
-    // Safety: forwarded.
-    unsafe { glXMakeContextCurrent(dpy, drawable, drawable, ctx) }
+    // Safety: as documented.
+    glx_export!(glXMakeCurrent(dpy, drawable, ctx) as Bool, unsafe {
+        make_current("glXMakeCurrent", dpy, drawable, drawable, ctx)
+    })
 }
 
 /// `glXIsDirect`: True for every glrt context (rendering happens in the client).
 #[unsafe(no_mangle)]
+#[allow(clippy::not_unsafe_ptr_arg_deref)] // Safe to call from Rust: the display pointer is never read here, only handed to the pass-through library as the C caller gave it.
 pub extern "C" fn glXIsDirect(_dpy: *mut types::Display, ctx: types::GLXContext) -> types::Bool {
-    guard("glXIsDirect", || c_int::from(context::get(ctx as usize).is_some()))
+    glx_export!(glXIsDirect(_dpy, ctx) as Bool, c_int::from(context::get(ctx as usize).is_some()))
 }
 
 /// `glXGetCurrentContext`: this thread's current context, or null.
 #[unsafe(no_mangle)]
 pub extern "C" fn glXGetCurrentContext() -> types::GLXContext {
-    guard("glXGetCurrentContext", || current::current_handle() as types::GLXContext)
+    glx_export!(glXGetCurrentContext(), current::current_handle() as types::GLXContext)
 }
 
 /// `glXGetCurrentDrawable`: the current draw drawable, or `None`.
 #[unsafe(no_mangle)]
 pub extern "C" fn glXGetCurrentDrawable() -> types::GLXDrawable {
-    guard("glXGetCurrentDrawable", || context::binding().map_or(0, |b| b.draw))
+    glx_export!(glXGetCurrentDrawable(), context::binding().map_or(0, |b| b.draw))
 }
 
 /// `glXGetCurrentReadDrawable`: the current read drawable, or `None`.
 #[unsafe(no_mangle)]
 pub extern "C" fn glXGetCurrentReadDrawable() -> types::GLXDrawable {
-    guard("glXGetCurrentReadDrawable", || context::binding().map_or(0, |b| b.read))
+    glx_export!(glXGetCurrentReadDrawable(), context::binding().map_or(0, |b| b.read))
 }
 
 /// `glXGetCurrentDisplay`: the display of the current context, or null.
 #[unsafe(no_mangle)]
 pub extern "C" fn glXGetCurrentDisplay() -> *mut types::Display {
-    guard("glXGetCurrentDisplay", || context::binding().map_or(std::ptr::null_mut(), |b| b.display.cast()))
+    glx_export!(glXGetCurrentDisplay(), context::binding().map_or(std::ptr::null_mut(), |b| b.display.cast()))
 }
 
 /// `glXQueryContext` (section 3.3.7): `GLX_FBCONFIG_ID`, `GLX_RENDER_TYPE`, `GLX_SCREEN`.
@@ -251,7 +271,7 @@ pub unsafe extern "C" fn glXQueryContext(
     attribute: c_int,
     value: *mut c_int,
 ) -> c_int {
-    guard("glXQueryContext", || {
+    glx_export!(glXQueryContext(_dpy, ctx, attribute, value), {
         let Some(c) = context::get(ctx as usize) else { return GLX_BAD_CONTEXT };
         let v = match attribute {
             GLX_FBCONFIG_ID => c.config_id,
@@ -281,7 +301,7 @@ pub unsafe extern "C" fn glXCopyContext(
     dst: types::GLXContext,
     mask: c_ulong,
 ) {
-    guard("glXCopyContext", || {
+    glx_export!(glXCopyContext(dpy, src, dst, mask), {
         let fail = |error, resource: types::GLXContext| {
             // Safety: as documented.
             unsafe { report(dpy.cast(), "glXCopyContext", error, resource as c_ulong) }

@@ -12,8 +12,9 @@ use x11_dl::xlib::{self, Xlib};
 
 use super::glx::config::{self, FbConfig, MAX_PBUFFER_SIDE, read_pairs};
 use super::glx::drawable::{self, Drawable, Kind};
-use super::glx::{BAD_ALLOC, BAD_MATCH, BAD_VALUE, GlxError, XDisplay, XError, connection, context, guard, report};
+use super::glx::{BAD_ALLOC, BAD_MATCH, BAD_VALUE, GlxError, XDisplay, XError, connection, context, report};
 use super::glx_config::config_of_visual;
+use super::glx::entry::glx_export;
 use super::glx_types::types;
 
 /// Largest swap interval accepted (`GLX_MAX_SWAP_INTERVAL_EXT`).
@@ -84,7 +85,7 @@ pub unsafe extern "C" fn glXCreateWindow(
     win: types::Window,
     _attrib_list: *const c_int,
 ) -> types::GLXWindow {
-    guard("glXCreateWindow", || {
+    glx_export!(glXCreateWindow(dpy, config, win, _attrib_list), {
         // Safety: as documented.
         let make = |x: &Xlib, d: *mut XDisplay| unsafe { create(x, d, fbconfig(config)?, Kind::Window(win)) };
         // Safety: as documented.
@@ -103,7 +104,7 @@ pub unsafe extern "C" fn glXCreatePixmap(
     pixmap: types::Pixmap,
     _attrib_list: *const c_int,
 ) -> types::GLXPixmap {
-    guard("glXCreatePixmap", || {
+    glx_export!(glXCreatePixmap(dpy, config, pixmap, _attrib_list), {
         // Safety: as documented.
         let make = |x: &Xlib, d: *mut XDisplay| unsafe { create(x, d, fbconfig(config)?, Kind::Pixmap(pixmap)) };
         // Safety: as documented.
@@ -121,7 +122,7 @@ pub unsafe extern "C" fn glXCreateGLXPixmap(
     visual: *mut types::XVisualInfo,
     pixmap: types::Pixmap,
 ) -> types::GLXPixmap {
-    guard("glXCreateGLXPixmap", || {
+    glx_export!(glXCreateGLXPixmap(dpy, visual, pixmap), {
         let make = |x: &Xlib, d: *mut XDisplay| {
             // Safety: as documented.
             let config = unsafe { config_of_visual(x, d, visual) }.ok_or(BAD_VALUE)?;
@@ -144,7 +145,7 @@ pub unsafe extern "C" fn glXCreatePbuffer(
     config: types::GLXFBConfig,
     attrib_list: *const c_int,
 ) -> types::GLXPbuffer {
-    guard("glXCreatePbuffer", || {
+    glx_export!(glXCreatePbuffer(dpy, config, attrib_list), {
         let make = |x: &Xlib, d: *mut XDisplay| {
             let config = fbconfig(config)?;
             let (mut width, mut height, mut preserved, mut largest) = (0, 0, true, false);
@@ -195,7 +196,7 @@ unsafe fn destroy(dpy: *mut types::Display, name: &'static str, xid: xlib::XID, 
 /// `dpy` is a live display.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXDestroyWindow(dpy: *mut types::Display, win: types::GLXWindow) {
-    guard("glXDestroyWindow", || {
+    glx_export!(glXDestroyWindow(dpy, win), {
         unsafe { destroy(dpy, "glXDestroyWindow", win, GlxError::BadWindow, |k| matches!(k, Kind::Window(_))) }
     })
 }
@@ -206,7 +207,7 @@ pub unsafe extern "C" fn glXDestroyWindow(dpy: *mut types::Display, win: types::
 /// `dpy` is a live display.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXDestroyPixmap(dpy: *mut types::Display, pixmap: types::GLXPixmap) {
-    guard("glXDestroyPixmap", || {
+    glx_export!(glXDestroyPixmap(dpy, pixmap), {
         unsafe { destroy(dpy, "glXDestroyPixmap", pixmap, GlxError::BadPixmap, |k| matches!(k, Kind::Pixmap(_))) }
     })
 }
@@ -217,7 +218,7 @@ pub unsafe extern "C" fn glXDestroyPixmap(dpy: *mut types::Display, pixmap: type
 /// `dpy` is a live display.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXDestroyGLXPixmap(dpy: *mut types::Display, pixmap: types::GLXPixmap) {
-    guard("glXDestroyGLXPixmap", || {
+    glx_export!(glXDestroyGLXPixmap(dpy, pixmap), {
         unsafe { destroy(dpy, "glXDestroyGLXPixmap", pixmap, GlxError::BadPixmap, |k| matches!(k, Kind::Pixmap(_))) }
     })
 }
@@ -228,7 +229,7 @@ pub unsafe extern "C" fn glXDestroyGLXPixmap(dpy: *mut types::Display, pixmap: t
 /// `dpy` is a live display.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXDestroyPbuffer(dpy: *mut types::Display, pbuf: types::GLXPbuffer) {
-    guard("glXDestroyPbuffer", || {
+    glx_export!(glXDestroyPbuffer(dpy, pbuf), {
         unsafe { destroy(dpy, "glXDestroyPbuffer", pbuf, GlxError::BadPbuffer, |k| matches!(k, Kind::Pbuffer { .. })) }
     })
 }
@@ -275,7 +276,7 @@ pub unsafe extern "C" fn glXQueryDrawable(
     attribute: c_int,
     value: *mut c_uint,
 ) {
-    guard("glXQueryDrawable", || {
+    glx_export!(glXQueryDrawable(dpy, draw, attribute, value), {
         let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return };
         // Safety: as documented.
         match unsafe { query(x, xdpy, draw, attribute) } {
@@ -293,7 +294,7 @@ pub unsafe extern "C" fn glXQueryDrawable(
 /// `dpy` is a live display.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXSelectEvent(dpy: *mut types::Display, draw: types::GLXDrawable, event_mask: c_ulong) {
-    guard("glXSelectEvent", || {
+    glx_export!(glXSelectEvent(dpy, draw, event_mask), {
         let xdpy = dpy.cast::<XDisplay>();
         match drawable::get(xdpy, draw) {
             Some(Drawable { kind: Kind::Window(_) | Kind::Pbuffer { .. }, .. }) => {
@@ -311,7 +312,7 @@ pub unsafe extern "C" fn glXSelectEvent(dpy: *mut types::Display, draw: types::G
 /// `dpy` is a live display; `event_mask` is writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetSelectedEvent(dpy: *mut types::Display, draw: types::GLXDrawable, event_mask: *mut c_ulong) {
-    guard("glXGetSelectedEvent", || {
+    glx_export!(glXGetSelectedEvent(dpy, draw, event_mask), {
         let xdpy = dpy.cast::<XDisplay>();
         match drawable::get(xdpy, draw) {
             Some(d) if !event_mask.is_null() => unsafe { *event_mask = d.event_mask },

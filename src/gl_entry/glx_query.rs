@@ -12,7 +12,9 @@ use x11_dl::glx::*;
 use x11_dl::xlib;
 
 use super::exports::proc_address;
-use super::glx::{connection, glx_extension, guard};
+use super::passthrough;
+use super::glx::{connection, glx_extension};
+use super::glx::entry::glx_export;
 use super::glx_types::types;
 
 /// The GLX extensions glrt implements.
@@ -36,7 +38,7 @@ fn string(name: c_int) -> *const c_char {
 /// `maj` and `min` are null or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXQueryVersion(dpy: *mut types::Display, maj: *mut c_int, min: *mut c_int) -> types::Bool {
-    guard("glXQueryVersion", || {
+    glx_export!(glXQueryVersion(dpy, maj, min) as Bool, {
         if unsafe { connection(dpy.cast()) }.is_none() {
             return xlib::False;
         }
@@ -60,7 +62,7 @@ pub unsafe extern "C" fn glXQueryVersion(dpy: *mut types::Display, maj: *mut c_i
 /// `dpy` is a live display; `errorb` and `event` are null or writable.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXQueryExtension(dpy: *mut types::Display, errorb: *mut c_int, event: *mut c_int) -> types::Bool {
-    guard("glXQueryExtension", || {
+    glx_export!(glXQueryExtension(dpy, errorb, event) as Bool, {
         let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return xlib::False };
         // Safety: as documented.
         let (_, event_base, error_base) = unsafe { glx_extension(x, xdpy) }.unwrap_or((0, 0, 0));
@@ -78,20 +80,38 @@ pub unsafe extern "C" fn glXQueryExtension(dpy: *mut types::Display, errorb: *mu
 
 /// `glXQueryExtensionsString`: the extensions of every screen.
 #[unsafe(no_mangle)]
+#[allow(clippy::not_unsafe_ptr_arg_deref)] // Safe to call from Rust: the display pointer is never read here, only handed to the pass-through library as the C caller gave it.
 pub extern "C" fn glXQueryExtensionsString(_dpy: *mut types::Display, _screen: c_int) -> *const c_char {
-    EXTENSIONS.as_ptr()
+    glx_export!(glXQueryExtensionsString(_dpy, _screen), EXTENSIONS.as_ptr())
 }
 
 /// `glXGetClientString`: `GLX_VENDOR`, `GLX_VERSION`, `GLX_EXTENSIONS`; null otherwise.
 #[unsafe(no_mangle)]
+#[allow(clippy::not_unsafe_ptr_arg_deref)] // Safe to call from Rust: the display pointer is never read here, only handed to the pass-through library as the C caller gave it.
 pub extern "C" fn glXGetClientString(_dpy: *mut types::Display, name: c_int) -> *const c_char {
-    string(name)
+    glx_export!(glXGetClientString(_dpy, name), string(name))
 }
 
 /// `glXQueryServerString`: as [`glXGetClientString`] (the GLX "server" is glrt).
 #[unsafe(no_mangle)]
+#[allow(clippy::not_unsafe_ptr_arg_deref)] // Safe to call from Rust: the display pointer is never read here, only handed to the pass-through library as the C caller gave it.
 pub extern "C" fn glXQueryServerString(_dpy: *mut types::Display, _screen: c_int, name: c_int) -> *const c_char {
-    string(name)
+    glx_export!(glXQueryServerString(_dpy, _screen, name), string(name))
+}
+
+/// The exported function called `procName`, or null. In pass-through mode, see
+/// [`passthrough::proc_address`].
+///
+/// # Safety
+/// `procName` is null or a NUL-terminated string.
+unsafe fn proc_address_of(procName: *const types::GLubyte, passthrough: bool) -> types::__GLXextFuncPtr {
+    if procName.is_null() {
+        return std::ptr::null_mut();
+    }
+    // Safety: as documented.
+    let name = unsafe { CStr::from_ptr(procName.cast()) };
+    let address = if passthrough { passthrough::proc_address(name) } else { None };
+    address.unwrap_or_else(|| proc_address(name.to_bytes())).cast_mut().cast()
 }
 
 /// `glXGetProcAddress`: every exported GL and GLX function by name (core ones too), null for
@@ -101,13 +121,9 @@ pub extern "C" fn glXQueryServerString(_dpy: *mut types::Display, _screen: c_int
 /// `procName` is null or a NUL-terminated string.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddress(procName: *const types::GLubyte) -> types::__GLXextFuncPtr {
-    guard("glXGetProcAddress", || {
-        if procName.is_null() {
-            return std::ptr::null_mut();
-        }
-        // Safety: as documented.
-        let name = unsafe { CStr::from_ptr(procName.cast()) };
-        proc_address(name.to_bytes()).cast_mut().cast()
+    // Safety (both): as documented.
+    glx_export!(glXGetProcAddress(procName) forward { Some(unsafe { proc_address_of(procName, true) }) }, unsafe {
+        proc_address_of(procName, false)
     })
 }
 
@@ -117,6 +133,8 @@ pub unsafe extern "C" fn glXGetProcAddress(procName: *const types::GLubyte) -> t
 /// As [`glXGetProcAddress`].
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXGetProcAddressARB(procName: *const types::GLubyte) -> types::__GLXextFuncPtr {
-    // Safety: forwarded.
-    unsafe { glXGetProcAddress(procName) }
+    // Safety (both): as documented.
+    glx_export!(glXGetProcAddressARB(procName) forward { Some(unsafe { proc_address_of(procName, true) }) }, unsafe {
+        proc_address_of(procName, false)
+    })
 }

@@ -11,8 +11,9 @@ use x11_dl::xlib;
 
 use super::glx::context;
 use super::glx::drawable::{self, Kind};
-use super::glx::{BAD_VALUE, GlxError, XError, connection, guard, report};
+use super::glx::{BAD_VALUE, GlxError, XError, connection, report};
 use super::glx_drawable::MAX_SWAP_INTERVAL;
+use super::glx::entry::glx_export;
 use super::glx_types::types;
 use super::shim::with_current;
 
@@ -26,8 +27,7 @@ use super::shim::with_current;
 /// `dpy` is a live display.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXSwapBuffers(dpy: *mut types::Display, drawable: types::GLXDrawable) {
-    guard("glXSwapBuffers", || {
-        super::trace::frame_end("glXSwapBuffers");
+    glx_export!(glXSwapBuffers(dpy, drawable), {
         let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return };
         // Safety: as documented.
         let Some((width, height)) = (unsafe { drawable::size(x, xdpy, drawable) }) else {
@@ -43,19 +43,22 @@ pub unsafe extern "C" fn glXSwapBuffers(dpy: *mut types::Display, drawable: type
             });
             crate::translate::capture::swapped(crate::translate::capture::format::SwapKind::Glx { width, height });
         }
-    })
+    });
+    super::trace::frame_end("glXSwapBuffers");
 }
 
 /// `glXWaitGL`: OpenGL rendering issued before it completes before later X rendering. glrt
 /// renders a frame only when it ends (at a swap), so nothing is in flight here.
 #[unsafe(no_mangle)]
-pub extern "C" fn glXWaitGL() {}
+pub extern "C" fn glXWaitGL() {
+    glx_export!(glXWaitGL(), ())
+}
 
 /// `glXWaitX`: X rendering issued before it completes before later OpenGL rendering
 /// (`XSync` on the current context's display).
 #[unsafe(no_mangle)]
 pub extern "C" fn glXWaitX() {
-    guard("glXWaitX", || {
+    glx_export!(glXWaitX(), {
         if let Some((x, dpy)) = context::binding().and_then(|b| unsafe { connection(b.display.cast()) }) {
             // Safety: the display of the current context is live.
             unsafe { (x.XSync)(dpy, xlib::False) };
@@ -70,7 +73,7 @@ pub extern "C" fn glXWaitX() {
 /// `dpy` is a live display.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn glXSwapIntervalEXT(dpy: *mut types::Display, drawable: types::GLXDrawable, interval: c_int) {
-    guard("glXSwapIntervalEXT", || {
+    glx_export!(glXSwapIntervalEXT(dpy, drawable, interval), {
         let Some((x, xdpy)) = (unsafe { connection(dpy.cast()) }) else { return };
         // Safety (all): as documented.
         if interval < 0 {
@@ -98,7 +101,7 @@ fn set_current_interval(interval: c_int) -> c_int {
 /// `glXSwapIntervalMESA` (GLX_MESA_swap_control): 0 (vsync off) allowed.
 #[unsafe(no_mangle)]
 pub extern "C" fn glXSwapIntervalMESA(interval: c_uint) -> c_int {
-    guard("glXSwapIntervalMESA", || match c_int::try_from(interval) {
+    glx_export!(glXSwapIntervalMESA(interval), match c_int::try_from(interval) {
         Ok(i) => set_current_interval(i),
         Err(_) => GLX_BAD_VALUE,
     })
@@ -107,7 +110,7 @@ pub extern "C" fn glXSwapIntervalMESA(interval: c_uint) -> c_int {
 /// `glXGetSwapIntervalMESA`: the current draw drawable's interval, 0 without a context.
 #[unsafe(no_mangle)]
 pub extern "C" fn glXGetSwapIntervalMESA() -> c_int {
-    guard("glXGetSwapIntervalMESA", || {
+    glx_export!(glXGetSwapIntervalMESA(), {
         let Some(b) = context::binding() else { return 0 };
         // A drawable without recorded state has the default interval, 1.
         drawable::get(b.display, b.draw).map_or(1, |d| d.swap_interval)
@@ -117,5 +120,5 @@ pub extern "C" fn glXGetSwapIntervalMESA() -> c_int {
 /// `glXSwapIntervalSGI` (GLX_SGI_swap_control): intervals of at least 1 only.
 #[unsafe(no_mangle)]
 pub extern "C" fn glXSwapIntervalSGI(interval: c_int) -> c_int {
-    guard("glXSwapIntervalSGI", || if interval <= 0 { GLX_BAD_VALUE } else { set_current_interval(interval) })
+    glx_export!(glXSwapIntervalSGI(interval), if interval <= 0 { GLX_BAD_VALUE } else { set_current_interval(interval) })
 }

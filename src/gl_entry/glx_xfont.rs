@@ -5,7 +5,8 @@
 use std::ffi::c_int;
 
 use super::glx::context::binding;
-use super::glx::{connection, guard, xfont};
+use super::glx::{connection, xfont};
+use super::glx::entry::glx_export;
 use super::glx_types::types;
 
 /// `glXUseXFont`: display lists `list .. list + count` draw characters `first ..` of `font`
@@ -13,7 +14,7 @@ use super::glx_types::types;
 /// nothing (there is no display to report an error on).
 #[unsafe(no_mangle)]
 pub extern "C" fn glXUseXFont(font: types::Font, first: c_int, count: c_int, list: c_int) {
-    guard("glXUseXFont", || {
+    glx_export!(glXUseXFont(font, first, count, list), {
         let Some(b) = binding() else {
             return log::info!("glXUseXFont: no current context");
         };

@@ -8,6 +8,9 @@
 //!   `GL_NONE`), else the preferred name of the value ([`gl::enum_name`]), else hex;
 //! - `GLint` parameters of a gl.xml group (`glTexImage2D`'s `internalformat`) by the name of
 //!   the group member of that value, else as numbers;
+//! - `GLint`/`GLfloat` `param`s of a `pname` whose value is a constant
+//!   (`glTexParameterf(..., pname=GL_TEXTURE_MIN_FILTER, param=GL_LINEAR)`) by name, from the
+//!   table in [`super::trace_params`];
 //! - bitfields of a gl.xml group as an OR of its names (`GL_COLOR_BUFFER_BIT|GL_DEPTH_BUFFER_BIT`),
 //!   with any bits no name covers in hex;
 //! - pointers: `NULL`, or the address; where gl.xml gives a fixed length (`glVertex3fv`: 3,
@@ -18,7 +21,8 @@
 //!   (the latched error was `GL_NO_ERROR` before the call and is set after: an error raised
 //!   while an earlier one is still latched is dropped by GL, and not shown), ` (no current
 //!   context)` when the call had no context to run on;
-//! - `N glXMakeCurrent(...)` for the GLX functions: their name only, before the call;
+//! - the GLX functions with their arguments and result, printed by `glx::entry`:
+//!   `N glXMakeCurrent(dpy=0x55d0c1a2e2a0, drawable=0x200002, ctx=0x55d0c1b3f010) = True`;
 //! - `N == end of frame (glXSwapBuffers)` at a frame boundary.
 //!
 //! `GLRT_TRACE_FILTER=pattern` keeps the calls whose name contains `pattern` (a plain,
@@ -35,11 +39,13 @@ use std::fs::File;
 use std::io::{self, BufWriter, Write as _};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::OnceLock;
-use std::sync::atomic::{AtomicU8, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use parking_lot::Mutex;
 
 use super::current::with_slot;
+use super::mode::{self, Mode};
+use super::trace_sizes::{self, Typed};
 use crate::translate::gl::{self, GLbitfield, GLenum, GLint};
 
 /// The gl.xml enum groups the log prints parameters by: `(name, value)` per member.
@@ -47,13 +53,6 @@ use crate::translate::gl::{self, GLbitfield, GLenum, GLint};
 pub mod groups {
     include!(concat!(env!("OUT_DIR"), "/trace_groups.rs"));
 }
-
-/// Tracing state: the environment is not read yet, tracing is off, or on.
-const UNREAD: u8 = 0;
-const OFF: u8 = 1;
-const ON: u8 = 2;
-
-static STATE: AtomicU8 = AtomicU8::new(UNREAD);
 
 /// The current frame number.
 static FRAME: AtomicU64 = AtomicU64::new(0);
@@ -64,7 +63,8 @@ struct Log {
     filter: Option<String>,
 }
 
-static LOG: OnceLock<Option<Log>> = OnceLock::new();
+/// The log, once `GLRT_TRACE` named a file that could be created.
+static LOG: OnceLock<Log> = OnceLock::new();
 
 /// A call being logged: its line, written by [`Trace::end`].
 pub struct Trace {
@@ -73,19 +73,13 @@ pub struct Trace {
     args: usize,
 }
 
-/// Starts the log line of a call to `name`, or `None` when tracing is off or `name` does not
-/// match `GLRT_TRACE_FILTER`. The off path is one relaxed load.
-#[inline]
-pub fn begin(name: &'static str) -> Option<Trace> {
-    if STATE.load(Ordering::Relaxed) == OFF {
+/// Starts the log line of a call to `name`, or `None` when tracing is off in `mode` or
+/// `name` does not match `GLRT_TRACE_FILTER`.
+pub fn begin(mode: Mode, name: &'static str) -> Option<Trace> {
+    if !mode.tracing() {
         return None;
     }
-    begin_slow(name)
-}
-
-#[cold]
-fn begin_slow(name: &'static str) -> Option<Trace> {
-    let log = log()?;
+    let log = LOG.get()?;
     if !keeps(log.filter.as_deref(), name) {
         return None;
     }
@@ -99,14 +93,15 @@ fn keeps(filter: Option<&str>, name: &str) -> bool {
     filter.is_none_or(|f| name.contains(f))
 }
 
-/// The open log, opening it on the first call (reads `GLRT_TRACE` and `GLRT_TRACE_FILTER`).
-fn log() -> Option<&'static Log> {
-    LOG.get_or_init(|| {
-        let log = open();
-        STATE.store(if log.is_some() { ON } else { OFF }, Ordering::Relaxed);
-        log
-    })
-    .as_ref()
+/// Opens the log `GLRT_TRACE` names (with `GLRT_TRACE_FILTER`), at most once per process
+/// ([`super::mode`] calls it at the first GL call); true when it is open.
+pub(super) fn open_from_environment() -> bool {
+    if LOG.get().is_none()
+        && let Some(log) = open()
+    {
+        let _ = LOG.set(log);
+    }
+    LOG.get().is_some()
 }
 
 /// Opens the file `GLRT_TRACE` names, if any.
@@ -137,7 +132,7 @@ extern "C" fn flush_at_exit() {
 
 /// Writes buffered log lines to the file.
 pub fn flush() {
-    if let Some(Some(log)) = LOG.get() {
+    if let Some(log) = LOG.get() {
         write_or_stop(log, |out| out.flush());
     }
 }
@@ -145,7 +140,7 @@ pub fn flush() {
 /// Runs a write on the log; on failure reports it once and turns tracing off.
 fn write_or_stop(log: &Log, f: impl FnOnce(&mut BufWriter<File>) -> io::Result<()>) {
     if let Err(e) = f(&mut log.out.lock())
-        && STATE.swap(OFF, Ordering::Relaxed) == ON
+        && mode::stop_tracing()
     {
         let _ = writeln!(io::stderr(), "glrt: GLRT_TRACE: write failed: {e}; tracing is off");
     }
@@ -154,24 +149,12 @@ fn write_or_stop(log: &Log, f: impl FnOnce(&mut BufWriter<File>) -> io::Result<(
 /// Marks the end of a frame (`name` is the swap call): writes the boundary line, flushes, and
 /// counts the next frame.
 pub fn frame_end(name: &'static str) {
-    if STATE.load(Ordering::Relaxed) == OFF {
-        return;
-    }
-    let Some(log) = log() else { return };
+    let Some(log) = mode::special().filter(|m| m.tracing()).and_then(|_| LOG.get()) else { return };
     let frame = FRAME.fetch_add(1, Ordering::Relaxed);
     write_or_stop(log, |out| {
         writeln!(out, "{frame} == end of frame ({name})")?;
         out.flush()
     });
-}
-
-/// Logs a call to the GLX function `name`, whose arguments the log does not print yet:
-/// `N glXMakeCurrent(...)`.
-pub fn window_system_call(name: &'static str) {
-    if let Some(mut t) = begin(name) {
-        t.line.push_str("...)");
-        t.end();
-    }
 }
 
 /// The latched GL error of this thread's current context, `None` without one.
@@ -213,6 +196,33 @@ impl<T> Arg for *mut T {
     fn print(self, out: &mut String) {
         self.cast_const().print(out);
     }
+}
+
+/// How many elements or bytes of a variable-size pointer the log prints.
+pub const FIRST_VALUES: usize = 16;
+
+/// Appends the first [`FIRST_VALUES`] elements of `typed` in `bytes`: `[1, 2, 3]`, with `...`
+/// when there are more. `GL_2_BYTES`..`GL_4_BYTES` names are big-endian (section 5.4).
+fn print_elements(out: &mut String, bytes: &[u8], typed: Typed) {
+    let size = trace_sizes::element_size(typed.type_).unwrap_or(1);
+    out.push('[');
+    for (i, e) in bytes.chunks_exact(size).take(FIRST_VALUES).enumerate() {
+        if i > 0 {
+            out.push_str(", ");
+        }
+        // `e` has exactly the type's size (1, 2 or 4 bytes for these types).
+        let _ = match typed.type_ {
+            gl::GL_BYTE => write!(out, "{}", e[0] as i8),
+            gl::GL_SHORT => write!(out, "{}", i16::from_ne_bytes([e[0], e[1]])),
+            gl::GL_UNSIGNED_SHORT => write!(out, "{}", u16::from_ne_bytes([e[0], e[1]])),
+            gl::GL_INT => write!(out, "{}", i32::from_ne_bytes([e[0], e[1], e[2], e[3]])),
+            gl::GL_UNSIGNED_INT => write!(out, "{}", u32::from_ne_bytes([e[0], e[1], e[2], e[3]])),
+            gl::GL_FLOAT => write!(out, "{:?}", f32::from_ne_bytes([e[0], e[1], e[2], e[3]])),
+            // GL_UNSIGNED_BYTE and the big-endian GL_n_BYTES.
+            _ => write!(out, "{}", e.iter().fold(0u32, |v, &b| v << 8 | u32::from(b))),
+        };
+    }
+    out.push_str(if typed.count > FIRST_VALUES { ", ...]" } else { "]" });
 }
 
 /// The name of `value` in `group`, else its preferred name among all constants.
@@ -263,8 +273,8 @@ fn print_bits(out: &mut String, bits: GLbitfield, group: &[(&'static str, u64)])
 }
 
 impl Trace {
-    /// Starts the next argument, `name=`.
-    fn next(&mut self, name: &str) -> &mut String {
+    /// Starts the next argument, `name=`; the caller appends the value.
+    pub(crate) fn next(&mut self, name: &str) -> &mut String {
         if self.args > 0 {
             self.line.push_str(", ");
         }
@@ -299,6 +309,17 @@ impl Trace {
         }
     }
 
+    /// The scalar `param` of a command that takes a `pname` (`glTexParameterf`, `glFogi`): by
+    /// name when `pname` takes constants ([`super::trace_params`]) and `value` is one of
+    /// them, else as the number.
+    pub fn param_of<T: Arg + Into<f64>>(&mut self, name: &str, pname: GLenum, value: T) {
+        let out = self.next(name);
+        match super::trace_params::name_of(pname, value.into()) {
+            Some(constant) => out.push_str(constant),
+            None => value.print(out),
+        }
+    }
+
     /// An argument of a type the log does not print (`?`).
     pub fn opaque(&mut self, name: &str) {
         self.next(name).push('?');
@@ -310,14 +331,9 @@ impl Trace {
     /// # Safety
     /// A non-null `ptr` points to `len` readable values (what the command itself reads).
     pub unsafe fn values<T: Arg>(&mut self, name: &str, ptr: *const T, len: usize) {
-        let out = self.next(name);
-        ptr.print(out);
-        if ptr.is_null() {
-            return;
-        }
-        // Safety: as documented; the values are plain data, any bytes are valid `u8`s.
-        let bytes = unsafe { std::slice::from_raw_parts(ptr.cast::<u8>(), len * size_of::<T>()) };
-        let _ = write!(out, "({} bytes, xxh3 {:016x})[", bytes.len(), xxhash_rust::xxh3::xxh3_64(bytes));
+        // Safety: as documented.
+        let Some(out) = (unsafe { self.summary(name, ptr.cast(), len * size_of::<T>()) }) else { return };
+        out.push('[');
         for i in 0..len {
             if i > 0 {
                 out.push_str(", ");
@@ -328,9 +344,77 @@ impl Trace {
         out.push(']');
     }
 
+    /// [`Trace::values`] when the length is known (`Some`), else the address only.
+    ///
+    /// # Safety
+    /// As [`Trace::values`].
+    pub unsafe fn values_if<T: Arg>(&mut self, name: &str, ptr: *const T, len: Option<usize>) {
+        match len {
+            // Safety: as documented.
+            Some(len) => unsafe { self.values(name, ptr, len) },
+            None => self.arg(name, ptr),
+        }
+    }
+
+    /// A client array of GL-typed elements (`glCallLists` names, `glDrawElements` indices):
+    /// the summary and the first [`FIRST_VALUES`] elements; the address only when the size is
+    /// not known (`None`).
+    ///
+    /// # Safety
+    /// A non-null `ptr` points to the elements `typed` describes.
+    pub unsafe fn typed(&mut self, name: &str, ptr: *const std::ffi::c_void, typed: Option<Typed>) {
+        let Some(typed) = typed else { return self.arg(name, ptr) };
+        // Safety: as documented.
+        let Some(out) = (unsafe { self.summary(name, ptr, typed.bytes()) }) else { return };
+        // Safety: as documented.
+        let bytes = unsafe { std::slice::from_raw_parts(ptr.cast::<u8>(), typed.bytes()) };
+        print_elements(out, bytes, typed);
+    }
+
+    /// Client bytes of a known size (a pixel image): the summary and the first
+    /// [`FIRST_VALUES`] bytes in hex; the address only when the size is not known (`None`).
+    ///
+    /// # Safety
+    /// A non-null `ptr` points to `len` readable bytes.
+    pub unsafe fn bytes(&mut self, name: &str, ptr: *const std::ffi::c_void, len: Option<usize>) {
+        let Some(len) = len else { return self.arg(name, ptr) };
+        // Safety: as documented.
+        let Some(out) = (unsafe { self.summary(name, ptr, len) }) else { return };
+        // Safety: as documented.
+        let bytes = unsafe { std::slice::from_raw_parts(ptr.cast::<u8>(), len) };
+        out.push('[');
+        for (i, b) in bytes.iter().take(FIRST_VALUES).enumerate() {
+            let _ = write!(out, "{}{b:02x}", if i > 0 { " " } else { "" });
+        }
+        out.push_str(if len > FIRST_VALUES { " ...]" } else { "]" });
+    }
+
+    /// Starts pointer argument `name`: `NULL` (then `None`), or the address, the size and the
+    /// xxh3 hash of its `len` bytes, `0x7ffd5c0e1a3c(12 bytes, xxh3 a1f7c2750768aadb)`.
+    ///
+    /// # Safety
+    /// A non-null `ptr` points to `len` readable bytes.
+    unsafe fn summary(&mut self, name: &str, ptr: *const std::ffi::c_void, len: usize) -> Option<&mut String> {
+        let out = self.next(name);
+        ptr.print(out);
+        if ptr.is_null() {
+            return None;
+        }
+        // Safety: as documented; any bytes are valid `u8`s.
+        let bytes = unsafe { std::slice::from_raw_parts(ptr.cast::<u8>(), len) };
+        let _ = write!(out, "({len} bytes, xxh3 {:016x})", xxhash_rust::xxh3::xxh3_64(bytes));
+        Some(out)
+    }
+
     /// Runs the call, noting the error it raised (or that there was no current context).
-    pub fn observe<R>(&mut self, call: impl FnOnce() -> R) -> R {
+    /// In pass-through mode the call runs in another library, whose error glrt does not read
+    /// (calling its `glGetError` would clear the error before the program sees it): the line
+    /// shows the call only.
+    pub fn observe<R>(&mut self, mode: Mode, call: impl FnOnce() -> R) -> R {
         self.line.push(')');
+        if mode.passthrough() {
+            return call();
+        }
         let before = latched();
         let result = call();
         match (before, latched()) {
@@ -342,6 +426,16 @@ impl Trace {
             _ => {}
         }
         result
+    }
+
+    /// Ends the argument list (for calls not run through [`Trace::observe`]).
+    pub fn close_args(&mut self) {
+        self.line.push(')');
+    }
+
+    /// Appends the call's result as `print` writes it.
+    pub fn returned_with(&mut self, print: impl FnOnce(&mut String)) {
+        print(&mut self.line);
     }
 
     /// The call's result.
@@ -363,7 +457,7 @@ impl Trace {
     /// Writes the line.
     pub fn end(mut self) {
         self.line.push('\n');
-        if let Some(Some(log)) = LOG.get() {
+        if let Some(log) = LOG.get() {
             write_or_stop(log, |out| out.write_all(self.line.as_bytes()));
         }
     }

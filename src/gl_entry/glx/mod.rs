@@ -9,6 +9,7 @@
 pub mod config;
 pub mod context;
 pub mod drawable;
+pub mod entry;
 pub mod xfont;
 
 use std::collections::HashSet;
@@ -33,10 +34,9 @@ pub fn xlib() -> Option<&'static Xlib> {
 }
 
 /// Runs the body of the export `name`: a panic is caught and logged, and the export returns
-/// zero (GLX functions never let a panic reach the application). The call is logged by name
-/// when `GLRT_TRACE` is set.
+/// zero (GLX functions never let a panic reach the application). The exports call it through
+/// [`entry::glx_export!`], which also writes the call log and forwards in pass-through mode.
 pub fn guard<R: ReturnDefault>(name: &'static str, f: impl FnOnce() -> R) -> R {
-    super::trace::window_system_call(name);
     catch_unwind(AssertUnwindSafe(f)).unwrap_or_else(|_| {
         log::error!("internal error in {name}");
         R::return_default()
