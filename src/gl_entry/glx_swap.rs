@@ -18,7 +18,8 @@ use super::shim::with_current;
 
 /// `glXSwapBuffers`: when `drawable` is the draw drawable of this thread's current context
 /// and that context is double-buffered, ends its frame (`Context::end_frame`), after
-/// refreshing the drawable size the frame is presented at. Swapping a single-buffered
+/// refreshing the drawable size the frame is presented at (`Context::resize_target`: the
+/// renderer follows window resizes, the viewport does not). Swapping a single-buffered
 /// context, a GLX pixmap, or a drawable current elsewhere has no effect (section 3.3.10);
 /// an unknown drawable is `GLXBadDrawable`.
 ///
@@ -38,7 +39,7 @@ pub unsafe extern "C" fn glXSwapBuffers(dpy: *mut types::Display, drawable: type
         let pixmap = matches!(drawable::get(xdpy, drawable).map(|d| d.kind), Some(Kind::Pixmap(_)));
         if double && !pixmap {
             with_current("glXSwapBuffers", |c| {
-                c.bind_drawable(width, height);
+                c.resize_target(width, height);
                 c.end_frame();
             });
         }

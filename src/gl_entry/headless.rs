@@ -10,7 +10,7 @@ use parking_lot::Mutex;
 
 use super::current::{self, SharedContext};
 use super::shim::with_current;
-use crate::render;
+use crate::render::{self, Surface, Target};
 use crate::translate::Context;
 use crate::translate::context::ContextConfig;
 use crate::translate::context::SharedObjects;
@@ -61,7 +61,8 @@ pub extern "C" fn glrtMakeCurrent(ctx: *mut c_void, width: i32, height: i32) -> 
         let handle = unsafe { ctx.cast::<ContextHandle>().as_ref() };
         let ok = current::make_current(ctx as usize, handle.map(|h| &h.context));
         if ok && handle.is_some() {
-            with_current("glrtMakeCurrent", |c| c.bind_drawable(width, height));
+            let size = [width.max(0) as u32, height.max(0) as u32];
+            with_current("glrtMakeCurrent", |c| c.bind_target(Target { size, surface: Surface::Offscreen }));
         }
         u8::from(ok)
     }))

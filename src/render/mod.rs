@@ -2,6 +2,7 @@
 //! frames for tests and for programs run without a renderer.
 
 pub mod frame_log;
+pub mod present;
 pub mod raster;
 
 use std::sync::Arc;
@@ -11,10 +12,17 @@ use parking_lot::Mutex;
 use crate::frame::Frame;
 use crate::frame::pixels::PixelBuffer;
 
+pub use present::target::{Surface, Target, XDrawable};
+
 /// Receives each finished frame.
 pub trait FrameSink: Send {
     /// Takes the frame that `glXSwapBuffers` (or a read-back) ended.
     fn present(&mut self, frame: Frame);
+
+    /// Where the next frames go: called when a context is made current on a drawable and when
+    /// that drawable's size changes (only then: the target differs from the previous one).
+    /// The default ignores it (sinks that keep frames in memory).
+    fn set_target(&mut self, _target: Target) {}
 
     /// Samples that passed for occlusion query `query` of frame number `frame` (listed in
     /// that frame's [`Frame::occlusion_queries`]), once that frame was presented; `None` while

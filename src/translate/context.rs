@@ -73,6 +73,8 @@ pub struct Context {
     single_buffered: bool,
     /// Size of the drawable last made current, `(width, height)`.
     pub(crate) drawable_size: Option<(i32, i32)>,
+    /// Where the renderer was last told frames go (`translate::target`).
+    pub(crate) target: Option<crate::render::Target>,
 }
 
 impl Context {
@@ -100,6 +102,7 @@ impl Context {
             sink: config.sink,
             single_buffered: false,
             drawable_size: None,
+            target: None,
         }
     }
 

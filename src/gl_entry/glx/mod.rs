@@ -83,6 +83,7 @@ pub fn forget_display(dpy: usize) {
     }
     config::forget_display(dpy);
     drawable::forget_display(dpy);
+    crate::render::present::display_closed(dpy);
 }
 
 /// Memory the application releases with `XFree` (which is `free`).
