@@ -3,6 +3,7 @@
 //! - [`target`]: what a context draws to ([`Target`]), handed to the renderer through
 //!   [`crate::render::FrameSink::set_target`].
 //! - [`pixel_format`]: RGBA8 to the pixel layout of an X visual.
+//! - [`swapchain`]: a Vulkan swapchain on the window (the normal path).
 //! - [`xlib`]: the fallback presenter, `XShmPutImage` (MIT-SHM) or `XPutImage` of a read-back.
 //!
 //! Xlib requests go to the application's own `Display`, on the application's thread, inside
@@ -10,6 +11,7 @@
 //! Xlib itself requires of a multi-threaded program (`XInitThreads`).
 
 pub mod pixel_format;
+pub mod swapchain;
 pub mod target;
 pub mod xlib;
 
