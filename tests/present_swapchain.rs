@@ -11,8 +11,8 @@ mod x11;
 use std::time::{Duration, Instant};
 
 use ash::vk;
-use glrt::render::XDrawable;
 use glrt::render::present::swapchain::{self, Gpu, Presented, Source, SwapchainPresenter};
+use glrt::render::{FrameImage, Presenter, Surface, Target, XDrawable};
 use x11_dl::xlib::{self, Xlib};
 
 /// A test image, rows bottom to top (as OpenGL reads them).
@@ -200,4 +200,42 @@ fn swapchain_shows_the_rendered_image_and_follows_resizes() {
         assert!(got == want, "{w}x{h}: {}", first_difference(&got, &want, w));
     }
     drop(presenter);
+
+    // Through `Presenter`: the swapchain when the device is given, Xlib from a read-back
+    // without it; each shows its frame.
+    let target = Target { size: [80, 60], surface: Surface::Window(window), swap_interval: 0 };
+    for (given, path) in [(Some(&gpu), "vulkan"), (None, "xlib")] {
+        let rgba: Vec<u8> = pattern(80, 60).chunks(4).rev().flatten().copied().collect();
+        let image = source_image(&gpu, [80, 60], &rgba);
+        let source = Source { image, layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, size: [80, 60], bottom_up: true };
+        let mut frame = TestFrame { source, rgba: rgba.clone(), reads: 0 };
+        // Safety: the display and the device are live.
+        let mut presenter = unsafe { Presenter::new(target, given) };
+        assert_eq!(presenter.path(), path);
+        assert!(unsafe { presenter.show(&mut frame) });
+        assert_eq!(frame.reads, usize::from(path == "xlib"), "only Xlib reads the frame back");
+        unsafe { gpu.device.queue_wait_idle(gpu.queue) }.unwrap();
+        let want = as_shown(&rgba, 80, 60);
+        let got = wait_for(&x, dpy, win, [80, 60], &want);
+        assert!(got == want, "{path}: {}", first_difference(&got, &want, 80));
+    }
+    let offscreen = Target { size: [80, 60], surface: Surface::Offscreen, swap_interval: 0 };
+    assert_eq!(unsafe { Presenter::new(offscreen, Some(&gpu)) }.path(), "offscreen");
+}
+
+/// A rendered frame: its image and the pixels a read-back returns.
+struct TestFrame {
+    source: Source,
+    rgba: Vec<u8>,
+    reads: usize,
+}
+
+impl FrameImage for TestFrame {
+    fn source(&self) -> Source {
+        self.source
+    }
+    fn read_rgba(&mut self) -> Option<Vec<u8>> {
+        self.reads += 1;
+        Some(self.rgba.clone())
+    }
 }

@@ -62,7 +62,7 @@ pub extern "C" fn glrtMakeCurrent(ctx: *mut c_void, width: i32, height: i32) -> 
         let ok = current::make_current(ctx as usize, handle.map(|h| &h.context));
         if ok && handle.is_some() {
             let size = [width.max(0) as u32, height.max(0) as u32];
-            with_current("glrtMakeCurrent", |c| c.bind_target(Target { size, surface: Surface::Offscreen }));
+            with_current("glrtMakeCurrent", |c| c.bind_target(Target { size, surface: Surface::Offscreen, swap_interval: 0 }));
         }
         u8::from(ok)
     }))

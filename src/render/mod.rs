@@ -12,7 +12,7 @@ use parking_lot::Mutex;
 use crate::frame::Frame;
 use crate::frame::pixels::PixelBuffer;
 
-pub use present::target::{Surface, Target, XDrawable};
+pub use present::{FrameImage, Presenter, Surface, Target, XDrawable};
 
 /// Receives each finished frame.
 pub trait FrameSink: Send {

@@ -18,15 +18,17 @@ impl Context {
         }
     }
 
-    /// The current drawable now measures `width` × `height` (checked at each swap): a change is
-    /// passed to the renderer; the viewport is left alone.
-    pub fn resize_target(&mut self, width: i32, height: i32) {
+    /// The current drawable now measures `width` × `height` and has swap interval
+    /// `swap_interval` (checked at each swap): a change is passed to the renderer; the
+    /// viewport is left alone.
+    pub fn refresh_target(&mut self, width: i32, height: i32, swap_interval: u32) {
         self.drawable_size = Some((width, height));
         let size = [width.max(0) as u32, height.max(0) as u32];
         let surface = self.target.map_or(Surface::Offscreen, |t| t.surface);
-        if self.target.is_none_or(|t| t.size != size) {
-            self.target = Some(Target { size, surface });
-            self.sink.set_target(Target { size, surface });
+        let target = Target { size, surface, swap_interval };
+        if self.target != Some(target) {
+            self.target = Some(target);
+            self.sink.set_target(target);
         }
     }
 }
@@ -58,18 +60,20 @@ mod tests {
     fn targets_reach_the_sink_once_per_change_and_resizes_keep_the_viewport() {
         let sink = Targets::default();
         let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(sink.clone()) });
-        let first = Target { size: [320, 200], surface: Surface::Offscreen };
+        let first = Target { size: [320, 200], surface: Surface::Offscreen, swap_interval: 1 };
         ctx.bind_target(first);
         ctx.bind_target(first);
         assert_eq!(*sink.0.lock(), [first]);
-        ctx.resize_target(320, 200);
+        ctx.refresh_target(320, 200, 1);
         assert_eq!(sink.0.lock().len(), 1, "same size: nothing new");
-        ctx.resize_target(640, 480);
-        assert_eq!(sink.0.lock()[1], Target { size: [640, 480], surface: Surface::Offscreen });
+        ctx.refresh_target(640, 480, 1);
+        assert_eq!(sink.0.lock()[1], Target { size: [640, 480], surface: Surface::Offscreen, swap_interval: 1 });
         assert_eq!(ctx.query(gl::GL_VIEWPORT).unwrap().to_ints(), [0, 0, 320, 200], "GLX: resizes keep the viewport");
         // Binding another drawable tells the sink; the viewport still keeps its first value.
-        ctx.bind_target(Target { size: [100, 50], surface: Surface::Offscreen });
+        ctx.bind_target(Target { size: [100, 50], surface: Surface::Offscreen, swap_interval: 1 });
         assert_eq!(sink.0.lock().len(), 3);
+        ctx.refresh_target(100, 50, 0);
+        assert_eq!(sink.0.lock()[3].swap_interval, 0, "a new swap interval reaches the sink");
         assert_eq!(ctx.query(gl::GL_VIEWPORT).unwrap().to_ints(), [0, 0, 320, 200]);
     }
 }

@@ -169,8 +169,8 @@ pub unsafe fn size(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID) -> Option<(c_in
     unsafe { x_geometry(x, dpy, target) }.map(|(w, h, _)| (w, h))
 }
 
-/// Where frames drawn to `xid` (of `width` × `height`) go: the X window or pixmap behind it;
-/// pbuffers render off-screen. A plain X drawable is a window when it has window attributes.
+/// Where frames drawn to `xid` (of `width` × `height`) go: the X window or pixmap behind it
+/// (pbuffers render off-screen), with the drawable's swap interval. A plain X drawable is a window when it has window attributes.
 ///
 /// # Safety
 /// `dpy` is a live display.
@@ -184,5 +184,6 @@ pub unsafe fn target(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID, width: c_int,
         Some(Kind::X) | None if unsafe { window_visual(x, dpy, xid) }.is_some() => Surface::Window(on(xid)),
         Some(Kind::X) | None => Surface::Pixmap(on(xid)),
     };
-    Target { size: [width.max(0) as u32, height.max(0) as u32], surface }
+    let swap_interval = get(dpy, xid).map_or(1, |d| d.swap_interval.max(0) as u32);
+    Target { size: [width.max(0) as u32, height.max(0) as u32], surface, swap_interval }
 }

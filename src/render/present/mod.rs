@@ -1,5 +1,7 @@
 //! Presentation: putting rendered frames on the application's X drawable.
 //!
+//! - [`presenter`]: [`Presenter`], what a renderer owns per target: picks the path and shows
+//!   each frame ([`presenter::FrameImage`] is what it needs of the rendered frame).
 //! - [`target`]: what a context draws to ([`Target`]), handed to the renderer through
 //!   [`crate::render::FrameSink::set_target`].
 //! - [`pixel_format`]: RGBA8 to the pixel layout of an X visual.
@@ -11,6 +13,7 @@
 //! Xlib itself requires of a multi-threaded program (`XInitThreads`).
 
 pub mod pixel_format;
+pub mod presenter;
 pub mod swapchain;
 pub mod target;
 pub mod xlib;
@@ -19,6 +22,7 @@ use std::collections::HashMap;
 
 use parking_lot::Mutex;
 
+pub use presenter::{FrameImage, Presenter};
 pub use target::{Surface, Target, XDrawable};
 
 /// How many times each display address was closed (see [`display_closed`]).

@@ -47,4 +47,7 @@ pub struct Target {
     pub size: [u32; 2],
     /// What shows the frames.
     pub surface: Surface,
+    /// Swap interval of the drawable (GLX_EXT_swap_control and its MESA/SGI variants): 0 shows
+    /// frames at once, 1 or more waits for vertical blank.
+    pub swap_interval: u32,
 }
