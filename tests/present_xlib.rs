@@ -1,7 +1,8 @@
 //! The Xlib presenter against real X servers (Xvfb): an RGBA image put on a window, a resized
 //! window and a pixmap, read back with `XGetImage` and compared pixel by pixel, through MIT-SHM
-//! and through `XPutImage`, on a 24-bit and a 16-bit (RGB565) screen; a closed display is not
-//! touched. Skipped when Xvfb is not installed.
+//! and through `XPutImage`, on a 24-bit and a 16-bit (RGB565) screen; over TCP the server
+//! refuses MIT-SHM segments and the presenter falls back to `XPutImage`; a closed display is
+//! not touched. Skipped when Xvfb is not installed.
 
 #[path = "x11/mod.rs"]
 mod x11;
@@ -100,4 +101,17 @@ fn presents_on_a_24_bit_screen() {
 #[test]
 fn presents_on_a_16_bit_screen() {
     check_server(16, [5, 6, 5]);
+}
+
+#[test]
+fn falls_back_to_put_image_when_the_server_refuses_shared_memory() {
+    let Some(server) = x11::Xvfb::start_with(24, true) else { return };
+    let x = Xlib::open().expect("libX11");
+    let dpy = server.open_tcp(&x);
+    let win = x11::mapped_window(&x, dpy, 40, 30);
+    let mut p = unsafe { XlibPresenter::new(Surface::Window(XDrawable { display: dpy.cast(), drawable: win })) }.unwrap();
+    let image = pattern(40, 30);
+    assert!(p.present([40, 30], &image));
+    assert!(!p.uses_shm(), "a TCP client's segment is refused (BadAccess, trapped)");
+    assert_shows(&x, dpy, win, [40, 30], &image, [8, 8, 8], "window over TCP");
 }

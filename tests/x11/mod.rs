@@ -24,6 +24,12 @@ impl Xvfb {
     /// Starts Xvfb with one `width`×`height` screen of `depth` bits; `None` (after saying so on
     /// stderr) when Xvfb is not installed, so that machines without it skip these tests.
     pub fn start(depth: u32) -> Option<Xvfb> {
+        Xvfb::start_with(depth, false)
+    }
+
+    /// [`Xvfb::start`], also listening on TCP (port 6000 + N) when `tcp`: clients connected
+    /// through it are remote to the server (no MIT-SHM).
+    pub fn start_with(depth: u32, tcp: bool) -> Option<Xvfb> {
         let _one = START.lock().unwrap_or_else(|e| e.into_inner());
         for n in 100 + std::process::id() % 100..600 {
             if Path::new(&format!("/tmp/.X{n}-lock")).exists() {
@@ -31,7 +37,8 @@ impl Xvfb {
             }
             let screen = format!("640x480x{depth}");
             let spawned = Command::new("Xvfb")
-                .args([format!(":{n}").as_str(), "-screen", "0", screen.as_str(), "-nolisten", "tcp"])
+                .args([format!(":{n}").as_str(), "-screen", "0", screen.as_str()])
+                .args(if tcp { ["-listen", "tcp"] } else { ["-nolisten", "tcp"] })
                 .stdout(Stdio::null())
                 .stderr(Stdio::null())
                 .spawn();
@@ -62,7 +69,16 @@ impl Xvfb {
 
     /// Opens a connection to the server (retrying while it starts).
     pub fn open(&self, x: &Xlib) -> *mut xlib::Display {
-        let name = CString::new(self.display.as_str()).unwrap();
+        self.open_named(x, &self.display)
+    }
+
+    /// Opens a connection over TCP (`localhost:N`; the server must listen on TCP).
+    pub fn open_tcp(&self, x: &Xlib) -> *mut xlib::Display {
+        self.open_named(x, &format!("localhost{}", self.display))
+    }
+
+    fn open_named(&self, x: &Xlib, name: &str) -> *mut xlib::Display {
+        let name = CString::new(name).unwrap();
         let deadline = Instant::now() + Duration::from_secs(10);
         loop {
             // Safety: a valid display name.
