@@ -115,3 +115,36 @@ fn falls_back_to_put_image_when_the_server_refuses_shared_memory() {
     assert!(!p.uses_shm(), "a TCP client's segment is refused (BadAccess, trapped)");
     assert_shows(&x, dpy, win, [40, 30], &image, [8, 8, 8], "window over TCP");
 }
+
+static APP_ERRORS: std::sync::Mutex<Vec<u8>> = std::sync::Mutex::new(Vec::new());
+
+unsafe extern "C" fn app_handler(_: *mut xlib::Display, e: *mut xlib::XErrorEvent) -> std::ffi::c_int {
+    APP_ERRORS.lock().unwrap().push(unsafe { (*e).error_code });
+    0
+}
+
+/// The drawable size check run at every swap (one round trip): its own error is kept from the
+/// application, an earlier error of the application's still reaches the application's handler.
+#[test]
+fn swap_size_check_traps_only_its_own_error() {
+    let Some(server) = x11::Xvfb::start(24) else { return };
+    let x = Xlib::open().expect("libX11");
+    let dpy = server.open(&x);
+    let win = x11::mapped_window(&x, dpy, 40, 30);
+    let (gx, gdpy) = unsafe { glrt::gl_entry::glx::connection(dpy.cast()) }.expect("connection");
+    unsafe { (x.XSetErrorHandler)(Some(app_handler)) };
+    // The application's bad request, not yet synced.
+    unsafe { (x.XMapWindow)(dpy, 0x7ff_fff0) };
+    let size = unsafe { glrt::gl_entry::glx::drawable::x_geometry(gx, gdpy, win) };
+    assert_eq!(size, Some((40, 30, 24)));
+    assert_eq!(*APP_ERRORS.lock().unwrap(), [xlib::BadWindow], "the application's error reached its handler");
+    assert_eq!(unsafe { glrt::gl_entry::glx::drawable::x_geometry(gx, gdpy, 0x7ff_fff0) }, None);
+    unsafe { (x.XSync)(dpy, xlib::False) };
+    assert_eq!(APP_ERRORS.lock().unwrap().len(), 1, "glrt's own error was trapped");
+    let start = std::time::Instant::now();
+    for _ in 0..500 {
+        unsafe { glrt::gl_entry::glx::drawable::x_geometry(gx, gdpy, win) };
+    }
+    eprintln!("size check: {:?} per swap", start.elapsed() / 500);
+    unsafe { (x.XSetErrorHandler)(None) };
+}

@@ -130,7 +130,7 @@ pub unsafe fn x_geometry(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID) -> Option
     let (mut root, mut px, mut py, mut w, mut h, mut border, mut depth) = (0, 0, 0, 0, 0, 0, 0);
     // Safety: the out-pointers are valid; a bad drawable is an error that is trapped.
     let status = unsafe {
-        super::trapped(x, dpy, || {
+        super::trapped_reply(x, dpy, || {
             (x.XGetGeometry)(dpy, xid, &mut root, &mut px, &mut py, &mut w, &mut h, &mut border, &mut depth)
         })
     };
