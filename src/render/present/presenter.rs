@@ -8,7 +8,7 @@
 
 use super::swapchain::{Gpu, Presented, Source, SwapchainPresenter};
 use super::xlib::XlibPresenter;
-use super::{Surface, Target};
+use super::{Surface, Target, display_epoch};
 
 /// The rendered frame as a presenter needs it: the GPU image for a swapchain, or its pixels.
 pub trait FrameImage {
@@ -35,6 +35,8 @@ enum Path {
 pub struct Presenter {
     target: Target,
     path: Path,
+    /// [`display_epoch`] of the target's display when the presenter was made.
+    epoch: u64,
 }
 
 /// Whether `GLRT_PRESENT` asks for the Xlib path.
@@ -80,7 +82,7 @@ impl Presenter {
             Surface::Pixmap(_) => unsafe { xlib_path(target.surface) },
         };
         log::info!("present: {:?} through {}", target.surface, path_name(&path));
-        Presenter { target, path }
+        Presenter { target, path, epoch: epoch_of(&target) }
     }
 
     /// The target frames go to.
@@ -124,6 +126,10 @@ impl Presenter {
     /// # Safety
     /// `frame`'s image satisfies [`SwapchainPresenter::present`]; the display is live.
     pub unsafe fn show(&mut self, frame: &mut dyn FrameImage) -> bool {
+        if epoch_of(&self.target) != self.epoch {
+            // The application closed the display: nothing may use it any more.
+            self.path = Path::Nowhere;
+        }
         match &mut self.path {
             Path::Offscreen | Path::Nowhere => false,
             // Safety: as documented.
@@ -160,6 +166,11 @@ unsafe fn xlib_path(surface: Surface) -> Path {
             Path::Nowhere
         }
     }
+}
+
+/// The [`display_epoch`] of the target's display (0 off-screen).
+fn epoch_of(target: &Target) -> u64 {
+    target.surface.x_drawable().map_or(0, |d| display_epoch(d.display as usize))
 }
 
 fn path_name(path: &Path) -> &'static str {

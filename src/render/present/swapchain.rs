@@ -19,7 +19,7 @@ use std::ffi::CStr;
 
 use ash::vk;
 
-use super::XDrawable;
+use super::{XDrawable, display_epoch};
 
 /// Instance extensions a presenting renderer enables (when the loader offers them all).
 pub const INSTANCE_EXTENSIONS: [&CStr; 2] = [ash::khr::surface::NAME, ash::khr::xlib_surface::NAME];
@@ -115,6 +115,11 @@ pub struct SwapchainPresenter {
     surface_fns: ash::khr::surface::Instance,
     swapchain_fns: ash::khr::swapchain::Device,
     surface: vk::SurfaceKHR,
+    /// The window's display and its [`display_epoch`] when the surface was made: once the
+    /// application closed the display, the window system's objects are abandoned, not
+    /// destroyed (destroying them would use the closed connection).
+    display: usize,
+    epoch: u64,
     chain: Option<Chain>,
     /// The window's size as last told (used when the surface leaves the extent to glrt).
     size: [u32; 2],
@@ -167,6 +172,8 @@ impl SwapchainPresenter {
                 swapchain_fns: ash::khr::swapchain::Device::new(&gpu.instance, &gpu.device),
                 surface_fns,
                 surface,
+                display: window.display as usize,
+                epoch: display_epoch(window.display as usize),
                 chain: None,
                 size,
                 interval,
@@ -216,6 +223,9 @@ impl SwapchainPresenter {
     /// `source.image` is a live image of the presenter's device whose rendering was submitted
     /// to the presenter's queue; nothing else uses the queue during the call.
     pub unsafe fn present(&mut self, source: &Source) -> Result<Presented, Unusable> {
+        if !self.display_open() {
+            return Err(Unusable::Unsupported);
+        }
         // Safety (all): as documented.
         unsafe {
             if self.stale {
@@ -270,6 +280,11 @@ impl SwapchainPresenter {
             }
             Ok(Presented::Shown)
         }
+    }
+
+    /// Whether the application's display is still open.
+    fn display_open(&self) -> bool {
+        display_epoch(self.display) == self.epoch
     }
 
     /// Builds the swapchain for the surface's current extent (none while it is zero-sized),
@@ -347,7 +362,8 @@ impl SwapchainPresenter {
     }
 
     /// Destroys a swapchain no longer in use (the queue is idle: its semaphores may still be
-    /// waited on by a presentation, which `queue_wait_idle` completes).
+    /// waited on by a presentation, which `queue_wait_idle` completes); only abandoned when the
+    /// display is closed.
     ///
     /// # Safety
     /// The chain belongs to this presenter.
@@ -359,7 +375,9 @@ impl SwapchainPresenter {
             for s in chain.blitted {
                 self.gpu.device.destroy_semaphore(s, None);
             }
-            self.swapchain_fns.destroy_swapchain(chain.handle, None);
+            if self.display_open() {
+                self.swapchain_fns.destroy_swapchain(chain.handle, None);
+            }
         }
     }
 }
@@ -381,7 +399,9 @@ impl Drop for SwapchainPresenter {
                 device.destroy_fence(self.done[i], None);
             }
             device.destroy_command_pool(self.pool, None);
-            self.surface_fns.destroy_surface(self.surface, None);
+            if self.display_open() {
+                self.surface_fns.destroy_surface(self.surface, None);
+            }
         }
     }
 }

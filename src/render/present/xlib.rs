@@ -139,8 +139,9 @@ impl XlibPresenter {
 
     /// Stops using MIT-SHM: later frames go through `XPutImage`.
     pub fn disable_shm(&mut self) {
-        self.shm = None;
+        // The segment is detached while MIT-SHM is still known.
         self.release_image();
+        self.shm = None;
     }
 
     /// Puts `rgba` (`size[0]` × `size[1]` RGBA8 pixels, rows bottom to top) on the drawable,
