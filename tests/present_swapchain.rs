@@ -1,7 +1,8 @@
 //! The Vulkan swapchain presenter on an Xvfb window: a Vulkan device of its own (the first
 //! one that can present to the window: lavapipe on CI), an image holding a known pattern in
 //! OpenGL's bottom-up row order, presented, then the window read back with `XGetImage` and
-//! compared pixel by pixel; again after the window is resized. Skipped when Xvfb is not
+//! compared pixel by pixel; again after the window is resized; through [`Presenter`] with and
+//! without the device (Xlib read-back); and with the display closed under it. Skipped when Xvfb is not
 //! installed or no Vulkan device can present to it (then the Xlib presenter is the path, see
 //! tests/present_xlib.rs).
 
@@ -221,6 +222,20 @@ fn swapchain_shows_the_rendered_image_and_follows_resizes() {
     }
     let offscreen = Target { size: [80, 60], surface: Surface::Offscreen, swap_interval: 0 };
     assert_eq!(unsafe { Presenter::new(offscreen, Some(&gpu)) }.path(), "offscreen");
+
+    // The application closes its display (glrt hears of it through the GLX layer's hook):
+    // the presenter stops, and dropping it does not touch the closed connection.
+    let mut presenter = unsafe { Presenter::new(target, Some(&gpu)) };
+    assert_eq!(presenter.path(), "vulkan");
+    let rgba = pattern(80, 60);
+    let image = source_image(&gpu, [80, 60], &rgba);
+    let source = Source { image, layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, size: [80, 60], bottom_up: true };
+    let mut frame = TestFrame { source, rgba, reads: 0 };
+    unsafe { glrt::gl_entry::glx::connection(dpy.cast()) }.expect("connection");
+    unsafe { (x.XCloseDisplay)(dpy) };
+    assert!(!unsafe { presenter.show(&mut frame) }, "nothing shown on a closed display");
+    assert_eq!(presenter.path(), "none");
+    drop(presenter);
 }
 
 /// A rendered frame: its image and the pixels a read-back returns.
