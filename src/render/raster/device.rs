@@ -96,8 +96,14 @@ pub struct Device {
     pub depth_format: vk::Format,
     /// `VK_EXT_custom_border_color` (with `customBorderColorWithoutFormat`) is enabled.
     pub custom_border_color: bool,
+    /// `VK_KHR_swapchain` is enabled, with the instance's `VK_KHR_surface` and
+    /// `VK_KHR_xlib_surface`: the device can present to X11 windows (when a queue family
+    /// supports the surface).
+    pub swapchain: bool,
     /// Device memory.
     allocator: ManuallyDrop<Mutex<Allocator>>,
+    /// The validation messenger (`GLRT_VALIDATE=1`).
+    messenger: Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
 }
 
 /// A buffer and its memory.
@@ -137,18 +143,29 @@ impl Device {
     pub fn new() -> Result<Device> {
         // Safety: loading libvulkan runs its initialisers; it is the system's Vulkan loader.
         let entry = unsafe { ash::Entry::load() }.map_err(|e| Error::NoLoader(e.to_string()))?;
-        let instance = create_instance(&entry)?;
-        match Self::with_instance(entry, instance.clone()) {
+        let (instance, enabled) = create_instance(&entry)?;
+        let messenger = enabled.validate.then(|| create_messenger(&entry, &instance)).flatten();
+        match Self::with_instance(entry, instance.clone(), enabled.surfaces, messenger.clone()) {
             Ok(device) => Ok(device),
             Err(e) => {
                 // Safety: nothing else was created from the instance.
-                unsafe { instance.destroy_instance(None) };
+                unsafe {
+                    if let Some((utils, m)) = messenger {
+                        utils.destroy_debug_utils_messenger(m, None);
+                    }
+                    instance.destroy_instance(None);
+                }
                 Err(e)
             }
         }
     }
 
-    fn with_instance(entry: ash::Entry, instance: ash::Instance) -> Result<Device> {
+    fn with_instance(
+        entry: ash::Entry,
+        instance: ash::Instance,
+        surfaces: bool,
+        messenger: Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
+    ) -> Result<Device> {
         // Safety: valid instance.
         let physicals = unsafe { instance.enumerate_physical_devices() }.check("vkEnumeratePhysicalDevices")?;
         let choice = std::env::var("GLRT_DEVICE").ok();
@@ -180,10 +197,14 @@ impl Device {
             .fill_mode_non_solid(features.fill_mode_non_solid)
             .large_points(features.large_points)
             .sampler_anisotropy(features.sampler_anisotropy);
-        let mut v13 = vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true);
+        let mut v13 = vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true).synchronization2(true);
         let priorities = [1.0];
         let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
         let mut extensions = device_extensions(&instance, physical);
+        if !surfaces {
+            extensions.retain(|e| e.as_c_str() != ash::khr::swapchain::NAME);
+        }
+        let swapchain = extensions.iter().any(|e| e.as_c_str() == ash::khr::swapchain::NAME);
         let custom_border_color = extensions.iter().any(|e| e.as_c_str() == ash::ext::custom_border_color::NAME) && {
             let mut border = vk::PhysicalDeviceCustomBorderColorFeaturesEXT::default();
             let mut features2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut border);
@@ -240,7 +261,9 @@ impl Device {
             features,
             depth_format,
             custom_border_color,
+            swapchain,
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
+            messenger,
         })
     }
 
@@ -373,30 +396,91 @@ impl Drop for Device {
             let _ = self.raw.device_wait_idle();
             ManuallyDrop::drop(&mut self.allocator);
             self.raw.destroy_device(None);
+            if let Some((utils, m)) = self.messenger.take() {
+                utils.destroy_debug_utils_messenger(m, None);
+            }
             self.instance.destroy_instance(None);
         }
     }
 }
 
-fn create_instance(entry: &ash::Entry) -> Result<ash::Instance> {
+/// Creates the instance, with the X11 surface extensions when present, and the validation
+/// layer and debug utils when `GLRT_VALIDATE=1` and the layer is installed.
+fn create_instance(entry: &ash::Entry) -> Result<(ash::Instance, Instance)> {
     let name = c"glrt";
     let app = vk::ApplicationInfo::default().application_name(name).engine_name(name).api_version(vk::API_VERSION_1_3);
     let mut layers: Vec<*const std::ffi::c_char> = Vec::new();
+    // Safety: valid entry.
+    let available = unsafe { entry.enumerate_instance_extension_properties(None) }.unwrap_or_default();
+    let mut extensions: Vec<*const std::ffi::c_char> = SURFACE_EXTENSIONS
+        .iter()
+        .filter(|want| available.iter().any(|e| e.extension_name_as_c_str() == Ok(**want)))
+        .map(|e| e.as_ptr())
+        .collect();
+    let surfaces = extensions.len() == SURFACE_EXTENSIONS.len();
+    if !surfaces {
+        extensions.clear();
+    }
     if std::env::var("GLRT_VALIDATE").is_ok_and(|v| v == "1") {
         // Safety: valid entry.
         let available = unsafe { entry.enumerate_instance_layer_properties() }.unwrap_or_default();
         if available.iter().any(|l| l.layer_name_as_c_str() == Ok(VALIDATION)) {
             layers.push(VALIDATION.as_ptr());
+            extensions.push(ash::ext::debug_utils::NAME.as_ptr());
         } else {
-            log::warn!("glrt: GLRT_VALIDATE=1 but {VALIDATION:?} is not installed");
+            eprintln!("glrt: GLRT_VALIDATE=1 but {VALIDATION:?} is not installed");
         }
     }
-    let info = vk::InstanceCreateInfo::default().application_info(&app).enabled_layer_names(&layers);
+    let info = vk::InstanceCreateInfo::default().application_info(&app).enabled_layer_names(&layers).enabled_extension_names(&extensions);
     // Safety: valid create info.
-    unsafe { entry.create_instance(&info, None) }.check("vkCreateInstance")
+    let instance = unsafe { entry.create_instance(&info, None) }.check("vkCreateInstance")?;
+    Ok((instance, Instance { validate: !layers.is_empty(), surfaces }))
 }
 
-/// Device extensions enabled when present (the presentation helper adds swapchain use).
+/// What [`create_instance`] enabled.
+#[derive(Clone, Copy)]
+struct Instance {
+    /// The validation layer and debug utils.
+    validate: bool,
+    /// [`SURFACE_EXTENSIONS`].
+    surfaces: bool,
+}
+
+/// Instance extensions for presenting to X11 windows, enabled together when all are present.
+const SURFACE_EXTENSIONS: [&CStr; 2] = [ash::khr::surface::NAME, ash::khr::xlib_surface::NAME];
+
+/// A messenger printing validation warnings and errors to stderr.
+fn create_messenger(entry: &ash::Entry, instance: &ash::Instance) -> Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)> {
+    let utils = ash::ext::debug_utils::Instance::new(entry, instance);
+    let info = vk::DebugUtilsMessengerCreateInfoEXT::default()
+        .message_severity(vk::DebugUtilsMessageSeverityFlagsEXT::WARNING | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR)
+        .message_type(vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION)
+        .pfn_user_callback(Some(validation_message));
+    // Safety: debug utils is enabled on the instance.
+    let messenger = unsafe { utils.create_debug_utils_messenger(&info, None) }.ok()?;
+    Some((utils, messenger))
+}
+
+/// Prints a validation message. Called by the layer from C: catches panics.
+unsafe extern "system" fn validation_message(
+    severity: vk::DebugUtilsMessageSeverityFlagsEXT,
+    _types: vk::DebugUtilsMessageTypeFlagsEXT,
+    data: *const vk::DebugUtilsMessengerCallbackDataEXT<'_>,
+    _user: *mut std::ffi::c_void,
+) -> vk::Bool32 {
+    if std::thread::panicking() {
+        return vk::FALSE;
+    }
+    let _ = std::panic::catch_unwind(|| {
+        // Safety: the layer passes valid callback data for the duration of the call.
+        let message = unsafe { data.as_ref().and_then(|d| d.message_as_c_str()) };
+        let text = message.map(|m| m.to_string_lossy().into_owned()).unwrap_or_default();
+        eprintln!("glrt: Vulkan validation ({severity:?}): {text}");
+    });
+    vk::FALSE
+}
+
+/// Device extensions enabled when present.
 fn device_extensions(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Vec<CString> {
     // Safety: valid physical device.
     let available = unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
