@@ -183,3 +183,104 @@ fn glrt_dump_writes_each_presented_frame_top_down() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// A window-filling quad at NDC depth `z` in `color`.
+fn quad_at(ctx: &mut Context, z: f32, color: [f32; 3]) {
+    unsafe {
+        dispatch::glColor3f(ctx, color[0], color[1], color[2]);
+        dispatch::glBegin(ctx, gl::GL_QUADS);
+        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            dispatch::glVertex3f(ctx, x, y, z);
+        }
+        dispatch::glEnd(ctx);
+    }
+}
+
+#[test]
+fn depth_stencil_scissor_and_masks_apply_to_draws() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glClearColor(&mut ctx, 0.0, 0.0, 0.0, 0.0);
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT | gl::GL_STENCIL_BUFFER_BIT);
+        dispatch::glEnable(&mut ctx, gl::GL_DEPTH_TEST);
+        dispatch::glDepthFunc(&mut ctx, gl::GL_LESS);
+    }
+    quad_at(&mut ctx, 0.0, [1.0, 0.0, 0.0]);
+    quad_at(&mut ctx, 0.5, [0.0, 1.0, 0.0]);
+    assert_eq!(pixel(&mut ctx, 30, 30), [255, 0, 0, 255], "the farther quad fails GL_LESS");
+    let mut depth = [0f32; 1];
+    unsafe { dispatch::glReadPixels(&mut ctx, 30, 30, 1, 1, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT, depth.as_mut_ptr().cast()) };
+    assert!((depth[0] - 0.5).abs() < 1e-4, "NDC z 0 is window depth 0.5: {}", depth[0]);
+    unsafe {
+        // Stencil: write 1 inside the scissor box (left half), then draw where stencil == 1.
+        dispatch::glDisable(&mut ctx, gl::GL_DEPTH_TEST);
+        dispatch::glEnable(&mut ctx, gl::GL_STENCIL_TEST);
+        dispatch::glEnable(&mut ctx, gl::GL_SCISSOR_TEST);
+        dispatch::glScissor(&mut ctx, 0, 0, 32, 64);
+        dispatch::glStencilFunc(&mut ctx, gl::GL_ALWAYS, 1, 0xff);
+        dispatch::glStencilOp(&mut ctx, gl::GL_KEEP, gl::GL_KEEP, gl::GL_REPLACE);
+        dispatch::glColorMask(&mut ctx, 0, 0, 0, 0);
+    }
+    quad_at(&mut ctx, 0.0, [1.0, 1.0, 1.0]);
+    assert_eq!(pixel(&mut ctx, 10, 30), [255, 0, 0, 255], "colour writes masked");
+    unsafe {
+        dispatch::glDisable(&mut ctx, gl::GL_SCISSOR_TEST);
+        dispatch::glColorMask(&mut ctx, 0, 1, 0, 0);
+        dispatch::glStencilFunc(&mut ctx, gl::GL_EQUAL, 1, 0xff);
+        dispatch::glStencilOp(&mut ctx, gl::GL_KEEP, gl::GL_KEEP, gl::GL_KEEP);
+    }
+    quad_at(&mut ctx, 0.0, [0.0, 1.0, 0.0]);
+    assert_eq!(pixel(&mut ctx, 10, 30), [255, 255, 0, 255], "stencil passes, only green written");
+    assert_eq!(pixel(&mut ctx, 50, 30), [255, 0, 0, 255], "stencil fails outside the scissored area");
+    let mut stencil = [0u8; 2];
+    unsafe { dispatch::glReadPixels(&mut ctx, 31, 30, 2, 1, gl::GL_STENCIL_INDEX, gl::GL_UNSIGNED_BYTE, stencil.as_mut_ptr().cast()) };
+    assert_eq!(stencil, [1, 0]);
+}
+
+#[test]
+fn logic_op_viewport_and_depth_range() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glClearColor(&mut ctx, 1.0, 0.0, 1.0, 1.0);
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
+        dispatch::glEnable(&mut ctx, gl::GL_COLOR_LOGIC_OP);
+        dispatch::glLogicOp(&mut ctx, gl::GL_XOR);
+    }
+    quad_at(&mut ctx, 0.0, [1.0, 1.0, 0.0]);
+    assert_eq!(pixel(&mut ctx, 30, 30), [0, 255, 255, 0], "magenta XOR yellow (alpha 1 XOR 1)");
+    unsafe {
+        dispatch::glDisable(&mut ctx, gl::GL_COLOR_LOGIC_OP);
+        // The lower-left quarter of the window, depth mapped to [0.25, 0.75].
+        dispatch::glViewport(&mut ctx, 0, 0, 32, 32);
+        dispatch::glDepthRange(&mut ctx, 0.25, 0.75);
+        dispatch::glEnable(&mut ctx, gl::GL_DEPTH_TEST);
+        dispatch::glDepthFunc(&mut ctx, gl::GL_ALWAYS);
+    }
+    quad_at(&mut ctx, 1.0, [0.0, 0.0, 1.0]);
+    assert_eq!(pixel(&mut ctx, 5, 5), [0, 0, 255, 255]);
+    assert_eq!(pixel(&mut ctx, 40, 5), [0, 255, 255, 0], "outside the viewport");
+    assert_eq!(pixel(&mut ctx, 5, 40), [0, 255, 255, 0], "outside the viewport (above)");
+    let mut depth = [0f32; 1];
+    unsafe { dispatch::glReadPixels(&mut ctx, 5, 5, 1, 1, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT, depth.as_mut_ptr().cast()) };
+    assert!((depth[0] - 0.75).abs() < 1e-4, "NDC z 1 is the far end of the depth range: {}", depth[0]);
+}
+
+#[test]
+fn a_new_drawable_size_recreates_the_framebuffer() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glClearColor(&mut ctx, 0.0, 1.0, 0.0, 1.0);
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+    }
+    ctx.end_frame();
+    ctx.bind_drawable(100, 20);
+    unsafe {
+        dispatch::glViewport(&mut ctx, 0, 0, 100, 20);
+        dispatch::glClearColor(&mut ctx, 1.0, 0.0, 0.0, 1.0);
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+    }
+    assert_eq!(pixel(&mut ctx, 99, 19), [255, 0, 0, 255], "the corner of the 100×20 drawable");
+    let mut row = [[9u8; 4]; 2];
+    unsafe { dispatch::glReadPixels(&mut ctx, 99, 0, 2, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, row.as_mut_ptr().cast()) };
+    assert_eq!(row, [[255, 0, 0, 255], [0, 0, 0, 0]], "outside the window reads as 0");
+}
