@@ -14,15 +14,20 @@ fn context() -> Context {
     context_with(Renderer::new)
 }
 
-/// A context drawing into the renderer `make` creates (on lavapipe), with a 64×64 drawable.
-fn context_with(make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Context {
+/// The renderer `make` creates, on lavapipe when its ICD file exists.
+fn renderer_with(make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Renderer {
     let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
     if std::path::Path::new(lavapipe).exists() {
         // Safety: set before any thread of this test binary loads Vulkan; every test sets the
         // same value.
         unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
     }
-    let renderer = make().expect("a Vulkan device (lavapipe)");
+    make().expect("a Vulkan device (lavapipe)")
+}
+
+/// A context drawing into the renderer `make` creates (on lavapipe), with a 64×64 drawable.
+fn context_with(make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Context {
+    let renderer = renderer_with(make);
     let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
     ctx.bind_drawable(SIZE, SIZE);
     ctx
@@ -160,7 +165,11 @@ fn textures_follow_their_versions_with_gl_rows() {
 fn glrt_dump_writes_each_presented_frame_top_down() {
     let dir = std::env::temp_dir().join(format!("glrt-dump-test-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let mut ctx = context_with(|| Renderer::with_dump(glrt::render::raster::dump::Dump::new(dir.clone())));
+    let mut ctx = context_with(|| {
+        let mut renderer = Renderer::without_outputs()?;
+        renderer.add_output(Box::new(glrt::render::raster::dump::Dump::new(dir.clone()).expect("a dump directory")));
+        Ok(renderer)
+    });
     for frame in 0..2 {
         unsafe {
             dispatch::glClearColor(&mut ctx, 0.0, 0.0, frame as f32, 1.0);
@@ -283,4 +292,47 @@ fn a_new_drawable_size_recreates_the_framebuffer() {
     let mut row = [[9u8; 4]; 2];
     unsafe { dispatch::glReadPixels(&mut ctx, 99, 0, 2, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, row.as_mut_ptr().cast()) };
     assert_eq!(row, [[255, 0, 0, 255], [0, 0, 0, 0]], "outside the window reads as 0");
+}
+
+#[test]
+fn pipelines_and_textures_are_created_once_and_unused_textures_dropped() {
+    use glrt::render::FrameSink;
+    // Frames recorded by translate, then given to a renderer directly to look at its caches.
+    let (mut ctx, sink) = Context::with_recording();
+    ctx.bind_drawable(SIZE, SIZE);
+    let texels = [255u8; 4 * 4];
+    for frame in 0..12 {
+        unsafe {
+            dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+            if frame < 2 {
+                dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_2D, 1 + frame);
+                dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+                dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+                dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_2D);
+            } else {
+                dispatch::glDisable(&mut ctx, gl::GL_TEXTURE_2D);
+            }
+        }
+        textured_quad(&mut ctx);
+        lower_left_triangle(&mut ctx, true, [1.0, 0.0, 0.0]);
+        ctx.end_frame();
+    }
+    let frames = std::mem::take(&mut *sink.frames.lock());
+    assert_eq!(frames.len(), 12);
+    let mut renderer = renderer_with(Renderer::without_outputs);
+    let mut counts = Vec::new();
+    for frame in frames {
+        renderer.present(frame);
+        counts.push((renderer.pipeline_count(), renderer.texture_count()));
+    }
+    // One pipeline for textured and one for untextured draws, created once.
+    assert_eq!(counts[0].0, 1);
+    assert_eq!(counts[2].0, 2);
+    assert_eq!(counts[11].0, 2);
+    // Textures 1 (used in frame 0) and 2 (frame 1) uploaded once each, each dropped once
+    // eight more frames went by without it.
+    assert_eq!(counts[1].1, 2);
+    assert_eq!(counts[7].1, 2);
+    assert_eq!(counts[8].1, 1);
+    assert_eq!(counts[9].1, 0);
 }

@@ -7,6 +7,7 @@ use std::collections::HashMap;
 use ash::vk;
 
 use super::device::{Check, Device, Result};
+use super::output::SubmitSync;
 use super::pipelines::BINDINGS;
 use super::upload::Ring;
 
@@ -175,11 +176,16 @@ impl Slot {
         Ok(())
     }
 
-    /// Ends recording and submits, signalling the slot's fence; with `wait`, returns once the
-    /// GPU finished it.
-    pub fn submit(&mut self, device: &Device, wait: bool) -> Result<()> {
+    /// Ends recording and submits with the semaphores of `sync`, signalling the slot's fence;
+    /// with `wait`, returns once the GPU finished it.
+    pub fn submit(&mut self, device: &Device, sync: &SubmitSync, wait: bool) -> Result<()> {
         let buffers = [self.cmd];
-        let submit = [vk::SubmitInfo::default().command_buffers(&buffers)];
+        let (wait_semaphores, wait_stages): (Vec<_>, Vec<_>) = sync.wait.iter().copied().unzip();
+        let submit = [vk::SubmitInfo::default()
+            .command_buffers(&buffers)
+            .wait_semaphores(&wait_semaphores)
+            .wait_dst_stage_mask(&wait_stages)
+            .signal_semaphores(&sync.signal)];
         // Safety: the command buffer is recording; the fence is unsignalled (reset in `wait`).
         unsafe {
             device.raw.end_command_buffer(self.cmd).check("vkEndCommandBuffer")?;

@@ -12,7 +12,9 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 
 use super::device::{Buffer, Device, Result};
-use super::target::{Plane, Target};
+use super::output::{FrameOutput, SubmitSync};
+use super::renderer::Recorder;
+use super::target::Plane;
 
 /// A copy waiting for its frame to finish.
 struct Pending {
@@ -61,8 +63,12 @@ impl Dump {
         Some(Dump { dir, pending: Vec::new(), jobs: Some(jobs), writer: Some(writer) })
     }
 
+}
+
+impl FrameOutput for Dump {
     /// Records the copy of the colour image of frame `frame` for slot `slot`.
-    pub fn record(&mut self, device: &Device, cmd: vk::CommandBuffer, target: &mut Target, slot: usize, frame: u64) -> Result<()> {
+    fn record(&mut self, rec: &mut Recorder<'_>, slot: usize, frame: u64) -> Result<SubmitSync> {
+        let (device, cmd, target) = (rec.device, rec.cmd, &mut *rec.target);
         if self.pending.len() <= slot {
             self.pending.resize_with(slot + 1, || None);
         }
@@ -80,11 +86,11 @@ impl Dump {
         if let Some(old) = self.pending[slot].replace(Pending { buffer, size: [w, h], frame }) {
             device.destroy_buffer(old.buffer);
         }
-        Ok(())
+        Ok(SubmitSync::default())
     }
 
     /// Sends slot `slot`'s frame (its fence has signalled) to the writer thread.
-    pub fn collect(&mut self, device: &Device, slot: usize) {
+    fn completed(&mut self, device: &Device, slot: usize) {
         let Some(mut p) = self.pending.get_mut(slot).and_then(Option::take) else { return };
         let path = self.dir.join(format!("frame-{:05}.png", p.frame));
         let rgba = p.buffer.mapped().to_vec();
@@ -95,7 +101,7 @@ impl Dump {
     }
 
     /// Frees the buffers (the GPU must be idle) and waits for the writer to finish.
-    pub fn destroy(&mut self, device: &Device) {
+    fn destroy(&mut self, device: &Device) {
         for p in self.pending.drain(..).flatten() {
             device.destroy_buffer(p.buffer);
         }

@@ -11,13 +11,16 @@
 //! - [`pipelines`]: pipelines per (shader key, fixed state), cached; [`conv`]: state → Vulkan.
 //! - [`textures`]: texture images and samplers.
 //! - [`renderer`]: the [`renderer::Renderer`] sink (frame order, read-back, present).
-//! - [`readback`], [`dump`] (`GLRT_DUMP`), [`pixel`] (pixel operations).
+//! - [`output`]: consumers of presented frames ([`output::FrameOutput`]): [`dump`]
+//!   (`GLRT_DUMP`), presentation.
+//! - [`readback`] (`glReadPixels`), [`pixel`] (pixel operations).
 
 pub mod commands;
 pub mod conv;
 pub mod device;
 pub mod dump;
 pub mod ff;
+pub mod output;
 pub mod pipelines;
 pub mod pixel;
 pub mod readback;

@@ -9,11 +9,15 @@
 //!
 //! Extension points for the pixel path and presentation: [`Recorder`] gives the device, the
 //! current command buffer, the [`Target`] images and the upload ring, and starts or ends the
-//! dynamic-rendering pass on demand.
+//! dynamic-rendering pass on demand ([`super::pixel::record`] receives one per pixel
+//! operation); [`FrameOutput`]s added with [`Renderer::add_output`] record their copies at
+//! the end of each presented frame, give the submission semaphores, and hear when the GPU
+//! finished it (the `GLRT_DUMP` writer is one).
 
 use ash::vk;
 
 use super::commands::Slot;
+use super::output::{FrameOutput, SubmitSync};
 use super::device::{Device, Error, Result};
 use super::ff;
 use super::pipelines::{FixedState, PipelineKey, Pipelines};
@@ -51,8 +55,8 @@ pub struct Renderer {
     /// Whether the current slot's command buffer is recording.
     recording: bool,
     progress: Option<Progress>,
-    /// Frame dumps (`GLRT_DUMP`).
-    dump: Option<super::dump::Dump>,
+    /// Frame dumps (`GLRT_DUMP`), presentation.
+    outputs: Vec<Box<dyn FrameOutput>>,
     /// Set after a device error: frames are dropped.
     failed: bool,
 }
@@ -269,11 +273,15 @@ impl Renderer {
     /// Creates the renderer on the device chosen by `GLRT_DEVICE` (see [`Device::new`]),
     /// dumping frames where `GLRT_DUMP` says.
     pub fn new() -> Result<Renderer> {
-        Renderer::with_dump(super::dump::Dump::from_env())
+        let mut renderer = Renderer::without_outputs()?;
+        if let Some(dump) = super::dump::Dump::from_env() {
+            renderer.add_output(Box::new(dump));
+        }
+        Ok(renderer)
     }
 
-    /// Creates the renderer with frame dumps `dump` (see [`super::dump::Dump::new`]).
-    pub fn with_dump(dump: Option<super::dump::Dump>) -> Result<Renderer> {
+    /// Creates the renderer with no [`FrameOutput`]: frames stay in the framebuffer.
+    pub fn without_outputs() -> Result<Renderer> {
         let device = Device::new()?;
         let pipelines = Pipelines::new(&device)?;
         let textures = Textures::new(&device);
@@ -284,7 +292,7 @@ impl Renderer {
             current: 0,
             recording: false,
             progress: None,
-            dump,
+            outputs: Vec::new(),
             failed: false,
         })
     }
@@ -294,9 +302,19 @@ impl Renderer {
         &self.parts.device
     }
 
+    /// Adds a consumer of presented frames (presentation, dumps), called in the order added.
+    pub fn add_output(&mut self, output: Box<dyn FrameOutput>) {
+        self.outputs.push(output);
+    }
+
     /// Pipelines created so far (tests, statistics).
     pub fn pipeline_count(&self) -> usize {
         self.parts.pipelines.len()
+    }
+
+    /// Texture versions on the GPU (tests, statistics).
+    pub fn texture_count(&self) -> usize {
+        self.parts.textures.len()
     }
 
     /// A [`Recorder`] on the current slot for a frame of `size`, starting the command buffer
@@ -372,7 +390,7 @@ impl Renderer {
     fn flush(&mut self) -> Result<()> {
         if self.recording {
             self.end_pass();
-            self.slots[self.current].submit(&self.parts.device, true)?;
+            self.slots[self.current].submit(&self.parts.device, &SubmitSync::default(), true)?;
             self.recording = false;
         }
         Ok(())
@@ -402,11 +420,20 @@ impl Renderer {
     /// Finishes `frame` and submits it without waiting.
     pub fn finish(&mut self, frame: &Frame) -> Result<()> {
         self.record(frame)?;
-        self.end_pass();
-        if let (Some(dump), Some(target)) = (&mut self.dump, self.parts.target.as_mut()) {
-            dump.record(&self.parts.device, self.slots[self.current].cmd, target, self.current, frame.number)?;
-        }
-        self.slots[self.current].submit(&self.parts.device, false)?;
+        let slot = self.current;
+        let mut sync = SubmitSync::default();
+        let mut outputs = std::mem::take(&mut self.outputs);
+        let recorded = (|| {
+            let mut rec = self.recorder(frame.size)?;
+            rec.end_rendering();
+            for output in &mut outputs {
+                sync.extend(output.record(&mut rec, slot, frame.number)?);
+            }
+            self.slots[slot].submit(&self.parts.device, &sync, false)?;
+            outputs.iter_mut().try_for_each(|o| o.submitted(&self.parts.device, slot))
+        })();
+        self.outputs = outputs;
+        recorded?;
         self.parts.textures.end_frame(&self.parts.device);
         self.recording = false;
         self.progress = None;
@@ -420,12 +447,12 @@ impl Renderer {
         (0..self.slots.len()).try_for_each(|i| self.wait_slot(i))
     }
 
-    /// Waits for slot `i`'s submission and writes its frame dump.
+    /// Waits for slot `i`'s submission and tells the outputs.
     fn wait_slot(&mut self, i: usize) -> Result<()> {
-        if self.slots[i].wait(&self.parts.device)?
-            && let Some(dump) = &mut self.dump
-        {
-            dump.collect(&self.parts.device, i);
+        if self.slots[i].wait(&self.parts.device)? {
+            for output in &mut self.outputs {
+                output.completed(&self.parts.device, i);
+            }
         }
         Ok(())
     }
@@ -469,8 +496,8 @@ impl Drop for Renderer {
         }
         let device = &self.parts.device;
         let _ = device.wait_idle();
-        if let Some(dump) = &mut self.dump {
-            dump.destroy(device);
+        for output in &mut self.outputs {
+            output.destroy(device);
         }
         for slot in &mut self.slots {
             slot.destroy(device);
