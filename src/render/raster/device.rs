@@ -147,7 +147,8 @@ impl Device {
         let entry = unsafe { ash::Entry::load() }.map_err(|e| Error::NoLoader(e.to_string()))?;
         let (instance, enabled) = create_instance(&entry)?;
         let messenger = enabled.validate.then(|| create_messenger(&entry, &instance)).flatten();
-        match Self::with_instance(entry, instance.clone(), enabled.surfaces, messenger.clone()) {
+        // A clone: `entry` (the loaded library) must outlive the clean-up below.
+        match Self::with_instance(entry.clone(), instance.clone(), enabled.surfaces, messenger.clone()) {
             Ok(device) => Ok(device),
             Err(e) => {
                 // Safety: nothing else was created from the instance.
