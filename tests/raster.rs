@@ -367,3 +367,25 @@ fn occlusion_queries_count_samples_that_pass() {
     assert_eq!(first, 2016 + 4096);
     assert_eq!(second, 0);
 }
+
+#[test]
+fn polygon_offset_moves_filled_polygons_in_depth() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
+        dispatch::glEnable(&mut ctx, gl::GL_DEPTH_TEST);
+        dispatch::glDepthFunc(&mut ctx, gl::GL_LESS);
+    }
+    quad_at(&mut ctx, 0.0, [1.0, 0.0, 0.0]);
+    quad_at(&mut ctx, 0.0, [0.0, 1.0, 0.0]);
+    assert_eq!(pixel(&mut ctx, 30, 30), [255, 0, 0, 255], "a coplanar quad fails GL_LESS");
+    unsafe {
+        dispatch::glEnable(&mut ctx, gl::GL_POLYGON_OFFSET_FILL);
+        dispatch::glPolygonOffset(&mut ctx, 0.0, -4.0);
+    }
+    quad_at(&mut ctx, 0.0, [0.0, 1.0, 0.0]);
+    assert_eq!(pixel(&mut ctx, 30, 30), [0, 255, 0, 255], "pulled towards the viewer by 4 units");
+    let mut depth = [0f32; 1];
+    unsafe { dispatch::glReadPixels(&mut ctx, 30, 30, 1, 1, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT, depth.as_mut_ptr().cast()) };
+    assert!(depth[0] < 0.5 && depth[0] > 0.49, "{}", depth[0]);
+}
