@@ -54,30 +54,30 @@ fn check_server(depth: u32, bits: [u32; 3]) {
     // Safety: `dpy` is live.
     let mut p = unsafe { XlibPresenter::new(Surface::Window(on(win))) }.expect("presenter for the window");
     let image = pattern(64, 48);
-    assert!(p.present([64, 48], &image));
+    assert!(p.present([64, 48], &image, true));
     assert!(p.uses_shm(), "a local Xvfb accepts MIT-SHM segments");
     assert_shows(&x, dpy, win, [64, 48], &image, bits, "window through MIT-SHM");
 
     // Resize, then a frame of the new size.
     unsafe { (x.XResizeWindow)(dpy, win, 80, 60) };
     let image = pattern(80, 60);
-    assert!(p.present([80, 60], &image));
+    assert!(p.present([80, 60], &image, true));
     assert_shows(&x, dpy, win, [80, 60], &image, bits, "resized window");
 
     // The same through XPutImage.
     p.disable_shm();
     let flipped: Vec<u8> = image.chunks(4).rev().flatten().copied().collect();
-    assert!(p.present([80, 60], &flipped));
+    assert!(p.present([80, 60], &flipped, true));
     assert!(!p.uses_shm());
     assert_shows(&x, dpy, win, [80, 60], &flipped, bits, "window through XPutImage");
-    assert!(!p.present([80, 60], &flipped[..100]), "a short buffer is refused");
+    assert!(!p.present([80, 60], &flipped[..100], true), "a short buffer is refused");
     drop(p);
 
     // A pixmap of the screen's depth.
     let pixmap = unsafe { (x.XCreatePixmap)(dpy, win, 32, 16, depth) };
     let mut p = unsafe { XlibPresenter::new(Surface::Pixmap(on(pixmap))) }.expect("presenter for the pixmap");
     let image = pattern(32, 16);
-    assert!(p.present([32, 16], &image));
+    assert!(p.present([32, 16], &image, true));
     unsafe { (x.XSync)(dpy, xlib::False) };
     assert_shows(&x, dpy, pixmap, [32, 16], &image, bits, "pixmap");
 
@@ -89,7 +89,7 @@ fn check_server(depth: u32, bits: [u32; 3]) {
     // by the GLX layer), the presenter issues no request.
     unsafe { glrt::gl_entry::glx::connection(dpy.cast()) }.expect("connection");
     unsafe { (x.XCloseDisplay)(dpy) };
-    assert!(!p.present([32, 16], &image), "closed display");
+    assert!(!p.present([32, 16], &image, true), "closed display");
     drop(p);
 }
 
@@ -111,7 +111,7 @@ fn falls_back_to_put_image_when_the_server_refuses_shared_memory() {
     let win = x11::mapped_window(&x, dpy, 40, 30);
     let mut p = unsafe { XlibPresenter::new(Surface::Window(XDrawable { display: dpy.cast(), drawable: win })) }.unwrap();
     let image = pattern(40, 30);
-    assert!(p.present([40, 30], &image));
+    assert!(p.present([40, 30], &image, true));
     assert!(!p.uses_shm(), "a TCP client's segment is refused (BadAccess, trapped)");
     assert_shows(&x, dpy, win, [40, 30], &image, [8, 8, 8], "window over TCP");
 }

@@ -24,6 +24,7 @@ impl Context {
     pub fn refresh_target(&mut self, width: i32, height: i32, swap_interval: u32) {
         self.drawable_size = Some((width, height));
         let size = [width.max(0) as u32, height.max(0) as u32];
+        self.frame.size = size;
         let surface = self.target.map_or(Surface::Offscreen, |t| t.surface);
         let target = Target { size, surface, swap_interval };
         if self.target != Some(target) {
@@ -69,6 +70,7 @@ mod tests {
         ctx.refresh_target(640, 480, 1);
         assert_eq!(sink.0.lock()[1], Target { size: [640, 480], surface: Surface::Offscreen, swap_interval: 1 });
         assert_eq!(ctx.query(gl::GL_VIEWPORT).unwrap().to_ints(), [0, 0, 320, 200], "GLX: resizes keep the viewport");
+        assert_eq!(ctx.frame.size, [640, 480], "the frame is rendered at the new size");
         // Binding another drawable tells the sink; the viewport still keeps its first value.
         ctx.bind_target(Target { size: [100, 50], surface: Surface::Offscreen, swap_interval: 1 });
         assert_eq!(sink.0.lock().len(), 3);

@@ -6,6 +6,7 @@
 //!   [`crate::render::FrameSink::set_target`].
 //! - [`pixel_format`]: RGBA8 to the pixel layout of an X visual.
 //! - [`swapchain`]: a Vulkan swapchain on the window (the normal path).
+//! - [`window_output`]: the raster renderer's output that presents its frames.
 //! - [`xlib`]: the fallback presenter, `XShmPutImage` (MIT-SHM) or `XPutImage` of a read-back.
 //!
 //! Xlib requests go to the application's own `Display`, on the application's thread, inside
@@ -16,6 +17,7 @@ pub mod pixel_format;
 pub mod presenter;
 pub mod swapchain;
 pub mod target;
+pub mod window_output;
 pub mod xlib;
 
 use std::collections::HashMap;

@@ -1,5 +1,5 @@
-//! RGBA8 images (rows bottom to top, as OpenGL reads them) converted to the pixel layout of an
-//! X `ZPixmap` image: any TrueColor masks, 16, 24 or 32 bits per pixel, either byte order.
+//! RGBA8 images (rows bottom to top as OpenGL reads them, or top to bottom as the raster
+//! renderer stores them) converted to the pixel layout of an X `ZPixmap` image: any TrueColor masks, 16, 24 or 32 bits per pixel, either byte order.
 //! The layout comes from the visual's masks, never assumed (BGRX is common, not universal).
 
 /// One colour channel of a pixel value: where its bits are, as an 8-bit value maps to them.
@@ -71,17 +71,18 @@ impl PixelFormat {
         self.bytes_per_pixel
     }
 
-    /// Converts `rgba` (`width` × `height`, tightly packed, rows bottom to top) into `dst`, an
-    /// image with rows top to bottom `stride` bytes apart. Returns false (writing nothing)
-    /// when either buffer is too small.
-    pub fn convert(&self, rgba: &[u8], width: usize, height: usize, dst: &mut [u8], stride: usize) -> bool {
+    /// Converts `rgba` (`width` × `height`, tightly packed, rows bottom to top when
+    /// `bottom_up`, else top to bottom) into `dst`, an image with rows top to bottom `stride`
+    /// bytes apart. Returns false (writing nothing) when either buffer is too small.
+    pub fn convert(&self, rgba: &[u8], width: usize, height: usize, bottom_up: bool, dst: &mut [u8], stride: usize) -> bool {
         let row_bytes = width * self.bytes_per_pixel;
         let fits = |len: usize, pitch: usize, used: usize| height == 0 || (pitch >= used && len >= pitch * (height - 1) + used);
         if !fits(rgba.len(), width * 4, width * 4) || !fits(dst.len(), stride, row_bytes) {
             return false;
         }
         for y in 0..height {
-            let src = &rgba[(height - 1 - y) * width * 4..][..width * 4];
+            let row = if bottom_up { height - 1 - y } else { y };
+            let src = &rgba[row * width * 4..][..width * 4];
             let out = &mut dst[y * stride..][..row_bytes];
             match (self.bytes_per_pixel, self.msb_first) {
                 (4, false) => self.convert_row::<4>(src, out, u32::to_le_bytes),
@@ -128,11 +129,14 @@ mod tests {
     fn bgrx_flips_rows_and_places_channels() {
         let f = PixelFormat::new([0xff0000, 0xff00, 0xff], 24, 32, false).unwrap();
         let mut out = [0u8; 2 * 12];
-        assert!(f.convert(&IMAGE, 2, 2, &mut out, 12));
+        assert!(f.convert(&IMAGE, 2, 2, true, &mut out, 12));
         // Top row first: blue, white; then red, green. Bytes B, G, R, X (X = 0: depth 24).
         assert_eq!(&out[..8], &[255, 0, 0, 0, 255, 255, 255, 0]);
         assert_eq!(&out[12..20], &[0, 0, 255, 0, 0, 255, 0, 0]);
         assert_eq!(&out[8..12], &[0; 4], "padding untouched");
+        // Top-down input: the rows stay in order.
+        assert!(f.convert(&IMAGE, 2, 2, false, &mut out, 12));
+        assert_eq!(&out[..8], &[0, 0, 255, 0, 0, 255, 0, 0]);
     }
 
     #[test]
@@ -141,19 +145,19 @@ mod tests {
         let f = PixelFormat::new([0xff00_0000, 0xff_0000, 0xff00], 32, 32, true).unwrap();
         assert_eq!(f.pixel([1, 2, 3, 0]), 0x0102_03ff);
         let mut out = [0u8; 8];
-        assert!(f.convert(&IMAGE[..8], 2, 1, &mut out, 8));
+        assert!(f.convert(&IMAGE[..8], 2, 1, true, &mut out, 8));
         assert_eq!(out, [255, 0, 0, 255, 0, 255, 0, 255]);
         // RGB565: 8-bit components rounded to 5 and 6 bits.
         let f = PixelFormat::new([0xf800, 0x07e0, 0x001f], 16, 16, false).unwrap();
         assert_eq!(f.pixel([255, 255, 255, 255]), 0xffff);
         assert_eq!(f.pixel([128, 128, 128, 0]), (16 << 11) | (32 << 5) | 16);
         let mut out = [0u8; 4];
-        assert!(f.convert(&IMAGE[..8], 2, 1, &mut out, 4));
+        assert!(f.convert(&IMAGE[..8], 2, 1, true, &mut out, 4));
         assert_eq!(out, [0x00, 0xf8, 0xe0, 0x07]);
         // 24 bits per pixel, LSB first.
         let f = PixelFormat::new([0xff0000, 0xff00, 0xff], 24, 24, false).unwrap();
         let mut out = [0u8; 6];
-        assert!(f.convert(&IMAGE[..8], 2, 1, &mut out, 6));
+        assert!(f.convert(&IMAGE[..8], 2, 1, false, &mut out, 6));
         assert_eq!(out, [0, 0, 255, 0, 255, 0]);
     }
 
@@ -164,8 +168,8 @@ mod tests {
         assert!(PixelFormat::new([0xff0000, 0, 0xff], 24, 32, false).is_none());
         let f = PixelFormat::new([0xff0000, 0xff00, 0xff], 24, 32, false).unwrap();
         let mut out = [7u8; 15];
-        assert!(!f.convert(&IMAGE, 2, 2, &mut out, 8));
-        assert!(!f.convert(&IMAGE[..12], 2, 2, &mut [0u8; 16], 8));
+        assert!(!f.convert(&IMAGE, 2, 2, true, &mut out, 8));
+        assert!(!f.convert(&IMAGE[..12], 2, 2, true, &mut [0u8; 16], 8));
         assert_eq!(out, [7; 15]);
     }
 }

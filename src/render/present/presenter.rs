@@ -14,8 +14,8 @@ use super::{Surface, Target, display_epoch};
 pub trait FrameImage {
     /// The colour image and its layout, for a swapchain blit.
     fn source(&self) -> Source;
-    /// The image read back: `size[0] * size[1]` RGBA8 pixels, rows bottom to top; `None` when
-    /// it cannot be read.
+    /// The image read back: `size[0] * size[1]` RGBA8 pixels, rows in the order
+    /// [`Source::bottom_up`] says; `None` when it cannot be read.
     fn read_rgba(&mut self) -> Option<Vec<u8>>;
 }
 
@@ -146,8 +146,8 @@ impl Presenter {
                 }
             },
             Path::Xlib(xlib) => {
-                let size = frame.source().size;
-                frame.read_rgba().is_some_and(|rgba| xlib.present(size, &rgba))
+                let Source { size, bottom_up, .. } = frame.source();
+                frame.read_rgba().is_some_and(|rgba| xlib.present(size, &rgba, bottom_up))
             }
         }
     }

@@ -77,8 +77,9 @@ unsafe fn trap<R>(x: &Xlib, dpy: *mut xlib::Display, f: impl FnOnce() -> R) -> R
 
 /// Where an image's pixels live.
 enum Pixels {
-    /// A shared memory segment attached by the server.
-    Shared(XShmSegmentInfo),
+    /// A shared memory segment attached by the server. Boxed: the `XImage` keeps a pointer to
+    /// it (`obdata`, read by `XShmPutImage`), so it must not move.
+    Shared(Box<XShmSegmentInfo>),
     /// Client memory sent with `XPutImage`.
     Owned(Vec<u8>),
 }
@@ -144,10 +145,11 @@ impl XlibPresenter {
         self.shm = None;
     }
 
-    /// Puts `rgba` (`size[0]` × `size[1]` RGBA8 pixels, rows bottom to top) on the drawable,
+    /// Puts `rgba` (`size[0]` × `size[1]` RGBA8 pixels, rows bottom to top when `bottom_up`,
+    /// else top to bottom) on the drawable,
     /// its top-left corner at the drawable's. Returns false when nothing could be shown: the
     /// display was closed, the buffer is too small, or no image could be made.
-    pub fn present(&mut self, size: [u32; 2], rgba: &[u8]) -> bool {
+    pub fn present(&mut self, size: [u32; 2], rgba: &[u8], bottom_up: bool) -> bool {
         if !self.display_open() {
             self.release_image();
             return false;
@@ -177,7 +179,7 @@ impl XlibPresenter {
             Pixels::Shared(info) => unsafe { std::slice::from_raw_parts_mut(info.shmaddr.cast::<u8>(), stride * h as usize) },
             Pixels::Owned(v) => v.as_mut_slice(),
         };
-        if !image.format.convert(rgba, w as usize, h as usize, data, stride) {
+        if !image.format.convert(rgba, w as usize, h as usize, bottom_up, data, stride) {
             return false;
         }
         // Safety: the display is open; the GC and the image belong to it.
@@ -228,11 +230,14 @@ impl XlibPresenter {
         let (x, dpy) = (self.x, self.display());
         // Safety (all): the display is open; every object made here is freed on failure.
         unsafe {
-            let mut info: XShmSegmentInfo = std::mem::zeroed();
-            let ximage = (ext.XShmCreateImage)(dpy, self.visual, self.depth, xlib::ZPixmap, std::ptr::null_mut(), &mut info, w, h);
+            let mut info: Box<XShmSegmentInfo> = Box::new(std::mem::zeroed());
+            let ximage = (ext.XShmCreateImage)(dpy, self.visual, self.depth, xlib::ZPixmap, std::ptr::null_mut(), &mut *info, w, h);
             if ximage.is_null() {
                 return None;
             }
+            // `XDestroyImage` frees `obdata`, which points to the boxed `info`: it is cleared
+            // before every `XDestroyImage` of this image.
+            (*ximage).obdata = std::ptr::null_mut();
             let Some(format) = image_format(ximage) else {
                 (x.XDestroyImage)(ximage);
                 return None;
@@ -250,12 +255,14 @@ impl XlibPresenter {
             info.shmaddr = addr.cast();
             info.readOnly = xlib::False;
             (*ximage).data = info.shmaddr;
-            let attached = matches!(trap(x, dpy, || (ext.XShmAttach)(dpy, &mut info)), Ok(ok) if ok != 0);
+            (*ximage).obdata = (&mut *info as *mut XShmSegmentInfo).cast();
+            let attached = matches!(trap(x, dpy, || (ext.XShmAttach)(dpy, &mut *info)), Ok(ok) if ok != 0);
             // Marked for removal now: the kernel frees it once both sides detached (also
             // when the program exits without cleaning up).
             shmctl(info.shmid, IPC_RMID, std::ptr::null_mut());
             if !attached {
                 (*ximage).data = std::ptr::null_mut();
+                (*ximage).obdata = std::ptr::null_mut();
                 (x.XDestroyImage)(ximage);
                 shmdt(addr);
                 return None;
@@ -289,14 +296,15 @@ impl XlibPresenter {
     fn release_image(&mut self) {
         let Some(image) = self.image.take() else { return };
         let open = self.display_open();
-        // Safety: the image was made by this presenter; its data is detached from the XImage
-        // before `XDestroyImage`, which would free it.
+        // Safety: the image was made by this presenter; its data and segment information are
+        // detached from the XImage before `XDestroyImage`, which would free them.
         unsafe {
             (*image.ximage).data = std::ptr::null_mut();
+            (*image.ximage).obdata = std::ptr::null_mut();
             (self.x.XDestroyImage)(image.ximage);
             if let Pixels::Shared(mut info) = image.pixels {
                 if let (true, Some(ext)) = (open, self.shm) {
-                    (ext.XShmDetach)(self.display(), &mut info);
+                    (ext.XShmDetach)(self.display(), &mut *info);
                     (self.x.XSync)(self.display(), xlib::False);
                 }
                 shmdt(info.shmaddr.cast());

@@ -287,6 +287,7 @@ impl Renderer {
         if let Some(dump) = super::dump::Dump::from_env() {
             renderer.add_output(Box::new(dump));
         }
+        renderer.add_output(Box::new(crate::render::present::window_output::WindowOutput::new()));
         Ok(renderer)
     }
 
@@ -490,6 +491,12 @@ impl Renderer {
 }
 
 impl FrameSink for Renderer {
+    fn set_target(&mut self, target: crate::render::Target) {
+        for output in &mut self.outputs {
+            output.set_target(&self.parts.device, target);
+        }
+    }
+
     fn present(&mut self, frame: Frame) {
         if self.failed {
             return;
