@@ -19,7 +19,8 @@ use super::shim::with_current;
 
 /// `glXSwapBuffers`: when `drawable` is the draw drawable of this thread's current context
 /// and that context is double-buffered, ends its frame (`Context::end_frame`), after
-/// refreshing the drawable size the frame is presented at. Swapping a single-buffered
+/// refreshing the drawable size the frame is presented at (`Context::refresh_target`: the
+/// renderer follows window resizes and swap intervals, the viewport does not). Swapping a single-buffered
 /// context, a GLX pixmap, or a drawable current elsewhere has no effect (section 3.3.10);
 /// an unknown drawable is `GLXBadDrawable`.
 ///
@@ -36,9 +37,10 @@ pub unsafe extern "C" fn glXSwapBuffers(dpy: *mut types::Display, drawable: type
         let Some(binding) = context::binding().filter(|b| b.display == xdpy && b.draw == drawable) else { return };
         let double = context::get(binding.context).is_some_and(|c| c.double_buffer);
         let pixmap = matches!(drawable::get(xdpy, drawable).map(|d| d.kind), Some(Kind::Pixmap(_)));
+        let interval = drawable::get(xdpy, drawable).map_or(1, |d| d.swap_interval.max(0) as u32);
         if double && !pixmap {
             with_current("glXSwapBuffers", |c| {
-                c.bind_drawable(width, height);
+                c.refresh_target(width, height, interval);
                 c.end_frame();
             });
             crate::translate::capture::swapped(crate::translate::capture::format::SwapKind::Glx { width, height });

@@ -10,7 +10,7 @@ use parking_lot::Mutex;
 
 use super::current::{self, SharedContext};
 use super::shim::with_current;
-use crate::render;
+use crate::render::{self, Surface, Target};
 use crate::translate::capture::{self, format::SwapKind};
 use crate::translate::Context;
 use crate::translate::context::ContextConfig;
@@ -71,9 +71,10 @@ pub fn make_current(ctx: *mut c_void, width: i32, height: i32, double: bool) -> 
         let handle = unsafe { ctx.cast::<ContextHandle>().as_ref() };
         let ok = current::make_current(ctx as usize, handle.map(|h| &h.context));
         if ok && handle.is_some() {
+            let size = [width.max(0) as u32, height.max(0) as u32];
             with_current("glrtMakeCurrent", |c| {
                 c.set_double_buffered(double);
-                c.bind_drawable(width, height);
+                c.bind_target(Target { size, surface: Surface::Offscreen, swap_interval: 0 });
             });
         }
         if ok {

@@ -51,6 +51,22 @@ impl FrameSink for FrameLog {
         }
         self.inner.present(frame);
     }
+
+    fn set_target(&mut self, target: crate::render::Target) {
+        self.inner.set_target(target);
+    }
+
+    fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
+        self.inner.occlusion_result(frame, query)
+    }
+
+    fn occlusion_counter_bits(&self) -> u32 {
+        self.inner.occlusion_counter_bits()
+    }
+
+    fn read_pixels(&mut self, frame: &Frame, buffer: crate::frame::pixels::PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        self.inner.read_pixels(frame, buffer, rect)
+    }
 }
 
 /// `inner` wrapped in a [`FrameLog`] when `GLRT_FRAME_LOG` names a file that can be opened

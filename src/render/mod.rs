@@ -2,6 +2,7 @@
 //! frames for tests and for programs run without a renderer.
 
 pub mod frame_log;
+pub mod present;
 pub mod raster;
 
 use std::sync::Arc;
@@ -11,10 +12,17 @@ use parking_lot::Mutex;
 use crate::frame::Frame;
 use crate::frame::pixels::PixelBuffer;
 
+pub use present::{FrameImage, Presenter, Surface, Target, XDrawable};
+
 /// Receives each finished frame.
 pub trait FrameSink: Send {
     /// Takes the frame that `glXSwapBuffers` (or a read-back) ended.
     fn present(&mut self, frame: Frame);
+
+    /// Where the next frames go: called when a context is made current on a drawable and when
+    /// that drawable's size changes (only then: the target differs from the previous one).
+    /// The default ignores it (sinks that keep frames in memory).
+    fn set_target(&mut self, _target: Target) {}
 
     /// Samples that passed for occlusion query `query` of frame number `frame` (listed in
     /// that frame's [`Frame::occlusion_queries`]), once that frame was presented; `None` while
@@ -64,9 +72,25 @@ impl FrameSink for RecordingSink {
     }
 }
 
-/// The sink a new context presents to: the renderer chosen by the configuration (until the
-/// Vulkan back end exists, the [`NullSink`]), behind the frame log when `GLRT_FRAME_LOG` is
-/// set (see [`frame_log`]).
+/// The sink a new context presents to, behind the frame log when `GLRT_FRAME_LOG` is set (see
+/// [`frame_log`]): the Vulkan raster renderer when `GLRT_MODE` is unset or `raster` and a
+/// device is available, else the [`NullSink`] (with one message on stderr saying why).
 pub fn default_sink() -> Box<dyn FrameSink> {
-    frame_log::wrap_from_env(Box::new(NullSink::default()))
+    frame_log::wrap_from_env(renderer_from_env())
+}
+
+/// The renderer `GLRT_MODE` asks for, or the [`NullSink`].
+fn renderer_from_env() -> Box<dyn FrameSink> {
+    let mode = std::env::var("GLRT_MODE").unwrap_or_default();
+    if !mode.is_empty() && mode != "raster" {
+        eprintln!("glrt: GLRT_MODE={mode} has no renderer yet; frames are not drawn");
+        return Box::new(NullSink::default());
+    }
+    match raster::renderer::Renderer::new() {
+        Ok(renderer) => Box::new(renderer),
+        Err(e) => {
+            eprintln!("glrt: {e}; frames are not drawn");
+            Box::new(NullSink::default())
+        }
+    }
 }

@@ -52,6 +52,7 @@ pub mod render_mode;
 pub mod sgis_multitexture;
 pub mod stipple;
 pub mod strings;
+pub mod target;
 pub mod texture;
 pub mod texunit;
 pub mod transform;

@@ -126,8 +126,8 @@ pub fn release() {
 }
 
 /// `glXMakeContextCurrent` (GLX 1.4 section 3.3.7): binds `ctx` to `draw` and `read`, sizing
-/// the context's viewport from the draw drawable on its first binding; a null `ctx` with no
-/// drawables releases the current context.
+/// the context's viewport from the draw drawable on its first binding and telling its renderer
+/// where frames go; a null `ctx` with no drawables releases the current context.
 ///
 /// # Safety
 /// `dpy` is a live display.
@@ -159,9 +159,11 @@ pub unsafe fn make_current(
         return Err(super::BAD_ACCESS);
     }
     let double = context.double_buffer;
+    // Safety: `dpy` is live.
+    let target = unsafe { drawable::target(x, dpy, draw, width, height) };
     with_current("glXMakeCurrent", |c| {
         c.set_double_buffered(double);
-        c.bind_drawable(width, height);
+        c.bind_target(target);
     });
     crate::translate::capture::made_current(context.handle.capture_id, width, height, double);
     BINDING.set(Some(Binding { display: dpy, draw, read, context: ctx }));

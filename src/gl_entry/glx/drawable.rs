@@ -12,6 +12,7 @@ use parking_lot::Mutex;
 use x11_dl::xlib::{self, Xlib};
 
 use super::XDisplay;
+use crate::render::{Surface, Target, XDrawable};
 
 /// What a drawable is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -129,7 +130,7 @@ pub unsafe fn x_geometry(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID) -> Option
     let (mut root, mut px, mut py, mut w, mut h, mut border, mut depth) = (0, 0, 0, 0, 0, 0, 0);
     // Safety: the out-pointers are valid; a bad drawable is an error that is trapped.
     let status = unsafe {
-        super::trapped(x, dpy, || {
+        super::trapped_reply(x, dpy, || {
             (x.XGetGeometry)(dpy, xid, &mut root, &mut px, &mut py, &mut w, &mut h, &mut border, &mut depth)
         })
     };
@@ -166,4 +167,23 @@ pub unsafe fn size(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID) -> Option<(c_in
     };
     // Safety: forwarded.
     unsafe { x_geometry(x, dpy, target) }.map(|(w, h, _)| (w, h))
+}
+
+/// Where frames drawn to `xid` (of `width` × `height`) go: the X window or pixmap behind it
+/// (pbuffers render off-screen), with the drawable's swap interval. A plain X drawable is a window when it has window attributes.
+///
+/// # Safety
+/// `dpy` is a live display.
+pub unsafe fn target(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID, width: c_int, height: c_int) -> Target {
+    let on = |drawable| XDrawable { display: dpy.cast(), drawable };
+    let surface = match get(dpy, xid).map(|d| d.kind) {
+        Some(Kind::Pbuffer { .. }) => Surface::Offscreen,
+        Some(Kind::Window(w)) => Surface::Window(on(w)),
+        Some(Kind::Pixmap(p)) => Surface::Pixmap(on(p)),
+        // Safety: forwarded.
+        Some(Kind::X) | None if unsafe { window_visual(x, dpy, xid) }.is_some() => Surface::Window(on(xid)),
+        Some(Kind::X) | None => Surface::Pixmap(on(xid)),
+    };
+    let swap_interval = get(dpy, xid).map_or(1, |d| d.swap_interval.max(0) as u32);
+    Target { size: [width.max(0) as u32, height.max(0) as u32], surface, swap_interval }
 }
