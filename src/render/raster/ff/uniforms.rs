@@ -331,6 +331,54 @@ mod tests {
         assert_eq!(u32::from_le_bytes(u[offset::STIPPLE + 4..][..4].try_into().unwrap()), 480);
     }
 
+    fn mat4_at(bytes: &[u8], at: usize) -> Mat4 {
+        Mat4::from_cols_array(&std::array::from_fn(|i| float_at(bytes, at + 4 * i)))
+    }
+
+    /// A draw recorded through the GL commands: its uniforms, with the normal transform
+    /// `ff.vert` applies (normal matrix, then normalize or rescale as the key says), give the
+    /// eye normal of the CPU lighting (`Context::eye_normal`), and its lights are the ones the
+    /// CPU lighting evaluates.
+    #[test]
+    fn uniforms_reproduce_the_cpu_lighting_inputs() {
+        use crate::translate::{Context, dispatch, gl};
+        for scaling in [None, Some(gl::GL_NORMALIZE), Some(gl::GL_RESCALE_NORMAL)] {
+            let (mut ctx, _) = Context::with_recording();
+            let normal = [0.3f32, -0.5, 0.8];
+            unsafe {
+                dispatch::glRotatef(&mut ctx, 30.0, 1.0, 2.0, 0.5);
+                dispatch::glEnable(&mut ctx, gl::GL_LIGHTING);
+                dispatch::glEnable(&mut ctx, gl::GL_LIGHT2);
+                dispatch::glLightfv(&mut ctx, gl::GL_LIGHT2, gl::GL_POSITION, [1.0f32, 2.0, 3.0, 1.0].as_ptr());
+                // A uniform scale after the light was placed: rescaling can undo it.
+                dispatch::glScalef(&mut ctx, 3.0, 3.0, 3.0);
+                if let Some(cap) = scaling {
+                    dispatch::glEnable(&mut ctx, cap);
+                }
+                dispatch::glBegin(&mut ctx, gl::GL_TRIANGLES);
+                dispatch::glNormal3f(&mut ctx, normal[0], normal[1], normal[2]);
+                for v in [[0.0f32, 0.0], [1.0, 0.0], [0.0, 1.0]] {
+                    dispatch::glVertex2f(&mut ctx, v[0], v[1]);
+                }
+                dispatch::glEnd(&mut ctx);
+            }
+            let draw = ctx.frame.draws.last().expect("a draw").clone();
+            let u = pack(&draw);
+            let key = super::super::key::shader_key(&draw, super::super::key::Primitive::Triangle, super::super::key::Facing::Rasterizer);
+            let mut n = glam::Mat3::from_mat4(mat4_at(&u, offset::NORMAL_MATRIX)) * glam::Vec3::from(normal);
+            match super::super::key::NORMAL_SCALING.get(key.words[super::super::key::GENERAL]) {
+                1 => n = n.normalize(),
+                2 => n *= float_at(&u, offset::RASTER + 12),
+                _ => {}
+            }
+            let expected = ctx.eye_normal(normal);
+            assert!((n - expected).length() < 1e-5, "{scaling:?}: {n} != {expected}");
+            let position: [f32; 4] = std::array::from_fn(|i| float_at(&u, offset::LIGHT + offset::light::POSITION + 4 * i));
+            assert_eq!(position, ctx.fixed.lighting.lights[2].position);
+            assert_eq!(mat4_at(&u, offset::MODELVIEW), draw.modelview);
+        }
+    }
+
     #[test]
     fn rescale_factor_undoes_a_uniform_scale() {
         let m = Mat4::from_rotation_z(1.0) * Mat4::from_scale(glam::Vec3::splat(4.0));
