@@ -276,7 +276,7 @@ pub fn expand_lines(draw: &Draw, packed: &[f32], segments: &[Segment]) -> (Vec<f
         let (wa, wb) = (window.window(ca.lerp(cb, t0)), window.window(ca.lerp(cb, t1)));
         let d = wb - wa;
         let length = d.x.abs().max(d.y.abs());
-        if !(length > 0.0) {
+        if length.is_nan() || length <= 0.0 {
             continue;
         }
         let (offset, across) = if line.smooth {

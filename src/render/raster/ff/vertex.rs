@@ -102,7 +102,7 @@ mod tests {
 
     #[test]
     fn attributes_tile_the_vertex() {
-        let mut covered = vec![false; VERTEX_FLOATS];
+        let mut covered = [false; VERTEX_FLOATS];
         for a in VERTEX_ATTRIBUTES {
             for f in a.offset..a.offset + a.components {
                 assert!(!covered[f as usize], "float {f} twice");
