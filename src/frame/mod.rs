@@ -31,6 +31,8 @@ pub struct Frame {
     pub occlusion_queries: Vec<(u32, std::ops::Range<usize>)>,
     /// Bitmaps, pixel images and copies, in program order with the draws.
     pub pixels: Vec<pixels::PixelOp>,
+    /// Width and height of the drawable, in pixels (`[0, 0]` when no drawable was bound).
+    pub size: [u32; 2],
 }
 
 /// One draw: indexed primitives of one topology, one state, one set of matrices. Consecutive

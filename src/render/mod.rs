@@ -64,9 +64,25 @@ impl FrameSink for RecordingSink {
     }
 }
 
-/// The sink a new context presents to: the renderer chosen by the configuration (until the
-/// Vulkan back end exists, the [`NullSink`]), behind the frame log when `GLRT_FRAME_LOG` is
-/// set (see [`frame_log`]).
+/// The sink a new context presents to, behind the frame log when `GLRT_FRAME_LOG` is set (see
+/// [`frame_log`]): the Vulkan raster renderer when `GLRT_MODE` is unset or `raster` and a
+/// device is available, else the [`NullSink`] (with one message on stderr saying why).
 pub fn default_sink() -> Box<dyn FrameSink> {
-    frame_log::wrap_from_env(Box::new(NullSink::default()))
+    frame_log::wrap_from_env(renderer_from_env())
+}
+
+/// The renderer `GLRT_MODE` asks for, or the [`NullSink`].
+fn renderer_from_env() -> Box<dyn FrameSink> {
+    let mode = std::env::var("GLRT_MODE").unwrap_or_default();
+    if !mode.is_empty() && mode != "raster" {
+        eprintln!("glrt: GLRT_MODE={mode} has no renderer yet; frames are not drawn");
+        return Box::new(NullSink::default());
+    }
+    match raster::renderer::Renderer::new() {
+        Ok(renderer) => Box::new(renderer),
+        Err(e) => {
+            eprintln!("glrt: {e}; frames are not drawn");
+            Box::new(NullSink::default())
+        }
+    }
 }

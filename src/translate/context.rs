@@ -118,6 +118,7 @@ impl Context {
     /// The first time, the viewport and scissor box take the drawable's size (GLX 1.4, 3.3.7).
     pub fn bind_drawable(&mut self, width: i32, height: i32) {
         self.drawable_size = Some((width, height));
+        self.frame.size = [width.max(0) as u32, height.max(0) as u32];
         self.init_viewport(width, height);
     }
 
@@ -151,7 +152,8 @@ impl Context {
     pub fn end_frame(&mut self) {
         let number = self.frame.number + 1;
         let draws = Vec::with_capacity(self.frame.draws.len());
-        let frame = std::mem::replace(&mut self.frame, Frame { number, draws, ..Frame::default() });
+        let size = self.frame.size;
+        let frame = std::mem::replace(&mut self.frame, Frame { number, draws, size, ..Frame::default() });
         self.sink.present(frame);
     }
 }

@@ -4,5 +4,24 @@
 //!
 //! - [`ff`]: the fixed-function pipeline as shaders: turns a [`crate::frame::Draw`] into
 //!   [`ff::Batch`]es (packed vertices, indices, a shader key and the uniform block).
+//! - [`device`]: loader, instance, physical-device choice (`GLRT_DEVICE`), queue, memory.
+//! - [`target`]: the colour and depth/stencil images (row 0 = top of the window).
+//! - [`commands`]: a frame in flight (command buffer, fence, upload ring, descriptor sets).
+//! - [`upload`]: the per-frame ring of vertices, indices and uniforms.
+//! - [`pipelines`]: pipelines per (shader key, fixed state), cached; [`conv`]: state → Vulkan.
+//! - [`textures`]: texture images and samplers.
+//! - [`renderer`]: the [`renderer::Renderer`] sink (frame order, read-back, present).
+//! - [`readback`], [`dump`] (`GLRT_DUMP`), [`pixel`] (pixel operations).
 
+pub mod commands;
+pub mod conv;
+pub mod device;
+pub mod dump;
 pub mod ff;
+pub mod pipelines;
+pub mod pixel;
+pub mod readback;
+pub mod renderer;
+pub mod target;
+pub mod textures;
+pub mod upload;

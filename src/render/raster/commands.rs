@@ -1,0 +1,205 @@
+//! Command recording for one frame in flight: a command pool and buffer, the fence of its last
+//! submission, its upload [`Ring`] and descriptor pools. [`Slot::begin`] waits for the
+//! slot's previous submission, so memory of a slot is reused only once the GPU is done.
+
+use std::collections::HashMap;
+
+use ash::vk;
+
+use super::device::{Check, Device, Result};
+use super::pipelines::BINDINGS;
+use super::upload::Ring;
+
+/// Descriptor sets per pool.
+const SETS_PER_POOL: u32 = 256;
+
+/// Texture and sampler of each sampler binding, with the uniform buffer: what a descriptor set
+/// holds (the uniform offset is dynamic).
+pub type SetKey = (vk::Buffer, [(vk::ImageView, vk::Sampler); BINDINGS as usize - 1]);
+
+/// Descriptor pools of one frame in flight, reset together when the frame is reused; sets
+/// with the same contents are shared within the frame.
+pub struct Descriptors {
+    pools: Vec<vk::DescriptorPool>,
+    /// Pool being allocated from.
+    current: usize,
+    sets: HashMap<SetKey, vk::DescriptorSet>,
+}
+
+impl Descriptors {
+    fn new() -> Descriptors {
+        Descriptors { pools: Vec::new(), current: 0, sets: HashMap::new() }
+    }
+
+    fn reset(&mut self, device: &Device) -> Result<()> {
+        for &pool in &self.pools {
+            // Safety: the frame that used the sets is finished (the slot fence signalled).
+            unsafe { device.raw.reset_descriptor_pool(pool, vk::DescriptorPoolResetFlags::empty()) }.check("vkResetDescriptorPool")?;
+        }
+        self.current = 0;
+        self.sets.clear();
+        Ok(())
+    }
+
+    /// The set of `layout` holding `key`, with `uniform_range` bytes of the uniform buffer.
+    pub fn get(&mut self, device: &Device, layout: vk::DescriptorSetLayout, key: &SetKey, uniform_range: u64) -> Result<vk::DescriptorSet> {
+        if let Some(&set) = self.sets.get(key) {
+            return Ok(set);
+        }
+        let set = self.allocate(device, layout)?;
+        let buffer = [vk::DescriptorBufferInfo { buffer: key.0, offset: 0, range: uniform_range }];
+        let images: Vec<_> = key
+            .1
+            .iter()
+            .map(|&(view, sampler)| [vk::DescriptorImageInfo { sampler, image_view: view, image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL }])
+            .collect();
+        let mut writes = vec![
+            vk::WriteDescriptorSet::default()
+                .dst_set(set)
+                .dst_binding(0)
+                .descriptor_type(vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC)
+                .buffer_info(&buffer),
+        ];
+        for (i, image) in images.iter().enumerate() {
+            writes.push(
+                vk::WriteDescriptorSet::default()
+                    .dst_set(set)
+                    .dst_binding(1 + i as u32)
+                    .descriptor_type(vk::DescriptorType::COMBINED_IMAGE_SAMPLER)
+                    .image_info(image),
+            );
+        }
+        // Safety: every handle in the writes is alive for the frame.
+        unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
+        self.sets.insert(*key, set);
+        Ok(set)
+    }
+
+    fn allocate(&mut self, device: &Device, layout: vk::DescriptorSetLayout) -> Result<vk::DescriptorSet> {
+        loop {
+            if let Some(&pool) = self.pools.get(self.current) {
+                let layouts = [layout];
+                let info = vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&layouts);
+                // Safety: pool and layout are alive.
+                match unsafe { device.raw.allocate_descriptor_sets(&info) } {
+                    Ok(sets) => return Ok(sets[0]),
+                    Err(vk::Result::ERROR_OUT_OF_POOL_MEMORY | vk::Result::ERROR_FRAGMENTED_POOL) => self.current += 1,
+                    Err(e) => return Err(super::device::Error::Vulkan("vkAllocateDescriptorSets", e)),
+                }
+                continue;
+            }
+            let sizes = [
+                vk::DescriptorPoolSize { ty: vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, descriptor_count: SETS_PER_POOL },
+                vk::DescriptorPoolSize { ty: vk::DescriptorType::COMBINED_IMAGE_SAMPLER, descriptor_count: SETS_PER_POOL * (BINDINGS - 1) },
+            ];
+            let info = vk::DescriptorPoolCreateInfo::default().max_sets(SETS_PER_POOL).pool_sizes(&sizes);
+            // Safety: valid create info.
+            let pool = unsafe { device.raw.create_descriptor_pool(&info, None) }.check("vkCreateDescriptorPool")?;
+            self.pools.push(pool);
+            self.current = self.pools.len() - 1;
+        }
+    }
+
+    fn destroy(&mut self, device: &Device) {
+        for pool in self.pools.drain(..) {
+            // Safety: the GPU is idle.
+            unsafe { device.raw.destroy_descriptor_pool(pool, None) };
+        }
+    }
+}
+
+/// One frame in flight.
+pub struct Slot {
+    pool: vk::CommandPool,
+    /// The command buffer being recorded (valid between [`Slot::begin`] and [`Slot::submit`]).
+    pub cmd: vk::CommandBuffer,
+    fence: vk::Fence,
+    /// Whether work of this slot was submitted and not yet waited for.
+    pending: bool,
+    /// Vertices, indices and uniforms of the frame.
+    pub ring: Ring,
+    /// Descriptor sets of the frame.
+    pub descriptors: Descriptors,
+}
+
+impl Slot {
+    /// Creates the pool, command buffer and fence.
+    pub fn new(device: &Device) -> Result<Slot> {
+        let d = &device.raw;
+        // Safety (this block): valid create infos; the objects are destroyed in `destroy`.
+        unsafe {
+            let pool = d
+                .create_command_pool(&vk::CommandPoolCreateInfo::default().queue_family_index(device.queue_family), None)
+                .check("vkCreateCommandPool")?;
+            let info = vk::CommandBufferAllocateInfo::default().command_pool(pool).level(vk::CommandBufferLevel::PRIMARY).command_buffer_count(1);
+            let cmd = d.allocate_command_buffers(&info).check("vkAllocateCommandBuffers")?[0];
+            let fence = d.create_fence(&vk::FenceCreateInfo::default(), None).check("vkCreateFence")?;
+            Ok(Slot { pool, cmd, fence, pending: false, ring: Ring::new(), descriptors: Descriptors::new() })
+        }
+    }
+
+    /// Waits for the slot's previous submission (if any) to finish. Returns whether there was
+    /// one (so its results, such as a frame dump, can be read).
+    pub fn wait(&mut self, device: &Device) -> Result<bool> {
+        if !self.pending {
+            return Ok(false);
+        }
+        // Safety: the fence was submitted with the slot's last work.
+        unsafe {
+            device.raw.wait_for_fences(&[self.fence], true, u64::MAX).check("vkWaitForFences")?;
+            device.raw.reset_fences(&[self.fence]).check("vkResetFences")?;
+        }
+        self.pending = false;
+        Ok(true)
+    }
+
+    /// Starts recording (the previous submission must have been waited for: [`Slot::wait`]).
+    /// The first command is a full memory barrier, so this frame's work is ordered after the
+    /// previous frames' on the shared framebuffer images.
+    pub fn begin(&mut self, device: &Device) -> Result<()> {
+        self.ring.reset();
+        self.descriptors.reset(device)?;
+        // Safety: the slot's previous work finished; the pool is externally synchronised by
+        // the renderer's `&mut`.
+        unsafe {
+            device.raw.reset_command_pool(self.pool, vk::CommandPoolResetFlags::empty()).check("vkResetCommandPool")?;
+            let info = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+            device.raw.begin_command_buffer(self.cmd, &info).check("vkBeginCommandBuffer")?;
+            let barrier = [vk::MemoryBarrier2::default()
+                .src_stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)
+                .src_access_mask(vk::AccessFlags2::MEMORY_WRITE)
+                .dst_stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)
+                .dst_access_mask(vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE)];
+            device.raw.cmd_pipeline_barrier2(self.cmd, &vk::DependencyInfo::default().memory_barriers(&barrier));
+        }
+        Ok(())
+    }
+
+    /// Ends recording and submits, signalling the slot's fence; with `wait`, returns once the
+    /// GPU finished it.
+    pub fn submit(&mut self, device: &Device, wait: bool) -> Result<()> {
+        let buffers = [self.cmd];
+        let submit = [vk::SubmitInfo::default().command_buffers(&buffers)];
+        // Safety: the command buffer is recording; the fence is unsignalled (reset in `wait`).
+        unsafe {
+            device.raw.end_command_buffer(self.cmd).check("vkEndCommandBuffer")?;
+            device.raw.queue_submit(device.queue, &submit, self.fence).check("vkQueueSubmit")?;
+        }
+        self.pending = true;
+        if wait {
+            self.wait(device)?;
+        }
+        Ok(())
+    }
+
+    /// Frees everything (the GPU must be idle).
+    pub fn destroy(&mut self, device: &Device) {
+        self.ring.destroy(device);
+        self.descriptors.destroy(device);
+        // Safety: the GPU is idle; each object is destroyed once.
+        unsafe {
+            device.raw.destroy_fence(self.fence, None);
+            device.raw.destroy_command_pool(self.pool, None);
+        }
+    }
+}

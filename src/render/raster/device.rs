@@ -1,0 +1,454 @@
+//! The Vulkan device: the loader (`libvulkan.so.1`, opened at run time), the instance, the
+//! physical device chosen by `GLRT_DEVICE` (an index into the enumeration, or a substring of
+//! the device name; otherwise a discrete GPU, then an integrated one, then anything, such as
+//! Mesa lavapipe on the CPU), one graphics queue, and the memory allocator.
+//!
+//! Vulkan 1.3 is required (dynamic rendering, negative viewport heights); lavapipe 22.3 and the
+//! NVIDIA driver both provide it. Optional features are probed and recorded in [`Features`]
+//! so the pipelines use them only where present (logic ops, wide lines, non-solid fill).
+//!
+//! `GLRT_VALIDATE=1` enables `VK_LAYER_KHRONOS_validation` when it is installed.
+
+use std::ffi::{CStr, CString};
+use std::mem::ManuallyDrop;
+
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme, Allocator, AllocatorCreateDesc};
+use parking_lot::Mutex;
+
+/// What can go wrong in the back end. Everything degrades: the caller logs it once and drops
+/// to the null renderer (no panic crosses the C ABI).
+#[derive(Debug)]
+pub enum Error {
+    /// `libvulkan.so.1` could not be opened.
+    NoLoader(String),
+    /// No physical device fits (none, none with graphics, or `GLRT_DEVICE` matched nothing).
+    NoDevice(String),
+    /// A Vulkan call failed (out of memory, device lost, ...).
+    Vulkan(&'static str, vk::Result),
+    /// The allocator refused.
+    Memory(String),
+}
+
+impl std::fmt::Display for Error {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Error::NoLoader(e) => write!(f, "cannot load the Vulkan loader: {e}"),
+            Error::NoDevice(e) => write!(f, "no usable Vulkan device: {e}"),
+            Error::Vulkan(call, r) => write!(f, "{call} failed: {r}"),
+            Error::Memory(e) => write!(f, "GPU memory allocation failed: {e}"),
+        }
+    }
+}
+
+/// Result of the back end's calls.
+pub type Result<T> = std::result::Result<T, Error>;
+
+/// Turns a `VkResult` into an [`Error`] naming the call.
+pub(crate) trait Check<T> {
+    /// Names the failed call.
+    fn check(self, call: &'static str) -> Result<T>;
+}
+
+impl<T> Check<T> for std::result::Result<T, vk::Result> {
+    fn check(self, call: &'static str) -> Result<T> {
+        self.map_err(|r| Error::Vulkan(call, r))
+    }
+}
+
+/// Optional device features the raster path uses when present.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Features {
+    /// `logicOp`: `glLogicOp` on the colour buffer.
+    pub logic_op: bool,
+    /// `wideLines`: line widths other than 1.
+    pub wide_lines: bool,
+    /// Supported line widths.
+    pub line_width_range: [f32; 2],
+    /// `fillModeNonSolid`: polygon modes `GL_LINE`/`GL_POINT`.
+    pub fill_mode_non_solid: bool,
+    /// `largePoints`: point sizes other than 1.
+    pub large_points: bool,
+    /// `samplerAnisotropy`.
+    pub sampler_anisotropy: bool,
+}
+
+/// The device and everything created once with it. Shared (`Arc`) by the renderer's parts.
+pub struct Device {
+    /// The loader.
+    pub entry: ash::Entry,
+    /// The instance.
+    pub instance: ash::Instance,
+    /// The chosen physical device.
+    pub physical: vk::PhysicalDevice,
+    /// Its properties (limits, name).
+    pub properties: vk::PhysicalDeviceProperties,
+    /// The logical device.
+    pub raw: ash::Device,
+    /// Family of [`Device::queue`].
+    pub queue_family: u32,
+    /// The graphics (and transfer) queue.
+    pub queue: vk::Queue,
+    /// Optional features enabled.
+    pub features: Features,
+    /// The depth/stencil format of the framebuffer.
+    pub depth_format: vk::Format,
+    /// Device memory.
+    allocator: ManuallyDrop<Mutex<Allocator>>,
+}
+
+/// A buffer and its memory.
+pub struct Buffer {
+    /// The buffer.
+    pub raw: vk::Buffer,
+    /// Its size in bytes.
+    pub size: u64,
+    allocation: Allocation,
+}
+
+impl Buffer {
+    /// The mapped bytes of a host-visible buffer.
+    pub fn mapped(&mut self) -> &mut [u8] {
+        self.allocation.mapped_slice_mut().unwrap_or(&mut [])
+    }
+}
+
+/// An image, its memory and a view of all of it.
+pub struct Image {
+    /// The image.
+    pub raw: vk::Image,
+    /// The view of every level and layer.
+    pub view: vk::ImageView,
+    /// Its format.
+    pub format: vk::Format,
+    /// Width, height, depth.
+    pub extent: vk::Extent3D,
+    allocation: Allocation,
+}
+
+/// The name of the validation layer.
+const VALIDATION: &CStr = c"VK_LAYER_KHRONOS_validation";
+
+impl Device {
+    /// Opens the loader and creates the device chosen by `GLRT_DEVICE` (see the module doc).
+    pub fn new() -> Result<Device> {
+        // Safety: loading libvulkan runs its initialisers; it is the system's Vulkan loader.
+        let entry = unsafe { ash::Entry::load() }.map_err(|e| Error::NoLoader(e.to_string()))?;
+        let instance = create_instance(&entry)?;
+        match Self::with_instance(entry, instance.clone()) {
+            Ok(device) => Ok(device),
+            Err(e) => {
+                // Safety: nothing else was created from the instance.
+                unsafe { instance.destroy_instance(None) };
+                Err(e)
+            }
+        }
+    }
+
+    fn with_instance(entry: ash::Entry, instance: ash::Instance) -> Result<Device> {
+        // Safety: valid instance.
+        let physicals = unsafe { instance.enumerate_physical_devices() }.check("vkEnumeratePhysicalDevices")?;
+        let choice = std::env::var("GLRT_DEVICE").ok();
+        let physical = choose_physical(&instance, &physicals, choice.as_deref())?;
+        // Safety: physical comes from this instance.
+        let properties = unsafe { instance.get_physical_device_properties(physical) };
+        if properties.api_version < vk::API_VERSION_1_3 {
+            return Err(Error::NoDevice(format!("{} lacks Vulkan 1.3", device_name(&properties))));
+        }
+        // Safety: as above.
+        let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
+        let queue_family = families
+            .iter()
+            .position(|f| f.queue_flags.contains(vk::QueueFlags::GRAPHICS))
+            .ok_or_else(|| Error::NoDevice("no graphics queue".into()))? as u32;
+        // Safety: as above.
+        let supported = unsafe { instance.get_physical_device_features(physical) };
+        let features = Features {
+            logic_op: supported.logic_op == vk::TRUE,
+            wide_lines: supported.wide_lines == vk::TRUE,
+            line_width_range: properties.limits.line_width_range,
+            fill_mode_non_solid: supported.fill_mode_non_solid == vk::TRUE,
+            large_points: supported.large_points == vk::TRUE,
+            sampler_anisotropy: supported.sampler_anisotropy == vk::TRUE,
+        };
+        let enabled = vk::PhysicalDeviceFeatures::default()
+            .logic_op(features.logic_op)
+            .wide_lines(features.wide_lines)
+            .fill_mode_non_solid(features.fill_mode_non_solid)
+            .large_points(features.large_points)
+            .sampler_anisotropy(features.sampler_anisotropy);
+        let mut v13 = vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true);
+        let priorities = [1.0];
+        let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
+        let extensions = device_extensions(&instance, physical);
+        let extension_ptrs: Vec<_> = extensions.iter().map(|e| e.as_ptr()).collect();
+        let info = vk::DeviceCreateInfo::default()
+            .queue_create_infos(&queues)
+            .enabled_features(&enabled)
+            .enabled_extension_names(&extension_ptrs)
+            .push_next(&mut v13);
+        // Safety: valid create info; the features were checked above.
+        let raw = unsafe { instance.create_device(physical, &info, None) }.check("vkCreateDevice")?;
+        // Safety: family and index 0 were requested above.
+        let queue = unsafe { raw.get_device_queue(queue_family, 0) };
+        let allocator = Allocator::new(&AllocatorCreateDesc {
+            instance: instance.clone(),
+            device: raw.clone(),
+            physical_device: physical,
+            debug_settings: Default::default(),
+            buffer_device_address: false,
+            allocation_sizes: Default::default(),
+        })
+        .map_err(|e| Error::Memory(e.to_string()));
+        let allocator = match allocator {
+            Ok(a) => a,
+            Err(e) => {
+                // Safety: nothing was created from the device.
+                unsafe { raw.destroy_device(None) };
+                return Err(e);
+            }
+        };
+        let depth_format = depth_format(&instance, physical);
+        log::info!("glrt: Vulkan device {}", device_name(&properties));
+        Ok(Device {
+            entry,
+            instance,
+            physical,
+            properties,
+            raw,
+            queue_family,
+            queue,
+            features,
+            depth_format,
+            allocator: ManuallyDrop::new(Mutex::new(allocator)),
+        })
+    }
+
+    /// The device's name.
+    pub fn name(&self) -> String {
+        device_name(&self.properties)
+    }
+
+    /// Creates a buffer of `size` bytes in `location` (`CpuToGpu`/`GpuToCpu` ones are mapped).
+    pub fn create_buffer(&self, name: &str, size: u64, usage: vk::BufferUsageFlags, location: MemoryLocation) -> Result<Buffer> {
+        let info = vk::BufferCreateInfo::default().size(size.max(4)).usage(usage);
+        // Safety: valid create info.
+        let raw = unsafe { self.raw.create_buffer(&info, None) }.check("vkCreateBuffer")?;
+        // Safety: raw is a buffer of this device.
+        let requirements = unsafe { self.raw.get_buffer_memory_requirements(raw) };
+        let allocation = self.allocate(name, requirements, location, true).and_then(|allocation| {
+            // Safety: fresh allocation of the buffer's requirements.
+            unsafe { self.raw.bind_buffer_memory(raw, allocation.memory(), allocation.offset()) }
+                .check("vkBindBufferMemory")
+                .map(|()| allocation)
+        });
+        match allocation {
+            Ok(allocation) => Ok(Buffer { raw, size, allocation }),
+            Err(e) => {
+                // Safety: the buffer is unused.
+                unsafe { self.raw.destroy_buffer(raw, None) };
+                Err(e)
+            }
+        }
+    }
+
+    /// Destroys a buffer the GPU no longer uses.
+    pub fn destroy_buffer(&self, buffer: Buffer) {
+        // Safety: the caller guarantees the GPU is done with it.
+        unsafe { self.raw.destroy_buffer(buffer.raw, None) };
+        self.free(buffer.allocation);
+    }
+
+    /// Creates an optimal-tiling image in device memory with a view of all of it.
+    pub fn create_image(&self, name: &str, info: &vk::ImageCreateInfo, view_type: vk::ImageViewType, aspect: vk::ImageAspectFlags) -> Result<Image> {
+        // Safety: valid create info.
+        let raw = unsafe { self.raw.create_image(info, None) }.check("vkCreateImage")?;
+        // Safety: raw is an image of this device.
+        let requirements = unsafe { self.raw.get_image_memory_requirements(raw) };
+        let bound = self.allocate(name, requirements, MemoryLocation::GpuOnly, false).and_then(|allocation| {
+            // Safety: fresh allocation of the image's requirements.
+            unsafe { self.raw.bind_image_memory(raw, allocation.memory(), allocation.offset()) }
+                .check("vkBindImageMemory")
+                .map(|()| allocation)
+        });
+        let allocation = match bound {
+            Ok(a) => a,
+            Err(e) => {
+                // Safety: unused image.
+                unsafe { self.raw.destroy_image(raw, None) };
+                return Err(e);
+            }
+        };
+        let view_info = vk::ImageViewCreateInfo::default()
+            .image(raw)
+            .view_type(view_type)
+            .format(info.format)
+            .subresource_range(vk::ImageSubresourceRange {
+                aspect_mask: aspect,
+                base_mip_level: 0,
+                level_count: vk::REMAINING_MIP_LEVELS,
+                base_array_layer: 0,
+                layer_count: vk::REMAINING_ARRAY_LAYERS,
+            });
+        // Safety: the image is bound to memory; the view matches its format.
+        match unsafe { self.raw.create_image_view(&view_info, None) }.check("vkCreateImageView") {
+            Ok(view) => Ok(Image { raw, view, format: info.format, extent: info.extent, allocation }),
+            Err(e) => {
+                // Safety: unused image.
+                unsafe { self.raw.destroy_image(raw, None) };
+                self.free(allocation);
+                Err(e)
+            }
+        }
+    }
+
+    /// Destroys an image the GPU no longer uses.
+    pub fn destroy_image(&self, image: Image) {
+        // Safety: the caller guarantees the GPU is done with it.
+        unsafe {
+            self.raw.destroy_image_view(image.view, None);
+            self.raw.destroy_image(image.raw, None);
+        }
+        self.free(image.allocation);
+    }
+
+    /// Waits until the device is idle (resizes, shutdown).
+    pub fn wait_idle(&self) -> Result<()> {
+        // Safety: valid device; callers hold no queue submission in flight on other threads.
+        unsafe { self.raw.device_wait_idle() }.check("vkDeviceWaitIdle")
+    }
+
+    fn allocate(&self, name: &str, requirements: vk::MemoryRequirements, location: MemoryLocation, linear: bool) -> Result<Allocation> {
+        self.allocator
+            .lock()
+            .allocate(&AllocationCreateDesc { name, requirements, location, linear, allocation_scheme: AllocationScheme::GpuAllocatorManaged })
+            .map_err(|e| Error::Memory(e.to_string()))
+    }
+
+    fn free(&self, allocation: Allocation) {
+        if let Err(e) = self.allocator.lock().free(allocation) {
+            log::warn!("glrt: freeing GPU memory: {e}");
+        }
+    }
+}
+
+impl Drop for Device {
+    fn drop(&mut self) {
+        // Safety: every object created from the device was destroyed by its owner (they hold
+        // the `Arc<Device>`), so the allocator goes first, then the device and instance.
+        unsafe {
+            let _ = self.raw.device_wait_idle();
+            ManuallyDrop::drop(&mut self.allocator);
+            self.raw.destroy_device(None);
+            self.instance.destroy_instance(None);
+        }
+    }
+}
+
+fn create_instance(entry: &ash::Entry) -> Result<ash::Instance> {
+    let name = c"glrt";
+    let app = vk::ApplicationInfo::default().application_name(name).engine_name(name).api_version(vk::API_VERSION_1_3);
+    let mut layers: Vec<*const std::ffi::c_char> = Vec::new();
+    if std::env::var("GLRT_VALIDATE").is_ok_and(|v| v == "1") {
+        // Safety: valid entry.
+        let available = unsafe { entry.enumerate_instance_layer_properties() }.unwrap_or_default();
+        if available.iter().any(|l| l.layer_name_as_c_str() == Ok(VALIDATION)) {
+            layers.push(VALIDATION.as_ptr());
+        } else {
+            log::warn!("glrt: GLRT_VALIDATE=1 but {VALIDATION:?} is not installed");
+        }
+    }
+    let info = vk::InstanceCreateInfo::default().application_info(&app).enabled_layer_names(&layers);
+    // Safety: valid create info.
+    unsafe { entry.create_instance(&info, None) }.check("vkCreateInstance")
+}
+
+/// Device extensions enabled when present (the presentation helper adds swapchain use).
+fn device_extensions(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Vec<CString> {
+    // Safety: valid physical device.
+    let available = unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
+    [ash::khr::swapchain::NAME]
+        .into_iter()
+        .filter(|want| available.iter().any(|e| e.extension_name_as_c_str() == Ok(want)))
+        .map(CString::from)
+        .collect()
+}
+
+fn device_name(properties: &vk::PhysicalDeviceProperties) -> String {
+    properties.device_name_as_c_str().map(|c| c.to_string_lossy().into_owned()).unwrap_or_default()
+}
+
+/// Picks the physical device: `choice` is an index or a name substring (case-insensitive);
+/// without it, the best type (discrete, integrated, virtual, CPU).
+fn choose_physical(instance: &ash::Instance, physicals: &[vk::PhysicalDevice], choice: Option<&str>) -> Result<vk::PhysicalDevice> {
+    // Safety: each handle comes from this instance.
+    let props: Vec<_> = physicals.iter().map(|&p| unsafe { instance.get_physical_device_properties(p) }).collect();
+    let names: Vec<String> = props.iter().map(device_name).collect();
+    let types: Vec<_> = props.iter().map(|p| p.device_type).collect();
+    pick(&names, &types, choice).map(|i| physicals[i]).ok_or_else(|| {
+        let listed = names.join(", ");
+        match choice {
+            Some(c) => Error::NoDevice(format!("GLRT_DEVICE={c} matches none of [{listed}]")),
+            None => Error::NoDevice("no physical device".into()),
+        }
+    })
+}
+
+/// Index of the device to use among `names`/`types` (see [`choose_physical`]).
+fn pick(names: &[String], types: &[vk::PhysicalDeviceType], choice: Option<&str>) -> Option<usize> {
+    if let Some(choice) = choice.map(str::trim).filter(|c| !c.is_empty()) {
+        if let Ok(index) = choice.parse::<usize>() {
+            return (index < names.len()).then_some(index);
+        }
+        let lower = choice.to_lowercase();
+        return names.iter().position(|n| n.to_lowercase().contains(&lower));
+    }
+    let rank = |t: vk::PhysicalDeviceType| match t {
+        vk::PhysicalDeviceType::DISCRETE_GPU => 0,
+        vk::PhysicalDeviceType::INTEGRATED_GPU => 1,
+        vk::PhysicalDeviceType::VIRTUAL_GPU => 2,
+        vk::PhysicalDeviceType::CPU => 3,
+        _ => 4,
+    };
+    (0..names.len()).min_by_key(|&i| rank(types[i]))
+}
+
+/// The first depth/stencil format usable as an attachment and a transfer source.
+fn depth_format(instance: &ash::Instance, physical: vk::PhysicalDevice) -> vk::Format {
+    let wanted = vk::FormatFeatureFlags::DEPTH_STENCIL_ATTACHMENT | vk::FormatFeatureFlags::TRANSFER_SRC;
+    [vk::Format::D24_UNORM_S8_UINT, vk::Format::D32_SFLOAT_S8_UINT]
+        .into_iter()
+        .find(|&f| {
+            // Safety: valid physical device.
+            let p = unsafe { instance.get_physical_device_format_properties(physical, f) };
+            p.optimal_tiling_features.contains(wanted)
+        })
+        .unwrap_or(vk::Format::D32_SFLOAT_S8_UINT)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn names(list: &[&str]) -> Vec<String> {
+        list.iter().map(|s| s.to_string()).collect()
+    }
+
+    #[test]
+    fn prefers_a_gpu_over_the_cpu() {
+        let types = [vk::PhysicalDeviceType::CPU, vk::PhysicalDeviceType::INTEGRATED_GPU, vk::PhysicalDeviceType::DISCRETE_GPU];
+        assert_eq!(pick(&names(&["llvmpipe", "Intel", "NVIDIA H100"]), &types, None), Some(2));
+        assert_eq!(pick(&names(&["llvmpipe", "Intel"]), &types[..2], None), Some(1));
+    }
+
+    #[test]
+    fn glrt_device_selects_by_index_or_name() {
+        let types = [vk::PhysicalDeviceType::DISCRETE_GPU, vk::PhysicalDeviceType::CPU];
+        let list = names(&["NVIDIA H100", "llvmpipe (LLVM 15)"]);
+        assert_eq!(pick(&list, &types, Some("1")), Some(1));
+        assert_eq!(pick(&list, &types, Some("LLVMpipe")), Some(1));
+        assert_eq!(pick(&list, &types, Some("7")), None);
+        assert_eq!(pick(&list, &types, Some("radeon")), None);
+    }
+}

@@ -1,0 +1,365 @@
+//! Graphics pipelines of the fixed-function shaders, created once per [`PipelineKey`] and
+//! cached: the shader specialisation ([`ff::ShaderKey`]), the topology, and the part of the
+//! raster state Vulkan bakes into a pipeline (blend factors and equation, logic op, depth
+//! test/function/write, stencil functions and operations, colour mask, culling and front face,
+//! whether polygon offset applies).
+//!
+//! Dynamic state (set per draw by [`super::renderer`]): viewport, scissor, line width, depth
+//! bias, blend constants, stencil reference and compare/write masks.
+//!
+//! Conventions:
+//! - **y flip**: the viewport has a negative height (Vulkan 1.1 core), so GL window
+//!   coordinates (y up) land in images whose row 0 is the top of the window (see
+//!   [`super::target`]). Vulkan's winding is defined as seen on screen (its area formula
+//!   carries a minus sign for the downward y), and the flipped viewport shows the image as GL
+//!   does, so GL's windings map unchanged ([`front_face`]; `tests/raster.rs` checks it).
+//! - **depth**: `ff.vert` maps GL clip depth [-w, w] to Vulkan's [0, w]; the viewport's
+//!   depth range is GL's `glDepthRange`.
+//! - **logic op**: used when the device has `logicOp` (lavapipe and NVIDIA do); otherwise the
+//!   draw is drawn without it and a warning is logged once.
+//! - Polygon offset applies to triangle batches when `GL_POLYGON_OFFSET_FILL` is on (polygon
+//!   modes line/point are expanded by `ff`, which decides which flag applies).
+
+use std::collections::HashMap;
+
+use ash::vk;
+
+use super::conv;
+use super::device::{Check, Device, Result};
+use super::ff;
+use super::target::COLOR_FORMAT;
+use crate::frame::state::{Face, RasterState, Winding};
+use crate::frame::Topology;
+
+/// Descriptor bindings of set 0 (see the `ff` module doc): the uniform block, then 2D, 3D and
+/// cube samplers of each unit.
+pub const BINDINGS: u32 = 1 + 3 * ff::MAX_UNITS as u32;
+
+/// Binding of the 2D/3D/cube sampler of unit `unit`.
+pub fn sampler_binding(kind: SamplerKind, unit: usize) -> u32 {
+    1 + kind as u32 * ff::MAX_UNITS as u32 + unit as u32
+}
+
+/// The sampler types of the texture bindings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum SamplerKind {
+    /// `sampler2D` (2D and 1D textures).
+    D2 = 0,
+    /// `sampler3D`.
+    D3 = 1,
+    /// `samplerCube`.
+    Cube = 2,
+}
+
+/// What selects a pipeline.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct PipelineKey {
+    /// Shader specialisation.
+    pub shader: ff::ShaderKey,
+    /// Primitive topology.
+    pub topology: vk::PrimitiveTopology,
+    /// Fixed per-fragment state.
+    pub fixed: FixedState,
+}
+
+/// The raster state baked into a pipeline, as Vulkan values.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct FixedState {
+    /// Factors (src rgb, dst rgb, src alpha, dst alpha) and operation, when blending.
+    pub blend: Option<([vk::BlendFactor; 4], vk::BlendOp)>,
+    /// Logic operation, when enabled and supported.
+    pub logic_op: Option<vk::LogicOp>,
+    /// Depth comparison, when the depth test is on.
+    pub depth_test: Option<vk::CompareOp>,
+    /// Depth writes (only with the depth test on, section 4.1.6).
+    pub depth_write: bool,
+    /// Stencil comparison and fail, depth-fail, pass operations, when the test is on.
+    pub stencil: Option<[i32; 4]>,
+    /// Colour write mask.
+    pub color_mask: vk::ColorComponentFlags,
+    /// Culled faces.
+    pub cull: vk::CullModeFlags,
+    /// Front-face winding in framebuffer coordinates.
+    pub front_face: vk::FrontFace,
+    /// Depth bias on.
+    pub depth_bias: bool,
+}
+
+/// GL front-face winding as Vulkan sees it through the y-flipped viewport (the same).
+pub fn front_face(w: Winding) -> vk::FrontFace {
+    match w {
+        Winding::Ccw => vk::FrontFace::COUNTER_CLOCKWISE,
+        Winding::Cw => vk::FrontFace::CLOCKWISE,
+    }
+}
+
+impl FixedState {
+    /// The fixed state of `state` for a batch of `topology`; `logic_op_supported` says
+    /// whether the device has the `logicOp` feature.
+    pub fn new(state: &RasterState, topology: Topology, logic_op_supported: bool) -> FixedState {
+        let blend = state.blend.map(|b| {
+            let factors = [b.src_rgb, b.dst_rgb, b.src_alpha, b.dst_alpha].map(conv::blend_factor);
+            (factors, conv::blend_op(b.equation))
+        });
+        let logic_op = state.logic_op.filter(|_| logic_op_supported).map(conv::logic_op);
+        let stencil = state.stencil.map(|s| {
+            [conv::compare(s.func).as_raw(), conv::stencil_op(s.fail).as_raw(), conv::stencil_op(s.depth_fail).as_raw(), conv::stencil_op(s.depth_pass).as_raw()]
+        });
+        let mut color_mask = vk::ColorComponentFlags::empty();
+        for (on, bit) in state.color_mask.iter().zip([
+            vk::ColorComponentFlags::R,
+            vk::ColorComponentFlags::G,
+            vk::ColorComponentFlags::B,
+            vk::ColorComponentFlags::A,
+        ]) {
+            if *on {
+                color_mask |= bit;
+            }
+        }
+        let cull = match (topology, state.cull) {
+            (Topology::Triangles, Some(Face::Front)) => vk::CullModeFlags::FRONT,
+            (Topology::Triangles, Some(Face::Back)) => vk::CullModeFlags::BACK,
+            (Topology::Triangles, Some(Face::FrontAndBack)) => vk::CullModeFlags::FRONT_AND_BACK,
+            _ => vk::CullModeFlags::NONE,
+        };
+        FixedState {
+            blend,
+            logic_op,
+            depth_test: state.depth_test.map(conv::compare),
+            depth_write: state.depth_test.is_some() && state.depth_write,
+            stencil,
+            color_mask,
+            cull,
+            front_face: front_face(state.front_face),
+            depth_bias: topology == Topology::Triangles && state.polygon_offset.fill,
+        }
+    }
+}
+
+/// The descriptor layout, pipeline layout, shader modules and the pipeline cache.
+pub struct Pipelines {
+    /// Layout of descriptor set 0.
+    pub set_layout: vk::DescriptorSetLayout,
+    /// The pipeline layout.
+    pub layout: vk::PipelineLayout,
+    vertex: vk::ShaderModule,
+    fragment: vk::ShaderModule,
+    depth_format: vk::Format,
+    cache: HashMap<PipelineKey, vk::Pipeline>,
+}
+
+impl Pipelines {
+    /// Creates the layouts and shader modules.
+    pub fn new(device: &Device) -> Result<Pipelines> {
+        let d = &device.raw;
+        let bindings: Vec<_> = (0..BINDINGS)
+            .map(|b| {
+                vk::DescriptorSetLayoutBinding::default()
+                    .binding(b)
+                    .descriptor_type(if b == 0 {
+                        vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC
+                    } else {
+                        vk::DescriptorType::COMBINED_IMAGE_SAMPLER
+                    })
+                    .descriptor_count(1)
+                    .stage_flags(vk::ShaderStageFlags::VERTEX | vk::ShaderStageFlags::FRAGMENT)
+            })
+            .collect();
+        // Safety (this block): valid create infos on a live device; objects destroyed in `destroy`.
+        unsafe {
+            let set_layout = d
+                .create_descriptor_set_layout(&vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings), None)
+                .check("vkCreateDescriptorSetLayout")?;
+            let sets = [set_layout];
+            let layout = d
+                .create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&sets), None)
+                .check("vkCreatePipelineLayout")?;
+            let vertex = shader_module(device, ff::vertex_spirv())?;
+            let fragment = shader_module(device, ff::fragment_spirv())?;
+            Ok(Pipelines { set_layout, layout, vertex, fragment, depth_format: device.depth_format, cache: HashMap::new() })
+        }
+    }
+
+    /// The pipeline of `key`, created on first use.
+    pub fn get(&mut self, device: &Device, key: &PipelineKey) -> Result<vk::Pipeline> {
+        if let Some(&p) = self.cache.get(key) {
+            return Ok(p);
+        }
+        let pipeline = self.create(device, key)?;
+        self.cache.insert(*key, pipeline);
+        Ok(pipeline)
+    }
+
+    /// Pipelines created so far.
+    pub fn len(&self) -> usize {
+        self.cache.len()
+    }
+
+    /// Whether no pipeline was created yet.
+    pub fn is_empty(&self) -> bool {
+        self.cache.is_empty()
+    }
+
+    fn create(&self, device: &Device, key: &PipelineKey) -> Result<vk::Pipeline> {
+        let words = key.shader.words;
+        let entries: Vec<_> = (0..words.len() as u32)
+            .map(|i| vk::SpecializationMapEntry { constant_id: i, offset: 4 * i, size: 4 })
+            .collect();
+        let data = super::upload::bytemuck_free::bytes(&words);
+        let spec = vk::SpecializationInfo::default().map_entries(&entries).data(data);
+        let stages = [
+            vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::VERTEX).module(self.vertex).name(c"main").specialization_info(&spec),
+            vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::FRAGMENT).module(self.fragment).name(c"main").specialization_info(&spec),
+        ];
+        let vertex_bindings = [vk::VertexInputBindingDescription {
+            binding: 0,
+            stride: (ff::VERTEX_FLOATS * 4) as u32,
+            input_rate: vk::VertexInputRate::VERTEX,
+        }];
+        let attributes: Vec<_> = ff::VERTEX_ATTRIBUTES
+            .iter()
+            .map(|a| vk::VertexInputAttributeDescription {
+                location: a.location,
+                binding: 0,
+                format: [vk::Format::R32_SFLOAT, vk::Format::R32G32_SFLOAT, vk::Format::R32G32B32_SFLOAT, vk::Format::R32G32B32A32_SFLOAT]
+                    [(a.components.clamp(1, 4) - 1) as usize],
+                offset: a.offset * 4,
+            })
+            .collect();
+        let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
+            .vertex_binding_descriptions(&vertex_bindings)
+            .vertex_attribute_descriptions(&attributes);
+        let assembly = vk::PipelineInputAssemblyStateCreateInfo::default().topology(key.topology);
+        let viewport = vk::PipelineViewportStateCreateInfo::default().viewport_count(1).scissor_count(1);
+        let f = &key.fixed;
+        let raster = vk::PipelineRasterizationStateCreateInfo::default()
+            .polygon_mode(vk::PolygonMode::FILL)
+            .cull_mode(f.cull)
+            .front_face(f.front_face)
+            .depth_bias_enable(f.depth_bias)
+            .line_width(1.0);
+        let multisample = vk::PipelineMultisampleStateCreateInfo::default().rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let stencil_face = |s: [i32; 4]| vk::StencilOpState {
+            fail_op: vk::StencilOp::from_raw(s[1]),
+            pass_op: vk::StencilOp::from_raw(s[3]),
+            depth_fail_op: vk::StencilOp::from_raw(s[2]),
+            compare_op: vk::CompareOp::from_raw(s[0]),
+            ..Default::default()
+        };
+        let stencil = f.stencil.map(stencil_face).unwrap_or_default();
+        let depth = vk::PipelineDepthStencilStateCreateInfo::default()
+            .depth_test_enable(f.depth_test.is_some())
+            .depth_write_enable(f.depth_write)
+            .depth_compare_op(f.depth_test.unwrap_or(vk::CompareOp::ALWAYS))
+            .stencil_test_enable(f.stencil.is_some())
+            .front(stencil)
+            .back(stencil);
+        let (blend_on, [src, dst, src_a, dst_a], op) = match f.blend {
+            Some((factors, op)) => (true, factors, op),
+            None => (false, [vk::BlendFactor::ONE, vk::BlendFactor::ZERO, vk::BlendFactor::ONE, vk::BlendFactor::ZERO], vk::BlendOp::ADD),
+        };
+        let attachments = [vk::PipelineColorBlendAttachmentState {
+            blend_enable: blend_on.into(),
+            src_color_blend_factor: src,
+            dst_color_blend_factor: dst,
+            color_blend_op: op,
+            src_alpha_blend_factor: src_a,
+            dst_alpha_blend_factor: dst_a,
+            alpha_blend_op: op,
+            color_write_mask: f.color_mask,
+        }];
+        let blend = vk::PipelineColorBlendStateCreateInfo::default()
+            .logic_op_enable(f.logic_op.is_some())
+            .logic_op(f.logic_op.unwrap_or(vk::LogicOp::COPY))
+            .attachments(&attachments);
+        let dynamic_states = [
+            vk::DynamicState::VIEWPORT,
+            vk::DynamicState::SCISSOR,
+            vk::DynamicState::LINE_WIDTH,
+            vk::DynamicState::DEPTH_BIAS,
+            vk::DynamicState::BLEND_CONSTANTS,
+            vk::DynamicState::STENCIL_COMPARE_MASK,
+            vk::DynamicState::STENCIL_WRITE_MASK,
+            vk::DynamicState::STENCIL_REFERENCE,
+        ];
+        let dynamic = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic_states);
+        let color_formats = [COLOR_FORMAT];
+        let mut rendering = vk::PipelineRenderingCreateInfo::default()
+            .color_attachment_formats(&color_formats)
+            .depth_attachment_format(self.depth_format)
+            .stencil_attachment_format(self.depth_format);
+        let info = vk::GraphicsPipelineCreateInfo::default()
+            .stages(&stages)
+            .vertex_input_state(&vertex_input)
+            .input_assembly_state(&assembly)
+            .viewport_state(&viewport)
+            .rasterization_state(&raster)
+            .multisample_state(&multisample)
+            .depth_stencil_state(&depth)
+            .color_blend_state(&blend)
+            .dynamic_state(&dynamic)
+            .layout(self.layout)
+            .push_next(&mut rendering);
+        // Safety: every referenced object is alive; the formats match the target.
+        let pipelines = unsafe { device.raw.create_graphics_pipelines(vk::PipelineCache::null(), &[info], None) };
+        match pipelines {
+            Ok(p) => Ok(p[0]),
+            Err((_, r)) => Err(super::device::Error::Vulkan("vkCreateGraphicsPipelines", r)),
+        }
+    }
+
+    /// Destroys every pipeline and layout (the GPU must be idle).
+    pub fn destroy(&mut self, device: &Device) {
+        // Safety: the GPU is done with them; each is destroyed once.
+        unsafe {
+            for (_, p) in self.cache.drain() {
+                device.raw.destroy_pipeline(p, None);
+            }
+            device.raw.destroy_shader_module(self.vertex, None);
+            device.raw.destroy_shader_module(self.fragment, None);
+            device.raw.destroy_pipeline_layout(self.layout, None);
+            device.raw.destroy_descriptor_set_layout(self.set_layout, None);
+        }
+    }
+}
+
+fn shader_module(device: &Device, spirv: &[u8]) -> Result<vk::ShaderModule> {
+    let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    // Safety: the SPIR-V was produced by the build's shader compiler.
+    unsafe { device.raw.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(&words), None) }.check("vkCreateShaderModule")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::state::{Blend, BlendFactor};
+
+    #[test]
+    fn fixed_state_follows_gl_rules() {
+        let mut state = RasterState::default();
+        state.depth_write = true;
+        assert!(!FixedState::new(&state, Topology::Triangles, true).depth_write, "no depth writes without the test");
+        state.depth_test = Some(crate::frame::state::CompareFunc::Less);
+        let f = FixedState::new(&state, Topology::Triangles, true);
+        assert!(f.depth_write);
+        assert_eq!(f.depth_test, Some(vk::CompareOp::LESS));
+        state.cull = Some(Face::Back);
+        assert_eq!(FixedState::new(&state, Topology::Triangles, true).cull, vk::CullModeFlags::BACK);
+        assert_eq!(FixedState::new(&state, Topology::Lines, true).cull, vk::CullModeFlags::NONE);
+        state.blend = Some(Blend { src_rgb: BlendFactor::SrcAlpha, dst_rgb: BlendFactor::OneMinusSrcAlpha, ..Blend::default() });
+        let (factors, op) = FixedState::new(&state, Topology::Triangles, true).blend.unwrap();
+        assert_eq!(factors[..2], [vk::BlendFactor::SRC_ALPHA, vk::BlendFactor::ONE_MINUS_SRC_ALPHA]);
+        assert_eq!(op, vk::BlendOp::ADD);
+        state.logic_op = Some(crate::frame::state::LogicOp::Xor);
+        assert_eq!(FixedState::new(&state, Topology::Triangles, true).logic_op, Some(vk::LogicOp::XOR));
+        assert_eq!(FixedState::new(&state, Topology::Triangles, false).logic_op, None);
+    }
+
+    #[test]
+    fn sampler_bindings_follow_the_ff_contract() {
+        assert_eq!(sampler_binding(SamplerKind::D2, 0), 1);
+        assert_eq!(sampler_binding(SamplerKind::D3, 1), 6);
+        assert_eq!(sampler_binding(SamplerKind::Cube, 3), 12);
+        assert_eq!(BINDINGS, 13);
+    }
+}

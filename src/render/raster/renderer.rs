@@ -1,0 +1,479 @@
+//! The raster renderer: a [`FrameSink`] that draws each [`Frame`] with Vulkan.
+//!
+//! A frame is recorded into the command buffer of the current frame-in-flight [`Slot`] in
+//! program order: at each draw index, the clears placed before it, then the pixel operations
+//! placed before it, then the draw. `read_pixels` renders the frame so far (remembering in
+//! [`Progress`] how far it got, so a frame read several times is drawn once), submits, waits
+//! and copies the rectangle back; `present` finishes the frame and submits it without waiting
+//! (two frames in flight: the program's next frame is assembled while the GPU draws this one).
+//!
+//! Extension points for the pixel path and presentation: [`Recorder`] gives the device, the
+//! current command buffer, the [`Target`] images and the upload ring, and starts or ends the
+//! dynamic-rendering pass on demand.
+
+use ash::vk;
+
+use super::commands::Slot;
+use super::device::{Device, Error, Result};
+use super::ff;
+use super::pipelines::{FixedState, PipelineKey, Pipelines};
+use super::target::{Plane, Target};
+use super::textures::Textures;
+use super::{conv, readback};
+use crate::frame::pixels::PixelBuffer;
+use crate::frame::{Clear, Draw, Frame};
+use crate::render::FrameSink;
+
+/// Frames in flight.
+const FRAMES_IN_FLIGHT: usize = 2;
+
+/// How much of which frame is already recorded.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Progress {
+    /// The frame number.
+    pub frame: u64,
+    /// Draws recorded.
+    pub draws: usize,
+    /// Clears recorded.
+    pub clears: usize,
+    /// Pixel operations recorded.
+    pub pixels: usize,
+}
+
+/// The Vulkan raster renderer.
+pub struct Renderer {
+    parts: Parts,
+    slots: Vec<Slot>,
+    current: usize,
+    /// Whether the current slot's command buffer is recording.
+    recording: bool,
+    progress: Option<Progress>,
+    /// Frame dumps (`GLRT_DUMP`).
+    dump: Option<super::dump::Dump>,
+    /// Set after a device error: frames are dropped.
+    failed: bool,
+}
+
+/// The renderer's state other than the slots (borrowed apart from them by [`Recorder`]).
+struct Parts {
+    device: Device,
+    pipelines: Pipelines,
+    textures: Textures,
+    target: Option<Target>,
+    rendering: bool,
+}
+
+/// Access to the frame being recorded, for the parts that record into it (draws, clears,
+/// pixel operations, presentation).
+pub struct Recorder<'a> {
+    /// The device.
+    pub device: &'a Device,
+    /// The command buffer being recorded.
+    pub cmd: vk::CommandBuffer,
+    /// The framebuffer.
+    pub target: &'a mut Target,
+    /// The frame's upload memory.
+    pub ring: &'a mut super::upload::Ring,
+    /// The frame's descriptor sets.
+    pub descriptors: &'a mut super::commands::Descriptors,
+    /// Pipelines.
+    pub pipelines: &'a mut Pipelines,
+    /// Textures.
+    pub textures: &'a mut Textures,
+    rendering: &'a mut bool,
+}
+
+impl Recorder<'_> {
+    /// Begins the dynamic-rendering pass on the target (no-op if begun).
+    pub fn begin_rendering(&mut self) {
+        if *self.rendering {
+            return;
+        }
+        self.target.transition(self.device, self.cmd, Plane::Color, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL);
+        self.target.transition(self.device, self.cmd, Plane::DepthStencil, vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+        let color = [vk::RenderingAttachmentInfo::default()
+            .image_view(self.target.color.view)
+            .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
+            .load_op(vk::AttachmentLoadOp::LOAD)
+            .store_op(vk::AttachmentStoreOp::STORE)];
+        let depth = vk::RenderingAttachmentInfo::default()
+            .image_view(self.target.depth.view)
+            .image_layout(vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL)
+            .load_op(vk::AttachmentLoadOp::LOAD)
+            .store_op(vk::AttachmentStoreOp::STORE);
+        let [w, h] = self.target.size;
+        let info = vk::RenderingInfo::default()
+            .render_area(vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width: w, height: h } })
+            .layer_count(1)
+            .color_attachments(&color)
+            .depth_attachment(&depth)
+            .stencil_attachment(&depth);
+        // Safety: the attachments are in the layouts named; cmd is recording outside a pass.
+        unsafe { self.device.raw.cmd_begin_rendering(self.cmd, &info) };
+        *self.rendering = true;
+    }
+
+    /// Ends the rendering pass (no-op outside one), before transfers or barriers.
+    pub fn end_rendering(&mut self) {
+        if *self.rendering {
+            // Safety: a pass is open on cmd.
+            unsafe { self.device.raw.cmd_end_rendering(self.cmd) };
+            *self.rendering = false;
+        }
+    }
+
+    /// Records a `glClear`: cleared buffers, masks and scissor box as the frame says
+    /// (section 4.2.3). Unmasked clears use `vkCmdClearAttachments`.
+    pub fn clear(&mut self, clear: &Clear) {
+        let [w, h] = self.target.size;
+        let rect = match clear.scissor {
+            Some(s) => self.target.vk_rect(s),
+            None => Some(vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width: w, height: h } }),
+        };
+        let Some(rect) = rect else { return };
+        let mut attachments = Vec::new();
+        if let Some(c) = clear.color.filter(|_| clear.color_mask.iter().any(|&m| m)) {
+            if clear.color_mask != [true; 4] {
+                log_once("colour clears with a partial colour mask are drawn unmasked");
+            }
+            attachments.push(vk::ClearAttachment {
+                aspect_mask: vk::ImageAspectFlags::COLOR,
+                color_attachment: 0,
+                clear_value: vk::ClearValue { color: vk::ClearColorValue { float32: c.map(|v| v.clamp(0.0, 1.0)) } },
+            });
+        }
+        let mut aspects = vk::ImageAspectFlags::empty();
+        let depth = clear.depth.filter(|_| clear.depth_mask);
+        if depth.is_some() {
+            aspects |= vk::ImageAspectFlags::DEPTH;
+        }
+        let stencil = clear.stencil.filter(|_| clear.stencil_mask & 0xff != 0);
+        if stencil.is_some() {
+            if clear.stencil_mask & 0xff != 0xff {
+                log_once("stencil clears with a partial stencil mask write every bit");
+            }
+            aspects |= vk::ImageAspectFlags::STENCIL;
+        }
+        if !aspects.is_empty() {
+            attachments.push(vk::ClearAttachment {
+                aspect_mask: aspects,
+                color_attachment: 0,
+                clear_value: vk::ClearValue {
+                    depth_stencil: vk::ClearDepthStencilValue {
+                        depth: depth.unwrap_or(1.0).clamp(0.0, 1.0) as f32,
+                        stencil: stencil.unwrap_or(0) as u32 & 0xff,
+                    },
+                },
+            });
+        }
+        if attachments.is_empty() {
+            return;
+        }
+        self.begin_rendering();
+        let rects = [vk::ClearRect { rect, base_array_layer: 0, layer_count: 1 }];
+        // Safety: inside the pass; the rectangle lies in the render area.
+        unsafe { self.device.raw.cmd_clear_attachments(self.cmd, &attachments, &rects) };
+    }
+
+    /// Records the batches of `draw`.
+    pub fn draw(&mut self, draw: &Draw) -> Result<()> {
+        let state = &draw.state;
+        let [vx, vy, vw, vh] = state.viewport;
+        if vw <= 0 || vh <= 0 {
+            return Ok(());
+        }
+        let [w, h] = self.target.size;
+        let full = vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width: w, height: h } };
+        let scissor = match state.scissor {
+            Some(s) => match self.target.vk_rect(s) {
+                Some(r) => r,
+                None => return Ok(()),
+            },
+            None => full,
+        };
+        let batches = ff::prepare(draw);
+        if batches.is_empty() {
+            return Ok(());
+        }
+        if self.textures.needs_upload() {
+            self.end_rendering();
+        }
+        let images = self.textures.bindings(self.device, self.cmd)?;
+        self.begin_rendering();
+        let d = &self.device.raw;
+        let limits = &self.device.properties.limits;
+        let ubo_align = limits.min_uniform_buffer_offset_alignment.max(16);
+        let viewport = vk::Viewport {
+            x: vx as f32,
+            y: (h as i64 - vy as i64) as f32,
+            width: vw as f32,
+            height: -(vh as f32),
+            min_depth: state.depth_range[0].clamp(0.0, 1.0) as f32,
+            max_depth: state.depth_range[1].clamp(0.0, 1.0) as f32,
+        };
+        let features = &self.device.features;
+        let line_width = if features.wide_lines {
+            state.line.width.clamp(features.line_width_range[0], features.line_width_range[1])
+        } else {
+            1.0
+        };
+        for batch in &batches {
+            if batch.indices.is_empty() {
+                continue;
+            }
+            let key = PipelineKey {
+                shader: batch.shader,
+                topology: conv::topology(batch.topology),
+                fixed: FixedState::new(state, batch.topology, features.logic_op),
+            };
+            if state.logic_op.is_some() && !features.logic_op {
+                log_once("the device has no logicOp feature: glLogicOp is ignored");
+            }
+            let pipeline = self.pipelines.get(self.device, &key)?;
+            let vertices = self.ring.push_slice(self.device, &batch.vertices, 16)?;
+            let indices = self.ring.push_slice(self.device, &batch.indices, 4)?;
+            let mut uniforms = batch.uniforms.clone();
+            uniforms.resize(ff::UNIFORM_SIZE, 0);
+            let uniform = self.ring.push(self.device, &uniforms, ubo_align)?;
+            let set = self.descriptors.get(self.device, self.pipelines.set_layout, &(uniform.buffer, images), ff::UNIFORM_SIZE as u64)?;
+            let stencil = state.stencil.unwrap_or_default();
+            let blend_color = state.blend.map_or([0.0; 4], |b| b.color);
+            // Safety: inside the pass; every handle is alive for the frame; the dynamic
+            // offset is aligned and within the ring chunk.
+            unsafe {
+                d.cmd_bind_pipeline(self.cmd, vk::PipelineBindPoint::GRAPHICS, pipeline);
+                d.cmd_set_viewport(self.cmd, 0, &[viewport]);
+                d.cmd_set_scissor(self.cmd, 0, &[scissor]);
+                d.cmd_set_line_width(self.cmd, line_width);
+                d.cmd_set_depth_bias(self.cmd, state.polygon_offset.units, 0.0, state.polygon_offset.factor);
+                d.cmd_set_blend_constants(self.cmd, &blend_color);
+                d.cmd_set_stencil_reference(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.reference.clamp(0, 255) as u32);
+                d.cmd_set_stencil_compare_mask(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.value_mask);
+                d.cmd_set_stencil_write_mask(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.write_mask);
+                d.cmd_bind_descriptor_sets(self.cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.layout, 0, &[set], &[uniform.offset as u32]);
+                d.cmd_bind_vertex_buffers(self.cmd, 0, &[vertices.buffer], &[vertices.offset]);
+                d.cmd_bind_index_buffer(self.cmd, indices.buffer, indices.offset, vk::IndexType::UINT32);
+                d.cmd_draw_indexed(self.cmd, batch.indices.len() as u32, 1, 0, 0, 0);
+            }
+        }
+        Ok(())
+    }
+}
+
+impl Renderer {
+    /// Creates the renderer on the device chosen by `GLRT_DEVICE` (see [`Device::new`]).
+    pub fn new() -> Result<Renderer> {
+        let device = Device::new()?;
+        let pipelines = Pipelines::new(&device)?;
+        let textures = Textures::new(&device)?;
+        let slots = (0..FRAMES_IN_FLIGHT).map(|_| Slot::new(&device)).collect::<Result<Vec<_>>>()?;
+        Ok(Renderer {
+            parts: Parts { device, pipelines, textures, target: None, rendering: false },
+            slots,
+            current: 0,
+            recording: false,
+            progress: None,
+            dump: super::dump::Dump::from_env(),
+            failed: false,
+        })
+    }
+
+    /// The device.
+    pub fn device(&self) -> &Device {
+        &self.parts.device
+    }
+
+    /// Pipelines created so far (tests, statistics).
+    pub fn pipeline_count(&self) -> usize {
+        self.parts.pipelines.len()
+    }
+
+    /// A [`Recorder`] on the current slot for a frame of `size`, starting the command buffer
+    /// and (re)creating the target when needed.
+    pub fn recorder(&mut self, size: [u32; 2]) -> Result<Recorder<'_>> {
+        let size = [size[0].max(1), size[1].max(1)];
+        if self.parts.target.as_ref().is_some_and(|t| t.size != size) {
+            self.flush()?;
+            self.parts.device.wait_idle()?;
+            if let Some(t) = self.parts.target.take() {
+                t.destroy(&self.parts.device);
+            }
+        }
+        if !self.recording {
+            let slot = &mut self.slots[self.current];
+            if slot.wait(&self.parts.device)? {
+                if let Some(dump) = &mut self.dump {
+                    dump.collect(&self.parts.device, self.current);
+                }
+            }
+            slot.begin(&self.parts.device)?;
+            self.recording = true;
+        }
+        let slot = &mut self.slots[self.current];
+        let parts = &mut self.parts;
+        if parts.target.is_none() {
+            let mut target = Target::new(&parts.device, size)?;
+            target.clear_initial(&parts.device, slot.cmd);
+            parts.target = Some(target);
+        }
+        let Some(target) = parts.target.as_mut() else { unreachable!("created above") };
+        Ok(Recorder {
+            device: &parts.device,
+            cmd: slot.cmd,
+            target,
+            ring: &mut slot.ring,
+            descriptors: &mut slot.descriptors,
+            pipelines: &mut parts.pipelines,
+            textures: &mut parts.textures,
+            rendering: &mut parts.rendering,
+        })
+    }
+
+    /// Records what of `frame` is not recorded yet.
+    fn record(&mut self, frame: &Frame) -> Result<()> {
+        let mut progress = match self.progress {
+            Some(p) if p.frame == frame.number => p,
+            _ => Progress { frame: frame.number, ..Progress::default() },
+        };
+        let mut rec = self.recorder(frame.size)?;
+        for index in progress.draws..=frame.draws.len() {
+            while let Some(clear) = frame.clears.get(progress.clears).filter(|c| c.before_draw <= index) {
+                rec.clear(clear);
+                progress.clears += 1;
+            }
+            while let Some(op) = frame.pixels.get(progress.pixels).filter(|p| p.before_draw <= index) {
+                super::pixel::record(&mut rec, op)?;
+                progress.pixels += 1;
+            }
+            if let Some(draw) = frame.draws.get(index) {
+                rec.draw(draw)?;
+                progress.draws = index + 1;
+            }
+        }
+        self.progress = Some(progress);
+        Ok(())
+    }
+
+    /// Submits the current slot's commands and waits for them (the slot starts again on the
+    /// next [`Renderer::recorder`]).
+    fn flush(&mut self) -> Result<()> {
+        if self.recording {
+            self.end_pass();
+            self.slots[self.current].submit(&self.parts.device, true)?;
+            self.recording = false;
+        }
+        Ok(())
+    }
+
+    fn end_pass(&mut self) {
+        if self.parts.rendering {
+            // Safety: a pass is open on the slot's command buffer.
+            unsafe { self.parts.device.raw.cmd_end_rendering(self.slots[self.current].cmd) };
+            self.parts.rendering = false;
+        }
+    }
+
+    /// Renders `frame` so far and copies `rect` of `buffer` back (see [`FrameSink::read_pixels`]).
+    pub fn read(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
+        self.record(frame)?;
+        self.end_pass();
+        let slot = &mut self.slots[self.current];
+        let Some(target) = self.parts.target.as_mut() else { return Ok(None) };
+        let Some(copy) = readback::Readback::record(&self.parts.device, slot.cmd, target, buffer, rect)? else {
+            return Ok(None);
+        };
+        self.flush()?;
+        Ok(Some(copy.finish(&self.parts.device)))
+    }
+
+    /// Finishes `frame` and submits it without waiting.
+    pub fn finish(&mut self, frame: &Frame) -> Result<()> {
+        self.record(frame)?;
+        self.end_pass();
+        if let (Some(dump), Some(target)) = (&mut self.dump, self.parts.target.as_mut()) {
+            dump.record(&self.parts.device, self.slots[self.current].cmd, target, self.current, frame.number)?;
+        }
+        self.slots[self.current].submit(&self.parts.device, false)?;
+        self.recording = false;
+        self.progress = None;
+        self.current = (self.current + 1) % self.slots.len();
+        Ok(())
+    }
+
+    /// Waits for every frame in flight (and writes their dumps).
+    pub fn wait_all(&mut self) -> Result<()> {
+        self.flush()?;
+        for (i, slot) in self.slots.iter_mut().enumerate() {
+            if slot.wait(&self.parts.device)? {
+                if let Some(dump) = &mut self.dump {
+                    dump.collect(&self.parts.device, i);
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn fail(&mut self, e: Error) {
+        if !self.failed {
+            eprintln!("glrt: the Vulkan renderer stopped: {e}; frames are no longer drawn");
+        }
+        self.failed = true;
+    }
+}
+
+impl FrameSink for Renderer {
+    fn present(&mut self, frame: Frame) {
+        if self.failed {
+            return;
+        }
+        if let Err(e) = self.finish(&frame) {
+            self.fail(e);
+        }
+    }
+
+    fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        if self.failed {
+            return None;
+        }
+        match self.read(frame, buffer, rect) {
+            Ok(pixels) => pixels,
+            Err(e) => {
+                self.fail(e);
+                None
+            }
+        }
+    }
+}
+
+impl Drop for Renderer {
+    fn drop(&mut self) {
+        if let Err(e) = self.wait_all() {
+            log::warn!("glrt: waiting for the GPU at shutdown: {e}");
+        }
+        let device = &self.parts.device;
+        let _ = device.wait_idle();
+        if let Some(dump) = &mut self.dump {
+            dump.destroy(device);
+        }
+        for slot in &mut self.slots {
+            slot.destroy(device);
+        }
+        if let Some(target) = self.parts.target.take() {
+            target.destroy(device);
+        }
+        self.parts.pipelines.destroy(device);
+        self.parts.textures.destroy(device);
+    }
+}
+
+/// Logs `what` once per process.
+pub(crate) fn log_once(what: &'static str) {
+    use std::collections::HashSet;
+    use std::sync::Mutex;
+    static SEEN: Mutex<Option<HashSet<&'static str>>> = Mutex::new(None);
+    if let Ok(mut seen) = SEEN.lock() {
+        if seen.get_or_insert_with(HashSet::new).insert(what) {
+            log::warn!("glrt: {what}");
+        }
+    }
+}

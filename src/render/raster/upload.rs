@@ -1,0 +1,106 @@
+//! Per-frame upload memory for vertices, indices and uniforms: host-visible chunks written by
+//! the CPU and read by the GPU. Each frame in flight owns one [`Ring`]; it is reset once that
+//! frame's fence has signalled, so writing never waits for the GPU. A frame that needs more
+//! than its chunks hold gets a new, larger chunk (kept for later frames).
+
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+
+use super::device::{Buffer, Device, Result};
+
+/// Size of the first chunk.
+const FIRST_CHUNK: u64 = 4 << 20;
+
+/// Where an upload landed.
+#[derive(Clone, Copy, Debug)]
+pub struct Slice {
+    /// The buffer.
+    pub buffer: vk::Buffer,
+    /// Byte offset in it.
+    pub offset: u64,
+}
+
+/// Upload memory of one frame in flight.
+pub struct Ring {
+    chunks: Vec<Buffer>,
+    /// Chunk being filled and the bytes used in it.
+    current: usize,
+    used: u64,
+}
+
+/// Buffer usages of the chunks.
+fn usage() -> vk::BufferUsageFlags {
+    vk::BufferUsageFlags::VERTEX_BUFFER
+        | vk::BufferUsageFlags::INDEX_BUFFER
+        | vk::BufferUsageFlags::UNIFORM_BUFFER
+        | vk::BufferUsageFlags::TRANSFER_SRC
+}
+
+impl Ring {
+    /// An empty ring (chunks are created on first use).
+    pub fn new() -> Ring {
+        Ring { chunks: Vec::new(), current: 0, used: 0 }
+    }
+
+    /// Forgets every upload: only call once the GPU finished the frame that used them.
+    pub fn reset(&mut self) {
+        self.current = 0;
+        self.used = 0;
+    }
+
+    /// Copies `bytes` into the ring at a multiple of `align` (a power of two).
+    pub fn push(&mut self, device: &Device, bytes: &[u8], align: u64) -> Result<Slice> {
+        let size = bytes.len() as u64;
+        loop {
+            if let Some(chunk) = self.chunks.get_mut(self.current) {
+                let offset = (self.used + align - 1) & !(align - 1);
+                if offset + size <= chunk.size {
+                    let start = offset as usize;
+                    if let Some(dst) = chunk.mapped().get_mut(start..start + bytes.len()) {
+                        dst.copy_from_slice(bytes);
+                    }
+                    self.used = offset + size;
+                    return Ok(Slice { buffer: chunk.raw, offset });
+                }
+                if self.current + 1 < self.chunks.len() {
+                    self.current += 1;
+                    self.used = 0;
+                    continue;
+                }
+            }
+            let last = self.chunks.last().map_or(FIRST_CHUNK / 2, |c| c.size);
+            let chunk_size = (last * 2).max(size.next_power_of_two());
+            self.chunks.push(device.create_buffer("glrt upload", chunk_size, usage(), MemoryLocation::CpuToGpu)?);
+            self.current = self.chunks.len() - 1;
+            self.used = 0;
+        }
+    }
+
+    /// Copies a slice of plain values (`f32`, `u32`).
+    pub fn push_slice<T: bytemuck_free::Plain>(&mut self, device: &Device, values: &[T], align: u64) -> Result<Slice> {
+        self.push(device, bytemuck_free::bytes(values), align)
+    }
+
+    /// Frees the chunks (the GPU must be done with them).
+    pub fn destroy(&mut self, device: &Device) {
+        for chunk in self.chunks.drain(..) {
+            device.destroy_buffer(chunk);
+        }
+        self.reset();
+    }
+}
+
+/// Byte views of `f32`/`u32` slices without a dependency.
+pub mod bytemuck_free {
+    /// Types without padding or invalid bit patterns.
+    pub trait Plain: Copy {}
+    impl Plain for f32 {}
+    impl Plain for u32 {}
+    impl Plain for u8 {}
+
+    /// The bytes of `values`.
+    pub fn bytes<T: Plain>(values: &[T]) -> &[u8] {
+        // Safety: `Plain` types have no padding; u8 has alignment 1; the length is in bytes.
+        unsafe { std::slice::from_raw_parts(values.as_ptr().cast::<u8>(), std::mem::size_of_val(values)) }
+    }
+}

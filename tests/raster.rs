@@ -1,0 +1,109 @@
+//! The Vulkan raster renderer on real GL calls, read back with `glReadPixels`: clears, draws,
+//! the y orientation and front faces through the flipped viewport, depth and stencil reads.
+//! Runs on Mesa lavapipe (forced through `VK_DRIVER_FILES` when its ICD file exists), at
+//! 64×64 so it stays fast on a CPU.
+
+use glrt::render::raster::renderer::Renderer;
+use glrt::translate::context::ContextConfig;
+use glrt::translate::{Context, dispatch, gl};
+
+const SIZE: i32 = 64;
+
+/// A context drawing into a Vulkan renderer on lavapipe, with a 64×64 drawable.
+fn context() -> Context {
+    let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+    if std::path::Path::new(lavapipe).exists() {
+        // Safety: set before any thread of this test binary loads Vulkan; every test sets the
+        // same value.
+        unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
+    }
+    let renderer = Renderer::new().expect("a Vulkan device (lavapipe)");
+    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
+    ctx.bind_drawable(SIZE, SIZE);
+    ctx
+}
+
+/// Reads the RGBA8 pixel at window (x, y).
+fn pixel(ctx: &mut Context, x: i32, y: i32) -> [u8; 4] {
+    let mut out = [0u8; 4];
+    unsafe { dispatch::glReadPixels(ctx, x, y, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+    out
+}
+
+/// A triangle covering the window's lower-left half (below the diagonal from the upper-left to
+/// the lower-right corner), counter-clockwise when `ccw`.
+fn lower_left_triangle(ctx: &mut Context, ccw: bool, color: [f32; 3]) {
+    unsafe {
+        dispatch::glColor3f(ctx, color[0], color[1], color[2]);
+        dispatch::glBegin(ctx, gl::GL_TRIANGLES);
+        let v = if ccw { [(-1.0, -1.0), (1.0, -1.0), (-1.0, 1.0)] } else { [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0)] };
+        for (x, y) in v {
+            dispatch::glVertex2f(ctx, x, y);
+        }
+        dispatch::glEnd(ctx);
+    }
+}
+
+#[test]
+fn clear_and_draw_read_back_in_gl_orientation() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glClearColor(&mut ctx, 0.0, 0.0, 1.0, 1.0);
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+    }
+    assert_eq!(pixel(&mut ctx, 5, 5), [0, 0, 255, 255]);
+    lower_left_triangle(&mut ctx, true, [1.0, 0.0, 0.0]);
+    // Window y grows upwards: (2, 2) is inside the lower-left triangle, (60, 60) is not.
+    assert_eq!(pixel(&mut ctx, 2, 2), [255, 0, 0, 255]);
+    assert_eq!(pixel(&mut ctx, 60, 60), [0, 0, 255, 255]);
+    assert_eq!(pixel(&mut ctx, 60, 2), [255, 0, 0, 255], "lower-right corner below the diagonal");
+    assert_eq!(pixel(&mut ctx, 2, 60), [255, 0, 0, 255], "upper-left corner below the diagonal");
+    // Reading again does not draw the frame twice, and the frame goes on after a read.
+    unsafe {
+        dispatch::glEnable(&mut ctx, gl::GL_BLEND);
+        dispatch::glBlendFunc(&mut ctx, gl::GL_ONE, gl::GL_ONE);
+    }
+    lower_left_triangle(&mut ctx, true, [0.0, 0.5, 0.0]);
+    assert_eq!(pixel(&mut ctx, 2, 2), [255, 128, 0, 255]);
+    assert_eq!(pixel(&mut ctx, 2, 2), [255, 128, 0, 255]);
+    ctx.end_frame();
+    // The next frame starts from the previous image (no clear): still there.
+    assert_eq!(pixel(&mut ctx, 2, 2), [255, 128, 0, 255]);
+}
+
+#[test]
+fn culling_keeps_gl_front_faces() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glClearColor(&mut ctx, 0.0, 0.0, 0.0, 0.0);
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+        dispatch::glEnable(&mut ctx, gl::GL_CULL_FACE);
+    }
+    // Back faces culled: the counter-clockwise triangle is front-facing and drawn.
+    lower_left_triangle(&mut ctx, true, [0.0, 1.0, 0.0]);
+    assert_eq!(pixel(&mut ctx, 2, 2), [0, 255, 0, 255]);
+    lower_left_triangle(&mut ctx, false, [1.0, 0.0, 0.0]);
+    assert_eq!(pixel(&mut ctx, 2, 2), [0, 255, 0, 255], "the clockwise triangle is a back face");
+    unsafe { dispatch::glFrontFace(&mut ctx, gl::GL_CW) };
+    lower_left_triangle(&mut ctx, false, [1.0, 0.0, 0.0]);
+    assert_eq!(pixel(&mut ctx, 2, 2), [255, 0, 0, 255], "with glFrontFace(GL_CW) it is a front face");
+}
+
+#[test]
+fn depth_and_stencil_read_back() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glClearDepth(&mut ctx, 0.5);
+        dispatch::glClearStencil(&mut ctx, 7);
+        dispatch::glScissor(&mut ctx, 0, 0, 16, 16);
+        dispatch::glEnable(&mut ctx, gl::GL_SCISSOR_TEST);
+        dispatch::glClear(&mut ctx, gl::GL_DEPTH_BUFFER_BIT | gl::GL_STENCIL_BUFFER_BIT);
+        let mut depth = [0f32; 2];
+        dispatch::glReadPixels(&mut ctx, 15, 0, 2, 1, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT, depth.as_mut_ptr().cast());
+        assert!((depth[0] - 0.5).abs() < 1e-6, "inside the scissor box: {}", depth[0]);
+        assert_eq!(depth[1], 1.0, "outside: the initial depth");
+        let mut stencil = [0u8; 2];
+        dispatch::glReadPixels(&mut ctx, 15, 0, 2, 1, gl::GL_STENCIL_INDEX, gl::GL_UNSIGNED_BYTE, stencil.as_mut_ptr().cast());
+        assert_eq!(stencil, [7, 0]);
+    }
+}
