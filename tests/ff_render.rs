@@ -418,3 +418,95 @@ fn colour_material_follows_the_provoking_colour() {
     let pixels = render(&mut ctx);
     assert_close(pixel(&pixels, 16, 16), expected, TOLERANCE);
 }
+
+/// A 2×2 texture of `format` with every byte 255 (so white, or opaque alpha, whatever the
+/// renderer uploads) bound to unit 0 with `mode` and the environment colour `cc`.
+fn white_texture(ctx: &mut Context, format: u32, mode: u32, cc: [f32; 4]) {
+    let texels = [255u8; 64];
+    unsafe {
+        dispatch::glBindTexture(ctx, gl::GL_TEXTURE_2D, 1);
+        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        // Intensity has no client format of its own: its texels are given as luminance.
+        let client = if format == gl::GL_INTENSITY { gl::GL_LUMINANCE } else { format };
+        dispatch::glTexImage2D(ctx, gl::GL_TEXTURE_2D, 0, format as i32, 2, 2, 0, client, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+        dispatch::glEnable(ctx, gl::GL_TEXTURE_2D);
+        dispatch::glTexEnvi(ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, mode as i32);
+        dispatch::glTexEnvfv(ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_COLOR, cc.as_ptr());
+    }
+}
+
+/// Table 3.22's per-base-format rules with a texel of 1 (Ct = Lt = It = At = 1): which of the
+/// fragment colour Cf and the environment colour Cc each function keeps.
+#[test]
+fn texture_functions_follow_the_base_format() {
+    let cf = [0.2, 0.4, 0.6, 0.5];
+    let cc = [0.9, 0.1, 0.3, 0.7];
+    let cases = [
+        (gl::GL_LUMINANCE, gl::GL_BLEND, [cc[0], cc[1], cc[2], cf[3]]),
+        (gl::GL_INTENSITY, gl::GL_BLEND, cc),
+        (gl::GL_ALPHA, gl::GL_BLEND, cf),
+        (gl::GL_INTENSITY, gl::GL_ADD, [1.0; 4]),
+        (gl::GL_LUMINANCE_ALPHA, gl::GL_ADD, [1.0, 1.0, 1.0, cf[3]]),
+        (gl::GL_RGB, gl::GL_REPLACE, [1.0, 1.0, 1.0, cf[3]]),
+        (gl::GL_ALPHA, gl::GL_REPLACE, [cf[0], cf[1], cf[2], 1.0]),
+        (gl::GL_LUMINANCE, gl::GL_MODULATE, cf),
+        (gl::GL_RGBA, gl::GL_DECAL, [1.0, 1.0, 1.0, cf[3]]),
+    ];
+    for (format, mode, expected) in cases {
+        let mut ctx = context();
+        white_texture(&mut ctx, format, mode, cc);
+        quad_at(&mut ctx, -1.0, cf);
+        let pixels = render(&mut ctx);
+        let got = pixel(&pixels, 16, 16);
+        assert!(
+            got.iter().zip(&expected).all(|(a, e)| (a - e).abs() <= TOLERANCE),
+            "format {format:#x} mode {mode:#x}: {got:?} != {expected:?}"
+        );
+    }
+}
+
+/// COMBINE with DOT3_RGBA of the texture (1) and the constant colour, scaled by 2:
+/// 4 ((1 − ½)(c − ½) summed) · 2 into RGB and alpha.
+#[test]
+fn combine_dot3_rgba_with_the_constant_colour() {
+    let mut ctx = context();
+    let cc = [0.55f32, 0.6, 0.5, 0.0];
+    white_texture(&mut ctx, gl::GL_RGBA, gl::GL_COMBINE, cc);
+    unsafe {
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_COMBINE_RGB, gl::GL_DOT3_RGBA as i32);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_SOURCE1_RGB, gl::GL_CONSTANT as i32);
+        dispatch::glTexEnvf(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_RGB_SCALE, 2.0);
+    }
+    quad_at(&mut ctx, -1.0, [0.0, 0.0, 0.0, 1.0]);
+    let pixels = render(&mut ctx);
+    let dot = 4.0 * cc[..3].iter().map(|c| 0.5 * (c - 0.5)).sum::<f32>() * 2.0;
+    assert_close(pixel(&pixels, 16, 16), [dot; 4], TOLERANCE);
+}
+
+/// Smooth shading interpolates the per-vertex lit colours (not per-pixel lighting): under an
+/// orthographic view the pixel at a triangle's centroid has the mean of the CPU lighting of
+/// its three vertices, with a positional light close enough that they differ.
+#[test]
+fn smooth_shading_interpolates_vertex_lighting() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glMatrixMode(&mut ctx, gl::GL_PROJECTION);
+        dispatch::glOrtho(&mut ctx, -1.0, 1.0, -1.0, 1.0, -10.0, 10.0);
+        dispatch::glMatrixMode(&mut ctx, gl::GL_MODELVIEW);
+        dispatch::glEnable(&mut ctx, gl::GL_LIGHTING);
+        dispatch::glEnable(&mut ctx, gl::GL_LIGHT0);
+        dispatch::glLightfv(&mut ctx, gl::GL_LIGHT0, gl::GL_POSITION, [-0.8f32, 0.9, 0.6, 1.0].as_ptr());
+        dispatch::glLightf(&mut ctx, gl::GL_LIGHT0, gl::GL_QUADRATIC_ATTENUATION, 0.5);
+        dispatch::glNormal3f(&mut ctx, 0.0, 0.0, 1.0);
+    }
+    // Centroid (0.5 / 3 · 3 …): vertices chosen so that the centroid is a pixel centre,
+    // window (16.5, 16.5) = (1/32, 1/32) in normalized coordinates.
+    let d = 1.0 / 32.0;
+    let vertices = [[-0.9 + d, -0.9 + d, 0.0], [0.9 + d, -0.9 + d, 0.0], [d, 1.8 + d, 0.0]];
+    triangle(&mut ctx, vertices);
+    let lit: Vec<[f32; 4]> = vertices.iter().map(|&v| cpu_lit(&ctx, v, [0.0, 0.0, 1.0], false)).collect();
+    assert!((lit[1][0] - lit[2][0]).abs() > 0.1, "the vertices are lit differently: {lit:?}");
+    let mean: [f32; 4] = std::array::from_fn(|i| lit.iter().map(|c| c[i]).sum::<f32>() / 3.0);
+    let pixels = render(&mut ctx);
+    assert_close(pixel(&pixels, 16, 16), mean, 3.5 / 255.0);
+}
