@@ -510,3 +510,49 @@ fn smooth_shading_interpolates_vertex_lighting() {
     let pixels = render(&mut ctx);
     assert_close(pixel(&pixels, 16, 16), mean, 3.5 / 255.0);
 }
+
+/// A 2×2 depth texture of depth 1 (white, whatever the renderer uploads) compared with
+/// `GL_LESS`: a fragment is white where its r coordinate (clamped to [0, 1]) is below 1, black
+/// elsewhere, which shows where the generated r crosses 1. r is generated from
+/// `mode`'s plane (1, 0, 0, 0.5), i.e. r = x + 0.5.
+fn depth_compare_texgen(mode: u32, texture_scale: f32) -> Vec<[f32; 4]> {
+    let mut ctx = context();
+    let depth = [1.0f32; 4];
+    let plane = [1.0f32, 0.0, 0.0, 0.5];
+    unsafe {
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_2D, 1);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_COMPARE_MODE, gl::GL_COMPARE_R_TO_TEXTURE as i32);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_COMPARE_FUNC, gl::GL_LESS as i32);
+        let format = gl::GL_DEPTH_COMPONENT;
+        dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, format as i32, 2, 2, 0, format, gl::GL_FLOAT, depth.as_ptr().cast());
+        dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_2D);
+        dispatch::glTexGeni(&mut ctx, gl::GL_R, gl::GL_TEXTURE_GEN_MODE, mode as i32);
+        let pname = if mode == gl::GL_EYE_LINEAR { gl::GL_EYE_PLANE } else { gl::GL_OBJECT_PLANE };
+        dispatch::glTexGenfv(&mut ctx, gl::GL_R, pname, plane.as_ptr());
+        dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_GEN_R);
+        dispatch::glMatrixMode(&mut ctx, gl::GL_TEXTURE);
+        dispatch::glScalef(&mut ctx, 1.0, 1.0, texture_scale);
+        dispatch::glMatrixMode(&mut ctx, gl::GL_MODELVIEW);
+        // The quad moves left by a quarter: object and eye x differ.
+        dispatch::glTranslatef(&mut ctx, -0.25, 0.0, 0.0);
+    }
+    quad_at(&mut ctx, -1.0, [1.0; 4]);
+    render(&mut ctx)
+}
+
+/// The first window column (at row 16) that is black.
+fn first_black_column(pixels: &[[f32; 4]]) -> Option<i32> {
+    (0..SIZE).find(|&x| pixel(pixels, x, 16)[0] < 0.5)
+}
+
+#[test]
+fn texgen_object_and_eye_linear_with_the_texture_matrix() {
+    // Object linear: r = 1 at object x = 0.5, eye x = 0.25, window x = 20.
+    assert_eq!(first_black_column(&depth_compare_texgen(gl::GL_OBJECT_LINEAR, 1.0)), Some(20));
+    // Eye linear (the plane given under the identity): r = 1 at eye x = 0.5, window 24.
+    assert_eq!(first_black_column(&depth_compare_texgen(gl::GL_EYE_LINEAR, 1.0)), Some(24));
+    // The texture matrix doubles r: r = 1 at object x = 0, eye x = −0.25, window 12.
+    assert_eq!(first_black_column(&depth_compare_texgen(gl::GL_OBJECT_LINEAR, 2.0)), Some(12));
+}
