@@ -556,3 +556,54 @@ fn texgen_object_and_eye_linear_with_the_texture_matrix() {
     // The texture matrix doubles r: r = 1 at object x = 0, eye x = −0.25, window 12.
     assert_eq!(first_black_column(&depth_compare_texgen(gl::GL_OBJECT_LINEAR, 2.0)), Some(12));
 }
+
+#[test]
+fn fog_coordinate_source() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glEnable(&mut ctx, gl::GL_FOG);
+        dispatch::glFogi(&mut ctx, gl::GL_FOG_MODE, gl::GL_LINEAR as i32);
+        dispatch::glFogf(&mut ctx, gl::GL_FOG_START, 0.0);
+        dispatch::glFogf(&mut ctx, gl::GL_FOG_END, 8.0);
+        dispatch::glFogi(&mut ctx, gl::GL_FOG_COORDINATE_SOURCE, gl::GL_FOG_COORDINATE as i32);
+        dispatch::glFogfv(&mut ctx, gl::GL_FOG_COLOR, [0.0f32, 1.0, 0.0, 1.0].as_ptr());
+        // Depth 5 would give f = 3/8; the fog coordinate 6 gives f = 1/4.
+        dispatch::glFogCoordf(&mut ctx, 6.0);
+    }
+    quad_at(&mut ctx, -5.0, [1.0, 0.0, 0.0, 1.0]);
+    let pixels = render(&mut ctx);
+    assert_close(pixel(&pixels, 16, 16), [0.25, 0.75, 0.0, 1.0], TOLERANCE);
+}
+
+#[test]
+fn colour_sum_adds_the_secondary_colour_after_texturing() {
+    for (sum, expected) in [(false, [0.25, 0.0, 0.0, 1.0]), (true, [0.25, 0.5, 0.0, 1.0])] {
+        let mut ctx = context();
+        unsafe {
+            if sum {
+                dispatch::glEnable(&mut ctx, gl::GL_COLOR_SUM);
+            }
+            dispatch::glSecondaryColor3f(&mut ctx, 0.0, 0.5, 0.0);
+        }
+        quad_at(&mut ctx, -1.0, [0.25, 0.0, 0.0, 1.0]);
+        let pixels = render(&mut ctx);
+        assert_close(pixel(&pixels, 16, 16), expected, TOLERANCE);
+    }
+}
+
+#[test]
+fn point_size_distance_attenuation() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glPointSize(&mut ctx, 8.0);
+        dispatch::glPointParameterfv(&mut ctx, gl::GL_POINT_DISTANCE_ATTENUATION, [0.0f32, 0.0, 1.0].as_ptr());
+        dispatch::glMatrixMode(&mut ctx, gl::GL_PROJECTION);
+        dispatch::glOrtho(&mut ctx, -16.0, 16.0, -16.0, 16.0, 0.0, 10.0);
+        dispatch::glBegin(&mut ctx, gl::GL_POINTS);
+        // Eye distance 2 (the distance from the eye, not the depth): size 8 / 2 = 4.
+        dispatch::glVertex3f(&mut ctx, 0.0, 0.0, -2.0);
+        dispatch::glEnd(&mut ctx);
+    }
+    let pixels = render(&mut ctx);
+    assert_eq!(pixels.iter().filter(|p| p[0] > 0.5).count(), 16);
+}
