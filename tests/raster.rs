@@ -66,9 +66,12 @@ fn clear_and_draw_read_back_in_gl_orientation() {
     lower_left_triangle(&mut ctx, true, [0.0, 0.5, 0.0]);
     assert_eq!(pixel(&mut ctx, 2, 2), [255, 128, 0, 255]);
     assert_eq!(pixel(&mut ctx, 2, 2), [255, 128, 0, 255]);
+    // Geometry merged into the draw already rendered is rendered once, after the read.
+    lower_left_triangle(&mut ctx, true, [0.0, 0.25, 0.0]);
+    assert_eq!(pixel(&mut ctx, 2, 2), [255, 192, 0, 255]);
     ctx.end_frame();
     // The next frame starts from the previous image (no clear): still there.
-    assert_eq!(pixel(&mut ctx, 2, 2), [255, 128, 0, 255]);
+    assert_eq!(pixel(&mut ctx, 2, 2), [255, 192, 0, 255]);
 }
 
 #[test]
@@ -106,4 +109,43 @@ fn depth_and_stencil_read_back() {
         dispatch::glReadPixels(&mut ctx, 15, 0, 2, 1, gl::GL_STENCIL_INDEX, gl::GL_UNSIGNED_BYTE, stencil.as_mut_ptr().cast());
         assert_eq!(stencil, [7, 0]);
     }
+}
+
+/// Draws a window-filling quad with texture coordinates (0, 0) at the lower left and (1, 1)
+/// at the upper right.
+fn textured_quad(ctx: &mut Context) {
+    unsafe {
+        dispatch::glColor3f(ctx, 1.0, 1.0, 1.0);
+        dispatch::glBegin(ctx, gl::GL_QUADS);
+        for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            dispatch::glTexCoord2f(ctx, x, y);
+            dispatch::glVertex2f(ctx, x * 2.0 - 1.0, y * 2.0 - 1.0);
+        }
+        dispatch::glEnd(ctx);
+    }
+}
+
+#[test]
+fn textures_follow_their_versions_with_gl_rows() {
+    let mut ctx = context();
+    // 2×2 RGB texture, rows bottom to top: red green / blue white.
+    let texels: [u8; 12] = [255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255];
+    unsafe {
+        dispatch::glPixelStorei(&mut ctx, gl::GL_UNPACK_ALIGNMENT, 1);
+        dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGB as i32, 2, 2, 0, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_2D);
+    }
+    textured_quad(&mut ctx);
+    assert_eq!(pixel(&mut ctx, 5, 5), [255, 0, 0, 255], "texel row 0 is at the bottom");
+    assert_eq!(pixel(&mut ctx, 60, 5), [0, 255, 0, 255]);
+    assert_eq!(pixel(&mut ctx, 5, 60), [0, 0, 255, 255]);
+    assert_eq!(pixel(&mut ctx, 60, 60), [255, 255, 255, 255]);
+    // A new version (glTexSubImage2D) in the same frame: later draws see it.
+    let yellow: [u8; 3] = [255, 255, 0];
+    unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, 0, 0, 1, 1, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, yellow.as_ptr().cast()) };
+    textured_quad(&mut ctx);
+    assert_eq!(pixel(&mut ctx, 5, 5), [255, 255, 0, 255]);
+    assert_eq!(pixel(&mut ctx, 60, 5), [0, 255, 0, 255]);
 }

@@ -134,7 +134,7 @@ impl Slot {
             let info = vk::CommandBufferAllocateInfo::default().command_pool(pool).level(vk::CommandBufferLevel::PRIMARY).command_buffer_count(1);
             let cmd = d.allocate_command_buffers(&info).check("vkAllocateCommandBuffers")?[0];
             let fence = d.create_fence(&vk::FenceCreateInfo::default(), None).check("vkCreateFence")?;
-            Ok(Slot { pool, cmd, fence, pending: false, ring: Ring::new(), descriptors: Descriptors::new() })
+            Ok(Slot { pool, cmd, fence, pending: false, ring: Ring::default(), descriptors: Descriptors::new() })
         }
     }
 

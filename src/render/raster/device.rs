@@ -94,6 +94,8 @@ pub struct Device {
     pub features: Features,
     /// The depth/stencil format of the framebuffer.
     pub depth_format: vk::Format,
+    /// `VK_EXT_custom_border_color` (with `customBorderColorWithoutFormat`) is enabled.
+    pub custom_border_color: bool,
     /// Device memory.
     allocator: ManuallyDrop<Mutex<Allocator>>,
 }
@@ -181,13 +183,29 @@ impl Device {
         let mut v13 = vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true);
         let priorities = [1.0];
         let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
-        let extensions = device_extensions(&instance, physical);
+        let mut extensions = device_extensions(&instance, physical);
+        let custom_border_color = extensions.iter().any(|e| e.as_c_str() == ash::ext::custom_border_color::NAME) && {
+            let mut border = vk::PhysicalDeviceCustomBorderColorFeaturesEXT::default();
+            let mut features2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut border);
+            // Safety: the extension is supported by this physical device.
+            unsafe { instance.get_physical_device_features2(physical, &mut features2) };
+            border.custom_border_colors == vk::TRUE && border.custom_border_color_without_format == vk::TRUE
+        };
+        if !custom_border_color {
+            extensions.retain(|e| e.as_c_str() != ash::ext::custom_border_color::NAME);
+        }
+        let mut border = vk::PhysicalDeviceCustomBorderColorFeaturesEXT::default()
+            .custom_border_colors(true)
+            .custom_border_color_without_format(true);
         let extension_ptrs: Vec<_> = extensions.iter().map(|e| e.as_ptr()).collect();
-        let info = vk::DeviceCreateInfo::default()
+        let mut info = vk::DeviceCreateInfo::default()
             .queue_create_infos(&queues)
             .enabled_features(&enabled)
             .enabled_extension_names(&extension_ptrs)
             .push_next(&mut v13);
+        if custom_border_color {
+            info = info.push_next(&mut border);
+        }
         // Safety: valid create info; the features were checked above.
         let raw = unsafe { instance.create_device(physical, &info, None) }.check("vkCreateDevice")?;
         // Safety: family and index 0 were requested above.
@@ -221,6 +239,7 @@ impl Device {
             queue,
             features,
             depth_format,
+            custom_border_color,
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
         })
     }
@@ -262,6 +281,18 @@ impl Device {
 
     /// Creates an optimal-tiling image in device memory with a view of all of it.
     pub fn create_image(&self, name: &str, info: &vk::ImageCreateInfo, view_type: vk::ImageViewType, aspect: vk::ImageAspectFlags) -> Result<Image> {
+        self.create_image_swizzled(name, info, view_type, aspect, vk::ComponentMapping::default())
+    }
+
+    /// [`Device::create_image`] with a component swizzle on the view.
+    pub fn create_image_swizzled(
+        &self,
+        name: &str,
+        info: &vk::ImageCreateInfo,
+        view_type: vk::ImageViewType,
+        aspect: vk::ImageAspectFlags,
+        swizzle: vk::ComponentMapping,
+    ) -> Result<Image> {
         // Safety: valid create info.
         let raw = unsafe { self.raw.create_image(info, None) }.check("vkCreateImage")?;
         // Safety: raw is an image of this device.
@@ -284,6 +315,7 @@ impl Device {
             .image(raw)
             .view_type(view_type)
             .format(info.format)
+            .components(swizzle)
             .subresource_range(vk::ImageSubresourceRange {
                 aspect_mask: aspect,
                 base_mip_level: 0,
@@ -368,7 +400,7 @@ fn create_instance(entry: &ash::Entry) -> Result<ash::Instance> {
 fn device_extensions(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Vec<CString> {
     // Safety: valid physical device.
     let available = unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
-    [ash::khr::swapchain::NAME]
+    [ash::khr::swapchain::NAME, ash::ext::custom_border_color::NAME]
         .into_iter()
         .filter(|want| available.iter().any(|e| e.extension_name_as_c_str() == Ok(want)))
         .map(CString::from)

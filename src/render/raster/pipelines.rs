@@ -336,8 +336,7 @@ mod tests {
 
     #[test]
     fn fixed_state_follows_gl_rules() {
-        let mut state = RasterState::default();
-        state.depth_write = true;
+        let mut state = RasterState { depth_write: true, ..RasterState::default() };
         assert!(!FixedState::new(&state, Topology::Triangles, true).depth_write, "no depth writes without the test");
         state.depth_test = Some(crate::frame::state::CompareFunc::Less);
         let f = FixedState::new(&state, Topology::Triangles, true);

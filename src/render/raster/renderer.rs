@@ -38,6 +38,9 @@ pub struct Progress {
     pub clears: usize,
     /// Pixel operations recorded.
     pub pixels: usize,
+    /// Indices of the last recorded draw that were recorded (translate may append to that
+    /// draw after a read-back: the rest is recorded next time).
+    pub last_indices: usize,
 }
 
 /// The Vulkan raster renderer.
@@ -195,10 +198,12 @@ impl Recorder<'_> {
         if batches.is_empty() {
             return Ok(());
         }
-        if self.textures.needs_upload() {
+        if self.textures.needs_upload(&draw.textures) {
             self.end_rendering();
+            self.textures.upload(self.device, self.cmd, self.ring, &draw.textures)?;
         }
-        let images = self.textures.bindings(self.device, self.cmd)?;
+        let lod_bias = std::array::from_fn(|u| draw.texture_units.get(u).copied().flatten().map_or(0.0, |t| t.env.lod_bias));
+        let images = self.textures.bindings(self.device, &draw.textures, lod_bias)?;
         self.begin_rendering();
         let d = &self.device.raw;
         let limits = &self.device.properties.limits;
@@ -265,7 +270,7 @@ impl Renderer {
     pub fn new() -> Result<Renderer> {
         let device = Device::new()?;
         let pipelines = Pipelines::new(&device)?;
-        let textures = Textures::new(&device)?;
+        let textures = Textures::new(&device);
         let slots = (0..FRAMES_IN_FLIGHT).map(|_| Slot::new(&device)).collect::<Result<Vec<_>>>()?;
         Ok(Renderer {
             parts: Parts { device, pipelines, textures, target: None, rendering: false },
@@ -300,13 +305,8 @@ impl Renderer {
             }
         }
         if !self.recording {
-            let slot = &mut self.slots[self.current];
-            if slot.wait(&self.parts.device)? {
-                if let Some(dump) = &mut self.dump {
-                    dump.collect(&self.parts.device, self.current);
-                }
-            }
-            slot.begin(&self.parts.device)?;
+            self.wait_slot(self.current)?;
+            self.slots[self.current].begin(&self.parts.device)?;
             self.recording = true;
         }
         let slot = &mut self.slots[self.current];
@@ -336,6 +336,12 @@ impl Renderer {
             _ => Progress { frame: frame.number, ..Progress::default() },
         };
         let mut rec = self.recorder(frame.size)?;
+        if let Some(last) = progress.draws.checked_sub(1).and_then(|i| frame.draws.get(i))
+            && last.indices.len() > progress.last_indices
+        {
+            rec.draw(&tail(last, progress.last_indices))?;
+            progress.last_indices = last.indices.len();
+        }
         for index in progress.draws..=frame.draws.len() {
             while let Some(clear) = frame.clears.get(progress.clears).filter(|c| c.before_draw <= index) {
                 rec.clear(clear);
@@ -348,6 +354,7 @@ impl Renderer {
             if let Some(draw) = frame.draws.get(index) {
                 rec.draw(draw)?;
                 progress.draws = index + 1;
+                progress.last_indices = draw.indices.len();
             }
         }
         self.progress = Some(progress);
@@ -394,6 +401,7 @@ impl Renderer {
             dump.record(&self.parts.device, self.slots[self.current].cmd, target, self.current, frame.number)?;
         }
         self.slots[self.current].submit(&self.parts.device, false)?;
+        self.parts.textures.end_frame(&self.parts.device);
         self.recording = false;
         self.progress = None;
         self.current = (self.current + 1) % self.slots.len();
@@ -403,12 +411,15 @@ impl Renderer {
     /// Waits for every frame in flight (and writes their dumps).
     pub fn wait_all(&mut self) -> Result<()> {
         self.flush()?;
-        for (i, slot) in self.slots.iter_mut().enumerate() {
-            if slot.wait(&self.parts.device)? {
-                if let Some(dump) = &mut self.dump {
-                    dump.collect(&self.parts.device, i);
-                }
-            }
+        (0..self.slots.len()).try_for_each(|i| self.wait_slot(i))
+    }
+
+    /// Waits for slot `i`'s submission and writes its frame dump.
+    fn wait_slot(&mut self, i: usize) -> Result<()> {
+        if self.slots[i].wait(&self.parts.device)?
+            && let Some(dump) = &mut self.dump
+        {
+            dump.collect(&self.parts.device, i);
         }
         Ok(())
     }
@@ -466,14 +477,25 @@ impl Drop for Renderer {
     }
 }
 
+/// The primitives of `draw` from index `from` on (whole primitives: `from` is a multiple of
+/// the primitive size, as the draw only ever grows by whole primitives).
+fn tail(draw: &Draw, from: usize) -> Draw {
+    let edges_from = if draw.edge_masks.is_empty() { 0 } else { from / 3 };
+    Draw {
+        indices: draw.indices.get(from..).unwrap_or_default().to_vec(),
+        edge_masks: draw.edge_masks.get(edges_from..).unwrap_or_default().to_vec(),
+        ..draw.clone()
+    }
+}
+
 /// Logs `what` once per process.
 pub(crate) fn log_once(what: &'static str) {
     use std::collections::HashSet;
     use std::sync::Mutex;
     static SEEN: Mutex<Option<HashSet<&'static str>>> = Mutex::new(None);
-    if let Ok(mut seen) = SEEN.lock() {
-        if seen.get_or_insert_with(HashSet::new).insert(what) {
-            log::warn!("glrt: {what}");
-        }
+    if let Ok(mut seen) = SEEN.lock()
+        && seen.get_or_insert_with(HashSet::new).insert(what)
+    {
+        log::warn!("glrt: {what}");
     }
 }

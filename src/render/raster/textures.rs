@@ -1,52 +1,349 @@
 //! Textures on the GPU: the image of each [`TextureRef`] content version, uploaded once and
-//! kept while draws use it, samplers cached by their state, and the 1×1 white textures that
-//! fill unused bindings (see the `ff` module doc).
+//! kept while draws use it (dropped after [`KEEP_FRAMES`] presented frames without use),
+//! samplers cached by their state, and the 1×1 white textures that fill unused bindings (see
+//! the `ff` module doc).
+//!
+//! Images:
+//! - colour formats: the canonical RGBA8 texels of [`crate::frame::texture`] (every
+//!   [`TexelFormat`] is already expanded to RGBA there, so one Vulkan format serves all);
+//! - depth formats: `R32_SFLOAT` from [`TexImage::depth_values`] at full precision, swizzled
+//!   to `DEPTH_TEXTURE_MODE` ((D, D, D, 1), (D, D, D, D), (0, 0, 0, D)); with a comparison
+//!   (`GL_COMPARE_R_TO_TEXTURE`) the swizzle is (D, D, D, D) and the fragment shader compares
+//!   and expands (a sampler with `compareEnable` needs a shadow sampler in GLSL, which the
+//!   `ff` contract does not have). Without linear filtering of `R32_SFLOAT` the RGBA8 texels
+//!   are used;
+//! - 1D textures are 2D images one texel high, 3D textures 3D images, cube maps 6-layer cube
+//!   images; rows bottom to top as OpenGL gives them, so `t = 0` is image row 0;
+//! - mip levels from the base level (`GL_TEXTURE_BASE_LEVEL`) to the max level or the 1×1
+//!   level, as long as each halves the one above (translate only passes complete textures);
+//! - borders (`glTexImage` with border 1) are cut off: the interior is uploaded and the border
+//!   colour of `GL_CLAMP_TO_BORDER` comes from the sampler.
+//!
+//! Samplers: filters, wrap modes (`GL_CLAMP` is taken as clamp-to-edge, as most drivers do),
+//! border colour (custom with `VK_EXT_custom_border_color`, else the closest of Vulkan's three),
+//! LOD range and the unit's LOD bias; mipmapping off = `maxLod` 0.
+
+use std::collections::HashMap;
 
 use ash::vk;
 
 use super::device::{Check, Device, Image, Result};
-use super::pipelines::BINDINGS;
+use super::ff;
+use super::pipelines::{BINDINGS, SamplerKind, sampler_binding};
+use super::upload::Ring;
+use crate::frame::texture::{DepthMode, Filter, Sampler, TexImage, TexelFormat, TextureKind, TextureRef, Wrap};
 
-/// The white textures of unused 2D, 3D and cube bindings and their sampler.
+/// Presented frames a texture version stays on the GPU without being used (more than the
+/// frames in flight, so the GPU is done with it when it goes).
+pub const KEEP_FRAMES: u64 = 8;
+
+/// Image view and sampler of each sampler binding (bindings 1..).
+pub type Bindings = [(vk::ImageView, vk::Sampler); BINDINGS as usize - 1];
+
+/// One uploaded content version.
+struct Entry {
+    image: Image,
+    kind: SamplerKind,
+    /// Frame counter of the last use.
+    used: u64,
+}
+
+/// Everything a sampler is created from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+struct SamplerKey {
+    mag: Filter,
+    min: Filter,
+    mip: Option<Filter>,
+    wrap: [Wrap; 3],
+    /// Bits of border colour, LOD range and LOD bias.
+    bits: [u32; 7],
+}
+
+/// Textures and samplers.
 pub struct Textures {
     white: Option<[Image; 3]>,
-    sampler: vk::Sampler,
+    entries: HashMap<(u32, u64), Entry>,
+    samplers: HashMap<SamplerKey, vk::Sampler>,
+    /// Presented frames so far.
+    frame: u64,
+    /// Whether `R32_SFLOAT` can be sampled with linear filtering.
+    float_depth: bool,
 }
 
 impl Textures {
-    /// Creates the default sampler (the white images are made on first use, in a frame).
-    pub fn new(device: &Device) -> Result<Textures> {
-        let info = vk::SamplerCreateInfo::default().max_lod(vk::LOD_CLAMP_NONE);
-        // Safety: valid create info.
-        let sampler = unsafe { device.raw.create_sampler(&info, None) }.check("vkCreateSampler")?;
-        Ok(Textures { white: None, sampler })
+    /// An empty cache (the white images are made on first use, in a frame).
+    pub fn new(device: &Device) -> Textures {
+        // Safety: valid physical device.
+        let props = unsafe { device.instance.get_physical_device_format_properties(device.physical, vk::Format::R32_SFLOAT) };
+        let float_depth = props
+            .optimal_tiling_features
+            .contains(vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR | vk::FormatFeatureFlags::TRANSFER_DST);
+        Textures { white: None, entries: HashMap::new(), samplers: HashMap::new(), frame: 0, float_depth }
     }
 
-    /// Image views and samplers of bindings 1.. for a draw; records the creation of the white
-    /// textures into `cmd` the first time (outside a rendering pass).
-    pub fn bindings(&mut self, device: &Device, cmd: vk::CommandBuffer) -> Result<[(vk::ImageView, vk::Sampler); BINDINGS as usize - 1]> {
+    /// Whether [`Textures::upload`] would record commands for `textures` (then the caller
+    /// ends the rendering pass first).
+    pub fn needs_upload(&self, textures: &[Option<TextureRef>]) -> bool {
+        self.white.is_none() || textures.iter().flatten().any(|t| !self.entries.contains_key(&(t.id, t.version)))
+    }
+
+    /// Records the upload of the white textures and of every texture of `textures` not on the
+    /// GPU yet (outside a rendering pass), staging through `ring`.
+    pub fn upload(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, textures: &[Option<TextureRef>]) -> Result<()> {
         if self.white.is_none() {
             self.white = Some(create_white(device, cmd)?);
         }
-        let views = self.white.as_ref().map(|w| [w[0].view, w[1].view, w[2].view]).unwrap_or_default();
-        let per_kind = super::ff::MAX_UNITS;
-        Ok(std::array::from_fn(|i| (views[i / per_kind], self.sampler)))
+        for t in textures.iter().flatten() {
+            if !self.entries.contains_key(&(t.id, t.version)) {
+                let (image, kind) = self.create(device, cmd, ring, t)?;
+                self.entries.insert((t.id, t.version), Entry { image, kind, used: self.frame });
+            }
+        }
+        Ok(())
     }
 
-    /// Whether [`Textures::bindings`] would record commands (so the caller ends rendering).
-    pub fn needs_upload(&self) -> bool {
-        self.white.is_none()
+    /// Views and samplers of bindings 1.. for a draw with `textures` (per unit) and the
+    /// units' LOD biases; uploads must have been recorded ([`Textures::upload`]).
+    pub fn bindings(&mut self, device: &Device, textures: &[Option<TextureRef>], lod_bias: [f32; ff::MAX_UNITS]) -> Result<Bindings> {
+        let white = self.white.as_ref().map(|w| [w[0].view, w[1].view, w[2].view]).unwrap_or_default();
+        let default_sampler = self.sampler(device, &Sampler::default(), 0.0)?;
+        let mut out: Bindings = std::array::from_fn(|i| (white[i / ff::MAX_UNITS], default_sampler));
+        for (unit, t) in textures.iter().enumerate().take(ff::MAX_UNITS) {
+            let Some(t) = t else { continue };
+            let frame = self.frame;
+            let Some(entry) = self.entries.get_mut(&(t.id, t.version)) else { continue };
+            entry.used = frame;
+            let (view, kind) = (entry.image.view, entry.kind);
+            let sampler = self.sampler(device, &t.content.sampler, lod_bias[unit])?;
+            out[sampler_binding(kind, unit) as usize - 1] = (view, sampler);
+        }
+        Ok(out)
+    }
+
+    /// Counts a presented frame and frees the versions unused for [`KEEP_FRAMES`] frames.
+    pub fn end_frame(&mut self, device: &Device) {
+        self.frame += 1;
+        let frame = self.frame;
+        let old: Vec<_> = self.entries.iter().filter(|(_, e)| e.used + KEEP_FRAMES < frame).map(|(k, _)| *k).collect();
+        for key in old {
+            if let Some(e) = self.entries.remove(&key) {
+                device.destroy_image(e.image);
+            }
+        }
+    }
+
+    /// Texture versions on the GPU.
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Whether no texture is on the GPU.
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
     }
 
     /// Frees everything (the GPU must be idle).
     pub fn destroy(&mut self, device: &Device) {
-        if let Some(white) = self.white.take() {
-            for image in white {
-                device.destroy_image(image);
+        for image in self.white.take().into_iter().flatten() {
+            device.destroy_image(image);
+        }
+        for (_, e) in self.entries.drain() {
+            device.destroy_image(e.image);
+        }
+        for (_, s) in self.samplers.drain() {
+            // Safety: the GPU is idle.
+            unsafe { device.raw.destroy_sampler(s, None) };
+        }
+    }
+
+    fn sampler(&mut self, device: &Device, s: &Sampler, lod_bias: f32) -> Result<vk::Sampler> {
+        let [b0, b1, b2, b3] = s.border_color.map(f32::to_bits);
+        let key = SamplerKey {
+            mag: s.mag_filter,
+            min: s.min_filter.texel,
+            mip: s.min_filter.mipmap,
+            wrap: s.wrap,
+            bits: [b0, b1, b2, b3, s.lod[0].to_bits(), s.lod[1].to_bits(), lod_bias.to_bits()],
+        };
+        if let Some(&sampler) = self.samplers.get(&key) {
+            return Ok(sampler);
+        }
+        let filter = |f| match f {
+            Filter::Nearest => vk::Filter::NEAREST,
+            Filter::Linear => vk::Filter::LINEAR,
+        };
+        let wrap = |w| match w {
+            Wrap::Repeat => vk::SamplerAddressMode::REPEAT,
+            Wrap::Clamp | Wrap::ClampToEdge => vk::SamplerAddressMode::CLAMP_TO_EDGE,
+            Wrap::ClampToBorder => vk::SamplerAddressMode::CLAMP_TO_BORDER,
+            Wrap::MirroredRepeat => vk::SamplerAddressMode::MIRRORED_REPEAT,
+        };
+        let limit = device.properties.limits.max_sampler_lod_bias;
+        let (min_lod, max_lod) = match s.min_filter.mipmap {
+            Some(_) => (s.lod[0].max(0.0), s.lod[1].max(s.lod[0]).max(0.0)),
+            None => (0.0, 0.0),
+        };
+        let mut custom = vk::SamplerCustomBorderColorCreateInfoEXT::default()
+            .custom_border_color(vk::ClearColorValue { float32: s.border_color })
+            .format(vk::Format::UNDEFINED);
+        let use_custom = device.custom_border_color && s.wrap.contains(&Wrap::ClampToBorder);
+        let mut info = vk::SamplerCreateInfo::default()
+            .mag_filter(filter(s.mag_filter))
+            .min_filter(filter(s.min_filter.texel))
+            .mipmap_mode(match s.min_filter.mipmap {
+                Some(Filter::Linear) => vk::SamplerMipmapMode::LINEAR,
+                _ => vk::SamplerMipmapMode::NEAREST,
+            })
+            .address_mode_u(wrap(s.wrap[0]))
+            .address_mode_v(wrap(s.wrap[1]))
+            .address_mode_w(wrap(s.wrap[2]))
+            .mip_lod_bias(lod_bias.clamp(-limit, limit))
+            .min_lod(min_lod)
+            .max_lod(max_lod)
+            .border_color(if use_custom { vk::BorderColor::FLOAT_CUSTOM_EXT } else { nearest_border(s.border_color) });
+        if use_custom {
+            info = info.push_next(&mut custom);
+        }
+        // Safety: valid create info; the custom border colour extension is enabled when used.
+        let sampler = unsafe { device.raw.create_sampler(&info, None) }.check("vkCreateSampler")?;
+        self.samplers.insert(key, sampler);
+        Ok(sampler)
+    }
+
+    /// Creates the image of `t` and records its upload.
+    fn create(&self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, t: &TextureRef) -> Result<(Image, SamplerKind)> {
+        let content = &t.content;
+        let base = content.sampler.levels[0] as usize;
+        let chain = level_chain(&content.faces, base, content.sampler.levels[1] as usize, content.kind);
+        let Some(top) = chain.first() else {
+            return Err(super::device::Error::Memory(format!("texture {} has no base level", t.id)));
+        };
+        let [w, h, d] = interior(top);
+        let depth = content.format == TexelFormat::Depth && self.float_depth && !top.depth_values.is_empty();
+        let format = if depth { vk::Format::R32_SFLOAT } else { vk::Format::R8G8B8A8_UNORM };
+        let (image_type, view_type, layers, flags, kind) = match content.kind {
+            TextureKind::D1 | TextureKind::D2 => (vk::ImageType::TYPE_2D, vk::ImageViewType::TYPE_2D, 1, vk::ImageCreateFlags::empty(), SamplerKind::D2),
+            TextureKind::D3 => (vk::ImageType::TYPE_3D, vk::ImageViewType::TYPE_3D, 1, vk::ImageCreateFlags::empty(), SamplerKind::D3),
+            TextureKind::Cube => (vk::ImageType::TYPE_2D, vk::ImageViewType::CUBE, 6, vk::ImageCreateFlags::CUBE_COMPATIBLE, SamplerKind::Cube),
+        };
+        let levels = chain.len() as u32;
+        let info = vk::ImageCreateInfo::default()
+            .flags(flags)
+            .image_type(image_type)
+            .format(format)
+            .extent(vk::Extent3D { width: w, height: h, depth: d })
+            .mip_levels(levels)
+            .array_layers(layers)
+            .samples(vk::SampleCountFlags::TYPE_1)
+            .usage(vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::TRANSFER_SRC);
+        let swizzle = if depth { depth_swizzle(content.sampler.depth_mode, content.sampler.compare.is_some()) } else { vk::ComponentMapping::default() };
+        let image = device.create_image_swizzled("glrt texture", &info, view_type, vk::ImageAspectFlags::COLOR, swizzle)?;
+        let range = vk::ImageSubresourceRange { aspect_mask: vk::ImageAspectFlags::COLOR, base_mip_level: 0, level_count: levels, base_array_layer: 0, layer_count: layers };
+        image_barrier(device, cmd, image.raw, range, vk::ImageLayout::UNDEFINED, vk::ImageLayout::TRANSFER_DST_OPTIMAL);
+        let mut copies = Vec::new();
+        for face in 0..layers as usize {
+            for (level, _) in chain.iter().enumerate() {
+                let Some(img) = content.faces.get(face).and_then(|f| f.get(base + level)).and_then(Option::as_ref) else { continue };
+                let bytes = texel_bytes(img, depth);
+                let slice = ring.push(device, &bytes, 16)?;
+                let [lw, lh, ld] = interior(img);
+                copies.push((
+                    slice.buffer,
+                    vk::BufferImageCopy {
+                        buffer_offset: slice.offset,
+                        buffer_row_length: 0,
+                        buffer_image_height: 0,
+                        image_subresource: vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: level as u32, base_array_layer: face as u32, layer_count: 1 },
+                        image_offset: vk::Offset3D::default(),
+                        image_extent: vk::Extent3D { width: lw, height: lh, depth: ld },
+                    },
+                ));
             }
         }
-        // Safety: the GPU is idle.
-        unsafe { device.raw.destroy_sampler(self.sampler, None) };
+        for (buffer, copy) in copies {
+            // Safety: the image is in TRANSFER_DST_OPTIMAL; the region matches the staged bytes.
+            unsafe { device.raw.cmd_copy_buffer_to_image(cmd, buffer, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &[copy]) };
+        }
+        image_barrier(device, cmd, image.raw, range, vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
+        Ok((image, kind))
+    }
+}
+
+/// The levels uploaded: from `base`, while each exists and halves the one above, up to `max`.
+fn level_chain(faces: &[Vec<Option<std::sync::Arc<TexImage>>>], base: usize, max: usize, kind: TextureKind) -> Vec<std::sync::Arc<TexImage>> {
+    let Some(levels) = faces.first() else { return Vec::new() };
+    let mut chain: Vec<std::sync::Arc<TexImage>> = Vec::new();
+    for level in base..=max.max(base) {
+        let Some(Some(img)) = levels.get(level) else { break };
+        let size = interior(img);
+        if let Some(prev) = chain.last() {
+            let mut want = interior(prev).map(|s| (s / 2).max(1));
+            if kind != TextureKind::D3 {
+                want[2] = 1;
+            }
+            if size != want || interior(prev) == [1, 1, 1] {
+                break;
+            }
+        }
+        if size.contains(&0) {
+            break;
+        }
+        chain.push(img.clone());
+    }
+    chain
+}
+
+/// Width, height and depth without the border.
+fn interior(img: &TexImage) -> [u32; 3] {
+    let b = img.border;
+    let h_border = if img.height > 1 { b } else { 0 };
+    let d_border = if img.depth > 1 { b } else { 0 };
+    [img.width.saturating_sub(2 * b), img.height.saturating_sub(2 * h_border), img.depth.saturating_sub(2 * d_border)].map(|s| s.max(1))
+}
+
+/// The texel bytes of the interior of `img`: RGBA8, or `f32` depth when `depth`.
+fn texel_bytes(img: &TexImage, depth: bool) -> Vec<u8> {
+    let [w, h, d] = interior(img).map(|v| v as usize);
+    let b = img.border as usize;
+    let (bx, by, bz) = (b, if img.height > 1 { b } else { 0 }, if img.depth > 1 { b } else { 0 });
+    let (fw, fh) = (img.width as usize, img.height as usize);
+    // RGBA8 and f32 texels are both 4 bytes.
+    let texel = 4;
+    let mut out = Vec::with_capacity(w * h * d * texel);
+    for z in 0..d {
+        for y in 0..h {
+            let row = ((z + bz) * fh + y + by) * fw + bx;
+            if depth {
+                let values = img.depth_values.get(row..row + w).unwrap_or(&[]);
+                out.extend(values.iter().flat_map(|v| v.to_le_bytes()));
+            } else {
+                out.extend_from_slice(img.texels.get(row * 4..(row + w) * 4).unwrap_or(&[]));
+            }
+        }
+    }
+    out.resize(w * h * d * texel, 0);
+    out
+}
+
+/// The view swizzle of a depth texture (see the module doc).
+fn depth_swizzle(mode: DepthMode, compare: bool) -> vk::ComponentMapping {
+    let (r, one, zero) = (vk::ComponentSwizzle::R, vk::ComponentSwizzle::ONE, vk::ComponentSwizzle::ZERO);
+    let [cr, cg, cb, ca] = match (compare, mode) {
+        (true, _) | (false, DepthMode::Intensity) => [r, r, r, r],
+        (false, DepthMode::Luminance) => [r, r, r, one],
+        (false, DepthMode::Alpha) => [zero, zero, zero, r],
+    };
+    vk::ComponentMapping { r: cr, g: cg, b: cb, a: ca }
+}
+
+/// The Vulkan border colour closest to `c`.
+fn nearest_border(c: [f32; 4]) -> vk::BorderColor {
+    if c[3] < 0.5 {
+        vk::BorderColor::FLOAT_TRANSPARENT_BLACK
+    } else if c[0] + c[1] + c[2] > 1.5 {
+        vk::BorderColor::FLOAT_OPAQUE_WHITE
+    } else {
+        vk::BorderColor::FLOAT_OPAQUE_BLACK
     }
 }
 
@@ -68,13 +365,7 @@ fn create_white(device: &Device, cmd: vk::CommandBuffer) -> Result<[Image; 3]> {
         image_barrier(device, cmd, image.raw, range, vk::ImageLayout::UNDEFINED, vk::ImageLayout::TRANSFER_DST_OPTIMAL);
         // Safety: the image is in TRANSFER_DST_OPTIMAL.
         unsafe {
-            device.raw.cmd_clear_color_image(
-                cmd,
-                image.raw,
-                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                &vk::ClearColorValue { float32: [1.0; 4] },
-                &[range],
-            )
+            device.raw.cmd_clear_color_image(cmd, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &vk::ClearColorValue { float32: [1.0; 4] }, &[range])
         };
         image_barrier(device, cmd, image.raw, range, vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
     }
@@ -94,4 +385,44 @@ pub fn image_barrier(device: &Device, cmd: vk::CommandBuffer, image: vk::Image, 
         .subresource_range(range)];
     // Safety: cmd is recording; the image is alive.
     unsafe { device.raw.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().image_memory_barriers(&barrier)) };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::sync::Arc;
+
+    fn level(w: u32, h: u32, border: u32) -> Option<Arc<TexImage>> {
+        let texels = (0..w * h * 4).map(|i| i as u8).collect();
+        Some(Arc::new(TexImage { width: w, height: h, depth: 1, border, texels, depth_values: Vec::new() }))
+    }
+
+    #[test]
+    fn chains_stop_at_a_level_that_does_not_halve() {
+        let faces = vec![vec![level(8, 4, 0), level(4, 2, 0), level(2, 1, 0), level(1, 1, 0), level(1, 1, 0)]];
+        assert_eq!(level_chain(&faces, 0, 1000, TextureKind::D2).len(), 4);
+        assert_eq!(level_chain(&faces, 0, 1, TextureKind::D2).len(), 2);
+        assert_eq!(level_chain(&faces, 1, 1000, TextureKind::D2).len(), 3);
+        let broken = vec![vec![level(8, 8, 0), level(2, 2, 0)]];
+        assert_eq!(level_chain(&broken, 0, 1000, TextureKind::D2).len(), 1);
+    }
+
+    #[test]
+    fn borders_are_cut_off() {
+        let img = level(4, 3, 1).unwrap();
+        assert_eq!(interior(&img), [2, 1, 1]);
+        let bytes = texel_bytes(&img, false);
+        // Row 1, texels 1 and 2 of the 4-wide bordered image.
+        let start = (4 + 1) * 4;
+        assert_eq!(bytes, img.texels[start..start + 8].to_vec());
+    }
+
+    #[test]
+    fn depth_modes_swizzle() {
+        let s = depth_swizzle(DepthMode::Alpha, false);
+        assert_eq!((s.r, s.a), (vk::ComponentSwizzle::ZERO, vk::ComponentSwizzle::R));
+        assert_eq!(depth_swizzle(DepthMode::Luminance, true).a, vk::ComponentSwizzle::R);
+        assert_eq!(nearest_border([1.0, 1.0, 1.0, 1.0]), vk::BorderColor::FLOAT_OPAQUE_WHITE);
+        assert_eq!(nearest_border([0.0, 0.0, 0.0, 0.0]), vk::BorderColor::FLOAT_TRANSPARENT_BLACK);
+    }
 }

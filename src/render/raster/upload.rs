@@ -21,6 +21,7 @@ pub struct Slice {
 }
 
 /// Upload memory of one frame in flight.
+#[derive(Default)]
 pub struct Ring {
     chunks: Vec<Buffer>,
     /// Chunk being filled and the bytes used in it.
@@ -37,11 +38,6 @@ fn usage() -> vk::BufferUsageFlags {
 }
 
 impl Ring {
-    /// An empty ring (chunks are created on first use).
-    pub fn new() -> Ring {
-        Ring { chunks: Vec::new(), current: 0, used: 0 }
-    }
-
     /// Forgets every upload: only call once the GPU finished the frame that used them.
     pub fn reset(&mut self) {
         self.current = 0;
