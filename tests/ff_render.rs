@@ -257,7 +257,6 @@ fn aliased_points_are_squares_of_the_rounded_size() {
 }
 
 #[test]
-#[ignore = "needs the renderer to upload textures (it binds white ones so far)"]
 fn texture_combine_interpolate_with_constant_and_primary_alpha() {
     let mut ctx = context();
     // A 2×2 RGBA texture, nearest: bottom-left texel (0.8, 0.2, 0.4, 1).
@@ -606,4 +605,29 @@ fn point_size_distance_attenuation() {
     }
     let pixels = render(&mut ctx);
     assert_eq!(pixels.iter().filter(|p| p[0] > 0.5).count(), 16);
+}
+
+/// Projective texture coordinates (section 3.8.7): (s, t) / q picks the texel. The 2×2
+/// texture of the combine test, `REPLACE`: (0.3, 0.3) / 0.4 = (0.75, 0.75) is the top-right
+/// texel (white); undivided, (0.3, 0.3) would be the bottom-left one.
+#[test]
+fn projective_texture_coordinates() {
+    let mut ctx = context();
+    let texels: [u8; 16] = [204, 51, 102, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255];
+    unsafe {
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_2D, 1);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+        dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_2D);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_REPLACE as i32);
+        dispatch::glBegin(&mut ctx, gl::GL_TRIANGLES);
+        dispatch::glTexCoord4f(&mut ctx, 0.3, 0.3, 0.0, 0.4);
+        for (x, y) in [(-1.0, -1.0), (3.0, -1.0), (-1.0, 3.0)] {
+            dispatch::glVertex2f(&mut ctx, x, y);
+        }
+        dispatch::glEnd(&mut ctx);
+    }
+    let pixels = render(&mut ctx);
+    assert_close(pixel(&pixels, 16, 16), [1.0; 4], TOLERANCE);
 }
