@@ -708,3 +708,63 @@ fn texgen_sphere_map() {
     let pixels = render(&mut ctx);
     assert_close(pixel(&pixels, 16, 16), [40.0 / 255.0, 80.0 / 255.0, 120.0 / 255.0, 1.0], TOLERANCE);
 }
+
+/// Binds a 1×1 RGBA texture of `texel` to the active unit's 2D target (name `name`) and
+/// enables it.
+fn texel_texture(ctx: &mut Context, name: u32, texel: [u8; 4]) {
+    unsafe {
+        dispatch::glBindTexture(ctx, gl::GL_TEXTURE_2D, name);
+        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexImage2D(ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 1, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texel.as_ptr().cast());
+        dispatch::glEnable(ctx, gl::GL_TEXTURE_2D);
+    }
+}
+
+/// Two units: unit 0 modulates the colour by texture A; unit 1 combines ADD_SIGNED of the
+/// previous result and unit 0's texture (the crossbar source `GL_TEXTURE0`) into RGB, and
+/// replaces alpha by its own texture B.
+#[test]
+fn two_units_chain_with_the_crossbar() {
+    let mut ctx = context();
+    let (a, b) = ([204u8, 102, 51, 255], [128u8, 255, 64, 153]);
+    unsafe {
+        dispatch::glActiveTexture(&mut ctx, gl::GL_TEXTURE0);
+        texel_texture(&mut ctx, 1, a);
+        dispatch::glActiveTexture(&mut ctx, gl::GL_TEXTURE1);
+        texel_texture(&mut ctx, 2, b);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_COMBINE as i32);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_COMBINE_RGB, gl::GL_ADD_SIGNED as i32);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_SOURCE0_RGB, gl::GL_PREVIOUS as i32);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_SOURCE1_RGB, gl::GL_TEXTURE0 as i32);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_COMBINE_ALPHA, gl::GL_REPLACE as i32);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_SOURCE0_ALPHA, gl::GL_TEXTURE as i32);
+        dispatch::glActiveTexture(&mut ctx, gl::GL_TEXTURE0);
+    }
+    quad_at(&mut ctx, -1.0, [0.5, 0.5, 0.5, 1.0]);
+    let pixels = render(&mut ctx);
+    let a = a.map(|c| c as f32 / 255.0);
+    let previous = [a[0] * 0.5, a[1] * 0.5, a[2] * 0.5];
+    let rgb: [f32; 3] = std::array::from_fn(|i| (previous[i] + a[i] - 0.5).clamp(0.0, 1.0));
+    assert_close(pixel(&pixels, 16, 16), [rgb[0], rgb[1], rgb[2], 0.6], TOLERANCE);
+}
+
+/// A smooth horizontal line of width 1 at window y = 16.25 covers row 16 (centre 16.5) by
+/// 0.75 and row 15 (centre 15.5) by 0.25, into alpha.
+#[test]
+fn smooth_line_coverage() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glEnable(&mut ctx, gl::GL_LINE_SMOOTH);
+        dispatch::glMatrixMode(&mut ctx, gl::GL_PROJECTION);
+        dispatch::glOrtho(&mut ctx, 0.0, 32.0, 0.0, 32.0, -1.0, 1.0);
+        dispatch::glBegin(&mut ctx, gl::GL_LINES);
+        dispatch::glVertex2f(&mut ctx, 2.0, 16.25);
+        dispatch::glVertex2f(&mut ctx, 30.0, 16.25);
+        dispatch::glEnd(&mut ctx);
+    }
+    let pixels = render(&mut ctx);
+    let alpha = |y| pixel(&pixels, 16, y)[3];
+    assert!((alpha(16) - 0.75).abs() <= TOLERANCE, "{}", alpha(16));
+    assert!((alpha(15) - 0.25).abs() <= TOLERANCE, "{}", alpha(15));
+    assert_eq!((alpha(14), alpha(17)), (0.0, 0.0));
+}

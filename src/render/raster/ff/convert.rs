@@ -19,9 +19,10 @@
 //!   major-axis pixels from the start of its run; `ff.frag` discards by the pattern. A run is
 //!   a chain of segments where each starts at the vertex where the previous one ended (line
 //!   strips and loops, and consecutive polygon edges); the counter restarts otherwise, as it
-//!   does for independent `GL_LINES` segments. A draw merging two `glBegin`/`glEnd` strips
-//!   that happen to share a vertex index cannot be told apart from one strip: that never
-//!   happens, as merged batches get fresh indices.
+//!   does for independent `GL_LINES` segments. [`Draw`] keeps no primitive boundaries, so
+//!   `GL_LINES` drawn with `glDrawElements` whose second segment starts at the index the first
+//!   ended at counts on as if it were a strip (merged `glBegin`/`glEnd` batches get fresh
+//!   indices, so they are told apart).
 //! - **Points** (section 3.3) are quads of corners (±1, ±1) that `ff.vert` scales by the
 //!   derived point size; a point whose centre is outside the clip volume is dropped (the
 //!   whole point, as section 2.12 says); user clip planes are evaluated at the centre by

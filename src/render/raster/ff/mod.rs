@@ -24,6 +24,10 @@
 //! - [`Batch::topology`] is a list topology (`*_LIST`; points and lines arrive expanded to
 //!   triangles); the provoking vertex is already placed first (Vulkan's default), so no
 //!   extension is needed for flat shading;
+//! - per batch, the renderer writes the render target's height with
+//!   [`uniforms::set_framebuffer_height`] (the polygon stipple needs it), culls with
+//!   [`Batch::cull`] (not `RasterState::cull`: lines and points arrive as triangles of either
+//!   winding) and enables depth bias by [`Batch::polygon_offset`];
 //! - the viewport has a negative height (window y up as in GL, no flip in the shader), the
 //!   front face is set from [`crate::frame::RasterState::front_face`] for that viewport so
 //!   that `gl_FrontFacing` is OpenGL's facing, culling is [`Batch::cull`] (not the state's),
