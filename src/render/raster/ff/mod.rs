@@ -91,12 +91,19 @@ pub fn prepare(draw: &Draw) -> Vec<Batch> {
     }
     let packed = vertex::pack(draw);
     let uniforms = uniforms::pack(draw);
-    convert::convert(draw, &packed)
+    let parts: Vec<_> = convert::convert(draw, &packed).into_iter().filter(|part| !part.indices.is_empty()).collect();
+    // The draw's own vertices go to the parts that keep them: moved into the last of them.
+    let mut sharing = parts.iter().filter(|part| part.vertices.is_none()).count();
+    let mut packed = Some(packed);
+    let mut own_vertices = move || {
+        sharing = sharing.saturating_sub(1);
+        if sharing == 0 { packed.take() } else { packed.clone() }.unwrap_or_default()
+    };
+    parts
         .into_iter()
-        .filter(|part| !part.indices.is_empty())
         .map(|part| Batch {
             topology: Topology::Triangles,
-            vertices: part.vertices.unwrap_or_else(|| packed.clone()),
+            vertices: part.vertices.unwrap_or_else(&mut own_vertices),
             indices: part.indices,
             shader: key::shader_key(draw, part.primitive, part.facing),
             uniforms: uniforms.clone(),
