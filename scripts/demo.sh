@@ -2,8 +2,9 @@
 # Builds glrt in release mode and runs glrt-demo through it.
 #   bash scripts/demo.sh [demo flags...]      (default: --frames 300)
 # Uses the X display in $DISPLAY when one answers, otherwise glrt's headless context
-# (--headless). Presented frames are asked for as PNG in target/demo-frames through
-# GLRT_DUMP; the library does not write them yet (no renderer), and the script says so.
+# (--headless). glrt renders with its Vulkan raster back end (GLRT_DEVICE picks the device;
+# Mesa lavapipe on a machine without GPU) and writes every presented frame as PNG into
+# target/demo-frames (GLRT_DUMP); the demo prints its frame times.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -27,7 +28,8 @@ GLRT_DUMP="$PWD/$frames_dir" LD_LIBRARY_PATH="$PWD/target/release${LD_LIBRARY_PA
 
 pngs=$(find "$frames_dir" -name '*.png' | wc -l)
 if ((pngs > 0)); then
-    echo "demo.sh: $pngs frames written to $frames_dir"
+    echo "demo.sh: $pngs frames written to $frames_dir (last: $(ls "$frames_dir" | tail -1))"
 else
-    echo "demo.sh: no PNG frames written (GLRT_DUMP is not implemented yet: glrt has no renderer)"
+    echo "demo.sh: no PNG frames written (no Vulkan device? see the messages above)" >&2
+    exit 1
 fi

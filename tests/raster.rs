@@ -11,13 +11,18 @@ const SIZE: i32 = 64;
 
 /// A context drawing into a Vulkan renderer on lavapipe, with a 64×64 drawable.
 fn context() -> Context {
+    context_with(Renderer::new)
+}
+
+/// A context drawing into the renderer `make` creates (on lavapipe), with a 64×64 drawable.
+fn context_with(make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Context {
     let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
     if std::path::Path::new(lavapipe).exists() {
         // Safety: set before any thread of this test binary loads Vulkan; every test sets the
         // same value.
         unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
     }
-    let renderer = Renderer::new().expect("a Vulkan device (lavapipe)");
+    let renderer = make().expect("a Vulkan device (lavapipe)");
     let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
     ctx.bind_drawable(SIZE, SIZE);
     ctx
@@ -148,4 +153,33 @@ fn textures_follow_their_versions_with_gl_rows() {
     textured_quad(&mut ctx);
     assert_eq!(pixel(&mut ctx, 5, 5), [255, 255, 0, 255]);
     assert_eq!(pixel(&mut ctx, 60, 5), [0, 255, 0, 255]);
+}
+
+
+#[test]
+fn glrt_dump_writes_each_presented_frame_top_down() {
+    let dir = std::env::temp_dir().join(format!("glrt-dump-test-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut ctx = context_with(|| Renderer::with_dump(glrt::render::raster::dump::Dump::new(dir.clone())));
+    for frame in 0..2 {
+        unsafe {
+            dispatch::glClearColor(&mut ctx, 0.0, 0.0, frame as f32, 1.0);
+            dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+            // The lower half of the window red.
+            dispatch::glColor3f(&mut ctx, 1.0, 0.0, 0.0);
+            dispatch::glRectf(&mut ctx, -1.0, -1.0, 1.0, 0.0);
+        }
+        ctx.end_frame();
+    }
+    drop(ctx);
+    for (frame, blue) in [(0, 0), (1, 255)] {
+        let file = std::fs::File::open(dir.join(format!("frame-{frame:05}.png"))).expect("the frame's PNG");
+        let mut reader = png::Decoder::new(std::io::BufReader::new(file)).read_info().unwrap();
+        let mut rgb = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut rgb).unwrap();
+        assert_eq!((info.width, info.height, info.color_type), (64, 64, png::ColorType::Rgb));
+        assert_eq!(rgb[..3], [0, 0, blue], "the top row shows the clear colour");
+        assert_eq!(rgb[rgb.len() - 3..], [255, 0, 0], "the bottom row is red");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -1,9 +1,12 @@
 //! `GLRT_DUMP=dir`: every presented frame is written to `dir/frame-NNNNN.png`. The colour
 //! image is copied into a host buffer of the frame's slot when the frame is submitted, and
-//! encoded once that slot's fence has signalled (no stall on the GPU). The image rows are
-//! already top-down (see [`super::target`]), as PNG wants them.
+//! handed, once that slot's fence has signalled, to a writer thread that encodes it (no stall
+//! on the GPU, no PNG encoding on the program's thread). The image rows are already top-down
+//! (see [`super::target`]), as PNG wants them.
 
 use std::path::PathBuf;
+use std::sync::mpsc;
+use std::thread::JoinHandle;
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
@@ -18,21 +21,44 @@ struct Pending {
     frame: u64,
 }
 
-/// The dump directory and the copies in flight, one per slot.
+/// A frame for the writer thread: path, size, RGBA8 rows top to bottom.
+type Job = (PathBuf, [u32; 2], Vec<u8>);
+
+/// The dump directory, the copies in flight (one per slot) and the writer thread.
 pub struct Dump {
     dir: PathBuf,
     pending: Vec<Option<Pending>>,
+    jobs: Option<mpsc::SyncSender<Job>>,
+    writer: Option<JoinHandle<()>>,
 }
 
 impl Dump {
-    /// From `GLRT_DUMP` (creating the directory); `None` when unset or not creatable.
+    /// From `GLRT_DUMP`; `None` when unset (see [`Dump::new`]).
     pub fn from_env() -> Option<Dump> {
-        let dir = PathBuf::from(std::env::var_os("GLRT_DUMP").filter(|d| !d.is_empty())?);
+        Dump::new(PathBuf::from(std::env::var_os("GLRT_DUMP").filter(|d| !d.is_empty())?))
+    }
+
+    /// Dumps into `dir` (created if needed); `None`, with a message, when it cannot be.
+    pub fn new(dir: PathBuf) -> Option<Dump> {
         if let Err(e) = std::fs::create_dir_all(&dir) {
             eprintln!("glrt: GLRT_DUMP={}: {e}; frames are not dumped", dir.display());
             return None;
         }
-        Some(Dump { dir, pending: Vec::new() })
+        // Bounded: when encoding is slower than rendering, the program waits instead of
+        // queueing frames without limit.
+        let (jobs, queue) = mpsc::sync_channel::<Job>(4);
+        let writer = std::thread::Builder::new()
+            .name("glrt-dump".into())
+            .spawn(move || {
+                for (path, size, rgba) in queue {
+                    if let Err(e) = write_png(&path, size, &rgba) {
+                        eprintln!("glrt: writing {}: {e}", path.display());
+                    }
+                }
+            })
+            .map_err(|e| eprintln!("glrt: GLRT_DUMP: cannot start the writer thread: {e}"))
+            .ok()?;
+        Some(Dump { dir, pending: Vec::new(), jobs: Some(jobs), writer: Some(writer) })
     }
 
     /// Records the copy of the colour image of frame `frame` for slot `slot`.
@@ -57,32 +83,39 @@ impl Dump {
         Ok(())
     }
 
-    /// Writes the PNG of slot `slot`'s frame (its fence has signalled).
+    /// Sends slot `slot`'s frame (its fence has signalled) to the writer thread.
     pub fn collect(&mut self, device: &Device, slot: usize) {
         let Some(mut p) = self.pending.get_mut(slot).and_then(Option::take) else { return };
         let path = self.dir.join(format!("frame-{:05}.png", p.frame));
-        if let Err(e) = write_png(&path, p.size, p.buffer.mapped()) {
-            eprintln!("glrt: writing {}: {e}", path.display());
-        }
+        let rgba = p.buffer.mapped().to_vec();
         device.destroy_buffer(p.buffer);
+        if let Some(jobs) = &self.jobs {
+            let _ = jobs.send((path, p.size, rgba));
+        }
     }
 
-    /// Frees the buffers (the GPU must be idle).
+    /// Frees the buffers (the GPU must be idle) and waits for the writer to finish.
     pub fn destroy(&mut self, device: &Device) {
         for p in self.pending.drain(..).flatten() {
             device.destroy_buffer(p.buffer);
         }
+        self.jobs = None;
+        if let Some(writer) = self.writer.take() {
+            let _ = writer.join();
+        }
     }
 }
 
-/// Writes RGBA8 rows, top to bottom, as a PNG.
+/// Writes RGBA8 rows, top to bottom, as an RGB PNG: a window shows the colour channels only
+/// (the framebuffer's alpha is what blending left there, not coverage).
 pub fn write_png(path: &std::path::Path, [w, h]: [u32; 2], rgba: &[u8]) -> std::io::Result<()> {
+    let rgb: Vec<u8> = rgba.chunks_exact(4).flat_map(|p| [p[0], p[1], p[2]]).collect();
     let file = std::io::BufWriter::new(std::fs::File::create(path)?);
     let mut encoder = png::Encoder::new(file, w, h);
-    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_color(png::ColorType::Rgb);
     encoder.set_depth(png::BitDepth::Eight);
     encoder.set_compression(png::Compression::Fast);
     let mut writer = encoder.write_header().map_err(std::io::Error::other)?;
-    writer.write_image_data(rgba).map_err(std::io::Error::other)?;
+    writer.write_image_data(&rgb).map_err(std::io::Error::other)?;
     writer.finish().map_err(std::io::Error::other)
 }

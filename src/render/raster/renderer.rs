@@ -266,8 +266,14 @@ impl Recorder<'_> {
 }
 
 impl Renderer {
-    /// Creates the renderer on the device chosen by `GLRT_DEVICE` (see [`Device::new`]).
+    /// Creates the renderer on the device chosen by `GLRT_DEVICE` (see [`Device::new`]),
+    /// dumping frames where `GLRT_DUMP` says.
     pub fn new() -> Result<Renderer> {
+        Renderer::with_dump(super::dump::Dump::from_env())
+    }
+
+    /// Creates the renderer with frame dumps `dump` (see [`super::dump::Dump::new`]).
+    pub fn with_dump(dump: Option<super::dump::Dump>) -> Result<Renderer> {
         let device = Device::new()?;
         let pipelines = Pipelines::new(&device)?;
         let textures = Textures::new(&device);
@@ -278,7 +284,7 @@ impl Renderer {
             current: 0,
             recording: false,
             progress: None,
-            dump: super::dump::Dump::from_env(),
+            dump,
             failed: false,
         })
     }
