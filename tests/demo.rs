@@ -13,10 +13,15 @@
 //! once every branch is merged. The Xvfb tests fail with a clear message when Xvfb (or
 //! glxgears) is missing: `bash scripts/setup.sh` installs them.
 
+mod images;
+mod programs;
+
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
-use std::sync::Mutex;
+use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
+
+use images::Image;
+use programs::{Xvfb, lib_dir, run_for};
 
 /// Frames the demo runs in each test.
 const DEMO_FRAMES: usize = 300;
@@ -85,43 +90,10 @@ fn read_frame_log(path: &Path) -> Vec<FrameRecord> {
         .collect()
 }
 
-/// `target/<profile>/`, holding glrt-demo and libglrt.so; makes the `libGL.so.1` symlink.
-fn lib_dir() -> PathBuf {
-    let dir =
-        Path::new(env!("CARGO_BIN_EXE_glrt-demo")).parent().expect("target dir").to_path_buf();
-    assert!(
-        dir.join("libglrt.so").exists(),
-        "{}/libglrt.so missing: run `cargo build`",
-        dir.display()
-    );
-    let link = dir.join("libGL.so.1");
-    if std::fs::symlink_metadata(&link).is_err() {
-        // Another test may create it at the same time; either link is fine.
-        let _ = std::os::unix::fs::symlink("libglrt.so", &link);
-    }
-    dir
-}
-
 fn temp_log(name: &str) -> PathBuf {
     let path = std::env::temp_dir().join(format!("glrt-{name}-{}.jsonl", std::process::id()));
     let _ = std::fs::remove_file(&path);
     path
-}
-
-/// Runs `cmd` for at most `limit`; returns its output and whether it was stopped.
-fn run_for(mut cmd: Command, limit: Duration) -> (Output, bool) {
-    let mut child = cmd.stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().expect("spawn");
-    let start = Instant::now();
-    let mut stopped = false;
-    while child.try_wait().expect("wait").is_none() {
-        if start.elapsed() > limit {
-            let _ = child.kill();
-            stopped = true;
-            break;
-        }
-        std::thread::sleep(Duration::from_millis(50));
-    }
-    (child.wait_with_output().expect("output"), stopped)
 }
 
 /// A command that loads glrt's libGL.so.1 and writes the frame log to `log`.
@@ -129,58 +101,6 @@ fn through_glrt(program: &str, log: &Path) -> Command {
     let mut cmd = Command::new(program);
     cmd.env("LD_LIBRARY_PATH", lib_dir()).env("GLRT_FRAME_LOG", log);
     cmd
-}
-
-/// A private Xvfb server, stopped on drop.
-struct Xvfb {
-    child: Child,
-    display: String,
-}
-
-/// Serialises display-number picking between the tests of this process.
-static XVFB_START: Mutex<()> = Mutex::new(());
-
-impl Xvfb {
-    fn start() -> Self {
-        let _guard = XVFB_START.lock().unwrap_or_else(|e| e.into_inner());
-        for n in 90 + std::process::id() % 50..400 {
-            if Path::new(&format!("/tmp/.X{n}-lock")).exists() {
-                continue;
-            }
-            let spawned = Command::new("Xvfb")
-                .args([format!(":{n}").as_str(), "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
-                .stdout(Stdio::null())
-                .stderr(Stdio::null())
-                .spawn();
-            let mut child = match spawned {
-                Ok(c) => c,
-                Err(e) => {
-                    panic!("cannot start Xvfb ({e}): install it with `bash scripts/setup.sh`")
-                }
-            };
-            let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
-            let start = Instant::now();
-            while start.elapsed() < Duration::from_secs(10) {
-                if child.try_wait().ok().flatten().is_some() {
-                    break; // display taken: try the next one
-                }
-                if socket.exists() {
-                    return Xvfb { child, display: format!(":{n}") };
-                }
-                std::thread::sleep(Duration::from_millis(50));
-            }
-            let _ = child.kill();
-            let _ = child.wait();
-        }
-        panic!("no free X display for Xvfb");
-    }
-}
-
-impl Drop for Xvfb {
-    fn drop(&mut self) {
-        let _ = self.child.kill();
-        let _ = self.child.wait();
-    }
 }
 
 fn assert_within(what: &str, value: u64, (lo, hi): (u64, u64), frame: u64) {
@@ -347,43 +267,6 @@ fn with_system_libgl(extra: &[&str]) -> Command {
     cmd
 }
 
-/// Decodes the PNG glrt-demo writes (8-bit RGB, stored deflate blocks, no filters): width,
-/// height and RGB rows, top first.
-fn decode_demo_png(png: &[u8]) -> (usize, usize, Vec<u8>) {
-    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n", "PNG signature");
-    let (mut pos, mut size, mut idat) = (8, (0, 0), Vec::new());
-    while pos + 8 <= png.len() {
-        let len = u32::from_be_bytes(png[pos..pos + 4].try_into().unwrap()) as usize;
-        let body = &png[pos + 8..pos + 8 + len];
-        match &png[pos + 4..pos + 8] {
-            b"IHDR" => {
-                let be = |i: usize| u32::from_be_bytes(body[i..i + 4].try_into().unwrap()) as usize;
-                assert_eq!(&body[8..10], &[8, 2], "8-bit RGB");
-                size = (be(0), be(4));
-            }
-            b"IDAT" => idat.extend_from_slice(body),
-            _ => {}
-        }
-        pos += 12 + len;
-    }
-    // zlib header, then stored blocks: final flag byte, LEN, NLEN, data.
-    let (mut raw, mut at) = (Vec::new(), 2);
-    loop {
-        let last = idat[at] & 1 == 1;
-        assert_eq!(idat[at] & 6, 0, "stored blocks only");
-        let len = u16::from_le_bytes([idat[at + 1], idat[at + 2]]) as usize;
-        raw.extend_from_slice(&idat[at + 5..at + 5 + len]);
-        at += 5 + len;
-        if last {
-            break;
-        }
-    }
-    let row = size.0 * 3;
-    assert_eq!(raw.len(), size.1 * (row + 1), "image data size");
-    let rgb = raw.chunks_exact(row + 1).flat_map(|r| r[1..].to_vec()).collect();
-    (size.0, size.1, rgb)
-}
-
 /// Runs the demo on the system's libGL (Mesa) in a window under Xvfb, 30 frames from frame
 /// 206 (the door is then open), and checks the last frame read back with `--screenshot`:
 /// the scene's colours are all there.
@@ -406,7 +289,7 @@ fn demo_runs_on_the_system_libgl_under_xvfb() {
     );
     assert!(stdout.contains("frames: 30 "), "summary line missing:\n{stdout}");
 
-    let (w, h, rgb) = decode_demo_png(&std::fs::read(&shot).expect("screenshot written"));
+    let Image { width: w, height: h, rgb } = Image::load_png(&shot);
     assert_eq!((w, h), (320, 240));
     let pixels: Vec<[i32; 3]> =
         rgb.chunks_exact(3).map(|p| [p[0] as i32, p[1] as i32, p[2] as i32]).collect();
