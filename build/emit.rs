@@ -25,6 +25,7 @@ pub fn write_all(model: &Model, out: &Path) -> io::Result<()> {
     let traced: Vec<&Command> = model.commands.iter().filter(|c| is_traced(c)).collect();
     fs::write(out.join("trace_groups.rs"), crate::emit_trace::groups(model, &traced))?;
     fs::write(out.join("fuzz_calls.rs"), crate::emit_fuzz::fuzz_calls(model))?;
+    fs::write(out.join("capture_table.rs"), crate::emit_capture::table(model))?;
     Ok(())
 }
 
@@ -279,6 +280,7 @@ fn exports(model: &Model) -> String {
          use super::shim;\n\n",
     );
     let lens = crate::emit_trace::fixed_lengths();
+    let capture_ids = crate::emit_capture::ids(model);
     let mut glx_missing = String::new();
     let mut missing_index = 0usize;
     for c in &model.commands {
@@ -314,6 +316,7 @@ fn exports(model: &Model) -> String {
                 };
                 writeln!(s, "#[unsafe(no_mangle)]").unwrap();
                 writeln!(s, "pub unsafe extern \"C\" fn {name}({params}){ret} {{").unwrap();
+                s.push_str(&crate::emit_capture::hook(c, &capture_ids, prefix));
                 writeln!(s, "    let __call = || {call};").unwrap();
                 s.push_str(&crate::emit_trace::traced_branch(model, &lens, c, prefix, &call));
                 s.push_str("    __call()\n}\n\n");

@@ -12,6 +12,8 @@
 //!   (`gl_entry::trace::groups`);
 //! - `fuzz_calls.rs`: a random-argument caller of every served command, for the robustness
 //!   test (`translate::robustness`);
+//! - `capture_table.rs`: the command table of capture files and the replay thunks
+//!   (`translate::capture::table`);
 //! - `shaders/*.spv`: the renderer's GLSL shaders compiled to SPIR-V (`shaders.rs`).
 //!
 //! A command is implemented when `translate` defines a method with exactly its C name
@@ -20,6 +22,7 @@
 //! `GL_INVALID_OPERATION` and log their name once.
 
 mod emit;
+mod emit_capture;
 mod emit_fuzz;
 mod emit_trace;
 mod model;

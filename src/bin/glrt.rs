@@ -1,15 +1,101 @@
-//! The `glrt` command: `info` for now; `replay`, `dump` and `bench` come with captures.
+//! The `glrt` command:
+//! - `glrt info`: the build and how many functions it exports;
+//! - `glrt info FILE`: what a capture holds (frames, calls per function, bytes, textures);
+//! - `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH]`: replays a capture headless
+//!   (frames before `A` are replayed too: they build the state; the replay stops after `B - 1`);
+//! - `glrt dump FILE`: the call log of a capture (the `GLRT_TRACE` format) on standard output.
 
-fn main() {
+use std::process::ExitCode;
+
+use glrt::translate::capture::{self, reader::Capture, replay, summary::Summary};
+
+const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] | glrt dump FILE";
+
+fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
-    match args.first().map(String::as_str) {
-        Some("info") | None => {
+    let result = match args.first().map(String::as_str) {
+        Some("info") | None if args.len() <= 1 => {
             println!("glrt {}", env!("CARGO_PKG_VERSION"));
             println!("exports: {} functions", glrt::gl_entry::exports::PROCS.len());
+            Ok(())
         }
-        Some(other) => {
-            eprintln!("glrt: unknown command '{other}' (known: info)");
-            std::process::exit(2);
+        Some("info") => info(&args[1..]),
+        Some("replay") => replay_command(&args[1..]),
+        Some("dump") => dump(&args[1..]),
+        Some(other) => Err(format!("unknown command '{other}'\n{USAGE}")),
+        None => Err(USAGE.to_owned()),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("glrt: {e}");
+            ExitCode::FAILURE
         }
     }
+}
+
+/// The one positional argument `FILE` of `args`, and the options after it.
+fn file_and_options(args: &[String]) -> Result<(Capture, &[String]), String> {
+    let (file, rest) = args.split_first().ok_or(USAGE)?;
+    Ok((Capture::open(std::path::Path::new(file))?, rest))
+}
+
+fn info(args: &[String]) -> Result<(), String> {
+    let (capture, rest) = file_and_options(args)?;
+    if !rest.is_empty() {
+        return Err(format!("info: unexpected arguments {rest:?}"));
+    }
+    print!("{}", Summary::of(&capture)?.report(&capture));
+    Ok(())
+}
+
+fn dump(args: &[String]) -> Result<(), String> {
+    let (capture, rest) = file_and_options(args)?;
+    if !rest.is_empty() {
+        return Err(format!("dump: unexpected arguments {rest:?}"));
+    }
+    // The call log is read from the environment at the first GL call, which the replay makes.
+    // Safety: single-threaded so far; nothing else reads the environment concurrently.
+    unsafe { std::env::set_var("GLRT_TRACE", "/dev/stdout") };
+    replay::run(&capture, &replay::Options::default())?;
+    glrt::gl_entry::trace::flush();
+    Ok(())
+}
+
+/// `WxH` as two positive sizes.
+fn parse_size(s: &str) -> Option<(i32, i32)> {
+    let (w, h) = s.split_once('x')?;
+    let (w, h) = (w.parse().ok()?, h.parse().ok()?);
+    (w > 0 && h > 0).then_some((w, h))
+}
+
+fn replay_command(args: &[String]) -> Result<(), String> {
+    let (capture, mut rest) = file_and_options(args)?;
+    let mut options = replay::Options::default();
+    let mut frames = (0, u64::MAX);
+    let mut out = None;
+    while let [flag, value, tail @ ..] = rest {
+        match flag.as_str() {
+            "--frames" => frames = capture::parse_frames(value).ok_or(format!("--frames {value}: expected A..B"))?,
+            "--size" => options.size = Some(parse_size(value).ok_or(format!("--size {value}: expected WxH"))?),
+            "--out" => out = Some(value.clone()),
+            _ => return Err(format!("replay: unknown option {flag}\n{USAGE}")),
+        }
+        rest = tail;
+    }
+    if !rest.is_empty() {
+        return Err(format!("replay: option {} needs a value\n{USAGE}", rest[0]));
+    }
+    options.end_frame = (frames.1 != u64::MAX).then_some(frames.1);
+    let outcome = replay::run(&capture, &options)?;
+    println!("replayed {} calls, {} frames", outcome.calls, outcome.frames);
+    if let Some(dir) = out {
+        return Err(format!(
+            "--out {dir}: no renderer in this build produces pixels (frames go to render::default_sink, \
+             which has no Vulkan back end yet); frames {}..{} were replayed but no image was written",
+            frames.0,
+            frames.1.min(outcome.frames)
+        ));
+    }
+    Ok(())
 }

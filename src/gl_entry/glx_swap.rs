@@ -41,6 +41,7 @@ pub unsafe extern "C" fn glXSwapBuffers(dpy: *mut types::Display, drawable: type
                 c.bind_drawable(width, height);
                 c.end_frame();
             });
+            crate::translate::capture::swapped(crate::translate::capture::format::SwapKind::Glx { width, height });
         }
     });
     super::trace::frame_end("glXSwapBuffers");

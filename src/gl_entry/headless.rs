@@ -11,6 +11,7 @@ use parking_lot::Mutex;
 use super::current::{self, SharedContext};
 use super::shim::with_current;
 use crate::render;
+use crate::translate::capture::{self, format::SwapKind};
 use crate::translate::Context;
 use crate::translate::context::ContextConfig;
 use crate::translate::context::SharedObjects;
@@ -22,16 +23,19 @@ pub struct ContextHandle {
     /// Its share group, kept outside the context's lock: a context current on this thread
     /// (locked by it) can still be named as the share list of a new one.
     pub shared: Arc<Mutex<SharedObjects>>,
+    /// Its id in capture files (`translate::capture`).
+    pub capture_id: u32,
 }
 
 impl ContextHandle {
     /// A context presenting to the default sink, sharing objects with `share`'s share group.
     pub fn new(share: Option<&ContextHandle>) -> ContextHandle {
         crate::logging::init();
+        let capture_id = capture::context_created(share.map_or(0, |h| h.capture_id));
         let share = share.map(|h| h.shared.clone());
         let context = Context::new(ContextConfig { share, sink: render::default_sink() });
         let shared = context.shared.clone();
-        ContextHandle { context: Arc::new(Mutex::new(context)), shared }
+        ContextHandle { context: Arc::new(Mutex::new(context)), shared, capture_id }
     }
 
     /// Creates a context sharing objects with `share` (a handle, or null) and returns its
@@ -56,12 +60,24 @@ pub extern "C" fn glrtCreateContext(share: *mut c_void) -> *mut c_void {
 /// `width` × `height`; null releases the current context. Returns 1 on success.
 #[unsafe(no_mangle)]
 pub extern "C" fn glrtMakeCurrent(ctx: *mut c_void, width: i32, height: i32) -> u8 {
+    make_current(ctx, width, height, true)
+}
+
+/// `glrtMakeCurrent` with the buffering of the drawable (a replay of a single-buffered GLX
+/// context). Returns 1 on success.
+pub fn make_current(ctx: *mut c_void, width: i32, height: i32, double: bool) -> u8 {
     catch_unwind(AssertUnwindSafe(|| {
         // Safety: a non-null handle came from glrtCreateContext and was not destroyed.
         let handle = unsafe { ctx.cast::<ContextHandle>().as_ref() };
         let ok = current::make_current(ctx as usize, handle.map(|h| &h.context));
         if ok && handle.is_some() {
-            with_current("glrtMakeCurrent", |c| c.bind_drawable(width, height));
+            with_current("glrtMakeCurrent", |c| {
+                c.set_double_buffered(double);
+                c.bind_drawable(width, height);
+            });
+        }
+        if ok {
+            capture::made_current(handle.map_or(0, |h| h.capture_id), width, height, double);
         }
         u8::from(ok)
     }))
@@ -71,8 +87,19 @@ pub extern "C" fn glrtMakeCurrent(ctx: *mut c_void, width: i32, height: i32) -> 
 /// Ends the current frame of this thread's context (the headless `glXSwapBuffers`).
 #[unsafe(no_mangle)]
 pub extern "C" fn glrtSwapBuffers() {
-    super::trace::frame_end("glrtSwapBuffers");
-    with_current("glrtSwapBuffers", Context::end_frame);
+    swap(SwapKind::Headless);
+}
+
+/// Ends the current frame as `kind` did (a glX swap first takes the drawable size it read).
+pub fn swap(kind: SwapKind) {
+    super::trace::frame_end(kind.name());
+    with_current(kind.name(), |c| {
+        if let SwapKind::Glx { width, height } = kind {
+            c.bind_drawable(width, height);
+        }
+        c.end_frame();
+    });
+    capture::swapped(kind);
 }
 
 /// Destroys a headless context (it is released first if current on this thread).

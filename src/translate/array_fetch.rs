@@ -81,6 +81,9 @@ impl Source {
             return [0.0; 4];
         }
         let start = start.unwrap_or(0);
+        if self.available == usize::MAX {
+            super::capture::reads::note(self.base.wrapping_add(start), self.size * width);
+        }
         for (k, slot) in out.iter_mut().enumerate().take(self.size) {
             // Safety: in range of a buffer store, or client memory the program vouches for.
             *slot = unsafe { component(self.base.wrapping_add(start + k * width), self.type_, self.normalized) };

@@ -188,6 +188,7 @@ impl Context {
             if data.is_null() {
                 store.resize(size, 0);
             } else {
+                super::capture::reads::note(data, size);
                 // Safety: the caller guarantees `size` readable bytes.
                 store.extend_from_slice(unsafe { std::slice::from_raw_parts(data.cast::<u8>(), size) });
             }
@@ -207,6 +208,7 @@ impl Context {
                 return Err(gl::GL_INVALID_OPERATION);
             }
             if !data.is_null() {
+                super::capture::reads::note(data, range.len());
                 // Safety: the caller guarantees `size` readable bytes, not inside the store.
                 let src = unsafe { std::slice::from_raw_parts(data.cast::<u8>(), range.len()) };
                 buffer.data[range].copy_from_slice(src);

@@ -34,6 +34,7 @@ pub unsafe fn read_array<T: Copy, const N: usize>(ptr: *const T) -> Option<[T; N
     if ptr.is_null() {
         return None;
     }
+    super::capture::reads::note(ptr, N * size_of::<T>());
     // Safety: non-null, and the caller guarantees N readable values.
     Some(unsafe { std::ptr::read_unaligned(ptr.cast::<[T; N]>()) })
 }
@@ -46,6 +47,7 @@ pub unsafe fn read_slice<T: Copy>(ptr: *const T, n: usize) -> Option<Vec<T>> {
     if ptr.is_null() {
         return None;
     }
+    super::capture::reads::note(ptr, n.saturating_mul(size_of::<T>()));
     // Safety: non-null, and the caller guarantees n readable values.
     Some((0..n).map(|i| unsafe { std::ptr::read_unaligned(ptr.add(i)) }).collect())
 }

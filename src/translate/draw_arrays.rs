@@ -417,7 +417,8 @@ impl Context {
             self.null_pointer("glMultiDrawElements");
             return None;
         };
-        Some(counts.into_iter().zip(pointers).collect())
+        // Index-list addresses read from client memory are captured addresses in a replay.
+        Some(counts.into_iter().zip(pointers.into_iter().map(super::capture::client_pointer)).collect())
     }
 
     /// `glMultiDrawElements`: `glDrawElements` for each index list.

@@ -183,6 +183,7 @@ impl Context {
 
     /// Executes recorded commands in order.
     fn run_list_ops(&mut self, ops: &[ListOp]) {
+        let _copies_not_client_memory = super::capture::reads::quiet();
         for op in ops {
             match op {
                 ListOp::Call(call) => dispatch::execute(self, call),

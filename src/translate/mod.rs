@@ -18,6 +18,7 @@ pub mod assemble;
 pub mod attrib;
 pub mod buffer_objects;
 pub mod buffers;
+pub mod capture;
 pub mod clear;
 pub mod client_attrib;
 pub mod clip_planes;

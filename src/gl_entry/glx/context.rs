@@ -120,6 +120,7 @@ pub fn binding() -> Option<Binding> {
 pub fn release() {
     let previous = current::current_handle();
     current::make_current(0, None);
+    crate::translate::capture::made_current(0, 0, 0, false);
     BINDING.set(None);
     free_if_released(previous);
 }
@@ -162,6 +163,7 @@ pub unsafe fn make_current(
         c.set_double_buffered(double);
         c.bind_drawable(width, height);
     });
+    crate::translate::capture::made_current(context.handle.capture_id, width, height, double);
     BINDING.set(Some(Binding { display: dpy, draw, read, context: ctx }));
     if previous != ctx {
         free_if_released(previous);

@@ -57,6 +57,7 @@ impl Context {
             let modes = self.pixels.store.unpack;
             let layout = ty.layout(format, &modes, w, h, 1).filter(|_| w.checked_mul(h).is_some_and(|n| n <= super::MAX_DECODED_VALUES));
             let Some(layout) = layout else { return self.set_error_in(gl::GL_OUT_OF_MEMORY, "glBitmap") };
+            crate::translate::capture::reads::note(bitmap, layout.span);
             // Safety: the caller guarantees the bits the unpack modes describe.
             let bytes = unsafe { std::slice::from_raw_parts(bitmap, layout.span) };
             let bits = Codec { format, ty, layout, modes: &modes }.decode(bytes, w, h, 1);

@@ -96,6 +96,7 @@ impl Context {
         if pixels.is_null() {
             return Ok(None);
         }
+        crate::translate::capture::reads::note(pixels, layout.span);
         // Safety: the caller guarantees `layout.span` readable bytes.
         let bytes = unsafe { std::slice::from_raw_parts(pixels.cast::<u8>(), layout.span) };
         let groups = Codec { format, ty, layout, modes: &modes }.decode(bytes, w, h, d);
@@ -138,6 +139,7 @@ impl Context {
         if pixels.is_null() {
             return None;
         }
+        crate::translate::capture::reads::note(pixels, layout.span);
         // Safety: the caller guarantees `layout.span` readable bytes.
         Some(unsafe { std::slice::from_raw_parts(pixels.cast::<u8>(), layout.span) }.to_vec())
     }

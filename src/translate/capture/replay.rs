@@ -1,0 +1,140 @@
+//! Replaying a capture on this thread without any window system: headless contexts of the
+//! captured sizes, every call through the generated C exports, client memory from the
+//! [`Shadow`]. See the module documentation of [`super`] for why the result is exact.
+
+use std::collections::{BTreeSet, HashMap};
+use std::ffi::c_void;
+use std::sync::Arc;
+
+use super::format::Event;
+use super::reader::{Capture, Record};
+use super::shadow::Shadow;
+use super::table::{self, COMMANDS};
+use crate::gl_entry::headless;
+
+/// How to replay.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// Stop after the frame before this one (frames count from 0); `None`: every frame.
+    pub end_frame: Option<u64>,
+    /// Drawable size to use instead of the captured sizes.
+    pub size: Option<(i32, i32)>,
+}
+
+/// What a replay did.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Outcome {
+    /// Frames ended.
+    pub frames: u64,
+    /// GL calls made.
+    pub calls: u64,
+}
+
+/// The address space a capture uses: the 4 GiB windows its reads touch and its pointer
+/// arguments point into, the pages below 4 GiB it read, and those pointer arguments below
+/// 4 GiB point into (buffer offsets, or a non-PIE program's data).
+fn layout(capture: &Capture) -> Result<Shadow, String> {
+    let (mut windows, mut read, mut pointed) = (BTreeSet::new(), BTreeSet::new(), BTreeSet::new());
+    for record in capture.records() {
+        let (_, record) = record.map_err(|e| e.to_string())?;
+        let Record::Call { id, args, reads } = record else { continue };
+        for (address, bytes) in reads {
+            windows.extend(Shadow::windows_of(address, bytes.len() as u64));
+            read.extend(Shadow::low_pages_of(address, bytes.len() as u64));
+        }
+        for (&a, kind) in args.iter().zip(COMMANDS[id].1.bytes()) {
+            if kind == b'p' {
+                windows.insert(a >> 32);
+                pointed.extend(Shadow::low_pages_of(a, 1));
+            }
+        }
+        if windows.len() > super::shadow::MAX_WINDOWS {
+            break;
+        }
+    }
+    pointed.remove(&0);
+    Shadow::new(&windows, &read, &pointed)
+}
+
+/// Clears the replay's address mapping of capture when the replay ends, however it ends.
+struct Mapping;
+
+impl Drop for Mapping {
+    fn drop(&mut self) {
+        *super::CANONICAL.write() = None;
+    }
+}
+
+/// Replays `capture` on this thread; the contexts it creates are released and destroyed at
+/// the end.
+pub fn run(capture: &Capture, options: &Options) -> Result<Outcome, String> {
+    let shadow = Arc::new(layout(capture)?);
+    *super::CANONICAL.write() = Some(shadow.clone());
+    let _mapping = Mapping;
+    let mut contexts: HashMap<u32, *mut c_void> = HashMap::new();
+    let result = replay_records(capture, options, &shadow, &mut contexts);
+    // Released without a make-current event: the capture of a replay ends as the original.
+    crate::gl_entry::current::make_current(0, None);
+    for (_, handle) in contexts {
+        headless::glrtDestroyContext(handle);
+    }
+    result
+}
+
+fn replay_records(
+    capture: &Capture,
+    options: &Options,
+    shadow: &Shadow,
+    contexts: &mut HashMap<u32, *mut c_void>,
+) -> Result<Outcome, String> {
+    let mut outcome = Outcome::default();
+    let translate = |a: u64| shadow.translate(a);
+    for record in capture.records() {
+        let (at, record) = record.map_err(|e| e.to_string())?;
+        let fail = |cause: String| format!("record at byte {at} of the decompressed body: {cause}");
+        match record {
+            Record::Call { id, args, reads } => {
+                for (address, bytes) in reads {
+                    shadow.write(address, bytes).map_err(fail)?;
+                }
+                // Safety: every pointer argument is translated into the shadow, which holds
+                // the bytes the call read and is writable wherever the program's memory was.
+                if !unsafe { table::call(id, &args, &translate) } {
+                    return Err(fail(format!("{} cannot be replayed", COMMANDS[id].0)));
+                }
+                outcome.calls += 1;
+            }
+            Record::Event(Event::Context { id, share }) => {
+                let share = if share == 0 {
+                    std::ptr::null_mut()
+                } else {
+                    *contexts.get(&share).ok_or_else(|| fail(format!("context {id} shares with unknown context {share}")))?
+                };
+                let handle = headless::glrtCreateContext(share);
+                if handle.is_null() {
+                    return Err(fail(format!("cannot create context {id}")));
+                }
+                if let Some(old) = contexts.insert(id, handle) {
+                    headless::glrtDestroyContext(old);
+                }
+            }
+            Record::Event(Event::MakeCurrent { id, width, height, double }) => {
+                let handle = if id == 0 {
+                    std::ptr::null_mut()
+                } else {
+                    *contexts.get(&id).ok_or_else(|| fail(format!("unknown context {id} made current")))?
+                };
+                let (width, height) = options.size.unwrap_or((width, height));
+                headless::make_current(handle, width, height, double);
+            }
+            Record::Event(Event::Swap(kind)) => {
+                headless::swap(kind);
+                outcome.frames += 1;
+                if options.end_frame.is_some_and(|end| outcome.frames >= end) {
+                    break;
+                }
+            }
+        }
+    }
+    Ok(outcome)
+}

@@ -1,0 +1,143 @@
+//! What a capture records of client memory, checked byte for byte on a program made of GL
+//! calls in this test (the capture is process-wide, so this file holds one test): a draw
+//! records exactly the array elements and indices it read, at draw time; pixel uploads the
+//! span the unpack state describes; `glCallLists` its names; `glBufferData` its data; draws
+//! from buffer objects and display lists record nothing. The capture then replays (`glrt
+//! replay`) to the same frames and, captured again, to the same file.
+
+mod common;
+
+use std::ffi::c_void;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use common::gl;
+use glrt::translate::capture::{self, reader::{Capture, Record}, table::COMMANDS};
+use glrt::translate::gl::*;
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capture_reads");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    let _ = std::fs::remove_file(&path);
+    path
+}
+
+/// Client memory a call read: `(address, bytes)` per range.
+type Reads = Vec<(u64, Vec<u8>)>;
+
+/// The calls of a capture by name, with their reads.
+fn calls(capture: &Capture) -> Vec<(&'static str, Reads)> {
+    capture
+        .records()
+        .filter_map(|r| match r.unwrap().1 {
+            Record::Call { id, reads, .. } => Some((COMMANDS[id].0, reads.into_iter().map(|(a, b)| (a, b.to_vec())).collect())),
+            Record::Event(_) => None,
+        })
+        .collect()
+}
+
+fn bytes_of<T: Copy>(values: &[T]) -> Vec<u8> {
+    // Safety: plain numbers, viewed as their bytes.
+    unsafe { std::slice::from_raw_parts(values.as_ptr().cast::<u8>(), std::mem::size_of_val(values)) }.to_vec()
+}
+
+fn addr<T>(p: *const T) -> u64 {
+    p as usize as u64
+}
+
+#[test]
+fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
+    let (path, live_log) = (scratch("reads.glrtcap"), scratch("live.frames"));
+    // Safety: set before any GL call and any other thread of this test binary exists.
+    unsafe {
+        std::env::set_var("GLRT_CAPTURE", &path);
+        std::env::set_var("GLRT_FRAME_LOG", &live_log);
+    }
+    let _ctx = common::make_current();
+    let mut vertices: Vec<[f32; 3]> = (0..8).map(|i| [i as f32, 0.5, 0.0]).collect();
+    let indices: [u16; 3] = [5, 1, 7];
+    let texels: Vec<u8> = (0..64).collect();
+    let names: [u8; 3] = [0, 2, 1];
+    let buffer_data: Vec<f32> = (0..12).map(|i| i as f32).collect();
+    let mut seen_vertex_bytes = Vec::new();
+    unsafe {
+        let base = gl::glGenLists(3);
+        for i in 0..3 {
+            gl::glNewList(base + i, GL_COMPILE);
+            gl::glBegin(GL_POINTS);
+            gl::glVertex3fv(vertices[i as usize].as_ptr());
+            gl::glEnd();
+            gl::glEndList();
+        }
+        let mut vbo = 0;
+        gl::glGenBuffers(1, &mut vbo);
+        gl::glBindBuffer(GL_ARRAY_BUFFER, vbo);
+        gl::glBufferData(GL_ARRAY_BUFFER, 48, buffer_data.as_ptr().cast(), GL_STATIC_DRAW);
+        gl::glBindBuffer(GL_ARRAY_BUFFER, 0);
+        gl::glPixelStorei(GL_UNPACK_ROW_LENGTH, 4);
+        gl::glPixelStorei(GL_UNPACK_SKIP_PIXELS, 1);
+        gl::glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA as i32, 2, 2, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+        for frame in 0..3 {
+            gl::glClear(GL_COLOR_BUFFER_BIT);
+            gl::glEnableClientState(GL_VERTEX_ARRAY);
+            gl::glVertexPointer(3, GL_FLOAT, 0, vertices.as_ptr().cast());
+            gl::glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_SHORT, indices.as_ptr().cast());
+            gl::glBegin(GL_POINTS);
+            gl::glArrayElement(2);
+            gl::glEnd();
+            gl::glListBase(base);
+            gl::glCallLists(3, GL_UNSIGNED_BYTE, names.as_ptr().cast());
+            gl::glBindBuffer(GL_ARRAY_BUFFER, vbo);
+            gl::glVertexPointer(3, GL_FLOAT, 0, std::ptr::null::<c_void>());
+            gl::glDrawArrays(GL_TRIANGLES, 0, 3);
+            gl::glBindBuffer(GL_ARRAY_BUFFER, 0);
+            glrt::gl_entry::headless::glrtSwapBuffers();
+            seen_vertex_bytes.push(bytes_of(&vertices));
+            // Changed after the frame: the capture must hold each frame's values.
+            vertices.iter_mut().for_each(|v| v[1] += 1.0 + frame as f32);
+        }
+    }
+    assert_eq!(common::error(), GL_NO_ERROR);
+    capture::finish();
+
+    let capture = Capture::open(&path).unwrap();
+    let calls = calls(&capture);
+    let of = |name: &str| calls.iter().filter(|(n, _)| *n == name).map(|(_, r)| r.clone()).collect::<Vec<_>>();
+    let v = addr(vertices.as_ptr());
+    let element = |frame: usize, i: usize| (v + 12 * i as u64, seen_vertex_bytes[frame][12 * i..12 * i + 12].to_vec());
+
+    let draws = of("glDrawElements");
+    assert_eq!(draws.len(), 3);
+    for (frame, reads) in draws.iter().enumerate() {
+        // glrt fetches the index range min..=max once (vertices 1 to 7), then assembles.
+        let range = (v + 12, seen_vertex_bytes[frame][12..96].to_vec());
+        let mut expected = vec![(addr(indices.as_ptr()), bytes_of(&indices)), range];
+        expected.sort();
+        assert_eq!(*reads, expected, "frame {frame}: indices and vertices 1..=7 as they were at the draw");
+    }
+    for (frame, reads) in of("glArrayElement").iter().enumerate() {
+        assert_eq!(*reads, vec![element(frame, 2)], "glArrayElement(2) reads vertex 2");
+    }
+    assert_eq!(of("glTexImage2D"), vec![vec![(addr(texels.as_ptr()), texels[..28].to_vec())]], "skip 1 pixel, 2 rows of 4");
+    assert_eq!(of("glCallLists"), vec![vec![(addr(names.as_ptr()), names.to_vec())]; 3]);
+    assert_eq!(of("glBufferData"), vec![vec![(addr(buffer_data.as_ptr()), bytes_of(&buffer_data))]]);
+    assert_eq!(of("glVertex3fv").len(), 3, "compiled once into each list, not recorded when lists run");
+    assert!(of("glDrawArrays").iter().all(Vec::is_empty), "a buffer-object draw reads no client memory");
+    assert_eq!(of("glVertexPointer").iter().filter(|r| !r.is_empty()).count(), 0, "pointers are read at draw time");
+
+    // Replay: the same frames, and the same file when captured again.
+    let (replay_log, again) = (scratch("replay.frames"), scratch("again.glrtcap"));
+    let out = Command::new(env!("CARGO_BIN_EXE_glrt"))
+        .arg("replay")
+        .arg(&path)
+        .env("GLRT_FRAME_LOG", &replay_log)
+        .env("GLRT_CAPTURE", &again)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let live = std::fs::read_to_string(&live_log).unwrap();
+    assert_eq!(live.lines().count(), 3);
+    assert_eq!(std::fs::read_to_string(&replay_log).unwrap(), live);
+    assert!(std::fs::read(&again).unwrap() == std::fs::read(&path).unwrap(), "the replay's capture differs");
+}
