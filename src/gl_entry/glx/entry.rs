@@ -23,37 +23,46 @@ use crate::translate::convert::ReturnDefault;
 /// A GLX argument or result as the call log prints it.
 pub trait GlxValue: Copy {
     /// Appends the value.
-    fn print(self, out: &mut String);
+    ///
+    /// # Safety
+    /// A pointer points to what the GLX function it was given to reads (a NUL-terminated
+    /// name for `const GLubyte *`, a None-terminated attribute list for `const int *`).
+    unsafe fn print(self, out: &mut String);
 
     /// Appends the value of a `Bool` result (only `int`s are ever one).
-    fn print_bool(self, out: &mut String) {
-        self.print(out);
+    ///
+    /// # Safety
+    /// As [`GlxValue::print`].
+    unsafe fn print_bool(self, out: &mut String) {
+        // Safety: as documented.
+        unsafe { self.print(out) };
     }
 }
 
 impl GlxValue for i32 {
-    fn print(self, out: &mut String) {
+    unsafe fn print(self, out: &mut String) {
         let _ = write!(out, "{self}");
     }
 
-    fn print_bool(self, out: &mut String) {
+    unsafe fn print_bool(self, out: &mut String) {
         out.push_str(match self {
             0 => "False",
             1 => "True",
-            _ => return self.print(out),
+            // Safety: an `int` is printed as it is.
+            _ => return unsafe { self.print(out) },
         });
     }
 }
 
 impl GlxValue for u32 {
-    fn print(self, out: &mut String) {
+    unsafe fn print(self, out: &mut String) {
         let _ = write!(out, "{self}");
     }
 }
 
 /// `c_ulong`: XIDs (windows, drawables, fonts) and event masks.
 impl GlxValue for u64 {
-    fn print(self, out: &mut String) {
+    unsafe fn print(self, out: &mut String) {
         let _ = write!(out, "{self:#x}");
     }
 }
@@ -69,14 +78,14 @@ fn print_address<T>(ptr: *const T, out: &mut String) {
 
 /// Handles (`GLXContext`, `GLXFBConfig`).
 impl GlxValue for *const c_void {
-    fn print(self, out: &mut String) {
+    unsafe fn print(self, out: &mut String) {
         print_address(self, out);
     }
 }
 
 /// Strings glrt returns (`glXQueryExtensionsString`): the address (the text is long).
 impl GlxValue for *const c_char {
-    fn print(self, out: &mut String) {
+    unsafe fn print(self, out: &mut String) {
         print_address(self, out);
     }
 }
@@ -84,7 +93,7 @@ impl GlxValue for *const c_char {
 /// `glXGetProcAddress`'s name: the address and the text, `0x55d0c1a2e2a0"glXSwapIntervalMESA"`
 /// (at most [`MAX_NAME`] bytes are read).
 impl GlxValue for *const u8 {
-    fn print(self, out: &mut String) {
+    unsafe fn print(self, out: &mut String) {
         print_address(self, out);
         if !self.is_null() {
             // Safety: the caller passes a NUL-terminated string; reading stops at its end.
@@ -97,7 +106,7 @@ impl GlxValue for *const u8 {
 /// Attribute lists (every `const int *` parameter of a GLX export is one): the address and
 /// the pairs, names by [`attribute_name`], `0x7ffd…[GLX_RENDER_TYPE=1, GLX_DOUBLEBUFFER=1]`.
 impl GlxValue for *const c_int {
-    fn print(self, out: &mut String) {
+    unsafe fn print(self, out: &mut String) {
         print_address(self, out);
         if self.is_null() {
             return;
@@ -117,7 +126,7 @@ impl GlxValue for *const c_int {
 
 /// Other pointers (displays, visuals, out-parameters): the address.
 impl<T> GlxValue for *mut T {
-    fn print(self, out: &mut String) {
+    unsafe fn print(self, out: &mut String) {
         print_address(self.cast_const(), out);
     }
 }
@@ -143,12 +152,16 @@ fn attribute_name(attribute: c_int) -> Option<&'static str> {
 }
 
 impl GlxValue for () {
-    fn print(self, _: &mut String) {}
+    unsafe fn print(self, _: &mut String) {}
 }
 
 /// Appends argument `name` to a call line.
-pub fn arg<T: GlxValue>(t: &mut Trace, name: &str, value: T) {
-    value.print(t.next(name.trim_start_matches('_')));
+///
+/// # Safety
+/// As [`GlxValue::print`].
+pub unsafe fn arg<T: GlxValue>(t: &mut Trace, name: &str, value: T) {
+    // Safety: as documented.
+    unsafe { value.print(t.next(name.trim_start_matches('_'))) };
 }
 
 /// Runs a GLX export: `own` (glrt's body) under [`super::guard`], or when the call log or
@@ -187,7 +200,8 @@ pub fn special<R: GlxValue + ReturnDefault>(
     t.returned_with(|out| {
         if std::mem::size_of::<R>() > 0 {
             out.push_str(" = ");
-            if bool_result { result.print_bool(out) } else { result.print(out) }
+            // Safety: results are numbers, handles and pointers printed by address.
+            unsafe { if bool_result { result.print_bool(out) } else { result.print(out) } }
         }
     });
     t.end();
@@ -215,7 +229,8 @@ macro_rules! glx_export {
             || $body,
             |t| {
                 let _ = &t;
-                $($crate::gl_entry::glx::entry::arg(t, stringify!($arg), $arg);)*
+                // Safety: the arguments are the C caller's, valid as the GLX function requires.
+                $(unsafe { $crate::gl_entry::glx::entry::arg(t, stringify!($arg), $arg) };)*
             },
             || $forward,
         )
@@ -232,7 +247,8 @@ mod tests {
 
     fn printed<T: GlxValue>(value: T, as_bool: bool) -> String {
         let mut s = String::new();
-        if as_bool { value.print_bool(&mut s) } else { value.print(&mut s) }
+        // Safety: the tests pass valid names and lists.
+        unsafe { if as_bool { value.print_bool(&mut s) } else { value.print(&mut s) } }
         s
     }
 
