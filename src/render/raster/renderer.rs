@@ -331,7 +331,8 @@ impl Renderer {
     /// A [`Recorder`] on the current slot for a frame of `size`, starting the command buffer
     /// and (re)creating the target when needed.
     pub fn recorder(&mut self, size: [u32; 2]) -> Result<Recorder<'_>> {
-        let size = [size[0].max(1), size[1].max(1)];
+        let max = self.parts.device.properties.limits.max_image_dimension2_d;
+        let size = size.map(|s| s.clamp(1, max));
         if self.parts.target.as_ref().is_some_and(|t| t.size != size) {
             self.flush()?;
             self.parts.device.wait_idle()?;
