@@ -406,12 +406,13 @@ impl Renderer {
     }
 
     /// Submits the current slot's commands and waits for them (the slot starts again on the
-    /// next [`Renderer::recorder`]).
+    /// next [`Renderer::recorder`]); occlusion counts recorded so far are read.
     fn flush(&mut self) -> Result<()> {
         if self.recording {
             self.end_pass();
-            self.slots[self.current].submit(&self.parts.device, &SubmitSync::default(), true)?;
+            self.slots[self.current].submit(&self.parts.device, &SubmitSync::default())?;
             self.recording = false;
+            self.wait_slot(self.current)?;
         }
         Ok(())
     }
@@ -453,7 +454,7 @@ impl Renderer {
             }
             let queries = frame.occlusion_queries.iter().map(|(q, _)| *q).collect();
             self.parts.occlusion.finish_frame(slot, frame.number, queries);
-            self.slots[slot].submit(&self.parts.device, &sync, false)?;
+            self.slots[slot].submit(&self.parts.device, &sync)?;
             outputs.iter_mut().try_for_each(|o| o.submitted(&self.parts.device, slot))
         })();
         self.outputs = outputs;
