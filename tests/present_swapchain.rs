@@ -196,10 +196,18 @@ fn swapchain_shows_the_rendered_image_and_follows_resizes() {
         }
         unsafe { gpu.device.queue_wait_idle(gpu.queue) }.unwrap();
         assert_eq!(presenter.format().map(|f| f.1), Some(size), "swapchain extent follows the window");
+        assert_eq!(presenter.present_mode(), Some(vk::PresentModeKHR::FIFO), "swap interval 1");
         let want = as_shown(&rgba, w, h);
         let got = wait_for(&x, dpy, win, size, &want);
         assert!(got == want, "{w}x{h}: {}", first_difference(&got, &want, w));
     }
+    // Swap interval 0: the swapchain is recreated without vertical sync.
+    presenter.resize([80, 60], 0);
+    let image = source_image(&gpu, [80, 60], &pattern(80, 60));
+    let source = Source { image, layout: vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL, size: [80, 60], bottom_up: true };
+    assert_eq!(unsafe { presenter.present(&source) }, Ok(Presented::Shown));
+    let mode = presenter.present_mode();
+    assert!(matches!(mode, Some(vk::PresentModeKHR::IMMEDIATE | vk::PresentModeKHR::MAILBOX)), "swap interval 0: {mode:?}");
     drop(presenter);
 
     // Through `Presenter`: the swapchain when the device is given, Xlib from a read-back

@@ -350,8 +350,10 @@ fn occlusion_queries_count_samples_that_pass() {
     }
     lower_left_triangle(&mut ctx, true, [1.0, 0.0, 0.0]);
     quad_at(&mut ctx, -0.5, [0.0, 1.0, 0.0]);
+    unsafe { dispatch::glEndQuery(&mut ctx, gl::GL_SAMPLES_PASSED) };
+    // A read-back renders (and submits) the frame so far: the count survives it.
+    assert_eq!(pixel(&mut ctx, 30, 30), [0, 255, 0, 255]);
     unsafe {
-        dispatch::glEndQuery(&mut ctx, gl::GL_SAMPLES_PASSED);
         // Behind everything drawn: no sample passes.
         dispatch::glBeginQuery(&mut ctx, gl::GL_SAMPLES_PASSED, 2);
     }

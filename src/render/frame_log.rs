@@ -105,4 +105,31 @@ mod tests {
         );
         assert_eq!(recording.frames.lock().len(), 2);
     }
+
+    /// A renderer answering read-backs and queries with fixed values.
+    struct Answers;
+
+    impl FrameSink for Answers {
+        fn present(&mut self, _frame: Frame) {}
+        fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
+            Some(frame * 100 + query as u64)
+        }
+        fn occlusion_counter_bits(&self) -> u32 {
+            64
+        }
+        fn read_pixels(&mut self, _frame: &Frame, _buffer: crate::frame::pixels::PixelBuffer, [x, y, _, _]: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+            Some(vec![[x as f32, y as f32, 0.0, 1.0]])
+        }
+    }
+
+    #[test]
+    fn read_backs_and_queries_reach_the_inner_sink() {
+        let path = std::env::temp_dir().join(format!("glrt-frame-log-fwd-{}", std::process::id()));
+        let mut log = FrameLog::open(&path, Box::new(Answers)).unwrap();
+        let _ = std::fs::remove_file(&path);
+        assert_eq!(log.occlusion_counter_bits(), 64);
+        assert_eq!(log.occlusion_result(2, 5), Some(205));
+        let read = log.read_pixels(&Frame::default(), crate::frame::pixels::PixelBuffer::Color, [3, 4, 1, 1]);
+        assert_eq!(read, Some(vec![[3.0, 4.0, 0.0, 1.0]]));
+    }
 }

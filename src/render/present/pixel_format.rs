@@ -66,11 +66,6 @@ impl PixelFormat {
         self.red.table[r as usize] | self.green.table[g as usize] | self.blue.table[b as usize] | self.fill
     }
 
-    /// Bytes of one pixel.
-    pub fn bytes_per_pixel(&self) -> usize {
-        self.bytes_per_pixel
-    }
-
     /// Converts `rgba` (`width` × `height`, tightly packed, rows bottom to top when
     /// `bottom_up`, else top to bottom) into `dst`, an image with rows top to bottom `stride`
     /// bytes apart. Returns false (writing nothing) when either buffer is too small.

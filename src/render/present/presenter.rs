@@ -85,14 +85,14 @@ impl Presenter {
         Presenter { target, path, epoch: epoch_of(&target) }
     }
 
-    /// The target frames go to.
-    pub fn target(&self) -> Target {
-        self.target
-    }
-
     /// `"vulkan"`, `"xlib"`, `"offscreen"` or `"none"`: the path in use (for logs and tests).
     pub fn path(&self) -> &'static str {
         path_name(&self.path)
+    }
+
+    /// Whether frames reach a drawable (not off-screen, not a drawable that cannot be shown).
+    pub fn shows_frames(&self) -> bool {
+        matches!(self.path, Path::Swapchain(_) | Path::Xlib(_))
     }
 
     /// Whether frames must be read back for this path (the renderer may skip rendering to

@@ -107,6 +107,7 @@ struct Chain {
     blitted: Vec<vk::Semaphore>,
     format: vk::Format,
     extent: vk::Extent2D,
+    mode: vk::PresentModeKHR,
 }
 
 /// Presents the renderer's frames on one X window through a Vulkan swapchain.
@@ -213,6 +214,11 @@ impl SwapchainPresenter {
     /// The swapchain's format and extent, once it exists (for logs and tests).
     pub fn format(&self) -> Option<(vk::Format, [u32; 2])> {
         self.chain.as_ref().map(|c| (c.format, [c.extent.width, c.extent.height]))
+    }
+
+    /// The swapchain's present mode, once it exists (for logs and tests).
+    pub fn present_mode(&self) -> Option<vk::PresentModeKHR> {
+        self.chain.as_ref().map(|c| c.mode)
     }
 
     /// Shows `source` on the window: acquire, blit (scaled if the window's size changed since
@@ -331,6 +337,8 @@ impl SwapchainPresenter {
                 .into_iter()
                 .find(|a| caps.supported_composite_alpha.contains(*a))
                 .unwrap_or(vk::CompositeAlphaFlagsKHR::from_raw(caps.supported_composite_alpha.as_raw() & caps.supported_composite_alpha.as_raw().wrapping_neg()));
+            let mode = present_mode(self.interval, &modes);
+            log::info!("present: swapchain {}x{} {:?} {mode:?}", extent.width, extent.height, format.format);
             let info = vk::SwapchainCreateInfoKHR::default()
                 .surface(self.surface)
                 .min_image_count(count)
@@ -342,13 +350,13 @@ impl SwapchainPresenter {
                 .image_sharing_mode(vk::SharingMode::EXCLUSIVE)
                 .pre_transform(caps.current_transform)
                 .composite_alpha(alpha)
-                .present_mode(present_mode(self.interval, &modes))
+                .present_mode(mode)
                 .clipped(true)
                 .old_swapchain(old.as_ref().map_or(vk::SwapchainKHR::null(), |c| c.handle));
             let created = self.swapchain_fns.create_swapchain(&info, None);
             self.destroy_chain(old);
             let handle = created?;
-            let mut chain = Chain { handle, images: Vec::new(), blitted: Vec::new(), format: format.format, extent };
+            let mut chain = Chain { handle, images: Vec::new(), blitted: Vec::new(), format: format.format, extent, mode };
             let result = (|| {
                 chain.images = self.swapchain_fns.get_swapchain_images(handle)?;
                 for _ in 0..chain.images.len() {

@@ -40,11 +40,6 @@ impl WindowOutput {
     pub fn new() -> WindowOutput {
         WindowOutput::default()
     }
-
-    /// The path frames take (`vulkan`, `xlib`, `offscreen`, `none`), `None` before a target.
-    pub fn path(&self) -> Option<&'static str> {
-        self.presenter.as_ref().map(Presenter::path)
-    }
 }
 
 /// The renderer's device as the swapchain needs it, when it can present.
@@ -93,7 +88,7 @@ impl FrameOutput for WindowOutput {
 
     fn record(&mut self, rec: &mut Recorder<'_>, _slot: usize, _frame: u64) -> Result<SubmitSync> {
         let Some(presenter) = &self.presenter else { return Ok(SubmitSync::default()) };
-        if !matches!(presenter.path(), "vulkan" | "xlib") {
+        if !presenter.shows_frames() {
             return Ok(SubmitSync::default());
         }
         let (device, cmd, target) = (rec.device, rec.cmd, &mut *rec.target);

@@ -332,7 +332,8 @@ impl Renderer {
     /// A [`Recorder`] on the current slot for a frame of `size`, starting the command buffer
     /// and (re)creating the target when needed.
     pub fn recorder(&mut self, size: [u32; 2]) -> Result<Recorder<'_>> {
-        let size = [size[0].max(1), size[1].max(1)];
+        let max = self.parts.device.properties.limits.max_image_dimension2_d;
+        let size = size.map(|s| s.clamp(1, max));
         if self.parts.target.as_ref().is_some_and(|t| t.size != size) {
             self.flush()?;
             self.parts.device.wait_idle()?;
@@ -406,12 +407,13 @@ impl Renderer {
     }
 
     /// Submits the current slot's commands and waits for them (the slot starts again on the
-    /// next [`Renderer::recorder`]).
+    /// next [`Renderer::recorder`]); occlusion counts recorded so far are read.
     fn flush(&mut self) -> Result<()> {
         if self.recording {
             self.end_pass();
-            self.slots[self.current].submit(&self.parts.device, &SubmitSync::default(), true)?;
+            self.slots[self.current].submit(&self.parts.device, &SubmitSync::default())?;
             self.recording = false;
+            self.wait_slot(self.current)?;
         }
         Ok(())
     }
@@ -453,7 +455,7 @@ impl Renderer {
             }
             let queries = frame.occlusion_queries.iter().map(|(q, _)| *q).collect();
             self.parts.occlusion.finish_frame(slot, frame.number, queries);
-            self.slots[slot].submit(&self.parts.device, &sync, false)?;
+            self.slots[slot].submit(&self.parts.device, &sync)?;
             outputs.iter_mut().try_for_each(|o| o.submitted(&self.parts.device, slot))
         })();
         self.outputs = outputs;
