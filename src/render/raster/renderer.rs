@@ -23,7 +23,7 @@ use super::ff;
 use super::pipelines::{FixedState, PipelineKey, Pipelines};
 use super::target::{Plane, Target};
 use super::textures::Textures;
-use super::{conv, readback};
+use super::{conv, pixel_ops, readback};
 use crate::frame::pixels::PixelBuffer;
 use crate::frame::{Clear, Draw, Frame};
 use crate::render::FrameSink;
@@ -59,6 +59,8 @@ pub struct Renderer {
     outputs: Vec<Box<dyn FrameOutput>>,
     /// Set after a device error: frames are dropped.
     failed: bool,
+    /// The accumulation buffer.
+    accum: pixel_ops::accum::Accum,
 }
 
 /// The renderer's state other than the slots (borrowed apart from them by [`Recorder`]).
@@ -294,6 +296,7 @@ impl Renderer {
             progress: None,
             outputs: Vec::new(),
             failed: false,
+            accum: pixel_ops::accum::Accum::default(),
         })
     }
 
@@ -355,6 +358,15 @@ impl Renderer {
 
     /// Records what of `frame` is not recorded yet.
     fn record(&mut self, frame: &Frame) -> Result<()> {
+        let mut accum = std::mem::take(&mut self.accum);
+        let result = self.record_with(frame, &mut accum);
+        self.accum = accum;
+        result
+    }
+
+    /// [`Renderer::record`] with the accumulation buffer taken out of `self` (pixel operations
+    /// that read the framebuffer submit and wait in the middle of the frame).
+    fn record_with(&mut self, frame: &Frame, accum: &mut pixel_ops::accum::Accum) -> Result<()> {
         let mut progress = match self.progress {
             Some(p) if p.frame == frame.number => p,
             _ => Progress { frame: frame.number, ..Progress::default() },
@@ -367,13 +379,32 @@ impl Renderer {
             progress.last_indices = last.indices.len();
         }
         for index in progress.draws..=frame.draws.len() {
-            while let Some(clear) = frame.clears.get(progress.clears).filter(|c| c.before_draw <= index) {
-                rec.clear(clear);
-                progress.clears += 1;
-            }
-            while let Some(op) = frame.pixels.get(progress.pixels).filter(|p| p.before_draw <= index) {
-                super::pixel::record(&mut rec, op)?;
-                progress.pixels += 1;
+            // Clears and pixel operations before this draw, in program order.
+            loop {
+                let clear = frame.clears.get(progress.clears).filter(|c| c.before_draw <= index);
+                let op = frame.pixels.get(progress.pixels).filter(|p| p.before_draw <= index);
+                match (clear, op) {
+                    (Some(clear), op) if op.is_none_or(|op| op.after_clears > progress.clears) => {
+                        pixel_ops::clear::record(&mut rec, clear)?;
+                        if let Some(value) = clear.accum {
+                            accum.clear(rec.target.size, clear.scissor, value);
+                        }
+                        progress.clears += 1;
+                    }
+                    (_, Some(op)) => {
+                        let read = match pixel_ops::source(op, rec.target.size) {
+                            Some((buffer, rect)) => {
+                                let read = self.read_target(buffer, rect)?;
+                                rec = self.recorder(frame.size)?;
+                                read
+                            }
+                            None => None,
+                        };
+                        pixel_ops::record(&mut rec, accum, op, read.as_deref())?;
+                        progress.pixels += 1;
+                    }
+                    (_, None) => break,
+                }
             }
             if let Some(draw) = frame.draws.get(index) {
                 rec.draw(draw)?;
@@ -407,6 +438,11 @@ impl Renderer {
     /// Renders `frame` so far and copies `rect` of `buffer` back (see [`FrameSink::read_pixels`]).
     pub fn read(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
         self.record(frame)?;
+        self.read_target(buffer, rect)
+    }
+
+    /// Submits what is recorded, waits, and copies `rect` of `buffer` back.
+    fn read_target(&mut self, buffer: PixelBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
         self.end_pass();
         let slot = &mut self.slots[self.current];
         let Some(target) = self.parts.target.as_mut() else { return Ok(None) };

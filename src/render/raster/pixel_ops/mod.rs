@@ -1,0 +1,64 @@
+//! Pixel operations on the GPU framebuffer (OpenGL 1.5 sections 3.6–3.7, 4.2.3–4.2.4, 4.3):
+//! one module per operation. Fragments of bitmaps, images and copies are drawn as
+//! window-aligned rectangles through the fixed-function pipelines with the state of the
+//! operation ([`quads`]), so every per-fragment operation applies to them.
+//!
+//! Operations that read the framebuffer (`glCopyPixels`, `glAccum(GL_LOAD/GL_ACCUM)`) name the
+//! rectangle they read through [`source`]; the renderer submits the frame so far, reads it
+//! back and passes the pixels to [`record`] (the copy is therefore taken before any of it is
+//! drawn: overlapping source and destination rectangles behave as the specification says).
+//!
+//! `glCopyTexImage*`/`glCopyTexSubImage*` ([`PixelKind::TextureCopy`]) are not done here: see
+//! [`record`].
+
+pub mod accum;
+pub mod bitmap;
+pub mod clear;
+pub mod image;
+pub mod quads;
+
+use super::device::Result;
+use super::renderer::Recorder;
+use crate::frame::pixels::{AccumOp, PixelBuffer, PixelData, PixelKind, PixelOp};
+
+/// The buffer and window rectangle `op` reads, when it reads the framebuffer; `size` is the
+/// target's.
+pub fn source(op: &PixelOp, size: [u32; 2]) -> Option<(PixelBuffer, [i32; 4])> {
+    match op.kind {
+        PixelKind::Copy { src, buffer, .. } => Some((buffer, src)),
+        PixelKind::Accum { op: AccumOp::Load | AccumOp::Accum, .. } => {
+            Some((PixelBuffer::Color, accum::Accum::area(size, op.state.scissor))).filter(|(_, r)| r[2] > 0 && r[3] > 0)
+        }
+        _ => None,
+    }
+}
+
+/// Records `op`; `read` holds the pixels of [`source`]'s rectangle when it names one (as
+/// [`crate::render::FrameSink::read_pixels`] returns them).
+pub fn record(rec: &mut Recorder<'_>, accum: &mut accum::Accum, op: &PixelOp, read: Option<&[[f32; 4]]>) -> Result<()> {
+    match &op.kind {
+        PixelKind::Bitmap { window_pos, size, color, mask } => bitmap::record(rec, &op.state, *window_pos, size[0] as usize, *color, mask),
+        PixelKind::Image { window_pos, zoom, size, color, data } => {
+            let at = image::Placement { window_pos: *window_pos, zoom: *zoom, width: size[0] as usize, color: *color, state: &op.state };
+            image::record(rec, &at, data)
+        }
+        PixelKind::Copy { src, window_pos, zoom, buffer, color } => {
+            let Some(read) = read else { return Ok(()) };
+            let data = match buffer {
+                PixelBuffer::Color => PixelData::Rgba8(read.iter().flat_map(|c| c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)).collect()),
+                PixelBuffer::Depth => PixelData::Depth(read.iter().map(|c| c[0]).collect()),
+                PixelBuffer::Stencil => PixelData::Stencil(read.iter().map(|c| c[0] as u32).collect()),
+            };
+            let at = image::Placement { window_pos: *window_pos, zoom: *zoom, width: src[2].max(0) as usize, color: *color, state: &op.state };
+            image::record(rec, &at, &data)
+        }
+        PixelKind::Accum { op: kind, value } => accum.apply(rec, &op.state, *kind, *value, read),
+        PixelKind::TextureCopy { .. } => {
+            // The texture cache uploads each (texture, version) from the texels translate
+            // holds; framebuffer copies into it need translate to read the pixels back at the
+            // copy (see the branch report).
+            super::renderer::log_once("glCopyTexImage/glCopyTexSubImage: the framebuffer pixels are not copied into the texture");
+            Ok(())
+        }
+    }
+}
