@@ -1,21 +1,237 @@
 #version 450
-// Fixed-function fragment stage (OpenGL 1.5 sections 3.8-3.10, 4.1): see
+#extension GL_GOOGLE_include_directive : require
+// Fixed-function fragment stage (OpenGL 1.5 sections 3.3 to 3.5 for antialiasing coverage and
+// stipples, 3.8 texturing, 3.9 colour sum, 3.10 fog, 3.12 coverage, 4.1.4 alpha test): see
 // src/render/raster/ff/mod.rs for the interface.
 
-layout(constant_id = 0) const uint KEY0 = 0u;
-const uint TEXTURE_2D = 1u;
+#define FF_FRAGMENT
+#include "ff_key.glsl"
+#include "ff_uniforms.glsl"
+#include "ff_varyings.glsl"
 
-layout(set = 0, binding = 1) uniform sampler2D tex2d0;
-
-layout(location = 0) in vec4 v_color;
-layout(location = 1) in vec4 v_texcoord0;
+layout(set = 0, binding = 1) uniform sampler2D tex2d_0;
+layout(set = 0, binding = 2) uniform sampler2D tex2d_1;
+layout(set = 0, binding = 3) uniform sampler2D tex2d_2;
+layout(set = 0, binding = 4) uniform sampler2D tex2d_3;
+layout(set = 0, binding = 5) uniform sampler3D tex3d_0;
+layout(set = 0, binding = 6) uniform sampler3D tex3d_1;
+layout(set = 0, binding = 7) uniform sampler3D tex3d_2;
+layout(set = 0, binding = 8) uniform sampler3D tex3d_3;
+layout(set = 0, binding = 9) uniform samplerCube texcube_0;
+layout(set = 0, binding = 10) uniform samplerCube texcube_1;
+layout(set = 0, binding = 11) uniform samplerCube texcube_2;
+layout(set = 0, binding = 12) uniform samplerCube texcube_3;
 
 layout(location = 0) out vec4 out_color;
 
+// `a func b` for func in the order NEVER, LESS, EQUAL, LEQUAL, GREATER, NOTEQUAL, GEQUAL,
+// ALWAYS (the GL enums from GL_NEVER).
+bool compare(uint func, float a, float b) {
+    switch (func) {
+    case 0u: return false;
+    case 1u: return a < b;
+    case 2u: return a == b;
+    case 3u: return a <= b;
+    case 4u: return a > b;
+    case 5u: return a != b;
+    case 6u: return a >= b;
+    default: return true;
+    }
+}
+
+// The texel of a unit (section 3.8): projective coordinates, the unit's LOD bias, depth
+// comparison and expansion (section 3.8.14); white when the unit does not texture.
+vec4 sample_unit(uint word, sampler2D s2, sampler3D s3, samplerCube sc, vec4 c, float bias) {
+    uint target = field(word, TARGET_SHIFT, TARGET_BITS);
+    vec4 t = vec4(1.0);
+    if (target == 1u) {
+        t = texture(s2, vec2(c.s / c.q, 0.5), bias);
+    } else if (target == 2u) {
+        t = texture(s2, c.st / c.q, bias);
+    } else if (target == 3u) {
+        t = texture(s3, c.stp / c.q, bias);
+    } else if (target == 4u) {
+        t = texture(sc, c.stp, bias);
+    }
+    uint depth = field(word, DEPTH_SHIFT, DEPTH_BITS);
+    if (depth != 0u) {
+        float d = t.r;
+        if (depth >= 2u) {
+            float r = clamp(target == 4u ? c.p : c.p / c.q, 0.0, 1.0);
+            d = compare(depth - 2u, r, d) ? 1.0 : 0.0;
+        }
+        uint format = field(word, FORMAT_SHIFT, FORMAT_BITS);
+        t = format == 0u ? vec4(0.0, 0.0, 0.0, d) : format == 3u ? vec4(d) : vec4(d, d, d, 1.0);
+    }
+    return t;
+}
+
+// Argument `i` of a combiner word (section 3.8.13, table 3.24).
+vec4 combine_source(uint word, uint i, vec4 ct, vec4 texel[MAX_UNITS], vec4 cc, vec4 primary, vec4 previous) {
+    uint source = field(word, SOURCE_SHIFT + 3u * i, SOURCE_BITS);
+    switch (source) {
+    case 0u: return ct;
+    case 1u: return texel[0];
+    case 2u: return texel[1];
+    case 3u: return texel[2];
+    case 4u: return texel[3];
+    case 5u: return cc;
+    case 6u: return primary;
+    default: return previous;
+    }
+}
+
+// The RGB combiner's argument i after its operand (table 3.25).
+vec3 rgb_arg(uint word, uint i, vec4 ct, vec4 texel[MAX_UNITS], vec4 cc, vec4 primary, vec4 previous) {
+    vec4 v = combine_source(word, i, ct, texel, cc, primary, previous);
+    uint op = field(word, OPERAND_SHIFT + 2u * i, OPERAND_BITS);
+    return op == 0u ? v.rgb : op == 1u ? 1.0 - v.rgb : op == 2u ? vec3(v.a) : vec3(1.0 - v.a);
+}
+
+// The alpha combiner's argument i after its operand (table 3.26: SRC_ALPHA or
+// ONE_MINUS_SRC_ALPHA).
+float alpha_arg(uint word, uint i, vec4 ct, vec4 texel[MAX_UNITS], vec4 cc, vec4 primary, vec4 previous) {
+    vec4 v = combine_source(word, i, ct, texel, cc, primary, previous);
+    uint op = field(word, OPERAND_SHIFT + 2u * i, OPERAND_BITS);
+    return (op & 1u) == 0u ? v.a : 1.0 - v.a;
+}
+
+// The combiner functions of table 3.23 (DOT3 only for RGB).
+vec3 combine3(uint f, vec3 a0, vec3 a1, vec3 a2) {
+    switch (f) {
+    case 0u: return a0;
+    case 1u: return a0 * a1;
+    case 2u: return a0 + a1;
+    case 3u: return a0 + a1 - 0.5;
+    case 4u: return a0 * a2 + a1 * (1.0 - a2);
+    case 5u: return a0 - a1;
+    default: return vec3(4.0 * dot(a0 - 0.5, a1 - 0.5));
+    }
+}
+
+float combine1(uint f, float a0, float a1, float a2) {
+    return combine3(f, vec3(a0), vec3(a1), vec3(a2)).x;
+}
+
+// The texture function of unit `unit` (section 3.8.13, table 3.22 with the base-format rules).
+vec4 tex_env(int unit, uint word, uint rgb_word, uint alpha_word, vec4 cf, vec4 ct, vec4 texel[MAX_UNITS], vec4 primary) {
+    uint env = field(word, ENV_SHIFT, ENV_BITS);
+    uint format = field(word, FORMAT_SHIFT, FORMAT_BITS);
+    bool has_color = format != 0u;
+    bool has_alpha = format == 0u || format == 2u || format == 3u || format == 5u;
+    bool intensity = format == 3u;
+    vec4 cc = u.env_color[unit];
+    vec3 c = cf.rgb;
+    float a = cf.a;
+    if (env == 0u) {
+        c = has_color ? cf.rgb * ct.rgb : cf.rgb;
+        a = has_alpha ? cf.a * ct.a : cf.a;
+    } else if (env == 1u) {
+        c = has_color ? ct.rgb : cf.rgb;
+        a = has_alpha ? ct.a : cf.a;
+    } else if (env == 2u) {
+        c = mix(cf.rgb, ct.rgb, ct.a);
+    } else if (env == 3u) {
+        c = has_color ? mix(cf.rgb, cc.rgb, ct.rgb) : cf.rgb;
+        a = intensity ? mix(cf.a, cc.a, ct.a) : has_alpha ? cf.a * ct.a : cf.a;
+    } else if (env == 4u) {
+        c = has_color ? cf.rgb + ct.rgb : cf.rgb;
+        a = intensity ? cf.a + ct.a : has_alpha ? cf.a * ct.a : cf.a;
+    } else {
+        uint frgb = field(rgb_word, COMBINE_FN_SHIFT, COMBINE_FN_BITS);
+        c = combine3(frgb,
+            rgb_arg(rgb_word, 0u, ct, texel, cc, primary, cf),
+            rgb_arg(rgb_word, 1u, ct, texel, cc, primary, cf),
+            rgb_arg(rgb_word, 2u, ct, texel, cc, primary, cf));
+        c *= float(1u << field(rgb_word, SCALE_SHIFT, SCALE_BITS));
+        if (frgb == 7u) {
+            a = c.r;
+        } else {
+            a = combine1(field(alpha_word, COMBINE_FN_SHIFT, COMBINE_FN_BITS),
+                alpha_arg(alpha_word, 0u, ct, texel, cc, primary, cf),
+                alpha_arg(alpha_word, 1u, ct, texel, cc, primary, cf),
+                alpha_arg(alpha_word, 2u, ct, texel, cc, primary, cf));
+            a *= float(1u << field(alpha_word, SCALE_SHIFT, SCALE_BITS));
+        }
+    }
+    return clamp(vec4(c, a), 0.0, 1.0);
+}
+
+// Line stipple, polygon stipple: whether the fragment is kept (sections 3.4.2, 3.5.2).
+bool stippled_out() {
+    if (GENERAL(LINE_STIPPLE) != 0u) {
+        uint bit = uint(floor(max(v_raster.z, 0.0) / u.raster.z)) % 16u;
+        if (((u.stipple.x >> bit) & 1u) == 0u) {
+            return true;
+        }
+    }
+    if (GENERAL(POLYGON_STIPPLE) != 0u) {
+        // Window rows count from the bottom: GL y = height - Vulkan y.
+        uint x = uint(gl_FragCoord.x) % 32u;
+        uint y = uint(max(float(u.stipple.y) - gl_FragCoord.y, 0.0)) % 32u;
+        uint row = u.polygon_stipple[y / 4u][y % 4u];
+        if (((row >> (31u - x)) & 1u) == 0u) {
+            return true;
+        }
+    }
+    return false;
+}
+
 void main() {
-    vec4 color = v_color;
-    if ((KEY0 & TEXTURE_2D) != 0u) {
-        color *= texture(tex2d0, v_texcoord0.st / v_texcoord0.q);
+    if (stippled_out()) {
+        discard;
+    }
+    uint facing = GENERAL(FACING);
+    bool front = facing == FACING_RASTERIZER ? gl_FrontFacing : facing == FACING_FRONT;
+    bool flat_shaded = GENERAL(FLAT) != 0u;
+    vec4 primary = flat_shaded ? (front ? f_front : f_back) : (front ? v_front : v_back);
+    vec4 secondary = flat_shaded ? (front ? f_front2 : f_back2) : (front ? v_front2 : v_back2);
+
+    vec4 texel[MAX_UNITS];
+    texel[0] = sample_unit(KEY_UNIT0, tex2d_0, tex3d_0, texcube_0, v_tex[0], u.lod_bias[0]);
+    texel[1] = sample_unit(KEY_UNIT1, tex2d_1, tex3d_1, texcube_1, v_tex[1], u.lod_bias[1]);
+    texel[2] = sample_unit(KEY_UNIT2, tex2d_2, tex3d_2, texcube_2, v_tex[2], u.lod_bias[2]);
+    texel[3] = sample_unit(KEY_UNIT3, tex2d_3, tex3d_3, texcube_3, v_tex[3], u.lod_bias[3]);
+
+    vec4 color = primary;
+    for (int i = 0; i < MAX_UNITS; i++) {
+        uint word = unit_word(i);
+        if (field(word, TARGET_SHIFT, TARGET_BITS) != 0u) {
+            uint rgb = i == 0 ? KEY_COMBINE_RGB0 : i == 1 ? KEY_COMBINE_RGB1 : i == 2 ? KEY_COMBINE_RGB2 : KEY_COMBINE_RGB3;
+            uint alpha = i == 0 ? KEY_COMBINE_ALPHA0 : i == 1 ? KEY_COMBINE_ALPHA1 : i == 2 ? KEY_COMBINE_ALPHA2 : KEY_COMBINE_ALPHA3;
+            color = tex_env(i, word, rgb, alpha, color, texel[i], texel, primary);
+        }
+    }
+
+    // Colour sum (section 3.9).
+    if (GENERAL(COLOR_SUM) != 0u) {
+        color.rgb = min(color.rgb + secondary.rgb, 1.0);
+    }
+
+    // Fog (section 3.10).
+    uint fog = GENERAL(FOG);
+    if (fog != 0u) {
+        float c = v_misc.x;
+        vec4 p = u.fog_params;
+        float f = fog == 1u ? (p.y - c) * p.w : fog == 2u ? exp(-p.z * c) : exp(-(p.z * c) * (p.z * c));
+        color.rgb = mix(u.fog_color.rgb, color.rgb, clamp(f, 0.0, 1.0));
+    }
+
+    // Antialiasing coverage (sections 3.3.2, 3.4.3, 3.12): the area of the pixel inside the
+    // point's circle or the line's rectangle, approximated by the distance to its edge.
+    if (GENERAL(SMOOTH) != 0u) {
+        uint primitive = GENERAL(PRIMITIVE);
+        if (primitive == PRIM_POINT) {
+            color.a *= clamp(v_misc.z * 0.5 + 0.5 - length(v_raster.xy), 0.0, 1.0);
+        } else if (primitive == PRIM_LINE) {
+            color.a *= clamp(u.raster.y * 0.5 + 0.5 - abs(v_raster.w), 0.0, 1.0);
+        }
+    }
+
+    // Alpha test (section 4.1.4).
+    uint alpha_test = GENERAL(ALPHA_TEST);
+    if (alpha_test != 0u && !compare(alpha_test - 1u, color.a, clamp(u.raster.x, 0.0, 1.0))) {
+        discard;
     }
     out_color = color;
 }

@@ -1,0 +1,46 @@
+// The uniform block of the fixed-function shaders (std140). Mirrors
+// src/render/raster/ff/uniforms.rs, whose test compares its offsets with this block's
+// compiled SPIR-V.
+
+const int MAX_UNITS = 4;
+const int MAX_LIGHTS = 8;
+const int MAX_CLIP_PLANES = 6;
+
+struct Material {
+    vec4 ambient;
+    vec4 diffuse;
+    vec4 specular;
+    vec4 emission;
+    vec4 shininess;   // x
+};
+
+struct Light {
+    vec4 ambient;
+    vec4 diffuse;
+    vec4 specular;
+    vec4 position;    // eye space, homogeneous
+    vec4 spot;        // normalized direction, exponent
+    vec4 params;      // cos(cutoff) or -2 without spot, attenuation k0, k1, k2
+};
+
+layout(set = 0, binding = 0, std140) uniform FF {
+    mat4 modelview;
+    mat4 projection;
+    mat4 normal_matrix;               // inverse transpose of the modelview
+    mat4 texture_matrix[MAX_UNITS];
+    vec4 texgen_plane[4 * MAX_UNITS]; // unit u, coordinate c at 4u + c
+    vec4 env_color[MAX_UNITS];
+    vec4 lod_bias;                    // component u
+    vec4 scene_ambient;
+    Material material[2];             // front, back
+    Light light[MAX_LIGHTS];          // the enabled ones first
+    vec4 fog_color;
+    vec4 fog_params;                  // start, end, density, 1 / (end - start)
+    vec4 clip_plane[MAX_CLIP_PLANES]; // eye space, the enabled ones first
+    vec4 point;                       // size, min, max, fade threshold
+    vec4 point_attenuation;           // constant, linear, quadratic
+    vec4 raster;                      // alpha reference, line width, stipple factor, rescale
+    vec4 viewport;                    // x, y, width, height (window pixels, y up)
+    uvec4 stipple;                    // line stipple pattern, framebuffer height
+    uvec4 polygon_stipple[8];         // row r (bottom first) at [r / 4][r % 4]
+} u;

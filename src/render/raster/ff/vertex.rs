@@ -1,0 +1,114 @@
+//! The packed vertex of `ff.vert`: a draw's structure-of-arrays attributes interleaved as
+//! [`VERTEX_FLOATS`] `f32`s per vertex, laid out as [`VERTEX_ATTRIBUTES`] says.
+
+use super::MAX_UNITS;
+use crate::frame::Draw;
+
+/// Floats per packed vertex.
+pub const VERTEX_FLOATS: usize = 36;
+
+/// One vertex input: shader location, component count (of `f32`s) and offset in floats.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct VertexAttribute {
+    /// `layout(location = …)` in `ff.vert`.
+    pub location: u32,
+    /// Number of `f32` components (1 to 4).
+    pub components: u32,
+    /// Offset from the start of the vertex, in floats.
+    pub offset: u32,
+}
+
+/// Offset of the object-space position (4 floats).
+pub const POSITION: usize = 0;
+/// Offset of the primary colour (4).
+pub const COLOR: usize = 4;
+/// Offset of the secondary colour (4, alpha 0).
+pub const SECONDARY: usize = 8;
+/// Offset of the object-space normal (3).
+pub const NORMAL: usize = 12;
+/// Offset of the fog coordinate (1).
+pub const FOG_COORD: usize = 15;
+/// Offset of unit 0's texture coordinates (4 per unit).
+pub const TEXCOORD: usize = 16;
+/// Offset of the rasterization attribute (4): for expanded lines the window-pixel offset of
+/// the corner from its endpoint (x, y), the line stipple distance and the signed distance
+/// across the line (smooth lines); for expanded points the corner (±1, ±1); zero for
+/// triangles. See [`super::convert`].
+pub const RASTER: usize = TEXCOORD + 4 * MAX_UNITS;
+
+/// Position (4), colour (4), secondary colour (4), normal (3), fog coordinate (1), the
+/// texture coordinates of each unit (4 each), and the rasterization attribute (4).
+pub const VERTEX_ATTRIBUTES: &[VertexAttribute] = &[
+    VertexAttribute { location: 0, components: 4, offset: POSITION as u32 },
+    VertexAttribute { location: 1, components: 4, offset: COLOR as u32 },
+    VertexAttribute { location: 2, components: 4, offset: SECONDARY as u32 },
+    VertexAttribute { location: 3, components: 3, offset: NORMAL as u32 },
+    VertexAttribute { location: 4, components: 1, offset: FOG_COORD as u32 },
+    VertexAttribute { location: 5, components: 4, offset: TEXCOORD as u32 },
+    VertexAttribute { location: 6, components: 4, offset: TEXCOORD as u32 + 4 },
+    VertexAttribute { location: 7, components: 4, offset: TEXCOORD as u32 + 8 },
+    VertexAttribute { location: 8, components: 4, offset: TEXCOORD as u32 + 12 },
+    VertexAttribute { location: 9, components: 4, offset: RASTER as u32 },
+];
+
+/// Interleaves the draw's attributes; missing attributes take OpenGL's initial current values.
+pub fn pack(draw: &Draw) -> Vec<f32> {
+    let v = &draw.vertices;
+    let mut out = Vec::with_capacity(v.len() * VERTEX_FLOATS);
+    for (i, position) in v.position.iter().enumerate() {
+        out.extend_from_slice(position);
+        out.extend_from_slice(&v.color.get(i).unwrap_or([1.0; 4]));
+        let [r, g, b] = v.secondary_color.get(i).unwrap_or([0.0; 3]);
+        out.extend_from_slice(&[r, g, b, 0.0]);
+        out.extend_from_slice(&v.normal.get(i).unwrap_or([0.0, 0.0, 1.0]));
+        out.push(v.fog_coord.get(i).unwrap_or(0.0));
+        for unit in 0..MAX_UNITS {
+            let coord = v.texcoords.get(unit).and_then(|t| t.get(i));
+            out.extend_from_slice(&coord.unwrap_or([0.0, 0.0, 0.0, 1.0]));
+        }
+        out.extend_from_slice(&[0.0; 4]);
+    }
+    out
+}
+
+/// The packed vertex `i` of `packed`.
+pub fn get(packed: &[f32], i: u32) -> &[f32] {
+    let start = i as usize * VERTEX_FLOATS;
+    &packed[start..start + VERTEX_FLOATS]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::Attrib;
+
+    #[test]
+    fn packs_each_vertex_at_the_declared_offsets() {
+        let mut draw = Draw::default();
+        draw.vertices.position = vec![[1.0, 2.0, 3.0, 1.0], [4.0, 5.0, 6.0, 1.0]];
+        draw.vertices.color.values = vec![[0.5, 0.25, 0.125, 1.0]];
+        draw.vertices.fog_coord.values = vec![3.0, 9.0];
+        draw.vertices.texcoords = vec![Attrib::default(), Attrib { values: vec![[0.0; 4], [7.0, 8.0, 0.0, 1.0]] }];
+        let packed = pack(&draw);
+        assert_eq!(packed.len(), 2 * VERTEX_FLOATS);
+        let second = get(&packed, 1);
+        assert_eq!(&second[POSITION..POSITION + 4], &[4.0, 5.0, 6.0, 1.0]);
+        assert_eq!(&second[COLOR..COLOR + 4], &[0.5, 0.25, 0.125, 1.0], "a shared colour");
+        assert_eq!(&second[NORMAL..NORMAL + 3], &[0.0, 0.0, 1.0], "the initial normal");
+        assert_eq!(second[FOG_COORD], 9.0);
+        assert_eq!(&second[TEXCOORD..TEXCOORD + 4], &[0.0, 0.0, 0.0, 1.0], "unit 0 had none");
+        assert_eq!(&second[TEXCOORD + 4..TEXCOORD + 8], &[7.0, 8.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn attributes_tile_the_vertex() {
+        let mut covered = [false; VERTEX_FLOATS];
+        for a in VERTEX_ATTRIBUTES {
+            for f in a.offset..a.offset + a.components {
+                assert!(!covered[f as usize], "float {f} twice");
+                covered[f as usize] = true;
+            }
+        }
+        assert!(covered.iter().all(|&c| c));
+    }
+}
