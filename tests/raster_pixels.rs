@@ -253,3 +253,43 @@ fn accumulation_buffer_load_accum_mult_add_return() {
     assert_eq!(pixel(&mut ctx, 4, 4), [51, 51, 153, 255]);
     assert_eq!(pixel(&mut ctx, 20, 4), [0, 51, 204, 255], "outside the scissor box");
 }
+
+#[test]
+fn copy_tex_image_and_sub_image_take_the_framebuffer_pixels() {
+    let mut ctx = context();
+    clear_all(&mut ctx, [1.0, 0.0, 0.0, 1.0]);
+    unsafe {
+        dispatch::glEnable(&mut ctx, gl::GL_SCISSOR_TEST);
+        dispatch::glScissor(&mut ctx, 2, 0, 2, 4);
+        dispatch::glClearColor(&mut ctx, 0.0, 0.0, 1.0, 1.0);
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+        dispatch::glDisable(&mut ctx, gl::GL_SCISSOR_TEST);
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_2D, 3);
+        dispatch::glCopyTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA, 0, 0, 4, 4, 0);
+    }
+    let mut texels = [0u8; 64];
+    unsafe { dispatch::glGetTexImage(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_mut_ptr().cast()) };
+    assert_eq!(texels[0..4], [255, 0, 0, 255]);
+    assert_eq!(texels[8..12], [0, 0, 255, 255], "texel (2, 0) from the scissored clear");
+    // Sub-image: pixel (0, 0) of the window (red) into texel (3, 3).
+    unsafe { dispatch::glCopyTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, 3, 3, 0, 0, 1, 1) };
+    unsafe { dispatch::glGetTexImage(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_mut_ptr().cast()) };
+    assert_eq!(texels[60..64], [255, 0, 0, 255]);
+    // Draws that use the texture sample the copy: a textured quad over the window shows
+    // texel column 2 (blue) at window x = 20.
+    clear_all(&mut ctx, [0.0; 4]);
+    unsafe {
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_2D);
+        dispatch::glColor4f(&mut ctx, 1.0, 1.0, 1.0, 1.0);
+        dispatch::glBegin(&mut ctx, gl::GL_QUADS);
+        for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+            dispatch::glTexCoord2f(&mut ctx, (x + 1.0) / 2.0, (y + 1.0) / 2.0);
+            dispatch::glVertex2f(&mut ctx, x, y);
+        }
+        dispatch::glEnd(&mut ctx);
+    }
+    assert_eq!(pixel(&mut ctx, 20, 4), [0, 0, 255, 255]);
+    assert_eq!(pixel(&mut ctx, 4, 4), [255, 0, 0, 255]);
+}

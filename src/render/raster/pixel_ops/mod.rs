@@ -8,8 +8,10 @@
 //! back and passes the pixels to [`record`] (the copy is therefore taken before any of it is
 //! drawn: overlapping source and destination rectangles behave as the specification says).
 //!
-//! `glCopyTexImage*`/`glCopyTexSubImage*` ([`PixelKind::TextureCopy`]) are not done here: see
-//! [`record`].
+//! `glCopyTexImage*`/`glCopyTexSubImage*` ([`PixelKind::TextureCopy`]) need nothing here:
+//! translate reads the pixels back at the copy and writes them into the texture's texels, so
+//! the content version the operation names already holds them and the texture cache uploads
+//! it like any other version.
 
 pub mod accum;
 pub mod bitmap;
@@ -53,12 +55,6 @@ pub fn record(rec: &mut Recorder<'_>, accum: &mut accum::Accum, op: &PixelOp, re
             image::record(rec, &at, &data)
         }
         PixelKind::Accum { op: kind, value } => accum.apply(rec, &op.state, *kind, *value, read),
-        PixelKind::TextureCopy { .. } => {
-            // The texture cache uploads each (texture, version) from the texels translate
-            // holds; framebuffer copies into it need translate to read the pixels back at the
-            // copy (see the branch report).
-            super::renderer::log_once("glCopyTexImage/glCopyTexSubImage: the framebuffer pixels are not copied into the texture");
-            Ok(())
-        }
+        PixelKind::TextureCopy { .. } => Ok(()),
     }
 }
