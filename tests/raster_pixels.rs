@@ -293,3 +293,20 @@ fn copy_tex_image_and_sub_image_take_the_framebuffer_pixels() {
     assert_eq!(pixel(&mut ctx, 20, 4), [0, 0, 255, 255]);
     assert_eq!(pixel(&mut ctx, 4, 4), [255, 0, 0, 255]);
 }
+
+#[test]
+fn copy_pixels_from_outside_the_window_produce_no_fragments() {
+    let mut ctx = context();
+    clear_all(&mut ctx, [0.0, 0.0, 1.0, 1.0]);
+    let red: [u8; 4] = [255, 0, 0, 255];
+    unsafe {
+        dispatch::glWindowPos2i(&mut ctx, 0, 0);
+        dispatch::glDrawPixels(&mut ctx, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, red.as_ptr().cast());
+        // Source x from -2: columns -2 and -1 are outside; window column 0 lands at x = 12.
+        dispatch::glWindowPos2i(&mut ctx, 10, 10);
+        dispatch::glCopyPixels(&mut ctx, -2, 0, 3, 1, gl::GL_COLOR);
+    }
+    assert_eq!(pixel(&mut ctx, 12, 10), [255, 0, 0, 255]);
+    assert_eq!(pixel(&mut ctx, 10, 10), [0, 0, 255, 255], "no fragment from outside the window");
+    assert_eq!(pixel(&mut ctx, 11, 10), [0, 0, 255, 255]);
+}
