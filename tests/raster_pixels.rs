@@ -310,3 +310,31 @@ fn copy_pixels_from_outside_the_window_produce_no_fragments() {
     assert_eq!(pixel(&mut ctx, 10, 10), [0, 0, 255, 255], "no fragment from outside the window");
     assert_eq!(pixel(&mut ctx, 11, 10), [0, 0, 255, 255]);
 }
+
+#[test]
+fn large_varied_images_are_drawn_as_textures_with_zoom() {
+    let mut ctx = context();
+    clear_all(&mut ctx, [0.0, 0.0, 0.0, 1.0]);
+    // 40×30 image, every pixel different from its neighbours (more than 1024 runs).
+    let (w, h) = (40usize, 30usize);
+    let image: Vec<u8> = (0..w * h).flat_map(|i| [(i % w) as u8 * 5, (i / w) as u8 * 7, ((i % 2) * 255) as u8, 255]).collect();
+    unsafe {
+        dispatch::glWindowPos2i(&mut ctx, 0, 0);
+        dispatch::glDrawPixels(&mut ctx, w as i32, h as i32, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, image.as_ptr().cast());
+    }
+    for (x, y) in [(0, 0), (1, 0), (7, 3), (31, 29), (30, 12)] {
+        let i = (y * w + x) * 4;
+        assert_eq!(pixel(&mut ctx, x as i32, y as i32), [image[i], image[i + 1], image[i + 2], 255], "pixel ({x}, {y})");
+    }
+    // Zoom 2 with the same image: pixel (i, j) covers window (2i..2i+2, 2j..2j+2).
+    unsafe {
+        dispatch::glPixelZoom(&mut ctx, 2.0, 2.0);
+        dispatch::glDrawPixels(&mut ctx, w as i32, h as i32, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, image.as_ptr().cast());
+    }
+    for (x, y) in [(0, 0), (3, 2), (15, 15)] {
+        let i = (y * w + x) * 4;
+        let expected = [image[i], image[i + 1], image[i + 2], 255];
+        assert_eq!(pixel(&mut ctx, 2 * x as i32, 2 * y as i32), expected);
+        assert_eq!(pixel(&mut ctx, 2 * x as i32 + 1, 2 * y as i32 + 1), expected);
+    }
+}

@@ -11,9 +11,9 @@
 
 use super::super::device::Result;
 use super::super::renderer::Recorder;
-use super::image::draw;
-use super::quads::{fragment_state, push_image, Quads};
-use crate::frame::pixels::AccumOp;
+use super::image::{self, Placement};
+use super::quads::fragment_state;
+use crate::frame::pixels::{AccumOp, PixelData};
 use crate::frame::state::RasterState;
 
 /// The accumulation buffer: one RGBA value per pixel, rows bottom to top.
@@ -85,17 +85,16 @@ impl Accum {
             return Ok(());
         }
         let width = self.size[0] as usize;
-        let mut pixels = Vec::with_capacity(w as usize * h as usize);
+        let mut bytes = Vec::with_capacity(w as usize * h as usize * 4);
         for j in 0..h as usize {
             let row = (y as usize + j) * width + x as usize;
-            pixels.extend(self.values.get(row..row + w as usize).unwrap_or_default().iter().map(|a| a.map(|v| quantize(v * value))));
+            bytes.extend(self.values.get(row..row + w as usize).unwrap_or_default().iter().flat_map(|a| a.map(|v| quantize(v * value))));
         }
-        let mut quads = Quads::default();
-        push_image(&mut quads, [x as f32, y as f32], [1.0, 1.0], w as usize, &pixels, |p| Some((0.0, p.map(|v| v as f32 / 255.0))));
         let mut returned = fragment_state(&RasterState::default(), rec.target.size);
         returned.scissor = state.scissor;
         returned.color_mask = state.color_mask;
-        draw(rec, quads, returned)
+        let at = Placement { window_pos: [x as f32, y as f32, 0.0], zoom: [1.0, 1.0], width: w as usize, color: [1.0; 4], state: &returned };
+        image::record(rec, &at, &PixelData::Rgba8(bytes.into()))
     }
 
     /// The current values of `area` (tests).

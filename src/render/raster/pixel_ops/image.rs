@@ -5,10 +5,15 @@
 
 use std::collections::BTreeMap;
 
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use super::super::device::Result;
 use super::super::renderer::Recorder;
 use super::quads::{fragment_state, push_image, Quads};
+use crate::frame::TextureUnit;
 use crate::frame::pixels::PixelData;
+use crate::frame::texture::{EnvMode, Filter, MinFilter, Sampler, TexImage, TextureContent, TextureEnv, TextureRef, Wrap};
 use crate::frame::state::{CompareFunc, RasterState, Stencil, StencilOp};
 
 /// Where and how an image is drawn.
@@ -25,6 +30,33 @@ pub struct Placement<'a> {
     pub state: &'a RasterState,
 }
 
+/// Colour images that need more rectangles than this (one per run of equal pixels) are drawn
+/// as one rectangle textured with the image instead.
+const MAX_RECTANGLES: usize = 1024;
+
+/// Texture name of images drawn as textures (never a program's: the texture cache keys on
+/// name and version, and these versions come from [`NEXT_IMAGE_VERSION`]).
+const IMAGE_TEXTURE: u32 = u32::MAX;
+
+/// Content versions of images drawn as textures: above every version translate hands out.
+static NEXT_IMAGE_VERSION: AtomicU64 = AtomicU64::new(1 << 63);
+
+/// A texture holding an RGBA8 image (rows bottom to top), sampled at the nearest texel
+/// without mipmaps or wrapping, so each fragment takes the colour of its pixel (the texture
+/// cache frees it a few frames after its last use).
+fn image_texture(width: u32, height: u32, texels: Vec<u8>) -> TextureRef {
+    let image = TexImage { width, height, depth: 1, border: 0, texels, depth_values: Vec::new() };
+    let sampler = Sampler {
+        min_filter: MinFilter { texel: Filter::Nearest, mipmap: None },
+        mag_filter: Filter::Nearest,
+        wrap: [Wrap::ClampToEdge; 3],
+        levels: [0, 0],
+        ..Sampler::default()
+    };
+    let content = TextureContent { faces: vec![vec![Some(Arc::new(image))]], sampler, ..TextureContent::default() };
+    TextureRef { id: IMAGE_TEXTURE, version: NEXT_IMAGE_VERSION.fetch_add(1, Ordering::Relaxed), content: Arc::new(content) }
+}
+
 /// Records the fragments of an image.
 pub fn record(rec: &mut Recorder<'_>, at: &Placement<'_>, data: &PixelData) -> Result<()> {
     let size = rec.target.size;
@@ -35,7 +67,19 @@ pub fn record(rec: &mut Recorder<'_>, at: &Placement<'_>, data: &PixelData) -> R
             let pixels: Vec<[u8; 4]> = bytes.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
             let mut quads = Quads::default();
             push_image(&mut quads, origin, at.zoom, at.width, &pixels, |p| Some((z, p.map(|v| v as f32 / 255.0))));
-            draw(rec, quads, fragment_state(at.state, size))
+            if quads.len() <= MAX_RECTANGLES {
+                return draw(rec, quads, fragment_state(at.state, size));
+            }
+            let height = pixels.len() / at.width.max(1);
+            let mut textured = Quads::default();
+            let far = [origin[0] + at.zoom[0] * at.width as f32, origin[1] + at.zoom[1] * height as f32];
+            textured.push_textured([origin[0], origin[1], far[0], far[1]], z, [0.0, 0.0, 1.0, 1.0]);
+            let mut draw = textured.into_draw(size, fragment_state(at.state, size));
+            let texels = bytes.get(..at.width * height * 4).unwrap_or_default().to_vec();
+            draw.textures = vec![Some(image_texture(at.width as u32, height as u32, texels))];
+            draw.texture_units = vec![Some(TextureUnit { env: TextureEnv { mode: EnvMode::Replace, ..TextureEnv::default() }, texgen: [None; 4] })];
+            draw.texture_matrices = vec![Some(glam::Mat4::IDENTITY)];
+            rec.draw(&draw)
         }
         PixelData::Depth(depths) => {
             let mut quads = Quads::default();

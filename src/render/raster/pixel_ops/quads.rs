@@ -24,15 +24,32 @@ pub struct Quads {
 impl Quads {
     /// Adds the rectangle between corners `(x0, y0)` and `(x1, y1)` (any order) at depth `z`
     /// with `color`. Degenerate rectangles are skipped.
-    pub fn push(&mut self, [x0, y0, x1, y1]: [f32; 4], z: f32, color: [f32; 4]) {
+    pub fn push(&mut self, rect: [f32; 4], z: f32, color: [f32; 4]) {
+        self.push_with(rect, z, color, None);
+    }
+
+    /// Adds a rectangle like [`Quads::push`] whose corners take the texture coordinates of
+    /// `uv` (s0, t0, s1, t1) on unit 0.
+    pub fn push_textured(&mut self, rect: [f32; 4], z: f32, uv: [f32; 4]) {
+        self.push_with(rect, z, [1.0; 4], Some(uv));
+    }
+
+    fn push_with(&mut self, [x0, y0, x1, y1]: [f32; 4], z: f32, color: [f32; 4], uv: Option<[f32; 4]>) {
         if x0 == x1 || y0 == y1 {
             return;
         }
         let base = self.vertices.position.len() as u32;
-        for (x, y) in [(x0, y0), (x1, y0), (x1, y1), (x0, y1)] {
+        let [s0, t0, s1, t1] = uv.unwrap_or_default();
+        for (x, y, s, t) in [(x0, y0, s0, t0), (x1, y0, s1, t0), (x1, y1, s1, t1), (x0, y1, s0, t1)] {
             let count = self.vertices.position.len();
             self.vertices.position.push([x, y, z, 1.0]);
             self.vertices.color.push(color, count);
+            if uv.is_some() {
+                if self.vertices.texcoords.is_empty() {
+                    self.vertices.texcoords.push(Default::default());
+                }
+                self.vertices.texcoords[0].push([s, t, 0.0, 1.0], count);
+            }
         }
         self.indices.extend([base, base + 1, base + 2, base, base + 2, base + 3]);
     }
@@ -40,6 +57,11 @@ impl Quads {
     /// Whether no rectangle was added.
     pub fn is_empty(&self) -> bool {
         self.indices.is_empty()
+    }
+
+    /// Rectangles added.
+    pub fn len(&self) -> usize {
+        self.indices.len() / 6
     }
 
     /// The draw of the rectangles for a target of `size`, with the per-fragment operations of
