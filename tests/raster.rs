@@ -336,3 +336,58 @@ fn pipelines_and_textures_are_created_once_and_unused_textures_dropped() {
     assert_eq!(counts[8].1, 1);
     assert_eq!(counts[9].1, 0);
 }
+
+#[test]
+fn occlusion_queries_count_samples_that_pass() {
+    let mut ctx = context();
+    let mut bits = 0;
+    unsafe { dispatch::glGetQueryiv(&mut ctx, gl::GL_SAMPLES_PASSED, gl::GL_QUERY_COUNTER_BITS, &mut bits) };
+    assert_eq!(bits, 64);
+    unsafe {
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
+        dispatch::glEnable(&mut ctx, gl::GL_DEPTH_TEST);
+        dispatch::glBeginQuery(&mut ctx, gl::GL_SAMPLES_PASSED, 1);
+    }
+    lower_left_triangle(&mut ctx, true, [1.0, 0.0, 0.0]);
+    quad_at(&mut ctx, -0.5, [0.0, 1.0, 0.0]);
+    unsafe { dispatch::glEndQuery(&mut ctx, gl::GL_SAMPLES_PASSED) };
+    // A read-back renders (and submits) the frame so far: the count survives it.
+    assert_eq!(pixel(&mut ctx, 30, 30), [0, 255, 0, 255]);
+    unsafe {
+        // Behind everything drawn: no sample passes.
+        dispatch::glBeginQuery(&mut ctx, gl::GL_SAMPLES_PASSED, 2);
+    }
+    quad_at(&mut ctx, 0.5, [0.0, 0.0, 1.0]);
+    unsafe { dispatch::glEndQuery(&mut ctx, gl::GL_SAMPLES_PASSED) };
+    let (mut first, mut second) = (0u32, 7u32);
+    unsafe {
+        dispatch::glGetQueryObjectuiv(&mut ctx, 1, gl::GL_QUERY_RESULT, &mut first);
+        dispatch::glGetQueryObjectuiv(&mut ctx, 2, gl::GL_QUERY_RESULT, &mut second);
+    }
+    // The triangle covers the 2016 pixels whose centres lie below the diagonal (the 64 centres
+    // on it go to the other side: the diagonal is its top-right edge), the quad all 4096.
+    assert_eq!(first, 2016 + 4096);
+    assert_eq!(second, 0);
+}
+
+#[test]
+fn polygon_offset_moves_filled_polygons_in_depth() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
+        dispatch::glEnable(&mut ctx, gl::GL_DEPTH_TEST);
+        dispatch::glDepthFunc(&mut ctx, gl::GL_LESS);
+    }
+    quad_at(&mut ctx, 0.0, [1.0, 0.0, 0.0]);
+    quad_at(&mut ctx, 0.0, [0.0, 1.0, 0.0]);
+    assert_eq!(pixel(&mut ctx, 30, 30), [255, 0, 0, 255], "a coplanar quad fails GL_LESS");
+    unsafe {
+        dispatch::glEnable(&mut ctx, gl::GL_POLYGON_OFFSET_FILL);
+        dispatch::glPolygonOffset(&mut ctx, 0.0, -4.0);
+    }
+    quad_at(&mut ctx, 0.0, [0.0, 1.0, 0.0]);
+    assert_eq!(pixel(&mut ctx, 30, 30), [0, 255, 0, 255], "pulled towards the viewer by 4 units");
+    let mut depth = [0f32; 1];
+    unsafe { dispatch::glReadPixels(&mut ctx, 30, 30, 1, 1, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT, depth.as_mut_ptr().cast()) };
+    assert!(depth[0] < 0.5 && depth[0] > 0.49, "{}", depth[0]);
+}

@@ -51,6 +51,18 @@ impl FrameSink for FrameLog {
         }
         self.inner.present(frame);
     }
+
+    fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
+        self.inner.occlusion_result(frame, query)
+    }
+
+    fn occlusion_counter_bits(&self) -> u32 {
+        self.inner.occlusion_counter_bits()
+    }
+
+    fn read_pixels(&mut self, frame: &Frame, buffer: crate::frame::pixels::PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        self.inner.read_pixels(frame, buffer, rect)
+    }
 }
 
 /// `inner` wrapped in a [`FrameLog`] when `GLRT_FRAME_LOG` names a file that can be opened
@@ -88,5 +100,32 @@ mod tests {
             "{\"frame\":0,\"draws\":2,\"vertices\":9,\"clears\":1}\n{\"frame\":1,\"draws\":0,\"vertices\":0,\"clears\":0}\n"
         );
         assert_eq!(recording.frames.lock().len(), 2);
+    }
+
+    /// A renderer answering read-backs and queries with fixed values.
+    struct Answers;
+
+    impl FrameSink for Answers {
+        fn present(&mut self, _frame: Frame) {}
+        fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
+            Some(frame * 100 + query as u64)
+        }
+        fn occlusion_counter_bits(&self) -> u32 {
+            64
+        }
+        fn read_pixels(&mut self, _frame: &Frame, _buffer: crate::frame::pixels::PixelBuffer, [x, y, _, _]: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+            Some(vec![[x as f32, y as f32, 0.0, 1.0]])
+        }
+    }
+
+    #[test]
+    fn read_backs_and_queries_reach_the_inner_sink() {
+        let path = std::env::temp_dir().join(format!("glrt-frame-log-fwd-{}", std::process::id()));
+        let mut log = FrameLog::open(&path, Box::new(Answers)).unwrap();
+        let _ = std::fs::remove_file(&path);
+        assert_eq!(log.occlusion_counter_bits(), 64);
+        assert_eq!(log.occlusion_result(2, 5), Some(205));
+        let read = log.read_pixels(&Frame::default(), crate::frame::pixels::PixelBuffer::Color, [3, 4, 1, 1]);
+        assert_eq!(read, Some(vec![[3.0, 4.0, 0.0, 1.0]]));
     }
 }

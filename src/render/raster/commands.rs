@@ -176,9 +176,9 @@ impl Slot {
         Ok(())
     }
 
-    /// Ends recording and submits with the semaphores of `sync`, signalling the slot's fence;
-    /// with `wait`, returns once the GPU finished it.
-    pub fn submit(&mut self, device: &Device, sync: &SubmitSync, wait: bool) -> Result<()> {
+    /// Ends recording and submits with the semaphores of `sync`, signalling the slot's fence
+    /// ([`Slot::wait`] waits for it).
+    pub fn submit(&mut self, device: &Device, sync: &SubmitSync) -> Result<()> {
         let buffers = [self.cmd];
         let (wait_semaphores, wait_stages): (Vec<_>, Vec<_>) = sync.wait.iter().copied().unzip();
         let submit = [vk::SubmitInfo::default()
@@ -192,9 +192,6 @@ impl Slot {
             device.raw.queue_submit(device.queue, &submit, self.fence).check("vkQueueSubmit")?;
         }
         self.pending = true;
-        if wait {
-            self.wait(device)?;
-        }
         Ok(())
     }
 

@@ -72,6 +72,8 @@ pub struct Features {
     pub large_points: bool,
     /// `samplerAnisotropy`.
     pub sampler_anisotropy: bool,
+    /// `occlusionQueryPrecise`: occlusion queries count samples exactly.
+    pub occlusion_query_precise: bool,
 }
 
 /// The device and everything created once with it. Shared (`Arc`) by the renderer's parts.
@@ -145,7 +147,8 @@ impl Device {
         let entry = unsafe { ash::Entry::load() }.map_err(|e| Error::NoLoader(e.to_string()))?;
         let (instance, enabled) = create_instance(&entry)?;
         let messenger = enabled.validate.then(|| create_messenger(&entry, &instance)).flatten();
-        match Self::with_instance(entry, instance.clone(), enabled.surfaces, messenger.clone()) {
+        // A clone: `entry` (the loaded library) must outlive the clean-up below.
+        match Self::with_instance(entry.clone(), instance.clone(), enabled.surfaces, messenger.clone()) {
             Ok(device) => Ok(device),
             Err(e) => {
                 // Safety: nothing else was created from the instance.
@@ -190,13 +193,16 @@ impl Device {
             fill_mode_non_solid: supported.fill_mode_non_solid == vk::TRUE,
             large_points: supported.large_points == vk::TRUE,
             sampler_anisotropy: supported.sampler_anisotropy == vk::TRUE,
+            occlusion_query_precise: supported.occlusion_query_precise == vk::TRUE,
         };
         let enabled = vk::PhysicalDeviceFeatures::default()
             .logic_op(features.logic_op)
             .wide_lines(features.wide_lines)
             .fill_mode_non_solid(features.fill_mode_non_solid)
             .large_points(features.large_points)
-            .sampler_anisotropy(features.sampler_anisotropy);
+            .sampler_anisotropy(features.sampler_anisotropy)
+            .occlusion_query_precise(features.occlusion_query_precise);
+        let mut v12 = vk::PhysicalDeviceVulkan12Features::default().host_query_reset(true);
         let mut v13 = vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true).synchronization2(true);
         let priorities = [1.0];
         let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
@@ -223,6 +229,7 @@ impl Device {
             .queue_create_infos(&queues)
             .enabled_features(&enabled)
             .enabled_extension_names(&extension_ptrs)
+            .push_next(&mut v12)
             .push_next(&mut v13);
         if custom_border_color {
             info = info.push_next(&mut border);

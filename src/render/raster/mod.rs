@@ -13,13 +13,14 @@
 //! - [`renderer`]: the [`renderer::Renderer`] sink (frame order, read-back, present).
 //! - [`output`]: consumers of presented frames ([`output::FrameOutput`]): [`dump`]
 //!   (`GLRT_DUMP`), presentation.
-//! - [`readback`] (`glReadPixels`), [`pixel_ops`] (pixel operations).
+//! - [`readback`] (`glReadPixels`), [`pixel_ops`] (pixel operations), [`occlusion`] (queries).
 
 pub mod commands;
 pub mod conv;
 pub mod device;
 pub mod dump;
 pub mod ff;
+pub mod occlusion;
 pub mod output;
 pub mod pipelines;
 pub mod pixel_ops;

@@ -9,7 +9,7 @@
 //!
 //! Extension points for the pixel path and presentation: [`Recorder`] gives the device, the
 //! current command buffer, the [`Target`] images and the upload ring, and starts or ends the
-//! dynamic-rendering pass on demand ([`super::pixel::record`] receives one per pixel
+//! dynamic-rendering pass on demand ([`super::pixel_ops::record`] receives one per pixel
 //! operation); [`FrameOutput`]s added with [`Renderer::add_output`] record their copies at
 //! the end of each presented frame, give the submission semaphores, and hear when the GPU
 //! finished it (the `GLRT_DUMP` writer is one).
@@ -17,6 +17,7 @@
 use ash::vk;
 
 use super::commands::Slot;
+use super::occlusion::Occlusion;
 use super::output::{FrameOutput, SubmitSync};
 use super::device::{Device, Error, Result};
 use super::ff;
@@ -66,6 +67,7 @@ pub struct Renderer {
 /// The renderer's state other than the slots (borrowed apart from them by [`Recorder`]).
 struct Parts {
     device: Device,
+    occlusion: Occlusion,
     pipelines: Pipelines,
     textures: Textures,
     target: Option<Target>,
@@ -90,6 +92,11 @@ pub struct Recorder<'a> {
     /// Textures.
     pub textures: &'a mut Textures,
     rendering: &'a mut bool,
+    occlusion: &'a mut Occlusion,
+    /// The frame-in-flight slot recorded into.
+    slot: usize,
+    /// The frame number and the GL occlusion query counting the next draws, if any.
+    query: (u64, Option<u32>),
 }
 
 impl Recorder<'_> {
@@ -125,6 +132,7 @@ impl Recorder<'_> {
     /// Ends the rendering pass (no-op outside one), before transfers or barriers.
     pub fn end_rendering(&mut self) {
         if *self.rendering {
+            self.occlusion.end_span(self.device, self.cmd, self.slot);
             // Safety: a pass is open on cmd.
             unsafe { self.device.raw.cmd_end_rendering(self.cmd) };
             *self.rendering = false;
@@ -211,6 +219,8 @@ impl Recorder<'_> {
         let lod_bias = std::array::from_fn(|u| draw.texture_units.get(u).copied().flatten().map_or(0.0, |t| t.env.lod_bias));
         let images = self.textures.bindings(self.device, &draw.textures, lod_bias)?;
         self.begin_rendering();
+        let (frame, query) = self.query;
+        self.occlusion.before_draw(self.device, self.cmd, self.slot, frame, query)?;
         let d = &self.device.raw;
         let limits = &self.device.properties.limits;
         let ubo_align = limits.min_uniform_buffer_offset_alignment.max(16);
@@ -288,8 +298,9 @@ impl Renderer {
         let pipelines = Pipelines::new(&device)?;
         let textures = Textures::new(&device);
         let slots = (0..FRAMES_IN_FLIGHT).map(|_| Slot::new(&device)).collect::<Result<Vec<_>>>()?;
+        let occlusion = Occlusion::new(FRAMES_IN_FLIGHT, device.features.occlusion_query_precise);
         Ok(Renderer {
-            parts: Parts { device, pipelines, textures, target: None, rendering: false },
+            parts: Parts { device, occlusion, pipelines, textures, target: None, rendering: false },
             slots,
             current: 0,
             recording: false,
@@ -323,7 +334,8 @@ impl Renderer {
     /// A [`Recorder`] on the current slot for a frame of `size`, starting the command buffer
     /// and (re)creating the target when needed.
     pub fn recorder(&mut self, size: [u32; 2]) -> Result<Recorder<'_>> {
-        let size = [size[0].max(1), size[1].max(1)];
+        let max = self.parts.device.properties.limits.max_image_dimension2_d;
+        let size = size.map(|s| s.clamp(1, max));
         if self.parts.target.as_ref().is_some_and(|t| t.size != size) {
             self.flush()?;
             self.parts.device.wait_idle()?;
@@ -333,7 +345,9 @@ impl Renderer {
         }
         if !self.recording {
             self.wait_slot(self.current)?;
-            self.slots[self.current].begin(&self.parts.device)?;
+            let slot = &mut self.slots[self.current];
+            slot.begin(&self.parts.device)?;
+            self.parts.occlusion.begin_slot(&self.parts.device, slot.cmd, self.current);
             self.recording = true;
         }
         let slot = &mut self.slots[self.current];
@@ -353,6 +367,9 @@ impl Renderer {
             pipelines: &mut parts.pipelines,
             textures: &mut parts.textures,
             rendering: &mut parts.rendering,
+            occlusion: &mut parts.occlusion,
+            slot: self.current,
+            query: (0, None),
         })
     }
 
@@ -372,15 +389,19 @@ impl Renderer {
             _ => Progress { frame: frame.number, ..Progress::default() },
         };
         let mut rec = self.recorder(frame.size)?;
+        let query_of = |index: usize| frame.occlusion_queries.iter().find(|(_, range)| range.contains(&index)).map(|(q, _)| *q);
         if let Some(last) = progress.draws.checked_sub(1).and_then(|i| frame.draws.get(i))
             && last.indices.len() > progress.last_indices
         {
+            rec.query = (frame.number, query_of(progress.draws - 1));
             rec.draw(&tail(last, progress.last_indices))?;
             progress.last_indices = last.indices.len();
         }
         for index in progress.draws..=frame.draws.len() {
-            // Clears and pixel operations before this draw, in program order.
+            // Clears and pixel operations before this draw, in program order (their rectangles
+            // count in no occlusion query).
             loop {
+                rec.query = (frame.number, None);
                 let clear = frame.clears.get(progress.clears).filter(|c| c.before_draw <= index);
                 let op = frame.pixels.get(progress.pixels).filter(|p| p.before_draw <= index);
                 match (clear, op) {
@@ -407,6 +428,7 @@ impl Renderer {
                 }
             }
             if let Some(draw) = frame.draws.get(index) {
+                rec.query = (frame.number, query_of(index));
                 rec.draw(draw)?;
                 progress.draws = index + 1;
                 progress.last_indices = draw.indices.len();
@@ -417,20 +439,23 @@ impl Renderer {
     }
 
     /// Submits the current slot's commands and waits for them (the slot starts again on the
-    /// next [`Renderer::recorder`]).
+    /// next [`Renderer::recorder`]); occlusion counts recorded so far are read.
     fn flush(&mut self) -> Result<()> {
         if self.recording {
             self.end_pass();
-            self.slots[self.current].submit(&self.parts.device, &SubmitSync::default(), true)?;
+            self.slots[self.current].submit(&self.parts.device, &SubmitSync::default())?;
             self.recording = false;
+            self.wait_slot(self.current)?;
         }
         Ok(())
     }
 
     fn end_pass(&mut self) {
         if self.parts.rendering {
+            let cmd = self.slots[self.current].cmd;
+            self.parts.occlusion.end_span(&self.parts.device, cmd, self.current);
             // Safety: a pass is open on the slot's command buffer.
-            unsafe { self.parts.device.raw.cmd_end_rendering(self.slots[self.current].cmd) };
+            unsafe { self.parts.device.raw.cmd_end_rendering(cmd) };
             self.parts.rendering = false;
         }
     }
@@ -465,7 +490,9 @@ impl Renderer {
             for output in &mut outputs {
                 sync.extend(output.record(&mut rec, slot, frame.number)?);
             }
-            self.slots[slot].submit(&self.parts.device, &sync, false)?;
+            let queries = frame.occlusion_queries.iter().map(|(q, _)| *q).collect();
+            self.parts.occlusion.finish_frame(slot, frame.number, queries);
+            self.slots[slot].submit(&self.parts.device, &sync)?;
             outputs.iter_mut().try_for_each(|o| o.submitted(&self.parts.device, slot))
         })();
         self.outputs = outputs;
@@ -486,6 +513,7 @@ impl Renderer {
     /// Waits for slot `i`'s submission and tells the outputs.
     fn wait_slot(&mut self, i: usize) -> Result<()> {
         if self.slots[i].wait(&self.parts.device)? {
+            self.parts.occlusion.completed(&self.parts.device, i);
             for output in &mut self.outputs {
                 output.completed(&self.parts.device, i);
             }
@@ -509,6 +537,23 @@ impl FrameSink for Renderer {
         if let Err(e) = self.finish(&frame) {
             self.fail(e);
         }
+    }
+
+    fn occlusion_counter_bits(&self) -> u32 {
+        self.parts.occlusion.counter_bits()
+    }
+
+    /// Waits for the frame in flight that ended `frame` when the result is not known yet.
+    fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
+        if let Some(count) = self.parts.occlusion.result(frame, query) {
+            return Some(count);
+        }
+        let slot = (0..self.slots.len()).find(|&i| self.parts.occlusion.holds(i, frame))?;
+        if let Err(e) = self.wait_slot(slot) {
+            self.fail(e);
+            return None;
+        }
+        self.parts.occlusion.result(frame, query)
     }
 
     fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
@@ -542,6 +587,7 @@ impl Drop for Renderer {
             target.destroy(device);
         }
         self.parts.pipelines.destroy(device);
+        self.parts.occlusion.destroy(device);
         self.parts.textures.destroy(device);
     }
 }

@@ -63,6 +63,8 @@ struct SamplerKey {
 pub struct Textures {
     white: Option<[Image; 3]>,
     entries: HashMap<(u32, u64), Entry>,
+    /// Versions that could not be created (too large, out of memory): sampled as white.
+    failed: std::collections::HashSet<(u32, u64)>,
     samplers: HashMap<SamplerKey, vk::Sampler>,
     /// Presented frames so far.
     frame: u64,
@@ -78,13 +80,13 @@ impl Textures {
         let float_depth = props
             .optimal_tiling_features
             .contains(vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR | vk::FormatFeatureFlags::TRANSFER_DST);
-        Textures { white: None, entries: HashMap::new(), samplers: HashMap::new(), frame: 0, float_depth }
+        Textures { white: None, entries: HashMap::new(), failed: Default::default(), samplers: HashMap::new(), frame: 0, float_depth }
     }
 
     /// Whether [`Textures::upload`] would record commands for `textures` (then the caller
     /// ends the rendering pass first).
     pub fn needs_upload(&self, textures: &[Option<TextureRef>]) -> bool {
-        self.white.is_none() || textures.iter().flatten().any(|t| !self.entries.contains_key(&(t.id, t.version)))
+        self.white.is_none() || textures.iter().flatten().any(|t| !self.known(t))
     }
 
     /// Records the upload of the white textures and of every texture of `textures` not on the
@@ -94,12 +96,25 @@ impl Textures {
             self.white = Some(create_white(device, cmd)?);
         }
         for t in textures.iter().flatten() {
-            if !self.entries.contains_key(&(t.id, t.version)) {
-                let (image, kind) = self.create(device, cmd, ring, t)?;
-                self.entries.insert((t.id, t.version), Entry { image, kind, used: self.frame });
+            if !self.known(t) {
+                match self.create(device, cmd, ring, t) {
+                    Ok((image, kind)) => {
+                        self.entries.insert((t.id, t.version), Entry { image, kind, used: self.frame });
+                    }
+                    Err(e) => {
+                        eprintln!("glrt: texture {} (version {}) cannot be used: {e}; it samples as white", t.id, t.version);
+                        self.failed.insert((t.id, t.version));
+                    }
+                }
             }
         }
         Ok(())
+    }
+
+    /// Whether `t` is on the GPU or known to fail.
+    fn known(&self, t: &TextureRef) -> bool {
+        let key = (t.id, t.version);
+        self.entries.contains_key(&key) || self.failed.contains(&key)
     }
 
     /// Views and samplers of bindings 1.. for a draw with `textures` (per unit) and the
@@ -219,6 +234,15 @@ impl Textures {
             return Err(super::device::Error::Memory(format!("texture {} has no base level", t.id)));
         };
         let [w, h, d] = interior(top);
+        let limits = &device.properties.limits;
+        let max = match content.kind {
+            TextureKind::D3 => limits.max_image_dimension3_d,
+            TextureKind::Cube => limits.max_image_dimension_cube,
+            _ => limits.max_image_dimension2_d,
+        };
+        if w.max(h).max(d) > max {
+            return Err(super::device::Error::Memory(format!("{w}×{h}×{d} exceeds the device's {max}")));
+        }
         let depth = content.format == TexelFormat::Depth && self.float_depth && !top.depth_values.is_empty();
         let format = if depth { vk::Format::R32_SFLOAT } else { vk::Format::R8G8B8A8_UNORM };
         let (image_type, view_type, layers, flags, kind) = match content.kind {
