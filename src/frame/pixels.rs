@@ -5,13 +5,23 @@
 
 use std::sync::Arc;
 
+use super::RasterState;
+
 /// One pixel operation and where it falls among the draws.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PixelOp {
     /// Index in [`super::Frame::draws`] of the first draw after the operation.
     pub before_draw: usize,
+    /// Number of [`super::Frame::clears`] issued before the operation (orders it among clears
+    /// placed before the same draw).
+    pub after_clears: usize,
     /// What to do.
     pub kind: PixelKind,
+    /// The raster state when the operation was issued: the per-fragment operations (scissor,
+    /// alpha, stencil and depth tests, blending, logic op, masks) that apply to the fragments
+    /// of bitmaps, images and copies (OpenGL 1.5 sections 3.6.5, 3.7 and 4.3.3), and the
+    /// scissor box and colour mask of accumulation returns (section 4.2.4).
+    pub state: Arc<RasterState>,
 }
 
 /// Which framebuffer contents an operation reads or writes.
@@ -101,6 +111,8 @@ pub enum PixelKind {
         zoom: [f32; 2],
         /// Which buffer is copied.
         buffer: PixelBuffer,
+        /// Current raster colour (the colour of depth-copy fragments).
+        color: [f32; 4],
     },
     /// `glCopyTexImage*`/`glCopyTexSubImage*`: the renderer copies `src` (x, y, width, height)
     /// of the colour (or depth, for depth textures) buffer into the texture `texture`, whose

@@ -13,7 +13,7 @@
 //! - [`renderer`]: the [`renderer::Renderer`] sink (frame order, read-back, present).
 //! - [`output`]: consumers of presented frames ([`output::FrameOutput`]): [`dump`]
 //!   (`GLRT_DUMP`), presentation.
-//! - [`readback`] (`glReadPixels`), [`pixel`] (pixel operations), [`occlusion`] (queries).
+//! - [`readback`] (`glReadPixels`), [`pixel_ops`] (pixel operations), [`occlusion`] (queries).
 
 pub mod commands;
 pub mod conv;
@@ -23,7 +23,7 @@ pub mod ff;
 pub mod occlusion;
 pub mod output;
 pub mod pipelines;
-pub mod pixel;
+pub mod pixel_ops;
 pub mod readback;
 pub mod renderer;
 pub mod target;

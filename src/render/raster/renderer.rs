@@ -9,7 +9,7 @@
 //!
 //! Extension points for the pixel path and presentation: [`Recorder`] gives the device, the
 //! current command buffer, the [`Target`] images and the upload ring, and starts or ends the
-//! dynamic-rendering pass on demand ([`super::pixel::record`] receives one per pixel
+//! dynamic-rendering pass on demand ([`super::pixel_ops::record`] receives one per pixel
 //! operation); [`FrameOutput`]s added with [`Renderer::add_output`] record their copies at
 //! the end of each presented frame, give the submission semaphores, and hear when the GPU
 //! finished it (the `GLRT_DUMP` writer is one).
@@ -24,7 +24,7 @@ use super::ff;
 use super::pipelines::{FixedState, PipelineKey, Pipelines};
 use super::target::{Plane, Target};
 use super::textures::Textures;
-use super::{conv, readback};
+use super::{conv, pixel_ops, readback};
 use crate::frame::pixels::PixelBuffer;
 use crate::frame::{Clear, Draw, Frame};
 use crate::render::FrameSink;
@@ -60,6 +60,8 @@ pub struct Renderer {
     outputs: Vec<Box<dyn FrameOutput>>,
     /// Set after a device error: frames are dropped.
     failed: bool,
+    /// The accumulation buffer.
+    accum: pixel_ops::accum::Accum,
 }
 
 /// The renderer's state other than the slots (borrowed apart from them by [`Recorder`]).
@@ -306,6 +308,7 @@ impl Renderer {
             progress: None,
             outputs: Vec::new(),
             failed: false,
+            accum: pixel_ops::accum::Accum::default(),
         })
     }
 
@@ -373,6 +376,15 @@ impl Renderer {
 
     /// Records what of `frame` is not recorded yet.
     fn record(&mut self, frame: &Frame) -> Result<()> {
+        let mut accum = std::mem::take(&mut self.accum);
+        let result = self.record_with(frame, &mut accum);
+        self.accum = accum;
+        result
+    }
+
+    /// [`Renderer::record`] with the accumulation buffer taken out of `self` (pixel operations
+    /// that read the framebuffer submit and wait in the middle of the frame).
+    fn record_with(&mut self, frame: &Frame, accum: &mut pixel_ops::accum::Accum) -> Result<()> {
         let mut progress = match self.progress {
             Some(p) if p.frame == frame.number => p,
             _ => Progress { frame: frame.number, ..Progress::default() },
@@ -387,13 +399,34 @@ impl Renderer {
             progress.last_indices = last.indices.len();
         }
         for index in progress.draws..=frame.draws.len() {
-            while let Some(clear) = frame.clears.get(progress.clears).filter(|c| c.before_draw <= index) {
-                rec.clear(clear);
-                progress.clears += 1;
-            }
-            while let Some(op) = frame.pixels.get(progress.pixels).filter(|p| p.before_draw <= index) {
-                super::pixel::record(&mut rec, op)?;
-                progress.pixels += 1;
+            // Clears and pixel operations before this draw, in program order (their rectangles
+            // count in no occlusion query).
+            loop {
+                rec.query = (frame.number, None);
+                let clear = frame.clears.get(progress.clears).filter(|c| c.before_draw <= index);
+                let op = frame.pixels.get(progress.pixels).filter(|p| p.before_draw <= index);
+                match (clear, op) {
+                    (Some(clear), op) if op.is_none_or(|op| op.after_clears > progress.clears) => {
+                        pixel_ops::clear::record(&mut rec, clear)?;
+                        if let Some(value) = clear.accum {
+                            accum.clear(rec.target.size, clear.scissor, value);
+                        }
+                        progress.clears += 1;
+                    }
+                    (_, Some(op)) => {
+                        let read = match pixel_ops::source(op, rec.target.size) {
+                            Some((buffer, rect)) => {
+                                let read = self.read_target(buffer, rect)?;
+                                rec = self.recorder(frame.size)?;
+                                read
+                            }
+                            None => None,
+                        };
+                        pixel_ops::record(&mut rec, accum, op, read.as_deref())?;
+                        progress.pixels += 1;
+                    }
+                    (_, None) => break,
+                }
             }
             if let Some(draw) = frame.draws.get(index) {
                 rec.query = (frame.number, query_of(index));
@@ -431,6 +464,11 @@ impl Renderer {
     /// Renders `frame` so far and copies `rect` of `buffer` back (see [`FrameSink::read_pixels`]).
     pub fn read(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
         self.record(frame)?;
+        self.read_target(buffer, rect)
+    }
+
+    /// Submits what is recorded, waits, and copies `rect` of `buffer` back.
+    fn read_target(&mut self, buffer: PixelBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
         self.end_pass();
         let slot = &mut self.slots[self.current];
         let Some(target) = self.parts.target.as_mut() else { return Ok(None) };

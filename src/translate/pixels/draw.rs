@@ -30,10 +30,13 @@ fn size2(ctx: &mut Context, w: GLsizei, h: GLsizei, command: &'static str) -> Op
 }
 
 impl Context {
-    /// Appends a pixel operation to the frame, before the next draw.
+    /// Appends a pixel operation to the frame, before the next draw, with the raster state
+    /// its fragments go through.
     pub(crate) fn push_pixel_op(&mut self, kind: PixelKind) {
         let before_draw = self.frame.draws.len();
-        self.frame.pixels.push(PixelOp { before_draw, kind });
+        let after_clears = self.frame.clears.len();
+        let state = self.raster_snapshot();
+        self.frame.pixels.push(PixelOp { before_draw, after_clears, kind, state });
     }
 
     /// `glBitmap`: `GL_INVALID_VALUE` for a negative size; nothing happens while the raster
@@ -138,7 +141,7 @@ impl Context {
             return;
         }
         let r = &self.pixels.raster;
-        let kind = PixelKind::Copy { src: [x, y, width, height], window_pos: [r.window[0], r.window[1], r.window[2]], zoom: self.pixels.zoom, buffer };
+        let kind = PixelKind::Copy { src: [x, y, width, height], window_pos: [r.window[0], r.window[1], r.window[2]], zoom: self.pixels.zoom, buffer, color: r.data.color };
         self.push_pixel_op(kind);
     }
 

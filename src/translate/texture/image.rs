@@ -388,11 +388,16 @@ impl Context {
         }
         let Ok(data) = (unsafe { self.unpack_client(ft, sz, pixels, base == Base::ColorIndex, command) }) else { return };
         let Some(data) = data else { return self.null_pointer(command) };
+        self.write_sub_image(dest, level, off, sz, base, data);
+    }
+
+    /// Writes `data` (`size` pixels) into `level` of `dest` at `offset` (border included),
+    /// regenerates mipmaps when `GL_GENERATE_MIPMAP` asks, and changes the content version.
+    fn write_sub_image(&mut self, dest: Dest, level: usize, offset: [usize; 3], size: [usize; 3], base: Base, data: Unpacked) {
         self.with_dest(dest, |obj, palette| {
-            let count = sz[0] * sz[1] * sz[2];
             if let Some(l) = obj.level_slot(dest.face, level).as_mut() {
-                let converted = convert(base, l.internal_format, Some(data), count, palette);
-                write_region(l, off, sz, &converted);
+                let converted = convert(base, l.internal_format, Some(data), size[0] * size[1] * size[2], palette);
+                write_region(l, offset, size, &converted);
                 super::compressed::recompress(l);
             }
             let base_level = obj.params.levels[0].max(0) as usize;
@@ -455,11 +460,25 @@ impl Context {
         unsafe { self.compile_image_command(format, type_, [width, height, depth], pixels, run) }
     }
 
-    /// Records the framebuffer copy of a `glCopyTex*` command for the renderer.
+    /// The framebuffer copy of a `glCopyTex*` command (section 3.8.2): the renderer reads
+    /// `src` of the colour (or, for depth textures, depth) buffer back, the pixels go through
+    /// colour pixel transfer and are written into the level at `offset` (border included),
+    /// and the content version changes, so draws that use the texture afterwards sample the
+    /// copied pixels. Without a renderer that reads back the texels stay as they were
+    /// (logged once by `glReadPixels`' path). The copy is also recorded in the frame.
     fn record_texture_copy(&mut self, dest: Dest, level: usize, offset: [usize; 3], src: [i32; 4], base: Base) {
+        let buffer = if base == Base::Texel(TexelFormat::Depth) { PixelBuffer::Depth } else { PixelBuffer::Color };
+        let size = [src[2].max(0) as usize, src[3].max(0) as usize, 1];
+        let read = (size[0] * size[1] > 0).then(|| self.sink.read_pixels(&self.frame, buffer, src)).flatten();
+        if let Some(read) = read.filter(|r| r.len() == size[0] * size[1]) {
+            let data = match buffer {
+                PixelBuffer::Depth => Unpacked::Depth(read.iter().map(|c| c[0]).collect()),
+                _ => Unpacked::Rgba(read.iter().map(|&c| self.pixels.transfer.color(c)).collect()),
+            };
+            self.write_sub_image(dest, level, offset, size, base, data);
+        }
         let texture = self.bound_texture(dest.target);
         let version = self.with_dest(dest, |obj, _| obj.version);
-        let buffer = if base == Base::Texel(TexelFormat::Depth) { PixelBuffer::Depth } else { PixelBuffer::Color };
         self.push_pixel_op(PixelKind::TextureCopy {
             texture,
             version,
