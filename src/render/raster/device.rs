@@ -195,13 +195,17 @@ impl Device {
             sampler_anisotropy: supported.sampler_anisotropy == vk::TRUE,
             occlusion_query_precise: supported.occlusion_query_precise == vk::TRUE,
         };
+        if supported.shader_clip_distance != vk::TRUE {
+            return Err(Error::NoDevice("no shaderClipDistance (user clip planes)".into()));
+        }
         let enabled = vk::PhysicalDeviceFeatures::default()
             .logic_op(features.logic_op)
             .wide_lines(features.wide_lines)
             .fill_mode_non_solid(features.fill_mode_non_solid)
             .large_points(features.large_points)
             .sampler_anisotropy(features.sampler_anisotropy)
-            .occlusion_query_precise(features.occlusion_query_precise);
+            .occlusion_query_precise(features.occlusion_query_precise)
+            .shader_clip_distance(true);
         let mut v12 = vk::PhysicalDeviceVulkan12Features::default().host_query_reset(true);
         let mut v13 = vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true).synchronization2(true);
         let priorities = [1.0];

@@ -29,7 +29,6 @@ use super::device::{Check, Device, Result};
 use super::ff;
 use super::target::COLOR_FORMAT;
 use crate::frame::state::{Face, RasterState, Winding};
-use crate::frame::Topology;
 
 /// Descriptor bindings of set 0 (see the `ff` module doc): the uniform block, then 2D, 3D and
 /// cube samplers of each unit.
@@ -94,9 +93,11 @@ pub fn front_face(w: Winding) -> vk::FrontFace {
 }
 
 impl FixedState {
-    /// The fixed state of `state` for a batch of `topology`; `logic_op_supported` says
-    /// whether the device has the `logicOp` feature.
-    pub fn new(state: &RasterState, topology: Topology, logic_op_supported: bool) -> FixedState {
+    /// The fixed state of `state` for a batch whose rasterizer culls `cull` and applies the
+    /// polygon offset as depth bias when `depth_bias` ([`super::ff::Batch::cull`] and
+    /// [`super::ff::Batch::polygon_offset`]: the CPU already culled or expanded the rest);
+    /// `logic_op_supported` says whether the device has the `logicOp` feature.
+    pub fn new(state: &RasterState, cull: Option<Face>, depth_bias: bool, logic_op_supported: bool) -> FixedState {
         let blend = state.blend.map(|b| {
             let factors = [b.src_rgb, b.dst_rgb, b.src_alpha, b.dst_alpha].map(conv::blend_factor);
             (factors, conv::blend_op(b.equation))
@@ -116,11 +117,11 @@ impl FixedState {
                 color_mask |= bit;
             }
         }
-        let cull = match (topology, state.cull) {
-            (Topology::Triangles, Some(Face::Front)) => vk::CullModeFlags::FRONT,
-            (Topology::Triangles, Some(Face::Back)) => vk::CullModeFlags::BACK,
-            (Topology::Triangles, Some(Face::FrontAndBack)) => vk::CullModeFlags::FRONT_AND_BACK,
-            _ => vk::CullModeFlags::NONE,
+        let cull = match cull {
+            Some(Face::Front) => vk::CullModeFlags::FRONT,
+            Some(Face::Back) => vk::CullModeFlags::BACK,
+            Some(Face::FrontAndBack) => vk::CullModeFlags::FRONT_AND_BACK,
+            None => vk::CullModeFlags::NONE,
         };
         FixedState {
             blend,
@@ -131,7 +132,7 @@ impl FixedState {
             color_mask,
             cull,
             front_face: front_face(state.front_face),
-            depth_bias: topology == Topology::Triangles && state.polygon_offset.fill,
+            depth_bias,
         }
     }
 }
@@ -337,21 +338,21 @@ mod tests {
     #[test]
     fn fixed_state_follows_gl_rules() {
         let mut state = RasterState { depth_write: true, ..RasterState::default() };
-        assert!(!FixedState::new(&state, Topology::Triangles, true).depth_write, "no depth writes without the test");
+        assert!(!FixedState::new(&state, None, false, true).depth_write, "no depth writes without the test");
         state.depth_test = Some(crate::frame::state::CompareFunc::Less);
-        let f = FixedState::new(&state, Topology::Triangles, true);
+        let f = FixedState::new(&state, None, false, true);
         assert!(f.depth_write);
         assert_eq!(f.depth_test, Some(vk::CompareOp::LESS));
-        state.cull = Some(Face::Back);
-        assert_eq!(FixedState::new(&state, Topology::Triangles, true).cull, vk::CullModeFlags::BACK);
-        assert_eq!(FixedState::new(&state, Topology::Lines, true).cull, vk::CullModeFlags::NONE);
+        assert_eq!(FixedState::new(&state, Some(Face::Back), false, true).cull, vk::CullModeFlags::BACK);
+        assert_eq!(FixedState::new(&state, None, false, true).cull, vk::CullModeFlags::NONE);
+        assert!(FixedState::new(&state, None, true, true).depth_bias);
         state.blend = Some(Blend { src_rgb: BlendFactor::SrcAlpha, dst_rgb: BlendFactor::OneMinusSrcAlpha, ..Blend::default() });
-        let (factors, op) = FixedState::new(&state, Topology::Triangles, true).blend.unwrap();
+        let (factors, op) = FixedState::new(&state, None, false, true).blend.unwrap();
         assert_eq!(factors[..2], [vk::BlendFactor::SRC_ALPHA, vk::BlendFactor::ONE_MINUS_SRC_ALPHA]);
         assert_eq!(op, vk::BlendOp::ADD);
         state.logic_op = Some(crate::frame::state::LogicOp::Xor);
-        assert_eq!(FixedState::new(&state, Topology::Triangles, true).logic_op, Some(vk::LogicOp::XOR));
-        assert_eq!(FixedState::new(&state, Topology::Triangles, false).logic_op, None);
+        assert_eq!(FixedState::new(&state, None, false, true).logic_op, Some(vk::LogicOp::XOR));
+        assert_eq!(FixedState::new(&state, None, false, false).logic_op, None);
     }
 
     #[test]

@@ -245,7 +245,7 @@ impl Recorder<'_> {
             let key = PipelineKey {
                 shader: batch.shader,
                 topology: conv::topology(batch.topology),
-                fixed: FixedState::new(state, batch.topology, features.logic_op),
+                fixed: FixedState::new(state, batch.cull, batch.polygon_offset, features.logic_op),
             };
             if state.logic_op.is_some() && !features.logic_op {
                 log_once("the device has no logicOp feature: glLogicOp is ignored");
@@ -255,6 +255,7 @@ impl Recorder<'_> {
             let indices = self.ring.push_slice(self.device, &batch.indices, 4)?;
             let mut uniforms = batch.uniforms.clone();
             uniforms.resize(ff::UNIFORM_SIZE, 0);
+            ff::uniforms::set_framebuffer_height(&mut uniforms, h);
             let uniform = self.ring.push(self.device, &uniforms, ubo_align)?;
             let set = self.descriptors.get(self.device, self.pipelines.set_layout, &(uniform.buffer, images), ff::UNIFORM_SIZE as u64)?;
             let stencil = state.stencil.unwrap_or_default();
