@@ -18,8 +18,6 @@ declare -A PROBES=(
     [libgl1-mesa-dri]=/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so
     [libgl1]=/usr/lib/x86_64-linux-gnu/libGL.so.1
     [xauth]=/usr/bin/xauth
-    # freezes glxgears' clock in the raster comparison with Mesa (tests/raster_vs_mesa.rs)
-    [faketime]=/usr/lib/x86_64-linux-gnu/faketime/libfaketime.so.1
 )
 
 missing=()
