@@ -44,7 +44,12 @@ fn assert_close(name: &str, glrt: &Image, mesa: &Image) {
     assert_eq!((glrt.width, glrt.height), (mesa.width, mesa.height), "{name}: image sizes");
     difference_image(glrt, mesa).save_png(&dir.join(format!("{name}-diff.png")));
     let d = compare(glrt, mesa, TOLERANCE);
-    eprintln!("{name}: {:.3}% of pixels mismatched, mean |difference| {:.2}", d.mismatched * 100.0, d.mean_abs);
+    eprintln!(
+        "{name}: {:.3}% of pixels mismatched, {:.3}% identical, mean |difference| {:.4}",
+        d.mismatched * 100.0,
+        d.identical * 100.0,
+        d.mean_abs
+    );
     assert!(
         d.mismatched <= MAX_MISMATCHED,
         "{name}: {:.2}% of the pixels differ from Mesa's by more than {TOLERANCE} (allowed {:.2}%); images in {}",

@@ -96,6 +96,8 @@ pub struct Difference {
     pub mismatched: f64,
     /// Mean absolute difference per channel, same position, in 0..=255.
     pub mean_abs: f64,
+    /// Fraction of positions whose pixels are exactly equal.
+    pub identical: f64,
 }
 
 /// Compares `a` and `b` (same size): a pixel matches when the other image has, at its position
@@ -118,7 +120,8 @@ pub fn compare(a: &Image, b: &Image, tolerance: u8) -> Difference {
     let pixels = (a.width * a.height).max(1) as f64;
     let mismatched = (unmatched(a, b) + unmatched(b, a)) as f64 / (2.0 * pixels);
     let sum: u64 = a.rgb.iter().zip(&b.rgb).map(|(x, y)| u64::from(x.abs_diff(*y))).sum();
-    Difference { mismatched, mean_abs: sum as f64 / (pixels * 3.0) }
+    let identical = a.rgb.chunks_exact(3).zip(b.rgb.chunks_exact(3)).filter(|(p, q)| p == q).count() as f64 / pixels;
+    Difference { mismatched, mean_abs: sum as f64 / (pixels * 3.0), identical }
 }
 
 /// An image of where `a` and `b` differ: black where equal, brighter with the difference.
