@@ -34,6 +34,12 @@ fn context_with(make: impl FnOnce() -> Result<Renderer, glrt::render::raster::de
 }
 
 /// Reads the RGBA8 pixel at window (x, y).
+/// Asserts that every channel of `actual` is within 1 of `expected` (the rounding of colours
+/// that fall between two 8-bit values differs between devices).
+fn assert_near(actual: [u8; 4], expected: [u8; 4]) {
+    assert!(actual.iter().zip(expected).all(|(a, e)| a.abs_diff(e) <= 1), "{actual:?} is not within 1 of {expected:?}");
+}
+
 fn pixel(ctx: &mut Context, x: i32, y: i32) -> [u8; 4] {
     let mut out = [0u8; 4];
     unsafe { dispatch::glReadPixels(ctx, x, y, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
@@ -74,14 +80,16 @@ fn clear_and_draw_read_back_in_gl_orientation() {
         dispatch::glBlendFunc(&mut ctx, gl::GL_ONE, gl::GL_ONE);
     }
     lower_left_triangle(&mut ctx, true, [0.0, 0.5, 0.0]);
-    assert_eq!(pixel(&mut ctx, 2, 2), [255, 128, 0, 255]);
-    assert_eq!(pixel(&mut ctx, 2, 2), [255, 128, 0, 255]);
+    // 0.5 × 255 = 127.5 converts to 127 or 128 (OpenGL 1.5 section 2.14.9 leaves the
+    // rounding to the implementation: lavapipe gives 128, NVIDIA 127).
+    assert_near(pixel(&mut ctx, 2, 2), [255, 128, 0, 255]);
+    assert_near(pixel(&mut ctx, 2, 2), [255, 128, 0, 255]);
     // Geometry merged into the draw already rendered is rendered once, after the read.
     lower_left_triangle(&mut ctx, true, [0.0, 0.25, 0.0]);
-    assert_eq!(pixel(&mut ctx, 2, 2), [255, 192, 0, 255]);
+    assert_near(pixel(&mut ctx, 2, 2), [255, 192, 0, 255]);
     ctx.end_frame();
     // The next frame starts from the previous image (no clear): still there.
-    assert_eq!(pixel(&mut ctx, 2, 2), [255, 192, 0, 255]);
+    assert_near(pixel(&mut ctx, 2, 2), [255, 192, 0, 255]);
 }
 
 #[test]
