@@ -255,8 +255,8 @@ fn a_frame_range_drops_drawing_before_it_and_stops_after_it() {
     assert_eq!(replayed.len(), 4, "the capture ends after frame 3: {replayed:?}");
     // Before the range only display lists still draw (glCallList is kept: a list may set state).
     for (i, line) in replayed[..2].iter().enumerate() {
-        let pillars = format!("{{\"frame\":{i},\"draws\":1,\"vertices\":96,\"clears\":0}}");
-        assert_eq!(*line, pillars, "frame {i}: no clear, no immediate-mode or array drawing");
+        let pillars = format!("{{\"frame\":{i},\"draws\":1,\"vertices\":96,\"clears\":0,\"hash\":");
+        assert!(line.starts_with(&pillars), "frame {i}: no clear, no immediate-mode or array drawing: {line}");
     }
     assert_eq!(replayed[2..], live[2..4], "frames 2 and 3 replay as drawn live");
     let full = std::fs::metadata(fixture("demo.glrtcap")).unwrap().len();

@@ -1,6 +1,9 @@
 //! The frame log: with `GLRT_FRAME_LOG=path`, every presented frame appends one JSON line
-//! `{"frame":N,"draws":D,"vertices":V,"clears":C}` to `path` before going on to the
-//! renderer. Tests use it to check the per-frame draw counts of real programs.
+//! `{"frame":N,"draws":D,"vertices":V,"clears":C,"hash":"H"}` to `path` before going on to the
+//! renderer, where `H` is an xxh3 hash (16 hex digits) of everything the frame holds (draws with
+//! their vertices, state, matrices and textures, clears, pixel operations, queries, size): two
+//! frames with the same hash are equal draw for draw. Tests use it to check the per-frame draw
+//! counts of real programs and that replays produce the live frames.
 //!
 //! The file is opened in append mode and each line is written with one `write` call, so the
 //! contexts of a program (each with its own sink) can share it.
@@ -36,12 +39,30 @@ fn append(path: &Path) -> std::io::Result<File> {
 pub fn line(frame: &Frame) -> String {
     let vertices: usize = frame.draws.iter().map(|d| d.vertex_count).sum();
     format!(
-        "{{\"frame\":{},\"draws\":{},\"vertices\":{},\"clears\":{}}}\n",
+        "{{\"frame\":{},\"draws\":{},\"vertices\":{},\"clears\":{},\"hash\":\"{:016x}\"}}\n",
         frame.number,
         frame.draws.len(),
         vertices,
-        frame.clears.len()
+        frame.clears.len(),
+        content_hash(frame)
     )
+}
+
+/// xxh3 of the frame's complete `Debug` form: every field of every draw, clear and pixel
+/// operation (texture contents included), so equal hashes mean equal frames.
+pub fn content_hash(frame: &Frame) -> u64 {
+    use std::fmt::Write as _;
+    /// Feeds formatted text to the hasher without building the whole string.
+    struct Hashing(xxhash_rust::xxh3::Xxh3);
+    impl std::fmt::Write for Hashing {
+        fn write_str(&mut self, s: &str) -> std::fmt::Result {
+            self.0.update(s.as_bytes());
+            Ok(())
+        }
+    }
+    let mut h = Hashing(xxhash_rust::xxh3::Xxh3::new());
+    let _ = write!(h, "{frame:?}");
+    h.0.digest()
 }
 
 impl FrameSink for FrameLog {
