@@ -6,7 +6,7 @@ use super::gl::{self, GLenum, GLubyte};
 /// `GL_VENDOR`.
 const VENDOR: &str = "glrt\0";
 /// `GL_RENDERER`.
-const RENDERER: &str = "glrt (Vulkan path tracer)\0";
+const RENDERER: &str = "glrt (Vulkan raster)\0";
 /// `GL_VERSION`: "1.5 glrt <crate version>".
 const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 
