@@ -151,6 +151,37 @@ mod tests {
     }
 
     #[test]
+    fn buffer_names_select_frame_buffers() {
+        use crate::frame::{ColorBuffer, DrawBuffers, FrameEnd};
+        let (mut ctx, sink) = Context::with_recording();
+        let both = DrawBuffers { front: true, back: true };
+        let front = DrawBuffers { front: true, back: false };
+        let none = DrawBuffers { front: false, back: false };
+        for (name, want) in [(gl::GL_BACK, DrawBuffers::default()), (gl::GL_FRONT_LEFT, front), (gl::GL_FRONT_AND_BACK, both), (gl::GL_LEFT, both), (gl::GL_NONE, none)] {
+            ctx.glDrawBuffer(name);
+            assert_eq!(ctx.draw_buffers(), want, "{name:#x}");
+        }
+        ctx.glClear(gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
+        assert_eq!(ctx.frame.clears[0].draw_buffers, none);
+        assert_eq!(ctx.frame.clears[0].color, None);
+        assert_eq!(ctx.read_color_buffer(), ColorBuffer::Back);
+        ctx.glReadBuffer(gl::GL_FRONT);
+        assert_eq!(ctx.read_color_buffer(), ColorBuffer::Front);
+        ctx.glDrawBuffer(gl::GL_FRONT);
+        ctx.glFlush();
+        ctx.end_frame();
+        ctx.set_double_buffered(false);
+        ctx.glDrawBuffer(gl::GL_FRONT_AND_BACK);
+        assert_eq!(ctx.draw_buffers(), front, "a single-buffered drawable has no back buffer");
+        ctx.glReadBuffer(gl::GL_BACK);
+        assert_eq!(ctx.read_color_buffer(), ColorBuffer::Front);
+        ctx.glClear(gl::GL_COLOR_BUFFER_BIT);
+        ctx.end_frame();
+        let ends: Vec<FrameEnd> = sink.frames.lock().iter().map(|f| f.end).collect();
+        assert_eq!(ends, [FrameEnd::Flush, FrameEnd::Swap, FrameEnd::Flush]);
+    }
+
+    #[test]
     fn single_buffered_contexts_end_frames_at_flush() {
         let (mut ctx, sink) = Context::with_recording();
         ctx.set_double_buffered(false);
