@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 use glam::Mat4;
 
-pub use state::RasterState;
+pub use state::{ColorBuffer, DrawBuffers, RasterState};
 pub use texture::TextureRef;
 pub use vertex::{Attrib, Vertices};
 
@@ -33,6 +33,24 @@ pub struct Frame {
     pub pixels: Vec<pixels::PixelOp>,
     /// Width and height of the drawable, in pixels (`[0, 0]` when no drawable was bound).
     pub size: [u32; 2],
+    /// The colour buffer [`crate::render::FrameSink::read_pixels`] reads (`glReadBuffer` at
+    /// the time of the read).
+    pub read_buffer: ColorBuffer,
+    /// How the frame ends.
+    pub end: FrameEnd,
+}
+
+/// How a frame ends: what the window shows afterwards.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum FrameEnd {
+    /// `glXSwapBuffers` on a double-buffered drawable: the back buffer becomes the front
+    /// buffer. The renderer copies it, so the back buffer keeps its contents (GLX leaves them
+    /// undefined after a swap).
+    #[default]
+    Swap,
+    /// `glFlush`/`glFinish` after drawing to the front buffer, or a swap of a single-buffered
+    /// drawable: the front buffer is shown as it is.
+    Flush,
 }
 
 /// One draw: indexed primitives of one topology, one state, one set of matrices. Consecutive
@@ -130,4 +148,6 @@ pub struct Clear {
     pub depth_mask: bool,
     /// Stencil bits written (`glStencilMask`).
     pub stencil_mask: u32,
+    /// Colour buffers cleared (`glDrawBuffer`).
+    pub draw_buffers: DrawBuffers,
 }

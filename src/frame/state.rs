@@ -504,6 +504,45 @@ pub struct RasterState {
     pub rescale_normal: bool,
     /// `GL_DITHER`.
     pub dither: bool,
+    /// Colour buffers that draws and pixel writes go to (`glDrawBuffer`).
+    pub draw_buffers: DrawBuffers,
+    /// Colour buffer that `glCopyPixels` and `glAccum` read (`glReadBuffer`).
+    pub read_buffer: ColorBuffer,
+}
+
+/// A colour buffer of the drawable (OpenGL 1.5 section 4.2.1). A double-buffered drawable
+/// has both; a single-buffered one only the front buffer.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ColorBuffer {
+    /// The front buffer: what the window shows.
+    Front,
+    /// The back buffer: shown after `glXSwapBuffers`.
+    #[default]
+    Back,
+}
+
+/// The colour buffers that draws, clears and pixel writes go to (`glDrawBuffer`, section
+/// 4.2.1): `GL_FRONT_AND_BACK` sets both, `GL_NONE` neither.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct DrawBuffers {
+    /// The front buffer is written.
+    pub front: bool,
+    /// The back buffer is written.
+    pub back: bool,
+}
+
+impl Default for DrawBuffers {
+    /// The back buffer (the initial `GL_BACK` of a double-buffered drawable).
+    fn default() -> DrawBuffers {
+        DrawBuffers { front: false, back: true }
+    }
+}
+
+impl DrawBuffers {
+    /// The buffers written, front first.
+    pub fn buffers(self) -> impl Iterator<Item = ColorBuffer> {
+        [(self.front, ColorBuffer::Front), (self.back, ColorBuffer::Back)].into_iter().filter_map(|(on, b)| on.then_some(b))
+    }
 }
 
 impl Default for RasterState {
@@ -535,6 +574,8 @@ impl Default for RasterState {
             normalize: false,
             rescale_normal: false,
             dither: true,
+            draw_buffers: DrawBuffers::default(),
+            read_buffer: ColorBuffer::Back,
         }
     }
 }

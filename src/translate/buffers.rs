@@ -2,6 +2,8 @@
 //! double-buffered RGBA without stereo or auxiliary buffers, and `glFlush`/`glFinish` (5.5).
 
 use super::Context;
+use crate::frame::pixels::PixelBuffer;
+use crate::frame::{ColorBuffer, DrawBuffers, FrameEnd};
 use super::get::Value;
 use super::gl::{self, GLenum};
 
@@ -42,7 +44,43 @@ fn check_buffer(buf: GLenum) -> Result<(), GLenum> {
     }
 }
 
+/// Whether `buf` (a valid draw or read buffer name) selects the front buffer.
+fn names_front(buf: GLenum) -> bool {
+    matches!(buf, gl::GL_FRONT | gl::GL_FRONT_LEFT | gl::GL_LEFT | gl::GL_FRONT_AND_BACK)
+}
+
+/// Whether `buf` selects the back buffer.
+fn names_back(buf: GLenum) -> bool {
+    matches!(buf, gl::GL_BACK | gl::GL_BACK_LEFT | gl::GL_LEFT | gl::GL_FRONT_AND_BACK)
+}
+
 impl Context {
+    /// The colour buffers the draw buffer selects, for the frame: a single-buffered drawable
+    /// has no back buffer.
+    pub(crate) fn draw_buffers(&self) -> DrawBuffers {
+        let draw = self.fixed.buffers.draw;
+        DrawBuffers { front: names_front(draw), back: names_back(draw) && !self.single_buffered }
+    }
+
+    /// The colour buffer the read buffer selects: always the front buffer of a
+    /// single-buffered drawable.
+    pub(crate) fn read_color_buffer(&self) -> ColorBuffer {
+        if self.single_buffered || names_front(self.fixed.buffers.read) { ColorBuffer::Front } else { ColorBuffer::Back }
+    }
+
+    /// Reads `rect` of `buffer` (the read buffer, for colour) of the frame so far through the
+    /// renderer ([`crate::render::FrameSink::read_pixels`]).
+    pub(crate) fn read_framebuffer(&mut self, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        self.frame.read_buffer = self.read_color_buffer();
+        self.sink.read_pixels(&self.frame, buffer, rect)
+    }
+
+    /// How a `glXSwapBuffers` ends the frame: a swap for double-buffered drawables, nothing
+    /// more than a flush for single-buffered ones (GLX 1.4 section 3.3.10).
+    pub(crate) fn swap_end(&self) -> FrameEnd {
+        if self.single_buffered { FrameEnd::Flush } else { FrameEnd::Swap }
+    }
+
     /// `glDrawBuffer`.
     pub fn glDrawBuffer(&mut self, buf: GLenum) {
         match check_buffer(buf) {
@@ -110,6 +148,37 @@ mod tests {
         ctx.glReadBuffer(gl::GL_AUX1);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
         assert_eq!(ctx.query(gl::GL_READ_BUFFER).unwrap().to_ints(), [gl::GL_FRONT as i32]);
+    }
+
+    #[test]
+    fn buffer_names_select_frame_buffers() {
+        use crate::frame::{ColorBuffer, DrawBuffers, FrameEnd};
+        let (mut ctx, sink) = Context::with_recording();
+        let both = DrawBuffers { front: true, back: true };
+        let front = DrawBuffers { front: true, back: false };
+        let none = DrawBuffers { front: false, back: false };
+        for (name, want) in [(gl::GL_BACK, DrawBuffers::default()), (gl::GL_FRONT_LEFT, front), (gl::GL_FRONT_AND_BACK, both), (gl::GL_LEFT, both), (gl::GL_NONE, none)] {
+            ctx.glDrawBuffer(name);
+            assert_eq!(ctx.draw_buffers(), want, "{name:#x}");
+        }
+        ctx.glClear(gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
+        assert_eq!(ctx.frame.clears[0].draw_buffers, none);
+        assert_eq!(ctx.frame.clears[0].color, None);
+        assert_eq!(ctx.read_color_buffer(), ColorBuffer::Back);
+        ctx.glReadBuffer(gl::GL_FRONT);
+        assert_eq!(ctx.read_color_buffer(), ColorBuffer::Front);
+        ctx.glDrawBuffer(gl::GL_FRONT);
+        ctx.glFlush();
+        ctx.end_frame();
+        ctx.set_double_buffered(false);
+        ctx.glDrawBuffer(gl::GL_FRONT_AND_BACK);
+        assert_eq!(ctx.draw_buffers(), front, "a single-buffered drawable has no back buffer");
+        ctx.glReadBuffer(gl::GL_BACK);
+        assert_eq!(ctx.read_color_buffer(), ColorBuffer::Front);
+        ctx.glClear(gl::GL_COLOR_BUFFER_BIT);
+        ctx.end_frame();
+        let ends: Vec<FrameEnd> = sink.frames.lock().iter().map(|f| f.end).collect();
+        assert_eq!(ends, [FrameEnd::Flush, FrameEnd::Swap, FrameEnd::Flush]);
     }
 
     #[test]

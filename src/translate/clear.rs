@@ -75,6 +75,7 @@ impl Context {
         let clear = Clear {
             before_draw: self.frame.draws.len(),
             color: (has(gl::GL_COLOR_BUFFER_BIT) && f.buffers.draw != gl::GL_NONE).then_some(f.clear.color),
+            draw_buffers: self.draw_buffers(),
             depth: has(gl::GL_DEPTH_BUFFER_BIT).then_some(f.clear.depth),
             stencil: has(gl::GL_STENCIL_BUFFER_BIT).then_some(f.clear.stencil & ((1 << STENCIL_BITS) - 1)),
             accum: has(gl::GL_ACCUM_BUFFER_BIT).then_some(f.clear.accum),
@@ -149,6 +150,7 @@ mod tests {
                 color_mask: [true; 4],
                 depth_mask: true,
                 stencil_mask: u32::MAX,
+                draw_buffers: crate::frame::DrawBuffers::default(),
             }
         );
         let second = &ctx.frame.clears[1];

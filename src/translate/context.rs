@@ -70,7 +70,7 @@ pub struct Context {
     pub(crate) frame: Frame,
     pub(crate) sink: Box<dyn FrameSink>,
     /// Whether the drawables are single-buffered (see [`Context::set_double_buffered`]).
-    single_buffered: bool,
+    pub(crate) single_buffered: bool,
     /// Size of the drawable last made current, `(width, height)`.
     pub(crate) drawable_size: Option<(i32, i32)>,
     /// Where the renderer was last told frames go (`translate::target`).
@@ -140,23 +140,26 @@ impl Context {
     /// `glFlush`/`glFinish`: when the program draws to the front buffer (a single-buffered
     /// context, or `glDrawBuffer(GL_FRONT)`), what it drew so far is a frame to show.
     pub(crate) fn flush_front(&mut self) {
-        let front = matches!(
-            self.fixed.buffers.draw,
-            super::gl::GL_FRONT | super::gl::GL_FRONT_LEFT | super::gl::GL_FRONT_AND_BACK | super::gl::GL_LEFT
-        );
+        let front = self.draw_buffers().front;
         let drew = !self.frame.draws.is_empty() || !self.frame.clears.is_empty();
         if (self.single_buffered || front) && drew {
-            self.end_frame();
+            self.end_frame_as(crate::frame::FrameEnd::Flush);
         }
     }
 
     /// Ends the frame (`glXSwapBuffers`): hands the assembled [`Frame`] to the renderer. The
     /// next frame's draw list starts with the capacity this one needed.
     pub fn end_frame(&mut self) {
+        self.end_frame_as(self.swap_end());
+    }
+
+    /// Ends the frame as `end` says.
+    pub(crate) fn end_frame_as(&mut self, end: crate::frame::FrameEnd) {
         let number = self.frame.number + 1;
         let draws = Vec::with_capacity(self.frame.draws.len());
         let size = self.frame.size;
-        let frame = std::mem::replace(&mut self.frame, Frame { number, draws, size, ..Frame::default() });
+        let next = Frame { number, draws, size, ..Frame::default() };
+        let frame = Frame { end, ..std::mem::replace(&mut self.frame, next) };
         self.sink.present(frame);
     }
 }

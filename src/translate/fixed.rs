@@ -94,6 +94,8 @@ impl Context {
             depth_write: fr.depth_write,
             stencil: on(gl::GL_STENCIL_TEST).then_some(fr.stencil),
             color_mask,
+            draw_buffers: self.draw_buffers(),
+            read_buffer: self.read_color_buffer(),
             cull: on(gl::GL_CULL_FACE).then_some(r.cull_face),
             front_face: r.front_face,
             polygon_mode: r.polygon_mode,

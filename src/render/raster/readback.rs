@@ -9,6 +9,7 @@ use gpu_allocator::MemoryLocation;
 
 use super::device::{Buffer, Device, Result};
 use super::target::{Plane, Target};
+use crate::frame::ColorBuffer;
 use crate::frame::pixels::PixelBuffer;
 
 /// Largest rectangle read back, in pixels.
@@ -56,15 +57,16 @@ pub struct Readback {
 }
 
 impl Readback {
-    /// Records the copy of `rect` (window coordinates) of `buffer` into host memory; `None`
-    /// when the rectangle is too large. Ends with `plane` in `TRANSFER_SRC_OPTIMAL`.
-    pub fn record(device: &Device, cmd: vk::CommandBuffer, target: &mut Target, buffer: PixelBuffer, rect: [i32; 4]) -> Result<Option<Readback>> {
+    /// Records the copy of `rect` (window coordinates) of `buffer` (colour from the image of
+    /// `color`) into host memory; `None` when the rectangle is too large. Ends with the image
+    /// read in `TRANSFER_SRC_OPTIMAL`.
+    pub fn record(device: &Device, cmd: vk::CommandBuffer, target: &mut Target, buffer: PixelBuffer, color: ColorBuffer, rect: [i32; 4]) -> Result<Option<Readback>> {
         let [_, _, w, h] = rect;
         if w <= 0 || h <= 0 || (w as u64) * (h as u64) > MAX_PIXELS {
             return Ok(None);
         }
         let (plane, aspect, texel) = match buffer {
-            PixelBuffer::Color => (Plane::Color, vk::ImageAspectFlags::COLOR, Texel::Rgba8),
+            PixelBuffer::Color => (Plane::of(color), vk::ImageAspectFlags::COLOR, Texel::Rgba8),
             PixelBuffer::Depth => {
                 let t = if device.depth_format == vk::Format::D24_UNORM_S8_UINT { Texel::Depth24 } else { Texel::Depth32 };
                 (Plane::DepthStencil, vk::ImageAspectFlags::DEPTH, t)

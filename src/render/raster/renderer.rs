@@ -14,6 +14,8 @@
 //! the end of each presented frame, give the submission semaphores, and hear when the GPU
 //! finished it (the `GLRT_DUMP` writer is one).
 
+use std::sync::Arc;
+
 use ash::vk;
 
 use super::commands::Slot;
@@ -25,8 +27,9 @@ use super::pipelines::{FixedState, PipelineKey, Pipelines};
 use super::target::{Plane, Target};
 use super::textures::Textures;
 use super::{conv, pixel_ops, readback};
-use crate::frame::pixels::PixelBuffer;
-use crate::frame::{Clear, Draw, Frame};
+use crate::frame::pixels::{PixelBuffer, PixelOp};
+use crate::frame::state::Stencil;
+use crate::frame::{Clear, ColorBuffer, Draw, DrawBuffers, Frame, FrameEnd, RasterState};
 use crate::render::FrameSink;
 
 /// Frames in flight.
@@ -72,6 +75,8 @@ struct Parts {
     textures: Textures,
     target: Option<Target>,
     rendering: bool,
+    /// The colour image the rendering pass draws into.
+    color: Plane,
 }
 
 /// Access to the frame being recorded, for the parts that record into it (draws, clears,
@@ -92,6 +97,7 @@ pub struct Recorder<'a> {
     /// Textures.
     pub textures: &'a mut Textures,
     rendering: &'a mut bool,
+    color: &'a mut Plane,
     occlusion: &'a mut Occlusion,
     /// The frame-in-flight slot recorded into.
     slot: usize,
@@ -105,10 +111,10 @@ impl Recorder<'_> {
         if *self.rendering {
             return;
         }
-        self.target.transition(self.device, self.cmd, Plane::Color, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL);
+        self.target.transition(self.device, self.cmd, *self.color, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL);
         self.target.transition(self.device, self.cmd, Plane::DepthStencil, vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
         let color = [vk::RenderingAttachmentInfo::default()
-            .image_view(self.target.color.view)
+            .image_view(self.target.image(*self.color).view)
             .image_layout(vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL)
             .load_op(vk::AttachmentLoadOp::LOAD)
             .store_op(vk::AttachmentStoreOp::STORE)];
@@ -137,6 +143,45 @@ impl Recorder<'_> {
             unsafe { self.device.raw.cmd_end_rendering(self.cmd) };
             *self.rendering = false;
         }
+    }
+
+    /// Makes the rendering pass draw into the colour image of `buffer` (ending the pass when
+    /// it drew into the other).
+    pub fn set_color_buffer(&mut self, buffer: ColorBuffer) {
+        let plane = Plane::of(buffer);
+        if *self.color != plane {
+            self.end_rendering();
+            *self.color = plane;
+        }
+    }
+
+    /// Runs `write` once per colour buffer that `buffers` selects (section 4.2.1), front
+    /// first, with the state to use: for `GL_FRONT_AND_BACK` the front pass leaves depth,
+    /// stencil and occlusion counts alone (so the back pass sees the framebuffer as it was and
+    /// updates them once); with no colour buffer (`GL_NONE`, whose colour mask translate
+    /// clears) it runs once on the back image for depth and stencil.
+    pub fn for_each_buffer(&mut self, buffers: DrawBuffers, state: &Arc<RasterState>, mut write: impl FnMut(&mut Self, &Arc<RasterState>) -> Result<()>) -> Result<()> {
+        let chosen: Vec<ColorBuffer> = buffers.buffers().collect();
+        let Some((&last, before)) = chosen.split_last() else {
+            self.set_color_buffer(ColorBuffer::Back);
+            return write(self, state);
+        };
+        if !before.is_empty() {
+            let color_only = Arc::new(RasterState {
+                depth_write: false,
+                stencil: state.stencil.map(|s| Stencil { write_mask: 0, ..s }),
+                ..(**state).clone()
+            });
+            let query = self.query;
+            self.query.1 = None;
+            for &buffer in before {
+                self.set_color_buffer(buffer);
+                write(self, &color_only)?;
+            }
+            self.query = query;
+        }
+        self.set_color_buffer(last);
+        write(self, state)
     }
 
     /// Records a `glClear`: cleared buffers, masks and scissor box as the frame says
@@ -302,7 +347,7 @@ impl Renderer {
         let slots = (0..FRAMES_IN_FLIGHT).map(|_| Slot::new(&device)).collect::<Result<Vec<_>>>()?;
         let occlusion = Occlusion::new(FRAMES_IN_FLIGHT, device.features.occlusion_query_precise);
         Ok(Renderer {
-            parts: Parts { device, occlusion, pipelines, textures, target: None, rendering: false },
+            parts: Parts { device, occlusion, pipelines, textures, target: None, rendering: false, color: Plane::Color },
             slots,
             current: 0,
             recording: false,
@@ -369,6 +414,7 @@ impl Renderer {
             pipelines: &mut parts.pipelines,
             textures: &mut parts.textures,
             rendering: &mut parts.rendering,
+            color: &mut parts.color,
             occlusion: &mut parts.occlusion,
             slot: self.current,
             query: (0, None),
@@ -396,7 +442,7 @@ impl Renderer {
             && last.indices.len() > progress.last_indices
         {
             rec.query = (frame.number, query_of(progress.draws - 1));
-            rec.draw(&tail(last, progress.last_indices))?;
+            draw_in_buffers(&mut rec, &tail(last, progress.last_indices))?;
             progress.last_indices = last.indices.len();
         }
         for index in progress.draws..=frame.draws.len() {
@@ -408,7 +454,14 @@ impl Renderer {
                 let op = frame.pixels.get(progress.pixels).filter(|p| p.before_draw <= index);
                 match (clear, op) {
                     (Some(clear), op) if op.is_none_or(|op| op.after_clears > progress.clears) => {
-                        pixel_ops::clear::record(&mut rec, clear)?;
+                        let mut buffers = clear.draw_buffers.buffers().peekable();
+                        if buffers.peek().is_none() {
+                            pixel_ops::clear::record(&mut rec, clear)?;
+                        }
+                        for buffer in buffers {
+                            rec.set_color_buffer(buffer);
+                            pixel_ops::clear::record(&mut rec, clear)?;
+                        }
                         if let Some(value) = clear.accum {
                             accum.clear(rec.target.size, clear.scissor, value);
                         }
@@ -417,13 +470,20 @@ impl Renderer {
                     (_, Some(op)) => {
                         let read = match pixel_ops::source(op, rec.target.size) {
                             Some((buffer, rect)) => {
-                                let read = self.read_target(buffer, rect)?;
+                                let read = self.read_target(buffer, op.state.read_buffer, rect)?;
                                 rec = self.recorder(frame.size)?;
                                 read
                             }
                             None => None,
                         };
-                        pixel_ops::record(&mut rec, accum, op, read.as_deref())?;
+                        if pixel_ops::writes_color(op) {
+                            rec.for_each_buffer(op.state.draw_buffers, &op.state, |rec, state| {
+                                let op = PixelOp { state: state.clone(), ..op.clone() };
+                                pixel_ops::record(rec, accum, &op, read.as_deref())
+                            })?;
+                        } else {
+                            pixel_ops::record(&mut rec, accum, op, read.as_deref())?;
+                        }
                         progress.pixels += 1;
                     }
                     (_, None) => break,
@@ -431,7 +491,7 @@ impl Renderer {
             }
             if let Some(draw) = frame.draws.get(index) {
                 rec.query = (frame.number, query_of(index));
-                rec.draw(draw)?;
+                draw_in_buffers(&mut rec, draw)?;
                 progress.draws = index + 1;
                 progress.last_indices = draw.indices.len();
             }
@@ -462,18 +522,20 @@ impl Renderer {
         }
     }
 
-    /// Renders `frame` so far and copies `rect` of `buffer` back (see [`FrameSink::read_pixels`]).
+    /// Renders `frame` so far and copies `rect` of `buffer` back, colour from the frame's read
+    /// buffer (see [`FrameSink::read_pixels`]).
     pub fn read(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
         self.record(frame)?;
-        self.read_target(buffer, rect)
+        self.read_target(buffer, frame.read_buffer, rect)
     }
 
-    /// Submits what is recorded, waits, and copies `rect` of `buffer` back.
-    fn read_target(&mut self, buffer: PixelBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
+    /// Submits what is recorded, waits, and copies `rect` of `buffer` (colour from `color`)
+    /// back.
+    fn read_target(&mut self, buffer: PixelBuffer, color: ColorBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
         self.end_pass();
         let slot = &mut self.slots[self.current];
         let Some(target) = self.parts.target.as_mut() else { return Ok(None) };
-        let Some(copy) = readback::Readback::record(&self.parts.device, slot.cmd, target, buffer, rect)? else {
+        let Some(copy) = readback::Readback::record(&self.parts.device, slot.cmd, target, buffer, color, rect)? else {
             return Ok(None);
         };
         self.flush()?;
@@ -489,6 +551,9 @@ impl Renderer {
         let recorded = (|| {
             let mut rec = self.recorder(frame.size)?;
             rec.end_rendering();
+            if frame.end == FrameEnd::Swap {
+                rec.target.copy_back_to_front(rec.device, rec.cmd);
+            }
             for output in &mut outputs {
                 sync.extend(output.record(&mut rec, slot, frame.number)?);
             }
@@ -598,6 +663,13 @@ impl Drop for Renderer {
         self.parts.occlusion.destroy(device);
         self.parts.textures.destroy(device);
     }
+}
+
+/// Records `draw` into the colour buffers its state selects.
+fn draw_in_buffers(rec: &mut Recorder<'_>, draw: &Draw) -> Result<()> {
+    rec.for_each_buffer(draw.state.draw_buffers, &draw.state, |rec, state| {
+        if Arc::ptr_eq(state, &draw.state) { rec.draw(draw) } else { rec.draw(&Draw { state: state.clone(), ..draw.clone() }) }
+    })
 }
 
 /// The primitives of `draw` from index `from` on (whole primitives: `from` is a multiple of

@@ -1,5 +1,8 @@
-//! The framebuffer the raster path draws into: an RGBA8 colour image and a depth/stencil image
-//! of the drawable's size, recreated when the size changes.
+//! The framebuffer the raster path draws into: two RGBA8 colour images (back and front
+//! buffers, OpenGL 1.5 section 4.2.1) and a depth/stencil image of the drawable's size,
+//! recreated when the size changes. Outputs show the front image; a swap copies the back
+//! image into it ([`Target::copy_back_to_front`]). A single-buffered drawable only uses the
+//! front image.
 //!
 //! Orientation: row 0 of the images is the **top** of the window (as a swapchain image or a
 //! PNG wants it). OpenGL window coordinates grow upwards, so window row `y` is image row
@@ -13,6 +16,7 @@
 use ash::vk;
 
 use super::device::{Device, Image, Result};
+use crate::frame::ColorBuffer;
 
 /// The colour format.
 pub const COLOR_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
@@ -20,21 +24,35 @@ pub const COLOR_FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
 /// Which image of the target.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Plane {
-    /// The colour image.
+    /// The back colour image.
     Color,
     /// The depth/stencil image.
     DepthStencil,
+    /// The front colour image.
+    Front,
+}
+
+impl Plane {
+    /// The colour image of `buffer`.
+    pub fn of(buffer: ColorBuffer) -> Plane {
+        match buffer {
+            ColorBuffer::Front => Plane::Front,
+            ColorBuffer::Back => Plane::Color,
+        }
+    }
 }
 
 /// The colour and depth/stencil images.
 pub struct Target {
     /// Width and height in pixels.
     pub size: [u32; 2],
-    /// The colour image (RGBA8, [`COLOR_FORMAT`]).
+    /// The back colour image (RGBA8, [`COLOR_FORMAT`]).
     pub color: Image,
     /// The depth/stencil image ([`Device::depth_format`]).
     pub depth: Image,
-    layouts: [vk::ImageLayout; 2],
+    /// The front colour image (RGBA8).
+    pub front: Image,
+    layouts: [vk::ImageLayout; 3],
 }
 
 impl Target {
@@ -54,12 +72,17 @@ impl Target {
                 .usage(usage)
         };
         let transfer = vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::SAMPLED;
-        let color = device.create_image(
-            "glrt colour",
-            &info(COLOR_FORMAT, vk::ImageUsageFlags::COLOR_ATTACHMENT | transfer),
-            vk::ImageViewType::TYPE_2D,
-            vk::ImageAspectFlags::COLOR,
-        )?;
+        let color_image = |name| {
+            device.create_image(name, &info(COLOR_FORMAT, vk::ImageUsageFlags::COLOR_ATTACHMENT | transfer), vk::ImageViewType::TYPE_2D, vk::ImageAspectFlags::COLOR)
+        };
+        let color = color_image("glrt back colour")?;
+        let front = match color_image("glrt front colour") {
+            Ok(front) => front,
+            Err(e) => {
+                device.destroy_image(color);
+                return Err(e);
+            }
+        };
         let depth = device.create_image(
             "glrt depth",
             &info(device.depth_format, vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | transfer),
@@ -67,9 +90,10 @@ impl Target {
             vk::ImageAspectFlags::DEPTH | vk::ImageAspectFlags::STENCIL,
         );
         match depth {
-            Ok(depth) => Ok(Target { size: [w, h], color, depth, layouts: [vk::ImageLayout::UNDEFINED; 2] }),
+            Ok(depth) => Ok(Target { size: [w, h], color, depth, front, layouts: [vk::ImageLayout::UNDEFINED; 3] }),
             Err(e) => {
                 device.destroy_image(color);
+                device.destroy_image(front);
                 Err(e)
             }
         }
@@ -79,24 +103,46 @@ impl Target {
     pub fn destroy(self, device: &Device) {
         device.destroy_image(self.color);
         device.destroy_image(self.depth);
+        device.destroy_image(self.front);
     }
 
-    /// Records clearing both images (colour to transparent black, depth to 1, stencil to 0):
+    /// Records the swap of a double-buffered drawable: the back image is copied into the
+    /// front image (the back image keeps its contents).
+    pub fn copy_back_to_front(&mut self, device: &Device, cmd: vk::CommandBuffer) {
+        self.transition(device, cmd, Plane::Color, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
+        self.transition(device, cmd, Plane::Front, vk::ImageLayout::TRANSFER_DST_OPTIMAL);
+        let layers = vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: 0, base_array_layer: 0, layer_count: 1 };
+        let copy = vk::ImageCopy {
+            src_subresource: layers,
+            src_offset: vk::Offset3D::default(),
+            dst_subresource: layers,
+            dst_offset: vk::Offset3D::default(),
+            extent: vk::Extent3D { width: self.size[0], height: self.size[1], depth: 1 },
+        };
+        // Safety: the images are in the layouts named, of the same size; cmd is outside a pass.
+        unsafe {
+            device.raw.cmd_copy_image(cmd, self.color.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, self.front.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &[copy])
+        };
+    }
+
+    /// Records clearing the images (colour to transparent black, depth to 1, stencil to 0):
     /// a new target's contents are defined.
     pub fn clear_initial(&mut self, device: &Device, cmd: vk::CommandBuffer) {
-        for plane in [Plane::Color, Plane::DepthStencil] {
+        for plane in [Plane::Color, Plane::DepthStencil, Plane::Front] {
             self.transition(device, cmd, plane, vk::ImageLayout::TRANSFER_DST_OPTIMAL);
         }
         let range = |aspect_mask| vk::ImageSubresourceRange { aspect_mask, base_mip_level: 0, level_count: 1, base_array_layer: 0, layer_count: 1 };
-        // Safety: both images are in TRANSFER_DST_OPTIMAL; cmd is outside a rendering pass.
+        // Safety: the images are in TRANSFER_DST_OPTIMAL; cmd is outside a rendering pass.
         unsafe {
-            device.raw.cmd_clear_color_image(
-                cmd,
-                self.color.raw,
-                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                &vk::ClearColorValue { float32: [0.0; 4] },
-                &[range(vk::ImageAspectFlags::COLOR)],
-            );
+            for image in [self.color.raw, self.front.raw] {
+                device.raw.cmd_clear_color_image(
+                    cmd,
+                    image,
+                    vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                    &vk::ClearColorValue { float32: [0.0; 4] },
+                    &[range(vk::ImageAspectFlags::COLOR)],
+                );
+            }
             device.raw.cmd_clear_depth_stencil_image(
                 cmd,
                 self.depth.raw,
@@ -112,13 +158,14 @@ impl Target {
         match plane {
             Plane::Color => &self.color,
             Plane::DepthStencil => &self.depth,
+            Plane::Front => &self.front,
         }
     }
 
     /// The aspects of `plane`.
     pub fn aspects(plane: Plane) -> vk::ImageAspectFlags {
         match plane {
-            Plane::Color => vk::ImageAspectFlags::COLOR,
+            Plane::Color | Plane::Front => vk::ImageAspectFlags::COLOR,
             Plane::DepthStencil => vk::ImageAspectFlags::DEPTH | vk::ImageAspectFlags::STENCIL,
         }
     }

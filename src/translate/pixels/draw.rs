@@ -168,7 +168,7 @@ impl Context {
         if w == 0 || h == 0 {
             return;
         }
-        let Some(read) = self.sink.read_pixels(&self.frame, buffer, [x, y, width, height]) else {
+        let Some(read) = self.read_framebuffer(buffer, [x, y, width, height]) else {
             if !self.pixels.readback_logged {
                 log::warn!("glReadPixels: the renderer cannot read pixels back; the buffer is left unchanged");
                 self.pixels.readback_logged = true;

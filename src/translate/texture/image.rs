@@ -469,7 +469,7 @@ impl Context {
     fn record_texture_copy(&mut self, dest: Dest, level: usize, offset: [usize; 3], src: [i32; 4], base: Base) {
         let buffer = if base == Base::Texel(TexelFormat::Depth) { PixelBuffer::Depth } else { PixelBuffer::Color };
         let size = [src[2].max(0) as usize, src[3].max(0) as usize, 1];
-        let read = (size[0] * size[1] > 0).then(|| self.sink.read_pixels(&self.frame, buffer, src)).flatten();
+        let read = (size[0] * size[1] > 0).then(|| self.read_framebuffer(buffer, src)).flatten();
         if let Some(read) = read.filter(|r| r.len() == size[0] * size[1]) {
             let data = match buffer {
                 PixelBuffer::Depth => Unpacked::Depth(read.iter().map(|c| c[0]).collect()),

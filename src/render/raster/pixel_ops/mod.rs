@@ -35,6 +35,12 @@ pub fn source(op: &PixelOp, size: [u32; 2]) -> Option<(PixelBuffer, [i32; 4])> {
     }
 }
 
+/// Whether `op` writes colour fragments (everything but accumulation-buffer updates and
+/// texture copies): the renderer records it once per draw buffer.
+pub fn writes_color(op: &PixelOp) -> bool {
+    !matches!(op.kind, PixelKind::TextureCopy { .. } | PixelKind::Accum { op: AccumOp::Load | AccumOp::Accum | AccumOp::Mult | AccumOp::Add, .. })
+}
+
 /// Records `op`; `read` holds the pixels of [`source`]'s rectangle when it names one (as
 /// [`crate::render::FrameSink::read_pixels`] returns them).
 pub fn record(rec: &mut Recorder<'_>, accum: &mut accum::Accum, op: &PixelOp, read: Option<&[[f32; 4]]>) -> Result<()> {
