@@ -131,7 +131,7 @@ fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, p
         (Base::ColorIndex, data) => {
             let mask = (1i64 << formats::index_bits(internal)) - 1;
             let indices: Vec<u16> = match data {
-                Some(Unpacked::Index(ix)) => ix.iter().map(|&i| (i as i64 & mask) as u16).collect(),
+                Some(Unpacked::Index(ix)) => ix.iter().map(|&i| (i & mask) as u16).collect(),
                 _ => vec![0; count],
             };
             Converted { texels: resolve_indices(&indices, palette), depth: Vec::new(), indices: Some(Arc::new(indices)) }
@@ -490,13 +490,15 @@ impl Context {
         });
     }
 
-    /// `glCopyTexImage1D/2D`: like `glTexImage`, with the pixels from the framebuffer
-    /// (`GL_INVALID_VALUE` also for the internal formats 1–4 and colour indices). The level is
-    /// allocated zero-filled and the copy is recorded in the frame.
+    /// `glCopyTexImage1D/2D`: like `glTexImage`, with the pixels from the framebuffer. An
+    /// internal format outside tables 3.15–3.16, one of 1–4 (section 3.8.2: "may not be
+    /// specified as 1, 2, 3, or 4") or a colour index raises `GL_INVALID_ENUM`, as in Mesa
+    /// (the spec names no error; piglit `copyteximage` expects this for depth-stencil formats).
+    /// The level is allocated zero-filled and the copy is recorded in the frame.
     fn copy_tex_image(&mut self, dims: usize, target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, size: [GLsizei; 2], border: GLint, command: &'static str) {
         let Some(dest) = image_target(dims, target).filter(|d| !d.proxy) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let internal = formats::internal_format(internalformat).filter(|i| !(1..=4).contains(&internalformat) && i.base != Base::ColorIndex);
-        let Some(internal) = internal else { return self.set_error_in(gl::GL_INVALID_VALUE, command) };
+        let Some(internal) = internal else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let checked = check_level(dest.target, level)
             .and_then(|l| Ok((l, check_size(dest.target, l, [size[0], size[1], 1], border)?)))
             .and_then(|v| check_compressed_internal(internalformat, dims, border).map(|()| v));
@@ -838,8 +840,10 @@ mod tests {
         ctx.glBindTexture(gl::GL_TEXTURE_2D, 9);
         ctx.glCopyTexImage2D(gl::GL_TEXTURE_2D, 0, gl::GL_RGB, 10, 20, 16, 8, 0);
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
-        ctx.glCopyTexImage2D(gl::GL_TEXTURE_2D, 0, 3, 10, 20, 16, 8, 0);
-        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        for bad in [3, gl::GL_DEPTH_STENCIL, gl::GL_DEPTH24_STENCIL8, gl::GL_COLOR_INDEX8_EXT] {
+            ctx.glCopyTexImage2D(gl::GL_TEXTURE_2D, 0, bad, 10, 20, 16, 8, 0);
+            assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM, "{bad:#x}");
+        }
         ctx.glCopyTexImage2D(gl::GL_PROXY_TEXTURE_2D, 0, gl::GL_RGB, 0, 0, 16, 8, 0);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glCopyTexSubImage2D(gl::GL_TEXTURE_2D, 0, 8, 4, 1, 2, 8, 4);
