@@ -351,7 +351,8 @@ impl Context {
     }
 
     /// The `(first, count)` pairs of `glMultiDrawArrays`; `GL_INVALID_VALUE` for a negative
-    /// `drawcount`.
+    /// `drawcount` or any negative count, and then nothing is drawn (the command is one
+    /// command: a bad range makes the whole call fail, as in Mesa).
     unsafe fn multi_ranges(
         &mut self,
         first: *const GLint,
@@ -366,6 +367,10 @@ impl Context {
             self.null_pointer("glMultiDrawArrays");
             return None;
         };
+        if counts.iter().any(|&c| c < 0) {
+            self.set_error_in(gl::GL_INVALID_VALUE, "glMultiDrawArrays");
+            return None;
+        }
         Some(firsts.into_iter().zip(counts).collect())
     }
 
@@ -417,6 +422,10 @@ impl Context {
             self.null_pointer("glMultiDrawElements");
             return None;
         };
+        if counts.iter().any(|&c| c < 0) {
+            self.set_error_in(gl::GL_INVALID_VALUE, "glMultiDrawElements");
+            return None;
+        }
         // Index-list addresses read from client memory are captured addresses in a replay.
         Some(counts.into_iter().zip(pointers.into_iter().map(super::capture::client_pointer)).collect())
     }
@@ -648,6 +657,13 @@ mod tests {
         assert_eq!(d.vertex_count, 3);
         unsafe { ctx.glMultiDrawArrays(gl::GL_LINES, first.as_ptr(), count.as_ptr(), -1) };
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        // One negative count: an error and no draw at all, not even of the valid range.
+        unsafe { ctx.glMultiDrawArrays(gl::GL_LINES, first.as_ptr(), [2, -1].as_ptr(), 2) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        unsafe { ctx.glMultiDrawElements(gl::GL_POINTS, [-1, 2].as_ptr(), gl::GL_UNSIGNED_INT, ptrs.as_ptr(), 2) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        let counts: Vec<u32> = ctx.frame.draws.iter().map(|d| d.vertex_count as u32).collect();
+        assert_eq!(counts, [4, 3], "nothing drawn or merged");
     }
 
     #[test]

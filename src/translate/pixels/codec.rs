@@ -189,9 +189,10 @@ fn write_uint(bytes: &mut [u8], at: usize, size: usize, swap: bool, v: u32) {
 }
 
 /// Decodes element `raw` (as read) of type `t` to a value: normalized (table 2.9) for colour
-/// and depth, the integer itself for indices, the float itself for `GL_FLOAT`.
-fn decode_element(t: Type, raw: u32, normalized: bool) -> f32 {
-    match (t, normalized) {
+/// and depth, the integer itself for indices, the float itself for `GL_FLOAT`. The value is an
+/// `f64` so that 32-bit indices keep every bit (an `f32` holds 24).
+fn decode_element(t: Type, raw: u32, normalized: bool) -> f64 {
+    let norm = match (t, normalized) {
         (Type::F32, _) => f32::from_bits(raw),
         (Type::U8, true) => norm_u8(raw as u8),
         (Type::I8, true) => norm_i8(raw as u8 as i8),
@@ -199,11 +200,12 @@ fn decode_element(t: Type, raw: u32, normalized: bool) -> f32 {
         (Type::I16, true) => norm_i16(raw as u16 as i16),
         (Type::U32, true) => norm_u32(raw),
         (Type::I32, true) => norm_i32(raw as i32),
-        (Type::I8, false) => f32::from(raw as u8 as i8),
-        (Type::I16, false) => f32::from(raw as u16 as i16),
-        (Type::I32, false) => raw as i32 as f32,
-        _ => raw as f32,
-    }
+        (Type::I8, false) => return f64::from(raw as u8 as i8),
+        (Type::I16, false) => return f64::from(raw as u16 as i16),
+        (Type::I32, false) => return f64::from(raw as i32),
+        _ => return f64::from(raw),
+    };
+    f64::from(norm)
 }
 
 /// Encodes `v` as element of type `t` (equation 4.1's inverse of table 2.9 for normalized
@@ -246,8 +248,9 @@ impl Codec<'_> {
     }
 
     /// Decodes the `w` × `h` × `d` image in `bytes` (the client memory from the pointer on,
-    /// [`Layout::span`] bytes): `format.components` values a pixel, in format order.
-    pub fn decode(&self, bytes: &[u8], w: usize, h: usize, d: usize) -> Vec<f32> {
+    /// [`Layout::span`] bytes): `format.components` values a pixel, in format order (`f64`:
+    /// integer indices are exact).
+    pub fn decode(&self, bytes: &[u8], w: usize, h: usize, d: usize) -> Vec<f64> {
         let n = self.format.components;
         let mut out = Vec::with_capacity(w * h * d * n);
         let size = self.ty.element_size();
@@ -259,13 +262,13 @@ impl Codec<'_> {
                     match self.ty {
                         Type::Bitmap => {
                             let (byte, shift) = self.bit_position(at);
-                            out.push(f32::from((bytes.get(byte).copied().unwrap_or(0) >> shift) & 1));
+                            out.push(f64::from((bytes.get(byte).copied().unwrap_or(0) >> shift) & 1));
                         }
                         Type::Packed(p) => {
                             let raw = read_uint(bytes, at, size, swap);
                             for &(shift, bits) in p.fields {
                                 let max = (1u32 << bits) - 1;
-                                out.push(((raw >> shift) & max) as f32 / max as f32);
+                                out.push(f64::from(((raw >> shift) & max) as f32 / max as f32));
                             }
                         }
                         t => {
@@ -387,10 +390,10 @@ mod tests {
         let v = c.decode(&bytes, 2, 1, 1);
         assert_eq!(v[0], 1.0);
         // Swapped 0x00 0x80 is 0x0080 = 128.
-        assert_eq!(v[1], 128.0 / 65535.0);
+        assert_eq!(v[1], f64::from(128.0f32 / 65535.0));
         let plain = StoreModes { alignment: 1, ..StoreModes::default() };
         let c = codec(gl::GL_LUMINANCE, gl::GL_UNSIGNED_SHORT, &plain, 2, 1);
-        assert_eq!(c.decode(&bytes, 2, 1, 1)[1], f32::from(u16::from_ne_bytes([0x00, 0x80])) / 65535.0);
+        assert_eq!(c.decode(&bytes, 2, 1, 1)[1], f64::from(f32::from(u16::from_ne_bytes([0x00, 0x80])) / 65535.0));
         let c = codec(gl::GL_RGBA, gl::GL_BYTE, &plain, 1, 1);
         assert_eq!(c.decode(&[127, 0x80, 0, 1], 1, 1, 1)[..2], [1.0, -1.0]);
         let c = codec(gl::GL_COLOR_INDEX, gl::GL_INT, &plain, 1, 1);
@@ -418,13 +421,13 @@ mod tests {
         ];
         for (ty, bytes, value) in cases {
             let c = codec(gl::GL_COLOR_INDEX, ty, &swap, 1, 1);
-            assert_eq!(c.decode(&bytes, 1, 1, 1), [value], "{ty:#x}");
+            assert_eq!(c.decode(&bytes, 1, 1, 1), [f64::from(value)], "{ty:#x}");
             let mut back = vec![0u8; bytes.len()];
             c.encode(&mut back, &[value], 1, 1, 1);
             assert_eq!(back, bytes, "{ty:#x}");
             if bytes.len() > 1 {
                 let unswapped = codec(gl::GL_COLOR_INDEX, ty, &plain, 1, 1).decode(&bytes, 1, 1, 1);
-                assert_ne!(unswapped, [value], "{ty:#x}");
+                assert_ne!(unswapped, [f64::from(value)], "{ty:#x}");
             }
         }
     }
@@ -460,7 +463,7 @@ mod tests {
             let size = c.ty.element_size();
             let mut bytes = vec![0u8; 4];
             write_uint(&mut bytes, 0, size, false, raw);
-            let v = c.decode(&bytes, 1, 1, 1);
+            let v: Vec<f32> = c.decode(&bytes, 1, 1, 1).iter().map(|&x| x as f32).collect();
             let mut back = vec![0u8; 4];
             c.encode(&mut back, &v, 1, 1, 1);
             assert_eq!(back, bytes, "{ty:#x}");

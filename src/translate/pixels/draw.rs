@@ -105,7 +105,7 @@ impl Context {
         let data = match unsafe { self.unpack_client(ft, [w, h, 1], pixels, false, "glDrawPixels") } {
             Ok(Some(Unpacked::Rgba(c))) => PixelData::Rgba8(rgba8(&c).into()),
             Ok(Some(Unpacked::Depth(d))) => PixelData::Depth(d.into()),
-            Ok(Some(Unpacked::Stencil(s) | Unpacked::Index(s))) => PixelData::Stencil(s.iter().map(|&v| v as i64 as u32).collect()),
+            Ok(Some(Unpacked::Stencil(s) | Unpacked::Index(s))) => PixelData::Stencil(s.iter().map(|&v| v as u32).collect()),
             Ok(None) => return self.null_pointer("glDrawPixels"),
             Err(()) => return,
         };
@@ -191,9 +191,10 @@ impl Context {
         match f.kind {
             Kind::Color => read.iter().for_each(|&c| codec::from_rgba(f.gl, t.color(c), luminance, &mut values)),
             _ => {
-                let first: Vec<f32> = read.iter().map(|c| c[0]).collect();
+                let first: Vec<f64> = read.iter().map(|c| f64::from(c[0])).collect();
                 match t.apply(f, &first, true) {
-                    Unpacked::Depth(v) | Unpacked::Stencil(v) | Unpacked::Index(v) => values = v,
+                    Unpacked::Depth(v) => values = v,
+                    Unpacked::Stencil(v) | Unpacked::Index(v) => values = v.iter().map(|&i| i as f32).collect(),
                     Unpacked::Rgba(_) => {}
                 }
             }
@@ -297,6 +298,24 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glAccum(gl::GL_RETURN, 0.5);
         assert_eq!(ctx.frame.pixels.len(), 2);
+    }
+
+    #[test]
+    fn stencil_draw_pixels_keep_every_bit_of_32_bit_indices() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glWindowPos3f(0.0, 0.0, 0.0);
+        // An f32 keeps 24 bits: 0x12345679 would become 0x12345680.
+        let uints = [0x1234_5679u32, 0xffff_fffe];
+        unsafe { dispatch::glDrawPixels(&mut ctx, 2, 1, gl::GL_STENCIL_INDEX, gl::GL_UNSIGNED_INT, uints.as_ptr().cast()) };
+        let ints = [-3i32, 0x7654_3211];
+        unsafe { dispatch::glDrawPixels(&mut ctx, 2, 1, gl::GL_STENCIL_INDEX, gl::GL_INT, ints.as_ptr().cast()) };
+        ctx.glPixelTransferi(gl::GL_INDEX_OFFSET, 1);
+        unsafe { dispatch::glDrawPixels(&mut ctx, 2, 1, gl::GL_STENCIL_INDEX, gl::GL_UNSIGNED_INT, uints.as_ptr().cast()) };
+        let drawn: Vec<Vec<u32>> = ctx.frame.pixels.iter().map(|p| match &p.kind {
+            PixelKind::Image { data: PixelData::Stencil(s), .. } => s.to_vec(),
+            other => panic!("not a stencil image: {other:?}"),
+        }).collect();
+        assert_eq!(drawn, [vec![0x1234_5679, 0xffff_fffe], vec![0xffff_fffd, 0x7654_3211], vec![0x1234_567a, 0xffff_ffff]]);
     }
 
     #[test]

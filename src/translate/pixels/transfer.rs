@@ -81,11 +81,11 @@ pub enum Unpacked {
     /// RGBA colours clamped to [0, 1].
     Rgba(Vec<[f32; 4]>),
     /// Colour indices (kept as indices for colour-index textures and palettes).
-    Index(Vec<f32>),
+    Index(Vec<i64>),
     /// Depth values clamped to [0, 1].
     Depth(Vec<f32>),
     /// Stencil indices.
-    Stencil(Vec<f32>),
+    Stencil(Vec<i64>),
 }
 
 impl PixelTransfer {
@@ -97,21 +97,21 @@ impl PixelTransfer {
     }
 
     /// Looks an index up in an index map (masked by the size − 1, a power of two).
-    fn lookup_index(&self, map: usize, index: f32) -> f32 {
+    fn lookup_index(&self, map: usize, index: i64) -> f32 {
         let m = &self.maps[map];
-        let i = (index as i64 & (m.len() as i64 - 1)) as usize;
+        let i = (index & (m.len() as i64 - 1)) as usize;
         m.get(i).copied().unwrap_or(0.0)
     }
 
     /// Index shift and offset (section 3.6.5, "Arithmetic on Indices").
-    fn shift_index(&self, index: f32) -> f32 {
+    fn shift_index(&self, index: f64) -> i64 {
         let i = index as i64;
         let shifted = if self.index_shift >= 0 {
             i.checked_shl(self.index_shift.unsigned_abs().min(63)).unwrap_or(0)
         } else {
             i >> self.index_shift.unsigned_abs().min(63)
         };
-        shifted.wrapping_add(i64::from(self.index_offset)) as f32
+        shifted.wrapping_add(i64::from(self.index_offset))
     }
 
     /// RGBA scale, bias and colour maps, clamped (sections 3.6.5 and 4.3.2).
@@ -125,31 +125,36 @@ impl PixelTransfer {
     }
 
     /// Converts an index to RGBA through the `I_TO_*` maps.
-    pub fn index_to_rgba(&self, index: f32) -> [f32; 4] {
+    pub fn index_to_rgba(&self, index: i64) -> [f32; 4] {
         [0, 1, 2, 3].map(|i| self.lookup_index(I_TO_RGBA + i, index).clamp(0.0, 1.0))
     }
 
     /// Applies pixel transfer to groups decoded from `format`. Colour indices become RGBA
     /// unless `keep_index` (colour-index textures and palettes keep them).
-    pub fn apply(&self, format: Format, groups: &[f32], keep_index: bool) -> Unpacked {
+    pub fn apply(&self, format: Format, groups: &[f64], keep_index: bool) -> Unpacked {
         let n = format.components;
+        let narrow = |g: &[f64]| {
+            let mut c = [0.0f32; 4];
+            c.iter_mut().zip(g).for_each(|(c, &v)| *c = v as f32);
+            c
+        };
         match format.kind {
-            Kind::Color => Unpacked::Rgba(groups.chunks_exact(n).map(|g| self.color(to_rgba(format.gl, g))).collect()),
+            Kind::Color => Unpacked::Rgba(groups.chunks_exact(n).map(|g| self.color(to_rgba(format.gl, &narrow(g)[..n.min(4)]))).collect()),
             Kind::Index => {
                 let shifted = groups.iter().map(|&i| self.shift_index(i));
                 if keep_index {
-                    Unpacked::Index(shifted.map(|i| if self.map_color { self.lookup_index(I_TO_I, i) } else { i }).collect())
+                    Unpacked::Index(shifted.map(|i| if self.map_color { self.lookup_index(I_TO_I, i) as i64 } else { i }).collect())
                 } else {
                     Unpacked::Rgba(shifted.map(|i| self.index_to_rgba(i)).collect())
                 }
             }
-            Kind::Depth => Unpacked::Depth(groups.iter().map(|&d| (d * self.depth[0] + self.depth[1]).clamp(0.0, 1.0)).collect()),
+            Kind::Depth => Unpacked::Depth(groups.iter().map(|&d| (d as f32 * self.depth[0] + self.depth[1]).clamp(0.0, 1.0)).collect()),
             Kind::Stencil => Unpacked::Stencil(
                 groups
                     .iter()
                     .map(|&s| {
                         let s = self.shift_index(s);
-                        if self.map_stencil { self.lookup_index(S_TO_S, s) } else { s }
+                        if self.map_stencil { self.lookup_index(S_TO_S, s) as i64 } else { s }
                     })
                     .collect(),
             ),
@@ -396,7 +401,7 @@ mod tests {
         let rgba = codec::format(gl::GL_RGBA).unwrap();
         assert_eq!(ctx.pixels.transfer.apply(rgba, &[1.0, 1.0, 0.5, 1.0], false), Unpacked::Rgba(vec![[0.5, 1.0, 0.75, 1.0]]));
         let index = codec::format(gl::GL_COLOR_INDEX).unwrap();
-        assert_eq!(ctx.pixels.transfer.apply(index, &[3.0], true), Unpacked::Index(vec![7.0]));
+        assert_eq!(ctx.pixels.transfer.apply(index, &[3.0], true), Unpacked::Index(vec![7]));
         let ramp = [0.0f32, 0.25, 0.5, 1.0, 0.0, 0.0, 0.0, 1.0];
         unsafe { ctx.glPixelMapfv(gl::GL_PIXEL_MAP_I_TO_R, 8, ramp.as_ptr()) };
         assert_eq!(ctx.pixels.transfer.apply(index, &[1.0], false), Unpacked::Rgba(vec![[1.0, 0.0, 0.0, 0.0]]));

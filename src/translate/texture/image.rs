@@ -80,7 +80,9 @@ pub fn check_level(target: Target, level: GLint) -> Result<usize, GLenum> {
 }
 
 /// Checks border and sizes (section 3.8.1): `GL_INVALID_VALUE` for a border other than 0 or 1,
-/// a negative size, or a size that is not 2^n + 2 × border; cube faces must be square.
+/// or a negative size (or one smaller than 2 × border); cube faces must be square. Sizes need
+/// not be 2^n + 2 × border: glrt implements ARB_texture_non_power_of_two (the renderer's images
+/// take any size; mipmap levels halve with the floor, as completeness in `snapshot` checks).
 pub fn check_size(target: Target, level: usize, size: [GLsizei; 3], border: GLint) -> Result<SizeCheck, GLenum> {
     let border = usize::try_from(border).ok().filter(|&b| b <= 1).ok_or(gl::GL_INVALID_VALUE)?;
     let dims = target.dims();
@@ -89,9 +91,6 @@ pub fn check_size(target: Target, level: usize, size: [GLsizei; 3], border: GLin
     for (i, &s) in size.iter().enumerate().take(dims) {
         let s = usize::try_from(s).map_err(|_| gl::GL_INVALID_VALUE)?;
         let inner = s.checked_sub(2 * border).ok_or(gl::GL_INVALID_VALUE)?;
-        if inner != 0 && !inner.is_power_of_two() {
-            return Err(gl::GL_INVALID_VALUE);
-        }
         too_large |= inner > target.max_size() >> level;
         out[i] = s;
     }
@@ -131,7 +130,7 @@ fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, p
         (Base::ColorIndex, data) => {
             let mask = (1i64 << formats::index_bits(internal)) - 1;
             let indices: Vec<u16> = match data {
-                Some(Unpacked::Index(ix)) => ix.iter().map(|&i| (i as i64 & mask) as u16).collect(),
+                Some(Unpacked::Index(ix)) => ix.iter().map(|&i| (i & mask) as u16).collect(),
                 _ => vec![0; count],
             };
             Converted { texels: resolve_indices(&indices, palette), depth: Vec::new(), indices: Some(Arc::new(indices)) }
@@ -297,8 +296,8 @@ impl Context {
     }
 
     /// `glTexImage2D`: `GL_INVALID_ENUM` for a bad target, format or type;
-    /// `GL_INVALID_VALUE` for a bad internal format, level, border or size (sizes are
-    /// 2^n + 2 × border, at most `GL_MAX_TEXTURE_SIZE` >> level); `GL_INVALID_OPERATION` for a
+    /// `GL_INVALID_VALUE` for a bad internal format, level, border or size (at least
+    /// 2 × border, at most `GL_MAX_TEXTURE_SIZE` >> level + 2 × border); `GL_INVALID_OPERATION` for a
     /// packed type that does not match the format or a depth/colour mismatch. Proxy targets
     /// only record the sizes (all zero when too large). A null `pixels` allocates the level.
     ///
@@ -490,13 +489,15 @@ impl Context {
         });
     }
 
-    /// `glCopyTexImage1D/2D`: like `glTexImage`, with the pixels from the framebuffer
-    /// (`GL_INVALID_VALUE` also for the internal formats 1–4 and colour indices). The level is
-    /// allocated zero-filled and the copy is recorded in the frame.
+    /// `glCopyTexImage1D/2D`: like `glTexImage`, with the pixels from the framebuffer. An
+    /// internal format outside tables 3.15–3.16, one of 1–4 (section 3.8.2: "may not be
+    /// specified as 1, 2, 3, or 4") or a colour index raises `GL_INVALID_ENUM`, as in Mesa
+    /// (the spec names no error; piglit `copyteximage` expects this for depth-stencil formats).
+    /// The level is allocated zero-filled and the copy is recorded in the frame.
     fn copy_tex_image(&mut self, dims: usize, target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, size: [GLsizei; 2], border: GLint, command: &'static str) {
         let Some(dest) = image_target(dims, target).filter(|d| !d.proxy) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let internal = formats::internal_format(internalformat).filter(|i| !(1..=4).contains(&internalformat) && i.base != Base::ColorIndex);
-        let Some(internal) = internal else { return self.set_error_in(gl::GL_INVALID_VALUE, command) };
+        let Some(internal) = internal else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let checked = check_level(dest.target, level)
             .and_then(|l| Ok((l, check_size(dest.target, l, [size[0], size[1], 1], border)?)))
             .and_then(|v| check_compressed_internal(internalformat, dims, border).map(|()| v));
@@ -743,8 +744,10 @@ mod tests {
             ctx.glGetError()
         };
         let (t2, rgba, ub) = (gl::GL_TEXTURE_2D, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE);
-        assert_eq!(tex(&mut ctx, t2, 0, rgba, 3, 4, 0, rgba, ub), gl::GL_INVALID_VALUE);
-        assert_eq!(tex(&mut ctx, t2, 0, rgba, 5, 4, 1, rgba, ub), gl::GL_INVALID_VALUE);
+        // ARB_texture_non_power_of_two: any size of at least 2 × border.
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, 3, 4, 0, rgba, ub), gl::GL_NO_ERROR);
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, 5, 4, 1, rgba, ub), gl::GL_NO_ERROR);
+        assert_eq!(tex(&mut ctx, t2, 0, rgba, 1, 4, 1, rgba, ub), gl::GL_INVALID_VALUE);
         assert_eq!(tex(&mut ctx, t2, 0, rgba, 6, 4, 1, rgba, ub), gl::GL_NO_ERROR);
         assert_eq!(tex(&mut ctx, t2, 0, rgba, -2, 4, 0, rgba, ub), gl::GL_INVALID_VALUE);
         assert_eq!(tex(&mut ctx, t2, 0, rgba, 4, 4, 2, rgba, ub), gl::GL_INVALID_VALUE);
@@ -838,8 +841,10 @@ mod tests {
         ctx.glBindTexture(gl::GL_TEXTURE_2D, 9);
         ctx.glCopyTexImage2D(gl::GL_TEXTURE_2D, 0, gl::GL_RGB, 10, 20, 16, 8, 0);
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
-        ctx.glCopyTexImage2D(gl::GL_TEXTURE_2D, 0, 3, 10, 20, 16, 8, 0);
-        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        for bad in [3, gl::GL_DEPTH_STENCIL, gl::GL_DEPTH24_STENCIL8, gl::GL_COLOR_INDEX8_EXT] {
+            ctx.glCopyTexImage2D(gl::GL_TEXTURE_2D, 0, bad, 10, 20, 16, 8, 0);
+            assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM, "{bad:#x}");
+        }
         ctx.glCopyTexImage2D(gl::GL_PROXY_TEXTURE_2D, 0, gl::GL_RGB, 0, 0, 16, 8, 0);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glCopyTexSubImage2D(gl::GL_TEXTURE_2D, 0, 8, 4, 1, 2, 8, 4);
@@ -925,5 +930,28 @@ mod more_tests {
         let r = ctx.texture_snapshot()[0].clone().expect("complete");
         let image = r.content.faces[0][0].clone().unwrap();
         assert_eq!((image.width, image.height, image.border, image.texels.len()), (4, 3, 1, 48));
+    }
+
+    #[test]
+    fn non_power_of_two_mipmaps_halve_with_the_floor() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+        ctx.glEnable(gl::GL_TEXTURE_2D);
+        let sizes: [(i32, i32); 6] = [(60, 13), (30, 6), (15, 3), (7, 1), (3, 1), (1, 1)];
+        for (level, (w, h)) in sizes.into_iter().enumerate() {
+            assert!(ctx.texture_snapshot()[0].is_none(), "incomplete before level {level}");
+            unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, level as i32, gl::GL_RGBA as i32, w, h, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+            assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        }
+        let r = ctx.texture_snapshot()[0].clone().expect("complete with floor-halved levels");
+        let image = r.content.faces[0][0].clone().unwrap();
+        assert_eq!((image.width, image.height), (60, 13));
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 2);
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 5, 3, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 1, gl::GL_RGBA as i32, 3, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAX_LEVEL, 1);
+        assert!(ctx.texture_snapshot()[0].is_none(), "level 1 of 5×3 must be 2×1");
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 1, gl::GL_RGBA as i32, 2, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        assert!(ctx.texture_snapshot()[0].is_some(), "5×3 and 2×1 with max level 1");
     }
 }
