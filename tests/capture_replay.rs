@@ -379,3 +379,22 @@ fn replay_out_writes_the_glxgears_frames_as_png() {
     assert_eq!(small.len(), 1);
     assert_eq!((small[0].1.width, small[0].1.height), (200, 150), "--size");
 }
+
+/// The demo replayed on another device (`scripts/device_replay.sh` on the GPU machine; the
+/// directory it wrote in `GLRT_DEVICE_FRAMES`) matches the replay here on lavapipe, frame by
+/// frame, with the metric and tolerance of `tests/raster_vs_mesa.rs` (per channel within 24,
+/// one-pixel edge shifts forgiven, at most 1% of the pixels unmatched). Run by hand:
+/// `GLRT_DEVICE_FRAMES=DIR cargo test --test capture_replay -- --ignored device`.
+#[test]
+#[ignore = "needs the frames of a replay on another device in GLRT_DEVICE_FRAMES"]
+fn device_frames_match_lavapipe() {
+    let dir = PathBuf::from(std::env::var_os("GLRT_DEVICE_FRAMES").expect("GLRT_DEVICE_FRAMES: the directory of the device's frames"));
+    let here = replay_out("demo", &[]);
+    assert_eq!(here.len(), 4);
+    for (name, lavapipe) in &here {
+        let device = Image::load_png(&dir.join(name));
+        let d = images::compare(&device, lavapipe, 24);
+        eprintln!("{name}: {:.3}% mismatched, {:.3}% identical, mean |difference| {:.4}", d.mismatched * 100.0, d.identical * 100.0, d.mean_abs);
+        assert!(d.mismatched <= 0.01, "{name}: {:.2}% of the pixels differ by more than 24", d.mismatched * 100.0);
+    }
+}

@@ -76,6 +76,8 @@ impl Drop for Mapping {
 /// Replays `capture` on this thread; the contexts it creates are released and destroyed at
 /// the end.
 pub fn run(capture: &Capture, options: &Options) -> Result<Outcome, String> {
+    // Before any sink is made: renderers log the device they chose.
+    crate::logging::init();
     let shadow = Arc::new(layout(capture)?);
     *super::CANONICAL.write() = Some(shadow.clone());
     let _mapping = Mapping;
