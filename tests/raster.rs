@@ -175,7 +175,7 @@ fn glrt_dump_writes_each_presented_frame_top_down() {
     let _ = std::fs::remove_dir_all(&dir);
     let mut ctx = context_with(|| {
         let mut renderer = Renderer::without_outputs()?;
-        renderer.add_output(Box::new(glrt::render::raster::dump::Dump::new(dir.clone()).expect("a dump directory")));
+        renderer.add_output(Box::new(glrt::render::raster::dump::Dump::new(dir.clone(), 0).expect("a dump directory")));
         Ok(renderer)
     });
     for frame in 0..2 {

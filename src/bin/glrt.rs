@@ -3,6 +3,8 @@
 //! - `glrt info FILE`: what a capture holds (frames, calls per function, bytes, textures);
 //! - `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH]`: replays a capture headless
 //!   (frames before `A` are replayed too: they build the state; the replay stops after `B - 1`);
+//!   `--out` writes frames `A` and later as `DIR/frame-NNNNN.png` (by frame number) through the
+//!   Vulkan raster renderer;
 //! - `glrt dump FILE`: the call log of a capture (the `GLRT_TRACE` format) on standard output.
 
 use std::process::ExitCode;
@@ -73,12 +75,11 @@ fn replay_command(args: &[String]) -> Result<(), String> {
     let (capture, mut rest) = file_and_options(args)?;
     let mut options = replay::Options::default();
     let mut frames = (0, u64::MAX);
-    let mut out = None;
     while let [flag, value, tail @ ..] = rest {
         match flag.as_str() {
             "--frames" => frames = capture::parse_frames(value).ok_or(format!("--frames {value}: expected A..B"))?,
             "--size" => options.size = Some(parse_size(value).ok_or(format!("--size {value}: expected WxH"))?),
-            "--out" => out = Some(value.clone()),
+            "--out" => options.out = Some(value.into()),
             _ => return Err(format!("replay: unknown option {flag}\n{USAGE}")),
         }
         rest = tail;
@@ -86,16 +87,16 @@ fn replay_command(args: &[String]) -> Result<(), String> {
     if !rest.is_empty() {
         return Err(format!("replay: option {} needs a value\n{USAGE}", rest[0]));
     }
-    options.end_frame = (frames.1 != u64::MAX).then_some(frames.1);
+    (options.start_frame, options.end_frame) = (frames.0, (frames.1 != u64::MAX).then_some(frames.1));
     let outcome = replay::run(&capture, &options)?;
     println!("replayed {} calls, {} frames", outcome.calls, outcome.frames);
-    if let Some(dir) = out {
-        return Err(format!(
-            "--out {dir}: no renderer in this build produces pixels (frames go to render::default_sink, \
-             which has no Vulkan back end yet); frames {}..{} were replayed but no image was written",
-            frames.0,
-            frames.1.min(outcome.frames)
-        ));
+    if let Some(dir) = &options.out {
+        // The renderers are gone (the replay destroyed its contexts): every PNG is complete.
+        let missing: Vec<u64> = (frames.0..outcome.frames).filter(|n| !dir.join(format!("frame-{n:05}.png")).exists()).collect();
+        if !missing.is_empty() {
+            return Err(format!("--out {}: frames {missing:?} were not written (see the messages above)", dir.display()));
+        }
+        println!("wrote frames {}..{} to {}", frames.0, outcome.frames, dir.display());
     }
     Ok(())
 }

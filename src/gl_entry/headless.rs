@@ -10,7 +10,7 @@ use parking_lot::Mutex;
 
 use super::current::{self, SharedContext};
 use super::shim::with_current;
-use crate::render::{self, Surface, Target};
+use crate::render::{self, FrameSink, Surface, Target};
 use crate::translate::capture::{self, format::SwapKind};
 use crate::translate::Context;
 use crate::translate::context::ContextConfig;
@@ -31,29 +31,47 @@ impl ContextHandle {
     /// A context presenting to the default sink, sharing objects with `share`'s share group.
     pub fn new(share: Option<&ContextHandle>) -> ContextHandle {
         crate::logging::init();
+        ContextHandle::with_sink(share, render::default_sink())
+    }
+
+    /// A context presenting to `sink`, sharing objects with `share`'s share group.
+    pub fn with_sink(share: Option<&ContextHandle>, sink: Box<dyn FrameSink>) -> ContextHandle {
+        crate::logging::init();
         let capture_id = capture::context_created(share.map_or(0, |h| h.capture_id));
         let share = share.map(|h| h.shared.clone());
-        let context = Context::new(ContextConfig { share, sink: render::default_sink() });
+        let context = Context::new(ContextConfig { share, sink });
         let shared = context.shared.clone();
         ContextHandle { context: Arc::new(Mutex::new(context)), shared, capture_id }
     }
 
-    /// Creates a context sharing objects with `share` (a handle, or null) and returns its
-    /// handle.
+    /// Creates a context sharing objects with `share` (a handle, or null), presenting to
+    /// `sink` (`None`: the default sink), and returns its handle.
     ///
     /// # Safety
     /// A non-null `share` came from this function and was not destroyed.
-    pub unsafe fn create(share: *const ContextHandle) -> *mut ContextHandle {
+    pub unsafe fn create(share: *const ContextHandle, sink: Option<Box<dyn FrameSink>>) -> *mut ContextHandle {
         // Safety: as documented.
-        Box::into_raw(Box::new(ContextHandle::new(unsafe { share.as_ref() })))
+        let share = unsafe { share.as_ref() };
+        let handle = match sink {
+            Some(sink) => ContextHandle::with_sink(share, sink),
+            None => ContextHandle::new(share),
+        };
+        Box::into_raw(Box::new(handle))
     }
 }
 
 /// Creates a headless context; `share` is another glrt context handle or null.
 #[unsafe(no_mangle)]
 pub extern "C" fn glrtCreateContext(share: *mut c_void) -> *mut c_void {
+    create_context(share, None)
+}
+
+/// Creates a headless context presenting to `sink` (`None`: the default sink); `share` is
+/// another handle from [`glrtCreateContext`] or this function, not destroyed, or null.
+/// Null when the context cannot be made.
+pub fn create_context(share: *mut c_void, sink: Option<Box<dyn FrameSink>>) -> *mut c_void {
     // Safety: a non-null share handle came from glrtCreateContext and was not destroyed.
-    catch_unwind(|| unsafe { ContextHandle::create(share.cast()) }.cast()).unwrap_or(std::ptr::null_mut())
+    catch_unwind(AssertUnwindSafe(|| unsafe { ContextHandle::create(share.cast(), sink) }.cast())).unwrap_or(std::ptr::null_mut())
 }
 
 /// Makes a headless context current on this thread with an off-screen drawable of

@@ -79,6 +79,17 @@ pub fn default_sink() -> Box<dyn FrameSink> {
     frame_log::wrap_from_env(renderer_from_env())
 }
 
+/// The sink of a replay that writes frames as PNG (`glrt replay --out`): the Vulkan raster
+/// renderer (the one renderer that makes pixels, whatever `GLRT_MODE` says), writing frames
+/// `first` and later to `dir/frame-NNNNN.png` (see [`raster::dump`]), behind the frame log as
+/// in [`default_sink`]. The error says why no frames could be written (no Vulkan device,
+/// directory not writable).
+pub fn dumping_sink(dir: &std::path::Path, first: u64) -> Result<Box<dyn FrameSink>, String> {
+    let dump = raster::dump::Dump::new(dir.to_path_buf(), first)?;
+    let renderer = raster::renderer::Renderer::with_dump(Some(dump)).map_err(|e| e.to_string())?;
+    Ok(frame_log::wrap_from_env(Box::new(renderer)))
+}
+
 /// The renderer `GLRT_MODE` asks for, or the [`NullSink`].
 fn renderer_from_env() -> Box<dyn FrameSink> {
     let mode = std::env::var("GLRT_MODE").unwrap_or_default();

@@ -26,26 +26,28 @@ struct Pending {
 /// A frame for the writer thread: path, size, RGBA8 rows top to bottom.
 type Job = (PathBuf, [u32; 2], Vec<u8>);
 
-/// The dump directory, the copies in flight (one per slot) and the writer thread.
+/// The dump directory, the first frame dumped, the copies in flight (one per slot) and the
+/// writer thread.
 pub struct Dump {
     dir: PathBuf,
+    first: u64,
     pending: Vec<Option<Pending>>,
     jobs: Option<mpsc::SyncSender<Job>>,
     writer: Option<JoinHandle<()>>,
 }
 
 impl Dump {
-    /// From `GLRT_DUMP`; `None` when unset (see [`Dump::new`]).
+    /// From `GLRT_DUMP`; `None` when unset or when the directory cannot be used (with a
+    /// message).
     pub fn from_env() -> Option<Dump> {
-        Dump::new(PathBuf::from(std::env::var_os("GLRT_DUMP").filter(|d| !d.is_empty())?))
+        let dir = PathBuf::from(std::env::var_os("GLRT_DUMP").filter(|d| !d.is_empty())?);
+        Dump::new(dir, 0).map_err(|e| eprintln!("glrt: GLRT_DUMP: {e}; frames are not dumped")).ok()
     }
 
-    /// Dumps into `dir` (created if needed); `None`, with a message, when it cannot be.
-    pub fn new(dir: PathBuf) -> Option<Dump> {
-        if let Err(e) = std::fs::create_dir_all(&dir) {
-            eprintln!("glrt: GLRT_DUMP={}: {e}; frames are not dumped", dir.display());
-            return None;
-        }
+    /// Dumps frames `first` and later into `dir` (created if needed); the error names the
+    /// directory and the cause.
+    pub fn new(dir: PathBuf, first: u64) -> std::result::Result<Dump, String> {
+        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         // Bounded: when encoding is slower than rendering, the program waits instead of
         // queueing frames without limit.
         let (jobs, queue) = mpsc::sync_channel::<Job>(4);
@@ -58,16 +60,18 @@ impl Dump {
                     }
                 }
             })
-            .map_err(|e| eprintln!("glrt: GLRT_DUMP: cannot start the writer thread: {e}"))
-            .ok()?;
-        Some(Dump { dir, pending: Vec::new(), jobs: Some(jobs), writer: Some(writer) })
+            .map_err(|e| format!("cannot start the writer thread: {e}"))?;
+        Ok(Dump { dir, first, pending: Vec::new(), jobs: Some(jobs), writer: Some(writer) })
     }
-
 }
 
 impl FrameOutput for Dump {
-    /// Records the copy of the colour image of frame `frame` for slot `slot`.
+    /// Records the copy of the colour image of frame `frame` for slot `slot` (nothing before
+    /// the first frame dumped).
     fn record(&mut self, rec: &mut Recorder<'_>, slot: usize, frame: u64) -> Result<SubmitSync> {
+        if frame < self.first {
+            return Ok(SubmitSync::default());
+        }
         let (device, cmd, target) = (rec.device, rec.cmd, &mut *rec.target);
         if self.pending.len() <= slot {
             self.pending.resize_with(slot + 1, || None);

@@ -331,8 +331,14 @@ impl Renderer {
     /// Creates the renderer on the device chosen by `GLRT_DEVICE` (see [`Device::new`]),
     /// dumping frames where `GLRT_DUMP` says.
     pub fn new() -> Result<Renderer> {
+        Renderer::with_dump(super::dump::Dump::from_env())
+    }
+
+    /// Creates the renderer on the device chosen by `GLRT_DEVICE`, dumping frames to `dump`
+    /// (and presenting them to the window, if any).
+    pub fn with_dump(dump: Option<super::dump::Dump>) -> Result<Renderer> {
         let mut renderer = Renderer::without_outputs()?;
-        if let Some(dump) = super::dump::Dump::from_env() {
+        if let Some(dump) = dump {
             renderer.add_output(Box::new(dump));
         }
         renderer.add_output(Box::new(crate::render::present::window_output::WindowOutput::new()));

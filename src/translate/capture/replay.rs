@@ -4,9 +4,10 @@
 
 use std::collections::{BTreeSet, HashMap};
 use std::ffi::c_void;
+use std::path::PathBuf;
 use std::sync::Arc;
 
-use super::format::Event;
+use super::format::{Event, SwapKind};
 use super::reader::{Capture, Record};
 use super::shadow::Shadow;
 use super::table::{self, COMMANDS};
@@ -17,8 +18,15 @@ use crate::gl_entry::headless;
 pub struct Options {
     /// Stop after the frame before this one (frames count from 0); `None`: every frame.
     pub end_frame: Option<u64>,
-    /// Drawable size to use instead of the captured sizes.
+    /// Drawable size to use instead of the captured sizes (at make-current and at each
+    /// `glXSwapBuffers`, which refreshes the size).
     pub size: Option<(i32, i32)>,
+    /// Where to write frames `start_frame` and later as PNG (`frame-NNNNN.png`, by frame
+    /// number), through the Vulkan raster renderer ([`crate::render::dumping_sink`]); `None`:
+    /// frames go to the default sink.
+    pub out: Option<PathBuf>,
+    /// The first frame written to `out`.
+    pub start_frame: u64,
 }
 
 /// What a replay did.
@@ -68,6 +76,8 @@ impl Drop for Mapping {
 /// Replays `capture` on this thread; the contexts it creates are released and destroyed at
 /// the end.
 pub fn run(capture: &Capture, options: &Options) -> Result<Outcome, String> {
+    // Before any sink is made: renderers log the device they chose.
+    crate::logging::init();
     let shadow = Arc::new(layout(capture)?);
     *super::CANONICAL.write() = Some(shadow.clone());
     let _mapping = Mapping;
@@ -110,7 +120,11 @@ fn replay_records(
                 } else {
                     *contexts.get(&share).ok_or_else(|| fail(format!("context {id} shares with unknown context {share}")))?
                 };
-                let handle = headless::glrtCreateContext(share);
+                let sink = match &options.out {
+                    Some(dir) => Some(crate::render::dumping_sink(dir, options.start_frame).map_err(|e| format!("--out: {e}"))?),
+                    None => None,
+                };
+                let handle = headless::create_context(share, sink);
                 if handle.is_null() {
                     return Err(fail(format!("cannot create context {id}")));
                 }
@@ -128,7 +142,10 @@ fn replay_records(
                 headless::make_current(handle, width, height, double);
             }
             Record::Event(Event::Swap(kind)) => {
-                headless::swap(kind);
+                headless::swap(match (kind, options.size) {
+                    (SwapKind::Glx { .. }, Some((width, height))) => SwapKind::Glx { width, height },
+                    _ => kind,
+                });
                 outcome.frames += 1;
                 if options.end_frame.is_some_and(|end| outcome.frames >= end) {
                     break;
