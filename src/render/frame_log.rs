@@ -120,10 +120,11 @@ mod tests {
         log.present(Frame { number: 1, ..Frame::default() });
         let text = std::fs::read_to_string(&dir).unwrap();
         let _ = std::fs::remove_file(&dir);
-        assert_eq!(
-            text,
-            "{\"frame\":0,\"draws\":2,\"vertices\":9,\"clears\":1}\n{\"frame\":1,\"draws\":0,\"vertices\":0,\"clears\":0}\n"
-        );
+        let lines: Vec<&str> = text.lines().collect();
+        assert_eq!(lines.len(), 2);
+        assert!(lines[0].starts_with("{\"frame\":0,\"draws\":2,\"vertices\":9,\"clears\":1,\"hash\":\""), "{text}");
+        assert!(lines[1].starts_with("{\"frame\":1,\"draws\":0,\"vertices\":0,\"clears\":0,\"hash\":\""), "{text}");
+        assert_ne!(lines[0][lines[0].len() - 18..], lines[1][lines[1].len() - 18..], "different frames hash differently");
         assert_eq!(recording.frames.lock().len(), 2);
     }
 
