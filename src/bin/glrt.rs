@@ -4,14 +4,14 @@
 //! - `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH]`: replays a capture headless
 //!   (frames before `A` are replayed too: they build the state; the replay stops after `B - 1`);
 //!   `--out` writes frames `A` and later as `DIR/frame-NNNNN.png` (by frame number) through the
-//!   Vulkan raster renderer;
+//!   Vulkan raster renderer; `--bench` prints the frame times (one frame's end to the next's);
 //! - `glrt dump FILE`: the call log of a capture (the `GLRT_TRACE` format) on standard output.
 
 use std::process::ExitCode;
 
 use glrt::translate::capture::{self, reader::Capture, replay, summary::Summary};
 
-const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] | glrt dump FILE";
+const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] | glrt dump FILE";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -64,6 +64,17 @@ fn dump(args: &[String]) -> Result<(), String> {
     Ok(())
 }
 
+/// `--bench`: the frame times (from one frame's end to the next's) as the demo prints them.
+fn frame_time_summary(times: &[std::time::Duration]) -> String {
+    let ms: Vec<f64> = times.iter().map(|t| t.as_secs_f64() * 1e3).collect();
+    if ms.is_empty() {
+        return "frame times: fewer than 2 frames".to_owned();
+    }
+    let avg = ms.iter().sum::<f64>() / ms.len() as f64;
+    let (min, max) = ms.iter().fold((f64::MAX, 0f64), |(lo, hi), &t| (lo.min(t), hi.max(t)));
+    format!("frames: {}  frame time ms: avg {avg:.3}  min {min:.3}  max {max:.3}  frames/s {:.1}", ms.len(), 1e3 / avg)
+}
+
 /// `WxH` as two positive sizes.
 fn parse_size(s: &str) -> Option<(i32, i32)> {
     let (w, h) = s.split_once('x')?;
@@ -75,7 +86,13 @@ fn replay_command(args: &[String]) -> Result<(), String> {
     let (capture, mut rest) = file_and_options(args)?;
     let mut options = replay::Options::default();
     let mut frames = (0, u64::MAX);
-    while let [flag, value, tail @ ..] = rest {
+    let mut bench = false;
+    while let [flag, tail @ ..] = rest {
+        if flag == "--bench" {
+            (bench, rest) = (true, tail);
+            continue;
+        }
+        let [value, tail @ ..] = tail else { return Err(format!("replay: option {flag} needs a value\n{USAGE}")) };
         match flag.as_str() {
             "--frames" => frames = capture::parse_frames(value).ok_or(format!("--frames {value}: expected A..B"))?,
             "--size" => options.size = Some(parse_size(value).ok_or(format!("--size {value}: expected WxH"))?),
@@ -84,12 +101,12 @@ fn replay_command(args: &[String]) -> Result<(), String> {
         }
         rest = tail;
     }
-    if !rest.is_empty() {
-        return Err(format!("replay: option {} needs a value\n{USAGE}", rest[0]));
-    }
     (options.start_frame, options.end_frame) = (frames.0, (frames.1 != u64::MAX).then_some(frames.1));
     let outcome = replay::run(&capture, &options)?;
     println!("replayed {} calls, {} frames", outcome.calls, outcome.frames);
+    if bench {
+        println!("{}", frame_time_summary(&outcome.frame_times));
+    }
     if let Some(dir) = &options.out {
         // The renderers are gone (the replay destroyed its contexts): every PNG is complete.
         let missing: Vec<u64> = (frames.0..outcome.frames).filter(|n| !dir.join(format!("frame-{n:05}.png")).exists()).collect();

@@ -30,12 +30,15 @@ pub struct Options {
 }
 
 /// What a replay did.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default)]
 pub struct Outcome {
     /// Frames ended.
     pub frames: u64,
     /// GL calls made.
     pub calls: u64,
+    /// Time from each frame's end to the next one's (frames 1 and later): the frame times
+    /// of `glrt replay --bench`.
+    pub frame_times: Vec<std::time::Duration>,
 }
 
 /// The address space a capture uses: the 4 GiB windows its reads touch and its pointer
@@ -98,6 +101,7 @@ fn replay_records(
     contexts: &mut HashMap<u32, *mut c_void>,
 ) -> Result<Outcome, String> {
     let mut outcome = Outcome::default();
+    let mut last_swap = None;
     let translate = |a: u64| shadow.translate(a);
     for record in capture.records() {
         let (at, record) = record.map_err(|e| e.to_string())?;
@@ -147,6 +151,8 @@ fn replay_records(
                     _ => kind,
                 });
                 outcome.frames += 1;
+                let now = std::time::Instant::now();
+                outcome.frame_times.extend(last_swap.replace(now).map(|t| now - t));
                 if options.end_frame.is_some_and(|end| outcome.frames >= end) {
                     break;
                 }
