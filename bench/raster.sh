@@ -20,18 +20,19 @@ ln -sf libglrt.so "$dir/libGL.so.1"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 xvfb() { xvfb-run -a -s "-screen 0 1280x1024x24" "$@"; }
-clean_env() { env -u GLRT_TRACE -u GLRT_CAPTURE -u GLRT_CAPTURE_FRAMES -u GLRT_DUMP -u GLRT_PASSTHROUGH -u LD_LIBRARY_PATH "$@"; }
+# The environment without glrt settings and without LD_LIBRARY_PATH (a command prefix).
+clean=(env -u GLRT_TRACE -u GLRT_CAPTURE -u GLRT_CAPTURE_FRAMES -u GLRT_DUMP -u GLRT_PASSTHROUGH -u LD_LIBRARY_PATH)
 # frames/s from the demo's "frame time ms: avg X" line on standard input.
 fps() { sed -n 's/.*frame time ms: avg \([0-9.]*\).*/\1/p' | awk '{ printf "%.1f", 1000 / $1 }'; }
 
-demo_glrt=$(clean_env LD_LIBRARY_PATH="$dir" "$dir/glrt-demo" --headless --frames "$frames" --size "$size" | fps)
-demo_mesa=$(clean_env xvfb "$dir/glrt-demo" --lib "$mesa" --frames "$frames" --size "$size" | fps)
+demo_glrt=$("${clean[@]}" LD_LIBRARY_PATH="$dir" "$dir/glrt-demo" --headless --frames "$frames" --size "$size" | fps)
+demo_mesa=$(xvfb "${clean[@]}" "$dir/glrt-demo" --lib "$mesa" --frames "$frames" --size "$size" | fps)
 
-clean_env GLRT_CAPTURE="$tmp/gears.glrtcap" GLRT_CAPTURE_FRAMES="0..$frames" LD_LIBRARY_PATH="$dir" \
+"${clean[@]}" GLRT_CAPTURE="$tmp/gears.glrtcap" GLRT_CAPTURE_FRAMES="0..$frames" LD_LIBRARY_PATH="$dir" \
     timeout 60 xvfb-run -a -s "-screen 0 640x480x24" glxgears >/dev/null 2>&1 || true
 gears_glrt=$("$dir/glrt" replay "$tmp/gears.glrtcap" --bench | sed -n 's/.*frames\/s \([0-9.]*\).*/\1/p')
 gears_frames=$("$dir/glrt" info "$tmp/gears.glrtcap" | sed -n 's/^frames: \([0-9]*\).*/\1/p')
-gears_mesa=$(clean_env timeout 7 xvfb-run -a -s "-screen 0 640x480x24" glxgears 2>/dev/null |
+gears_mesa=$("${clean[@]}" timeout 7 xvfb-run -a -s "-screen 0 640x480x24" glxgears 2>/dev/null |
     sed -n 's/.* frames in [0-9.]* seconds = \([0-9.]*\) FPS/\1/p' | head -n 1 || true)
 
 echo "$(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg); glrt on $(GLRT_LOG=info "$dir/glrt" replay "$tmp/gears.glrtcap" --frames 0..1 2>&1 | sed -n 's/.*Vulkan device //p')"

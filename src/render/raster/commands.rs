@@ -42,7 +42,7 @@ impl Descriptors {
         Ok(())
     }
 
-    /// The set of `layout` holding `key`, with `uniform_range` bytes of the uniform buffer.
+    /// The set of `layout` holding `key`, with `uniform_range` bytes of the per-draw storage buffer.
     pub fn get(&mut self, device: &Device, layout: vk::DescriptorSetLayout, key: &SetKey, uniform_range: u64) -> Result<vk::DescriptorSet> {
         if let Some(&set) = self.sets.get(key) {
             return Ok(set);
@@ -58,7 +58,7 @@ impl Descriptors {
             vk::WriteDescriptorSet::default()
                 .dst_set(set)
                 .dst_binding(0)
-                .descriptor_type(vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC)
+                .descriptor_type(vk::DescriptorType::STORAGE_BUFFER_DYNAMIC)
                 .buffer_info(&buffer),
         ];
         for (i, image) in images.iter().enumerate() {
@@ -90,7 +90,7 @@ impl Descriptors {
                 continue;
             }
             let sizes = [
-                vk::DescriptorPoolSize { ty: vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC, descriptor_count: SETS_PER_POOL },
+                vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER_DYNAMIC, descriptor_count: SETS_PER_POOL },
                 vk::DescriptorPoolSize { ty: vk::DescriptorType::COMBINED_IMAGE_SAMPLER, descriptor_count: SETS_PER_POOL * (BINDINGS - 1) },
             ];
             let info = vk::DescriptorPoolCreateInfo::default().max_sets(SETS_PER_POOL).pool_sizes(&sizes);

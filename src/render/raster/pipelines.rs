@@ -158,7 +158,7 @@ impl Pipelines {
                 vk::DescriptorSetLayoutBinding::default()
                     .binding(b)
                     .descriptor_type(if b == 0 {
-                        vk::DescriptorType::UNIFORM_BUFFER_DYNAMIC
+                        vk::DescriptorType::STORAGE_BUFFER_DYNAMIC
                     } else {
                         vk::DescriptorType::COMBINED_IMAGE_SAMPLER
                     })
@@ -188,6 +188,7 @@ impl Pipelines {
         }
         let pipeline = self.create(device, key)?;
         self.cache.insert(*key, pipeline);
+        log::debug!("raster pipeline {} created: {key:?}", self.cache.len());
         Ok(pipeline)
     }
 

@@ -268,7 +268,8 @@ impl Recorder<'_> {
         self.occlusion.before_draw(self.device, self.cmd, self.slot, frame, query)?;
         let d = &self.device.raw;
         let limits = &self.device.properties.limits;
-        let ubo_align = limits.min_uniform_buffer_offset_alignment.max(16);
+        // The per-draw block is a storage buffer (shaders/ff_uniforms.glsl says why).
+        let block_align = limits.min_storage_buffer_offset_alignment.max(16);
         let viewport = vk::Viewport {
             x: vx as f32,
             y: (h as i64 - vy as i64) as f32,
@@ -301,7 +302,7 @@ impl Recorder<'_> {
             let mut uniforms = batch.uniforms.clone();
             uniforms.resize(ff::UNIFORM_SIZE, 0);
             ff::uniforms::set_framebuffer_height(&mut uniforms, h);
-            let uniform = self.ring.push(self.device, &uniforms, ubo_align)?;
+            let uniform = self.ring.push(self.device, &uniforms, block_align)?;
             let set = self.descriptors.get(self.device, self.pipelines.set_layout, &(uniform.buffer, images), ff::UNIFORM_SIZE as u64)?;
             let stencil = state.stencil.unwrap_or_default();
             let blend_color = state.blend.map_or([0.0; 4], |b| b.color);
