@@ -100,6 +100,7 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
             base: base_format,
             compressed: None,
             indices: None,
+            stencil: None,
         };
         super::compressed::recompress(&mut generated);
         *obj.level_slot(face, level) = Some(generated);
