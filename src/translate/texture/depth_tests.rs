@@ -157,4 +157,20 @@ fn depth_stencil_texture_errors() {
     assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
     read_words::<2>(&mut ctx, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE);
     assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+    depth_stencil_image(&mut ctx, gl::GL_DEPTH24_STENCIL8, gl::GL_INT, &raw);
+    assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM, "GL_DEPTH_STENCIL with GL_INT");
+    ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+    unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_DEPTH24_STENCIL8 as i32, 1, 1, 0, gl::GL_STENCIL_INDEX, gl::GL_INT, raw.as_ptr().cast()) };
+    assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "stencil indices alone are no depth data");
+    // Depth and depth/stencil images are 1D, 2D or cube map images, never 3D.
+    ctx.glBindTexture(gl::GL_TEXTURE_3D, 2);
+    for (target, internal, format, type_) in [
+        (gl::GL_TEXTURE_3D, gl::GL_DEPTH_COMPONENT16, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT),
+        (gl::GL_PROXY_TEXTURE_3D, gl::GL_DEPTH_COMPONENT32F, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT),
+        (gl::GL_TEXTURE_3D, gl::GL_DEPTH24_STENCIL8, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8),
+        (gl::GL_PROXY_TEXTURE_3D, gl::GL_DEPTH32F_STENCIL8, gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV),
+    ] {
+        unsafe { dispatch::glTexImage3D(&mut ctx, target, 0, internal as i32, 2, 2, 2, 0, format, type_, std::ptr::null()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "{internal:#x}");
+    }
 }

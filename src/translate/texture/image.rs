@@ -219,18 +219,26 @@ fn write_region(level: &mut Level, offset: [usize; 3], size: [usize; 3], src: &C
 }
 
 /// Checks that an image format suits the internal format: depth and depth/stencil pixels go
-/// with depth and depth/stencil internal formats, in any pairing (`GL_INVALID_OPERATION`
-/// otherwise; EXT_packed_depth_stencil section 3.8.1), paletted internal formats need
-/// `GL_COLOR_INDEX`, and `GL_STENCIL_INDEX` is never a texture format (`GL_INVALID_ENUM`).
+/// with depth and depth/stencil internal formats, in any pairing, and no other pixels do
+/// (`GL_INVALID_OPERATION`; EXT_packed_depth_stencil section 3.8.1, which Mesa applies to
+/// `GL_STENCIL_INDEX` too), paletted internal formats need `GL_COLOR_INDEX`, and
+/// `GL_STENCIL_INDEX` is no colour texture format (`GL_INVALID_ENUM`).
 fn check_format_pair(format: Format, base: Base) -> Result<(), GLenum> {
     let depth_base = base == Base::Texel(TexelFormat::Depth);
     match format.kind {
-        Kind::Stencil => Err(gl::GL_INVALID_ENUM),
         Kind::Depth | Kind::DepthStencil if !depth_base => Err(gl::GL_INVALID_OPERATION),
-        Kind::Color | Kind::Index if depth_base => Err(gl::GL_INVALID_OPERATION),
+        Kind::Color | Kind::Index | Kind::Stencil if depth_base => Err(gl::GL_INVALID_OPERATION),
+        Kind::Stencil => Err(gl::GL_INVALID_ENUM),
         Kind::Color if base == Base::ColorIndex => Err(gl::GL_INVALID_OPERATION),
         _ => Ok(()),
     }
+}
+
+/// Depth and depth/stencil images may not be 3D (`GL_INVALID_OPERATION`; ARB_depth_texture
+/// and EXT_packed_depth_stencil section 3.8.1 name 1D and 2D targets, cube maps were added by
+/// OpenGL 3.0 and glrt samples them).
+fn check_depth_target(target: Target, base: Base) -> Result<(), GLenum> {
+    if target == Target::D3 && base == Base::Texel(TexelFormat::Depth) { Err(gl::GL_INVALID_OPERATION) } else { Ok(()) }
 }
 
 impl Context {
@@ -281,6 +289,7 @@ impl Context {
         let checked = check_level(dest.target, level)
             .and_then(|l| Ok((l, check_size(dest.target, l, size, border)?)))
             .and_then(|v| check_format_pair(ft.0, internal.base).map(|()| v))
+            .and_then(|v| check_depth_target(dest.target, internal.base).map(|()| v))
             .and_then(|v| check_compressed_internal(internalformat as GLenum, dims, border).map(|()| v));
         let (level, fit) = match checked {
             Ok(v) => v,
