@@ -1,7 +1,8 @@
 //! Tests of `GL_DEPTH_STENCIL` pixels (EXT_packed_depth_stencil, ARB_depth_buffer_float):
 //! `glDrawPixels` records depth and stencil together after pixel transfer, `glReadPixels` packs
 //! what the renderer's depth and stencil buffers hold, and `glCopyPixels(GL_DEPTH_STENCIL)`
-//! reads, transfers and redraws them, clipped to the window.
+//! reads, transfers and redraws them, clipped to the window; `glCopyTexImage` of a depth/stencil
+//! internal format copies both buffers.
 
 use crate::frame::Frame;
 use crate::frame::pixels::{PixelBuffer, PixelData, PixelKind};
@@ -102,4 +103,21 @@ fn copy_pixels_reads_transfers_and_redraws_inside_the_window() {
     assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
     ctx.glCopyPixels(20, 20, 1, 1, gl::GL_DEPTH_STENCIL);
     assert_eq!(ctx.frame.pixels.len(), 1, "a source wholly outside the window copies nothing");
+}
+
+#[test]
+fn copy_tex_image_of_a_depth_stencil_format_copies_depth_and_stencil() {
+    let mut ctx = ramp_context();
+    ctx.glBindTexture(gl::GL_TEXTURE_2D, 3);
+    ctx.glCopyTexImage2D(gl::GL_TEXTURE_2D, 0, gl::GL_DEPTH24_STENCIL8, 4, 1, 2, 1, 0);
+    ctx.glPixelTransferi(gl::GL_INDEX_OFFSET, 0x100 + 1);
+    ctx.glCopyTexSubImage2D(gl::GL_TEXTURE_2D, 0, 1, 0, 2, 3, 1, 1);
+    assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    // glGetTexImage applies pixel transfer too: read without the offset.
+    ctx.glPixelTransferi(gl::GL_INDEX_OFFSET, 0);
+    let mut packed = [0u32; 2];
+    unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 0, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, packed.as_mut_ptr().cast()) };
+    // (4, 1): depth 0.5, stencil 20. (2, 3) copied over texel 1: depth 0.25, stencil
+    // 50 + 257 masked to 8 bits = 51.
+    assert_eq!(packed, [(0x80_0000 << 8) | 20, (0x40_0000 << 8) | 51]);
 }
