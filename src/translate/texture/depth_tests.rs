@@ -130,6 +130,15 @@ fn depth_stencil_textures_keep_depth_and_stencil_bits() {
     unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, 1, 0, 1, 1, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, one.as_ptr().cast()) };
     let back = read_words::<4>(&mut ctx, gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV);
     assert_eq!(back, [0.3f32.to_bits(), 0x07, 1.0f32.to_bits(), 0x01]);
+    // Generated levels average the depth and hold stencil 0, which sub-images replace.
+    ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_GENERATE_MIPMAP, 1);
+    depth_stencil_image(&mut ctx, gl::GL_DEPTH24_STENCIL8, gl::GL_UNSIGNED_INT_24_8, &[0x0000_0009u32, 0x4000_000a]);
+    let mut level1 = [0u32; 1];
+    unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 1, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, level1.as_mut_ptr().cast()) };
+    assert_eq!(level1, [0x2000_0000]);
+    unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 1, 0, 0, 1, 1, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, [0xffff_ff33u32].as_ptr().cast()) };
+    unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 1, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, level1.as_mut_ptr().cast()) };
+    assert_eq!(level1, [0xffff_ff33]);
     assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
 }
 

@@ -235,8 +235,8 @@ fn check_format_pair(format: Format, base: Base) -> Result<(), GLenum> {
 }
 
 /// Depth and depth/stencil images may not be 3D (`GL_INVALID_OPERATION`; ARB_depth_texture
-/// and EXT_packed_depth_stencil section 3.8.1 name 1D and 2D targets, cube maps were added by
-/// OpenGL 3.0 and glrt samples them).
+/// and EXT_packed_depth_stencil section 3.8.1 name 1D and 2D targets; cube maps, allowed from
+/// OpenGL 3.0 on, are accepted).
 fn check_depth_target(target: Target, base: Base) -> Result<(), GLenum> {
     if target == Target::D3 && base == Base::Texel(TexelFormat::Depth) { Err(gl::GL_INVALID_OPERATION) } else { Ok(()) }
 }
@@ -489,8 +489,7 @@ impl Context {
     /// and stencil) buffer back, the pixels go through pixel transfer and are written into the
     /// level at `offset` (border included), and the content version changes, so draws that use
     /// the texture afterwards sample the copied pixels. Without a renderer that reads back the
-    /// texels stay as they were (logged once by `glReadPixels`' path). The copy is also
-    /// recorded in the frame.
+    /// texels stay as they were (logged once). The copy is also recorded in the frame.
     fn record_texture_copy(&mut self, dest: Dest, level: usize, offset: [usize; 3], src: [i32; 4], base: Base) {
         let internal = self.with_dest(dest, |obj, _| obj.level(dest.face, level).map(|l| l.internal_format)).unwrap_or(gl::GL_NONE);
         let (buffer, format) = match base {
@@ -581,8 +580,7 @@ impl Context {
     /// type (`GL_COLOR_INDEX` and `GL_STENCIL_INDEX` included), `GL_INVALID_VALUE` for a bad
     /// level, `GL_INVALID_OPERATION` for a colour format from a depth level, `GL_DEPTH_COMPONENT`
     /// from a colour level, or `GL_DEPTH_STENCIL` from a level without stencil
-    /// (EXT_packed_depth_stencil section 6.1.4). Depth/stencil levels made by
-    /// `GL_GENERATE_MIPMAP` have stencil 0. Unspecified levels write nothing.
+    /// (EXT_packed_depth_stencil section 6.1.4). Unspecified levels write nothing.
     ///
     /// # Safety
     /// A non-null `pixels` must point to writable memory as the pack modes describe.
