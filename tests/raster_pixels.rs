@@ -1,7 +1,7 @@
 //! The pixel path of the Vulkan raster renderer on real GL calls, read back with
 //! `glReadPixels`: masked and scissored clears, `glBitmap`, `glDrawPixels` (colour, depth,
-//! stencil, zoom, per-fragment operations), `glCopyPixels` (overlapping rectangles) and the
-//! accumulation buffer. Runs on Mesa lavapipe at 32×32.
+//! stencil, depth/stencil, zoom, per-fragment operations), `glCopyPixels` (overlapping
+//! rectangles, depth/stencil) and the accumulation buffer. Runs on Mesa lavapipe at 32×32.
 
 use glrt::render::raster::renderer::Renderer;
 use glrt::translate::context::ContextConfig;
@@ -337,4 +337,88 @@ fn large_varied_images_are_drawn_as_textures_with_zoom() {
         assert_eq!(pixel(&mut ctx, 2 * x as i32, 2 * y as i32), expected);
         assert_eq!(pixel(&mut ctx, 2 * x as i32 + 1, 2 * y as i32 + 1), expected);
     }
+}
+
+/// Reads a `w` × `h` rectangle as `GL_DEPTH_STENCIL`/`GL_UNSIGNED_INT_24_8` words.
+fn depth_stencil_24_8(ctx: &mut Context, x: i32, y: i32, w: i32, h: i32) -> Vec<u32> {
+    let mut out = vec![0u32; (w * h) as usize];
+    unsafe { dispatch::glReadPixels(ctx, x, y, w, h, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, out.as_mut_ptr().cast()) };
+    out
+}
+
+/// A `GL_UNSIGNED_INT_24_8` word: 24-bit depth above an 8-bit stencil index.
+const fn packed(depth: u32, stencil: u32) -> u32 {
+    (depth << 8) | stencil
+}
+
+/// Depth/stencil words of a 4×2 image: distinct 24-bit depths (low, middle, high, 1.0) and
+/// stencil indices.
+const PACKED: [u32; 8] = [
+    packed(0x00_0001, 0x07),
+    packed(0x12_3456, 0x21),
+    packed(0x7f_ffff, 0x42),
+    packed(0x80_0000, 0x63),
+    packed(0xab_cdef, 0x84),
+    packed(0xff_fffe, 0xa5),
+    packed(0xff_ffff, 0xc6),
+    packed(0x55_5555, 0xe7),
+];
+
+#[test]
+fn depth_stencil_draw_pixels_write_both_buffers_exactly_and_skip_the_tests() {
+    let mut ctx = context();
+    clear_all(&mut ctx, [0.0, 0.0, 1.0, 1.0]);
+    unsafe {
+        // Neither test applies to GL_DEPTH_STENCIL images (EXT_packed_depth_stencil 4.3.1).
+        dispatch::glEnable(&mut ctx, gl::GL_DEPTH_TEST);
+        dispatch::glDepthFunc(&mut ctx, gl::GL_NEVER);
+        dispatch::glEnable(&mut ctx, gl::GL_STENCIL_TEST);
+        dispatch::glStencilFunc(&mut ctx, gl::GL_NEVER, 0, 0xff);
+        dispatch::glWindowPos2i(&mut ctx, 4, 6);
+        dispatch::glDrawPixels(&mut ctx, 4, 2, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, PACKED.as_ptr().cast());
+    }
+    assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    // Every bit comes back: the 24-bit depth buffer stores each drawn depth exactly.
+    assert_eq!(depth_stencil_24_8(&mut ctx, 4, 6, 4, 2), PACKED);
+    assert_eq!(pixel(&mut ctx, 5, 6), [0, 0, 255, 255], "no colour is written");
+    assert_eq!(depth_stencil_24_8(&mut ctx, 3, 6, 1, 1), [packed(0xff_ffff, 0)], "outside the image");
+    // The float type reads the same values.
+    let mut words = [0u32; 2];
+    unsafe { dispatch::glReadPixels(&mut ctx, 5, 6, 1, 1, gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV, words.as_mut_ptr().cast()) };
+    assert_eq!(words, [((f64::from(0x12_3456u32) / 16_777_215.0) as f32).to_bits(), 0x21]);
+    // Depth and stencil write masks apply; so does the scissor test.
+    unsafe {
+        dispatch::glDepthMask(&mut ctx, gl::GL_FALSE);
+        dispatch::glStencilMask(&mut ctx, 0x0f);
+        dispatch::glEnable(&mut ctx, gl::GL_SCISSOR_TEST);
+        dispatch::glScissor(&mut ctx, 0, 0, 6, 32);
+        let zeros = [0u32; 8];
+        dispatch::glDrawPixels(&mut ctx, 4, 2, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, zeros.as_ptr().cast());
+    }
+    let masked: Vec<u32> = PACKED.iter().enumerate().map(|(i, &p)| if i % 4 < 2 { p & !0x0f } else { p }).collect();
+    assert_eq!(depth_stencil_24_8(&mut ctx, 4, 6, 4, 2), masked, "stencil low bits cleared in columns 4-5 only, depth kept");
+}
+
+#[test]
+fn depth_stencil_copy_pixels_copies_both_buffers_with_pixel_transfer() {
+    let mut ctx = context();
+    clear_all(&mut ctx, [0.0, 1.0, 0.0, 1.0]);
+    unsafe {
+        dispatch::glWindowPos2i(&mut ctx, 2, 2);
+        dispatch::glDrawPixels(&mut ctx, 4, 2, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, PACKED.as_ptr().cast());
+        dispatch::glEnable(&mut ctx, gl::GL_DEPTH_TEST);
+        dispatch::glDepthFunc(&mut ctx, gl::GL_NEVER);
+        // Copy (2, 2)-(6, 4) to (20, 10), then again to (20, 20) with the index offset 1.
+        dispatch::glWindowPos2i(&mut ctx, 20, 10);
+        dispatch::glCopyPixels(&mut ctx, 2, 2, 4, 2, gl::GL_DEPTH_STENCIL);
+        dispatch::glPixelTransferi(&mut ctx, gl::GL_INDEX_OFFSET, 1);
+        dispatch::glWindowPos2i(&mut ctx, 20, 20);
+        dispatch::glCopyPixels(&mut ctx, 2, 2, 4, 2, gl::GL_DEPTH_STENCIL);
+        dispatch::glPixelTransferi(&mut ctx, gl::GL_INDEX_OFFSET, 0);
+    }
+    assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    assert_eq!(depth_stencil_24_8(&mut ctx, 20, 10, 4, 2), PACKED, "an exact copy");
+    let offset: Vec<u32> = PACKED.iter().map(|&p| (p & !0xff) | ((p + 1) & 0xff)).collect();
+    assert_eq!(depth_stencil_24_8(&mut ctx, 20, 20, 4, 2), offset, "stencil indices offset by 1");
+    assert_eq!(pixel(&mut ctx, 21, 11), [0, 255, 0, 255], "no colour is written");
 }

@@ -45,6 +45,12 @@ pub enum PixelData {
     Depth(Arc<[f32]>),
     /// Stencil indices after shift, offset and map.
     Stencil(Arc<[u32]>),
+    /// Depth values and stencil indices (`GL_DEPTH_STENCIL`, one of each per pixel), after
+    /// their pixel transfer. They bypass every per-fragment operation but the pixel ownership
+    /// and scissor tests: each pixel's stencil index is written through the stencil write
+    /// mask and its depth through the depth mask, whatever the depth and stencil tests
+    /// (EXT_packed_depth_stencil section 4.3.1).
+    DepthStencil(Arc<[f32]>, Arc<[u32]>),
 }
 
 impl std::fmt::Debug for PixelData {
@@ -53,6 +59,7 @@ impl std::fmt::Debug for PixelData {
             PixelData::Rgba8(d) => write!(f, "Rgba8({} bytes)", d.len()),
             PixelData::Depth(d) => write!(f, "Depth({} values)", d.len()),
             PixelData::Stencil(d) => write!(f, "Stencil({} values)", d.len()),
+            PixelData::DepthStencil(d, _) => write!(f, "DepthStencil({} values)", d.len()),
         }
     }
 }
@@ -140,4 +147,28 @@ pub enum PixelKind {
         /// Its value.
         value: f32,
     },
+}
+
+/// The part of the window rectangle `src` inside a window of `size`, and how many columns and
+/// rows of `src` lie left of and below it; `None` when nothing is inside.
+pub fn clip_to_window(src: [i32; 4], size: [u32; 2]) -> Option<([i32; 4], [i32; 2])> {
+    let [x, y, w, h] = src.map(|v| v as i64);
+    let x0 = x.clamp(0, size[0] as i64);
+    let y0 = y.clamp(0, size[1] as i64);
+    let x1 = (x + w.max(0)).clamp(0, size[0] as i64);
+    let y1 = (y + h.max(0)).clamp(0, size[1] as i64);
+    (x1 > x0 && y1 > y0).then(|| ([x0, y0, x1 - x0, y1 - y0].map(|v| v as i32), [(x0 - x) as i32, (y0 - y) as i32]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn copies_are_clipped_to_the_window() {
+        assert_eq!(clip_to_window([-2, 3, 10, 10], [8, 8]), Some(([0, 3, 8, 5], [2, 0])));
+        assert_eq!(clip_to_window([0, 0, 4, 4], [8, 8]), Some(([0, 0, 4, 4], [0, 0])));
+        assert_eq!(clip_to_window([9, 0, 4, 4], [8, 8]), None);
+        assert_eq!(clip_to_window([0, 0, -1, 4], [8, 8]), None);
+    }
 }

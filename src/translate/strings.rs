@@ -16,8 +16,12 @@ const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 /// newlines and needs the last one to end its line). Left out although partly there:
 /// `GL_EXT_texture_env_dot3` (its own `DOT3_*_EXT` enums are not accepted), `GL_ARB_multisample`
 /// (no multisampled visuals), `GL_EXT_color_subtable` (exported for `GL_EXT_paletted_texture`,
-/// whose palettes it edits, but not announced on its own).
+/// whose palettes it edits, but not announced on its own). `GL_EXT_packed_depth_stencil` and
+/// `GL_ARB_depth_buffer_float` are announced for their pixel formats and texture internal
+/// formats (as Mesa's compatibility profile does); their renderbuffer parts need
+/// `GL_EXT_framebuffer_object`, which glrt lacks, and so do not apply.
 const EXTENSIONS: &str = concat!(
+    "GL_ARB_depth_buffer_float ",
     "GL_ARB_depth_texture ",
     "GL_ARB_multitexture ",
     "GL_ARB_occlusion_query ",
@@ -44,6 +48,7 @@ const EXTENSIONS: &str = concat!(
     "GL_EXT_draw_range_elements ",
     "GL_EXT_fog_coord ",
     "GL_EXT_multi_draw_arrays ",
+    "GL_EXT_packed_depth_stencil ",
     "GL_EXT_packed_pixels ",
     "GL_EXT_paletted_texture ",
     "GL_EXT_point_parameters ",

@@ -1,6 +1,7 @@
-//! Client pixel formats and types (OpenGL 1.5 tables 3.5, 3.6 and 3.8): parsing and checking
-//! `format`/`type` pairs, and decoding or encoding pixel groups in client memory laid out as
-//! [`Layout`] says, with byte swapping and bit order.
+//! Client pixel formats and types (OpenGL 1.5 tables 3.5, 3.6 and 3.8, with the
+//! `GL_DEPTH_STENCIL` format and its two packed types of EXT_packed_depth_stencil and
+//! ARB_depth_buffer_float): parsing and checking `format`/`type` pairs, and decoding or encoding
+//! pixel groups in client memory laid out as [`Layout`] says, with byte swapping and bit order.
 
 use super::super::convert::{norm_i8, norm_i16, norm_i32, norm_u8, norm_u16, norm_u32};
 use super::super::gl::{self, GLenum};
@@ -17,6 +18,9 @@ pub enum Kind {
     Stencil,
     /// Depth values (normalized).
     Depth,
+    /// A depth value (normalized) and a stencil index (integer) per group
+    /// (EXT_packed_depth_stencil's depth/stencil groups).
+    DepthStencil,
 }
 
 /// A client pixel format.
@@ -61,6 +65,13 @@ pub enum Type {
     Bitmap,
     /// A packed type.
     Packed(Packed),
+    /// `GL_UNSIGNED_INT_24_8`: one `uint` a group, depth in bits 31–8 (24-bit unsigned
+    /// normalized), stencil index in bits 7–0 (EXT_packed_depth_stencil table 3.11).
+    Uint24_8,
+    /// `GL_FLOAT_32_UNSIGNED_INT_24_8_REV`: two 32-bit words a group, the depth as a `float`
+    /// in the first, the stencil index in bits 7–0 of the second (bits 31–8 unused;
+    /// ARB_depth_buffer_float table 3.11).
+    Float32Uint24_8Rev,
 }
 
 const P332: &[(u32, u32)] = &[(5, 3), (2, 3), (0, 2)];
@@ -82,6 +93,7 @@ pub fn format(format: GLenum) -> Option<Format> {
         gl::GL_COLOR_INDEX => (1, Kind::Index),
         gl::GL_STENCIL_INDEX => (1, Kind::Stencil),
         gl::GL_DEPTH_COMPONENT => (1, Kind::Depth),
+        gl::GL_DEPTH_STENCIL => (2, Kind::DepthStencil),
         gl::GL_RED | gl::GL_GREEN | gl::GL_BLUE | gl::GL_ALPHA | gl::GL_LUMINANCE => (1, Kind::Color),
         gl::GL_LUMINANCE_ALPHA => (2, Kind::Color),
         gl::GL_RGB | gl::GL_BGR => (3, Kind::Color),
@@ -115,16 +127,23 @@ pub fn pixel_type(type_: GLenum) -> Option<Type> {
         gl::GL_UNSIGNED_INT_8_8_8_8_REV => packed(4, P8888R),
         gl::GL_UNSIGNED_INT_10_10_10_2 => packed(4, P1010102),
         gl::GL_UNSIGNED_INT_2_10_10_10_REV => packed(4, P2101010R),
+        gl::GL_UNSIGNED_INT_24_8 => Some(Type::Uint24_8),
+        gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV => Some(Type::Float32Uint24_8Rev),
         _ => None,
     }
 }
 
-/// Parses and checks a `format`/`type` pair: `GL_INVALID_ENUM` for unknown values or
-/// `GL_BITMAP` with a format other than an index, `GL_INVALID_OPERATION` for a packed type
-/// whose component count differs from the format's (section 3.6.4).
+/// Parses and checks a `format`/`type` pair: `GL_INVALID_ENUM` for unknown values,
+/// `GL_BITMAP` with a format other than an index, or `GL_DEPTH_STENCIL` with a type other than
+/// its two packed types; `GL_INVALID_OPERATION` for a packed type whose component count differs
+/// from the format's (section 3.6.4), or a depth/stencil type with another format
+/// (EXT_packed_depth_stencil and ARB_depth_buffer_float, "Errors").
 pub fn parse(format_: GLenum, type_: GLenum) -> Result<(Format, Type), GLenum> {
     let (Some(f), Some(t)) = (format(format_), pixel_type(type_)) else { return Err(gl::GL_INVALID_ENUM) };
+    let depth_stencil_type = matches!(t, Type::Uint24_8 | Type::Float32Uint24_8Rev);
     match t {
+        _ if f.kind == Kind::DepthStencil && !depth_stencil_type => Err(gl::GL_INVALID_ENUM),
+        _ if depth_stencil_type && f.kind != Kind::DepthStencil => Err(gl::GL_INVALID_OPERATION),
         Type::Bitmap if !matches!(f.kind, Kind::Index | Kind::Stencil) => Err(gl::GL_INVALID_ENUM),
         Type::Packed(p) if !(f.kind == Kind::Color && f.components == p.fields.len() && f.components >= 3) => {
             Err(gl::GL_INVALID_OPERATION)
@@ -132,6 +151,9 @@ pub fn parse(format_: GLenum, type_: GLenum) -> Result<(Format, Type), GLenum> {
         _ => Ok((f, t)),
     }
 }
+
+/// Largest 24-bit depth value (1.0 in `GL_UNSIGNED_INT_24_8`).
+const DEPTH24_MAX: f64 = 16_777_215.0;
 
 impl Type {
     /// Bytes of one element (0 for bitmaps; the packed size for packed types).
@@ -142,12 +164,14 @@ impl Type {
             Type::U32 | Type::I32 | Type::F32 => 4,
             Type::Bitmap => 0,
             Type::Packed(p) => p.size,
+            Type::Uint24_8 => 4,
+            Type::Float32Uint24_8Rev => 8,
         }
     }
 
-    /// Elements per group of `format`.
+    /// Elements per group of `format` (1 for the types that pack a whole group).
     pub fn elements(self, format: Format) -> usize {
-        if matches!(self, Type::Packed(_)) { 1 } else { format.components }
+        if matches!(self, Type::Packed(_) | Type::Uint24_8 | Type::Float32Uint24_8Rev) { 1 } else { format.components }
     }
 
     /// The layout of a `w` × `h` × `d` image of `format` with `modes`.
@@ -225,6 +249,12 @@ fn encode_element(t: Type, v: f32, normalized: bool) -> u32 {
     }
 }
 
+/// The low 8 bits of a stencil index: what the depth/stencil types keep (EXT_packed_depth_stencil
+/// table 4.6, index mask 2^8 − 1).
+fn stencil_byte(index: f32) -> u32 {
+    (index as i64 & 0xff) as u32
+}
+
 /// A group of elements and how to find them in client memory.
 pub struct Codec<'a> {
     /// Format of the groups.
@@ -271,6 +301,14 @@ impl Codec<'_> {
                                 out.push(f64::from(((raw >> shift) & max) as f32 / max as f32));
                             }
                         }
+                        Type::Uint24_8 => {
+                            let raw = read_uint(bytes, at, 4, swap);
+                            out.extend([f64::from(raw >> 8) / DEPTH24_MAX, f64::from(raw & 0xff)]);
+                        }
+                        Type::Float32Uint24_8Rev => {
+                            let depth = f32::from_bits(read_uint(bytes, at, 4, swap));
+                            out.extend([f64::from(depth), f64::from(read_uint(bytes, at + 4, 4, swap) & 0xff)]);
+                        }
                         t => {
                             for c in 0..n {
                                 out.push(decode_element(t, read_uint(bytes, at + c * size, size, swap), self.normalized()));
@@ -310,6 +348,14 @@ impl Codec<'_> {
                                 raw |= ((f64::from(v).clamp(0.0, 1.0) * f64::from(max)).round() as u32) << shift;
                             }
                             write_uint(bytes, at, size, swap, raw);
+                        }
+                        Type::Uint24_8 => {
+                            let depth = (f64::from(g[0]).clamp(0.0, 1.0) * DEPTH24_MAX).round() as u32;
+                            write_uint(bytes, at, 4, swap, depth << 8 | stencil_byte(g[1]));
+                        }
+                        Type::Float32Uint24_8Rev => {
+                            write_uint(bytes, at, 4, swap, g[0].to_bits());
+                            write_uint(bytes, at + 4, 4, swap, stencil_byte(g[1]));
                         }
                         t => {
                             for (c, &v) in g.iter().enumerate() {
@@ -495,6 +541,63 @@ mod tests {
         assert_eq!(parse(gl::GL_RGB, gl::GL_BITMAP), Err(gl::GL_INVALID_ENUM));
         assert_eq!(parse(gl::GL_TEXTURE_2D, gl::GL_FLOAT), Err(gl::GL_INVALID_ENUM));
         assert!(parse(gl::GL_BGRA, gl::GL_UNSIGNED_INT_8_8_8_8_REV).is_ok());
+    }
+
+    #[test]
+    fn depth_stencil_types_round_trip_every_bit() {
+        let plain = StoreModes::default();
+        // 24_8: depth in the top 24 bits, stencil in the low 8.
+        let c = codec(gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, &plain, 4, 1);
+        let raws = [0x0000_0000u32, 0xffff_ffbb, 0x4000_00bb, 0x1234_5678];
+        let bytes: Vec<u8> = raws.iter().flat_map(|r| r.to_ne_bytes()).collect();
+        let v = c.decode(&bytes, 4, 1, 1);
+        assert_eq!(v[2..4], [1.0, 187.0]);
+        assert_eq!(v[6..8], [f64::from(0x12_3456) / DEPTH24_MAX, 120.0]);
+        // Every 24-bit depth survives the trip through the f32 that pixel transfer carries.
+        let narrowed: Vec<f32> = v.iter().map(|&x| x as f32).collect();
+        let mut back = vec![0u8; 16];
+        c.encode(&mut back, &narrowed, 4, 1, 1);
+        assert_eq!(back, bytes);
+        for depth in [1u32, 2, 0x7f_ffff, 0x80_0000, 0xff_fffe, 0xab_cdef] {
+            let d = (f64::from(depth) / DEPTH24_MAX) as f32;
+            let mut out = [0u8; 4];
+            c.encode(&mut out, &[d, 3.0], 1, 1, 1);
+            assert_eq!(u32::from_ne_bytes(out), depth << 8 | 3, "{depth:#x}");
+        }
+        // FLOAT_32_UNSIGNED_INT_24_8_REV: the float, then a word with the stencil in bits 7-0;
+        // the unused bits 31-8 are ignored when unpacking and written as 0.
+        let c = codec(gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV, &plain, 2, 1);
+        let words = [0.3f32.to_bits(), 0xabcd_ef42, 1.0f32.to_bits(), 0x0000_00ff];
+        let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_ne_bytes()).collect();
+        let v = c.decode(&bytes, 2, 1, 1);
+        assert_eq!(v, [f64::from(0.3f32), 66.0, 1.0, 255.0]);
+        let mut back = vec![0u8; 16];
+        c.encode(&mut back, &v.iter().map(|&x| x as f32).collect::<Vec<_>>(), 2, 1, 1);
+        let expect: Vec<u8> = [0.3f32.to_bits(), 0x42, 1.0f32.to_bits(), 0xff].iter().flat_map(|w| w.to_ne_bytes()).collect();
+        assert_eq!(back, expect);
+        // Swapping reverses each 32-bit word.
+        let swap = StoreModes { swap_bytes: true, ..StoreModes::default() };
+        let c = codec(gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV, &swap, 1, 1);
+        let swapped: Vec<u8> = [0.5f32.to_bits(), 7].iter().flat_map(|w| w.swap_bytes().to_ne_bytes()).collect();
+        assert_eq!(c.decode(&swapped, 1, 1, 1), [0.5, 7.0]);
+        let c = codec(gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, &swap, 1, 1);
+        assert_eq!(c.decode(&0xffff_ff09u32.swap_bytes().to_ne_bytes(), 1, 1, 1), [1.0, 9.0]);
+        // Rows: 8-byte groups, 4-byte alignment pads nothing.
+        assert_eq!(c.layout.span, 4);
+        let c = codec(gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV, &plain, 3, 2);
+        assert_eq!((c.layout.row_stride, c.layout.span), (24, 48));
+    }
+
+    #[test]
+    fn depth_stencil_format_type_errors() {
+        assert_eq!(parse(gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT), Err(gl::GL_INVALID_ENUM));
+        assert_eq!(parse(gl::GL_DEPTH_STENCIL, gl::GL_FLOAT), Err(gl::GL_INVALID_ENUM));
+        assert_eq!(parse(gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_SHORT_5_6_5), Err(gl::GL_INVALID_ENUM));
+        assert_eq!(parse(gl::GL_DEPTH_STENCIL, gl::GL_BITMAP), Err(gl::GL_INVALID_ENUM));
+        assert_eq!(parse(gl::GL_DEPTH_COMPONENT, gl::GL_UNSIGNED_INT_24_8), Err(gl::GL_INVALID_OPERATION));
+        assert_eq!(parse(gl::GL_RGBA, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV), Err(gl::GL_INVALID_OPERATION));
+        assert_eq!(parse(gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8).map(|(f, _)| f.kind), Ok(Kind::DepthStencil));
+        assert_eq!(parse(gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV).map(|(_, t)| t), Ok(Type::Float32Uint24_8Rev));
     }
 
     #[test]

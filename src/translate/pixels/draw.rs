@@ -11,7 +11,7 @@ use super::super::gl::{self, GLenum, GLfloat, GLint, GLsizei, GLubyte};
 use super::super::render_mode::RasterEvent;
 use super::codec::{self, Codec, Kind};
 use super::transfer::Unpacked;
-use crate::frame::pixels::{AccumOp, PixelBuffer, PixelData, PixelKind, PixelOp};
+use crate::frame::pixels::{AccumOp, PixelBuffer, PixelData, PixelKind, PixelOp, clip_to_window};
 
 /// Converts colours in [0, 1] to RGBA8 bytes.
 pub fn rgba8(colors: &[[f32; 4]]) -> Vec<u8> {
@@ -106,6 +106,7 @@ impl Context {
             Ok(Some(Unpacked::Rgba(c))) => PixelData::Rgba8(rgba8(&c).into()),
             Ok(Some(Unpacked::Depth(d))) => PixelData::Depth(d.into()),
             Ok(Some(Unpacked::Stencil(s) | Unpacked::Index(s))) => PixelData::Stencil(s.iter().map(|&v| v as u32).collect()),
+            Ok(Some(Unpacked::DepthStencil(d, s))) => PixelData::DepthStencil(d.into(), s.iter().map(|&v| v as u32).collect()),
             Ok(None) => return self.null_pointer("glDrawPixels"),
             Err(()) => return,
         };
@@ -130,10 +131,18 @@ impl Context {
     }
 
     /// `glCopyPixels`: `GL_INVALID_ENUM` for a type other than `GL_COLOR`, `GL_DEPTH`,
-    /// `GL_STENCIL`; `GL_INVALID_VALUE` for a negative size. In feedback mode
-    /// `GL_COPY_PIXEL_TOKEN` instead, nothing in selection mode.
+    /// `GL_STENCIL` and `GL_DEPTH_STENCIL`; `GL_INVALID_VALUE` for a negative size. In feedback
+    /// mode `GL_COPY_PIXEL_TOKEN` instead, nothing in selection mode. glrt's visuals always have
+    /// depth and stencil buffers, so `GL_DEPTH_STENCIL`'s `GL_INVALID_OPERATION` for a missing
+    /// one never applies.
     pub fn glCopyPixels(&mut self, x: GLint, y: GLint, width: GLsizei, height: GLsizei, type_: GLenum) {
-        let Some(buffer) = buffer_of(type_) else { return self.set_error_in(gl::GL_INVALID_ENUM, "glCopyPixels") };
+        let buffer = match type_ {
+            gl::GL_COLOR => Some(PixelBuffer::Color),
+            gl::GL_DEPTH => Some(PixelBuffer::Depth),
+            gl::GL_STENCIL => Some(PixelBuffer::Stencil),
+            gl::GL_DEPTH_STENCIL => None,
+            _ => return self.set_error_in(gl::GL_INVALID_ENUM, "glCopyPixels"),
+        };
         if size2(self, width, height, "glCopyPixels").is_none() || !self.pixels.raster.valid {
             return;
         }
@@ -141,8 +150,71 @@ impl Context {
             return;
         }
         let r = &self.pixels.raster;
-        let kind = PixelKind::Copy { src: [x, y, width, height], window_pos: [r.window[0], r.window[1], r.window[2]], zoom: self.pixels.zoom, buffer, color: r.data.color };
+        let window_pos = [r.window[0], r.window[1], r.window[2]];
+        let Some(buffer) = buffer else { return self.copy_depth_stencil([x, y, width, height], window_pos) };
+        let kind = PixelKind::Copy { src: [x, y, width, height], window_pos, zoom: self.pixels.zoom, buffer, color: r.data.color };
         self.push_pixel_op(kind);
+    }
+
+    /// `glCopyPixels(GL_DEPTH_STENCIL)` (EXT_packed_depth_stencil section 4.3.3): the depth
+    /// and stencil values of `src` are read as `glReadPixels(GL_DEPTH_STENCIL)` reads them,
+    /// go through pixel transfer (depth scale and bias; index shift, offset and `S_TO_S` map)
+    /// and are written as `glDrawPixels(GL_DEPTH_STENCIL)` writes them, at `window_pos` with
+    /// the zoom: through the scissor test and the depth and stencil write masks only. The
+    /// read happens now (the renderer draws the frame so far), so the recorded operation is
+    /// an image; source pixels outside the window produce no fragments. Without a renderer
+    /// that reads back nothing is copied (logged once).
+    fn copy_depth_stencil(&mut self, src: [i32; 4], window_pos: [f32; 3]) {
+        let Some((rect, skipped)) = clip_to_window(src, self.frame.size) else { return };
+        let Some(format) = codec::format(gl::GL_DEPTH_STENCIL) else { return };
+        let Some(Unpacked::DepthStencil(depth, stencil)) = self.read_transferred(format, rect, "glCopyPixels") else { return };
+        let zoom = self.pixels.zoom;
+        let kind = PixelKind::Image {
+            window_pos: [window_pos[0] + skipped[0] as f32 * zoom[0], window_pos[1] + skipped[1] as f32 * zoom[1], window_pos[2]],
+            zoom,
+            size: [rect[2] as u32, rect[3] as u32],
+            color: self.pixels.raster.data.color,
+            data: PixelData::DepthStencil(depth.into(), stencil.iter().map(|&v| v as u32).collect()),
+        };
+        self.push_pixel_op(kind);
+    }
+
+    /// Reads `rect` of the buffers that groups of `format` come from and applies pixel
+    /// transfer, as `glCopyPixels` and `glCopyTexImage` do (section 4.3.3: the values are
+    /// "subjected to the pixel transfer operations described in section 3.6.5, just as if
+    /// ReadPixels were called"). `None` (logged once) when the renderer cannot read back.
+    pub(crate) fn read_transferred(&mut self, format: codec::Format, rect: [i32; 4], command: &str) -> Option<Unpacked> {
+        let Some(read) = self.read_groups(format.kind, rect) else {
+            self.log_no_readback(command);
+            return None;
+        };
+        Some(self.pixels.transfer.apply(format, &groups_of(&read, format.components), false))
+    }
+
+    /// Reads `rect` of the buffers that groups of `kind` come from (colour for colours and
+    /// indices), as [`crate::render::FrameSink::read_pixels`] returns them; depth/stencil
+    /// groups read the depth and the stencil buffer and hold the depth in the first component,
+    /// the stencil index in the second. `None` when the renderer cannot read back.
+    fn read_groups(&mut self, kind: Kind, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        let buffer = match kind {
+            Kind::Color | Kind::Index => PixelBuffer::Color,
+            Kind::Depth => PixelBuffer::Depth,
+            Kind::Stencil => PixelBuffer::Stencil,
+            Kind::DepthStencil => {
+                let depth = self.read_framebuffer(PixelBuffer::Depth, rect)?;
+                let stencil = self.read_framebuffer(PixelBuffer::Stencil, rect)?;
+                return (depth.len() == stencil.len()).then(|| depth.iter().zip(&stencil).map(|(d, s)| [d[0], s[0], 0.0, 0.0]).collect());
+            }
+        };
+        self.read_framebuffer(buffer, rect)
+    }
+
+    /// Logs once that `command` found no renderer that reads pixels back.
+    fn log_no_readback(&mut self, command: &str) {
+        if !self.pixels.readback_logged {
+            log::warn!("{command}: the renderer cannot read pixels back; nothing is read");
+            self.pixels.readback_logged = true;
+        }
     }
 
     /// `glReadPixels`: checks its arguments (`GL_INVALID_OPERATION` for `GL_COLOR_INDEX`,
@@ -156,25 +228,16 @@ impl Context {
     pub unsafe fn glReadPixels(&mut self, x: GLint, y: GLint, width: GLsizei, height: GLsizei, format: GLenum, type_: GLenum, pixels: *mut c_void) {
         let Some([w, h]) = size2(self, width, height, "glReadPixels") else { return };
         let Some((f, t)) = self.parse_pixel_format(format, type_, "glReadPixels") else { return };
-        let buffer = match f.kind {
-            Kind::Index => return self.set_error_in(gl::GL_INVALID_OPERATION, "glReadPixels"),
-            Kind::Color => PixelBuffer::Color,
-            Kind::Depth => PixelBuffer::Depth,
-            Kind::Stencil => PixelBuffer::Stencil,
-        };
+        if f.kind == Kind::Index {
+            return self.set_error_in(gl::GL_INVALID_OPERATION, "glReadPixels");
+        }
         if t.layout(f, &self.pixels.store.pack, w, h, 1).is_none() {
             return self.set_error_in(gl::GL_OUT_OF_MEMORY, "glReadPixels");
         }
         if w == 0 || h == 0 {
             return;
         }
-        let Some(read) = self.read_framebuffer(buffer, [x, y, width, height]) else {
-            if !self.pixels.readback_logged {
-                log::warn!("glReadPixels: the renderer cannot read pixels back; the buffer is left unchanged");
-                self.pixels.readback_logged = true;
-            }
-            return;
-        };
+        let Some(read) = self.read_groups(f.kind, [x, y, width, height]) else { return self.log_no_readback("glReadPixels") };
         if read.len() != w * h {
             return log::warn!("glReadPixels: the renderer returned {} pixels instead of {}", read.len(), w * h);
         }
@@ -190,14 +253,12 @@ impl Context {
         let mut values = Vec::with_capacity(read.len() * f.components);
         match f.kind {
             Kind::Color => read.iter().for_each(|&c| codec::from_rgba(f.gl, t.color(c), luminance, &mut values)),
-            _ => {
-                let first: Vec<f64> = read.iter().map(|c| f64::from(c[0])).collect();
-                match t.apply(f, &first, true) {
-                    Unpacked::Depth(v) => values = v,
-                    Unpacked::Stencil(v) | Unpacked::Index(v) => values = v.iter().map(|&i| i as f32).collect(),
-                    Unpacked::Rgba(_) => {}
-                }
-            }
+            _ => match t.apply(f, &groups_of(read, f.components), true) {
+                Unpacked::Depth(v) => values = v,
+                Unpacked::Stencil(v) | Unpacked::Index(v) => values = v.iter().map(|&i| i as f32).collect(),
+                Unpacked::DepthStencil(d, s) => values = d.iter().zip(&s).flat_map(|(&d, &s)| [d, s as f32]).collect(),
+                Unpacked::Rgba(_) => {}
+            },
         }
         values
     }
@@ -222,14 +283,11 @@ impl Context {
     }
 }
 
-/// The buffer of a `glCopyPixels` type.
-fn buffer_of(type_: GLenum) -> Option<PixelBuffer> {
-    match type_ {
-        gl::GL_COLOR => Some(PixelBuffer::Color),
-        gl::GL_DEPTH => Some(PixelBuffer::Depth),
-        gl::GL_STENCIL => Some(PixelBuffer::Stencil),
-        _ => None,
-    }
+/// The elements of pixels read by [`Context::read_groups`], `n` a pixel, for pixel transfer:
+/// the depth, stencil index or colour index in the first component; depth/stencil pixels hold
+/// their stencil index in the second.
+fn groups_of(read: &[[f32; 4]], n: usize) -> Vec<f64> {
+    read.iter().flat_map(|c| c.iter().take(n).map(|&v| f64::from(v))).collect()
 }
 
 #[cfg(test)]

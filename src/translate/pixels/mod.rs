@@ -8,6 +8,8 @@
 //! read-backs ask the renderer through [`crate::render::FrameSink::read_pixels`].
 
 pub mod codec;
+#[cfg(test)]
+mod depth_stencil_tests;
 pub mod draw;
 pub mod raster;
 pub mod store;

@@ -86,6 +86,9 @@ pub enum Unpacked {
     Depth(Vec<f32>),
     /// Stencil indices.
     Stencil(Vec<i64>),
+    /// Depth/stencil groups (EXT_packed_depth_stencil): depth values clamped to [0, 1] and
+    /// stencil indices, one of each per pixel.
+    DepthStencil(Vec<f32>, Vec<i64>),
 }
 
 impl PixelTransfer {
@@ -148,17 +151,26 @@ impl PixelTransfer {
                     Unpacked::Rgba(shifted.map(|i| self.index_to_rgba(i)).collect())
                 }
             }
-            Kind::Depth => Unpacked::Depth(groups.iter().map(|&d| (d as f32 * self.depth[0] + self.depth[1]).clamp(0.0, 1.0)).collect()),
-            Kind::Stencil => Unpacked::Stencil(
-                groups
-                    .iter()
-                    .map(|&s| {
-                        let s = self.shift_index(s);
-                        if self.map_stencil { self.lookup_index(S_TO_S, s) as i64 } else { s }
-                    })
-                    .collect(),
-            ),
+            Kind::Depth => Unpacked::Depth(groups.iter().map(|&d| self.depth_value(d)).collect()),
+            Kind::Stencil => Unpacked::Stencil(groups.iter().map(|&s| self.stencil_index(s)).collect()),
+            // Depth/stencil groups: depth arithmetic on the depth, index arithmetic and the
+            // S_TO_S map on the stencil index (EXT_packed_depth_stencil, section 3.6.5).
+            Kind::DepthStencil => {
+                let pairs = groups.chunks_exact(2);
+                Unpacked::DepthStencil(pairs.clone().map(|g| self.depth_value(g[0])).collect(), pairs.map(|g| self.stencil_index(g[1])).collect())
+            }
         }
+    }
+
+    /// A depth component after scale and bias, clamped to [0, 1] (sections 3.6.5 and 3.8.1).
+    fn depth_value(&self, d: f64) -> f32 {
+        (d as f32 * self.depth[0] + self.depth[1]).clamp(0.0, 1.0)
+    }
+
+    /// A stencil index after shift, offset and, with `GL_MAP_STENCIL`, the `S_TO_S` map.
+    fn stencil_index(&self, s: f64) -> i64 {
+        let s = self.shift_index(s);
+        if self.map_stencil { self.lookup_index(S_TO_S, s) as i64 } else { s }
     }
 }
 
@@ -412,5 +424,23 @@ mod tests {
         assert_eq!(ctx.pixels.transfer.color([0.0, 1.0, 0.0, 0.0])[1], 0.0);
         ctx.glPixelTransferf(gl::GL_TEXTURE_2D, 1.0);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+    }
+
+    #[test]
+    fn depth_stencil_groups_take_depth_and_index_transfer() {
+        let (mut ctx, _) = Context::with_recording();
+        let ds = codec::format(gl::GL_DEPTH_STENCIL).unwrap();
+        assert_eq!(ctx.pixels.transfer.apply(ds, &[0.25, 3.0, 1.0, 255.0], false), Unpacked::DepthStencil(vec![0.25, 1.0], vec![3, 255]));
+        ctx.glPixelTransferf(gl::GL_DEPTH_SCALE, 2.0);
+        ctx.glPixelTransferf(gl::GL_DEPTH_BIAS, 0.125);
+        ctx.glPixelTransferi(gl::GL_INDEX_SHIFT, 2);
+        ctx.glPixelTransferi(gl::GL_INDEX_OFFSET, 1);
+        // 0.25 × 2 + 0.125 and 1.0 × 2 + 0.125 (clamped); 3 << 2 + 1 and 255 << 2 + 1.
+        assert_eq!(ctx.pixels.transfer.apply(ds, &[0.25, 3.0, 1.0, 255.0], false), Unpacked::DepthStencil(vec![0.625, 1.0], vec![13, 1021]));
+        let map = [5.0f32, 6.0, 7.0, 8.0];
+        unsafe { ctx.glPixelMapfv(gl::GL_PIXEL_MAP_S_TO_S, 4, map.as_ptr()) };
+        ctx.glPixelTransferi(gl::GL_MAP_STENCIL, 1);
+        // 13 & 3 = 1 → 6; 1021 & 3 = 1 → 6.
+        assert_eq!(ctx.pixels.transfer.apply(ds, &[0.25, 3.0, 1.0, 255.0], false), Unpacked::DepthStencil(vec![0.625, 1.0], vec![6, 6]));
     }
 }

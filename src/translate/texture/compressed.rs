@@ -76,7 +76,7 @@ impl Context {
             return self.set_error_in(gl::GL_INVALID_VALUE, command);
         }
         let base = Base::Texel(if format == S3tc::Dxt1Rgb { TexelFormat::Rgb } else { TexelFormat::Rgba });
-        let mut lvl = Level { image: Arc::default(), size, border: 0, internal_format: internalformat, base, compressed: None, indices: None };
+        let mut lvl = Level { image: Arc::default(), size, border: 0, internal_format: internalformat, base, compressed: None, indices: None, stencil: None };
         if !dest.proxy {
             let Some(bytes) = (unsafe { read_slice(data.cast::<u8>(), expected) }) else { return self.null_pointer(command) };
             let texels = s3tc::decode(format, size[0], size[1], &bytes).unwrap_or_default();

@@ -88,3 +88,98 @@ fn depth_size_follows_the_internal_format() {
     assert_eq!(level_param(&mut ctx, gl::GL_TEXTURE_DEPTH_SIZE), 0);
     assert_eq!(level_param(&mut ctx, gl::GL_TEXTURE_RED_SIZE), 8);
 }
+
+/// Uploads a 2×1 `GL_DEPTH_STENCIL` image of `internal` (`type_` data) to texture 1.
+fn depth_stencil_image<T>(ctx: &mut Context, internal: u32, type_: u32, data: &[T]) {
+    ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+    unsafe { dispatch::glTexImage2D(ctx, gl::GL_TEXTURE_2D, 0, internal as i32, 2, 1, 0, gl::GL_DEPTH_STENCIL, type_, data.as_ptr().cast()) };
+}
+
+/// Reads level 0 of texture 1 back as `N` words of `format`/`type_`.
+fn read_words<const N: usize>(ctx: &mut Context, format: u32, type_: u32) -> [u32; N] {
+    let mut out = [0xdead_beefu32; N];
+    unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 0, format, type_, out.as_mut_ptr().cast()) };
+    out
+}
+
+#[test]
+fn depth_stencil_textures_keep_depth_and_stencil_bits() {
+    let (mut ctx, _) = Context::with_recording();
+    // 24-bit depth and 8-bit stencil come back bit for bit, in either packed type.
+    let raw = [0x4000_00bbu32, 0xabcd_ef42];
+    depth_stencil_image(&mut ctx, gl::GL_DEPTH24_STENCIL8, gl::GL_UNSIGNED_INT_24_8, &raw);
+    assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    assert_eq!(read_words::<2>(&mut ctx, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8), raw);
+    let floats = read_words::<4>(&mut ctx, gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV);
+    assert_eq!([floats[1], floats[3]], [0xbb, 0x42]);
+    assert_eq!(f32::from_bits(floats[0]), (f64::from(0x40_0000u32) / 16_777_215.0) as f32);
+    let depth = read_words::<2>(&mut ctx, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT).map(f32::from_bits);
+    assert_eq!(depth, [f32::from_bits(floats[0]), f32::from_bits(floats[2])], "the depth alone");
+    assert_eq!((level_param(&mut ctx, gl::GL_TEXTURE_DEPTH_SIZE), level_param(&mut ctx, gl::GL_TEXTURE_STENCIL_SIZE)), (24, 8));
+    assert_eq!(level_param(&mut ctx, gl::GL_TEXTURE_INTERNAL_FORMAT), gl::GL_DEPTH24_STENCIL8 as i32);
+    let image = ctx.with_bound_texture(Target::D2, |o| o.level(0, 0).map(|l| l.image.clone())).expect("level 0 exists");
+    assert_eq!(image.depth_values, depth, "the renderer samples the depth");
+    // 32-bit float depth keeps the float; the unused 24 bits are dropped.
+    let words = [0.3f32.to_bits(), 0xffff_ff07, 1.0f32.to_bits(), 0x0000_0100];
+    depth_stencil_image(&mut ctx, gl::GL_DEPTH32F_STENCIL8, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV, &words);
+    let back = read_words::<4>(&mut ctx, gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV);
+    assert_eq!(back, [0.3f32.to_bits(), 0x07, 1.0f32.to_bits(), 0x00]);
+    assert_eq!((level_param(&mut ctx, gl::GL_TEXTURE_DEPTH_SIZE), level_param(&mut ctx, gl::GL_TEXTURE_STENCIL_SIZE)), (32, 8));
+    // A sub-image replaces depth and stencil of its texels only.
+    let one = [0xffff_ff01u32];
+    unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, 1, 0, 1, 1, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, one.as_ptr().cast()) };
+    let back = read_words::<4>(&mut ctx, gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV);
+    assert_eq!(back, [0.3f32.to_bits(), 0x07, 1.0f32.to_bits(), 0x01]);
+    // Generated levels average the depth and hold stencil 0, which sub-images replace.
+    ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_GENERATE_MIPMAP, 1);
+    depth_stencil_image(&mut ctx, gl::GL_DEPTH24_STENCIL8, gl::GL_UNSIGNED_INT_24_8, &[0x0000_0009u32, 0x4000_000a]);
+    let mut level1 = [0u32; 1];
+    unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 1, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, level1.as_mut_ptr().cast()) };
+    assert_eq!(level1, [0x2000_0000]);
+    unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 1, 0, 0, 1, 1, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, [0xffff_ff33u32].as_ptr().cast()) };
+    unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 1, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8, level1.as_mut_ptr().cast()) };
+    assert_eq!(level1, [0xffff_ff33]);
+    assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+}
+
+#[test]
+fn depth_stencil_texture_errors() {
+    let (mut ctx, _) = Context::with_recording();
+    let raw = [0u32; 2];
+    // Depth/stencil pixels go with any depth internal format, not with colour ones.
+    depth_stencil_image(&mut ctx, gl::GL_RGBA8, gl::GL_UNSIGNED_INT_24_8, &raw);
+    assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+    depth_stencil_image(&mut ctx, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT, &raw);
+    assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+    depth_stencil_image(&mut ctx, gl::GL_DEPTH_COMPONENT32F, gl::GL_UNSIGNED_INT_24_8, &[0xffff_ff00u32, 0]);
+    assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    assert_eq!(read_words::<2>(&mut ctx, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT).map(f32::from_bits), [1.0, 0.0]);
+    assert_eq!(level_param(&mut ctx, gl::GL_TEXTURE_STENCIL_SIZE), 0);
+    // GL_DEPTH_STENCIL is read only from a level that has stencil.
+    read_words::<2>(&mut ctx, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8);
+    assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+    unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA8 as i32, 1, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, [0u8; 4].as_ptr().cast()) };
+    read_words::<1>(&mut ctx, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8);
+    assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+    depth_stencil_image(&mut ctx, gl::GL_DEPTH24_STENCIL8, gl::GL_UNSIGNED_INT_24_8, &raw);
+    unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, 0, 0, 1, 1, gl::GL_RGBA, gl::GL_FLOAT, [0.0f32; 4].as_ptr().cast()) };
+    assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+    read_words::<2>(&mut ctx, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE);
+    assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+    depth_stencil_image(&mut ctx, gl::GL_DEPTH24_STENCIL8, gl::GL_INT, &raw);
+    assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM, "GL_DEPTH_STENCIL with GL_INT");
+    ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+    unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_DEPTH24_STENCIL8 as i32, 1, 1, 0, gl::GL_STENCIL_INDEX, gl::GL_INT, raw.as_ptr().cast()) };
+    assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "stencil indices alone are no depth data");
+    // Depth and depth/stencil images are 1D, 2D or cube map images, never 3D.
+    ctx.glBindTexture(gl::GL_TEXTURE_3D, 2);
+    for (target, internal, format, type_) in [
+        (gl::GL_TEXTURE_3D, gl::GL_DEPTH_COMPONENT16, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT),
+        (gl::GL_PROXY_TEXTURE_3D, gl::GL_DEPTH_COMPONENT32F, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT),
+        (gl::GL_TEXTURE_3D, gl::GL_DEPTH24_STENCIL8, gl::GL_DEPTH_STENCIL, gl::GL_UNSIGNED_INT_24_8),
+        (gl::GL_PROXY_TEXTURE_3D, gl::GL_DEPTH32F_STENCIL8, gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV),
+    ] {
+        unsafe { dispatch::glTexImage3D(&mut ctx, target, 0, internal as i32, 2, 2, 2, 0, format, type_, std::ptr::null()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "{internal:#x}");
+    }
+}

@@ -1,6 +1,12 @@
 //! Texture internal formats (OpenGL 1.5 tables 3.15–3.16, ARB_texture_compression,
-//! EXT_texture_compression_s3tc, EXT_paletted_texture) and the conversion of pixels to the
-//! canonical RGBA8 texels glrt stores (depth also at full precision), and back (table 6.1).
+//! EXT_texture_compression_s3tc, EXT_paletted_texture, EXT_packed_depth_stencil,
+//! ARB_depth_buffer_float) and the conversion of pixels to the canonical RGBA8 texels glrt
+//! stores (depth also at full precision), and back (table 6.1).
+//!
+//! Depth/stencil formats (`GL_DEPTH_STENCIL`, `GL_DEPTH24_STENCIL8`, `GL_DEPTH32F_STENCIL8`)
+//! have the depth base format for sampling, which sees only their depth
+//! (EXT_packed_depth_stencil section 3.8.9-1/2); their stencil indices are kept beside the
+//! level for `glGetTexImage` ([`stencil_bits`] tells them apart).
 
 use super::super::gl::{self, GLenum};
 use crate::frame::texture::TexelFormat;
@@ -84,7 +90,14 @@ pub fn internal_format(internal: GLenum) -> Option<Internal> {
         4 | gl::GL_RGBA | gl::GL_RGBA2 | gl::GL_RGBA4 | gl::GL_RGB5_A1 | gl::GL_RGBA8 | gl::GL_RGB10_A2 | gl::GL_RGBA12 | gl::GL_RGBA16 => texel(Rgba),
         gl::GL_ALPHA | gl::GL_ALPHA4 | gl::GL_ALPHA8 | gl::GL_ALPHA12 | gl::GL_ALPHA16 => texel(Alpha),
         gl::GL_INTENSITY | gl::GL_INTENSITY4 | gl::GL_INTENSITY8 | gl::GL_INTENSITY12 | gl::GL_INTENSITY16 => texel(Intensity),
-        gl::GL_DEPTH_COMPONENT | gl::GL_DEPTH_COMPONENT16 | gl::GL_DEPTH_COMPONENT24 | gl::GL_DEPTH_COMPONENT32 => texel(Depth),
+        gl::GL_DEPTH_COMPONENT
+        | gl::GL_DEPTH_COMPONENT16
+        | gl::GL_DEPTH_COMPONENT24
+        | gl::GL_DEPTH_COMPONENT32
+        | gl::GL_DEPTH_COMPONENT32F
+        | gl::GL_DEPTH_STENCIL
+        | gl::GL_DEPTH24_STENCIL8
+        | gl::GL_DEPTH32F_STENCIL8 => texel(Depth),
         gl::GL_COLOR_INDEX1_EXT
         | gl::GL_COLOR_INDEX2_EXT
         | gl::GL_COLOR_INDEX4_EXT
@@ -124,9 +137,13 @@ pub fn base_enum(base: Base) -> GLenum {
 }
 
 /// Bits of each stored component, for `glGetTexLevelParameter` (`GL_TEXTURE_RED_SIZE` ...
-/// `GL_TEXTURE_INTENSITY_SIZE`, `GL_TEXTURE_DEPTH_SIZE`): glrt stores 8 bits for each colour
-/// component the base format has, and depth with [`depth_bits`] of `internal`.
+/// `GL_TEXTURE_INTENSITY_SIZE`, `GL_TEXTURE_DEPTH_SIZE`, `GL_TEXTURE_STENCIL_SIZE`): glrt
+/// stores 8 bits for each colour component the base format has, depth with [`depth_bits`]
+/// and stencil with [`stencil_bits`] of `internal`.
 pub fn component_bits(base: Base, internal: GLenum, pname: GLenum) -> Option<i64> {
+    if pname == gl::GL_TEXTURE_STENCIL_SIZE {
+        return Some(if base == Base::Texel(TexelFormat::Depth) { i64::from(stencil_bits(internal)) } else { 0 });
+    }
     use TexelFormat::*;
     let has = match (pname, base) {
         (_, Base::ColorIndex) => false,
@@ -144,14 +161,24 @@ pub fn component_bits(base: Base, internal: GLenum, pname: GLenum) -> Option<i64
     })
 }
 
-/// Bits of the depth values of a depth internal format: 16 and 32 as named, 24 for
-/// `GL_DEPTH_COMPONENT24` and the unsized `GL_DEPTH_COMPONENT`. 32-bit depth is kept as an
-/// `f32` (24 bits of mantissa).
+/// Bits of the depth values of a depth internal format: 16 and 32 as named (`f32` for
+/// `GL_DEPTH_COMPONENT32F` and `GL_DEPTH32F_STENCIL8`), 24 for `GL_DEPTH_COMPONENT24`,
+/// `GL_DEPTH24_STENCIL8` and the unsized `GL_DEPTH_COMPONENT` and `GL_DEPTH_STENCIL`. 32-bit
+/// depth is kept as an `f32` (24 bits of mantissa).
 pub fn depth_bits(internal: GLenum) -> u32 {
     match internal {
         gl::GL_DEPTH_COMPONENT16 => 16,
-        gl::GL_DEPTH_COMPONENT32 => 32,
+        gl::GL_DEPTH_COMPONENT32 | gl::GL_DEPTH_COMPONENT32F | gl::GL_DEPTH32F_STENCIL8 => 32,
         _ => 24,
+    }
+}
+
+/// Bits of the stencil indices of an internal format: 8 for the depth/stencil formats
+/// (EXT_packed_depth_stencil and ARB_depth_buffer_float table 3.16), 0 for any other.
+pub fn stencil_bits(internal: GLenum) -> u32 {
+    match internal {
+        gl::GL_DEPTH_STENCIL | gl::GL_DEPTH24_STENCIL8 | gl::GL_DEPTH32F_STENCIL8 => 8,
+        _ => 0,
     }
 }
 
@@ -227,5 +254,19 @@ mod tests {
         assert_eq!(stored_depth(0.5, 16), (32768.0 / 65535.0) as f32);
         assert_eq!(stored_depth(-1.0, 24), 0.0);
         assert_eq!(stored_depth(0.1, 32), 0.1);
+        for (internal, depth, stencil) in [
+            (gl::GL_DEPTH_STENCIL, 24, 8),
+            (gl::GL_DEPTH24_STENCIL8, 24, 8),
+            (gl::GL_DEPTH32F_STENCIL8, 32, 8),
+            (gl::GL_DEPTH_COMPONENT32F, 32, 0),
+            (gl::GL_DEPTH_COMPONENT16, 16, 0),
+        ] {
+            let base = internal_format(internal).unwrap().base;
+            assert_eq!(base, Base::Texel(TexelFormat::Depth), "{internal:#x}");
+            assert_eq!(component_bits(base, internal, gl::GL_TEXTURE_DEPTH_SIZE), Some(depth), "{internal:#x}");
+            assert_eq!(component_bits(base, internal, gl::GL_TEXTURE_STENCIL_SIZE), Some(stencil), "{internal:#x}");
+            assert_eq!(component_bits(base, internal, gl::GL_TEXTURE_LUMINANCE_SIZE), Some(0), "{internal:#x}");
+        }
+        assert_eq!(component_bits(Base::Texel(TexelFormat::Rgba), gl::GL_RGBA8, gl::GL_TEXTURE_STENCIL_SIZE), Some(0));
     }
 }

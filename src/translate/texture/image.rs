@@ -14,7 +14,7 @@ use super::super::convert::write_slice;
 use super::super::get::Value;
 use super::super::gl::{self, GLenum, GLfloat, GLint, GLsizei};
 use super::super::pixels::Unpacked;
-use super::super::pixels::codec::{Format, Kind, Luminance};
+use super::super::pixels::codec::{self, Format, Kind, Luminance};
 use super::formats::{self, Base, Internal, S3tc};
 use super::objects::{Level, Target, TextureObject};
 use super::palette::Palette;
@@ -119,13 +119,17 @@ struct Converted {
     depth: Vec<f32>,
     /// Colour indices (paletted formats only).
     indices: Option<Arc<Vec<u16>>>,
+    /// Stencil indices (depth/stencil formats only).
+    stencil: Option<Arc<Vec<u8>>>,
 }
 
 /// Converts unpacked pixels (zeros when `None`) for a level of internal format `internal`
 /// (the reported enum) and base `base`. Indices keep the low bits of the paletted format,
-/// depth values are rounded to the bits of the depth format.
+/// depth values are rounded to the bits of the depth format, and depth/stencil formats keep
+/// the stencil indices masked by 2^8 − 1 (EXT_packed_depth_stencil section 3.8.1; zeros when
+/// the pixels have none, where the spec leaves them undefined).
 fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, palette: &Palette) -> Converted {
-    let colour = |texels| Converted { texels, depth: Vec::new(), indices: None };
+    let colour = |texels| Converted { texels, depth: Vec::new(), indices: None, stencil: None };
     match (base, data) {
         (Base::ColorIndex, data) => {
             let mask = (1i64 << formats::index_bits(internal)) - 1;
@@ -133,16 +137,22 @@ fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, p
                 Some(Unpacked::Index(ix)) => ix.iter().map(|&i| (i & mask) as u16).collect(),
                 _ => vec![0; count],
             };
-            Converted { texels: resolve_indices(&indices, palette), depth: Vec::new(), indices: Some(Arc::new(indices)) }
+            Converted { texels: resolve_indices(&indices, palette), depth: Vec::new(), indices: Some(Arc::new(indices)), stencil: None }
         }
         (Base::Texel(TexelFormat::Depth), data) => {
             let bits = formats::depth_bits(internal);
-            let depth: Vec<f32> = match data {
-                Some(Unpacked::Depth(d)) => d.iter().map(|&v| formats::stored_depth(v, bits)).collect(),
-                _ => vec![0.0; count],
+            let (depth, stencil) = match data {
+                Some(Unpacked::Depth(d)) => (d, Vec::new()),
+                Some(Unpacked::DepthStencil(d, s)) => (d, s),
+                _ => (vec![0.0; count], Vec::new()),
             };
+            let depth: Vec<f32> = depth.iter().map(|&v| formats::stored_depth(v, bits)).collect();
+            let stencil = (formats::stencil_bits(internal) > 0).then(|| {
+                let mask = (1i64 << formats::stencil_bits(internal)) - 1;
+                Arc::new((0..depth.len()).map(|i| stencil.get(i).map_or(0, |&s| (s & mask) as u8)).collect())
+            });
             let texels = depth.iter().flat_map(|&d| formats::texel(TexelFormat::Depth, [d, d, d, 1.0])).collect();
-            Converted { texels, depth, indices: None }
+            Converted { texels, depth, indices: None, stencil }
         }
         (Base::Texel(f), Some(Unpacked::Rgba(c))) => colour(c.iter().flat_map(|&c| formats::texel(f, c)).collect()),
         (Base::Texel(_), _) => colour(vec![0; count * 4]),
@@ -152,7 +162,7 @@ fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, p
 /// Builds a level of `size` (border included) from unpacked pixels (zeros when `None`).
 fn build_level(internal: Internal, size: [usize; 3], border: usize, data: Option<Unpacked>, palette: &Palette) -> Level {
     let count = size[0] * size[1] * size[2];
-    let Converted { texels, depth, indices } = convert(internal.base, internal.reported, data, count, palette);
+    let Converted { texels, depth, indices, stencil } = convert(internal.base, internal.reported, data, count, palette);
     let [w, h, d] = size.map(|v| v as u32);
     let mut level = Level {
         image: Arc::new(TexImage { width: w, height: h, depth: d, border: border as u32, texels, depth_values: depth }),
@@ -162,6 +172,7 @@ fn build_level(internal: Internal, size: [usize; 3], border: usize, data: Option
         base: internal.base,
         compressed: None,
         indices,
+        stencil,
     };
     super::compressed::recompress(&mut level);
     level
@@ -182,6 +193,7 @@ fn write_region(level: &mut Level, offset: [usize; 3], size: [usize; 3], src: &C
     let [lw, lh, _] = level.size;
     let image = Arc::make_mut(&mut level.image);
     let mut level_indices = level.indices.as_mut().map(Arc::make_mut);
+    let mut level_stencil = level.stencil.as_mut().map(Arc::make_mut);
     let mut i = 0;
     for z in 0..size[2] {
         for y in 0..size[1] {
@@ -196,6 +208,9 @@ fn write_region(level: &mut Level, offset: [usize; 3], size: [usize; 3], src: &C
                 if let (Some(d), Some(&s)) = (level_indices.as_deref_mut().and_then(|li| li.get_mut(dst)), src.indices.as_ref().and_then(|si| si.get(i))) {
                     *d = s;
                 }
+                if let (Some(d), Some(&s)) = (level_stencil.as_deref_mut().and_then(|ls| ls.get_mut(dst)), src.stencil.as_ref().and_then(|ss| ss.get(i))) {
+                    *d = s;
+                }
                 i += 1;
             }
         }
@@ -203,18 +218,27 @@ fn write_region(level: &mut Level, offset: [usize; 3], size: [usize; 3], src: &C
     level.compressed = None;
 }
 
-/// Checks that an image format suits the internal format: depth goes with depth
-/// (`GL_INVALID_OPERATION` otherwise), paletted internal formats need `GL_COLOR_INDEX`, and
-/// `GL_STENCIL_INDEX` is never a texture format (`GL_INVALID_ENUM`).
+/// Checks that an image format suits the internal format: depth and depth/stencil pixels go
+/// with depth and depth/stencil internal formats, in any pairing, and no other pixels do
+/// (`GL_INVALID_OPERATION`; EXT_packed_depth_stencil section 3.8.1, which Mesa applies to
+/// `GL_STENCIL_INDEX` too), paletted internal formats need `GL_COLOR_INDEX`, and
+/// `GL_STENCIL_INDEX` is no colour texture format (`GL_INVALID_ENUM`).
 fn check_format_pair(format: Format, base: Base) -> Result<(), GLenum> {
     let depth_base = base == Base::Texel(TexelFormat::Depth);
     match format.kind {
+        Kind::Depth | Kind::DepthStencil if !depth_base => Err(gl::GL_INVALID_OPERATION),
+        Kind::Color | Kind::Index | Kind::Stencil if depth_base => Err(gl::GL_INVALID_OPERATION),
         Kind::Stencil => Err(gl::GL_INVALID_ENUM),
-        Kind::Depth if !depth_base => Err(gl::GL_INVALID_OPERATION),
-        Kind::Color | Kind::Index if depth_base => Err(gl::GL_INVALID_OPERATION),
         Kind::Color if base == Base::ColorIndex => Err(gl::GL_INVALID_OPERATION),
         _ => Ok(()),
     }
+}
+
+/// Depth and depth/stencil images may not be 3D (`GL_INVALID_OPERATION`; ARB_depth_texture
+/// and EXT_packed_depth_stencil section 3.8.1 name 1D and 2D targets; cube maps, allowed from
+/// OpenGL 3.0 on, are accepted).
+fn check_depth_target(target: Target, base: Base) -> Result<(), GLenum> {
+    if target == Target::D3 && base == Base::Texel(TexelFormat::Depth) { Err(gl::GL_INVALID_OPERATION) } else { Ok(()) }
 }
 
 impl Context {
@@ -265,6 +289,7 @@ impl Context {
         let checked = check_level(dest.target, level)
             .and_then(|l| Ok((l, check_size(dest.target, l, size, border)?)))
             .and_then(|v| check_format_pair(ft.0, internal.base).map(|()| v))
+            .and_then(|v| check_depth_target(dest.target, internal.base).map(|()| v))
             .and_then(|v| check_compressed_internal(internalformat as GLenum, dims, border).map(|()| v));
         let (level, fit) = match checked {
             Ok(v) => v,
@@ -278,7 +303,7 @@ impl Context {
             SizeCheck::OutOfMemory => return self.set_error_in(gl::GL_OUT_OF_MEMORY, command),
         };
         if dest.proxy {
-            let proxy = Level { image: Arc::default(), size, border, internal_format: internal.reported, base: internal.base, compressed: None, indices: None };
+            let proxy = Level { image: Arc::default(), size, border, internal_format: internal.reported, base: internal.base, compressed: None, indices: None, stencil: None };
             return self.store_level(dest, level, Some(proxy));
         }
         let keep_index = internal.base == Base::ColorIndex;
@@ -460,20 +485,22 @@ impl Context {
     }
 
     /// The framebuffer copy of a `glCopyTex*` command (section 3.8.2): the renderer reads
-    /// `src` of the colour (or, for depth textures, depth) buffer back, the pixels go through
-    /// colour pixel transfer and are written into the level at `offset` (border included),
-    /// and the content version changes, so draws that use the texture afterwards sample the
-    /// copied pixels. Without a renderer that reads back the texels stay as they were
-    /// (logged once by `glReadPixels`' path). The copy is also recorded in the frame.
+    /// `src` of the colour (or, for depth textures, depth; for depth/stencil textures depth
+    /// and stencil) buffer back, the pixels go through pixel transfer and are written into the
+    /// level at `offset` (border included), and the content version changes, so draws that use
+    /// the texture afterwards sample the copied pixels. Without a renderer that reads back the
+    /// texels stay as they were (logged once). The copy is also recorded in the frame.
     fn record_texture_copy(&mut self, dest: Dest, level: usize, offset: [usize; 3], src: [i32; 4], base: Base) {
-        let buffer = if base == Base::Texel(TexelFormat::Depth) { PixelBuffer::Depth } else { PixelBuffer::Color };
+        let internal = self.with_dest(dest, |obj, _| obj.level(dest.face, level).map(|l| l.internal_format)).unwrap_or(gl::GL_NONE);
+        let (buffer, format) = match base {
+            Base::Texel(TexelFormat::Depth) if formats::stencil_bits(internal) > 0 => (PixelBuffer::Depth, gl::GL_DEPTH_STENCIL),
+            Base::Texel(TexelFormat::Depth) => (PixelBuffer::Depth, gl::GL_DEPTH_COMPONENT),
+            _ => (PixelBuffer::Color, gl::GL_RGBA),
+        };
         let size = [src[2].max(0) as usize, src[3].max(0) as usize, 1];
-        let read = (size[0] * size[1] > 0).then(|| self.read_framebuffer(buffer, src)).flatten();
-        if let Some(read) = read.filter(|r| r.len() == size[0] * size[1]) {
-            let data = match buffer {
-                PixelBuffer::Depth => Unpacked::Depth(read.iter().map(|c| c[0]).collect()),
-                _ => Unpacked::Rgba(read.iter().map(|&c| self.pixels.transfer.color(c)).collect()),
-            };
+        if let Some(format) = codec::format(format).filter(|_| size[0] * size[1] > 0)
+            && let Some(data) = self.read_transferred(format, src, "glCopyTexImage")
+        {
             self.write_sub_image(dest, level, offset, size, base, data);
         }
         let texture = self.bound_texture(dest.target);
@@ -492,8 +519,10 @@ impl Context {
     /// `glCopyTexImage1D/2D`: like `glTexImage`, with the pixels from the framebuffer. An
     /// internal format outside tables 3.15–3.16, one of 1–4 (section 3.8.2: "may not be
     /// specified as 1, 2, 3, or 4") or a colour index raises `GL_INVALID_ENUM`, as in Mesa
-    /// (the spec names no error; piglit `copyteximage` expects this for depth-stencil formats).
-    /// The level is allocated zero-filled and the copy is recorded in the frame.
+    /// (the spec names no error). Depth/stencil formats copy depth and stencil
+    /// (EXT_packed_depth_stencil section 3.8.2; glrt's visuals have both buffers, so its
+    /// `GL_INVALID_OPERATION` for a missing one never applies). The level is allocated
+    /// zero-filled and the copy is recorded in the frame.
     fn copy_tex_image(&mut self, dims: usize, target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, size: [GLsizei; 2], border: GLint, command: &'static str) {
         let Some(dest) = image_target(dims, target).filter(|d| !d.proxy) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let internal = formats::internal_format(internalformat).filter(|i| !(1..=4).contains(&internalformat) && i.base != Base::ColorIndex);
@@ -549,8 +578,9 @@ impl Context {
     /// `glGetTexImage` (section 6.1.4): the level's texels as RGBA (table 6.1), through pixel
     /// transfer and the pack modes. `GL_INVALID_ENUM` for a bad or proxy target, format or
     /// type (`GL_COLOR_INDEX` and `GL_STENCIL_INDEX` included), `GL_INVALID_VALUE` for a bad
-    /// level, `GL_INVALID_OPERATION` for a depth/colour mismatch. Unspecified levels write
-    /// nothing.
+    /// level, `GL_INVALID_OPERATION` for a colour format from a depth level, `GL_DEPTH_COMPONENT`
+    /// from a colour level, or `GL_DEPTH_STENCIL` from a level without stencil
+    /// (EXT_packed_depth_stencil section 6.1.4). Unspecified levels write nothing.
     ///
     /// # Safety
     /// A non-null `pixels` must point to writable memory as the pack modes describe.
@@ -570,12 +600,20 @@ impl Context {
             Base::Texel(tf) => tf,
             Base::ColorIndex => TexelFormat::Rgba,
         };
-        if (f.kind == Kind::Depth) != (texel_format == TexelFormat::Depth) {
+        let depth_level = texel_format == TexelFormat::Depth;
+        let mismatch = match f.kind {
+            Kind::DepthStencil => formats::stencil_bits(lvl.internal_format) == 0,
+            Kind::Depth => !depth_level,
+            _ => depth_level,
+        };
+        if mismatch {
             return self.set_error_in(gl::GL_INVALID_OPERATION, CMD);
         }
-        // Depth levels answer from their full-precision values.
-        let rgba: Vec<[f32; 4]> = if texel_format == TexelFormat::Depth {
-            lvl.image.depth_values.iter().map(|&d| [d, 0.0, 0.0, 1.0]).collect()
+        // Depth levels answer from their full-precision values, with the stencil index in
+        // the second component.
+        let rgba: Vec<[f32; 4]> = if depth_level {
+            let stencil = |i: usize| lvl.stencil.as_ref().and_then(|s| s.get(i)).map_or(0.0, |&s| f32::from(s));
+            lvl.image.depth_values.iter().enumerate().map(|(i, &d)| [d, stencil(i), 0.0, 1.0]).collect()
         } else {
             lvl.image.texels.chunks_exact(4).map(|c| formats::texel_to_rgba(texel_format, [c[0], c[1], c[2], c[3]])).collect()
         };
@@ -841,7 +879,7 @@ mod tests {
         ctx.glBindTexture(gl::GL_TEXTURE_2D, 9);
         ctx.glCopyTexImage2D(gl::GL_TEXTURE_2D, 0, gl::GL_RGB, 10, 20, 16, 8, 0);
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
-        for bad in [3, gl::GL_DEPTH_STENCIL, gl::GL_DEPTH24_STENCIL8, gl::GL_COLOR_INDEX8_EXT] {
+        for bad in [3, gl::GL_COLOR_INDEX8_EXT, gl::GL_STENCIL_INDEX8] {
             ctx.glCopyTexImage2D(gl::GL_TEXTURE_2D, 0, bad, 10, 20, 16, 8, 0);
             assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM, "{bad:#x}");
         }

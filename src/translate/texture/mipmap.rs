@@ -74,7 +74,8 @@ fn interior<T: Copy>(data: &[T], per_texel: usize, size: [usize; 3], border: usi
 /// Regenerates the levels below `base` of `face` from it. Generated levels have no border
 /// (their border texels would be zero) and keep the base level's internal format; those of a
 /// paletted base are stored as RGBA texels. Depth levels also average their full-precision
-/// depth values.
+/// depth values; depth/stencil levels get stencil indices 0 (the spec defines no filtering of
+/// stencil indices).
 pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
     let Some(top) = obj.level(face, base).cloned() else { return };
     let dims = obj.target.map_or(2, |t| t.dims());
@@ -100,6 +101,7 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
             base: base_format,
             compressed: None,
             indices: None,
+            stencil: top.stencil.as_ref().map(|_| Arc::new(vec![0; next_size.iter().product()])),
         };
         super::compressed::recompress(&mut generated);
         *obj.level_slot(face, level) = Some(generated);

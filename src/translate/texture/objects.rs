@@ -116,6 +116,9 @@ pub struct Level {
     pub compressed: Option<Arc<[u8]>>,
     /// Colour indices of paletted images, one per texel.
     pub indices: Option<Arc<Vec<u16>>>,
+    /// Stencil indices of depth/stencil images, one per texel (`glGetTexImage`; sampling
+    /// ignores them).
+    pub stencil: Option<Arc<Vec<u8>>>,
 }
 
 /// A texture object.

@@ -1,9 +1,9 @@
 //! `glDrawPixels` (OpenGL 1.5 section 3.6.4–3.6.5) and the drawing half of `glCopyPixels`
 //! (section 4.3.3): colour and depth images become fragments that go through every
 //! per-fragment operation of the state; stencil images write the stencil buffer directly,
-//! through the scissor test and the stencil write mask only.
-
-use std::collections::BTreeMap;
+//! through the scissor test and the stencil write mask only, and depth/stencil images
+//! (EXT_packed_depth_stencil section 4.3.1) write their depths too, through the depth mask,
+//! whatever the depth test.
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -87,19 +87,34 @@ pub fn record(rec: &mut Recorder<'_>, at: &Placement<'_>, data: &PixelData) -> R
             push_image(&mut quads, origin, at.zoom, at.width, &bits, |d| Some((f32::from_bits(d), at.color)));
             draw(rec, quads, fragment_state(at.state, size))
         }
-        PixelData::Stencil(values) => {
-            let mut groups: BTreeMap<u8, Quads> = BTreeMap::new();
-            let values: Vec<u8> = values.iter().map(|&v| v as u8).collect();
-            for &value in values.iter().collect::<std::collections::BTreeSet<_>>() {
-                let quads = groups.entry(value).or_default();
-                push_image(quads, origin, at.zoom, at.width, &values, |v| (v == value).then_some((0.0, [0.0; 4])));
-            }
-            for (value, quads) in groups {
-                draw(rec, quads, stencil_write_state(at.state, size, value))?;
-            }
-            Ok(())
-        }
+        PixelData::Stencil(values) => write_stencil(rec, at, values, None),
+        PixelData::DepthStencil(depths, values) => write_stencil(rec, at, values, Some(depths)),
     }
+}
+
+/// Writes the stencil indices `values` of an image (their low 8 bits) and, when `depths` are
+/// given, the depths, bypassing every per-fragment operation but the scissor test: one draw
+/// per distinct index replaces the stencil of its pixels through the stencil write mask and,
+/// with depths, writes each pixel's depth through the depth mask with the depth test
+/// passing always (EXT_packed_depth_stencil section 4.3.1: "the setting of DepthTest is
+/// ignored"). Without depths nothing but the stencil is written.
+fn write_stencil(rec: &mut Recorder<'_>, at: &Placement<'_>, values: &[u32], depths: Option<&[f32]>) -> Result<()> {
+    let size = rec.target.size;
+    let depth_bits = |i: usize| depths.and_then(|d| d.get(i)).map_or(0, |d| d.clamp(0.0, 1.0).to_bits());
+    let pixels: Vec<(u8, u32)> = values.iter().enumerate().map(|(i, &v)| (v as u8, depth_bits(i))).collect();
+    let indices: std::collections::BTreeSet<u8> = pixels.iter().map(|p| p.0).collect();
+    for index in indices {
+        let mut quads = Quads::default();
+        let origin = [at.window_pos[0], at.window_pos[1]];
+        push_image(&mut quads, origin, at.zoom, at.width, &pixels, |(v, d)| (v == index).then_some((f32::from_bits(d), [0.0; 4])));
+        let mut state = stencil_write_state(at.state, size, index);
+        if depths.is_some() {
+            state.depth_test = Some(CompareFunc::Always);
+            state.depth_write = at.state.depth_write;
+        }
+        draw(rec, quads, state)?;
+    }
+    Ok(())
 }
 
 /// Draws `quads` (nothing when empty).

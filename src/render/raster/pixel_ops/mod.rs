@@ -21,7 +21,7 @@ pub mod quads;
 
 use super::device::Result;
 use super::renderer::Recorder;
-use crate::frame::pixels::{AccumOp, PixelBuffer, PixelData, PixelKind, PixelOp};
+use crate::frame::pixels::{AccumOp, PixelBuffer, PixelData, PixelKind, PixelOp, clip_to_window};
 
 /// The buffer and window rectangle `op` reads, when it reads the framebuffer; `size` is the
 /// target's.
@@ -65,29 +65,5 @@ pub fn record(rec: &mut Recorder<'_>, accum: &mut accum::Accum, op: &PixelOp, re
         }
         PixelKind::Accum { op: kind, value } => accum.apply(rec, &op.state, *kind, *value, read),
         PixelKind::TextureCopy { .. } => Ok(()),
-    }
-}
-
-/// The part of the window rectangle `src` inside a window of `size`, and how many columns and
-/// rows of `src` lie left of and below it; `None` when nothing is inside.
-fn clip_to_window(src: [i32; 4], size: [u32; 2]) -> Option<([i32; 4], [i32; 2])> {
-    let [x, y, w, h] = src.map(|v| v as i64);
-    let x0 = x.clamp(0, size[0] as i64);
-    let y0 = y.clamp(0, size[1] as i64);
-    let x1 = (x + w.max(0)).clamp(0, size[0] as i64);
-    let y1 = (y + h.max(0)).clamp(0, size[1] as i64);
-    (x1 > x0 && y1 > y0).then(|| ([x0, y0, x1 - x0, y1 - y0].map(|v| v as i32), [(x0 - x) as i32, (y0 - y) as i32]))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn copies_are_clipped_to_the_window() {
-        assert_eq!(clip_to_window([-2, 3, 10, 10], [8, 8]), Some(([0, 3, 8, 5], [2, 0])));
-        assert_eq!(clip_to_window([0, 0, 4, 4], [8, 8]), Some(([0, 0, 4, 4], [0, 0])));
-        assert_eq!(clip_to_window([9, 0, 4, 4], [8, 8]), None);
-        assert_eq!(clip_to_window([0, 0, -1, 4], [8, 8]), None);
     }
 }
