@@ -46,7 +46,9 @@ impl Context {
             gl::GL_INDEX_MODE => Value::bool(false),
             gl::GL_DOUBLEBUFFER => Value::bool(true),
             gl::GL_STEREO => Value::bool(false),
-            gl::GL_SAMPLE_BUFFERS | gl::GL_SAMPLES => Value::int(0),
+            // The drawable's configuration (GLX_SAMPLE_BUFFERS, GLX_SAMPLES).
+            gl::GL_SAMPLE_BUFFERS => Value::int(i64::from(self.target.is_some_and(|t| t.samples > 1))),
+            gl::GL_SAMPLES => Value::int(self.target.filter(|t| t.samples > 1).map_or(0, |t| i64::from(t.samples))),
             gl::GL_POINT_SIZE_RANGE | gl::GL_ALIASED_POINT_SIZE_RANGE => range(),
             gl::GL_LINE_WIDTH_RANGE | gl::GL_ALIASED_LINE_WIDTH_RANGE => range(),
             gl::GL_POINT_SIZE_GRANULARITY | gl::GL_LINE_WIDTH_GRANULARITY => Value::float(SIZE_GRANULARITY),
