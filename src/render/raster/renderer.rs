@@ -239,7 +239,8 @@ impl Recorder<'_> {
         unsafe { self.device.raw.cmd_clear_attachments(self.cmd, &attachments, &rects) };
     }
 
-    /// Records the batches of `draw`.
+    /// Records the batches of `draw`, each once per pass of [`multisample::passes`] (one,
+    /// except with `GL_MULTISAMPLE` off on a multisampled target).
     pub fn draw(&mut self, draw: &Draw) -> Result<()> {
         let state = &draw.state;
         let [vx, vy, vw, vh] = state.viewport;
