@@ -13,13 +13,18 @@ const SIZE: i32 = 16;
 /// A context drawing into a Vulkan renderer on lavapipe, with a 16×16 drawable of `samples`
 /// samples per pixel.
 fn context(samples: u32) -> Context {
+    context_with(samples, Renderer::new)
+}
+
+/// [`context`] on the renderer `make` creates.
+fn context_with(samples: u32, make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Context {
     let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
     if std::path::Path::new(lavapipe).exists() {
         // Safety: set before any thread of this test binary loads Vulkan; every test sets the
         // same value.
         unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
     }
-    let renderer = Renderer::new().expect("a Vulkan device (lavapipe)");
+    let renderer = make().expect("a Vulkan device (lavapipe)");
     assert!(samples == 1 || renderer.device().features.sample_counts.contains(&samples), "the device renders {samples} samples");
     let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
     ctx.bind_target(Target { size: [SIZE as u32; 2], surface: Surface::Offscreen, swap_interval: 0, samples });
@@ -185,4 +190,30 @@ fn depth_and_copies_read_the_resolved_framebuffer() {
     assert_eq!(at(SIZE - 2, SIZE - 2), [255, 0, 0, 255], "copied red");
     assert_eq!(at(SIZE - 6, SIZE - 6), [0, 255, 0, 255], "green outside the copy");
     assert_eq!(at(1, 1), [255, 0, 0, 255]);
+}
+
+#[test]
+fn presented_frames_are_resolved() {
+    let dir = std::env::temp_dir().join(format!("glrt-msaa-dump-test-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut ctx = context_with(4, || {
+        let mut renderer = Renderer::without_outputs()?;
+        renderer.add_output(Box::new(glrt::render::raster::dump::Dump::new(dir.clone(), 0).expect("a dump directory")));
+        Ok(renderer)
+    });
+    slanted_triangle(&mut ctx);
+    // The image read back before the swap is what the swap shows (rows bottom to top here,
+    // top to bottom in the PNG).
+    let read = pixels(&mut ctx);
+    ctx.end_frame();
+    drop(ctx);
+    let file = std::fs::File::open(dir.join("frame-00000.png")).expect("the frame's PNG");
+    let mut reader = png::Decoder::new(std::io::BufReader::new(file)).read_info().unwrap();
+    let mut rgb = vec![0; reader.output_buffer_size().unwrap()];
+    reader.next_frame(&mut rgb).unwrap();
+    let shown: Vec<u8> = (0..SIZE as usize).rev().flat_map(|row| rgb[row * SIZE as usize * 3..][..SIZE as usize * 3].iter().step_by(3).copied().collect::<Vec<_>>()).collect();
+    let expected: Vec<u8> = read.iter().map(|p| p[0]).collect();
+    assert_eq!(shown, expected, "the presented red channel equals the resolved read-back");
+    assert!(shown.iter().any(|&v| v != 0 && v != 255), "blended edges reach the presented frame");
+    let _ = std::fs::remove_dir_all(&dir);
 }
