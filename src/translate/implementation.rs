@@ -88,4 +88,15 @@ mod tests {
         assert_eq!(range, [1.0, 64.0]);
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
     }
+
+    #[test]
+    fn sample_queries_answer_the_drawable() {
+        use crate::render::{Surface, Target};
+        let (mut ctx, _) = Context::with_recording();
+        let samples = |ctx: &Context| [gl::GL_SAMPLE_BUFFERS, gl::GL_SAMPLES].map(|p| ctx.query(p).unwrap().to_ints()[0]);
+        ctx.bind_target(Target { size: [8, 8], surface: Surface::Offscreen, swap_interval: 0, samples: 4 });
+        assert_eq!(samples(&ctx), [1, 4]);
+        ctx.bind_target(Target { size: [8, 8], surface: Surface::Offscreen, swap_interval: 0, samples: 1 });
+        assert_eq!(samples(&ctx), [0, 0]);
+    }
 }
