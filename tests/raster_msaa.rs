@@ -1,7 +1,8 @@
 //! Multisampled drawables on the Vulkan raster renderer (OpenGL 1.5 sections 3.2.1 and 4.1.3):
 //! edges blend after the resolve, `GL_SAMPLES` answers the drawable, `glSampleCoverage` and
 //! alpha to coverage write a share of the samples, `GL_MULTISAMPLE` off rasterizes as a
-//! single-sampled drawable does, depth reads back. Runs on Mesa lavapipe (4 samples) at 16×16.
+//! single-sampled drawable does, depth reads back. Each test runs at every sample count the
+//! device renders (4 on Mesa lavapipe; 2, 4 and 8 on NVIDIA), at 16×16.
 
 use glrt::render::raster::renderer::Renderer;
 use glrt::render::{Surface, Target};
@@ -16,15 +17,27 @@ fn context(samples: u32) -> Context {
     context_with(samples, Renderer::new)
 }
 
-/// [`context`] on the renderer `make` creates.
-fn context_with(samples: u32, make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Context {
+/// The renderer `make` creates, on lavapipe when its ICD file exists.
+fn renderer(make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Renderer {
     let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
     if std::path::Path::new(lavapipe).exists() {
         // Safety: set before any thread of this test binary loads Vulkan; every test sets the
         // same value.
         unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
     }
-    let renderer = make().expect("a Vulkan device (lavapipe)");
+    make().expect("a Vulkan device (lavapipe)")
+}
+
+/// The multisampled counts of the device (lavapipe renders 4).
+fn counts() -> Vec<u32> {
+    let counts = renderer(Renderer::without_outputs).device().features.sample_counts.clone();
+    assert!(!counts.is_empty(), "the device renders multisampled framebuffers");
+    counts
+}
+
+/// [`context`] on the renderer `make` creates.
+fn context_with(samples: u32, make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Context {
+    let renderer = renderer(make);
     assert!(samples == 1 || renderer.device().features.sample_counts.contains(&samples), "the device renders {samples} samples");
     let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
     ctx.bind_target(Target { size: [SIZE as u32; 2], surface: Surface::Offscreen, swap_interval: 0, samples });
@@ -65,7 +78,7 @@ fn intermediate(image: &[[u8; 4]]) -> usize {
 }
 
 #[test]
-fn four_samples_blend_edges_where_one_sample_does_not() {
+fn samples_blend_edges_where_one_sample_does_not() {
     let mut single = context(1);
     assert_eq!((integer(&mut single, gl::GL_SAMPLE_BUFFERS), integer(&mut single, gl::GL_SAMPLES)), (0, 0));
     slanted_triangle(&mut single);
@@ -73,15 +86,18 @@ fn four_samples_blend_edges_where_one_sample_does_not() {
     assert_eq!(intermediate(&hard), 0, "one sample: only black and white");
     assert!(hard.iter().filter(|p| p[0] == 255).count() > 40, "the triangle is drawn");
 
-    let mut multi = context(4);
-    assert_eq!((integer(&mut multi, gl::GL_SAMPLE_BUFFERS), integer(&mut multi, gl::GL_SAMPLES)), (1, 4));
-    slanted_triangle(&mut multi);
-    let smooth = pixels(&mut multi);
-    let blended = intermediate(&smooth);
-    assert!(blended >= 10, "four samples: edge pixels are blended ({blended})");
-    // Every blended value is a whole number of covered samples out of 4.
-    for p in smooth.iter().filter(|p| p[0] != 0 && p[0] != 255) {
-        assert!([64, 128, 191].iter().any(|v: &i32| (p[0] as i32 - v).abs() <= 1), "{p:?} is k/4 white");
+    for n in counts() {
+        let mut multi = context(n);
+        assert_eq!((integer(&mut multi, gl::GL_SAMPLE_BUFFERS), integer(&mut multi, gl::GL_SAMPLES)), (1, n as i32));
+        slanted_triangle(&mut multi);
+        let smooth = pixels(&mut multi);
+        let blended = intermediate(&smooth);
+        assert!(blended >= 10, "{n} samples: edge pixels are blended ({blended})");
+        // Every blended value is a whole number of covered samples out of n.
+        for p in smooth.iter().filter(|p| p[0] != 0 && p[0] != 255) {
+            let k = (p[0] as f32 * n as f32 / 255.0).round();
+            assert!((p[0] as f32 - k * 255.0 / n as f32).abs() <= 1.0, "{p:?} is k/{n} white");
+        }
     }
 }
 
@@ -90,17 +106,19 @@ fn disabled_multisample_rasterizes_as_single_sampled() {
     let mut single = context(1);
     slanted_triangle(&mut single);
     let expected = pixels(&mut single);
-    let mut multi = context(4);
-    unsafe { dispatch::glDisable(&mut multi, gl::GL_MULTISAMPLE) };
-    slanted_triangle(&mut multi);
-    let got = pixels(&mut multi);
-    assert_eq!(intermediate(&got), 0, "no blended edge pixels");
-    let differing = got.iter().zip(&expected).filter(|(a, b)| a != b).count();
-    assert_eq!(differing, 0, "the pixel centres decide coverage, as with one sample");
-    // On again: edges blend.
-    unsafe { dispatch::glEnable(&mut multi, gl::GL_MULTISAMPLE) };
-    slanted_triangle(&mut multi);
-    assert!(intermediate(&pixels(&mut multi)) > 0);
+    for n in counts() {
+        let mut multi = context(n);
+        unsafe { dispatch::glDisable(&mut multi, gl::GL_MULTISAMPLE) };
+        slanted_triangle(&mut multi);
+        let got = pixels(&mut multi);
+        assert_eq!(intermediate(&got), 0, "no blended edge pixels");
+        let differing = got.iter().zip(&expected).filter(|(a, b)| a != b).count();
+        assert_eq!(differing, 0, "the pixel centres decide coverage, as with one sample");
+        // On again: edges blend.
+        unsafe { dispatch::glEnable(&mut multi, gl::GL_MULTISAMPLE) };
+        slanted_triangle(&mut multi);
+        assert!(intermediate(&pixels(&mut multi)) > 0);
+    }
 }
 
 /// Draws a white quad over the whole window at depth `z` (identity matrices).
@@ -117,52 +135,56 @@ fn full_quad(ctx: &mut Context, color: [f32; 4], z: f32) {
 
 #[test]
 fn sample_coverage_writes_its_share_of_the_samples() {
-    let mut ctx = context(4);
-    unsafe {
-        dispatch::glClearColor(&mut ctx, 0.0, 0.0, 0.0, 0.0);
-        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
-        dispatch::glEnable(&mut ctx, gl::GL_SAMPLE_COVERAGE);
-        dispatch::glSampleCoverage(&mut ctx, 0.5, gl::GL_FALSE);
+    for n in counts() {
+        let mut ctx = context(n);
+        unsafe {
+            dispatch::glClearColor(&mut ctx, 0.0, 0.0, 0.0, 0.0);
+            dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+            dispatch::glEnable(&mut ctx, gl::GL_SAMPLE_COVERAGE);
+            dispatch::glSampleCoverage(&mut ctx, 0.5, gl::GL_FALSE);
+        }
+        full_quad(&mut ctx, [1.0; 4], 0.0);
+        let half = pixels(&mut ctx);
+        assert!(half.iter().all(|p| (p[0] as i32 - 128).abs() <= 4), "half the samples are white: {:?}", half[0]);
+        // The inverted mask covers the other half.
+        unsafe { dispatch::glSampleCoverage(&mut ctx, 0.5, gl::GL_TRUE) };
+        full_quad(&mut ctx, [1.0; 4], 0.0);
+        assert!(pixels(&mut ctx).iter().all(|p| p[0] == 255), "both halves white");
+        // GL_MULTISAMPLE off: the coverage operations do not apply (section 4.1.3).
+        unsafe {
+            dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+            dispatch::glDisable(&mut ctx, gl::GL_MULTISAMPLE);
+        }
+        full_quad(&mut ctx, [1.0; 4], 0.0);
+        assert!(pixels(&mut ctx).iter().all(|p| p[0] == 255), "full coverage without multisampling");
     }
-    full_quad(&mut ctx, [1.0; 4], 0.0);
-    let half = pixels(&mut ctx);
-    assert!(half.iter().all(|p| (p[0] as i32 - 128).abs() <= 4), "half the samples are white: {:?}", half[0]);
-    // The inverted mask covers the other half.
-    unsafe { dispatch::glSampleCoverage(&mut ctx, 0.5, gl::GL_TRUE) };
-    full_quad(&mut ctx, [1.0; 4], 0.0);
-    assert!(pixels(&mut ctx).iter().all(|p| p[0] == 255), "both halves white");
-    // GL_MULTISAMPLE off: the coverage operations do not apply (section 4.1.3).
-    unsafe {
-        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
-        dispatch::glDisable(&mut ctx, gl::GL_MULTISAMPLE);
-    }
-    full_quad(&mut ctx, [1.0; 4], 0.0);
-    assert!(pixels(&mut ctx).iter().all(|p| p[0] == 255), "full coverage without multisampling");
 }
 
 #[test]
 fn alpha_to_coverage_covers_by_alpha() {
-    let mut ctx = context(4);
-    unsafe {
-        dispatch::glClearColor(&mut ctx, 0.0, 0.0, 0.0, 0.0);
-        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
-        dispatch::glEnable(&mut ctx, gl::GL_SAMPLE_ALPHA_TO_COVERAGE);
+    for n in counts() {
+        let mut ctx = context(n);
+        unsafe {
+            dispatch::glClearColor(&mut ctx, 0.0, 0.0, 0.0, 0.0);
+            dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+            dispatch::glEnable(&mut ctx, gl::GL_SAMPLE_ALPHA_TO_COVERAGE);
+        }
+        full_quad(&mut ctx, [1.0, 1.0, 1.0, 0.5], 0.0);
+        let image = pixels(&mut ctx);
+        let mean = image.iter().map(|p| p[0] as f64).sum::<f64>() / image.len() as f64;
+        assert!((mean - 127.5).abs() < 25.0, "about half the samples written: mean red {mean}");
+        unsafe {
+            dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+            dispatch::glEnable(&mut ctx, gl::GL_SAMPLE_ALPHA_TO_ONE);
+        }
+        full_quad(&mut ctx, [1.0, 1.0, 1.0, 1.0], 0.0);
+        assert!(pixels(&mut ctx).iter().all(|p| p == &[255; 4]), "alpha 1: every sample, alpha stays 1");
     }
-    full_quad(&mut ctx, [1.0, 1.0, 1.0, 0.5], 0.0);
-    let image = pixels(&mut ctx);
-    let mean = image.iter().map(|p| p[0] as f64).sum::<f64>() / image.len() as f64;
-    assert!((mean - 127.5).abs() < 25.0, "about half the samples written: mean red {mean}");
-    unsafe {
-        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
-        dispatch::glEnable(&mut ctx, gl::GL_SAMPLE_ALPHA_TO_ONE);
-    }
-    full_quad(&mut ctx, [1.0, 1.0, 1.0, 1.0], 0.0);
-    assert!(pixels(&mut ctx).iter().all(|p| p == &[255; 4]), "alpha 1: every sample, alpha stays 1");
 }
 
 #[test]
 fn depth_and_copies_read_the_resolved_framebuffer() {
-    let mut ctx = context(4);
+    let mut ctx = context(counts()[0]);
     unsafe {
         dispatch::glClearColor(&mut ctx, 0.0, 0.0, 1.0, 1.0);
         dispatch::glClearDepth(&mut ctx, 1.0);
@@ -196,7 +218,7 @@ fn depth_and_copies_read_the_resolved_framebuffer() {
 fn presented_frames_are_resolved() {
     let dir = std::env::temp_dir().join(format!("glrt-msaa-dump-test-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let mut ctx = context_with(4, || {
+    let mut ctx = context_with(counts()[0], || {
         let mut renderer = Renderer::without_outputs()?;
         renderer.add_output(Box::new(glrt::render::raster::dump::Dump::new(dir.clone(), 0).expect("a dump directory")));
         Ok(renderer)
