@@ -21,8 +21,14 @@
 //! sample at the centre, but lavapipe lacks it), so such a draw is drawn once per sample `i`
 //! with the sample mask `1 << i` and the viewport moved by `location(i) − (½, ½)`: sample `i`
 //! of every pixel then lies where the pixel centre lay before the move, so its coverage,
-//! depth and interpolated values are the centre's. The result is exact for every primitive,
-//! at the cost of one draw per sample ([`passes`]).
+//! depth and interpolated values are the centre's, and each sample holds what a single-sampled
+//! drawable holds (`tests/raster_msaa.rs` compares the two images), for every primitive, at
+//! the cost of one draw per sample ([`passes`]).
+//!
+//! Not done: with `GL_MULTISAMPLE` on, sections 3.3.3 and 3.4.4 ignore `GL_POINT_SMOOTH` and
+//! `GL_LINE_SMOOTH` (points become circles and lines rectangles covered by samples); glrt
+//! still draws smooth points and lines with their alpha fringe. The alpha test sees the
+//! fragment's own alpha even with `GL_SAMPLE_ALPHA_TO_ONE` (section 4.1.3 applies it first).
 
 use std::sync::OnceLock;
 
