@@ -21,7 +21,7 @@ use glrt::gl_entry::glx_swap::*;
 use glrt::gl_entry::glx_types::types;
 use glrt::gl_entry::glx_xfont::glXUseXFont;
 use glrt::gl_entry::exports as gl;
-use glrt::translate::gl::{GL_COMPILE, GL_VIEWPORT};
+use glrt::translate::gl::{GL_COMPILE, GL_SAMPLE_BUFFERS, GL_SAMPLES, GL_VIEWPORT};
 use x11_dl::glx::arb::*;
 use x11_dl::glx::ext::*;
 use x11_dl::glx::*;
@@ -150,21 +150,28 @@ fn glx_on_xvfb() {
     assert!(error_base >= 0 && event_base >= 0);
     let ext = unsafe { std::ffi::CStr::from_ptr(glXQueryExtensionsString(dpy, 0)) }.to_str().unwrap();
     assert!(ext.split(' ').any(|e| e == "GLX_ARB_create_context"));
+    assert!(ext.split(' ').any(|e| e == "GLX_ARB_multisample"));
     let vendor = unsafe { std::ffi::CStr::from_ptr(glXGetClientString(dpy, GLX_VENDOR)) };
     assert_eq!(vendor.to_bytes(), b"glrt");
     assert!(glXQueryServerString(dpy, 0, 99).is_null());
 
-    // Configurations: four per usable server visual, each naming one of them.
+    // Configurations: four per usable server visual and sample count (single-sampled, then
+    // each count the Vulkan device renders multisampled), each naming one of them.
+    let counts = glrt::render::multisample_counts();
     let mut n = 0;
     let configs = unsafe { glXGetFBConfigs(dpy, 0, &mut n) };
-    assert_eq!(n as usize, 4 * usable.len());
+    assert_eq!(n as usize, 4 * usable.len() * (1 + counts.len()));
     let all = unsafe { std::slice::from_raw_parts(configs, n as usize) }.to_vec();
     unsafe { (x.XFree)(configs.cast()) };
     for &c in &all {
         assert!(usable.contains(&(fb_attrib(dpy, c, GLX_VISUAL_ID) as c_ulong)));
         assert_eq!(fb_attrib(dpy, c, GLX_RENDER_TYPE), GLX_RGBA_BIT);
         assert_eq!(fb_attrib(dpy, c, GLX_X_RENDERABLE), 1);
+        let samples = fb_attrib(dpy, c, GLX_SAMPLES);
+        assert!(samples == 0 || counts.contains(&(samples as u32)), "GLX_SAMPLES {samples} is rendered");
+        assert_eq!(fb_attrib(dpy, c, GLX_SAMPLE_BUFFERS), c_int::from(samples > 0));
     }
+    assert_eq!(fb_attrib(dpy, all[0], GLX_SAMPLES), 0, "single-sampled configurations first");
     assert!(unsafe { glXGetFBConfigs(dpy, 7, &mut n) }.is_null());
     assert_eq!(n, 0);
 
@@ -360,6 +367,29 @@ fn glx_on_xvfb() {
     assert_eq!(unsafe { glXMakeCurrent(dpy, win, ctx) }, 0);
     assert_eq!(take_error() as c_int, error_base, "GLXBadContext");
 
+    // A multisampled configuration (when the device renders one): GL_SAMPLES answers it.
+    if let Some(&samples) = counts.first() {
+        let wanted = [GLX_SAMPLE_BUFFERS, 1, GLX_SAMPLES, samples as c_int, GLX_DRAWABLE_TYPE, GLX_PBUFFER_BIT, 0];
+        let chosen = unsafe { glXChooseFBConfig(dpy, 0, wanted.as_ptr(), &mut n) };
+        assert!(n > 0);
+        let multi = unsafe { *chosen };
+        unsafe { (x.XFree)(chosen.cast()) };
+        assert_eq!(fb_attrib(dpy, multi, GLX_SAMPLES), samples as c_int);
+        let pbuffer = unsafe { glXCreatePbuffer(dpy, multi, pb_attribs.as_ptr()) };
+        let multi_ctx = unsafe { glXCreateNewContext(dpy, multi, GLX_RGBA_TYPE, std::ptr::null(), 1) };
+        assert_eq!(unsafe { glXMakeContextCurrent(dpy, pbuffer, pbuffer, multi_ctx) }, 1);
+        let mut v = [0; 2];
+        unsafe {
+            gl::glGetIntegerv(GL_SAMPLE_BUFFERS, &mut v[0]);
+            gl::glGetIntegerv(GL_SAMPLES, &mut v[1]);
+        }
+        assert_eq!(v, [1, samples as i32]);
+        unsafe {
+            glXMakeContextCurrent(dpy, 0, 0, std::ptr::null());
+            glXDestroyContext(dpy, multi_ctx);
+            glXDestroyPbuffer(dpy, pbuffer);
+        }
+    }
     for c in [shared, alone, pb_ctx, attribs_ctx] {
         unsafe { glXDestroyContext(dpy, c) };
     }

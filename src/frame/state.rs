@@ -504,10 +504,34 @@ pub struct RasterState {
     pub rescale_normal: bool,
     /// `GL_DITHER`.
     pub dither: bool,
+    /// Multisample rasterization and fragment operations.
+    pub multisample: Multisample,
     /// Colour buffers that draws and pixel writes go to (`glDrawBuffer`).
     pub draw_buffers: DrawBuffers,
     /// Colour buffer that `glCopyPixels` and `glAccum` read (`glReadBuffer`).
     pub read_buffer: ColorBuffer,
+}
+
+/// Multisample state (OpenGL 1.5 sections 3.2.1 and 4.1.3); it matters only on a
+/// multisampled drawable.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Multisample {
+    /// `GL_MULTISAMPLE`: rasterize with the drawable's samples; off, every sample of a pixel
+    /// takes the pixel centre's coverage and values.
+    pub enabled: bool,
+    /// `GL_SAMPLE_ALPHA_TO_COVERAGE`.
+    pub alpha_to_coverage: bool,
+    /// `GL_SAMPLE_ALPHA_TO_ONE`.
+    pub alpha_to_one: bool,
+    /// `GL_SAMPLE_COVERAGE` on: `glSampleCoverage`'s value and invert flag.
+    pub coverage: Option<(f32, bool)>,
+}
+
+impl Default for Multisample {
+    /// `GL_MULTISAMPLE` on, the coverage operations off.
+    fn default() -> Multisample {
+        Multisample { enabled: true, alpha_to_coverage: false, alpha_to_one: false, coverage: None }
+    }
 }
 
 /// A colour buffer of the drawable (OpenGL 1.5 section 4.2.1). A double-buffered drawable
@@ -574,6 +598,7 @@ impl Default for RasterState {
             normalize: false,
             rescale_normal: false,
             dither: true,
+            multisample: Multisample::default(),
             draw_buffers: DrawBuffers::default(),
             read_buffer: ColorBuffer::Back,
         }

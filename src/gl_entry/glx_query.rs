@@ -19,7 +19,7 @@ use super::glx_types::types;
 
 /// The GLX extensions glrt implements.
 pub const EXTENSIONS: &CStr = c"GLX_ARB_create_context GLX_ARB_create_context_profile \
-GLX_ARB_get_proc_address GLX_EXT_swap_control GLX_EXT_visual_info GLX_EXT_visual_rating \
+GLX_ARB_get_proc_address GLX_ARB_multisample GLX_EXT_swap_control GLX_EXT_visual_info GLX_EXT_visual_rating \
 GLX_MESA_swap_control GLX_SGI_swap_control";
 
 /// The answer to a `GLX_VENDOR`, `GLX_VERSION` or `GLX_EXTENSIONS` query, null otherwise.

@@ -90,10 +90,21 @@ pub fn dumping_sink(dir: &std::path::Path, first: u64) -> Result<Box<dyn FrameSi
     Ok(frame_log::wrap_from_env(Box::new(renderer)))
 }
 
+/// `GLRT_MODE` when it names a mode without a renderer.
+fn mode_without_renderer() -> Option<String> {
+    std::env::var("GLRT_MODE").ok().filter(|mode| !mode.is_empty() && mode != "raster")
+}
+
+/// The sample counts above 1 that the renderer of [`default_sink`] draws multisampled
+/// framebuffers with (what GLX offers as multisampled configurations): those of the Vulkan
+/// device, probed once per process; none when frames are not drawn.
+pub fn multisample_counts() -> &'static [u32] {
+    if mode_without_renderer().is_some() { &[] } else { raster::multisample::probe() }
+}
+
 /// The renderer `GLRT_MODE` asks for, or the [`NullSink`].
 fn renderer_from_env() -> Box<dyn FrameSink> {
-    let mode = std::env::var("GLRT_MODE").unwrap_or_default();
-    if !mode.is_empty() && mode != "raster" {
+    if let Some(mode) = mode_without_renderer() {
         eprintln!("glrt: GLRT_MODE={mode} has no renderer yet; frames are not drawn");
         return Box::new(NullSink::default());
     }

@@ -20,7 +20,7 @@ use super::lighting::LightingState;
 use super::limits::{MAX_CLIP_PLANES, MAX_LIGHTS};
 use super::rasterization::RasterizationState;
 use super::viewport::ViewportState;
-use crate::frame::state::{Line, Lighting, Point, PolygonOffset, RasterState};
+use crate::frame::state::{Line, Lighting, Multisample, Point, PolygonOffset, RasterState};
 
 /// Fixed-function state, grouped by the module that owns each part.
 #[derive(Default)]
@@ -136,6 +136,12 @@ impl Context {
             normalize: on(gl::GL_NORMALIZE),
             rescale_normal: on(gl::GL_RESCALE_NORMAL),
             dither: on(gl::GL_DITHER),
+            multisample: Multisample {
+                enabled: on(gl::GL_MULTISAMPLE),
+                alpha_to_coverage: on(gl::GL_SAMPLE_ALPHA_TO_COVERAGE),
+                alpha_to_one: on(gl::GL_SAMPLE_ALPHA_TO_ONE),
+                coverage: on(gl::GL_SAMPLE_COVERAGE).then_some(r.sample_coverage),
+            },
         }
     }
 }

@@ -46,7 +46,9 @@ impl Context {
             gl::GL_INDEX_MODE => Value::bool(false),
             gl::GL_DOUBLEBUFFER => Value::bool(true),
             gl::GL_STEREO => Value::bool(false),
-            gl::GL_SAMPLE_BUFFERS | gl::GL_SAMPLES => Value::int(0),
+            // The drawable's configuration (GLX_SAMPLE_BUFFERS, GLX_SAMPLES).
+            gl::GL_SAMPLE_BUFFERS => Value::int(i64::from(self.target.is_some_and(|t| t.samples > 1))),
+            gl::GL_SAMPLES => Value::int(self.target.filter(|t| t.samples > 1).map_or(0, |t| i64::from(t.samples))),
             gl::GL_POINT_SIZE_RANGE | gl::GL_ALIASED_POINT_SIZE_RANGE => range(),
             gl::GL_LINE_WIDTH_RANGE | gl::GL_ALIASED_LINE_WIDTH_RANGE => range(),
             gl::GL_POINT_SIZE_GRANULARITY | gl::GL_LINE_WIDTH_GRANULARITY => Value::float(SIZE_GRANULARITY),
@@ -85,5 +87,16 @@ mod tests {
         unsafe { ctx.glGetFloatv(gl::GL_POINT_SIZE_RANGE, range.as_mut_ptr()) };
         assert_eq!(range, [1.0, 64.0]);
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    }
+
+    #[test]
+    fn sample_queries_answer_the_drawable() {
+        use crate::render::{Surface, Target};
+        let (mut ctx, _) = Context::with_recording();
+        let samples = |ctx: &Context| [gl::GL_SAMPLE_BUFFERS, gl::GL_SAMPLES].map(|p| ctx.query(p).unwrap().to_ints()[0]);
+        ctx.bind_target(Target { size: [8, 8], surface: Surface::Offscreen, swap_interval: 0, samples: 4 });
+        assert_eq!(samples(&ctx), [1, 4]);
+        ctx.bind_target(Target { size: [8, 8], surface: Surface::Offscreen, swap_interval: 0, samples: 1 });
+        assert_eq!(samples(&ctx), [0, 0]);
     }
 }

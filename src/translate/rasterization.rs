@@ -294,4 +294,18 @@ mod tests {
         assert_eq!(ctx.query(gl::GL_SAMPLE_COVERAGE_VALUE).unwrap().to_doubles(), [1.0]);
         assert_eq!(ints(&ctx, gl::GL_SAMPLE_COVERAGE_INVERT), [1]);
     }
+
+    #[test]
+    fn multisample_state_reaches_the_draw_state() {
+        use crate::frame::state::Multisample;
+        let (mut ctx, _) = Context::with_recording();
+        assert_eq!(ctx.raster_snapshot().multisample, Multisample::default());
+        ctx.glSampleCoverage(0.25, gl::GL_TRUE);
+        assert_eq!(ctx.raster_snapshot().multisample.coverage, None, "GL_SAMPLE_COVERAGE is off");
+        ctx.glEnable(gl::GL_SAMPLE_COVERAGE);
+        ctx.glEnable(gl::GL_SAMPLE_ALPHA_TO_COVERAGE);
+        ctx.glDisable(gl::GL_MULTISAMPLE);
+        let expected = Multisample { enabled: false, alpha_to_coverage: true, alpha_to_one: false, coverage: Some((0.25, true)) };
+        assert_eq!(ctx.raster_snapshot().multisample, expected);
+    }
 }

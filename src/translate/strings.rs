@@ -14,15 +14,17 @@ const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 /// semantics (programs enable code paths from this string), in alphabetical order, each
 /// followed by a space as in Mesa's string (piglit's `glinfo` prints it with spaces turned into
 /// newlines and needs the last one to end its line). Left out although partly there:
-/// `GL_EXT_texture_env_dot3` (its own `DOT3_*_EXT` enums are not accepted), `GL_ARB_multisample`
-/// (no multisampled visuals), `GL_EXT_color_subtable` (exported for `GL_EXT_paletted_texture`,
-/// whose palettes it edits, but not announced on its own). `GL_EXT_packed_depth_stencil` and
-/// `GL_ARB_depth_buffer_float` are announced for their pixel formats and texture internal
-/// formats (as Mesa's compatibility profile does); their renderbuffer parts need
-/// `GL_EXT_framebuffer_object`, which glrt lacks, and so do not apply.
+/// `GL_EXT_texture_env_dot3` (its own `DOT3_*_EXT` enums are not accepted),
+/// `GL_EXT_color_subtable` (exported for `GL_EXT_paletted_texture`, whose palettes it edits,
+/// but not announced on its own). `GL_ARB_multisample` is announced with or without a
+/// multisampled drawable, as Mesa does: its state and queries work on any context.
+/// `GL_EXT_packed_depth_stencil` and `GL_ARB_depth_buffer_float` are announced for their pixel
+/// formats and texture internal formats (as Mesa's compatibility profile does); their
+/// renderbuffer parts need `GL_EXT_framebuffer_object`, which glrt lacks, and so do not apply.
 const EXTENSIONS: &str = concat!(
     "GL_ARB_depth_buffer_float ",
     "GL_ARB_depth_texture ",
+    "GL_ARB_multisample ",
     "GL_ARB_multitexture ",
     "GL_ARB_occlusion_query ",
     "GL_ARB_point_parameters ",

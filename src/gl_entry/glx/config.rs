@@ -6,6 +6,12 @@
 //! accumulation 16 per channel) or without ancillary buffers. glrt renders into its own
 //! buffers, so every configuration supports windows, pixmaps and pbuffers.
 //!
+//! The same four follow per sample count the Vulkan device renders multisampled
+//! (`GLX_ARB_multisample`: `GLX_SAMPLE_BUFFERS` 1, `GLX_SAMPLES` n; the counts come from
+//! [`crate::render::multisample_counts`], probed once per process), after every
+//! single-sampled configuration, so table order and a visual's default configuration stay
+//! single-sampled.
+//!
 //! A GLX 1.2 program sees only visuals, and the server has far fewer visuals than
 //! configurations; a visual takes the attributes of the configuration `glXChooseVisual` last
 //! selected it for (by default its first one: double-buffered with every ancillary buffer), so
@@ -54,6 +60,8 @@ pub struct FbConfig {
     pub stencil: c_int,
     /// `GLX_ACCUM_*_SIZE` (each channel).
     pub accum: c_int,
+    /// `GLX_SAMPLES`: 0, or the samples per pixel of a multisampled configuration.
+    pub samples: c_int,
 }
 
 impl FbConfig {
@@ -63,7 +71,9 @@ impl FbConfig {
         Some(match attribute {
             GLX_FBCONFIG_ID => self.id,
             GLX_BUFFER_SIZE => r + g + b + a,
-            GLX_LEVEL | GLX_STEREO | GLX_AUX_BUFFERS | GLX_SAMPLE_BUFFERS | GLX_SAMPLES => 0,
+            GLX_LEVEL | GLX_STEREO | GLX_AUX_BUFFERS => 0,
+            GLX_SAMPLE_BUFFERS => c_int::from(self.samples > 0),
+            GLX_SAMPLES => self.samples,
             GLX_DOUBLEBUFFER => c_int::from(self.double_buffer),
             GLX_RED_SIZE => r,
             GLX_GREEN_SIZE => g,
@@ -106,13 +116,15 @@ pub struct ScreenConfigs {
 }
 
 impl ScreenConfigs {
-    /// Builds the configurations of the given visuals (`XGetVisualInfo` results).
-    fn build(display: usize, screen: c_int, visuals: &[xlib::XVisualInfo]) -> ScreenConfigs {
+    /// Builds the configurations of the given visuals (`XGetVisualInfo` results), with
+    /// multisampled ones for each of `sample_counts`.
+    fn build(display: usize, screen: c_int, visuals: &[xlib::XVisualInfo], sample_counts: &[u32]) -> ScreenConfigs {
         let mut configs = Vec::new();
         let usable = visuals.iter().filter(|v| {
             matches!(v.class, xlib::TrueColor | xlib::DirectColor) && matches!(v.depth, 24 | 32)
         });
-        for v in usable {
+        let samples = std::iter::once(0).chain(sample_counts.iter().filter_map(|&n| c_int::try_from(n).ok()));
+        for (samples, v) in samples.flat_map(|n| usable.clone().map(move |v| (n, v))) {
             let visual_type = if v.class == xlib::TrueColor { GLX_TRUE_COLOR } else { GLX_DIRECT_COLOR };
             let bits = |mask: c_ulong| mask.count_ones() as c_int;
             let rgba = [bits(v.red_mask), bits(v.green_mask), bits(v.blue_mask), 8];
@@ -128,6 +140,7 @@ impl ScreenConfigs {
                     depth: if ancillary { 24 } else { 0 },
                     stencil: if ancillary { 8 } else { 0 },
                     accum: if ancillary { 16 } else { 0 },
+                    samples,
                 });
             }
         }
@@ -182,7 +195,8 @@ pub unsafe fn screen_configs(x: &Xlib, dpy: *mut XDisplay, screen: c_int) -> Opt
         }
         visuals
     };
-    let table: &'static ScreenConfigs = Box::leak(Box::new(ScreenConfigs::build(dpy as usize, screen, &visuals)));
+    let counts = crate::render::multisample_counts();
+    let table: &'static ScreenConfigs = Box::leak(Box::new(ScreenConfigs::build(dpy as usize, screen, &visuals, counts)));
     screens.push(table);
     Some(table)
 }
@@ -443,7 +457,7 @@ mod tests {
         };
         let visuals =
             [visual(0x21, xlib::TrueColor, 24), visual(0x22, xlib::DirectColor, 24), visual(0x23, xlib::PseudoColor, 8)];
-        ScreenConfigs::build(1, 0, &visuals)
+        ScreenConfigs::build(1, 0, &visuals, &[])
     }
 
     #[test]
@@ -508,6 +522,25 @@ mod tests {
         assert!(got[0].double_buffer && got[0].depth == 24);
         let list = [GLX_RGBA, 0x7777, 1, 0];
         assert!(unsafe { Request::visual(list.as_ptr()) }.is_none());
+    }
+
+    #[test]
+    fn multisampled_configurations_follow_and_sort_after_single_sampled_ones() {
+        let visuals = [xlib::XVisualInfo { visualid: 0x21, depth: 24, class: xlib::TrueColor, ..unsafe { std::mem::zeroed() } }];
+        let t = ScreenConfigs::build(1, 0, &visuals, &[4]);
+        assert_eq!(t.configs.len(), 8);
+        assert_eq!(t.configs[..4].iter().map(|c| c.attrib(GLX_SAMPLE_BUFFERS)).collect::<Vec<_>>(), [Some(0); 4]);
+        assert_eq!(t.configs[4].attrib(GLX_SAMPLE_BUFFERS), Some(1));
+        assert_eq!(t.configs[4].attrib(GLX_SAMPLES), Some(4));
+        assert_eq!(t.of_visual(0x21).map(|c| c.samples), Some(0), "a visual stands for a single-sampled configuration");
+        let list = [GLX_DOUBLEBUFFER, 1, 0];
+        let got = unsafe { Request::fbconfig(list.as_ptr()) }.choose(&t.configs);
+        assert_eq!(got.iter().map(|c| c.samples).collect::<Vec<_>>(), [0, 0, 4, 4], "fewer samples first (table 3.4)");
+        let list = [GLX_SAMPLE_BUFFERS, 1, GLX_SAMPLES, 2, GLX_DEPTH_SIZE, 1, 0];
+        let got = unsafe { Request::fbconfig(list.as_ptr()) }.choose(&t.configs);
+        assert_eq!(got.iter().map(|c| (c.samples, c.double_buffer)).collect::<Vec<_>>(), [(4, false), (4, true)]);
+        let list = [GLX_RGBA, GLX_SAMPLES, 8, 0];
+        assert!(unsafe { Request::visual(list.as_ptr()) }.unwrap().choose(&t.configs).is_empty(), "no 8-sample configuration");
     }
 
     #[test]

@@ -28,6 +28,8 @@ pub struct GlxContext {
     pub screen: c_int,
     /// Whether its configuration is double-buffered.
     pub double_buffer: bool,
+    /// Samples per pixel of its configuration (1 when not multisampled).
+    pub samples: u32,
     /// Destroyed while current: freed when released.
     destroyed: AtomicBool,
 }
@@ -49,6 +51,7 @@ pub fn create(config: &FbConfig, share: usize) -> Result<*mut GlxContext, XError
         config_id: config.id,
         screen: config.screen,
         double_buffer: config.double_buffer,
+        samples: config.samples.max(1) as u32,
         destroyed: AtomicBool::new(false),
     });
     let ptr = Box::into_raw(context);
@@ -160,7 +163,7 @@ pub unsafe fn make_current(
     }
     let double = context.double_buffer;
     // Safety: `dpy` is live.
-    let target = unsafe { drawable::target(x, dpy, draw, width, height) };
+    let target = unsafe { drawable::target(x, dpy, draw, width, height, context.samples) };
     with_current("glXMakeCurrent", |c| {
         c.set_double_buffered(double);
         c.bind_target(target);

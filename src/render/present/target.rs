@@ -50,4 +50,7 @@ pub struct Target {
     /// Swap interval of the drawable (GLX_EXT_swap_control and its MESA/SGI variants): 0 shows
     /// frames at once, 1 or more waits for vertical blank.
     pub swap_interval: u32,
+    /// Samples per pixel of the drawable's configuration (`GLX_SAMPLES`, 1 when it is not
+    /// multisampled).
+    pub samples: u32,
 }

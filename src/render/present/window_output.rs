@@ -92,8 +92,8 @@ impl FrameOutput for WindowOutput {
             return Ok(SubmitSync::default());
         }
         let (device, cmd, target) = (rec.device, rec.cmd, &mut *rec.target);
-        target.transition(device, cmd, Plane::Front, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
-        let source = Source { image: target.front.raw, layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL, size: target.size, bottom_up: false };
+        let front = target.readable(device, cmd, Plane::Front);
+        let source = Source { image: front, layout: vk::ImageLayout::TRANSFER_SRC_OPTIMAL, size: target.size, bottom_up: false };
         let prepared = if presenter.needs_pixels() {
             let [w, h] = target.size;
             let bytes = w as u64 * h as u64 * 4;
@@ -104,7 +104,7 @@ impl FrameOutput for WindowOutput {
                 ..Default::default()
             };
             // Safety: the image is in TRANSFER_SRC_OPTIMAL; the buffer holds the whole image.
-            unsafe { device.raw.cmd_copy_image_to_buffer(cmd, target.front.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, buffer.raw, &[copy]) };
+            unsafe { device.raw.cmd_copy_image_to_buffer(cmd, front, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, buffer.raw, &[copy]) };
             Prepared::Pixels(source, buffer)
         } else {
             Prepared::Image(source)

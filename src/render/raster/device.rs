@@ -58,7 +58,7 @@ impl<T> Check<T> for std::result::Result<T, vk::Result> {
 }
 
 /// Optional device features the raster path uses when present.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct Features {
     /// `logicOp`: `glLogicOp` on the colour buffer.
     pub logic_op: bool,
@@ -74,6 +74,10 @@ pub struct Features {
     pub sampler_anisotropy: bool,
     /// `occlusionQueryPrecise`: occlusion queries count samples exactly.
     pub occlusion_query_precise: bool,
+    /// `alphaToOne`: `GL_SAMPLE_ALPHA_TO_ONE`.
+    pub alpha_to_one: bool,
+    /// Multisampled framebuffer sample counts ([`super::multisample::supported_counts`]).
+    pub sample_counts: Vec<u32>,
 }
 
 /// The device and everything created once with it. Shared (`Arc`) by the renderer's parts.
@@ -194,6 +198,8 @@ impl Device {
             large_points: supported.large_points == vk::TRUE,
             sampler_anisotropy: supported.sampler_anisotropy == vk::TRUE,
             occlusion_query_precise: supported.occlusion_query_precise == vk::TRUE,
+            alpha_to_one: supported.alpha_to_one == vk::TRUE,
+            sample_counts: super::multisample::supported_counts(&properties.limits),
         };
         if supported.shader_clip_distance != vk::TRUE {
             return Err(Error::NoDevice("no shaderClipDistance (user clip planes)".into()));
@@ -205,6 +211,7 @@ impl Device {
             .large_points(features.large_points)
             .sampler_anisotropy(features.sampler_anisotropy)
             .occlusion_query_precise(features.occlusion_query_precise)
+            .alpha_to_one(features.alpha_to_one)
             .shader_clip_distance(true);
         let mut v12 = vk::PhysicalDeviceVulkan12Features::default().host_query_reset(true);
         let mut v13 = vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true).synchronization2(true);
@@ -492,6 +499,24 @@ unsafe extern "system" fn validation_message(
 }
 
 /// Device extensions enabled when present.
+/// The properties of the physical device `GLRT_DEVICE` chooses, read without creating a
+/// device (what the window-system layer needs before any context exists); `None` without a
+/// Vulkan 1.3 device.
+pub fn probe_properties() -> Option<vk::PhysicalDeviceProperties> {
+    // Safety: as in `Device::new`.
+    let entry = unsafe { ash::Entry::load() }.ok()?;
+    let (instance, _) = create_instance(&entry).ok()?;
+    // Safety: valid instance; the physical device comes from it; destroyed once, last.
+    unsafe {
+        let physicals = instance.enumerate_physical_devices().unwrap_or_default();
+        let choice = std::env::var("GLRT_DEVICE").ok();
+        let chosen = choose_physical(&instance, &physicals, choice.as_deref()).ok();
+        let properties = chosen.map(|p| instance.get_physical_device_properties(p));
+        instance.destroy_instance(None);
+        properties.filter(|p| p.api_version >= vk::API_VERSION_1_3)
+    }
+}
+
 fn device_extensions(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Vec<CString> {
     // Safety: valid physical device.
     let available = unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();

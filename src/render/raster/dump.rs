@@ -79,14 +79,14 @@ impl FrameOutput for Dump {
         let [w, h] = target.size;
         let bytes = w as u64 * h as u64 * 4;
         let buffer = device.create_buffer("glrt dump", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
-        target.transition(device, cmd, Plane::Front, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
+        let front = target.readable(device, cmd, Plane::Front);
         let copy = vk::BufferImageCopy {
             image_subresource: vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: 0, base_array_layer: 0, layer_count: 1 },
             image_extent: vk::Extent3D { width: w, height: h, depth: 1 },
             ..Default::default()
         };
         // Safety: the image is in TRANSFER_SRC_OPTIMAL; the buffer holds the whole image.
-        unsafe { device.raw.cmd_copy_image_to_buffer(cmd, target.front.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, buffer.raw, &[copy]) };
+        unsafe { device.raw.cmd_copy_image_to_buffer(cmd, front, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, buffer.raw, &[copy]) };
         if let Some(old) = self.pending[slot].replace(Pending { buffer, size: [w, h], frame }) {
             device.destroy_buffer(old.buffer);
         }

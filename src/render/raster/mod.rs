@@ -13,6 +13,7 @@
 //! - [`renderer`]: the [`renderer::Renderer`] sink (frame order, read-back, present).
 //! - [`output`]: consumers of presented frames ([`output::FrameOutput`]): [`dump`]
 //!   (`GLRT_DUMP`), presentation.
+//! - [`multisample`]: sample counts, coverage and the passes of a multisampled draw.
 //! - [`readback`] (`glReadPixels`), [`pixel_ops`] (pixel operations), [`occlusion`] (queries).
 
 pub mod commands;
@@ -20,6 +21,7 @@ pub mod conv;
 pub mod device;
 pub mod dump;
 pub mod ff;
+pub mod multisample;
 pub mod occlusion;
 pub mod output;
 pub mod pipelines;

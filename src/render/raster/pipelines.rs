@@ -2,7 +2,8 @@
 //! cached: the shader specialisation ([`ff::ShaderKey`]), the topology, and the part of the
 //! raster state Vulkan bakes into a pipeline (blend factors and equation, logic op, depth
 //! test/function/write, stencil functions and operations, colour mask, culling and front face,
-//! whether polygon offset applies).
+//! whether polygon offset applies, and the multisample state: sample count, sample mask,
+//! alpha to coverage and to one, see [`super::multisample`]).
 //!
 //! Dynamic state (set per draw by [`super::renderer`]): viewport, scissor, line width, depth
 //! bias, blend constants, stencil reference and compare/write masks.
@@ -27,6 +28,7 @@ use ash::vk;
 use super::conv;
 use super::device::{Check, Device, Result};
 use super::ff;
+use super::multisample::{self, SampleState};
 use super::target::COLOR_FORMAT;
 use crate::frame::state::{Face, RasterState, Winding};
 
@@ -82,6 +84,9 @@ pub struct FixedState {
     pub front_face: vk::FrontFace,
     /// Depth bias on.
     pub depth_bias: bool,
+    /// Samples, sample mask and alpha-to-coverage/one ([`SampleState::SINGLE`] from
+    /// [`FixedState::new`]; the renderer sets the pass's).
+    pub samples: SampleState,
 }
 
 /// GL front-face winding as Vulkan sees it through the y-flipped viewport (the same).
@@ -133,6 +138,7 @@ impl FixedState {
             cull,
             front_face: front_face(state.front_face),
             depth_bias,
+            samples: SampleState::SINGLE,
         }
     }
 }
@@ -240,7 +246,12 @@ impl Pipelines {
             .front_face(f.front_face)
             .depth_bias_enable(f.depth_bias)
             .line_width(1.0);
-        let multisample = vk::PipelineMultisampleStateCreateInfo::default().rasterization_samples(vk::SampleCountFlags::TYPE_1);
+        let sample_mask = [f.samples.mask];
+        let multisample = vk::PipelineMultisampleStateCreateInfo::default()
+            .rasterization_samples(multisample::flags(f.samples.samples))
+            .sample_mask(&sample_mask)
+            .alpha_to_coverage_enable(f.samples.alpha_to_coverage)
+            .alpha_to_one_enable(f.samples.alpha_to_one);
         let stencil_face = |s: [i32; 4]| vk::StencilOpState {
             fail_op: vk::StencilOp::from_raw(s[1]),
             pass_op: vk::StencilOp::from_raw(s[3]),

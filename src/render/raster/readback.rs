@@ -58,8 +58,8 @@ pub struct Readback {
 
 impl Readback {
     /// Records the copy of `rect` (window coordinates) of `buffer` (colour from the image of
-    /// `color`) into host memory; `None` when the rectangle is too large. Ends with the image
-    /// read in `TRANSFER_SRC_OPTIMAL`.
+    /// `color`) into host memory, resolved when multisampled ([`Target::readable`]); `None`
+    /// when the rectangle is too large. Ends with the image read in `TRANSFER_SRC_OPTIMAL`.
     pub fn record(device: &Device, cmd: vk::CommandBuffer, target: &mut Target, buffer: PixelBuffer, color: ColorBuffer, rect: [i32; 4]) -> Result<Option<Readback>> {
         let [_, _, w, h] = rect;
         if w <= 0 || h <= 0 || (w as u64) * (h as u64) > MAX_PIXELS {
@@ -85,7 +85,7 @@ impl Readback {
         let bytes = (inside[2] * inside[3]) as u64 * texel.size();
         let host = device.create_buffer("glrt read-back", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
         if let Some(r) = region {
-            target.transition(device, cmd, plane, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
+            let image = target.readable(device, cmd, plane);
             let copy = vk::BufferImageCopy {
                 buffer_offset: 0,
                 buffer_row_length: 0,
@@ -96,7 +96,7 @@ impl Readback {
             };
             // Safety: the image is in TRANSFER_SRC_OPTIMAL, the region inside it, the buffer
             // large enough.
-            unsafe { device.raw.cmd_copy_image_to_buffer(cmd, target.image(plane).raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, host.raw, &[copy]) };
+            unsafe { device.raw.cmd_copy_image_to_buffer(cmd, image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, host.raw, &[copy]) };
             let barrier = [vk::MemoryBarrier2::default()
                 .src_stage_mask(vk::PipelineStageFlags2::ALL_TRANSFER)
                 .src_access_mask(vk::AccessFlags2::TRANSFER_WRITE)

@@ -26,7 +26,7 @@ use super::ff;
 use super::pipelines::{FixedState, PipelineKey, Pipelines};
 use super::target::{Plane, Target};
 use super::textures::Textures;
-use super::{conv, pixel_ops, readback};
+use super::{conv, multisample, pixel_ops, readback};
 use crate::frame::pixels::{PixelBuffer, PixelOp};
 use crate::frame::state::Stencil;
 use crate::frame::{Clear, ColorBuffer, Draw, DrawBuffers, Frame, FrameEnd, RasterState};
@@ -77,6 +77,8 @@ struct Parts {
     rendering: bool,
     /// The colour image the rendering pass draws into.
     color: Plane,
+    /// Samples per pixel of the target ([`FrameSink::set_target`]).
+    samples: u32,
 }
 
 /// Access to the frame being recorded, for the parts that record into it (draws, clears,
@@ -237,7 +239,8 @@ impl Recorder<'_> {
         unsafe { self.device.raw.cmd_clear_attachments(self.cmd, &attachments, &rects) };
     }
 
-    /// Records the batches of `draw`.
+    /// Records the batches of `draw`, each once per pass of [`multisample::passes`] (one,
+    /// except with `GL_MULTISAMPLE` off on a multisampled target).
     pub fn draw(&mut self, draw: &Draw) -> Result<()> {
         let state = &draw.state;
         let [vx, vy, vw, vh] = state.viewport;
@@ -270,6 +273,7 @@ impl Recorder<'_> {
         let limits = &self.device.properties.limits;
         // The per-draw block is a storage buffer (shaders/ff_uniforms.glsl says why).
         let block_align = limits.min_storage_buffer_offset_alignment.max(16);
+        let passes = multisample::passes(self.target.samples, &state.multisample, self.device.features.alpha_to_one);
         let viewport = vk::Viewport {
             x: vx as f32,
             y: (h as i64 - vy as i64) as f32,
@@ -288,15 +292,10 @@ impl Recorder<'_> {
             if batch.indices.is_empty() {
                 continue;
             }
-            let key = PipelineKey {
-                shader: batch.shader,
-                topology: conv::topology(batch.topology),
-                fixed: FixedState::new(state, batch.cull, batch.polygon_offset, features.logic_op),
-            };
+            let fixed = FixedState::new(state, batch.cull, batch.polygon_offset, features.logic_op);
             if state.logic_op.is_some() && !features.logic_op {
                 log_once("the device has no logicOp feature: glLogicOp is ignored");
             }
-            let pipeline = self.pipelines.get(self.device, &key)?;
             let vertices = self.ring.push_slice(self.device, &batch.vertices, 16)?;
             let indices = self.ring.push_slice(self.device, &batch.indices, 4)?;
             let mut uniforms = batch.uniforms.clone();
@@ -306,22 +305,27 @@ impl Recorder<'_> {
             let set = self.descriptors.get(self.device, self.pipelines.set_layout, &(uniform.buffer, images), ff::UNIFORM_SIZE as u64)?;
             let stencil = state.stencil.unwrap_or_default();
             let blend_color = state.blend.map_or([0.0; 4], |b| b.color);
-            // Safety: inside the pass; every handle is alive for the frame; the dynamic
-            // offset is aligned and within the ring chunk.
-            unsafe {
-                d.cmd_bind_pipeline(self.cmd, vk::PipelineBindPoint::GRAPHICS, pipeline);
-                d.cmd_set_viewport(self.cmd, 0, &[viewport]);
-                d.cmd_set_scissor(self.cmd, 0, &[scissor]);
-                d.cmd_set_line_width(self.cmd, line_width);
-                d.cmd_set_depth_bias(self.cmd, state.polygon_offset.units, 0.0, state.polygon_offset.factor);
-                d.cmd_set_blend_constants(self.cmd, &blend_color);
-                d.cmd_set_stencil_reference(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.reference.clamp(0, 255) as u32);
-                d.cmd_set_stencil_compare_mask(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.value_mask);
-                d.cmd_set_stencil_write_mask(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.write_mask);
-                d.cmd_bind_descriptor_sets(self.cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.layout, 0, &[set], &[uniform.offset as u32]);
-                d.cmd_bind_vertex_buffers(self.cmd, 0, &[vertices.buffer], &[vertices.offset]);
-                d.cmd_bind_index_buffer(self.cmd, indices.buffer, indices.offset, vk::IndexType::UINT32);
-                d.cmd_draw_indexed(self.cmd, batch.indices.len() as u32, 1, 0, 0, 0);
+            for &(samples, [dx, dy]) in &passes {
+                let key = PipelineKey { shader: batch.shader, topology: conv::topology(batch.topology), fixed: FixedState { samples, ..fixed } };
+                let pipeline = self.pipelines.get(self.device, &key)?;
+                let viewport = vk::Viewport { x: viewport.x + dx, y: viewport.y + dy, ..viewport };
+                // Safety: inside the pass; every handle is alive for the frame; the dynamic
+                // offset is aligned and within the ring chunk.
+                unsafe {
+                    d.cmd_bind_pipeline(self.cmd, vk::PipelineBindPoint::GRAPHICS, pipeline);
+                    d.cmd_set_viewport(self.cmd, 0, &[viewport]);
+                    d.cmd_set_scissor(self.cmd, 0, &[scissor]);
+                    d.cmd_set_line_width(self.cmd, line_width);
+                    d.cmd_set_depth_bias(self.cmd, state.polygon_offset.units, 0.0, state.polygon_offset.factor);
+                    d.cmd_set_blend_constants(self.cmd, &blend_color);
+                    d.cmd_set_stencil_reference(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.reference.clamp(0, 255) as u32);
+                    d.cmd_set_stencil_compare_mask(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.value_mask);
+                    d.cmd_set_stencil_write_mask(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.write_mask);
+                    d.cmd_bind_descriptor_sets(self.cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.layout, 0, &[set], &[uniform.offset as u32]);
+                    d.cmd_bind_vertex_buffers(self.cmd, 0, &[vertices.buffer], &[vertices.offset]);
+                    d.cmd_bind_index_buffer(self.cmd, indices.buffer, indices.offset, vk::IndexType::UINT32);
+                    d.cmd_draw_indexed(self.cmd, batch.indices.len() as u32, 1, 0, 0, 0);
+                }
             }
         }
         Ok(())
@@ -354,7 +358,7 @@ impl Renderer {
         let slots = (0..FRAMES_IN_FLIGHT).map(|_| Slot::new(&device)).collect::<Result<Vec<_>>>()?;
         let occlusion = Occlusion::new(FRAMES_IN_FLIGHT, device.features.occlusion_query_precise);
         Ok(Renderer {
-            parts: Parts { device, occlusion, pipelines, textures, target: None, rendering: false, color: Plane::Color },
+            parts: Parts { device, occlusion, pipelines, textures, target: None, rendering: false, color: Plane::Color, samples: 1 },
             slots,
             current: 0,
             recording: false,
@@ -386,11 +390,12 @@ impl Renderer {
     }
 
     /// A [`Recorder`] on the current slot for a frame of `size`, starting the command buffer
-    /// and (re)creating the target when needed.
+    /// and (re)creating the target when needed (new size or sample count).
     pub fn recorder(&mut self, size: [u32; 2]) -> Result<Recorder<'_>> {
         let max = self.parts.device.properties.limits.max_image_dimension2_d;
         let size = size.map(|s| s.clamp(1, max));
-        if self.parts.target.as_ref().is_some_and(|t| t.size != size) {
+        let samples = self.parts.samples;
+        if self.parts.target.as_ref().is_some_and(|t| t.size != size || t.samples != samples) {
             self.flush()?;
             self.parts.device.wait_idle()?;
             if let Some(t) = self.parts.target.take() {
@@ -407,7 +412,7 @@ impl Renderer {
         let slot = &mut self.slots[self.current];
         let parts = &mut self.parts;
         if parts.target.is_none() {
-            let mut target = Target::new(&parts.device, size)?;
+            let mut target = Target::new(&parts.device, size, samples)?;
             target.clear_initial(&parts.device, slot.cmd);
             parts.target = Some(target);
         }
@@ -604,7 +609,16 @@ impl Renderer {
 }
 
 impl FrameSink for Renderer {
+    /// Also takes the drawable's sample count: the framebuffer is recreated with it at the
+    /// next frame (a count the device cannot render gives a single-sampled one, logged).
     fn set_target(&mut self, target: crate::render::Target) {
+        let counts = &self.parts.device.features.sample_counts;
+        self.parts.samples = if target.samples <= 1 || counts.contains(&target.samples) {
+            target.samples.max(1)
+        } else {
+            log_once("a drawable asks for a sample count the device cannot render: it is single-sampled");
+            1
+        };
         for output in &mut self.outputs {
             output.set_target(&self.parts.device, target);
         }

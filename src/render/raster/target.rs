@@ -12,6 +12,14 @@
 //! Each image remembers its current layout; [`Target::transition`] records the barrier to a
 //! new one (a full barrier: simple and correct across frames in flight, which share the
 //! images and rely on the queue's submission order).
+//!
+//! A multisampled drawable (`GLX_SAMPLES` n, see [`super::multisample`]) has n-sample colour
+//! and depth/stencil images, and two single-sampled resolve images. Everything that reads
+//! pixels (read-back, `glCopyPixels`, accumulation, presentation, dumps) goes through
+//! [`Target::readable`], which resolves first: colour is the average of the samples
+//! (`vkCmdResolveImage`, the "resolved" colour of OpenGL 1.5 section 4.3.2); depth and stencil
+//! have no combined value in OpenGL, and glrt reads sample 0 (a rendering pass whose
+//! depth/stencil resolve mode is `SAMPLE_ZERO`, a mode every Vulkan 1.2 device supports).
 
 use ash::vk;
 
@@ -52,51 +60,74 @@ pub struct Target {
     pub depth: Image,
     /// The front colour image (RGBA8).
     pub front: Image,
+    /// Samples per pixel of the three images.
+    pub samples: u32,
     layouts: [vk::ImageLayout; 3],
+    /// The single-sampled images reads go through when `samples` > 1.
+    resolved: Option<Resolved>,
+}
+
+/// The resolve images of a multisampled target, and their layouts.
+struct Resolved {
+    /// RGBA8: the averaged back or front image.
+    color: Image,
+    /// Depth/stencil: sample 0.
+    depth: Image,
+    layouts: [vk::ImageLayout; 2],
 }
 
 impl Target {
-    /// Creates the images (contents undefined until the first clear: [`super::renderer`]
-    /// clears them once after creation).
-    pub fn new(device: &Device, size: [u32; 2]) -> Result<Target> {
+    /// Creates the images with `samples` samples per pixel (1, or a count of
+    /// [`super::device::Features::sample_counts`]); contents are undefined until the first
+    /// clear: [`super::renderer`] clears them once after creation.
+    pub fn new(device: &Device, size: [u32; 2], samples: u32) -> Result<Target> {
         let [w, h] = [size[0].max(1), size[1].max(1)];
-        let info = |format, usage| {
+        let info = |format, usage, samples| {
             vk::ImageCreateInfo::default()
                 .image_type(vk::ImageType::TYPE_2D)
                 .format(format)
                 .extent(vk::Extent3D { width: w, height: h, depth: 1 })
                 .mip_levels(1)
                 .array_layers(1)
-                .samples(vk::SampleCountFlags::TYPE_1)
+                .samples(super::multisample::flags(samples))
                 .tiling(vk::ImageTiling::OPTIMAL)
                 .usage(usage)
         };
-        let transfer = vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST | vk::ImageUsageFlags::SAMPLED;
-        let color_image = |name| {
-            device.create_image(name, &info(COLOR_FORMAT, vk::ImageUsageFlags::COLOR_ATTACHMENT | transfer), vk::ImageViewType::TYPE_2D, vk::ImageAspectFlags::COLOR)
-        };
-        let color = color_image("glrt back colour")?;
-        let front = match color_image("glrt front colour") {
-            Ok(front) => front,
-            Err(e) => {
-                device.destroy_image(color);
-                return Err(e);
+        let mut transfer = vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
+        if samples <= 1 {
+            transfer |= vk::ImageUsageFlags::SAMPLED;
+        }
+        let color_usage = vk::ImageUsageFlags::COLOR_ATTACHMENT | transfer;
+        let depth_usage = vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | transfer;
+        let depth_aspects = Self::aspects(Plane::DepthStencil);
+        // Each image is freed if a later one fails.
+        let mut made: Vec<Image> = Vec::new();
+        let mut make = |name, format, usage, samples, aspects| match device.create_image(name, &info(format, usage, samples), vk::ImageViewType::TYPE_2D, aspects) {
+            Ok(image) => {
+                made.push(image);
+                Ok(())
             }
-        };
-        let depth = device.create_image(
-            "glrt depth",
-            &info(device.depth_format, vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT | transfer),
-            vk::ImageViewType::TYPE_2D,
-            vk::ImageAspectFlags::DEPTH | vk::ImageAspectFlags::STENCIL,
-        );
-        match depth {
-            Ok(depth) => Ok(Target { size: [w, h], color, depth, front, layouts: [vk::ImageLayout::UNDEFINED; 3] }),
             Err(e) => {
-                device.destroy_image(color);
-                device.destroy_image(front);
+                made.drain(..).for_each(|i| device.destroy_image(i));
                 Err(e)
             }
+        };
+        make("glrt back colour", COLOR_FORMAT, color_usage, samples, vk::ImageAspectFlags::COLOR)?;
+        make("glrt front colour", COLOR_FORMAT, color_usage, samples, vk::ImageAspectFlags::COLOR)?;
+        make("glrt depth", device.depth_format, depth_usage, samples, depth_aspects)?;
+        if samples > 1 {
+            // Attachment usage: the resolve images get views, like every image.
+            let resolve = vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST;
+            make("glrt resolved colour", COLOR_FORMAT, resolve | vk::ImageUsageFlags::COLOR_ATTACHMENT, 1, vk::ImageAspectFlags::COLOR)?;
+            make("glrt resolved depth", device.depth_format, resolve | vk::ImageUsageFlags::DEPTH_STENCIL_ATTACHMENT, 1, depth_aspects)?;
         }
+        let mut images = made.into_iter();
+        let (Some(color), Some(front), Some(depth)) = (images.next(), images.next(), images.next()) else { unreachable!("made above") };
+        let resolved = match (images.next(), images.next()) {
+            (Some(color), Some(depth)) => Some(Resolved { color, depth, layouts: [vk::ImageLayout::UNDEFINED; 2] }),
+            _ => None,
+        };
+        Ok(Target { size: [w, h], color, depth, front, samples: samples.max(1), layouts: [vk::ImageLayout::UNDEFINED; 3], resolved })
     }
 
     /// Frees the images (the GPU must be done with them).
@@ -104,6 +135,78 @@ impl Target {
         device.destroy_image(self.color);
         device.destroy_image(self.depth);
         device.destroy_image(self.front);
+        if let Some(r) = self.resolved {
+            device.destroy_image(r.color);
+            device.destroy_image(r.depth);
+        }
+    }
+
+    /// Records what makes the pixels of `plane` readable by transfers and returns the
+    /// single-sampled image that holds them, in `TRANSFER_SRC_OPTIMAL`: the plane's own image,
+    /// or for a multisampled target its resolve (see the module doc). Outside a rendering
+    /// pass.
+    pub fn readable(&mut self, device: &Device, cmd: vk::CommandBuffer, plane: Plane) -> vk::Image {
+        let Some(mut resolved) = self.resolved.take() else {
+            self.transition(device, cmd, plane, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
+            return self.image(plane).raw;
+        };
+        let [width, height] = self.size;
+        let out = match plane {
+            Plane::Color | Plane::Front => {
+                self.transition(device, cmd, plane, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
+                resolved.transition(device, cmd, 0, vk::ImageLayout::TRANSFER_DST_OPTIMAL);
+                let layers = vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: 0, base_array_layer: 0, layer_count: 1 };
+                let region = vk::ImageResolve {
+                    src_subresource: layers,
+                    src_offset: vk::Offset3D::default(),
+                    dst_subresource: layers,
+                    dst_offset: vk::Offset3D::default(),
+                    extent: vk::Extent3D { width, height, depth: 1 },
+                };
+                // Safety: both images are in the layouts named, of the same size and format;
+                // cmd is outside a rendering pass.
+                unsafe {
+                    device.raw.cmd_resolve_image(
+                        cmd,
+                        self.image(plane).raw,
+                        vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                        resolved.color.raw,
+                        vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                        &[region],
+                    )
+                };
+                resolved.transition(device, cmd, 0, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
+                resolved.color.raw
+            }
+            Plane::DepthStencil => {
+                let layout = vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+                self.transition(device, cmd, plane, layout);
+                resolved.transition(device, cmd, 1, layout);
+                let attachment = vk::RenderingAttachmentInfo::default()
+                    .image_view(self.depth.view)
+                    .image_layout(layout)
+                    .resolve_mode(vk::ResolveModeFlags::SAMPLE_ZERO)
+                    .resolve_image_view(resolved.depth.view)
+                    .resolve_image_layout(layout)
+                    .load_op(vk::AttachmentLoadOp::LOAD)
+                    .store_op(vk::AttachmentStoreOp::STORE);
+                let info = vk::RenderingInfo::default()
+                    .render_area(vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width, height } })
+                    .layer_count(1)
+                    .depth_attachment(&attachment)
+                    .stencil_attachment(&attachment);
+                // Safety: the attachments are in the layouts named; cmd is outside a pass; the
+                // pass only resolves.
+                unsafe {
+                    device.raw.cmd_begin_rendering(cmd, &info);
+                    device.raw.cmd_end_rendering(cmd);
+                }
+                resolved.transition(device, cmd, 1, vk::ImageLayout::TRANSFER_SRC_OPTIMAL);
+                resolved.depth.raw
+            }
+        };
+        self.resolved = Some(resolved);
+        out
     }
 
     /// Records the swap of a double-buffered drawable: the back image is copied into the
@@ -180,29 +283,7 @@ impl Target {
     /// consecutive copies are ordered).
     pub fn transition(&mut self, device: &Device, cmd: vk::CommandBuffer, plane: Plane, layout: vk::ImageLayout) {
         let old = self.layouts[plane as usize];
-        let attachment = matches!(layout, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL | vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
-        if old == layout && attachment {
-            return;
-        }
-        let barrier = vk::ImageMemoryBarrier2::default()
-            .src_stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)
-            .src_access_mask(vk::AccessFlags2::MEMORY_WRITE)
-            .dst_stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)
-            .dst_access_mask(vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE)
-            .old_layout(old)
-            .new_layout(layout)
-            .image(self.image(plane).raw)
-            .subresource_range(vk::ImageSubresourceRange {
-                aspect_mask: Self::aspects(plane),
-                base_mip_level: 0,
-                level_count: 1,
-                base_array_layer: 0,
-                layer_count: 1,
-            });
-        let barriers = [barrier];
-        let dependency = vk::DependencyInfo::default().image_memory_barriers(&barriers);
-        // Safety: cmd is recording; the image belongs to the device.
-        unsafe { device.raw.cmd_pipeline_barrier2(cmd, &dependency) };
+        barrier(device, cmd, self.image(plane).raw, Self::aspects(plane), old, layout);
         self.layouts[plane as usize] = layout;
     }
 
@@ -211,6 +292,38 @@ impl Target {
     pub fn vk_rect(&self, rect: [i32; 4]) -> Option<vk::Rect2D> {
         window_to_image(self.size, rect)
     }
+}
+
+impl Resolved {
+    /// [`Target::transition`] for resolve image `index` (0 colour, 1 depth/stencil).
+    fn transition(&mut self, device: &Device, cmd: vk::CommandBuffer, index: usize, layout: vk::ImageLayout) {
+        let (image, plane) = if index == 0 { (&self.color, Plane::Color) } else { (&self.depth, Plane::DepthStencil) };
+        barrier(device, cmd, image.raw, Target::aspects(plane), self.layouts[index], layout);
+        self.layouts[index] = layout;
+    }
+}
+
+/// Records the barrier moving `image` from `old` to `layout` (nothing when already there and
+/// the layout is an attachment layout; transfer layouts always get the barrier so that
+/// consecutive copies are ordered).
+fn barrier(device: &Device, cmd: vk::CommandBuffer, image: vk::Image, aspect_mask: vk::ImageAspectFlags, old: vk::ImageLayout, layout: vk::ImageLayout) {
+    let attachment = matches!(layout, vk::ImageLayout::COLOR_ATTACHMENT_OPTIMAL | vk::ImageLayout::DEPTH_STENCIL_ATTACHMENT_OPTIMAL);
+    if old == layout && attachment {
+        return;
+    }
+    let barrier = vk::ImageMemoryBarrier2::default()
+        .src_stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)
+        .src_access_mask(vk::AccessFlags2::MEMORY_WRITE)
+        .dst_stage_mask(vk::PipelineStageFlags2::ALL_COMMANDS)
+        .dst_access_mask(vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE)
+        .old_layout(old)
+        .new_layout(layout)
+        .image(image)
+        .subresource_range(vk::ImageSubresourceRange { aspect_mask, base_mip_level: 0, level_count: 1, base_array_layer: 0, layer_count: 1 });
+    let barriers = [barrier];
+    let dependency = vk::DependencyInfo::default().image_memory_barriers(&barriers);
+    // Safety: cmd is recording; the image belongs to the device.
+    unsafe { device.raw.cmd_pipeline_barrier2(cmd, &dependency) };
 }
 
 /// See [`Target::vk_rect`].
