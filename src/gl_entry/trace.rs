@@ -157,6 +157,14 @@ pub fn frame_end(name: &'static str) {
     });
 }
 
+/// Writes a comment line `N # text` (frame number `N`), such as the hash of a texture whose
+/// content changed (`translate::classify`); nothing when tracing is off.
+pub fn note(text: std::fmt::Arguments<'_>) {
+    let Some(log) = mode::special().filter(|m| m.tracing()).and_then(|_| LOG.get()) else { return };
+    let frame = FRAME.load(Ordering::Relaxed);
+    write_or_stop(log, |out| writeln!(out, "{frame} # {text}"));
+}
+
 /// The latched GL error of this thread's current context, `None` without one.
 fn latched() -> Option<GLenum> {
     catch_unwind(AssertUnwindSafe(|| {

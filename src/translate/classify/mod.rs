@@ -1,0 +1,225 @@
+//! Hash tracking: at the end of each frame, every draw gets a class, every traced draw a
+//! stable instance id, the frame its recovered camera, the persistent static world and its
+//! statistics (DESIGN.md, "Hash tracking"). One [`Classifier`] per context, kept between
+//! frames.
+//!
+//! Per frame, in order:
+//! 1. routing ([`routing`]): raster classes (`Translucent`, `Overlay`, `Sky`, `Ignored`) by
+//!    state and `glrt.toml` texture tags ([`config`], texture hashes from [`texture_hash`]);
+//!    the other draws are traced;
+//! 2. keys ([`keys`]) and matching ([`matching`]) of the traced draws with the previous
+//!    frame's instances: exact (geometry + textures + state) or by slot;
+//! 3. the view ([`view`]) from the draws matched to static instances;
+//! 4. traced classes, in this order: a texture tagged `static` → `Static`, `dynamic` →
+//!    `Dynamic`; matched by slot (its vertices changed) → `Dynamic`; matched exactly an
+//!    instance that was `Movable` or `Dynamic` → the same class (a door that stopped is still
+//!    movable); matched exactly a `Static` instance → `Static` when its model matrix (world
+//!    frame; eye space without a view) is unchanged, else `Movable`; across a camera cut the
+//!    previous class is kept; new → `Static`;
+//! 5. the static world ([`world_feed`] → `static_world`): every traced draw not tagged
+//!    `dynamic` whose vertices are in the world frame (model ≈ identity) or which is a
+//!    `Static` instance (taken to the world by its model) is offered as world-space
+//!    triangles; a camera cut clears the world first;
+//! 6. statistics ([`crate::frame::class::FrameStats`]).
+
+pub mod config;
+pub mod keys;
+pub mod matching;
+pub mod report;
+pub mod routing;
+pub mod static_world;
+pub mod texture_hash;
+pub mod view;
+pub mod world_feed;
+
+use glam::{Mat4, Vec4};
+
+use crate::frame::class::{DrawClass, FrameStats, Instance, Match};
+use crate::frame::{Draw, Frame};
+use matching::{Found, Matcher, Probe, Record};
+use routing::Tags;
+use static_world::StaticWorld;
+use view::{ViewInput, ViewTracker, same_place};
+
+/// What the classifier keeps of a traced draw while it works on a frame.
+#[derive(Clone, Copy, Debug, Default)]
+struct Traced {
+    draw: usize,
+    tags: Tags,
+    geometry: u64,
+    material: u64,
+}
+
+/// Hash tracking across the frames of one context.
+pub struct Classifier {
+    config: config::Config,
+    textures: texture_hash::TextureHashes,
+    lists: keys::ListKeys,
+    matcher: Matcher,
+    view: ViewTracker,
+    world: StaticWorld,
+    feed: world_feed::WorldFeed,
+    traced: Vec<Traced>,
+    probes: Vec<Probe>,
+    found: Vec<Found>,
+    records: Vec<Record>,
+}
+
+impl Default for Classifier {
+    /// A classifier with the configuration of this process (`glrt.toml`, `GLRT_<KEY>`).
+    fn default() -> Classifier {
+        Classifier::with_config(config::Config::load())
+    }
+}
+
+/// Triangles of a draw (0 for lines and points).
+fn triangles(draw: &Draw) -> usize {
+    if draw.topology == crate::frame::Topology::Triangles { draw.indices.len() / 3 } else { 0 }
+}
+
+impl Classifier {
+    /// A classifier with `config`.
+    pub fn with_config(config: config::Config) -> Classifier {
+        Classifier {
+            config,
+            textures: Default::default(),
+            lists: Default::default(),
+            matcher: Default::default(),
+            view: Default::default(),
+            world: StaticWorld::new(),
+            feed: Default::default(),
+            traced: Vec::new(),
+            probes: Vec::new(),
+            found: Vec::new(),
+            records: Vec::new(),
+        }
+    }
+
+    /// Classifies `frame` in place (classes, instances, view, static world, statistics);
+    /// `list_version` gives the version of a display list (`ListTable::version`).
+    pub fn classify(&mut self, frame: &mut Frame, list_version: impl Fn(u32) -> Option<u64>) {
+        self.route(frame, &list_version);
+        self.matcher.match_frame(&self.probes, &mut self.found);
+        let recovered = {
+            let inputs: Vec<ViewInput> = self.traced.iter().zip(&self.found).map(|(t, f)| view_input(&frame.draws[t.draw], f)).collect();
+            self.view.recover(&inputs)
+        };
+        let mut stats = FrameStats { camera_cut: recovered.cut, matches_lost: self.matcher.lost(), ..FrameStats::default() };
+        let view = recovered.view.map(|v| v.view);
+        let inverse = view.map(|v| v.inverse());
+        if recovered.cut {
+            self.world.clear();
+        }
+        let clip = recovered.view.map_or(Mat4::IDENTITY, |v| v.projection * v.view);
+        self.world.begin_frame(frame.number, clip);
+        self.records.clear();
+        let mut instance_upload = 0;
+        for (t, f) in self.traced.iter().zip(&self.found) {
+            let draw = &mut frame.draws[t.draw];
+            let class = traced_class(t.tags, f, view.as_ref(), &draw.modelview, recovered.cut);
+            let model = model_of(inverse.as_ref(), draw, f, class == DrawClass::Static && !t.tags.static_ && !recovered.cut);
+            let in_world = !t.tags.dynamic && (class == DrawClass::Static || model.as_ref().is_some_and(view::is_identity));
+            let offered = match model {
+                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material)),
+                _ => None,
+            };
+            if class == DrawClass::Static && f.matched == Match::New && offered.is_none() {
+                instance_upload += (draw.vertices.len() * 16 + draw.indices.len() * 4) as u64;
+            }
+            if f.matched != Match::New {
+                stats.matches_found += 1;
+            }
+            let previous_modelview = f.previous.filter(|_| !recovered.cut).map(|p| p.modelview);
+            draw.class = class;
+            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, emissive: t.tags.emissive });
+            let probe = self.probes[self.records.len()];
+            self.records.push(Record { id: f.id, probe, ordinal: f.ordinal, modelview: draw.modelview, model, class });
+        }
+        self.matcher.finish(self.records.iter().copied());
+        let update = self.world.end_frame();
+        stats.static_upload_bytes = instance_upload + update.upload_bytes;
+        (stats.static_chunks_new, stats.static_chunks_reused, stats.static_chunks_released) =
+            (update.new_chunks, update.reused_chunks, update.released_chunks);
+        stats.static_world_triangles = update.triangles;
+        for draw in &frame.draws {
+            stats.classes.add(draw.class, 1);
+            stats.triangles.add(draw.class, triangles(draw) as u64);
+        }
+        frame.view = recovered.view;
+        frame.static_world = update.chunks;
+        frame.stats = stats;
+    }
+
+    /// Step 1: raster classes, and the keys and probes of the traced draws.
+    fn route(&mut self, frame: &mut Frame, list_version: &impl Fn(u32) -> Option<u64>) {
+        self.lists.begin_frame(frame.number);
+        self.traced.clear();
+        self.probes.clear();
+        for (i, draw) in frame.draws.iter_mut().enumerate() {
+            let mut hashes = [0u64; crate::translate::limits::MAX_TEXTURE_UNITS];
+            let mut n = 0;
+            for t in draw.textures.iter().flatten().take(hashes.len()) {
+                (hashes[n], n) = (self.textures.hash(t), n + 1);
+            }
+            let tags = self.config.tags(hashes[..n].iter().copied());
+            draw.instance = None;
+            if let Some(class) = routing::raster_class(draw, !self.traced.is_empty(), tags) {
+                draw.class = class;
+                continue;
+            }
+            let geometry = self.lists.key(draw, list_version);
+            let (texture, state) = (keys::texture_key(draw), keys::state_key(draw));
+            let first = draw.vertices.position.first().map_or(Vec4::W, |p| Vec4::from_array(*p));
+            self.probes.push(Probe {
+                exact: keys::combine(&[geometry, texture, state]),
+                slot: keys::combine(&[texture, state, draw.vertices.len() as u64, draw.indices.len() as u64]),
+                anchor: (draw.modelview * first).truncate(),
+            });
+            self.traced.push(Traced { draw: i, tags, geometry, material: keys::combine(&[texture, state]) });
+        }
+    }
+}
+
+/// What view recovery needs of a traced draw matched as `f`.
+fn view_input<'a>(draw: &'a Draw, f: &Found) -> ViewInput<'a> {
+    let previous_model = f.previous.filter(|p| f.matched == Match::Exact && p.class == DrawClass::Static).and_then(|p| p.model);
+    ViewInput {
+        id: f.id,
+        modelview: draw.modelview,
+        projection: draw.projection,
+        triangles: triangles(draw),
+        previous_model,
+        positions: &draw.vertices.position,
+    }
+}
+
+/// The model matrix (object to world) of a traced draw matched as `f`, given the inverse of
+/// the view: exactly the identity when it is close to it, and the previous frame's when the
+/// instance keeps its place (`keep`: static), so that world-space triangles stay bit-identical
+/// from frame to frame.
+fn model_of(inverse_view: Option<&Mat4>, draw: &Draw, f: &Found, keep: bool) -> Option<Mat4> {
+    let model = inverse_view.map(|i| *i * draw.modelview).map(|m| if view::is_identity(&m) { Mat4::IDENTITY } else { m });
+    match f.previous.and_then(|p| p.model) {
+        Some(previous) if keep && model.is_some() => Some(previous),
+        _ => model,
+    }
+}
+
+/// The class of a traced draw (rule 4 of the module doc).
+fn traced_class(tags: Tags, f: &Found, view: Option<&Mat4>, modelview: &Mat4, cut: bool) -> DrawClass {
+    if tags.static_ {
+        return DrawClass::Static;
+    }
+    if tags.dynamic || f.matched == Match::Slot {
+        return DrawClass::Dynamic;
+    }
+    let Some(previous) = f.previous else { return DrawClass::Static };
+    if previous.class != DrawClass::Static || cut {
+        return previous.class;
+    }
+    let unchanged = match (view, previous.model) {
+        (Some(view), Some(model)) => same_place(&(*view * model), modelview),
+        _ => same_place(&previous.modelview, modelview),
+    };
+    if unchanged { DrawClass::Static } else { DrawClass::Movable }
+}
