@@ -89,7 +89,7 @@ mod tests {
         s.depth_range = [0.0, 1.0];
         s.draw_buffers.back = true;
         f(&mut s);
-        Draw { state: Arc::new(s), projection: Mat4::perspective_rh_gl(1.0, 1.0, 0.1, 100.0), ..Draw::default() }
+        Draw { state: Arc::new(s), projection: crate::translate::classify::view::perspective(1.0, 1.0, 0.1, 100.0), ..Draw::default() }
     }
 
     #[test]
@@ -104,7 +104,7 @@ mod tests {
         assert_eq!(raster_class(&draw(|s| s.blend = Some(Blend::default())), true, none), None, "replace is opaque");
         assert_eq!(raster_class(&draw(|s| s.color_mask = [false; 4]), true, none), Some(DrawClass::Ignored));
         let mut ortho = draw(|_| {});
-        ortho.projection = Mat4::orthographic_rh_gl(0.0, 640.0, 0.0, 480.0, -1.0, 1.0);
+        ortho.projection = crate::translate::classify::view::ortho(0.0, 640.0, 0.0, 480.0, -1.0, 1.0);
         assert_eq!(raster_class(&ortho, true, none), Some(DrawClass::Overlay));
         let mut lines = draw(|_| {});
         lines.topology = Topology::Lines;

@@ -151,6 +151,22 @@ pub fn describe(view: Mat4, projection: Mat4, reference: u64) -> View {
     View { view, projection, perspective, near, far, fov_y, aspect, reference }
 }
 
+/// `gluPerspective` (`fov_y` in radians), for tests.
+#[cfg(test)]
+pub fn perspective(fov_y: f32, aspect: f32, near: f32, far: f32) -> Mat4 {
+    let f = 1.0 / (fov_y / 2.0).tan();
+    let (c, d) = (-(far + near) / (far - near), -2.0 * far * near / (far - near));
+    Mat4::from_cols_array(&[f / aspect, 0.0, 0.0, 0.0, 0.0, f, 0.0, 0.0, 0.0, 0.0, c, -1.0, 0.0, 0.0, d, 0.0])
+}
+
+/// `glOrtho`, for tests.
+#[cfg(test)]
+pub fn ortho(l: f32, r: f32, b: f32, t: f32, n: f32, f: f32) -> Mat4 {
+    let (sx, sy, sz) = (2.0 / (r - l), 2.0 / (t - b), -2.0 / (f - n));
+    let (tx, ty, tz) = (-(r + l) / (r - l), -(t + b) / (t - b), -(f + n) / (f - n));
+    Mat4::from_cols_array(&[sx, 0.0, 0.0, 0.0, 0.0, sy, 0.0, 0.0, 0.0, 0.0, sz, 0.0, tx, ty, tz, 1.0])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -158,16 +174,16 @@ mod tests {
     const QUAD: [[f32; 4]; 3] = [[0.0, 0.0, 0.0, 1.0], [10.0, 0.0, 0.0, 1.0], [0.0, 10.0, 0.0, 1.0]];
 
     fn input(id: u64, modelview: Mat4, previous_model: Option<Mat4>, triangles: usize) -> ViewInput<'static> {
-        let projection = Mat4::perspective_rh_gl(1.2, 1.5, 0.1, 100.0);
+        let projection = perspective(1.2, 1.5, 0.1, 100.0);
         ViewInput { id, modelview, projection, triangles, previous_model, positions: &QUAD }
     }
 
     #[test]
     fn projection_parameters_are_recovered() {
-        let v = describe(Mat4::IDENTITY, Mat4::perspective_rh_gl(1.2, 1.5, 0.1, 100.0), 1);
+        let v = describe(Mat4::IDENTITY, perspective(1.2, 1.5, 0.1, 100.0), 1);
         assert!(v.perspective && (v.fov_y - 1.2).abs() < 1e-5 && (v.aspect - 1.5).abs() < 1e-5);
         assert!((v.near - 0.1).abs() < 1e-5 && (v.far - 100.0).abs() < 0.05, "{} {}", v.near, v.far);
-        let o = describe(Mat4::IDENTITY, Mat4::orthographic_rh_gl(0.0, 640.0, 0.0, 480.0, -1.0, 5.0), 1);
+        let o = describe(Mat4::IDENTITY, ortho(0.0, 640.0, 0.0, 480.0, -1.0, 5.0), 1);
         assert!(!o.perspective && (o.near + 1.0).abs() < 1e-5 && (o.far - 5.0).abs() < 1e-4);
     }
 
