@@ -107,11 +107,11 @@ impl Classifier {
         let mut stats = FrameStats { camera_cut: recovered.cut, matches_lost: self.matcher.lost(), ..FrameStats::default() };
         let view = recovered.view.map(|v| v.view);
         let inverse = view.map(|v| v.inverse());
+        let clip = recovered.view.map_or(Mat4::IDENTITY, |v| v.projection * v.view);
+        self.world.begin_frame(frame.number, clip);
         if recovered.cut {
             self.world.clear();
         }
-        let clip = recovered.view.map_or(Mat4::IDENTITY, |v| v.projection * v.view);
-        self.world.begin_frame(frame.number, clip);
         self.records.clear();
         let mut instance_upload = 0;
         for (t, f) in self.traced.iter().zip(&self.found) {
@@ -222,4 +222,83 @@ fn traced_class(tags: Tags, f: &Found, view: Option<&Mat4>, modelview: &Mat4, cu
         _ => same_place(&previous.modelview, modelview),
     };
     if unchanged { DrawClass::Static } else { DrawClass::Movable }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use glam::Vec3;
+
+    use super::*;
+    use crate::frame::state::{CompareFunc, RasterState};
+
+    /// A draw of `n` triangles side by side starting at `x`, seen through `modelview`.
+    fn draw(n: usize, x: f32, modelview: Mat4) -> Draw {
+        let mut d = Draw::default();
+        for i in 0..n {
+            let x = x + i as f32;
+            d.vertices.position.extend([[x, 0.0, 0.0, 1.0], [x + 1.0, 0.0, 0.0, 1.0], [x, 1.0, 0.0, 1.0]]);
+            d.indices.extend([3 * i as u32, 3 * i as u32 + 1, 3 * i as u32 + 2]);
+        }
+        d.vertex_count = d.vertices.len();
+        let mut s = RasterState { depth_test: Some(CompareFunc::Less), depth_write: true, color_mask: [true; 4], ..RasterState::default() };
+        s.depth_range = [0.0, 1.0];
+        d.state = Arc::new(s);
+        d.modelview = modelview;
+        d.projection = view::perspective(1.0, 1.0, 0.1, 1000.0);
+        d
+    }
+
+    fn classify(c: &mut Classifier, number: u64, draws: Vec<Draw>) -> Frame {
+        let mut frame = Frame { number, draws, ..Frame::default() };
+        c.classify(&mut frame, |_| None);
+        frame
+    }
+
+    #[test]
+    fn frames_get_classes_ids_view_and_cuts() {
+        let mut c = Classifier::with_config(config::Config::default());
+        let placed = Mat4::from_translation(Vec3::new(0.0, 0.0, -3.0));
+        let camera = |yaw: f32| Mat4::from_rotation_y(yaw) * Mat4::from_translation(Vec3::new(0.0, -1.0, -20.0));
+        // Frame 0: the world (8 triangles, modelview = view) and a placed object (2).
+        let f0 = classify(&mut c, 0, vec![draw(8, 0.0, camera(0.0)), draw(2, 50.0, camera(0.0) * placed)]);
+        assert!(f0.draws.iter().all(|d| d.class == DrawClass::Static));
+        let ids: Vec<u64> = f0.draws.iter().map(|d| d.instance.unwrap().id).collect();
+        assert_eq!(f0.view.unwrap().view, camera(0.0));
+        // Frame 1: the camera turns, the object moves, an animated mesh appears.
+        let moved = Mat4::from_translation(Vec3::new(0.5, 0.0, -3.0));
+        let f1 = classify(&mut c, 1, vec![draw(8, 0.0, camera(0.1)), draw(2, 50.0, camera(0.1) * moved), draw(3, 9.0, camera(0.1))]);
+        let classes: Vec<DrawClass> = f1.draws.iter().map(|d| d.class).collect();
+        assert_eq!(classes, [DrawClass::Static, DrawClass::Movable, DrawClass::Static]);
+        assert_eq!(f1.draws[1].instance.unwrap().previous_modelview, Some(camera(0.0) * placed));
+        assert_eq!((f1.stats.matches_found, f1.stats.matches_lost, f1.stats.camera_cut), (2, 0, false));
+        // Frame 2: the mesh's vertices change (same slot): dynamic, same id.
+        let f2 = classify(&mut c, 2, vec![draw(8, 0.0, camera(0.2)), draw(3, 9.5, camera(0.2))]);
+        assert_eq!((f2.draws[1].class, f2.draws[1].instance.unwrap().id), (DrawClass::Dynamic, f1.draws[2].instance.unwrap().id));
+        assert_eq!(f2.draws[0].instance.unwrap().id, ids[0]);
+        assert_eq!(f2.stats.matches_lost, 1, "the movable object was not drawn");
+        assert!(f2.stats.static_world_triangles >= 8, "the world was offered twice: {:?}", f2.stats);
+        // Frame 3: the world is culled; a second static object drawn since frame 1 would chain
+        // the view; here only the world's twin (new geometry) is drawn far away: a cut.
+        let f3 = classify(&mut c, 3, vec![draw(4, 100.0, camera(0.3) * Mat4::from_translation(Vec3::splat(900.0)))]);
+        assert!(f3.stats.camera_cut && f3.stats.static_chunks_released > 0, "{:?}", f3.stats);
+        assert_eq!(f3.stats.static_world_triangles, 0);
+        assert!(f3.draws[0].instance.unwrap().previous_modelview.is_none());
+    }
+
+    #[test]
+    fn the_view_chains_through_other_static_draws() {
+        let mut c = Classifier::with_config(config::Config::default());
+        let placed = Mat4::from_translation(Vec3::new(4.0, 0.0, 0.0));
+        let camera = |z: f32| Mat4::from_translation(Vec3::new(0.0, 0.0, -z));
+        classify(&mut c, 0, vec![draw(8, 0.0, camera(10.0)), draw(2, 0.0, camera(10.0) * placed)]);
+        classify(&mut c, 1, vec![draw(8, 0.0, camera(10.5)), draw(2, 0.0, camera(10.5) * placed)]);
+        // The reference (8 triangles) leaves the screen; the placed object keeps the world frame.
+        let f = classify(&mut c, 2, vec![draw(2, 0.0, camera(11.0) * placed)]);
+        let view = f.view.unwrap();
+        assert!(view::same_place(&view.view, &camera(11.0)) && !f.stats.camera_cut, "{view:?}");
+        assert_eq!(f.draws[0].class, DrawClass::Static);
+        assert!(view::same_place(&f.draws[0].instance.unwrap().model.unwrap(), &placed));
+    }
 }
