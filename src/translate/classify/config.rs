@@ -98,9 +98,16 @@ impl Config {
         Some(exe.parent()?.join("glrt.toml")).filter(|p| p.exists())
     }
 
-    /// The configuration of this process (file, then environment); problems are reported on
-    /// standard error once, here, and leave the affected part empty.
-    pub fn load() -> Config {
+    /// The configuration of this process, read at the first call (every context shares it,
+    /// so problems are reported once).
+    pub fn of_process() -> Config {
+        static CONFIG: std::sync::OnceLock<Config> = std::sync::OnceLock::new();
+        CONFIG.get_or_init(Config::load).clone()
+    }
+
+    /// Reads the configuration (file, then environment); problems are reported on standard
+    /// error and leave the affected part empty.
+    fn load() -> Config {
         let mut config = Config::default();
         if let Some(path) = Config::path() {
             match Config::read(&path) {

@@ -68,7 +68,7 @@ pub struct Classifier {
 impl Default for Classifier {
     /// A classifier with the configuration of this process (`glrt.toml`, `GLRT_<KEY>`).
     fn default() -> Classifier {
-        Classifier::with_config(config::Config::load())
+        Classifier::with_config(config::Config::of_process())
     }
 }
 

@@ -19,9 +19,10 @@ impl WorldFeed {
         self.positions.clear();
         self.texcoords.clear();
         let texcoords = draw.vertices.texcoords.first().filter(|t| !t.values.is_empty());
+        let identity = *model == Mat4::IDENTITY;
         for &i in &draw.indices {
             let Some(p) = draw.vertices.position.get(i as usize) else { continue };
-            let w = *model * Vec4::from_array(*p);
+            let w = if identity { Vec4::from_array(*p) } else { *model * Vec4::from_array(*p) };
             let w = if w.w != 0.0 && w.w != 1.0 { w / w.w } else { w };
             self.positions.push([w.x, w.y, w.z]);
             if let Some(t) = texcoords.and_then(|t| t.get(i as usize)) {
