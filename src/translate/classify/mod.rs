@@ -301,4 +301,19 @@ mod tests {
         assert_eq!(f.draws[0].class, DrawClass::Static);
         assert!(view::same_place(&f.draws[0].instance.unwrap().model.unwrap(), &placed));
     }
+
+    #[test]
+    fn a_rebatched_world_keeps_its_world_frame() {
+        // Every frame the world comes in other batches (nothing matches exactly), drawn with
+        // modelview = view while the camera turns and walks: no cut, the view follows.
+        let mut c = Classifier::with_config(config::Config::default());
+        for k in 0..20u64 {
+            let camera = Mat4::from_rotation_y(0.05 * k as f32) * Mat4::from_translation(Vec3::new(0.1 * k as f32, -1.0, -5.0));
+            let batches = vec![draw(6 + (k % 4) as usize, k as f32, camera), draw(2, 40.0 + k as f32, camera)];
+            let f = classify(&mut c, k, batches);
+            assert!(!f.stats.camera_cut, "frame {k}");
+            assert!(view::same_place(&f.view.unwrap().view, &camera), "frame {k}");
+            assert!(f.draws.iter().all(|d| d.instance.unwrap().model == Some(Mat4::IDENTITY)), "frame {k}: in the world frame");
+        }
+    }
 }

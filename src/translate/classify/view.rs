@@ -7,10 +7,15 @@
 //! wins (ties: the previous reference), so the view survives the reference leaving the screen
 //! (the other static draws chain it) and a reference that starts moving.
 //!
-//! A camera cut (teleport, level change) is declared when no static draw matched, when the
-//! camera moved more than half the size of the reference draw in one frame, or when the view
-//! was lost; the world frame is then re-established on the largest perspective draw (model =
-//! identity) and the persistent static world is cleared.
+//! When no draw matched a static instance (Quake 3 re-batches its world surfaces every frame,
+//! so hardly any draw matches exactly), the world frame is taken to be the object space of the
+//! largest perspective draw (model = identity, as Quake-like engines draw their world): the
+//! frame is continuous with the previous one unless that puts the camera far away.
+//!
+//! A camera cut (teleport, level change) is declared when the camera moved more than half the
+//! scale of the scene (the largest reference draw since the last cut) in one frame, or when the
+//! view was lost (no perspective draw); the world frame is then re-established on the largest
+//! perspective draw and the persistent static world is cleared.
 
 use glam::{Mat4, Vec3};
 
@@ -51,7 +56,7 @@ pub fn is_identity(model: &Mat4) -> bool {
 #[derive(Clone, Copy, Debug)]
 struct Reference {
     id: u64,
-    /// Diagonal of its bounding box: the scale of a "large jump".
+    /// Diagonal of its bounding box.
     size: f32,
 }
 
@@ -69,6 +74,9 @@ pub struct Recovered {
 pub struct ViewTracker {
     reference: Option<Reference>,
     last: Option<Mat4>,
+    /// The largest reference size since the world frame was established: the scale of a
+    /// "large jump".
+    scale: f32,
 }
 
 /// Diagonal of the bounding box of `positions`.
@@ -84,25 +92,23 @@ impl ViewTracker {
     /// The view of a frame whose traced draws are `inputs`.
     pub fn recover(&mut self, inputs: &[ViewInput<'_>]) -> Recovered {
         let had_view = self.last.is_some();
-        let perspective = |i: &&ViewInput| !orthographic(&i.projection);
-        let chained = self.chain(inputs);
-        let jumped = chained.is_some_and(|(view, _)| {
-            let eye = |v: Mat4| v.inverse().w_axis.truncate();
-            let size = self.reference.map_or(0.0, |r| r.size);
-            self.last.is_some_and(|last| eye(view).distance(eye(last)) > 0.5 * size)
-        });
-        let (view, reference, cut) = match chained {
-            Some((view, reference)) if !jumped => (view, reference, false),
-            _ => {
+        let eye = |v: &Mat4| v.inverse().w_axis.truncate();
+        let jump = |view: &Mat4, scale: f32| self.last.is_some_and(|last| eye(view).distance(eye(&last)) > 0.5 * scale);
+        let chained = self.chain(inputs).filter(|(view, _)| !jump(view, self.scale));
+        let (view, (reference, projection), cut) = match chained {
+            Some((view, reference)) => (view, reference, false),
+            None => {
+                let perspective = |i: &&ViewInput| !orthographic(&i.projection);
                 let Some(largest) = inputs.iter().filter(perspective).max_by_key(|i| i.triangles) else {
-                    (self.reference, self.last) = (None, None);
+                    (self.reference, self.last, self.scale) = (None, None, 0.0);
                     return Recovered { view: None, cut: had_view };
                 };
                 let reference = Reference { id: largest.id, size: size_of(largest.positions) };
-                (largest.modelview, (reference, largest.projection), had_view)
+                let cut = had_view && jump(&largest.modelview, self.scale.max(reference.size));
+                (largest.modelview, (reference, largest.projection), cut)
             }
         };
-        let (reference, projection) = reference;
+        self.scale = if cut || !had_view { reference.size } else { self.scale.max(reference.size) };
         (self.reference, self.last) = (Some(reference), Some(view));
         Recovered { view: Some(describe(view, projection, reference.id)), cut }
     }
