@@ -35,7 +35,10 @@ pub struct Options {
 /// Makes the sink of a replayed context from the sink it would have had (`None`: no renderer
 /// is needed).
 #[derive(Clone)]
-pub struct SinkWrapper(pub Arc<dyn Fn(Option<Box<dyn crate::render::FrameSink>>) -> Box<dyn crate::render::FrameSink> + Send + Sync>);
+pub struct SinkWrapper(pub Arc<WrapSink>);
+
+/// What a [`SinkWrapper`] calls.
+pub type WrapSink = dyn Fn(Option<Box<dyn crate::render::FrameSink>>) -> Box<dyn crate::render::FrameSink> + Send + Sync;
 
 impl std::fmt::Debug for SinkWrapper {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

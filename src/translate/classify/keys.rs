@@ -114,7 +114,7 @@ impl ListKeys {
     pub fn begin_frame(&mut self, frame: u64) {
         self.frame = frame;
         self.ordinals.clear();
-        if frame % KEEP_FRAMES == 0 {
+        if frame.is_multiple_of(KEEP_FRAMES) {
             self.cache.retain(|_, c| frame.saturating_sub(c.used) < KEEP_FRAMES);
         }
     }

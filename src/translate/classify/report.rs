@@ -44,12 +44,15 @@ impl FrameSink for StatsPrinter {
     }
 }
 
+/// Texture name → (content version, hash) pairs, one per version used.
+pub type Versions = BTreeMap<u32, Vec<(u64, u64)>>;
+
 /// The texture hashes of every texture content that draws used: texture name → hashes, in
 /// the order first seen.
 #[derive(Clone, Default)]
 pub struct TextureCatalog {
-    /// Name → (content version, hash) pairs, one per version used.
-    pub textures: Arc<Mutex<BTreeMap<u32, Vec<(u64, u64)>>>>,
+    /// What draws used, shared by the sinks of every context.
+    pub textures: Arc<Mutex<Versions>>,
 }
 
 impl FrameSink for TextureCatalog {

@@ -41,3 +41,28 @@ impl TextureHashes {
         hash
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use super::*;
+    use crate::frame::texture::TexImage;
+
+    fn texture(id: u32, version: u64, texel: u8) -> TextureRef {
+        let image = TexImage { width: 1, height: 1, depth: 1, texels: vec![texel, 0, 0, 255], ..TexImage::default() };
+        let content = TextureContent { faces: vec![vec![Some(Arc::new(image))]], ..TextureContent::default() };
+        TextureRef { id, version, content: Arc::new(content) }
+    }
+
+    #[test]
+    fn the_hash_follows_the_content_not_the_name_or_version() {
+        let mut hashes = TextureHashes::default();
+        let a = hashes.hash(&texture(1, 1, 10));
+        assert_eq!(hashes.hash(&texture(2, 7, 10)), a, "same texels, another name: same hash");
+        assert_ne!(hashes.hash(&texture(1, 2, 11)), a, "new content: new hash");
+        // A stale content under a known version is not rehashed: computed once per version.
+        assert_ne!(hashes.hash(&texture(1, 2, 10)), a);
+        assert_eq!(content_hash(&TextureContent::default()), 0, "no level 0");
+    }
+}
