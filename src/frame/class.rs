@@ -159,13 +159,19 @@ pub struct FrameStats {
     pub matches_lost: usize,
     /// The world frame was re-established (teleport, level change, reference lost).
     pub camera_cut: bool,
+    /// Bytes of vertex data of the traced draws (positions, indices, texture coordinates of
+    /// unit 0): what hashing reads.
+    pub vertex_bytes: u64,
+    /// Time hash tracking took on this frame, in nanoseconds (the only field that differs
+    /// between two runs of the same frames).
+    pub classify_ns: u64,
 }
 
 impl FrameStats {
     /// One JSON object on one line, for frame number `frame` (`glrt replay --stats`).
     pub fn json_line(&self, frame: u64) -> String {
         format!(
-            "{{\"frame\":{frame},\"static_upload_bytes\":{},\"classes\":{},\"triangles\":{},\"static_chunks_new\":{},\"static_chunks_reused\":{},\"static_chunks_released\":{},\"static_world_triangles\":{},\"matches_found\":{},\"matches_lost\":{},\"camera_cut\":{}}}",
+            "{{\"frame\":{frame},\"static_upload_bytes\":{},\"classes\":{},\"triangles\":{},\"static_chunks_new\":{},\"static_chunks_reused\":{},\"static_chunks_released\":{},\"static_world_triangles\":{},\"matches_found\":{},\"matches_lost\":{},\"camera_cut\":{},\"vertex_bytes\":{},\"classify_ms\":{:.3}}}",
             self.static_upload_bytes,
             self.classes.json(),
             self.triangles.json(),
@@ -175,7 +181,9 @@ impl FrameStats {
             self.static_world_triangles,
             self.matches_found,
             self.matches_lost,
-            self.camera_cut
+            self.camera_cut,
+            self.vertex_bytes,
+            self.classify_ns as f64 / 1e6
         )
     }
 }
@@ -192,7 +200,7 @@ mod tests {
         s.triangles.add(DrawClass::Static, 12);
         let line = s.json_line(7);
         assert!(line.starts_with("{\"frame\":7,\"static_upload_bytes\":96,\"classes\":{\"static\":0,\"movable\":0,\"dynamic\":0,\"translucent\":0,\"overlay\":0,\"sky\":1},\"triangles\":{\"static\":12,"), "{line}");
-        assert!(line.ends_with("\"camera_cut\":true}") && !line.contains('\n'));
+        assert!(line.ends_with("\"camera_cut\":true,\"vertex_bytes\":0,\"classify_ms\":0.000}") && !line.contains('\n'), "{line}");
         assert_eq!((s.classes.get(DrawClass::Sky), s.classes.get(DrawClass::Ignored)), (1, 0));
     }
 }

@@ -72,6 +72,12 @@ impl Default for Classifier {
     }
 }
 
+/// Bytes of a draw's vertex data: positions, indices, texture coordinates of unit 0.
+fn vertex_bytes(draw: &Draw) -> u64 {
+    let texcoords = draw.vertices.texcoords.first().map_or(0, |t| t.values.len());
+    (std::mem::size_of_val(&draw.vertices.position[..]) + draw.indices.len() * 4 + texcoords * 16) as u64
+}
+
 /// Triangles of a draw (0 for lines and points).
 fn triangles(draw: &Draw) -> usize {
     if draw.topology == crate::frame::Topology::Triangles { draw.indices.len() / 3 } else { 0 }
@@ -98,6 +104,7 @@ impl Classifier {
     /// Classifies `frame` in place (classes, instances, view, static world, statistics);
     /// `list_version` gives the version of a display list (`ListTable::version`).
     pub fn classify(&mut self, frame: &mut Frame, list_version: impl Fn(u32) -> Option<u64>) {
+        let start = std::time::Instant::now();
         self.route(frame, &list_version);
         self.matcher.match_frame(&self.probes, &mut self.found);
         let recovered = {
@@ -124,7 +131,7 @@ impl Classifier {
                 _ => None,
             };
             if class == DrawClass::Static && f.matched == Match::New && offered.is_none() {
-                instance_upload += (draw.vertices.len() * 16 + draw.indices.len() * 4) as u64;
+                instance_upload += vertex_bytes(draw);
             }
             if f.matched != Match::New {
                 stats.matches_found += 1;
@@ -145,6 +152,8 @@ impl Classifier {
             stats.classes.add(draw.class, 1);
             stats.triangles.add(draw.class, triangles(draw) as u64);
         }
+        stats.vertex_bytes = self.traced.iter().map(|t| vertex_bytes(&frame.draws[t.draw])).sum();
+        stats.classify_ns = start.elapsed().as_nanos() as u64;
         frame.view = recovered.view;
         frame.static_world = update.chunks;
         frame.stats = stats;
