@@ -148,15 +148,20 @@ impl Classifier {
         (stats.static_chunks_new, stats.static_chunks_reused, stats.static_chunks_released) =
             (update.new_chunks, update.reused_chunks, update.released_chunks);
         stats.static_world_triangles = update.triangles;
+        self.count(frame, &mut stats);
+        stats.classify_ns = start.elapsed().as_nanos() as u64;
+        frame.view = recovered.view;
+        frame.static_world = update.chunks;
+        frame.stats = stats;
+    }
+
+    /// Draws, triangles and vertex bytes per class of a classified frame.
+    fn count(&self, frame: &Frame, stats: &mut FrameStats) {
         for draw in &frame.draws {
             stats.classes.add(draw.class, 1);
             stats.triangles.add(draw.class, triangles(draw) as u64);
         }
         stats.vertex_bytes = self.traced.iter().map(|t| vertex_bytes(&frame.draws[t.draw])).sum();
-        stats.classify_ns = start.elapsed().as_nanos() as u64;
-        frame.view = recovered.view;
-        frame.static_world = update.chunks;
-        frame.stats = stats;
     }
 
     /// Step 1: raster classes, and the keys and probes of the traced draws.

@@ -98,7 +98,8 @@ impl ViewTracker {
         let (view, (reference, projection), cut) = match chained {
             Some((view, reference)) => (view, reference, false),
             None => {
-                let perspective = |i: &&ViewInput| !orthographic(&i.projection);
+                // A flattening modelview (planar shadows) cannot be a view.
+                let perspective = |i: &&ViewInput| !orthographic(&i.projection) && i.modelview.determinant().abs() > 1e-12;
                 let Some(largest) = inputs.iter().filter(perspective).max_by_key(|i| i.triangles) else {
                     (self.reference, self.last, self.scale) = (None, None, 0.0);
                     return Recovered { view: None, cut: had_view };
@@ -116,7 +117,10 @@ impl ViewTracker {
     /// The view chained from the static draws matched again, with the reference (kept, or a
     /// new one among the draws that agree with the view) and its projection.
     fn chain(&self, inputs: &[ViewInput<'_>]) -> Option<(Mat4, (Reference, Mat4))> {
-        let known = || inputs.iter().filter(|i| i.previous_model.is_some() && !orthographic(&i.projection));
+        let invertible = |m: &Mat4| m.determinant().abs() > 1e-12;
+        let known = || {
+            inputs.iter().filter(move |i| i.previous_model.is_some_and(|m| invertible(&m)) && !orthographic(&i.projection))
+        };
         let previous = self.reference.and_then(|r| known().find(|i| i.id == r.id));
         let mut largest: Vec<&ViewInput> = known().collect();
         largest.sort_by_key(|i| std::cmp::Reverse(i.triangles));
