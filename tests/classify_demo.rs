@@ -182,9 +182,22 @@ fn the_camera_is_recovered_from_the_room() {
 }
 
 fn glrt(args: &[&str], env: &[(&str, &str)]) -> String {
+    glrt_with_stderr(args, env).0
+}
+
+/// Standard output and standard error of a successful `glrt` run.
+fn glrt_with_stderr(args: &[&str], env: &[(&str, &str)]) -> (String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_glrt")).args(args).envs(env.iter().copied()).output().expect("run glrt");
-    assert!(out.status.success(), "glrt {args:?}: {}", String::from_utf8_lossy(&out.stderr));
-    String::from_utf8_lossy(&out.stdout).into_owned()
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "glrt {args:?}: {err}");
+    (String::from_utf8_lossy(&out.stdout).into_owned(), err)
+}
+
+/// The `classes` object of the last JSON line of `glrt replay --stats`.
+fn last_classes(out: &str) -> String {
+    let last = out.lines().filter(|l| l.starts_with('{')).last().expect("a JSON line");
+    let start = last.find("\"classes\":").unwrap();
+    last[start..start + last[start..].find('}').unwrap() + 1].to_owned()
 }
 
 /// The value of `"key":` in a JSON line (numbers and booleans).
@@ -238,4 +251,26 @@ fn texture_hashes_are_printed_and_tag_textures() {
     let out = glrt(&["replay", capture.to_str().unwrap(), "--stats"], &[("GLRT_UI", floor)]);
     let last = out.lines().filter(|l| l.starts_with('{')).last().unwrap();
     assert!(last.contains("\"overlay\":2"), "{floor}: {last}");
+}
+
+#[test]
+fn glrt_toml_tags_textures_and_reports_problems_with_file_and_line() {
+    let capture = fixture("demo.glrtcap");
+    let info = glrt(&["info", capture.to_str().unwrap()], &[]);
+    let floor = info.lines().find(|l| l.starts_with("  texture ")).and_then(|l| l.split_whitespace().nth(2)).unwrap();
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("classify_demo");
+    std::fs::create_dir_all(&dir).unwrap();
+    let config = dir.join("glrt.toml");
+    std::fs::write(&config, format!("# tags\nsky = [\"{floor}\"]\nshadows = true\n")).unwrap();
+    let path = config.to_str().unwrap();
+    let args = ["replay", capture.to_str().unwrap(), "--stats"];
+    let (out, err) = glrt_with_stderr(&args, &[("GLRT_CONFIG", path)]);
+    assert!(last_classes(&out).contains("\"sky\":2"), "the tagged texture's draw is sky: {}", last_classes(&out));
+    assert_eq!(err.matches("unknown key 'shadows'").count(), 1, "reported once: {err}");
+    assert!(err.contains(&format!("{path}:3: unknown key 'shadows'")), "{err}");
+    // A bad file is named with its line and ignored: the classes are the heuristics'.
+    std::fs::write(&config, "ui = [\"0x10\"]\ndynamic = [\"0xnothex\"]\n").unwrap();
+    let (out, err) = glrt_with_stderr(&args, &[("GLRT_CONFIG", path)]);
+    assert!(err.contains(&format!("{path}:2: dynamic: ")), "{err}");
+    assert_eq!(last_classes(&out), "\"classes\":{\"static\":3,\"movable\":1,\"dynamic\":1,\"translucent\":1,\"overlay\":1,\"sky\":1}");
 }
