@@ -71,6 +71,28 @@ pub fn state_key(draw: &Draw) -> u64 {
     w.0.digest()
 }
 
+/// [`state_key`] remembered for the last state seen: consecutive draws mostly share their
+/// state, and formatting it is the costly part.
+#[derive(Default)]
+pub struct StateKeys {
+    last: Option<(std::sync::Arc<crate::frame::RasterState>, Vec<Option<crate::frame::TextureUnit>>, u64)>,
+}
+
+impl StateKeys {
+    /// The state key of `draw`.
+    pub fn key(&mut self, draw: &Draw) -> u64 {
+        if let Some((state, units, key)) = &self.last
+            && (std::sync::Arc::ptr_eq(state, &draw.state) || **state == *draw.state)
+            && *units == draw.texture_units
+        {
+            return *key;
+        }
+        let key = state_key(draw);
+        self.last = Some((draw.state.clone(), draw.texture_units.clone(), key));
+        key
+    }
+}
+
 /// Combines keys into one.
 pub fn combine(keys: &[u64]) -> u64 {
     xxhash_rust::xxh3::xxh3_64(bytes_of(keys))
@@ -169,6 +191,20 @@ mod tests {
         let mut l = triangle(0.0);
         l.topology = crate::frame::Topology::Points;
         assert_ne!(geometry_key(&a), geometry_key(&l), "topology is hashed");
+    }
+
+    #[test]
+    fn state_keys_follow_the_state() {
+        let mut keys = StateKeys::default();
+        let a = triangle(0.0);
+        let mut b = triangle(0.0);
+        b.state = std::sync::Arc::new(crate::frame::RasterState { cull: Some(crate::frame::state::Face::Back), ..Default::default() });
+        let mut c = triangle(0.0);
+        c.texture_units = vec![Some(crate::frame::TextureUnit::default())];
+        let (ka, kb, kc) = (keys.key(&a), keys.key(&b), keys.key(&c));
+        assert_eq!((ka, kb, kc), (state_key(&a), state_key(&b), state_key(&c)));
+        assert!(ka != kb && kb != kc && ka != kc);
+        assert_eq!(keys.key(&triangle(5.0)), ka, "equal states, other vertices");
     }
 
     #[test]

@@ -55,6 +55,7 @@ pub struct Classifier {
     config: config::Config,
     textures: texture_hash::TextureHashes,
     lists: keys::ListKeys,
+    states: keys::StateKeys,
     matcher: Matcher,
     view: ViewTracker,
     world: StaticWorld,
@@ -90,6 +91,7 @@ impl Classifier {
             config,
             textures: Default::default(),
             lists: Default::default(),
+            states: Default::default(),
             matcher: Default::default(),
             view: Default::default(),
             world: StaticWorld::new(),
@@ -182,7 +184,7 @@ impl Classifier {
                 continue;
             }
             let geometry = self.lists.key(draw, list_version);
-            let (texture, state) = (keys::texture_key(draw), keys::state_key(draw));
+            let (texture, state) = (keys::texture_key(draw), self.states.key(draw));
             let first = draw.vertices.position.first().map_or(Vec4::W, |p| Vec4::from_array(*p));
             self.probes.push(Probe {
                 exact: keys::combine(&[geometry, texture, state]),

@@ -128,13 +128,16 @@ impl ViewTracker {
         let view_of = |i: &ViewInput| i.modelview * i.previous_model.unwrap_or_default().inverse();
         let agrees = |view: &Mat4, i: &ViewInput| i.previous_model.is_some_and(|m| same_place(&(*view * m), &i.modelview));
         let score = |view: &Mat4| known().filter(|i| agrees(view, i)).map(|i| i.triangles).sum::<usize>();
-        let (view, _) = candidates.map(|c| (view_of(c), c)).fold(None, |best: Option<(Mat4, usize)>, (v, _)| {
-            let s = score(&v);
-            match best {
-                Some((_, b)) if b >= s => best,
-                _ => Some((v, s)),
+        // The first best wins ties: the previous reference comes first.
+        let mut best: Option<(Mat4, usize)> = None;
+        for candidate in candidates {
+            let view = view_of(candidate);
+            let s = score(&view);
+            if best.is_none_or(|(_, b)| s > b) {
+                best = Some((view, s));
             }
-        })?;
+        }
+        let (view, _) = best?;
         let reference = match previous.filter(|p| agrees(&view, p)) {
             Some(p) => (self.reference?, p.projection),
             None => {
