@@ -163,9 +163,8 @@ impl Context {
         let size = self.frame.size;
         let next = Frame { number, draws, size, ..Frame::default() };
         let mut frame = Frame { end, ..std::mem::replace(&mut self.frame, next) };
-        let shared = self.shared.lock();
-        self.classify.classify(&mut frame, |list| shared.lists.version(list));
-        drop(shared);
+        let versions = super::classify::keys::list_versions(&frame, &self.shared.lock().lists);
+        self.classify.classify(&mut frame, |list| versions.iter().find(|v| v.0 == list).and_then(|v| v.1));
         self.sink.present(frame);
     }
 }

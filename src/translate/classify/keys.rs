@@ -128,6 +128,20 @@ pub struct ListKeys {
     pub computed: u64,
 }
 
+/// The version of each display list `frame` draws from, read from the share group's `lists`
+/// up front so that its lock is not held while the frame is classified.
+pub fn list_versions(frame: &crate::frame::Frame, lists: &crate::translate::lists::ListTable) -> Vec<(u32, Option<u64>)> {
+    let mut versions: Vec<(u32, Option<u64>)> = Vec::new();
+    for draw in &frame.draws {
+        if let DrawSource::List(name) = draw.source
+            && !versions.iter().any(|v| v.0 == name)
+        {
+            versions.push((name, lists.version(name)));
+        }
+    }
+    versions
+}
+
 /// Frames a cached key survives without being used.
 const KEEP_FRAMES: u64 = 600;
 
