@@ -8,7 +8,8 @@
 //!    place in the order of appearance of that slot.
 //!
 //! "Nearest" compares the eye-space position of the first vertex, which moves little from one
-//! frame to the next. A previous instance is matched at most once, and new instances take ids
+//! frame to the next. Instances not drawn are remembered for [`KEEP_FRAMES`] frames (not across
+//! a camera cut), so that an object culled for a while keeps its id when it comes back. A previous instance is matched at most once, and new instances take ids
 //! never used before, so ids are unique within a frame. The maps are kept between frames and
 //! only cleared, so a frame allocates nothing once they have grown.
 
@@ -44,7 +45,12 @@ pub struct Record {
     pub model: Option<Mat4>,
     /// Its class.
     pub class: DrawClass,
+    /// Frames since it was last drawn (0: drawn in the previous frame).
+    pub age: u32,
 }
+
+/// Frames an instance that is no longer drawn is remembered.
+pub const KEEP_FRAMES: u32 = 120;
 
 /// The outcome for one draw.
 #[derive(Clone, Copy, Debug)]
@@ -68,6 +74,7 @@ pub struct Matcher {
     by_slot: HashMap<u64, Vec<u32>>,
     ordinals: HashMap<u64, u32>,
     last_id: u64,
+    lost: usize,
 }
 
 impl Matcher {
@@ -98,6 +105,7 @@ impl Matcher {
             self.last_id += 1;
             f.id = self.last_id;
         }
+        self.lost = self.taken.iter().zip(&self.previous).filter(|(t, r)| !**t && r.age == 0).count();
     }
 
     fn take(&mut self, i: usize, f: &mut Found, matched: Match) {
@@ -120,16 +128,22 @@ impl Matcher {
         })
     }
 
-    /// Previous instances that no draw of this frame matched.
+    /// Instances of the previous frame that no draw of the last frame matched.
     pub fn lost(&self) -> usize {
-        self.taken.iter().filter(|t| !**t).count()
+        self.lost
     }
 
-    /// Ends the frame: `records` (this frame's traced instances) are what the next frame
-    /// matches.
-    pub fn finish(&mut self, records: impl Iterator<Item = Record>) {
-        self.previous.clear();
+    /// Ends the frame: `records` (this frame's traced instances, age 0) and the instances not
+    /// drawn for fewer than [`KEEP_FRAMES`] frames (none after a camera `cut`) are what the
+    /// next frame matches.
+    pub fn finish(&mut self, records: impl Iterator<Item = Record>, cut: bool) {
+        let kept = std::mem::take(&mut self.previous).into_iter().zip(std::mem::take(&mut self.taken));
+        let kept: Vec<Record> = kept
+            .filter(|(r, taken)| !taken && !cut && r.age + 1 < KEEP_FRAMES)
+            .map(|(r, _)| Record { age: r.age + 1, ..r })
+            .collect();
         self.previous.extend(records);
+        self.previous.extend(kept);
         self.by_exact.values_mut().for_each(Vec::clear);
         self.by_slot.values_mut().for_each(Vec::clear);
         if self.by_exact.len() > 4 * self.previous.len() + 1024 {
@@ -161,8 +175,9 @@ mod tests {
             modelview: Mat4::IDENTITY,
             model: None,
             class: DrawClass::Static,
+            age: 0,
         });
-        m.finish(records.collect::<Vec<_>>().into_iter());
+        m.finish(records.collect::<Vec<_>>().into_iter(), false);
         found
     }
 
@@ -209,5 +224,29 @@ mod tests {
         let a = run(&mut m, &[probe(1, 5, 0.0), probe(2, 5, 8.0)]);
         let c = run(&mut m, &[probe(5, 5, 8.1), probe(6, 5, 0.1)]);
         assert_eq!((c[0].id, c[1].id), (a[1].id, a[0].id), "the nearest wins over the order");
+    }
+
+    #[test]
+    fn instances_not_drawn_for_a_while_keep_their_ids() {
+        let mut m = Matcher::default();
+        let a = run(&mut m, &[probe(1, 10, 0.0), probe(2, 20, 5.0)]);
+        for _ in 0..KEEP_FRAMES - 2 {
+            run(&mut m, &[probe(1, 10, 0.0)]);
+        }
+        assert_eq!(m.lost(), 0, "only instances of the previous frame count as lost");
+        let back = run(&mut m, &[probe(1, 10, 0.0), probe(2, 20, 5.0)]);
+        assert_eq!((back[1].id, back[1].matched, back[1].previous.unwrap().age), (a[1].id, Match::Exact, KEEP_FRAMES - 2));
+        for _ in 0..KEEP_FRAMES {
+            run(&mut m, &[probe(1, 10, 0.0)]);
+        }
+        assert_eq!(run(&mut m, &[probe(2, 20, 5.0)])[0].matched, Match::New, "forgotten after KEEP_FRAMES");
+        // A camera cut forgets what is not drawn.
+        let mut m = Matcher::default();
+        run(&mut m, &[probe(1, 10, 0.0), probe(2, 20, 5.0)]);
+        let mut found = Vec::new();
+        m.match_frame(&[probe(1, 10, 0.0)], &mut found);
+        let record = Record { id: found[0].id, probe: probe(1, 10, 0.0), ordinal: 0, modelview: Mat4::IDENTITY, model: None, class: DrawClass::Static, age: 0 };
+        m.finish(std::iter::once(record), true);
+        assert_eq!(run(&mut m, &[probe(2, 20, 5.0)])[0].matched, Match::New);
     }
 }

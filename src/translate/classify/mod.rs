@@ -138,13 +138,14 @@ impl Classifier {
             if f.matched != Match::New {
                 stats.matches_found += 1;
             }
-            let previous_modelview = f.previous.filter(|_| !recovered.cut).map(|p| p.modelview);
+            // Motion vectors only from the frame just before (not from an instance seen again).
+            let previous_modelview = f.previous.filter(|p| p.age == 0 && !recovered.cut).map(|p| p.modelview);
             draw.class = class;
             draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, emissive: t.tags.emissive });
             let probe = self.probes[self.records.len()];
-            self.records.push(Record { id: f.id, probe, ordinal: f.ordinal, modelview: draw.modelview, model, class });
+            self.records.push(Record { id: f.id, probe, ordinal: f.ordinal, modelview: draw.modelview, model, class, age: 0 });
         }
-        self.matcher.finish(self.records.iter().copied());
+        self.matcher.finish(self.records.iter().copied(), recovered.cut);
         let update = self.world.end_frame();
         stats.static_upload_bytes = instance_upload + update.upload_bytes;
         (stats.static_chunks_new, stats.static_chunks_reused, stats.static_chunks_released) =
