@@ -195,7 +195,7 @@ fn glrt_with_stderr(args: &[&str], env: &[(&str, &str)]) -> (String, String) {
 
 /// The `classes` object of the last JSON line of `glrt replay --stats`.
 fn last_classes(out: &str) -> String {
-    let last = out.lines().filter(|l| l.starts_with('{')).last().expect("a JSON line");
+    let last = out.lines().rfind(|l| l.starts_with('{')).expect("a JSON line");
     let start = last.find("\"classes\":").unwrap();
     last[start..start + last[start..].find('}').unwrap() + 1].to_owned()
 }
@@ -249,7 +249,7 @@ fn texture_hashes_are_printed_and_tag_textures() {
     // Tagging the floor's texture `ui` (through GLRT_UI) makes the floor an overlay.
     let floor = info.lines().find(|l| l.starts_with("  texture ")).and_then(|l| l.split_whitespace().nth(2)).unwrap();
     let out = glrt(&["replay", capture.to_str().unwrap(), "--stats"], &[("GLRT_UI", floor)]);
-    let last = out.lines().filter(|l| l.starts_with('{')).last().unwrap();
+    let last = out.lines().rfind(|l| l.starts_with('{')).unwrap();
     assert!(last.contains("\"overlay\":2"), "{floor}: {last}");
 }
 
