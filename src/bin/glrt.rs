@@ -1,17 +1,23 @@
 //! The `glrt` command:
 //! - `glrt info`: the build and how many functions it exports;
-//! - `glrt info FILE`: what a capture holds (frames, calls per function, bytes, textures);
+//! - `glrt info FILE`: what a capture holds (frames, calls per function, bytes, textures, and
+//!   the hash of each texture draws used, by which `glrt.toml` tags textures);
 //! - `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH]`: replays a capture headless
 //!   (frames before `A` are replayed too: they build the state; the replay stops after `B - 1`);
 //!   `--out` writes frames `A` and later as `DIR/frame-NNNNN.png` (by frame number) through the
 //!   Vulkan raster renderer; `--bench` prints the frame times (one frame's end to the next's);
+//!   `--stats` prints hash tracking's statistics of each frame as one JSON line (keys in
+//!   README.md; frames are not rendered unless `--out` is given);
 //! - `glrt dump FILE`: the call log of a capture (the `GLRT_TRACE` format) on standard output.
 
 use std::process::ExitCode;
 
-use glrt::translate::capture::{self, reader::Capture, replay, summary::Summary};
+use std::sync::Arc;
 
-const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] | glrt dump FILE";
+use glrt::translate::capture::{self, reader::Capture, replay, summary::Summary};
+use glrt::translate::classify::report::{StatsPrinter, TextureCatalog};
+
+const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] [--stats] | glrt dump FILE";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -48,6 +54,14 @@ fn info(args: &[String]) -> Result<(), String> {
         return Err(format!("info: unexpected arguments {rest:?}"));
     }
     print!("{}", Summary::of(&capture)?.report(&capture));
+    let catalog = TextureCatalog::default();
+    let sink = catalog.clone();
+    let options = replay::Options { sink: Some(replay::SinkWrapper(Arc::new(move |_| Box::new(sink.clone())))), ..Default::default() };
+    // What draws used needs a replay; a capture that cannot be replayed still gets its summary.
+    match replay::run(&capture, &options) {
+        Ok(_) => print!("{}", catalog.report()),
+        Err(e) => println!("textures drawn with: unknown (the replay failed: {e})"),
+    }
     Ok(())
 }
 
@@ -90,6 +104,11 @@ fn replay_command(args: &[String]) -> Result<(), String> {
     while let [flag, tail @ ..] = rest {
         if flag == "--bench" {
             (bench, rest) = (true, tail);
+            continue;
+        }
+        if flag == "--stats" {
+            options.sink = Some(replay::SinkWrapper(Arc::new(|inner| Box::new(StatsPrinter::new(inner)))));
+            rest = tail;
             continue;
         }
         let [value, tail @ ..] = tail else { return Err(format!("replay: option {flag} needs a value\n{USAGE}")) };

@@ -3,10 +3,12 @@
 //! renderer needs to resolve textures. No GL enums here: `translate` converts them to these
 //! types.
 
+pub mod class;
 pub mod pixels;
 pub mod state;
 pub mod texture;
 pub mod vertex;
+pub mod world;
 
 use std::sync::Arc;
 
@@ -38,6 +40,13 @@ pub struct Frame {
     pub read_buffer: ColorBuffer,
     /// How the frame ends.
     pub end: FrameEnd,
+    /// The camera recovered by hash tracking (`translate::classify`), when there is one.
+    pub view: Option<class::View>,
+    /// The persistent static world: world-space chunks that change rarely (kept by `Arc`, so
+    /// a renderer recognises a chunk it already uploaded).
+    pub static_world: Arc<[Arc<world::StaticChunk>]>,
+    /// Statistics of hash tracking.
+    pub stats: class::FrameStats,
 }
 
 /// How a frame ends: what the window shows afterwards.
@@ -90,6 +99,10 @@ pub struct Draw {
     /// Texture environment and coordinate generation of each texture unit that has a texture
     /// target enabled (`None` for the others), indexed like [`Draw::texture_matrices`].
     pub texture_units: Vec<Option<TextureUnit>>,
+    /// How the renderer treats it (set when the frame ends).
+    pub class: class::DrawClass,
+    /// Its identity across frames, for traced draws.
+    pub instance: Option<class::Instance>,
 }
 
 /// How one texture unit combines and generates coordinates in a draw (sections 2.10.4 and

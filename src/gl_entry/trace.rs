@@ -23,11 +23,13 @@
 //!   context)` when the call had no context to run on;
 //! - the GLX functions with their arguments and result, printed by `glx::entry`:
 //!   `N glXMakeCurrent(dpy=0x55d0c1a2e2a0, drawable=0x200002, ctx=0x55d0c1b3f010) = True`;
-//! - `N == end of frame (glXSwapBuffers)` at a frame boundary.
+//! - `N == end of frame (glXSwapBuffers)` at a frame boundary;
+//! - comments `N # texture 5 hash 0x…` (the `glrt.toml` name of a texture, written when a
+//!   texture's content first reaches a frame or changes: [`note`]).
 //!
 //! `GLRT_TRACE_FILTER=pattern` keeps the calls whose name contains `pattern` (a plain,
-//! case-sensitive substring: `glVertex` keeps `glVertex3f` and `glVertexPointer`); frame
-//! boundaries are always written.
+//! case-sensitive substring: `glVertex` keeps `glVertex3f` and `glVertexPointer`; comments
+//! whose text contains it are kept too); frame boundaries are always written.
 //!
 //! The log is buffered, written under a lock one line at a time, flushed at each frame boundary
 //! and at exit. The environment is read at the first GL call; a file that cannot be created
@@ -155,6 +157,19 @@ pub fn frame_end(name: &'static str) {
         writeln!(out, "{frame} == end of frame ({name})")?;
         out.flush()
     });
+}
+
+/// Writes a comment line `N # text` (frame number `N`), such as the hash of a texture whose
+/// content changed (`translate::classify`); nothing when tracing is off, or when
+/// `GLRT_TRACE_FILTER` is set and `text` does not contain it.
+pub fn note(text: std::fmt::Arguments<'_>) {
+    let Some(log) = mode::special().filter(|m| m.tracing()).and_then(|_| LOG.get()) else { return };
+    let text = text.to_string();
+    if !keeps(log.filter.as_deref(), &text) {
+        return;
+    }
+    let frame = FRAME.load(Ordering::Relaxed);
+    write_or_stop(log, |out| writeln!(out, "{frame} # {text}"));
 }
 
 /// The latched GL error of this thread's current context, `None` without one.

@@ -75,6 +75,8 @@ pub struct Context {
     pub(crate) drawable_size: Option<(i32, i32)>,
     /// Where the renderer was last told frames go (`translate::target`).
     pub(crate) target: Option<crate::render::Target>,
+    /// Hash tracking: classes, instances, view and static world of each frame.
+    pub(crate) classify: super::classify::Classifier,
 }
 
 impl Context {
@@ -103,6 +105,7 @@ impl Context {
             single_buffered: false,
             drawable_size: None,
             target: None,
+            classify: Default::default(),
         }
     }
 
@@ -159,7 +162,9 @@ impl Context {
         let draws = Vec::with_capacity(self.frame.draws.len());
         let size = self.frame.size;
         let next = Frame { number, draws, size, ..Frame::default() };
-        let frame = Frame { end, ..std::mem::replace(&mut self.frame, next) };
+        let mut frame = Frame { end, ..std::mem::replace(&mut self.frame, next) };
+        let versions = super::classify::keys::list_versions(&frame, &self.shared.lock().lists);
+        self.classify.classify(&mut frame, |list| versions.iter().find(|v| v.0 == list).and_then(|v| v.1));
         self.sink.present(frame);
     }
 }

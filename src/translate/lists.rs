@@ -26,6 +26,20 @@ pub enum ListOp {
 #[derive(Default)]
 pub struct ListTable {
     lists: BTreeMap<GLuint, Arc<[ListOp]>>,
+    /// Version of each compiled list: unique across lists, new at each compilation, so that
+    /// `translate::classify` hashes a list's geometry once per compilation.
+    versions: BTreeMap<GLuint, u64>,
+}
+
+/// The next list version (unique in the process).
+static NEXT_VERSION: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+
+impl ListTable {
+    /// The version of list `name` (changes whenever it is compiled); `None` for a list never
+    /// compiled.
+    pub fn version(&self, name: GLuint) -> Option<u64> {
+        self.versions.get(&name).copied()
+    }
 }
 
 /// The list being compiled, if any.
@@ -114,7 +128,10 @@ impl Context {
         let Some(done) = self.lists.compiling.take() else {
             return self.set_error_in(gl::GL_INVALID_OPERATION, "glEndList");
         };
-        self.shared.lock().lists.lists.insert(done.name, done.ops.into());
+        let version = NEXT_VERSION.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let mut shared = self.shared.lock();
+        shared.lists.versions.insert(done.name, version);
+        shared.lists.lists.insert(done.name, done.ops.into());
     }
 
     /// `glGenLists`: `range` contiguous unused names, reserved as empty lists; 0 on failure.
@@ -155,6 +172,7 @@ impl Context {
         let doomed: Vec<GLuint> = shared.lists.lists.range(list..end).map(|(k, _)| *k).collect();
         for name in doomed {
             shared.lists.lists.remove(&name);
+            shared.lists.versions.remove(&name);
         }
     }
 

@@ -27,6 +27,23 @@ pub struct Options {
     pub out: Option<PathBuf>,
     /// The first frame written to `out`.
     pub start_frame: u64,
+    /// Wraps the sink of each context the replay creates (the `out` sink, or `None` for a
+    /// replay that does not render), for `--stats` and `glrt info`.
+    pub sink: Option<SinkWrapper>,
+}
+
+/// Makes the sink of a replayed context from the sink it would have had (`None`: no renderer
+/// is needed).
+#[derive(Clone)]
+pub struct SinkWrapper(pub Arc<WrapSink>);
+
+/// What a [`SinkWrapper`] calls.
+pub type WrapSink = dyn Fn(Option<Box<dyn crate::render::FrameSink>>) -> Box<dyn crate::render::FrameSink> + Send + Sync;
+
+impl std::fmt::Debug for SinkWrapper {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("SinkWrapper")
+    }
 }
 
 /// What a replay did.
@@ -127,6 +144,10 @@ fn replay_records(
                 let sink = match &options.out {
                     Some(dir) => Some(crate::render::dumping_sink(dir, options.start_frame).map_err(|e| format!("--out: {e}"))?),
                     None => None,
+                };
+                let sink = match &options.sink {
+                    Some(wrap) => Some((wrap.0)(sink)),
+                    None => sink,
                 };
                 let handle = headless::create_context(share, sink);
                 if handle.is_null() {

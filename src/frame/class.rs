@@ -1,0 +1,206 @@
+//! What hash tracking (`translate::classify`) says about a frame: the class of each draw, the
+//! identity of each traced instance across frames, the camera recovered from the modelview of
+//! static draws, and per-frame statistics (`glrt replay --stats`).
+
+use glam::Mat4;
+
+/// How the renderer treats a draw (DESIGN.md, "The frame"): traced classes go into the
+/// acceleration structures; the others are rasterized and composited over the traced image.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum DrawClass {
+    /// Not classified yet (a frame read back before it ended).
+    #[default]
+    Unclassified,
+    /// Traced: the same geometry at the same place in the world as in the previous frame.
+    Static,
+    /// Traced: the same geometry at another place (a new transform); stays movable.
+    Movable,
+    /// Traced: new vertices every frame (animated); matched by its slot.
+    Dynamic,
+    /// Raster: blending that is not a plain replace, or lines and points in 3D.
+    Translucent,
+    /// Raster: 2D/HUD, drawn over everything.
+    Overlay,
+    /// Raster: the sky, drawn behind everything; also the environment of missed rays.
+    Sky,
+    /// Not drawn by the renderer (a texture listed under `ignore`, or no colour written).
+    Ignored,
+}
+
+impl DrawClass {
+    /// The six counted classes, in the order of [`ClassCounts`] and of the JSON keys.
+    pub const COUNTED: [DrawClass; 6] =
+        [DrawClass::Static, DrawClass::Movable, DrawClass::Dynamic, DrawClass::Translucent, DrawClass::Overlay, DrawClass::Sky];
+
+    /// Whether the class is traced (in the acceleration structures).
+    pub fn is_traced(self) -> bool {
+        matches!(self, DrawClass::Static | DrawClass::Movable | DrawClass::Dynamic)
+    }
+
+    /// The JSON key of a counted class.
+    pub fn key(self) -> &'static str {
+        match self {
+            DrawClass::Static => "static",
+            DrawClass::Movable => "movable",
+            DrawClass::Dynamic => "dynamic",
+            DrawClass::Translucent => "translucent",
+            DrawClass::Overlay => "overlay",
+            DrawClass::Sky => "sky",
+            DrawClass::Unclassified => "unclassified",
+            DrawClass::Ignored => "ignored",
+        }
+    }
+}
+
+/// How a traced instance was found in the previous frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Match {
+    /// Not found: a new instance.
+    #[default]
+    New,
+    /// Same geometry key, textures and state.
+    Exact,
+    /// Same slot (textures, state, vertex count, topology, order of appearance), new vertices.
+    Slot,
+}
+
+/// The identity of a traced draw across frames.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Instance {
+    /// Stable id: the same instance keeps it from frame to frame; unique within a frame; never
+    /// reused for another instance.
+    pub id: u64,
+    /// How it was matched with the previous frame.
+    pub matched: Match,
+    /// Its modelview in the previous frame (motion vectors); `None` when new or after a camera cut.
+    pub previous_modelview: Option<Mat4>,
+    /// Object space to world space (the world frame of [`View`]); `None` without a view.
+    pub model: Option<Mat4>,
+    /// xxh3 of the object-space positions, indices, texture coordinates and topology.
+    pub geometry_key: u64,
+    /// A texture of the draw is tagged `emissive` in `glrt.toml`.
+    pub emissive: bool,
+}
+
+/// The camera, recovered from the modelview of draws that are static in the world.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct View {
+    /// World space to eye space. The world frame is the object space of a reference static
+    /// draw, chained to another static draw's when the reference is no longer drawn.
+    pub view: Mat4,
+    /// The projection of the reference draw.
+    pub projection: Mat4,
+    /// Perspective (true) or orthographic projection.
+    pub perspective: bool,
+    /// Distance to the near plane.
+    pub near: f32,
+    /// Distance to the far plane.
+    pub far: f32,
+    /// Vertical field of view in radians (0 for orthographic projections).
+    pub fov_y: f32,
+    /// Width over height of the view volume.
+    pub aspect: f32,
+    /// Id of the reference instance.
+    pub reference: u64,
+}
+
+impl View {
+    /// The camera position in world space.
+    pub fn eye(&self) -> glam::Vec3 {
+        self.view.inverse().w_axis.truncate()
+    }
+}
+
+/// A count per counted class ([`DrawClass::COUNTED`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ClassCounts(pub [u64; 6]);
+
+impl ClassCounts {
+    /// Adds `n` to `class` (classes that are not counted are left out).
+    pub fn add(&mut self, class: DrawClass, n: u64) {
+        if let Some(i) = DrawClass::COUNTED.iter().position(|&c| c == class) {
+            self.0[i] += n;
+        }
+    }
+
+    /// The count of `class`.
+    pub fn get(&self, class: DrawClass) -> u64 {
+        DrawClass::COUNTED.iter().position(|&c| c == class).map_or(0, |i| self.0[i])
+    }
+
+    /// `{"static":1,...}`.
+    fn json(&self) -> String {
+        let fields: Vec<String> = DrawClass::COUNTED.iter().zip(self.0).map(|(c, n)| format!("\"{}\":{n}", c.key())).collect();
+        format!("{{{}}}", fields.join(","))
+    }
+}
+
+/// Per-frame statistics of hash tracking (the keys are documented in README.md).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FrameStats {
+    /// Bytes of static geometry to upload this frame: the vertex data of new static instances
+    /// that the static world does not hold, plus the static world's new chunks.
+    pub static_upload_bytes: u64,
+    /// Draws per class.
+    pub classes: ClassCounts,
+    /// Triangles per class.
+    pub triangles: ClassCounts,
+    /// Static-world chunks made this frame.
+    pub static_chunks_new: usize,
+    /// Static-world chunks kept from the previous frame.
+    pub static_chunks_reused: usize,
+    /// Static-world chunks released this frame.
+    pub static_chunks_released: usize,
+    /// Triangles in the static world.
+    pub static_world_triangles: usize,
+    /// Traced instances matched with one of the previous frame.
+    pub matches_found: usize,
+    /// Traced instances of the previous frame that no instance of this frame matched.
+    pub matches_lost: usize,
+    /// The world frame was re-established (teleport, level change, reference lost).
+    pub camera_cut: bool,
+    /// Bytes of vertex data of the traced draws (positions, indices, texture coordinates of
+    /// unit 0): what hashing reads.
+    pub vertex_bytes: u64,
+    /// Time hash tracking took on this frame, in nanoseconds (the only field that differs
+    /// between two runs of the same frames).
+    pub classify_ns: u64,
+}
+
+impl FrameStats {
+    /// One JSON object on one line, for frame number `frame` (`glrt replay --stats`).
+    pub fn json_line(&self, frame: u64) -> String {
+        format!(
+            "{{\"frame\":{frame},\"static_upload_bytes\":{},\"classes\":{},\"triangles\":{},\"static_chunks_new\":{},\"static_chunks_reused\":{},\"static_chunks_released\":{},\"static_world_triangles\":{},\"matches_found\":{},\"matches_lost\":{},\"camera_cut\":{},\"vertex_bytes\":{},\"classify_ms\":{:.3}}}",
+            self.static_upload_bytes,
+            self.classes.json(),
+            self.triangles.json(),
+            self.static_chunks_new,
+            self.static_chunks_reused,
+            self.static_chunks_released,
+            self.static_world_triangles,
+            self.matches_found,
+            self.matches_lost,
+            self.camera_cut,
+            self.vertex_bytes,
+            self.classify_ns as f64 / 1e6
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stats_print_as_one_json_line() {
+        let mut s = FrameStats { static_upload_bytes: 96, camera_cut: true, ..FrameStats::default() };
+        s.classes.add(DrawClass::Sky, 1);
+        s.classes.add(DrawClass::Ignored, 5);
+        s.triangles.add(DrawClass::Static, 12);
+        let line = s.json_line(7);
+        assert!(line.starts_with("{\"frame\":7,\"static_upload_bytes\":96,\"classes\":{\"static\":0,\"movable\":0,\"dynamic\":0,\"translucent\":0,\"overlay\":0,\"sky\":1},\"triangles\":{\"static\":12,"), "{line}");
+        assert!(line.ends_with("\"camera_cut\":true,\"vertex_bytes\":0,\"classify_ms\":0.000}") && !line.contains('\n'), "{line}");
+        assert_eq!((s.classes.get(DrawClass::Sky), s.classes.get(DrawClass::Ignored)), (1, 0));
+    }
+}

@@ -1,0 +1,336 @@
+//! Hash tracking: at the end of each frame, every draw gets a class, every traced draw a
+//! stable instance id, the frame its recovered camera, the persistent static world and its
+//! statistics (DESIGN.md, "Hash tracking"). One [`Classifier`] per context, kept between
+//! frames.
+//!
+//! Per frame, in order:
+//! 1. routing ([`routing`]): raster classes (`Translucent`, `Overlay`, `Sky`, `Ignored`) by
+//!    state and `glrt.toml` texture tags ([`config`], texture hashes from [`texture_hash`]);
+//!    the other draws are traced;
+//! 2. keys ([`keys`]) and matching ([`matching`]) of the traced draws with the previous
+//!    frame's instances: exact (geometry + textures + state) or by slot;
+//! 3. the view ([`view`]) from the draws matched to static instances;
+//! 4. traced classes, in this order: a texture tagged `static` → `Static`, `dynamic` →
+//!    `Dynamic`; matched by slot (its vertices changed) → `Dynamic`; matched exactly an
+//!    instance that was `Movable` or `Dynamic` → the same class (a door that stopped is still
+//!    movable); matched exactly a `Static` instance → `Static` when its model matrix (world
+//!    frame; eye space without a view) is unchanged, else `Movable`; across a camera cut the
+//!    previous class is kept; new → `Static`;
+//! 5. the static world ([`world_feed`] → `static_world`): every traced draw not tagged
+//!    `dynamic` whose vertices are in the world frame (model ≈ identity) or which is a
+//!    `Static` instance (taken to the world by its model) is offered as world-space
+//!    triangles; a camera cut clears the world first;
+//! 6. statistics ([`crate::frame::class::FrameStats`]).
+
+pub mod config;
+pub mod keys;
+pub mod matching;
+pub mod report;
+pub mod routing;
+pub mod static_world;
+pub mod texture_hash;
+pub mod view;
+pub mod world_feed;
+
+use glam::{Mat4, Vec4};
+
+use crate::frame::class::{DrawClass, FrameStats, Instance, Match};
+use crate::frame::{Draw, Frame};
+use matching::{Found, Matcher, Probe, Record};
+use routing::Tags;
+use static_world::StaticWorld;
+use view::{ViewInput, ViewTracker, same_place};
+
+/// What the classifier keeps of a traced draw while it works on a frame.
+#[derive(Clone, Copy, Debug, Default)]
+struct Traced {
+    draw: usize,
+    tags: Tags,
+    geometry: u64,
+    material: u64,
+}
+
+/// Hash tracking across the frames of one context.
+pub struct Classifier {
+    config: config::Config,
+    textures: texture_hash::TextureHashes,
+    lists: keys::ListKeys,
+    states: keys::StateKeys,
+    matcher: Matcher,
+    view: ViewTracker,
+    world: StaticWorld,
+    feed: world_feed::WorldFeed,
+    traced: Vec<Traced>,
+    probes: Vec<Probe>,
+    found: Vec<Found>,
+    records: Vec<Record>,
+}
+
+impl Default for Classifier {
+    /// A classifier with the configuration of this process (`glrt.toml`, `GLRT_<KEY>`).
+    fn default() -> Classifier {
+        Classifier::with_config(config::Config::of_process())
+    }
+}
+
+/// Bytes of a draw's vertex data: positions, indices, texture coordinates of unit 0.
+fn vertex_bytes(draw: &Draw) -> u64 {
+    let texcoords = draw.vertices.texcoords.first().map_or(0, |t| t.values.len());
+    (std::mem::size_of_val(&draw.vertices.position[..]) + draw.indices.len() * 4 + texcoords * 16) as u64
+}
+
+/// Triangles of a draw (0 for lines and points).
+fn triangles(draw: &Draw) -> usize {
+    if draw.topology == crate::frame::Topology::Triangles { draw.indices.len() / 3 } else { 0 }
+}
+
+impl Classifier {
+    /// A classifier with `config`.
+    pub fn with_config(config: config::Config) -> Classifier {
+        Classifier {
+            config,
+            textures: Default::default(),
+            lists: Default::default(),
+            states: Default::default(),
+            matcher: Default::default(),
+            view: Default::default(),
+            world: StaticWorld::new(),
+            feed: Default::default(),
+            traced: Vec::new(),
+            probes: Vec::new(),
+            found: Vec::new(),
+            records: Vec::new(),
+        }
+    }
+
+    /// Classifies `frame` in place (classes, instances, view, static world, statistics);
+    /// `list_version` gives the version of a display list (`ListTable::version`).
+    pub fn classify(&mut self, frame: &mut Frame, list_version: impl Fn(u32) -> Option<u64>) {
+        let start = std::time::Instant::now();
+        self.route(frame, &list_version);
+        self.matcher.match_frame(&self.probes, &mut self.found);
+        let recovered = {
+            let inputs: Vec<ViewInput> = self.traced.iter().zip(&self.found).map(|(t, f)| view_input(&frame.draws[t.draw], f)).collect();
+            self.view.recover(&inputs)
+        };
+        let mut stats = FrameStats { camera_cut: recovered.cut, matches_lost: self.matcher.lost(), ..FrameStats::default() };
+        let view = recovered.view.map(|v| v.view);
+        let inverse = view.map(|v| v.inverse());
+        let clip = recovered.view.map_or(Mat4::IDENTITY, |v| v.projection * v.view);
+        self.world.begin_frame(frame.number, clip);
+        if recovered.cut {
+            self.world.clear();
+        }
+        self.records.clear();
+        let mut instance_upload = 0;
+        for (t, f) in self.traced.iter().zip(&self.found) {
+            let draw = &mut frame.draws[t.draw];
+            let class = traced_class(t.tags, f, view.as_ref(), &draw.modelview, recovered.cut);
+            let model = model_of(inverse.as_ref(), draw, f, class == DrawClass::Static && !t.tags.static_ && !recovered.cut);
+            let in_world = !t.tags.dynamic && (class == DrawClass::Static || model.as_ref().is_some_and(view::is_identity));
+            let offered = match model {
+                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material)),
+                _ => None,
+            };
+            if class == DrawClass::Static && f.matched == Match::New && offered.is_none() {
+                instance_upload += vertex_bytes(draw);
+            }
+            if f.matched != Match::New {
+                stats.matches_found += 1;
+            }
+            // Motion vectors only from the frame just before (not from an instance seen again).
+            let previous_modelview = f.previous.filter(|p| p.age == 0 && !recovered.cut).map(|p| p.modelview);
+            draw.class = class;
+            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, emissive: t.tags.emissive });
+            let probe = self.probes[self.records.len()];
+            self.records.push(Record { id: f.id, probe, ordinal: f.ordinal, modelview: draw.modelview, model, class, age: 0 });
+        }
+        self.matcher.finish(self.records.iter().copied(), recovered.cut);
+        let update = self.world.end_frame();
+        stats.static_upload_bytes = instance_upload + update.upload_bytes;
+        (stats.static_chunks_new, stats.static_chunks_reused, stats.static_chunks_released) =
+            (update.new_chunks, update.reused_chunks, update.released_chunks);
+        stats.static_world_triangles = update.triangles;
+        self.count(frame, &mut stats);
+        stats.classify_ns = start.elapsed().as_nanos() as u64;
+        frame.view = recovered.view;
+        frame.static_world = update.chunks;
+        frame.stats = stats;
+    }
+
+    /// Draws, triangles and vertex bytes per class of a classified frame.
+    fn count(&self, frame: &Frame, stats: &mut FrameStats) {
+        for draw in &frame.draws {
+            stats.classes.add(draw.class, 1);
+            stats.triangles.add(draw.class, triangles(draw) as u64);
+        }
+        stats.vertex_bytes = self.traced.iter().map(|t| vertex_bytes(&frame.draws[t.draw])).sum();
+    }
+
+    /// Step 1: raster classes, and the keys and probes of the traced draws.
+    fn route(&mut self, frame: &mut Frame, list_version: &impl Fn(u32) -> Option<u64>) {
+        self.lists.begin_frame(frame.number);
+        self.traced.clear();
+        self.probes.clear();
+        for (i, draw) in frame.draws.iter_mut().enumerate() {
+            let mut hashes = [0u64; crate::translate::limits::MAX_TEXTURE_UNITS];
+            let mut n = 0;
+            for t in draw.textures.iter().flatten().take(hashes.len()) {
+                (hashes[n], n) = (self.textures.hash(t), n + 1);
+            }
+            let tags = self.config.tags(hashes[..n].iter().copied());
+            draw.instance = None;
+            if let Some(class) = routing::raster_class(draw, !self.traced.is_empty(), tags) {
+                draw.class = class;
+                continue;
+            }
+            let geometry = self.lists.key(draw, list_version);
+            let (texture, state) = (keys::texture_key(draw), self.states.key(draw));
+            let first = draw.vertices.position.first().map_or(Vec4::W, |p| Vec4::from_array(*p));
+            self.probes.push(Probe {
+                exact: keys::combine(&[geometry, texture, state]),
+                slot: keys::combine(&[texture, state, draw.vertices.len() as u64, draw.indices.len() as u64]),
+                anchor: (draw.modelview * first).truncate(),
+            });
+            self.traced.push(Traced { draw: i, tags, geometry, material: keys::combine(&[texture, state]) });
+        }
+    }
+}
+
+/// What view recovery needs of a traced draw matched as `f`.
+fn view_input<'a>(draw: &'a Draw, f: &Found) -> ViewInput<'a> {
+    let previous_model = f.previous.filter(|p| f.matched == Match::Exact && p.class == DrawClass::Static).and_then(|p| p.model);
+    ViewInput {
+        id: f.id,
+        modelview: draw.modelview,
+        projection: draw.projection,
+        triangles: triangles(draw),
+        previous_model,
+        positions: &draw.vertices.position,
+    }
+}
+
+/// The model matrix (object to world) of a traced draw matched as `f`, given the inverse of
+/// the view: exactly the identity when it is close to it, and the previous frame's when the
+/// instance keeps its place (`keep`: static), so that world-space triangles stay bit-identical
+/// from frame to frame.
+fn model_of(inverse_view: Option<&Mat4>, draw: &Draw, f: &Found, keep: bool) -> Option<Mat4> {
+    let model = inverse_view.map(|i| *i * draw.modelview).map(|m| if view::is_identity(&m) { Mat4::IDENTITY } else { m });
+    match f.previous.and_then(|p| p.model) {
+        Some(previous) if keep && model.is_some() => Some(previous),
+        _ => model,
+    }
+}
+
+/// The class of a traced draw (rule 4 of the module doc).
+fn traced_class(tags: Tags, f: &Found, view: Option<&Mat4>, modelview: &Mat4, cut: bool) -> DrawClass {
+    if tags.static_ {
+        return DrawClass::Static;
+    }
+    if tags.dynamic || f.matched == Match::Slot {
+        return DrawClass::Dynamic;
+    }
+    let Some(previous) = f.previous else { return DrawClass::Static };
+    if previous.class != DrawClass::Static || cut {
+        return previous.class;
+    }
+    let unchanged = match (view, previous.model) {
+        (Some(view), Some(model)) => same_place(&(*view * model), modelview),
+        _ => same_place(&previous.modelview, modelview),
+    };
+    if unchanged { DrawClass::Static } else { DrawClass::Movable }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Arc;
+
+    use glam::Vec3;
+
+    use super::*;
+    use crate::frame::state::{CompareFunc, RasterState};
+
+    /// A draw of `n` triangles side by side starting at `x`, seen through `modelview`.
+    fn draw(n: usize, x: f32, modelview: Mat4) -> Draw {
+        let mut d = Draw::default();
+        for i in 0..n {
+            let x = x + i as f32;
+            d.vertices.position.extend([[x, 0.0, 0.0, 1.0], [x + 1.0, 0.0, 0.0, 1.0], [x, 1.0, 0.0, 1.0]]);
+            d.indices.extend([3 * i as u32, 3 * i as u32 + 1, 3 * i as u32 + 2]);
+        }
+        d.vertex_count = d.vertices.len();
+        let mut s = RasterState { depth_test: Some(CompareFunc::Less), depth_write: true, color_mask: [true; 4], ..RasterState::default() };
+        s.depth_range = [0.0, 1.0];
+        d.state = Arc::new(s);
+        d.modelview = modelview;
+        d.projection = view::perspective(1.0, 1.0, 0.1, 1000.0);
+        d
+    }
+
+    fn classify(c: &mut Classifier, number: u64, draws: Vec<Draw>) -> Frame {
+        let mut frame = Frame { number, draws, ..Frame::default() };
+        c.classify(&mut frame, |_| None);
+        frame
+    }
+
+    #[test]
+    fn frames_get_classes_ids_view_and_cuts() {
+        let mut c = Classifier::with_config(config::Config::default());
+        let placed = Mat4::from_translation(Vec3::new(0.0, 0.0, -3.0));
+        let camera = |yaw: f32| Mat4::from_rotation_y(yaw) * Mat4::from_translation(Vec3::new(0.0, -1.0, -20.0));
+        // Frame 0: the world (8 triangles, modelview = view) and a placed object (2).
+        let f0 = classify(&mut c, 0, vec![draw(8, 0.0, camera(0.0)), draw(2, 50.0, camera(0.0) * placed)]);
+        assert!(f0.draws.iter().all(|d| d.class == DrawClass::Static));
+        let ids: Vec<u64> = f0.draws.iter().map(|d| d.instance.unwrap().id).collect();
+        assert_eq!(f0.view.unwrap().view, camera(0.0));
+        // Frame 1: the camera turns, the object moves, an animated mesh appears.
+        let moved = Mat4::from_translation(Vec3::new(0.5, 0.0, -3.0));
+        let f1 = classify(&mut c, 1, vec![draw(8, 0.0, camera(0.1)), draw(2, 50.0, camera(0.1) * moved), draw(3, 9.0, camera(0.1))]);
+        let classes: Vec<DrawClass> = f1.draws.iter().map(|d| d.class).collect();
+        assert_eq!(classes, [DrawClass::Static, DrawClass::Movable, DrawClass::Static]);
+        assert_eq!(f1.draws[1].instance.unwrap().previous_modelview, Some(camera(0.0) * placed));
+        assert_eq!((f1.stats.matches_found, f1.stats.matches_lost, f1.stats.camera_cut), (2, 0, false));
+        // Frame 2: the mesh's vertices change (same slot): dynamic, same id.
+        let f2 = classify(&mut c, 2, vec![draw(8, 0.0, camera(0.2)), draw(3, 9.5, camera(0.2))]);
+        assert_eq!((f2.draws[1].class, f2.draws[1].instance.unwrap().id), (DrawClass::Dynamic, f1.draws[2].instance.unwrap().id));
+        assert_eq!(f2.draws[0].instance.unwrap().id, ids[0]);
+        assert_eq!(f2.stats.matches_lost, 1, "the movable object was not drawn");
+        assert!(f2.stats.static_world_triangles >= 8, "the world was offered twice: {:?}", f2.stats);
+        // Frame 3: the world is culled; a second static object drawn since frame 1 would chain
+        // the view; here only the world's twin (new geometry) is drawn far away: a cut.
+        let f3 = classify(&mut c, 3, vec![draw(4, 100.0, camera(0.3) * Mat4::from_translation(Vec3::splat(900.0)))]);
+        assert!(f3.stats.camera_cut && f3.stats.static_chunks_released > 0, "{:?}", f3.stats);
+        assert_eq!(f3.stats.static_world_triangles, 0);
+        assert!(f3.draws[0].instance.unwrap().previous_modelview.is_none());
+    }
+
+    #[test]
+    fn the_view_chains_through_other_static_draws() {
+        let mut c = Classifier::with_config(config::Config::default());
+        let placed = Mat4::from_translation(Vec3::new(4.0, 0.0, 0.0));
+        let camera = |z: f32| Mat4::from_translation(Vec3::new(0.0, 0.0, -z));
+        classify(&mut c, 0, vec![draw(8, 0.0, camera(10.0)), draw(2, 0.0, camera(10.0) * placed)]);
+        classify(&mut c, 1, vec![draw(8, 0.0, camera(10.5)), draw(2, 0.0, camera(10.5) * placed)]);
+        // The reference (8 triangles) leaves the screen; the placed object keeps the world frame.
+        let f = classify(&mut c, 2, vec![draw(2, 0.0, camera(11.0) * placed)]);
+        let view = f.view.unwrap();
+        assert!(view::same_place(&view.view, &camera(11.0)) && !f.stats.camera_cut, "{view:?}");
+        assert_eq!(f.draws[0].class, DrawClass::Static);
+        assert!(view::same_place(&f.draws[0].instance.unwrap().model.unwrap(), &placed));
+    }
+
+    #[test]
+    fn a_rebatched_world_keeps_its_world_frame() {
+        // Every frame the world comes in other batches (nothing matches exactly), drawn with
+        // modelview = view while the camera turns and walks: no cut, the view follows.
+        let mut c = Classifier::with_config(config::Config::default());
+        for k in 0..20u64 {
+            let camera = Mat4::from_rotation_y(0.05 * k as f32) * Mat4::from_translation(Vec3::new(0.1 * k as f32, -1.0, -5.0));
+            let batches = vec![draw(6 + (k % 4) as usize, k as f32, camera), draw(2, 40.0 + k as f32, camera)];
+            let f = classify(&mut c, k, batches);
+            assert!(!f.stats.camera_cut, "frame {k}");
+            assert!(view::same_place(&f.view.unwrap().view, &camera), "frame {k}");
+            assert!(f.draws.iter().all(|d| d.instance.unwrap().model == Some(Mat4::IDENTITY)), "frame {k}: in the world frame");
+        }
+    }
+}

@@ -1,0 +1,83 @@
+//! Sinks that report what hash tracking found, for the `glrt` command: per-frame statistics
+//! as JSON lines (`glrt replay --stats`) and the hashes of the textures draws used
+//! (`glrt info FILE`, the names `glrt.toml` tags textures by).
+
+use std::collections::BTreeMap;
+use std::io::Write as _;
+use std::sync::Arc;
+
+use parking_lot::Mutex;
+
+use crate::frame::Frame;
+use crate::frame::pixels::PixelBuffer;
+use crate::render::{FrameSink, NullSink, Target};
+
+/// Prints each frame's [`crate::frame::class::FrameStats`] as one JSON line on standard
+/// output, then hands the frame to `inner`.
+pub struct StatsPrinter {
+    inner: Box<dyn FrameSink>,
+}
+
+impl StatsPrinter {
+    /// Prints, then presents to `inner` (`None`: frames are dropped).
+    pub fn new(inner: Option<Box<dyn FrameSink>>) -> StatsPrinter {
+        StatsPrinter { inner: inner.unwrap_or_else(|| Box::new(NullSink::default())) }
+    }
+}
+
+impl FrameSink for StatsPrinter {
+    fn present(&mut self, frame: Frame) {
+        let _ = writeln!(std::io::stdout().lock(), "{}", frame.stats.json_line(frame.number));
+        self.inner.present(frame);
+    }
+    fn set_target(&mut self, target: Target) {
+        self.inner.set_target(target);
+    }
+    fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
+        self.inner.occlusion_result(frame, query)
+    }
+    fn occlusion_counter_bits(&self) -> u32 {
+        self.inner.occlusion_counter_bits()
+    }
+    fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        self.inner.read_pixels(frame, buffer, rect)
+    }
+}
+
+/// Texture name → (content version, hash) pairs, one per version used.
+pub type Versions = BTreeMap<u32, Vec<(u64, u64)>>;
+
+/// The texture hashes of every texture content that draws used: texture name → hashes, in
+/// the order first seen.
+#[derive(Clone, Default)]
+pub struct TextureCatalog {
+    /// What draws used, shared by the sinks of every context.
+    pub textures: Arc<Mutex<Versions>>,
+}
+
+impl FrameSink for TextureCatalog {
+    fn present(&mut self, frame: Frame) {
+        let mut textures = self.textures.lock();
+        for t in frame.draws.iter().flat_map(|d| d.textures.iter().flatten()) {
+            let versions = textures.entry(t.id).or_default();
+            if !versions.iter().any(|&(v, _)| v == t.version) {
+                versions.push((t.version, super::texture_hash::content_hash(&t.content)));
+            }
+        }
+    }
+}
+
+impl TextureCatalog {
+    /// The report `glrt info FILE` prints: one line per texture name with its distinct hashes.
+    pub fn report(&self) -> String {
+        let textures = self.textures.lock();
+        let mut out = format!("textures drawn with (level-0 hash, the glrt.toml names): {}\n", textures.len());
+        for (id, versions) in textures.iter() {
+            let mut hashes: Vec<u64> = versions.iter().map(|&(_, h)| h).collect();
+            hashes.dedup();
+            let list: Vec<String> = hashes.iter().map(|h| format!("{h:#018x}")).collect();
+            out += &format!("  texture {id}: {}\n", list.join(" "));
+        }
+        out
+    }
+}
