@@ -7,6 +7,7 @@ pub mod pixels;
 pub mod state;
 pub mod texture;
 pub mod vertex;
+pub mod world;
 
 use std::sync::Arc;
 

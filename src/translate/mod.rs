@@ -19,6 +19,7 @@ pub mod attrib;
 pub mod buffer_objects;
 pub mod buffers;
 pub mod capture;
+pub mod classify;
 pub mod clear;
 pub mod client_attrib;
 pub mod clip_planes;

@@ -1,0 +1,35 @@
+//! The persistent static world handed to the renderer: world-space triangles of one material
+//! grouped into chunks that, once built, never change (`translate::classify::static_world`
+//! builds them). A renderer uploads a chunk and builds its acceleration structure once, keyed
+//! by [`StaticChunk::id`], and frees it when the chunk leaves the list.
+
+use super::TextureRef;
+
+/// A piece of the persistent static world: world-space triangles of one material, stable
+/// while it lives (its id is never given to other content).
+#[derive(Clone, Debug, PartialEq)]
+pub struct StaticChunk {
+    /// Unique for the life of the world that built it.
+    pub id: u64,
+    /// Hash of the texture and draw state the triangles are drawn with.
+    pub material: u64,
+    /// Texture of the triangles (unit 0).
+    pub texture: Option<TextureRef>,
+    /// World-space positions, 3 per triangle, with the program's winding.
+    pub positions: Vec<[f32; 3]>,
+    /// Texture coordinates of unit 0: empty, or 3 per triangle.
+    pub texcoords: Vec<[f32; 2]>,
+}
+
+impl StaticChunk {
+    /// Triangle count.
+    pub fn triangles(&self) -> usize {
+        self.positions.len() / 3
+    }
+
+    /// Bytes a renderer uploads for this chunk: positions (12 per vertex) and texture
+    /// coordinates (8 per vertex).
+    pub fn upload_bytes(&self) -> u64 {
+        (self.positions.len() * 12 + self.texcoords.len() * 8) as u64
+    }
+}
