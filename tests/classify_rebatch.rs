@@ -1,0 +1,147 @@
+//! Hash tracking against a Quake-3-like program (issue 5): `glrt-demo --rebatch` re-batches its
+//! world surfaces per texture into client arrays every frame, draws only those in the view
+//! frustum, and turns the camera around in `TURN` frames. Captured through glrt's libGL and
+//! replayed with `glrt replay FILE --stats`, the persistent static world must hold every
+//! surface once after one turn (no duplicates), upload nothing afterwards, and keep the
+//! surfaces the program no longer draws (behind the camera). Run `cargo build` first: the
+//! demo runs through `target/<profile>/libglrt.so`.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Frames of one turn of the camera (`demo/rebatch.rs`, `TURN_FRAMES`).
+const TURN: u64 = 120;
+/// Frames captured: one turn and a quarter.
+const FRAMES: u64 = 150;
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("classify_rebatch");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    let _ = std::fs::remove_file(&path);
+    path
+}
+
+/// The number after `"key":` in a JSON object's text (the first at any depth).
+fn number(json: &str, key: &str) -> Option<u64> {
+    let at = json.find(&format!("\"{key}\":"))? + key.len() + 3;
+    let digits: String = json[at..].trim_start().chars().take_while(char::is_ascii_digit).collect();
+    digits.parse().ok()
+}
+
+/// The text of the object after `"key":`, braces included.
+fn object<'a>(json: &'a str, key: &str) -> Option<&'a str> {
+    let start = json.find(&format!("\"{key}\":"))? + key.len() + 3;
+    let rest = json[start..].trim_start();
+    let mut depth = 0;
+    for (i, c) in rest.char_indices() {
+        match c {
+            '{' => depth += 1,
+            '}' => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(&rest[..=i]);
+                }
+            }
+            _ if depth == 0 => return None,
+            _ => {}
+        }
+    }
+    None
+}
+
+/// What the demo printed: total triangles, and (triangles, draws) drawn per frame.
+fn demo_counts(stdout: &str) -> (u64, Vec<(u64, u64)>) {
+    let total = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("rebatch: "))
+        .and_then(|l| l.split(", ").nth(1)?.strip_suffix(" triangles")?.parse().ok())
+        .unwrap_or_else(|| panic!("no 'rebatch: S surfaces, T triangles' line:\n{stdout}"));
+    let frames = stdout
+        .lines()
+        .filter_map(|l| l.strip_prefix("rebatch frame "))
+        .map(|l| {
+            let words: Vec<&str> = l.split_whitespace().collect();
+            // "F: S surfaces, T triangles, D draws"
+            (words[3].parse().expect("triangles"), words[5].parse().expect("draws"))
+        })
+        .collect();
+    (total, frames)
+}
+
+#[test]
+fn a_rebatched_world_is_kept_whole_once_and_uploaded_once() {
+    let lib = Path::new(env!("CARGO_BIN_EXE_glrt")).parent().unwrap().to_path_buf();
+    let so = lib.join("libGL.so.1");
+    if std::fs::symlink_metadata(&so).is_err() {
+        let _ = std::os::unix::fs::symlink("libglrt.so", &so);
+    }
+    let capture = scratch("rebatch.glrtcap");
+    let out = Command::new(env!("CARGO_BIN_EXE_glrt-demo"))
+        .args(["--rebatch", "--verbose", "--headless", "--size", "160x120", "--frames"])
+        .arg(FRAMES.to_string())
+        .env("LD_LIBRARY_PATH", &lib)
+        .env("GLRT_CAPTURE", &capture)
+        .output()
+        .expect("run glrt-demo");
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "glrt-demo: {}", String::from_utf8_lossy(&out.stderr));
+    let (total, drawn) = demo_counts(&stdout);
+    assert_eq!(drawn.len() as u64, FRAMES);
+
+    let out = Command::new(env!("CARGO_BIN_EXE_glrt"))
+        .arg("replay")
+        .arg(&capture)
+        .arg("--stats")
+        .output()
+        .expect("run glrt replay");
+    assert!(out.status.success(), "glrt replay --stats: {}", String::from_utf8_lossy(&out.stderr));
+    let stats = String::from_utf8_lossy(&out.stdout);
+    let lines: Vec<&str> = stats.lines().filter(|l| l.starts_with('{')).collect();
+    assert_eq!(lines.len() as u64, FRAMES, "one JSON object per frame:\n{stats}");
+
+    let mut uploaded = 0;
+    for line in lines {
+        let frame = number(line, "frame").unwrap_or_else(|| panic!("no frame: {line}"));
+        let upload = number(line, "static_upload_bytes").unwrap_or_else(|| panic!("no static_upload_bytes: {line}"));
+        let world = number(line, "static_world_triangles").unwrap_or_else(|| panic!("no static_world_triangles: {line}"));
+        let triangles = object(line, "triangles").unwrap_or_else(|| panic!("no triangles object: {line}"));
+        let classes = object(line, "classes").unwrap_or_else(|| panic!("no classes object: {line}"));
+        let (drawn_triangles, draws) = drawn[frame as usize];
+        uploaded += upload;
+        assert!(world <= total, "frame {frame}: {world} static triangles, more than the {total} of the world");
+        assert!(drawn_triangles < total, "frame {frame}: the program culls ({drawn_triangles} of {total} drawn)");
+        if frame < TURN {
+            continue;
+        }
+        // After one turn: every surface once, kept while the program draws only part of it.
+        assert_eq!(world, total, "frame {frame}: the static world holds every surface once");
+        assert_eq!(upload, 0, "frame {frame}: nothing new to upload while only the camera turns");
+        assert_eq!(
+            number(triangles, "static"),
+            Some(drawn_triangles),
+            "frame {frame}: every drawn world triangle is static: {line}"
+        );
+        let class = |name: &str| number(classes, name).unwrap_or_else(|| panic!("no classes.{name}: {line}"));
+        let instances: u64 =
+            ["static", "movable", "dynamic", "translucent", "overlay", "sky"].iter().map(|c| class(c)).sum();
+        assert_eq!(instances, draws, "frame {frame}: one instance per draw: {line}");
+        assert_eq!((class("dynamic"), class("movable")), (0, 0), "frame {frame}: re-batching is not motion: {line}");
+    }
+    // Positions (12 bytes per vertex) uploaded at least once; with texture coordinates
+    // (8 bytes) and chunk merges, less than twice the whole world.
+    let (positions, everything) = (total * 3 * 12, total * 3 * 20);
+    assert!(uploaded >= positions && uploaded < 2 * everything, "{uploaded} bytes uploaded for {total} triangles");
+}
+
+#[test]
+fn the_json_helpers_read_nested_keys() {
+    let line = r#"{"frame":7,"classes":{"static":3,"sky":1},"triangles":{"static":120,"sky":2},"static_upload_bytes":0}"#;
+    assert_eq!(number(line, "frame"), Some(7));
+    assert_eq!(number(line, "static_upload_bytes"), Some(0));
+    assert_eq!(object(line, "triangles").and_then(|t| number(t, "static")), Some(120));
+    assert_eq!(object(line, "classes").and_then(|t| number(t, "static")), Some(3));
+    assert_eq!(object(line, "frame"), None);
+    let (total, frames) = demo_counts("rebatch: 10 surfaces, 80 triangles\nrebatch frame 0: 3 surfaces, 24 triangles, 2 draws\n");
+    assert_eq!((total, frames), (80, vec![(24, 2)]));
+}
