@@ -40,13 +40,16 @@
 //!   says nothing (a PVS cut). A released triangle returns when seen in two frames again.
 //!   Frames that give no evidence (outside the frustum, cell not drawn) leave the count as it is.
 //!
-//! Cost: one xxh3 of 36 bytes and one hash-map probe per offered triangle (keys are hashes, so
-//! the maps use a one-multiply hasher); no allocation per triangle or per frame once the world is
-//! built (buffers are kept); the release test visits only the chunks whose cell was drawn and
-//! whose bounds meet the frustum.
+//! Cost per offered triangle: one xxh3 of 36 bytes, then a comparison with the key that follows
+//! the last triangle found in its chunk (surfaces arrive whole and chunks keep them in the order
+//! they joined, so this usually hits, reading memory in order); only on a miss a hash-map probe
+//! (keys are hashes, so the maps use a one-multiply hasher). When each triangle is seen lives
+//! in its chunk, next to its key. No allocation per triangle or per frame once the world is
+//! built; the release test visits only the chunks whose cell was drawn and whose bounds meet the
+//! frustum, and makes no hash-map probe.
 
 use std::collections::hash_map::Entry;
-use std::collections::{BTreeMap, HashMap};
+use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 use std::sync::Arc;
 
@@ -159,33 +162,34 @@ struct Pending {
     tri: Tri,
 }
 
-/// Where a world triangle lives and when it was seen.
-struct Slot {
-    /// Chunk id, or [`JOINING`] until the end of the frame it joined in.
-    chunk: u64,
-    /// Triangle index in the chunk, or in `joining` while joining.
+/// Where a world triangle lives: chunk (index into `StaticWorld::chunks`, or [`JOINING`]) and
+/// triangle index in it (or in `joining`).
+#[derive(Clone, Copy, PartialEq, Eq)]
+struct Loc {
+    chunk: u32,
     index: u32,
-    /// Cell index (into `cells`).
-    cell: u32,
-    last_seen: u64,
-    /// Frames of evidence that it is gone, since it was last seen.
+}
+
+/// `Loc::chunk` of a triangle that joined in the current frame.
+const JOINING: u32 = u32::MAX;
+
+/// A world triangle taken out of a chunk to be rebuilt into another.
+struct Moved {
+    key: u64,
+    tri: Tri,
+    seen: u64,
     missed: u8,
 }
 
-/// `Slot::chunk` of a triangle that joined in the current frame.
-const JOINING: u64 = 0;
-
-/// A spatial cell of the world grid.
-struct Cell {
-    /// Tick in which a triangle of this cell was last offered.
-    seen: u64,
-}
-
-/// A live chunk and what the world needs to rebuild it.
+/// A live chunk, what the world needs to rebuild it, and when its triangles were seen.
 struct LiveChunk {
     chunk: Arc<StaticChunk>,
     /// Key of each triangle.
     keys: Vec<u64>,
+    /// Tick in which each triangle was last offered.
+    seen: Vec<u64>,
+    /// Frames of evidence that each triangle is gone, since it was last offered.
+    missed: Vec<u8>,
     cell: u32,
     min: Vec3,
     max: Vec3,
@@ -204,8 +208,8 @@ pub struct StaticWorld {
     tick: u64,
     last_frame: Option<u64>,
     world_to_clip: Mat4,
-    /// Key → slot of every world triangle.
-    slots: Map<u64, Slot>,
+    /// Key → place of every world triangle.
+    slots: Map<u64, Loc>,
     /// Keys that float noise produced for a world triangle → that triangle's key.
     aliases: Map<u64, u64>,
     pending: Map<u64, Pending>,
@@ -214,22 +218,26 @@ pub struct StaticWorld {
     /// (material, centroid cell of [`NEAR`] × 4) → keys, to find near duplicates.
     near: Map<(u64, [i32; 3]), Vec<u64>>,
     cell_size: Option<f32>,
-    cells: Vec<Cell>,
+    /// Tick in which a triangle of each spatial cell was last offered.
+    cells: Vec<u64>,
     cell_index: Map<[i32; 3], u32>,
-    /// (material, cell) → ids of its chunks.
-    groups: Map<(u64, u32), Vec<u64>>,
-    chunks: BTreeMap<u64, LiveChunk>,
+    /// (material, cell) → indices of its chunks.
+    groups: Map<(u64, u32), Vec<u32>>,
+    /// Live chunks by index (`None`: free, index in `free`).
+    chunks: Vec<Option<LiveChunk>>,
+    free: Vec<u32>,
     next_id: u64,
     list: Arc<[Arc<StaticChunk>]>,
     changes: Changes,
+    /// The last triangle found: the next offered one is most often the next in its chunk
+    /// (surfaces arrive whole, in the order they joined), found without a hash probe.
+    cursor: Option<Loc>,
     /// Facing samples of this frame: counter, counter-clockwise and clockwise in the view.
     facing_counter: u32,
     ccw: u32,
     cw: u32,
     /// Sign of the view-space area of a front face (+1: counter-clockwise).
     front_sign: f32,
-    /// Reused buffer of keys to release.
-    release: Vec<u64>,
 }
 
 impl Default for StaticWorld {
@@ -254,15 +262,16 @@ impl StaticWorld {
             cells: Vec::new(),
             cell_index: Map::default(),
             groups: Map::default(),
-            chunks: BTreeMap::new(),
-            next_id: JOINING + 1,
+            chunks: Vec::new(),
+            free: Vec::new(),
+            next_id: 1,
             list: Arc::from(Vec::new()),
             changes: Changes::default(),
+            cursor: None,
             facing_counter: 0,
             ccw: 0,
             cw: 0,
             front_sign: 1.0,
-            release: Vec::new(),
         }
     }
 
@@ -275,6 +284,7 @@ impl StaticWorld {
         self.last_frame = Some(frame);
         self.tick += 1;
         self.world_to_clip = world_to_clip;
+        self.cursor = None;
         self.ccw = 0;
         self.cw = 0;
     }
@@ -289,7 +299,10 @@ impl StaticWorld {
             let positions = [t.positions[3 * i], t.positions[3 * i + 1], t.positions[3 * i + 2]];
             self.sample_facing(&positions);
             let key = triangle_key(&positions, t.material);
-            if self.see(key) || self.aliases.get(&key).copied().is_some_and(|original| self.see(original)) {
+            if self.see_next(key)
+                || self.see(key)
+                || self.aliases.get(&key).copied().is_some_and(|original| self.see(original))
+            {
                 offered.static_triangles += 1;
                 continue;
             }
@@ -324,14 +337,17 @@ impl StaticWorld {
         self.build_joined();
         let tick = self.tick;
         self.pending.retain(|_, p| p.tick + PENDING_FRAMES >= tick);
+        self.cursor = None;
         let changes = std::mem::take(&mut self.changes);
         if changes.new_chunks + changes.released_chunks > 0 {
-            self.list = self.chunks.values().map(|c| c.chunk.clone()).collect();
+            let mut list: Vec<Arc<StaticChunk>> = self.live().map(|c| c.chunk.clone()).collect();
+            list.sort_by_key(|c| c.id);
+            self.list = list.into();
         }
         WorldUpdate {
             chunks: self.list.clone(),
             new_chunks: changes.new_chunks,
-            reused_chunks: self.chunks.len().saturating_sub(changes.new_chunks),
+            reused_chunks: self.list.len().saturating_sub(changes.new_chunks),
             released_chunks: changes.released_chunks,
             upload_bytes: changes.upload_bytes,
             triangles: self.slots.len(),
@@ -341,7 +357,7 @@ impl StaticWorld {
     /// Camera cut or level change: forget everything (the next update reports every chunk
     /// released).
     pub fn clear(&mut self) {
-        self.changes.released_chunks += self.chunks.len();
+        self.changes.released_chunks += self.live().count();
         self.changes.new_chunks = 0;
         self.changes.upload_bytes = 0;
         self.slots.clear();
@@ -354,19 +370,46 @@ impl StaticWorld {
         self.cell_index.clear();
         self.groups.clear();
         self.chunks.clear();
+        self.free.clear();
+        self.cursor = None;
         self.list = Arc::from(Vec::new());
+    }
+
+    /// The live chunks.
+    fn live(&self) -> impl Iterator<Item = &LiveChunk> {
+        self.chunks.iter().flatten()
+    }
+
+    /// Marks the triangle at `loc` seen in this frame (nothing for a joining one) and makes it
+    /// the cursor.
+    fn mark(&mut self, loc: Loc) {
+        self.cursor = Some(loc);
+        let Some(Some(chunk)) = self.chunks.get_mut(loc.chunk as usize) else { return };
+        let i = loc.index as usize;
+        if let (Some(seen), Some(missed)) = (chunk.seen.get_mut(i), chunk.missed.get_mut(i)) {
+            *seen = self.tick;
+            *missed = 0;
+        }
+        if let Some(cell) = self.cells.get_mut(chunk.cell as usize) {
+            *cell = self.tick;
+        }
+    }
+
+    /// Whether `key` is the triangle after the cursor in its chunk (then marked seen).
+    fn see_next(&mut self, key: u64) -> bool {
+        let Some(cursor) = self.cursor else { return false };
+        let next = Loc { chunk: cursor.chunk, index: cursor.index + 1 };
+        let hit = matches!(self.chunks.get(next.chunk as usize), Some(Some(c)) if c.keys.get(next.index as usize) == Some(&key));
+        if hit {
+            self.mark(next);
+        }
+        hit
     }
 
     /// Marks the world triangle `key` seen in this frame; false when it is not in the world.
     fn see(&mut self, key: u64) -> bool {
-        let Some(slot) = self.slots.get_mut(&key) else { return false };
-        if slot.last_seen != self.tick {
-            slot.last_seen = self.tick;
-            slot.missed = 0;
-            if let Some(cell) = self.cells.get_mut(slot.cell as usize) {
-                cell.seen = self.tick;
-            }
-        }
+        let Some(&loc) = self.slots.get(&key) else { return false };
+        self.mark(loc);
         true
     }
 
@@ -397,9 +440,7 @@ impl StaticWorld {
         }
         let near_key = (pending.material, near_cell(&pending.tri.positions));
         self.near.entry(near_key).or_default().push(key);
-        let index = self.joining.len() as u32;
-        self.slots
-            .insert(key, Slot { chunk: JOINING, index, cell: u32::MAX, last_seen: self.tick, missed: 0 });
+        self.slots.insert(key, Loc { chunk: JOINING, index: self.joining.len() as u32 });
         self.joining.push((key, pending));
     }
 
@@ -425,12 +466,12 @@ impl StaticWorld {
 
     /// The positions of world triangle `key`.
     fn positions_of(&self, key: u64) -> Option<[[f32; 3]; 3]> {
-        let slot = self.slots.get(&key)?;
-        let i = slot.index as usize;
-        if slot.chunk == JOINING {
+        let loc = self.slots.get(&key)?;
+        let i = loc.index as usize;
+        if loc.chunk == JOINING {
             return self.joining.get(i).map(|(_, p)| p.tri.positions);
         }
-        let p = &self.chunks.get(&slot.chunk)?.chunk.positions;
+        let p = &self.chunks.get(loc.chunk as usize)?.as_ref()?.chunk.positions;
         Some([*p.get(3 * i)?, *p.get(3 * i + 1)?, *p.get(3 * i + 2)?])
     }
 
@@ -442,28 +483,23 @@ impl StaticWorld {
         let joining = std::mem::take(&mut self.joining);
         let cell_size = *self.cell_size.get_or_insert_with(|| first_cell_size(&joining));
         // Group by (material, cell), keeping the order of appearance.
-        let mut groups: Vec<((u64, u32), Vec<usize>)> = Vec::new();
+        let mut groups: Vec<((u64, u32), Vec<Moved>, Option<TextureRef>)> = Vec::new();
         let mut group_of: Map<(u64, u32), usize> = Map::default();
-        for (i, (_, p)) in joining.iter().enumerate() {
+        for (key, p) in joining {
             let coords = (centroid(&p.tri.positions) / cell_size).floor().as_ivec3().to_array();
             let cell = self.cell(coords);
-            self.cells[cell as usize].seen = self.tick;
             let g = *group_of.entry((p.material, cell)).or_insert_with(|| {
-                groups.push(((p.material, cell), Vec::new()));
+                groups.push(((p.material, cell), Vec::new(), p.texture.clone()));
                 groups.len() - 1
             });
-            groups[g].1.push(i);
+            groups[g].1.push(Moved { key, tri: p.tri, seen: self.tick, missed: 0 });
         }
-        for ((material, cell), members) in groups {
-            let texture = members.first().and_then(|&i| joining[i].1.texture.clone());
-            let mut tris: Vec<(u64, Tri)> =
-                members.iter().map(|&i| (joining[i].0, joining[i].1.tri)).collect();
+        for ((material, cell), mut tris, texture) in groups {
             let existing = self.groups.get(&(material, cell)).map_or(0, Vec::len);
             if existing >= MAX_CHUNKS_PER_CELL {
-                let old = self.groups.remove(&(material, cell)).unwrap_or_default();
                 let mut merged = Vec::new();
-                for id in old {
-                    merged.extend(self.take_chunk(id));
+                for index in self.groups.remove(&(material, cell)).unwrap_or_default() {
+                    merged.extend(self.take_chunk(index));
                 }
                 merged.append(&mut tris);
                 tris = merged;
@@ -472,136 +508,135 @@ impl StaticWorld {
         }
     }
 
-    /// Index of the cell at `coords`, created if new.
+    /// Index of the cell at `coords` (created if new), marked drawn in this frame.
     fn cell(&mut self, coords: [i32; 3]) -> u32 {
         let cells = &mut self.cells;
-        *self.cell_index.entry(coords).or_insert_with(|| {
-            cells.push(Cell { seen: 0 });
+        let index = *self.cell_index.entry(coords).or_insert_with(|| {
+            cells.push(0);
             (cells.len() - 1) as u32
-        })
+        });
+        cells[index as usize] = self.tick;
+        index
     }
 
-    /// Removes chunk `id` (counted as released) and returns its triangles.
-    fn take_chunk(&mut self, id: u64) -> Vec<(u64, Tri)> {
-        let Some(live) = self.chunks.remove(&id) else { return Vec::new() };
+    /// Removes chunk `index` (counted as released; the caller updates `groups`) and returns its
+    /// triangles.
+    fn take_chunk(&mut self, index: u32) -> Vec<Moved> {
+        let Some(live) = self.chunks.get_mut(index as usize).and_then(Option::take) else { return Vec::new() };
+        self.free.push(index);
         self.changes.released_chunks += 1;
         let c = &live.chunk;
-        live.keys
-            .iter()
-            .enumerate()
-            .map(|(i, &key)| {
+        (0..live.keys.len())
+            .map(|i| {
                 let positions = [c.positions[3 * i], c.positions[3 * i + 1], c.positions[3 * i + 2]];
                 let texcoords = (!c.texcoords.is_empty())
                     .then(|| [c.texcoords[3 * i], c.texcoords[3 * i + 1], c.texcoords[3 * i + 2]]);
-                (key, Tri { positions, texcoords })
+                Moved { key: live.keys[i], tri: Tri { positions, texcoords }, seen: live.seen[i], missed: live.missed[i] }
             })
             .collect()
     }
 
     /// Builds a chunk of `tris` in `cell` (nothing when empty) and points their slots at it.
-    fn build_chunk(&mut self, material: u64, texture: Option<TextureRef>, cell: u32, tris: Vec<(u64, Tri)>) {
+    fn build_chunk(&mut self, material: u64, texture: Option<TextureRef>, cell: u32, tris: Vec<Moved>) {
         if tris.is_empty() {
             return;
         }
+        let index = self.free.pop().unwrap_or_else(|| {
+            self.chunks.push(None);
+            (self.chunks.len() - 1) as u32
+        });
         let id = self.next_id;
         self.next_id += 1;
-        let with_uv = tris.iter().any(|(_, t)| t.texcoords.is_some());
-        let mut positions = Vec::with_capacity(tris.len() * 3);
-        let mut texcoords = Vec::with_capacity(if with_uv { tris.len() * 3 } else { 0 });
-        let (mut min, mut max) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-        let mut keys = Vec::with_capacity(tris.len());
-        for (index, (key, tri)) in tris.iter().enumerate() {
-            for p in tri.positions {
+        let with_uv = tris.iter().any(|t| t.tri.texcoords.is_some());
+        let n = tris.len();
+        let mut positions = Vec::with_capacity(n * 3);
+        let mut texcoords = Vec::with_capacity(if with_uv { n * 3 } else { 0 });
+        let (mut keys, mut seen, mut missed) = (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
+        let (mut min, mut max) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+        for (i, t) in tris.iter().enumerate() {
+            for p in t.tri.positions {
                 min = min.min(Vec3::from(p));
                 max = max.max(Vec3::from(p));
             }
-            positions.extend_from_slice(&tri.positions);
+            positions.extend_from_slice(&t.tri.positions);
             if with_uv {
-                texcoords.extend_from_slice(&tri.texcoords.unwrap_or_default());
+                texcoords.extend_from_slice(&t.tri.texcoords.unwrap_or_default());
             }
-            keys.push(*key);
-            if let Some(slot) = self.slots.get_mut(key) {
-                slot.chunk = id;
-                slot.index = index as u32;
-                slot.cell = cell;
-            }
+            keys.push(t.key);
+            seen.push(t.seen);
+            missed.push(t.missed);
+            self.slots.insert(t.key, Loc { chunk: index, index: i as u32 });
         }
         let chunk = Arc::new(StaticChunk { id, material, texture, positions, texcoords });
         self.changes.new_chunks += 1;
         self.changes.upload_bytes += chunk.upload_bytes();
-        self.groups.entry((material, cell)).or_default().push(id);
-        self.chunks.insert(id, LiveChunk { chunk, keys, cell, min, max });
+        self.groups.entry((material, cell)).or_default().push(index);
+        self.chunks[index as usize] = Some(LiveChunk { chunk, keys, seen, missed, cell, min, max });
     }
 
     /// Releases the triangles the view shows are gone (module documentation, "Release").
     fn release_gone(&mut self) {
-        let mut release = std::mem::take(&mut self.release);
-        release.clear();
-        let mut touched: Vec<u64> = Vec::new();
-        for (&id, live) in &self.chunks {
-            let drawn = self.cells.get(live.cell as usize).is_some_and(|c| c.seen == self.tick);
-            if !drawn || !box_meets_frustum(&self.world_to_clip, live.min, live.max) {
+        let (tick, m, front) = (self.tick, self.world_to_clip, self.front_sign);
+        let mut touched = Vec::new();
+        for (index, live) in self.chunks.iter_mut().enumerate() {
+            let Some(live) = live else { continue };
+            let drawn = self.cells.get(live.cell as usize) == Some(&tick);
+            if !drawn || !box_meets_frustum(&m, live.min, live.max) {
                 continue;
             }
-            let mut gone_here = false;
-            for (i, key) in live.keys.iter().enumerate() {
-                let Some(slot) = self.slots.get_mut(key) else { continue };
-                if slot.last_seen == self.tick {
+            let mut gone = false;
+            for (i, p) in live.chunk.positions.chunks_exact(3).enumerate() {
+                if live.seen[i] == tick {
                     continue;
                 }
-                let p = &live.chunk.positions[3 * i..3 * i + 3];
-                let clip = [p[0], p[1], p[2]].map(|v| self.world_to_clip * Vec3::from(v).extend(1.0));
-                if !well_inside(&clip) || view_area(&clip) * self.front_sign <= 0.0 {
+                let clip = [p[0], p[1], p[2]].map(|v| m * Vec3::from(v).extend(1.0));
+                if !well_inside(&clip) || view_area(&clip) * front <= 0.0 {
                     continue;
                 }
-                slot.missed = slot.missed.saturating_add(1);
-                if slot.missed >= RELEASE_FRAMES {
-                    release.push(*key);
-                    gone_here = true;
-                }
+                live.missed[i] = live.missed[i].saturating_add(1);
+                gone |= live.missed[i] >= RELEASE_FRAMES;
             }
-            if gone_here {
-                touched.push(id);
+            if gone {
+                touched.push(index as u32);
             }
         }
-        for key in &release {
-            self.forget(*key);
-        }
-        for id in touched {
-            let Some(live) = self.chunks.get(&id) else { continue };
+        for index in touched {
+            let Some(Some(live)) = self.chunks.get(index as usize) else { continue };
             let (material, cell, texture) = (live.chunk.material, live.cell, live.chunk.texture.clone());
-            if let Entry::Occupied(mut ids) = self.groups.entry((material, cell)) {
-                ids.get_mut().retain(|&other| other != id);
-                if ids.get().is_empty() {
-                    ids.remove();
+            if let Entry::Occupied(mut group) = self.groups.entry((material, cell)) {
+                group.get_mut().retain(|&other| other != index);
+                if group.get().is_empty() {
+                    group.remove();
                 }
             }
-            let kept: Vec<(u64, Tri)> =
-                self.take_chunk(id).into_iter().filter(|(key, _)| self.slots.contains_key(key)).collect();
+            let (kept, gone): (Vec<Moved>, Vec<Moved>) =
+                self.take_chunk(index).into_iter().partition(|t| t.missed < RELEASE_FRAMES);
+            for t in gone {
+                self.forget(t.key, material, &t.tri.positions);
+            }
             self.build_chunk(material, texture, cell, kept);
         }
-        self.release = release;
     }
 
-    /// Removes world triangle `key` from the maps (its chunk is rebuilt by the caller).
-    fn forget(&mut self, key: u64) {
-        let Some(slot) = self.slots.remove(&key) else { return };
-        let Some(live) = self.chunks.get(&slot.chunk) else { return };
-        let i = slot.index as usize;
-        let p = &live.chunk.positions;
-        let positions = [p[3 * i], p[3 * i + 1], p[3 * i + 2]];
-        if let Some(keys) = self.near.get_mut(&(live.chunk.material, near_cell(&positions))) {
+    /// Removes world triangle `key` from the maps. Its aliases stay: they are ignored while
+    /// `key` is not in the world, and mean the same triangle if it returns.
+    fn forget(&mut self, key: u64, material: u64, positions: &[[f32; 3]; 3]) {
+        self.slots.remove(&key);
+        if let Some(keys) = self.near.get_mut(&(material, near_cell(positions))) {
             keys.retain(|&k| k != key);
         }
-        // Aliases of `key` stay: they are ignored while `key` is not in the world, and
-        // mean the same triangle if it returns.
     }
-
 }
 
 /// The key of a triangle: its quantised vertices, first the smallest, seeded with `material`.
 fn triangle_key(positions: &[[f32; 3]; 3], material: u64) -> u64 {
-    let q = positions.map(|p| p.map(|c| (c * (1.0 / QUANTUM)).round() as i32));
+    // Rounded half away from zero with a truncating conversion: no libm call.
+    let q = positions.map(|p| {
+        p.map(|c| {
+            let x = c * (1.0 / QUANTUM);
+            (x + 0.5f32.copysign(x)) as i32
+        })
+    });
     let first = if q[1] < q[0] { if q[2] < q[1] { 2 } else { 1 } } else if q[2] < q[0] { 2 } else { 0 };
     let mut bytes = [0u8; 36];
     for v in 0..3 {
