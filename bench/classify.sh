@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Cost of hash tracking per frame (issue 5) on a Quake-3-like world of at least 100,000
+# triangles per frame (bench/classify.md keeps results):
+# 1. the persistent static world alone: bench/static_world (glrt's module file compiled
+#    optimised on its own, no GL) offers the rebatch room at --detail DETAIL through a turn
+#    of the camera and times begin_frame + offer + end_frame;
+# 2. the whole pipeline: FRAMES frames of `glrt-demo --rebatch --detail DETAIL` captured
+#    through glrt's libGL, replayed with `glrt replay --bench` (frame times without hash
+#    tracking statistics) and `glrt replay --stats` (one JSON line per frame): the mean of
+#    its `classify_ms` key where the replay reports it, and the wall time of both replays.
+#   bash bench/classify.sh [DETAIL] [FRAMES]     (default 10 and 240)
+# Release build (built here if needed).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+detail=${1:-10}
+frames=${2:-240}
+echo "$(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg)"
+
+echo "## 1. Static world alone (detail $detail)"
+(cd bench/static_world && CARGO_TARGET_DIR="$PWD/../../target/static-world-bench" cargo build --release --offline -q)
+target/static-world-bench/release/static-world-bench "$detail" "$frames"
+
+echo "## 2. Capture replayed with --stats (detail $detail, $frames frames)"
+cargo build --release -q
+dir="$PWD/target/release"
+ln -sf libglrt.so "$dir/libGL.so.1"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+env -u GLRT_TRACE -u GLRT_CAPTURE_FRAMES -u GLRT_DUMP LD_LIBRARY_PATH="$dir" GLRT_CAPTURE="$tmp/rebatch.glrtcap" \
+    "$dir/glrt-demo" --rebatch --verbose --detail "$detail" --headless --size 320x240 --frames "$frames" >"$tmp/demo.txt"
+head -n 2 "$tmp/demo.txt" | tail -n 1
+# Triangles drawn per frame (the demo's --verbose lines), and the vertex bytes they carry
+# through the hashing (3 vertices × (12 bytes of position + 8 of texture coordinates)).
+triangles=$(sed -n 's/^rebatch frame [0-9]*: [0-9]* surfaces, \([0-9]*\) triangles.*/\1/p' "$tmp/demo.txt" |
+    awk '{ s += $1 } END { printf "%.0f", s / NR }')
+echo "triangles drawn per frame: $triangles (capture $(du -h "$tmp/rebatch.glrtcap" | cut -f1))"
+start=$(date +%s.%N); "$dir/glrt" replay "$tmp/rebatch.glrtcap" --bench >"$tmp/bench.txt"; end=$(date +%s.%N)
+echo "replay --bench: $(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.2f", b - a }') s; $(tail -n 1 "$tmp/bench.txt")"
+start=$(date +%s.%N); "$dir/glrt" replay "$tmp/rebatch.glrtcap" --stats >"$tmp/stats.jsonl"; end=$(date +%s.%N)
+echo "replay --stats: $(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.2f", b - a }') s"
+tail -n 1 "$tmp/stats.jsonl"
+if grep -q '"classify_ms"' "$tmp/stats.jsonl"; then
+    sed -n 's/.*"classify_ms":\([0-9.]*\).*/\1/p' "$tmp/stats.jsonl" | sort -n |
+        awk -v t="$triangles" '{ v[NR] = $1; s += $1 } END {
+            mean = s / NR
+            printf "classify_ms per frame: mean %.3f median %.3f max %.3f; %.2f GB/s of vertex data\n",
+                mean, v[int((NR + 1) / 2)], v[NR], t * 60 / (mean / 1000) / 1e9 }'
+else
+    echo "no classify_ms key in the --stats lines: compare the two replay times above"
+fi
