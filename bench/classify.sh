@@ -8,24 +8,25 @@
 #    through glrt's libGL, replayed with `glrt replay --bench` (frame times without hash
 #    tracking statistics) and `glrt replay --stats` (one JSON line per frame): the mean of
 #    its `classify_ms` key where the replay reports it, and the wall time of both replays.
-#   bash bench/classify.sh [DETAIL] [FRAMES]     (default 10 and 240)
+#   bash bench/classify.sh [DETAIL] [FRAMES]     (default 10 and 130: one turn and 10 frames;
+#   about 1.7 MB of capture per frame at detail 10, kept under target/ while it runs)
 # Release build (built here if needed).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 detail=${1:-10}
-frames=${2:-240}
+frames=${2:-130}
 echo "$(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg)"
 
 echo "## 1. Static world alone (detail $detail)"
 (cd bench/static_world && CARGO_TARGET_DIR="$PWD/../../target/static-world-bench" cargo build --release --offline -q)
-target/static-world-bench/release/static-world-bench "$detail" "$frames"
+target/static-world-bench/release/static-world-bench "$detail" 360
 
 echo "## 2. Capture replayed with --stats (detail $detail, $frames frames)"
 cargo build --release -q
 dir="$PWD/target/release"
 ln -sf libglrt.so "$dir/libGL.so.1"
-tmp=$(mktemp -d)
+tmp=$(mktemp -d -p "$PWD/target")
 trap 'rm -rf "$tmp"' EXIT
 env -u GLRT_TRACE -u GLRT_CAPTURE_FRAMES -u GLRT_DUMP LD_LIBRARY_PATH="$dir" GLRT_CAPTURE="$tmp/rebatch.glrtcap" \
     "$dir/glrt-demo" --rebatch --verbose --detail "$detail" --headless --size 320x240 --frames "$frames" >"$tmp/demo.txt"
