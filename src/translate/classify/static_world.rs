@@ -14,7 +14,10 @@
 //!   material.
 //! - **Joining.** A triangle seen in one frame is *pending*; seen again in a later frame (any
 //!   batch, any order, within [`PENDING_FRAMES`]) it *joins* the world. A triangle offered twice
-//!   in one frame (multi-pass drawing) counts once.
+//!   in one frame (multi-pass drawing) counts once. An offer made mostly of triangles never
+//!   seen (more than half) is a changing draw, an animated mesh whose vertices happen to come
+//!   back: none of its triangles joins in that frame (a static batch seen for the first time
+//!   is pending, not changing, in the next frame, so it joins then).
 //! - **Float noise.** A program's own transforms can move a vertex across a grid line from one
 //!   frame to the next, which changes its key. Before joining, a triangle is therefore compared
 //!   with the world triangles of its material whose centroid is within [`NEAR`]; if one matches
@@ -232,6 +235,8 @@ pub struct StaticWorld {
     /// The last triangle found: the next offered one is most often the next in its chunk
     /// (surfaces arrive whole, in the order they joined), found without a hash probe.
     cursor: Option<Loc>,
+    /// Reused buffer of an offer's triangles not in the world: (index, key).
+    unknown: Vec<(usize, u64)>,
     /// Facing samples of this frame: counter, counter-clockwise and clockwise in the view.
     facing_counter: u32,
     ccw: u32,
@@ -268,6 +273,7 @@ impl StaticWorld {
             list: Arc::from(Vec::new()),
             changes: Changes::default(),
             cursor: None,
+            unknown: Vec::new(),
             facing_counter: 0,
             ccw: 0,
             cw: 0,
@@ -295,6 +301,10 @@ impl StaticWorld {
         let count = t.positions.len() / 3;
         let texcoords = t.texcoords.filter(|uv| uv.len() >= count * 3);
         let mut offered = Offered::default();
+        // First pass: triangles already in the world; the others wait in `unknown`.
+        let mut unknown = std::mem::take(&mut self.unknown);
+        unknown.clear();
+        let mut fresh = 0;
         for i in 0..count {
             let positions = [t.positions[3 * i], t.positions[3 * i + 1], t.positions[3 * i + 2]];
             self.sample_facing(&positions);
@@ -306,14 +316,22 @@ impl StaticWorld {
                 offered.static_triangles += 1;
                 continue;
             }
+            fresh += usize::from(!self.pending.contains_key(&key));
+            unknown.push((i, key));
+        }
+        // A draw mostly made of triangles never seen is changing (an animated mesh): the few
+        // that happen to repeat a previous frame's do not join.
+        let changing = fresh * 2 > count;
+        for &(i, key) in &unknown {
             match self.pending.entry(key) {
-                Entry::Occupied(entry) if entry.get().tick < self.tick => {
+                Entry::Occupied(entry) if entry.get().tick < self.tick && !changing => {
                     let pending = entry.remove();
                     self.join(key, pending);
                     offered.static_triangles += 1;
                 }
-                Entry::Occupied(_) => {} // offered twice in this frame
+                Entry::Occupied(_) => {} // offered twice in this frame, or in a changing draw
                 Entry::Vacant(entry) => {
+                    let positions = [t.positions[3 * i], t.positions[3 * i + 1], t.positions[3 * i + 2]];
                     let uv = texcoords.map(|uv| [uv[3 * i], uv[3 * i + 1], uv[3 * i + 2]]);
                     entry.insert(Pending {
                         tick: self.tick,
@@ -325,6 +343,7 @@ impl StaticWorld {
                 }
             }
         }
+        self.unknown = unknown;
         offered
     }
 
@@ -982,6 +1001,22 @@ mod tests {
         assert_eq!((o.new_triangles, u.triangles), (2, 0), "seen again too late: pending anew");
         let (u, _) = frame(&mut world, PENDING_FRAMES + 3, front_view(), &[(1, &wall)]);
         assert_eq!(u.triangles, 2);
+    }
+
+    #[test]
+    fn an_animated_mesh_whose_triangles_come_back_by_chance_does_not_join() {
+        let still = wall(1);
+        let mut world = StaticWorld::new();
+        for f in 0..20u64 {
+            // 18 triangles move every frame, 2 stand still.
+            let mut mesh: Vec<[f32; 3]> = wall(9).iter().map(|p| [p[0], p[1] + 0.01 * f as f32, p[2]]).collect();
+            mesh.extend_from_slice(&still);
+            let (u, _) = frame(&mut world, f, front_view(), &[(1, &mesh)]);
+            assert_eq!(u.triangles, 0, "frame {f}");
+        }
+        // The same two triangles in a draw of their own are static.
+        frame(&mut world, 20, front_view(), &[(1, &still)]);
+        assert_eq!(frame(&mut world, 21, front_view(), &[(1, &still)]).0.triangles, 2);
     }
 
     #[test]
