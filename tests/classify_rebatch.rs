@@ -4,10 +4,18 @@
 //! replayed with `glrt replay FILE --stats`, the persistent static world must hold every
 //! surface once after one turn (no duplicates), upload nothing afterwards, and keep the
 //! surfaces the program no longer draws (behind the camera). Run `cargo build` first: the
-//! demo runs through `target/<profile>/libglrt.so`.
+//! demo runs through `target/<profile>/libglrt.so`. The demo itself is checked against the
+//! system's libGL (Mesa, under Xvfb): the same frame, pixel for pixel within a tolerance.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::time::Duration;
+
+use images::{Image, compare};
+use programs::{Xvfb, lib_dir, run_for};
+
+mod images;
+mod programs;
 
 /// Frames of one turn of the camera (`demo/rebatch.rs`, `TURN_FRAMES`).
 const TURN: u64 = 120;
@@ -73,11 +81,7 @@ fn demo_counts(stdout: &str) -> (u64, Vec<(u64, u64)>) {
 
 #[test]
 fn a_rebatched_world_is_kept_whole_once_and_uploaded_once() {
-    let lib = Path::new(env!("CARGO_BIN_EXE_glrt")).parent().unwrap().to_path_buf();
-    let so = lib.join("libGL.so.1");
-    if std::fs::symlink_metadata(&so).is_err() {
-        let _ = std::os::unix::fs::symlink("libglrt.so", &so);
-    }
+    let lib = lib_dir();
     let capture = scratch("rebatch.glrtcap");
     let out = Command::new(env!("CARGO_BIN_EXE_glrt-demo"))
         .args(["--rebatch", "--verbose", "--headless", "--size", "160x120", "--frames"])
@@ -130,6 +134,34 @@ fn a_rebatched_world_is_kept_whole_once_and_uploaded_once() {
     // (8 bytes) and chunk merges, less than twice the whole world.
     let (positions, everything) = (total * 3 * 12, total * 3 * 20);
     assert!(uploaded >= positions && uploaded < 2 * everything, "{uploaded} bytes uploaded for {total} triangles");
+}
+
+/// Frame 40 of `glrt-demo --rebatch` (looking down at the checker floor, a pillar at the top)
+/// through glrt headless and on Mesa under Xvfb: the same image.
+#[test]
+fn the_rebatch_demo_draws_the_same_frame_through_glrt_and_on_mesa() {
+    let (glrt_shot, mesa_shot) = (scratch("rebatch-glrt.png"), scratch("rebatch-mesa.png"));
+    let args = |shot: &Path| {
+        let shot = shot.to_string_lossy().into_owned();
+        ["--rebatch", "--first-frame", "40", "--frames", "1", "--size", "320x240", "--screenshot"].map(String::from).into_iter().chain([shot]).collect::<Vec<_>>()
+    };
+    let mut glrt = Command::new(env!("CARGO_BIN_EXE_glrt-demo"));
+    glrt.args(args(&glrt_shot)).arg("--headless").env("LD_LIBRARY_PATH", lib_dir());
+    let (out, stopped) = run_for(glrt, Duration::from_secs(120));
+    assert!(!stopped && out.status.success(), "through glrt: {}", String::from_utf8_lossy(&out.stderr));
+    let x = Xvfb::start();
+    let mut mesa = Command::new(env!("CARGO_BIN_EXE_glrt-demo"));
+    mesa.args(args(&mesa_shot)).env_remove("LD_LIBRARY_PATH").env("DISPLAY", &x.display);
+    let (out, stopped) = run_for(mesa, Duration::from_secs(120));
+    assert!(!stopped && out.status.success(), "on Mesa: {}", String::from_utf8_lossy(&out.stderr));
+    let (a, b) = (Image::load_png(&glrt_shot), Image::load_png(&mesa_shot));
+    let d = compare(&a, &b, 24);
+    assert!(d.mismatched < 0.01 && d.mean_abs < 4.0, "glrt against Mesa: {d:?}");
+    // Not a blank frame: light and dark checker squares each cover a fifth of it or more.
+    let count = |f: &dyn Fn([u8; 3]) -> bool| a.rgb.chunks_exact(3).filter(|p| f([p[0], p[1], p[2]])).count();
+    let light = count(&|[r, g, b]| r > 150 && g > 150 && b > 140);
+    let dark = count(&|[r, g, b]| r < 90 && g < 90 && b < 100);
+    assert!(light > 320 * 240 / 5 && dark > 320 * 240 / 5, "{light} light and {dark} dark pixels");
 }
 
 #[test]
