@@ -42,12 +42,17 @@
 //!   triangles offered: most visible triangles face the camera), and a cell with nothing drawn
 //!   says nothing (a PVS cut). A released triangle returns when seen in two frames again.
 //!   Frames that give no evidence (outside the frustum, cell not drawn) leave the count as it is.
+//!   Limit: a surface hidden behind another inside a drawn cell (occlusion culling, a PVS leaf
+//!   next to a visible one) that stays in view that long is released, and returns when drawn.
+//! - **View recovery.** [`StaticWorld::known_triangles`] tells whether a draw's object space is
+//!   the world frame (its triangles are known), even when no draw matches one of the previous
+//!   frame, as with a re-batching engine.
 //!
 //! Cost per offered triangle: one xxh3 of 36 bytes, then a comparison with the key that follows
 //! the last triangle found in its chunk (surfaces arrive whole and chunks keep them in the order
 //! they joined, so this usually hits, reading memory in order); only on a miss a hash-map probe
-//! (keys are hashes, so the maps use a one-multiply hasher). When each triangle is seen lives
-//! in its chunk, next to its key. No allocation per triangle or per frame once the world is
+//! (keys are hashes, so the maps use a one-multiply hasher). The frame in which each triangle
+//! was last seen is kept in its chunk, next to its key. No allocation per triangle or per frame once the world is
 //! built; the release test visits only the chunks whose cell was drawn and whose bounds meet the
 //! frustum, and makes no hash-map probe.
 
