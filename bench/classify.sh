@@ -6,11 +6,12 @@
 #    of the camera and times begin_frame + offer + end_frame;
 # 2. the whole pipeline: FRAMES frames of `glrt-demo --rebatch --detail DETAIL` captured
 #    through glrt's libGL, replayed with `glrt replay --bench` (frame times without hash
-#    tracking statistics) and `glrt replay --stats` (one JSON line per frame): the mean of
-#    its `classify_ms` key where the replay reports it, and the wall time of both replays.
+#    tracking statistics) and `glrt replay --stats` (one JSON line per frame): its
+#    `classify_ms` per frame, and `vertex_bytes / classify_ms` as GB/s of vertex data.
 #   bash bench/classify.sh [DETAIL] [FRAMES]     (default 10 and 130: one turn and 10 frames;
 #   about 1.7 MB of capture per frame at detail 10, kept under target/ while it runs)
-# Release build (built here if needed).
+# Release build (built here if needed); PROFILE=debug uses target/debug as it is (to check the
+# script, not to measure).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -23,8 +24,9 @@ echo "## 1. Static world alone (detail $detail)"
 target/static-world-bench/release/static-world-bench "$detail" 360
 
 echo "## 2. Capture replayed with --stats (detail $detail, $frames frames)"
-cargo build --release -q
-dir="$PWD/target/release"
+profile=${PROFILE:-release}
+[ "$profile" = release ] && cargo build --release -q
+dir="$PWD/target/$profile"
 ln -sf libglrt.so "$dir/libGL.so.1"
 tmp=$(mktemp -d -p "$PWD/target")
 trap 'rm -rf "$tmp"' EXIT
@@ -41,12 +43,16 @@ echo "replay --bench: $(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.2f", b 
 start=$(date +%s.%N); "$dir/glrt" replay "$tmp/rebatch.glrtcap" --stats >"$tmp/stats.jsonl"; end=$(date +%s.%N)
 echo "replay --stats: $(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.2f", b - a }') s"
 tail -n 1 "$tmp/stats.jsonl"
-if grep -q '"classify_ms"' "$tmp/stats.jsonl"; then
-    sed -n 's/.*"classify_ms":\([0-9.]*\).*/\1/p' "$tmp/stats.jsonl" | sort -n |
-        awk -v t="$triangles" '{ v[NR] = $1; s += $1 } END {
-            mean = s / NR
-            printf "classify_ms per frame: mean %.3f median %.3f max %.3f; %.2f GB/s of vertex data\n",
-                mean, v[int((NR + 1) / 2)], v[NR], t * 60 / (mean / 1000) / 1e9 }'
-else
-    echo "no classify_ms key in the --stats lines: compare the two replay times above"
-fi
+python3 - "$tmp/stats.jsonl" <<'PY'
+import json, sys
+rows = [json.loads(l) for l in open(sys.argv[1]) if l.startswith("{")]
+if not rows or "classify_ms" not in rows[0]:
+    print("no classify_ms key in the --stats lines: compare the two replay times above")
+    sys.exit()
+ms = sorted(r["classify_ms"] for r in rows)
+mean = sum(ms) / len(ms)
+tris = sum(sum(r["triangles"].values()) for r in rows) / len(rows)
+gbs = sum(r.get("vertex_bytes", 0) for r in rows) / (sum(ms) / 1000) / 1e9 if sum(ms) else 0
+print(f"classify_ms per frame: mean {mean:.3f} median {ms[len(ms) // 2]:.3f} max {ms[-1]:.3f}; "
+      f"{tris:.0f} triangles per frame; {gbs:.2f} GB/s of vertex data (vertex_bytes / classify_ms)")
+PY
