@@ -74,6 +74,9 @@ pub const QUANTUM: f32 = 1.0 / 128.0;
 /// Two triangles of one material whose vertices are all within this distance (per coordinate)
 /// are the same triangle ([`QUANTUM`] × 2: float noise in a vertex of a transformed level).
 pub const NEAR: f32 = 2.0 * QUANTUM;
+/// Cell size of the near-duplicate index: a few dozen triangles per cell in a finely cut level,
+/// so that the index stays small and a joining triangle is compared with few others.
+const NEAR_CELL: f32 = 16.0 * NEAR;
 /// A pending triangle not seen again within this many frames is forgotten (it was dynamic).
 pub const PENDING_FRAMES: u64 = 8;
 /// Frames of evidence that a triangle is gone before it is released.
@@ -223,7 +226,7 @@ pub struct StaticWorld {
     pending: Map<u64, Pending>,
     /// Triangles that joined in this frame, in order (with their key).
     joining: Vec<(u64, Pending)>,
-    /// (material, centroid cell of [`NEAR`] × 4) → keys, to find near duplicates.
+    /// (material, centroid cell of [`NEAR_CELL`]) → keys, to find near duplicates.
     near: Map<(u64, [i32; 3]), Vec<u64>>,
     cell_size: Option<f32>,
     /// Tick in which a triangle of each spatial cell was last offered.
@@ -488,9 +491,9 @@ impl StaticWorld {
 
     /// The world triangle of `material` with every vertex within [`NEAR`] of `positions`.
     fn near_duplicate(&self, material: u64, positions: &[[f32; 3]; 3]) -> Option<u64> {
-        let c = centroid(positions) / (4.0 * NEAR);
-        let lo = (c - Vec3::splat(0.25)).floor().as_ivec3();
-        let hi = (c + Vec3::splat(0.25)).floor().as_ivec3();
+        let c = centroid(positions) / NEAR_CELL;
+        let lo = (c - Vec3::splat(NEAR / NEAR_CELL)).floor().as_ivec3();
+        let hi = (c + Vec3::splat(NEAR / NEAR_CELL)).floor().as_ivec3();
         for x in lo.x..=hi.x {
             for y in lo.y..=hi.y {
                 for z in lo.z..=hi.z {
@@ -696,7 +699,7 @@ fn centroid(positions: &[[f32; 3]; 3]) -> Vec3 {
 
 /// The cell of the near-duplicate index holding a triangle.
 fn near_cell(positions: &[[f32; 3]; 3]) -> [i32; 3] {
-    (centroid(positions) / (4.0 * NEAR)).floor().as_ivec3().to_array()
+    (centroid(positions) / NEAR_CELL).floor().as_ivec3().to_array()
 }
 
 /// Whether `a` and `b` are the same triangle within [`NEAR`], whatever their first vertex.
