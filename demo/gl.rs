@@ -26,6 +26,7 @@ pub const GL_LEQUAL: GLenum = 0x0203;
 pub const GL_SRC_ALPHA: GLenum = 0x0302;
 pub const GL_ONE_MINUS_SRC_ALPHA: GLenum = 0x0303;
 pub const GL_FRONT_AND_BACK: GLenum = 0x0408;
+pub const GL_CULL_FACE: GLenum = 0x0B44;
 pub const GL_LIGHTING: GLenum = 0x0B50;
 pub const GL_LIGHT_MODEL_AMBIENT: GLenum = 0x0B53;
 pub const GL_FOG: GLenum = 0x0B60;
@@ -93,6 +94,7 @@ fn_table!(
         fn glBlendFunc(s: GLenum, d: GLenum);
         fn glMatrixMode(mode: GLenum);
         fn glLoadIdentity();
+        fn glLoadMatrixf(m: *const GLfloat);
         fn glFrustum(l: GLdouble, r: GLdouble, b: GLdouble, t: GLdouble, n: GLdouble, f: GLdouble);
         fn glOrtho(l: GLdouble, r: GLdouble, b: GLdouble, t: GLdouble, n: GLdouble, f: GLdouble);
         fn glPushMatrix();

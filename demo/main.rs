@@ -11,6 +11,7 @@ mod bench;
 mod font;
 mod gl;
 mod loader;
+mod rebatch;
 mod scene;
 mod screenshot;
 mod window;
@@ -34,9 +35,15 @@ struct Options {
     screenshot: Option<String>,
     /// `--bench-immediate`: vertex count of the throughput benchmark instead of the scene.
     bench_vertices: Option<u64>,
+    /// `--rebatch`: the Quake-3-like world instead of the scene.
+    rebatch: bool,
+    /// `--detail`: quads along each side of a rebatch surface cell (1..=64).
+    detail: u32,
+    /// `--verbose`: one line per rebatch frame (surfaces, triangles and draws).
+    verbose: bool,
 }
 
-const USAGE: &str = "usage: glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH] [--screenshot PNG] [--bench-immediate [VERTICES]]";
+const USAGE: &str = "usage: glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH] [--screenshot PNG] [--bench-immediate [VERTICES]] [--rebatch [--detail N] [--verbose]]";
 
 fn parse_args(args: &[String]) -> Result<Options, String> {
     let mut o = Options {
@@ -48,6 +55,9 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         lib: "libGL.so.1".into(),
         screenshot: None,
         bench_vertices: None,
+        rebatch: false,
+        detail: 1,
+        verbose: false,
     };
     let mut it = args.iter().peekable();
     while let Some(arg) = it.next() {
@@ -82,6 +92,14 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
                 };
                 o.bench_vertices = Some(n);
             }
+            "--rebatch" => o.rebatch = true,
+            "--detail" => {
+                o.detail = value("a count")?.parse().map_err(|e| format!("--detail: {e}"))?;
+                if !(1..=64).contains(&o.detail) {
+                    return Err("--detail: must be 1..=64".into());
+                }
+            }
+            "--verbose" => o.verbose = true,
             "--help" | "-h" => return Err(USAGE.into()),
             other => return Err(format!("unknown argument '{other}'\n{USAGE}")),
         }
@@ -144,11 +162,15 @@ fn run(o: &Options) -> Result<(), Failure> {
         bench::run(&api, &surface, vertices, o.width, o.height);
         return Ok(());
     }
-    let mut scene = scene::Scene::new(&api, o.width, o.height);
+    let mut program = if o.rebatch {
+        Program::Rebatch(rebatch::World::new(&api.gl, o.detail, o.width, o.height, o.verbose))
+    } else {
+        Program::Scene(scene::Scene::new(&api, o.width, o.height))
+    };
     let mut times = FrameTimes::default();
     for n in 0..o.frames {
         let start = Instant::now();
-        scene.draw(&api, o.first_frame.saturating_add(n));
+        program.draw(&api, o.first_frame.saturating_add(n));
         if n + 1 == o.frames
             && let Some(path) = &o.screenshot
         {
@@ -159,9 +181,31 @@ fn run(o: &Options) -> Result<(), Failure> {
         surface.swap();
         times.add(start.elapsed().as_secs_f64() * 1000.0);
     }
-    scene.delete(&api);
+    program.delete(&api);
     times.print();
     Ok(())
+}
+
+/// What the demo draws.
+enum Program {
+    Scene(scene::Scene),
+    Rebatch(rebatch::World),
+}
+
+impl Program {
+    fn draw(&mut self, api: &gl::GlApi, frame: u64) {
+        match self {
+            Program::Scene(scene) => scene.draw(api, frame),
+            Program::Rebatch(world) => world.draw(&api.gl, frame),
+        }
+    }
+
+    fn delete(&self, api: &gl::GlApi) {
+        match self {
+            Program::Scene(scene) => scene.delete(api),
+            Program::Rebatch(world) => world.delete(&api.gl),
+        }
+    }
 }
 
 /// Frame-time statistics in milliseconds.
@@ -211,6 +255,9 @@ mod tests {
         );
         assert_eq!(o.lib, "/x/libGL.so.1");
         assert_eq!(o.bench_vertices, None);
+        assert!(!o.rebatch && !o.verbose && o.detail == 1);
+        let r = parse_args(&args("--rebatch --detail 4 --verbose")).unwrap();
+        assert!(r.rebatch && r.verbose && r.detail == 4);
         assert_eq!(
             parse_args(&args("--bench-immediate")).unwrap().bench_vertices,
             Some(10_000_000)
@@ -226,6 +273,8 @@ mod tests {
         assert!(parse_args(&args("--size 0x10")).is_err());
         assert!(parse_args(&args("--frames")).is_err());
         assert!(parse_args(&args("--bogus")).is_err());
+        assert!(parse_args(&args("--detail 0")).is_err());
+        assert!(parse_args(&args("--detail 65")).is_err());
     }
 
     #[test]

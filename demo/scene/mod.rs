@@ -11,7 +11,7 @@ mod pillars;
 mod room;
 mod shapes;
 mod sky;
-mod textures;
+pub mod textures;
 
 use crate::font::Font;
 use crate::gl::*;

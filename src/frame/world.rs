@@ -1,20 +1,35 @@
-//! The persistent static world as the renderer receives it: stable chunks of world-space
-//! triangles that change rarely.
-//!
-//! PLACEHOLDER (branch `classify`): a minimal private copy of the contract agreed with the
-//! `world` branch, which owns this file; the lead replaces it by theirs on merge.
+//! The persistent static world handed to the renderer: world-space triangles of one material
+//! grouped into chunks that, once built, never change (`translate::classify::static_world`
+//! builds them). A renderer uploads a chunk and builds its acceleration structure once, keyed
+//! by [`StaticChunk::id`], and frees it when the chunk leaves the list.
 
-/// A chunk of static world-space triangles of one material.
+use super::TextureRef;
+
+/// A piece of the persistent static world: world-space triangles of one material, stable
+/// while it lives (its id is never given to other content).
 #[derive(Clone, Debug, PartialEq)]
 pub struct StaticChunk {
-    /// Stable id.
+    /// Unique for the life of the world that built it.
     pub id: u64,
-    /// Material key (texture id and state).
+    /// Hash of the texture and draw state the triangles are drawn with.
     pub material: u64,
-    /// Texture of the material.
-    pub texture: Option<crate::frame::TextureRef>,
-    /// World-space positions, 3 per triangle.
+    /// Texture of the triangles (unit 0).
+    pub texture: Option<TextureRef>,
+    /// World-space positions, 3 per triangle, with the program's winding.
     pub positions: Vec<[f32; 3]>,
-    /// Empty, or 3 texture coordinates per triangle.
+    /// Texture coordinates of unit 0: empty, or 3 per triangle.
     pub texcoords: Vec<[f32; 2]>,
+}
+
+impl StaticChunk {
+    /// Triangle count.
+    pub fn triangles(&self) -> usize {
+        self.positions.len() / 3
+    }
+
+    /// Bytes a renderer uploads for this chunk: positions (12 per vertex) and texture
+    /// coordinates (8 per vertex).
+    pub fn upload_bytes(&self) -> u64 {
+        (self.positions.len() * 12 + self.texcoords.len() * 8) as u64
+    }
 }
