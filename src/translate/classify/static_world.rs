@@ -44,9 +44,6 @@
 //!   Frames that give no evidence (outside the frustum, cell not drawn) leave the count as it is.
 //!   Limit: a surface hidden behind another inside a drawn cell (occlusion culling, a PVS leaf
 //!   next to a visible one) that stays in view that long is released, and returns when drawn.
-//! - **View recovery.** [`StaticWorld::known_triangles`] tells whether a draw's object space is
-//!   the world frame (its triangles are known), even when no draw matches one of the previous
-//!   frame, as with a re-batching engine.
 //!
 //! Cost per offered triangle: one xxh3 of 36 bytes, then a comparison with the key that follows
 //! the last triangle found in its chunk (surfaces arrive whole and chunks keep them in the order
@@ -353,24 +350,6 @@ impl StaticWorld {
         }
         self.unknown = unknown;
         offered
-    }
-
-    /// How many of the first `sample` triangles of `positions`, taken as world-space triangles
-    /// of `material`, the world knows: in the world, or pending (seen once, in the last
-    /// [`PENDING_FRAMES`] frames). Read only, and usable before [`StaticWorld::begin_frame`]:
-    /// view recovery can ask whether a
-    /// draw's object space is the world frame (its modelview is then the view) even when no
-    /// draw matches one of the previous frame, as with an engine that re-batches its world
-    /// every frame.
-    pub fn known_triangles(&self, positions: &[[f32; 3]], material: u64, sample: usize) -> usize {
-        positions
-            .chunks_exact(3)
-            .take(sample)
-            .filter(|t| {
-                let key = triangle_key(&[t[0], t[1], t[2]], material);
-                self.slots.contains_key(&key) || self.aliases.contains_key(&key) || self.pending.contains_key(&key)
-            })
-            .count()
     }
 
     /// Ends the frame: the chunks the renderer must hold now, and what changed.
@@ -969,24 +948,6 @@ mod tests {
         assert_eq!((again.upload_bytes, again.new_chunks, again.released_chunks), (0, 0, 0));
         assert_eq!(again.reused_chunks, u.chunks.len());
         assert!(Arc::ptr_eq(&again.chunks, &u.chunks), "nothing changed: the same list");
-    }
-
-    #[test]
-    fn known_triangles_tell_a_draw_in_the_world_frame_before_the_frame_begins() {
-        let wall = wall(10);
-        let mut world = StaticWorld::new();
-        assert_eq!(world.known_triangles(&wall, 1, 8), 0);
-        frame(&mut world, 0, front_view(), &[(1, &wall)]);
-        // Frame 1, before begin_frame: pending from frame 0.
-        assert_eq!(world.known_triangles(&wall, 1, 8), 8);
-        assert_eq!(world.known_triangles(&wall, 2, 8), 0, "another material");
-        let moved: Vec<[f32; 3]> = wall.iter().map(|p| [p[0] + 0.5, p[1], p[2]]).collect();
-        assert_eq!(world.known_triangles(&moved, 1, 8), 0, "elsewhere in the world");
-        world.begin_frame(1, front_view());
-        assert_eq!(world.known_triangles(&wall, 1, 100), 20);
-        world.offer(WorldTriangles { material: 1, texture: None, positions: &wall, texcoords: None });
-        world.end_frame();
-        assert_eq!(world.known_triangles(&wall, 1, 100), 20, "in the world");
     }
 
     #[test]
