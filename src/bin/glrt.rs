@@ -20,6 +20,7 @@ use glrt::translate::classify::report::{StatsPrinter, TextureCatalog};
 const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] [--stats] | glrt dump FILE";
 
 fn main() -> ExitCode {
+    default_sigpipe();
     let args: Vec<String> = std::env::args().skip(1).collect();
     let result = match args.first().map(String::as_str) {
         Some("info") | None if args.len() <= 1 => {
@@ -88,6 +89,22 @@ fn frame_time_summary(times: &[std::time::Duration]) -> String {
     let (min, max) = ms.iter().fold((f64::MAX, 0f64), |(lo, hi), &t| (lo.min(t), hi.max(t)));
     format!("frames: {}  frame time ms: avg {avg:.3}  min {min:.3}  max {max:.3}  frames/s {:.1}", ms.len(), 1e3 / avg)
 }
+
+/// Restores the default action of `SIGPIPE`, so that `glrt dump FILE | head` ends quietly as
+/// Unix tools do (Rust programs ignore it, which turns a closed pipe into a panic of `println!`).
+#[cfg(target_os = "linux")]
+fn default_sigpipe() {
+    const SIGPIPE: i32 = 13;
+    const SIG_DFL: usize = 0;
+    unsafe extern "C" {
+        fn signal(signum: i32, handler: usize) -> usize;
+    }
+    // Safety: libc's `signal` with a valid signal number and the default disposition.
+    unsafe { signal(SIGPIPE, SIG_DFL) };
+}
+
+#[cfg(not(target_os = "linux"))]
+fn default_sigpipe() {}
 
 /// `WxH` as two positive sizes.
 fn parse_size(s: &str) -> Option<(i32, i32)> {
