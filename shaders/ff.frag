@@ -43,8 +43,24 @@ bool compare(uint func, float a, float b) {
 // comparison and expansion (section 3.8.14); white when the unit does not texture.
 vec4 sample_unit(uint word, sampler2D s2, sampler3D s3, samplerCube sc, vec4 c, float bias) {
     uint target = field(word, TARGET_SHIFT, TARGET_BITS);
+    uint clamped = field(word, CLAMP_SHIFT, CLAMP_BITS);
     vec4 t = vec4(1.0);
-    if (target == 1u) {
+    if (clamped != 0u && target != 4u) {
+        // GL_CLAMP with a linear filter (section 3.8.7): the coordinate is clamped to [0, 1]
+        // and the sampler's border fills the other half of an edge texel's footprint. The
+        // level of detail comes from the unclamped coordinates (their gradients, scaled by
+        // the bias).
+        vec3 p = c.stp / c.q;
+        vec3 q = mix(p, clamp(p, 0.0, 1.0), bvec3((clamped & 1u) != 0u, (clamped & 2u) != 0u, (clamped & 4u) != 0u));
+        float scale = exp2(bias);
+        if (target == 1u) {
+            t = textureGrad(s2, vec2(q.x, 0.5), vec2(dFdx(p.x), 0.0) * scale, vec2(dFdy(p.x), 0.0) * scale);
+        } else if (target == 2u) {
+            t = textureGrad(s2, q.xy, dFdx(p.xy) * scale, dFdy(p.xy) * scale);
+        } else {
+            t = textureGrad(s3, q, dFdx(p) * scale, dFdy(p) * scale);
+        }
+    } else if (target == 1u) {
         t = texture(s2, vec2(c.s / c.q, 0.5), bias);
     } else if (target == 2u) {
         t = texture(s2, c.st / c.q, bias);

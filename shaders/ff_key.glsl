@@ -71,6 +71,8 @@ const uint TEXGEN_SHIFT = 9u;   // coordinate c at TEXGEN_SHIFT + 3c
 const uint TEXGEN_BITS = 3u;
 const uint DEPTH_SHIFT = 21u;     // 0 colour, 1 depth, 2 + func depth compared
 const uint DEPTH_BITS = 4u;
+const uint CLAMP_SHIFT = 25u;     // bit c: coordinate c clamped to [0, 1] (GL_CLAMP, linear)
+const uint CLAMP_BITS = 3u;
 
 // Words KEY_COMBINE_RGBn and KEY_COMBINE_ALPHAn.
 const uint COMBINE_FN_SHIFT = 0u;

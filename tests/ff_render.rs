@@ -768,3 +768,39 @@ fn smooth_line_coverage() {
     assert!((alpha(15) - 0.25).abs() <= TOLERANCE, "{}", alpha(15));
     assert_eq!((alpha(14), alpha(17)), (0.0, 0.0));
 }
+
+/// `GL_CLAMP` (section 3.8.7) clamps the coordinate to [0, 1]: with `GL_LINEAR`, a coordinate
+/// left of the texture reads half the edge texel and half the border colour, which is expanded
+/// like the texels (luminance replicates red); with `GL_NEAREST` it reads the edge texel.
+#[test]
+fn gl_clamp_blends_the_edge_with_the_border_under_linear_filtering() {
+    let border = [0.2, 0.6, 1.0, 1.0];
+    for (filter, expected) in [(gl::GL_LINEAR, 0.6), (gl::GL_NEAREST, 1.0)] {
+        let mut ctx = context();
+        white_texture(&mut ctx, gl::GL_LUMINANCE, gl::GL_MODULATE, [0.0; 4]);
+        unsafe {
+            for (pname, value) in [
+                (gl::GL_TEXTURE_MIN_FILTER, filter),
+                (gl::GL_TEXTURE_MAG_FILTER, filter),
+                (gl::GL_TEXTURE_WRAP_S, gl::GL_CLAMP),
+                (gl::GL_TEXTURE_WRAP_T, gl::GL_CLAMP),
+            ] {
+                dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, pname, value as i32);
+            }
+            dispatch::glTexParameterfv(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BORDER_COLOR, border.as_ptr());
+            dispatch::glColor4f(&mut ctx, 1.0, 1.0, 1.0, 1.0);
+            // s and t run from -0.5 to 1.5 across the window.
+            dispatch::glBegin(&mut ctx, gl::GL_QUADS);
+            for (x, y) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                dispatch::glTexCoord2f(&mut ctx, 0.5 + x, 0.5 + y);
+                dispatch::glVertex2f(&mut ctx, x, y);
+            }
+            dispatch::glEnd(&mut ctx);
+        }
+        let pixels = render(&mut ctx);
+        // x = 2: s ≈ -0.34, clamped to 0; y = 16: t ≈ 0.53, between white texel centres.
+        assert_close(pixel(&pixels, 2, 16), [expected, expected, expected, 1.0], TOLERANCE);
+        // Inside the texture: white.
+        assert_close(pixel(&pixels, 16, 16), [1.0; 4], TOLERANCE);
+    }
+}

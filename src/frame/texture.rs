@@ -171,7 +171,8 @@ pub struct Sampler {
     pub mag_filter: Filter,
     /// Wrap of s, t, r.
     pub wrap: [Wrap; 3],
-    /// Border colour.
+    /// Border colour, expanded as the texels of the base format are (so luminance and
+    /// intensity replicate red, RGB has alpha 1).
     pub border_color: [f32; 4],
     /// Level-of-detail clamp, min and max.
     pub lod: [f32; 2],
@@ -181,6 +182,17 @@ pub struct Sampler {
     pub compare: Option<CompareFunc>,
     /// Depth texel expansion.
     pub depth_mode: DepthMode,
+}
+
+impl Sampler {
+    /// The axes (s, t, r) whose `GL_CLAMP` wrap blends edge texels with the border colour:
+    /// `GL_CLAMP` clamps the coordinate to [0, 1] (section 3.8.7), so a linear filter at the
+    /// edge reads half border; with nearest filters only, it picks edge texels, as
+    /// clamp-to-edge does.
+    pub fn clamp_blends_border(&self) -> [bool; 3] {
+        let linear = self.mag_filter == Filter::Linear || self.min_filter.texel == Filter::Linear;
+        self.wrap.map(|w| linear && w == Wrap::Clamp)
+    }
 }
 
 impl Default for Sampler {

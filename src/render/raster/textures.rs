@@ -19,7 +19,8 @@
 //! - borders (`glTexImage` with border 1) are cut off: the interior is uploaded and the border
 //!   colour of `GL_CLAMP_TO_BORDER` comes from the sampler.
 //!
-//! Samplers: filters, wrap modes (`GL_CLAMP` is taken as clamp-to-edge, as most drivers do),
+//! Samplers: filters, wrap modes (`GL_CLAMP` with a linear filter: clamp-to-border plus a
+//! coordinate clamp in the shader; with nearest filters: clamp-to-edge),
 //! border colour (custom with `VK_EXT_custom_border_color`, else the closest of Vulkan's three),
 //! LOD range and the unit's LOD bias; mipmapping off = `maxLod` 0.
 
@@ -187,8 +188,12 @@ impl Textures {
             Filter::Nearest => vk::Filter::NEAREST,
             Filter::Linear => vk::Filter::LINEAR,
         };
-        let wrap = |w| match w {
+        // GL_CLAMP with a linear filter: the shader clamps the coordinate to [0, 1] (key
+        // field `CLAMP`) and the sampler supplies the border (`Sampler::clamp_blends_border`).
+        let blends = s.clamp_blends_border();
+        let wrap = |axis: usize| match s.wrap[axis] {
             Wrap::Repeat => vk::SamplerAddressMode::REPEAT,
+            Wrap::Clamp if blends[axis] => vk::SamplerAddressMode::CLAMP_TO_BORDER,
             Wrap::Clamp | Wrap::ClampToEdge => vk::SamplerAddressMode::CLAMP_TO_EDGE,
             Wrap::ClampToBorder => vk::SamplerAddressMode::CLAMP_TO_BORDER,
             Wrap::MirroredRepeat => vk::SamplerAddressMode::MIRRORED_REPEAT,
@@ -201,7 +206,7 @@ impl Textures {
         let mut custom = vk::SamplerCustomBorderColorCreateInfoEXT::default()
             .custom_border_color(vk::ClearColorValue { float32: s.border_color })
             .format(vk::Format::UNDEFINED);
-        let use_custom = device.custom_border_color && s.wrap.contains(&Wrap::ClampToBorder);
+        let use_custom = device.custom_border_color && (s.wrap.contains(&Wrap::ClampToBorder) || blends.contains(&true));
         let mut info = vk::SamplerCreateInfo::default()
             .mag_filter(filter(s.mag_filter))
             .min_filter(filter(s.min_filter.texel))
@@ -209,9 +214,9 @@ impl Textures {
                 Some(Filter::Linear) => vk::SamplerMipmapMode::LINEAR,
                 _ => vk::SamplerMipmapMode::NEAREST,
             })
-            .address_mode_u(wrap(s.wrap[0]))
-            .address_mode_v(wrap(s.wrap[1]))
-            .address_mode_w(wrap(s.wrap[2]))
+            .address_mode_u(wrap(0))
+            .address_mode_v(wrap(1))
+            .address_mode_w(wrap(2))
             .mip_lod_bias(lod_bias.clamp(-limit, limit))
             .min_lod(min_lod)
             .max_lod(max_lod)

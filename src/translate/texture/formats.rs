@@ -207,19 +207,25 @@ pub fn index_bits(internal: GLenum) -> u32 {
     }
 }
 
-/// The canonical texel of an RGBA colour (or a depth value in R) for a base format: table
-/// 3.15's component choice, expanded as [`crate::frame::texture`] describes.
-pub fn texel(base: TexelFormat, c: [f32; 4]) -> [u8; 4] {
-    let q = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
-    let [r, g, b, a] = c.map(q);
+/// An RGBA colour (or a depth value in R) as a base format's texels hold it: table 3.15's
+/// component choice, expanded as [`crate::frame::texture`] describes. The border colour is
+/// expanded the same way, so that the sampler's border matches the texels (section 3.8.7).
+pub fn expand(base: TexelFormat, c: [f32; 4]) -> [f32; 4] {
+    let [r, g, b, a] = c;
     match base {
-        TexelFormat::Alpha => [0, 0, 0, a],
-        TexelFormat::Luminance | TexelFormat::Depth => [r, r, r, 255],
+        TexelFormat::Alpha => [0.0, 0.0, 0.0, a],
+        TexelFormat::Luminance | TexelFormat::Depth => [r, r, r, 1.0],
         TexelFormat::LuminanceAlpha => [r, r, r, a],
         TexelFormat::Intensity => [r, r, r, r],
-        TexelFormat::Rgb => [r, g, b, 255],
+        TexelFormat::Rgb => [r, g, b, 1.0],
         TexelFormat::Rgba => [r, g, b, a],
     }
+}
+
+/// The canonical texel of an RGBA colour (or a depth value in R) for a base format:
+/// [`expand`] at 8 bits.
+pub fn texel(base: TexelFormat, c: [f32; 4]) -> [u8; 4] {
+    expand(base, c).map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
 }
 
 /// The RGBA colour of a canonical texel for `glGetTexImage` (table 6.1): luminance and

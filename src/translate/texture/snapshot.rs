@@ -80,7 +80,9 @@ fn texture_ref(name: u32, obj: &mut TextureObject, target: Target, shared: Optio
         Target::Cube => TextureKind::Cube,
     };
     let version = if shared.is_some() { next_version() } else { obj.version };
-    let content = Arc::new(TextureContent { kind, format, faces, sampler: obj.params.sampler() });
+    let mut sampler = obj.params.sampler();
+    sampler.border_color = super::formats::expand(format, sampler.border_color);
+    let content = Arc::new(TextureContent { kind, format, faces, sampler });
     let r = TextureRef { id: name, version, content };
     obj.snapshot = Some((key, r.clone()));
     r

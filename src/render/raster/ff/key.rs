@@ -110,6 +110,9 @@ pub const TEXGEN: Field = Field::new(9, 3);
 /// Unit word: 0 a colour texture, 1 a depth texture (expanded by its `DEPTH_TEXTURE_MODE`,
 /// see [`FORMAT`]), 2 + [`CompareFunc`] a depth texture compared with r (section 3.8.14).
 pub const DEPTH: Field = Field::new(21, 4);
+/// Unit word: bit `c` set when coordinate `c` (s, t, r) is clamped to [0, 1] before sampling
+/// (`GL_CLAMP` with a linear filter, [`crate::frame::texture::Sampler::clamp_blends_border`]).
+pub const CLAMP: Field = Field::new(25, 3);
 
 /// Combiner word: function (replace, modulate, add, add signed, interpolate, subtract,
 /// dot3 RGB, dot3 RGBA).
@@ -148,6 +151,7 @@ pub const GLSL_FIELDS: &[(&str, Field)] = &[
     ("FORMAT", FORMAT),
     ("ENV", ENV),
     ("TEXGEN", TEXGEN),
+    ("CLAMP", CLAMP),
     ("DEPTH", DEPTH),
     ("COMBINE_FN", COMBINE_FN),
     ("SOURCE", SOURCE),
@@ -337,6 +341,10 @@ fn unit_word(unit: &TextureUnit, content: &crate::frame::texture::TextureContent
     );
     if content.format == TexelFormat::Depth {
         DEPTH.set(&mut w, content.sampler.compare.map_or(1, |f| 1 + compare_code(f)));
+    }
+    if content.kind != TextureKind::Cube {
+        let axes = content.sampler.clamp_blends_border();
+        CLAMP.set(&mut w, (0..3).filter(|&c| axes[c]).map(|c| 1 << c).sum());
     }
     w
 }
