@@ -346,16 +346,19 @@ impl Context {
         if pname == gl::GL_SHININESS && !(0.0..=128.0).contains(&v[0]) {
             return self.set_error_in(gl::GL_INVALID_VALUE, command);
         }
+        let mode = COLOR_MATERIAL_MODE.parse(pname);
+        if let Some(mode) = mode
+            && self.immediate.primitive.is_some()
+        {
+            self.begin_material_change(face, mode);
+        }
         let lighting = &mut self.fixed_mut().lighting;
         for &i in face_indices(face) {
-            match pname {
-                gl::GL_SHININESS => lighting.materials[i].shininess = v[0],
-                gl::GL_COLOR_INDEXES => lighting.color_indexes[i] = rgb(v),
-                _ => {
-                    if let Some(mode) = COLOR_MATERIAL_MODE.parse(pname) {
-                        set_material_color(&mut lighting.materials[i], mode, v);
-                    }
-                }
+            match (pname, mode) {
+                (gl::GL_SHININESS, _) => lighting.materials[i].shininess = v[0],
+                (gl::GL_COLOR_INDEXES, _) => lighting.color_indexes[i] = rgb(v),
+                (_, Some(mode)) => set_material_color(&mut lighting.materials[i], mode, v),
+                _ => {}
             }
         }
         // The properties colour material tracks keep following the current colour
