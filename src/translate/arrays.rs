@@ -427,7 +427,7 @@ impl Context {
         })
     }
 
-    fn set_client_state(&mut self, cap: GLenum, on: bool, command: &'static str) {
+    pub(crate) fn set_client_state(&mut self, cap: GLenum, on: bool, command: &'static str) {
         match self.array_of_cap(cap) {
             Some(kind) => self.arrays.get_mut(kind).enabled = on,
             None => self.set_error_in(gl::GL_INVALID_ENUM, command),

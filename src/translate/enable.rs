@@ -156,7 +156,15 @@ impl EnableState {
 }
 
 impl Context {
+    /// Sets a server capability. The client array enables (`GL_VERTEX_ARRAY`...) are also
+    /// taken here, as `glEnableClientState` would take them: OpenGL 1.5 names only
+    /// `glEnableClientState` for them, but Mesa's and NVIDIA's compatibility contexts accept
+    /// them in `glEnable`/`glDisable` and old programs (piglit's `color-material-array`
+    /// among them) rely on it.
     fn set_cap(&mut self, cap: GLenum, on: bool, command: &'static str) {
+        if CLIENT_CAPS.contains(&cap) {
+            return self.set_client_state(cap, on, command);
+        }
         let unit = self.active_texture_unit();
         if !self.enables.set(cap, unit, on) {
             self.set_error_in(gl::GL_INVALID_ENUM, command);
@@ -213,7 +221,16 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
         ctx.glEnable(gl::GL_LIGHT0 + 8);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
-        ctx.glEnable(gl::GL_VERTEX_ARRAY);
-        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+    }
+
+    #[test]
+    fn client_array_caps_in_enable_set_client_state() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glEnable(gl::GL_COLOR_ARRAY);
+        assert_eq!(ctx.glIsEnabled(gl::GL_COLOR_ARRAY), 1);
+        assert_eq!(ctx.glIsEnabled(gl::GL_VERTEX_ARRAY), 0);
+        ctx.glDisable(gl::GL_COLOR_ARRAY);
+        assert_eq!(ctx.glIsEnabled(gl::GL_COLOR_ARRAY), 0);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
     }
 }

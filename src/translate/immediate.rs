@@ -170,6 +170,14 @@ impl Batch {
         }
     }
 
+    /// Gives every vertex so far the colour `color`, stored once.
+    pub fn set_color(&mut self, color: [f32; 4]) {
+        if !self.vertices.is_empty() {
+            self.vertices.color.set_constant(color);
+        }
+        self.per_vertex &= !bits::COLOR;
+    }
+
     /// The edge flag of vertex `i` (true when unknown).
     pub fn edge_flag(&self, i: u32) -> bool {
         self.edge_flags.get(i as usize).unwrap_or(true)
@@ -191,6 +199,8 @@ pub struct ImmediateState {
     pub assembled: Assembled,
     /// Which units texture, for the batch keys of [`super::frame_builder`].
     pub texturing: super::frame_builder::TexturingCache,
+    /// `glMaterial` calls since `glBegin` ([`super::begin_material`]).
+    pub material: super::begin_material::BeginMaterial,
 }
 
 impl ImmediateState {
@@ -239,7 +249,7 @@ impl Context {
         assembled.clear();
         assemble(primitive, batch.vertices.len(), |k| k as u32, |k| batch.edge_flag(k as u32), &mut assembled);
         let source = self.immediate_source();
-        self.emit_batch(primitive, &batch, None, &assembled, source);
+        self.emit_with_begin_material(|ctx| ctx.emit_batch(primitive, &batch, None, &assembled, source));
         self.immediate.assembled = assembled;
         self.immediate.batch = batch;
     }
@@ -249,8 +259,12 @@ impl Context {
     #[inline]
     pub fn glVertex4f(&mut self, x: GLfloat, y: GLfloat, z: GLfloat, w: GLfloat) {
         if self.immediate.primitive.is_some() {
+            let material = self.begin_material_color();
             let im = &mut self.immediate;
-            im.batch.push([x, y, z, w], &im.current, im.dirty);
+            match material {
+                None => im.batch.push([x, y, z, w], &im.current, im.dirty),
+                Some(color) => im.batch.push([x, y, z, w], &CurrentAttribs { color, ..im.current }, im.dirty | bits::COLOR),
+            }
             im.dirty = 0;
         }
     }

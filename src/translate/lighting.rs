@@ -346,18 +346,24 @@ impl Context {
         if pname == gl::GL_SHININESS && !(0.0..=128.0).contains(&v[0]) {
             return self.set_error_in(gl::GL_INVALID_VALUE, command);
         }
+        let mode = COLOR_MATERIAL_MODE.parse(pname);
+        if let Some(mode) = mode
+            && self.immediate.primitive.is_some()
+        {
+            self.begin_material_change(face, mode);
+        }
         let lighting = &mut self.fixed_mut().lighting;
         for &i in face_indices(face) {
-            match pname {
-                gl::GL_SHININESS => lighting.materials[i].shininess = v[0],
-                gl::GL_COLOR_INDEXES => lighting.color_indexes[i] = rgb(v),
-                _ => {
-                    if let Some(mode) = COLOR_MATERIAL_MODE.parse(pname) {
-                        set_material_color(&mut lighting.materials[i], mode, v);
-                    }
-                }
+            match (pname, mode) {
+                (gl::GL_SHININESS, _) => lighting.materials[i].shininess = v[0],
+                (gl::GL_COLOR_INDEXES, _) => lighting.color_indexes[i] = rgb(v),
+                (_, Some(mode)) => set_material_color(&mut lighting.materials[i], mode, v),
+                _ => {}
             }
         }
+        // The properties colour material tracks keep following the current colour
+        // (section 2.14.3): a `glMaterial` of them, direct or from a list, leaves no trace.
+        self.apply_color_material(self.immediate.current().color);
     }
 
     /// `glMaterialf`: `GL_SHININESS` only.
@@ -721,11 +727,35 @@ mod tests {
         }
         assert_eq!(material(&mut ctx, gl::GL_BACK, gl::GL_AMBIENT), [0.0, 1.0, 0.0, 1.0], "glArrayElement sets it");
         unsafe {
-            dispatch::glMaterialfv(&mut ctx, gl::GL_BACK, gl::GL_AMBIENT, [0.5; 4].as_ptr());
             dispatch::glDisableClientState(&mut ctx, gl::GL_COLOR_ARRAY);
             dispatch::glDrawArrays(&mut ctx, gl::GL_TRIANGLES, 0, 3);
         }
-        assert_eq!(material(&mut ctx, gl::GL_BACK, gl::GL_AMBIENT), [0.5; 4], "no colour array: the material stays");
+        assert_eq!(material(&mut ctx, gl::GL_BACK, gl::GL_AMBIENT), [0.0, 1.0, 0.0, 1.0], "no colour array: the material stays");
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    }
+
+    #[test]
+    fn material_from_a_list_leaves_tracked_properties_alone() {
+        let (mut ctx, _) = Context::with_recording();
+        let (red, green) = ([1.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, 1.0]);
+        unsafe {
+            dispatch::glEnable(&mut ctx, gl::GL_COLOR_MATERIAL);
+            dispatch::glColorMaterial(&mut ctx, gl::GL_FRONT_AND_BACK, gl::GL_SPECULAR);
+            dispatch::glColor4fv(&mut ctx, green.as_ptr());
+            dispatch::glNewList(&mut ctx, 1, gl::GL_COMPILE);
+            dispatch::glMaterialfv(&mut ctx, gl::GL_FRONT_AND_BACK, gl::GL_SPECULAR, red.as_ptr());
+            dispatch::glMaterialfv(&mut ctx, gl::GL_FRONT, gl::GL_EMISSION, red.as_ptr());
+            dispatch::glEndList(&mut ctx);
+            dispatch::glCallList(&mut ctx, 1);
+        }
+        assert_eq!(material(&mut ctx, gl::GL_FRONT, gl::GL_SPECULAR), green, "tracked: keeps the current colour");
+        assert_eq!(material(&mut ctx, gl::GL_BACK, gl::GL_SPECULAR), green);
+        assert_eq!(material(&mut ctx, gl::GL_FRONT, gl::GL_EMISSION), red, "untracked: set by the list");
+        unsafe {
+            dispatch::glDisable(&mut ctx, gl::GL_COLOR_MATERIAL);
+            dispatch::glCallList(&mut ctx, 1);
+        }
+        assert_eq!(material(&mut ctx, gl::GL_FRONT, gl::GL_SPECULAR), red, "colour material off: the list sets it");
         assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
     }
 }

@@ -16,6 +16,7 @@ pub mod arrays;
 pub mod arrays_ext;
 pub mod assemble;
 pub mod attrib;
+pub mod begin_material;
 pub mod buffer_objects;
 pub mod buffers;
 pub mod capture;

@@ -137,15 +137,24 @@ pub fn pixel_type(type_: GLenum) -> Option<Type> {
 /// `GL_BITMAP` with a format other than an index, or `GL_DEPTH_STENCIL` with a type other than
 /// its two packed types; `GL_INVALID_OPERATION` for a packed type whose component count differs
 /// from the format's (section 3.6.4), or a depth/stencil type with another format
-/// (EXT_packed_depth_stencil and ARB_depth_buffer_float, "Errors").
+/// (EXT_packed_depth_stencil and ARB_depth_buffer_float, "Errors"). A packed type with an
+/// unknown format (`GL_RG`, which OpenGL 1.5 lacks) meets both conditions; the specification
+/// does not order them, and `GL_INVALID_OPERATION` is what Mesa records (piglit's
+/// `draw-pixels` expects it).
 pub fn parse(format_: GLenum, type_: GLenum) -> Result<(Format, Type), GLenum> {
-    let (Some(f), Some(t)) = (format(format_), pixel_type(type_)) else { return Err(gl::GL_INVALID_ENUM) };
+    let t = pixel_type(type_);
+    let Some(f) = format(format_) else {
+        return Err(if matches!(t, Some(Type::Packed(_))) { gl::GL_INVALID_OPERATION } else { gl::GL_INVALID_ENUM });
+    };
+    let Some(t) = t else { return Err(gl::GL_INVALID_ENUM) };
     let depth_stencil_type = matches!(t, Type::Uint24_8 | Type::Float32Uint24_8Rev);
     match t {
         _ if f.kind == Kind::DepthStencil && !depth_stencil_type => Err(gl::GL_INVALID_ENUM),
         _ if depth_stencil_type && f.kind != Kind::DepthStencil => Err(gl::GL_INVALID_OPERATION),
         Type::Bitmap if !matches!(f.kind, Kind::Index | Kind::Stencil) => Err(gl::GL_INVALID_ENUM),
-        Type::Packed(p) if !(f.kind == Kind::Color && f.components == p.fields.len() && f.components >= 3) => {
+        // Table 3.8: the three-field types match `GL_RGB` only, the four-field ones `GL_RGBA`
+        // and `GL_BGRA`.
+        Type::Packed(p) if !(f.kind == Kind::Color && f.components == p.fields.len() && f.gl != gl::GL_BGR && f.components >= 3) => {
             Err(gl::GL_INVALID_OPERATION)
         }
         _ => Ok((f, t)),
@@ -540,6 +549,11 @@ mod tests {
         assert_eq!(parse(gl::GL_RGBA, gl::GL_UNSIGNED_SHORT_5_6_5), Err(gl::GL_INVALID_OPERATION));
         assert_eq!(parse(gl::GL_RGB, gl::GL_BITMAP), Err(gl::GL_INVALID_ENUM));
         assert_eq!(parse(gl::GL_TEXTURE_2D, gl::GL_FLOAT), Err(gl::GL_INVALID_ENUM));
+        assert_eq!(parse(gl::GL_RG, gl::GL_UNSIGNED_BYTE), Err(gl::GL_INVALID_ENUM));
+        assert_eq!(parse(gl::GL_BGR, gl::GL_UNSIGNED_SHORT_5_6_5), Err(gl::GL_INVALID_OPERATION));
+        assert!(parse(gl::GL_RGB, gl::GL_UNSIGNED_BYTE_3_3_2).is_ok());
+        assert_eq!(parse(gl::GL_RG, gl::GL_UNSIGNED_SHORT_4_4_4_4), Err(gl::GL_INVALID_OPERATION));
+        assert_eq!(parse(gl::GL_RGB, 0x1234), Err(gl::GL_INVALID_ENUM));
         assert!(parse(gl::GL_BGRA, gl::GL_UNSIGNED_INT_8_8_8_8_REV).is_ok());
     }
 

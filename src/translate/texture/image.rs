@@ -162,7 +162,12 @@ fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, p
 /// Builds a level of `size` (border included) from unpacked pixels (zeros when `None`).
 fn build_level(internal: Internal, size: [usize; 3], border: usize, data: Option<Unpacked>, palette: &Palette) -> Level {
     let count = size[0] * size[1] * size[2];
-    let Converted { texels, depth, indices, stencil } = convert(internal.base, internal.reported, data, count, palette);
+    level_of(internal, size, border, convert(internal.base, internal.reported, data, count, palette))
+}
+
+/// A level of `size` (border included) holding `converted`.
+fn level_of(internal: Internal, size: [usize; 3], border: usize, converted: Converted) -> Level {
+    let Converted { texels, depth, indices, stencil } = converted;
     let [w, h, d] = size.map(|v| v as u32);
     let mut level = Level {
         image: Arc::new(TexImage { width: w, height: h, depth: d, border: border as u32, texels, depth_values: depth }),
@@ -306,9 +311,13 @@ impl Context {
             let proxy = Level { image: Arc::default(), size, border, internal_format: internal.reported, base: internal.base, compressed: None, indices: None, stencil: None };
             return self.store_level(dest, level, Some(proxy));
         }
-        let keep_index = internal.base == Base::ColorIndex;
-        let Ok(data) = (unsafe { self.unpack_client(ft, size, pixels, keep_index, command) }) else { return };
-        let image = self.with_dest(dest, |_, palette| build_level(internal, size, border, data, palette));
+        let image = if let Some(texels) = unsafe { self.direct_texels(ft, internal.base, size, pixels) } {
+            level_of(internal, size, border, Converted { texels, depth: Vec::new(), indices: None, stencil: None })
+        } else {
+            let keep_index = internal.base == Base::ColorIndex;
+            let Ok(data) = (unsafe { self.unpack_client(ft, size, pixels, keep_index, command) }) else { return };
+            self.with_dest(dest, |_, palette| build_level(internal, size, border, data, palette))
+        };
         self.store_level(dest, level, Some(image));
     }
 

@@ -33,6 +33,7 @@ pub mod attrib;
 pub mod compressed;
 #[cfg(test)]
 mod depth_tests;
+pub mod direct;
 pub mod env;
 pub mod formats;
 pub mod image;

@@ -1,0 +1,94 @@
+//! Texture images that need no conversion: tightly packed `GL_UNSIGNED_BYTE` RGB or RGBA
+//! pixels, pixel transfer at its initial state, stored in an RGB or RGBA texture. Unpacking
+//! (OpenGL 1.5 section 3.6.4: c / 255, scale 1, bias 0, no colour map) then storing as 8-bit
+//! texels (round(c · 255)) gives back the client's bytes, so they are copied (alpha 255 for
+//! RGB) instead of going through the general path's conversion to floating point, which is
+//! what large or frequent uploads (piglit's `streaming-texture-leak`) spend their time on.
+
+use std::ffi::c_void;
+
+use super::super::Context;
+use super::super::gl;
+use super::super::pixels::codec::{Format, Type};
+use super::formats::Base;
+use crate::frame::texture::TexelFormat;
+
+impl Context {
+    /// The canonical RGBA8 texels of a `w` × `h` × `d` image at `pixels`, or `None` when the
+    /// image needs the general path (other formats or types, unpack modes that skip or pad,
+    /// pixel transfer in use, a null pointer).
+    ///
+    /// # Safety
+    /// A non-null `pixels` must point to the memory the unpack modes describe.
+    pub(crate) unsafe fn direct_texels(
+        &self,
+        (format, ty): (Format, Type),
+        base: Base,
+        [w, h, d]: [usize; 3],
+        pixels: *const c_void,
+    ) -> Option<Vec<u8>> {
+        let n = match format.gl {
+            gl::GL_RGBA => 4,
+            gl::GL_RGB => 3,
+            _ => return None,
+        };
+        let t = &self.pixels.transfer;
+        let identity = !t.map_color && t.scale == [1.0; 4] && t.bias == [0.0; 4];
+        let stored = matches!(base, Base::Texel(TexelFormat::Rgba | TexelFormat::Rgb));
+        if ty != Type::U8 || !identity || !stored || pixels.is_null() {
+            return None;
+        }
+        let layout = ty.layout(format, &self.pixels.store.unpack, w, h, d)?;
+        let len = w.checked_mul(h)?.checked_mul(d)?.checked_mul(n)?;
+        let tight = layout.start == 0 && layout.row_stride == w * n && layout.image_stride == w * n * h && layout.span == len;
+        if !tight {
+            return None;
+        }
+        crate::translate::capture::reads::note(pixels, len);
+        // Safety: the caller guarantees `layout.span` (= `len`) readable bytes.
+        let bytes = unsafe { std::slice::from_raw_parts(pixels.cast::<u8>(), len) };
+        Some(if n == 4 && base == Base::Texel(TexelFormat::Rgba) {
+            bytes.to_vec()
+        } else {
+            bytes.chunks_exact(n).flat_map(|p| [p[0], p[1], p[2], 255]).collect()
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::translate::Context;
+    use crate::translate::dispatch;
+    use crate::translate::gl;
+
+    /// Uploads a 2×2 image with `format` into `internal` and reads it back as RGBA bytes.
+    fn round_trip(ctx: &mut Context, internal: gl::GLenum, format: gl::GLenum, pixels: &[u8]) -> Vec<u8> {
+        let mut out = vec![0u8; 16];
+        unsafe {
+            dispatch::glTexImage2D(ctx, gl::GL_TEXTURE_2D, 0, internal as i32, 2, 2, 0, format, gl::GL_UNSIGNED_BYTE, pixels.as_ptr().cast());
+            dispatch::glGetTexImage(ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast());
+        }
+        out
+    }
+
+    #[test]
+    fn direct_uploads_match_the_general_path() {
+        let (mut ctx, _) = Context::with_recording();
+        let rgba: Vec<u8> = (0..16).map(|i| i * 16 + 3).collect();
+        let rgb: Vec<u8> = (0..12).map(|i| i * 20 + 1).collect();
+        unsafe { dispatch::glPixelStorei(&mut ctx, gl::GL_UNPACK_ALIGNMENT, 1) };
+        let direct = [
+            round_trip(&mut ctx, gl::GL_RGBA, gl::GL_RGBA, &rgba),
+            round_trip(&mut ctx, gl::GL_RGB, gl::GL_RGBA, &rgba),
+            round_trip(&mut ctx, gl::GL_RGBA, gl::GL_RGB, &rgb),
+        ];
+        assert_eq!(direct[0], rgba, "RGBA bytes are kept");
+        assert_eq!(&direct[1][..8], &[3, 19, 35, 255, 67, 83, 99, 255], "an RGB texture drops alpha");
+        assert_eq!(&direct[2][..8], &[1, 21, 41, 255, 61, 81, 101, 255], "RGB pixels get alpha 255");
+        // A red scale of 1.0 written explicitly keeps the direct path; 0.5 takes the general one.
+        unsafe { dispatch::glPixelTransferf(&mut ctx, gl::GL_RED_SCALE, 0.5) };
+        let scaled = round_trip(&mut ctx, gl::GL_RGBA, gl::GL_RGBA, &rgba);
+        assert_eq!(&scaled[..4], &[1, 19, 35, 51], "pixel transfer still applies");
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    }
+}
