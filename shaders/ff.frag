@@ -176,7 +176,10 @@ vec4 tex_env(int unit, uint word, uint rgb_word, uint alpha_word, vec4 cf, vec4 
 // Line stipple, polygon stipple: whether the fragment is kept (sections 3.4.2, 3.5.2).
 bool stippled_out() {
     if (GENERAL(LINE_STIPPLE) != 0u) {
-        uint bit = uint(floor(max(v_raster.z, 0.0) / u.raster.z)) % 16u;
+        // The stipple distance is the fragment's count along the run plus one half at fragment
+        // centres (ff/convert.rs aligns it), so interpolation error cannot change the count.
+        uint count = uint(max(v_raster.z, 0.0));
+        uint bit = (count / uint(max(u.raster.z, 1.0) + 0.5)) % 16u;
         if (((u.stipple.x >> bit) & 1u) == 0u) {
             return true;
         }

@@ -288,8 +288,8 @@ pub fn expand_lines(draw: &Draw, packed: &[f32], segments: &[Segment]) -> (Vec<f
             let half = width.round().max(1.0) * 0.5;
             (if d.x.abs() >= d.y.abs() { Vec2::new(0.0, half) } else { Vec2::new(half, 0.0) }, 0.0)
         };
-        let (da, db) = (distance, distance + length);
-        distance = db;
+        let (da, db, fragments) = stipple_span(wa, wb, distance);
+        distance += fragments;
         let corner = |o: Vec2, dist: f32, side: f32| [o.x * side, o.y * side, dist, across * side];
         let c = [
             out.push(&pb, s.provoking, corner(offset, db, -1.0)),
@@ -300,6 +300,22 @@ pub fn expand_lines(draw: &Draw, packed: &[f32], segments: &[Segment]) -> (Vec<f
         out.quad(c);
     }
     (out.vertices, out.indices)
+}
+
+/// The stipple distances at the start and end of a segment from window position `a` to `b`
+/// whose run has produced `count` fragments, and the fragments the segment adds. Along the
+/// major axis, with diamond exit (section 3.4.1), the segment's fragments are the pixel centres
+/// c with a < c + ½ ≤ b (mirrored when it runs backwards): the first is at ⌊a⌋ + ½, and there
+/// are ⌊b⌋ − ⌊a⌋ of them. The distance is aligned so that fragment k of the run sits at k + ½,
+/// the middle of its count, where interpolation error cannot move it to the next one.
+fn stipple_span(a: Vec2, b: Vec2, count: f32) -> (f32, f32, f32) {
+    let d = b - a;
+    let (p0, p1) = if d.x.abs() >= d.y.abs() { (a.x, b.x) } else { (a.y, b.y) };
+    let sign = if p1 >= p0 { 1.0 } else { -1.0 };
+    let (m0, m1) = (p0 * sign, p1 * sign);
+    let first_centre = m0.floor() + 0.5;
+    let start = count + 0.5 - (first_centre - m0);
+    (start, start + (m1 - m0), m1.floor() - m0.floor())
 }
 
 /// Points as quads of corners (±1, ±1); `points` pairs each vertex with its provoking vertex.
@@ -493,5 +509,19 @@ mod tests {
         assert_eq!(part.indices.len(), 2 * 6);
         assert_eq!(raster(part, 2), [1.0, 1.0, 0.0, 0.0]);
         assert_eq!((part.primitive, part.facing), (Primitive::Point, Facing::Front));
+    }
+
+    #[test]
+    fn stipple_spans_put_fragment_centres_mid_count() {
+        // From pixel centre 0.5 to 24.5: fragments 0..24, the first centre at distance 0.5.
+        let (a, b, n) = stipple_span(Vec2::new(0.5, 6.5), Vec2::new(24.5, 6.5), 0.0);
+        assert_eq!((a, b, n), (0.5, 24.5, 24.0));
+        // From the pixel edge 0.0: the first centre (0.5) is fragment 0 too.
+        assert_eq!(stipple_span(Vec2::new(0.0, 16.5), Vec2::new(32.0, 16.5), 0.0), (0.0, 32.0, 32.0));
+        // Continuing a run of 24 fragments upwards from (24.5, 6.5).
+        let (a, _, n) = stipple_span(Vec2::new(24.5, 6.5), Vec2::new(24.5, 30.5), 24.0);
+        assert_eq!((a, n), (24.5, 24.0));
+        // Backwards: from 24.5 down to 0.5, 24 fragments, the first at 24.5.
+        assert_eq!(stipple_span(Vec2::new(24.5, 2.5), Vec2::new(0.5, 2.5), 0.0), (0.5, 24.5, 24.0));
     }
 }
