@@ -280,17 +280,24 @@ pub fn expand_lines(draw: &Draw, packed: &[f32], segments: &[Segment]) -> (Vec<f
         if length.is_nan() || length <= 0.0 {
             continue;
         }
-        let (offset, across) = if line.smooth {
+        let x_major = d.x.abs() >= d.y.abs();
+        let (offset, across, shift) = if line.smooth {
             let half = width * 0.5 + 0.5;
-            (Vec2::new(-d.y, d.x).normalize() * half, half)
+            (Vec2::new(-d.y, d.x).normalize() * half, half, 0.0)
         } else {
             // Section 3.4.2: the width rounded, at least one pixel, along the minor axis.
             let half = width.round().max(1.0) * 0.5;
-            (if d.x.abs() >= d.y.abs() { Vec2::new(0.0, half) } else { Vec2::new(half, 0.0) }, 0.0)
+            (if x_major { Vec2::new(0.0, half) } else { Vec2::new(half, 0.0) }, 0.0, ALIASED_SHIFT)
         };
+        // Aliased lines (diamond exit, section 3.4.1) cover the pixel centres c with
+        // a − ½ < c ≤ b − ½ along the major axis: the quad moves back by ½ (less a sliver, so
+        // that a centre on its start edge stays out and one on its end edge in), and no centre
+        // lies on an edge whether the vertices sit on pixel centres or on pixel corners.
+        let major = if x_major { Vec2::new(d.x.signum(), 0.0) } else { Vec2::new(0.0, d.y.signum()) };
+        let along = major * shift;
         let (da, db, fragments) = stipple_span(wa, wb, distance);
         distance += fragments;
-        let corner = |o: Vec2, dist: f32, side: f32| [o.x * side, o.y * side, dist, across * side];
+        let corner = |o: Vec2, dist: f32, side: f32| [o.x * side + along.x, o.y * side + along.y, dist + shift, across * side];
         let c = [
             out.push(&pb, s.provoking, corner(offset, db, -1.0)),
             out.push(&pb, s.provoking, corner(offset, db, 1.0)),
@@ -301,6 +308,10 @@ pub fn expand_lines(draw: &Draw, packed: &[f32], segments: &[Segment]) -> (Vec<f
     }
     (out.vertices, out.indices)
 }
+
+/// How far aliased line quads move along their direction, in pixels: back by one half, less
+/// 1/256 (see [`expand_lines`]).
+const ALIASED_SHIFT: f32 = -0.5 + 1.0 / 256.0;
 
 /// The stipple distances at the start and end of a segment from window position `a` to `b`
 /// whose run has produced `count` fragments, and the fragments the segment adds. Along the
@@ -412,9 +423,9 @@ mod tests {
         assert_eq!((lines.primitive, lines.facing, lines.cull), (Primitive::Line, Facing::Front, None));
         assert_eq!(lines.indices.len(), 4 * 6, "four edges, two triangles each");
         // The edges run 0→1→2→3→0 without a break: stipple distances keep counting, each
-        // edge 50 pixels long.
+        // edge 50 pixels long (the quads start half a pixel back, less a sliver).
         let starts: Vec<f32> = (0..4).map(|e| raster(lines, 4 * e + 2)[2]).collect();
-        assert_eq!(starts, vec![0.0, 50.0, 100.0, 150.0]);
+        assert_eq!(starts, [0.0, 50.0, 100.0, 150.0].map(|d| d + ALIASED_SHIFT));
         // Reversed winding: the same triangles are back faces and fill.
         let mut back = d.clone();
         back.indices = vec![0, 2, 1, 0, 3, 2];
@@ -446,10 +457,11 @@ mod tests {
         let part = &run(&d)[0];
         assert_eq!(part.indices, vec![0, 1, 2, 0, 2, 3]);
         let r: Vec<[f32; 4]> = (0..4).map(|c| raster(part, c)).collect();
-        assert_eq!(r[0][..2], [0.0, -1.5], "width 3, vertical offset");
-        assert_eq!(r[1][..2], [0.0, 1.5]);
+        // Width 3 across; moved back along x by half a pixel less a sliver (diamond exit).
+        assert_eq!(r[0][..2], [ALIASED_SHIFT, -1.5], "width 3, vertical offset");
+        assert_eq!(r[1][..2], [ALIASED_SHIFT, 1.5]);
         // End corners first (provoking vertex = the end), with the stipple distance 50.
-        assert_eq!((r[0][2], r[2][2]), (50.0, 0.0));
+        assert_eq!((r[0][2], r[2][2]), (50.0 + ALIASED_SHIFT, ALIASED_SHIFT));
         assert_eq!((color(part, 0), color(part, 2)), (1.0, 0.0), "copies of end and start");
     }
 
@@ -474,9 +486,9 @@ mod tests {
         let d = draw(Topology::Lines, &p, &[0, 1, 1, 2, 2, 3, 0, 1], state);
         let part = &run(&d)[0];
         let start = |s: usize| raster(part, 4 * s + 2)[2];
-        assert_eq!([start(0), start(1), start(2), start(3)], [0.0, 25.0, 50.0, 0.0]);
+        assert_eq!([start(0), start(1), start(2), start(3)], [0.0, 25.0, 50.0, 0.0].map(|d| d + ALIASED_SHIFT));
         // Major-axis distance of the 45° segment: 25 pixels.
-        assert_eq!(raster(part, 4 * 2)[2], 75.0);
+        assert_eq!(raster(part, 4 * 2)[2], 75.0 + ALIASED_SHIFT);
     }
 
     #[test]
