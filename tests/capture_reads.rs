@@ -6,9 +6,10 @@
 //! replay`) to the same frames and, captured again, to the same file.
 
 mod common;
+mod programs;
 
 use std::ffi::c_void;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 
 use common::gl;
@@ -16,11 +17,7 @@ use glrt::translate::capture::{self, reader::{Capture, Record}, table::COMMANDS}
 use glrt::translate::gl::*;
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capture_reads");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    let _ = std::fs::remove_file(&path);
-    path
+    programs::scratch("capture_reads", name)
 }
 
 /// Client memory a call read: `(address, bytes)` per range.

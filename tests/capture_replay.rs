@@ -15,17 +15,14 @@ use glrt::translate::capture::reader::{Capture, Record};
 use images::Image;
 
 mod images;
+mod programs;
 
 fn fixture(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures").join(name)
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("capture_replay");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    let _ = std::fs::remove_file(&path);
-    path
+    programs::scratch("capture_replay", name)
 }
 
 /// The first record where two captures differ, described.

@@ -25,11 +25,7 @@ const FRAMES: u64 = 150;
 const CLASSES: [&str; 6] = ["static", "movable", "dynamic", "translucent", "overlay", "sky"];
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("classify_rebatch");
-    std::fs::create_dir_all(&dir).unwrap();
-    let path = dir.join(name);
-    let _ = std::fs::remove_file(&path);
-    path
+    programs::scratch("classify_rebatch", name)
 }
 
 /// The number after `"key":` in a JSON object's text (the first at any depth).

@@ -8,6 +8,16 @@ use std::process::{Child, Command, Output, Stdio};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
+/// A fresh path for file `name` of test binary `test` under Cargo's temporary directory for
+/// integration tests (the directory is created, an old file removed).
+pub fn scratch(test: &str, name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(test);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join(name);
+    let _ = std::fs::remove_file(&path);
+    path
+}
+
 /// `target/<profile>/`, holding glrt-demo and libglrt.so; makes the `libGL.so.1` symlink.
 pub fn lib_dir() -> PathBuf {
     let dir = Path::new(env!("CARGO_BIN_EXE_glrt-demo")).parent().expect("target dir").to_path_buf();
