@@ -4,6 +4,7 @@
 //! types.
 
 pub mod class;
+pub mod framebuffer;
 pub mod pixels;
 pub mod state;
 pub mod texture;
@@ -14,6 +15,7 @@ use std::sync::Arc;
 
 use glam::Mat4;
 
+pub use framebuffer::Framebuffer;
 pub use state::{ColorBuffer, DrawBuffers, RasterState};
 pub use texture::TextureRef;
 pub use vertex::{Attrib, Vertices};
@@ -38,6 +40,13 @@ pub struct Frame {
     /// The colour buffer [`crate::render::FrameSink::read_pixels`] reads (`glReadBuffer` at
     /// the time of the read).
     pub read_buffer: ColorBuffer,
+    /// The framebuffer [`crate::render::FrameSink::read_pixels`] reads (the read framebuffer
+    /// binding at the time of the read).
+    pub read_framebuffer: Framebuffer,
+    /// Framebuffer-object attachments that no longer exist (renderbuffers deleted or given new
+    /// storage, textures deleted): the renderer frees the images it keeps for them. A texture
+    /// stands for every image of that texture ([`framebuffer::Attachment::same_object`]).
+    pub released: Vec<framebuffer::Attachment>,
     /// How the frame ends.
     pub end: FrameEnd,
     /// The camera recovered by hash tracking (`translate::classify`), when there is one.
@@ -163,4 +172,6 @@ pub struct Clear {
     pub stencil_mask: u32,
     /// Colour buffers cleared (`glDrawBuffer`).
     pub draw_buffers: DrawBuffers,
+    /// The framebuffer cleared.
+    pub framebuffer: Framebuffer,
 }

@@ -510,6 +510,8 @@ pub struct RasterState {
     pub draw_buffers: DrawBuffers,
     /// Colour buffer that `glCopyPixels` and `glAccum` read (`glReadBuffer`).
     pub read_buffer: ColorBuffer,
+    /// The framebuffer draws and pixel operations go to (and `glCopyPixels` reads).
+    pub framebuffer: super::Framebuffer,
 }
 
 /// Multisample state (OpenGL 1.5 sections 3.2.1 and 4.1.3); it matters only on a
@@ -601,6 +603,7 @@ impl Default for RasterState {
             multisample: Multisample::default(),
             draw_buffers: DrawBuffers::default(),
             read_buffer: ColorBuffer::Back,
+            framebuffer: super::Framebuffer::Window,
         }
     }
 }

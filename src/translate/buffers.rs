@@ -58,6 +58,10 @@ impl Context {
     /// The colour buffers the draw buffer selects, for the frame: a single-buffered drawable
     /// has no back buffer.
     pub(crate) fn draw_buffers(&self) -> DrawBuffers {
+        if let Some((draw, _)) = self.object_buffers() {
+            // A framebuffer object's one colour image stands where the back buffer would.
+            return DrawBuffers { front: false, back: draw != gl::GL_NONE };
+        }
         let draw = self.fixed.buffers.draw;
         DrawBuffers { front: names_front(draw), back: names_back(draw) && !self.single_buffered }
     }
@@ -65,13 +69,21 @@ impl Context {
     /// The colour buffer the read buffer selects: always the front buffer of a
     /// single-buffered drawable.
     pub(crate) fn read_color_buffer(&self) -> ColorBuffer {
+        if self.framebuffers.bound != 0 {
+            return ColorBuffer::Back;
+        }
         if self.single_buffered || names_front(self.fixed.buffers.read) { ColorBuffer::Front } else { ColorBuffer::Back }
     }
 
     /// Reads `rect` of `buffer` (the read buffer, for colour) of the frame so far through the
     /// renderer ([`crate::render::FrameSink::read_pixels`]).
     pub(crate) fn read_framebuffer(&mut self, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        let Ok(framebuffer) = self.draw_framebuffer() else {
+            self.set_error_in(gl::GL_INVALID_FRAMEBUFFER_OPERATION_EXT, "read");
+            return None;
+        };
         self.frame.read_buffer = self.read_color_buffer();
+        self.frame.read_framebuffer = framebuffer;
         self.sink.read_pixels(&self.frame, buffer, rect)
     }
 
@@ -83,6 +95,9 @@ impl Context {
 
     /// `glDrawBuffer`.
     pub fn glDrawBuffer(&mut self, buf: GLenum) {
+        if self.set_object_buffer(buf, false, "glDrawBuffer") {
+            return;
+        }
         match check_buffer(buf) {
             Ok(()) => self.fixed_mut().buffers.draw = buf,
             Err(e) => self.set_error_in(e, "glDrawBuffer"),
@@ -91,6 +106,9 @@ impl Context {
 
     /// `glReadBuffer`: `GL_NONE` and `GL_FRONT_AND_BACK` are not sources (`GL_INVALID_ENUM`).
     pub fn glReadBuffer(&mut self, src: GLenum) {
+        if self.set_object_buffer(src, true, "glReadBuffer") {
+            return;
+        }
         let result = match src {
             gl::GL_NONE | gl::GL_FRONT_AND_BACK => Err(gl::GL_INVALID_ENUM),
             _ => check_buffer(src),

@@ -70,21 +70,31 @@ impl Context {
             // Selection and feedback modes write no pixels (sections 5.2, 5.3).
             return;
         }
+        let Ok(framebuffer) = self.draw_framebuffer() else {
+            return self.set_error_in(gl::GL_INVALID_FRAMEBUFFER_OPERATION_EXT, "glClear");
+        };
+        let draw_buffer = self.object_buffers().map_or(self.fixed.buffers.draw, |(draw, _)| draw);
+        let fbo = framebuffer.object().cloned();
         let f = &self.fixed;
         let has = |bit| mask & bit != 0;
         let clear = Clear {
             before_draw: self.frame.draws.len(),
-            color: (has(gl::GL_COLOR_BUFFER_BIT) && f.buffers.draw != gl::GL_NONE).then_some(f.clear.color),
+            color: (has(gl::GL_COLOR_BUFFER_BIT) && draw_buffer != gl::GL_NONE && fbo.as_ref().is_none_or(|o| o.color.is_some()))
+                .then_some(f.clear.color),
             draw_buffers: self.draw_buffers(),
-            depth: has(gl::GL_DEPTH_BUFFER_BIT).then_some(f.clear.depth),
-            stencil: has(gl::GL_STENCIL_BUFFER_BIT).then_some(f.clear.stencil & ((1 << STENCIL_BITS) - 1)),
-            accum: has(gl::GL_ACCUM_BUFFER_BIT).then_some(f.clear.accum),
+            depth: (has(gl::GL_DEPTH_BUFFER_BIT) && fbo.as_ref().is_none_or(|o| o.depth.is_some())).then_some(f.clear.depth),
+            stencil: (has(gl::GL_STENCIL_BUFFER_BIT) && fbo.as_ref().is_none_or(|o| o.stencil.is_some()))
+                .then_some(f.clear.stencil & ((1 << STENCIL_BITS) - 1)),
+            accum: (has(gl::GL_ACCUM_BUFFER_BIT) && fbo.is_none()).then_some(f.clear.accum),
             scissor: self.enables.is_on(gl::GL_SCISSOR_TEST).then_some(self.viewport.scissor),
             color_mask: f.fragment.color_mask,
             depth_mask: f.fragment.depth_write,
             stencil_mask: f.fragment.stencil.write_mask,
+            framebuffer,
         };
         if clear.color.is_some() || clear.depth.is_some() || clear.stencil.is_some() || clear.accum.is_some() {
+            self.enter_framebuffer(&clear.framebuffer);
+            let clear = Clear { before_draw: self.frame.draws.len(), ..clear };
             self.frame.clears.push(clear);
         }
     }

@@ -11,7 +11,7 @@ use crate::frame::Frame;
 use crate::render::{FrameSink, RecordingSink};
 
 /// Objects shared by the contexts of one share group (`glXCreateContext`'s `shareList`):
-/// display lists, texture objects, buffer objects.
+/// display lists, texture objects, buffer objects, renderbuffer and framebuffer objects.
 #[derive(Default)]
 pub struct SharedObjects {
     /// Display lists by name.
@@ -20,6 +20,8 @@ pub struct SharedObjects {
     pub textures: super::texture::TextureTable,
     /// Buffer objects by name.
     pub buffers: super::buffer_objects::BufferTable,
+    /// Renderbuffer and framebuffer objects by name.
+    pub fbos: super::framebuffers::FramebufferTables,
 }
 
 /// How a context is created.
@@ -54,6 +56,8 @@ pub struct Context {
     pub render_mode: super::render_mode::RenderModeState,
     /// Occlusion query objects.
     pub queries: super::queries::QueryState,
+    /// Framebuffer-object bindings.
+    pub framebuffers: super::framebuffers::FramebufferState,
     /// Texture units: bindings, environments, coordinate generation.
     pub texture: super::texture::TextureState,
     /// Pixel storage, transfer, zoom and the raster position.
@@ -94,6 +98,7 @@ impl Context {
             eval: Default::default(),
             render_mode: Default::default(),
             queries: Default::default(),
+            framebuffers: Default::default(),
             texture: Default::default(),
             pixels: Default::default(),
             immediate: Default::default(),

@@ -68,10 +68,14 @@ impl Context {
     /// depends on changed.
     pub fn raster_snapshot(&mut self) -> Arc<RasterState> {
         let (fixed, enables, viewport) = (self.fixed.version, self.enables.version, self.viewport);
+        // A bound framebuffer object's images can change without a state change (a texture
+        // level respecified): its description is compared each time.
+        let framebuffer_unchanged = |state: &RasterState| self.framebuffers.bound == 0 || self.draw_framebuffer().unwrap_or_default() == state.framebuffer;
         if let Some(c) = &self.fixed.snapshot
             && c.fixed == fixed
             && c.enables == enables
             && c.viewport == viewport
+            && framebuffer_unchanged(&c.state)
         {
             return c.state.clone();
         }
@@ -85,8 +89,9 @@ impl Context {
         let on = |cap: GLenum| self.enables.is_on(cap);
         let f = &self.fixed;
         let (fr, r, l) = (&f.fragment, &f.raster, &f.lighting);
-        let color_mask = if f.buffers.draw == gl::GL_NONE { [false; 4] } else { fr.color_mask };
-        RasterState {
+        let draw_buffer = self.object_buffers().map_or(f.buffers.draw, |(draw, _)| draw);
+        let color_mask = if draw_buffer == gl::GL_NONE { [false; 4] } else { fr.color_mask };
+        let mut state = RasterState {
             alpha_test: on(gl::GL_ALPHA_TEST).then_some(fr.alpha),
             blend: on(gl::GL_BLEND).then_some(fr.blend),
             logic_op: on(gl::GL_COLOR_LOGIC_OP).then_some(fr.logic_op),
@@ -142,7 +147,10 @@ impl Context {
                 alpha_to_one: on(gl::GL_SAMPLE_ALPHA_TO_ONE),
                 coverage: on(gl::GL_SAMPLE_COVERAGE).then_some(r.sample_coverage),
             },
-        }
+            framebuffer: self.draw_framebuffer().unwrap_or_default(),
+        };
+        super::framebuffers::restrict_state(&mut state);
+        state
     }
 }
 

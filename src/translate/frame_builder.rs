@@ -84,7 +84,11 @@ impl Context {
         if self.render_mode_batch(primitive.to_gl(), batch, order) || assembled.indices.is_empty() {
             return;
         }
+        if self.framebuffer_incomplete("draw") {
+            return;
+        }
         let key = self.batch_key(primitive.topology(), source);
+        self.enter_framebuffer(&key.state.framebuffer);
         push_batch(&mut self.frame, key, &batch.vertices, assembled);
     }
 
@@ -151,11 +155,13 @@ fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
         && last.vertices.len() + extra <= MAX_MERGED_VERTICES
 }
 
-/// Appends a batch to `frame`: into its last draw when `mergeable` and no clear came after
-/// that draw, else as a new draw.
+/// Appends a batch to `frame`: into its last draw when `mergeable` and no clear or pixel
+/// operation came after that draw, else as a new draw.
 pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembled: &Assembled) {
+    // A clear or pixel operation after the last draw must stay between it and this batch.
     let cleared_since = frame.clears.last().is_some_and(|c| c.before_draw >= frame.draws.len());
-    let merge = !cleared_since && frame.draws.last().is_some_and(|last| mergeable(last, &key, vertices.len()));
+    let pixels_since = frame.pixels.last().is_some_and(|p| p.before_draw >= frame.draws.len());
+    let merge = !cleared_since && !pixels_since && frame.draws.last().is_some_and(|last| mergeable(last, &key, vertices.len()));
     if !merge {
         frame.draws.push(Draw {
             topology: key.topology,

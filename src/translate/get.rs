@@ -92,6 +92,7 @@ impl Context {
             .or_else(|| self.query_fragment(pname))
             .or_else(|| self.query_rasterization(pname))
             .or_else(|| self.query_clear(pname))
+            .or_else(|| self.query_framebuffers(pname))
             .or_else(|| self.query_buffers(pname))
             .or_else(|| self.query_hints(pname))
             .or_else(|| self.query_attrib(pname))

@@ -38,6 +38,7 @@ pub mod fixed_vertex;
 pub mod fog;
 pub mod fragment;
 pub mod frame_builder;
+pub mod framebuffers;
 pub mod get;
 pub mod gl;
 pub mod hints;

@@ -20,7 +20,7 @@ const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 /// multisampled drawable, as Mesa does: its state and queries work on any context.
 /// `GL_EXT_packed_depth_stencil` and `GL_ARB_depth_buffer_float` are announced for their pixel
 /// formats and texture internal formats (as Mesa's compatibility profile does); their
-/// renderbuffer parts need `GL_EXT_framebuffer_object`, which glrt lacks, and so do not apply.
+/// renderbuffer formats work with `GL_EXT_framebuffer_object`.
 const EXTENSIONS: &str = concat!(
     "GL_ARB_depth_buffer_float ",
     "GL_ARB_depth_texture ",
@@ -49,6 +49,7 @@ const EXTENSIONS: &str = concat!(
     "GL_EXT_compiled_vertex_array ",
     "GL_EXT_draw_range_elements ",
     "GL_EXT_fog_coord ",
+    "GL_EXT_framebuffer_object ",
     "GL_EXT_multi_draw_arrays ",
     "GL_EXT_packed_depth_stencil ",
     "GL_EXT_packed_pixels ",

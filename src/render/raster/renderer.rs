@@ -14,6 +14,7 @@
 //! the end of each presented frame, give the submission semaphores, and hear when the GPU
 //! finished it (the `GLRT_DUMP` writer is one).
 
+use std::collections::HashMap;
 use std::sync::Arc;
 
 use ash::vk;
@@ -29,7 +30,8 @@ use super::textures::Textures;
 use super::{conv, multisample, pixel_ops, readback};
 use crate::frame::pixels::{PixelBuffer, PixelOp};
 use crate::frame::state::Stencil;
-use crate::frame::{Clear, ColorBuffer, Draw, DrawBuffers, Frame, FrameEnd, RasterState};
+use crate::frame::framebuffer::FramebufferKey;
+use crate::frame::{Clear, ColorBuffer, Draw, DrawBuffers, Frame, FrameEnd, Framebuffer, RasterState};
 use crate::render::FrameSink;
 
 /// Frames in flight.
@@ -73,7 +75,13 @@ struct Parts {
     occlusion: Occlusion,
     pipelines: Pipelines,
     textures: Textures,
+    /// The window's framebuffer.
     target: Option<Target>,
+    /// The images of framebuffer objects, by their description
+    /// ([`crate::frame::framebuffer`]).
+    offscreen: HashMap<FramebufferKey, Target>,
+    /// The framebuffer recorded into: a framebuffer object's key, or `None` for the window.
+    active: Option<FramebufferKey>,
     rendering: bool,
     /// The colour image the rendering pass draws into.
     color: Plane,
@@ -105,6 +113,8 @@ pub struct Recorder<'a> {
     slot: usize,
     /// The frame number and the GL occlusion query counting the next draws, if any.
     query: (u64, Option<u32>),
+    /// The framebuffer recorded into (`None`: the window's).
+    framebuffer: Option<FramebufferKey>,
 }
 
 impl Recorder<'_> {
@@ -358,7 +368,18 @@ impl Renderer {
         let slots = (0..FRAMES_IN_FLIGHT).map(|_| Slot::new(&device)).collect::<Result<Vec<_>>>()?;
         let occlusion = Occlusion::new(FRAMES_IN_FLIGHT, device.features.occlusion_query_precise);
         Ok(Renderer {
-            parts: Parts { device, occlusion, pipelines, textures, target: None, rendering: false, color: Plane::Color, samples: 1 },
+            parts: Parts {
+                device,
+                occlusion,
+                pipelines,
+                textures,
+                target: None,
+                offscreen: HashMap::new(),
+                active: None,
+                rendering: false,
+                color: Plane::Color,
+                samples: 1,
+            },
             slots,
             current: 0,
             recording: false,
@@ -390,7 +411,9 @@ impl Renderer {
     }
 
     /// A [`Recorder`] on the current slot for a frame of `size`, starting the command buffer
-    /// and (re)creating the target when needed (new size or sample count).
+    /// and (re)creating the target when needed (new size or sample count). It records into
+    /// the active framebuffer ([`Renderer::switch_to`]): the window's, or a framebuffer
+    /// object's images (created on first use, single-sampled).
     pub fn recorder(&mut self, size: [u32; 2]) -> Result<Recorder<'_>> {
         let max = self.parts.device.properties.limits.max_image_dimension2_d;
         let size = size.map(|s| s.clamp(1, max));
@@ -411,12 +434,25 @@ impl Renderer {
         }
         let slot = &mut self.slots[self.current];
         let parts = &mut self.parts;
-        if parts.target.is_none() {
-            let mut target = Target::new(&parts.device, size, samples)?;
-            target.clear_initial(&parts.device, slot.cmd);
-            parts.target = Some(target);
-        }
-        let Some(target) = parts.target.as_mut() else { unreachable!("created above") };
+        let target = match parts.active {
+            None => {
+                if parts.target.is_none() {
+                    let mut target = Target::new(&parts.device, size, samples)?;
+                    target.clear_initial(&parts.device, slot.cmd);
+                    parts.target = Some(target);
+                }
+                parts.target.as_mut()
+            }
+            Some(key) => {
+                if !parts.offscreen.contains_key(&key) {
+                    let mut target = Target::new(&parts.device, key.size.map(|s| s.clamp(1, max)), 1)?;
+                    target.clear_initial(&parts.device, slot.cmd);
+                    parts.offscreen.insert(key, target);
+                }
+                parts.offscreen.get_mut(&key)
+            }
+        };
+        let Some(target) = target else { unreachable!("created above") };
         Ok(Recorder {
             device: &parts.device,
             cmd: slot.cmd,
@@ -430,6 +466,7 @@ impl Renderer {
             occlusion: &mut parts.occlusion,
             slot: self.current,
             query: (0, None),
+            framebuffer: parts.active,
         })
     }
 
@@ -453,6 +490,11 @@ impl Renderer {
         if let Some(last) = progress.draws.checked_sub(1).and_then(|i| frame.draws.get(i))
             && last.indices.len() > progress.last_indices
         {
+            if key_of(&last.state.framebuffer) != rec.framebuffer {
+                rec.end_rendering();
+                self.switch_to(key_of(&last.state.framebuffer));
+                rec = self.recorder(frame.size)?;
+            }
             rec.query = (frame.number, query_of(progress.draws - 1));
             draw_in_buffers(&mut rec, &tail(last, progress.last_indices))?;
             progress.last_indices = last.indices.len();
@@ -466,6 +508,11 @@ impl Renderer {
                 let op = frame.pixels.get(progress.pixels).filter(|p| p.before_draw <= index);
                 match (clear, op) {
                     (Some(clear), op) if op.is_none_or(|op| op.after_clears > progress.clears) => {
+                        if key_of(&clear.framebuffer) != rec.framebuffer {
+                            rec.end_rendering();
+                            self.switch_to(key_of(&clear.framebuffer));
+                            rec = self.recorder(frame.size)?;
+                        }
                         let mut buffers = clear.draw_buffers.buffers().peekable();
                         if buffers.peek().is_none() {
                             pixel_ops::clear::record(&mut rec, clear)?;
@@ -480,6 +527,11 @@ impl Renderer {
                         progress.clears += 1;
                     }
                     (_, Some(op)) => {
+                        if key_of(&op.state.framebuffer) != rec.framebuffer {
+                            rec.end_rendering();
+                            self.switch_to(key_of(&op.state.framebuffer));
+                            rec = self.recorder(frame.size)?;
+                        }
                         let read = match pixel_ops::source(op, rec.target.size) {
                             Some((buffer, rect)) => {
                                 let read = self.read_target(buffer, op.state.read_buffer, rect)?;
@@ -502,6 +554,11 @@ impl Renderer {
                 }
             }
             if let Some(draw) = frame.draws.get(index) {
+                if key_of(&draw.state.framebuffer) != rec.framebuffer {
+                    rec.end_rendering();
+                    self.switch_to(key_of(&draw.state.framebuffer));
+                    rec = self.recorder(frame.size)?;
+                }
                 rec.query = (frame.number, query_of(index));
                 draw_in_buffers(&mut rec, draw)?;
                 progress.draws = index + 1;
@@ -538,6 +595,9 @@ impl Renderer {
     /// buffer (see [`FrameSink::read_pixels`]).
     pub fn read(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
         self.record(frame)?;
+        self.end_pass();
+        self.switch_to(key_of(&frame.read_framebuffer));
+        self.recorder(frame.size)?;
         self.read_target(buffer, frame.read_buffer, rect)
     }
 
@@ -546,7 +606,11 @@ impl Renderer {
     fn read_target(&mut self, buffer: PixelBuffer, color: ColorBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
         self.end_pass();
         let slot = &mut self.slots[self.current];
-        let Some(target) = self.parts.target.as_mut() else { return Ok(None) };
+        let target = match self.parts.active {
+            None => self.parts.target.as_mut(),
+            Some(key) => self.parts.offscreen.get_mut(&key),
+        };
+        let Some(target) = target else { return Ok(None) };
         let Some(copy) = readback::Readback::record(&self.parts.device, slot.cmd, target, buffer, color, rect)? else {
             return Ok(None);
         };
@@ -557,6 +621,8 @@ impl Renderer {
     /// Finishes `frame` and submits it without waiting.
     pub fn finish(&mut self, frame: &Frame) -> Result<()> {
         self.record(frame)?;
+        self.end_pass();
+        self.switch_to(None);
         let slot = self.current;
         let mut sync = SubmitSync::default();
         let mut outputs = std::mem::take(&mut self.outputs);
@@ -580,6 +646,29 @@ impl Renderer {
         self.recording = false;
         self.progress = None;
         self.current = (self.current + 1) % self.slots.len();
+        self.release_offscreen(&frame.released)
+    }
+
+    /// Makes `framebuffer` (`None`: the window's) the one recorded into; the caller ended the
+    /// rendering pass.
+    fn switch_to(&mut self, framebuffer: Option<FramebufferKey>) {
+        debug_assert!(!self.parts.rendering, "switching framebuffers inside a rendering pass");
+        self.parts.active = framebuffer;
+    }
+
+    /// Frees the framebuffer-object images made of `released` attachments, once the GPU is
+    /// done with every frame in flight.
+    fn release_offscreen(&mut self, released: &[crate::frame::framebuffer::Attachment]) -> Result<()> {
+        let dead: Vec<FramebufferKey> = self.parts.offscreen.keys().filter(|k| released.iter().any(|r| k.uses(r))).copied().collect();
+        if dead.is_empty() {
+            return Ok(());
+        }
+        self.wait_all()?;
+        for key in dead {
+            if let Some(target) = self.parts.offscreen.remove(&key) {
+                target.destroy(&self.parts.device);
+            }
+        }
         Ok(())
     }
 
@@ -680,10 +769,18 @@ impl Drop for Renderer {
         if let Some(target) = self.parts.target.take() {
             target.destroy(device);
         }
+        for (_, target) in self.parts.offscreen.drain() {
+            target.destroy(device);
+        }
         self.parts.pipelines.destroy(device);
         self.parts.occlusion.destroy(device);
         self.parts.textures.destroy(device);
     }
+}
+
+/// The renderer's key of `framebuffer` (`None` for the window's).
+fn key_of(framebuffer: &Framebuffer) -> Option<FramebufferKey> {
+    framebuffer.object().map(|fbo| fbo.key())
 }
 
 /// Records `draw` into the colour buffers its state selects.

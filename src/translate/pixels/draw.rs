@@ -33,9 +33,13 @@ impl Context {
     /// Appends a pixel operation to the frame, before the next draw, with the raster state
     /// its fragments go through.
     pub(crate) fn push_pixel_op(&mut self, kind: PixelKind) {
+        if self.framebuffer_incomplete("pixel operation") {
+            return;
+        }
+        let state = self.raster_snapshot();
+        self.enter_framebuffer(&state.framebuffer);
         let before_draw = self.frame.draws.len();
         let after_clears = self.frame.clears.len();
-        let state = self.raster_snapshot();
         self.frame.pixels.push(PixelOp { before_draw, after_clears, kind, state });
     }
 
@@ -279,6 +283,10 @@ impl Context {
             gl::GL_ADD => AccumOp::Add,
             _ => return self.set_error_in(gl::GL_INVALID_ENUM, "glAccum"),
         };
+        if self.framebuffers.bound != 0 {
+            // A framebuffer object has no accumulation buffer (EXT_framebuffer_object 4.2.4).
+            return self.set_error_in(gl::GL_INVALID_OPERATION, "glAccum");
+        }
         self.push_pixel_op(PixelKind::Accum { op, value });
     }
 }

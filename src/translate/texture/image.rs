@@ -12,7 +12,7 @@ use std::sync::Arc;
 use super::super::Context;
 use super::super::convert::write_slice;
 use super::super::get::Value;
-use super::super::gl::{self, GLenum, GLfloat, GLint, GLsizei};
+use super::super::gl::{self, GLenum, GLfloat, GLint, GLsizei, GLuint};
 use super::super::pixels::Unpacked;
 use super::super::pixels::codec::{self, Format, Kind, Luminance};
 use super::formats::{self, Base, Internal, S3tc};
@@ -128,6 +128,23 @@ struct Converted {
 /// depth values are rounded to the bits of the depth format, and depth/stencil formats keep
 /// the stencil indices masked by 2^8 − 1 (EXT_packed_depth_stencil section 3.8.1; zeros when
 /// the pixels have none, where the spec leaves them undefined).
+/// Writes `data` into a region of a level of `obj` (given as `base`, or as the level's own base
+/// format when `None`), recompresses it, regenerates mipmaps when the base level changed with
+/// `GL_GENERATE_MIPMAP` on, and gives the object a new content version.
+#[allow(clippy::too_many_arguments)]
+fn write_object_region(obj: &mut TextureObject, palette: &Palette, face: usize, level: usize, offset: [usize; 3], size: [usize; 3], base: Option<Base>, data: Unpacked) {
+    if let Some(l) = obj.level_slot(face, level).as_mut() {
+        let converted = convert(base.unwrap_or(l.base), l.internal_format, Some(data), size[0] * size[1] * size[2], palette);
+        write_region(l, offset, size, &converted);
+        super::compressed::recompress(l);
+    }
+    let base_level = obj.params.levels[0].max(0) as usize;
+    if obj.params.generate_mipmap && level == base_level {
+        super::mipmap::generate(obj, face, level);
+    }
+    obj.touch();
+}
+
 fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, palette: &Palette) -> Converted {
     let colour = |texels| Converted { texels, depth: Vec::new(), indices: None, stencil: None };
     match (base, data) {
@@ -286,6 +303,7 @@ impl Context {
         pixels: *const c_void,
         command: &'static str,
     ) {
+        self.write_back_framebuffer();
         let Some(dest) = image_target(dims, target) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let Some(ft) = self.parse_pixel_format(format, type_, command) else { return };
         let Some(internal) = u32::try_from(internalformat).ok().and_then(formats::internal_format) else {
@@ -414,6 +432,7 @@ impl Context {
 
     /// `glTexSubImage1D/2D/3D`.
     unsafe fn tex_sub_image(&mut self, dims: usize, target: GLenum, level: GLint, offset: [GLint; 3], size: [GLsizei; 3], format: GLenum, type_: GLenum, pixels: *const c_void, command: &'static str) {
+        self.write_back_framebuffer();
         let Some((dest, level, off, sz, base)) = self.check_sub_image(dims, target, level, offset, size, command) else { return };
         let Some(ft) = self.parse_pixel_format(format, type_, command) else { return };
         if let Err(e) = check_format_pair(ft.0, base) {
@@ -427,18 +446,23 @@ impl Context {
     /// Writes `data` (`size` pixels) into `level` of `dest` at `offset` (border included),
     /// regenerates mipmaps when `GL_GENERATE_MIPMAP` asks, and changes the content version.
     fn write_sub_image(&mut self, dest: Dest, level: usize, offset: [usize; 3], size: [usize; 3], base: Base, data: Unpacked) {
-        self.with_dest(dest, |obj, palette| {
-            if let Some(l) = obj.level_slot(dest.face, level).as_mut() {
-                let converted = convert(base, l.internal_format, Some(data), size[0] * size[1] * size[2], palette);
-                write_region(l, offset, size, &converted);
-                super::compressed::recompress(l);
-            }
-            let base_level = obj.params.levels[0].max(0) as usize;
-            if obj.params.generate_mipmap && level == base_level {
-                super::mipmap::generate(obj, dest.face, level);
-            }
-            obj.touch();
-        });
+        self.with_dest(dest, |obj, palette| write_object_region(obj, palette, dest.face, level, offset, size, Some(base), data));
+    }
+
+    /// Writes `data` (pixels after transfer) into the region `offset`/`size` of `level` of
+    /// `face` of the texture named `name`, converted to the level's internal format (what
+    /// framebuffer-object texture attachments are read back with). Nothing happens when the
+    /// texture or level no longer exists.
+    pub(crate) fn write_texture_region(&mut self, name: GLuint, face: usize, level: usize, offset: [usize; 3], size: [usize; 3], data: Unpacked) {
+        let shared_palette = self.texture.shared_palette.clone();
+        let shared = self.shared.clone();
+        let mut shared = shared.lock();
+        let Some(obj) = shared.textures.get_mut(name) else { return };
+        if obj.level(face, level).is_none() {
+            return;
+        }
+        let palette = if obj.palette.entries.is_empty() { shared_palette } else { obj.palette.clone() };
+        write_object_region(obj, &palette, face, level, offset, size, None, data);
     }
 
     /// `glTexSubImage1D`.
@@ -533,6 +557,7 @@ impl Context {
     /// `GL_INVALID_OPERATION` for a missing one never applies). The level is allocated
     /// zero-filled and the copy is recorded in the frame.
     fn copy_tex_image(&mut self, dims: usize, target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, size: [GLsizei; 2], border: GLint, command: &'static str) {
+        self.write_back_framebuffer();
         let Some(dest) = image_target(dims, target).filter(|d| !d.proxy) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let internal = formats::internal_format(internalformat).filter(|i| !(1..=4).contains(&internalformat) && i.base != Base::ColorIndex);
         let Some(internal) = internal else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
@@ -563,6 +588,7 @@ impl Context {
     /// `glCopyTexSubImage1D/2D/3D`: the region checks of `glTexSubImage`; the copy is recorded
     /// in the frame and the content version changes.
     fn copy_tex_sub_image(&mut self, dims: usize, target: GLenum, level: GLint, offset: [GLint; 3], src: [i32; 4], command: &'static str) {
+        self.write_back_framebuffer();
         let size = [src[2], if dims >= 2 { src[3] } else { 1 }, 1];
         let Some((dest, level, off, _, base)) = self.check_sub_image(dims, target, level, offset, size, command) else { return };
         self.with_dest(dest, |obj, _| obj.touch());
@@ -595,6 +621,7 @@ impl Context {
     /// A non-null `pixels` must point to writable memory as the pack modes describe.
     pub unsafe fn glGetTexImage(&mut self, target: GLenum, level: GLint, format: GLenum, type_: GLenum, pixels: *mut c_void) {
         const CMD: &str = "glGetTexImage";
+        self.write_back_framebuffer();
         let Some(dest) = any_image_target(target).filter(|d| !d.proxy) else { return self.set_error_in(gl::GL_INVALID_ENUM, CMD) };
         let Some((f, t)) = self.parse_pixel_format(format, type_, CMD) else { return };
         if matches!(f.kind, Kind::Index | Kind::Stencil) {

@@ -256,6 +256,10 @@ impl Context {
     pub unsafe fn glDeleteTextures(&mut self, n: GLsizei, textures: *const GLuint) {
         let Ok(count) = usize::try_from(n) else { return self.set_error_in(gl::GL_INVALID_VALUE, "glDeleteTextures") };
         let Some(names) = (unsafe { read_slice(textures, count) }) else { return self.null_pointer("glDeleteTextures") };
+        for &name in names.iter().filter(|&&n| n != 0) {
+            self.detach_everywhere(|a| matches!(a, crate::translate::framebuffers::objects::Attached::Texture { name: n, .. } if n == name));
+            self.frame.released.push(crate::frame::framebuffer::Attachment::Texture { name, face: 0, level: 0, slice: 0 });
+        }
         let shared = self.shared.clone();
         let mut shared = shared.lock();
         for name in names.into_iter().filter(|&n| n != 0) {
