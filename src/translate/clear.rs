@@ -161,6 +161,7 @@ mod tests {
                 depth_mask: true,
                 stencil_mask: u32::MAX,
                 draw_buffers: crate::frame::DrawBuffers::default(),
+                framebuffer: crate::frame::Framebuffer::Window,
             }
         );
         let second = &ctx.frame.clears[1];
