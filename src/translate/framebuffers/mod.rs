@@ -520,3 +520,144 @@ pub fn restrict_state(state: &mut crate::frame::RasterState) {
         state.color_mask = [false; 4];
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::frame::Framebuffer;
+    use crate::translate::{Context, gl};
+
+    /// A context with framebuffer object 1 bound.
+    fn bound() -> Context {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindFramebufferEXT(gl::GL_FRAMEBUFFER_EXT, 1);
+        ctx
+    }
+
+    /// Renderbuffer `name` with storage of `format`, `w` × `h`.
+    fn storage(ctx: &mut Context, name: u32, format: gl::GLenum, w: i32, h: i32) {
+        ctx.glBindRenderbufferEXT(gl::GL_RENDERBUFFER_EXT, name);
+        ctx.glRenderbufferStorageEXT(gl::GL_RENDERBUFFER_EXT, format, w, h);
+    }
+
+    fn status(ctx: &mut Context) -> gl::GLenum {
+        ctx.glCheckFramebufferStatusEXT(gl::GL_FRAMEBUFFER_EXT)
+    }
+
+    #[test]
+    fn completeness_follows_section_4_4_4() {
+        let mut ctx = bound();
+        assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT_EXT);
+        storage(&mut ctx, 1, gl::GL_RGBA8, 16, 16);
+        ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_RENDERBUFFER_EXT, 1);
+        assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_COMPLETE_EXT);
+        storage(&mut ctx, 2, gl::GL_DEPTH_COMPONENT24, 8, 16);
+        ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_DEPTH_ATTACHMENT_EXT, gl::GL_RENDERBUFFER_EXT, 2);
+        assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_INCOMPLETE_DIMENSIONS_EXT);
+        storage(&mut ctx, 2, gl::GL_DEPTH_COMPONENT24, 16, 16);
+        assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_COMPLETE_EXT);
+        // A colour renderbuffer at the depth point.
+        ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_DEPTH_ATTACHMENT_EXT, gl::GL_RENDERBUFFER_EXT, 1);
+        assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT_EXT);
+        // Separate depth and stencil images: refused as unsupported.
+        storage(&mut ctx, 3, gl::GL_STENCIL_INDEX8_EXT, 16, 16);
+        ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_DEPTH_ATTACHMENT_EXT, gl::GL_RENDERBUFFER_EXT, 2);
+        ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_STENCIL_ATTACHMENT_EXT, gl::GL_RENDERBUFFER_EXT, 3);
+        assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_UNSUPPORTED_EXT);
+        // A packed depth/stencil renderbuffer at both points is supported.
+        storage(&mut ctx, 4, gl::GL_DEPTH24_STENCIL8, 16, 16);
+        ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_DEPTH_ATTACHMENT_EXT, gl::GL_RENDERBUFFER_EXT, 4);
+        ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_STENCIL_ATTACHMENT_EXT, gl::GL_RENDERBUFFER_EXT, 4);
+        assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_COMPLETE_EXT);
+        let Ok(Framebuffer::Object(fbo)) = ctx.draw_framebuffer() else { panic!("complete") };
+        assert_eq!(fbo.size, [16, 16]);
+        assert_eq!(fbo.depth, fbo.stencil);
+        // Without a colour image the draw buffer must be GL_NONE.
+        ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_RENDERBUFFER_EXT, 0);
+        assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_INCOMPLETE_DRAW_BUFFER_EXT);
+        ctx.glDrawBuffer(gl::GL_NONE);
+        assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_INCOMPLETE_READ_BUFFER_EXT);
+        ctx.glReadBuffer(gl::GL_NONE);
+        assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_COMPLETE_EXT);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    }
+
+    #[test]
+    fn incomplete_framebuffers_refuse_drawing_and_reading() {
+        let mut ctx = bound();
+        ctx.glClear(gl::GL_COLOR_BUFFER_BIT);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_FRAMEBUFFER_OPERATION_EXT);
+        assert!(ctx.frame.clears.is_empty());
+        ctx.glBegin(gl::GL_TRIANGLES);
+        for v in [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]] {
+            ctx.glVertex4f(v[0], v[1], 0.0, 1.0);
+        }
+        ctx.glEnd();
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_FRAMEBUFFER_OPERATION_EXT);
+        assert!(ctx.frame.draws.is_empty());
+        ctx.glAccum(gl::GL_LOAD, 1.0);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "a framebuffer object has no accumulation buffer");
+    }
+
+    #[test]
+    fn errors_of_the_entry_points() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindFramebufferEXT(gl::GL_TEXTURE_2D, 1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_RENDERBUFFER_EXT, 0);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "no framebuffer object bound");
+        ctx.glRenderbufferStorageEXT(gl::GL_RENDERBUFFER_EXT, gl::GL_RGBA8, 4, 4);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "no renderbuffer bound");
+        ctx.glBindRenderbufferEXT(gl::GL_RENDERBUFFER_EXT, 5);
+        ctx.glRenderbufferStorageEXT(gl::GL_RENDERBUFFER_EXT, gl::GL_LUMINANCE8, 4, 4);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM, "not colour-renderable");
+        ctx.glRenderbufferStorageEXT(gl::GL_RENDERBUFFER_EXT, gl::GL_RGB8, -1, 4);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        ctx.glRenderbufferStorageEXT(gl::GL_RENDERBUFFER_EXT, gl::GL_RGB8, 4, 6);
+        let mut v = 0;
+        for (pname, want) in [
+            (gl::GL_RENDERBUFFER_WIDTH_EXT, 4),
+            (gl::GL_RENDERBUFFER_HEIGHT_EXT, 6),
+            (gl::GL_RENDERBUFFER_INTERNAL_FORMAT_EXT, gl::GL_RGB8 as i32),
+            (gl::GL_RENDERBUFFER_GREEN_SIZE_EXT, 8),
+            (gl::GL_RENDERBUFFER_ALPHA_SIZE_EXT, 0),
+            (gl::GL_RENDERBUFFER_DEPTH_SIZE_EXT, 0),
+        ] {
+            unsafe { ctx.glGetRenderbufferParameterivEXT(gl::GL_RENDERBUFFER_EXT, pname, &mut v) };
+            assert_eq!(v, want, "{pname:#x}");
+        }
+        ctx.glBindFramebufferEXT(gl::GL_FRAMEBUFFER_EXT, 2);
+        ctx.glFramebufferTexture2DEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_TEXTURE_2D, 9, 0);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "9 is not a texture");
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 9);
+        ctx.glFramebufferTexture2DEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_TEXTURE_CUBE_MAP_POSITIVE_X, 9, 0);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "not a cube map");
+        ctx.glFramebufferTexture2DEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT1_EXT, gl::GL_TEXTURE_2D, 9, 0);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM, "one colour attachment");
+        ctx.glFramebufferTexture2DEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_TEXTURE_2D, 9, -1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        ctx.glFramebufferTexture2DEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_TEXTURE_2D, 9, 2);
+        for (pname, want) in [
+            (gl::GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_EXT, gl::GL_TEXTURE as i32),
+            (gl::GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME_EXT, 9),
+            (gl::GL_FRAMEBUFFER_ATTACHMENT_TEXTURE_LEVEL_EXT, 2),
+        ] {
+            unsafe { ctx.glGetFramebufferAttachmentParameterivEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, pname, &mut v) };
+            assert_eq!(v, want, "{pname:#x}");
+        }
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT_EXT, "level 2 has no image");
+        // Deleting the texture detaches it from the bound framebuffer.
+        unsafe { ctx.glDeleteTextures(1, &9) };
+        unsafe { ctx.glGetFramebufferAttachmentParameterivEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_EXT, &mut v) };
+        assert_eq!(v, gl::GL_NONE as i32);
+        ctx.glDrawBuffer(gl::GL_BACK);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "window buffers while an object is bound");
+        let ints = |ctx: &Context, p| ctx.query(p).unwrap().to_ints()[0];
+        assert_eq!(ints(&ctx, gl::GL_FRAMEBUFFER_BINDING_EXT), 2);
+        assert_eq!(ints(&ctx, gl::GL_DRAW_BUFFER), gl::GL_COLOR_ATTACHMENT0_EXT as i32);
+        assert_eq!(ints(&ctx, gl::GL_DOUBLEBUFFER), 0);
+        unsafe { ctx.glDeleteFramebuffersEXT(1, &2) };
+        assert_eq!(ints(&ctx, gl::GL_FRAMEBUFFER_BINDING_EXT), 0, "deleting the bound framebuffer binds the window's");
+        assert_eq!(ints(&ctx, gl::GL_DRAW_BUFFER), gl::GL_BACK as i32);
+    }
+}
