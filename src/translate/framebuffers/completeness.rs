@@ -23,27 +23,27 @@ pub struct Image {
 }
 
 /// The image attached as `attached`, if it exists (a renderbuffer with storage, a texture
-/// level that is specified); `Err(())` when the name or level no longer exists or holds
-/// nothing renderable.
-pub fn resolve(shared: &SharedObjects, attached: Attached) -> Result<Image, ()> {
+/// level that is specified); `None` when the name or level no longer exists or holds nothing
+/// renderable.
+pub fn resolve(shared: &SharedObjects, attached: Attached) -> Option<Image> {
     match attached {
         Attached::Renderbuffer(name) => {
-            let rb = shared.fbos.renderbuffers.get(name).ok_or(())?;
-            let holds = rb.holds.ok_or(())?;
+            let rb = shared.fbos.renderbuffers.get(name)?;
+            let holds = rb.holds?;
             if rb.size.contains(&0) {
-                return Err(());
+                return None;
             }
-            Ok(Image { attachment: Attachment::Renderbuffer { name, storage: rb.storage }, size: rb.size, holds, border: 0 })
+            Some(Image { attachment: Attachment::Renderbuffer { name, storage: rb.storage }, size: rb.size, holds, border: 0 })
         }
         Attached::Texture { name, kind, face, level, slice } => {
-            let obj = shared.textures.get(name).ok_or(())?;
-            let lvl = obj.level(face as usize, level as usize).ok_or(())?;
-            let holds = texture_holds(lvl.base, lvl.internal_format).ok_or(())?;
+            let obj = shared.textures.get(name)?;
+            let lvl = obj.level(face as usize, level as usize)?;
+            let holds = texture_holds(lvl.base, lvl.internal_format)?;
             let [w, h, d] = lvl.size;
             if w == 0 || h == 0 || (kind == Target::D3 && slice as usize >= d) {
-                return Err(());
+                return None;
             }
-            Ok(Image {
+            Some(Image {
                 attachment: Attachment::Texture { name, face, level, slice },
                 size: [w as u32, h as u32],
                 holds,
@@ -59,7 +59,7 @@ pub fn check(shared: &SharedObjects, fbo: &FramebufferObject) -> Result<Arc<fram
     let mut images = [None; 3];
     for point in [Point::Color, Point::Depth, Point::Stencil] {
         let Some(attached) = fbo.attached[point.index()] else { continue };
-        let image = resolve(shared, attached).map_err(|()| gl::GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT_EXT)?;
+        let image = resolve(shared, attached).ok_or(gl::GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT_EXT)?;
         let fits = match point {
             Point::Color => matches!(image.holds, Holds::Color { .. }),
             Point::Depth => image.holds.depth(),

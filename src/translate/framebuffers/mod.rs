@@ -485,7 +485,7 @@ impl Context {
         let holds = |point: Point| {
             let shared = self.shared.lock();
             let attached = shared.fbos.framebuffers.get(self.framebuffers.bound)?.attached[point.index()]?;
-            completeness::resolve(&shared, attached).ok().map(|i| i.holds)
+            completeness::resolve(&shared, attached).map(|i| i.holds)
         };
         let bits = |on: bool, n: i64| Value::int(if on { n } else { 0 });
         Some(match pname {
