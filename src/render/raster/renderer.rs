@@ -79,6 +79,8 @@ struct Parts {
     color: Plane,
     /// Samples per pixel of the target ([`FrameSink::set_target`]).
     samples: u32,
+    /// Whether the target has destination alpha ([`FrameSink::set_target`]).
+    alpha: bool,
 }
 
 /// Access to the frame being recorded, for the parts that record into it (draws, clears,
@@ -203,7 +205,7 @@ impl Recorder<'_> {
             attachments.push(vk::ClearAttachment {
                 aspect_mask: vk::ImageAspectFlags::COLOR,
                 color_attachment: 0,
-                clear_value: vk::ClearValue { color: vk::ClearColorValue { float32: c.map(|v| v.clamp(0.0, 1.0)) } },
+                clear_value: vk::ClearValue { color: vk::ClearColorValue { float32: self.target.stored_color(c.map(|v| v.clamp(0.0, 1.0))) } },
             });
         }
         let mut aspects = vk::ImageAspectFlags::empty();
@@ -292,7 +294,8 @@ impl Recorder<'_> {
             if batch.indices.is_empty() {
                 continue;
             }
-            let fixed = FixedState::new(state, batch.cull, batch.polygon_offset, features.logic_op);
+            let mut fixed = FixedState::new(state, batch.cull, batch.polygon_offset, features.logic_op);
+            fixed.color_mask = self.target.color_write_mask(fixed.color_mask);
             if state.logic_op.is_some() && !features.logic_op {
                 log_once("the device has no logicOp feature: glLogicOp is ignored");
             }
@@ -358,7 +361,7 @@ impl Renderer {
         let slots = (0..FRAMES_IN_FLIGHT).map(|_| Slot::new(&device)).collect::<Result<Vec<_>>>()?;
         let occlusion = Occlusion::new(FRAMES_IN_FLIGHT, device.features.occlusion_query_precise);
         Ok(Renderer {
-            parts: Parts { device, occlusion, pipelines, textures, target: None, rendering: false, color: Plane::Color, samples: 1 },
+            parts: Parts { device, occlusion, pipelines, textures, target: None, rendering: false, color: Plane::Color, samples: 1, alpha: true },
             slots,
             current: 0,
             recording: false,
@@ -390,12 +393,12 @@ impl Renderer {
     }
 
     /// A [`Recorder`] on the current slot for a frame of `size`, starting the command buffer
-    /// and (re)creating the target when needed (new size or sample count).
+    /// and (re)creating the target when needed (new size, sample count or alpha).
     pub fn recorder(&mut self, size: [u32; 2]) -> Result<Recorder<'_>> {
         let max = self.parts.device.properties.limits.max_image_dimension2_d;
         let size = size.map(|s| s.clamp(1, max));
-        let samples = self.parts.samples;
-        if self.parts.target.as_ref().is_some_and(|t| t.size != size || t.samples != samples) {
+        let (samples, alpha) = (self.parts.samples, self.parts.alpha);
+        if self.parts.target.as_ref().is_some_and(|t| t.size != size || t.samples != samples || t.alpha != alpha) {
             self.flush()?;
             self.parts.device.wait_idle()?;
             if let Some(t) = self.parts.target.take() {
@@ -412,7 +415,7 @@ impl Renderer {
         let slot = &mut self.slots[self.current];
         let parts = &mut self.parts;
         if parts.target.is_none() {
-            let mut target = Target::new(&parts.device, size, samples)?;
+            let mut target = Target::new(&parts.device, size, samples, alpha)?;
             target.clear_initial(&parts.device, slot.cmd);
             parts.target = Some(target);
         }
@@ -609,8 +612,9 @@ impl Renderer {
 }
 
 impl FrameSink for Renderer {
-    /// Also takes the drawable's sample count: the framebuffer is recreated with it at the
-    /// next frame (a count the device cannot render gives a single-sampled one, logged).
+    /// Also takes the drawable's sample count and destination alpha: the framebuffer is
+    /// recreated with them at the next frame (a count the device cannot render gives a
+    /// single-sampled one, logged).
     fn set_target(&mut self, target: crate::render::Target) {
         let counts = &self.parts.device.features.sample_counts;
         self.parts.samples = if target.samples <= 1 || counts.contains(&target.samples) {
@@ -619,6 +623,7 @@ impl FrameSink for Renderer {
             log_once("a drawable asks for a sample count the device cannot render: it is single-sampled");
             1
         };
+        self.parts.alpha = target.alpha;
         for output in &mut self.outputs {
             output.set_target(&self.parts.device, target);
         }
