@@ -10,6 +10,7 @@ use super::super::gl::{self, GLenum, GLfloat};
 use super::super::client_attrib::Restore;
 use super::super::limits::MAX_TEXTURE_UNITS;
 use super::super::render_mode::{RasterEvent, WindowVertex};
+use crate::frame::pixels::RasterFragment;
 
 /// The current values a raster position takes along (colour, texture coordinates...).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -62,6 +63,27 @@ impl Context {
         let c = self.immediate.current();
         let [r, g, b] = c.secondary_color;
         RasterInputs { color: c.color, secondary: [r, g, b, 1.0], index: c.color_index, texcoords: c.texcoords }
+    }
+
+    /// What the fragments of a pixel operation issued now take from the raster position
+    /// (sections 3.6.5 and 3.7): its texture coordinates for the units that texture, with
+    /// their environments and textures, its secondary colour and its distance as the fog
+    /// coordinate.
+    pub(crate) fn raster_fragment(&mut self) -> RasterFragment {
+        let units = self.immediate.texturing.units(&self.enables);
+        let mut texture_units = self.texture_units_snapshot(units);
+        for unit in texture_units.iter_mut().flatten() {
+            unit.texgen = [None; 4];
+        }
+        let textures = if units.contains(&true) { self.texture_snapshot() } else { Vec::new() };
+        let r = &self.pixels.raster;
+        RasterFragment {
+            texcoords: r.data.texcoords.to_vec(),
+            textures,
+            texture_units: texture_units.to_vec(),
+            secondary: r.data.secondary,
+            fog_coord: r.distance,
+        }
     }
 
     /// Saves the raster position and its data, the part of `GL_CURRENT_BIT` this module owns
