@@ -11,6 +11,7 @@ use super::super::client_attrib::Restore;
 use super::super::limits::MAX_TEXTURE_UNITS;
 use super::super::render_mode::{RasterEvent, WindowVertex};
 use crate::frame::pixels::RasterFragment;
+use crate::frame::state::FogSource;
 
 /// The current values a raster position takes along (colour, texture coordinates...).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,10 +122,15 @@ impl Context {
         }
         let ndc = [clip.x / clip.w, clip.y / clip.w, clip.z / clip.w];
         let [wx, wy, wz] = self.viewport.to_window(ndc);
+        // The fog coordinate when fog takes it from there (OpenGL 1.4 section 2.13).
+        let distance = match self.fixed.fog.fog.source {
+            FogSource::FogCoord => self.immediate.current().fog_coord,
+            FogSource::FragmentDepth => eye.truncate().length(),
+        };
         self.pixels.raster = RasterPos {
             window: [wx, wy, wz, clip.w],
             valid: true,
-            distance: eye.truncate().length(),
+            distance,
             data: RasterInputs {
                 color: v.colors.front.primary,
                 secondary: v.colors.front.secondary,
@@ -246,5 +252,35 @@ mod tests {
         ctx.glWindowPos3f(1.0, 1.0, 0.0);
         unsafe { ctx.glGetFloatv(gl::GL_CURRENT_RASTER_COLOR, v.as_mut_ptr()) };
         assert_eq!(v, [1.0, 0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn raster_distance_is_the_eye_distance_or_the_fog_coordinate() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.bind_drawable(100, 100);
+        let distance = |ctx: &Context| ctx.query(gl::GL_CURRENT_RASTER_DISTANCE).unwrap().to_doubles()[0];
+        ctx.glRasterPos4f(0.3, 0.0, -0.4, 1.0);
+        assert!((distance(&ctx) - 0.5).abs() < 1e-6);
+        ctx.glFogi(gl::GL_FOG_COORD_SRC, gl::GL_FOG_COORD as i32);
+        unsafe { crate::translate::dispatch::glFogCoordf(&mut ctx, 7.0) };
+        ctx.glRasterPos4f(0.3, 0.0, -0.4, 1.0);
+        assert_eq!(distance(&ctx), 7.0);
+    }
+
+    #[test]
+    fn pixel_operations_carry_the_raster_texture_coordinates_of_texturing_units() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.bind_drawable(100, 100);
+        unsafe { crate::translate::dispatch::glTexCoord2f(&mut ctx, 0.25, 0.75) };
+        ctx.glWindowPos3f(1.0, 1.0, 0.0);
+        let untextured = ctx.raster_fragment();
+        assert!(!untextured.textured() && untextured.textures.is_empty());
+        ctx.glEnable(gl::GL_TEXTURE_2D);
+        ctx.glEnable(gl::GL_TEXTURE_GEN_S);
+        let textured = ctx.raster_fragment();
+        assert!(textured.textured());
+        assert_eq!(textured.texcoords[0], [0.25, 0.75, 0.0, 1.0]);
+        assert_eq!(textured.texture_units[0].map(|u| u.texgen), Some([None; 4]), "coordinates are final");
+        assert_eq!(textured.texture_units[1], None);
     }
 }
