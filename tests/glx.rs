@@ -7,7 +7,7 @@
 //! One test function: the frame log is chosen by an environment variable read when a context
 //! is created, and the X server is shared by every step.
 
-use std::collections::HashSet;
+use std::collections::HashMap;
 use std::ffi::{CString, c_int, c_uint, c_ulong};
 use std::process::{Child, Command, Stdio};
 use std::sync::atomic::{AtomicU8, Ordering};
@@ -21,7 +21,9 @@ use glrt::gl_entry::glx_swap::*;
 use glrt::gl_entry::glx_types::types;
 use glrt::gl_entry::glx_xfont::glXUseXFont;
 use glrt::gl_entry::exports as gl;
-use glrt::translate::gl::{GL_COMPILE, GL_SAMPLE_BUFFERS, GL_SAMPLES, GL_VIEWPORT};
+use glrt::translate::gl::{
+    GL_ALPHA_BITS, GL_COLOR_BUFFER_BIT, GL_COMPILE, GL_RGBA, GL_SAMPLE_BUFFERS, GL_SAMPLES, GL_UNSIGNED_BYTE, GL_VIEWPORT,
+};
 use x11_dl::glx::arb::*;
 use x11_dl::glx::ext::*;
 use x11_dl::glx::*;
@@ -105,8 +107,9 @@ fn fb_attrib(dpy: *mut types::Display, config: types::GLXFBConfig, attribute: c_
     v
 }
 
-/// The server's visuals usable for RGBA rendering (TrueColor/DirectColor, depth 24 or 32).
-fn server_visuals(x: &Xlib, dpy: *mut xlib::Display) -> HashSet<c_ulong> {
+/// The server's visuals usable for RGBA rendering (TrueColor/DirectColor, depth 24 or 32),
+/// with their depths.
+fn server_visuals(x: &Xlib, dpy: *mut xlib::Display) -> HashMap<c_ulong, c_int> {
     unsafe {
         let mut template: xlib::XVisualInfo = std::mem::zeroed();
         let mut n = 0;
@@ -115,7 +118,7 @@ fn server_visuals(x: &Xlib, dpy: *mut xlib::Display) -> HashSet<c_ulong> {
         let set = all
             .iter()
             .filter(|v| matches!(v.class, xlib::TrueColor | xlib::DirectColor) && matches!(v.depth, 24 | 32))
-            .map(|v| v.visualid)
+            .map(|v| (v.visualid, v.depth))
             .collect();
         (x.XFree)(list.cast());
         set
@@ -155,16 +158,21 @@ fn glx_on_xvfb() {
     assert_eq!(vendor.to_bytes(), b"glrt");
     assert!(glXQueryServerString(dpy, 0, 99).is_null());
 
-    // Configurations: four per usable server visual and sample count (single-sampled, then
-    // each count the Vulkan device renders multisampled), each naming one of them.
+    // Configurations: four RGBA ones per usable server visual and sample count (single-sampled,
+    // then each count the Vulkan device renders multisampled), and four RGB ones more for
+    // visuals of depth 24, each naming one of them.
     let counts = glrt::render::multisample_counts();
     let mut n = 0;
     let configs = unsafe { glXGetFBConfigs(dpy, 0, &mut n) };
-    assert_eq!(n as usize, 4 * usable.len() * (1 + counts.len()));
+    let per_visual: usize = usable.values().map(|&depth| if depth == 24 { 8 } else { 4 }).sum();
+    assert_eq!(n as usize, per_visual * (1 + counts.len()));
     let all = unsafe { std::slice::from_raw_parts(configs, n as usize) }.to_vec();
     unsafe { (x.XFree)(configs.cast()) };
     for &c in &all {
-        assert!(usable.contains(&(fb_attrib(dpy, c, GLX_VISUAL_ID) as c_ulong)));
+        let depth = usable[&(fb_attrib(dpy, c, GLX_VISUAL_ID) as c_ulong)];
+        let alpha = fb_attrib(dpy, c, GLX_ALPHA_SIZE);
+        assert!(alpha == 8 || (alpha == 0 && depth == 24), "alpha {alpha} on a visual of depth {depth}");
+        assert_eq!(fb_attrib(dpy, c, GLX_BUFFER_SIZE), 24 + alpha);
         assert_eq!(fb_attrib(dpy, c, GLX_RENDER_TYPE), GLX_RGBA_BIT);
         assert_eq!(fb_attrib(dpy, c, GLX_X_RENDERABLE), 1);
         let samples = fb_attrib(dpy, c, GLX_SAMPLES);
@@ -191,7 +199,7 @@ fn glx_on_xvfb() {
     let vis = unsafe { glXChooseVisual(dpy, 0, attribs.as_mut_ptr()) };
     assert!(!vis.is_null());
     let xvis = unsafe { &*vis.cast::<xlib::XVisualInfo>() };
-    assert!(usable.contains(&xvis.visualid));
+    assert!(usable.contains_key(&xvis.visualid));
     let config_value = |attribute| {
         let mut v = -1;
         assert_eq!(unsafe { glXGetConfig(dpy, vis, attribute, &mut v) }, 0);
@@ -200,6 +208,7 @@ fn glx_on_xvfb() {
     assert_eq!(config_value(GLX_USE_GL), 1);
     assert_eq!(config_value(GLX_DOUBLEBUFFER), 1);
     assert!(config_value(GLX_DEPTH_SIZE) >= 16);
+    assert_eq!(config_value(GLX_ALPHA_SIZE), 0, "no alpha asked for: an RGB visual (smaller buffer)");
     let mut v = 0;
     assert_eq!(unsafe { glXGetConfig(dpy, vis, 0x7777, &mut v) }, GLX_BAD_ATTRIBUTE);
     let mut color_index = [GLX_DOUBLEBUFFER, 0];
@@ -387,6 +396,34 @@ fn glx_on_xvfb() {
         unsafe {
             glXMakeContextCurrent(dpy, 0, 0, std::ptr::null());
             glXDestroyContext(dpy, multi_ctx);
+            glXDestroyPbuffer(dpy, pbuffer);
+        }
+    }
+    // RGB and RGBA configurations: GL_ALPHA_BITS answers the configuration, and alpha drawn
+    // into an RGB drawable reads back as 1.
+    for (wanted_alpha, bits, read) in [(0, 0, 255), (1, 8, 102)] {
+        let wanted = [GLX_ALPHA_SIZE, wanted_alpha, GLX_DRAWABLE_TYPE, GLX_PBUFFER_BIT, 0];
+        let chosen = unsafe { glXChooseFBConfig(dpy, 0, wanted.as_ptr(), &mut n) };
+        assert!(n > 0);
+        let config = unsafe { *chosen };
+        unsafe { (x.XFree)(chosen.cast()) };
+        assert_eq!(fb_attrib(dpy, config, GLX_ALPHA_SIZE), bits);
+        let pbuffer = unsafe { glXCreatePbuffer(dpy, config, pb_attribs.as_ptr()) };
+        let context = unsafe { glXCreateNewContext(dpy, config, GLX_RGBA_TYPE, std::ptr::null(), 1) };
+        assert_eq!(unsafe { glXMakeContextCurrent(dpy, pbuffer, pbuffer, context) }, 1);
+        let (mut alpha_bits, mut pixel) = (-1, [0u8; 4]);
+        unsafe {
+            gl::glGetIntegerv(GL_ALPHA_BITS, &mut alpha_bits);
+            gl::glClearColor(0.0, 0.0, 1.0, 0.0);
+            gl::glClear(GL_COLOR_BUFFER_BIT);
+            gl::glColor4f(1.0, 0.0, 0.0, 0.4);
+            gl::glRectf(-1.0, -1.0, 1.0, 1.0);
+            gl::glReadPixels(1, 1, 1, 1, GL_RGBA, GL_UNSIGNED_BYTE, pixel.as_mut_ptr().cast());
+        }
+        assert_eq!((alpha_bits, pixel), (bits, [255, 0, 0, read]), "GLX_ALPHA_SIZE {bits}");
+        unsafe {
+            glXMakeContextCurrent(dpy, 0, 0, std::ptr::null());
+            glXDestroyContext(dpy, context);
             glXDestroyPbuffer(dpy, pbuffer);
         }
     }

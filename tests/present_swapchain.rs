@@ -212,7 +212,7 @@ fn swapchain_shows_the_rendered_image_and_follows_resizes() {
 
     // Through `Presenter`: the swapchain when the device is given, Xlib from a read-back
     // without it; each shows its frame.
-    let target = Target { size: [80, 60], surface: Surface::Window(window), swap_interval: 0, samples: 1 };
+    let target = Target { size: [80, 60], surface: Surface::Window(window), swap_interval: 0, samples: 1, alpha: true };
     for (given, path) in [(Some(&gpu), "vulkan"), (None, "xlib")] {
         let rgba: Vec<u8> = pattern(80, 60).chunks(4).rev().flatten().copied().collect();
         let image = source_image(&gpu, [80, 60], &rgba);
@@ -228,7 +228,7 @@ fn swapchain_shows_the_rendered_image_and_follows_resizes() {
         let got = wait_for(&x, dpy, win, [80, 60], &want);
         assert!(got == want, "{path}: {}", first_difference(&got, &want, 80));
     }
-    let offscreen = Target { size: [80, 60], surface: Surface::Offscreen, swap_interval: 0, samples: 1 };
+    let offscreen = Target { size: [80, 60], surface: Surface::Offscreen, swap_interval: 0, samples: 1, alpha: true };
     assert_eq!(unsafe { Presenter::new(offscreen, Some(&gpu)) }.path(), "offscreen");
 
     // The application closes its display (glrt hears of it through the GLX layer's hook):

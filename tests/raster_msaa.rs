@@ -40,7 +40,7 @@ fn context_with(samples: u32, make: impl FnOnce() -> Result<Renderer, glrt::rend
     let renderer = renderer(make);
     assert!(samples == 1 || renderer.device().features.sample_counts.contains(&samples), "the device renders {samples} samples");
     let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
-    ctx.bind_target(Target { size: [SIZE as u32; 2], surface: Surface::Offscreen, swap_interval: 0, samples });
+    ctx.bind_target(Target { size: [SIZE as u32; 2], surface: Surface::Offscreen, swap_interval: 0, samples, alpha: true });
     ctx
 }
 

@@ -422,3 +422,77 @@ fn depth_stencil_copy_pixels_copies_both_buffers_with_pixel_transfer() {
     assert_eq!(depth_stencil_24_8(&mut ctx, 20, 20, 4, 2), offset, "stencil indices offset by 1");
     assert_eq!(pixel(&mut ctx, 21, 11), [0, 255, 0, 255], "no colour is written");
 }
+
+/// Binds a 2×1 texture, red then blue, sampled at the nearest texel with `GL_MODULATE`, and
+/// enables 2D texturing.
+fn red_blue_texture(ctx: &mut Context) {
+    let texels = [255u8, 0, 0, 255, 0, 0, 255, 255];
+    unsafe {
+        dispatch::glTexImage2D(ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexEnvi(ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_MODULATE as i32);
+        dispatch::glEnable(ctx, gl::GL_TEXTURE_2D);
+    }
+}
+
+#[test]
+fn draw_pixels_and_bitmaps_are_textured_at_the_raster_position_texture_coordinates() {
+    let mut ctx = context();
+    clear_all(&mut ctx, [0.0, 0.0, 0.0, 1.0]);
+    red_blue_texture(&mut ctx);
+    // The raster position keeps the coordinates current when it was set (s = 0.25: red),
+    // not those current at the draw.
+    let image = [[51u8, 255, 128, 255]; 16];
+    unsafe {
+        dispatch::glTexCoord2f(&mut ctx, 0.25, 0.5);
+        dispatch::glWindowPos2i(&mut ctx, 2, 2);
+        dispatch::glTexCoord2f(&mut ctx, 0.75, 0.5);
+        dispatch::glDrawPixels(&mut ctx, 4, 4, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, image.as_ptr().cast());
+    }
+    assert_eq!(pixel(&mut ctx, 3, 3), [51, 0, 0, 255], "modulated by red");
+    // A bitmap at s = 0.75 (blue) in a white raster colour.
+    let bits = [0xffu8; 2];
+    unsafe {
+        dispatch::glPixelStorei(&mut ctx, gl::GL_UNPACK_ALIGNMENT, 1);
+        dispatch::glColor3f(&mut ctx, 1.0, 1.0, 1.0);
+        dispatch::glWindowPos2i(&mut ctx, 10, 10);
+        dispatch::glBitmap(&mut ctx, 8, 2, 0.0, 0.0, 0.0, 0.0, bits.as_ptr());
+    }
+    assert_eq!(pixel(&mut ctx, 12, 11), [0, 0, 255, 255], "bitmap modulated by blue");
+    // A large varied image (drawn as rectangles while textured) is modulated too.
+    let (w, h) = (40usize, 30usize);
+    let varied: Vec<u8> = (0..w * h).flat_map(|i| [(i % w) as u8 * 5, (i / w) as u8 * 7, ((i % 2) * 255) as u8, 255]).collect();
+    unsafe {
+        dispatch::glWindowPos2i(&mut ctx, 0, 0);
+        dispatch::glDrawPixels(&mut ctx, w as i32, h as i32, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, varied.as_ptr().cast());
+    }
+    for (x, y) in [(1usize, 0usize), (7, 3), (30, 12)] {
+        let i = (y * w + x) * 4;
+        assert_eq!(pixel(&mut ctx, x as i32, y as i32), [0, 0, varied[i + 2], 255], "pixel ({x}, {y}) modulated by blue");
+    }
+}
+
+#[test]
+fn pixel_fragments_are_fogged_with_the_raster_distance() {
+    let mut ctx = context();
+    clear_all(&mut ctx, [0.0, 0.0, 0.0, 1.0]);
+    let white = [[255u8; 4]; 4];
+    unsafe {
+        dispatch::glEnable(&mut ctx, gl::GL_FOG);
+        dispatch::glFogi(&mut ctx, gl::GL_FOG_MODE, gl::GL_LINEAR as i32);
+        dispatch::glFogf(&mut ctx, gl::GL_FOG_START, 0.0);
+        dispatch::glFogf(&mut ctx, gl::GL_FOG_END, 1.0);
+        // Identity matrices: eye (0, 0, -0.5) is at distance 0.5 and window (16, 16).
+        dispatch::glRasterPos3f(&mut ctx, 0.0, 0.0, -0.5);
+        dispatch::glDrawPixels(&mut ctx, 2, 2, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, white.as_ptr().cast());
+    }
+    let fogged = pixel(&mut ctx, 16, 16);
+    assert!(fogged[..3].iter().all(|&c| c.abs_diff(128) <= 1), "half fogged to black: {fogged:?}");
+    // glWindowPos sets the raster distance to 0: no fog.
+    unsafe {
+        dispatch::glWindowPos2i(&mut ctx, 4, 4);
+        dispatch::glDrawPixels(&mut ctx, 2, 2, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, white.as_ptr().cast());
+    }
+    assert_eq!(pixel(&mut ctx, 4, 4), [255; 4]);
+}

@@ -45,6 +45,8 @@ pub struct FramebufferObject {
     /// The image at `GL_STENCIL_ATTACHMENT_EXT` (the same as `depth` for a packed
     /// depth/stencil renderbuffer attached at both points).
     pub stencil: Option<Attachment>,
+    /// Whether the colour image has alpha (false for RGB formats: alpha then reads 1).
+    pub alpha: bool,
 }
 
 /// The renderer's identity of a framebuffer object's images: equal keys share images.
@@ -56,6 +58,8 @@ pub struct FramebufferKey {
     pub color: Option<Attachment>,
     /// Depth/stencil image (the depth attachment, else the stencil attachment).
     pub depth_stencil: Option<Attachment>,
+    /// Whether the colour image has alpha.
+    pub alpha: bool,
 }
 
 impl Attachment {
@@ -79,7 +83,7 @@ impl FramebufferKey {
 impl FramebufferObject {
     /// The key the renderer keeps this framebuffer's images under.
     pub fn key(&self) -> FramebufferKey {
-        FramebufferKey { size: self.size, color: self.color, depth_stencil: self.depth.or(self.stencil) }
+        FramebufferKey { size: self.size, color: self.color, depth_stencil: self.depth.or(self.stencil), alpha: self.alpha }
     }
 }
 

@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use super::RasterState;
+use super::{RasterState, TextureRef, TextureUnit};
 
 /// One pixel operation and where it falls among the draws.
 #[derive(Clone, Debug, PartialEq)]
@@ -22,6 +22,36 @@ pub struct PixelOp {
     /// of bitmaps, images and copies (OpenGL 1.5 sections 3.6.5, 3.7 and 4.3.3), and the
     /// scissor box and colour mask of accumulation returns (section 4.2.4).
     pub state: Arc<RasterState>,
+    /// What the fragments of bitmaps, images and copies take from the current raster position
+    /// besides their colour and depth.
+    pub raster: Arc<RasterFragment>,
+}
+
+/// The data of the current raster position that the fragments of `glBitmap`, `glDrawPixels`
+/// and `glCopyPixels` carry into texturing, colour sum and fog (OpenGL 1.5 sections 3.6.5,
+/// 3.7 and 4.3.3: they take "the texture coordinates ... associated with the current raster
+/// position"; section 3.10 fogs them with the raster distance).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RasterFragment {
+    /// Texture coordinates of each unit, with coordinate generation and the texture matrix
+    /// already applied (as the raster position holds them).
+    pub texcoords: Vec<[f32; 4]>,
+    /// Bound texture of each unit that texturing uses (empty when no unit textures).
+    pub textures: Vec<Option<TextureRef>>,
+    /// Texture environment of each unit with a texture target enabled (`None` for the
+    /// others); coordinate generation is off, since `texcoords` are final.
+    pub texture_units: Vec<Option<TextureUnit>>,
+    /// The raster secondary colour (colour sum, section 3.9).
+    pub secondary: [f32; 4],
+    /// The raster distance: the fog coordinate of the fragments.
+    pub fog_coord: f32,
+}
+
+impl RasterFragment {
+    /// Whether some unit textures the fragments.
+    pub fn textured(&self) -> bool {
+        self.texture_units.iter().any(Option::is_some)
+    }
 }
 
 /// Which framebuffer contents an operation reads or writes.

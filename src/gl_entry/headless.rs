@@ -92,7 +92,7 @@ pub fn make_current(ctx: *mut c_void, width: i32, height: i32, double: bool) -> 
             let size = [width.max(0) as u32, height.max(0) as u32];
             with_current("glrtMakeCurrent", |c| {
                 c.set_double_buffered(double);
-                c.bind_target(Target { size, surface: Surface::Offscreen, swap_interval: 0, samples: 1 });
+                c.bind_target(Target { size, surface: Surface::Offscreen, swap_interval: 0, samples: 1, alpha: true });
             });
         }
         if ok {

@@ -57,7 +57,8 @@ pub struct TexturingCache {
 }
 
 impl TexturingCache {
-    fn units(&mut self, enables: &EnableState) -> [bool; MAX_TEXTURE_UNITS] {
+    /// The units with a texture target enabled under `enables`.
+    pub(crate) fn units(&mut self, enables: &EnableState) -> [bool; MAX_TEXTURE_UNITS] {
         if self.enables.as_ref() != Some(enables) {
             self.units = std::array::from_fn(|u| TEXTURE_TARGETS.iter().any(|&t| enables.unit_on(u, t)));
             self.enables = Some(enables.clone());
@@ -120,7 +121,7 @@ impl Context {
 
     /// The environment and coordinate generation of the units in `units` (those with a
     /// texture target enabled; the others do not texture).
-    fn texture_units_snapshot(&self, units: [bool; MAX_TEXTURE_UNITS]) -> [Option<TextureUnit>; MAX_TEXTURE_UNITS] {
+    pub(crate) fn texture_units_snapshot(&self, units: [bool; MAX_TEXTURE_UNITS]) -> [Option<TextureUnit>; MAX_TEXTURE_UNITS] {
         if !units.contains(&true) {
             return [None; MAX_TEXTURE_UNITS];
         }

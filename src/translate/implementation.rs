@@ -33,7 +33,9 @@ impl Context {
             gl::GL_MAX_ATTRIB_STACK_DEPTH => Value::int(MAX_ATTRIB_STACK_DEPTH as i64),
             gl::GL_MAX_ELEMENTS_VERTICES | gl::GL_MAX_ELEMENTS_INDICES => Value::int(MAX_ELEMENTS),
             gl::GL_SUBPIXEL_BITS => Value::int(SUBPIXEL_BITS),
-            gl::GL_RED_BITS | gl::GL_GREEN_BITS | gl::GL_BLUE_BITS | gl::GL_ALPHA_BITS => Value::int(COLOR_BITS),
+            gl::GL_RED_BITS | gl::GL_GREEN_BITS | gl::GL_BLUE_BITS => Value::int(COLOR_BITS),
+            // The drawable's configuration: an RGB one has no destination alpha.
+            gl::GL_ALPHA_BITS => Value::int(if self.target.is_none_or(|t| t.alpha) { COLOR_BITS } else { 0 }),
             gl::GL_DEPTH_BITS => Value::int(DEPTH_BITS),
             gl::GL_STENCIL_BITS => Value::int(STENCIL_BITS),
             gl::GL_ACCUM_RED_BITS | gl::GL_ACCUM_GREEN_BITS | gl::GL_ACCUM_BLUE_BITS | gl::GL_ACCUM_ALPHA_BITS => {
@@ -94,9 +96,22 @@ mod tests {
         use crate::render::{Surface, Target};
         let (mut ctx, _) = Context::with_recording();
         let samples = |ctx: &Context| [gl::GL_SAMPLE_BUFFERS, gl::GL_SAMPLES].map(|p| ctx.query(p).unwrap().to_ints()[0]);
-        ctx.bind_target(Target { size: [8, 8], surface: Surface::Offscreen, swap_interval: 0, samples: 4 });
+        ctx.bind_target(Target { size: [8, 8], surface: Surface::Offscreen, swap_interval: 0, samples: 4, alpha: true });
         assert_eq!(samples(&ctx), [1, 4]);
-        ctx.bind_target(Target { size: [8, 8], surface: Surface::Offscreen, swap_interval: 0, samples: 1 });
+        ctx.bind_target(Target { size: [8, 8], surface: Surface::Offscreen, swap_interval: 0, samples: 1, alpha: true });
         assert_eq!(samples(&ctx), [0, 0]);
+    }
+
+    #[test]
+    fn alpha_bits_answer_the_drawable() {
+        use crate::render::{Surface, Target};
+        let (mut ctx, _) = Context::with_recording();
+        let alpha_bits = |ctx: &Context| ctx.query(gl::GL_ALPHA_BITS).unwrap().to_ints()[0];
+        let rgb = Target { size: [8, 8], surface: Surface::Offscreen, swap_interval: 0, samples: 1, alpha: false };
+        ctx.bind_target(rgb);
+        assert_eq!(alpha_bits(&ctx), 0);
+        assert_eq!(ctx.query(gl::GL_RED_BITS).unwrap().to_ints()[0], 8);
+        ctx.bind_target(Target { alpha: true, ..rgb });
+        assert_eq!(alpha_bits(&ctx), 8);
     }
 }

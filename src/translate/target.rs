@@ -25,8 +25,8 @@ impl Context {
         self.drawable_size = Some((width, height));
         let size = [width.max(0) as u32, height.max(0) as u32];
         self.frame.size = size;
-        let (surface, samples) = self.target.map_or((Surface::Offscreen, 1), |t| (t.surface, t.samples));
-        let target = Target { size, surface, swap_interval, samples };
+        let drawable = self.target.unwrap_or(Target { size, surface: Surface::Offscreen, swap_interval, samples: 1, alpha: true });
+        let target = Target { size, swap_interval, ..drawable };
         if self.target != Some(target) {
             self.target = Some(target);
             self.sink.set_target(target);
@@ -61,18 +61,18 @@ mod tests {
     fn targets_reach_the_sink_once_per_change_and_resizes_keep_the_viewport() {
         let sink = Targets::default();
         let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(sink.clone()) });
-        let first = Target { size: [320, 200], surface: Surface::Offscreen, swap_interval: 1, samples: 1 };
+        let first = Target { size: [320, 200], surface: Surface::Offscreen, swap_interval: 1, samples: 1, alpha: true };
         ctx.bind_target(first);
         ctx.bind_target(first);
         assert_eq!(*sink.0.lock(), [first]);
         ctx.refresh_target(320, 200, 1);
         assert_eq!(sink.0.lock().len(), 1, "same size: nothing new");
         ctx.refresh_target(640, 480, 1);
-        assert_eq!(sink.0.lock()[1], Target { size: [640, 480], surface: Surface::Offscreen, swap_interval: 1, samples: 1 });
+        assert_eq!(sink.0.lock()[1], Target { size: [640, 480], surface: Surface::Offscreen, swap_interval: 1, samples: 1, alpha: true });
         assert_eq!(ctx.query(gl::GL_VIEWPORT).unwrap().to_ints(), [0, 0, 320, 200], "GLX: resizes keep the viewport");
         assert_eq!(ctx.frame.size, [640, 480], "the frame is rendered at the new size");
         // Binding another drawable tells the sink; the viewport still keeps its first value.
-        ctx.bind_target(Target { size: [100, 50], surface: Surface::Offscreen, swap_interval: 1, samples: 1 });
+        ctx.bind_target(Target { size: [100, 50], surface: Surface::Offscreen, swap_interval: 1, samples: 1, alpha: true });
         assert_eq!(sink.0.lock().len(), 3);
         ctx.refresh_target(100, 50, 0);
         assert_eq!(sink.0.lock()[3].swap_interval, 0, "a new swap interval reaches the sink");

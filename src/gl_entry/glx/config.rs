@@ -3,8 +3,14 @@
 //!
 //! Every TrueColor and DirectColor visual of depth 24 or 32 that the X server offers gets four
 //! RGBA8 configurations: double- and single-buffered, each with (depth 24, stencil 8,
-//! accumulation 16 per channel) or without ancillary buffers. glrt renders into its own
-//! buffers, so every configuration supports windows, pixmaps and pbuffers.
+//! accumulation 16 per channel) or without ancillary buffers. A visual of depth 24 also gets
+//! the same four as RGB8 configurations without destination alpha (`GLX_ALPHA_SIZE` 0,
+//! `GLX_BUFFER_SIZE` 24), after its RGBA ones, as Mesa offers them: a request that leaves
+//! `GLX_ALPHA_SIZE` at 0 gets an RGB configuration first (table 3.4: alpha bits count only
+//! when asked for, then the smaller buffer wins), one asking for alpha gets only RGBA ones.
+//! The renderer keeps alpha at 1 in the colour buffers of an RGB drawable
+//! ([`crate::render::Target::alpha`]). glrt renders into its own buffers, so every
+//! configuration supports windows, pixmaps and pbuffers.
 //!
 //! The same four follow per sample count the Vulkan device renders multisampled
 //! (`GLX_ARB_multisample`: `GLX_SAMPLE_BUFFERS` 1, `GLX_SAMPLES` n; the counts come from
@@ -127,8 +133,10 @@ impl ScreenConfigs {
         for (samples, v) in samples.flat_map(|n| usable.clone().map(move |v| (n, v))) {
             let visual_type = if v.class == xlib::TrueColor { GLX_TRUE_COLOR } else { GLX_DIRECT_COLOR };
             let bits = |mask: c_ulong| mask.count_ones() as c_int;
-            let rgba = [bits(v.red_mask), bits(v.green_mask), bits(v.blue_mask), 8];
-            for (ancillary, double_buffer) in [(true, true), (true, false), (false, true), (false, false)] {
+            let alphas: &[c_int] = if v.depth == 24 { &[8, 0] } else { &[8] };
+            let buffers = [(true, true), (true, false), (false, true), (false, false)];
+            for (alpha, (ancillary, double_buffer)) in alphas.iter().flat_map(|&a| buffers.map(|b| (a, b))) {
+                let rgba = [bits(v.red_mask), bits(v.green_mask), bits(v.blue_mask), alpha];
                 configs.push(FbConfig {
                     id: (screen << 16) | (configs.len() as c_int + 1),
                     screen,
@@ -461,17 +469,45 @@ mod tests {
     }
 
     #[test]
-    fn four_configurations_per_rgb_visual() {
+    fn four_rgba_and_four_rgb_configurations_per_visual_of_depth_24() {
         let t = table();
-        assert_eq!(t.configs.len(), 8);
+        assert_eq!(t.configs.len(), 16);
         assert!(t.configs.iter().all(|c| c.visual_id != 0x23));
         let c = &t.configs[0];
         assert_eq!(c.attrib(GLX_RED_SIZE), Some(8));
         assert_eq!(c.attrib(GLX_BUFFER_SIZE), Some(32));
         assert_eq!(c.attrib(GLX_DEPTH_SIZE), Some(24));
         assert_eq!(c.attrib(GLX_X_VISUAL_TYPE), Some(GLX_TRUE_COLOR));
-        assert_eq!(t.configs[4].attrib(GLX_X_VISUAL_TYPE), Some(GLX_DIRECT_COLOR));
+        let rgb = &t.configs[4];
+        assert_eq!((rgb.attrib(GLX_ALPHA_SIZE), rgb.attrib(GLX_BUFFER_SIZE)), (Some(0), Some(24)));
+        assert_eq!((rgb.visual_id, rgb.double_buffer, rgb.depth), (0x21, true, 24));
+        assert_eq!(t.configs[8].attrib(GLX_X_VISUAL_TYPE), Some(GLX_DIRECT_COLOR));
         assert_eq!(c.attrib(0x7777), None);
+        // A visual of depth 32 (composited windows) has alpha only.
+        let argb = [xlib::XVisualInfo { visualid: 0x24, depth: 32, class: xlib::TrueColor, ..unsafe { std::mem::zeroed() } }];
+        let t = ScreenConfigs::build(1, 0, &argb, &[]);
+        assert_eq!(t.configs.len(), 4);
+        assert!(t.configs.iter().all(|c| c.rgba[3] == 8));
+    }
+
+    #[test]
+    fn rgb_configurations_come_first_unless_alpha_is_asked_for() {
+        let t = table();
+        for list in [[GLX_RED_SIZE, 1, GLX_DOUBLEBUFFER, 1, 0, 0], [GLX_ALPHA_SIZE, 0, GLX_DOUBLEBUFFER, 1, 0, 0]] {
+            let got = unsafe { Request::fbconfig(list.as_ptr()) }.choose(&t.configs);
+            assert_eq!(got.len(), 8);
+            assert_eq!(got[0].rgba[3], 0, "the smaller buffer wins when alpha is not asked for");
+        }
+        let list = [GLX_ALPHA_SIZE, 1, GLX_DOUBLEBUFFER, 1, 0];
+        let got = unsafe { Request::fbconfig(list.as_ptr()) }.choose(&t.configs);
+        assert_eq!(got.len(), 4);
+        assert!(got.iter().all(|c| c.rgba[3] == 8));
+        let list = [GLX_RGBA, GLX_DOUBLEBUFFER, GLX_DEPTH_SIZE, 1, 0];
+        let got = unsafe { Request::visual(list.as_ptr()) }.unwrap().choose(&t.configs);
+        assert_eq!((got[0].rgba[3], got[0].depth), (0, 24));
+        let list = [GLX_RGBA, GLX_DOUBLEBUFFER, GLX_ALPHA_SIZE, 1, 0];
+        let got = unsafe { Request::visual(list.as_ptr()) }.unwrap().choose(&t.configs);
+        assert!(!got.is_empty() && got.iter().all(|c| c.rgba[3] == 8));
     }
 
     #[test]
@@ -480,13 +516,15 @@ mod tests {
         let list = [GLX_RED_SIZE, 1, 0];
         let req = unsafe { Request::fbconfig(list.as_ptr()) };
         let got = req.choose(&t.configs);
-        assert_eq!(got.len(), 8);
+        assert_eq!(got.len(), 16);
         // Single-buffered before double (priority 4), depth 24 before none (priority 8),
         // TrueColor before DirectColor (priority 11).
         assert!(!got[0].double_buffer);
         assert_eq!(got[0].depth, 24);
         assert_eq!(got[0].visual_type, GLX_TRUE_COLOR);
         assert!(!got[1].double_buffer && got[1].depth == 24 && got[1].visual_type == GLX_DIRECT_COLOR);
+        // RGB (buffer size 24) before RGBA (32): priority 3 comes before the others.
+        assert!(got[..8].iter().all(|c| c.rgba[3] == 0) && got[8..].iter().all(|c| c.rgba[3] == 8));
     }
 
     #[test]
@@ -494,8 +532,7 @@ mod tests {
         let t = table();
         let list = [GLX_DOUBLEBUFFER, 1, GLX_STENCIL_SIZE, 1, GLX_X_VISUAL_TYPE, GLX_DIRECT_COLOR, 0];
         let got = unsafe { Request::fbconfig(list.as_ptr()) }.choose(&t.configs);
-        assert_eq!(got.len(), 1);
-        assert_eq!(got[0].visual_id, 0x22);
+        assert_eq!(got.iter().map(|c| (c.visual_id, c.rgba[3])).collect::<Vec<_>>(), [(0x22, 0), (0x22, 8)]);
         let id = t.configs[3].id;
         let list = [GLX_FBCONFIG_ID, id, GLX_DOUBLEBUFFER, 1, 0];
         let got = unsafe { Request::fbconfig(list.as_ptr()) }.choose(&t.configs);
@@ -526,7 +563,7 @@ mod tests {
 
     #[test]
     fn multisampled_configurations_follow_and_sort_after_single_sampled_ones() {
-        let visuals = [xlib::XVisualInfo { visualid: 0x21, depth: 24, class: xlib::TrueColor, ..unsafe { std::mem::zeroed() } }];
+        let visuals = [xlib::XVisualInfo { visualid: 0x21, depth: 32, class: xlib::TrueColor, ..unsafe { std::mem::zeroed() } }];
         let t = ScreenConfigs::build(1, 0, &visuals, &[4]);
         assert_eq!(t.configs.len(), 8);
         assert_eq!(t.configs[..4].iter().map(|c| c.attrib(GLX_SAMPLE_BUFFERS)).collect::<Vec<_>>(), [Some(0); 4]);

@@ -30,6 +30,8 @@ pub struct GlxContext {
     pub double_buffer: bool,
     /// Samples per pixel of its configuration (1 when not multisampled).
     pub samples: u32,
+    /// Whether its configuration has destination alpha (`GLX_ALPHA_SIZE` > 0).
+    pub alpha: bool,
     /// Destroyed while current: freed when released.
     destroyed: AtomicBool,
 }
@@ -52,6 +54,7 @@ pub fn create(config: &FbConfig, share: usize) -> Result<*mut GlxContext, XError
         screen: config.screen,
         double_buffer: config.double_buffer,
         samples: config.samples.max(1) as u32,
+        alpha: config.rgba[3] > 0,
         destroyed: AtomicBool::new(false),
     });
     let ptr = Box::into_raw(context);
@@ -163,7 +166,7 @@ pub unsafe fn make_current(
     }
     let double = context.double_buffer;
     // Safety: `dpy` is live.
-    let target = unsafe { drawable::target(x, dpy, draw, width, height, context.samples) };
+    let target = unsafe { drawable::target(x, dpy, draw, [width, height], context.samples, context.alpha) };
     with_current("glXMakeCurrent", |c| {
         c.set_double_buffered(double);
         c.bind_target(target);

@@ -170,12 +170,13 @@ pub unsafe fn size(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID) -> Option<(c_in
 }
 
 /// Where frames drawn to `xid` (of `width` × `height`) go: the X window or pixmap behind it
-/// (pbuffers render off-screen), with the drawable's swap interval and the `samples` of the
-/// context's configuration. A plain X drawable is a window when it has window attributes.
+/// (pbuffers render off-screen), with the drawable's swap interval and the `samples` and
+/// destination `alpha` of the context's configuration. A plain X drawable is a window when it
+/// has window attributes.
 ///
 /// # Safety
 /// `dpy` is a live display.
-pub unsafe fn target(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID, width: c_int, height: c_int, samples: u32) -> Target {
+pub unsafe fn target(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID, [width, height]: [c_int; 2], samples: u32, alpha: bool) -> Target {
     let on = |drawable| XDrawable { display: dpy.cast(), drawable };
     let surface = match get(dpy, xid).map(|d| d.kind) {
         Some(Kind::Pbuffer { .. }) => Surface::Offscreen,
@@ -186,5 +187,5 @@ pub unsafe fn target(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID, width: c_int,
         Some(Kind::X) | None => Surface::Pixmap(on(xid)),
     };
     let swap_interval = get(dpy, xid).map_or(1, |d| d.swap_interval.max(0) as u32);
-    Target { size: [width.max(0) as u32, height.max(0) as u32], surface, swap_interval, samples }
+    Target { size: [width.max(0) as u32, height.max(0) as u32], surface, swap_interval, samples, alpha }
 }

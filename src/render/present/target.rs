@@ -53,4 +53,8 @@ pub struct Target {
     /// Samples per pixel of the drawable's configuration (`GLX_SAMPLES`, 1 when it is not
     /// multisampled).
     pub samples: u32,
+    /// Whether the drawable's configuration has destination alpha (`GLX_ALPHA_SIZE` > 0).
+    /// Without it `GL_ALPHA_BITS` is 0 and destination alpha is 1 wherever it is read
+    /// (blending, read-back, copies, accumulation, presentation), whatever is drawn.
+    pub alpha: bool,
 }

@@ -87,6 +87,8 @@ struct Parts {
     color: Plane,
     /// Samples per pixel of the target ([`FrameSink::set_target`]).
     samples: u32,
+    /// Whether the target has destination alpha ([`FrameSink::set_target`]).
+    alpha: bool,
 }
 
 /// Access to the frame being recorded, for the parts that record into it (draws, clears,
@@ -213,7 +215,7 @@ impl Recorder<'_> {
             attachments.push(vk::ClearAttachment {
                 aspect_mask: vk::ImageAspectFlags::COLOR,
                 color_attachment: 0,
-                clear_value: vk::ClearValue { color: vk::ClearColorValue { float32: c.map(|v| v.clamp(0.0, 1.0)) } },
+                clear_value: vk::ClearValue { color: vk::ClearColorValue { float32: self.target.stored_color(c.map(|v| v.clamp(0.0, 1.0))) } },
             });
         }
         let mut aspects = vk::ImageAspectFlags::empty();
@@ -302,7 +304,8 @@ impl Recorder<'_> {
             if batch.indices.is_empty() {
                 continue;
             }
-            let fixed = FixedState::new(state, batch.cull, batch.polygon_offset, features.logic_op);
+            let mut fixed = FixedState::new(state, batch.cull, batch.polygon_offset, features.logic_op);
+            fixed.color_mask = self.target.color_write_mask(fixed.color_mask);
             if state.logic_op.is_some() && !features.logic_op {
                 log_once("the device has no logicOp feature: glLogicOp is ignored");
             }
@@ -379,6 +382,7 @@ impl Renderer {
                 rendering: false,
                 color: Plane::Color,
                 samples: 1,
+                alpha: true,
             },
             slots,
             current: 0,
@@ -411,14 +415,14 @@ impl Renderer {
     }
 
     /// A [`Recorder`] on the current slot for a frame of `size`, starting the command buffer
-    /// and (re)creating the target when needed (new size or sample count). It records into
+    /// and (re)creating the target when needed (new size, sample count or alpha). It records into
     /// the active framebuffer ([`Renderer::switch_to`]): the window's, or a framebuffer
     /// object's images (created on first use, single-sampled).
     pub fn recorder(&mut self, size: [u32; 2]) -> Result<Recorder<'_>> {
         let max = self.parts.device.properties.limits.max_image_dimension2_d;
         let size = size.map(|s| s.clamp(1, max));
-        let samples = self.parts.samples;
-        if self.parts.target.as_ref().is_some_and(|t| t.size != size || t.samples != samples) {
+        let (samples, alpha) = (self.parts.samples, self.parts.alpha);
+        if self.parts.target.as_ref().is_some_and(|t| t.size != size || t.samples != samples || t.alpha != alpha) {
             self.flush()?;
             self.parts.device.wait_idle()?;
             if let Some(t) = self.parts.target.take() {
@@ -437,7 +441,7 @@ impl Renderer {
         let target = match parts.active {
             None => {
                 if parts.target.is_none() {
-                    let mut target = Target::new(&parts.device, size, samples)?;
+                    let mut target = Target::new(&parts.device, size, samples, alpha)?;
                     target.clear_initial(&parts.device, slot.cmd);
                     parts.target = Some(target);
                 }
@@ -445,7 +449,7 @@ impl Renderer {
             }
             Some(key) => {
                 if !parts.offscreen.contains_key(&key) {
-                    let mut target = Target::new(&parts.device, key.size.map(|s| s.clamp(1, max)), 1)?;
+                    let mut target = Target::new(&parts.device, key.size.map(|s| s.clamp(1, max)), 1, key.alpha)?;
                     target.clear_initial(&parts.device, slot.cmd);
                     parts.offscreen.insert(key, target);
                 }
@@ -698,8 +702,9 @@ impl Renderer {
 }
 
 impl FrameSink for Renderer {
-    /// Also takes the drawable's sample count: the framebuffer is recreated with it at the
-    /// next frame (a count the device cannot render gives a single-sampled one, logged).
+    /// Also takes the drawable's sample count and destination alpha: the framebuffer is
+    /// recreated with them at the next frame (a count the device cannot render gives a
+    /// single-sampled one, logged).
     fn set_target(&mut self, target: crate::render::Target) {
         let counts = &self.parts.device.features.sample_counts;
         self.parts.samples = if target.samples <= 1 || counts.contains(&target.samples) {
@@ -708,6 +713,7 @@ impl FrameSink for Renderer {
             log_once("a drawable asks for a sample count the device cannot render: it is single-sampled");
             1
         };
+        self.parts.alpha = target.alpha;
         for output in &mut self.outputs {
             output.set_target(&self.parts.device, target);
         }

@@ -20,6 +20,17 @@
 //! (`vkCmdResolveImage`, the "resolved" colour of OpenGL 1.5 section 4.3.2); depth and stencil
 //! have no combined value in OpenGL, and glrt reads sample 0 (a rendering pass whose
 //! depth/stencil resolve mode is `SAMPLE_ZERO`, a mode every Vulkan 1.2 device supports).
+//!
+//! A drawable without destination alpha (an RGB GLX configuration, [`Target::alpha`] false)
+//! keeps the RGBA8 images, with alpha 1 in every pixel from the start: the initial clear and
+//! every colour clear write alpha 1, and no pipeline writes alpha (the renderer takes `A` out
+//! of each draw's colour write mask; pixel operations draw through the same pipelines). So
+//! destination alpha reads as 1 wherever it is used, as OpenGL 1.5 section 4.1.8 wants for a
+//! framebuffer without alpha bitplanes: the blend factors `GL_DST_ALPHA`,
+//! `GL_ONE_MINUS_DST_ALPHA` and `GL_SRC_ALPHA_SATURATE` (the device reads the stored 1),
+//! read-back, `glCopyPixels`, `glCopyTexImage`, accumulation and presentation (they all read
+//! the images). One format for both kinds keeps every copy, resolve and presenter path the
+//! same; substituting blend factors instead would leave read-back and copies to patch.
 
 use ash::vk;
 
@@ -62,6 +73,8 @@ pub struct Target {
     pub front: Image,
     /// Samples per pixel of the three images.
     pub samples: u32,
+    /// Whether the drawable has destination alpha; without it alpha stays 1 (module doc).
+    pub alpha: bool,
     layouts: [vk::ImageLayout; 3],
     /// The single-sampled images reads go through when `samples` > 1.
     resolved: Option<Resolved>,
@@ -78,9 +91,10 @@ struct Resolved {
 
 impl Target {
     /// Creates the images with `samples` samples per pixel (1, or a count of
-    /// [`super::device::Features::sample_counts`]); contents are undefined until the first
-    /// clear: [`super::renderer`] clears them once after creation.
-    pub fn new(device: &Device, size: [u32; 2], samples: u32) -> Result<Target> {
+    /// [`super::device::Features::sample_counts`]), with or without destination `alpha`;
+    /// contents are undefined until the first clear: [`super::renderer`] clears them once
+    /// after creation.
+    pub fn new(device: &Device, size: [u32; 2], samples: u32, alpha: bool) -> Result<Target> {
         let [w, h] = [size[0].max(1), size[1].max(1)];
         let info = |format, usage, samples| {
             vk::ImageCreateInfo::default()
@@ -127,7 +141,7 @@ impl Target {
             (Some(color), Some(depth)) => Some(Resolved { color, depth, layouts: [vk::ImageLayout::UNDEFINED; 2] }),
             _ => None,
         };
-        Ok(Target { size: [w, h], color, depth, front, samples: samples.max(1), layouts: [vk::ImageLayout::UNDEFINED; 3], resolved })
+        Ok(Target { size: [w, h], color, depth, front, samples: samples.max(1), alpha, layouts: [vk::ImageLayout::UNDEFINED; 3], resolved })
     }
 
     /// Frees the images (the GPU must be done with them).
@@ -228,8 +242,8 @@ impl Target {
         };
     }
 
-    /// Records clearing the images (colour to transparent black, depth to 1, stencil to 0):
-    /// a new target's contents are defined.
+    /// Records clearing the images (colour to transparent black, or opaque black without
+    /// destination alpha; depth to 1, stencil to 0): a new target's contents are defined.
     pub fn clear_initial(&mut self, device: &Device, cmd: vk::CommandBuffer) {
         for plane in [Plane::Color, Plane::DepthStencil, Plane::Front] {
             self.transition(device, cmd, plane, vk::ImageLayout::TRANSFER_DST_OPTIMAL);
@@ -242,7 +256,7 @@ impl Target {
                     cmd,
                     image,
                     vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                    &vk::ClearColorValue { float32: [0.0; 4] },
+                    &vk::ClearColorValue { float32: self.stored_color([0.0; 4]) },
                     &[range(vk::ImageAspectFlags::COLOR)],
                 );
             }
@@ -254,6 +268,17 @@ impl Target {
                 &[range(Self::aspects(Plane::DepthStencil))],
             );
         }
+    }
+
+    /// The value the colour images store for `color`: alpha is 1 without destination alpha.
+    pub fn stored_color(&self, [r, g, b, a]: [f32; 4]) -> [f32; 4] {
+        [r, g, b, if self.alpha { a } else { 1.0 }]
+    }
+
+    /// The colour write mask `mask` leaves on the images: alpha is never written without
+    /// destination alpha.
+    pub fn color_write_mask(&self, mask: vk::ColorComponentFlags) -> vk::ColorComponentFlags {
+        if self.alpha { mask } else { mask & !vk::ColorComponentFlags::A }
     }
 
     /// The image of `plane`.

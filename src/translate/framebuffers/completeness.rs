@@ -94,5 +94,6 @@ pub fn check(shared: &SharedObjects, fbo: &FramebufferObject) -> Result<Arc<fram
         color: color.map(|i| i.attachment),
         depth: depth.map(|i| i.attachment),
         stencil: stencil.map(|i| i.attachment),
+        alpha: color.is_none_or(|i| i.holds == Holds::Color { alpha: true }),
     }))
 }

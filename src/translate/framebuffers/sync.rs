@@ -60,7 +60,7 @@ impl Context {
             };
             let kind = PixelKind::Image { window_pos: [0.0; 3], zoom: [1.0; 2], size: fbo.size, color: [1.0; 4], data };
             let (before_draw, after_clears) = (self.frame.draws.len(), self.frame.clears.len());
-            self.frame.pixels.push(PixelOp { before_draw, after_clears, kind, state: Arc::new(state) });
+            self.frame.pixels.push(PixelOp { before_draw, after_clears, kind, state: Arc::new(state), raster: Arc::default() });
         }
     }
 

@@ -31,7 +31,8 @@ fn size2(ctx: &mut Context, w: GLsizei, h: GLsizei, command: &'static str) -> Op
 
 impl Context {
     /// Appends a pixel operation to the frame, before the next draw, with the raster state
-    /// its fragments go through.
+    /// its fragments go through and what they take from the raster position (shared with the
+    /// previous operation when equal, as for a run of `glBitmap` characters).
     pub(crate) fn push_pixel_op(&mut self, kind: PixelKind) {
         if self.framebuffer_incomplete("pixel operation") {
             return;
@@ -40,7 +41,12 @@ impl Context {
         self.enter_framebuffer(&state.framebuffer);
         let before_draw = self.frame.draws.len();
         let after_clears = self.frame.clears.len();
-        self.frame.pixels.push(PixelOp { before_draw, after_clears, kind, state });
+        let fragment = self.raster_fragment();
+        let raster = match self.frame.pixels.last() {
+            Some(last) if *last.raster == fragment => last.raster.clone(),
+            _ => Arc::new(fragment),
+        };
+        self.frame.pixels.push(PixelOp { before_draw, after_clears, kind, state, raster });
     }
 
     /// `glBitmap`: `GL_INVALID_VALUE` for a negative size; nothing happens while the raster

@@ -10,6 +10,8 @@ use super::super::gl::{self, GLenum, GLfloat};
 use super::super::client_attrib::Restore;
 use super::super::limits::MAX_TEXTURE_UNITS;
 use super::super::render_mode::{RasterEvent, WindowVertex};
+use crate::frame::pixels::RasterFragment;
+use crate::frame::state::FogSource;
 
 /// The current values a raster position takes along (colour, texture coordinates...).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -64,6 +66,27 @@ impl Context {
         RasterInputs { color: c.color, secondary: [r, g, b, 1.0], index: c.color_index, texcoords: c.texcoords }
     }
 
+    /// What the fragments of a pixel operation issued now take from the raster position
+    /// (sections 3.6.5 and 3.7): its texture coordinates for the units that texture, with
+    /// their environments and textures, its secondary colour and its distance as the fog
+    /// coordinate.
+    pub(crate) fn raster_fragment(&mut self) -> RasterFragment {
+        let units = self.immediate.texturing.units(&self.enables);
+        let mut texture_units = self.texture_units_snapshot(units);
+        for unit in texture_units.iter_mut().flatten() {
+            unit.texgen = [None; 4];
+        }
+        let textures = if units.contains(&true) { self.texture_snapshot() } else { Vec::new() };
+        let r = &self.pixels.raster;
+        RasterFragment {
+            texcoords: r.data.texcoords.to_vec(),
+            textures,
+            texture_units: texture_units.to_vec(),
+            secondary: r.data.secondary,
+            fog_coord: r.distance,
+        }
+    }
+
     /// Saves the raster position and its data, the part of `GL_CURRENT_BIT` this module owns
     /// (table 6.5), for `glPopAttrib`.
     pub(crate) fn save_raster_attrib(&self, out: &mut Vec<Restore>) {
@@ -99,10 +122,15 @@ impl Context {
         }
         let ndc = [clip.x / clip.w, clip.y / clip.w, clip.z / clip.w];
         let [wx, wy, wz] = self.viewport.to_window(ndc);
+        // The fog coordinate when fog takes it from there (OpenGL 1.4 section 2.13).
+        let distance = match self.fixed.fog.fog.source {
+            FogSource::FogCoord => self.immediate.current().fog_coord,
+            FogSource::FragmentDepth => eye.truncate().length(),
+        };
         self.pixels.raster = RasterPos {
             window: [wx, wy, wz, clip.w],
             valid: true,
-            distance: eye.truncate().length(),
+            distance,
             data: RasterInputs {
                 color: v.colors.front.primary,
                 secondary: v.colors.front.secondary,
@@ -224,5 +252,35 @@ mod tests {
         ctx.glWindowPos3f(1.0, 1.0, 0.0);
         unsafe { ctx.glGetFloatv(gl::GL_CURRENT_RASTER_COLOR, v.as_mut_ptr()) };
         assert_eq!(v, [1.0, 0.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn raster_distance_is_the_eye_distance_or_the_fog_coordinate() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.bind_drawable(100, 100);
+        let distance = |ctx: &Context| ctx.query(gl::GL_CURRENT_RASTER_DISTANCE).unwrap().to_doubles()[0];
+        ctx.glRasterPos4f(0.3, 0.0, -0.4, 1.0);
+        assert!((distance(&ctx) - 0.5).abs() < 1e-6);
+        ctx.glFogi(gl::GL_FOG_COORD_SRC, gl::GL_FOG_COORD as i32);
+        unsafe { crate::translate::dispatch::glFogCoordf(&mut ctx, 7.0) };
+        ctx.glRasterPos4f(0.3, 0.0, -0.4, 1.0);
+        assert_eq!(distance(&ctx), 7.0);
+    }
+
+    #[test]
+    fn pixel_operations_carry_the_raster_texture_coordinates_of_texturing_units() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.bind_drawable(100, 100);
+        unsafe { crate::translate::dispatch::glTexCoord2f(&mut ctx, 0.25, 0.75) };
+        ctx.glWindowPos3f(1.0, 1.0, 0.0);
+        let untextured = ctx.raster_fragment();
+        assert!(!untextured.textured() && untextured.textures.is_empty());
+        ctx.glEnable(gl::GL_TEXTURE_2D);
+        ctx.glEnable(gl::GL_TEXTURE_GEN_S);
+        let textured = ctx.raster_fragment();
+        assert!(textured.textured());
+        assert_eq!(textured.texcoords[0], [0.25, 0.75, 0.0, 1.0]);
+        assert_eq!(textured.texture_units[0].map(|u| u.texgen), Some([None; 4]), "coordinates are final");
+        assert_eq!(textured.texture_units[1], None);
     }
 }

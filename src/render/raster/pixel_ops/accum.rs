@@ -13,7 +13,7 @@ use super::super::device::Result;
 use super::super::renderer::Recorder;
 use super::image::{self, Placement};
 use super::quads::fragment_state;
-use crate::frame::pixels::{AccumOp, PixelData};
+use crate::frame::pixels::{AccumOp, PixelData, RasterFragment};
 use crate::frame::state::RasterState;
 
 /// The accumulation buffer: one RGBA value per pixel, rows bottom to top.
@@ -93,7 +93,9 @@ impl Accum {
         let mut returned = fragment_state(&RasterState::default(), rec.target.size);
         returned.scissor = state.scissor;
         returned.color_mask = state.color_mask;
-        let at = Placement { window_pos: [x as f32, y as f32, 0.0], zoom: [1.0, 1.0], width: w as usize, color: [1.0; 4], state: &returned };
+        // Returned values are colours, neither textured nor fogged.
+        let untextured = RasterFragment::default();
+        let at = Placement { window_pos: [x as f32, y as f32, 0.0], zoom: [1.0, 1.0], width: w as usize, color: [1.0; 4], state: &returned, raster: &untextured };
         image::record(rec, &at, &PixelData::Rgba8(bytes.into()))
     }
 

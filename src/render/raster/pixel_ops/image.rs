@@ -1,6 +1,7 @@
 //! `glDrawPixels` (OpenGL 1.5 section 3.6.4–3.6.5) and the drawing half of `glCopyPixels`
-//! (section 4.3.3): colour and depth images become fragments that go through every
-//! per-fragment operation of the state; stencil images write the stencil buffer directly,
+//! (section 4.3.3): colour and depth images become fragments that are textured, summed and
+//! fogged with the raster position's data ([`super::quads::raster_fragments`]) and go
+//! through every per-fragment operation of the state; stencil images write the stencil buffer directly,
 //! through the scissor test and the stencil write mask only, and depth/stencil images
 //! (EXT_packed_depth_stencil section 4.3.1) write their depths too, through the depth mask,
 //! whatever the depth test.
@@ -10,9 +11,9 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use super::super::device::Result;
 use super::super::renderer::Recorder;
-use super::quads::{fragment_state, push_image, Quads};
+use super::quads::{fragment_state, push_image, raster_fragments, Quads};
 use crate::frame::TextureUnit;
-use crate::frame::pixels::PixelData;
+use crate::frame::pixels::{PixelData, RasterFragment};
 use crate::frame::texture::{EnvMode, Filter, MinFilter, Sampler, TexImage, TextureContent, TextureEnv, TextureRef, Wrap};
 use crate::frame::state::{CompareFunc, RasterState, Stencil, StencilOp};
 
@@ -28,10 +29,15 @@ pub struct Placement<'a> {
     pub color: [f32; 4],
     /// The state at the time of the operation.
     pub state: &'a RasterState,
+    /// What the fragments take from the raster position.
+    pub raster: &'a RasterFragment,
 }
 
 /// Colour images that need more rectangles than this (one per run of equal pixels) are drawn
-/// as one rectangle textured with the image instead.
+/// as one rectangle textured with the image instead, unless texturing applies to the
+/// fragments: the image would then need a texture unit of its own ahead of the program's, and
+/// environments that read the primary colour would see the rectangle's instead of the
+/// pixel's, so such images are always drawn as rectangles (slower, exact).
 const MAX_RECTANGLES: usize = 1024;
 
 /// Texture name of images drawn as textures (never a program's: the texture cache keys on
@@ -67,14 +73,14 @@ pub fn record(rec: &mut Recorder<'_>, at: &Placement<'_>, data: &PixelData) -> R
             let pixels: Vec<[u8; 4]> = bytes.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect();
             let mut quads = Quads::default();
             push_image(&mut quads, origin, at.zoom, at.width, &pixels, |p| Some((z, p.map(|v| v as f32 / 255.0))));
-            if quads.len() <= MAX_RECTANGLES {
-                return draw(rec, quads, fragment_state(at.state, size));
+            if quads.len() <= MAX_RECTANGLES || at.raster.textured() {
+                return draw_fragments(rec, quads, at);
             }
             let height = pixels.len() / at.width.max(1);
             let mut textured = Quads::default();
             let far = [origin[0] + at.zoom[0] * at.width as f32, origin[1] + at.zoom[1] * height as f32];
             textured.push_textured([origin[0], origin[1], far[0], far[1]], z, [0.0, 0.0, 1.0, 1.0]);
-            let mut draw = textured.into_draw(size, fragment_state(at.state, size));
+            let mut draw = raster_fragments(textured, size, at.state, at.raster);
             let texels = bytes.get(..at.width * height * 4).unwrap_or_default().to_vec();
             draw.textures = vec![Some(image_texture(at.width as u32, height as u32, texels))];
             draw.texture_units = vec![Some(TextureUnit { env: TextureEnv { mode: EnvMode::Replace, ..TextureEnv::default() }, texgen: [None; 4] })];
@@ -85,7 +91,7 @@ pub fn record(rec: &mut Recorder<'_>, at: &Placement<'_>, data: &PixelData) -> R
             let mut quads = Quads::default();
             let bits: Vec<u32> = depths.iter().map(|d| d.clamp(0.0, 1.0).to_bits()).collect();
             push_image(&mut quads, origin, at.zoom, at.width, &bits, |d| Some((f32::from_bits(d), at.color)));
-            draw(rec, quads, fragment_state(at.state, size))
+            draw_fragments(rec, quads, at)
         }
         PixelData::Stencil(values) => write_stencil(rec, at, values, None),
         PixelData::DepthStencil(depths, values) => write_stencil(rec, at, values, Some(depths)),
@@ -115,6 +121,15 @@ fn write_stencil(rec: &mut Recorder<'_>, at: &Placement<'_>, values: &[u32], dep
         draw(rec, quads, state)?;
     }
     Ok(())
+}
+
+/// Draws `quads` as fragments of the operation `at` places (nothing when empty).
+pub fn draw_fragments(rec: &mut Recorder<'_>, quads: Quads, at: &Placement<'_>) -> Result<()> {
+    if quads.is_empty() {
+        return Ok(());
+    }
+    let size = rec.target.size;
+    rec.draw(&raster_fragments(quads, size, at.state, at.raster))
 }
 
 /// Draws `quads` (nothing when empty).

@@ -45,9 +45,9 @@ pub fn writes_color(op: &PixelOp) -> bool {
 /// [`crate::render::FrameSink::read_pixels`] returns them).
 pub fn record(rec: &mut Recorder<'_>, accum: &mut accum::Accum, op: &PixelOp, read: Option<&[[f32; 4]]>) -> Result<()> {
     match &op.kind {
-        PixelKind::Bitmap { window_pos, size, color, mask } => bitmap::record(rec, &op.state, *window_pos, size[0] as usize, *color, mask),
+        PixelKind::Bitmap { window_pos, size, color, mask } => bitmap::record(rec, &op.state, &op.raster, *window_pos, size[0] as usize, *color, mask),
         PixelKind::Image { window_pos, zoom, size, color, data } => {
-            let at = image::Placement { window_pos: *window_pos, zoom: *zoom, width: size[0] as usize, color: *color, state: &op.state };
+            let at = image::Placement { window_pos: *window_pos, zoom: *zoom, width: size[0] as usize, color: *color, state: &op.state, raster: &op.raster };
             image::record(rec, &at, data)
         }
         PixelKind::Copy { src, window_pos, zoom, buffer, color } => {
@@ -60,7 +60,7 @@ pub fn record(rec: &mut Recorder<'_>, accum: &mut accum::Accum, op: &PixelOp, re
             // Source pixels outside the window produce no fragments: the copy starts that many
             // zoomed pixels further.
             let corner = [window_pos[0] + skipped[0] as f32 * zoom[0], window_pos[1] + skipped[1] as f32 * zoom[1], window_pos[2]];
-            let at = image::Placement { window_pos: corner, zoom: *zoom, width: rect[2] as usize, color: *color, state: &op.state };
+            let at = image::Placement { window_pos: corner, zoom: *zoom, width: rect[2] as usize, color: *color, state: &op.state, raster: &op.raster };
             image::record(rec, &at, &data)
         }
         PixelKind::Accum { op: kind, value } => accum.apply(rec, &op.state, *kind, *value, read),

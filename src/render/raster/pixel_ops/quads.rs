@@ -11,8 +11,9 @@ use std::sync::Arc;
 
 use glam::{Mat4, Vec3};
 
-use crate::frame::state::{PolygonMode, RasterState};
-use crate::frame::{Draw, Topology, Vertices};
+use crate::frame::pixels::RasterFragment;
+use crate::frame::state::{Fog, FogSource, PolygonMode, RasterState};
+use crate::frame::{Attrib, Draw, Topology, Vertices};
 
 /// Rectangles being collected for one draw.
 #[derive(Default)]
@@ -91,8 +92,8 @@ impl Quads {
 /// whatever belongs to vertices and primitives turned off (lighting, fog, culling, polygon
 /// modes, offset and stipple, clip planes) and a viewport covering the target of `size`.
 ///
-/// Fog (section 3.10) and texturing of pixel fragments are not applied: glrt's pixel
-/// operations carry neither the raster position's fog distance nor its texture coordinates.
+/// Texturing, colour sum and fog are off too: [`raster_fragments`] turns them back on for the
+/// fragments that take them from the raster position.
 pub fn fragment_state(base: &RasterState, size: [u32; 2]) -> RasterState {
     let mut state = base.clone();
     state.lighting = None;
@@ -108,6 +109,32 @@ pub fn fragment_state(base: &RasterState, size: [u32; 2]) -> RasterState {
     state.viewport = [0, 0, size[0] as i32, size[1] as i32];
     state.depth_range = [0.0, 1.0];
     state
+}
+
+/// The draw of `quads` as fragments of a bitmap, image or copy issued under `base` for a
+/// target of `size`: the per-fragment operations of [`fragment_state`], and what the
+/// fragments take from the raster position (sections 3.6.5, 3.7 and 4.3.3): every vertex
+/// carries its texture coordinates, so the units that texture sample there with their
+/// environments; its secondary colour goes through the colour sum when `base` sums (or
+/// lights); its distance is the fog coordinate when `base` fogs (section 3.10).
+pub fn raster_fragments(quads: Quads, size: [u32; 2], base: &RasterState, raster: &RasterFragment) -> Draw {
+    let mut state = fragment_state(base, size);
+    state.fog = base.fog.map(|fog| Fog { source: FogSource::FogCoord, ..fog });
+    state.color_sum = base.color_sum || base.lighting.is_some();
+    let mut draw = quads.into_draw(size, state);
+    fn shared<T>(value: T) -> Attrib<T> {
+        Attrib { values: vec![value] }
+    }
+    let [r, g, b, _] = raster.secondary;
+    draw.vertices.secondary_color = shared([r, g, b]);
+    draw.vertices.fog_coord = shared(raster.fog_coord);
+    if raster.textured() {
+        draw.vertices.texcoords = raster.texcoords.iter().copied().map(shared).collect();
+        draw.textures = raster.textures.clone();
+        draw.texture_units = raster.texture_units.clone();
+        draw.texture_matrices = raster.texture_units.iter().map(|u| u.map(|_| Mat4::IDENTITY)).collect();
+    }
+    draw
 }
 
 /// Pushes one rectangle per run of equal pixels of an image (`pixels` rows bottom to top,
