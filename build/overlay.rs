@@ -36,6 +36,7 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_ARB_transpose_matrix",
     "GL_ARB_occlusion_query",
     "GL_EXT_blend_func_separate",
+    "GL_ARB_map_buffer_range",
 ];
 
 /// Commands allowed between `glBegin` and `glEnd` besides the attribute families
@@ -63,7 +64,8 @@ pub const NOT_COMPILED: &[&str] = &[
     "NewList", "EndList", "GenLists", "DeleteLists", "FeedbackBuffer", "SelectBuffer",
     "RenderMode", "ReadPixels", "GenTextures", "DeleteTextures", "AreTexturesResident",
     "GenQueries", "DeleteQueries", "BindBuffer", "DeleteBuffers", "GenBuffers", "BufferData",
-    "BufferSubData", "MapBuffer", "UnmapBuffer", "Flush", "Finish", "GetError",
+    "BufferSubData", "MapBuffer", "UnmapBuffer", "MapBufferRange", "FlushMappedBufferRange", "Flush",
+    "Finish", "GetError",
 ];
 
 /// Commands that read client arrays: in a display list they are compiled with the array data
