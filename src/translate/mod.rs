@@ -49,6 +49,8 @@ pub mod limits;
 pub mod lists;
 pub mod params;
 pub mod pixel_buffers;
+#[cfg(test)]
+mod pixel_buffer_tests;
 pub mod pixels;
 pub mod queries;
 pub mod rasterization;
