@@ -140,3 +140,120 @@ impl Context {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::translate::{Context, gl};
+
+    const T: gl::GLenum = gl::GL_ARRAY_BUFFER;
+
+    fn param(ctx: &mut Context, pname: gl::GLenum) -> i32 {
+        let mut v = -1;
+        unsafe { ctx.glGetBufferParameteriv(T, pname, &mut v) };
+        v
+    }
+
+    /// A bound buffer holding the bytes 0, 1, ..., 99.
+    fn context_with_buffer() -> Context {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindBuffer(T, 1);
+        let bytes: Vec<u8> = (0..100).collect();
+        unsafe { ctx.glBufferData(T, 100, bytes.as_ptr().cast(), gl::GL_STATIC_DRAW) };
+        ctx
+    }
+
+    #[test]
+    fn map_range_reads_and_writes_the_range_and_sets_the_mapping_state() {
+        let mut ctx = context_with_buffer();
+        let flags = gl::GL_MAP_WRITE_BIT | gl::GL_MAP_INVALIDATE_RANGE_BIT | gl::GL_MAP_FLUSH_EXPLICIT_BIT;
+        let p = ctx.glMapBufferRange(T, 10, 20, flags).cast::<u8>();
+        assert!(!p.is_null());
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        assert_eq!(unsafe { p.read() }, 10, "invalidated contents are kept");
+        unsafe { p.add(19).write(200) };
+        ctx.glFlushMappedBufferRange(T, 19, 1);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        assert_eq!(param(&mut ctx, gl::GL_BUFFER_MAPPED), 1);
+        assert_eq!(param(&mut ctx, gl::GL_BUFFER_ACCESS_FLAGS) as u32, flags);
+        assert_eq!(param(&mut ctx, gl::GL_BUFFER_ACCESS) as u32, gl::GL_WRITE_ONLY);
+        assert_eq!((param(&mut ctx, gl::GL_BUFFER_MAP_OFFSET), param(&mut ctx, gl::GL_BUFFER_MAP_LENGTH)), (10, 20));
+        let mut q = std::ptr::null_mut();
+        unsafe { ctx.glGetBufferPointerv(T, gl::GL_BUFFER_MAP_POINTER, &raw mut q) };
+        assert_eq!(q.cast::<u8>(), p, "the pointer of the mapped range");
+        assert_eq!(ctx.glUnmapBuffer(T), 1);
+        assert_eq!(param(&mut ctx, gl::GL_BUFFER_MAPPED), 0);
+        assert_eq!(param(&mut ctx, gl::GL_BUFFER_ACCESS_FLAGS), 0);
+        assert_eq!((param(&mut ctx, gl::GL_BUFFER_MAP_OFFSET), param(&mut ctx, gl::GL_BUFFER_MAP_LENGTH)), (0, 0));
+        assert_eq!(param(&mut ctx, gl::GL_BUFFER_ACCESS) as u32, gl::GL_WRITE_ONLY, "the last mapping's access stays");
+        let mut back = [0u8; 3];
+        unsafe { ctx.glGetBufferSubData(T, 28, 3, back.as_mut_ptr().cast()) };
+        assert_eq!(back, [28, 200, 30]);
+
+        // glMapBuffer is the whole range with the bits its access names.
+        let whole = ctx.glMapBuffer(T, gl::GL_READ_WRITE).cast::<u8>();
+        assert_eq!(unsafe { whole.add(29).read() }, 200);
+        assert_eq!(param(&mut ctx, gl::GL_BUFFER_ACCESS_FLAGS) as u32, gl::GL_MAP_READ_BIT | gl::GL_MAP_WRITE_BIT);
+        assert_eq!(param(&mut ctx, gl::GL_BUFFER_MAP_LENGTH), 100);
+        ctx.glUnmapBuffer(T);
+        let read = ctx.glMapBufferRange(T, 99, 1, gl::GL_MAP_READ_BIT);
+        assert_eq!(param(&mut ctx, gl::GL_BUFFER_ACCESS) as u32, gl::GL_READ_ONLY);
+        assert_eq!(unsafe { read.cast::<u8>().read() }, 99);
+        ctx.glUnmapBuffer(T);
+        let unsynchronized = gl::GL_MAP_WRITE_BIT | gl::GL_MAP_INVALIDATE_BUFFER_BIT | gl::GL_MAP_UNSYNCHRONIZED_BIT;
+        assert!(!ctx.glMapBufferRange(T, 100, 0, unsynchronized).is_null(), "an empty range at the end");
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    }
+
+    #[test]
+    fn map_range_errors() {
+        let mut ctx = context_with_buffer();
+        let rw = gl::GL_MAP_READ_BIT | gl::GL_MAP_WRITE_BIT;
+        let map = |ctx: &mut Context, target, offset, length, access| {
+            let p = ctx.glMapBufferRange(target, offset, length, access);
+            let e = ctx.glGetError();
+            assert_eq!(p.is_null(), e != gl::GL_NO_ERROR, "null exactly on error");
+            e
+        };
+        assert_eq!(map(&mut ctx, gl::GL_TEXTURE_2D, 0, 1, rw), gl::GL_INVALID_ENUM);
+        assert_eq!(map(&mut ctx, T, -1, 1, rw), gl::GL_INVALID_VALUE);
+        assert_eq!(map(&mut ctx, T, 0, -1, rw), gl::GL_INVALID_VALUE);
+        assert_eq!(map(&mut ctx, T, 1, 100, rw), gl::GL_INVALID_VALUE);
+        assert_eq!(map(&mut ctx, T, 0, 10, 0xffff_ffff), gl::GL_INVALID_VALUE);
+        assert_eq!(map(&mut ctx, T, 0, 10, 0), gl::GL_INVALID_OPERATION, "neither read nor write");
+        for bit in [gl::GL_MAP_INVALIDATE_RANGE_BIT, gl::GL_MAP_INVALIDATE_BUFFER_BIT, gl::GL_MAP_UNSYNCHRONIZED_BIT] {
+            assert_eq!(map(&mut ctx, T, 0, 10, gl::GL_MAP_READ_BIT | bit), gl::GL_INVALID_OPERATION, "read with {bit:#x}");
+        }
+        assert_eq!(map(&mut ctx, T, 0, 10, gl::GL_MAP_READ_BIT | gl::GL_MAP_FLUSH_EXPLICIT_BIT), gl::GL_INVALID_OPERATION);
+        assert_eq!(param(&mut ctx, gl::GL_BUFFER_MAPPED), 0, "no failed call mapped the buffer");
+        assert_eq!(map(&mut ctx, T, 0, 10, rw), gl::GL_NO_ERROR);
+        assert_eq!(map(&mut ctx, T, 0, 10, rw), gl::GL_INVALID_OPERATION, "already mapped");
+        assert_eq!(ctx.glMapBuffer(T, gl::GL_READ_ONLY), std::ptr::null_mut());
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+        ctx.glFlushMappedBufferRange(T, 0, 1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "mapped without GL_MAP_FLUSH_EXPLICIT_BIT");
+        ctx.glUnmapBuffer(T);
+        ctx.glFlushMappedBufferRange(T, 0, 1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "not mapped");
+        ctx.glMapBufferRange(T, 50, 10, gl::GL_MAP_WRITE_BIT | gl::GL_MAP_FLUSH_EXPLICIT_BIT);
+        for (offset, length) in [(-1, 1), (0, -1), (5, 6)] {
+            ctx.glFlushMappedBufferRange(T, offset, length);
+            assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE, "flush {offset} + {length} of a 10-byte mapping");
+        }
+        ctx.glFlushMappedBufferRange(T, 5, 5);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        ctx.glBindBuffer(T, 0);
+        assert_eq!(map(&mut ctx, T, 0, 0, rw), gl::GL_INVALID_OPERATION, "no buffer bound");
+        ctx.glFlushMappedBufferRange(T, 0, 0);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+    }
+
+    #[test]
+    fn buffer_data_ends_a_mapping() {
+        let mut ctx = context_with_buffer();
+        ctx.glMapBufferRange(T, 0, 4, gl::GL_MAP_READ_BIT);
+        unsafe { ctx.glBufferData(T, 8, std::ptr::null(), gl::GL_STREAM_DRAW) };
+        assert_eq!((param(&mut ctx, gl::GL_BUFFER_MAPPED), param(&mut ctx, gl::GL_BUFFER_ACCESS_FLAGS)), (0, 0));
+        assert_eq!(ctx.glUnmapBuffer(T), 0);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+    }
+}
