@@ -2,7 +2,7 @@
 //! calls in this test (the capture is process-wide, so this file holds one test): a draw
 //! records exactly the array elements and indices it read, at draw time; pixel uploads the
 //! span the unpack state describes; `glCallLists` its names; `glBufferData` its data; draws
-//! from buffer objects and display lists record nothing. The capture then replays (`glrt
+//! from buffer objects, pixels from a pixel unpack buffer and display lists record nothing. The capture then replays (`glrt
 //! replay`) to the same frames and, captured again, to the same file.
 
 mod common;
@@ -72,6 +72,11 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
         gl::glBindBuffer(GL_ARRAY_BUFFER, vbo);
         gl::glBufferData(GL_ARRAY_BUFFER, 48, buffer_data.as_ptr().cast(), GL_STATIC_DRAW);
         gl::glBindBuffer(GL_ARRAY_BUFFER, 0);
+        let mut pbo = 0;
+        gl::glGenBuffers(1, &mut pbo);
+        gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pbo);
+        gl::glBufferData(GL_PIXEL_UNPACK_BUFFER, 16, std::ptr::null(), GL_STREAM_DRAW);
+        gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
         gl::glPixelStorei(GL_UNPACK_ROW_LENGTH, 4);
         gl::glPixelStorei(GL_UNPACK_SKIP_PIXELS, 1);
         gl::glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA as i32, 2, 2, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.as_ptr().cast());
@@ -85,6 +90,11 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
             gl::glEnd();
             gl::glListBase(base);
             gl::glCallLists(3, GL_UNSIGNED_BYTE, names.as_ptr().cast());
+            // A pixel from the unpack buffer (offset 8, skip 1 pixel): its bytes 12 to 15.
+            gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pbo);
+            gl::glBufferSubData(GL_PIXEL_UNPACK_BUFFER, 12, 4, [40 * frame as u8, 255, 0, 255].as_ptr().cast());
+            gl::glDrawPixels(1, 1, GL_RGBA, GL_UNSIGNED_BYTE, std::ptr::without_provenance(8));
+            gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
             gl::glBindBuffer(GL_ARRAY_BUFFER, vbo);
             gl::glVertexPointer(3, GL_FLOAT, 0, std::ptr::null::<c_void>());
             gl::glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -118,7 +128,9 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
     }
     assert_eq!(of("glTexImage2D"), vec![vec![(addr(texels.as_ptr()), texels[..28].to_vec())]], "skip 1 pixel, 2 rows of 4");
     assert_eq!(of("glCallLists"), vec![vec![(addr(names.as_ptr()), names.to_vec())]; 3]);
-    assert_eq!(of("glBufferData"), vec![vec![(addr(buffer_data.as_ptr()), bytes_of(&buffer_data))]]);
+    assert_eq!(of("glBufferData"), vec![vec![(addr(buffer_data.as_ptr()), bytes_of(&buffer_data))], vec![]]);
+    assert_eq!(of("glBufferSubData").iter().map(Vec::len).collect::<Vec<_>>(), [1; 3], "each frame's pixel, recorded");
+    assert_eq!(of("glDrawPixels"), vec![Vec::new(); 3], "pixels from a buffer read no client memory");
     assert_eq!(of("glVertex3fv").len(), 3, "compiled once into each list, not recorded when lists run");
     assert!(of("glDrawArrays").iter().all(Vec::is_empty), "a buffer-object draw reads no client memory");
     assert_eq!(of("glVertexPointer").iter().filter(|r| !r.is_empty()).count(), 0, "pointers are read at draw time");
