@@ -33,7 +33,7 @@ use super::lists::ListOp;
 /// `GL_INVALID_OPERATION`: no such buffer, mapped, past the end, or `offset` not a multiple of
 /// `datum`.
 fn access_range(buffer: Option<&Buffer>, offset: usize, span: usize, datum: usize) -> Result<Range<usize>, GLenum> {
-    let buffer = buffer.filter(|b| !b.mapped && offset % datum.max(1) == 0).ok_or(gl::GL_INVALID_OPERATION)?;
+    let buffer = buffer.filter(|b| !b.mapped && offset.is_multiple_of(datum.max(1))).ok_or(gl::GL_INVALID_OPERATION)?;
     match offset.checked_add(span) {
         Some(end) if end <= buffer.data.len() => Ok(offset..end),
         _ => Err(gl::GL_INVALID_OPERATION),
