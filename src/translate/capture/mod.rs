@@ -33,7 +33,9 @@
 //! [`client_pointer`].
 //!
 //! Limits: one recording thread is assumed (the calls of all threads go to one stream);
-//! contents a program writes through `glMapBuffer` pointers are not recorded; a program
+//! contents a program writes through `glMapBuffer`/`glMapBufferRange` pointers are not
+//! recorded (pixel commands reading a pixel unpack buffer record its offset, as vertex arrays
+//! in buffer objects do, so data put there by `glBufferData`/`glBufferSubData` replays); a program
 //! killed before the capture is finished (at exit, or after the last frame of
 //! `GLRT_CAPTURE_FRAMES`) leaves a file readers refuse. Replay checks every length in the
 //! file, but runs the recorded GL calls as they are: a hand-made capture whose arguments make
