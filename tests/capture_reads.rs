@@ -2,7 +2,9 @@
 //! calls in this test (the capture is process-wide, so this file holds one test): a draw
 //! records exactly the array elements and indices it read, at draw time; pixel uploads the
 //! span the unpack state describes; `glCallLists` its names; `glBufferData` its data; draws
-//! from buffer objects, pixels from a pixel unpack buffer and display lists record nothing. The capture then replays (`glrt
+//! from buffer objects, pixels from a pixel unpack buffer and display lists record nothing;
+//! what is written through a buffer mapping is recorded at `glUnmapBuffer`, as the
+//! `glBufferSubData` that has the same effect. The capture then replays (`glrt
 //! replay`) to the same frames and, captured again, to the same file.
 
 mod common;
@@ -58,6 +60,7 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
     let names: [u8; 3] = [0, 2, 1];
     let buffer_data: Vec<f32> = (0..12).map(|i| i as f32).collect();
     let mut seen_vertex_bytes = Vec::new();
+    let pixel = |frame: usize| [40 * frame as u8, 255, 0, 255];
     unsafe {
         let base = gl::glGenLists(3);
         for i in 0..3 {
@@ -90,9 +93,12 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
             gl::glEnd();
             gl::glListBase(base);
             gl::glCallLists(3, GL_UNSIGNED_BYTE, names.as_ptr().cast());
-            // A pixel from the unpack buffer (offset 8, skip 1 pixel): its bytes 12 to 15.
+            // A pixel from the unpack buffer (offset 8, skip 1 pixel): its bytes 12 to 15,
+            // written through a mapping.
             gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pbo);
-            gl::glBufferSubData(GL_PIXEL_UNPACK_BUFFER, 12, 4, [40 * frame as u8, 255, 0, 255].as_ptr().cast());
+            let mapped = gl::glMapBufferRange(GL_PIXEL_UNPACK_BUFFER, 12, 4, GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_RANGE_BIT);
+            std::ptr::copy_nonoverlapping(pixel(frame).as_ptr(), mapped.cast::<u8>(), 4);
+            gl::glUnmapBuffer(GL_PIXEL_UNPACK_BUFFER);
             gl::glDrawPixels(1, 1, GL_RGBA, GL_UNSIGNED_BYTE, std::ptr::without_provenance(8));
             gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
             gl::glBindBuffer(GL_ARRAY_BUFFER, vbo);
@@ -129,7 +135,9 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
     assert_eq!(of("glTexImage2D"), vec![vec![(addr(texels.as_ptr()), texels[..28].to_vec())]], "skip 1 pixel, 2 rows of 4");
     assert_eq!(of("glCallLists"), vec![vec![(addr(names.as_ptr()), names.to_vec())]; 3]);
     assert_eq!(of("glBufferData"), vec![vec![(addr(buffer_data.as_ptr()), bytes_of(&buffer_data))], vec![]]);
-    assert_eq!(of("glBufferSubData").iter().map(Vec::len).collect::<Vec<_>>(), [1; 3], "each frame's pixel, recorded");
+    let written: Vec<Vec<u8>> = of("glBufferSubData").iter().flat_map(|r| r.iter().map(|(_, bytes)| bytes.clone())).collect();
+    assert_eq!(written, (0..3).map(|f| pixel(f).to_vec()).collect::<Vec<_>>(), "each frame's pixel, written through the mapping");
+    assert!(of("glUnmapBuffer").iter().chain(&of("glMapBufferRange")).all(Vec::is_empty));
     assert_eq!(of("glDrawPixels"), vec![Vec::new(); 3], "pixels from a buffer read no client memory");
     assert_eq!(of("glVertex3fv").len(), 3, "compiled once into each list, not recorded when lists run");
     assert!(of("glDrawArrays").iter().all(Vec::is_empty), "a buffer-object draw reads no client memory");

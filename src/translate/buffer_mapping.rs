@@ -108,11 +108,17 @@ impl Context {
 
     /// `glUnmapBuffer`: ends the mapping (the mapping state returns to its initial values);
     /// `GL_TRUE`, as glrt's stores are never corrupted. `GL_INVALID_OPERATION` when the buffer
-    /// is not mapped.
+    /// is not mapped. The range of a writable mapping goes to the capture
+    /// ([`super::capture::mapped_writes`]).
     pub fn glUnmapBuffer(&mut self, target: GLenum) -> GLboolean {
         let done = self.with_bound_buffer(target, "glUnmapBuffer", |b| {
             if !b.mapped {
                 return Err(gl::GL_INVALID_OPERATION);
+            }
+            if b.access_flags & gl::GL_MAP_WRITE_BIT != 0
+                && let Some(written) = b.data.get(b.map_offset..b.map_offset + b.map_length)
+            {
+                super::capture::mapped_writes(target, b.map_offset, written);
             }
             b.mapped = false;
             b.access_flags = 0;
