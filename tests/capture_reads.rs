@@ -13,9 +13,12 @@ mod programs;
 use std::ffi::c_void;
 use std::path::PathBuf;
 use std::process::Command;
+use std::sync::Arc;
 
 use common::gl;
-use glrt::translate::capture::{self, reader::{Capture, Record}, table::COMMANDS};
+use glrt::frame::pixels::{PixelData, PixelKind};
+use glrt::render::RecordingSink;
+use glrt::translate::capture::{self, reader::{Capture, Record}, replay, table::COMMANDS};
 use glrt::translate::gl::*;
 
 fn scratch(name: &str) -> PathBuf {
@@ -157,4 +160,22 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
     assert_eq!(live.lines().count(), 3);
     assert_eq!(std::fs::read_to_string(&replay_log).unwrap(), live);
     assert!(std::fs::read(&again).unwrap() == std::fs::read(&path).unwrap(), "the replay's capture differs");
+
+    // The frame log hashes an image's size, not its pixels: replayed here with a sink that
+    // keeps the frames, each draws the pixel the program wrote through the mapping.
+    let sink = RecordingSink::default();
+    let keep = sink.clone();
+    let options = replay::Options { sink: Some(replay::SinkWrapper(Arc::new(move |_| Box::new(keep.clone())))), ..Default::default() };
+    replay::run(&capture, &options).unwrap();
+    let drawn: Vec<Vec<u8>> = sink
+        .frames
+        .lock()
+        .iter()
+        .flat_map(|f| f.pixels.iter())
+        .filter_map(|p| match &p.kind {
+            PixelKind::Image { data: PixelData::Rgba8(rgba), .. } => Some(rgba.to_vec()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(drawn, (0..3).map(|f| pixel(f).to_vec()).collect::<Vec<_>>());
 }
