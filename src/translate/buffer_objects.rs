@@ -1,6 +1,6 @@
 //! Buffer objects (OpenGL 1.5 section 2.9, `ARB_vertex_buffer_object`): names, data stores,
 //! and the `GL_ARRAY_BUFFER` / `GL_ELEMENT_ARRAY_BUFFER` / `GL_PIXEL_PACK_BUFFER` /
-//! `GL_PIXEL_UNPACK_BUFFER` bindings; mapping is [`super::buffer_mapping`]. Objects live in the
+//! `GL_PIXEL_UNPACK_BUFFER` bindings; mapping is in [`super::buffer_mapping`]. Objects live in the
 //! share group ([`super::context::SharedObjects::buffers`]); the bindings are client state of
 //! each context ([`super::arrays::ArrayState`], [`super::pixels::PixelStore`]). Array pointers
 //! given while a buffer is bound to `GL_ARRAY_BUFFER` are offsets into it (see
