@@ -37,6 +37,7 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_ARB_occlusion_query",
     "GL_EXT_blend_func_separate",
     "GL_EXT_framebuffer_object",
+    "GL_ARB_map_buffer_range",
 ];
 
 /// Commands allowed between `glBegin` and `glEnd` besides the attribute families
@@ -64,8 +65,9 @@ pub const NOT_COMPILED: &[&str] = &[
     "NewList", "EndList", "GenLists", "DeleteLists", "FeedbackBuffer", "SelectBuffer",
     "RenderMode", "ReadPixels", "GenTextures", "DeleteTextures", "AreTexturesResident",
     "GenQueries", "DeleteQueries", "BindBuffer", "DeleteBuffers", "GenBuffers", "BufferData",
-    "BufferSubData", "MapBuffer", "UnmapBuffer", "Flush", "Finish", "GetError", "GenRenderbuffersEXT",
-    "DeleteRenderbuffersEXT", "GenFramebuffersEXT", "DeleteFramebuffersEXT", "CheckFramebufferStatusEXT",
+    "BufferSubData", "MapBuffer", "UnmapBuffer", "MapBufferRange", "FlushMappedBufferRange", "Flush",
+    "Finish", "GetError", "GenRenderbuffersEXT", "DeleteRenderbuffersEXT", "GenFramebuffersEXT",
+    "DeleteFramebuffersEXT", "CheckFramebufferStatusEXT",
 ];
 
 /// Commands that read client arrays: in a display list they are compiled with the array data

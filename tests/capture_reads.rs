@@ -2,7 +2,9 @@
 //! calls in this test (the capture is process-wide, so this file holds one test): a draw
 //! records exactly the array elements and indices it read, at draw time; pixel uploads the
 //! span the unpack state describes; `glCallLists` its names; `glBufferData` its data; draws
-//! from buffer objects and display lists record nothing. The capture then replays (`glrt
+//! from buffer objects, pixels from a pixel unpack buffer and display lists record nothing;
+//! what is written through a buffer mapping is recorded at `glUnmapBuffer`, as the
+//! `glBufferSubData` that has the same effect. The capture then replays (`glrt
 //! replay`) to the same frames and, captured again, to the same file.
 
 mod common;
@@ -11,9 +13,12 @@ mod programs;
 use std::ffi::c_void;
 use std::path::PathBuf;
 use std::process::Command;
+use std::sync::Arc;
 
 use common::gl;
-use glrt::translate::capture::{self, reader::{Capture, Record}, table::COMMANDS};
+use glrt::frame::pixels::{PixelData, PixelKind};
+use glrt::render::RecordingSink;
+use glrt::translate::capture::{self, reader::{Capture, Record}, replay, table::COMMANDS};
 use glrt::translate::gl::*;
 
 fn scratch(name: &str) -> PathBuf {
@@ -58,6 +63,7 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
     let names: [u8; 3] = [0, 2, 1];
     let buffer_data: Vec<f32> = (0..12).map(|i| i as f32).collect();
     let mut seen_vertex_bytes = Vec::new();
+    let pixel = |frame: usize| [40 * frame as u8, 255, 0, 255];
     unsafe {
         let base = gl::glGenLists(3);
         for i in 0..3 {
@@ -72,6 +78,11 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
         gl::glBindBuffer(GL_ARRAY_BUFFER, vbo);
         gl::glBufferData(GL_ARRAY_BUFFER, 48, buffer_data.as_ptr().cast(), GL_STATIC_DRAW);
         gl::glBindBuffer(GL_ARRAY_BUFFER, 0);
+        let mut pbo = 0;
+        gl::glGenBuffers(1, &mut pbo);
+        gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pbo);
+        gl::glBufferData(GL_PIXEL_UNPACK_BUFFER, 16, std::ptr::null(), GL_STREAM_DRAW);
+        gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
         gl::glPixelStorei(GL_UNPACK_ROW_LENGTH, 4);
         gl::glPixelStorei(GL_UNPACK_SKIP_PIXELS, 1);
         gl::glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA as i32, 2, 2, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.as_ptr().cast());
@@ -85,6 +96,14 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
             gl::glEnd();
             gl::glListBase(base);
             gl::glCallLists(3, GL_UNSIGNED_BYTE, names.as_ptr().cast());
+            // A pixel from the unpack buffer (offset 8, skip 1 pixel): its bytes 12 to 15,
+            // written through a mapping.
+            gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, pbo);
+            let mapped = gl::glMapBufferRange(GL_PIXEL_UNPACK_BUFFER, 12, 4, GL_MAP_WRITE_BIT | GL_MAP_INVALIDATE_RANGE_BIT);
+            std::ptr::copy_nonoverlapping(pixel(frame).as_ptr(), mapped.cast::<u8>(), 4);
+            gl::glUnmapBuffer(GL_PIXEL_UNPACK_BUFFER);
+            gl::glDrawPixels(1, 1, GL_RGBA, GL_UNSIGNED_BYTE, std::ptr::without_provenance(8));
+            gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
             gl::glBindBuffer(GL_ARRAY_BUFFER, vbo);
             gl::glVertexPointer(3, GL_FLOAT, 0, std::ptr::null::<c_void>());
             gl::glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -118,7 +137,11 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
     }
     assert_eq!(of("glTexImage2D"), vec![vec![(addr(texels.as_ptr()), texels[..28].to_vec())]], "skip 1 pixel, 2 rows of 4");
     assert_eq!(of("glCallLists"), vec![vec![(addr(names.as_ptr()), names.to_vec())]; 3]);
-    assert_eq!(of("glBufferData"), vec![vec![(addr(buffer_data.as_ptr()), bytes_of(&buffer_data))]]);
+    assert_eq!(of("glBufferData"), vec![vec![(addr(buffer_data.as_ptr()), bytes_of(&buffer_data))], vec![]]);
+    let written: Vec<Vec<u8>> = of("glBufferSubData").iter().flat_map(|r| r.iter().map(|(_, bytes)| bytes.clone())).collect();
+    assert_eq!(written, (0..3).map(|f| pixel(f).to_vec()).collect::<Vec<_>>(), "each frame's pixel, written through the mapping");
+    assert!(of("glUnmapBuffer").iter().chain(&of("glMapBufferRange")).all(Vec::is_empty));
+    assert_eq!(of("glDrawPixels"), vec![Vec::new(); 3], "pixels from a buffer read no client memory");
     assert_eq!(of("glVertex3fv").len(), 3, "compiled once into each list, not recorded when lists run");
     assert!(of("glDrawArrays").iter().all(Vec::is_empty), "a buffer-object draw reads no client memory");
     assert_eq!(of("glVertexPointer").iter().filter(|r| !r.is_empty()).count(), 0, "pointers are read at draw time");
@@ -137,4 +160,22 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
     assert_eq!(live.lines().count(), 3);
     assert_eq!(std::fs::read_to_string(&replay_log).unwrap(), live);
     assert!(std::fs::read(&again).unwrap() == std::fs::read(&path).unwrap(), "the replay's capture differs");
+
+    // The frame log hashes an image's size, not its pixels: replayed here with a sink that
+    // keeps the frames, each draws the pixel the program wrote through the mapping.
+    let sink = RecordingSink::default();
+    let keep = sink.clone();
+    let options = replay::Options { sink: Some(replay::SinkWrapper(Arc::new(move |_| Box::new(keep.clone())))), ..Default::default() };
+    replay::run(&capture, &options).unwrap();
+    let drawn: Vec<Vec<u8>> = sink
+        .frames
+        .lock()
+        .iter()
+        .flat_map(|f| f.pixels.iter())
+        .filter_map(|p| match &p.kind {
+            PixelKind::Image { data: PixelData::Rgba8(rgba), .. } => Some(rgba.to_vec()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(drawn, (0..3).map(|f| pixel(f).to_vec()).collect::<Vec<_>>());
 }

@@ -338,6 +338,14 @@ fn immediate_client_commands_vertex_module() {
         gl::glBindBuffer(GL_ARRAY_BUFFER, buffer);
         expect(&mut failures, "ARRAY_BUFFER_BINDING", get_i(GL_ARRAY_BUFFER_BINDING)[0], buffer as i32);
         gl::glBindBuffer(GL_ARRAY_BUFFER, 0);
+        // Buffer mapping (ARB_map_buffer_range) is not compiled either.
+        gl::glBindBuffer(GL_PIXEL_PACK_BUFFER, buffer);
+        gl::glBufferData(GL_PIXEL_PACK_BUFFER, 8, std::ptr::null(), GL_STREAM_READ);
+        let mapped = gl::glMapBufferRange(GL_PIXEL_PACK_BUFFER, 0, 8, GL_MAP_WRITE_BIT | GL_MAP_FLUSH_EXPLICIT_BIT);
+        expect(&mut failures, "glMapBufferRange while compiling", mapped.is_null(), false);
+        gl::glFlushMappedBufferRange(GL_PIXEL_PACK_BUFFER, 0, 8);
+        expect(&mut failures, "glUnmapBuffer while compiling", gl::glUnmapBuffer(GL_PIXEL_PACK_BUFFER), 1);
+        gl::glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
     });
     expect(&mut failures, "error compiling", name(compiled), name(GL_NO_ERROR));
     expect(&mut failures, "VERTEX_ARRAY", is_enabled(GL_VERTEX_ARRAY), true);

@@ -329,6 +329,8 @@ const TEXTURE_PIXELS_RASTER: &[(GLenum, Want)] = &[
     (GL_PACK_SKIP_ROWS, Int(&[0])),
     (GL_PACK_SKIP_PIXELS, Int(&[0])),
     (GL_PACK_ALIGNMENT, Int(&[4])),
+    (GL_PIXEL_PACK_BUFFER_BINDING, Int(&[0])),
+    (GL_PIXEL_UNPACK_BUFFER_BINDING, Int(&[0])),
     (GL_MAP_COLOR, Bool(&[false])),
     (GL_MAP_STENCIL, Bool(&[false])),
     (GL_INDEX_SHIFT, Int(&[0])),

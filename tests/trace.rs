@@ -147,6 +147,9 @@ fn errors_results_and_pointers_in_process() {
         gl::glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_BYTE, indices.as_ptr().cast());
         // 2 x 2 RGB bytes, rows aligned to 4: 8 + 6 bytes.
         gl::glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB as i32, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, image.as_ptr().cast());
+        // With a pixel unpack buffer bound the pointer is an offset: its address only.
+        gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 1);
+        gl::glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB as i32, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, std::ptr::without_provenance(8));
         glXGetProcAddress(proc_name.as_ptr().cast());
         headless::glrtSwapBuffers();
         headless::glrtMakeCurrent(std::ptr::null_mut(), 0, 0);
@@ -183,6 +186,8 @@ fn errors_results_and_pointers_in_process() {
                 image.as_ptr(),
                 hash_of(&image)
             ),
+            "0 glBindBuffer(target=GL_PIXEL_UNPACK_BUFFER, buffer=1)".to_owned(),
+            "0 glTexImage2D(target=GL_TEXTURE_2D, level=0, internalformat=GL_RGB, width=2, height=2, border=0, format=GL_RGB, type=GL_UNSIGNED_BYTE, pixels=0x8)".to_owned(),
             format!("0 glXGetProcAddress(procName={:p}\"glBegin\") = {:p}", proc_name.as_ptr(), gl::glBegin as *const ()),
             "0 == end of frame (glrtSwapBuffers)".to_owned(),
         ]

@@ -6,7 +6,8 @@
 //! - `glCallLists`: `n` names of `type`; `glDrawElements`/`glDrawRangeElements`: `count`
 //!   indices of `type`, when no element buffer is bound (otherwise the pointer is an offset);
 //! - pixel images (`glTexImage*`, `glTexSubImage*`, `glDrawPixels`): the span the current
-//!   context's unpack modes give (section 3.6.4), as glrt itself reads it.
+//!   context's unpack modes give (section 3.6.4), as glrt itself reads it, when no pixel
+//!   unpack buffer is bound (otherwise the pointer is an offset).
 //!
 //! What depends on GL state needs glrt's current context: in pass-through mode, or without a
 //! context, those pointers print their address only (guessing the other library's state could
@@ -94,14 +95,14 @@ pub fn indices(count: GLsizei, type_: GLenum) -> Option<Typed> {
 }
 
 /// The bytes a `width` × `height` × `depth` image of `format`/`type_` takes in client memory
-/// under the current context's unpack modes; `None` without a glrt context or for arguments
-/// the command refuses.
+/// under the current context's unpack modes; `None` without a glrt context, with a pixel
+/// unpack buffer bound, or for arguments the command refuses.
 pub fn image(format: GLenum, type_: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei) -> Option<usize> {
     let (f, t) = codec::parse(format, type_).ok()?;
     let [w, h, d] = [width, height, depth].map(|v| usize::try_from(v).ok());
     let (w, h, d) = (w?, h?, d?);
     with_slot(|slot| {
-        let c = slot.as_ref().filter(|c| !c.broken)?;
+        let c = slot.as_ref().filter(|c| !c.broken && c.context.pixels.store.unpack_buffer == 0)?;
         t.layout(f, &c.context.pixels.store.unpack, w, h, d).map(|layout| layout.span)
     })
 }

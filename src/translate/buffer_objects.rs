@@ -1,15 +1,18 @@
 //! Buffer objects (OpenGL 1.5 section 2.9, `ARB_vertex_buffer_object`): names, data stores,
-//! mapping, and the `GL_ARRAY_BUFFER` / `GL_ELEMENT_ARRAY_BUFFER` bindings. Objects live in the
+//! and the `GL_ARRAY_BUFFER` / `GL_ELEMENT_ARRAY_BUFFER` / `GL_PIXEL_PACK_BUFFER` /
+//! `GL_PIXEL_UNPACK_BUFFER` bindings; mapping is in [`super::buffer_mapping`]. Objects live in the
 //! share group ([`super::context::SharedObjects::buffers`]); the bindings are client state of
-//! each context ([`super::arrays::ArrayState`]). Array pointers given while a buffer is bound
-//! to `GL_ARRAY_BUFFER` are offsets into it (see [`super::arrays`]).
+//! each context ([`super::arrays::ArrayState`], [`super::pixels::PixelStore`]). Array pointers
+//! given while a buffer is bound to `GL_ARRAY_BUFFER` are offsets into it (see
+//! [`super::arrays`]); pixel pointers given while one is bound to a pixel target are offsets
+//! into it (see [`super::pixel_buffers`]).
 
 use std::collections::BTreeMap;
 use std::ffi::c_void;
 
 use super::Context;
 use super::convert::write_slice;
-use super::gl::{self, GLboolean, GLenum, GLint, GLintptr, GLsizei, GLsizeiptr, GLuint};
+use super::gl::{self, GLbitfield, GLboolean, GLenum, GLint, GLintptr, GLsizei, GLsizeiptr, GLuint};
 
 /// Largest data store glrt accepts (larger requests raise `GL_OUT_OF_MEMORY`).
 pub const MAX_BUFFER_SIZE: usize = 1 << 31;
@@ -25,6 +28,12 @@ pub struct Buffer {
     pub access: GLenum,
     /// `GL_BUFFER_MAPPED`.
     pub mapped: bool,
+    /// `GL_BUFFER_ACCESS_FLAGS` of the mapping (`GL_MAP_*_BIT`; 0 when unmapped).
+    pub access_flags: GLbitfield,
+    /// `GL_BUFFER_MAP_OFFSET`: where the mapped range starts (0 when unmapped).
+    pub map_offset: usize,
+    /// `GL_BUFFER_MAP_LENGTH`: bytes mapped (0 when unmapped).
+    pub map_length: usize,
     /// Bumped whenever the contents may have changed, so hashes of the data can be cached.
     pub version: u64,
 }
@@ -32,7 +41,16 @@ pub struct Buffer {
 impl Default for Buffer {
     /// The initial state of table 2.6: empty, `GL_STATIC_DRAW`, `GL_READ_WRITE`, unmapped.
     fn default() -> Buffer {
-        Buffer { data: Vec::new(), usage: gl::GL_STATIC_DRAW, access: gl::GL_READ_WRITE, mapped: false, version: 0 }
+        Buffer {
+            data: Vec::new(),
+            usage: gl::GL_STATIC_DRAW,
+            access: gl::GL_READ_WRITE,
+            mapped: false,
+            access_flags: 0,
+            map_offset: 0,
+            map_length: 0,
+            version: 0,
+        }
     }
 }
 
@@ -69,7 +87,7 @@ const USAGES: [GLenum; 9] = [
 ];
 
 /// Checks `offset`/`size` against a store of `len` bytes: the byte range, or `GL_INVALID_VALUE`.
-fn byte_range(offset: GLintptr, size: GLsizeiptr, len: usize) -> Result<std::ops::Range<usize>, GLenum> {
+pub(super) fn byte_range(offset: GLintptr, size: GLsizeiptr, len: usize) -> Result<std::ops::Range<usize>, GLenum> {
     let (Ok(offset), Ok(size)) = (usize::try_from(offset), usize::try_from(size)) else {
         return Err(gl::GL_INVALID_VALUE);
     };
@@ -85,13 +103,15 @@ impl Context {
         match target {
             gl::GL_ARRAY_BUFFER => Some(&mut self.arrays.array_buffer),
             gl::GL_ELEMENT_ARRAY_BUFFER => Some(&mut self.arrays.element_buffer),
+            gl::GL_PIXEL_PACK_BUFFER => Some(&mut self.pixels.store.pack_buffer),
+            gl::GL_PIXEL_UNPACK_BUFFER => Some(&mut self.pixels.store.unpack_buffer),
             _ => None,
         }
     }
 
     /// Runs `f` on the buffer bound to `target`: `GL_INVALID_ENUM` for a bad target,
     /// `GL_INVALID_OPERATION` when no buffer is bound, and the error `f` returns.
-    fn with_bound_buffer<R>(
+    pub(super) fn with_bound_buffer<R>(
         &mut self,
         target: GLenum,
         command: &'static str,
@@ -132,7 +152,8 @@ impl Context {
         }
     }
 
-    /// `glDeleteBuffers`: deleted buffers are unbound from this context's bindings and arrays.
+    /// `glDeleteBuffers`: deleted buffers are unbound from this context's bindings and arrays
+    /// (a mapping ends with its buffer).
     ///
     /// # Safety
     /// `buffers` must point to `n` names.
@@ -146,6 +167,12 @@ impl Context {
         for name in names.into_iter().filter(|&b| b != 0) {
             self.shared.lock().buffers.names.remove(&name);
             self.arrays.unbind_buffer(name);
+            let store = &mut self.pixels.store;
+            for binding in [&mut store.pack_buffer, &mut store.unpack_buffer] {
+                if *binding == name {
+                    *binding = 0;
+                }
+            }
         }
     }
 
@@ -234,37 +261,6 @@ impl Context {
         });
     }
 
-    /// `glMapBuffer`: the data store's address, valid until `glUnmapBuffer`, `glBufferData` or
-    /// deletion; null on error.
-    pub fn glMapBuffer(&mut self, target: GLenum, access: GLenum) -> *mut c_void {
-        if !matches!(access, gl::GL_READ_ONLY | gl::GL_WRITE_ONLY | gl::GL_READ_WRITE) {
-            self.set_error_in(gl::GL_INVALID_ENUM, "glMapBuffer");
-            return std::ptr::null_mut();
-        }
-        self.with_bound_buffer(target, "glMapBuffer", |buffer| {
-            if buffer.mapped {
-                return Err(gl::GL_INVALID_OPERATION);
-            }
-            buffer.mapped = true;
-            buffer.access = access;
-            Ok(buffer.data.as_mut_ptr().cast::<c_void>())
-        })
-        .unwrap_or(std::ptr::null_mut())
-    }
-
-    /// `glUnmapBuffer`: `GL_TRUE` (glrt's stores are never corrupted).
-    pub fn glUnmapBuffer(&mut self, target: GLenum) -> GLboolean {
-        let done = self.with_bound_buffer(target, "glUnmapBuffer", |buffer| {
-            if !buffer.mapped {
-                return Err(gl::GL_INVALID_OPERATION);
-            }
-            buffer.mapped = false;
-            buffer.version += 1;
-            Ok(())
-        });
-        GLboolean::from(done.is_some())
-    }
-
     /// `glGetBufferParameteriv`.
     ///
     /// # Safety
@@ -276,26 +272,14 @@ impl Context {
                 gl::GL_BUFFER_USAGE => b.usage as GLint,
                 gl::GL_BUFFER_ACCESS => b.access as GLint,
                 gl::GL_BUFFER_MAPPED => GLint::from(b.mapped),
+                gl::GL_BUFFER_ACCESS_FLAGS => b.access_flags as GLint,
+                gl::GL_BUFFER_MAP_OFFSET => GLint::try_from(b.map_offset).unwrap_or(GLint::MAX),
+                gl::GL_BUFFER_MAP_LENGTH => GLint::try_from(b.map_length).unwrap_or(GLint::MAX),
                 _ => return Err(gl::GL_INVALID_ENUM),
             })
         });
         if let Some(v) = value {
             unsafe { write_slice(params, &[v]) };
-        }
-    }
-
-    /// `glGetBufferPointerv`: the mapped address, null when the buffer is not mapped.
-    ///
-    /// # Safety
-    /// `params` must have room for one pointer.
-    pub unsafe fn glGetBufferPointerv(&mut self, target: GLenum, pname: GLenum, params: *const *mut c_void) {
-        let value = self.with_bound_buffer(target, "glGetBufferPointerv", |b| match pname {
-            gl::GL_BUFFER_MAP_POINTER if b.mapped => Ok(b.data.as_mut_ptr().cast::<c_void>()),
-            gl::GL_BUFFER_MAP_POINTER => Ok(std::ptr::null_mut()),
-            _ => Err(gl::GL_INVALID_ENUM),
-        });
-        if let Some(p) = value {
-            unsafe { write_slice(params.cast_mut(), &[p]) };
         }
     }
 }

@@ -101,6 +101,7 @@ impl Context {
             .or_else(|| self.query_render_mode(pname))
             .or_else(|| self.query_texture(pname))
             .or_else(|| self.query_pixels(pname))
+            .or_else(|| self.query_pixel_buffers(pname))
             .or_else(|| self.query_vertex(pname))
             .or_else(|| self.query_arrays(pname))
             .or_else(|| self.query_arrays_ext(pname))

@@ -17,6 +17,7 @@ pub mod arrays_ext;
 pub mod assemble;
 pub mod attrib;
 pub mod begin_material;
+pub mod buffer_mapping;
 pub mod buffer_objects;
 pub mod buffers;
 pub mod capture;
@@ -48,6 +49,9 @@ pub mod lighting;
 pub mod limits;
 pub mod lists;
 pub mod params;
+pub mod pixel_buffers;
+#[cfg(test)]
+mod pixel_buffer_tests;
 pub mod pixels;
 pub mod queries;
 pub mod rasterization;

@@ -1,12 +1,11 @@
 //! The polygon stipple pattern (OpenGL 1.5 section 3.5.2): `glPolygonStipple` unpacks a 32×32
 //! bitmap like `glBitmap` data (section 3.6.4, type `GL_BITMAP`), `glGetPolygonStipple` packs
 //! it back (section 4.3.2).
-//! Both honour the pixel-store state: the unpack modes when the pattern is given, the pack
-//! modes when it is read back.
+//! Both honour the pixel-store state: the unpack modes (and the pixel unpack buffer) when the
+//! pattern is given, the pack modes (and the pixel pack buffer) when it is read back.
 
 use super::Context;
 use super::pixels::store::StoreModes;
-use super::convert::read_slice;
 use super::gl::GLubyte;
 use super::lists::ListOp;
 
@@ -60,21 +59,34 @@ impl BitmapLayout {
     }
 }
 
-/// Unpacks a 32×32 bitmap into rows (bit 31 = leftmost pixel); `None` for a null pointer.
-///
-/// # Safety
-/// A non-null `ptr` must point to the bytes the layout spans.
-unsafe fn unpack(ptr: *const GLubyte, layout: &BitmapLayout) -> Option<[u32; SIDE]> {
-    let bytes = unsafe { read_slice(ptr, layout.len()) }?;
-    Some(std::array::from_fn(|row| {
+/// Unpacks a 32×32 bitmap from the bytes the layout spans into rows (bit 31 = leftmost pixel).
+fn unpack(bytes: &[u8], layout: &BitmapLayout) -> [u32; SIDE] {
+    std::array::from_fn(|row| {
         (0..SIDE).fold(0u32, |acc, col| {
             let (i, mask) = layout.bit(row, col);
-            acc | (u32::from(bytes[i] & mask != 0) << (31 - col))
+            acc | (u32::from(bytes.get(i).is_some_and(|&b| b & mask != 0)) << (31 - col))
         })
-    }))
+    })
 }
 
 impl Context {
+    /// The pattern at `mask` (client memory or the unpack buffer, [`Context::unpack_bytes`])
+    /// as the unpack modes lay it out; `None` after an error or for a null client pointer.
+    ///
+    /// # Safety
+    /// A non-null `mask` must point to the 32×32 bitmap as the unpack state lays it out.
+    unsafe fn read_stipple(&mut self, mask: *const GLubyte) -> Option<[u32; SIDE]> {
+        let layout = BitmapLayout::of(&self.pixels.store.unpack);
+        match unsafe { self.unpack_bytes(mask.cast(), layout.len(), 1, "glPolygonStipple") } {
+            Ok(Some(bytes)) => Some(unpack(&bytes, &layout)),
+            Ok(None) => {
+                self.null_pointer("glPolygonStipple");
+                None
+            }
+            Err(()) => None,
+        }
+    }
+
     /// Replaces the pattern.
     fn set_polygon_stipple(&mut self, rows: [u32; SIDE]) {
         self.fixed_mut().raster.stipple = rows;
@@ -85,9 +97,8 @@ impl Context {
     /// # Safety
     /// `mask` must point to the 32×32 bitmap as the unpack state lays it out.
     pub unsafe fn glPolygonStipple(&mut self, mask: *const GLubyte) {
-        match unsafe { unpack(mask, &BitmapLayout::of(&self.pixels.store.unpack)) } {
-            Some(rows) => self.set_polygon_stipple(rows),
-            None => self.null_pointer("glPolygonStipple"),
+        if let Some(rows) = unsafe { self.read_stipple(mask) } {
+            self.set_polygon_stipple(rows);
         }
     }
 
@@ -96,9 +107,8 @@ impl Context {
     /// # Safety
     /// As [`Context::glPolygonStipple`].
     pub unsafe fn compile_glPolygonStipple(&mut self, mask: *const GLubyte) {
-        match unsafe { unpack(mask, &BitmapLayout::of(&self.pixels.store.unpack)) } {
-            Some(rows) => self.lists.record(ListOp::Deferred(Box::new(move |ctx| ctx.set_polygon_stipple(rows)))),
-            None => self.null_pointer("glPolygonStipple"),
+        if let Some(rows) = unsafe { self.read_stipple(mask) } {
+            self.lists.record(ListOp::Deferred(Box::new(move |ctx| ctx.set_polygon_stipple(rows))));
         }
     }
 
@@ -108,22 +118,19 @@ impl Context {
     /// # Safety
     /// `mask` must point to writable memory for the 32×32 bitmap as the pack state lays it out.
     pub unsafe fn glGetPolygonStipple(&mut self, mask: *mut GLubyte) {
-        if mask.is_null() {
-            return self.null_pointer("glGetPolygonStipple");
-        }
         let layout = BitmapLayout::of(&self.pixels.store.pack);
         let rows = self.fixed.raster.stipple;
-        for (row, bits) in rows.iter().enumerate() {
-            for col in 0..SIDE {
-                let (i, m) = layout.bit(row, col);
-                // Safety: non-null, and the caller guarantees the layout's bytes are writable.
-                unsafe {
-                    let p = mask.add(i);
-                    let byte = p.read();
-                    p.write(if bits & (1 << (31 - col)) != 0 { byte | m } else { byte & !m });
+        let pack = |bytes: &mut [u8]| {
+            for (row, bits) in rows.iter().enumerate() {
+                for col in 0..SIDE {
+                    let (i, m) = layout.bit(row, col);
+                    if let Some(byte) = bytes.get_mut(i) {
+                        *byte = if bits & (1 << (31 - col)) != 0 { *byte | m } else { *byte & !m };
+                    }
                 }
             }
-        }
+        };
+        unsafe { self.pack_bytes(mask.cast(), layout.len(), 1, "glGetPolygonStipple", pack) }
     }
 }
 
@@ -175,7 +182,7 @@ mod tests {
         assert_eq!((l.row_stride, l.first_row, l.first_bit), (8, 8, 4));
         let mut bytes = vec![0u8; 8 * 33];
         bytes[8] = 0x10; // row 0, pixel 0 is bit 4 (LSB first, 4 pixels skipped)
-        let rows = unsafe { unpack(bytes.as_ptr(), &l) }.unwrap();
+        let rows = unpack(&bytes, &l);
         assert_eq!(rows[0], 1 << 31);
         assert_eq!(rows[1], 0);
         assert_eq!(BitmapLayout::new(4, 0, 0, 0, false), BitmapLayout::of(&Default::default()));

@@ -21,12 +21,17 @@ const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 /// `GL_EXT_packed_depth_stencil` and `GL_ARB_depth_buffer_float` are announced for their pixel
 /// formats and texture internal formats (as Mesa's compatibility profile does); their
 /// renderbuffer formats work with `GL_EXT_framebuffer_object`.
+/// `GL_ARB_pixel_buffer_object` and `GL_EXT_pixel_buffer_object` cover every pixel command glrt
+/// has; the imaging-subset commands they also name (convolution, histogram, minmax) are not
+/// part of OpenGL 1.5 without `GL_ARB_imaging`, which glrt does not announce.
 const EXTENSIONS: &str = concat!(
     "GL_ARB_depth_buffer_float ",
     "GL_ARB_depth_texture ",
+    "GL_ARB_map_buffer_range ",
     "GL_ARB_multisample ",
     "GL_ARB_multitexture ",
     "GL_ARB_occlusion_query ",
+    "GL_ARB_pixel_buffer_object ",
     "GL_ARB_point_parameters ",
     "GL_ARB_shadow ",
     "GL_ARB_texture_border_clamp ",
@@ -54,6 +59,7 @@ const EXTENSIONS: &str = concat!(
     "GL_EXT_packed_depth_stencil ",
     "GL_EXT_packed_pixels ",
     "GL_EXT_paletted_texture ",
+    "GL_EXT_pixel_buffer_object ",
     "GL_EXT_point_parameters ",
     "GL_EXT_polygon_offset ",
     "GL_EXT_rescale_normal ",

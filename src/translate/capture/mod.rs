@@ -30,10 +30,14 @@
 //! behind are not reproduced: OpenGL 1.5 section 2.8 leaves them indeterminate.)
 //!
 //! Pointers stored in client memory (`glMultiDrawElements`' index lists) are mapped with
-//! [`client_pointer`].
+//! [`client_pointer`]. Commands reading a buffer object (vertex arrays, pixels from a pixel
+//! unpack buffer) record its offset and no memory. What a program writes through a mapping
+//! (`glMapBuffer`, `glMapBufferRange`) is recorded when `glUnmapBuffer` ends a writable
+//! mapping, as the `glBufferSubData` call that has the same effect, right after the unmap
+//! ([`mapped_writes`]).
 //!
 //! Limits: one recording thread is assumed (the calls of all threads go to one stream);
-//! contents a program writes through `glMapBuffer` pointers are not recorded; a program
+//! a program
 //! killed before the capture is finished (at exit, or after the last frame of
 //! `GLRT_CAPTURE_FRAMES`) leaves a file readers refuse. Replay checks every length in the
 //! file, but runs the recorded GL calls as they are: a hand-made capture whose arguments make
@@ -48,6 +52,7 @@ pub mod shadow;
 pub mod summary;
 pub mod writer;
 
+use std::cell::RefCell;
 use std::path::Path;
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicU8, AtomicU32, AtomicU64, Ordering};
@@ -251,6 +256,31 @@ pub fn client_pointer<T>(pointer: *const T) -> *const T {
     }
 }
 
+/// A call recorded after the current call's own record: command id, raw arguments, and the
+/// memory it reads (address, bytes).
+type Follower = (usize, [u64; 4], (u64, Vec<u8>));
+
+thread_local! {
+    /// Calls to record after the current call's own record ([`mapped_writes`]).
+    static FOLLOWERS: RefCell<Vec<Follower>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Records that the call being made (`glUnmapBuffer`) ends a mapping through which the program
+/// may have written `bytes`, which lie at offset `offset` of the buffer bound to `target`:
+/// after the call's own record comes `glBufferSubData(target, offset, bytes.len(), bytes)`,
+/// which puts the same contents into the buffer when replayed. Nothing is recorded when capture
+/// is off, nor during a replay, whose file holds that call already.
+pub fn mapped_writes(target: u32, offset: usize, bytes: &[u8]) {
+    static BUFFER_SUB_DATA: OnceLock<Option<usize>> = OnceLock::new();
+    if STATE.load(Ordering::Relaxed) != ON || CANONICAL.read().is_some() || bytes.is_empty() {
+        return;
+    }
+    let Some(id) = *BUFFER_SUB_DATA.get_or_init(|| table::COMMANDS.iter().position(|c| c.0 == "glBufferSubData")) else { return };
+    let address = bytes.as_ptr() as u64;
+    let args = [target.raw(), (offset as isize).raw(), (bytes.len() as isize).raw(), address];
+    let _ = FOLLOWERS.try_with(|f| f.borrow_mut().push((id, args, (address, bytes.to_vec()))));
+}
+
 /// A call being recorded; the record is written when it is dropped (after the call).
 pub struct CallRecord<const N: usize> {
     id: usize,
@@ -296,6 +326,9 @@ impl<const N: usize> Drop for CallRecord<N> {
             .map(|&(address, len)| (captured_address(address as u64), unsafe { std::slice::from_raw_parts(address as *const u8, len) }))
             .collect();
         session.writer.record(|out| format::put_call(out, self.id, &args, &reads));
+        for (id, args, (address, bytes)) in FOLLOWERS.try_with(|f| std::mem::take(&mut *f.borrow_mut())).unwrap_or_default() {
+            session.writer.record(|out| format::put_call(out, id, &args, &[(address, &bytes)]));
+        }
     }
 }
 

@@ -178,6 +178,12 @@ impl Type {
         }
     }
 
+    /// Bytes of the GL data type (table 3.5) that a pixel buffer offset must be a multiple of:
+    /// the element size, 1 (`ubyte`) for bitmaps.
+    pub fn datum_size(self) -> usize {
+        self.element_size().max(1)
+    }
+
     /// Elements per group of `format` (1 for the types that pack a whole group).
     pub fn elements(self, format: Format) -> usize {
         if matches!(self, Type::Packed(_) | Type::Uint24_8 | Type::Float32Uint24_8Rev) { 1 } else { format.components }

@@ -64,28 +64,37 @@ impl Context {
             return;
         }
         let drawn = !self.raster_event(RasterEvent::Bitmap);
-        if drawn && w > 0 && h > 0 && !bitmap.is_null() {
+        if drawn && w > 0 && h > 0 {
             let (format, ty) = (codec::format(gl::GL_COLOR_INDEX), codec::pixel_type(gl::GL_BITMAP));
             let (Some(format), Some(ty)) = (format, ty) else { return };
             let modes = self.pixels.store.unpack;
             let layout = ty.layout(format, &modes, w, h, 1).filter(|_| w.checked_mul(h).is_some_and(|n| n <= super::MAX_DECODED_VALUES));
             let Some(layout) = layout else { return self.set_error_in(gl::GL_OUT_OF_MEMORY, "glBitmap") };
-            crate::translate::capture::reads::note(bitmap, layout.span);
-            // Safety: the caller guarantees the bits the unpack modes describe.
-            let bytes = unsafe { std::slice::from_raw_parts(bitmap, layout.span) };
-            let bits = Codec { format, ty, layout, modes: &modes }.decode(bytes, w, h, 1);
-            let mask: Arc<[u8]> = bits.iter().map(|&b| if b != 0.0 { 255 } else { 0 }).collect();
-            let r = &self.pixels.raster;
-            let kind = PixelKind::Bitmap {
-                window_pos: [r.window[0] - xorig, r.window[1] - yorig, r.window[2]],
-                size: [w as u32, h as u32],
-                color: r.data.color,
-                mask,
+            let bytes = match unsafe { self.unpack_bytes(bitmap.cast(), layout.span, ty.datum_size(), "glBitmap") } {
+                Ok(bytes) => bytes,
+                Err(()) => return,
             };
-            self.push_pixel_op(kind);
+            // A null client pointer draws nothing; the raster position still moves.
+            if let Some(bytes) = bytes {
+                self.draw_bitmap(&Codec { format, ty, layout, modes: &modes }.decode(&bytes, w, h, 1), [w, h], [xorig, yorig]);
+            }
         }
         self.pixels.raster.window[0] += xmove;
         self.pixels.raster.window[1] += ymove;
+    }
+
+    /// Records a bitmap of `w` × `h` decoded `bits` whose origin is `orig`, at the raster
+    /// position in the raster colour.
+    fn draw_bitmap(&mut self, bits: &[f64], [w, h]: [usize; 2], [xorig, yorig]: [f32; 2]) {
+        let mask: Arc<[u8]> = bits.iter().map(|&b| if b != 0.0 { 255 } else { 0 }).collect();
+        let r = &self.pixels.raster;
+        let kind = PixelKind::Bitmap {
+            window_pos: [r.window[0] - xorig, r.window[1] - yorig, r.window[2]],
+            size: [w as u32, h as u32],
+            color: r.data.color,
+            mask,
+        };
+        self.push_pixel_op(kind);
     }
 
     /// `glBitmap` in a display list: the bits are copied when compiled.
@@ -97,7 +106,7 @@ impl Context {
         let run = move |ctx: &mut Context, p: *const c_void| unsafe {
             super::super::dispatch::exec_glBitmap(ctx, width, height, xorig, yorig, xmove, ymove, p.cast())
         };
-        unsafe { self.compile_image_command(gl::GL_COLOR_INDEX, gl::GL_BITMAP, [width, height, 1], bitmap.cast(), run) }
+        unsafe { self.compile_image_command(gl::GL_COLOR_INDEX, gl::GL_BITMAP, [width, height, 1], bitmap.cast(), "glBitmap", run) }
     }
 
     /// `glDrawPixels`: the image is unpacked and transferred now and drawn at the raster
@@ -137,7 +146,7 @@ impl Context {
     /// As [`Context::glDrawPixels`].
     pub unsafe fn compile_glDrawPixels(&mut self, width: GLsizei, height: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p: *const c_void| unsafe { super::super::dispatch::exec_glDrawPixels(ctx, width, height, format, type_, p) };
-        unsafe { self.compile_image_command(format, type_, [width, height, 1], pixels, run) }
+        unsafe { self.compile_image_command(format, type_, [width, height, 1], pixels, "glDrawPixels", run) }
     }
 
     /// `glCopyPixels`: `GL_INVALID_ENUM` for a type other than `GL_COLOR`, `GL_DEPTH`,

@@ -1,8 +1,8 @@
 //! The pixel path of OpenGL 1.5 (sections 3.6–3.7, 4.3): pixel storage modes, pixel transfer
 //! and maps, the raster position, `glBitmap`, `glDrawPixels`, `glCopyPixels`,
-//! `glReadPixels`, `glPixelZoom` and `glAccum`. Images are read from client memory here
-//! (`Context::unpack_client`) for texture uploads too, and written back by
-//! `Context::pack_client`.
+//! `glReadPixels`, `glPixelZoom` and `glAccum`. Images are read from client memory or the
+//! pixel unpack buffer here (`Context::unpack_client`) for texture uploads too, and written
+//! back by `Context::pack_client` (see [`super::pixel_buffers`]).
 //!
 //! Bitmaps, images and copies go into [`crate::frame::Frame::pixels`] in order with the draws;
 //! read-backs ask the renderer through [`crate::render::FrameSink::read_pixels`].
@@ -74,9 +74,11 @@ impl Context {
         }
     }
 
-    /// Reads a `w` × `h` × `d` image from client memory with the unpack modes and applies
-    /// pixel transfer. `Ok(None)` for a null pointer; `Err(())` (after `GL_OUT_OF_MEMORY`) when
-    /// the image is too large to read. Sizes must have been checked non-negative.
+    /// Reads a `w` × `h` × `d` image from client memory or the unpack buffer
+    /// ([`Context::unpack_bytes`]) with the unpack modes and applies pixel transfer.
+    /// `Ok(None)` for a null client pointer; `Err(())` after `GL_OUT_OF_MEMORY` when the image
+    /// is too large to read, or the unpack buffer's `GL_INVALID_OPERATION`. Sizes must have
+    /// been checked non-negative.
     ///
     /// # Safety
     /// A non-null `pixels` must point to the memory the unpack modes describe.
@@ -95,18 +97,14 @@ impl Context {
             self.set_error_in(gl::GL_OUT_OF_MEMORY, command);
             return Err(());
         };
-        if pixels.is_null() {
-            return Ok(None);
-        }
-        crate::translate::capture::reads::note(pixels, layout.span);
-        // Safety: the caller guarantees `layout.span` readable bytes.
-        let bytes = unsafe { std::slice::from_raw_parts(pixels.cast::<u8>(), layout.span) };
-        let groups = Codec { format, ty, layout, modes: &modes }.decode(bytes, w, h, d);
+        let Some(bytes) = (unsafe { self.unpack_bytes(pixels, layout.span, ty.datum_size(), command) })? else { return Ok(None) };
+        let groups = Codec { format, ty, layout, modes: &modes }.decode(&bytes, w, h, d);
         Ok(Some(self.pixels.transfer.apply(format, &groups, keep_index)))
     }
 
-    /// Writes `values` (groups of `format`, in format order) to client memory with the pack
-    /// modes, leaving bytes between pixels untouched.
+    /// Writes `values` (groups of `format`, in format order) to client memory or the pack
+    /// buffer ([`Context::pack_bytes`]) with the pack modes, leaving bytes between pixels
+    /// untouched.
     ///
     /// # Safety
     /// A non-null `pixels` must point to writable memory as the pack modes describe.
@@ -120,52 +118,31 @@ impl Context {
     ) {
         let modes = self.pixels.store.pack;
         let Some(layout) = ty.layout(format, &modes, w, h, d) else { return self.set_error_in(gl::GL_OUT_OF_MEMORY, command) };
-        if pixels.is_null() {
-            return self.null_pointer(command);
-        }
-        // Safety: the caller guarantees `layout.span` writable bytes.
-        let bytes = unsafe { std::slice::from_raw_parts_mut(pixels.cast::<u8>(), layout.span) };
-        Codec { format, ty, layout, modes: &modes }.encode(bytes, values, w, h, d);
+        let codec = Codec { format, ty, layout, modes: &modes };
+        unsafe { self.pack_bytes(pixels, layout.span, ty.datum_size(), command, |bytes| codec.encode(bytes, values, w, h, d)) }
     }
 
-    /// Copies the client memory a pixel command reads, for display lists (section 5.4: the
-    /// image is unpacked when the list is compiled). `None` when the arguments are invalid or
-    /// the pointer is null: the recorded command then raises the error when it runs.
+    /// Records a command that reads an image into the display list being compiled, with a copy
+    /// of that image (section 5.4: the image is unpacked when the list is compiled; see
+    /// [`Context::compile_unpack`]); when the list runs, the command reads the copy with the
+    /// unpack modes of compile time.
     ///
     /// # Safety
     /// A non-null `pixels` must point to the memory the unpack modes describe.
-    pub(crate) unsafe fn copy_client_image(&self, format: GLenum, type_: GLenum, dims: [i32; 3], pixels: *const c_void) -> Option<Vec<u8>> {
-        let (f, t) = codec::parse(format, type_).ok()?;
-        let [w, h, d] = dims.map(|v| usize::try_from(v).ok());
-        let layout = t.layout(f, &self.pixels.store.unpack, w?, h?, d?)?;
-        if pixels.is_null() {
-            return None;
-        }
-        crate::translate::capture::reads::note(pixels, layout.span);
-        // Safety: the caller guarantees `layout.span` readable bytes.
-        Some(unsafe { std::slice::from_raw_parts(pixels.cast::<u8>(), layout.span) }.to_vec())
-    }
-
-    /// Records a command that reads an image, with a copy of that image; when the list runs,
-    /// the command reads the copy with the unpack modes of compile time.
-    ///
-    /// # Safety
-    /// As [`Context::copy_client_image`].
     pub(crate) unsafe fn compile_image_command(
         &mut self,
         format: GLenum,
         type_: GLenum,
         dims: [i32; 3],
         pixels: *const c_void,
+        command: &'static str,
         run: impl Fn(&mut Context, *const c_void) + Send + Sync + 'static,
     ) {
-        let copy = unsafe { self.copy_client_image(format, type_, dims, pixels) };
-        let unpack = self.pixels.store.unpack;
-        self.lists.record(super::lists::ListOp::Deferred(Box::new(move |ctx| {
-            let saved = std::mem::replace(&mut ctx.pixels.store.unpack, unpack);
-            run(ctx, copy.as_ref().map_or(std::ptr::null(), |v| v.as_ptr().cast()));
-            ctx.pixels.store.unpack = saved;
-        })));
+        let size = codec::parse(format, type_).ok().and_then(|(f, t)| {
+            let [w, h, d] = dims.map(|v| usize::try_from(v).ok());
+            Some((t.layout(f, &self.pixels.store.unpack, w?, h?, d?)?.span, t.datum_size()))
+        });
+        unsafe { self.compile_unpack(pixels, size, command, run) }
     }
 
     /// `glGet` values of the pixel path: storage modes, transfer, maps, zoom, raster position.

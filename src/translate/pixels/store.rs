@@ -47,6 +47,11 @@ pub struct PixelStore {
     pub unpack: StoreModes,
     /// Modes for writing client memory (`glReadPixels`, `glGetTexImage`, ...).
     pub pack: StoreModes,
+    /// `GL_PIXEL_UNPACK_BUFFER_BINDING` (0: images are read from client memory; see
+    /// [`crate::translate::pixel_buffers`]).
+    pub unpack_buffer: u32,
+    /// `GL_PIXEL_PACK_BUFFER_BINDING` (0: images are written to client memory).
+    pub pack_buffer: u32,
 }
 
 /// Largest client image glrt reads or writes at once (bytes); larger requests raise

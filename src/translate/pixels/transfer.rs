@@ -3,10 +3,8 @@
 //! (and packed) pixel groups.
 
 use super::super::Context;
-use super::super::convert::{read_slice, write_slice};
 use super::super::gl::{self, GLenum, GLfloat, GLint, GLsizei, GLuint, GLushort};
 use super::super::limits::MAX_PIXEL_MAP_TABLE;
-use super::super::lists::ListOp;
 use super::codec::{Format, Kind, to_rgba};
 
 /// The ten pixel maps, in the order of `GL_PIXEL_MAP_I_TO_I` ... `GL_PIXEL_MAP_A_TO_A`.
@@ -189,22 +187,39 @@ fn scale_bias_of(pname: GLenum) -> Option<(bool, usize)> {
     })
 }
 
-/// Copies the `mapsize` values of a `glPixelMap` call from client memory when the size is in
-/// range (for display lists; the checks and errors happen when the copy is executed).
-unsafe fn copy_map<T: Copy>(mapsize: GLsizei, values: *const T) -> Option<Vec<T>> {
-    let n = usize::try_from(mapsize).ok().filter(|&n| (1..=MAX_PIXEL_MAP_TABLE).contains(&n))?;
-    unsafe { read_slice(values, n) }
+/// The size of a `glPixelMap` call's table when it is in range (for display lists; the checks
+/// and errors happen when the recorded command runs).
+fn map_len(mapsize: GLsizei) -> Option<usize> {
+    usize::try_from(mapsize).ok().filter(|&n| (1..=MAX_PIXEL_MAP_TABLE).contains(&n))
 }
 
-/// A value type of `glPixelMap`/`glGetPixelMap`: how it converts to and from a map entry.
+/// A value type of `glPixelMap`/`glGetPixelMap`: how it converts to and from a map entry and
+/// its bytes in memory.
 pub trait MapValue: Copy + Send + Sync + 'static {
     /// Entry of a map from the client value; colour maps normalize integers (table 2.9).
     fn to_entry(self, color: bool) -> f32;
     /// Client value of an entry; colour entries of integer types scale to the type's range.
     fn from_entry(entry: f32, color: bool) -> Self;
+    /// The value of `size_of::<Self>()` native-endian bytes.
+    fn read_ne(bytes: &[u8]) -> Self;
+    /// Writes the value's native-endian bytes to `out` (`size_of::<Self>()` bytes).
+    fn write_ne(self, out: &mut [u8]);
+}
+
+/// [`MapValue`]'s byte conversions for a primitive number type.
+macro_rules! native_bytes {
+    () => {
+        fn read_ne(bytes: &[u8]) -> Self {
+            Self::from_ne_bytes(bytes.try_into().unwrap_or_default())
+        }
+        fn write_ne(self, out: &mut [u8]) {
+            out.copy_from_slice(&self.to_ne_bytes())
+        }
+    };
 }
 
 impl MapValue for GLfloat {
+    native_bytes!();
     fn to_entry(self, _: bool) -> f32 {
         self
     }
@@ -213,6 +228,7 @@ impl MapValue for GLfloat {
     }
 }
 impl MapValue for GLuint {
+    native_bytes!();
     fn to_entry(self, color: bool) -> f32 {
         if color { super::super::convert::norm_u32(self) } else { self as f32 }
     }
@@ -221,6 +237,7 @@ impl MapValue for GLuint {
     }
 }
 impl MapValue for GLushort {
+    native_bytes!();
     fn to_entry(self, color: bool) -> f32 {
         if color { super::super::convert::norm_u16(self) } else { f32::from(self) }
     }
@@ -255,30 +272,28 @@ impl Context {
 
     /// `glPixelMap*v` after the checks of section 3.6.3: `GL_INVALID_ENUM` for an unknown
     /// map, `GL_INVALID_VALUE` for a size out of [1, `GL_MAX_PIXEL_MAP_TABLE`] or, for maps
-    /// from indices, not a power of two. Colour entries are clamped to [0, 1].
+    /// from indices, not a power of two. The values come from client memory or the unpack
+    /// buffer ([`Context::unpack_bytes`]). Colour entries are clamped to [0, 1].
     unsafe fn pixel_map<T: MapValue>(&mut self, map: GLenum, mapsize: GLsizei, values: *const T, command: &'static str) {
         let Some((i, from_index)) = map_index(map) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
-        let Some(n) = usize::try_from(mapsize).ok().filter(|&n| (1..=MAX_PIXEL_MAP_TABLE).contains(&n)) else {
-            return self.set_error_in(gl::GL_INVALID_VALUE, command);
-        };
+        let Some(n) = map_len(mapsize) else { return self.set_error_in(gl::GL_INVALID_VALUE, command) };
         if from_index && !n.is_power_of_two() {
             return self.set_error_in(gl::GL_INVALID_VALUE, command);
         }
-        let Some(raw) = (unsafe { read_slice(values, n) }) else { return self.null_pointer(command) };
+        let size = size_of::<T>();
+        let Ok(bytes) = (unsafe { self.unpack_bytes(values.cast(), n * size, size, command) }) else { return };
+        let Some(bytes) = bytes else { return self.null_pointer(command) };
         let color = i >= I_TO_RGBA;
-        self.pixels.transfer.maps[i] = raw.into_iter().map(|v| {
-            let e = v.to_entry(color);
+        self.pixels.transfer.maps[i] = bytes.chunks_exact(size).map(|b| {
+            let e = T::read_ne(b).to_entry(color);
             if color { e.clamp(0.0, 1.0) } else { e }
         }).collect();
     }
 
-    /// Records a `glPixelMap*v` with a copy of its values.
-    unsafe fn compile_pixel_map<T: MapValue>(&mut self, map: GLenum, mapsize: GLsizei, values: *const T, run: unsafe fn(&mut Context, GLenum, GLsizei, *const T)) {
-        let copy = unsafe { copy_map(mapsize, values) };
-        self.lists.record(ListOp::Deferred(Box::new(move |ctx| {
-            let ptr = copy.as_ref().map_or(std::ptr::null(), |v| v.as_ptr());
-            unsafe { run(ctx, map, mapsize, ptr) }
-        })));
+    /// Records a `glPixelMap*v` with a copy of its values ([`Context::compile_unpack`]).
+    unsafe fn compile_pixel_map<T: MapValue>(&mut self, map: GLenum, mapsize: GLsizei, values: *const T, command: &'static str, run: unsafe fn(&mut Context, GLenum, GLsizei, *const T)) {
+        let size = map_len(mapsize).map(|n| (n * size_of::<T>(), size_of::<T>()));
+        unsafe { self.compile_unpack(values.cast(), size, command, move |ctx, p| run(ctx, map, mapsize, p.cast())) }
     }
 
     /// `glPixelMapfv`.
@@ -307,29 +322,32 @@ impl Context {
     /// # Safety
     /// As [`Context::glPixelMapfv`].
     pub unsafe fn compile_glPixelMapfv(&mut self, map: GLenum, mapsize: GLsizei, values: *const GLfloat) {
-        unsafe { self.compile_pixel_map(map, mapsize, values, super::super::dispatch::exec_glPixelMapfv) }
+        unsafe { self.compile_pixel_map(map, mapsize, values, "glPixelMapfv", super::super::dispatch::exec_glPixelMapfv) }
     }
     /// `glPixelMapuiv` in a display list.
     ///
     /// # Safety
     /// As [`Context::glPixelMapuiv`].
     pub unsafe fn compile_glPixelMapuiv(&mut self, map: GLenum, mapsize: GLsizei, values: *const GLuint) {
-        unsafe { self.compile_pixel_map(map, mapsize, values, super::super::dispatch::exec_glPixelMapuiv) }
+        unsafe { self.compile_pixel_map(map, mapsize, values, "glPixelMapuiv", super::super::dispatch::exec_glPixelMapuiv) }
     }
     /// `glPixelMapusv` in a display list.
     ///
     /// # Safety
     /// As [`Context::glPixelMapusv`].
     pub unsafe fn compile_glPixelMapusv(&mut self, map: GLenum, mapsize: GLsizei, values: *const GLushort) {
-        unsafe { self.compile_pixel_map(map, mapsize, values, super::super::dispatch::exec_glPixelMapusv) }
+        unsafe { self.compile_pixel_map(map, mapsize, values, "glPixelMapusv", super::super::dispatch::exec_glPixelMapusv) }
     }
 
-    /// `glGetPixelMap*v`: `GL_INVALID_ENUM` for an unknown map.
+    /// `glGetPixelMap*v`: `GL_INVALID_ENUM` for an unknown map; the values go to client
+    /// memory or the pack buffer ([`Context::pack_bytes`]).
     unsafe fn get_pixel_map<T: MapValue>(&mut self, map: GLenum, values: *mut T, command: &'static str) {
         let Some((i, _)) = map_index(map) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let color = i >= I_TO_RGBA;
         let out: Vec<T> = self.pixels.transfer.maps[i].iter().map(|&e| T::from_entry(e, color)).collect();
-        unsafe { write_slice(values, &out) }
+        let size = size_of::<T>();
+        let write = |bytes: &mut [u8]| out.iter().zip(bytes.chunks_exact_mut(size)).for_each(|(v, b)| v.write_ne(b));
+        unsafe { self.pack_bytes(values.cast(), out.len() * size, size, command, write) }
     }
 
     /// `glGetPixelMapfv`.

@@ -10,9 +10,7 @@ use std::ffi::c_void;
 use std::sync::Arc;
 
 use super::super::Context;
-use super::super::convert::read_slice;
 use super::super::gl::{self, GLenum, GLint, GLsizei};
-use super::super::lists::ListOp;
 use super::formats::{Base, S3tc};
 use super::image::{SizeCheck, check_level, check_size, image_target};
 use super::objects::Level;
@@ -44,12 +42,6 @@ fn s3tc_for(dims: usize, internal: GLenum) -> Option<S3tc> {
     S3tc::of(internal).filter(|_| dims == 2)
 }
 
-/// Copies `image_size` bytes of compressed data (for display lists).
-unsafe fn copy_data(image_size: GLsizei, data: *const c_void) -> Option<Vec<u8>> {
-    let n = usize::try_from(image_size).ok().filter(|&n| n as u64 <= super::super::pixels::store::MAX_CLIENT_IMAGE_BYTES)?;
-    unsafe { read_slice(data.cast::<u8>(), n) }
-}
-
 impl Context {
     /// `glCompressedTexImage*`: `GL_INVALID_ENUM` for a bad target or a format that is not a
     /// compressed format of that dimensionality, `GL_INVALID_VALUE` for bad level or sizes or
@@ -78,10 +70,11 @@ impl Context {
         let base = Base::Texel(if format == S3tc::Dxt1Rgb { TexelFormat::Rgb } else { TexelFormat::Rgba });
         let mut lvl = Level { image: Arc::default(), size, border: 0, internal_format: internalformat, base, compressed: None, indices: None, stencil: None };
         if !dest.proxy {
-            let Some(bytes) = (unsafe { read_slice(data.cast::<u8>(), expected) }) else { return self.null_pointer(command) };
+            let Ok(bytes) = (unsafe { self.unpack_bytes(data, expected, 1, command) }) else { return };
+            let Some(bytes) = bytes else { return self.null_pointer(command) };
             let texels = s3tc::decode(format, size[0], size[1], &bytes).unwrap_or_default();
             lvl.image = Arc::new(TexImage { width: size[0] as u32, height: size[1] as u32, depth: 1, border: 0, texels, depth_values: Vec::new() });
-            lvl.compressed = Some(bytes.into());
+            lvl.compressed = Some(bytes.into_owned().into());
         }
         self.store_level(dest, level, Some(lvl));
     }
@@ -126,7 +119,8 @@ impl Context {
         if usize::try_from(image_size_).ok() != Some(expected) {
             return self.set_error_in(gl::GL_INVALID_VALUE, command);
         }
-        let Some(bytes) = (unsafe { read_slice(data.cast::<u8>(), expected) }) else { return self.null_pointer(command) };
+        let Ok(bytes) = (unsafe { self.unpack_bytes(data, expected, 1, command) }) else { return };
+        let Some(bytes) = bytes else { return self.null_pointer(command) };
         let Some(texels) = s3tc::decode(fmt, sz[0], sz[1], &bytes) else { return };
         let mut blocks = lvl.compressed.as_deref().map(<[u8]>::to_vec).unwrap_or_default();
         let (level_bw, bb) = (lvl.size[0].div_ceil(4), fmt.block_bytes());
@@ -178,13 +172,14 @@ impl Context {
         unsafe { self.compressed_tex_sub_image(3, target, level, [xoffset, yoffset, zoffset], [width, height, depth], format, imageSize, data, "glCompressedTexSubImage3D") }
     }
 
-    /// Records a compressed-image command with a copy of its data (proxies run at once).
-    unsafe fn compile_compressed(&mut self, proxy: bool, image_size_: GLsizei, data: *const c_void, run: impl Fn(&mut Context, *const c_void) + Send + Sync + 'static) {
+    /// Records a compressed-image command with a copy of its `image_size_` bytes of data
+    /// ([`Context::compile_unpack`]; proxies run at once).
+    unsafe fn compile_compressed(&mut self, proxy: bool, image_size_: GLsizei, data: *const c_void, command: &'static str, run: impl Fn(&mut Context, *const c_void) + Send + Sync + 'static) {
         if proxy {
             return run(self, data);
         }
-        let copy = unsafe { copy_data(image_size_, data) };
-        self.lists.record(ListOp::Deferred(Box::new(move |ctx| run(ctx, copy.as_ref().map_or(std::ptr::null(), |v| v.as_ptr().cast())))));
+        let size = usize::try_from(image_size_).ok().filter(|&n| n as u64 <= super::super::pixels::store::MAX_CLIENT_IMAGE_BYTES);
+        unsafe { self.compile_unpack(data, size.map(|n| (n, 1)), command, run) }
     }
 
     /// `glCompressedTexImage1D` in a display list.
@@ -194,7 +189,7 @@ impl Context {
     pub unsafe fn compile_glCompressedTexImage1D(&mut self, target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, border: GLint, imageSize: GLsizei, data: *const c_void) {
         let proxy = image_target(1, target).is_some_and(|d| d.proxy);
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexImage1D(target, level, internalformat, width, border, imageSize, p) };
-        unsafe { self.compile_compressed(proxy, imageSize, data, run) }
+        unsafe { self.compile_compressed(proxy, imageSize, data, "glCompressedTexImage1D", run) }
     }
 
     /// `glCompressedTexImage2D` in a display list.
@@ -204,7 +199,7 @@ impl Context {
     pub unsafe fn compile_glCompressedTexImage2D(&mut self, target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, border: GLint, imageSize: GLsizei, data: *const c_void) {
         let proxy = image_target(2, target).is_some_and(|d| d.proxy);
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexImage2D(target, level, internalformat, width, height, border, imageSize, p) };
-        unsafe { self.compile_compressed(proxy, imageSize, data, run) }
+        unsafe { self.compile_compressed(proxy, imageSize, data, "glCompressedTexImage2D", run) }
     }
 
     /// `glCompressedTexImage3D` in a display list.
@@ -214,7 +209,7 @@ impl Context {
     pub unsafe fn compile_glCompressedTexImage3D(&mut self, target: GLenum, level: GLint, internalformat: GLenum, width: GLsizei, height: GLsizei, depth: GLsizei, border: GLint, imageSize: GLsizei, data: *const c_void) {
         let proxy = image_target(3, target).is_some_and(|d| d.proxy);
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexImage3D(target, level, internalformat, width, height, depth, border, imageSize, p) };
-        unsafe { self.compile_compressed(proxy, imageSize, data, run) }
+        unsafe { self.compile_compressed(proxy, imageSize, data, "glCompressedTexImage3D", run) }
     }
 
     /// `glCompressedTexSubImage1D` in a display list.
@@ -223,7 +218,7 @@ impl Context {
     /// As [`Context::glCompressedTexSubImage1D`].
     pub unsafe fn compile_glCompressedTexSubImage1D(&mut self, target: GLenum, level: GLint, xoffset: GLint, width: GLsizei, format: GLenum, imageSize: GLsizei, data: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexSubImage1D(target, level, xoffset, width, format, imageSize, p) };
-        unsafe { self.compile_compressed(false, imageSize, data, run) }
+        unsafe { self.compile_compressed(false, imageSize, data, "glCompressedTexSubImage1D", run) }
     }
 
     /// `glCompressedTexSubImage2D` in a display list.
@@ -232,7 +227,7 @@ impl Context {
     /// As [`Context::glCompressedTexSubImage2D`].
     pub unsafe fn compile_glCompressedTexSubImage2D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, imageSize: GLsizei, data: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexSubImage2D(target, level, xoffset, yoffset, width, height, format, imageSize, p) };
-        unsafe { self.compile_compressed(false, imageSize, data, run) }
+        unsafe { self.compile_compressed(false, imageSize, data, "glCompressedTexSubImage2D", run) }
     }
 
     /// `glCompressedTexSubImage3D` in a display list.
@@ -241,7 +236,7 @@ impl Context {
     /// As [`Context::glCompressedTexSubImage3D`].
     pub unsafe fn compile_glCompressedTexSubImage3D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, zoffset: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, format: GLenum, imageSize: GLsizei, data: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glCompressedTexSubImage3D(target, level, xoffset, yoffset, zoffset, width, height, depth, format, imageSize, p) };
-        unsafe { self.compile_compressed(false, imageSize, data, run) }
+        unsafe { self.compile_compressed(false, imageSize, data, "glCompressedTexSubImage3D", run) }
     }
 
     /// `glGetCompressedTexImage`: the level's blocks as given. `GL_INVALID_ENUM` for a bad or
@@ -260,7 +255,7 @@ impl Context {
         let Some(bytes) = self.with_dest(dest, |obj, _| obj.level(dest.face, level).and_then(|l| l.compressed.clone())) else {
             return self.set_error_in(gl::GL_INVALID_OPERATION, CMD);
         };
-        unsafe { super::super::convert::write_slice(img.cast::<u8>(), &bytes) }
+        unsafe { self.pack_bytes(img, bytes.len(), 1, CMD, |out| out.copy_from_slice(&bytes)) }
     }
 }
 

@@ -14,44 +14,44 @@ use super::formats::Base;
 use crate::frame::texture::TexelFormat;
 
 impl Context {
-    /// The canonical RGBA8 texels of a `w` × `h` × `d` image at `pixels`, or `None` when the
-    /// image needs the general path (other formats or types, unpack modes that skip or pad,
-    /// pixel transfer in use, a null pointer).
+    /// The canonical RGBA8 texels of a `w` × `h` × `d` image at `pixels` (client memory or the
+    /// unpack buffer, [`Context::unpack_bytes`]), or `Ok(None)` when the image needs the
+    /// general path (other formats or types, unpack modes that skip or pad, pixel transfer in
+    /// use, a null client pointer). `Err(())` after the unpack buffer's error.
     ///
     /// # Safety
     /// A non-null `pixels` must point to the memory the unpack modes describe.
     pub(crate) unsafe fn direct_texels(
-        &self,
+        &mut self,
         (format, ty): (Format, Type),
         base: Base,
         [w, h, d]: [usize; 3],
         pixels: *const c_void,
-    ) -> Option<Vec<u8>> {
+        command: &'static str,
+    ) -> Result<Option<Vec<u8>>, ()> {
         let n = match format.gl {
             gl::GL_RGBA => 4,
             gl::GL_RGB => 3,
-            _ => return None,
+            _ => return Ok(None),
         };
         let t = &self.pixels.transfer;
         let identity = !t.map_color && t.scale == [1.0; 4] && t.bias == [0.0; 4];
         let stored = matches!(base, Base::Texel(TexelFormat::Rgba | TexelFormat::Rgb));
-        if ty != Type::U8 || !identity || !stored || pixels.is_null() {
-            return None;
+        if ty != Type::U8 || !identity || !stored {
+            return Ok(None);
         }
-        let layout = ty.layout(format, &self.pixels.store.unpack, w, h, d)?;
-        let len = w.checked_mul(h)?.checked_mul(d)?.checked_mul(n)?;
+        let Some(layout) = ty.layout(format, &self.pixels.store.unpack, w, h, d) else { return Ok(None) };
+        let Some(len) = w.checked_mul(h).and_then(|v| v.checked_mul(d)).and_then(|v| v.checked_mul(n)) else { return Ok(None) };
         let tight = layout.start == 0 && layout.row_stride == w * n && layout.image_stride == w * n * h && layout.span == len;
         if !tight {
-            return None;
+            return Ok(None);
         }
-        crate::translate::capture::reads::note(pixels, len);
-        // Safety: the caller guarantees `layout.span` (= `len`) readable bytes.
-        let bytes = unsafe { std::slice::from_raw_parts(pixels.cast::<u8>(), len) };
-        Some(if n == 4 && base == Base::Texel(TexelFormat::Rgba) {
-            bytes.to_vec()
+        let Some(bytes) = (unsafe { self.unpack_bytes(pixels, len, ty.datum_size(), command) })? else { return Ok(None) };
+        Ok(Some(if n == 4 && base == Base::Texel(TexelFormat::Rgba) {
+            bytes.into_owned()
         } else {
             bytes.chunks_exact(n).flat_map(|p| [p[0], p[1], p[2], 255]).collect()
-        })
+        }))
     }
 }
 

@@ -329,7 +329,8 @@ impl Context {
             let proxy = Level { image: Arc::default(), size, border, internal_format: internal.reported, base: internal.base, compressed: None, indices: None, stencil: None };
             return self.store_level(dest, level, Some(proxy));
         }
-        let image = if let Some(texels) = unsafe { self.direct_texels(ft, internal.base, size, pixels) } {
+        let Ok(direct) = (unsafe { self.direct_texels(ft, internal.base, size, pixels, command) }) else { return };
+        let image = if let Some(texels) = direct {
             level_of(internal, size, border, Converted { texels, depth: Vec::new(), indices: None, stencil: None })
         } else {
             let keep_index = internal.base == Base::ColorIndex;
@@ -369,11 +370,11 @@ impl Context {
 
     /// Records an image command with a copy of its pixels, unless its target is a proxy (those
     /// run at once, section 5.4).
-    unsafe fn compile_tex_image(&mut self, dims: usize, target: GLenum, format: GLenum, type_: GLenum, size: [GLsizei; 3], pixels: *const c_void, run: impl Fn(&mut Context, *const c_void) + Send + Sync + 'static) {
+    unsafe fn compile_tex_image(&mut self, dims: usize, target: GLenum, format: GLenum, type_: GLenum, size: [GLsizei; 3], pixels: *const c_void, command: &'static str, run: impl Fn(&mut Context, *const c_void) + Send + Sync + 'static) {
         if image_target(dims, target).is_some_and(|d| d.proxy) {
             return run(self, pixels);
         }
-        unsafe { self.compile_image_command(format, type_, size, pixels, run) }
+        unsafe { self.compile_image_command(format, type_, size, pixels, command, run) }
     }
 
     /// `glTexImage1D` in a display list.
@@ -382,7 +383,7 @@ impl Context {
     /// As [`Context::glTexImage1D`].
     pub unsafe fn compile_glTexImage1D(&mut self, target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, border: GLint, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexImage1D(target, level, internalformat, width, border, format, type_, p) };
-        unsafe { self.compile_tex_image(1, target, format, type_, [width, 1, 1], pixels, run) }
+        unsafe { self.compile_tex_image(1, target, format, type_, [width, 1, 1], pixels, "glTexImage1D", run) }
     }
 
     /// `glTexImage2D` in a display list.
@@ -391,7 +392,7 @@ impl Context {
     /// As [`Context::glTexImage2D`].
     pub unsafe fn compile_glTexImage2D(&mut self, target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, height: GLsizei, border: GLint, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexImage2D(target, level, internalformat, width, height, border, format, type_, p) };
-        unsafe { self.compile_tex_image(2, target, format, type_, [width, height, 1], pixels, run) }
+        unsafe { self.compile_tex_image(2, target, format, type_, [width, height, 1], pixels, "glTexImage2D", run) }
     }
 
     /// `glTexImage3D` in a display list.
@@ -400,7 +401,7 @@ impl Context {
     /// As [`Context::glTexImage3D`].
     pub unsafe fn compile_glTexImage3D(&mut self, target: GLenum, level: GLint, internalformat: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, border: GLint, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexImage3D(target, level, internalformat, width, height, depth, border, format, type_, p) };
-        unsafe { self.compile_tex_image(3, target, format, type_, [width, height, depth], pixels, run) }
+        unsafe { self.compile_tex_image(3, target, format, type_, [width, height, depth], pixels, "glTexImage3D", run) }
     }
 
     /// Checks a sub-image region against the existing level: `GL_INVALID_ENUM` for a bad or
@@ -496,7 +497,7 @@ impl Context {
     /// As [`Context::glTexSubImage1D`].
     pub unsafe fn compile_glTexSubImage1D(&mut self, target: GLenum, level: GLint, xoffset: GLint, width: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexSubImage1D(target, level, xoffset, width, format, type_, p) };
-        unsafe { self.compile_image_command(format, type_, [width, 1, 1], pixels, run) }
+        unsafe { self.compile_image_command(format, type_, [width, 1, 1], pixels, "glTexSubImage1D", run) }
     }
 
     /// `glTexSubImage2D` in a display list.
@@ -505,7 +506,7 @@ impl Context {
     /// As [`Context::glTexSubImage2D`].
     pub unsafe fn compile_glTexSubImage2D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, width: GLsizei, height: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexSubImage2D(target, level, xoffset, yoffset, width, height, format, type_, p) };
-        unsafe { self.compile_image_command(format, type_, [width, height, 1], pixels, run) }
+        unsafe { self.compile_image_command(format, type_, [width, height, 1], pixels, "glTexSubImage2D", run) }
     }
 
     /// `glTexSubImage3D` in a display list.
@@ -514,7 +515,7 @@ impl Context {
     /// As [`Context::glTexSubImage3D`].
     pub unsafe fn compile_glTexSubImage3D(&mut self, target: GLenum, level: GLint, xoffset: GLint, yoffset: GLint, zoffset: GLint, width: GLsizei, height: GLsizei, depth: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glTexSubImage3D(target, level, xoffset, yoffset, zoffset, width, height, depth, format, type_, p) };
-        unsafe { self.compile_image_command(format, type_, [width, height, depth], pixels, run) }
+        unsafe { self.compile_image_command(format, type_, [width, height, depth], pixels, "glTexSubImage3D", run) }
     }
 
     /// The framebuffer copy of a `glCopyTex*` command (section 3.8.2): the renderer reads

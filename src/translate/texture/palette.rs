@@ -171,7 +171,7 @@ impl Context {
     /// As [`Context::glColorTableEXT`].
     pub unsafe fn compile_glColorTableEXT(&mut self, target: GLenum, internalFormat: GLenum, width: GLsizei, format: GLenum, type_: GLenum, table: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glColorTableEXT(target, internalFormat, width, format, type_, p) };
-        unsafe { self.compile_image_command(format, type_, [width, 1, 1], table, run) }
+        unsafe { self.compile_image_command(format, type_, [width, 1, 1], table, "glColorTableEXT", run) }
     }
 
     /// `glColorSubTableEXT` in a display list.
@@ -180,7 +180,7 @@ impl Context {
     /// As [`Context::glColorSubTableEXT`].
     pub unsafe fn compile_glColorSubTableEXT(&mut self, target: GLenum, start: GLsizei, count: GLsizei, format: GLenum, type_: GLenum, data: *const c_void) {
         let run = move |ctx: &mut Context, p| unsafe { ctx.glColorSubTableEXT(target, start, count, format, type_, p) };
-        unsafe { self.compile_image_command(format, type_, [count, 1, 1], data, run) }
+        unsafe { self.compile_image_command(format, type_, [count, 1, 1], data, "glColorSubTableEXT", run) }
     }
 
     /// `glGetColorTableEXT`: the entries as RGBA (table 6.1) packed with the pack modes.
