@@ -37,6 +37,34 @@ pub fn recompress(level: &mut Level) {
     level.compressed = Some(blocks.into());
 }
 
+/// Like [`recompress`] after the texels of the region `offset`/`size` changed: the blocks the
+/// region does not touch keep their bytes (encoding decoded texels again is lossy, so a
+/// `glTexSubImage` must not alter the rest of the image).
+pub fn recompress_region(level: &mut Level, offset: [usize; 3], size: [usize; 3]) {
+    let Some(format) = S3tc::of(level.internal_format) else { return };
+    let old = level.compressed.clone();
+    recompress(level);
+    let (Some(old), Some(new)) = (old, level.compressed.clone()) else { return };
+    let [w, h, _] = level.size;
+    if old.len() != new.len() || size.contains(&0) {
+        return;
+    }
+    let (columns, bytes) = (w.div_ceil(4), format.block_bytes());
+    let mut merged = old.to_vec();
+    for by in offset[1] / 4..(offset[1] + size[1]).div_ceil(4) {
+        for bx in offset[0] / 4..(offset[0] + size[0]).div_ceil(4) {
+            let at = (by * columns + bx) * bytes;
+            if let (Some(dst), Some(src)) = (merged.get_mut(at..at + bytes), new.get(at..at + bytes)) {
+                dst.copy_from_slice(src);
+            }
+        }
+    }
+    if let Some(texels) = s3tc::decode(format, w, h, &merged) {
+        Arc::make_mut(&mut level.image).texels = texels;
+        level.compressed = Some(merged.into());
+    }
+}
+
 /// The S3TC format of a compressed command, which needs a 2D image target.
 fn s3tc_for(dims: usize, internal: GLenum) -> Option<S3tc> {
     S3tc::of(internal).filter(|_| dims == 2)
@@ -331,5 +359,28 @@ mod tests {
         assert_eq!(decoded.chunks(4).flat_map(|c| c[..3].to_vec()).collect::<Vec<_>>(), px);
         unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, f as i32, 6, 6, 1, gl::GL_RGB, gl::GL_UNSIGNED_BYTE, px.as_ptr().cast()) };
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
+    }
+
+    #[test]
+    fn tex_sub_image_leaves_untouched_blocks_as_they_were() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
+        // 8×4, two blocks of noisy colours (lossy to encode, so re-encoding would change them).
+        let px: Vec<u8> = (0..32u32).flat_map(|i| [(i * 37 % 256) as u8, (i * 91 % 256) as u8, (i * 53 % 256) as u8, 255]).collect();
+        let f = gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT;
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, f as i32, 8, 4, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, px.as_ptr().cast()) };
+        let mut before = [0u8; 32];
+        unsafe { ctx.glGetCompressedTexImage(gl::GL_TEXTURE_2D, 0, before.as_mut_ptr().cast()) };
+        let white = [255u8; 4 * 4 * 4];
+        unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, 4, 0, 4, 4, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, white.as_ptr().cast()) };
+        let mut after = [0u8; 32];
+        unsafe { ctx.glGetCompressedTexImage(gl::GL_TEXTURE_2D, 0, after.as_mut_ptr().cast()) };
+        assert_eq!(after[..16], before[..16], "the first block was not touched");
+        assert_ne!(after[16..], before[16..]);
+        let decoded = super::s3tc::decode(super::S3tc::Dxt5, 8, 4, &after).unwrap();
+        let mut back = vec![0u8; 8 * 4 * 4];
+        unsafe { ctx.glGetTexImage(gl::GL_TEXTURE_2D, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, back.as_mut_ptr().cast()) };
+        assert_eq!(back, decoded, "the texels are the decoded blocks");
+        assert_eq!(back[4 * 4..5 * 4], [255; 4]);
     }
 }

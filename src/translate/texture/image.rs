@@ -136,7 +136,7 @@ fn write_object_region(obj: &mut TextureObject, palette: &Palette, face: usize, 
     if let Some(l) = obj.level_slot(face, level).as_mut() {
         let converted = convert(base.unwrap_or(l.base), l.internal_format, Some(data), size[0] * size[1] * size[2], palette);
         write_region(l, offset, size, &converted);
-        super::compressed::recompress(l);
+        super::compressed::recompress_region(l, offset, size);
     }
     let base_level = obj.params.levels[0].max(0) as usize;
     if obj.params.generate_mipmap && level == base_level {
