@@ -135,8 +135,9 @@ struct Converted {
 fn write_object_region(obj: &mut TextureObject, palette: &Palette, face: usize, level: usize, offset: [usize; 3], size: [usize; 3], base: Option<Base>, data: Unpacked) {
     if let Some(l) = obj.level_slot(face, level).as_mut() {
         let converted = convert(base.unwrap_or(l.base), l.internal_format, Some(data), size[0] * size[1] * size[2], palette);
+        let blocks = l.compressed.clone();
         write_region(l, offset, size, &converted);
-        super::compressed::recompress_region(l, offset, size);
+        super::compressed::recompress_region(l, blocks, offset, size);
     }
     let base_level = obj.params.levels[0].max(0) as usize;
     if obj.params.generate_mipmap && level == base_level {
