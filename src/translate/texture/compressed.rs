@@ -43,10 +43,15 @@ pub fn recompress(level: &mut Level) {
 /// the image).
 pub fn recompress_region(level: &mut Level, old: Option<Arc<[u8]>>, offset: [usize; 3], size: [usize; 3]) {
     let Some(format) = S3tc::of(level.internal_format) else { return };
+    if size.contains(&0) && old.is_some() {
+        // Nothing was written.
+        level.compressed = old;
+        return;
+    }
     recompress(level);
     let (Some(old), Some(new)) = (old, level.compressed.clone()) else { return };
     let [w, h, _] = level.size;
-    if old.len() != new.len() || size.contains(&0) {
+    if old.len() != new.len() {
         return;
     }
     let (columns, bytes) = (w.div_ceil(4), format.block_bytes());
@@ -387,5 +392,9 @@ mod tests {
             assert_eq!(test[at..at + 72 * 4] == reference[at..at + 72 * 4], same, "row {row}");
         }
         assert_eq!(test[(58 * w + 2) * 4..][..4], reference[(58 * w + 2) * 4..][..4], "the texel piglit probes");
+        // An empty region writes nothing and re-encodes nothing.
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, f as i32, w as i32, h as i32, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, orig.as_ptr().cast()) };
+        unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, 64, 8, 0, 52, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, upd.as_ptr().cast()) };
+        assert_eq!(get(&mut ctx), reference);
     }
 }
