@@ -393,6 +393,7 @@ mod tests {
         }
         assert_eq!(test[(58 * w + 2) * 4..][..4], reference[(58 * w + 2) * 4..][..4], "the texel piglit probes");
         // An empty region writes nothing and re-encodes nothing.
+        ctx.glPixelStorei(gl::GL_UNPACK_SKIP_ROWS, 0);
         unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, f as i32, w as i32, h as i32, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, orig.as_ptr().cast()) };
         unsafe { dispatch::glTexSubImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, 64, 8, 0, 52, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, upd.as_ptr().cast()) };
         assert_eq!(get(&mut ctx), reference);
