@@ -69,23 +69,23 @@ impl Context {
     pub fn raster_snapshot(&mut self) -> Arc<RasterState> {
         let (fixed, enables, viewport) = (self.fixed.version, self.enables.version, self.viewport);
         // A bound framebuffer object's images can change without a state change (a texture
-        // level respecified): its description is compared each time.
-        let framebuffer_unchanged = |state: &RasterState| self.framebuffers.bound == 0 || self.draw_framebuffer().unwrap_or_default() == state.framebuffer;
+        // level respecified): its description is taken and compared each time.
+        let framebuffer = self.draw_framebuffer().unwrap_or_default();
         if let Some(c) = &self.fixed.snapshot
             && c.fixed == fixed
             && c.enables == enables
             && c.viewport == viewport
-            && framebuffer_unchanged(&c.state)
+            && c.state.framebuffer == framebuffer
         {
             return c.state.clone();
         }
-        let state = Arc::new(self.build_raster_state());
+        let state = Arc::new(self.build_raster_state(framebuffer));
         self.fixed.snapshot = Some(SnapshotCache { fixed, enables, viewport, state: state.clone() });
         state
     }
 
-    /// Converts the current state to a [`RasterState`].
-    fn build_raster_state(&self) -> RasterState {
+    /// Converts the current state to a [`RasterState`] drawing into `framebuffer`.
+    fn build_raster_state(&self, framebuffer: crate::frame::Framebuffer) -> RasterState {
         let on = |cap: GLenum| self.enables.is_on(cap);
         let f = &self.fixed;
         let (fr, r, l) = (&f.fragment, &f.raster, &f.lighting);
@@ -147,7 +147,7 @@ impl Context {
                 alpha_to_one: on(gl::GL_SAMPLE_ALPHA_TO_ONE),
                 coverage: on(gl::GL_SAMPLE_COVERAGE).then_some(r.sample_coverage),
             },
-            framebuffer: self.draw_framebuffer().unwrap_or_default(),
+            framebuffer,
         };
         super::framebuffers::restrict_state(&mut state);
         state

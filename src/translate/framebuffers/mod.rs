@@ -17,8 +17,6 @@ pub mod completeness;
 pub mod objects;
 pub mod sync;
 
-use std::sync::Arc;
-
 use objects::{Attached, FramebufferObject, Holds, Point, Renderbuffer};
 use super::Context;
 use super::convert::{read_slice, write_slice};
@@ -122,13 +120,8 @@ impl Context {
     /// # Safety
     /// `renderbuffers` must have room for `n` names.
     pub unsafe fn glGenRenderbuffersEXT(&mut self, n: GLsizei, renderbuffers: *mut GLuint) {
-        let Ok(count) = usize::try_from(n) else { return self.set_error_in(gl::GL_INVALID_VALUE, "glGenRenderbuffersEXT") };
-        if renderbuffers.is_null() {
-            return self.null_pointer("glGenRenderbuffersEXT");
-        }
-        let names = self.shared.lock().fbos.renderbuffers.generate(count);
-        // Safety: the caller guarantees room for n names.
-        unsafe { write_slice(renderbuffers, &names) };
+        // Safety: as this function's.
+        unsafe { self.generate_names(n, renderbuffers, "glGenRenderbuffersEXT", |t, count| t.renderbuffers.generate(count)) }
     }
 
     /// `glGenFramebuffersEXT`: `GL_INVALID_VALUE` for a negative count.
@@ -136,13 +129,22 @@ impl Context {
     /// # Safety
     /// `framebuffers` must have room for `n` names.
     pub unsafe fn glGenFramebuffersEXT(&mut self, n: GLsizei, framebuffers: *mut GLuint) {
-        let Ok(count) = usize::try_from(n) else { return self.set_error_in(gl::GL_INVALID_VALUE, "glGenFramebuffersEXT") };
-        if framebuffers.is_null() {
-            return self.null_pointer("glGenFramebuffersEXT");
+        // Safety: as this function's.
+        unsafe { self.generate_names(n, framebuffers, "glGenFramebuffersEXT", |t, count| t.framebuffers.generate(count)) }
+    }
+
+    /// Writes `n` names reserved by `generate` to `names`.
+    ///
+    /// # Safety
+    /// `names` must have room for `n` names.
+    unsafe fn generate_names(&mut self, n: GLsizei, names: *mut GLuint, command: &'static str, generate: impl FnOnce(&mut FramebufferTables, usize) -> Vec<GLuint>) {
+        let Ok(count) = usize::try_from(n) else { return self.set_error_in(gl::GL_INVALID_VALUE, command) };
+        if names.is_null() {
+            return self.null_pointer(command);
         }
-        let names = self.shared.lock().fbos.framebuffers.generate(count);
+        let reserved = generate(&mut self.shared.lock().fbos, count);
         // Safety: the caller guarantees room for n names.
-        unsafe { write_slice(framebuffers, &names) };
+        unsafe { write_slice(names, &reserved) };
     }
 
     /// `glBindRenderbufferEXT`: `GL_INVALID_ENUM` unless `target` is `GL_RENDERBUFFER_EXT`;
@@ -508,15 +510,15 @@ impl Context {
 /// sections 4.1.5–4.1.6), and colour writes as if masked without a colour image.
 pub fn restrict_state(state: &mut crate::frame::RasterState) {
     let Framebuffer::Object(fbo) = &state.framebuffer else { return };
-    let fbo: Arc<crate::frame::framebuffer::FramebufferObject> = fbo.clone();
-    if fbo.depth.is_none() {
+    let (depth, stencil, color) = (fbo.depth.is_some(), fbo.stencil.is_some(), fbo.color.is_some());
+    if !depth {
         state.depth_test = None;
         state.depth_write = false;
     }
-    if fbo.stencil.is_none() {
+    if !stencil {
         state.stencil = None;
     }
-    if fbo.color.is_none() {
+    if !color {
         state.color_mask = [false; 4];
     }
 }
