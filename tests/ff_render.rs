@@ -4,9 +4,9 @@
 //! oracle), two-sided lighting, fog, alpha test, polygon and line stipple, wide lines,
 //! points, and the texture combiner against values worked out from the spec's equations.
 
+mod lavapipe;
+
 use glam::Vec4;
-use glrt::render::raster::renderer::Renderer;
-use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
 
 /// Window size of the tests.
@@ -14,15 +14,7 @@ const SIZE: i32 = 32;
 
 /// A context drawing into a Vulkan renderer on lavapipe, cleared to transparent black.
 fn context() -> Context {
-    let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-    if std::path::Path::new(lavapipe).exists() {
-        // Safety: set before any thread of this test binary loads Vulkan; every test sets the
-        // same value.
-        unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
-    }
-    let renderer = Renderer::new().expect("a Vulkan device (lavapipe)");
-    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
-    ctx.bind_drawable(SIZE, SIZE);
+    let mut ctx = lavapipe::context(SIZE);
     unsafe {
         dispatch::glViewport(&mut ctx, 0, 0, SIZE, SIZE);
         dispatch::glClearColor(&mut ctx, 0.0, 0.0, 0.0, 0.0);

@@ -3,9 +3,11 @@
 //! Runs on Mesa lavapipe (forced through `VK_DRIVER_FILES` when its ICD file exists), at
 //! 64×64 so it stays fast on a CPU.
 
+mod lavapipe;
+
 use glrt::render::raster::renderer::Renderer;
-use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
+use lavapipe::pixel;
 
 const SIZE: i32 = 64;
 
@@ -14,21 +16,9 @@ fn context() -> Context {
     context_with(Renderer::new)
 }
 
-/// The renderer `make` creates, on lavapipe when its ICD file exists.
-fn renderer_with(make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Renderer {
-    let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-    if std::path::Path::new(lavapipe).exists() {
-        // Safety: set before any thread of this test binary loads Vulkan; every test sets the
-        // same value.
-        unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
-    }
-    make().expect("a Vulkan device (lavapipe)")
-}
-
 /// A context drawing into the renderer `make` creates (on lavapipe), with a 64×64 drawable.
 fn context_with(make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Context {
-    let renderer = renderer_with(make);
-    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
+    let mut ctx = lavapipe::context_on(lavapipe::renderer_with(make));
     ctx.bind_drawable(SIZE, SIZE);
     ctx
 }
@@ -38,12 +28,6 @@ fn context_with(make: impl FnOnce() -> Result<Renderer, glrt::render::raster::de
 /// that fall between two 8-bit values differs between devices).
 fn assert_near(actual: [u8; 4], expected: [u8; 4]) {
     assert!(actual.iter().zip(expected).all(|(a, e)| a.abs_diff(e) <= 1), "{actual:?} is not within 1 of {expected:?}");
-}
-
-fn pixel(ctx: &mut Context, x: i32, y: i32) -> [u8; 4] {
-    let mut out = [0u8; 4];
-    unsafe { dispatch::glReadPixels(ctx, x, y, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
-    out
 }
 
 /// A triangle covering the window's lower-left half (below the diagonal from the upper-left to
@@ -327,7 +311,7 @@ fn pipelines_and_textures_are_created_once_and_unused_textures_dropped() {
     }
     let frames = std::mem::take(&mut *sink.frames.lock());
     assert_eq!(frames.len(), 12);
-    let mut renderer = renderer_with(Renderer::without_outputs);
+    let mut renderer = lavapipe::renderer_with(Renderer::without_outputs);
     let mut counts = Vec::new();
     for frame in frames {
         renderer.present(frame);

@@ -3,28 +3,14 @@
 //! the one `glReadPixels` and `glCopyPixels` read, and a swap copies the back buffer to the
 //! front. Runs on Mesa lavapipe at 32×32.
 
-use glrt::render::raster::renderer::Renderer;
-use glrt::translate::context::ContextConfig;
+mod lavapipe;
+
 use glrt::translate::{Context, dispatch, gl};
 
 const SIZE: i32 = 32;
 const RED: [u8; 4] = [255, 0, 0, 255];
 const GREEN: [u8; 4] = [0, 255, 0, 255];
 const BLUE: [u8; 4] = [0, 0, 255, 255];
-
-/// A context drawing into a Vulkan renderer on lavapipe, with a 32×32 drawable.
-fn context() -> Context {
-    let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-    if std::path::Path::new(lavapipe).exists() {
-        // Safety: set before any thread of this test binary loads Vulkan; every test sets the
-        // same value.
-        unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
-    }
-    let renderer = Renderer::new().expect("a Vulkan device (lavapipe)");
-    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
-    ctx.bind_drawable(SIZE, SIZE);
-    ctx
-}
 
 /// Reads the RGBA8 pixel at window (x, y) of the colour buffer `buffer`.
 fn pixel(ctx: &mut Context, buffer: gl::GLenum, x: i32, y: i32) -> [u8; 4] {
@@ -59,7 +45,7 @@ fn rect(ctx: &mut Context, buffer: gl::GLenum, c: [f32; 4]) {
 
 #[test]
 fn back_and_front_hold_different_pictures() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear(&mut ctx, gl::GL_FRONT, [1.0, 0.0, 0.0, 1.0]);
     clear(&mut ctx, gl::GL_BACK, [0.0, 1.0, 0.0, 1.0]);
     rect(&mut ctx, gl::GL_BACK, [0.0, 0.0, 1.0, 1.0]);
@@ -76,7 +62,7 @@ fn back_and_front_hold_different_pictures() {
 
 #[test]
 fn front_and_back_draws_both_with_depth_test() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear(&mut ctx, gl::GL_FRONT_AND_BACK, [1.0, 0.0, 0.0, 1.0]);
     assert_eq!(pixel(&mut ctx, gl::GL_FRONT, 2, 2), RED);
     assert_eq!(pixel(&mut ctx, gl::GL_BACK, 2, 2), RED);
@@ -92,7 +78,7 @@ fn front_and_back_draws_both_with_depth_test() {
 
 #[test]
 fn draw_buffer_none_writes_no_colour() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear(&mut ctx, gl::GL_FRONT_AND_BACK, [1.0, 0.0, 0.0, 1.0]);
     rect(&mut ctx, gl::GL_NONE, [0.0, 0.0, 1.0, 1.0]);
     assert_eq!(pixel(&mut ctx, gl::GL_FRONT, 10, 10), RED);
@@ -101,7 +87,7 @@ fn draw_buffer_none_writes_no_colour() {
 
 #[test]
 fn swap_shows_the_back_buffer_in_front() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear(&mut ctx, gl::GL_FRONT, [1.0, 0.0, 0.0, 1.0]);
     clear(&mut ctx, gl::GL_BACK, [0.0, 1.0, 0.0, 1.0]);
     rect(&mut ctx, gl::GL_BACK, [0.0, 0.0, 1.0, 1.0]);
@@ -118,7 +104,7 @@ fn swap_shows_the_back_buffer_in_front() {
 
 #[test]
 fn copy_pixels_reads_the_read_buffer() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear(&mut ctx, gl::GL_FRONT, [1.0, 0.0, 0.0, 1.0]);
     clear(&mut ctx, gl::GL_BACK, [0.0, 1.0, 0.0, 1.0]);
     unsafe {
@@ -133,7 +119,7 @@ fn copy_pixels_reads_the_read_buffer() {
 
 #[test]
 fn single_buffered_drawables_use_the_front_buffer() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     ctx.set_double_buffered(false);
     clear(&mut ctx, gl::GL_FRONT, [0.0, 0.0, 1.0, 1.0]);
     unsafe { dispatch::glFlush(&mut ctx) };

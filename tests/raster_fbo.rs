@@ -3,30 +3,10 @@
 //! `glGetTexImage`, sampling a rendered texture in the window, and what is left of the
 //! window's framebuffer meanwhile. Runs on Mesa lavapipe at small sizes.
 
-use glrt::render::raster::renderer::Renderer;
-use glrt::translate::context::ContextConfig;
+mod lavapipe;
+
 use glrt::translate::{Context, dispatch, gl};
-
-/// A context drawing into a Vulkan renderer on lavapipe, with a 32×32 drawable.
-fn context() -> Context {
-    let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-    if std::path::Path::new(lavapipe).exists() {
-        // Safety: set before any thread of this test binary loads Vulkan; every test sets the
-        // same value.
-        unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
-    }
-    let renderer = Renderer::new().expect("a Vulkan device (lavapipe)");
-    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
-    ctx.bind_drawable(32, 32);
-    ctx
-}
-
-/// Reads the RGBA8 pixel at (x, y) of the bound framebuffer.
-fn pixel(ctx: &mut Context, x: i32, y: i32) -> [u8; 4] {
-    let mut out = [0u8; 4];
-    unsafe { dispatch::glReadPixels(ctx, x, y, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
-    out
-}
+use lavapipe::pixel;
 
 /// Clears the colour buffer to `c`.
 fn clear(ctx: &mut Context, c: [f32; 4]) {
@@ -94,7 +74,7 @@ fn texture(ctx: &mut Context, texel: [u8; 4]) -> u32 {
 
 #[test]
 fn renderbuffers_take_draws_with_depth_test_and_leave_the_window_alone() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(32);
     clear(&mut ctx, [0.0, 0.0, 1.0, 1.0]);
     bound_fbo(&mut ctx);
     attach_renderbuffer(&mut ctx, gl::GL_RGBA8, gl::GL_COLOR_ATTACHMENT0_EXT);
@@ -118,7 +98,7 @@ fn renderbuffers_take_draws_with_depth_test_and_leave_the_window_alone() {
 
 #[test]
 fn rendered_texture_levels_are_read_back_and_sampled() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(32);
     let tex = texture(&mut ctx, [255, 255, 0, 255]);
     bound_fbo(&mut ctx);
     unsafe {
@@ -164,7 +144,7 @@ fn rendered_texture_levels_are_read_back_and_sampled() {
 
 #[test]
 fn depth_textures_take_depth_clears_of_a_depth_only_framebuffer() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(32);
     let mut tex = 0;
     unsafe {
         dispatch::glGenTextures(&mut ctx, 1, &mut tex);

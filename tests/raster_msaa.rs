@@ -4,9 +4,10 @@
 //! single-sampled drawable does, depth reads back. Each test runs at every sample count the
 //! device renders (4 on Mesa lavapipe; 2, 4 and 8 on NVIDIA), at 16×16.
 
+mod lavapipe;
+
 use glrt::render::raster::renderer::Renderer;
 use glrt::render::{Surface, Target};
-use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
 
 const SIZE: i32 = 16;
@@ -17,29 +18,18 @@ fn context(samples: u32) -> Context {
     context_with(samples, Renderer::new)
 }
 
-/// The renderer `make` creates, on lavapipe when its ICD file exists.
-fn renderer(make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Renderer {
-    let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-    if std::path::Path::new(lavapipe).exists() {
-        // Safety: set before any thread of this test binary loads Vulkan; every test sets the
-        // same value.
-        unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
-    }
-    make().expect("a Vulkan device (lavapipe)")
-}
-
 /// The multisampled counts of the device (lavapipe renders 4).
 fn counts() -> Vec<u32> {
-    let counts = renderer(Renderer::without_outputs).device().features.sample_counts.clone();
+    let counts = lavapipe::renderer_with(Renderer::without_outputs).device().features.sample_counts.clone();
     assert!(!counts.is_empty(), "the device renders multisampled framebuffers");
     counts
 }
 
 /// [`context`] on the renderer `make` creates.
 fn context_with(samples: u32, make: impl FnOnce() -> Result<Renderer, glrt::render::raster::device::Error>) -> Context {
-    let renderer = renderer(make);
+    let renderer = lavapipe::renderer_with(make);
     assert!(samples == 1 || renderer.device().features.sample_counts.contains(&samples), "the device renders {samples} samples");
-    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
+    let mut ctx = lavapipe::context_on(renderer);
     ctx.bind_target(Target { size: [SIZE as u32; 2], surface: Surface::Offscreen, swap_interval: 0, samples, alpha: true });
     ctx
 }

@@ -3,32 +3,12 @@
 //! stencil, depth/stencil, zoom, per-fragment operations), `glCopyPixels` (overlapping
 //! rectangles, depth/stencil) and the accumulation buffer. Runs on Mesa lavapipe at 32×32.
 
-use glrt::render::raster::renderer::Renderer;
-use glrt::translate::context::ContextConfig;
+mod lavapipe;
+
 use glrt::translate::{Context, dispatch, gl};
+use lavapipe::pixel;
 
 const SIZE: i32 = 32;
-
-/// A context drawing into a Vulkan renderer on lavapipe, with a 32×32 drawable.
-fn context() -> Context {
-    let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-    if std::path::Path::new(lavapipe).exists() {
-        // Safety: set before any thread of this test binary loads Vulkan; every test sets the
-        // same value.
-        unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
-    }
-    let renderer = Renderer::new().expect("a Vulkan device (lavapipe)");
-    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
-    ctx.bind_drawable(SIZE, SIZE);
-    ctx
-}
-
-/// Reads the RGBA8 pixel at window (x, y).
-fn pixel(ctx: &mut Context, x: i32, y: i32) -> [u8; 4] {
-    let mut out = [0u8; 4];
-    unsafe { dispatch::glReadPixels(ctx, x, y, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
-    out
-}
 
 /// Reads the stencil value at (x, y).
 fn stencil(ctx: &mut Context, x: i32, y: i32) -> u8 {
@@ -56,7 +36,7 @@ fn clear_all(ctx: &mut Context, c: [f32; 4]) {
 
 #[test]
 fn clears_honour_colour_mask_stencil_mask_and_scissor() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.0, 0.0, 1.0, 1.0]);
     unsafe {
         dispatch::glColorMask(&mut ctx, gl::GL_TRUE, gl::GL_FALSE, gl::GL_FALSE, gl::GL_FALSE);
@@ -85,7 +65,7 @@ fn clears_honour_colour_mask_stencil_mask_and_scissor() {
 
 #[test]
 fn bitmaps_draw_set_bits_in_the_raster_colour_through_the_alpha_test() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.0; 4]);
     // 8×2 bitmap, rows bottom to top: 0b1010_0000, 0b0000_0001 (MSB first).
     let bits = [0b1010_0000u8, 0b0000_0001];
@@ -114,7 +94,7 @@ fn bitmaps_draw_set_bits_in_the_raster_colour_through_the_alpha_test() {
 
 #[test]
 fn draw_pixels_colour_with_zoom_blending_and_depth_test() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.0, 0.0, 0.0, 1.0]);
     // 2×2 image: bottom row red, green; top row blue, white.
     let image: [u8; 16] = [255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255];
@@ -164,7 +144,7 @@ fn draw_pixels_colour_with_zoom_blending_and_depth_test() {
 
 #[test]
 fn draw_pixels_depth_and_stencil() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.0; 4]);
     let depths: [f32; 4] = [0.0, 0.25, 0.5, 0.75];
     let stencils: [u8; 4] = [1, 2, 3, 0x85];
@@ -191,7 +171,7 @@ fn draw_pixels_depth_and_stencil() {
 
 #[test]
 fn copy_pixels_with_overlap_and_depth() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.0; 4]);
     // A 4×1 row of grey levels 10, 20, 30, 40 at (0, 0).
     let row: [u8; 16] = [10, 10, 10, 255, 20, 20, 20, 255, 30, 30, 30, 255, 40, 40, 40, 255];
@@ -231,7 +211,7 @@ fn copy_pixels_with_overlap_and_depth() {
 
 #[test]
 fn accumulation_buffer_load_accum_mult_add_return() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.4, 0.2, 0.0, 1.0]);
     unsafe {
         dispatch::glClearAccum(&mut ctx, 0.0, 0.0, 0.0, 0.0);
@@ -256,7 +236,7 @@ fn accumulation_buffer_load_accum_mult_add_return() {
 
 #[test]
 fn copy_tex_image_and_sub_image_take_the_framebuffer_pixels() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [1.0, 0.0, 0.0, 1.0]);
     unsafe {
         dispatch::glEnable(&mut ctx, gl::GL_SCISSOR_TEST);
@@ -296,7 +276,7 @@ fn copy_tex_image_and_sub_image_take_the_framebuffer_pixels() {
 
 #[test]
 fn copy_pixels_from_outside_the_window_produce_no_fragments() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.0, 0.0, 1.0, 1.0]);
     let red: [u8; 4] = [255, 0, 0, 255];
     unsafe {
@@ -313,7 +293,7 @@ fn copy_pixels_from_outside_the_window_produce_no_fragments() {
 
 #[test]
 fn large_varied_images_are_drawn_as_textures_with_zoom() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.0, 0.0, 0.0, 1.0]);
     // 40×30 image, every pixel different from its neighbours (more than 1024 runs).
     let (w, h) = (40usize, 30usize);
@@ -366,7 +346,7 @@ const PACKED: [u32; 8] = [
 
 #[test]
 fn depth_stencil_draw_pixels_write_both_buffers_exactly_and_skip_the_tests() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.0, 0.0, 1.0, 1.0]);
     unsafe {
         // Neither test applies to GL_DEPTH_STENCIL images (EXT_packed_depth_stencil 4.3.1).
@@ -401,7 +381,7 @@ fn depth_stencil_draw_pixels_write_both_buffers_exactly_and_skip_the_tests() {
 
 #[test]
 fn depth_stencil_copy_pixels_copies_both_buffers_with_pixel_transfer() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.0, 1.0, 0.0, 1.0]);
     unsafe {
         dispatch::glWindowPos2i(&mut ctx, 2, 2);
@@ -438,7 +418,7 @@ fn red_blue_texture(ctx: &mut Context) {
 
 #[test]
 fn draw_pixels_and_bitmaps_are_textured_at_the_raster_position_texture_coordinates() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.0, 0.0, 0.0, 1.0]);
     red_blue_texture(&mut ctx);
     // The raster position keeps the coordinates current when it was set (s = 0.25: red),
@@ -475,7 +455,7 @@ fn draw_pixels_and_bitmaps_are_textured_at_the_raster_position_texture_coordinat
 
 #[test]
 fn pixel_fragments_are_fogged_with_the_raster_distance() {
-    let mut ctx = context();
+    let mut ctx = lavapipe::context(SIZE);
     clear_all(&mut ctx, [0.0, 0.0, 0.0, 1.0]);
     let white = [[255u8; 4]; 4];
     unsafe {

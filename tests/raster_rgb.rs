@@ -5,33 +5,21 @@
 //! and `glCopyTexImage2D`. Each check also runs on an RGBA drawable, where alpha is kept, so
 //! that it tells the two apart. Runs on Mesa lavapipe at 16×16.
 
+mod lavapipe;
+
 use glrt::render::raster::renderer::Renderer;
 use glrt::render::{Surface, Target};
-use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
+use lavapipe::pixel;
 
 const SIZE: i32 = 16;
 
 /// A context drawing into a Vulkan renderer on lavapipe, with a 16×16 drawable with or
 /// without destination `alpha`.
 fn context(alpha: bool) -> Context {
-    let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-    if std::path::Path::new(lavapipe).exists() {
-        // Safety: set before any thread of this test binary loads Vulkan; every test sets the
-        // same value.
-        unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
-    }
-    let renderer = Renderer::new().expect("a Vulkan device (lavapipe)");
-    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(renderer) });
+    let mut ctx = lavapipe::context_on(lavapipe::renderer_with(Renderer::new));
     ctx.bind_target(Target { size: [SIZE as u32; 2], surface: Surface::Offscreen, swap_interval: 0, samples: 1, alpha });
     ctx
-}
-
-/// Reads the RGBA8 pixel at window (x, y).
-fn pixel(ctx: &mut Context, x: i32, y: i32) -> [u8; 4] {
-    let mut out = [0u8; 4];
-    unsafe { dispatch::glReadPixels(ctx, x, y, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
-    out
 }
 
 /// Clears the colour buffer to `c`.

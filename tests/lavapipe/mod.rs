@@ -1,0 +1,40 @@
+//! Shared helpers of the tests that draw through the Vulkan raster renderer: the renderer on
+//! Mesa lavapipe (when its ICD file exists; the machine's Vulkan driver otherwise), a context
+//! drawing into it, and pixel read-back.
+
+#![allow(dead_code)]
+
+use glrt::render::raster::device::Error;
+use glrt::render::raster::renderer::Renderer;
+use glrt::translate::context::ContextConfig;
+use glrt::translate::{Context, dispatch, gl};
+
+/// The renderer `make` creates, on lavapipe when its ICD file exists.
+pub fn renderer_with(make: impl FnOnce() -> Result<Renderer, Error>) -> Renderer {
+    let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+    if std::path::Path::new(lavapipe).exists() {
+        // Safety: set before any thread of this test binary loads Vulkan; every test sets the
+        // same value.
+        unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
+    }
+    make().expect("a Vulkan device (lavapipe)")
+}
+
+/// A context drawing into `renderer`, not yet bound to a drawable.
+pub fn context_on(renderer: Renderer) -> Context {
+    Context::new(ContextConfig { share: None, sink: Box::new(renderer) })
+}
+
+/// A context drawing into a new renderer, with a `size` × `size` drawable.
+pub fn context(size: i32) -> Context {
+    let mut ctx = context_on(renderer_with(Renderer::new));
+    ctx.bind_drawable(size, size);
+    ctx
+}
+
+/// Reads the RGBA8 pixel at window (x, y) of the read buffer.
+pub fn pixel(ctx: &mut Context, x: i32, y: i32) -> [u8; 4] {
+    let mut out = [0u8; 4];
+    unsafe { dispatch::glReadPixels(ctx, x, y, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+    out
+}
