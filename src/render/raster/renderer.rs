@@ -490,15 +490,21 @@ impl Renderer {
             _ => Progress { frame: frame.number, ..Progress::default() },
         };
         let mut rec = self.recorder(frame.size)?;
+        // Makes `rec` record into `$framebuffer` (ending the pass on another one).
+        macro_rules! record_into {
+            ($framebuffer:expr) => {
+                if key_of(&$framebuffer) != rec.framebuffer {
+                    rec.end_rendering();
+                    self.switch_to(key_of(&$framebuffer));
+                    rec = self.recorder(frame.size)?;
+                }
+            };
+        }
         let query_of = |index: usize| frame.occlusion_queries.iter().find(|(_, range)| range.contains(&index)).map(|(q, _)| *q);
         if let Some(last) = progress.draws.checked_sub(1).and_then(|i| frame.draws.get(i))
             && last.indices.len() > progress.last_indices
         {
-            if key_of(&last.state.framebuffer) != rec.framebuffer {
-                rec.end_rendering();
-                self.switch_to(key_of(&last.state.framebuffer));
-                rec = self.recorder(frame.size)?;
-            }
+            record_into!(last.state.framebuffer);
             rec.query = (frame.number, query_of(progress.draws - 1));
             draw_in_buffers(&mut rec, &tail(last, progress.last_indices))?;
             progress.last_indices = last.indices.len();
@@ -512,11 +518,7 @@ impl Renderer {
                 let op = frame.pixels.get(progress.pixels).filter(|p| p.before_draw <= index);
                 match (clear, op) {
                     (Some(clear), op) if op.is_none_or(|op| op.after_clears > progress.clears) => {
-                        if key_of(&clear.framebuffer) != rec.framebuffer {
-                            rec.end_rendering();
-                            self.switch_to(key_of(&clear.framebuffer));
-                            rec = self.recorder(frame.size)?;
-                        }
+                        record_into!(clear.framebuffer);
                         let mut buffers = clear.draw_buffers.buffers().peekable();
                         if buffers.peek().is_none() {
                             pixel_ops::clear::record(&mut rec, clear)?;
@@ -531,11 +533,7 @@ impl Renderer {
                         progress.clears += 1;
                     }
                     (_, Some(op)) => {
-                        if key_of(&op.state.framebuffer) != rec.framebuffer {
-                            rec.end_rendering();
-                            self.switch_to(key_of(&op.state.framebuffer));
-                            rec = self.recorder(frame.size)?;
-                        }
+                        record_into!(op.state.framebuffer);
                         let read = match pixel_ops::source(op, rec.target.size) {
                             Some((buffer, rect)) => {
                                 let read = self.read_target(buffer, op.state.read_buffer, rect)?;
@@ -558,11 +556,7 @@ impl Renderer {
                 }
             }
             if let Some(draw) = frame.draws.get(index) {
-                if key_of(&draw.state.framebuffer) != rec.framebuffer {
-                    rec.end_rendering();
-                    self.switch_to(key_of(&draw.state.framebuffer));
-                    rec = self.recorder(frame.size)?;
-                }
+                record_into!(draw.state.framebuffer);
                 rec.query = (frame.number, query_of(index));
                 draw_in_buffers(&mut rec, draw)?;
                 progress.draws = index + 1;
