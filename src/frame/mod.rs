@@ -6,6 +6,7 @@
 pub mod class;
 pub mod framebuffer;
 pub mod pixels;
+pub mod program;
 pub mod state;
 pub mod texture;
 pub mod vertex;
@@ -108,6 +109,8 @@ pub struct Draw {
     /// Texture environment and coordinate generation of each texture unit that has a texture
     /// target enabled (`None` for the others), indexed like [`Draw::texture_matrices`].
     pub texture_units: Vec<Option<TextureUnit>>,
+    /// The OpenGL 2.0 program the draw runs (`None`: the fixed-function pipeline).
+    pub program: Option<Arc<program::ProgramDraw>>,
     /// How the renderer treats it (set when the frame ends).
     pub class: class::DrawClass,
     /// Its identity across frames, for traced draws.

@@ -105,6 +105,9 @@ pub struct Vertices {
     pub fog_coord: Attrib<f32>,
     /// Colour indices (colour-index mode).
     pub color_index: Attrib<f32>,
+    /// Generic vertex attributes (OpenGL 2.0 section 2.7) by index; index 0 is the position
+    /// and stays empty here. Only draws that run a program read them.
+    pub generic: Vec<Attrib<[f32; 4]>>,
 }
 
 impl Vertices {
@@ -139,6 +142,9 @@ impl Vertices {
         }
         self.fog_coord.truncate(count);
         self.color_index.truncate(count);
+        for g in &mut self.generic {
+            g.truncate(count);
+        }
     }
 
     /// Appends every vertex of `other`.
@@ -158,6 +164,14 @@ impl Vertices {
         }
         self.fog_coord.append(n, &other.fog_coord, m);
         self.color_index.append(n, &other.color_index, m);
+        if self.generic.len() < other.generic.len() {
+            // Generic attributes these vertices lacked had the initial value (0, 0, 0, 1).
+            let initial = Attrib { values: if n == 0 { Vec::new() } else { vec![[0.0, 0.0, 0.0, 1.0]] } };
+            self.generic.resize(other.generic.len(), initial);
+        }
+        for (g, o) in self.generic.iter_mut().zip(&other.generic) {
+            g.append(n, o, m);
+        }
     }
 }
 

@@ -81,12 +81,13 @@ pub fn content_hash(frame: &Frame) -> u64 {
             state,
             textures,
             texture_units,
+            program,
             class: _,
             instance: _,
         } = draw;
         let _ = write!(
             h,
-            "{vertex_count:?}{topology:?}{vertices:?}{indices:?}{edge_masks:?}{modelview:?}{projection:?}{texture_matrices:?}{source:?}{state:?}{textures:?}{texture_units:?}"
+            "{vertex_count:?}{topology:?}{vertices:?}{indices:?}{edge_masks:?}{modelview:?}{projection:?}{texture_matrices:?}{source:?}{state:?}{textures:?}{texture_units:?}{program:?}"
         );
     }
     h.0.digest()

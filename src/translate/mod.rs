@@ -40,6 +40,7 @@ pub mod fog;
 pub mod fragment;
 pub mod frame_builder;
 pub mod framebuffers;
+pub mod glsl;
 pub mod get;
 pub mod gl;
 pub mod hints;
