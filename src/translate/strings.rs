@@ -53,6 +53,7 @@ const EXTENSIONS: &str = concat!(
     "GL_ARB_transpose_matrix ",
     "GL_ARB_vertex_buffer_object ",
     "GL_ARB_window_pos ",
+    "GL_EXT_abgr ",
     "GL_EXT_bgra ",
     "GL_EXT_blend_color ",
     "GL_EXT_blend_func_separate ",

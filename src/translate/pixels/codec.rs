@@ -107,7 +107,7 @@ pub fn format(format: GLenum) -> Option<Format> {
         gl::GL_RED | gl::GL_GREEN | gl::GL_BLUE | gl::GL_ALPHA | gl::GL_LUMINANCE => (1, Kind::Color),
         gl::GL_LUMINANCE_ALPHA | gl::GL_RG => (2, Kind::Color),
         gl::GL_RGB | gl::GL_BGR => (3, Kind::Color),
-        gl::GL_RGBA | gl::GL_BGRA => (4, Kind::Color),
+        gl::GL_RGBA | gl::GL_BGRA | gl::GL_ABGR_EXT => (4, Kind::Color),
         _ => return None,
     };
     Some(Format { gl: format, components, kind })
@@ -167,7 +167,7 @@ pub fn parse(format_: GLenum, type_: GLenum) -> Result<(Format, Type), GLenum> {
         Type::Bitmap if !matches!(f.kind, Kind::Index | Kind::Stencil) => Err(gl::GL_INVALID_ENUM),
         Type::Uint10F11F11FRev | Type::Uint5999Rev if f.gl != gl::GL_RGB => Err(gl::GL_INVALID_OPERATION),
         // Table 3.8: the three-field types match `GL_RGB` only, the four-field ones `GL_RGBA`
-        // and `GL_BGRA`.
+        // and `GL_BGRA` (and EXT_abgr's `GL_ABGR_EXT`, which EXT_packed_pixels allows).
         Type::Packed(p) if !(f.kind == Kind::Color && f.components == p.fields.len() && f.gl != gl::GL_BGR && f.components >= 3) => {
             Err(gl::GL_INVALID_OPERATION)
         }
@@ -432,6 +432,7 @@ pub fn to_rgba(format: GLenum, g: &[f32]) -> [f32; 4] {
         gl::GL_RGB => [c(0), c(1), c(2), 1.0],
         gl::GL_BGR => [c(2), c(1), c(0), 1.0],
         gl::GL_BGRA => [c(2), c(1), c(0), c(3)],
+        gl::GL_ABGR_EXT => [c(3), c(2), c(1), c(0)],
         _ => [c(0), c(1), c(2), c(3)],
     }
 }
@@ -464,6 +465,7 @@ pub fn from_rgba(format: GLenum, c: [f32; 4], luminance: Luminance, out: &mut Ve
         gl::GL_RGB => out.extend([c[0], c[1], c[2]]),
         gl::GL_BGR => out.extend([c[2], c[1], c[0]]),
         gl::GL_BGRA => out.extend([c[2], c[1], c[0], c[3]]),
+        gl::GL_ABGR_EXT => out.extend([c[3], c[2], c[1], c[0]]),
         _ => out.extend(c),
     }
 }
@@ -668,6 +670,7 @@ mod tests {
         assert_eq!(out.map(|b| b as i8), [127, -128, 63, -64]);
         let mut v = Vec::new();
         from_rgba(gl::GL_BGR, [0.1, 0.2, 0.3, 1.0], Luminance::Sum, &mut v);
+        assert_eq!(to_rgba(gl::GL_ABGR_EXT, &[0.25, 0.5, 0.75, 1.0]), [1.0, 0.75, 0.5, 0.25]);
         from_rgba(gl::GL_LUMINANCE, [0.5, 0.25, 0.5, 1.0], Luminance::Sum, &mut v);
         from_rgba(gl::GL_LUMINANCE_ALPHA, [0.5, 0.25, 0.125, 0.75], Luminance::Red, &mut v);
         assert_eq!(v, [0.3, 0.2, 0.1, 1.0, 0.5, 0.75]);

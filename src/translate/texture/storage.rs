@@ -114,7 +114,9 @@ pub fn of(internal: GLenum, has: [bool; 4]) -> Storage {
         gl::GL_RGB9_E5 => return Storage { encoding: SharedExponent, bits: [9, 9, 9, 0] },
         _ => (Unorm, 8, 8),
     };
-    let bits = [color, color, color, alpha];
+    // Components of fewer than 8 bits (the alpha of GL_RGB10_A2, GL_LUMINANCE12_ALPHA4) are
+    // kept at 8: their values are exact in 8 bits (2^n − 1 divides 255 for n = 1, 2, 4).
+    let bits = [color, color, color, alpha.max(8)];
     Storage { encoding, bits: std::array::from_fn(|i| if has[i] { bits[i] } else { 0 }) }
 }
 
@@ -197,7 +199,8 @@ mod tests {
         assert_eq!(of(gl::GL_RGBA4, RGBA).precision(), Precision::Unorm8);
         assert_eq!(of(gl::GL_SRGB8_ALPHA8, RGBA).precision(), Precision::Srgb8);
         let rgb10a2 = of(gl::GL_RGB10_A2, RGBA);
-        assert_eq!(rgb10a2.round([0.5, 0.0, 0.0, 0.4]), [(512.0f64 / 1023.0) as f32, 0.0, 0.0, 1.0 / 3.0]);
+        assert_eq!(rgb10a2.round([0.5, 0.0, 0.0, 1.0 / 3.0]), [(512.0f64 / 1023.0) as f32, 0.0, 0.0, 85.0 / 255.0]);
+        assert_eq!(rgb10a2.bits, [10, 10, 10, 8]);
         // Every signed byte survives: its value rounds to itself.
         let s8 = of(gl::GL_RGBA8_SNORM, RGBA);
         for c in -128i8..=127 {
@@ -207,7 +210,7 @@ mod tests {
         let f16 = of(gl::GL_RGBA16F, RGBA);
         assert_eq!(f16.round([1.0 / 3.0, -70000.0, 0.0, 0.0])[..2], [0.33325195, f32::NEG_INFINITY]);
         let packed = of(gl::GL_R11F_G11F_B10F, RGBA);
-        assert_eq!((packed.bits, packed.round([-1.0, 1.03, 1.03, 0.5])), ([11, 11, 10, 0], [0.0, 1.03125, 1.0, 0.5]));
+        assert_eq!((packed.bits, packed.round([-1.0, 1.02, 1.02, 0.5])), ([11, 11, 10, 0], [0.0, 1.015625, 1.03125, 0.5]));
         assert_eq!(of(gl::GL_LUMINANCE16_ALPHA16, [true, false, false, true]).bits, [16, 0, 0, 16]);
         assert_eq!(of(gl::GL_RGB32F, [true, true, true, false]).component_type(), gl::GL_FLOAT);
         assert!(!of(gl::GL_RGB16, RGBA).unclamped() && of(gl::GL_R8_SNORM, RGBA).unclamped());
