@@ -68,7 +68,7 @@ pub fn renders_exactly(internal: GLenum) -> bool {
 fn is_compressed(internal: GLenum) -> bool {
     matches!(internal, gl::GL_COMPRESSED_ALPHA..=gl::GL_COMPRESSED_RGBA)
         || matches!(internal, gl::GL_COMPRESSED_RGB_S3TC_DXT1_EXT..=gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT)
-        || matches!(internal, gl::GL_COMPRESSED_SRGB..=gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT5_EXT)
+        || matches!(internal, gl::GL_COMPRESSED_SRGB..=gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT5_EXT | gl::GL_COMPRESSED_RED | gl::GL_COMPRESSED_RG)
 }
 
 /// What a texture level of `base` and `internal` format holds when attached, if renderable

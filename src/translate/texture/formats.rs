@@ -119,8 +119,8 @@ pub fn internal_format(internal: GLenum) -> Option<Internal> {
         | gl::GL_COMPRESSED_RGBA_S3TC_DXT1_EXT
         | gl::GL_COMPRESSED_RGBA_S3TC_DXT3_EXT
         | gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT => texel(Rgba),
-        gl::GL_RED | gl::GL_R8 | gl::GL_R16 | gl::GL_R16F | gl::GL_R32F | gl::GL_RED_SNORM | gl::GL_R8_SNORM | gl::GL_R16_SNORM => texel(Red),
-        gl::GL_RG | gl::GL_RG8 | gl::GL_RG16 | gl::GL_RG16F | gl::GL_RG32F | gl::GL_RG_SNORM | gl::GL_RG8_SNORM | gl::GL_RG16_SNORM => texel(Rg),
+        gl::GL_RED | gl::GL_COMPRESSED_RED | gl::GL_R8 | gl::GL_R16 | gl::GL_R16F | gl::GL_R32F | gl::GL_RED_SNORM | gl::GL_R8_SNORM | gl::GL_R16_SNORM => texel(Red),
+        gl::GL_RG | gl::GL_COMPRESSED_RG | gl::GL_RG8 | gl::GL_RG16 | gl::GL_RG16F | gl::GL_RG32F | gl::GL_RG_SNORM | gl::GL_RG8_SNORM | gl::GL_RG16_SNORM => texel(Rg),
         gl::GL_RGB_SNORM | gl::GL_RGB8_SNORM | gl::GL_RGB16_SNORM | gl::GL_RGB16F | gl::GL_RGB32F => texel(Rgb),
         gl::GL_R11F_G11F_B10F | gl::GL_RGB9_E5 => texel(Rgb),
         gl::GL_SRGB | gl::GL_SRGB8 | gl::GL_COMPRESSED_SRGB | gl::GL_COMPRESSED_SRGB_S3TC_DXT1_EXT => texel(Rgb),
@@ -155,7 +155,7 @@ pub fn internal_format(internal: GLenum) -> Option<Internal> {
     // counterpart (ARB_texture_compression; EXT_texture_sRGB's generic ones the unsized sRGB
     // formats).
     let reported = match internal {
-        gl::GL_COMPRESSED_ALPHA..=gl::GL_COMPRESSED_RGBA => base_enum(base),
+        gl::GL_COMPRESSED_ALPHA..=gl::GL_COMPRESSED_RGBA | gl::GL_COMPRESSED_RED | gl::GL_COMPRESSED_RG => base_enum(base),
         gl::GL_COMPRESSED_SRGB => gl::GL_SRGB,
         gl::GL_COMPRESSED_SRGB_ALPHA => gl::GL_SRGB_ALPHA,
         gl::GL_COMPRESSED_SLUMINANCE => gl::GL_SLUMINANCE,
@@ -390,6 +390,7 @@ mod tests {
         assert_eq!(component_type(l16, gl::GL_LUMINANCE16_ALPHA16, gl::GL_TEXTURE_LUMINANCE_TYPE), Some(gl::GL_UNSIGNED_NORMALIZED));
         assert_eq!(component_type(internal_format(gl::GL_R8_SNORM).unwrap().base, gl::GL_R8_SNORM, gl::GL_TEXTURE_RED_TYPE), Some(gl::GL_SIGNED_NORMALIZED));
         assert_eq!(internal_format(gl::GL_COMPRESSED_SLUMINANCE).unwrap().reported, gl::GL_SLUMINANCE);
+        assert_eq!(internal_format(gl::GL_COMPRESSED_RG).unwrap().reported, gl::GL_RG);
         assert_eq!(component_bits(Base::Texel(TexelFormat::Rgb), gl::GL_RGB9_E5, gl::GL_TEXTURE_SHARED_SIZE), Some(5));
         assert_eq!(component_bits(Base::Texel(TexelFormat::Alpha), gl::GL_ALPHA, gl::GL_TEXTURE_RED_SIZE), Some(0));
         assert_eq!(stored_depth(0.5, 16), (32768.0 / 65535.0) as f32);
