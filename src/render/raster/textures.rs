@@ -5,7 +5,10 @@
 //!
 //! Images:
 //! - colour formats: the canonical RGBA8 texels of [`crate::frame::texture`] (every
-//!   [`TexelFormat`] is already expanded to RGBA there, so one Vulkan format serves all);
+//!   [`TexelFormat`] is already expanded to RGBA there, so one Vulkan format serves all),
+//!   as `R8G8B8A8_SRGB` for [`Precision::Srgb8`] levels (sampling decodes sRGB to linear), and
+//!   the `f32` values of [`Precision::Float`] levels as `R32G32B32A32_SFLOAT` (where the device
+//!   filters it linearly; else their RGBA8 texels);
 //! - depth formats: `R32_SFLOAT` from [`TexImage::depth_values`] at full precision, swizzled
 //!   to `DEPTH_TEXTURE_MODE` ((D, D, D, 1), (D, D, D, D), (0, 0, 0, D)); with a comparison
 //!   (`GL_COMPARE_R_TO_TEXTURE`) the swizzle is (D, D, D, D) and the fragment shader compares
@@ -32,7 +35,7 @@ use super::device::{Check, Device, Image, Result};
 use super::ff;
 use super::pipelines::{BINDINGS, SamplerKind, sampler_binding};
 use super::upload::Ring;
-use crate::frame::texture::{DepthMode, Filter, Sampler, TexImage, TexelFormat, TextureKind, TextureRef, Wrap};
+use crate::frame::texture::{DepthMode, Filter, Precision, Sampler, TexImage, TexelFormat, TextureKind, TextureRef, Wrap};
 
 /// Presented frames a texture version stays on the GPU without being used (more than the
 /// frames in flight, so the GPU is done with it when it goes).
@@ -71,17 +74,31 @@ pub struct Textures {
     frame: u64,
     /// Whether `R32_SFLOAT` can be sampled with linear filtering.
     float_depth: bool,
+    /// Whether `R32G32B32A32_SFLOAT` can be sampled with linear filtering.
+    float_color: bool,
+}
+
+/// What the texels of an uploaded image are.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Upload {
+    /// RGBA8 texels (linear or sRGB).
+    Rgba8,
+    /// RGBA `f32` values.
+    Float,
+    /// `f32` depth values.
+    Depth,
 }
 
 impl Textures {
     /// An empty cache (the white images are made on first use, in a frame).
     pub fn new(device: &Device) -> Textures {
-        // Safety: valid physical device.
-        let props = unsafe { device.instance.get_physical_device_format_properties(device.physical, vk::Format::R32_SFLOAT) };
-        let float_depth = props
-            .optimal_tiling_features
-            .contains(vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR | vk::FormatFeatureFlags::TRANSFER_DST);
-        Textures { white: None, entries: HashMap::new(), failed: Default::default(), samplers: HashMap::new(), frame: 0, float_depth }
+        let filters = |format| {
+            // Safety: valid physical device.
+            let props = unsafe { device.instance.get_physical_device_format_properties(device.physical, format) };
+            props.optimal_tiling_features.contains(vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR | vk::FormatFeatureFlags::TRANSFER_DST)
+        };
+        let (float_depth, float_color) = (filters(vk::Format::R32_SFLOAT), filters(vk::Format::R32G32B32A32_SFLOAT));
+        Textures { white: None, entries: HashMap::new(), failed: Default::default(), samplers: HashMap::new(), frame: 0, float_depth, float_color }
     }
 
     /// Whether [`Textures::upload`] would record commands for `textures` (then the caller
@@ -249,7 +266,12 @@ impl Textures {
             return Err(super::device::Error::Memory(format!("{w}×{h}×{d} exceeds the device's {max}")));
         }
         let depth = content.format == TexelFormat::Depth && self.float_depth && !top.depth_values.is_empty();
-        let format = if depth { vk::Format::R32_SFLOAT } else { vk::Format::R8G8B8A8_UNORM };
+        let (upload, format) = match top.precision {
+            _ if depth => (Upload::Depth, vk::Format::R32_SFLOAT),
+            Precision::Float if self.float_color => (Upload::Float, vk::Format::R32G32B32A32_SFLOAT),
+            Precision::Srgb8 => (Upload::Rgba8, vk::Format::R8G8B8A8_SRGB),
+            _ => (Upload::Rgba8, vk::Format::R8G8B8A8_UNORM),
+        };
         let (image_type, view_type, layers, flags, kind) = match content.kind {
             TextureKind::D1 | TextureKind::D2 => (vk::ImageType::TYPE_2D, vk::ImageViewType::TYPE_2D, 1, vk::ImageCreateFlags::empty(), SamplerKind::D2),
             TextureKind::D3 => (vk::ImageType::TYPE_3D, vk::ImageViewType::TYPE_3D, 1, vk::ImageCreateFlags::empty(), SamplerKind::D3),
@@ -273,7 +295,7 @@ impl Textures {
         for face in 0..layers as usize {
             for (level, _) in chain.iter().enumerate() {
                 let Some(img) = content.faces.get(face).and_then(|f| f.get(base + level)).and_then(Option::as_ref) else { continue };
-                let bytes = texel_bytes(img, depth);
+                let bytes = texel_bytes(img, upload);
                 let slice = ring.push(device, &bytes, 16)?;
                 let [lw, lh, ld] = interior(img);
                 copies.push((
@@ -330,23 +352,32 @@ fn interior(img: &TexImage) -> [u32; 3] {
     [img.width.saturating_sub(2 * b), img.height.saturating_sub(2 * h_border), img.depth.saturating_sub(2 * d_border)].map(|s| s.max(1))
 }
 
-/// The texel bytes of the interior of `img`: RGBA8, or `f32` depth when `depth`.
-fn texel_bytes(img: &TexImage, depth: bool) -> Vec<u8> {
+/// The texel bytes of the interior of `img` as `upload` says (a float upload of a level
+/// without values converts its RGBA8 texels).
+fn texel_bytes(img: &TexImage, upload: Upload) -> Vec<u8> {
     let [w, h, d] = interior(img).map(|v| v as usize);
     let b = img.border as usize;
     let (bx, by, bz) = (b, if img.height > 1 { b } else { 0 }, if img.depth > 1 { b } else { 0 });
     let (fw, fh) = (img.width as usize, img.height as usize);
-    // RGBA8 and f32 texels are both 4 bytes.
-    let texel = 4;
+    let texel = if upload == Upload::Float { 16 } else { 4 };
     let mut out = Vec::with_capacity(w * h * d * texel);
     for z in 0..d {
         for y in 0..h {
             let row = ((z + bz) * fh + y + by) * fw + bx;
-            if depth {
-                let values = img.depth_values.get(row..row + w).unwrap_or(&[]);
-                out.extend(values.iter().flat_map(|v| v.to_le_bytes()));
-            } else {
-                out.extend_from_slice(img.texels.get(row * 4..(row + w) * 4).unwrap_or(&[]));
+            match upload {
+                Upload::Depth => {
+                    let values = img.depth_values.get(row..row + w).unwrap_or(&[]);
+                    out.extend(values.iter().flat_map(|v| v.to_le_bytes()));
+                }
+                Upload::Float if !img.values.is_empty() => {
+                    let values = img.values.get(row * 4..(row + w) * 4).unwrap_or(&[]);
+                    out.extend(values.iter().flat_map(|v| v.to_le_bytes()));
+                }
+                Upload::Float => {
+                    let texels = img.texels.get(row * 4..(row + w) * 4).unwrap_or(&[]);
+                    out.extend(texels.iter().flat_map(|&v| (f32::from(v) / 255.0).to_le_bytes()));
+                }
+                Upload::Rgba8 => out.extend_from_slice(img.texels.get(row * 4..(row + w) * 4).unwrap_or(&[])),
             }
         }
     }
@@ -423,7 +454,7 @@ mod tests {
 
     fn level(w: u32, h: u32, border: u32) -> Option<Arc<TexImage>> {
         let texels = (0..w * h * 4).map(|i| i as u8).collect();
-        Some(Arc::new(TexImage { width: w, height: h, depth: 1, border, texels, depth_values: Vec::new() }))
+        Some(Arc::new(TexImage { width: w, height: h, depth: 1, border, texels, ..TexImage::default() }))
     }
 
     #[test]
@@ -440,7 +471,7 @@ mod tests {
     fn borders_are_cut_off() {
         let img = level(4, 3, 1).unwrap();
         assert_eq!(interior(&img), [2, 1, 1]);
-        let bytes = texel_bytes(&img, false);
+        let bytes = texel_bytes(&img, Upload::Rgba8);
         // Row 1, texels 1 and 2 of the 4-wide bordered image.
         let start = (4 + 1) * 4;
         assert_eq!(bytes, img.texels[start..start + 8].to_vec());
