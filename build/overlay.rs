@@ -56,7 +56,8 @@ pub const CLIENT_SIDE: &[&str] = &[
     "EnableClientState", "DisableClientState", "ClientActiveTexture", "PixelStoref",
     "PixelStorei", "PushClientAttrib", "PopClientAttrib", "LockArraysEXT", "UnlockArraysEXT",
     "GetPointerv", "VertexPointerEXT", "NormalPointerEXT", "ColorPointerEXT", "IndexPointerEXT",
-    "TexCoordPointerEXT", "EdgeFlagPointerEXT",
+    "TexCoordPointerEXT", "EdgeFlagPointerEXT", "VertexAttribPointer", "EnableVertexAttribArray",
+    "DisableVertexAttribArray",
 ];
 
 /// Commands executed immediately even while a display list is compiled (OpenGL 1.5, section
@@ -67,7 +68,9 @@ pub const NOT_COMPILED: &[&str] = &[
     "GenQueries", "DeleteQueries", "BindBuffer", "DeleteBuffers", "GenBuffers", "BufferData",
     "BufferSubData", "MapBuffer", "UnmapBuffer", "MapBufferRange", "FlushMappedBufferRange", "Flush",
     "Finish", "GetError", "GenRenderbuffersEXT", "DeleteRenderbuffersEXT", "GenFramebuffersEXT",
-    "DeleteFramebuffersEXT", "CheckFramebufferStatusEXT",
+    "DeleteFramebuffersEXT", "CheckFramebufferStatusEXT", "CreateProgram", "CreateShader",
+    "DeleteProgram", "DeleteShader", "AttachShader", "DetachShader", "BindAttribLocation",
+    "CompileShader", "ShaderSource", "LinkProgram", "ValidateProgram",
 ];
 
 /// Commands that read client arrays: in a display list they are compiled with the array data

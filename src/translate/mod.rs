@@ -54,6 +54,7 @@ pub mod pixel_buffers;
 #[cfg(test)]
 mod pixel_buffer_tests;
 pub mod pixels;
+pub mod programs;
 pub mod queries;
 pub mod rasterization;
 pub mod render_mode;
