@@ -134,6 +134,14 @@ pub const FAMILIES: &[Family] = &[
         inside_begin_end: false,
         ..family("WindowPos", "WindowPos3f", 3, ["0.0", "0.0", "0.0", "0.0"], false)
     },
+    Family {
+        leading: true,
+        ..family("VertexAttrib", "VertexAttrib4f", 4, ["0.0", "0.0", "0.0", "1.0"], false)
+    },
+    Family {
+        leading: true,
+        ..family("VertexAttrib4N", "VertexAttrib4f", 4, ["0.0", "0.0", "0.0", "1.0"], true)
+    },
     family("EvalCoord1", "EvalCoord1f", 1, ["0.0", "0.0", "0.0", "0.0"], false),
     family("EvalCoord2", "EvalCoord2f", 2, ["0.0", "0.0", "0.0", "0.0"], false),
 ];

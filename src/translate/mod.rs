@@ -65,6 +65,7 @@ pub mod target;
 pub mod texture;
 pub mod texunit;
 pub mod transform;
+pub mod vertex_attribs;
 pub mod vertex_lighting;
 pub mod vertex_texgen;
 pub mod viewport;

@@ -6,6 +6,7 @@
 //! (what a draw takes of the program in use).
 
 pub mod attributes;
+pub mod draw;
 pub mod info;
 pub mod objects;
 pub mod uniforms;
@@ -48,6 +49,8 @@ pub struct Linked {
     pub values: Vec<u8>,
     /// The texture unit of each sampler slot.
     pub sampler_units: Vec<u32>,
+    /// The texture target of each sampler slot.
+    pub sampler_targets: Vec<crate::translate::texture::objects::Target>,
     /// [`Linked::values`] as draws share them, made again after a change.
     pub shared_values: Option<Arc<[u8]>>,
 }
@@ -164,4 +167,4 @@ pub struct ProgramState {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -323,7 +323,9 @@ pub(crate) fn linked_state(linked: LinkedProgram) -> Option<(Linked, String)> {
         .max()
         .unwrap_or(0)
         .max(executable.samplers.len() as u32);
+    let sampler_targets = super::draw::slot_targets(&uniforms, slots as usize);
     let state = Linked {
+        sampler_targets,
         executable: Arc::new(executable),
         uniforms,
         attributes,
