@@ -37,6 +37,7 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_ARB_occlusion_query",
     "GL_EXT_blend_func_separate",
     "GL_EXT_framebuffer_object",
+    "GL_EXT_framebuffer_blit",
     "GL_ARB_map_buffer_range",
 ];
 

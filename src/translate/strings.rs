@@ -57,6 +57,7 @@ const EXTENSIONS: &str = concat!(
     "GL_EXT_compiled_vertex_array ",
     "GL_EXT_draw_range_elements ",
     "GL_EXT_fog_coord ",
+    "GL_EXT_framebuffer_blit ",
     "GL_EXT_framebuffer_object ",
     "GL_EXT_multi_draw_arrays ",
     "GL_EXT_packed_depth_stencil ",
