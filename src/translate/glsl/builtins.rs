@@ -210,3 +210,71 @@ fn pack_light(b: &mut Std430, l: &Light) {
     l.attenuation.iter().for_each(|&a| b.float(a));
     b.align(16);
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::render::raster::ff::uniforms::tests::spirv_offsets;
+    use crate::translate::glsl::{Stage, compiler};
+    use crate::translate::{Context, dispatch, gl};
+
+    /// A fragment shader reading every member of the block, so that glslang keeps them all.
+    fn block_spirv() -> Vec<u8> {
+        let source = format!(
+            "#version 450\n{}\nlayout(location = 0) out vec4 o;\nvoid main() {{ o = glrt_ModelViewMatrix[0] + vec4(glrt_NormalScale, \
+             glrt_DepthRange.diff, glrt_Point.distanceQuadraticAttenuation, glrt_FrontMaterial.shininess) + glrt_ClipPlane[5] + \
+             vec4(glrt_LightSource[7].quadraticAttenuation, glrt_LightSource[3].spotCosCutoff, glrt_Fog.scale, \
+             float(glrt_SamplerDepth[7].z)) + glrt_BackLightProduct[7].specular + glrt_ObjectPlaneQ[3] + \
+             glrt_TextureEnvColor[3] + glrt_BackLightModelProduct.sceneColor + glrt_LightModel.ambient + \
+             vec4(glrt_NormalMatrix[2], 1.0) + glrt_TextureMatrixInverseTranspose[3][3]; }}\n",
+            include_str!("../../../shaders/glsl_builtins.glsl")
+        );
+        let words = compiler::spirv(Stage::Fragment, &source).expect("the block compiles");
+        words.iter().flat_map(|w| w.to_le_bytes()).collect()
+    }
+
+    fn f32_at(b: &[u8], at: usize) -> f32 {
+        f32::from_ne_bytes(b[at..at + 4].try_into().unwrap())
+    }
+
+    #[test]
+    fn packed_values_sit_at_the_offsets_of_the_compiled_block() {
+        let off = spirv_offsets(&block_spirv());
+        let at = |s: &str, m: &str| *off.get(&(s.to_string(), m.to_string())).unwrap_or_else(|| panic!("{s}.{m}: {off:?}"));
+        let (mut ctx, _) = Context::with_recording();
+        unsafe {
+            dispatch::glDepthRange(&mut ctx, 0.25, 0.75);
+            dispatch::glClipPlane(&mut ctx, gl::GL_CLIP_PLANE5, [1.0, 2.0, 3.0, 4.0].as_ptr());
+            dispatch::glPointSize(&mut ctx, 5.0);
+            dispatch::glMaterialf(&mut ctx, gl::GL_FRONT, gl::GL_SHININESS, 7.0);
+            dispatch::glLightf(&mut ctx, gl::GL_LIGHT7, gl::GL_QUADRATIC_ATTENUATION, 9.0);
+            dispatch::glLightf(&mut ctx, gl::GL_LIGHT3, gl::GL_SPOT_CUTOFF, 60.0);
+            dispatch::glFogf(&mut ctx, gl::GL_FOG_END, 3.0);
+            dispatch::glFogf(&mut ctx, gl::GL_FOG_START, 1.0);
+            dispatch::glActiveTexture(&mut ctx, gl::GL_TEXTURE3);
+            dispatch::glTexEnvfv(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_COLOR, [0.5, 0.25, 0.125, 1.0].as_ptr());
+        }
+        let depth = [[1, 2, 1, 0]; 8];
+        let b = ctx.pack_builtins(&depth);
+        let top = |m: &str| at("GlrtBuiltins", m);
+        assert_eq!(b.len(), top("glrt_SamplerDepth") + 8 * 16, "the block's size");
+        assert_eq!(f32_at(&b, top("glrt_DepthRange") + at("glrt_DepthRangeParameters", "diff")), 0.5);
+        assert_eq!(f32_at(&b, top("glrt_ClipPlane") + 5 * 16 + 12), 4.0, "planes by index, enabled or not");
+        assert_eq!(f32_at(&b, top("glrt_Point") + at("glrt_PointParameters", "size")), 5.0);
+        assert_eq!(f32_at(&b, top("glrt_FrontMaterial") + at("glrt_MaterialParameters", "shininess")), 7.0);
+        let light = |i: usize, m: &str| top("glrt_LightSource") + i * 128 + at("glrt_LightSourceParameters", m);
+        assert_eq!(f32_at(&b, light(7, "quadraticAttenuation")), 9.0, "lights by index, enabled or not");
+        assert!((f32_at(&b, light(3, "spotCosCutoff")) - 0.5).abs() < 1e-6);
+        assert_eq!(f32_at(&b, light(3, "spotCutoff")), 60.0);
+        assert_eq!(f32_at(&b, top("glrt_Fog") + at("glrt_FogParameters", "scale")), 0.5);
+        assert_eq!(f32_at(&b, top("glrt_TextureEnvColor") + 3 * 16 + 4), 0.25);
+        assert_eq!(f32_at(&b, top("glrt_NormalScale")), 1.0);
+        let mat3 = top("glrt_NormalMatrix");
+        assert_eq!([f32_at(&b, mat3), f32_at(&b, mat3 + 16 + 4), f32_at(&b, mat3 + 32 + 8)], [1.0; 3]);
+        let scene = top("glrt_FrontLightModelProduct") + at("glrt_LightModelProducts", "sceneColor");
+        assert!((f32_at(&b, scene) - 0.04).abs() < 1e-6, "emission + ambient * model ambient (0.2 * 0.2)");
+        for m in ["glrt_LightModel", "glrt_BackLightProduct", "glrt_ObjectPlaneQ", "glrt_TextureMatrixInverseTranspose"] {
+            assert!(top(m) < b.len(), "{m}");
+        }
+        assert_eq!(u32::from_ne_bytes(b[top("glrt_SamplerDepth") + 7 * 16..][..4].try_into().unwrap()), 1);
+    }
+}
