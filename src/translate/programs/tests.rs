@@ -353,3 +353,35 @@ fn uniforms_in_display_lists_take_their_values_at_compile_time() {
     unsafe { dispatch::glCallList(&mut ctx, 1) };
     assert_eq!(f32_at(&values(&ctx, p), 16), 1.0);
 }
+
+#[test]
+fn draws_carry_the_program_and_split_on_uniform_changes() {
+    let (mut ctx, _) = Context::with_recording();
+    let p = fake_program(&mut ctx, true);
+    let f = location(&mut ctx, p, "f");
+    let tri = |ctx: &mut Context| unsafe {
+        dispatch::glBegin(ctx, gl::GL_TRIANGLES);
+        for (x, y) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)] {
+            dispatch::glVertex2f(ctx, x, y);
+        }
+        dispatch::glEnd(ctx);
+    };
+    unsafe { dispatch::glEnable(&mut ctx, gl::GL_VERTEX_PROGRAM_POINT_SIZE) };
+    assert_eq!(unsafe { dispatch::glIsEnabled(&mut ctx, gl::GL_VERTEX_PROGRAM_POINT_SIZE) }, 1);
+    tri(&mut ctx);
+    tri(&mut ctx);
+    assert_eq!(ctx.frame.draws.len(), 1, "equal programs and values merge");
+    unsafe { dispatch::glUniform1f(&mut ctx, f, 3.0) };
+    tri(&mut ctx);
+    unsafe { dispatch::glUseProgram(&mut ctx, 0) };
+    tri(&mut ctx);
+    let draws = &ctx.frame.draws;
+    assert_eq!(draws.len(), 3, "new uniform values and the fixed-function pipeline split draws");
+    let first = draws[0].program.as_ref().expect("a program draw");
+    assert!(first.point_size_from_shader && !first.two_side);
+    assert_eq!(first.uniforms.len(), 112);
+    assert_eq!(f32::from_ne_bytes(draws[1].program.as_ref().unwrap().uniforms[..4].try_into().unwrap()), 3.0);
+    assert_eq!(first.textures.len(), 3, "one texture per sampler slot");
+    assert!(first.textures.iter().all(Option::is_none), "no complete texture bound");
+    assert!(draws[2].program.is_none());
+}
