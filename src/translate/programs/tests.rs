@@ -385,3 +385,45 @@ fn draws_carry_the_program_and_split_on_uniform_changes() {
     assert!(first.textures.iter().all(Option::is_none), "no complete texture bound");
     assert!(draws[2].program.is_none());
 }
+
+#[test]
+fn real_compile_and_link() {
+    let (mut ctx, _) = Context::with_recording();
+    let shader = |ctx: &mut Context, ty, src: &std::ffi::CStr| unsafe {
+        let s = dispatch::glCreateShader(ctx, ty);
+        dispatch::glShaderSource(ctx, s, 1, [src.as_ptr()].as_ptr(), std::ptr::null());
+        dispatch::glCompileShader(ctx, s);
+        s
+    };
+    let vs = shader(&mut ctx, gl::GL_VERTEX_SHADER, c"attribute vec3 extra; varying vec3 c; void main() { c = extra; gl_Position = ftransform(); }");
+    let fs = shader(&mut ctx, gl::GL_FRAGMENT_SHADER, c"uniform vec4 tint[2]; varying vec3 c; void main() { gl_FragColor = vec4(c, 1.0) * tint[1]; }");
+    assert_eq!((shader_iv(&mut ctx, vs, gl::GL_COMPILE_STATUS), shader_iv(&mut ctx, fs, gl::GL_COMPILE_STATUS)), (1, 1));
+    let p = unsafe { dispatch::glCreateProgram(&mut ctx) };
+    unsafe {
+        dispatch::glAttachShader(&mut ctx, p, vs);
+        dispatch::glAttachShader(&mut ctx, p, fs);
+        dispatch::glBindAttribLocation(&mut ctx, p, 5, c"extra".as_ptr());
+        dispatch::glLinkProgram(&mut ctx, p);
+    }
+    assert_eq!(program_iv(&mut ctx, p, gl::GL_LINK_STATUS), 1);
+    assert_eq!(unsafe { dispatch::glGetAttribLocation(&mut ctx, p, c"extra".as_ptr()) }, 5, "the binding applies at link");
+    let tint1 = location(&mut ctx, p, "tint[1]");
+    assert_eq!(tint1, location(&mut ctx, p, "tint") + 1);
+    unsafe {
+        dispatch::glUseProgram(&mut ctx, p);
+        dispatch::glUniform4f(&mut ctx, tint1, 1.0, 0.5, 0.25, 1.0);
+        dispatch::glBegin(&mut ctx, gl::GL_TRIANGLES);
+        dispatch::glVertexAttrib3f(&mut ctx, 5, 0.1, 0.2, 0.3);
+        for _ in 0..3 {
+            dispatch::glVertex2f(&mut ctx, 0.0, 0.0);
+        }
+        dispatch::glEnd(&mut ctx);
+    }
+    let mut out = [0.0f32; 4];
+    unsafe { dispatch::glGetUniformfv(&mut ctx, p, tint1, out.as_mut_ptr()) };
+    assert_eq!(out, [1.0, 0.5, 0.25, 1.0]);
+    let draw = &ctx.frame.draws[0];
+    assert!(draw.program.as_ref().is_some_and(|d| d.program.vertex.is_some() && d.program.fragment.is_some()));
+    assert_eq!(draw.vertices.generic[5].get(0), Some([0.1, 0.2, 0.3, 1.0]));
+    assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+}
