@@ -57,6 +57,8 @@ const GLOBAL_CAPS: &[GLenum] = &[
     gl::GL_SCISSOR_TEST,
     gl::GL_SHARED_TEXTURE_PALETTE_EXT,
     gl::GL_STENCIL_TEST,
+    gl::GL_VERTEX_PROGRAM_POINT_SIZE,
+    gl::GL_VERTEX_PROGRAM_TWO_SIDE,
 ];
 
 /// Capabilities of the active texture unit.

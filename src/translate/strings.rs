@@ -10,6 +10,9 @@ const RENDERER: &str = "glrt (Vulkan raster)\0";
 /// `GL_VERSION`: "1.5 glrt <crate version>".
 const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 
+/// `GL_SHADING_LANGUAGE_VERSION`: GLSL 1.20 (OpenGL 2.1's; 1.10 shaders compile as 1.10).
+const SHADING_LANGUAGE_VERSION: &str = "1.20\0";
+
 /// `GL_EXTENSIONS`: the extensions whose commands and enums are all implemented with their full
 /// semantics (programs enable code paths from this string), in alphabetical order, each
 /// followed by a space as in Mesa's string (piglit's `glinfo` prints it with spaces turned into
@@ -106,6 +109,7 @@ impl Context {
             gl::GL_RENDERER => RENDERER,
             gl::GL_VERSION => VERSION,
             gl::GL_EXTENSIONS => EXTENSIONS,
+            gl::GL_SHADING_LANGUAGE_VERSION => SHADING_LANGUAGE_VERSION,
             _ => {
                 self.set_error_in(gl::GL_INVALID_ENUM, "glGetString");
                 return std::ptr::null();
@@ -132,6 +136,7 @@ mod tests {
         let (mut ctx, _) = Context::with_recording();
         assert_eq!(string(&mut ctx, gl::GL_VENDOR).as_deref(), Some("glrt"));
         assert_eq!(string(&mut ctx, gl::GL_VERSION).unwrap(), format!("1.5 glrt {}", env!("CARGO_PKG_VERSION")));
+        assert_eq!(string(&mut ctx, gl::GL_SHADING_LANGUAGE_VERSION).unwrap(), "1.20");
         let ext = string(&mut ctx, gl::GL_EXTENSIONS).unwrap();
         assert!(ext.split(' ').any(|e| e == "GL_EXT_blend_minmax"), "{ext}");
         assert!(ext.split(' ').any(|e| e == "GL_ARB_window_pos"), "{ext}");

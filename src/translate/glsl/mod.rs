@@ -158,6 +158,7 @@ pub fn link(shaders: &[&CompiledShader], attribute_bindings: &HashMap<String, u3
     unit::link(shaders, attribute_bindings)
 }
 
+pub mod builtins;
 pub mod unit;
 pub mod compiler;
 pub mod declarations;
