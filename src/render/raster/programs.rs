@@ -5,6 +5,7 @@
 //! made with them go at the same time, see [`super::pipelines::Pipelines::end_frame`]).
 
 use std::collections::HashMap;
+use std::collections::hash_map::Entry;
 
 use ash::vk;
 
@@ -40,22 +41,11 @@ pub struct Programs {
 impl Programs {
     /// The modules of `program`, created on first use and marked used in this frame.
     pub fn get(&mut self, device: &Device, program: &ShaderProgram) -> Result<&ProgramModules> {
-        let frame = self.frame;
-        if !self.modules.contains_key(&program.id) {
-            let vertex = program.vertex.as_deref().map(|code| module(device, code)).transpose()?;
-            let fragment = match program.fragment.as_deref().map(|code| module(device, code)).transpose() {
-                Ok(f) => f,
-                Err(e) => {
-                    // Safety: the module was just created and never used.
-                    vertex.inspect(|&m| unsafe { device.raw.destroy_shader_module(m, None) });
-                    return Err(e);
-                }
-            };
-            let attributes = super::ff::vertex::generic_indices(program);
-            self.modules.insert(program.id, ProgramModules { vertex, fragment, attributes, used: frame });
-        }
-        let modules = self.modules.get_mut(&program.id).expect("inserted above");
-        modules.used = frame;
+        let modules = match self.modules.entry(program.id) {
+            Entry::Occupied(e) => e.into_mut(),
+            Entry::Vacant(v) => v.insert(create(device, program)?),
+        };
+        modules.used = self.frame;
         Ok(modules)
     }
 
@@ -136,6 +126,20 @@ pub fn bind_set(rec: &mut Recorder<'_>, program: &ProgramDraw) -> Result<(vk::De
     };
     let set = rec.descriptors.get(rec.device, &key)?;
     Ok((set, [builtins.offset as u32, uniforms.offset as u32]))
+}
+
+/// The modules of `program` (none made when one fails).
+fn create(device: &Device, program: &ShaderProgram) -> Result<ProgramModules> {
+    let vertex = program.vertex.as_deref().map(|code| module(device, code)).transpose()?;
+    let fragment = match program.fragment.as_deref().map(|code| module(device, code)).transpose() {
+        Ok(f) => f,
+        Err(e) => {
+            // Safety: the module was just created and never used.
+            vertex.inspect(|&m| unsafe { device.raw.destroy_shader_module(m, None) });
+            return Err(e);
+        }
+    };
+    Ok(ProgramModules { vertex, fragment, attributes: super::ff::vertex::generic_indices(program), used: 0 })
 }
 
 fn module(device: &Device, code: &[u32]) -> Result<vk::ShaderModule> {
