@@ -3,7 +3,8 @@
 //! compiled here from Vulkan GLSL 4.50 written to the contract. A fragment-only program next
 //! to the fixed-function vertex stage, vertex stages reading generic attributes and the
 //! built-in block, points, lines and polygon modes placed by a vertex stage, and the
-//! per-fragment operations around program stages. Runs on Mesa lavapipe.
+//! per-fragment operations around program stages; then programs written in GLSL 1.10 and
+//! linked by `translate::glsl::link`. Runs on Mesa lavapipe.
 
 mod lavapipe;
 
@@ -16,6 +17,8 @@ use glrt::frame::{Attrib, Clear, Draw, Frame, RasterState, Topology};
 use glrt::frame::pixels::PixelBuffer;
 use glrt::render::FrameSink;
 use glrt::render::raster::renderer::Renderer;
+use glrt::translate::glsl::{self, CompiledShader, LinkedProgram, Stage, UniformStorage};
+use std::collections::HashMap;
 
 /// Window size of every test.
 const SIZE: i32 = 32;
@@ -117,7 +120,7 @@ fn draw(topology: Topology, positions: Vec<[f32; 4]>, indices: Vec<u32>, color: 
 }
 
 /// The window rectangle `x0, y0` – `x1, y1` at NDC depth `z` as two triangles.
-fn rect(x0: f32, y0: f32, x1: f32, y1: f32, z: f32, color: [f32; 4], state: RasterState, program: Option<Arc<ProgramDraw>>) -> Draw {
+fn rect([x0, y0, x1, y1]: [f32; 4], z: f32, color: [f32; 4], state: RasterState, program: Option<Arc<ProgramDraw>>) -> Draw {
     let positions = vec![ndc(x0, y0, z), ndc(x1, y0, z), ndc(x1, y1, z), ndc(x0, y1, z)];
     draw(Topology::Triangles, positions, vec![0, 1, 2, 0, 2, 3], color, state, program)
 }
@@ -184,7 +187,7 @@ fn a_fragment_program_reads_its_uniforms_and_sampler_slots_after_the_fixed_funct
     let p = program(1, None, Some(frag), vec![SamplerKind::D2, SamplerKind::D2, SamplerKind::Cube], Vec::new());
     let run = run(&p, builtins(IDENTITY), floats(&[1.0, 0.5, 1.0, 1.0]), vec![Some(texture(5, [128, 255, 64, 255])), None, None]);
     let mut r = renderer();
-    let f = frame(vec![rect(8.0, 8.0, 24.0, 24.0, 0.0, [1.0; 4], state(), Some(run))]);
+    let f = frame(vec![rect([8.0, 8.0, 24.0, 24.0], 0.0, [1.0; 4], state(), Some(run))]);
     let pixels = render(&mut r, &f);
     assert_near(at(&pixels, 16, 16), [128, 128, 64, 128], "inside the fixed-function quad");
     assert_near(at(&pixels, 4, 4), [0, 0, 0, 0], "outside");
@@ -200,7 +203,7 @@ fn a_vertex_program_places_vertices_with_the_builtins_and_reads_generic_attribut
     half[5] = 0.5;
     let run = run(&p, builtins(half), floats(&[1.0]), Vec::new());
     let mut r = renderer();
-    let f = frame(vec![rect(0.0, 0.0, 32.0, 32.0, 0.0, [1.0, 0.5, 0.0, 0.5], state(), Some(run))]);
+    let f = frame(vec![rect([0.0, 0.0, 32.0, 32.0], 0.0, [1.0, 0.5, 0.0, 0.5], state(), Some(run))]);
     let pixels = render(&mut r, &f);
     assert_near(at(&pixels, 16, 16), [255, 128, 0, 128], "generic attribute 1, with 3's default w");
     assert_near(at(&pixels, 9, 9), [255, 128, 0, 128], "inside the scaled quad");
@@ -240,15 +243,15 @@ fn depth_stencil_and_blending_apply_around_program_stages() {
     let always_one = Stencil { func: CompareFunc::Always, reference: 1, value_mask: 0xff, fail: StencilOp::Keep, depth_fail: StencilOp::Keep, depth_pass: StencilOp::Replace, write_mask: 0xff };
     // Red at depth 0.5 marks stencil 1 on the left half.
     let marking = RasterState { depth_test: Some(CompareFunc::Less), stencil: Some(always_one), ..state() };
-    let red = rect(0.0, 0.0, 16.0, 32.0, 0.0, [1.0, 0.0, 0.0, 1.0], marking, Some(run.clone()));
+    let red = rect([0.0, 0.0, 16.0, 32.0], 0.0, [1.0, 0.0, 0.0, 1.0], marking, Some(run.clone()));
     // Green behind it (depth 0.75) over the whole bottom half: hidden on the left.
     let behind = RasterState { depth_test: Some(CompareFunc::Less), ..state() };
-    let green = rect(0.0, 0.0, 32.0, 16.0, 0.5, [0.0, 1.0, 0.0, 1.0], behind, Some(run.clone()));
+    let green = rect([0.0, 0.0, 32.0, 16.0], 0.5, [0.0, 1.0, 0.0, 1.0], behind, Some(run.clone()));
     // Blue added everywhere stencil is 1.
     let equal_one = Stencil { func: CompareFunc::Equal, depth_pass: StencilOp::Keep, ..always_one };
     let add = Blend { src_rgb: BlendFactor::One, dst_rgb: BlendFactor::One, src_alpha: BlendFactor::One, dst_alpha: BlendFactor::One, ..Blend::default() };
     let adding = RasterState { stencil: Some(equal_one), blend: Some(add), ..state() };
-    let blue = rect(0.0, 0.0, 32.0, 32.0, 0.0, [0.0, 0.0, 1.0, 1.0], adding, Some(run));
+    let blue = rect([0.0, 0.0, 32.0, 32.0], 0.0, [0.0, 0.0, 1.0, 1.0], adding, Some(run));
     let mut r = renderer();
     let f = frame(vec![red, green, blue]);
     let pixels = render(&mut r, &f);
@@ -265,7 +268,7 @@ fn program_modules_are_freed_when_no_draw_uses_them() {
     let p = program(5, Some(vertex(PLACE)), Some(fragment(PASS)), Vec::new(), vec![1, 3]);
     let run = run(&p, builtins(IDENTITY), floats(&[1.0]), Vec::new());
     let mut r = renderer();
-    let mut f = frame(vec![rect(0.0, 0.0, 32.0, 32.0, 0.0, [1.0; 4], state(), Some(run))]);
+    let mut f = frame(vec![rect([0.0, 0.0, 32.0, 32.0], 0.0, [1.0; 4], state(), Some(run))]);
     r.present(f.clone());
     assert_eq!((r.program_count(), r.pipeline_count()), (1, 1));
     f.draws.clear();
@@ -275,3 +278,88 @@ fn program_modules_are_freed_when_no_draw_uses_them() {
     assert_eq!((r.program_count(), r.pipeline_count()), (0, 0), "the program and its pipeline went");
 }
 
+
+/// The executable of GLSL 1.10 `vertex` and `fragment` sources (either may be absent) linked
+/// with `color_in` bound to generic attribute 3, numbered `id`, with its link result.
+fn link(id: u64, vertex: Option<&str>, fragment: Option<&str>) -> (Arc<ShaderProgram>, LinkedProgram) {
+    let shaders: Vec<CompiledShader> = [(Stage::Vertex, vertex), (Stage::Fragment, fragment)]
+        .into_iter()
+        .filter_map(|(stage, source)| source.map(|s| glsl::compile(stage, s)))
+        .inspect(|s| assert!(s.ok, "compile: {}", s.log))
+        .collect();
+    let bindings = HashMap::from([("color_in".to_string(), 3)]);
+    let linked = glsl::link(&shaders.iter().collect::<Vec<_>>(), &bindings);
+    assert!(linked.ok, "link: {}", linked.log);
+    let executable = ShaderProgram { id, ..linked.executable.clone().expect("an executable") };
+    (Arc::new(executable), linked)
+}
+
+/// The uniform block of `linked` with the vec4 uniforms `values` set.
+fn uniform_block(linked: &LinkedProgram, values: &[(&str, [f32; 4])]) -> Arc<[u8]> {
+    let mut bytes = vec![0u8; linked.uniform_block_size as usize];
+    for (name, value) in values {
+        let uniform = linked.uniforms.iter().find(|u| u.name == *name).unwrap_or_else(|| panic!("uniform {name}"));
+        let UniformStorage::Block { offset, .. } = uniform.storage else { panic!("{name} is in the block") };
+        let at = offset as usize;
+        bytes[at..at + 16].copy_from_slice(&value.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>());
+    }
+    Arc::from(bytes)
+}
+
+/// The sampler slot of the sampler uniform `name`.
+fn slot(linked: &LinkedProgram, name: &str) -> usize {
+    match linked.uniforms.iter().find(|u| u.name == name).map(|u| u.storage) {
+        Some(UniformStorage::Sampler { first_slot }) => first_slot as usize,
+        other => panic!("{name}: {other:?}"),
+    }
+}
+
+/// A program draw of a linked GLSL program (no built-in state is read: zero bytes).
+fn glsl_run(program: &Arc<ShaderProgram>, uniforms: Arc<[u8]>, textures: Vec<Option<TextureRef>>) -> Arc<ProgramDraw> {
+    run(program, Arc::from(vec![0u8; 16 << 10]), uniforms, textures)
+}
+
+#[test]
+fn a_glsl_program_with_an_attribute_a_uniform_and_a_sampler_draws() {
+    let (p, linked) = link(
+        6,
+        Some("attribute vec4 color_in; varying vec4 color; void main() { gl_Position = ftransform(); color = color_in; }"),
+        Some("uniform vec4 tint; uniform sampler2D tex; varying vec4 color;\nvoid main() { gl_FragColor = color * tint * texture2D(tex, vec2(0.5)); }"),
+    );
+    assert_eq!(p.attributes, vec![3]);
+    let mut textures = vec![None; p.samplers.len()];
+    textures[slot(&linked, "tex")] = Some(texture(9, [255, 128, 255, 255]));
+    let run = glsl_run(&p, uniform_block(&linked, &[("tint", [1.0, 1.0, 0.5, 1.0])]), textures);
+    let mut quad = rect([0.0, 0.0, 32.0, 32.0], 0.0, [1.0; 4], state(), Some(run));
+    quad.vertices.generic = vec![Attrib::default(), Attrib::default(), Attrib::default(), Attrib { values: vec![[0.5, 1.0, 1.0, 1.0]] }];
+    // ftransform() uses the draw's matrices: x and y scaled by one half.
+    quad.modelview = glam::Mat4::from_scale(glam::Vec3::new(0.5, 0.5, 1.0));
+    let mut r = renderer();
+    let pixels = render(&mut r, &frame(vec![quad]));
+    assert_near(at(&pixels, 16, 16), [128, 128, 128, 255], "attribute × uniform × texture");
+    assert_near(at(&pixels, 4, 16), [0, 0, 0, 0], "outside the scaled quad");
+}
+
+#[test]
+fn a_glsl_fragment_shader_colours_fixed_function_geometry() {
+    let (p, linked) = link(7, None, Some("uniform vec4 scale; void main() { gl_FragColor = gl_Color * scale; }"));
+    let run = glsl_run(&p, uniform_block(&linked, &[("scale", [0.5, 1.0, 1.0, 1.0])]), Vec::new());
+    // The colour reaches the fixed-function vertex stage as gl_Color.
+    let quad = rect([8.0, 8.0, 24.0, 24.0], 0.0, [1.0, 0.25, 0.0, 1.0], state(), Some(run));
+    let mut r = renderer();
+    let pixels = render(&mut r, &frame(vec![quad]));
+    assert_near(at(&pixels, 16, 16), [128, 64, 0, 255], "gl_Color × uniform");
+    assert_near(at(&pixels, 4, 4), [0, 0, 0, 0], "outside");
+}
+
+#[test]
+fn glsl_points_take_the_size_the_vertex_shader_writes() {
+    let (p, _) = link(8, Some("void main() { gl_Position = ftransform(); gl_PointSize = 4.0; gl_FrontColor = vec4(0.0, 1.0, 0.0, 1.0); }"), None);
+    let run = glsl_run(&p, Arc::from(vec![0u8; 16]), Vec::new());
+    let point = draw(Topology::Points, vec![ndc(16.0, 16.0, 0.0)], vec![0], [1.0; 4], state(), Some(run));
+    let mut r = renderer();
+    let pixels = render(&mut r, &frame(vec![point]));
+    let lit = |x, y| at(&pixels, x, y) == [0, 255, 0, 255];
+    assert!((14..18).all(|x| lit(x, 16)) && (14..18).all(|y| lit(16, y)), "4 pixels across, fixed-function fragment stage");
+    assert!(!lit(13, 16) && !lit(18, 16) && !lit(16, 13) && !lit(16, 18), "and no more");
+}
