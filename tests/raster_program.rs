@@ -12,7 +12,7 @@ use std::sync::Arc;
 
 use glrt::frame::program::{ProgramDraw, SamplerKind, ShaderProgram};
 use glrt::frame::state::{Blend, BlendFactor, CompareFunc, Line, PolygonMode, Stencil, StencilOp};
-use glrt::frame::texture::{Sampler, TexImage, TexelFormat, TextureContent, TextureKind, TextureRef};
+use glrt::frame::texture::{DepthMode, Sampler, TexImage, TexelFormat, TextureContent, TextureKind, TextureRef};
 use glrt::frame::{Attrib, Clear, Draw, Frame, RasterState, Topology};
 use glrt::frame::pixels::PixelBuffer;
 use glrt::render::FrameSink;
@@ -192,6 +192,26 @@ fn a_fragment_program_reads_its_uniforms_and_sampler_slots_after_the_fixed_funct
     assert_near(at(&pixels, 16, 16), [128, 128, 64, 128], "inside the fixed-function quad");
     assert_near(at(&pixels, 4, 4), [0, 0, 0, 0], "outside");
     assert_eq!(r.program_count(), 1);
+}
+
+#[test]
+fn a_depth_texture_in_a_sampler_slot_holds_its_depth_in_red_whatever_its_mode() {
+    let frag = fragment(
+        r#"
+        layout(set = 1, binding = 2) uniform sampler2D depth;
+        layout(location = 0) out vec4 color;
+        void main() { color = vec4(texture(depth, vec2(0.5)).r, 0.0, 0.0, 1.0); }
+    "#,
+    );
+    let p = program(10, None, Some(frag), vec![SamplerKind::D2Shadow], Vec::new());
+    let image = TexImage { width: 1, height: 1, depth: 1, border: 0, texels: vec![64, 64, 64, 255], depth_values: vec![0.25] };
+    let sampler = Sampler { depth_mode: DepthMode::Alpha, ..Sampler::default() };
+    let content = TextureContent { kind: TextureKind::D2, format: TexelFormat::Depth, faces: vec![vec![Some(Arc::new(image))]], sampler };
+    let depth = TextureRef { id: 11, version: 1, content: Arc::new(content) };
+    let run = run(&p, builtins(IDENTITY), floats(&[0.0]), vec![Some(depth)]);
+    let mut r = renderer();
+    let pixels = render(&mut r, &frame(vec![rect([0.0, 0.0, 32.0, 32.0], 0.0, [1.0; 4], state(), Some(run))]));
+    assert_near(at(&pixels, 16, 16), [64, 0, 0, 255], "depth 0.25 in red (GL_ALPHA mode puts it in alpha for fixed function)");
 }
 
 #[test]
