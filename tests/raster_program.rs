@@ -257,6 +257,21 @@ fn points_and_lines_from_a_vertex_program_have_the_shader_size_and_line_width() 
 }
 
 #[test]
+fn quads_in_line_mode_from_a_vertex_program_show_their_outline_only() {
+    let p = program(12, Some(vertex(PLACE)), Some(fragment(PASS)), Vec::new(), vec![1, 3]);
+    let run = run(&p, builtins(IDENTITY), floats(&[1.0]), Vec::new());
+    let edges = RasterState { polygon_mode: [PolygonMode::Line; 2], ..state() };
+    let mut quad = rect([4.5, 4.5, 27.5, 27.5], 0.0, [1.0; 4], edges, Some(run));
+    // The quad's two triangles (0, 1, 2) and (0, 2, 3): the diagonal 0–2 is no boundary edge.
+    quad.edge_masks = vec![0b011, 0b110];
+    let mut r = renderer();
+    let pixels = render(&mut r, &frame(vec![quad]));
+    let lit = |x, y| at(&pixels, x, y)[0] > 200;
+    assert!(lit(16, 4) && lit(27, 16) && lit(16, 27) && lit(4, 16), "the four sides");
+    assert!(!lit(16, 16) && !lit(10, 10), "no diagonal, no fill");
+}
+
+#[test]
 fn depth_stencil_and_blending_apply_around_program_stages() {
     let p = program(4, Some(vertex(PLACE)), Some(fragment(PASS)), Vec::new(), vec![1, 3]);
     let run = run(&p, builtins(IDENTITY), floats(&[1.0]), Vec::new());

@@ -4,8 +4,11 @@
 //! `gl_PointSize`, the renderer sets the line width); triangles are drawn with the polygon
 //! mode of each face (Vulkan's `polygonMode`, one per pipeline: when the two faces differ,
 //! one batch per face, the other face culled). Vulkan's polygon mode `LINE` draws every edge
-//! of every triangle, so edge flags and the diagonals of decomposed quads and polygons are not
-//! honoured.
+//! of every triangle, diagonals of decomposed quads and polygons and edges whose edge flag is
+//! false included; when neither facing nor polygon offset can matter (both faces `GL_LINE`,
+//! no culling, no `GL_POLYGON_OFFSET_LINE`, no two-sided colours), the boundary edges
+//! ([`Draw::edge_masks`]) are drawn as lines instead, which is exact but for flat shading (an
+//! edge takes its first vertex's values, not the polygon's provoking vertex's).
 //!
 //! The shader key is the fixed-function one of a filled triangle (`v_raster` is only
 //! meaningful for primitives the CPU expanded): [`key::PRIMITIVE`] triangle, no
@@ -32,21 +35,21 @@ pub fn prepare(draw: &Draw, program: &ProgramDraw, packed: Vec<f32>, uniforms: V
     let indices: Vec<u32> = draw.indices.chunks_exact(per).filter(|p| valid(p)).flat_map(|p| p.iter().cycle().skip(per - 1).take(per).copied().collect::<Vec<_>>()).collect();
     let generic = vertex::pack_generic(draw, &vertex::generic_indices(&program.program));
     let s = &draw.state;
-    let batch = |mode: PolygonMode, cull: Option<Face>, polygon_offset: bool| {
-        let facing = if draw.topology == Topology::Triangles { Facing::Rasterizer } else { Facing::Front };
+    let batch = |topology: Topology, indices: Vec<u32>, mode: PolygonMode, cull: Option<Face>, polygon_offset: bool| {
+        let facing = if topology == Topology::Triangles { Facing::Rasterizer } else { Facing::Front };
         let mut shader = key::shader_key(draw, Primitive::Triangle, facing);
         let general = &mut shader.words[key::GENERAL];
         clear(general, key::TWO_SIDE);
         key::TWO_SIDE.set(general, program.two_side as u32);
-        if draw.topology != Topology::Triangles || mode != PolygonMode::Fill {
+        if topology != Topology::Triangles || mode != PolygonMode::Fill {
             clear(general, key::POLYGON_STIPPLE);
         }
         Batch {
-            topology: draw.topology,
+            topology,
             polygon_mode: mode,
             vertices: packed.clone(),
             generic: generic.clone(),
-            indices: indices.clone(),
+            indices,
             shader,
             uniforms: uniforms.clone(),
             cull,
@@ -54,8 +57,13 @@ pub fn prepare(draw: &Draw, program: &ProgramDraw, packed: Vec<f32>, uniforms: V
         }
     };
     if draw.topology != Topology::Triangles {
-        return vec![batch(PolygonMode::Fill, None, false)];
+        return vec![batch(draw.topology, indices, PolygonMode::Fill, None, false)];
     }
+    let hidden_edges = draw.edge_masks.iter().any(|&m| m & 7 != 7);
+    if hidden_edges && s.polygon_mode == [PolygonMode::Line; 2] && s.cull.is_none() && !s.polygon_offset.line && !program.two_side {
+        return vec![batch(Topology::Lines, boundary_edges(draw, count), PolygonMode::Fill, None, false)];
+    }
+    let triangles = |mode, cull, offset| batch(Topology::Triangles, indices.clone(), mode, cull, offset);
     let offset = |mode| match mode {
         PolygonMode::Fill => s.polygon_offset.fill,
         PolygonMode::Line => s.polygon_offset.line,
@@ -65,11 +73,29 @@ pub fn prepare(draw: &Draw, program: &ProgramDraw, packed: Vec<f32>, uniforms: V
     let [front, back] = s.polygon_mode;
     match (culled(Face::Front), culled(Face::Back)) {
         (true, true) => Vec::new(),
-        (true, false) => vec![batch(back, s.cull, offset(back))],
-        (false, true) => vec![batch(front, s.cull, offset(front))],
-        (false, false) if front == back => vec![batch(front, None, offset(front))],
-        (false, false) => vec![batch(front, Some(Face::Back), offset(front)), batch(back, Some(Face::Front), offset(back))],
+        (true, false) => vec![triangles(back, s.cull, offset(back))],
+        (false, true) => vec![triangles(front, s.cull, offset(front))],
+        (false, false) if front == back => vec![triangles(front, None, offset(front))],
+        (false, false) => vec![triangles(front, Some(Face::Back), offset(front)), triangles(back, Some(Face::Front), offset(back))],
     }
+}
+
+/// Line-list indices of the boundary edges of the draw's triangles (bit `k` of a triangle's
+/// edge mask: the edge from its index `k` to `k + 1`), skipping triangles with an index of
+/// `count` or more.
+fn boundary_edges(draw: &Draw, count: u32) -> Vec<u32> {
+    let mut out = Vec::new();
+    for (t, &mask) in draw.indices.chunks_exact(3).zip(&draw.edge_masks) {
+        if t.iter().any(|&i| i >= count) {
+            continue;
+        }
+        for k in 0..3 {
+            if mask & (1 << k) != 0 {
+                out.extend([t[k], t[(k + 1) % 3]]);
+            }
+        }
+    }
+    out
 }
 
 /// Clears `field` in `word`.
@@ -124,6 +150,13 @@ mod tests {
         assert_eq!(summary, vec![(PolygonMode::Line, Some(Face::Back), false), (PolygonMode::Point, Some(Face::Front), true)]);
         assert_eq!(batches[0].indices, vec![2, 0, 1]);
         assert!(batches.iter().all(|b| key::POLYGON_STIPPLE.get(b.shader.words[key::GENERAL]) == 0));
+        let mut quad = draw(Topology::Triangles, vec![0, 1, 2, 0, 2, 3], RasterState { polygon_mode: [PolygonMode::Line; 2], ..RasterState::default() });
+        quad.edge_masks = vec![0b011, 0b110];
+        let edges = prepare(&quad, &program_draw(false), vertex::pack(&quad), Vec::new());
+        assert_eq!((edges.len(), edges[0].topology), (1, Topology::Lines));
+        assert_eq!(edges[0].indices, vec![0, 1, 1, 2, 2, 3, 3, 0], "the quad's outline, no diagonal");
+        let lined = prepare(&quad, &program_draw(true), vertex::pack(&quad), Vec::new());
+        assert_eq!((lined[0].topology, lined[0].polygon_mode), (Topology::Triangles, PolygonMode::Line), "two-sided colours need the facing");
         state.cull = Some(Face::Back);
         let d = draw(Topology::Triangles, vec![0, 1, 2], state.clone());
         let summary: Vec<_> = prepare(&d, &program_draw(false), vertex::pack(&d), Vec::new()).iter().map(|b| (b.polygon_mode, b.cull)).collect();
