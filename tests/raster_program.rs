@@ -164,7 +164,7 @@ fn renderer() -> Renderer {
 
 /// A 1×1 RGBA texture of `texel`.
 fn texture(id: u32, texel: [u8; 4]) -> TextureRef {
-    let image = TexImage { width: 1, height: 1, depth: 1, border: 0, texels: texel.to_vec(), depth_values: Vec::new() };
+    let image = TexImage { width: 1, height: 1, depth: 1, border: 0, texels: texel.to_vec(), ..TexImage::default() };
     let content = TextureContent { kind: TextureKind::D2, format: TexelFormat::Rgba, faces: vec![vec![Some(Arc::new(image))]], sampler: Sampler::default() };
     TextureRef { id, version: 1, content: Arc::new(content) }
 }
@@ -204,7 +204,7 @@ fn a_depth_texture_in_a_sampler_slot_holds_its_depth_in_red_whatever_its_mode() 
     "#,
     );
     let p = program(10, None, Some(frag), vec![SamplerKind::D2Shadow], Vec::new());
-    let image = TexImage { width: 1, height: 1, depth: 1, border: 0, texels: vec![64, 64, 64, 255], depth_values: vec![0.25] };
+    let image = TexImage { width: 1, height: 1, depth: 1, border: 0, texels: vec![64, 64, 64, 255], depth_values: vec![0.25], ..TexImage::default() };
     let sampler = Sampler { depth_mode: DepthMode::Alpha, ..Sampler::default() };
     let content = TextureContent { kind: TextureKind::D2, format: TexelFormat::Depth, faces: vec![vec![Some(Arc::new(image))]], sampler };
     let depth = TextureRef { id: 11, version: 1, content: Arc::new(content) };
