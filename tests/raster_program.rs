@@ -18,6 +18,7 @@ use glrt::frame::pixels::PixelBuffer;
 use glrt::render::FrameSink;
 use glrt::render::raster::renderer::Renderer;
 use glrt::translate::glsl::{self, CompiledShader, LinkedProgram, Stage, UniformStorage};
+use glrt::translate::{dispatch, gl};
 use std::collections::HashMap;
 
 /// Window size of every test.
@@ -389,12 +390,38 @@ fn a_glsl_fragment_shader_colours_fixed_function_geometry() {
 
 #[test]
 fn glsl_points_take_the_size_the_vertex_shader_writes() {
-    let (p, _) = link(8, Some("void main() { gl_Position = ftransform(); gl_PointSize = 4.0; gl_FrontColor = vec4(0.0, 1.0, 0.0, 1.0); }"), None);
-    let run = glsl_run(&p, Arc::from(vec![0u8; 16]), Vec::new());
+    let vs = "void main() { gl_Position = ftransform(); gl_PointSize = 4.0; gl_FrontColor = vec4(0.0, 1.0, 0.0, 1.0); }";
+    let (p, _) = link(8, Some(vs), None);
+    let run = run(&p, builtins_with_program_point_size(vs), Arc::from(vec![0u8; 16]), Vec::new());
     let point = draw(Topology::Points, vec![ndc(16.0, 16.0, 0.0)], vec![0], [1.0; 4], state(), Some(run));
     let mut r = renderer();
     let pixels = render(&mut r, &frame(vec![point]));
     let lit = |x, y| at(&pixels, x, y) == [0, 255, 0, 255];
     assert!((14..18).all(|x| lit(x, 16)) && (14..18).all(|y| lit(16, y)), "4 pixels across, fixed-function fragment stage");
     assert!(!lit(13, 16) && !lit(18, 16) && !lit(16, 13) && !lit(16, 18), "and no more");
+}
+
+/// The built-in state block translate packs for a draw of a program whose vertex shader is
+/// `vs`, with `GL_VERTEX_PROGRAM_POINT_SIZE` on (points take the shader's size) and a point
+/// size of 1 in the state.
+fn builtins_with_program_point_size(vs: &str) -> Arc<[u8]> {
+    let (mut ctx, sink) = glrt::translate::Context::with_recording();
+    let source = std::ffi::CString::new(vs).unwrap();
+    unsafe {
+        let shader = dispatch::glCreateShader(&mut ctx, gl::GL_VERTEX_SHADER);
+        dispatch::glShaderSource(&mut ctx, shader, 1, &source.as_ptr(), std::ptr::null());
+        dispatch::glCompileShader(&mut ctx, shader);
+        let program = dispatch::glCreateProgram(&mut ctx);
+        dispatch::glAttachShader(&mut ctx, program, shader);
+        dispatch::glLinkProgram(&mut ctx, program);
+        dispatch::glUseProgram(&mut ctx, program);
+        dispatch::glEnable(&mut ctx, gl::GL_VERTEX_PROGRAM_POINT_SIZE);
+        dispatch::glBegin(&mut ctx, gl::GL_POINTS);
+        dispatch::glVertex2f(&mut ctx, 0.0, 0.0);
+        dispatch::glEnd(&mut ctx);
+        assert_eq!(dispatch::glGetError(&mut ctx), gl::GL_NO_ERROR);
+    }
+    ctx.end_frame();
+    let frames = sink.frames.lock();
+    frames[0].draws[0].program.as_ref().expect("the draw runs the program").builtins.clone()
 }
