@@ -38,6 +38,8 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_EXT_blend_func_separate",
     "GL_EXT_framebuffer_object",
     "GL_ARB_map_buffer_range",
+    "GL_ATI_separate_stencil",
+    "GL_EXT_stencil_two_side",
 ];
 
 /// Commands allowed between `glBegin` and `glEnd` besides the attribute families

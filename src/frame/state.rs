@@ -150,6 +150,23 @@ impl Default for Stencil {
     }
 }
 
+/// The stencil state of front- and back-facing polygons (OpenGL 2.0 section 4.1.5). Points,
+/// lines, bitmaps and pixel rectangles are front-facing: they use `front`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StencilFaces {
+    /// Front-facing polygons and every other primitive.
+    pub front: Stencil,
+    /// Back-facing polygons.
+    pub back: Stencil,
+}
+
+impl StencilFaces {
+    /// The same state for both faces.
+    pub fn both(stencil: Stencil) -> StencilFaces {
+        StencilFaces { front: stencil, back: stencil }
+    }
+}
+
 /// A logic operation on colour indices or RGBA values (section 4.1.10, table 4.5).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[allow(missing_docs)] // The names are the operations of table 4.5.
@@ -464,8 +481,8 @@ pub struct RasterState {
     pub depth_test: Option<CompareFunc>,
     /// Depth writes (`glDepthMask`).
     pub depth_write: bool,
-    /// Stencil test.
-    pub stencil: Option<Stencil>,
+    /// Stencil test, per face.
+    pub stencil: Option<StencilFaces>,
     /// Colour channels written (`glColorMask`).
     pub color_mask: [bool; 4],
     /// Faces culled.

@@ -108,7 +108,7 @@ fn save_depth_buffer(ctx: &Context, out: &mut Vec<Restore>) {
 }
 
 fn save_stencil_buffer(ctx: &Context, out: &mut Vec<Restore>) {
-    out.push(caps(ctx, [gl::GL_STENCIL_TEST]));
+    out.push(caps(ctx, [gl::GL_STENCIL_TEST, gl::GL_STENCIL_TEST_TWO_SIDE_EXT]));
     out.push(value((ctx.fixed.fragment.stencil, ctx.fixed.clear.stencil), |ctx, (stencil, clear)| {
         let f = ctx.fixed_mut();
         (f.fragment.stencil, f.clear.stencil) = (stencil, clear);

@@ -57,6 +57,7 @@ const GLOBAL_CAPS: &[GLenum] = &[
     gl::GL_SCISSOR_TEST,
     gl::GL_SHARED_TEXTURE_PALETTE_EXT,
     gl::GL_STENCIL_TEST,
+    gl::GL_STENCIL_TEST_TWO_SIDE_EXT,
 ];
 
 /// Capabilities of the active texture unit.

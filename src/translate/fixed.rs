@@ -97,7 +97,7 @@ impl Context {
             logic_op: on(gl::GL_COLOR_LOGIC_OP).then_some(fr.logic_op),
             depth_test: on(gl::GL_DEPTH_TEST).then_some(fr.depth_func),
             depth_write: fr.depth_write,
-            stencil: on(gl::GL_STENCIL_TEST).then_some(fr.stencil),
+            stencil: on(gl::GL_STENCIL_TEST).then(|| fr.stencil.for_draw(on(gl::GL_STENCIL_TEST_TWO_SIDE_EXT))),
             color_mask,
             draw_buffers: self.draw_buffers(),
             read_buffer: self.read_color_buffer(),

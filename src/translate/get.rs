@@ -90,6 +90,7 @@ impl Context {
             .or_else(|| self.query_lighting(pname))
             .or_else(|| self.query_fog(pname))
             .or_else(|| self.query_fragment(pname))
+            .or_else(|| self.query_stencil(pname))
             .or_else(|| self.query_rasterization(pname))
             .or_else(|| self.query_clear(pname))
             .or_else(|| self.query_framebuffers(pname))

@@ -58,6 +58,7 @@ pub mod queries;
 pub mod rasterization;
 pub mod render_mode;
 pub mod sgis_multitexture;
+pub mod stencil;
 pub mod stipple;
 pub mod strings;
 pub mod target;

@@ -1,0 +1,126 @@
+//! The fixed-function features of OpenGL 2.0 on the Vulkan raster renderer (Mesa lavapipe):
+//! separate stencil for front and back faces (and `GL_EXT_stencil_two_side`), separate blend
+//! equations, non-power-of-two mipmapped textures and point sprites.
+
+mod lavapipe;
+
+use glrt::translate::{Context, dispatch, gl};
+use lavapipe::pixel;
+
+const SIZE: i32 = 64;
+
+/// A context with an orthographic projection in window pixels.
+fn context() -> Context {
+    let mut ctx = lavapipe::context(SIZE);
+    unsafe {
+        dispatch::glMatrixMode(&mut ctx, gl::GL_PROJECTION);
+        dispatch::glOrtho(&mut ctx, 0.0, SIZE as f64, 0.0, SIZE as f64, -1.0, 1.0);
+        dispatch::glMatrixMode(&mut ctx, gl::GL_MODELVIEW);
+    }
+    ctx
+}
+
+/// The window rectangle `x0, y0` – `x1, y1`, counter-clockwise (front-facing) or clockwise.
+fn rect(ctx: &mut Context, [x0, y0, x1, y1]: [f32; 4], ccw: bool) {
+    let mut corners = [[x0, y0], [x1, y0], [x1, y1], [x0, y1]];
+    if !ccw {
+        corners.reverse();
+    }
+    unsafe {
+        dispatch::glBegin(ctx, gl::GL_QUADS);
+        for [x, y] in corners {
+            dispatch::glTexCoord2f(ctx, (x - x0) / (x1 - x0), (y - y0) / (y1 - y0));
+            dispatch::glVertex2f(ctx, x, y);
+        }
+        dispatch::glEnd(ctx);
+    }
+}
+
+/// The stencil value at window (x, y).
+fn stencil(ctx: &mut Context, x: i32, y: i32) -> u8 {
+    let mut out = [0u8];
+    unsafe { dispatch::glReadPixels(ctx, x, y, 1, 1, gl::GL_STENCIL_INDEX, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+    out[0]
+}
+
+/// Front faces, back faces, lines and points each update the stencil buffer with their own
+/// face's state: back faces only when they are back-facing polygons.
+#[test]
+fn separate_stencil_follows_gl_facing() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glClearStencil(&mut ctx, 0);
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_STENCIL_BUFFER_BIT);
+        dispatch::glEnable(&mut ctx, gl::GL_STENCIL_TEST);
+        dispatch::glStencilFuncSeparate(&mut ctx, gl::GL_FRONT, gl::GL_ALWAYS, 0, 0xff);
+        dispatch::glStencilFuncSeparate(&mut ctx, gl::GL_BACK, gl::GL_ALWAYS, 9, 0xff);
+        dispatch::glStencilOpSeparate(&mut ctx, gl::GL_FRONT, gl::GL_KEEP, gl::GL_KEEP, gl::GL_INCR);
+        dispatch::glStencilOpSeparate(&mut ctx, gl::GL_BACK, gl::GL_KEEP, gl::GL_KEEP, gl::GL_REPLACE);
+    }
+    rect(&mut ctx, [0.0, 0.0, 16.0, 16.0], true);
+    rect(&mut ctx, [16.0, 0.0, 32.0, 16.0], false);
+    unsafe {
+        // With GL_CW front faces the windings swap roles.
+        dispatch::glFrontFace(&mut ctx, gl::GL_CW);
+        rect(&mut ctx, [32.0, 0.0, 48.0, 16.0], true);
+        dispatch::glFrontFace(&mut ctx, gl::GL_CCW);
+        // Lines and points are front-facing, whatever their expanded triangles' winding.
+        dispatch::glBegin(&mut ctx, gl::GL_LINES);
+        dispatch::glVertex2f(&mut ctx, 40.0, 30.5);
+        dispatch::glVertex2f(&mut ctx, 0.0, 30.5);
+        dispatch::glEnd(&mut ctx);
+        dispatch::glPointSize(&mut ctx, 4.0);
+        dispatch::glBegin(&mut ctx, gl::GL_POINTS);
+        dispatch::glVertex2f(&mut ctx, 56.0, 40.0);
+        dispatch::glEnd(&mut ctx);
+        // Back faces drawn as lines keep the back state.
+        dispatch::glPolygonMode(&mut ctx, gl::GL_BACK, gl::GL_LINE);
+        dispatch::glStencilFuncSeparate(&mut ctx, gl::GL_BACK, gl::GL_ALWAYS, 5, 0xff);
+    }
+    rect(&mut ctx, [4.5, 44.5, 28.5, 60.5], false);
+    assert_eq!(stencil(&mut ctx, 8, 8), 1, "front face: incremented");
+    assert_eq!(stencil(&mut ctx, 24, 8), 9, "back face: replaced with the back reference");
+    assert_eq!(stencil(&mut ctx, 40, 8), 9, "counter-clockwise is back with GL_CW");
+    assert_eq!(stencil(&mut ctx, 20, 30), 1, "a line is front-facing");
+    assert_eq!(stencil(&mut ctx, 56, 40), 1, "a point is front-facing");
+    assert_eq!(stencil(&mut ctx, 4, 52), 5, "the edge of a back face");
+    assert_eq!(stencil(&mut ctx, 16, 52), 0, "inside the outlined back face");
+
+    // Back faces pass or fail by their own function and reference.
+    unsafe {
+        dispatch::glPolygonMode(&mut ctx, gl::GL_BACK, gl::GL_FILL);
+        dispatch::glStencilFuncSeparate(&mut ctx, gl::GL_FRONT, gl::GL_EQUAL, 1, 0xff);
+        dispatch::glStencilFuncSeparate(&mut ctx, gl::GL_BACK, gl::GL_EQUAL, 9, 0xff);
+        dispatch::glStencilOp(&mut ctx, gl::GL_KEEP, gl::GL_KEEP, gl::GL_KEEP);
+        dispatch::glColor3f(&mut ctx, 0.0, 1.0, 0.0);
+    }
+    rect(&mut ctx, [0.0, 0.0, 32.0, 16.0], true);
+    rect(&mut ctx, [0.0, 0.0, 32.0, 16.0], false);
+    assert_eq!(pixel(&mut ctx, 8, 8), [0, 255, 0, 255], "front passes where the stencil is 1");
+    assert_eq!(pixel(&mut ctx, 24, 8), [0, 255, 0, 255], "back passes where the stencil is 9");
+}
+
+/// `GL_EXT_stencil_two_side`: back faces take the extension's back state while
+/// `GL_STENCIL_TEST_TWO_SIDE_EXT` is on, the front state otherwise.
+#[test]
+fn stencil_two_side_ext() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glClear(&mut ctx, gl::GL_STENCIL_BUFFER_BIT);
+        dispatch::glEnable(&mut ctx, gl::GL_STENCIL_TEST);
+        dispatch::glEnable(&mut ctx, gl::GL_STENCIL_TEST_TWO_SIDE_EXT);
+        dispatch::glActiveStencilFaceEXT(&mut ctx, gl::GL_BACK);
+        dispatch::glStencilOp(&mut ctx, gl::GL_KEEP, gl::GL_KEEP, gl::GL_DECR_WRAP);
+        dispatch::glActiveStencilFaceEXT(&mut ctx, gl::GL_FRONT);
+        dispatch::glStencilOp(&mut ctx, gl::GL_KEEP, gl::GL_KEEP, gl::GL_INCR_WRAP);
+    }
+    // Shadow volume style: front and back faces over the same pixels.
+    rect(&mut ctx, [0.0, 0.0, 32.0, 32.0], true);
+    rect(&mut ctx, [16.0, 0.0, 48.0, 32.0], false);
+    unsafe { dispatch::glDisable(&mut ctx, gl::GL_STENCIL_TEST_TWO_SIDE_EXT) };
+    rect(&mut ctx, [40.0, 40.0, 64.0, 64.0], false);
+    assert_eq!(stencil(&mut ctx, 8, 8), 1);
+    assert_eq!(stencil(&mut ctx, 24, 8), 0, "incremented by the front, decremented by the back");
+    assert_eq!(stencil(&mut ctx, 44, 8), 255, "decremented with wrap");
+    assert_eq!(stencil(&mut ctx, 50, 50), 1, "two-side off: the back face uses the front state");
+}
