@@ -40,6 +40,7 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_ARB_map_buffer_range",
     "GL_ATI_separate_stencil",
     "GL_EXT_stencil_two_side",
+    "GL_EXT_blend_equation_separate",
 ];
 
 /// Commands allowed between `glBegin` and `glEnd` besides the attribute families

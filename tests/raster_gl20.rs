@@ -124,3 +124,24 @@ fn stencil_two_side_ext() {
     assert_eq!(stencil(&mut ctx, 44, 8), 255, "decremented with wrap");
     assert_eq!(stencil(&mut ctx, 50, 50), 1, "two-side off: the back face uses the front state");
 }
+
+/// `glBlendEquationSeparate`: the colour channels and alpha blend with their own equations.
+#[test]
+fn separate_blend_equations() {
+    let mut ctx = context();
+    unsafe {
+        dispatch::glClearColor(&mut ctx, 0.5, 0.5, 0.5, 0.5);
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+        dispatch::glEnable(&mut ctx, gl::GL_BLEND);
+        dispatch::glBlendFunc(&mut ctx, gl::GL_ONE, gl::GL_ONE);
+        dispatch::glBlendEquationSeparate(&mut ctx, gl::GL_FUNC_REVERSE_SUBTRACT, gl::GL_MIN);
+        dispatch::glColor4f(&mut ctx, 0.25, 0.0, 0.5, 0.25);
+    }
+    rect(&mut ctx, [0.0, 0.0, 32.0, 32.0], true);
+    unsafe { dispatch::glBlendEquationSeparate(&mut ctx, gl::GL_MAX, gl::GL_FUNC_ADD) };
+    rect(&mut ctx, [32.0, 0.0, 64.0, 32.0], true);
+    let near = |a: [u8; 4], b: [u8; 4]| a.iter().zip(b).all(|(&x, y)| x.abs_diff(y) <= 1);
+    let (left, right) = (pixel(&mut ctx, 8, 8), pixel(&mut ctx, 40, 8));
+    assert!(near(left, [64, 128, 0, 64]), "rgb: D - S, alpha: min(S, D): {left:?}");
+    assert!(near(right, [128, 128, 128, 191]), "rgb: max(S, D), alpha: S + D: {right:?}");
+}

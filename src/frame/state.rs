@@ -83,8 +83,10 @@ pub struct Blend {
     pub src_alpha: BlendFactor,
     /// Destination factor of alpha.
     pub dst_alpha: BlendFactor,
-    /// Equation of every channel.
-    pub equation: BlendEquation,
+    /// Equation of the colour channels.
+    pub equation_rgb: BlendEquation,
+    /// Equation of alpha.
+    pub equation_alpha: BlendEquation,
     /// The constant colour (`glBlendColor`).
     pub color: [f32; 4],
 }
@@ -96,7 +98,8 @@ impl Default for Blend {
             dst_rgb: BlendFactor::Zero,
             src_alpha: BlendFactor::One,
             dst_alpha: BlendFactor::Zero,
-            equation: BlendEquation::Add,
+            equation_rgb: BlendEquation::Add,
+            equation_alpha: BlendEquation::Add,
             color: [0.0; 4],
         }
     }

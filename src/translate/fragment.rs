@@ -84,12 +84,24 @@ impl Context {
         self.fixed_mut().fragment.blend.color = [red, green, blue, alpha].map(|c| c.clamp(0.0, 1.0));
     }
 
-    /// `glBlendEquation`: add, subtract, reverse subtract, min, max.
+    /// `glBlendEquation`: add, subtract, reverse subtract, min, max, for every channel.
     pub fn glBlendEquation(&mut self, mode: GLenum) {
-        match BLEND_EQUATION.parse(mode) {
-            Some(e) => self.fixed_mut().fragment.blend.equation = e,
-            None => self.set_error_in(gl::GL_INVALID_ENUM, "glBlendEquation"),
-        }
+        self.set_blend_equation([mode, mode], "glBlendEquation");
+    }
+
+    /// `glBlendEquationSeparate` (OpenGL 2.0, `GL_EXT_blend_equation_separate`): one equation
+    /// for the colour channels, one for alpha.
+    pub fn glBlendEquationSeparate(&mut self, mode_rgb: GLenum, mode_alpha: GLenum) {
+        self.set_blend_equation([mode_rgb, mode_alpha], "glBlendEquationSeparate");
+    }
+
+    /// Sets the `[rgb, alpha]` equations; `GL_INVALID_ENUM` if either is unknown.
+    fn set_blend_equation(&mut self, modes: [GLenum; 2], command: &'static str) {
+        let [Some(rgb), Some(alpha)] = modes.map(|m| BLEND_EQUATION.parse(m)) else {
+            return self.set_error_in(gl::GL_INVALID_ENUM, command);
+        };
+        let b = &mut self.fixed_mut().fragment.blend;
+        (b.equation_rgb, b.equation_alpha) = (rgb, alpha);
     }
 
     /// `glLogicOp`.
@@ -134,7 +146,8 @@ impl Context {
             gl::GL_BLEND_DST | gl::GL_BLEND_DST_RGB => factor(f.blend.dst_rgb),
             gl::GL_BLEND_SRC_ALPHA => factor(f.blend.src_alpha),
             gl::GL_BLEND_DST_ALPHA => factor(f.blend.dst_alpha),
-            gl::GL_BLEND_EQUATION => BLEND_EQUATION.value(f.blend.equation),
+            gl::GL_BLEND_EQUATION_RGB => BLEND_EQUATION.value(f.blend.equation_rgb),
+            gl::GL_BLEND_EQUATION_ALPHA => BLEND_EQUATION.value(f.blend.equation_alpha),
             gl::GL_BLEND_COLOR => Value::normalized(&f.blend.color),
             gl::GL_LOGIC_OP_MODE => LOGIC_OP.value(f.logic_op),
             gl::GL_DEPTH_FUNC => COMPARE.value(f.depth_func),
@@ -171,8 +184,16 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glBlendEquation(gl::GL_MAX);
         assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION), gl::GL_MAX as i32);
+        assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION_ALPHA), gl::GL_MAX as i32);
         ctx.glBlendEquation(gl::GL_ONE);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glBlendEquationSeparate(gl::GL_FUNC_SUBTRACT, gl::GL_MIN);
+        assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION_RGB), gl::GL_FUNC_SUBTRACT as i32);
+        assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION), gl::GL_FUNC_SUBTRACT as i32, "the same name as _RGB");
+        assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION_ALPHA), gl::GL_MIN as i32);
+        ctx.glBlendEquationSeparate(gl::GL_FUNC_ADD, gl::GL_ZERO);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION_RGB), gl::GL_FUNC_SUBTRACT as i32, "unchanged after an error");
         ctx.glBlendColor(2.0, 0.5, -1.0, 1.0);
         let mut c = [0i32; 4];
         unsafe { ctx.glGetIntegerv(gl::GL_BLEND_COLOR, c.as_mut_ptr()) };

@@ -49,6 +49,7 @@ const EXTENSIONS: &str = concat!(
     "GL_ATI_separate_stencil ",
     "GL_EXT_bgra ",
     "GL_EXT_blend_color ",
+    "GL_EXT_blend_equation_separate ",
     "GL_EXT_blend_func_separate ",
     "GL_EXT_blend_minmax ",
     "GL_EXT_blend_subtract ",

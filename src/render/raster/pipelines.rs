@@ -66,8 +66,9 @@ pub struct PipelineKey {
 /// The raster state baked into a pipeline, as Vulkan values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct FixedState {
-    /// Factors (src rgb, dst rgb, src alpha, dst alpha) and operation, when blending.
-    pub blend: Option<([vk::BlendFactor; 4], vk::BlendOp)>,
+    /// Factors (src rgb, dst rgb, src alpha, dst alpha) and operations (rgb, alpha), when
+    /// blending.
+    pub blend: Option<([vk::BlendFactor; 4], [vk::BlendOp; 2])>,
     /// Logic operation, when enabled and supported.
     pub logic_op: Option<vk::LogicOp>,
     /// Depth comparison, when the depth test is on.
@@ -107,7 +108,7 @@ impl FixedState {
     pub fn new(state: &RasterState, cull: Option<Face>, depth_bias: bool, stencil: Option<StencilFaces>, logic_op_supported: bool) -> FixedState {
         let blend = state.blend.map(|b| {
             let factors = [b.src_rgb, b.dst_rgb, b.src_alpha, b.dst_alpha].map(conv::blend_factor);
-            (factors, conv::blend_op(b.equation))
+            (factors, [b.equation_rgb, b.equation_alpha].map(conv::blend_op))
         });
         let logic_op = state.logic_op.filter(|_| logic_op_supported).map(conv::logic_op);
         let face = |s: Stencil| {
@@ -270,9 +271,9 @@ impl Pipelines {
             .stencil_test_enable(f.stencil.is_some())
             .front(front)
             .back(back);
-        let (blend_on, [src, dst, src_a, dst_a], op) = match f.blend {
-            Some((factors, op)) => (true, factors, op),
-            None => (false, [vk::BlendFactor::ONE, vk::BlendFactor::ZERO, vk::BlendFactor::ONE, vk::BlendFactor::ZERO], vk::BlendOp::ADD),
+        let (blend_on, [src, dst, src_a, dst_a], [op, op_a]) = match f.blend {
+            Some((factors, ops)) => (true, factors, ops),
+            None => (false, [vk::BlendFactor::ONE, vk::BlendFactor::ZERO, vk::BlendFactor::ONE, vk::BlendFactor::ZERO], [vk::BlendOp::ADD; 2]),
         };
         let attachments = [vk::PipelineColorBlendAttachmentState {
             blend_enable: blend_on.into(),
@@ -281,7 +282,7 @@ impl Pipelines {
             color_blend_op: op,
             src_alpha_blend_factor: src_a,
             dst_alpha_blend_factor: dst_a,
-            alpha_blend_op: op,
+            alpha_blend_op: op_a,
             color_write_mask: f.color_mask,
         }];
         let blend = vk::PipelineColorBlendStateCreateInfo::default()
@@ -348,7 +349,7 @@ fn shader_module(device: &Device, spirv: &[u8]) -> Result<vk::ShaderModule> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::frame::state::{Blend, BlendFactor};
+    use crate::frame::state::{Blend, BlendEquation, BlendFactor};
 
     #[test]
     fn fixed_state_follows_gl_rules() {
@@ -361,10 +362,15 @@ mod tests {
         assert_eq!(FixedState::new(&state, Some(Face::Back), false, None, true).cull, vk::CullModeFlags::BACK);
         assert_eq!(FixedState::new(&state, None, false, None, true).cull, vk::CullModeFlags::NONE);
         assert!(FixedState::new(&state, None, true, None, true).depth_bias);
-        state.blend = Some(Blend { src_rgb: BlendFactor::SrcAlpha, dst_rgb: BlendFactor::OneMinusSrcAlpha, ..Blend::default() });
-        let (factors, op) = FixedState::new(&state, None, false, None, true).blend.unwrap();
+        state.blend = Some(Blend {
+            src_rgb: BlendFactor::SrcAlpha,
+            dst_rgb: BlendFactor::OneMinusSrcAlpha,
+            equation_alpha: BlendEquation::Max,
+            ..Blend::default()
+        });
+        let (factors, ops) = FixedState::new(&state, None, false, None, true).blend.unwrap();
         assert_eq!(factors[..2], [vk::BlendFactor::SRC_ALPHA, vk::BlendFactor::ONE_MINUS_SRC_ALPHA]);
-        assert_eq!(op, vk::BlendOp::ADD);
+        assert_eq!(ops, [vk::BlendOp::ADD, vk::BlendOp::MAX]);
         state.logic_op = Some(crate::frame::state::LogicOp::Xor);
         assert_eq!(FixedState::new(&state, None, false, None, true).logic_op, Some(vk::LogicOp::XOR));
         assert_eq!(FixedState::new(&state, None, false, None, false).logic_op, None);
