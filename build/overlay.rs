@@ -41,6 +41,7 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_ATI_separate_stencil",
     "GL_EXT_stencil_two_side",
     "GL_EXT_blend_equation_separate",
+    "GL_ARB_draw_buffers",
 ];
 
 /// Commands allowed between `glBegin` and `glEnd` besides the attribute families

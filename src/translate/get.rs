@@ -95,6 +95,7 @@ impl Context {
             .or_else(|| self.query_clear(pname))
             .or_else(|| self.query_framebuffers(pname))
             .or_else(|| self.query_buffers(pname))
+            .or_else(|| self.query_draw_buffers(pname))
             .or_else(|| self.query_hints(pname))
             .or_else(|| self.query_attrib(pname))
             .or_else(|| self.query_implementation(pname))

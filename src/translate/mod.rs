@@ -30,6 +30,7 @@ pub mod context;
 pub mod convert;
 pub mod dispatch;
 pub mod draw_arrays;
+pub mod draw_buffers;
 pub mod enable;
 pub mod enums;
 pub mod error;

@@ -27,6 +27,7 @@ const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 const EXTENSIONS: &str = concat!(
     "GL_ARB_depth_buffer_float ",
     "GL_ARB_depth_texture ",
+    "GL_ARB_draw_buffers ",
     "GL_ARB_map_buffer_range ",
     "GL_ARB_multisample ",
     "GL_ARB_multitexture ",
