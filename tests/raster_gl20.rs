@@ -145,3 +145,63 @@ fn separate_blend_equations() {
     assert!(near(left, [64, 128, 0, 64]), "rgb: D - S, alpha: min(S, D): {left:?}");
     assert!(near(right, [128, 128, 128, 191]), "rgb: max(S, D), alpha: S + D: {right:?}");
 }
+
+/// A textured window rectangle `x0, y0` – `x1, y1` whose texture coordinates run from 0 to
+/// `s`, `t`.
+fn textured_rect(ctx: &mut Context, [x0, y0, x1, y1]: [f32; 4], [s, t]: [f32; 2]) {
+    unsafe {
+        dispatch::glBegin(ctx, gl::GL_QUADS);
+        for [x, y, u, v] in [[x0, y0, 0.0, 0.0], [x1, y0, s, 0.0], [x1, y1, s, t], [x0, y1, 0.0, t]] {
+            dispatch::glTexCoord2f(ctx, u, v);
+            dispatch::glVertex2f(ctx, x, y);
+        }
+        dispatch::glEnd(ctx);
+    }
+}
+
+/// Uploads a `w` × `h` level of one colour to the bound 2D texture.
+fn level(ctx: &mut Context, level: i32, w: i32, h: i32, rgba: [u8; 4]) {
+    let texels: Vec<u8> = (0..w * h).flat_map(|_| rgba).collect();
+    unsafe { dispatch::glTexImage2D(ctx, gl::GL_TEXTURE_2D, level, gl::GL_RGBA as i32, w, h, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast()) };
+}
+
+/// Non-power-of-two textures with mipmaps whose sizes halve with the floor (12×5, 6×2, 3×1,
+/// 1×1): complete, and each level sampled where its level of detail applies; a generated
+/// chain (`GL_GENERATE_MIPMAP`) of a 7×3 image is complete down to 1×1.
+#[test]
+fn non_power_of_two_mipmaps_are_sampled() {
+    let mut ctx = context();
+    let colors = [[255, 0, 0, 255], [0, 255, 0, 255], [0, 0, 255, 255], [255, 255, 0, 255]];
+    unsafe {
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_2D, 1);
+        for (i, (w, h)) in [(12, 5), (6, 2), (3, 1), (1, 1)].into_iter().enumerate() {
+            level(&mut ctx, i as i32, w, h, colors[i]);
+        }
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST_MIPMAP_NEAREST as i32);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_REPLACE as i32);
+        dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_2D);
+        dispatch::glColor3f(&mut ctx, 0.0, 0.0, 0.0);
+    }
+    // 16-pixel squares whose s runs over `r` × 16 / 12 repeats: `r` texels of level 0 per pixel.
+    for (i, r) in [0.5f32, 2.5, 5.0, 12.0].into_iter().enumerate() {
+        let x = 16.0 * i as f32;
+        textured_rect(&mut ctx, [x, 0.0, x + 16.0, 16.0], [r * 16.0 / 12.0, 0.1]);
+    }
+    for (i, color) in colors.iter().enumerate() {
+        assert_eq!(pixel(&mut ctx, 16 * i as i32 + 8, 8), *color, "level {i}");
+    }
+
+    unsafe {
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_2D, 2);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_GENERATE_MIPMAP, 1);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST_MIPMAP_NEAREST as i32);
+    }
+    level(&mut ctx, 0, 7, 3, [40, 80, 120, 255]);
+    textured_rect(&mut ctx, [0.0, 32.0, 16.0, 48.0], [16.0, 16.0]);
+    assert_eq!(pixel(&mut ctx, 8, 40), [40, 80, 120, 255], "the 1×1 level of a generated chain");
+    let mut w = 0;
+    unsafe { dispatch::glGetTexLevelParameteriv(&mut ctx, gl::GL_TEXTURE_2D, 1, gl::GL_TEXTURE_WIDTH, &mut w) };
+    assert_eq!(w, 3);
+}
