@@ -205,3 +205,55 @@ fn non_power_of_two_mipmaps_are_sampled() {
     unsafe { dispatch::glGetTexLevelParameteriv(&mut ctx, gl::GL_TEXTURE_2D, 1, gl::GL_TEXTURE_WIDTH, &mut w) };
     assert_eq!(w, 3);
 }
+
+/// Draws a point of `size` at window (x, y).
+fn point(ctx: &mut Context, x: f32, y: f32, size: f32) {
+    unsafe {
+        dispatch::glPointSize(ctx, size);
+        dispatch::glBegin(ctx, gl::GL_POINTS);
+        dispatch::glTexCoord2f(ctx, 0.75, 0.75);
+        dispatch::glVertex2f(ctx, x, y);
+        dispatch::glEnd(ctx);
+    }
+}
+
+/// Point sprites: with `GL_COORD_REPLACE` s runs from 0 to 1 left to right and t from 0 to 1
+/// top to bottom (`GL_UPPER_LEFT`) or bottom to top (`GL_LOWER_LEFT`) across the point; a
+/// unit without it keeps the vertex's coordinates.
+#[test]
+fn point_sprite_coordinates() {
+    let mut ctx = context();
+    let (red, green, blue, white) = ([255, 0, 0, 255], [0, 255, 0, 255], [0, 0, 255, 255], [255; 4]);
+    // Texel rows bottom first: red, green / blue, white.
+    let texels: Vec<u8> = [red, green, blue, white].concat();
+    unsafe {
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_2D, 1);
+        dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_REPLACE as i32);
+        dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_2D);
+        dispatch::glEnable(&mut ctx, gl::GL_POINT_SPRITE);
+        // Ignored by sprites: the corners stay opaque.
+        dispatch::glEnable(&mut ctx, gl::GL_POINT_SMOOTH);
+    }
+    point(&mut ctx, 16.0, 16.0, 16.0);
+    unsafe { dispatch::glTexEnvi(&mut ctx, gl::GL_POINT_SPRITE, gl::GL_COORD_REPLACE, 1) };
+    point(&mut ctx, 48.0, 16.0, 16.0);
+    unsafe { dispatch::glPointParameteri(&mut ctx, gl::GL_POINT_SPRITE_COORD_ORIGIN, gl::GL_LOWER_LEFT as i32) };
+    point(&mut ctx, 48.0, 48.0, 16.0);
+    // A sprite of size 5 at an exact position that is no pixel centre: the pixels whose
+    // centres are inside [7.7, 12.7] × [39.2, 44.2].
+    point(&mut ctx, 10.2, 41.7, 5.0);
+
+    assert_eq!(pixel(&mut ctx, 9, 9), white, "no replacement: the vertex's (0.75, 0.75)");
+    assert_eq!(pixel(&mut ctx, 9, 23), white, "a square, its corners covered");
+    let quadrants = |ctx: &mut Context, cx: i32, cy: i32| [(-6, 6), (6, 6), (-6, -6), (6, -6)].map(|(dx, dy)| pixel(ctx, cx + dx, cy + dy));
+    assert_eq!(quadrants(&mut ctx, 48, 16), [red, green, blue, white], "upper left origin: t = 0 at the top");
+    assert_eq!(quadrants(&mut ctx, 48, 48), [blue, white, red, green], "lower left origin: t = 0 at the bottom");
+    assert_eq!(pixel(&mut ctx, 8, 40), red, "s and t below 1/2 at the bottom left");
+    assert_eq!((pixel(&mut ctx, 12, 40), pixel(&mut ctx, 8, 43)), (green, blue));
+    let outside = [(7, 41), (13, 41), (10, 38), (10, 44)].map(|(x, y)| pixel(&mut ctx, x, y));
+    assert_eq!(outside, [[0, 0, 0, 0]; 4], "outside the unrounded square");
+}

@@ -272,8 +272,22 @@ pub struct Point {
     pub fade_threshold: f32,
     /// Constant, linear and quadratic distance attenuation coefficients.
     pub attenuation: [f32; 3],
-    /// `GL_POINT_SMOOTH`.
+    /// `GL_POINT_SMOOTH` (off while point sprites are on).
     pub smooth: bool,
+    /// Point sprites, when `GL_POINT_SPRITE` is on.
+    pub sprite: Option<PointSprite>,
+}
+
+/// Point sprites (OpenGL 2.0 section 3.3): the point is a square of the unrounded derived size
+/// centred on its exact window position, and the units that replace their coordinates get
+/// s from 0 to 1 left to right and t from 0 to 1 along the origin's direction (r = 0, q = 1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PointSprite {
+    /// Bit `u` set when texture unit `u` replaces its coordinates (`GL_COORD_REPLACE`).
+    pub coord_replace: u32,
+    /// `GL_POINT_SPRITE_COORD_ORIGIN` is `GL_LOWER_LEFT`: t grows upwards (with the initial
+    /// `GL_UPPER_LEFT`, downwards).
+    pub lower_left: bool,
 }
 
 impl Default for Point {
@@ -285,6 +299,7 @@ impl Default for Point {
             fade_threshold: 1.0,
             attenuation: [1.0, 0.0, 0.0],
             smooth: false,
+            sprite: None,
         }
     }
 }

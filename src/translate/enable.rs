@@ -45,6 +45,7 @@ const GLOBAL_CAPS: &[GLenum] = &[
     gl::GL_MULTISAMPLE,
     gl::GL_NORMALIZE,
     gl::GL_POINT_SMOOTH,
+    gl::GL_POINT_SPRITE,
     gl::GL_POLYGON_OFFSET_FILL,
     gl::GL_POLYGON_OFFSET_LINE,
     gl::GL_POLYGON_OFFSET_POINT,

@@ -117,7 +117,12 @@ impl Context {
                 stipple: on(gl::GL_LINE_STIPPLE).then_some(r.line_stipple),
                 smooth: on(gl::GL_LINE_SMOOTH),
             },
-            point: Point { smooth: on(gl::GL_POINT_SMOOTH), ..r.point },
+            point: Point {
+                // Sprites ignore GL_POINT_SMOOTH (OpenGL 2.0 section 3.3).
+                smooth: on(gl::GL_POINT_SMOOTH) && !on(gl::GL_POINT_SPRITE),
+                sprite: on(gl::GL_POINT_SPRITE).then_some(r.sprite),
+                ..r.point
+            },
             shade_model: l.shade_model,
             lighting: on(gl::GL_LIGHTING).then(|| Lighting {
                 lights: (0..MAX_LIGHTS)

@@ -34,6 +34,7 @@ const EXTENSIONS: &str = concat!(
     "GL_ARB_occlusion_query ",
     "GL_ARB_pixel_buffer_object ",
     "GL_ARB_point_parameters ",
+    "GL_ARB_point_sprite ",
     "GL_ARB_shadow ",
     "GL_ARB_texture_border_clamp ",
     "GL_ARB_texture_compression ",
