@@ -42,6 +42,7 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_EXT_stencil_two_side",
     "GL_EXT_blend_equation_separate",
     "GL_ARB_draw_buffers",
+    "GL_ARB_texture_rectangle",
 ];
 
 /// Commands allowed between `glBegin` and `glEnd` besides the attribute families

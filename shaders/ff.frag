@@ -43,6 +43,12 @@ bool compare(uint func, float a, float b) {
 // comparison and expansion (section 3.8.14); white when the unit does not texture.
 vec4 sample_unit(uint word, sampler2D s2, sampler3D s3, samplerCube sc, vec4 c, float bias) {
     uint target = field(word, TARGET_SHIFT, TARGET_BITS);
+    if (target == 5u) {
+        // A rectangle texture (ARB_texture_rectangle): s and t are in texels; it is sampled
+        // as the 2D texture of one level it is stored as.
+        c.st /= vec2(textureSize(s2, 0));
+        target = 2u;
+    }
     uint clamped = field(word, CLAMP_SHIFT, CLAMP_BITS);
     vec4 t = vec4(1.0);
     if (clamped != 0u && target != 4u) {

@@ -257,3 +257,33 @@ fn point_sprite_coordinates() {
     let outside = [(7, 41), (13, 41), (10, 38), (10, 44)].map(|(x, y)| pixel(&mut ctx, x, y));
     assert_eq!(outside, [[0, 0, 0, 0]; 4], "outside the unrounded square");
 }
+
+/// `GL_ARB_texture_rectangle`: coordinates in texels (a 3×2 texture, one colour per texel),
+/// `GL_CLAMP_TO_EDGE` beyond the edge, and the rectangle target's priority over 2D.
+#[test]
+fn rectangle_textures_take_texel_coordinates() {
+    let mut ctx = context();
+    let colors: [[u8; 4]; 6] = [[255, 0, 0, 255], [0, 255, 0, 255], [0, 0, 255, 255], [255, 255, 0, 255], [0, 255, 255, 255], [255, 0, 255, 255]];
+    let texels = colors.concat();
+    let rect = gl::GL_TEXTURE_RECTANGLE_ARB;
+    unsafe {
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_2D, 1);
+        level(&mut ctx, 0, 1, 1, [255; 4]);
+        dispatch::glBindTexture(&mut ctx, rect, 2);
+        dispatch::glTexImage2D(&mut ctx, rect, 0, gl::GL_RGBA as i32, 3, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+        dispatch::glTexParameteri(&mut ctx, rect, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(&mut ctx, rect, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_REPLACE as i32);
+        dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_2D);
+        dispatch::glEnable(&mut ctx, rect);
+    }
+    // 48 × 32 pixels over s in [0, 3], t in [0, 2]: 16 pixels per texel; then s up to 6.
+    textured_rect(&mut ctx, [0.0, 0.0, 48.0, 32.0], [3.0, 2.0]);
+    textured_rect(&mut ctx, [0.0, 32.0, 64.0, 64.0], [6.0, 2.0]);
+    for (i, color) in colors.iter().enumerate() {
+        let (x, y) = (16 * (i % 3) as i32 + 8, 16 * (i / 3) as i32 + 8);
+        assert_eq!(pixel(&mut ctx, x, y), *color, "texel {i}");
+    }
+    assert_eq!(pixel(&mut ctx, 60, 40), colors[2], "clamped to the edge texel");
+}

@@ -62,11 +62,12 @@ const GLOBAL_CAPS: &[GLenum] = &[
 ];
 
 /// Capabilities of the active texture unit.
-pub(crate) const UNIT_CAPS: [GLenum; 8] = [
+pub(crate) const UNIT_CAPS: [GLenum; 9] = [
     gl::GL_TEXTURE_1D,
     gl::GL_TEXTURE_2D,
     gl::GL_TEXTURE_3D,
     gl::GL_TEXTURE_CUBE_MAP,
+    gl::GL_TEXTURE_RECTANGLE_ARB,
     gl::GL_TEXTURE_GEN_S,
     gl::GL_TEXTURE_GEN_T,
     gl::GL_TEXTURE_GEN_R,

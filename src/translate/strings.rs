@@ -45,6 +45,7 @@ const EXTENSIONS: &str = concat!(
     "GL_ARB_texture_env_dot3 ",
     "GL_ARB_texture_mirrored_repeat ",
     "GL_ARB_texture_non_power_of_two ",
+    "GL_ARB_texture_rectangle ",
     "GL_ARB_transpose_matrix ",
     "GL_ARB_vertex_buffer_object ",
     "GL_ARB_window_pos ",

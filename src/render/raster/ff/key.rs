@@ -100,7 +100,8 @@ pub const SPRITE: Field = Field::new(31, 1);
 /// Word [`CLIP`]: bit `i` set when the `i`-th packed clip plane is enabled.
 pub const CLIP_MASK: Field = Field::new(0, 6);
 
-/// Unit word: 0 no texturing, 1 1D, 2 2D, 3 3D, 4 cube map.
+/// Unit word: 0 no texturing, 1 1D, 2 2D, 3 3D, 4 cube map, 5 rectangle (coordinates in
+/// texels).
 pub const TARGET: Field = Field::new(0, 3);
 /// Unit word: base format as the environment sees it: 0 alpha, 1 luminance, 2 luminance
 /// alpha, 3 intensity, 4 RGB, 5 RGBA (depth textures by their `DEPTH_TEXTURE_MODE`).
@@ -327,6 +328,7 @@ fn unit_word(unit: &TextureUnit, content: &crate::frame::texture::TextureContent
             TextureKind::D2 => 2,
             TextureKind::D3 => 3,
             TextureKind::Cube => 4,
+            TextureKind::Rect => 5,
         },
     );
     let format = match content.format {
