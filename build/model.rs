@@ -41,7 +41,8 @@ pub struct Command {
     /// Rust return type, `()` when void.
     pub ret: String,
     pub route: Route,
-    /// Part of the OpenGL 1.0–1.5 + implemented-extension surface.
+    /// Part of the OpenGL 1.0–1.5 + implemented-extension surface (with the OpenGL 2.0
+    /// commands implemented so far).
     pub in_surface: bool,
     pub is_glx: bool,
 }
@@ -83,8 +84,12 @@ impl Model {
         let hand: BTreeMap<String, String> =
             scan::hand_exports(Path::new("src/gl_entry")).into_iter().map(|(m, n)| (n, m)).collect();
 
-        let surface_names: BTreeSet<String> =
+        // OpenGL 2.0 arrives command by command while `GL_VERSION` is still 1.5: a 2.0
+        // command joins the surface once `translate` implements it.
+        let gl_2_0 = Registry::new(Api::Gl, (2, 0), Profile::Compatibility, Fallbacks::None, [] as [&str; 0]);
+        let mut surface_names: BTreeSet<String> =
             surface.cmds.iter().map(|c| format!("gl{}", c.proto.ident)).collect();
+        surface_names.extend(gl_2_0.cmds.iter().map(|c| format!("gl{}", c.proto.ident)).filter(|n| methods.contains(n)));
         let glvnd: BTreeSet<String> = include_str!("../src/gl_entry/glvnd_libgl_exports.txt")
             .lines()
             .map(str::to_owned)

@@ -39,6 +39,11 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_EXT_framebuffer_object",
     "GL_EXT_framebuffer_blit",
     "GL_ARB_map_buffer_range",
+    "GL_ATI_separate_stencil",
+    "GL_EXT_stencil_two_side",
+    "GL_EXT_blend_equation_separate",
+    "GL_ARB_draw_buffers",
+    "GL_ARB_texture_rectangle",
 ];
 
 /// Commands allowed between `glBegin` and `glEnd` besides the attribute families

@@ -30,6 +30,12 @@ layout(location = 0) out vec4 out_color;
 // comparison and expansion (section 3.8.14); white when the unit does not texture.
 vec4 sample_unit(uint word, sampler2D s2, sampler3D s3, samplerCube sc, vec4 c, float bias) {
     uint target = field(word, TARGET_SHIFT, TARGET_BITS);
+    if (target == 5u) {
+        // A rectangle texture (ARB_texture_rectangle): s and t are in texels; it is sampled
+        // as the 2D texture of one level it is stored as.
+        c.st /= vec2(textureSize(s2, 0));
+        target = 2u;
+    }
     uint clamped = field(word, CLAMP_SHIFT, CLAMP_BITS);
     vec4 t = vec4(1.0);
     if (clamped != 0u && target != 4u) {
@@ -160,6 +166,18 @@ vec4 tex_env(int unit, uint word, uint rgb_word, uint alpha_word, vec4 cf, vec4 
     return clamp(vec4(c, a), 0.0, 1.0);
 }
 
+// Point sprite coordinates (OpenGL 2.0 section 3.3) for a unit that replaces them: v_raster.xy
+// is the fragment centre's window offset from the point's exact position and v_misc.z the
+// size, so s = 1/2 + (x_f + 1/2 - x_w) / size, and t likewise upwards or downwards.
+vec4 sprite_coord(uint word, vec4 tex) {
+    uint replace = field(word, COORD_REPLACE_SHIFT, COORD_REPLACE_BITS);
+    if (replace == 0u) {
+        return tex;
+    }
+    vec2 st = 0.5 + v_raster.xy / max(v_misc.z, 1e-6);
+    return vec4(st.x, replace == 2u ? st.y : 1.0 - st.y, 0.0, 1.0);
+}
+
 void main() {
     if (stippled_out()) {
         discard;
@@ -170,11 +188,15 @@ void main() {
     vec4 primary = flat_shaded ? (front ? f_front : f_back) : (front ? v_front : v_back);
     vec4 secondary = flat_shaded ? (front ? f_front2 : f_back2) : (front ? v_front2 : v_back2);
 
+    vec4 coord[MAX_UNITS];
+    for (int i = 0; i < MAX_UNITS; i++) {
+        coord[i] = sprite_coord(unit_word(i), v_tex[i]);
+    }
     vec4 texel[MAX_UNITS];
-    texel[0] = sample_unit(KEY_UNIT0, tex2d_0, tex3d_0, texcube_0, v_tex[0], u.lod_bias[0]);
-    texel[1] = sample_unit(KEY_UNIT1, tex2d_1, tex3d_1, texcube_1, v_tex[1], u.lod_bias[1]);
-    texel[2] = sample_unit(KEY_UNIT2, tex2d_2, tex3d_2, texcube_2, v_tex[2], u.lod_bias[2]);
-    texel[3] = sample_unit(KEY_UNIT3, tex2d_3, tex3d_3, texcube_3, v_tex[3], u.lod_bias[3]);
+    texel[0] = sample_unit(KEY_UNIT0, tex2d_0, tex3d_0, texcube_0, coord[0], u.lod_bias[0]);
+    texel[1] = sample_unit(KEY_UNIT1, tex2d_1, tex3d_1, texcube_1, coord[1], u.lod_bias[1]);
+    texel[2] = sample_unit(KEY_UNIT2, tex2d_2, tex3d_2, texcube_2, coord[2], u.lod_bias[2]);
+    texel[3] = sample_unit(KEY_UNIT3, tex2d_3, tex3d_3, texcube_3, coord[3], u.lod_bias[3]);
 
     vec4 color = primary;
     for (int i = 0; i < MAX_UNITS; i++) {

@@ -139,7 +139,8 @@ float point_size(vec4 eye) {
     vec3 a = u.point_attenuation.xyz;
     float size = u.point.x * sqrt(1.0 / (a.x + a.y * d + a.z * d * d));
     size = clamp(size, u.point.y, u.point.z);
-    return GENERAL(SMOOTH) != 0u ? size : max(round(size), 1.0);
+    // Smooth points and point sprites take the size as it is; aliased points round it.
+    return GENERAL(SMOOTH) != 0u || GENERAL(SPRITE) != 0u ? size : max(round(size), 1.0);
 }
 
 void main() {
@@ -195,11 +196,12 @@ void main() {
     v_raster = in_raster;
     if (GENERAL(PRIMITIVE) == PRIM_POINT && gl_Position.w > 0.0) {
         // A square of the derived size centred on the point (section 3.3): aliased points
-        // are centred on a pixel centre (odd sizes) or corner (even sizes).
+        // are centred on a pixel centre (odd sizes) or corner (even sizes); point sprites
+        // on the exact position (OpenGL 2.0 section 3.3).
         size = point_size(eye);
         float half_size = size * 0.5 + (GENERAL(SMOOTH) != 0u ? 0.5 : 0.0);
         vec2 window = u.viewport.xy + (gl_Position.xy / gl_Position.w * 0.5 + 0.5) * viewport;
-        if (GENERAL(SMOOTH) == 0u) {
+        if (GENERAL(SMOOTH) == 0u && GENERAL(SPRITE) == 0u) {
             window = mod(size, 2.0) == 1.0 ? floor(window) + 0.5 : floor(window + 0.5);
         }
         vec2 corner = in_raster.xy * half_size;

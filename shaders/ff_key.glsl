@@ -55,6 +55,8 @@ const uint LINE_STIPPLE_SHIFT = 29u;
 const uint LINE_STIPPLE_BITS = 1u;
 const uint SMOOTH_SHIFT = 30u;
 const uint SMOOTH_BITS = 1u;
+const uint SPRITE_SHIFT = 31u;
+const uint SPRITE_BITS = 1u;
 
 // Word KEY_CLIP.
 const uint CLIP_MASK_SHIFT = 0u;
@@ -73,6 +75,8 @@ const uint DEPTH_SHIFT = 21u;     // 0 colour, 1 depth, 2 + func depth compared
 const uint DEPTH_BITS = 4u;
 const uint CLAMP_SHIFT = 25u;     // bit c: coordinate c clamped to [0, 1] (GL_CLAMP, linear)
 const uint CLAMP_BITS = 3u;
+const uint COORD_REPLACE_SHIFT = 28u; // point sprites: 0 off, 1 t downwards, 2 t upwards
+const uint COORD_REPLACE_BITS = 2u;
 
 // Words KEY_COMBINE_RGBn and KEY_COMBINE_ALPHAn.
 const uint COMBINE_FN_SHIFT = 0u;

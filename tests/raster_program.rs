@@ -11,7 +11,7 @@ mod lavapipe;
 use std::sync::Arc;
 
 use glrt::frame::program::{ProgramDraw, SamplerKind, ShaderProgram};
-use glrt::frame::state::{Blend, BlendFactor, CompareFunc, Line, PolygonMode, Stencil, StencilOp};
+use glrt::frame::state::{Blend, BlendFactor, CompareFunc, Line, PolygonMode, Stencil, StencilFaces, StencilOp};
 use glrt::frame::texture::{DepthMode, Sampler, TexImage, TexelFormat, TextureContent, TextureKind, TextureRef};
 use glrt::frame::{Attrib, Clear, Draw, Frame, RasterState, Topology};
 use glrt::frame::pixels::PixelBuffer;
@@ -278,7 +278,7 @@ fn depth_stencil_and_blending_apply_around_program_stages() {
     let run = run(&p, builtins(IDENTITY), floats(&[1.0]), Vec::new());
     let always_one = Stencil { func: CompareFunc::Always, reference: 1, value_mask: 0xff, fail: StencilOp::Keep, depth_fail: StencilOp::Keep, depth_pass: StencilOp::Replace, write_mask: 0xff };
     // Red at depth 0.5 marks stencil 1 on the left half.
-    let marking = RasterState { depth_test: Some(CompareFunc::Less), stencil: Some(always_one), ..state() };
+    let marking = RasterState { depth_test: Some(CompareFunc::Less), stencil: Some(StencilFaces::both(always_one)), ..state() };
     let red = rect([0.0, 0.0, 16.0, 32.0], 0.0, [1.0, 0.0, 0.0, 1.0], marking, Some(run.clone()));
     // Green behind it (depth 0.75) over the whole bottom half: hidden on the left.
     let behind = RasterState { depth_test: Some(CompareFunc::Less), ..state() };
@@ -286,7 +286,7 @@ fn depth_stencil_and_blending_apply_around_program_stages() {
     // Blue added everywhere stencil is 1.
     let equal_one = Stencil { func: CompareFunc::Equal, depth_pass: StencilOp::Keep, ..always_one };
     let add = Blend { src_rgb: BlendFactor::One, dst_rgb: BlendFactor::One, src_alpha: BlendFactor::One, dst_alpha: BlendFactor::One, ..Blend::default() };
-    let adding = RasterState { stencil: Some(equal_one), blend: Some(add), ..state() };
+    let adding = RasterState { stencil: Some(StencilFaces::both(equal_one)), blend: Some(add), ..state() };
     let blue = rect([0.0, 0.0, 32.0, 32.0], 0.0, [0.0, 0.0, 1.0, 1.0], adding, Some(run));
     let mut r = renderer();
     let f = frame(vec![red, green, blue]);

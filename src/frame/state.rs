@@ -83,8 +83,10 @@ pub struct Blend {
     pub src_alpha: BlendFactor,
     /// Destination factor of alpha.
     pub dst_alpha: BlendFactor,
-    /// Equation of every channel.
-    pub equation: BlendEquation,
+    /// Equation of the colour channels.
+    pub equation_rgb: BlendEquation,
+    /// Equation of alpha.
+    pub equation_alpha: BlendEquation,
     /// The constant colour (`glBlendColor`).
     pub color: [f32; 4],
 }
@@ -96,7 +98,8 @@ impl Default for Blend {
             dst_rgb: BlendFactor::Zero,
             src_alpha: BlendFactor::One,
             dst_alpha: BlendFactor::Zero,
-            equation: BlendEquation::Add,
+            equation_rgb: BlendEquation::Add,
+            equation_alpha: BlendEquation::Add,
             color: [0.0; 4],
         }
     }
@@ -147,6 +150,23 @@ impl Default for Stencil {
             depth_pass: StencilOp::Keep,
             write_mask: u32::MAX,
         }
+    }
+}
+
+/// The stencil state of front- and back-facing polygons (OpenGL 2.0 section 4.1.5). Points,
+/// lines, bitmaps and pixel rectangles are front-facing: they use `front`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct StencilFaces {
+    /// Front-facing polygons and every other primitive.
+    pub front: Stencil,
+    /// Back-facing polygons.
+    pub back: Stencil,
+}
+
+impl StencilFaces {
+    /// The same state for both faces.
+    pub fn both(stencil: Stencil) -> StencilFaces {
+        StencilFaces { front: stencil, back: stencil }
     }
 }
 
@@ -252,8 +272,22 @@ pub struct Point {
     pub fade_threshold: f32,
     /// Constant, linear and quadratic distance attenuation coefficients.
     pub attenuation: [f32; 3],
-    /// `GL_POINT_SMOOTH`.
+    /// `GL_POINT_SMOOTH` (off while point sprites are on).
     pub smooth: bool,
+    /// Point sprites, when `GL_POINT_SPRITE` is on.
+    pub sprite: Option<PointSprite>,
+}
+
+/// Point sprites (OpenGL 2.0 section 3.3): the point is a square of the unrounded derived size
+/// centred on its exact window position, and the units that replace their coordinates get
+/// s from 0 to 1 left to right and t from 0 to 1 along the origin's direction (r = 0, q = 1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct PointSprite {
+    /// Bit `u` set when texture unit `u` replaces its coordinates (`GL_COORD_REPLACE`).
+    pub coord_replace: u32,
+    /// `GL_POINT_SPRITE_COORD_ORIGIN` is `GL_LOWER_LEFT`: t grows upwards (with the initial
+    /// `GL_UPPER_LEFT`, downwards).
+    pub lower_left: bool,
 }
 
 impl Default for Point {
@@ -265,6 +299,7 @@ impl Default for Point {
             fade_threshold: 1.0,
             attenuation: [1.0, 0.0, 0.0],
             smooth: false,
+            sprite: None,
         }
     }
 }
@@ -464,8 +499,8 @@ pub struct RasterState {
     pub depth_test: Option<CompareFunc>,
     /// Depth writes (`glDepthMask`).
     pub depth_write: bool,
-    /// Stencil test.
-    pub stencil: Option<Stencil>,
+    /// Stencil test, per face.
+    pub stencil: Option<StencilFaces>,
     /// Colour channels written (`glColorMask`).
     pub color_mask: [bool; 4],
     /// Faces culled.

@@ -58,6 +58,9 @@ pub enum TextureKind {
     D3,
     /// Cube map: six faces in the order +X, −X, +Y, −Y, +Z, −Z.
     Cube,
+    /// Rectangle (`GL_ARB_texture_rectangle`): two-dimensional, sampled with coordinates in
+    /// texels, one level.
+    Rect,
 }
 
 /// The base format the texels were specified with (table 3.15).

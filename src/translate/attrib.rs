@@ -108,7 +108,7 @@ fn save_depth_buffer(ctx: &Context, out: &mut Vec<Restore>) {
 }
 
 fn save_stencil_buffer(ctx: &Context, out: &mut Vec<Restore>) {
-    out.push(caps(ctx, [gl::GL_STENCIL_TEST]));
+    out.push(caps(ctx, [gl::GL_STENCIL_TEST, gl::GL_STENCIL_TEST_TWO_SIDE_EXT]));
     out.push(value((ctx.fixed.fragment.stencil, ctx.fixed.clear.stencil), |ctx, (stencil, clear)| {
         let f = ctx.fixed_mut();
         (f.fragment.stencil, f.clear.stencil) = (stencil, clear);
@@ -152,8 +152,12 @@ fn save_line(ctx: &Context, out: &mut Vec<Restore>) {
 }
 
 fn save_point(ctx: &Context, out: &mut Vec<Restore>) {
-    out.push(caps(ctx, [gl::GL_POINT_SMOOTH]));
-    out.push(value(ctx.fixed.raster.point, |ctx, v| ctx.fixed_mut().raster.point = v));
+    out.push(caps(ctx, [gl::GL_POINT_SMOOTH, gl::GL_POINT_SPRITE]));
+    let r = &ctx.fixed.raster;
+    out.push(value((r.point, r.sprite), |ctx, (point, sprite)| {
+        let r = &mut ctx.fixed_mut().raster;
+        (r.point, r.sprite) = (point, sprite);
+    }));
 }
 
 fn save_scissor(ctx: &Context, out: &mut Vec<Restore>) {

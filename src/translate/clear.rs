@@ -89,7 +89,7 @@ impl Context {
             scissor: self.enables.is_on(gl::GL_SCISSOR_TEST).then_some(self.viewport.scissor),
             color_mask: f.fragment.color_mask,
             depth_mask: f.fragment.depth_write,
-            stencil_mask: f.fragment.stencil.write_mask,
+            stencil_mask: f.fragment.stencil.clear_mask(),
             framebuffer,
         };
         if clear.color.is_some() || clear.depth.is_some() || clear.stencil.is_some() || clear.accum.is_some() {

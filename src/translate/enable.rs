@@ -45,6 +45,7 @@ const GLOBAL_CAPS: &[GLenum] = &[
     gl::GL_MULTISAMPLE,
     gl::GL_NORMALIZE,
     gl::GL_POINT_SMOOTH,
+    gl::GL_POINT_SPRITE,
     gl::GL_POLYGON_OFFSET_FILL,
     gl::GL_POLYGON_OFFSET_LINE,
     gl::GL_POLYGON_OFFSET_POINT,
@@ -59,14 +60,16 @@ const GLOBAL_CAPS: &[GLenum] = &[
     gl::GL_STENCIL_TEST,
     gl::GL_VERTEX_PROGRAM_POINT_SIZE,
     gl::GL_VERTEX_PROGRAM_TWO_SIDE,
+    gl::GL_STENCIL_TEST_TWO_SIDE_EXT,
 ];
 
 /// Capabilities of the active texture unit.
-pub(crate) const UNIT_CAPS: [GLenum; 8] = [
+pub(crate) const UNIT_CAPS: [GLenum; 9] = [
     gl::GL_TEXTURE_1D,
     gl::GL_TEXTURE_2D,
     gl::GL_TEXTURE_3D,
     gl::GL_TEXTURE_CUBE_MAP,
+    gl::GL_TEXTURE_RECTANGLE_ARB,
     gl::GL_TEXTURE_GEN_S,
     gl::GL_TEXTURE_GEN_T,
     gl::GL_TEXTURE_GEN_R,

@@ -97,7 +97,7 @@ impl Context {
             logic_op: on(gl::GL_COLOR_LOGIC_OP).then_some(fr.logic_op),
             depth_test: on(gl::GL_DEPTH_TEST).then_some(fr.depth_func),
             depth_write: fr.depth_write,
-            stencil: on(gl::GL_STENCIL_TEST).then_some(fr.stencil),
+            stencil: on(gl::GL_STENCIL_TEST).then(|| fr.stencil.for_draw(on(gl::GL_STENCIL_TEST_TWO_SIDE_EXT))),
             color_mask,
             draw_buffers: self.draw_buffers(),
             read_buffer: self.read_color_buffer(),
@@ -117,7 +117,12 @@ impl Context {
                 stipple: on(gl::GL_LINE_STIPPLE).then_some(r.line_stipple),
                 smooth: on(gl::GL_LINE_SMOOTH),
             },
-            point: Point { smooth: on(gl::GL_POINT_SMOOTH), ..r.point },
+            point: Point {
+                // Sprites ignore GL_POINT_SMOOTH (OpenGL 2.0 section 3.3).
+                smooth: on(gl::GL_POINT_SMOOTH) && !on(gl::GL_POINT_SPRITE),
+                sprite: on(gl::GL_POINT_SPRITE).then_some(r.sprite),
+                ..r.point
+            },
             shade_model: l.shade_model,
             lighting: on(gl::GL_LIGHTING).then(|| Lighting {
                 lights: (0..MAX_LIGHTS)

@@ -1,13 +1,14 @@
-//! Per-fragment operations (OpenGL 1.5 sections 4.1 and 4.2.2): alpha test, stencil, depth,
+//! Per-fragment operations (OpenGL 1.5 sections 4.1 and 4.2.2): alpha test, depth,
 //! blending, logic operation and the buffer write masks, with their queries (tables 6.17 to
-//! 6.19). The tests are enabled with `glEnable`; this module holds their parameters.
+//! 6.19). The tests are enabled with `glEnable`; this module holds their parameters (the
+//! stencil test's are in [`super::stencil`]).
 
 use super::Context;
-use super::enums::{BLEND_DST, BLEND_EQUATION, COMPARE, LOGIC_OP, STENCIL_OP, valid_dst_factor};
+use super::enums::{BLEND_DST, BLEND_EQUATION, COMPARE, LOGIC_OP, valid_dst_factor};
 use super::get::Value;
-use super::gl::{self, GLboolean, GLclampf, GLenum, GLint, GLuint};
-use super::implementation::STENCIL_BITS;
-use crate::frame::state::{Blend, BlendFactor, CompareFunc, LogicOp, Stencil};
+use super::gl::{self, GLboolean, GLclampf, GLenum, GLuint};
+use super::stencil::{StencilState, mask_value};
+use crate::frame::state::{Blend, BlendFactor, CompareFunc, LogicOp};
 
 /// Per-fragment operation parameters of a context.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -22,8 +23,8 @@ pub struct FragmentState {
     pub depth_func: CompareFunc,
     /// `glDepthMask`.
     pub depth_write: bool,
-    /// `glStencilFunc`, `glStencilOp`, `glStencilMask`.
-    pub stencil: Stencil,
+    /// The stencil test's parameters ([`super::stencil`]).
+    pub stencil: StencilState,
     /// `glColorMask`.
     pub color_mask: [bool; 4],
     /// `glIndexMask`.
@@ -38,17 +39,11 @@ impl Default for FragmentState {
             logic_op: LogicOp::Copy,
             depth_func: CompareFunc::Less,
             depth_write: true,
-            stencil: Stencil::default(),
+            stencil: StencilState::default(),
             color_mask: [true; 4],
             index_mask: u32::MAX,
         }
     }
-}
-
-/// A mask as `glGet` returns it: the bits reinterpreted as a signed integer, as Mesa does
-/// (all ones reads as −1).
-fn mask_value(mask: u32) -> Value {
-    Value::int(mask as i32)
 }
 
 impl Context {
@@ -89,12 +84,24 @@ impl Context {
         self.fixed_mut().fragment.blend.color = [red, green, blue, alpha].map(|c| c.clamp(0.0, 1.0));
     }
 
-    /// `glBlendEquation`: add, subtract, reverse subtract, min, max.
+    /// `glBlendEquation`: add, subtract, reverse subtract, min, max, for every channel.
     pub fn glBlendEquation(&mut self, mode: GLenum) {
-        match BLEND_EQUATION.parse(mode) {
-            Some(e) => self.fixed_mut().fragment.blend.equation = e,
-            None => self.set_error_in(gl::GL_INVALID_ENUM, "glBlendEquation"),
-        }
+        self.set_blend_equation([mode, mode], "glBlendEquation");
+    }
+
+    /// `glBlendEquationSeparate` (OpenGL 2.0, `GL_EXT_blend_equation_separate`): one equation
+    /// for the colour channels, one for alpha.
+    pub fn glBlendEquationSeparate(&mut self, mode_rgb: GLenum, mode_alpha: GLenum) {
+        self.set_blend_equation([mode_rgb, mode_alpha], "glBlendEquationSeparate");
+    }
+
+    /// Sets the `[rgb, alpha]` equations; `GL_INVALID_ENUM` if either is unknown.
+    fn set_blend_equation(&mut self, modes: [GLenum; 2], command: &'static str) {
+        let [Some(rgb), Some(alpha)] = modes.map(|m| BLEND_EQUATION.parse(m)) else {
+            return self.set_error_in(gl::GL_INVALID_ENUM, command);
+        };
+        let b = &mut self.fixed_mut().fragment.blend;
+        (b.equation_rgb, b.equation_alpha) = (rgb, alpha);
     }
 
     /// `glLogicOp`.
@@ -118,29 +125,6 @@ impl Context {
         self.fixed_mut().fragment.depth_write = flag != 0;
     }
 
-    /// `glStencilFunc`: the reference clamps to [0, 2^s − 1] for the s = 8 stencil bits.
-    pub fn glStencilFunc(&mut self, func: GLenum, reference: GLint, mask: GLuint) {
-        let Some(f) = COMPARE.parse(func) else { return self.set_error_in(gl::GL_INVALID_ENUM, "glStencilFunc") };
-        let s = &mut self.fixed_mut().fragment.stencil;
-        s.func = f;
-        s.reference = reference.clamp(0, (1 << STENCIL_BITS) - 1);
-        s.value_mask = mask;
-    }
-
-    /// `glStencilOp`, with OpenGL 1.4's `GL_INCR_WRAP` and `GL_DECR_WRAP`.
-    pub fn glStencilOp(&mut self, fail: GLenum, zfail: GLenum, zpass: GLenum) {
-        let [Some(f), Some(zf), Some(zp)] = [fail, zfail, zpass].map(|o| STENCIL_OP.parse(o)) else {
-            return self.set_error_in(gl::GL_INVALID_ENUM, "glStencilOp");
-        };
-        let s = &mut self.fixed_mut().fragment.stencil;
-        (s.fail, s.depth_fail, s.depth_pass) = (f, zf, zp);
-    }
-
-    /// `glStencilMask`.
-    pub fn glStencilMask(&mut self, mask: GLuint) {
-        self.fixed_mut().fragment.stencil.write_mask = mask;
-    }
-
     /// `glColorMask`.
     pub fn glColorMask(&mut self, red: GLboolean, green: GLboolean, blue: GLboolean, alpha: GLboolean) {
         self.fixed_mut().fragment.color_mask = [red, green, blue, alpha].map(|c| c != 0);
@@ -162,18 +146,12 @@ impl Context {
             gl::GL_BLEND_DST | gl::GL_BLEND_DST_RGB => factor(f.blend.dst_rgb),
             gl::GL_BLEND_SRC_ALPHA => factor(f.blend.src_alpha),
             gl::GL_BLEND_DST_ALPHA => factor(f.blend.dst_alpha),
-            gl::GL_BLEND_EQUATION => BLEND_EQUATION.value(f.blend.equation),
+            gl::GL_BLEND_EQUATION_RGB => BLEND_EQUATION.value(f.blend.equation_rgb),
+            gl::GL_BLEND_EQUATION_ALPHA => BLEND_EQUATION.value(f.blend.equation_alpha),
             gl::GL_BLEND_COLOR => Value::normalized(&f.blend.color),
             gl::GL_LOGIC_OP_MODE => LOGIC_OP.value(f.logic_op),
             gl::GL_DEPTH_FUNC => COMPARE.value(f.depth_func),
             gl::GL_DEPTH_WRITEMASK => Value::bool(f.depth_write),
-            gl::GL_STENCIL_FUNC => COMPARE.value(f.stencil.func),
-            gl::GL_STENCIL_REF => Value::int(f.stencil.reference),
-            gl::GL_STENCIL_VALUE_MASK => mask_value(f.stencil.value_mask),
-            gl::GL_STENCIL_FAIL => STENCIL_OP.value(f.stencil.fail),
-            gl::GL_STENCIL_PASS_DEPTH_FAIL => STENCIL_OP.value(f.stencil.depth_fail),
-            gl::GL_STENCIL_PASS_DEPTH_PASS => STENCIL_OP.value(f.stencil.depth_pass),
-            gl::GL_STENCIL_WRITEMASK => mask_value(f.stencil.write_mask),
             gl::GL_COLOR_WRITEMASK => Value::Bool(f.color_mask.to_vec()),
             gl::GL_INDEX_WRITEMASK => mask_value(f.index_mask),
             _ => return None,
@@ -206,8 +184,16 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glBlendEquation(gl::GL_MAX);
         assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION), gl::GL_MAX as i32);
+        assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION_ALPHA), gl::GL_MAX as i32);
         ctx.glBlendEquation(gl::GL_ONE);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glBlendEquationSeparate(gl::GL_FUNC_SUBTRACT, gl::GL_MIN);
+        assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION_RGB), gl::GL_FUNC_SUBTRACT as i32);
+        assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION), gl::GL_FUNC_SUBTRACT as i32, "the same name as _RGB");
+        assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION_ALPHA), gl::GL_MIN as i32);
+        ctx.glBlendEquationSeparate(gl::GL_FUNC_ADD, gl::GL_ZERO);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        assert_eq!(int(&ctx, gl::GL_BLEND_EQUATION_RGB), gl::GL_FUNC_SUBTRACT as i32, "unchanged after an error");
         ctx.glBlendColor(2.0, 0.5, -1.0, 1.0);
         let mut c = [0i32; 4];
         unsafe { ctx.glGetIntegerv(gl::GL_BLEND_COLOR, c.as_mut_ptr()) };
@@ -220,7 +206,7 @@ mod tests {
     }
 
     #[test]
-    fn depth_stencil_alpha_and_masks() {
+    fn depth_alpha_and_masks() {
         let (mut ctx, _) = Context::with_recording();
         assert_eq!(int(&ctx, gl::GL_DEPTH_FUNC), gl::GL_LESS as i32);
         ctx.glDepthFunc(gl::GL_LEQUAL);
@@ -228,18 +214,6 @@ mod tests {
         assert_eq!(int(&ctx, gl::GL_DEPTH_FUNC), gl::GL_LEQUAL as i32);
         assert_eq!(int(&ctx, gl::GL_DEPTH_WRITEMASK), 0);
         ctx.glDepthFunc(gl::GL_KEEP);
-        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
-        assert_eq!(int(&ctx, gl::GL_STENCIL_VALUE_MASK), -1);
-        ctx.glStencilFunc(gl::GL_EQUAL, 300, 0x0f);
-        ctx.glStencilOp(gl::GL_INCR_WRAP, gl::GL_DECR_WRAP, gl::GL_INVERT);
-        ctx.glStencilMask(0xf0);
-        assert_eq!(int(&ctx, gl::GL_STENCIL_REF), 255);
-        assert_eq!(int(&ctx, gl::GL_STENCIL_VALUE_MASK), 0x0f);
-        assert_eq!(int(&ctx, gl::GL_STENCIL_FAIL), gl::GL_INCR_WRAP as i32);
-        assert_eq!(int(&ctx, gl::GL_STENCIL_PASS_DEPTH_FAIL), gl::GL_DECR_WRAP as i32);
-        assert_eq!(int(&ctx, gl::GL_STENCIL_PASS_DEPTH_PASS), gl::GL_INVERT as i32);
-        assert_eq!(int(&ctx, gl::GL_STENCIL_WRITEMASK), 0xf0);
-        ctx.glStencilOp(gl::GL_KEEP, gl::GL_LESS, gl::GL_KEEP);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glAlphaFunc(gl::GL_GREATER, 1.5);
         assert_eq!(int(&ctx, gl::GL_ALPHA_TEST_FUNC), gl::GL_GREATER as i32);

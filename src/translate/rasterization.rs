@@ -1,6 +1,8 @@
 //! Rasterization parameters (OpenGL 1.5 chapter 3): points and point parameters (3.3), lines
 //! and line stipple (3.4), culling, polygon mode and polygon offset (3.5), and multisample
-//! coverage (3.2.1), with their queries (tables 6.12 to 6.14). The polygon stipple pattern is
+//! coverage (3.2.1), with their queries (tables 6.12 to 6.14); point sprites (OpenGL 2.0
+//! section 3.3, `GL_ARB_point_sprite`): `GL_POINT_SPRITE_COORD_ORIGIN` here, `GL_COORD_REPLACE`
+//! with the texture environments ([`super::texture::env`]). The polygon stipple pattern is
 //! in [`super::stipple`].
 
 use super::Context;
@@ -9,7 +11,7 @@ use super::enums::{FACE, POLYGON_MODE, WINDING};
 use super::get::Value;
 use super::gl::{self, GLboolean, GLclampf, GLenum, GLfloat, GLint, GLushort};
 use super::params::Shape;
-use crate::frame::state::{Face, Point, PolygonMode, Winding};
+use crate::frame::state::{Face, Point, PointSprite, PolygonMode, Winding};
 
 /// Rasterization state of a context.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -30,6 +32,9 @@ pub struct RasterizationState {
     pub line_stipple: (i32, u16),
     /// `glPointSize` and `glPointParameter` (`smooth` comes from `GL_POINT_SMOOTH`).
     pub point: Point,
+    /// `GL_COORD_REPLACE` of each unit and `GL_POINT_SPRITE_COORD_ORIGIN` (point sprites
+    /// apply them while `GL_POINT_SPRITE` is on).
+    pub sprite: PointSprite,
     /// `glSampleCoverage`: value in [0, 1] and invert flag.
     pub sample_coverage: (f32, bool),
 }
@@ -45,6 +50,7 @@ impl Default for RasterizationState {
             line_width: 1.0,
             line_stipple: (1, 0xffff),
             point: Point::default(),
+            sprite: PointSprite::default(),
             sample_coverage: (1.0, false),
         }
     }
@@ -53,7 +59,9 @@ impl Default for RasterizationState {
 /// Parameters of `glPointParameter*`.
 fn point_shape(pname: GLenum) -> Option<Shape> {
     Some(match pname {
-        gl::GL_POINT_SIZE_MIN | gl::GL_POINT_SIZE_MAX | gl::GL_POINT_FADE_THRESHOLD_SIZE => Shape::SCALAR,
+        gl::GL_POINT_SIZE_MIN | gl::GL_POINT_SIZE_MAX | gl::GL_POINT_FADE_THRESHOLD_SIZE | gl::GL_POINT_SPRITE_COORD_ORIGIN => {
+            Shape::SCALAR
+        }
         gl::GL_POINT_DISTANCE_ATTENUATION => Shape::plain(3),
         _ => return None,
     })
@@ -116,8 +124,16 @@ impl Context {
     }
 
     /// Sets a point parameter (section 3.3): `GL_INVALID_VALUE` for a negative size or
-    /// threshold.
+    /// threshold; `GL_INVALID_ENUM` for a sprite origin other than `GL_LOWER_LEFT` and
+    /// `GL_UPPER_LEFT` (OpenGL 2.0 section 2.5: an enum not allowed).
     fn set_point_parameter(&mut self, pname: GLenum, v: [f32; 4], command: &'static str) {
+        if pname == gl::GL_POINT_SPRITE_COORD_ORIGIN {
+            return match v[0] as GLenum {
+                gl::GL_LOWER_LEFT => self.fixed_mut().raster.sprite.lower_left = true,
+                gl::GL_UPPER_LEFT => self.fixed_mut().raster.sprite.lower_left = false,
+                _ => self.set_error_in(gl::GL_INVALID_ENUM, command),
+            };
+        }
         if pname != gl::GL_POINT_DISTANCE_ATTENUATION && (v[0].is_nan() || v[0] < 0.0) {
             return self.set_error_in(gl::GL_INVALID_VALUE, command);
         }
@@ -216,6 +232,7 @@ impl Context {
             gl::GL_POINT_SIZE_MAX => Value::float(r.point.size_max),
             gl::GL_POINT_FADE_THRESHOLD_SIZE => Value::float(r.point.fade_threshold),
             gl::GL_POINT_DISTANCE_ATTENUATION => Value::floats(&r.point.attenuation),
+            gl::GL_POINT_SPRITE_COORD_ORIGIN => Value::int(if r.sprite.lower_left { gl::GL_LOWER_LEFT } else { gl::GL_UPPER_LEFT }),
             gl::GL_SAMPLE_COVERAGE_VALUE => Value::float(r.sample_coverage.0),
             gl::GL_SAMPLE_COVERAGE_INVERT => Value::bool(r.sample_coverage.1),
             _ => return None,
@@ -307,5 +324,50 @@ mod tests {
         ctx.glDisable(gl::GL_MULTISAMPLE);
         let expected = Multisample { enabled: false, alpha_to_coverage: true, alpha_to_one: false, coverage: Some((0.25, true)) };
         assert_eq!(ctx.raster_snapshot().multisample, expected);
+    }
+
+    #[test]
+    fn point_sprite_state_errors_queries_and_attrib() {
+        use crate::frame::state::PointSprite;
+        let (mut ctx, _) = Context::with_recording();
+        let int = |ctx: &Context, pname| ctx.query(pname).unwrap().to_ints()[0];
+        let coord_replace = |ctx: &mut Context| {
+            let mut v = -1;
+            unsafe { ctx.glGetTexEnviv(gl::GL_POINT_SPRITE, gl::GL_COORD_REPLACE, &mut v) };
+            v
+        };
+        assert_eq!(int(&ctx, gl::GL_POINT_SPRITE_COORD_ORIGIN), gl::GL_UPPER_LEFT as i32);
+        assert_eq!((coord_replace(&mut ctx), ctx.glIsEnabled(gl::GL_POINT_SPRITE)), (0, 0));
+        ctx.glActiveTexture(gl::GL_TEXTURE2);
+        ctx.glTexEnvi(gl::GL_POINT_SPRITE, gl::GL_COORD_REPLACE, 1);
+        assert_eq!(coord_replace(&mut ctx), 1);
+        ctx.glActiveTexture(gl::GL_TEXTURE0);
+        assert_eq!(coord_replace(&mut ctx), 0, "per unit");
+        ctx.glTexEnvi(gl::GL_POINT_SPRITE, gl::GL_COORD_REPLACE, 2);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        ctx.glTexEnvi(gl::GL_POINT_SPRITE, gl::GL_TEXTURE_ENV_MODE, 1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glPointParameteri(gl::GL_POINT_SPRITE_COORD_ORIGIN, gl::GL_LOWER_LEFT as i32);
+        assert_eq!(int(&ctx, gl::GL_POINT_SPRITE_COORD_ORIGIN), gl::GL_LOWER_LEFT as i32);
+        ctx.glPointParameterf(gl::GL_POINT_SPRITE_COORD_ORIGIN, gl::GL_LEFT as f32);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        assert_eq!(int(&ctx, gl::GL_POINT_SPRITE_COORD_ORIGIN), gl::GL_LOWER_LEFT as i32);
+
+        ctx.glEnable(gl::GL_POINT_SMOOTH);
+        assert_eq!(ctx.raster_snapshot().point.sprite, None);
+        assert!(ctx.raster_snapshot().point.smooth);
+        ctx.glEnable(gl::GL_POINT_SPRITE);
+        let point = ctx.raster_snapshot().point;
+        assert_eq!(point.sprite, Some(PointSprite { coord_replace: 0b100, lower_left: true }));
+        assert!(!point.smooth, "sprites ignore GL_POINT_SMOOTH");
+
+        // The point attribute group holds the enable, the origin and each unit's replacement.
+        ctx.glPushAttrib(gl::GL_POINT_BIT);
+        ctx.glDisable(gl::GL_POINT_SPRITE);
+        ctx.glPointParameteri(gl::GL_POINT_SPRITE_COORD_ORIGIN, gl::GL_UPPER_LEFT as i32);
+        ctx.glActiveTexture(gl::GL_TEXTURE2);
+        ctx.glTexEnvi(gl::GL_POINT_SPRITE, gl::GL_COORD_REPLACE, 0);
+        ctx.glPopAttrib();
+        assert_eq!(ctx.raster_snapshot().point.sprite, Some(PointSprite { coord_replace: 0b100, lower_left: true }));
     }
 }

@@ -37,7 +37,7 @@ use super::multisample::{self, SampleState};
 use super::programs::{self, Programs};
 use super::target::COLOR_FORMAT;
 use crate::frame::program::ShaderProgram;
-use crate::frame::state::{Face, RasterState, Winding};
+use crate::frame::state::{Face, RasterState, Stencil, StencilFaces, Winding};
 use crate::translate::glsl::GENERIC_ATTRIBUTE_LOCATION;
 
 /// Descriptor bindings of set 0 (see the `ff` module doc): the uniform block, then 2D, 3D and
@@ -79,16 +79,18 @@ pub struct PipelineKey {
 /// The raster state baked into a pipeline, as Vulkan values.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct FixedState {
-    /// Factors (src rgb, dst rgb, src alpha, dst alpha) and operation, when blending.
-    pub blend: Option<([vk::BlendFactor; 4], vk::BlendOp)>,
+    /// Factors (src rgb, dst rgb, src alpha, dst alpha) and operations (rgb, alpha), when
+    /// blending.
+    pub blend: Option<([vk::BlendFactor; 4], [vk::BlendOp; 2])>,
     /// Logic operation, when enabled and supported.
     pub logic_op: Option<vk::LogicOp>,
     /// Depth comparison, when the depth test is on.
     pub depth_test: Option<vk::CompareOp>,
     /// Depth writes (only with the depth test on, section 4.1.6).
     pub depth_write: bool,
-    /// Stencil comparison and fail, depth-fail, pass operations, when the test is on.
-    pub stencil: Option<[i32; 4]>,
+    /// Stencil comparison and fail, depth-fail, pass operations of the rasterizer's front and
+    /// back faces, when the test is on.
+    pub stencil: Option<[[i32; 4]; 2]>,
     /// Colour write mask.
     pub color_mask: vk::ColorComponentFlags,
     /// Culled faces.
@@ -111,19 +113,21 @@ pub fn front_face(w: Winding) -> vk::FrontFace {
 }
 
 impl FixedState {
-    /// The fixed state of `state` for a batch whose rasterizer culls `cull` and applies the
-    /// polygon offset as depth bias when `depth_bias` ([`super::ff::Batch::cull`] and
-    /// [`super::ff::Batch::polygon_offset`]: the CPU already culled or expanded the rest);
+    /// The fixed state of `state` for a batch whose rasterizer culls `cull`, applies the
+    /// polygon offset as depth bias when `depth_bias` and tests `stencil`
+    /// ([`super::ff::Batch::cull`], [`super::ff::Batch::polygon_offset`] and
+    /// [`super::ff::Batch::stencil`]: the CPU already culled or expanded the rest);
     /// `logic_op_supported` says whether the device has the `logicOp` feature.
-    pub fn new(state: &RasterState, cull: Option<Face>, depth_bias: bool, logic_op_supported: bool) -> FixedState {
+    pub fn new(state: &RasterState, cull: Option<Face>, depth_bias: bool, stencil: Option<StencilFaces>, logic_op_supported: bool) -> FixedState {
         let blend = state.blend.map(|b| {
             let factors = [b.src_rgb, b.dst_rgb, b.src_alpha, b.dst_alpha].map(conv::blend_factor);
-            (factors, conv::blend_op(b.equation))
+            (factors, [b.equation_rgb, b.equation_alpha].map(conv::blend_op))
         });
         let logic_op = state.logic_op.filter(|_| logic_op_supported).map(conv::logic_op);
-        let stencil = state.stencil.map(|s| {
+        let face = |s: Stencil| {
             [conv::compare(s.func).as_raw(), conv::stencil_op(s.fail).as_raw(), conv::stencil_op(s.depth_fail).as_raw(), conv::stencil_op(s.depth_pass).as_raw()]
-        });
+        };
+        let stencil = stencil.map(|s| [face(s.front), face(s.back)]);
         let mut color_mask = vk::ColorComponentFlags::empty();
         for (on, bit) in state.color_mask.iter().zip([
             vk::ColorComponentFlags::R,
@@ -332,17 +336,17 @@ impl Pipelines {
             compare_op: vk::CompareOp::from_raw(s[0]),
             ..Default::default()
         };
-        let stencil = f.stencil.map(stencil_face).unwrap_or_default();
+        let [front, back] = f.stencil.map_or([vk::StencilOpState::default(); 2], |s| s.map(stencil_face));
         let depth = vk::PipelineDepthStencilStateCreateInfo::default()
             .depth_test_enable(f.depth_test.is_some())
             .depth_write_enable(f.depth_write)
             .depth_compare_op(f.depth_test.unwrap_or(vk::CompareOp::ALWAYS))
             .stencil_test_enable(f.stencil.is_some())
-            .front(stencil)
-            .back(stencil);
-        let (blend_on, [src, dst, src_a, dst_a], op) = match f.blend {
-            Some((factors, op)) => (true, factors, op),
-            None => (false, [vk::BlendFactor::ONE, vk::BlendFactor::ZERO, vk::BlendFactor::ONE, vk::BlendFactor::ZERO], vk::BlendOp::ADD),
+            .front(front)
+            .back(back);
+        let (blend_on, [src, dst, src_a, dst_a], [op, op_a]) = match f.blend {
+            Some((factors, ops)) => (true, factors, ops),
+            None => (false, [vk::BlendFactor::ONE, vk::BlendFactor::ZERO, vk::BlendFactor::ONE, vk::BlendFactor::ZERO], [vk::BlendOp::ADD; 2]),
         };
         let attachments = [vk::PipelineColorBlendAttachmentState {
             blend_enable: blend_on.into(),
@@ -351,7 +355,7 @@ impl Pipelines {
             color_blend_op: op,
             src_alpha_blend_factor: src_a,
             dst_alpha_blend_factor: dst_a,
-            alpha_blend_op: op,
+            alpha_blend_op: op_a,
             color_write_mask: f.color_mask,
         }];
         let blend = vk::PipelineColorBlendStateCreateInfo::default()
@@ -420,26 +424,31 @@ fn shader_module(device: &Device, spirv: &[u8]) -> Result<vk::ShaderModule> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::frame::state::{Blend, BlendFactor};
+    use crate::frame::state::{Blend, BlendEquation, BlendFactor};
 
     #[test]
     fn fixed_state_follows_gl_rules() {
         let mut state = RasterState { depth_write: true, ..RasterState::default() };
-        assert!(!FixedState::new(&state, None, false, true).depth_write, "no depth writes without the test");
+        assert!(!FixedState::new(&state, None, false, None, true).depth_write, "no depth writes without the test");
         state.depth_test = Some(crate::frame::state::CompareFunc::Less);
-        let f = FixedState::new(&state, None, false, true);
+        let f = FixedState::new(&state, None, false, None, true);
         assert!(f.depth_write);
         assert_eq!(f.depth_test, Some(vk::CompareOp::LESS));
-        assert_eq!(FixedState::new(&state, Some(Face::Back), false, true).cull, vk::CullModeFlags::BACK);
-        assert_eq!(FixedState::new(&state, None, false, true).cull, vk::CullModeFlags::NONE);
-        assert!(FixedState::new(&state, None, true, true).depth_bias);
-        state.blend = Some(Blend { src_rgb: BlendFactor::SrcAlpha, dst_rgb: BlendFactor::OneMinusSrcAlpha, ..Blend::default() });
-        let (factors, op) = FixedState::new(&state, None, false, true).blend.unwrap();
+        assert_eq!(FixedState::new(&state, Some(Face::Back), false, None, true).cull, vk::CullModeFlags::BACK);
+        assert_eq!(FixedState::new(&state, None, false, None, true).cull, vk::CullModeFlags::NONE);
+        assert!(FixedState::new(&state, None, true, None, true).depth_bias);
+        state.blend = Some(Blend {
+            src_rgb: BlendFactor::SrcAlpha,
+            dst_rgb: BlendFactor::OneMinusSrcAlpha,
+            equation_alpha: BlendEquation::Max,
+            ..Blend::default()
+        });
+        let (factors, ops) = FixedState::new(&state, None, false, None, true).blend.unwrap();
         assert_eq!(factors[..2], [vk::BlendFactor::SRC_ALPHA, vk::BlendFactor::ONE_MINUS_SRC_ALPHA]);
-        assert_eq!(op, vk::BlendOp::ADD);
+        assert_eq!(ops, [vk::BlendOp::ADD, vk::BlendOp::MAX]);
         state.logic_op = Some(crate::frame::state::LogicOp::Xor);
-        assert_eq!(FixedState::new(&state, None, false, true).logic_op, Some(vk::LogicOp::XOR));
-        assert_eq!(FixedState::new(&state, None, false, false).logic_op, None);
+        assert_eq!(FixedState::new(&state, None, false, None, true).logic_op, Some(vk::LogicOp::XOR));
+        assert_eq!(FixedState::new(&state, None, false, None, false).logic_op, None);
     }
 
     #[test]

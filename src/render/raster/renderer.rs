@@ -29,7 +29,7 @@ use super::target::{Plane, Target};
 use super::textures::Textures;
 use super::{conv, multisample, pixel_ops, readback};
 use crate::frame::pixels::{PixelBuffer, PixelOp};
-use crate::frame::state::Stencil;
+use crate::frame::state::{Stencil, StencilFaces};
 use crate::frame::framebuffer::FramebufferKey;
 use crate::frame::{Clear, ColorBuffer, Draw, DrawBuffers, Frame, FrameEnd, Framebuffer, RasterState};
 use crate::render::FrameSink;
@@ -183,7 +183,10 @@ impl Recorder<'_> {
         if !before.is_empty() {
             let color_only = Arc::new(RasterState {
                 depth_write: false,
-                stencil: state.stencil.map(|s| Stencil { write_mask: 0, ..s }),
+                stencil: state.stencil.map(|s| StencilFaces {
+                    front: Stencil { write_mask: 0, ..s.front },
+                    back: Stencil { write_mask: 0, ..s.back },
+                }),
                 ..(**state).clone()
             });
             let query = self.query;
@@ -313,7 +316,8 @@ impl Recorder<'_> {
             if batch.indices.is_empty() {
                 continue;
             }
-            let mut fixed = FixedState::new(state, batch.cull, batch.polygon_offset, features.logic_op);
+            let stencil = batch.stencil(state.stencil);
+            let mut fixed = FixedState::new(state, batch.cull, batch.polygon_offset, stencil, features.logic_op);
             fixed.color_mask = self.target.color_write_mask(fixed.color_mask);
             if state.logic_op.is_some() && !features.logic_op {
                 log_once("the device has no logicOp feature: glLogicOp is ignored");
@@ -328,7 +332,7 @@ impl Recorder<'_> {
             let set_key = SetKey { layout: self.pipelines.set_layout, buffers: vec![(uniform.buffer, ff::UNIFORM_SIZE as u64)], images: images.to_vec() };
             let set = self.descriptors.get(self.device, &set_key)?;
             let polygon_mode = if features.fill_mode_non_solid { conv::polygon_mode(batch.polygon_mode) } else { vk::PolygonMode::FILL };
-            let stencil = state.stencil.unwrap_or_default();
+            let stencil = stencil.unwrap_or(StencilFaces::both(Stencil::default()));
             let blend_color = state.blend.map_or([0.0; 4], |b| b.color);
             for &(samples, [dx, dy]) in &passes {
                 let key = PipelineKey {
@@ -349,9 +353,11 @@ impl Recorder<'_> {
                     d.cmd_set_line_width(self.cmd, line_width);
                     d.cmd_set_depth_bias(self.cmd, state.polygon_offset.units, 0.0, state.polygon_offset.factor);
                     d.cmd_set_blend_constants(self.cmd, &blend_color);
-                    d.cmd_set_stencil_reference(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.reference.clamp(0, 255) as u32);
-                    d.cmd_set_stencil_compare_mask(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.value_mask);
-                    d.cmd_set_stencil_write_mask(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.write_mask);
+                    for (face, s) in [(vk::StencilFaceFlags::FRONT, stencil.front), (vk::StencilFaceFlags::BACK, stencil.back)] {
+                        d.cmd_set_stencil_reference(self.cmd, face, s.reference.clamp(0, 255) as u32);
+                        d.cmd_set_stencil_compare_mask(self.cmd, face, s.value_mask);
+                        d.cmd_set_stencil_write_mask(self.cmd, face, s.write_mask);
+                    }
                     d.cmd_bind_descriptor_sets(self.cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.layout, 0, &[set], &[uniform.offset as u32]);
                     if let Some((_, (program_set, offsets))) = program {
                         d.cmd_bind_descriptor_sets(self.cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.layout, 1, &[program_set], &offsets);

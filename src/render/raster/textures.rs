@@ -313,7 +313,7 @@ impl Textures {
             _ => (Upload::Rgba8, vk::Format::R8G8B8A8_UNORM),
         };
         let (image_type, view_type, layers, flags, kind) = match content.kind {
-            TextureKind::D1 | TextureKind::D2 => (vk::ImageType::TYPE_2D, vk::ImageViewType::TYPE_2D, 1, vk::ImageCreateFlags::empty(), SamplerKind::D2),
+            TextureKind::D1 | TextureKind::D2 | TextureKind::Rect => (vk::ImageType::TYPE_2D, vk::ImageViewType::TYPE_2D, 1, vk::ImageCreateFlags::empty(), SamplerKind::D2),
             TextureKind::D3 => (vk::ImageType::TYPE_3D, vk::ImageViewType::TYPE_3D, 1, vk::ImageCreateFlags::empty(), SamplerKind::D3),
             TextureKind::Cube => (vk::ImageType::TYPE_2D, vk::ImageViewType::CUBE, 6, vk::ImageCreateFlags::CUBE_COMPATIBLE, SamplerKind::Cube),
         };

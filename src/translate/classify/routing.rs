@@ -47,7 +47,7 @@ pub fn orthographic(projection: &Mat4) -> bool {
 
 /// Whether blending leaves the source as it is.
 fn plain_replace(blend: &Blend) -> bool {
-    blend.src_rgb == BlendFactor::One && blend.dst_rgb == BlendFactor::Zero && blend.equation == Default::default()
+    blend.src_rgb == BlendFactor::One && blend.dst_rgb == BlendFactor::Zero && blend.equation_rgb == Default::default()
 }
 
 /// The raster class of `draw`, or `None` when it is traced; `traced_before`: a draw before it

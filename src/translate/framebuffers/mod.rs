@@ -494,7 +494,9 @@ impl Context {
     /// for a target that is not 1D, 2D, 3D or a cube map; `GL_INVALID_OPERATION` for a cube
     /// map whose base levels are not cube complete.
     pub fn glGenerateMipmapEXT(&mut self, target: GLenum) {
-        let Some(kind) = Target::from_gl(target) else { return self.set_error_in(gl::GL_INVALID_ENUM, "glGenerateMipmapEXT") };
+        let Some(kind) = Target::from_gl(target).filter(|&t| t != Target::Rect) else {
+            return self.set_error_in(gl::GL_INVALID_ENUM, "glGenerateMipmapEXT");
+        };
         self.write_back_framebuffer();
         let generated = self.with_bound_texture(kind, |obj| {
             let base = obj.params.levels[0].max(0) as usize;

@@ -13,7 +13,7 @@ use super::texgen::TexGen;
 /// Saved `GL_TEXTURE_BIT` state.
 #[derive(Clone, Debug)]
 pub struct TextureAttrib {
-    bindings: [[u32; 4]; MAX_TEXTURE_UNITS],
+    bindings: [[u32; Target::ALL.len()]; MAX_TEXTURE_UNITS],
     env: [TexEnv; MAX_TEXTURE_UNITS],
     texgen: [TexGen; MAX_TEXTURE_UNITS],
     /// (name, target, parameters) of every bound texture.

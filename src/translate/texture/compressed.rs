@@ -80,7 +80,10 @@ impl Context {
     /// compressed format of that dimensionality, `GL_INVALID_VALUE` for bad level or sizes or
     /// an `imageSize` that does not match, `GL_INVALID_OPERATION` for a non-zero border.
     unsafe fn compressed_tex_image(&mut self, dims: usize, target: GLenum, level: GLint, internalformat: GLenum, size: [GLsizei; 3], border: GLint, image_size_: GLsizei, data: *const c_void, command: &'static str) {
-        let Some(dest) = image_target(dims, target) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
+        // Rectangle textures take no compressed images (ARB_texture_rectangle).
+        let Some(dest) = image_target(dims, target).filter(|d| d.target != super::objects::Target::Rect) else {
+            return self.set_error_in(gl::GL_INVALID_ENUM, command);
+        };
         let Some(format) = s3tc_for(dims, internalformat) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         if border != 0 {
             return self.set_error_in(gl::GL_INVALID_OPERATION, command);

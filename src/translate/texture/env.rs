@@ -1,7 +1,9 @@
 //! Texture environments (OpenGL 1.5 section 3.8.13, table 6.18): `glTexEnv{if}{v}` and
 //! `glGetTexEnv{if}v` for each texture unit — the function (`MODULATE`, `REPLACE`, `DECAL`,
 //! `BLEND`, `ADD`, `COMBINE`), the combiner's functions, sources, operands and scales, the
-//! environment colour, and the unit's level-of-detail bias.
+//! environment colour, and the unit's level-of-detail bias; and each unit's point sprite
+//! coordinate replacement (`GL_COORD_REPLACE` of `GL_POINT_SPRITE`, OpenGL 2.0 section 3.3),
+//! which belongs to the point state.
 
 use super::super::Context;
 use super::super::convert::{norm_i32, read_slice, write_slice};
@@ -156,6 +158,9 @@ fn env_count(pname: GLenum) -> usize {
 
 impl Context {
     fn tex_env(&mut self, target: GLenum, pname: GLenum, values: &[f32], command: &'static str) {
+        if target == gl::GL_POINT_SPRITE {
+            return self.set_coord_replace(pname, values, command);
+        }
         let Some(field) = field_of(target, pname) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let unit = self.active_texture_unit();
         if let Err(e) = self.texture.env[unit].set(field, values) {
@@ -217,7 +222,26 @@ impl Context {
         })));
     }
 
+    /// `GL_COORD_REPLACE` of the active unit (`GL_ARB_point_sprite`, the one name of the
+    /// `GL_POINT_SPRITE` environment, else `GL_INVALID_ENUM`): `GL_FALSE` or `GL_TRUE`, else
+    /// `GL_INVALID_VALUE` (as Mesa).
+    fn set_coord_replace(&mut self, pname: GLenum, values: &[f32], command: &'static str) {
+        if pname != gl::GL_COORD_REPLACE {
+            return self.set_error_in(gl::GL_INVALID_ENUM, command);
+        }
+        let bit = 1 << self.active_texture_unit();
+        let sprite = &mut self.fixed_mut().raster.sprite;
+        match values.first() {
+            Some(&v) if v == 0.0 => sprite.coord_replace &= !bit,
+            Some(&v) if v == 1.0 => sprite.coord_replace |= bit,
+            _ => self.set_error_in(gl::GL_INVALID_VALUE, command),
+        }
+    }
+
     fn tex_env_value(&mut self, target: GLenum, pname: GLenum, command: &'static str) -> Option<Value> {
+        if target == gl::GL_POINT_SPRITE && pname == gl::GL_COORD_REPLACE {
+            return Some(Value::bool(self.fixed.raster.sprite.coord_replace & (1 << self.active_texture_unit()) != 0));
+        }
         let Some(field) = field_of(target, pname) else {
             self.set_error_in(gl::GL_INVALID_ENUM, command);
             return None;

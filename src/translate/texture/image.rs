@@ -42,6 +42,8 @@ pub fn image_target(dims: usize, target: GLenum) -> Option<Dest> {
         (2, gl::GL_TEXTURE_2D) => plain(Target::D2, false),
         (2, gl::GL_PROXY_TEXTURE_2D) => plain(Target::D2, true),
         (2, gl::GL_PROXY_TEXTURE_CUBE_MAP) => plain(Target::Cube, true),
+        (2, gl::GL_TEXTURE_RECTANGLE_ARB) => plain(Target::Rect, false),
+        (2, gl::GL_PROXY_TEXTURE_RECTANGLE_ARB) => plain(Target::Rect, true),
         (2, gl::GL_TEXTURE_CUBE_MAP_POSITIVE_X..=gl::GL_TEXTURE_CUBE_MAP_NEGATIVE_Z) => {
             Some(Dest { target: Target::Cube, face: (target - gl::GL_TEXTURE_CUBE_MAP_POSITIVE_X) as usize, proxy: false })
         }
@@ -79,12 +81,14 @@ pub fn check_level(target: Target, level: GLint) -> Result<usize, GLenum> {
     usize::try_from(level).ok().filter(|&l| l < target.max_levels()).ok_or(gl::GL_INVALID_VALUE)
 }
 
-/// Checks border and sizes (section 3.8.1): `GL_INVALID_VALUE` for a border other than 0 or 1,
+/// Checks border and sizes (section 3.8.1): `GL_INVALID_VALUE` for a border other than 0 or 1
+/// (other than 0 for rectangle textures),
 /// or a negative size (or one smaller than 2 × border); cube faces must be square. Sizes need
 /// not be 2^n + 2 × border: glrt implements ARB_texture_non_power_of_two (the renderer's images
 /// take any size; mipmap levels halve with the floor, as completeness in `snapshot` checks).
 pub fn check_size(target: Target, level: usize, size: [GLsizei; 3], border: GLint) -> Result<SizeCheck, GLenum> {
-    let border = usize::try_from(border).ok().filter(|&b| b <= 1).ok_or(gl::GL_INVALID_VALUE)?;
+    let border_max = if target == Target::Rect { 0 } else { 1 };
+    let border = usize::try_from(border).ok().filter(|&b| b <= border_max).ok_or(gl::GL_INVALID_VALUE)?;
     let dims = target.dims();
     let mut out = [1usize; 3];
     let mut too_large = false;

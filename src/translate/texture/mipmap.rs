@@ -82,8 +82,11 @@ fn interior<T: Copy>(data: &[T], per_texel: usize, size: [usize; 3], border: usi
 /// (their border texels would be zero) and keep the base level's internal format; those of a
 /// paletted base are stored as RGBA texels. Depth levels also average their full-precision
 /// depth values; depth/stencil levels get stencil indices 0 (the spec defines no filtering of
-/// stencil indices).
+/// stencil indices). Rectangle textures have one level: nothing is generated.
 pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
+    if obj.target == Some(super::objects::Target::Rect) {
+        return; // One level (ARB_texture_rectangle).
+    }
     let Some(top) = obj.level(face, base).cloned() else { return };
     let dims = obj.target.map_or(2, |t| t.dims());
     let border = top.border;

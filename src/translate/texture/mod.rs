@@ -56,11 +56,11 @@ pub use objects::{Target, TextureObject, TextureTable};
 #[derive(Clone, Debug)]
 pub struct TextureState {
     /// `bindings[unit][target]`: the bound texture names.
-    pub bindings: [[u32; 4]; MAX_TEXTURE_UNITS],
+    pub bindings: [[u32; Target::ALL.len()]; MAX_TEXTURE_UNITS],
     /// The default textures (name 0), one per target.
-    pub defaults: [TextureObject; 4],
+    pub defaults: [TextureObject; Target::ALL.len()],
     /// Proxy textures, one per target (levels hold sizes only).
-    pub proxies: [TextureObject; 4],
+    pub proxies: [TextureObject; Target::ALL.len()],
     /// Texture environment of each unit.
     pub env: [env::TexEnv; MAX_TEXTURE_UNITS],
     /// Texture coordinate generation of each unit.
@@ -73,9 +73,9 @@ pub struct TextureState {
 
 impl Default for TextureState {
     fn default() -> TextureState {
-        let object = |t: Target| TextureObject { target: Some(t), ..TextureObject::new() };
+        let object = |t: Target| TextureObject { target: Some(t), params: params::TexParams::initial(t), ..TextureObject::new() };
         TextureState {
-            bindings: [[0; 4]; MAX_TEXTURE_UNITS],
+            bindings: [[0; Target::ALL.len()]; MAX_TEXTURE_UNITS],
             defaults: Target::ALL.map(object),
             proxies: Target::ALL.map(object),
             env: Default::default(),
@@ -97,6 +97,7 @@ impl Context {
             gl::GL_MAX_TEXTURE_SIZE => Value::int(MAX_TEXTURE_SIZE as i64),
             gl::GL_MAX_3D_TEXTURE_SIZE => Value::int(MAX_3D_TEXTURE_SIZE as i64),
             gl::GL_MAX_CUBE_MAP_TEXTURE_SIZE => Value::int(MAX_CUBE_MAP_TEXTURE_SIZE as i64),
+            gl::GL_MAX_RECTANGLE_TEXTURE_SIZE_ARB => Value::int(Target::Rect.max_size() as i64),
             gl::GL_MAX_TEXTURE_LOD_BIAS => Value::float(env::MAX_TEXTURE_LOD_BIAS),
             gl::GL_NUM_COMPRESSED_TEXTURE_FORMATS => Value::int(formats::COMPRESSED_FORMATS.len() as i64),
             gl::GL_COMPRESSED_TEXTURE_FORMATS => Value::Int(formats::COMPRESSED_FORMATS.iter().map(|&f| i64::from(f)).collect()),

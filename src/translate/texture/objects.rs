@@ -38,11 +38,14 @@ pub enum Target {
     D3,
     /// `GL_TEXTURE_CUBE_MAP`.
     Cube,
+    /// `GL_TEXTURE_RECTANGLE_ARB` (`GL_ARB_texture_rectangle`): one level, no border,
+    /// coordinates in texels.
+    Rect,
 }
 
 impl Target {
     /// Every target, in index order.
-    pub const ALL: [Target; 4] = [Target::D1, Target::D2, Target::D3, Target::Cube];
+    pub const ALL: [Target; 5] = [Target::D1, Target::D2, Target::D3, Target::Cube, Target::Rect];
 
     /// The target of a bind target enum.
     pub fn from_gl(target: GLenum) -> Option<Target> {
@@ -51,6 +54,7 @@ impl Target {
             gl::GL_TEXTURE_2D => Target::D2,
             gl::GL_TEXTURE_3D => Target::D3,
             gl::GL_TEXTURE_CUBE_MAP => Target::Cube,
+            gl::GL_TEXTURE_RECTANGLE_ARB => Target::Rect,
             _ => return None,
         })
     }
@@ -62,12 +66,18 @@ impl Target {
 
     /// The bind target enum.
     pub fn gl(self) -> GLenum {
-        [gl::GL_TEXTURE_1D, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_3D, gl::GL_TEXTURE_CUBE_MAP][self.index()]
+        [gl::GL_TEXTURE_1D, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_3D, gl::GL_TEXTURE_CUBE_MAP, gl::GL_TEXTURE_RECTANGLE_ARB][self.index()]
     }
 
     /// The binding query enum (`GL_TEXTURE_BINDING_2D`...).
     pub fn binding_gl(self) -> GLenum {
-        [gl::GL_TEXTURE_BINDING_1D, gl::GL_TEXTURE_BINDING_2D, gl::GL_TEXTURE_BINDING_3D, gl::GL_TEXTURE_BINDING_CUBE_MAP][self.index()]
+        [
+            gl::GL_TEXTURE_BINDING_1D,
+            gl::GL_TEXTURE_BINDING_2D,
+            gl::GL_TEXTURE_BINDING_3D,
+            gl::GL_TEXTURE_BINDING_CUBE_MAP,
+            gl::GL_TEXTURE_BINDING_RECTANGLE_ARB,
+        ][self.index()]
     }
 
     /// Number of faces.
@@ -79,7 +89,7 @@ impl Target {
     pub fn dims(self) -> usize {
         match self {
             Target::D1 => 1,
-            Target::D2 | Target::Cube => 2,
+            Target::D2 | Target::Cube | Target::Rect => 2,
             Target::D3 => 3,
         }
     }
@@ -87,7 +97,7 @@ impl Target {
     /// Largest image size (without border).
     pub fn max_size(self) -> usize {
         match self {
-            Target::D1 | Target::D2 => MAX_TEXTURE_SIZE,
+            Target::D1 | Target::D2 | Target::Rect => MAX_TEXTURE_SIZE,
             Target::D3 => MAX_3D_TEXTURE_SIZE,
             Target::Cube => MAX_CUBE_MAP_TEXTURE_SIZE,
         }
@@ -95,7 +105,7 @@ impl Target {
 
     /// Number of levels its largest image has.
     pub fn max_levels(self) -> usize {
-        self.max_size().trailing_zeros() as usize + 1
+        if self == Target::Rect { 1 } else { self.max_size().trailing_zeros() as usize + 1 }
     }
 }
 
@@ -285,7 +295,10 @@ impl Context {
                     return self.set_error_in(gl::GL_INVALID_OPERATION, "glBindTexture");
                 }
                 Some(_) => {}
-                None => obj.target = Some(t),
+                None => {
+                    obj.target = Some(t);
+                    obj.params = TexParams::initial(t);
+                }
             }
         }
         let unit = self.active_texture_unit();
@@ -371,7 +384,7 @@ mod tests {
         assert_eq!(ctx.glIsTexture(2), 1);
         ctx.glBindTexture(gl::GL_TEXTURE_1D, 2);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
-        ctx.glBindTexture(gl::GL_TEXTURE_RECTANGLE, 2);
+        ctx.glBindTexture(gl::GL_TEXTURE_2D_ARRAY, 2);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         ctx.glActiveTexture(gl::GL_TEXTURE1);
         ctx.glBindTexture(gl::GL_TEXTURE_2D, 2);

@@ -55,6 +55,30 @@ impl Default for TexParams {
     }
 }
 
+impl TexParams {
+    /// The initial parameters of a texture of `target`: those of table 6.16, but a linear
+    /// minification filter and `GL_CLAMP_TO_EDGE` wraps for rectangle textures.
+    pub fn initial(target: Target) -> TexParams {
+        match target {
+            Target::Rect => TexParams { min_filter: gl::GL_LINEAR, wrap: [gl::GL_CLAMP_TO_EDGE; 3], ..TexParams::default() },
+            _ => TexParams::default(),
+        }
+    }
+
+    /// What rectangle textures refuse (ARB_texture_rectangle): `GL_REPEAT` and
+    /// `GL_MIRRORED_REPEAT` wraps and mipmap filters (`GL_INVALID_ENUM`), a base level other
+    /// than 0 (`GL_INVALID_VALUE`, as the extension's errors section says).
+    fn check_rect(&self) -> Result<(), GLenum> {
+        if self.wrap.iter().any(|&w| matches!(w, gl::GL_REPEAT | gl::GL_MIRRORED_REPEAT)) || uses_mipmaps(self.min_filter) {
+            return Err(gl::GL_INVALID_ENUM);
+        }
+        if self.levels[0] != 0 {
+            return Err(gl::GL_INVALID_VALUE);
+        }
+        Ok(())
+    }
+}
+
 /// Whether a minification filter uses mipmaps.
 pub fn uses_mipmaps(min_filter: GLenum) -> bool {
     !matches!(min_filter, gl::GL_NEAREST | gl::GL_LINEAR)
@@ -179,6 +203,9 @@ impl Context {
         if let Err(e) = self.with_bound_texture(t, |obj| {
             let mut params = obj.params;
             params.set(pname, values)?;
+            if t == Target::Rect {
+                params.check_rect()?;
+            }
             if params != obj.params {
                 obj.params = params;
                 obj.touch();
@@ -336,5 +363,69 @@ mod tests {
         }
         ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_COMPARE_FUNC, gl::GL_FRONT as i32);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+    }
+}
+
+#[cfg(test)]
+mod rectangle_tests {
+    use crate::frame::texture::TextureKind;
+    use crate::translate::{Context, dispatch, gl};
+
+    fn int(ctx: &mut Context, pname: gl::GLenum) -> i32 {
+        let mut v = 0;
+        unsafe { ctx.glGetTexParameteriv(gl::GL_TEXTURE_RECTANGLE_ARB, pname, &mut v) };
+        v
+    }
+
+    fn image(ctx: &mut Context, target: gl::GLenum, level: i32, w: i32, h: i32, border: i32) -> gl::GLenum {
+        unsafe { dispatch::glTexImage2D(ctx, target, level, gl::GL_RGBA as i32, w, h, border, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        ctx.glGetError()
+    }
+
+    /// `GL_ARB_texture_rectangle`: binding, initial parameters, the parameters and images it
+    /// refuses, the proxy, the limit, and the enable's priority over 2D.
+    #[test]
+    fn rectangle_textures_state_errors_and_queries() {
+        let (mut ctx, _) = Context::with_recording();
+        let rect = gl::GL_TEXTURE_RECTANGLE_ARB;
+        ctx.glBindTexture(rect, 3);
+        assert_eq!(ctx.query(gl::GL_TEXTURE_BINDING_RECTANGLE_ARB).unwrap().to_ints(), [3]);
+        assert_eq!(ctx.query(gl::GL_MAX_RECTANGLE_TEXTURE_SIZE_ARB).unwrap().to_ints(), [8192]);
+        assert_eq!(int(&mut ctx, gl::GL_TEXTURE_MIN_FILTER), gl::GL_LINEAR as i32);
+        assert_eq!(int(&mut ctx, gl::GL_TEXTURE_WRAP_S), gl::GL_CLAMP_TO_EDGE as i32);
+        for (pname, value, error) in [
+            (gl::GL_TEXTURE_WRAP_S, gl::GL_REPEAT, gl::GL_INVALID_ENUM),
+            (gl::GL_TEXTURE_WRAP_T, gl::GL_MIRRORED_REPEAT, gl::GL_INVALID_ENUM),
+            (gl::GL_TEXTURE_MIN_FILTER, gl::GL_LINEAR_MIPMAP_LINEAR, gl::GL_INVALID_ENUM),
+            (gl::GL_TEXTURE_BASE_LEVEL, 1, gl::GL_INVALID_VALUE),
+            (gl::GL_TEXTURE_WRAP_S, gl::GL_CLAMP, gl::GL_NO_ERROR),
+            (gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST, gl::GL_NO_ERROR),
+        ] {
+            ctx.glTexParameteri(rect, pname, value as i32);
+            assert_eq!(ctx.glGetError(), error, "{pname:#x} = {value:#x}");
+        }
+        assert_eq!(int(&mut ctx, gl::GL_TEXTURE_WRAP_S), gl::GL_CLAMP as i32);
+        assert_eq!(int(&mut ctx, gl::GL_TEXTURE_BASE_LEVEL), 0, "refused values are not kept");
+        assert_eq!(image(&mut ctx, rect, 1, 4, 4, 0), gl::GL_INVALID_VALUE, "one level");
+        assert_eq!(image(&mut ctx, rect, 0, 6, 6, 1), gl::GL_INVALID_VALUE, "no border");
+        assert_eq!(image(&mut ctx, gl::GL_PROXY_TEXTURE_RECTANGLE_ARB, 0, 8192, 1, 0), gl::GL_NO_ERROR);
+        let mut w = 0;
+        unsafe { ctx.glGetTexLevelParameteriv(gl::GL_PROXY_TEXTURE_RECTANGLE_ARB, 0, gl::GL_TEXTURE_WIDTH, &mut w) };
+        assert_eq!(w, 8192);
+        unsafe { dispatch::glCompressedTexImage2D(&mut ctx, rect, 0, gl::GL_COMPRESSED_RGBA_S3TC_DXT1_EXT, 4, 4, 0, 8, [0u8; 8].as_ptr().cast()) };
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glGenerateMipmapEXT(rect);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+
+        assert_eq!(image(&mut ctx, rect, 0, 5, 3, 0), gl::GL_NO_ERROR);
+        ctx.glBindTexture(gl::GL_TEXTURE_2D, 4);
+        assert_eq!(image(&mut ctx, gl::GL_TEXTURE_2D, 0, 2, 2, 0), gl::GL_NO_ERROR);
+        ctx.glEnable(gl::GL_TEXTURE_2D);
+        ctx.glEnable(rect);
+        assert_eq!(ctx.glIsEnabled(rect), 1);
+        let snapshot = ctx.texture_snapshot()[0].clone().expect("a complete rectangle texture");
+        assert_eq!((snapshot.content.kind, snapshot.id), (TextureKind::Rect, 3), "rectangle before 2D");
+        ctx.glBindTexture(rect, 4);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "a 2D texture's name");
     }
 }

@@ -79,6 +79,7 @@ fn texture_ref(name: u32, obj: &mut TextureObject, target: Target, shared: Optio
         Target::D2 => TextureKind::D2,
         Target::D3 => TextureKind::D3,
         Target::Cube => TextureKind::Cube,
+        Target::Rect => TextureKind::Rect,
     };
     let version = if shared.is_some() { next_version() } else { obj.version };
     let mut sampler = obj.params.sampler();
@@ -105,7 +106,7 @@ impl Context {
 
     /// The enabled target of `unit` with the highest priority.
     fn enabled_target(&self, unit: usize) -> Option<Target> {
-        [Target::Cube, Target::D3, Target::D2, Target::D1].into_iter().find(|t| self.enables.unit_on(unit, t.gl()))
+        [Target::Cube, Target::D3, Target::Rect, Target::D2, Target::D1].into_iter().find(|t| self.enables.unit_on(unit, t.gl()))
     }
 
     /// The texture each unit samples for the next draw (`None` where texturing is off or the

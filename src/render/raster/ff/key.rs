@@ -5,7 +5,7 @@
 //!
 //! Words: [`GENERAL`] (primitive, shading, lighting model, fog, alpha test, stipples),
 //! [`CLIP`] (user clip planes), `UNIT + u` (texture unit `u`: target, base format, function,
-//! coordinate generation, depth texture comparison), `COMBINE_RGB + u` and `COMBINE_ALPHA + u` (the
+//! coordinate generation, depth texture comparison, point sprite coordinates), `COMBINE_RGB + u` and `COMBINE_ALPHA + u` (the
 //! combiner of unit `u`, section 3.8.13).
 
 use super::MAX_UNITS;
@@ -93,11 +93,15 @@ pub const POLYGON_STIPPLE: Field = Field::new(28, 1);
 pub const LINE_STIPPLE: Field = Field::new(29, 1);
 /// Antialiasing of points (`GL_POINT_SMOOTH`) or lines (`GL_LINE_SMOOTH`): coverage to alpha.
 pub const SMOOTH: Field = Field::new(30, 1);
+/// Points are point sprites (`GL_POINT_SPRITE`, points only): squares of the unrounded size
+/// at the exact position.
+pub const SPRITE: Field = Field::new(31, 1);
 
 /// Word [`CLIP`]: bit `i` set when the `i`-th packed clip plane is enabled.
 pub const CLIP_MASK: Field = Field::new(0, 6);
 
-/// Unit word: 0 no texturing, 1 1D, 2 2D, 3 3D, 4 cube map.
+/// Unit word: 0 no texturing, 1 1D, 2 2D, 3 3D, 4 cube map, 5 rectangle (coordinates in
+/// texels).
 pub const TARGET: Field = Field::new(0, 3);
 /// Unit word: base format as the environment sees it: 0 alpha, 1 luminance, 2 luminance
 /// alpha, 3 intensity, 4 RGB, 5 RGBA (depth textures by their `DEPTH_TEXTURE_MODE`).
@@ -113,6 +117,10 @@ pub const DEPTH: Field = Field::new(21, 4);
 /// Unit word: bit `c` set when coordinate `c` (s, t, r) is clamped to [0, 1] before sampling
 /// (`GL_CLAMP` with a linear filter, [`crate::frame::texture::Sampler::clamp_blends_border`]).
 pub const CLAMP: Field = Field::new(25, 3);
+/// Unit word: point sprite coordinate replacement (`GL_COORD_REPLACE`, points only): 0 off,
+/// 1 with t from 0 at the top (`GL_UPPER_LEFT`), 2 with t from 0 at the bottom
+/// (`GL_LOWER_LEFT`).
+pub const COORD_REPLACE: Field = Field::new(28, 2);
 
 /// Combiner word: function (replace, modulate, add, add signed, interpolate, subtract,
 /// dot3 RGB, dot3 RGBA).
@@ -146,6 +154,7 @@ pub const GLSL_FIELDS: &[(&str, Field)] = &[
     ("POLYGON_STIPPLE", POLYGON_STIPPLE),
     ("LINE_STIPPLE", LINE_STIPPLE),
     ("SMOOTH", SMOOTH),
+    ("SPRITE", SPRITE),
     ("CLIP_MASK", CLIP_MASK),
     ("TARGET", TARGET),
     ("FORMAT", FORMAT),
@@ -153,6 +162,7 @@ pub const GLSL_FIELDS: &[(&str, Field)] = &[
     ("TEXGEN", TEXGEN),
     ("CLAMP", CLAMP),
     ("DEPTH", DEPTH),
+    ("COORD_REPLACE", COORD_REPLACE),
     ("COMBINE_FN", COMBINE_FN),
     ("SOURCE", SOURCE),
     ("OPERAND", OPERAND),
@@ -212,6 +222,9 @@ pub fn shader_key(draw: &Draw, primitive: Primitive, facing: Facing) -> ShaderKe
         let texture = draw.textures.get(u).and_then(|t| t.as_ref());
         if let (Some(unit), Some(texture)) = (unit, texture) {
             words[UNIT + u] = unit_word(&unit, &texture.content);
+            if let Some(sprite) = draw.state.point.sprite.filter(|s| primitive == Primitive::Point && s.coord_replace & (1 << u) != 0) {
+                COORD_REPLACE.set(&mut words[UNIT + u], 1 + sprite.lower_left as u32);
+            }
             if unit.env.mode == EnvMode::Combine {
                 let env = &unit.env;
                 words[COMBINE_RGB + u] = combine_word(env.combine_rgb, env.source_rgb, env.operand_rgb, env.scale[0]);
@@ -280,7 +293,10 @@ fn general_word(draw: &Draw, primitive: Primitive, facing: Facing) -> u32 {
             LINE_STIPPLE.set(&mut w, s.line.stipple.is_some() as u32);
             SMOOTH.set(&mut w, s.line.smooth as u32);
         }
-        Primitive::Point => SMOOTH.set(&mut w, s.point.smooth as u32),
+        Primitive::Point => {
+            SMOOTH.set(&mut w, s.point.smooth as u32);
+            SPRITE.set(&mut w, s.point.sprite.is_some() as u32);
+        }
     }
     w
 }
@@ -312,6 +328,7 @@ fn unit_word(unit: &TextureUnit, content: &crate::frame::texture::TextureContent
             TextureKind::D2 => 2,
             TextureKind::D3 => 3,
             TextureKind::Cube => 4,
+            TextureKind::Rect => 5,
         },
     );
     let format = match content.format {

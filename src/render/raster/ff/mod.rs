@@ -45,7 +45,7 @@ pub mod vertex;
 pub use key::ShaderKey;
 pub use vertex::{VERTEX_ATTRIBUTES, VERTEX_FLOATS, VertexAttribute};
 
-use crate::frame::state::{Face, PolygonMode};
+use crate::frame::state::{Face, PolygonMode, StencilFaces};
 use crate::frame::{Draw, Topology};
 
 /// Texture units the shaders implement.
@@ -87,6 +87,9 @@ pub struct Batch {
     /// Faces the rasterizer culls: the draw's culling for triangles it still faces itself,
     /// `None` for geometry the CPU already culled or expanded.
     pub cull: Option<Face>,
+    /// Whose colours and stencil state: the rasterizer's facing for filled triangles, or the
+    /// one face of expanded lines, points and polygon edges and vertices.
+    pub facing: key::Facing,
     /// Whether the draw's polygon offset (`RasterState::polygon_offset` factor and units)
     /// applies as depth bias: filled triangles with `GL_POLYGON_OFFSET_FILL`, polygon edges
     /// with `..._LINE`, polygon vertices with `..._POINT`; never for `GL_LINES`/`GL_POINTS`.
@@ -122,9 +125,24 @@ pub fn prepare(draw: &Draw) -> Vec<Batch> {
             shader: key::shader_key(draw, part.primitive, part.facing),
             uniforms: uniforms.clone(),
             cull: part.cull,
+            facing: part.facing,
             polygon_offset: part.polygon_offset,
         })
         .collect()
+}
+
+impl Batch {
+    /// The stencil state of the rasterizer's front and back faces for this batch: OpenGL's
+    /// faces where the rasterizer faces the triangles itself; for expanded primitives, whose
+    /// triangles come in either winding, the state of their one face on both (lines and
+    /// points are front-facing, OpenGL 2.0 section 4.1.5).
+    pub fn stencil(&self, stencil: Option<StencilFaces>) -> Option<StencilFaces> {
+        stencil.map(|s| match self.facing {
+            key::Facing::Rasterizer => s,
+            key::Facing::Front => StencilFaces::both(s.front),
+            key::Facing::Back => StencilFaces::both(s.back),
+        })
+    }
 }
 
 #[cfg(test)]

@@ -53,6 +53,7 @@ pub fn prepare(draw: &Draw, program: &ProgramDraw, packed: Vec<f32>, uniforms: V
             shader,
             uniforms: uniforms.clone(),
             cull,
+            facing,
             polygon_offset,
         }
     };

@@ -7,7 +7,7 @@ use super::super::device::Result;
 use super::super::renderer::Recorder;
 use super::image::draw;
 use super::quads::{fragment_state, Quads};
-use crate::frame::state::{CompareFunc, RasterState, Stencil, StencilOp};
+use crate::frame::state::{CompareFunc, RasterState, Stencil, StencilFaces, StencilOp};
 use crate::frame::Clear;
 
 /// Stencil bits of the framebuffer.
@@ -34,7 +34,7 @@ pub fn record(rec: &mut Recorder<'_>, clear: &Clear) -> Result<()> {
     state.scissor = clear.scissor;
     state.dither = false;
     state.color_mask = if color.is_some() { clear.color_mask } else { [false; 4] };
-    state.stencil = stencil.map(|value| Stencil {
+    state.stencil = stencil.map(|value| StencilFaces::both(Stencil {
         func: CompareFunc::Always,
         reference: value & STENCIL_BITS as i32,
         value_mask: STENCIL_BITS,
@@ -42,7 +42,7 @@ pub fn record(rec: &mut Recorder<'_>, clear: &Clear) -> Result<()> {
         depth_fail: StencilOp::Replace,
         depth_pass: StencilOp::Replace,
         write_mask: clear.stencil_mask & STENCIL_BITS,
-    });
+    }));
     let mut quads = Quads::default();
     let rgba = color.unwrap_or_default().map(|v| v.clamp(0.0, 1.0));
     quads.push([0.0, 0.0, size[0] as f32, size[1] as f32], 0.0, rgba);

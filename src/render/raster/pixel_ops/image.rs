@@ -15,7 +15,7 @@ use super::quads::{fragment_state, push_image, raster_fragments, Quads};
 use crate::frame::TextureUnit;
 use crate::frame::pixels::{PixelData, RasterFragment};
 use crate::frame::texture::{EnvMode, Filter, MinFilter, Sampler, TexImage, TextureContent, TextureEnv, TextureRef, Wrap};
-use crate::frame::state::{CompareFunc, RasterState, Stencil, StencilOp};
+use crate::frame::state::{CompareFunc, RasterState, Stencil, StencilFaces, StencilOp};
 
 /// Where and how an image is drawn.
 pub struct Placement<'a> {
@@ -145,10 +145,10 @@ pub fn draw(rec: &mut Recorder<'_>, quads: Quads, state: RasterState) -> Result<
 /// stencil write mask (all bits when the stencil test is off, as the frame's state carries the
 /// mask only with the test), and nothing else.
 pub fn stencil_write_state(base: &RasterState, size: [u32; 2], value: u8) -> RasterState {
-    let write_mask = base.stencil.map_or(0xff, |s| s.write_mask);
+    let write_mask = base.stencil.map_or(0xff, |s| s.front.write_mask);
     let mut state = RasterState { scissor: base.scissor, ..fragment_state(&RasterState::default(), size) };
     state.color_mask = [false; 4];
-    state.stencil = Some(Stencil {
+    state.stencil = Some(StencilFaces::both(Stencil {
         func: CompareFunc::Always,
         reference: value as i32,
         value_mask: 0xff,
@@ -156,6 +156,6 @@ pub fn stencil_write_state(base: &RasterState, size: [u32; 2], value: u8) -> Ras
         depth_fail: StencilOp::Replace,
         depth_pass: StencilOp::Replace,
         write_mask,
-    });
+    }));
     state
 }

@@ -12,7 +12,7 @@ use std::sync::Arc;
 use glam::{Mat4, Vec3};
 
 use crate::frame::pixels::RasterFragment;
-use crate::frame::state::{Fog, FogSource, PolygonMode, RasterState};
+use crate::frame::state::{Fog, FogSource, PolygonMode, RasterState, StencilFaces};
 use crate::frame::{Attrib, Draw, Topology, Vertices};
 
 /// Rectangles being collected for one draw.
@@ -88,7 +88,8 @@ impl Quads {
 }
 
 /// The state under which pixel rectangles are drawn: the per-fragment operations of `base`
-/// (scissor, alpha, stencil and depth tests, blending, logic op, dithering, masks), with
+/// (scissor, alpha, stencil (the front face's) and depth tests, blending, logic op, dithering,
+/// masks), with
 /// whatever belongs to vertices and primitives turned off (lighting, fog, culling, polygon
 /// modes, offset and stipple, clip planes) and a viewport covering the target of `size`.
 ///
@@ -106,6 +107,8 @@ pub fn fragment_state(base: &RasterState, size: [u32; 2]) -> RasterState {
     state.polygon_offset.point = false;
     state.polygon_stipple = None;
     state.clip_planes.clear();
+    // Pixel rectangles and bitmaps are front-facing (OpenGL 2.0 section 4.1.5).
+    state.stencil = base.stencil.map(|s| StencilFaces::both(s.front));
     state.viewport = [0, 0, size[0] as i32, size[1] as i32];
     state.depth_range = [0.0, 1.0];
     state
