@@ -7,11 +7,15 @@ use super::gl::{self, GLenum, GLubyte};
 const VENDOR: &str = "glrt\0";
 /// `GL_RENDERER`.
 const RENDERER: &str = "glrt (Vulkan raster)\0";
-/// `GL_VERSION`: "1.5 glrt <crate version>".
-const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
+/// `GL_VERSION`: "2.0 glrt <crate version>". Everything OpenGL 2.0 adds to 1.5 is there
+/// (GLSL programs through `translate::glsl`, multiple draw buffers with one colour buffer,
+/// non-power-of-two textures, point sprites, separate stencil and blend equations).
+const VERSION: &str = concat!("2.0 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 
-/// `GL_SHADING_LANGUAGE_VERSION`: GLSL 1.20 (OpenGL 2.1's; 1.10 shaders compile as 1.10).
-const SHADING_LANGUAGE_VERSION: &str = "1.20\0";
+/// `GL_SHADING_LANGUAGE_VERSION`: GLSL 1.10, OpenGL 2.0's. Shaders that declare
+/// `#version 120` compile too (as 1.20), but OpenGL 2.1's commands for their non-square matrix
+/// uniforms are not there, so 1.20 is not announced.
+const SHADING_LANGUAGE_VERSION: &str = "1.10\0";
 
 /// `GL_EXTENSIONS`: the extensions whose commands and enums are all implemented with their full
 /// semantics (programs enable code paths from this string), in alphabetical order, each
@@ -141,8 +145,8 @@ mod tests {
     fn strings_and_errors() {
         let (mut ctx, _) = Context::with_recording();
         assert_eq!(string(&mut ctx, gl::GL_VENDOR).as_deref(), Some("glrt"));
-        assert_eq!(string(&mut ctx, gl::GL_VERSION).unwrap(), format!("1.5 glrt {}", env!("CARGO_PKG_VERSION")));
-        assert_eq!(string(&mut ctx, gl::GL_SHADING_LANGUAGE_VERSION).unwrap(), "1.20");
+        assert_eq!(string(&mut ctx, gl::GL_VERSION).unwrap(), format!("2.0 glrt {}", env!("CARGO_PKG_VERSION")));
+        assert_eq!(string(&mut ctx, gl::GL_SHADING_LANGUAGE_VERSION).unwrap(), "1.10");
         let ext = string(&mut ctx, gl::GL_EXTENSIONS).unwrap();
         assert!(ext.split(' ').any(|e| e == "GL_EXT_blend_minmax"), "{ext}");
         assert!(ext.split(' ').any(|e| e == "GL_ARB_window_pos"), "{ext}");
