@@ -125,10 +125,12 @@ impl Context {
         for f in [|m: Mat4| m, |m: Mat4| m.inverse(), |m: Mat4| m.transpose(), |m: Mat4| m.inverse().transpose()] {
             tex.iter().for_each(|&m| b.mat4(f(m)));
         }
-        let normal = Mat3::from_mat4(mv).inverse().transpose();
-        b.mat3(normal);
-        // gl_NormalScale: the rescale factor of section 2.11.3.
-        b.float(1.0 / Vec3::new(mv.x_axis.z, mv.y_axis.z, mv.z_axis.z).length());
+        // gl_NormalMatrix: the upper 3x3 of the modelview's inverse, transposed (section
+        // 2.11.3 transforms normals by the inverse of the whole matrix, as Mesa does).
+        let inverse = mv.inverse();
+        b.mat3(Mat3::from_mat4(inverse).transpose());
+        // gl_NormalScale: the rescale factor of section 2.11.3, from the inverse's third row.
+        b.float(1.0 / Vec3::new(inverse.x_axis.z, inverse.y_axis.z, inverse.z_axis.z).length());
         let [near, far] = self.viewport.depth_range.map(|v| v as f32);
         b.align(4);
         [near, far, far - near].iter().for_each(|&x| b.float(x));
