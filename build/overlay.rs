@@ -39,6 +39,7 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_EXT_framebuffer_object",
     "GL_EXT_framebuffer_blit",
     "GL_ARB_map_buffer_range",
+    "GL_EXT_texture_integer",
 ];
 
 /// Commands allowed between `glBegin` and `glEnd` besides the attribute families

@@ -39,6 +39,7 @@ pub mod formats;
 pub mod image;
 pub mod mipmap;
 pub mod objects;
+pub mod params_integer;
 pub mod palette;
 pub mod params;
 pub mod s3tc;
