@@ -33,6 +33,8 @@ pub mod attrib;
 pub mod compressed;
 #[cfg(test)]
 mod depth_tests;
+#[cfg(test)]
+mod integer_tests;
 pub mod direct;
 pub mod env;
 pub mod formats;

@@ -163,13 +163,14 @@ mod tests {
         unsafe { dispatch::glTexParameterIivEXT(&mut ctx, gl::GL_FOG, gl::GL_TEXTURE_BORDER_COLOR, border.as_ptr()) };
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         // Display lists read the values when compiled.
-        let mut later = [7i32, 8, 9, 10];
+        let mut later = vec![7i32, 8, 9, 10];
         unsafe {
             dispatch::glNewList(&mut ctx, 1, gl::GL_COMPILE);
             dispatch::glTexParameterIivEXT(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BORDER_COLOR, later.as_ptr());
             dispatch::glEndList(&mut ctx);
         }
         later[0] = 0;
+        drop(later);
         unsafe { dispatch::glCallList(&mut ctx, 1) };
         unsafe { ctx.glGetTexParameterIivEXT(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BORDER_COLOR, i.as_mut_ptr()) };
         assert_eq!(i, [7, 8, 9, 10]);
