@@ -156,9 +156,7 @@ pub fn pixel_type(type_: GLenum) -> Option<Type> {
 /// Parses and checks a `format`/`type` pair: `GL_INVALID_ENUM` for unknown values,
 /// `GL_BITMAP` with a format other than an index, or `GL_DEPTH_STENCIL` with a type other than
 /// its two packed types; `GL_INVALID_OPERATION` for a packed type whose component count differs
-/// from the format's (section 3.6.4) or with an integer format (table 3.8 pairs packed types
-/// with `GL_RGB`, `GL_RGBA` and `GL_BGRA` only, as Mesa does without
-/// ARB_texture_rgb10_a2ui), a depth/stencil type with another format
+/// from the format's (section 3.6.4), a depth/stencil type with another format
 /// (EXT_packed_depth_stencil and ARB_depth_buffer_float, "Errors"), or a packed float type with
 /// a format other than `GL_RGB` (EXT_packed_float, EXT_texture_shared_exponent). A packed type
 /// with an unknown format meets both conditions; the specification does not order them, and
@@ -179,8 +177,15 @@ pub fn parse(format_: GLenum, type_: GLenum) -> Result<(Format, Type), GLenum> {
         Type::F32 if f.kind == Kind::Integer => Err(gl::GL_INVALID_ENUM),
         Type::Uint10F11F11FRev | Type::Uint5999Rev if f.gl != gl::GL_RGB => Err(gl::GL_INVALID_OPERATION),
         // Table 3.8: the three-field types match `GL_RGB` only, the four-field ones `GL_RGBA`
-        // and `GL_BGRA` (and EXT_abgr's `GL_ABGR_EXT`, which EXT_packed_pixels allows).
-        Type::Packed(p) if !(f.kind == Kind::Color && f.components == p.fields.len() && f.gl != gl::GL_BGR && f.components >= 3) => {
+        // and `GL_BGRA` (and EXT_abgr's `GL_ABGR_EXT`, which EXT_packed_pixels allows); OpenGL
+        // 3.0's table 3.8 adds `GL_RGB_INTEGER`, `GL_RGBA_INTEGER` and `GL_BGRA_INTEGER`, whose
+        // fields are unnormalized integers (piglit's `ext_texture_integer-texformats`).
+        Type::Packed(p)
+            if !(matches!(f.kind, Kind::Color | Kind::Integer)
+                && f.components == p.fields.len()
+                && !matches!(f.gl, gl::GL_BGR | gl::GL_BGR_INTEGER)
+                && f.components >= 3) =>
+        {
             Err(gl::GL_INVALID_OPERATION)
         }
         _ => Ok((f, t)),
@@ -339,7 +344,8 @@ impl Codec<'_> {
                             let raw = read_uint(bytes, at, size, swap);
                             for &(shift, bits) in p.fields {
                                 let max = (1u32 << bits) - 1;
-                                out.push(f64::from(((raw >> shift) & max) as f32 / max as f32));
+                                let field = (raw >> shift) & max;
+                                out.push(if self.normalized() { f64::from(field as f32 / max as f32) } else { f64::from(field) });
                             }
                         }
                         Type::Uint24_8 => {
@@ -431,9 +437,10 @@ impl Codec<'_> {
 
 impl Codec<'_> {
     /// Encodes integer components `values` (`format.components` a pixel, in format order) into
-    /// `bytes`, each clamped to the representable range of the type (EXT_texture_integer,
-    /// "Final Conversion" of section 4.3.2), leaving padding and skipped pixels as they were.
-    /// Only the plain integer types pair with integer formats ([`parse`]).
+    /// `bytes`, each clamped to the representable range of the type, or of its bit field for
+    /// packed types (EXT_texture_integer, "Final Conversion" of section 4.3.2), leaving
+    /// padding and skipped pixels as they were. Only the plain integer and packed types pair
+    /// with integer formats ([`parse`]).
     pub fn encode_integers(&self, bytes: &mut [u8], values: &[i64], w: usize, h: usize, d: usize) {
         let n = self.format.components;
         let size = self.ty.element_size();
@@ -452,6 +459,11 @@ impl Codec<'_> {
                 for x in 0..w {
                     let Some(g) = groups.next() else { return };
                     let at = self.layout.offset(x, y, z);
+                    if let Type::Packed(p) = self.ty {
+                        let raw = p.fields.iter().zip(g).fold(0u32, |raw, (&(shift, bits), &v)| raw | (v.clamp(0, (1i64 << bits) - 1) as u32) << shift);
+                        write_uint(bytes, at, size, swap, raw);
+                        continue;
+                    }
                     for (c, &v) in g.iter().enumerate() {
                         write_uint(bytes, at + c * size, size, swap, v.clamp(min, max) as u32);
                     }
@@ -733,8 +745,18 @@ mod tests {
             assert_eq!(parse(f, gl::GL_BITMAP), Err(gl::GL_INVALID_ENUM), "{f:#x}");
             assert_eq!(parse(f, gl::GL_UNSIGNED_INT).map(|(f, _)| f.kind), Ok(Kind::Integer), "{f:#x}");
         }
-        assert_eq!(parse(gl::GL_RGB_INTEGER_EXT, gl::GL_UNSIGNED_SHORT_5_6_5), Err(gl::GL_INVALID_OPERATION));
-        assert_eq!(parse(gl::GL_RGBA_INTEGER_EXT, gl::GL_UNSIGNED_INT_8_8_8_8), Err(gl::GL_INVALID_OPERATION));
+        assert_eq!(parse(gl::GL_BGR_INTEGER_EXT, gl::GL_UNSIGNED_SHORT_5_6_5), Err(gl::GL_INVALID_OPERATION));
+        assert_eq!(parse(gl::GL_RGB_INTEGER_EXT, gl::GL_UNSIGNED_INT_8_8_8_8), Err(gl::GL_INVALID_OPERATION));
+        // Packed integer fields are unnormalized; packing clamps to each field.
+        let plain = StoreModes::default();
+        let c = codec(gl::GL_BGRA_INTEGER_EXT, gl::GL_UNSIGNED_SHORT_1_5_5_5_REV, &plain, 1, 1);
+        let raw = 0b1_00111_00010_00001u16;
+        assert_eq!(c.decode(&raw.to_ne_bytes(), 1, 1, 1), [1.0, 2.0, 7.0, 1.0]);
+        let mut out = [0u8; 2];
+        c.encode_integers(&mut out, &[1, 2, 7, 1], 1, 1, 1);
+        assert_eq!(u16::from_ne_bytes(out), raw);
+        c.encode_integers(&mut out, &[-3, 99, 0, 5], 1, 1, 1);
+        assert_eq!(u16::from_ne_bytes(out), 0b1_00000_11111_00000);
         assert_eq!(parse(gl::GL_RGB_INTEGER_EXT, gl::GL_UNSIGNED_INT_10F_11F_11F_REV), Err(gl::GL_INVALID_OPERATION));
         assert_eq!(parse(gl::GL_RGBA_INTEGER_EXT, gl::GL_UNSIGNED_INT_24_8), Err(gl::GL_INVALID_OPERATION));
         // Integers decode unnormalized, every bit of 32-bit ones kept.

@@ -90,6 +90,17 @@ fn integer_texels_round_trip_exactly() {
     assert_eq!(read(&mut ctx, gl::GL_ALPHA_INTEGER_EXT, gl::GL_UNSIGNED_SHORT, &mut a), gl::GL_NO_ERROR);
     assert_eq!(a, [40000, 12345]);
 
+    // Packed types (OpenGL 3.0's table 3.8) carry unnormalized fields, as piglit's
+    // ext_texture_integer-texformats uploads and reads them.
+    let packed = [0x0403_0201u32, 0xfffe_fdfc];
+    assert_eq!(upload(&mut ctx, gl::GL_RGBA8UI_EXT, 2, gl::GL_RGBA_INTEGER_EXT, gl::GL_UNSIGNED_INT_8_8_8_8, &packed), gl::GL_NO_ERROR);
+    let mut packed_back = [0u32; 2];
+    assert_eq!(read(&mut ctx, gl::GL_RGBA_INTEGER_EXT, gl::GL_UNSIGNED_INT_8_8_8_8, &mut packed_back), gl::GL_NO_ERROR);
+    assert_eq!(packed_back, packed);
+    let mut unpacked = [0u8; 4];
+    assert_eq!(read(&mut ctx, gl::GL_RGBA_INTEGER_EXT, gl::GL_UNSIGNED_BYTE, &mut unpacked), gl::GL_NO_ERROR);
+    assert_eq!(unpacked, [4, 3, 2, 1]);
+
     // ARB_texture_rg's integer formats with GL_RG_INTEGER.
     let rg = [u32::MAX, 3];
     assert_eq!(upload(&mut ctx, gl::GL_RG32UI, 1, gl::GL_RG_INTEGER, gl::GL_UNSIGNED_INT, &rg), gl::GL_NO_ERROR);
@@ -103,9 +114,11 @@ fn integer_format_errors() {
     let (mut ctx, _) = Context::with_recording();
     ctx.glBindTexture(gl::GL_TEXTURE_2D, 1);
     let px = [0u32; 64];
-    // Integer formats with GL_FLOAT: GL_INVALID_ENUM; with packed types: GL_INVALID_OPERATION.
+    // Integer formats with GL_FLOAT: GL_INVALID_ENUM; with packed types of another component
+    // count, or the packed float types: GL_INVALID_OPERATION.
     assert_eq!(upload(&mut ctx, gl::GL_RGBA16UI_EXT, 1, gl::GL_RGBA_INTEGER_EXT, gl::GL_FLOAT, &px), gl::GL_INVALID_ENUM);
-    assert_eq!(upload(&mut ctx, gl::GL_RGB8UI_EXT, 1, gl::GL_RGB_INTEGER_EXT, gl::GL_UNSIGNED_SHORT_5_6_5, &px), gl::GL_INVALID_OPERATION);
+    assert_eq!(upload(&mut ctx, gl::GL_RGB8UI_EXT, 1, gl::GL_RGBA_INTEGER_EXT, gl::GL_UNSIGNED_SHORT_5_6_5, &px), gl::GL_INVALID_OPERATION);
+    assert_eq!(upload(&mut ctx, gl::GL_RGB8UI_EXT, 1, gl::GL_RGB_INTEGER_EXT, gl::GL_UNSIGNED_INT_10F_11F_11F_REV, &px), gl::GL_INVALID_OPERATION);
     // Integer data into a non-integer texture and the reverse.
     assert_eq!(upload(&mut ctx, gl::GL_RGBA, 4, gl::GL_RGBA_INTEGER_EXT, gl::GL_SHORT, &px), gl::GL_INVALID_OPERATION);
     assert_eq!(upload(&mut ctx, gl::GL_RGBA8I_EXT, 4, gl::GL_RGBA, gl::GL_BYTE, &px), gl::GL_INVALID_OPERATION);
