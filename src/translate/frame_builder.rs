@@ -184,7 +184,7 @@ pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembl
 mod tests {
     use super::*;
     use crate::frame::Clear;
-    use crate::translate::dispatch;
+    use crate::translate::{dispatch, gl};
     use crate::translate::immediate::{Batch, CurrentAttribs};
 
     fn quad(ctx: &mut Context, x: f32) {
