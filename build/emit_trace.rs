@@ -78,6 +78,9 @@ fn variable_size(c: &Command, p: &Param, prefix: &str) -> Option<String> {
         return Some(format!("__t.values_if(\"{label}\", {name}, {sizes}::values_of({prefix}pname))"));
     }
     let typed = match (c.name.as_str(), p.name.as_str()) {
+        ("glShaderSource", "string") => {
+            return Some(format!("__t.strings(\"{label}\", {name}, {prefix}count, {prefix}length)"));
+        }
         ("glCallLists", "lists") => format!("{sizes}::call_lists({prefix}n, {prefix}type_)"),
         ("glDrawElements" | "glDrawRangeElements" | "glDrawRangeElementsEXT", "indices") => {
             format!("{sizes}::indices({prefix}count, {prefix}type_)")

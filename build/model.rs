@@ -66,7 +66,7 @@ impl Model {
         let all_glx_exts = extension_names(std::str::from_utf8(khronos_api::GLX_XML).unwrap(), "glx");
         let surface = Registry::new(
             Api::Gl,
-            (1, 5),
+            (2, 0),
             Profile::Compatibility,
             Fallbacks::None,
             overlay::EXTENSIONS,

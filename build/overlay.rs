@@ -37,6 +37,7 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_ARB_occlusion_query",
     "GL_EXT_blend_func_separate",
     "GL_EXT_framebuffer_object",
+    "GL_EXT_framebuffer_blit",
     "GL_ARB_map_buffer_range",
     "GL_ATI_separate_stencil",
     "GL_EXT_stencil_two_side",
@@ -61,7 +62,8 @@ pub const CLIENT_SIDE: &[&str] = &[
     "EnableClientState", "DisableClientState", "ClientActiveTexture", "PixelStoref",
     "PixelStorei", "PushClientAttrib", "PopClientAttrib", "LockArraysEXT", "UnlockArraysEXT",
     "GetPointerv", "VertexPointerEXT", "NormalPointerEXT", "ColorPointerEXT", "IndexPointerEXT",
-    "TexCoordPointerEXT", "EdgeFlagPointerEXT",
+    "TexCoordPointerEXT", "EdgeFlagPointerEXT", "VertexAttribPointer", "EnableVertexAttribArray",
+    "DisableVertexAttribArray",
 ];
 
 /// Commands executed immediately even while a display list is compiled (OpenGL 1.5, section
@@ -72,7 +74,9 @@ pub const NOT_COMPILED: &[&str] = &[
     "GenQueries", "DeleteQueries", "BindBuffer", "DeleteBuffers", "GenBuffers", "BufferData",
     "BufferSubData", "MapBuffer", "UnmapBuffer", "MapBufferRange", "FlushMappedBufferRange", "Flush",
     "Finish", "GetError", "GenRenderbuffersEXT", "DeleteRenderbuffersEXT", "GenFramebuffersEXT",
-    "DeleteFramebuffersEXT", "CheckFramebufferStatusEXT",
+    "DeleteFramebuffersEXT", "CheckFramebufferStatusEXT", "CreateProgram", "CreateShader",
+    "DeleteProgram", "DeleteShader", "AttachShader", "DetachShader", "BindAttribLocation",
+    "CompileShader", "ShaderSource", "LinkProgram", "ValidateProgram",
 ];
 
 /// Commands that read client arrays: in a display list they are compiled with the array data
@@ -135,6 +139,14 @@ pub const FAMILIES: &[Family] = &[
     Family {
         inside_begin_end: false,
         ..family("WindowPos", "WindowPos3f", 3, ["0.0", "0.0", "0.0", "0.0"], false)
+    },
+    Family {
+        leading: true,
+        ..family("VertexAttrib", "VertexAttrib4f", 4, ["0.0", "0.0", "0.0", "1.0"], false)
+    },
+    Family {
+        leading: true,
+        ..family("VertexAttrib4N", "VertexAttrib4f", 4, ["0.0", "0.0", "0.0", "1.0"], true)
     },
     family("EvalCoord1", "EvalCoord1f", 1, ["0.0", "0.0", "0.0", "0.0"], false),
     family("EvalCoord2", "EvalCoord2f", 2, ["0.0", "0.0", "0.0", "0.0"], false),

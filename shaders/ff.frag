@@ -8,6 +8,8 @@
 #include "ff_key.glsl"
 #include "ff_uniforms.glsl"
 #include "ff_varyings.glsl"
+#include "gl_compare.glsl"
+#include "ff_fragment_ops.glsl"
 
 layout(set = 0, binding = 1) uniform sampler2D tex2d_0;
 layout(set = 0, binding = 2) uniform sampler2D tex2d_1;
@@ -23,21 +25,6 @@ layout(set = 0, binding = 11) uniform samplerCube texcube_2;
 layout(set = 0, binding = 12) uniform samplerCube texcube_3;
 
 layout(location = 0) out vec4 out_color;
-
-// `a func b` for func in the order NEVER, LESS, EQUAL, LEQUAL, GREATER, NOTEQUAL, GEQUAL,
-// ALWAYS (the GL enums from GL_NEVER).
-bool compare(uint func, float a, float b) {
-    switch (func) {
-    case 0u: return false;
-    case 1u: return a < b;
-    case 2u: return a == b;
-    case 3u: return a <= b;
-    case 4u: return a > b;
-    case 5u: return a != b;
-    case 6u: return a >= b;
-    default: return true;
-    }
-}
 
 // The texel of a unit (section 3.8): projective coordinates, the unit's LOD bias, depth
 // comparison and expansion (section 3.8.14); white when the unit does not texture.
@@ -179,29 +166,6 @@ vec4 tex_env(int unit, uint word, uint rgb_word, uint alpha_word, vec4 cf, vec4 
     return clamp(vec4(c, a), 0.0, 1.0);
 }
 
-// Line stipple, polygon stipple: whether the fragment is kept (sections 3.4.2, 3.5.2).
-bool stippled_out() {
-    if (GENERAL(LINE_STIPPLE) != 0u) {
-        // The stipple distance is the fragment's count along the run plus one half at fragment
-        // centres (ff/convert.rs aligns it), so interpolation error cannot change the count.
-        uint count = uint(max(v_raster.z, 0.0));
-        uint bit = (count / uint(max(u.raster.z, 1.0) + 0.5)) % 16u;
-        if (((u.stipple.x >> bit) & 1u) == 0u) {
-            return true;
-        }
-    }
-    if (GENERAL(POLYGON_STIPPLE) != 0u) {
-        // Window rows count from the bottom: GL y = height - Vulkan y.
-        uint x = uint(gl_FragCoord.x) % 32u;
-        uint y = uint(max(float(u.stipple.y) - gl_FragCoord.y, 0.0)) % 32u;
-        uint row = u.polygon_stipple[y / 4u][y % 4u];
-        if (((row >> (31u - x)) & 1u) == 0u) {
-            return true;
-        }
-    }
-    return false;
-}
-
 // Point sprite coordinates (OpenGL 2.0 section 3.3) for a unit that replaces them: v_raster.xy
 // is the fragment centre's window offset from the point's exact position and v_misc.z the
 // size, so s = 1/2 + (x_f + 1/2 - x_w) / size, and t likewise upwards or downwards.
@@ -258,20 +222,8 @@ void main() {
         color.rgb = mix(u.fog_color.rgb, color.rgb, clamp(f, 0.0, 1.0));
     }
 
-    // Antialiasing coverage (sections 3.3.2, 3.4.3, 3.12): the area of the pixel inside the
-    // point's circle or the line's rectangle, approximated by the distance to its edge.
-    if (GENERAL(SMOOTH) != 0u) {
-        uint primitive = GENERAL(PRIMITIVE);
-        if (primitive == PRIM_POINT) {
-            color.a *= clamp(v_misc.z * 0.5 + 0.5 - length(v_raster.xy), 0.0, 1.0);
-        } else if (primitive == PRIM_LINE) {
-            color.a *= clamp(u.raster.y * 0.5 + 0.5 - abs(v_raster.w), 0.0, 1.0);
-        }
-    }
-
-    // Alpha test (section 4.1.4).
-    uint alpha_test = GENERAL(ALPHA_TEST);
-    if (alpha_test != 0u && !compare(alpha_test - 1u, color.a, clamp(u.raster.x, 0.0, 1.0))) {
+    color.a *= smooth_coverage();
+    if (alpha_tested_out(color.a)) {
         discard;
     }
     out_color = color;

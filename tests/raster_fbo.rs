@@ -175,3 +175,60 @@ fn depth_textures_take_depth_clears_of_a_depth_only_framebuffer() {
     assert!(depths.iter().all(|d| (d - 0.25).abs() < 1e-4), "depth texels {:?}", &depths[..4]);
     assert_eq!(unsafe { dispatch::glGetError(&mut ctx) }, gl::GL_NO_ERROR);
 }
+
+/// The depth value at window pixel (x, y).
+fn depth_at(ctx: &mut Context, x: i32, y: i32) -> f32 {
+    let mut d = 0f32;
+    unsafe { dispatch::glReadPixels(ctx, x, y, 1, 1, gl::GL_DEPTH_COMPONENT, gl::GL_FLOAT, (&mut d as *mut f32).cast()) };
+    d
+}
+
+#[test]
+fn blits_scale_mirror_and_copy_depth_between_framebuffers() {
+    let mut ctx = lavapipe::context(32);
+    clear(&mut ctx, [0.0, 0.0, 1.0, 1.0]);
+    let fbo = bound_fbo(&mut ctx);
+    attach_renderbuffer(&mut ctx, gl::GL_RGBA8, gl::GL_COLOR_ATTACHMENT0_EXT);
+    unsafe { dispatch::glViewport(&mut ctx, 0, 0, 16, 16) };
+    clear(&mut ctx, [1.0, 0.0, 0.0, 1.0]);
+    rect(&mut ctx, 16.0, [0.0, 0.0, 8.0, 16.0], 0.0, [0.0, 1.0, 0.0]);
+
+    // Read from the object, draw into the window: twice the size, mirrored left to right.
+    unsafe {
+        dispatch::glBindFramebufferEXT(&mut ctx, gl::GL_DRAW_FRAMEBUFFER_EXT, 0);
+        dispatch::glBlitFramebufferEXT(&mut ctx, 0, 0, 16, 16, 32, 0, 0, 32, gl::GL_COLOR_BUFFER_BIT, gl::GL_NEAREST);
+    }
+    assert_eq!(unsafe { dispatch::glGetError(&mut ctx) }, gl::GL_NO_ERROR);
+    let mut binding = [0i32; 2];
+    unsafe {
+        dispatch::glGetIntegerv(&mut ctx, gl::GL_READ_FRAMEBUFFER_BINDING_EXT, &mut binding[0]);
+        dispatch::glGetIntegerv(&mut ctx, gl::GL_FRAMEBUFFER_BINDING_EXT, &mut binding[1]);
+    }
+    assert_eq!(binding, [fbo as i32, 0]);
+    unsafe { dispatch::glBindFramebufferEXT(&mut ctx, gl::GL_READ_FRAMEBUFFER_EXT, 0) };
+    assert_eq!(pixel(&mut ctx, 30, 5), [0, 255, 0, 255], "the object's green left half lands on the right");
+    assert_eq!(pixel(&mut ctx, 17, 28), [0, 255, 0, 255]);
+    assert_eq!(pixel(&mut ctx, 2, 5), [255, 0, 0, 255], "and its red right half on the left");
+
+    // Depth within the window: the upper-right quarter copied to the lower-left one.
+    unsafe {
+        dispatch::glViewport(&mut ctx, 0, 0, 32, 32);
+        dispatch::glClearDepth(&mut ctx, 1.0);
+        dispatch::glClear(&mut ctx, gl::GL_DEPTH_BUFFER_BIT);
+        dispatch::glEnable(&mut ctx, gl::GL_DEPTH_TEST);
+        dispatch::glDepthFunc(&mut ctx, gl::GL_ALWAYS);
+    }
+    rect(&mut ctx, 32.0, [16.0, 16.0, 32.0, 32.0], 0.5, [1.0, 1.0, 1.0]);
+    let upper = depth_at(&mut ctx, 20, 20);
+    assert!((upper - 0.25).abs() < 1e-3, "z = 0.5 in [-1, 1] is depth 0.25, got {upper}");
+    unsafe {
+        dispatch::glBlitFramebufferEXT(&mut ctx, 16, 16, 32, 32, 0, 0, 16, 16, gl::GL_DEPTH_BUFFER_BIT, gl::GL_LINEAR);
+        assert_eq!(dispatch::glGetError(&mut ctx), gl::GL_INVALID_OPERATION, "depth blits are NEAREST only");
+        dispatch::glBlitFramebufferEXT(&mut ctx, 16, 16, 32, 32, 0, 0, 16, 16, gl::GL_DEPTH_BUFFER_BIT, gl::GL_NEAREST);
+        dispatch::glBlitFramebufferEXT(&mut ctx, 0, 0, 1, 1, 0, 0, 1, 1, 0x8000, gl::GL_NEAREST);
+        assert_eq!(dispatch::glGetError(&mut ctx), gl::GL_INVALID_VALUE);
+    }
+    assert!((depth_at(&mut ctx, 4, 4) - upper).abs() < 1e-3, "the lower-left quarter took the copied depth");
+    assert_eq!(depth_at(&mut ctx, 4, 20), 1.0, "the upper-left quarter kept the clear depth");
+    assert_eq!(pixel(&mut ctx, 4, 4), [255, 0, 0, 255], "a depth blit leaves colour alone");
+}

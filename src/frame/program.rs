@@ -38,8 +38,8 @@ pub struct ShaderProgram {
     pub fragment: Option<Arc<[u32]>>,
     /// The sampler slots of set 1 (slot `i` at binding [`FIRST_SAMPLER_BINDING`] `+ i`).
     pub samplers: Vec<SamplerKind>,
-    /// Generic vertex attributes the vertex stage reads (indices 1 to 15; index 0 is the
-    /// position, which every draw has), with their component count (1 to 4 per location).
+    /// Generic vertex attribute indices the vertex stage reads, ascending (1 to 15, one per
+    /// `vec4` location; index 0 is the position, which every draw has).
     pub attributes: Vec<u32>,
 }
 

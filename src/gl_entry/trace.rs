@@ -48,7 +48,7 @@ use parking_lot::Mutex;
 use super::current::with_slot;
 use super::mode::{self, Mode};
 use super::trace_sizes::{self, Typed};
-use crate::translate::gl::{self, GLbitfield, GLenum, GLint};
+use crate::translate::gl::{self, GLbitfield, GLchar, GLenum, GLint, GLsizei};
 
 /// The gl.xml enum groups the log prints parameters by: `(name, value)` per member.
 #[allow(non_upper_case_globals)]
@@ -402,6 +402,26 @@ impl Trace {
             let _ = write!(out, "{}{b:02x}", if i > 0 { " " } else { "" });
         }
         out.push_str(if len > FIRST_VALUES { " ...]" } else { "]" });
+    }
+
+    /// `glShaderSource`'s `count` strings (lengths from `length`, or NUL-terminated): the
+    /// address, then each string quoted: `0x55d0c8e2a010["void main() {}"]`.
+    ///
+    /// # Safety
+    /// As `glShaderSource`'s arguments.
+    pub unsafe fn strings(&mut self, name: &str, ptr: *const *const GLchar, count: GLsizei, length: *const GLint) {
+        let out = self.next(name);
+        ptr.print(out);
+        if ptr.is_null() {
+            return;
+        }
+        out.push('[');
+        for i in 0..usize::try_from(count).unwrap_or(0) {
+            // Safety: as documented.
+            let s = unsafe { crate::translate::programs::objects::source_string(ptr, length, i) };
+            let _ = write!(out, "{}{s:?}", if i > 0 { ", " } else { "" });
+        }
+        out.push(']');
     }
 
     /// Starts pointer argument `name`: `NULL` (then `None`), or the address, the size and the

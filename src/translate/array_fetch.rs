@@ -10,7 +10,7 @@ use super::convert::{norm_i8, norm_i16, norm_i32, norm_u8, norm_u16, norm_u32};
 use super::dispatch::Call;
 use super::gl::{self, GLenum};
 use super::immediate::CurrentAttribs;
-use super::limits::MAX_TEXTURE_UNITS;
+use super::limits::{MAX_TEXTURE_UNITS, MAX_VERTEX_ATTRIBS};
 
 /// Bytes of one component of `type_`.
 fn type_size(type_: GLenum) -> usize {
@@ -102,6 +102,7 @@ pub(crate) struct Sources {
     pub(crate) edge_flag: Option<Source>,
     pub(crate) fog_coord: Option<Source>,
     pub(crate) texcoord: [Option<Source>; MAX_TEXTURE_UNITS],
+    pub(crate) generic: [Option<Source>; MAX_VERTEX_ATTRIBS],
 }
 
 /// A resolved array uses a mapped buffer (`GL_INVALID_OPERATION`, section 2.9.3).
@@ -135,7 +136,12 @@ impl Sources {
         for (slot, array) in texcoord.iter_mut().zip(&arrays.texcoord) {
             *slot = resolve(array, false, buffers)?;
         }
+        let mut generic = [None; MAX_VERTEX_ATTRIBS];
+        for (slot, array) in generic.iter_mut().zip(&arrays.generic) {
+            *slot = resolve(array, array.normalized, buffers)?;
+        }
         Ok(Sources {
+            generic,
             vertex: resolve(&arrays.vertex, false, buffers)?,
             normal: resolve(&arrays.normal, true, buffers)?,
             color: resolve(&arrays.color, true, buffers)?,
@@ -157,7 +163,14 @@ impl Sources {
             edge_flag: self.edge_flag.is_some(),
             fog_coord: self.fog_coord.is_some(),
             texcoord: self.texcoord.map(|t| t.is_some()),
+            generic: self.generic.map(|g| g.is_some()),
         }
+    }
+
+    /// The array that gives positions: generic array 0 when enabled, else the vertex array
+    /// (OpenGL 2.0 section 2.8).
+    pub(crate) fn position(&self) -> Option<&Source> {
+        self.generic[0].as_ref().or(self.vertex.as_ref())
     }
 
     /// Stores element `i` of every enabled array but the vertex array in `current`, and returns
@@ -189,7 +202,12 @@ impl Sources {
                 *slot = s.read(i);
             }
         }
-        self.vertex.as_ref().map(|s| s.read(i))
+        for (slot, s) in current.generic.iter_mut().zip(&self.generic).skip(1) {
+            if let Some(s) = s {
+                *slot = s.read(i);
+            }
+        }
+        self.position().map(|s| s.read(i))
     }
 
     /// The display-list commands `glArrayElement(i)` stands for, in the order of section 2.8.
@@ -224,6 +242,12 @@ impl Sources {
             let [x, y, z] = c.normal;
             calls.push(Call::Normal3f(x, y, z));
         }
+        for (index, s) in self.generic.iter().enumerate().skip(1) {
+            if s.is_some() {
+                let [x, y, z, w] = c.generic[index];
+                calls.push(Call::VertexAttrib4f(index as u32, x, y, z, w));
+            }
+        }
         if let Some([x, y, z, w]) = vertex {
             calls.push(Call::Vertex4f(x, y, z, w));
         }
@@ -232,7 +256,7 @@ impl Sources {
 }
 
 /// Which attributes a fetched batch took from arrays (the others take current values).
-#[derive(Clone, Copy, Default)]
+#[derive(Clone, Copy)]
 pub(crate) struct FromArrays {
     pub(crate) normal: bool,
     pub(crate) color: bool,
@@ -241,6 +265,7 @@ pub(crate) struct FromArrays {
     pub(crate) edge_flag: bool,
     pub(crate) fog_coord: bool,
     pub(crate) texcoord: [bool; MAX_TEXTURE_UNITS],
+    pub(crate) generic: [bool; MAX_VERTEX_ATTRIBS],
 }
 
 /// Index types of `glDrawElements`.

@@ -12,7 +12,7 @@ use super::Context;
 use super::convert::write_slice;
 use super::get::Value;
 use super::gl::{self, GLenum, GLint, GLsizei, GLuint};
-use super::limits::MAX_TEXTURE_UNITS;
+use super::limits::{MAX_TEXTURE_UNITS, MAX_VERTEX_ATTRIBS};
 
 /// One vertex array: its pointer state (table 6.8) and enable.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,11 +29,14 @@ pub struct ArrayPointer {
     pub pointer: usize,
     /// `GL_*_ARRAY_BUFFER_BINDING`: the `GL_ARRAY_BUFFER` binding when the pointer was set.
     pub buffer: GLuint,
+    /// `GL_VERTEX_ATTRIB_ARRAY_NORMALIZED` (generic arrays; the others are normalized as
+    /// table 2.9 says for their attribute).
+    pub normalized: bool,
 }
 
 impl ArrayPointer {
     const fn new(size: GLint, type_: GLenum) -> ArrayPointer {
-        ArrayPointer { enabled: false, size, type_, stride: 0, pointer: 0, buffer: 0 }
+        ArrayPointer { enabled: false, size, type_, stride: 0, pointer: 0, buffer: 0, normalized: false }
     }
 }
 
@@ -56,6 +59,8 @@ pub enum ArrayKind {
     FogCoord,
     /// `GL_TEXTURE_COORD_ARRAY` of a unit.
     TexCoord(usize),
+    /// Generic vertex attribute array `i` (OpenGL 2.0, `glVertexAttribPointer`).
+    Generic(usize),
 }
 
 /// Client vertex-array state of a context (`GL_CLIENT_VERTEX_ARRAY_BIT`, with the client
@@ -78,6 +83,9 @@ pub struct ArrayState {
     pub fog_coord: ArrayPointer,
     /// Texture-coordinate array of each unit.
     pub texcoord: [ArrayPointer; MAX_TEXTURE_UNITS],
+    /// Generic vertex attribute arrays by index (array 0 gives positions, as the vertex
+    /// array does, and wins over it).
+    pub generic: [ArrayPointer; MAX_VERTEX_ATTRIBS],
     /// `GL_ARRAY_BUFFER_BINDING`.
     pub array_buffer: GLuint,
     /// `GL_ELEMENT_ARRAY_BUFFER_BINDING`.
@@ -98,6 +106,7 @@ impl Default for ArrayState {
             edge_flag: ArrayPointer::new(1, gl::GL_UNSIGNED_BYTE),
             fog_coord: ArrayPointer::new(1, gl::GL_FLOAT),
             texcoord: [ArrayPointer::new(4, gl::GL_FLOAT); MAX_TEXTURE_UNITS],
+            generic: [ArrayPointer::new(4, gl::GL_FLOAT); MAX_VERTEX_ATTRIBS],
             array_buffer: 0,
             element_buffer: 0,
             lock: None,
@@ -117,10 +126,11 @@ impl ArrayState {
             ArrayKind::EdgeFlag => &self.edge_flag,
             ArrayKind::FogCoord => &self.fog_coord,
             ArrayKind::TexCoord(u) => &self.texcoord[u],
+            ArrayKind::Generic(i) => &self.generic[i],
         }
     }
 
-    fn get_mut(&mut self, kind: ArrayKind) -> &mut ArrayPointer {
+    pub(crate) fn get_mut(&mut self, kind: ArrayKind) -> &mut ArrayPointer {
         match kind {
             ArrayKind::Vertex => &mut self.vertex,
             ArrayKind::Normal => &mut self.normal,
@@ -130,6 +140,7 @@ impl ArrayState {
             ArrayKind::EdgeFlag => &mut self.edge_flag,
             ArrayKind::FogCoord => &mut self.fog_coord,
             ArrayKind::TexCoord(u) => &mut self.texcoord[u],
+            ArrayKind::Generic(i) => &mut self.generic[i],
         }
     }
 
@@ -138,6 +149,7 @@ impl ArrayState {
         [&self.vertex, &self.normal, &self.color, &self.secondary_color, &self.index, &self.edge_flag, &self.fog_coord]
             .into_iter()
             .chain(&self.texcoord)
+            .chain(&self.generic)
     }
 
     /// Whether an enabled array reads a buffer object.
@@ -163,6 +175,7 @@ impl ArrayState {
         ]
         .into_iter()
         .chain(&mut self.texcoord)
+        .chain(&mut self.generic)
         {
             if array.buffer == name {
                 array.buffer = 0;
@@ -375,7 +388,7 @@ impl Context {
         }
         let buffer = self.arrays.array_buffer;
         let array = self.arrays.get_mut(kind);
-        *array = ArrayPointer { enabled: array.enabled, size, type_, stride, pointer: pointer as usize, buffer };
+        *array = ArrayPointer { enabled: array.enabled, size, type_, stride, pointer: pointer as usize, buffer, normalized: false };
     }
 
     /// `glVertexPointer`.

@@ -58,7 +58,7 @@ impl Context {
     /// The colour buffers the draw buffer selects, for the frame: a single-buffered drawable
     /// has no back buffer.
     pub(crate) fn draw_buffers(&self) -> DrawBuffers {
-        if let Some((draw, _)) = self.object_buffers() {
+        if let Some(draw) = self.object_draw_buffer() {
             // A framebuffer object's one colour image stands where the back buffer would.
             return DrawBuffers { front: false, back: draw != gl::GL_NONE };
         }
@@ -69,7 +69,7 @@ impl Context {
     /// The colour buffer the read buffer selects: always the front buffer of a
     /// single-buffered drawable.
     pub(crate) fn read_color_buffer(&self) -> ColorBuffer {
-        if self.framebuffers.bound != 0 {
+        if self.framebuffers.read_bound != 0 {
             return ColorBuffer::Back;
         }
         if self.single_buffered || names_front(self.fixed.buffers.read) { ColorBuffer::Front } else { ColorBuffer::Back }
@@ -78,7 +78,7 @@ impl Context {
     /// Reads `rect` of `buffer` (the read buffer, for colour) of the frame so far through the
     /// renderer ([`crate::render::FrameSink::read_pixels`]).
     pub(crate) fn read_framebuffer(&mut self, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
-        let Ok(framebuffer) = self.draw_framebuffer() else {
+        let Ok(framebuffer) = self.read_framebuffer_object() else {
             self.set_error_in(gl::GL_INVALID_FRAMEBUFFER_OPERATION_EXT, "read");
             return None;
         };

@@ -73,7 +73,7 @@ impl Context {
         let Ok(framebuffer) = self.draw_framebuffer() else {
             return self.set_error_in(gl::GL_INVALID_FRAMEBUFFER_OPERATION_EXT, "glClear");
         };
-        let draw_buffer = self.object_buffers().map_or(self.fixed.buffers.draw, |(draw, _)| draw);
+        let draw_buffer = self.object_draw_buffer().unwrap_or(self.fixed.buffers.draw);
         let fbo = framebuffer.object().cloned();
         let f = &self.fixed;
         let has = |bit| mask & bit != 0;

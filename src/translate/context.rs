@@ -22,6 +22,8 @@ pub struct SharedObjects {
     pub buffers: super::buffer_objects::BufferTable,
     /// Renderbuffer and framebuffer objects by name.
     pub fbos: super::framebuffers::FramebufferTables,
+    /// Shader and program objects by name.
+    pub programs: super::programs::ProgramTable,
 }
 
 /// How a context is created.
@@ -70,6 +72,8 @@ pub struct Context {
     pub(crate) arrays_ext: super::arrays_ext::ArrayCounts,
     /// `glPushClientAttrib` stack.
     pub(crate) client_attrib: super::client_attrib::ClientAttribStack,
+    /// The program in use.
+    pub(crate) programs: super::programs::ProgramState,
     /// The frame being assembled since the last swap.
     pub(crate) frame: Frame,
     pub(crate) sink: Box<dyn FrameSink>,
@@ -105,6 +109,7 @@ impl Context {
             arrays: Default::default(),
             arrays_ext: Default::default(),
             client_attrib: Default::default(),
+            programs: Default::default(),
             frame: Frame::default(),
             sink: config.sink,
             single_buffered: false,

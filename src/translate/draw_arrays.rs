@@ -16,6 +16,7 @@ use super::convert::read_slice;
 use super::gl::{self, GLenum, GLint, GLsizei, GLuint};
 use super::immediate::{Batch, CurrentAttribs, bits};
 use super::lists::ListOp;
+use crate::frame::Attrib;
 
 /// Which array elements a draw reads, in primitive order.
 #[derive(Clone, Copy)]
@@ -38,7 +39,7 @@ struct Fetched {
 impl Fetched {
     /// Replaces the attributes that did not come from arrays by `current` (a compiled draw
     /// uses the current values of the moment it is executed).
-    fn take_current(&mut self, current: &CurrentAttribs) {
+    fn take_current(&mut self, current: &CurrentAttribs, generic: usize) {
         let (v, f) = (&mut self.batch.vertices, &self.from_arrays);
         if !f.normal {
             v.normal.set_constant(current.normal);
@@ -61,6 +62,14 @@ impl Fetched {
         for ((t, &from), &value) in v.texcoords.iter_mut().zip(&f.texcoord).zip(&current.texcoords) {
             if !from {
                 t.set_constant(value);
+            }
+        }
+        // Generic attributes are stored while a program is in use at execution.
+        let n = v.len();
+        v.generic.resize(generic, Attrib { values: vec![[0.0, 0.0, 0.0, 1.0]; usize::from(n > 0)] });
+        for ((g, &from), &value) in v.generic.iter_mut().zip(&f.generic).zip(&current.generic).skip(1) {
+            if !from || g.values.is_empty() {
+                g.set_constant(value);
             }
         }
     }
@@ -113,11 +122,12 @@ impl Context {
         batch: &mut Batch,
     ) -> Option<(Option<Vec<u32>>, FromArrays)> {
         let current = *self.immediate.current();
+        let generic = self.generic_attributes();
         let fetched = self.with_sources(command, |s, _| {
             // Elements past the end of a vertex buffer would all be zero: not fetched, so a
             // wrong count cannot allocate without bound.
-            let vertex_count = s.vertex?.len();
-            batch.clear();
+            let vertex_count = s.position()?.len();
+            batch.clear_for(generic);
             let mut cur = current;
             let mut push = |i: usize| {
                 let position = s.element(i, &mut cur).unwrap_or([0.0, 0.0, 0.0, 1.0]);
@@ -188,7 +198,7 @@ impl Context {
         // The generated dispatch applies the glBegin/glEnd rule to this deferred draw.
         self.lists.record(ListOp::Deferred(Box::new(move |ctx| {
             let mut f = fetched.clone();
-            f.take_current(ctx.immediate.current());
+            f.take_current(ctx.immediate.current(), ctx.generic_attributes());
             ctx.submit(primitive, &f.batch, f.order.as_deref(), f.from_arrays.color);
         })));
     }

@@ -93,7 +93,7 @@ impl Context {
     /// `GL_DRAW_BUFFER0` and `GL_MAX_DRAW_BUFFERS`.
     pub(crate) fn query_draw_buffers(&self, pname: GLenum) -> Option<Value> {
         Some(match pname {
-            gl::GL_DRAW_BUFFER0 => Value::int(self.object_buffers().map_or(self.fixed.buffers.draw, |(draw, _)| draw)),
+            gl::GL_DRAW_BUFFER0 => Value::int(self.object_draw_buffer().unwrap_or(self.fixed.buffers.draw)),
             gl::GL_MAX_DRAW_BUFFERS => Value::int(MAX_DRAW_BUFFERS),
             _ => return None,
         })

@@ -89,7 +89,7 @@ impl Context {
         let on = |cap: GLenum| self.enables.is_on(cap);
         let f = &self.fixed;
         let (fr, r, l) = (&f.fragment, &f.raster, &f.lighting);
-        let draw_buffer = self.object_buffers().map_or(f.buffers.draw, |(draw, _)| draw);
+        let draw_buffer = self.object_draw_buffer().unwrap_or(f.buffers.draw);
         let color_mask = if draw_buffer == gl::GL_NONE { [false; 4] } else { fr.color_mask };
         let mut state = RasterState {
             alpha_test: on(gl::GL_ALPHA_TEST).then_some(fr.alpha),

@@ -15,6 +15,7 @@ use super::immediate::Batch;
 use super::texture::Target;
 use super::lighting::without_tracked_material;
 use super::limits::MAX_TEXTURE_UNITS;
+use crate::frame::program::ProgramDraw;
 use crate::frame::{Draw, DrawSource, Frame, RasterState, TextureRef, TextureUnit, Topology, Vertices};
 
 /// A merged draw never grows past this many vertices, so its indices stay far from `u32`
@@ -42,6 +43,8 @@ pub struct BatchKey {
     pub textures: Vec<Option<TextureRef>>,
     /// Environment and coordinate generation of each unit with a texture target enabled.
     pub texture_units: [Option<TextureUnit>; MAX_TEXTURE_UNITS],
+    /// The program in use, with its values.
+    pub program: Option<Arc<ProgramDraw>>,
 }
 
 /// Which texture units have a texture target enabled, for the capability state it was
@@ -112,6 +115,7 @@ impl Context {
             state: self.raster_snapshot(),
             textures: self.texture_snapshot(),
             texture_units: self.texture_units_snapshot(units),
+            program: self.program_draw(),
         }
     }
 
@@ -139,6 +143,15 @@ fn same_state(a: &Arc<RasterState>, b: &Arc<RasterState>) -> bool {
         && RasterState { lighting: None, ..(**a).clone() } == RasterState { lighting: None, ..(**b).clone() }
 }
 
+/// Whether two draws run the same program with the same values.
+fn same_program(a: &Option<Arc<ProgramDraw>>, b: &Option<Arc<ProgramDraw>>) -> bool {
+    match (a, b) {
+        (None, None) => true,
+        (Some(a), Some(b)) => Arc::ptr_eq(a, b) || a == b,
+        _ => false,
+    }
+}
+
 /// Whether a batch with `key` can be appended to `last` (`extra` more vertices).
 fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
     last.topology == key.topology
@@ -149,6 +162,7 @@ fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
         && same_state(&last.state, &key.state)
         && last.textures == key.textures
         && last.texture_units == key.texture_units
+        && same_program(&last.program, &key.program)
         && last.vertices.len() + extra <= MAX_MERGED_VERTICES
 }
 
@@ -169,6 +183,7 @@ pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembl
             state: key.state,
             textures: key.textures,
             texture_units: key.texture_units.to_vec(),
+            program: key.program,
             ..Draw::default()
         });
     }

@@ -107,6 +107,7 @@ impl Context {
             .or_else(|| self.query_vertex(pname))
             .or_else(|| self.query_arrays(pname))
             .or_else(|| self.query_arrays_ext(pname))
+            .or_else(|| self.query_programs(pname))
     }
 
     fn query_lists(&self, pname: GLenum) -> Option<Value> {

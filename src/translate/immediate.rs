@@ -15,7 +15,7 @@ use super::Context;
 use super::assemble::{Assembled, Primitive, assemble};
 use super::get::Value;
 use super::gl::{self, GLboolean, GLenum, GLfloat};
-use super::limits::MAX_TEXTURE_UNITS;
+use super::limits::{MAX_TEXTURE_UNITS, MAX_VERTEX_ATTRIBS};
 use super::texunit::unit_index;
 use crate::frame::{Attrib, Vertices};
 
@@ -36,6 +36,8 @@ pub struct CurrentAttribs {
     pub color_index: f32,
     /// `GL_EDGE_FLAG`.
     pub edge_flag: bool,
+    /// `GL_CURRENT_VERTEX_ATTRIB` of each generic attribute (index 0, the vertex, has none).
+    pub generic: [[f32; 4]; MAX_VERTEX_ATTRIBS],
 }
 
 impl Default for CurrentAttribs {
@@ -48,6 +50,7 @@ impl Default for CurrentAttribs {
             fog_coord: 0.0,
             color_index: 1.0,
             edge_flag: true,
+            generic: [[0.0, 0.0, 0.0, 1.0]; MAX_VERTEX_ATTRIBS],
         }
     }
 }
@@ -56,21 +59,23 @@ impl Default for CurrentAttribs {
 /// `Batch::per_vertex`.
 pub mod bits {
     /// Normal.
-    pub const NORMAL: u16 = 1;
+    pub const NORMAL: u32 = 1;
     /// Primary colour.
-    pub const COLOR: u16 = 1 << 1;
+    pub const COLOR: u32 = 1 << 1;
     /// Secondary colour.
-    pub const SECONDARY_COLOR: u16 = 1 << 2;
+    pub const SECONDARY_COLOR: u32 = 1 << 2;
     /// Fog coordinate.
-    pub const FOG_COORD: u16 = 1 << 3;
+    pub const FOG_COORD: u32 = 1 << 3;
     /// Colour index.
-    pub const COLOR_INDEX: u16 = 1 << 4;
+    pub const COLOR_INDEX: u32 = 1 << 4;
     /// Edge flag.
-    pub const EDGE_FLAG: u16 = 1 << 5;
+    pub const EDGE_FLAG: u32 = 1 << 5;
     /// Texture coordinates of unit 0; unit `u` is `TEXCOORD0 << u`.
-    pub const TEXCOORD0: u16 = 1 << 6;
+    pub const TEXCOORD0: u32 = 1 << 6;
+    /// Generic attribute 1; attribute `i` is `GENERIC1 << (i - 1)`.
+    pub const GENERIC1: u32 = 1 << 10;
     /// Every attribute.
-    pub const ALL: u16 = u16::MAX;
+    pub const ALL: u32 = u32::MAX;
 }
 
 /// Vertices being assembled, with their edge flags.
@@ -81,7 +86,7 @@ pub struct Batch {
     /// Edge flag of each vertex (section 2.6.2).
     pub edge_flags: Attrib<bool>,
     /// Attributes already stored once per vertex ([`bits`]).
-    per_vertex: u16,
+    per_vertex: u32,
 }
 
 impl Default for Batch {
@@ -93,7 +98,7 @@ impl Default for Batch {
 /// Appends `value` to an attribute: pushed when it is stored per vertex, compared with the
 /// shared value when it `changed`, untouched otherwise.
 #[inline(always)]
-fn update<T: Copy + PartialEq>(a: &mut Attrib<T>, value: T, n: usize, bit: u16, changed: u16, per_vertex: &mut u16) {
+fn update<T: Copy + PartialEq>(a: &mut Attrib<T>, value: T, n: usize, bit: u32, changed: u32, per_vertex: &mut u32) {
     if *per_vertex & bit != 0 {
         a.values.push(value);
     } else if changed & bit != 0 {
@@ -105,7 +110,7 @@ fn update<T: Copy + PartialEq>(a: &mut Attrib<T>, value: T, n: usize, bit: u16, 
 /// per vertex from now on when it differs. Kept out of line so that the per-vertex path of
 /// `Batch::push` does not carry the set-up of `Attrib::push`'s fill loop.
 #[inline(never)]
-fn update_shared<T: Copy + PartialEq>(a: &mut Attrib<T>, value: T, n: usize, bit: u16, per_vertex: &mut u16) {
+fn update_shared<T: Copy + PartialEq>(a: &mut Attrib<T>, value: T, n: usize, bit: u32, per_vertex: &mut u32) {
     a.push(value, n);
     if !a.is_constant() {
         *per_vertex |= bit;
@@ -116,6 +121,13 @@ impl Batch {
     /// A batch without storage (no texture units), to stand in while the real one is lent.
     fn unallocated() -> Batch {
         Batch { vertices: Vertices::default(), edge_flags: Attrib::default(), per_vertex: 0 }
+    }
+
+    /// Removes every vertex, keeping the storage; the vertices to come store `generic`
+    /// generic attributes (all of them while a program is in use, none otherwise).
+    pub fn clear_for(&mut self, generic: usize) {
+        self.clear();
+        self.vertices.generic.resize(generic, Attrib::default());
     }
 
     /// Removes every vertex, keeping the storage.
@@ -129,7 +141,7 @@ impl Batch {
     /// differ from the previous vertex ([`bits`]). Attributes that never change cost nothing
     /// per vertex: only the set bits of `changed` and of the per-vertex mask are visited.
     #[inline]
-    pub fn push(&mut self, position: [f32; 4], c: &CurrentAttribs, changed: u16) {
+    pub fn push(&mut self, position: [f32; 4], c: &CurrentAttribs, changed: u32) {
         let v = &mut self.vertices;
         let n = v.position.len();
         v.position.push(position);
@@ -141,6 +153,9 @@ impl Batch {
             v.color_index.set_constant(c.color_index);
             for (t, &value) in v.texcoords.iter_mut().zip(&c.texcoords) {
                 t.set_constant(value);
+            }
+            for (g, &value) in v.generic.iter_mut().zip(&c.generic).skip(1) {
+                g.set_constant(value);
             }
             self.edge_flags.set_constant(c.edge_flag);
             self.per_vertex = 0;
@@ -159,8 +174,15 @@ impl Batch {
                 bits::FOG_COORD => update(&mut v.fog_coord, c.fog_coord, n, bit, changed, pv),
                 bits::COLOR_INDEX => update(&mut v.color_index, c.color_index, n, bit, changed, pv),
                 bits::EDGE_FLAG => update(&mut self.edge_flags, c.edge_flag, n, bit, changed, pv),
+                _ if bit >= bits::GENERIC1 => {
+                    // A generic attribute's bit; those the batch does not store name nothing.
+                    let index = 1 + (bit / bits::GENERIC1).trailing_zeros() as usize;
+                    if let (Some(g), Some(&value)) = (v.generic.get_mut(index), c.generic.get(index)) {
+                        update(g, value, n, bit, changed, pv);
+                    }
+                }
                 _ => {
-                    // A texture unit's bit; bits past the last unit (in `bits::ALL`) name nothing.
+                    // A texture unit's bit; bits past the last unit name nothing.
                     let unit = (bit / bits::TEXCOORD0).trailing_zeros() as usize;
                     if let (Some(t), Some(&value)) = (v.texcoords.get_mut(unit), c.texcoords.get(unit)) {
                         update(t, value, n, bit, changed, pv);
@@ -192,7 +214,7 @@ pub struct ImmediateState {
     /// Current vertex attributes (read with [`ImmediateState::current`]).
     current: CurrentAttribs,
     /// Attributes changed since the last vertex ([`bits`]).
-    dirty: u16,
+    dirty: u32,
     /// Vertices since `glBegin`.
     pub batch: Batch,
     /// Decomposition of the batch, reused.
@@ -223,7 +245,7 @@ impl ImmediateState {
 
     /// Changes one attribute (`bit` of [`bits`]).
     #[inline]
-    fn set(&mut self, bit: u16, f: impl FnOnce(&mut CurrentAttribs)) {
+    pub(crate) fn set(&mut self, bit: u32, f: impl FnOnce(&mut CurrentAttribs)) {
         self.dirty |= bit;
         f(&mut self.current);
     }
@@ -235,7 +257,8 @@ impl Context {
         let Some(primitive) = Primitive::from_gl(mode) else {
             return self.set_error_in(gl::GL_INVALID_ENUM, "glBegin");
         };
-        self.immediate.batch.clear();
+        let generic = self.generic_attributes();
+        self.immediate.batch.clear_for(generic);
         self.immediate.primitive = Some(primitive);
     }
 

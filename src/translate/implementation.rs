@@ -5,7 +5,11 @@
 use super::Context;
 use super::get::Value;
 use super::gl::{self, GLenum};
-use super::limits::{MAX_ATTRIB_STACK_DEPTH, MAX_CLIP_PLANES, MAX_ELEMENTS, MAX_LIGHTS};
+use super::limits::{
+    MAX_ATTRIB_STACK_DEPTH, MAX_CLIP_PLANES, MAX_COMBINED_TEXTURE_IMAGE_UNITS, MAX_DRAW_BUFFERS, MAX_ELEMENTS,
+    MAX_FRAGMENT_UNIFORM_COMPONENTS, MAX_LIGHTS, MAX_TEXTURE_COORDS, MAX_TEXTURE_IMAGE_UNITS, MAX_VARYING_FLOATS,
+    MAX_VERTEX_ATTRIBS, MAX_VERTEX_TEXTURE_IMAGE_UNITS, MAX_VERTEX_UNIFORM_COMPONENTS,
+};
 use crate::frame::state::MAX_POINT_SIZE;
 
 /// Stencil bits of the visual.
@@ -30,6 +34,15 @@ impl Context {
         Some(match pname {
             gl::GL_MAX_LIGHTS => Value::int(MAX_LIGHTS as i64),
             gl::GL_MAX_CLIP_PLANES => Value::int(MAX_CLIP_PLANES as i64),
+            gl::GL_MAX_VERTEX_ATTRIBS => Value::int(MAX_VERTEX_ATTRIBS as i64),
+            gl::GL_MAX_TEXTURE_IMAGE_UNITS => Value::int(MAX_TEXTURE_IMAGE_UNITS as i64),
+            gl::GL_MAX_TEXTURE_COORDS => Value::int(MAX_TEXTURE_COORDS as i64),
+            gl::GL_MAX_VERTEX_UNIFORM_COMPONENTS => Value::int(MAX_VERTEX_UNIFORM_COMPONENTS as i64),
+            gl::GL_MAX_FRAGMENT_UNIFORM_COMPONENTS => Value::int(MAX_FRAGMENT_UNIFORM_COMPONENTS as i64),
+            gl::GL_MAX_VARYING_FLOATS => Value::int(MAX_VARYING_FLOATS as i64),
+            gl::GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS => Value::int(MAX_VERTEX_TEXTURE_IMAGE_UNITS as i64),
+            gl::GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS => Value::int(MAX_COMBINED_TEXTURE_IMAGE_UNITS as i64),
+            gl::GL_MAX_DRAW_BUFFERS => Value::int(MAX_DRAW_BUFFERS as i64),
             gl::GL_MAX_ATTRIB_STACK_DEPTH => Value::int(MAX_ATTRIB_STACK_DEPTH as i64),
             gl::GL_MAX_ELEMENTS_VERTICES | gl::GL_MAX_ELEMENTS_INDICES => Value::int(MAX_ELEMENTS),
             gl::GL_SUBPIXEL_BITS => Value::int(SUBPIXEL_BITS),
@@ -41,6 +54,9 @@ impl Context {
             gl::GL_ACCUM_RED_BITS | gl::GL_ACCUM_GREEN_BITS | gl::GL_ACCUM_BLUE_BITS | gl::GL_ACCUM_ALPHA_BITS => {
                 Value::int(ACCUM_BITS)
             }
+            // EXT_packed_float: whether R, G, B, A of the colour buffer are signed; glrt's colour
+            // buffers (drawables and framebuffer objects) are all unsigned normalized.
+            gl::GL_RGBA_SIGNED_COMPONENTS_EXT => Value::Int(vec![0; 4]),
             // An RGBA visual has no colour-index bits.
             gl::GL_INDEX_BITS => Value::int(0),
             gl::GL_AUX_BUFFERS => Value::int(0),
@@ -111,6 +127,7 @@ mod tests {
         ctx.bind_target(rgb);
         assert_eq!(alpha_bits(&ctx), 0);
         assert_eq!(ctx.query(gl::GL_RED_BITS).unwrap().to_ints()[0], 8);
+        assert_eq!(ctx.query(gl::GL_RGBA_SIGNED_COMPONENTS_EXT).unwrap().to_ints(), [0; 4]);
         ctx.bind_target(Target { alpha: true, ..rgb });
         assert_eq!(alpha_bits(&ctx), 8);
     }

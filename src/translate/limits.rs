@@ -3,6 +3,24 @@
 
 /// Texture units (`GL_MAX_TEXTURE_UNITS`); the specification asks for at least 2.
 pub const MAX_TEXTURE_UNITS: usize = 4;
+/// Generic vertex attributes (`GL_MAX_VERTEX_ATTRIBS`).
+pub const MAX_VERTEX_ATTRIBS: usize = 16;
+/// Texture image units a fragment shader samples (`GL_MAX_TEXTURE_IMAGE_UNITS`).
+pub const MAX_TEXTURE_IMAGE_UNITS: usize = 4;
+/// Texture coordinate sets of vertex shaders (`GL_MAX_TEXTURE_COORDS`).
+pub const MAX_TEXTURE_COORDS: usize = 4;
+/// Uniform components of a vertex shader (`GL_MAX_VERTEX_UNIFORM_COMPONENTS`).
+pub const MAX_VERTEX_UNIFORM_COMPONENTS: usize = 1024;
+/// Uniform components of a fragment shader (`GL_MAX_FRAGMENT_UNIFORM_COMPONENTS`).
+pub const MAX_FRAGMENT_UNIFORM_COMPONENTS: usize = 1024;
+/// Varying floats between the shaders (`GL_MAX_VARYING_FLOATS`).
+pub const MAX_VARYING_FLOATS: usize = 64;
+/// Texture image units a vertex shader samples (`GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS`).
+pub const MAX_VERTEX_TEXTURE_IMAGE_UNITS: usize = 4;
+/// Texture image units of both shaders together (`GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS`).
+pub const MAX_COMBINED_TEXTURE_IMAGE_UNITS: usize = 8;
+/// Colour buffers a fragment shader writes (`GL_MAX_DRAW_BUFFERS`).
+pub const MAX_DRAW_BUFFERS: usize = 1;
 /// Lights (`GL_MAX_LIGHTS`).
 pub const MAX_LIGHTS: usize = 8;
 /// User clip planes (`GL_MAX_CLIP_PLANES`).

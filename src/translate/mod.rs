@@ -55,6 +55,7 @@ pub mod pixel_buffers;
 #[cfg(test)]
 mod pixel_buffer_tests;
 pub mod pixels;
+pub mod programs;
 pub mod queries;
 pub mod rasterization;
 pub mod render_mode;
@@ -66,6 +67,7 @@ pub mod target;
 pub mod texture;
 pub mod texunit;
 pub mod transform;
+pub mod vertex_attribs;
 pub mod vertex_lighting;
 pub mod vertex_texgen;
 pub mod viewport;

@@ -7,8 +7,15 @@ use super::gl::{self, GLenum, GLubyte};
 const VENDOR: &str = "glrt\0";
 /// `GL_RENDERER`.
 const RENDERER: &str = "glrt (Vulkan raster)\0";
-/// `GL_VERSION`: "1.5 glrt <crate version>".
-const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
+/// `GL_VERSION`: "2.0 glrt <crate version>". Everything OpenGL 2.0 adds to 1.5 is there
+/// (GLSL programs through `translate::glsl`, multiple draw buffers with one colour buffer,
+/// non-power-of-two textures, point sprites, separate stencil and blend equations).
+const VERSION: &str = concat!("2.0 glrt ", env!("CARGO_PKG_VERSION"), "\0");
+
+/// `GL_SHADING_LANGUAGE_VERSION`: GLSL 1.10, OpenGL 2.0's. Shaders that declare
+/// `#version 120` compile too (as 1.20), but OpenGL 2.1's commands for their non-square matrix
+/// uniforms are not there, so 1.20 is not announced.
+const SHADING_LANGUAGE_VERSION: &str = "1.10\0";
 
 /// `GL_EXTENSIONS`: the extensions whose commands and enums are all implemented with their full
 /// semantics (programs enable code paths from this string), in alphabetical order, each
@@ -24,6 +31,11 @@ const VERSION: &str = concat!("1.5 glrt ", env!("CARGO_PKG_VERSION"), "\0");
 /// `GL_ARB_pixel_buffer_object` and `GL_EXT_pixel_buffer_object` cover every pixel command glrt
 /// has; the imaging-subset commands they also name (convolution, histogram, minmax) are not
 /// part of OpenGL 1.5 without `GL_ARB_imaging`, which glrt does not announce.
+/// The texture format extensions (`GL_ARB_texture_float`, `GL_ARB_texture_rg`,
+/// `GL_EXT_packed_float`, `GL_EXT_texture_sRGB`, `GL_EXT_texture_shared_exponent`,
+/// `GL_EXT_texture_snorm`) are complete for textures (`translate::texture::storage`); their
+/// formats are `GL_FRAMEBUFFER_UNSUPPORTED_EXT` as framebuffer attachments where they keep more
+/// than 8 bits, which the specifications allow.
 const EXTENSIONS: &str = concat!(
     "GL_ARB_depth_buffer_float ",
     "GL_ARB_depth_texture ",
@@ -43,13 +55,16 @@ const EXTENSIONS: &str = concat!(
     "GL_ARB_texture_env_combine ",
     "GL_ARB_texture_env_crossbar ",
     "GL_ARB_texture_env_dot3 ",
+    "GL_ARB_texture_float ",
     "GL_ARB_texture_mirrored_repeat ",
     "GL_ARB_texture_non_power_of_two ",
     "GL_ARB_texture_rectangle ",
+    "GL_ARB_texture_rg ",
     "GL_ARB_transpose_matrix ",
     "GL_ARB_vertex_buffer_object ",
     "GL_ARB_window_pos ",
     "GL_ATI_separate_stencil ",
+    "GL_EXT_abgr ",
     "GL_EXT_bgra ",
     "GL_EXT_blend_color ",
     "GL_EXT_blend_equation_separate ",
@@ -59,8 +74,10 @@ const EXTENSIONS: &str = concat!(
     "GL_EXT_compiled_vertex_array ",
     "GL_EXT_draw_range_elements ",
     "GL_EXT_fog_coord ",
+    "GL_EXT_framebuffer_blit ",
     "GL_EXT_framebuffer_object ",
     "GL_EXT_multi_draw_arrays ",
+    "GL_EXT_packed_float ",
     "GL_EXT_packed_depth_stencil ",
     "GL_EXT_packed_pixels ",
     "GL_EXT_paletted_texture ",
@@ -81,6 +98,9 @@ const EXTENSIONS: &str = concat!(
     "GL_EXT_texture_env_combine ",
     "GL_EXT_texture_lod_bias ",
     "GL_EXT_texture_object ",
+    "GL_EXT_texture_sRGB ",
+    "GL_EXT_texture_shared_exponent ",
+    "GL_EXT_texture_snorm ",
     "GL_EXT_vertex_array ",
     "GL_IBM_texture_mirrored_repeat ",
     "GL_NV_blend_square ",
@@ -99,6 +119,7 @@ impl Context {
             gl::GL_RENDERER => RENDERER,
             gl::GL_VERSION => VERSION,
             gl::GL_EXTENSIONS => EXTENSIONS,
+            gl::GL_SHADING_LANGUAGE_VERSION => SHADING_LANGUAGE_VERSION,
             _ => {
                 self.set_error_in(gl::GL_INVALID_ENUM, "glGetString");
                 return std::ptr::null();
@@ -124,7 +145,8 @@ mod tests {
     fn strings_and_errors() {
         let (mut ctx, _) = Context::with_recording();
         assert_eq!(string(&mut ctx, gl::GL_VENDOR).as_deref(), Some("glrt"));
-        assert_eq!(string(&mut ctx, gl::GL_VERSION).unwrap(), format!("1.5 glrt {}", env!("CARGO_PKG_VERSION")));
+        assert_eq!(string(&mut ctx, gl::GL_VERSION).unwrap(), format!("2.0 glrt {}", env!("CARGO_PKG_VERSION")));
+        assert_eq!(string(&mut ctx, gl::GL_SHADING_LANGUAGE_VERSION).unwrap(), "1.10");
         let ext = string(&mut ctx, gl::GL_EXTENSIONS).unwrap();
         assert!(ext.split(' ').any(|e| e == "GL_EXT_blend_minmax"), "{ext}");
         assert!(ext.split(' ').any(|e| e == "GL_ARB_window_pos"), "{ext}");

@@ -13,6 +13,7 @@
 //! stencil images, and texture levels with a border, are `GL_FRAMEBUFFER_UNSUPPORTED_EXT`.
 //! Framebuffer and renderbuffer objects are shared by the share group, as textures are.
 
+pub mod blit;
 pub mod completeness;
 pub mod objects;
 pub mod sync;
@@ -29,8 +30,11 @@ use crate::frame::Framebuffer;
 /// Framebuffer-object state of a context.
 #[derive(Clone, Debug, Default)]
 pub struct FramebufferState {
-    /// `GL_FRAMEBUFFER_BINDING_EXT` (0: the window).
+    /// `GL_FRAMEBUFFER_BINDING_EXT`, the draw framebuffer (0: the window).
     pub bound: GLuint,
+    /// `GL_READ_FRAMEBUFFER_BINDING_EXT` (`GL_EXT_framebuffer_blit`): the framebuffer reads
+    /// come from (0: the window).
+    pub read_bound: GLuint,
     /// `GL_RENDERBUFFER_BINDING_EXT`.
     pub renderbuffer: GLuint,
     /// Texture attachments drawn into and not read back yet ([`sync`]).
@@ -50,12 +54,33 @@ impl Context {
     /// The framebuffer draws go to now: the window, the bound framebuffer object when it is
     /// complete, `Err(status)` when it is not.
     pub(crate) fn draw_framebuffer(&self) -> Result<Framebuffer, GLenum> {
-        if self.framebuffers.bound == 0 {
+        self.framebuffer_named(self.framebuffers.bound)
+    }
+
+    /// The framebuffer reads come from now, as [`Context::draw_framebuffer`] says.
+    pub(crate) fn read_framebuffer_object(&self) -> Result<Framebuffer, GLenum> {
+        self.framebuffer_named(self.framebuffers.read_bound)
+    }
+
+    /// The window for 0, else framebuffer object `name` when it is complete.
+    fn framebuffer_named(&self, name: GLuint) -> Result<Framebuffer, GLenum> {
+        if name == 0 {
             return Ok(Framebuffer::Window);
         }
         let shared = self.shared.lock();
-        let fbo = shared.fbos.framebuffers.get(self.framebuffers.bound).cloned().unwrap_or_default();
+        let fbo = shared.fbos.framebuffers.get(name).cloned().unwrap_or_default();
         completeness::check(&shared, &fbo).map(Framebuffer::Object)
+    }
+
+    /// The binding a `glFramebuffer*EXT`/`glCheckFramebufferStatusEXT` target names:
+    /// `GL_FRAMEBUFFER_EXT` and `GL_DRAW_FRAMEBUFFER_EXT` the draw framebuffer,
+    /// `GL_READ_FRAMEBUFFER_EXT` the read framebuffer; `GL_INVALID_ENUM` for others.
+    fn binding_of(&self, target: GLenum) -> Result<GLuint, GLenum> {
+        match target {
+            gl::GL_FRAMEBUFFER_EXT | gl::GL_DRAW_FRAMEBUFFER_EXT => Ok(self.framebuffers.bound),
+            gl::GL_READ_FRAMEBUFFER_EXT => Ok(self.framebuffers.read_bound),
+            _ => Err(gl::GL_INVALID_ENUM),
+        }
     }
 
     /// Raises `GL_INVALID_FRAMEBUFFER_OPERATION_EXT` in `command` and returns true when the
@@ -68,21 +93,32 @@ impl Context {
         false
     }
 
-    /// The bound framebuffer object's `GL_DRAW_BUFFER` and `GL_READ_BUFFER`, if one is bound.
-    pub(crate) fn object_buffers(&self) -> Option<(GLenum, GLenum)> {
-        if self.framebuffers.bound == 0 {
+    /// The draw framebuffer object's `GL_DRAW_BUFFER`, if one is bound.
+    pub(crate) fn object_draw_buffer(&self) -> Option<GLenum> {
+        self.object_buffer(self.framebuffers.bound, false)
+    }
+
+    /// The read framebuffer object's `GL_READ_BUFFER`, if one is bound.
+    pub(crate) fn object_read_buffer(&self) -> Option<GLenum> {
+        self.object_buffer(self.framebuffers.read_bound, true)
+    }
+
+    /// `GL_READ_BUFFER` (`read`) or `GL_DRAW_BUFFER` of framebuffer object `name`; `None` for
+    /// the window.
+    fn object_buffer(&self, name: GLuint, read: bool) -> Option<GLenum> {
+        if name == 0 {
             return None;
         }
         let shared = self.shared.lock();
-        let fbo = shared.fbos.framebuffers.get(self.framebuffers.bound).cloned().unwrap_or_default();
-        Some((fbo.draw_buffer, fbo.read_buffer))
+        let fbo = shared.fbos.framebuffers.get(name).cloned().unwrap_or_default();
+        Some(if read { fbo.read_buffer } else { fbo.draw_buffer })
     }
 
     /// `glDrawBuffer`/`glReadBuffer` while a framebuffer object is bound: `GL_NONE` or
     /// `GL_COLOR_ATTACHMENT0_EXT`; other colour attachments are `GL_INVALID_VALUE` (there is
     /// one), window buffers `GL_INVALID_OPERATION`. Returns false when no object is bound.
     pub(crate) fn set_object_buffer(&mut self, buf: GLenum, read: bool, command: &'static str) -> bool {
-        let bound = self.framebuffers.bound;
+        let bound = if read { self.framebuffers.read_bound } else { self.framebuffers.bound };
         if bound == 0 {
             return false;
         }
@@ -159,17 +195,25 @@ impl Context {
         self.framebuffers.renderbuffer = renderbuffer;
     }
 
-    /// `glBindFramebufferEXT`: `GL_INVALID_ENUM` unless `target` is `GL_FRAMEBUFFER_EXT`;
-    /// binding an unused name creates the object. Texture images drawn into through the
-    /// previous binding are read back into their textures first.
+    /// `glBindFramebufferEXT`: `GL_FRAMEBUFFER_EXT` binds the draw and the read framebuffer,
+    /// `GL_DRAW_FRAMEBUFFER_EXT` and `GL_READ_FRAMEBUFFER_EXT` (`GL_EXT_framebuffer_blit`) one
+    /// of them, other targets are `GL_INVALID_ENUM`; binding an unused name creates the
+    /// object. Texture images drawn into through the previous draw binding are read back into
+    /// their textures first.
     pub fn glBindFramebufferEXT(&mut self, target: GLenum, framebuffer: GLuint) {
-        if target != gl::GL_FRAMEBUFFER_EXT {
-            return self.set_error_in(gl::GL_INVALID_ENUM, "glBindFramebufferEXT");
-        }
+        let (draw, read) = match target {
+            gl::GL_FRAMEBUFFER_EXT => (true, true),
+            gl::GL_DRAW_FRAMEBUFFER_EXT => (true, false),
+            gl::GL_READ_FRAMEBUFFER_EXT => (false, true),
+            _ => return self.set_error_in(gl::GL_INVALID_ENUM, "glBindFramebufferEXT"),
+        };
         if framebuffer != 0 {
             self.shared.lock().fbos.framebuffers.bind(framebuffer);
         }
-        if self.framebuffers.bound != framebuffer {
+        if read {
+            self.framebuffers.read_bound = framebuffer;
+        }
+        if draw && self.framebuffers.bound != framebuffer {
             self.framebuffer_changed();
             self.framebuffers.bound = framebuffer;
         }
@@ -215,7 +259,10 @@ impl Context {
         let Some(names) = (unsafe { read_slice(framebuffers, count) }) else { return self.null_pointer("glDeleteFramebuffersEXT") };
         for name in names.into_iter().filter(|&n| n != 0) {
             if self.framebuffers.bound == name {
-                self.glBindFramebufferEXT(gl::GL_FRAMEBUFFER_EXT, 0);
+                self.glBindFramebufferEXT(gl::GL_DRAW_FRAMEBUFFER_EXT, 0);
+            }
+            if self.framebuffers.read_bound == name {
+                self.framebuffers.read_bound = 0;
             }
             self.shared.lock().fbos.framebuffers.delete(name);
         }
@@ -309,15 +356,18 @@ impl Context {
         unsafe { write_slice(params, &[value as GLint]) };
     }
 
-    /// `glCheckFramebufferStatusEXT`: the completeness of the bound framebuffer
+    /// `glCheckFramebufferStatusEXT`: the completeness of the framebuffer bound to `target`
     /// (`GL_FRAMEBUFFER_COMPLETE_EXT` for the window's); 0 and `GL_INVALID_ENUM` for a target
-    /// other than `GL_FRAMEBUFFER_EXT`.
+    /// that is not a framebuffer target.
     pub fn glCheckFramebufferStatusEXT(&mut self, target: GLenum) -> GLenum {
-        if target != gl::GL_FRAMEBUFFER_EXT {
-            self.set_error_in(gl::GL_INVALID_ENUM, "glCheckFramebufferStatusEXT");
-            return 0;
-        }
-        match self.draw_framebuffer() {
+        let name = match self.binding_of(target) {
+            Ok(name) => name,
+            Err(e) => {
+                self.set_error_in(e, "glCheckFramebufferStatusEXT");
+                return 0;
+            }
+        };
+        match self.framebuffer_named(name) {
             Ok(_) => gl::GL_FRAMEBUFFER_COMPLETE_EXT,
             Err(status) => status,
         }
@@ -389,21 +439,18 @@ impl Context {
         self.attach(point, Some(Attached::Texture { name: texture, kind, face, level: level as u32, slice: zoffset as u32 }));
     }
 
-    /// The attachment point of a `glFramebuffer*EXT` command, after checking `target` and
-    /// that a framebuffer object is bound.
-    fn attachment_point(&self, target: GLenum, attachment: GLenum) -> Result<Point, GLenum> {
-        if target != gl::GL_FRAMEBUFFER_EXT {
-            return Err(gl::GL_INVALID_ENUM);
-        }
-        if self.framebuffers.bound == 0 {
+    /// The framebuffer object and attachment point of a `glFramebuffer*EXT` command, after
+    /// checking `target` and that a framebuffer object is bound to it.
+    fn attachment_point(&self, target: GLenum, attachment: GLenum) -> Result<(GLuint, Point), GLenum> {
+        let bound = self.binding_of(target)?;
+        if bound == 0 {
             return Err(gl::GL_INVALID_OPERATION);
         }
-        Point::from_gl(attachment)
+        Ok((bound, Point::from_gl(attachment)?))
     }
 
-    /// Sets what the bound framebuffer object has at `point`.
-    fn attach(&mut self, point: Point, what: Option<Attached>) {
-        let bound = self.framebuffers.bound;
+    /// Sets what framebuffer object `bound` has at `point`.
+    fn attach(&mut self, (bound, point): (GLuint, Point), what: Option<Attached>) {
         self.write_back_framebuffer();
         self.shared.lock().fbos.framebuffers.bind(bound).attached[point.index()] = what;
         self.fixed_mut();
@@ -418,11 +465,11 @@ impl Context {
     /// `params` must have room for one integer.
     pub unsafe fn glGetFramebufferAttachmentParameterivEXT(&mut self, target: GLenum, attachment: GLenum, pname: GLenum, params: *mut GLint) {
         const CMD: &str = "glGetFramebufferAttachmentParameterivEXT";
-        let point = match self.attachment_point(target, attachment) {
+        let (bound, point) = match self.attachment_point(target, attachment) {
             Ok(p) => p,
             Err(e) => return self.set_error_in(e, CMD),
         };
-        let attached = self.shared.lock().fbos.framebuffers.get(self.framebuffers.bound).and_then(|f| f.attached[point.index()]);
+        let attached = self.shared.lock().fbos.framebuffers.get(bound).and_then(|f| f.attached[point.index()]);
         let value = match (pname, attached) {
             (gl::GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_EXT, None) => i64::from(gl::GL_NONE),
             (gl::GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE_EXT, Some(Attached::Renderbuffer(_))) => i64::from(gl::GL_RENDERBUFFER_EXT),
@@ -477,15 +524,14 @@ impl Context {
     pub(crate) fn query_framebuffers(&self, pname: GLenum) -> Option<Value> {
         match pname {
             gl::GL_FRAMEBUFFER_BINDING_EXT => return Some(Value::int(self.framebuffers.bound)),
+            gl::GL_READ_FRAMEBUFFER_BINDING_EXT => return Some(Value::int(self.framebuffers.read_bound)),
             gl::GL_RENDERBUFFER_BINDING_EXT => return Some(Value::int(self.framebuffers.renderbuffer)),
             gl::GL_MAX_RENDERBUFFER_SIZE_EXT => return Some(Value::int(MAX_TEXTURE_SIZE as i64)),
             gl::GL_MAX_COLOR_ATTACHMENTS_EXT => return Some(Value::int(1)),
+            gl::GL_READ_BUFFER => return self.object_read_buffer().map(Value::int),
             _ => {}
         }
-        if self.framebuffers.bound == 0 {
-            return None;
-        }
-        let (draw, read) = self.object_buffers()?;
+        let draw = self.object_draw_buffer()?;
         let holds = |point: Point| {
             let shared = self.shared.lock();
             let attached = shared.fbos.framebuffers.get(self.framebuffers.bound)?.attached[point.index()]?;
@@ -501,7 +547,6 @@ impl Context {
             gl::GL_SAMPLE_BUFFERS | gl::GL_SAMPLES => Value::int(0),
             gl::GL_DOUBLEBUFFER => Value::bool(false),
             gl::GL_DRAW_BUFFER => Value::int(draw),
-            gl::GL_READ_BUFFER => Value::int(read),
             _ => return None,
         })
     }
@@ -545,6 +590,26 @@ mod tests {
 
     fn status(ctx: &mut Context) -> gl::GLenum {
         ctx.glCheckFramebufferStatusEXT(gl::GL_FRAMEBUFFER_EXT)
+    }
+
+    #[test]
+    fn formats_beyond_8_bits_are_unsupported_attachments() {
+        let mut ctx = bound();
+        for (format, want) in [
+            (gl::GL_RGBA16F, gl::GL_FRAMEBUFFER_UNSUPPORTED_EXT),
+            (gl::GL_RGB16, gl::GL_FRAMEBUFFER_UNSUPPORTED_EXT),
+            (gl::GL_RG8_SNORM, gl::GL_FRAMEBUFFER_UNSUPPORTED_EXT),
+            (gl::GL_RG8, gl::GL_FRAMEBUFFER_COMPLETE_EXT),
+            (gl::GL_SRGB8_ALPHA8, gl::GL_FRAMEBUFFER_COMPLETE_EXT),
+        ] {
+            storage(&mut ctx, 1, format, 16, 16);
+            ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_RENDERBUFFER_EXT, 1);
+            assert_eq!((ctx.glGetError(), status(&mut ctx)), (gl::GL_NO_ERROR, want), "renderbuffer {format:#x}");
+            ctx.glBindTexture(gl::GL_TEXTURE_2D, 5);
+            unsafe { ctx.glTexImage2D(gl::GL_TEXTURE_2D, 0, format as i32, 16, 16, 0, gl::GL_RGBA, gl::GL_FLOAT, std::ptr::null()) };
+            ctx.glFramebufferTexture2DEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_TEXTURE_2D, 5, 0);
+            assert_eq!((ctx.glGetError(), status(&mut ctx)), (gl::GL_NO_ERROR, want), "texture {format:#x}");
+        }
     }
 
     #[test]

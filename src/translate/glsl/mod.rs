@@ -19,8 +19,10 @@
 //!   specialisation constants are the fixed-function key words (`shaders/ff_key.glsl`). A
 //!   program stage reads from them what the fixed-function operations around a shader need
 //!   (viewport, stipples, alpha test, flat shading, facing, two-sided colour selection,
-//!   smooth coverage, the framebuffer height), so the renderer fills them as for any draw; the
-//!   key's `TWO_SIDE` bit carries `GL_VERTEX_PROGRAM_TWO_SIDE` for a program draw.
+//!   smooth coverage, the framebuffer height), so the renderer fills them as for any draw. For
+//!   a program with a vertex shader, the key's `TWO_SIDE` bit carries
+//!   `GL_VERTEX_PROGRAM_TWO_SIDE` (the generated vertex stage passes the back colours only
+//!   then); with the fixed-function vertex stage it stays the lighting's bit.
 //! - **Set 1** is the program's: binding [`crate::frame::program::BUILTINS_BINDING`] the
 //!   built-in state block, binding [`crate::frame::program::UNIFORMS_BINDING`] the block of the
 //!   program's uniforms (both read-only storage buffers, std430, visible to both stages),
@@ -156,4 +158,13 @@ pub fn link(shaders: &[&CompiledShader], attribute_bindings: &HashMap<String, u3
     unit::link(shaders, attribute_bindings)
 }
 
+pub mod builtins;
 pub mod unit;
+pub mod compiler;
+pub mod declarations;
+pub mod layout;
+pub mod tokens;
+pub mod types;
+pub mod rewrite;
+#[cfg(test)]
+mod tests;

@@ -121,11 +121,8 @@ impl Context {
         if !self.pixels.raster.valid || self.raster_event(RasterEvent::DrawPixels) {
             return;
         }
-        let data = match unsafe { self.unpack_client(ft, [w, h, 1], pixels, false, "glDrawPixels") } {
-            Ok(Some(Unpacked::Rgba(c))) => PixelData::Rgba8(rgba8(&c).into()),
-            Ok(Some(Unpacked::Depth(d))) => PixelData::Depth(d.into()),
-            Ok(Some(Unpacked::Stencil(s) | Unpacked::Index(s))) => PixelData::Stencil(s.iter().map(|&v| v as u32).collect()),
-            Ok(Some(Unpacked::DepthStencil(d, s))) => PixelData::DepthStencil(d.into(), s.iter().map(|&v| v as u32).collect()),
+        let data = match unsafe { self.unpack_client(ft, [w, h, 1], pixels, false, true, "glDrawPixels") } {
+            Ok(Some(unpacked)) => pixel_data(unpacked),
             Ok(None) => return self.null_pointer("glDrawPixels"),
             Err(()) => return,
         };
@@ -170,30 +167,44 @@ impl Context {
         }
         let r = &self.pixels.raster;
         let window_pos = [r.window[0], r.window[1], r.window[2]];
-        let Some(buffer) = buffer else { return self.copy_depth_stencil([x, y, width, height], window_pos) };
+        if buffer.is_none() || self.framebuffers.read_bound != self.framebuffers.bound {
+            return self.copy_through_readback(type_, [x, y, width, height], window_pos);
+        }
+        let Some(buffer) = buffer else { return };
         let kind = PixelKind::Copy { src: [x, y, width, height], window_pos, zoom: self.pixels.zoom, buffer, color: r.data.color };
         self.push_pixel_op(kind);
     }
 
-    /// `glCopyPixels(GL_DEPTH_STENCIL)` (EXT_packed_depth_stencil section 4.3.3): the depth
-    /// and stencil values of `src` are read as `glReadPixels(GL_DEPTH_STENCIL)` reads them,
-    /// go through pixel transfer (depth scale and bias; index shift, offset and `S_TO_S` map)
-    /// and are written as `glDrawPixels(GL_DEPTH_STENCIL)` writes them, at `window_pos` with
-    /// the zoom: through the scissor test and the depth and stencil write masks only. The
-    /// read happens now (the renderer draws the frame so far), so the recorded operation is
-    /// an image; source pixels outside the window produce no fragments. Without a renderer
-    /// that reads back nothing is copied (logged once).
-    fn copy_depth_stencil(&mut self, src: [i32; 4], window_pos: [f32; 3]) {
-        let Some((rect, skipped)) = clip_to_window(src, self.frame.size) else { return };
-        let Some(format) = codec::format(gl::GL_DEPTH_STENCIL) else { return };
-        let Some(Unpacked::DepthStencil(depth, stencil)) = self.read_transferred(format, rect, "glCopyPixels") else { return };
+    /// `glCopyPixels` that the renderer cannot do in place: `GL_DEPTH_STENCIL`
+    /// (EXT_packed_depth_stencil section 4.3.3), and copies whose read framebuffer is not the
+    /// draw framebuffer (`GL_EXT_framebuffer_blit`). The values of `src` are read as
+    /// `glReadPixels` reads them, go through pixel transfer and are written as `glDrawPixels`
+    /// writes them, at `window_pos` with the zoom (depth/stencil pixels through the scissor
+    /// test and the depth and stencil write masks only). The read happens now (the renderer
+    /// draws the frame so far), so the recorded operation is an image; source pixels outside
+    /// the read framebuffer produce no fragments. Without a renderer that reads back nothing
+    /// is copied (logged once).
+    fn copy_through_readback(&mut self, type_: GLenum, src: [i32; 4], window_pos: [f32; 3]) {
+        let size = match self.read_framebuffer_object() {
+            Ok(crate::frame::Framebuffer::Object(fbo)) => fbo.size,
+            _ => self.frame.size,
+        };
+        let Some((rect, skipped)) = clip_to_window(src, size) else { return };
+        let format = match type_ {
+            gl::GL_COLOR => gl::GL_RGBA,
+            gl::GL_DEPTH => gl::GL_DEPTH_COMPONENT,
+            gl::GL_STENCIL => gl::GL_STENCIL_INDEX,
+            other => other,
+        };
+        let Some(format) = codec::format(format) else { return };
+        let Some(unpacked) = self.read_transferred(format, rect, "glCopyPixels") else { return };
         let zoom = self.pixels.zoom;
         let kind = PixelKind::Image {
             window_pos: [window_pos[0] + skipped[0] as f32 * zoom[0], window_pos[1] + skipped[1] as f32 * zoom[1], window_pos[2]],
             zoom,
             size: [rect[2] as u32, rect[3] as u32],
             color: self.pixels.raster.data.color,
-            data: PixelData::DepthStencil(depth.into(), stencil.iter().map(|&v| v as u32).collect()),
+            data: pixel_data(unpacked),
         };
         self.push_pixel_op(kind);
     }
@@ -207,7 +218,7 @@ impl Context {
             self.log_no_readback(command);
             return None;
         };
-        Some(self.pixels.transfer.apply(format, &groups_of(&read, format.components), false))
+        Some(self.pixels.transfer.apply(format, &groups_of(&read, format.components), false, true))
     }
 
     /// Reads `rect` of the buffers that groups of `kind` come from (colour for colours and
@@ -260,19 +271,19 @@ impl Context {
         if read.len() != w * h {
             return log::warn!("glReadPixels: the renderer returned {} pixels instead of {}", read.len(), w * h);
         }
-        let values = self.transfer_for_pack(f, &read, codec::Luminance::Sum);
+        let values = self.transfer_for_pack(f, &read, codec::Luminance::Sum, true);
         unsafe { self.pack_client((f, t), [w, h, 1], pixels, &values, "glReadPixels") }
     }
 
     /// Pixel transfer for packing (section 4.3.2): colours are scaled, biased, mapped, clamped
-    /// and converted to `format` (luminance formed as `luminance` says); depth and stencil
+    /// (when `clamp`) and converted to `format` (luminance formed as `luminance` says); depth and stencil
     /// values take their own transfer.
-    pub(crate) fn transfer_for_pack(&self, f: codec::Format, read: &[[f32; 4]], luminance: codec::Luminance) -> Vec<f32> {
+    pub(crate) fn transfer_for_pack(&self, f: codec::Format, read: &[[f32; 4]], luminance: codec::Luminance, clamp: bool) -> Vec<f32> {
         let t = &self.pixels.transfer;
         let mut values = Vec::with_capacity(read.len() * f.components);
         match f.kind {
-            Kind::Color => read.iter().for_each(|&c| codec::from_rgba(f.gl, t.color(c), luminance, &mut values)),
-            _ => match t.apply(f, &groups_of(read, f.components), true) {
+            Kind::Color => read.iter().for_each(|&c| codec::from_rgba(f.gl, t.color(c, clamp), luminance, &mut values)),
+            _ => match t.apply(f, &groups_of(read, f.components), true, clamp) {
                 Unpacked::Depth(v) => values = v,
                 Unpacked::Stencil(v) | Unpacked::Index(v) => values = v.iter().map(|&i| i as f32).collect(),
                 Unpacked::DepthStencil(d, s) => values = d.iter().zip(&s).flat_map(|(&d, &s)| [d, s as f32]).collect(),
@@ -303,6 +314,16 @@ impl Context {
             return self.set_error_in(gl::GL_INVALID_OPERATION, "glAccum");
         }
         self.push_pixel_op(PixelKind::Accum { op, value });
+    }
+}
+
+/// The image data of transferred pixels.
+pub(crate) fn pixel_data(unpacked: Unpacked) -> PixelData {
+    match unpacked {
+        Unpacked::Rgba(c) => PixelData::Rgba8(rgba8(&c).into()),
+        Unpacked::Depth(d) => PixelData::Depth(d.into()),
+        Unpacked::Stencil(s) | Unpacked::Index(s) => PixelData::Stencil(s.iter().map(|&v| v as u32).collect()),
+        Unpacked::DepthStencil(d, s) => PixelData::DepthStencil(d.into(), s.iter().map(|&v| v as u32).collect()),
     }
 }
 

@@ -12,6 +12,7 @@ use super::image::resolve_indices;
 use super::objects::{Level, Target, TextureObject, next_version};
 use super::palette::Palette;
 use super::params::uses_mipmaps;
+use crate::translate::glsl::builtins::{SamplerDepth, sampler_depth};
 use crate::frame::texture::{TexImage, TexelFormat, TextureContent, TextureKind, TextureRef};
 
 /// Whether `obj` is complete: its base level exists on every face with a non-zero size (cube
@@ -90,6 +91,19 @@ fn texture_ref(name: u32, obj: &mut TextureObject, target: Target, shared: Optio
 }
 
 impl Context {
+    /// The texture bound to `target` of `unit`, whether or not the target is enabled, as a
+    /// program's sampler reads it (`None` when incomplete or past the last unit), with the
+    /// depth words of `glrt_SamplerDepth` (`shaders/glsl_builtins.glsl`).
+    pub(crate) fn sampler_texture(&mut self, unit: usize, target: Target) -> (Option<TextureRef>, SamplerDepth) {
+        let Some(&name) = self.texture.bindings.get(unit).map(|b| &b[target.index()]) else { return (None, [8, 0, 0, 0]) };
+        self.with_object(target, name, |obj| {
+            let p = &obj.params;
+            let depth = obj.level(0, p.levels[0].max(0) as usize).is_some_and(|l| l.base == Base::Texel(TexelFormat::Depth));
+            let words = sampler_depth(p.compare_mode, p.compare_func, p.depth_mode, depth);
+            (is_complete(obj, target).then(|| texture_ref(name, obj, target, None)), words)
+        })
+    }
+
     /// The enabled target of `unit` with the highest priority.
     fn enabled_target(&self, unit: usize) -> Option<Target> {
         [Target::Cube, Target::D3, Target::Rect, Target::D2, Target::D1].into_iter().find(|t| self.enables.unit_on(unit, t.gl()))

@@ -246,7 +246,7 @@ fn pack_light(b: &mut Block, at: usize, l: &Light) {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use std::collections::HashMap;
     use std::sync::Arc;
 
@@ -254,7 +254,7 @@ mod tests {
     use crate::frame::state::{Fog, Lighting};
 
     /// `(struct name, member name) → Offset` from the SPIR-V of a shader.
-    fn spirv_offsets(spirv: &[u8]) -> HashMap<(String, String), usize> {
+    pub(crate) fn spirv_offsets(spirv: &[u8]) -> HashMap<(String, String), usize> {
         let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
         let string = |w: &[u32]| -> String {
             let bytes: Vec<u8> = w.iter().flat_map(|x| x.to_le_bytes()).take_while(|&b| b != 0).collect();
