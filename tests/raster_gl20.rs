@@ -275,11 +275,12 @@ fn rectangle_textures_take_texel_coordinates() {
         dispatch::glTexParameteri(&mut ctx, rect, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
         dispatch::glTexParameteri(&mut ctx, rect, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
         dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_REPLACE as i32);
-        dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_2D);
         dispatch::glEnable(&mut ctx, rect);
     }
-    // 48 × 32 pixels over s in [0, 3], t in [0, 2]: 16 pixels per texel; then s up to 6.
+    // 48 × 32 pixels over s in [0, 3], t in [0, 2]: 16 pixels per texel; then s up to 6, with
+    // GL_TEXTURE_2D enabled too.
     textured_rect(&mut ctx, [0.0, 0.0, 48.0, 32.0], [3.0, 2.0]);
+    unsafe { dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_2D) };
     textured_rect(&mut ctx, [0.0, 32.0, 64.0, 64.0], [6.0, 2.0]);
     for (i, color) in colors.iter().enumerate() {
         let (x, y) = (16 * (i % 3) as i32 + 8, 16 * (i / 3) as i32 + 8);

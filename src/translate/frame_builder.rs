@@ -12,7 +12,7 @@ use super::Context;
 use super::assemble::{Assembled, Primitive};
 use super::enable::EnableState;
 use super::immediate::Batch;
-use super::gl;
+use super::texture::Target;
 use super::lighting::without_tracked_material;
 use super::limits::MAX_TEXTURE_UNITS;
 use crate::frame::program::ProgramDraw;
@@ -21,10 +21,6 @@ use crate::frame::{Draw, DrawSource, Frame, RasterState, TextureRef, TextureUnit
 /// A merged draw never grows past this many vertices, so its indices stay far from `u32`
 /// overflow and the renderer's uploads stay bounded.
 pub const MAX_MERGED_VERTICES: usize = 1 << 22;
-
-/// Texture targets whose enable makes a unit use its texture matrix.
-const TEXTURE_TARGETS: [gl::GLenum; 4] =
-    [gl::GL_TEXTURE_1D, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_3D, gl::GL_TEXTURE_CUBE_MAP];
 
 /// Everything a batch is drawn with besides its vertices; batches with equal keys merge.
 /// Built without allocation (but for the snapshots), so that a `glBegin`/`glEnd` per quad
@@ -63,7 +59,7 @@ impl TexturingCache {
     /// The units with a texture target enabled under `enables`.
     pub(crate) fn units(&mut self, enables: &EnableState) -> [bool; MAX_TEXTURE_UNITS] {
         if self.enables.as_ref() != Some(enables) {
-            self.units = std::array::from_fn(|u| TEXTURE_TARGETS.iter().any(|&t| enables.unit_on(u, t)));
+            self.units = std::array::from_fn(|u| Target::ALL.iter().any(|t| enables.unit_on(u, t.gl())));
             self.enables = Some(enables.clone());
         }
         self.units
@@ -203,7 +199,7 @@ pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembl
 mod tests {
     use super::*;
     use crate::frame::Clear;
-    use crate::translate::dispatch;
+    use crate::translate::{dispatch, gl};
     use crate::translate::immediate::{Batch, CurrentAttribs};
 
     fn quad(ctx: &mut Context, x: f32) {
