@@ -49,7 +49,7 @@ fn array_state_and_queries() {
     let data = [0u8; 64];
     let p = data.as_ptr().cast::<c_void>();
     unsafe {
-        dispatch::glVertexAttribPointer(&mut ctx, 2, 3, gl::GL_UNSIGNED_SHORT, gl::GL_TRUE as u8, 12, p);
+        dispatch::glVertexAttribPointer(&mut ctx, 2, 3, gl::GL_UNSIGNED_SHORT, gl::GL_TRUE, 12, p);
         dispatch::glEnableVertexAttribArray(&mut ctx, 2);
     }
     assert_eq!(attrib_iv(&mut ctx, 2, gl::GL_VERTEX_ATTRIB_ARRAY_ENABLED), 1);
@@ -59,7 +59,7 @@ fn array_state_and_queries() {
     assert_eq!(attrib_iv(&mut ctx, 2, gl::GL_VERTEX_ATTRIB_ARRAY_NORMALIZED), 1);
     assert_eq!(attrib_iv(&mut ctx, 2, gl::GL_VERTEX_ATTRIB_ARRAY_BUFFER_BINDING), 0);
     let mut got: *mut c_void = std::ptr::null_mut();
-    unsafe { dispatch::glGetVertexAttribPointerv(&mut ctx, 2, gl::GL_VERTEX_ATTRIB_ARRAY_POINTER, &mut got) };
+    unsafe { dispatch::glGetVertexAttribPointerv(&mut ctx, 2, gl::GL_VERTEX_ATTRIB_ARRAY_POINTER, &raw mut got) };
     assert_eq!(got as usize, p as usize);
     unsafe { dispatch::glPushClientAttrib(&mut ctx, gl::GL_CLIENT_VERTEX_ARRAY_BIT) };
     unsafe { dispatch::glDisableVertexAttribArray(&mut ctx, 2) };
@@ -117,7 +117,7 @@ fn generic_arrays_in_draws_and_display_lists() {
     unsafe {
         dispatch::glVertexAttribPointer(&mut ctx, 0, 2, gl::GL_FLOAT, 0, 0, positions.as_ptr().cast());
         dispatch::glEnableVertexAttribArray(&mut ctx, 0);
-        dispatch::glVertexAttribPointer(&mut ctx, 3, 2, gl::GL_UNSIGNED_BYTE, gl::GL_TRUE as u8, 0, extra.as_ptr().cast());
+        dispatch::glVertexAttribPointer(&mut ctx, 3, 2, gl::GL_UNSIGNED_BYTE, gl::GL_TRUE, 0, extra.as_ptr().cast());
         dispatch::glEnableVertexAttribArray(&mut ctx, 3);
         dispatch::glVertexAttrib1f(&mut ctx, 4, 6.0);
         dispatch::glDrawArrays(&mut ctx, gl::GL_TRIANGLES, 0, 3);
