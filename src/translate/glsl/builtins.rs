@@ -232,6 +232,34 @@ mod tests {
         words.iter().flat_map(|w| w.to_le_bytes()).collect()
     }
 
+    #[test]
+    fn limits_are_the_constants_of_the_block() {
+        let (mut ctx, _) = Context::with_recording();
+        let text = include_str!("../../../shaders/glsl_builtins.glsl");
+        let constant = |name: &str| -> i32 {
+            let line = text.lines().find(|l| l.starts_with(&format!("const int glrt_{name} "))).unwrap_or_else(|| panic!("{name}"));
+            line.split('=').nth(1).unwrap().trim().trim_end_matches(';').parse().unwrap()
+        };
+        for (name, pname) in [
+            ("MaxLights", gl::GL_MAX_LIGHTS),
+            ("MaxClipPlanes", gl::GL_MAX_CLIP_PLANES),
+            ("MaxTextureUnits", gl::GL_MAX_TEXTURE_UNITS),
+            ("MaxTextureCoords", gl::GL_MAX_TEXTURE_COORDS),
+            ("MaxVertexAttribs", gl::GL_MAX_VERTEX_ATTRIBS),
+            ("MaxVertexUniformComponents", gl::GL_MAX_VERTEX_UNIFORM_COMPONENTS),
+            ("MaxVaryingFloats", gl::GL_MAX_VARYING_FLOATS),
+            ("MaxVertexTextureImageUnits", gl::GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS),
+            ("MaxCombinedTextureImageUnits", gl::GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS),
+            ("MaxTextureImageUnits", gl::GL_MAX_TEXTURE_IMAGE_UNITS),
+            ("MaxFragmentUniformComponents", gl::GL_MAX_FRAGMENT_UNIFORM_COMPONENTS),
+            ("MaxDrawBuffers", gl::GL_MAX_DRAW_BUFFERS),
+        ] {
+            let mut v = -1;
+            unsafe { dispatch::glGetIntegerv(&mut ctx, pname, &mut v) };
+            assert_eq!(v, constant(name), "{name}");
+        }
+    }
+
     fn f32_at(b: &[u8], at: usize) -> f32 {
         f32::from_ne_bytes(b[at..at + 4].try_into().unwrap())
     }

@@ -140,3 +140,43 @@ fn generic_arrays_in_draws_and_display_lists() {
     assert_eq!(v.generic[4].get(0), Some([2.0, 0.0, 0.0, 1.0]), "other attributes current at execution");
     assert_eq!(current(&mut ctx, 3), [0.2, 0.2, 0.0, 1.0], "glArrayElement in the list set the current value");
 }
+
+#[test]
+fn current_values_in_lists_attrib_stacks_and_buffer_arrays() {
+    let (mut ctx, _) = Context::with_recording();
+    unsafe {
+        dispatch::glNewList(&mut ctx, 1, gl::GL_COMPILE);
+        dispatch::glVertexAttrib4fv(&mut ctx, 7, [1.0, 2.0, 3.0, 4.0].as_ptr());
+        dispatch::glEndList(&mut ctx);
+    }
+    assert_eq!(current(&mut ctx, 7), [0.0, 0.0, 0.0, 1.0], "compiled, not executed");
+    unsafe { dispatch::glCallList(&mut ctx, 1) };
+    assert_eq!(current(&mut ctx, 7), [1.0, 2.0, 3.0, 4.0]);
+    unsafe {
+        dispatch::glPushAttrib(&mut ctx, gl::GL_CURRENT_BIT | gl::GL_ENABLE_BIT);
+        dispatch::glVertexAttrib1f(&mut ctx, 7, 0.0);
+        dispatch::glEnable(&mut ctx, gl::GL_VERTEX_PROGRAM_TWO_SIDE);
+        dispatch::glPopAttrib(&mut ctx);
+    }
+    assert_eq!(current(&mut ctx, 7), [1.0, 2.0, 3.0, 4.0], "GL_CURRENT_BIT holds generic values");
+    assert_eq!(unsafe { dispatch::glIsEnabled(&mut ctx, gl::GL_VERTEX_PROGRAM_TWO_SIDE) }, 0, "GL_ENABLE_BIT holds it");
+    fake_program(&mut ctx, true);
+    let data: [f32; 6] = [0.0, 0.0, 1.0, 0.0, 0.0, 1.0];
+    let mut vbo = 0;
+    unsafe {
+        dispatch::glGenBuffers(&mut ctx, 1, &mut vbo);
+        dispatch::glBindBuffer(&mut ctx, gl::GL_ARRAY_BUFFER, vbo);
+        dispatch::glBufferData(&mut ctx, gl::GL_ARRAY_BUFFER, 24, data.as_ptr().cast(), gl::GL_STATIC_DRAW);
+        dispatch::glVertexAttribPointer(&mut ctx, 0, 2, gl::GL_FLOAT, 0, 0, std::ptr::null());
+        dispatch::glVertexAttribPointer(&mut ctx, 6, 1, gl::GL_FLOAT, 0, 8, std::ptr::without_provenance(4));
+        dispatch::glEnableVertexAttribArray(&mut ctx, 0);
+        dispatch::glEnableVertexAttribArray(&mut ctx, 6);
+        dispatch::glBindBuffer(&mut ctx, gl::GL_ARRAY_BUFFER, 0);
+        dispatch::glDrawArrays(&mut ctx, gl::GL_TRIANGLES, 0, 3);
+    }
+    assert_eq!(attrib_iv(&mut ctx, 6, gl::GL_VERTEX_ATTRIB_ARRAY_BUFFER_BINDING), vbo as i32);
+    let v = &ctx.frame.draws[0].vertices;
+    assert_eq!(v.position[2], [0.0, 1.0, 0.0, 1.0]);
+    assert_eq!(v.generic[6].values, vec![[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0]], "from the buffer object");
+    assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+}
