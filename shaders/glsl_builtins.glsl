@@ -123,4 +123,7 @@ layout(set = 1, binding = 0, std430) readonly buffer GlrtBuiltins {
     // EQUAL, LEQUAL, GREATER, NOTEQUAL, GEQUAL, ALWAYS (8: GL_TEXTURE_COMPARE_MODE is NONE);
     // y: GL_DEPTH_TEXTURE_MODE, 0 LUMINANCE, 1 INTENSITY, 2 ALPHA; z: 1 for a depth texture.
     uvec4 glrt_SamplerDepth[8];
+    // Not GLSL state: x is 1 when GL_VERTEX_PROGRAM_POINT_SIZE is on (points take the size the
+    // vertex shader wrote, else the state's).
+    uvec4 glrt_Flags;
 };

@@ -10,6 +10,9 @@ void main() {
     }
     GLRT_BEFORE_MAIN
     u_main();
+    if (glrt_Flags.x == 0u) {
+        gl_PointSize = glrt_Point.size;
+    }
 
     // Colours are clamped to [0, 1] (OpenGL 2.0 section 2.14.6); back faces take the back
     // colours only with GL_VERTEX_PROGRAM_TWO_SIDE (the key's TWO_SIDE bit for a program).

@@ -7,6 +7,13 @@
 //! (I, I, I, I), RGB → (R, G, B, 1), depth → (D, D, D, 1)); [`TexelFormat`] says which base
 //! format it was, because texture environments treat them differently.
 //!
+//! Colour levels are stored at a [`Precision`]: formats of at most 8 bits a component keep
+//! only the RGBA8 `texels`; sRGB formats keep sRGB-encoded RGBA8 `texels`, which a renderer
+//! samples with sRGB decoding; formats with more bits, signed-normalized and floating-point
+//! formats also carry [`TexImage::values`], four `f32` a texel expanded like `texels`, already
+//! rounded to the internal format's precision (a renderer uploads those, for example as
+//! `R32G32B32A32_SFLOAT`); their `texels` are the same values clamped to [0, 1] at 8 bits.
+//!
 //! Depth levels also carry their values at full precision in [`TexImage::depth_values`] (one
 //! `f32` per texel, already rounded to the internal format's 16 or 24 bits; 32-bit formats keep
 //! the `f32`). A renderer reads depth levels from there (for example into a 32-bit float or
@@ -71,6 +78,22 @@ pub enum TexelFormat {
     Rgba,
     /// Depth, replicated as `DEPTH_TEXTURE_MODE` says at sampling time.
     Depth,
+    /// Red (ARB_texture_rg): (R, 0, 0, 1); texture functions treat it as RGB.
+    Red,
+    /// Red and green (ARB_texture_rg): (R, G, 0, 1); texture functions treat it as RGB.
+    Rg,
+}
+
+/// How the colour texels of a level are stored (see the module doc).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Precision {
+    /// Linear RGBA8 `texels` only.
+    #[default]
+    Unorm8,
+    /// sRGB-encoded RGBA8 `texels`, decoded to linear when sampled (EXT_texture_sRGB).
+    Srgb8,
+    /// RGBA `f32` [`TexImage::values`] beside the 8-bit `texels`.
+    Float,
 }
 
 /// Everything a renderer needs to build a texture and its sampler.
@@ -100,6 +123,11 @@ pub struct TexImage {
     pub border: u32,
     /// `width * height * depth * 4` bytes.
     pub texels: Vec<u8>,
+    /// How the texels are stored.
+    pub precision: Precision,
+    /// [`Precision::Float`]: `width * height * depth * 4` values in the order of `texels`;
+    /// empty otherwise.
+    pub values: Vec<f32>,
     /// Depth formats: `width * height * depth` depth values in [0, 1], in the order of
     /// `texels`; empty for colour formats (see the module doc).
     pub depth_values: Vec<f32>,

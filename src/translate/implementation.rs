@@ -54,6 +54,9 @@ impl Context {
             gl::GL_ACCUM_RED_BITS | gl::GL_ACCUM_GREEN_BITS | gl::GL_ACCUM_BLUE_BITS | gl::GL_ACCUM_ALPHA_BITS => {
                 Value::int(ACCUM_BITS)
             }
+            // EXT_packed_float: whether R, G, B, A of the colour buffer are signed; glrt's colour
+            // buffers (drawables and framebuffer objects) are all unsigned normalized.
+            gl::GL_RGBA_SIGNED_COMPONENTS_EXT => Value::Int(vec![0; 4]),
             // An RGBA visual has no colour-index bits.
             gl::GL_INDEX_BITS => Value::int(0),
             gl::GL_AUX_BUFFERS => Value::int(0),
@@ -124,6 +127,7 @@ mod tests {
         ctx.bind_target(rgb);
         assert_eq!(alpha_bits(&ctx), 0);
         assert_eq!(ctx.query(gl::GL_RED_BITS).unwrap().to_ints()[0], 8);
+        assert_eq!(ctx.query(gl::GL_RGBA_SIGNED_COMPONENTS_EXT).unwrap().to_ints(), [0; 4]);
         ctx.bind_target(Target { alpha: true, ..rgb });
         assert_eq!(alpha_bits(&ctx), 8);
     }

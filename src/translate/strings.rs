@@ -27,6 +27,11 @@ const SHADING_LANGUAGE_VERSION: &str = "1.20\0";
 /// `GL_ARB_pixel_buffer_object` and `GL_EXT_pixel_buffer_object` cover every pixel command glrt
 /// has; the imaging-subset commands they also name (convolution, histogram, minmax) are not
 /// part of OpenGL 1.5 without `GL_ARB_imaging`, which glrt does not announce.
+/// The texture format extensions (`GL_ARB_texture_float`, `GL_ARB_texture_rg`,
+/// `GL_EXT_packed_float`, `GL_EXT_texture_sRGB`, `GL_EXT_texture_shared_exponent`,
+/// `GL_EXT_texture_snorm`) are complete for textures (`translate::texture::storage`); their
+/// formats are `GL_FRAMEBUFFER_UNSUPPORTED_EXT` as framebuffer attachments where they keep more
+/// than 8 bits, which the specifications allow.
 const EXTENSIONS: &str = concat!(
     "GL_ARB_depth_buffer_float ",
     "GL_ARB_depth_texture ",
@@ -44,11 +49,14 @@ const EXTENSIONS: &str = concat!(
     "GL_ARB_texture_env_combine ",
     "GL_ARB_texture_env_crossbar ",
     "GL_ARB_texture_env_dot3 ",
+    "GL_ARB_texture_float ",
     "GL_ARB_texture_mirrored_repeat ",
     "GL_ARB_texture_non_power_of_two ",
+    "GL_ARB_texture_rg ",
     "GL_ARB_transpose_matrix ",
     "GL_ARB_vertex_buffer_object ",
     "GL_ARB_window_pos ",
+    "GL_EXT_abgr ",
     "GL_EXT_bgra ",
     "GL_EXT_blend_color ",
     "GL_EXT_blend_func_separate ",
@@ -60,6 +68,7 @@ const EXTENSIONS: &str = concat!(
     "GL_EXT_framebuffer_blit ",
     "GL_EXT_framebuffer_object ",
     "GL_EXT_multi_draw_arrays ",
+    "GL_EXT_packed_float ",
     "GL_EXT_packed_depth_stencil ",
     "GL_EXT_packed_pixels ",
     "GL_EXT_paletted_texture ",
@@ -79,6 +88,9 @@ const EXTENSIONS: &str = concat!(
     "GL_EXT_texture_env_combine ",
     "GL_EXT_texture_lod_bias ",
     "GL_EXT_texture_object ",
+    "GL_EXT_texture_sRGB ",
+    "GL_EXT_texture_shared_exponent ",
+    "GL_EXT_texture_snorm ",
     "GL_EXT_vertex_array ",
     "GL_IBM_texture_mirrored_repeat ",
     "GL_NV_blend_square ",

@@ -14,9 +14,18 @@ use super::upload::Ring;
 /// Descriptor sets per pool.
 const SETS_PER_POOL: u32 = 256;
 
-/// Texture and sampler of each sampler binding, with the uniform buffer: what a descriptor set
-/// holds (the uniform offset is dynamic).
-pub type SetKey = (vk::Buffer, [(vk::ImageView, vk::Sampler); BINDINGS as usize - 1]);
+/// What a descriptor set holds: dynamic storage buffers at bindings `0..` (the buffer and the
+/// range the shaders read; the offsets are dynamic), then combined image samplers at the
+/// bindings after them.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct SetKey {
+    /// The set's layout.
+    pub layout: vk::DescriptorSetLayout,
+    /// Buffer and range of each storage buffer binding.
+    pub buffers: Vec<(vk::Buffer, u64)>,
+    /// Image view and sampler of each sampler binding.
+    pub images: Vec<(vk::ImageView, vk::Sampler)>,
+}
 
 /// Descriptor pools of one frame in flight, reset together when the frame is reused; sets
 /// with the same contents are shared within the frame.
@@ -42,37 +51,40 @@ impl Descriptors {
         Ok(())
     }
 
-    /// The set of `layout` holding `key`, with `uniform_range` bytes of the per-draw storage buffer.
-    pub fn get(&mut self, device: &Device, layout: vk::DescriptorSetLayout, key: &SetKey, uniform_range: u64) -> Result<vk::DescriptorSet> {
+    /// The set holding `key`.
+    pub fn get(&mut self, device: &Device, key: &SetKey) -> Result<vk::DescriptorSet> {
         if let Some(&set) = self.sets.get(key) {
             return Ok(set);
         }
-        let set = self.allocate(device, layout)?;
-        let buffer = [vk::DescriptorBufferInfo { buffer: key.0, offset: 0, range: uniform_range }];
+        let set = self.allocate(device, key.layout)?;
+        let buffers: Vec<_> = key.buffers.iter().map(|&(buffer, range)| [vk::DescriptorBufferInfo { buffer, offset: 0, range }]).collect();
         let images: Vec<_> = key
-            .1
+            .images
             .iter()
             .map(|&(view, sampler)| [vk::DescriptorImageInfo { sampler, image_view: view, image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL }])
             .collect();
-        let mut writes = vec![
-            vk::WriteDescriptorSet::default()
-                .dst_set(set)
-                .dst_binding(0)
-                .descriptor_type(vk::DescriptorType::STORAGE_BUFFER_DYNAMIC)
-                .buffer_info(&buffer),
-        ];
+        let mut writes = Vec::with_capacity(buffers.len() + images.len());
+        for (i, buffer) in buffers.iter().enumerate() {
+            writes.push(
+                vk::WriteDescriptorSet::default()
+                    .dst_set(set)
+                    .dst_binding(i as u32)
+                    .descriptor_type(vk::DescriptorType::STORAGE_BUFFER_DYNAMIC)
+                    .buffer_info(buffer),
+            );
+        }
         for (i, image) in images.iter().enumerate() {
             writes.push(
                 vk::WriteDescriptorSet::default()
                     .dst_set(set)
-                    .dst_binding(1 + i as u32)
+                    .dst_binding((buffers.len() + i) as u32)
                     .descriptor_type(vk::DescriptorType::COMBINED_IMAGE_SAMPLER)
                     .image_info(image),
             );
         }
         // Safety: every handle in the writes is alive for the frame.
         unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
-        self.sets.insert(*key, set);
+        self.sets.insert(key.clone(), set);
         Ok(set)
     }
 
@@ -90,7 +102,7 @@ impl Descriptors {
                 continue;
             }
             let sizes = [
-                vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER_DYNAMIC, descriptor_count: SETS_PER_POOL },
+                vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER_DYNAMIC, descriptor_count: SETS_PER_POOL * 2 },
                 vk::DescriptorPoolSize { ty: vk::DescriptorType::COMBINED_IMAGE_SAMPLER, descriptor_count: SETS_PER_POOL * (BINDINGS - 1) },
             ];
             let info = vk::DescriptorPoolCreateInfo::default().max_sets(SETS_PER_POOL).pool_sizes(&sizes);

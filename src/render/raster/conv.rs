@@ -3,7 +3,7 @@
 use ash::vk;
 
 use crate::frame::Topology;
-use crate::frame::state::{BlendEquation, BlendFactor, CompareFunc, LogicOp, StencilOp};
+use crate::frame::state::{BlendEquation, BlendFactor, CompareFunc, LogicOp, PolygonMode, StencilOp};
 
 /// A comparison.
 pub fn compare(f: CompareFunc) -> vk::CompareOp {
@@ -93,5 +93,14 @@ pub fn topology(t: Topology) -> vk::PrimitiveTopology {
         Topology::Triangles => vk::PrimitiveTopology::TRIANGLE_LIST,
         Topology::Lines => vk::PrimitiveTopology::LINE_LIST,
         Topology::Points => vk::PrimitiveTopology::POINT_LIST,
+    }
+}
+
+/// A polygon mode.
+pub fn polygon_mode(m: PolygonMode) -> vk::PolygonMode {
+    match m {
+        PolygonMode::Fill => vk::PolygonMode::FILL,
+        PolygonMode::Line => vk::PolygonMode::LINE,
+        PolygonMode::Point => vk::PolygonMode::POINT,
     }
 }

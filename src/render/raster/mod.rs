@@ -9,6 +9,7 @@
 //! - [`commands`]: a frame in flight (command buffer, fence, upload ring, descriptor sets).
 //! - [`upload`]: the per-frame ring of vertices, indices and uniforms.
 //! - [`pipelines`]: pipelines per (shader key, fixed state), cached; [`conv`]: state → Vulkan.
+//! - [`programs`]: OpenGL 2.0 programs on the device (shader modules, descriptor set 1).
 //! - [`textures`]: texture images and samplers.
 //! - [`renderer`]: the [`renderer::Renderer`] sink (frame order, read-back, present).
 //! - [`output`]: consumers of presented frames ([`output::FrameOutput`]): [`dump`]
@@ -25,6 +26,7 @@ pub mod multisample;
 pub mod occlusion;
 pub mod output;
 pub mod pipelines;
+pub mod programs;
 pub mod pixel_ops;
 pub mod readback;
 pub mod renderer;

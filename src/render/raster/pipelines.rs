@@ -1,5 +1,6 @@
-//! Graphics pipelines of the fixed-function shaders, created once per [`PipelineKey`] and
-//! cached: the shader specialisation ([`ff::ShaderKey`]), the topology, and the part of the
+//! Graphics pipelines, created once per [`PipelineKey`] and cached: the stages (the
+//! fixed-function shaders, or an OpenGL 2.0 program's in their place, see [`super::programs`]),
+//! the shader specialisation ([`ff::ShaderKey`]), the topology, the polygon mode, and the part of the
 //! raster state Vulkan bakes into a pipeline (blend factors and equation, logic op, depth
 //! test/function/write, stencil functions and operations, colour mask, culling and front face,
 //! whether polygon offset applies, and the multisample state: sample count, sample mask,
@@ -18,8 +19,12 @@
 //!   depth range is GL's `glDepthRange`.
 //! - **logic op**: used when the device has `logicOp` (lavapipe and NVIDIA do); otherwise the
 //!   draw is drawn without it and a warning is logged once.
-//! - Polygon offset applies to triangle batches when `GL_POLYGON_OFFSET_FILL` is on (polygon
-//!   modes line/point are expanded by `ff`, which decides which flag applies).
+//! - Polygon offset applies to triangle batches as [`ff::Batch::polygon_offset`] says.
+//! - **Programs**: one pipeline layout serves every pipeline: set 0 the fixed-function set,
+//!   set 1 the programs' ([`super::programs::set_layout`]). A program's vertex stage adds
+//!   vertex binding 1, the generic attributes it reads ([`ff::vertex::pack_generic`]) at the
+//!   locations of the `translate::glsl` contract; its pipelines draw points and lines with
+//!   Vulkan's topologies and polygon modes (`fillModeNonSolid`, see [`ff::native`]).
 
 use std::collections::HashMap;
 
@@ -29,8 +34,11 @@ use super::conv;
 use super::device::{Check, Device, Result};
 use super::ff;
 use super::multisample::{self, SampleState};
+use super::programs::{self, Programs};
 use super::target::COLOR_FORMAT;
+use crate::frame::program::ShaderProgram;
 use crate::frame::state::{Face, RasterState, Winding};
+use crate::translate::glsl::GENERIC_ATTRIBUTE_LOCATION;
 
 /// Descriptor bindings of set 0 (see the `ff` module doc): the uniform block, then 2D, 3D and
 /// cube samplers of each unit.
@@ -59,6 +67,11 @@ pub struct PipelineKey {
     pub shader: ff::ShaderKey,
     /// Primitive topology.
     pub topology: vk::PrimitiveTopology,
+    /// Polygon mode (`FILL` but for triangles a program's vertex stage draws as lines or
+    /// points).
+    pub polygon_mode: vk::PolygonMode,
+    /// The program whose stages replace the fixed-function ones ([`ShaderProgram::id`]).
+    pub program: Option<u64>,
     /// Fixed per-fragment state.
     pub fixed: FixedState,
 }
@@ -143,14 +156,17 @@ impl FixedState {
     }
 }
 
-/// The descriptor layout, pipeline layout, shader modules and the pipeline cache.
+/// The descriptor layouts, pipeline layout, shader modules and the pipeline cache.
 pub struct Pipelines {
     /// Layout of descriptor set 0.
     pub set_layout: vk::DescriptorSetLayout,
+    /// Layout of descriptor set 1 (programs).
+    pub program_set_layout: vk::DescriptorSetLayout,
     /// The pipeline layout.
     pub layout: vk::PipelineLayout,
     vertex: vk::ShaderModule,
     fragment: vk::ShaderModule,
+    programs: Programs,
     depth_format: vk::Format,
     cache: HashMap<PipelineKey, vk::Pipeline>,
 }
@@ -177,17 +193,56 @@ impl Pipelines {
             let set_layout = d
                 .create_descriptor_set_layout(&vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings), None)
                 .check("vkCreateDescriptorSetLayout")?;
-            let sets = [set_layout];
+            let program_set_layout = programs::set_layout(device)?;
+            let sets = [set_layout, program_set_layout];
             let layout = d
                 .create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&sets), None)
                 .check("vkCreatePipelineLayout")?;
             let vertex = shader_module(device, ff::vertex_spirv())?;
             let fragment = shader_module(device, ff::fragment_spirv())?;
-            Ok(Pipelines { set_layout, layout, vertex, fragment, depth_format: device.depth_format, cache: HashMap::new() })
+            Ok(Pipelines {
+                set_layout,
+                program_set_layout,
+                layout,
+                vertex,
+                fragment,
+                programs: Programs::default(),
+                depth_format: device.depth_format,
+                cache: HashMap::new(),
+            })
         }
     }
 
-    /// The pipeline of `key`, created on first use.
+    /// Makes the shader modules of `program` (once per program) and marks them used in this
+    /// frame; pipelines of keys naming it can then be made.
+    pub fn use_program(&mut self, device: &Device, program: &ShaderProgram) -> Result<()> {
+        self.programs.get(device, program).map(|_| ())
+    }
+
+    /// Counts a presented frame: programs unused for [`super::textures::KEEP_FRAMES`] frames
+    /// are freed with their pipelines.
+    pub fn end_frame(&mut self, device: &Device) {
+        let dead = self.programs.end_frame(device);
+        if dead.is_empty() {
+            return;
+        }
+        self.cache.retain(|key, &mut p| {
+            let keep = key.program.is_none_or(|id| !dead.contains(&id));
+            if !keep {
+                // Safety: the GPU is done with it (unused for more frames than are in flight).
+                unsafe { device.raw.destroy_pipeline(p, None) };
+            }
+            keep
+        });
+    }
+
+    /// Programs whose shader modules are on the device.
+    pub fn program_count(&self) -> usize {
+        self.programs.len()
+    }
+
+    /// The pipeline of `key`, created on first use (a key naming a program needs
+    /// [`Pipelines::use_program`] first).
     pub fn get(&mut self, device: &Device, key: &PipelineKey) -> Result<vk::Pipeline> {
         if let Some(&p) = self.cache.get(key) {
             return Ok(p);
@@ -215,16 +270,22 @@ impl Pipelines {
             .collect();
         let data = super::upload::bytemuck_free::bytes(&words);
         let spec = vk::SpecializationInfo::default().map_entries(&entries).data(data);
+        let program = match key.program {
+            Some(id) => Some(self.programs.modules(id).ok_or_else(|| super::device::Error::Memory(format!("program {id} has no shader modules")))?),
+            None => None,
+        };
+        let vertex = program.and_then(|p| p.vertex).unwrap_or(self.vertex);
+        let fragment = program.and_then(|p| p.fragment).unwrap_or(self.fragment);
         let stages = [
-            vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::VERTEX).module(self.vertex).name(c"main").specialization_info(&spec),
-            vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::FRAGMENT).module(self.fragment).name(c"main").specialization_info(&spec),
+            vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::VERTEX).module(vertex).name(c"main").specialization_info(&spec),
+            vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::FRAGMENT).module(fragment).name(c"main").specialization_info(&spec),
         ];
-        let vertex_bindings = [vk::VertexInputBindingDescription {
+        let mut vertex_bindings = vec![vk::VertexInputBindingDescription {
             binding: 0,
             stride: (ff::VERTEX_FLOATS * 4) as u32,
             input_rate: vk::VertexInputRate::VERTEX,
         }];
-        let attributes: Vec<_> = ff::VERTEX_ATTRIBUTES
+        let mut attributes: Vec<_> = ff::VERTEX_ATTRIBUTES
             .iter()
             .map(|a| vk::VertexInputAttributeDescription {
                 location: a.location,
@@ -234,6 +295,18 @@ impl Pipelines {
                 offset: a.offset * 4,
             })
             .collect();
+        // Generic attributes of a program's vertex stage: vec4s at binding 1, in the order of
+        // its attribute list.
+        let generic = program.filter(|p| p.vertex.is_some()).map_or(&[][..], |p| &p.attributes[..]);
+        if !generic.is_empty() {
+            vertex_bindings.push(vk::VertexInputBindingDescription { binding: 1, stride: 16 * generic.len() as u32, input_rate: vk::VertexInputRate::VERTEX });
+            attributes.extend(generic.iter().enumerate().map(|(k, &index)| vk::VertexInputAttributeDescription {
+                location: GENERIC_ATTRIBUTE_LOCATION + index - 1,
+                binding: 1,
+                format: vk::Format::R32G32B32A32_SFLOAT,
+                offset: 16 * k as u32,
+            }));
+        }
         let vertex_input = vk::PipelineVertexInputStateCreateInfo::default()
             .vertex_binding_descriptions(&vertex_bindings)
             .vertex_attribute_descriptions(&attributes);
@@ -241,7 +314,7 @@ impl Pipelines {
         let viewport = vk::PipelineViewportStateCreateInfo::default().viewport_count(1).scissor_count(1);
         let f = &key.fixed;
         let raster = vk::PipelineRasterizationStateCreateInfo::default()
-            .polygon_mode(vk::PolygonMode::FILL)
+            .polygon_mode(key.polygon_mode)
             .cull_mode(f.cull)
             .front_face(f.front_face)
             .depth_bias_enable(f.depth_bias)
@@ -328,10 +401,12 @@ impl Pipelines {
             for (_, p) in self.cache.drain() {
                 device.raw.destroy_pipeline(p, None);
             }
+            self.programs.destroy(device);
             device.raw.destroy_shader_module(self.vertex, None);
             device.raw.destroy_shader_module(self.fragment, None);
             device.raw.destroy_pipeline_layout(self.layout, None);
             device.raw.destroy_descriptor_set_layout(self.set_layout, None);
+            device.raw.destroy_descriptor_set_layout(self.program_set_layout, None);
         }
     }
 }

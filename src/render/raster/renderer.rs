@@ -19,7 +19,7 @@ use std::sync::Arc;
 
 use ash::vk;
 
-use super::commands::Slot;
+use super::commands::{SetKey, Slot};
 use super::occlusion::Occlusion;
 use super::output::{FrameOutput, SubmitSync};
 use super::device::{Device, Error, Result};
@@ -272,12 +272,17 @@ impl Recorder<'_> {
         if batches.is_empty() {
             return Ok(());
         }
-        if self.textures.needs_upload(&draw.textures) {
+        let slot_textures = draw.program.as_ref().map_or(&[][..], |p| &p.textures[..]);
+        if self.textures.needs_upload(draw.textures.iter().chain(slot_textures)) {
             self.end_rendering();
-            self.textures.upload(self.device, self.cmd, self.ring, &draw.textures)?;
+            self.textures.upload(self.device, self.cmd, self.ring, draw.textures.iter().chain(slot_textures))?;
         }
         let lod_bias = std::array::from_fn(|u| draw.texture_units.get(u).copied().flatten().map_or(0.0, |t| t.env.lod_bias));
         let images = self.textures.bindings(self.device, &draw.textures, lod_bias)?;
+        let program = match &draw.program {
+            Some(p) => Some((p.program.id, super::programs::bind_set(self, p)?)),
+            None => None,
+        };
         self.begin_rendering();
         let (frame, query) = self.query;
         self.occlusion.before_draw(self.device, self.cmd, self.slot, frame, query)?;
@@ -295,11 +300,15 @@ impl Recorder<'_> {
             max_depth: state.depth_range[1].clamp(0.0, 1.0) as f32,
         };
         let features = &self.device.features;
+        // Lines a program's vertex stage places (the only ones Vulkan draws as lines): aliased
+        // widths round to whole pixels (section 3.4.2).
+        let width = if state.line.smooth { state.line.width } else { state.line.width.round().max(1.0) };
         let line_width = if features.wide_lines {
-            state.line.width.clamp(features.line_width_range[0], features.line_width_range[1])
+            width.clamp(features.line_width_range[0], features.line_width_range[1])
         } else {
             1.0
         };
+        note_missing_features(features, &batches, draw);
         for batch in &batches {
             if batch.indices.is_empty() {
                 continue;
@@ -310,16 +319,25 @@ impl Recorder<'_> {
                 log_once("the device has no logicOp feature: glLogicOp is ignored");
             }
             let vertices = self.ring.push_slice(self.device, &batch.vertices, 16)?;
+            let generic = if batch.generic.is_empty() { None } else { Some(self.ring.push_slice(self.device, &batch.generic, 16)?) };
             let indices = self.ring.push_slice(self.device, &batch.indices, 4)?;
             let mut uniforms = batch.uniforms.clone();
             uniforms.resize(ff::UNIFORM_SIZE, 0);
             ff::uniforms::set_framebuffer_height(&mut uniforms, h);
             let uniform = self.ring.push(self.device, &uniforms, block_align)?;
-            let set = self.descriptors.get(self.device, self.pipelines.set_layout, &(uniform.buffer, images), ff::UNIFORM_SIZE as u64)?;
+            let set_key = SetKey { layout: self.pipelines.set_layout, buffers: vec![(uniform.buffer, ff::UNIFORM_SIZE as u64)], images: images.to_vec() };
+            let set = self.descriptors.get(self.device, &set_key)?;
+            let polygon_mode = if features.fill_mode_non_solid { conv::polygon_mode(batch.polygon_mode) } else { vk::PolygonMode::FILL };
             let stencil = state.stencil.unwrap_or_default();
             let blend_color = state.blend.map_or([0.0; 4], |b| b.color);
             for &(samples, [dx, dy]) in &passes {
-                let key = PipelineKey { shader: batch.shader, topology: conv::topology(batch.topology), fixed: FixedState { samples, ..fixed } };
+                let key = PipelineKey {
+                    shader: batch.shader,
+                    topology: conv::topology(batch.topology),
+                    polygon_mode,
+                    program: program.map(|(id, _)| id),
+                    fixed: FixedState { samples, ..fixed },
+                };
                 let pipeline = self.pipelines.get(self.device, &key)?;
                 let viewport = vk::Viewport { x: viewport.x + dx, y: viewport.y + dy, ..viewport };
                 // Safety: inside the pass; every handle is alive for the frame; the dynamic
@@ -335,7 +353,13 @@ impl Recorder<'_> {
                     d.cmd_set_stencil_compare_mask(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.value_mask);
                     d.cmd_set_stencil_write_mask(self.cmd, vk::StencilFaceFlags::FRONT_AND_BACK, stencil.write_mask);
                     d.cmd_bind_descriptor_sets(self.cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.layout, 0, &[set], &[uniform.offset as u32]);
+                    if let Some((_, (program_set, offsets))) = program {
+                        d.cmd_bind_descriptor_sets(self.cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.layout, 1, &[program_set], &offsets);
+                    }
                     d.cmd_bind_vertex_buffers(self.cmd, 0, &[vertices.buffer], &[vertices.offset]);
+                    if let Some(generic) = generic {
+                        d.cmd_bind_vertex_buffers(self.cmd, 1, &[generic.buffer], &[generic.offset]);
+                    }
                     d.cmd_bind_index_buffer(self.cmd, indices.buffer, indices.offset, vk::IndexType::UINT32);
                     d.cmd_draw_indexed(self.cmd, batch.indices.len() as u32, 1, 0, 0, 0);
                 }
@@ -407,6 +431,11 @@ impl Renderer {
     /// Pipelines created so far (tests, statistics).
     pub fn pipeline_count(&self) -> usize {
         self.parts.pipelines.len()
+    }
+
+    /// Programs whose shader modules are on the GPU (tests, statistics).
+    pub fn program_count(&self) -> usize {
+        self.parts.pipelines.program_count()
     }
 
     /// Texture versions on the GPU (tests, statistics).
@@ -641,6 +670,7 @@ impl Renderer {
         self.outputs = outputs;
         recorded?;
         self.parts.textures.end_frame(&self.parts.device);
+        self.parts.pipelines.end_frame(&self.parts.device);
         self.recording = false;
         self.progress = None;
         self.current = (self.current + 1) % self.slots.len();
@@ -775,6 +805,27 @@ impl Drop for Renderer {
         self.parts.pipelines.destroy(device);
         self.parts.occlusion.destroy(device);
         self.parts.textures.destroy(device);
+    }
+}
+
+/// Logs once what the device cannot draw of `batches` as asked: wide lines, large points and
+/// polygon modes drawn natively (a program's vertex stage) need `wideLines`, `largePoints` and
+/// `fillModeNonSolid` (lavapipe and NVIDIA have them); without them lines are 1 pixel wide,
+/// points 1 pixel, and polygons filled.
+fn note_missing_features(features: &super::device::Features, batches: &[ff::Batch], draw: &Draw) {
+    use crate::frame::{Topology, state::PolygonMode};
+    for b in batches {
+        let lines = b.topology == Topology::Lines || b.polygon_mode == PolygonMode::Line;
+        if lines && !features.wide_lines && draw.state.line.width != 1.0 {
+            log_once("the device has no wideLines feature: lines a vertex shader places are 1 pixel wide");
+        }
+        let points = b.topology == Topology::Points || b.polygon_mode == PolygonMode::Point;
+        if points && !features.large_points {
+            log_once("the device has no largePoints feature: points a vertex shader places are 1 pixel wide");
+        }
+        if b.polygon_mode != PolygonMode::Fill && !features.fill_mode_non_solid {
+            log_once("the device has no fillModeNonSolid feature: polygons a vertex shader places are filled in GL_LINE and GL_POINT modes");
+        }
     }
 }
 

@@ -1,17 +1,24 @@
 //! Textures on the GPU: the image of each [`TextureRef`] content version, uploaded once and
 //! kept while draws use it (dropped after [`KEEP_FRAMES`] presented frames without use),
-//! samplers cached by their state, and the 1×1 white textures that fill unused bindings (see
-//! the `ff` module doc).
+//! samplers cached by their state, the 1×1 white textures that fill unused fixed-function
+//! bindings (see the `ff` module doc) and the 1×1 black opaque ones that fill a program's
+//! sampler slots without a complete texture (which sample as (0, 0, 0, 1) in a shader,
+//! OpenGL 2.0 section 3.11.2).
 //!
 //! Images:
 //! - colour formats: the canonical RGBA8 texels of [`crate::frame::texture`] (every
-//!   [`TexelFormat`] is already expanded to RGBA there, so one Vulkan format serves all);
+//!   [`TexelFormat`] is already expanded to RGBA there, so one Vulkan format serves all),
+//!   as `R8G8B8A8_SRGB` for [`Precision::Srgb8`] levels (sampling decodes sRGB to linear), and
+//!   the `f32` values of [`Precision::Float`] levels as `R32G32B32A32_SFLOAT` (where the device
+//!   filters it linearly; else their RGBA8 texels);
 //! - depth formats: `R32_SFLOAT` from [`TexImage::depth_values`] at full precision, swizzled
 //!   to `DEPTH_TEXTURE_MODE` ((D, D, D, 1), (D, D, D, D), (0, 0, 0, D)); with a comparison
 //!   (`GL_COMPARE_R_TO_TEXTURE`) the swizzle is (D, D, D, D) and the fragment shader compares
 //!   and expands (a sampler with `compareEnable` needs a shadow sampler in GLSL, which the
 //!   `ff` contract does not have). Without linear filtering of `R32_SFLOAT` the RGBA8 texels
-//!   are used;
+//!   are used. A program's sampler slot reads the depth in red whatever the mode (the shader
+//!   expands it): a depth image whose swizzle moves red elsewhere gets a second, unswizzled
+//!   view for programs;
 //! - 1D textures are 2D images one texel high, 3D textures 3D images, cube maps 6-layer cube
 //!   images; rows bottom to top as OpenGL gives them, so `t = 0` is image row 0;
 //! - mip levels from the base level (`GL_TEXTURE_BASE_LEVEL`) to the max level or the 1×1
@@ -32,7 +39,8 @@ use super::device::{Check, Device, Image, Result};
 use super::ff;
 use super::pipelines::{BINDINGS, SamplerKind, sampler_binding};
 use super::upload::Ring;
-use crate::frame::texture::{DepthMode, Filter, Sampler, TexImage, TexelFormat, TextureKind, TextureRef, Wrap};
+use crate::frame::program::{self, MAX_SAMPLERS};
+use crate::frame::texture::{DepthMode, Filter, Precision, Sampler, TexImage, TexelFormat, TextureKind, TextureRef, Wrap};
 
 /// Presented frames a texture version stays on the GPU without being used (more than the
 /// frames in flight, so the GPU is done with it when it goes).
@@ -41,9 +49,14 @@ pub const KEEP_FRAMES: u64 = 8;
 /// Image view and sampler of each sampler binding (bindings 1..).
 pub type Bindings = [(vk::ImageView, vk::Sampler); BINDINGS as usize - 1];
 
+/// Image view and sampler of each sampler slot of a program (set 1).
+pub type SlotBindings = [(vk::ImageView, vk::Sampler); MAX_SAMPLERS];
+
 /// One uploaded content version.
 struct Entry {
     image: Image,
+    /// The unswizzled view of a depth image whose view moves red elsewhere (for programs).
+    red_view: Option<vk::ImageView>,
     kind: SamplerKind,
     /// Frame counter of the last use.
     used: u64,
@@ -63,6 +76,8 @@ struct SamplerKey {
 /// Textures and samplers.
 pub struct Textures {
     white: Option<[Image; 3]>,
+    /// The opaque black 2D, 3D and cube textures.
+    black: Option<[Image; 3]>,
     entries: HashMap<(u32, u64), Entry>,
     /// Versions that could not be created (too large, out of memory): sampled as white.
     failed: std::collections::HashSet<(u32, u64)>,
@@ -71,36 +86,53 @@ pub struct Textures {
     frame: u64,
     /// Whether `R32_SFLOAT` can be sampled with linear filtering.
     float_depth: bool,
+    /// Whether `R32G32B32A32_SFLOAT` can be sampled with linear filtering.
+    float_color: bool,
+}
+
+/// What the texels of an uploaded image are.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Upload {
+    /// RGBA8 texels (linear or sRGB).
+    Rgba8,
+    /// RGBA `f32` values.
+    Float,
+    /// `f32` depth values.
+    Depth,
 }
 
 impl Textures {
     /// An empty cache (the white images are made on first use, in a frame).
     pub fn new(device: &Device) -> Textures {
-        // Safety: valid physical device.
-        let props = unsafe { device.instance.get_physical_device_format_properties(device.physical, vk::Format::R32_SFLOAT) };
-        let float_depth = props
-            .optimal_tiling_features
-            .contains(vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR | vk::FormatFeatureFlags::TRANSFER_DST);
-        Textures { white: None, entries: HashMap::new(), failed: Default::default(), samplers: HashMap::new(), frame: 0, float_depth }
+        let filters = |format| {
+            // Safety: valid physical device.
+            let props = unsafe { device.instance.get_physical_device_format_properties(device.physical, format) };
+            props.optimal_tiling_features.contains(vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR | vk::FormatFeatureFlags::TRANSFER_DST)
+        };
+        let (float_depth, float_color) = (filters(vk::Format::R32_SFLOAT), filters(vk::Format::R32G32B32A32_SFLOAT));
+        Textures { white: None, black: None, entries: HashMap::new(), failed: Default::default(), samplers: HashMap::new(), frame: 0, float_depth, float_color }
     }
 
     /// Whether [`Textures::upload`] would record commands for `textures` (then the caller
     /// ends the rendering pass first).
-    pub fn needs_upload(&self, textures: &[Option<TextureRef>]) -> bool {
-        self.white.is_none() || textures.iter().flatten().any(|t| !self.known(t))
+    pub fn needs_upload<'a>(&self, mut textures: impl Iterator<Item = &'a Option<TextureRef>>) -> bool {
+        self.white.is_none() || self.black.is_none() || textures.any(|t| t.as_ref().is_some_and(|t| !self.known(t)))
     }
 
-    /// Records the upload of the white textures and of every texture of `textures` not on the
-    /// GPU yet (outside a rendering pass), staging through `ring`.
-    pub fn upload(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, textures: &[Option<TextureRef>]) -> Result<()> {
+    /// Records the upload of the white and black textures and of every texture of `textures`
+    /// not on the GPU yet (outside a rendering pass), staging through `ring`.
+    pub fn upload<'a>(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, textures: impl Iterator<Item = &'a Option<TextureRef>>) -> Result<()> {
         if self.white.is_none() {
-            self.white = Some(create_white(device, cmd)?);
+            self.white = Some(create_filled(device, cmd, "white", [1.0; 4])?);
         }
-        for t in textures.iter().flatten() {
+        if self.black.is_none() {
+            self.black = Some(create_filled(device, cmd, "black", [0.0, 0.0, 0.0, 1.0])?);
+        }
+        for t in textures.flatten() {
             if !self.known(t) {
                 match self.create(device, cmd, ring, t) {
-                    Ok((image, kind)) => {
-                        self.entries.insert((t.id, t.version), Entry { image, kind, used: self.frame });
+                    Ok((image, red_view, kind)) => {
+                        self.entries.insert((t.id, t.version), Entry { image, red_view, kind, used: self.frame });
                     }
                     Err(e) => {
                         eprintln!("glrt: texture {} (version {}) cannot be used: {e}; it samples as white", t.id, t.version);
@@ -136,6 +168,30 @@ impl Textures {
         Ok(out)
     }
 
+    /// Views and samplers of a program's sampler slots: slot `i` of kind `kinds[i]` samples
+    /// `textures[i]` (the black texture of its kind when `None`, not on the GPU, or of another
+    /// kind); uploads must have been recorded ([`Textures::upload`]).
+    pub fn slot_bindings(&mut self, device: &Device, kinds: &[program::SamplerKind], textures: &[Option<TextureRef>]) -> Result<SlotBindings> {
+        let black = self.black.as_ref().map(|b| [b[0].view, b[1].view, b[2].view]).unwrap_or_default();
+        let default_sampler = self.sampler(device, &Sampler::default(), 0.0)?;
+        let mut out: SlotBindings = [(black[0], default_sampler); MAX_SAMPLERS];
+        for (slot, kind) in kinds.iter().enumerate().take(MAX_SAMPLERS) {
+            let kind = match kind {
+                program::SamplerKind::D2 | program::SamplerKind::D2Shadow => SamplerKind::D2,
+                program::SamplerKind::D3 => SamplerKind::D3,
+                program::SamplerKind::Cube => SamplerKind::Cube,
+            };
+            out[slot].0 = black[kind as usize];
+            let Some(t) = textures.get(slot).and_then(Option::as_ref) else { continue };
+            let frame = self.frame;
+            let Some(entry) = self.entries.get_mut(&(t.id, t.version)).filter(|e| e.kind == kind) else { continue };
+            entry.used = frame;
+            let view = entry.red_view.unwrap_or(entry.image.view);
+            out[slot] = (view, self.sampler(device, &t.content.sampler, 0.0)?);
+        }
+        Ok(out)
+    }
+
     /// Counts a presented frame and frees the versions unused for [`KEEP_FRAMES`] frames.
     pub fn end_frame(&mut self, device: &Device) {
         self.frame += 1;
@@ -143,7 +199,7 @@ impl Textures {
         let old: Vec<_> = self.entries.iter().filter(|(_, e)| e.used + KEEP_FRAMES < frame).map(|(k, _)| *k).collect();
         for key in old {
             if let Some(e) = self.entries.remove(&key) {
-                device.destroy_image(e.image);
+                destroy_entry(device, e);
             }
         }
     }
@@ -160,11 +216,11 @@ impl Textures {
 
     /// Frees everything (the GPU must be idle).
     pub fn destroy(&mut self, device: &Device) {
-        for image in self.white.take().into_iter().flatten() {
+        for image in self.white.take().into_iter().chain(self.black.take()).flatten() {
             device.destroy_image(image);
         }
         for (_, e) in self.entries.drain() {
-            device.destroy_image(e.image);
+            destroy_entry(device, e);
         }
         for (_, s) in self.samplers.drain() {
             // Safety: the GPU is idle.
@@ -230,8 +286,9 @@ impl Textures {
         Ok(sampler)
     }
 
-    /// Creates the image of `t` and records its upload.
-    fn create(&self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, t: &TextureRef) -> Result<(Image, SamplerKind)> {
+    /// Creates the image of `t` (with its unswizzled view for programs, when it needs one) and
+    /// records its upload.
+    fn create(&self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, t: &TextureRef) -> Result<(Image, Option<vk::ImageView>, SamplerKind)> {
         let content = &t.content;
         let base = content.sampler.levels[0] as usize;
         let chain = level_chain(&content.faces, base, content.sampler.levels[1] as usize, content.kind);
@@ -249,7 +306,12 @@ impl Textures {
             return Err(super::device::Error::Memory(format!("{w}×{h}×{d} exceeds the device's {max}")));
         }
         let depth = content.format == TexelFormat::Depth && self.float_depth && !top.depth_values.is_empty();
-        let format = if depth { vk::Format::R32_SFLOAT } else { vk::Format::R8G8B8A8_UNORM };
+        let (upload, format) = match top.precision {
+            _ if depth => (Upload::Depth, vk::Format::R32_SFLOAT),
+            Precision::Float if self.float_color => (Upload::Float, vk::Format::R32G32B32A32_SFLOAT),
+            Precision::Srgb8 => (Upload::Rgba8, vk::Format::R8G8B8A8_SRGB),
+            _ => (Upload::Rgba8, vk::Format::R8G8B8A8_UNORM),
+        };
         let (image_type, view_type, layers, flags, kind) = match content.kind {
             TextureKind::D1 | TextureKind::D2 => (vk::ImageType::TYPE_2D, vk::ImageViewType::TYPE_2D, 1, vk::ImageCreateFlags::empty(), SamplerKind::D2),
             TextureKind::D3 => (vk::ImageType::TYPE_3D, vk::ImageViewType::TYPE_3D, 1, vk::ImageCreateFlags::empty(), SamplerKind::D3),
@@ -268,12 +330,25 @@ impl Textures {
         let swizzle = if depth { depth_swizzle(content.sampler.depth_mode, content.sampler.compare.is_some()) } else { vk::ComponentMapping::default() };
         let image = device.create_image_swizzled("glrt texture", &info, view_type, vk::ImageAspectFlags::COLOR, swizzle)?;
         let range = vk::ImageSubresourceRange { aspect_mask: vk::ImageAspectFlags::COLOR, base_mip_level: 0, level_count: levels, base_array_layer: 0, layer_count: layers };
+        let red_view = if swizzle.r == vk::ComponentSwizzle::R || swizzle.r == vk::ComponentSwizzle::IDENTITY {
+            None
+        } else {
+            let view_info = vk::ImageViewCreateInfo::default().image(image.raw).view_type(view_type).format(format).subresource_range(range);
+            // Safety: a view of the live image just created.
+            match unsafe { device.raw.create_image_view(&view_info, None) }.check("vkCreateImageView") {
+                Ok(view) => Some(view),
+                Err(e) => {
+                    device.destroy_image(image);
+                    return Err(e);
+                }
+            }
+        };
         image_barrier(device, cmd, image.raw, range, vk::ImageLayout::UNDEFINED, vk::ImageLayout::TRANSFER_DST_OPTIMAL);
         let mut copies = Vec::new();
         for face in 0..layers as usize {
             for (level, _) in chain.iter().enumerate() {
                 let Some(img) = content.faces.get(face).and_then(|f| f.get(base + level)).and_then(Option::as_ref) else { continue };
-                let bytes = texel_bytes(img, depth);
+                let bytes = texel_bytes(img, upload);
                 let slice = ring.push(device, &bytes, 16)?;
                 let [lw, lh, ld] = interior(img);
                 copies.push((
@@ -294,8 +369,17 @@ impl Textures {
             unsafe { device.raw.cmd_copy_buffer_to_image(cmd, buffer, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &[copy]) };
         }
         image_barrier(device, cmd, image.raw, range, vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
-        Ok((image, kind))
+        Ok((image, red_view, kind))
     }
+}
+
+/// Frees an uploaded version (the GPU must be done with it).
+fn destroy_entry(device: &Device, e: Entry) {
+    if let Some(view) = e.red_view {
+        // Safety: the GPU is done with the view; destroyed once, before its image.
+        unsafe { device.raw.destroy_image_view(view, None) };
+    }
+    device.destroy_image(e.image);
 }
 
 /// The levels uploaded: from `base`, while each exists and halves the one above, up to `max`.
@@ -330,23 +414,32 @@ fn interior(img: &TexImage) -> [u32; 3] {
     [img.width.saturating_sub(2 * b), img.height.saturating_sub(2 * h_border), img.depth.saturating_sub(2 * d_border)].map(|s| s.max(1))
 }
 
-/// The texel bytes of the interior of `img`: RGBA8, or `f32` depth when `depth`.
-fn texel_bytes(img: &TexImage, depth: bool) -> Vec<u8> {
+/// The texel bytes of the interior of `img` as `upload` says (a float upload of a level
+/// without values converts its RGBA8 texels).
+fn texel_bytes(img: &TexImage, upload: Upload) -> Vec<u8> {
     let [w, h, d] = interior(img).map(|v| v as usize);
     let b = img.border as usize;
     let (bx, by, bz) = (b, if img.height > 1 { b } else { 0 }, if img.depth > 1 { b } else { 0 });
     let (fw, fh) = (img.width as usize, img.height as usize);
-    // RGBA8 and f32 texels are both 4 bytes.
-    let texel = 4;
+    let texel = if upload == Upload::Float { 16 } else { 4 };
     let mut out = Vec::with_capacity(w * h * d * texel);
     for z in 0..d {
         for y in 0..h {
             let row = ((z + bz) * fh + y + by) * fw + bx;
-            if depth {
-                let values = img.depth_values.get(row..row + w).unwrap_or(&[]);
-                out.extend(values.iter().flat_map(|v| v.to_le_bytes()));
-            } else {
-                out.extend_from_slice(img.texels.get(row * 4..(row + w) * 4).unwrap_or(&[]));
+            match upload {
+                Upload::Depth => {
+                    let values = img.depth_values.get(row..row + w).unwrap_or(&[]);
+                    out.extend(values.iter().flat_map(|v| v.to_le_bytes()));
+                }
+                Upload::Float if !img.values.is_empty() => {
+                    let values = img.values.get(row * 4..(row + w) * 4).unwrap_or(&[]);
+                    out.extend(values.iter().flat_map(|v| v.to_le_bytes()));
+                }
+                Upload::Float => {
+                    let texels = img.texels.get(row * 4..(row + w) * 4).unwrap_or(&[]);
+                    out.extend(texels.iter().flat_map(|&v| (f32::from(v) / 255.0).to_le_bytes()));
+                }
+                Upload::Rgba8 => out.extend_from_slice(img.texels.get(row * 4..(row + w) * 4).unwrap_or(&[])),
             }
         }
     }
@@ -376,8 +469,9 @@ fn nearest_border(c: [f32; 4]) -> vk::BorderColor {
     }
 }
 
-/// The 1×1 white 2D, 3D and cube textures, cleared to white in `cmd` and left shader-readable.
-fn create_white(device: &Device, cmd: vk::CommandBuffer) -> Result<[Image; 3]> {
+/// 1×1 2D, 3D and cube textures of `color` (white, black; `name` says which), cleared in
+/// `cmd` and left shader-readable.
+fn create_filled(device: &Device, cmd: vk::CommandBuffer, name: &str, color: [f32; 4]) -> Result<[Image; 3]> {
     let base = vk::ImageCreateInfo::default()
         .format(vk::Format::R8G8B8A8_UNORM)
         .extent(vk::Extent3D { width: 1, height: 1, depth: 1 })
@@ -385,16 +479,16 @@ fn create_white(device: &Device, cmd: vk::CommandBuffer) -> Result<[Image; 3]> {
         .array_layers(1)
         .samples(vk::SampleCountFlags::TYPE_1)
         .usage(vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST);
-    let d2 = device.create_image("glrt white 2D", &base.image_type(vk::ImageType::TYPE_2D), vk::ImageViewType::TYPE_2D, vk::ImageAspectFlags::COLOR)?;
-    let d3 = device.create_image("glrt white 3D", &base.image_type(vk::ImageType::TYPE_3D), vk::ImageViewType::TYPE_3D, vk::ImageAspectFlags::COLOR)?;
+    let d2 = device.create_image(&format!("glrt {name} 2D"), &base.image_type(vk::ImageType::TYPE_2D), vk::ImageViewType::TYPE_2D, vk::ImageAspectFlags::COLOR)?;
+    let d3 = device.create_image(&format!("glrt {name} 3D"), &base.image_type(vk::ImageType::TYPE_3D), vk::ImageViewType::TYPE_3D, vk::ImageAspectFlags::COLOR)?;
     let cube_info = base.image_type(vk::ImageType::TYPE_2D).array_layers(6).flags(vk::ImageCreateFlags::CUBE_COMPATIBLE);
-    let cube = device.create_image("glrt white cube", &cube_info, vk::ImageViewType::CUBE, vk::ImageAspectFlags::COLOR)?;
+    let cube = device.create_image(&format!("glrt {name} cube"), &cube_info, vk::ImageViewType::CUBE, vk::ImageAspectFlags::COLOR)?;
     for (image, layers) in [(&d2, 1), (&d3, 1), (&cube, 6)] {
         let range = vk::ImageSubresourceRange { aspect_mask: vk::ImageAspectFlags::COLOR, base_mip_level: 0, level_count: 1, base_array_layer: 0, layer_count: layers };
         image_barrier(device, cmd, image.raw, range, vk::ImageLayout::UNDEFINED, vk::ImageLayout::TRANSFER_DST_OPTIMAL);
         // Safety: the image is in TRANSFER_DST_OPTIMAL.
         unsafe {
-            device.raw.cmd_clear_color_image(cmd, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &vk::ClearColorValue { float32: [1.0; 4] }, &[range])
+            device.raw.cmd_clear_color_image(cmd, image.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &vk::ClearColorValue { float32: color }, &[range])
         };
         image_barrier(device, cmd, image.raw, range, vk::ImageLayout::TRANSFER_DST_OPTIMAL, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
     }
@@ -423,7 +517,7 @@ mod tests {
 
     fn level(w: u32, h: u32, border: u32) -> Option<Arc<TexImage>> {
         let texels = (0..w * h * 4).map(|i| i as u8).collect();
-        Some(Arc::new(TexImage { width: w, height: h, depth: 1, border, texels, depth_values: Vec::new() }))
+        Some(Arc::new(TexImage { width: w, height: h, depth: 1, border, texels, ..TexImage::default() }))
     }
 
     #[test]
@@ -440,7 +534,7 @@ mod tests {
     fn borders_are_cut_off() {
         let img = level(4, 3, 1).unwrap();
         assert_eq!(interior(&img), [2, 1, 1]);
-        let bytes = texel_bytes(&img, false);
+        let bytes = texel_bytes(&img, Upload::Rgba8);
         // Row 1, texels 1 and 2 of the 4-wide bordered image.
         let start = (4 + 1) * 4;
         assert_eq!(bytes, img.texels[start..start + 8].to_vec());

@@ -109,17 +109,29 @@ impl Context {
             Framebuffer::Object(fbo) => fbo.size,
             Framebuffer::Window => self.frame.size,
         };
-        // Destination pixels inside the draw framebuffer.
-        let x_range = dstX0.min(dstX1).max(0) as i64..dstX0.max(dstX1).min(draw_size[0] as GLint) as i64;
-        let y_range = dstY0.min(dstY1).max(0) as i64..dstY0.max(dstY1).min(draw_size[1] as GLint) as i64;
-        if x_range.is_empty() || y_range.is_empty() {
-            return;
-        }
-        // The source rectangle those pixels read, with one pixel around it for the filter.
         let read_size = match &read {
             Framebuffer::Object(fbo) => fbo.size,
             Framebuffer::Window => self.frame.size,
         };
+        // Destination pixels inside the draw framebuffer whose source pixel lies inside the read
+        // framebuffer (the others are not written, as Mesa does; the specification leaves their
+        // values undefined).
+        let inside = |src: [GLint; 2], dst: [GLint; 2], draw: u32, read: u32| {
+            let all = dst[0].min(dst[1]).max(0) as i64..dst[0].max(dst[1]).min(draw as GLint) as i64;
+            let reads = |d: i64| (0..read as i64).contains(&(source_at(d, src, dst).floor() as i64));
+            let first = all.clone().find(|&d| reads(d));
+            let last = all.rev().find(|&d| reads(d));
+            match (first, last) {
+                (Some(a), Some(b)) => a..b + 1,
+                _ => 0..0,
+            }
+        };
+        let x_range = inside([srcX0, srcX1], [dstX0, dstX1], draw_size[0], read_size[0]);
+        let y_range = inside([srcY0, srcY1], [dstY0, dstY1], draw_size[1], read_size[1]);
+        if x_range.is_empty() || y_range.is_empty() {
+            return;
+        }
+        // The source rectangle those pixels read, with one pixel around it for the filter.
         let (sx_a, sx_b) = (source_at(x_range.start, [srcX0, srcX1], [dstX0, dstX1]), source_at(x_range.end - 1, [srcX0, srcX1], [dstX0, dstX1]));
         let (sy_a, sy_b) = (source_at(y_range.start, [srcY0, srcY1], [dstY0, dstY1]), source_at(y_range.end - 1, [srcY0, srcY1], [dstY0, dstY1]));
         let x0 = (sx_a.min(sx_b).floor() as i64 - 1).clamp(0, read_size[0] as i64);

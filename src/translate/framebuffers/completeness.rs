@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use super::objects::{Attached, FramebufferObject, Holds, Point, texture_holds};
+use super::objects::{Attached, FramebufferObject, Holds, Point, renders_exactly, texture_holds};
 use crate::frame::framebuffer::{self, Attachment};
 use crate::translate::context::SharedObjects;
 use crate::translate::gl::{self, GLenum};
@@ -20,6 +20,9 @@ pub struct Image {
     pub holds: Holds,
     /// Border width of a texture level (glrt renders only to levels without one).
     pub border: usize,
+    /// Whether its format keeps more than glrt's 8-bit colour buffers render
+    /// ([`super::objects::renders_exactly`]).
+    pub beyond_8_bits: bool,
 }
 
 /// The image attached as `attached`, if it exists (a renderbuffer with storage, a texture
@@ -33,7 +36,8 @@ pub fn resolve(shared: &SharedObjects, attached: Attached) -> Option<Image> {
             if rb.size.contains(&0) {
                 return None;
             }
-            Some(Image { attachment: Attachment::Renderbuffer { name, storage: rb.storage }, size: rb.size, holds, border: 0 })
+            let beyond_8_bits = !renders_exactly(rb.internal_format);
+            Some(Image { attachment: Attachment::Renderbuffer { name, storage: rb.storage }, size: rb.size, holds, border: 0, beyond_8_bits })
         }
         Attached::Texture { name, kind, face, level, slice } => {
             let obj = shared.textures.get(name)?;
@@ -48,6 +52,7 @@ pub fn resolve(shared: &SharedObjects, attached: Attached) -> Option<Image> {
                 size: [w as u32, h as u32],
                 holds,
                 border: lvl.border,
+                beyond_8_bits: !renders_exactly(lvl.internal_format),
             })
         }
     }
@@ -84,9 +89,10 @@ pub fn check(shared: &SharedObjects, fbo: &FramebufferObject) -> Result<Arc<fram
     }
     // glrt's renderer keeps depth and stencil in one image: separate depth and stencil images
     // are a combination it does not support (section 4.4.4 allows refusing any), and so are
-    // texture levels with a border.
+    // texture levels with a border, and formats with more than 8 bits, signed or floating-point
+    // colour (rendering to them at 8 bits would lose what they keep).
     let separate = matches!((depth, stencil), (Some(d), Some(s)) if d.attachment != s.attachment);
-    if separate || present.iter().any(|i| i.border != 0) {
+    if separate || present.iter().any(|i| i.border != 0 || i.beyond_8_bits) {
         return Err(gl::GL_FRAMEBUFFER_UNSUPPORTED_EXT);
     }
     Ok(Arc::new(framebuffer::FramebufferObject {

@@ -591,6 +591,26 @@ mod tests {
     }
 
     #[test]
+    fn formats_beyond_8_bits_are_unsupported_attachments() {
+        let mut ctx = bound();
+        for (format, want) in [
+            (gl::GL_RGBA16F, gl::GL_FRAMEBUFFER_UNSUPPORTED_EXT),
+            (gl::GL_RGB16, gl::GL_FRAMEBUFFER_UNSUPPORTED_EXT),
+            (gl::GL_RG8_SNORM, gl::GL_FRAMEBUFFER_UNSUPPORTED_EXT),
+            (gl::GL_RG8, gl::GL_FRAMEBUFFER_COMPLETE_EXT),
+            (gl::GL_SRGB8_ALPHA8, gl::GL_FRAMEBUFFER_COMPLETE_EXT),
+        ] {
+            storage(&mut ctx, 1, format, 16, 16);
+            ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_RENDERBUFFER_EXT, 1);
+            assert_eq!((ctx.glGetError(), status(&mut ctx)), (gl::GL_NO_ERROR, want), "renderbuffer {format:#x}");
+            ctx.glBindTexture(gl::GL_TEXTURE_2D, 5);
+            unsafe { ctx.glTexImage2D(gl::GL_TEXTURE_2D, 0, format as i32, 16, 16, 0, gl::GL_RGBA, gl::GL_FLOAT, std::ptr::null()) };
+            ctx.glFramebufferTexture2DEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_TEXTURE_2D, 5, 0);
+            assert_eq!((ctx.glGetError(), status(&mut ctx)), (gl::GL_NO_ERROR, want), "texture {format:#x}");
+        }
+    }
+
+    #[test]
     fn completeness_follows_section_4_4_4() {
         let mut ctx = bound();
         assert_eq!(status(&mut ctx), gl::GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT_EXT);

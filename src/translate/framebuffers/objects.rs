@@ -6,7 +6,7 @@ use std::collections::HashMap;
 use crate::translate::gl::{self, GLenum, GLuint};
 use crate::translate::texture::Target;
 use crate::translate::texture::formats::{self, Base};
-use crate::frame::texture::TexelFormat;
+use crate::frame::texture::{Precision, TexelFormat};
 
 /// What a renderbuffer's internal format holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,7 +47,7 @@ pub fn renderbuffer_format(internal: GLenum) -> Option<Holds> {
         _ => match formats::internal_format(internal)? {
             _ if is_compressed(internal) => None,
             f => match f.base {
-                Base::Texel(TexelFormat::Rgb) => Some(Holds::Color { alpha: false }),
+                Base::Texel(TexelFormat::Rgb | TexelFormat::Red | TexelFormat::Rg) => Some(Holds::Color { alpha: false }),
                 Base::Texel(TexelFormat::Rgba) => Some(Holds::Color { alpha: true }),
                 Base::Texel(TexelFormat::Depth) if formats::stencil_bits(internal) > 0 => Some(Holds::DepthStencil),
                 Base::Texel(TexelFormat::Depth) => Some(Holds::Depth),
@@ -57,10 +57,18 @@ pub fn renderbuffer_format(internal: GLenum) -> Option<Holds> {
     }
 }
 
+/// Whether glrt renders to an image of `internal` without loss: colour formats of at most 8
+/// unsigned-normalized (or sRGB) bits a component, and depth/stencil formats. Others are
+/// `GL_FRAMEBUFFER_UNSUPPORTED_EXT` when attached.
+pub fn renders_exactly(internal: GLenum) -> bool {
+    formats::internal_format(internal).is_none_or(|i| i.base == Base::Texel(TexelFormat::Depth) || i.storage.precision() != Precision::Float)
+}
+
 /// Whether `internal` is a compressed format (never renderable).
 fn is_compressed(internal: GLenum) -> bool {
     matches!(internal, gl::GL_COMPRESSED_ALPHA..=gl::GL_COMPRESSED_RGBA)
         || matches!(internal, gl::GL_COMPRESSED_RGB_S3TC_DXT1_EXT..=gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT)
+        || matches!(internal, gl::GL_COMPRESSED_SRGB..=gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT5_EXT | gl::GL_COMPRESSED_RED | gl::GL_COMPRESSED_RG)
 }
 
 /// What a texture level of `base` and `internal` format holds when attached, if renderable
@@ -70,7 +78,7 @@ pub fn texture_holds(base: Base, internal: GLenum) -> Option<Holds> {
         return None;
     }
     match base {
-        Base::Texel(TexelFormat::Rgb) => Some(Holds::Color { alpha: false }),
+        Base::Texel(TexelFormat::Rgb | TexelFormat::Red | TexelFormat::Rg) => Some(Holds::Color { alpha: false }),
         Base::Texel(TexelFormat::Rgba) => Some(Holds::Color { alpha: true }),
         Base::Texel(TexelFormat::Depth) if formats::stencil_bits(internal) > 0 => Some(Holds::DepthStencil),
         Base::Texel(TexelFormat::Depth) => Some(Holds::Depth),

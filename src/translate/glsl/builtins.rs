@@ -104,6 +104,7 @@ pub(crate) fn sampler_depth(compare_mode: GLenum, compare_func: GLenum, depth_mo
 impl Context {
     /// The built-in state block for a draw now, with the depth words of its sampler slots.
     pub(crate) fn pack_builtins(&self, sampler_depth: &[SamplerDepth]) -> Vec<u8> {
+        let point_size_from_shader = self.enables.is_on(gl::GL_VERTEX_PROGRAM_POINT_SIZE);
         let mut b = Std430::default();
         let t = &self.transform;
         let (mv, p) = (t.modelview(), t.projection());
@@ -180,6 +181,7 @@ impl Context {
         for i in 0..MAX_SAMPLERS {
             b.uvec4(sampler_depth.get(i).copied().unwrap_or([8, 0, 0, 0]));
         }
+        b.uvec4([u32::from(point_size_from_shader), 0, 0, 0]);
         b.bytes
     }
 }
@@ -223,7 +225,7 @@ mod tests {
             "#version 450\n{}\nlayout(location = 0) out vec4 o;\nvoid main() {{ o = glrt_ModelViewMatrix[0] + vec4(glrt_NormalScale, \
              glrt_DepthRange.diff, glrt_Point.distanceQuadraticAttenuation, glrt_FrontMaterial.shininess) + glrt_ClipPlane[5] + \
              vec4(glrt_LightSource[7].quadraticAttenuation, glrt_LightSource[3].spotCosCutoff, glrt_Fog.scale, \
-             float(glrt_SamplerDepth[7].z)) + glrt_BackLightProduct[7].specular + glrt_ObjectPlaneQ[3] + \
+             float(glrt_SamplerDepth[7].z + glrt_Flags.x)) + glrt_BackLightProduct[7].specular + glrt_ObjectPlaneQ[3] + \
              glrt_TextureEnvColor[3] + glrt_BackLightModelProduct.sceneColor + glrt_LightModel.ambient + \
              vec4(glrt_NormalMatrix[2], 1.0) + glrt_TextureMatrixInverseTranspose[3][3]; }}\n",
             include_str!("../../../shaders/glsl_builtins.glsl")
@@ -284,7 +286,7 @@ mod tests {
         let depth = [[1, 2, 1, 0]; 8];
         let b = ctx.pack_builtins(&depth);
         let top = |m: &str| at("GlrtBuiltins", m);
-        assert_eq!(b.len(), top("glrt_SamplerDepth") + 8 * 16, "the block's size");
+        assert_eq!(b.len(), top("glrt_Flags") + 16, "the block's size");
         assert_eq!(f32_at(&b, top("glrt_DepthRange") + at("glrt_DepthRangeParameters", "diff")), 0.5);
         assert_eq!(f32_at(&b, top("glrt_ClipPlane") + 5 * 16 + 12), 4.0, "planes by index, enabled or not");
         assert_eq!(f32_at(&b, top("glrt_Point") + at("glrt_PointParameters", "size")), 5.0);

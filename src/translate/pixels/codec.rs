@@ -1,10 +1,12 @@
 //! Client pixel formats and types (OpenGL 1.5 tables 3.5, 3.6 and 3.8, with the
 //! `GL_DEPTH_STENCIL` format and its two packed types of EXT_packed_depth_stencil and
-//! ARB_depth_buffer_float): parsing and checking `format`/`type` pairs, and decoding or encoding
+//! ARB_depth_buffer_float, the `GL_RG` format of ARB_texture_rg and the packed float types of
+//! EXT_packed_float and EXT_texture_shared_exponent): parsing and checking `format`/`type` pairs, and decoding or encoding
 //! pixel groups in client memory laid out as [`Layout`] says, with byte swapping and bit order.
 
 use super::super::convert::{norm_i8, norm_i16, norm_i32, norm_u8, norm_u16, norm_u32};
 use super::super::gl::{self, GLenum};
+use super::small_float;
 use super::store::{Layout, StoreModes};
 
 /// What a format's values mean.
@@ -72,6 +74,14 @@ pub enum Type {
     /// in the first, the stencil index in bits 7–0 of the second (bits 31–8 unused;
     /// ARB_depth_buffer_float table 3.11).
     Float32Uint24_8Rev,
+    /// `GL_UNSIGNED_INT_10F_11F_11F_REV`: one `uint` an RGB group, red an unsigned 11-bit
+    /// float in bits 10–0, green one in bits 21–11, blue a 10-bit one in bits 31–22
+    /// (EXT_packed_float).
+    Uint10F11F11FRev,
+    /// `GL_UNSIGNED_INT_5_9_9_9_REV`: one `uint` an RGB group, 9-bit mantissas of red, green
+    /// and blue from bit 0 up, the shared 5-bit exponent in bits 31–27
+    /// (EXT_texture_shared_exponent).
+    Uint5999Rev,
 }
 
 const P332: &[(u32, u32)] = &[(5, 3), (2, 3), (0, 2)];
@@ -95,9 +105,9 @@ pub fn format(format: GLenum) -> Option<Format> {
         gl::GL_DEPTH_COMPONENT => (1, Kind::Depth),
         gl::GL_DEPTH_STENCIL => (2, Kind::DepthStencil),
         gl::GL_RED | gl::GL_GREEN | gl::GL_BLUE | gl::GL_ALPHA | gl::GL_LUMINANCE => (1, Kind::Color),
-        gl::GL_LUMINANCE_ALPHA => (2, Kind::Color),
+        gl::GL_LUMINANCE_ALPHA | gl::GL_RG => (2, Kind::Color),
         gl::GL_RGB | gl::GL_BGR => (3, Kind::Color),
-        gl::GL_RGBA | gl::GL_BGRA => (4, Kind::Color),
+        gl::GL_RGBA | gl::GL_BGRA | gl::GL_ABGR_EXT => (4, Kind::Color),
         _ => return None,
     };
     Some(Format { gl: format, components, kind })
@@ -129,6 +139,8 @@ pub fn pixel_type(type_: GLenum) -> Option<Type> {
         gl::GL_UNSIGNED_INT_2_10_10_10_REV => packed(4, P2101010R),
         gl::GL_UNSIGNED_INT_24_8 => Some(Type::Uint24_8),
         gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV => Some(Type::Float32Uint24_8Rev),
+        gl::GL_UNSIGNED_INT_10F_11F_11F_REV => Some(Type::Uint10F11F11FRev),
+        gl::GL_UNSIGNED_INT_5_9_9_9_REV => Some(Type::Uint5999Rev),
         _ => None,
     }
 }
@@ -136,15 +148,16 @@ pub fn pixel_type(type_: GLenum) -> Option<Type> {
 /// Parses and checks a `format`/`type` pair: `GL_INVALID_ENUM` for unknown values,
 /// `GL_BITMAP` with a format other than an index, or `GL_DEPTH_STENCIL` with a type other than
 /// its two packed types; `GL_INVALID_OPERATION` for a packed type whose component count differs
-/// from the format's (section 3.6.4), or a depth/stencil type with another format
-/// (EXT_packed_depth_stencil and ARB_depth_buffer_float, "Errors"). A packed type with an
-/// unknown format (`GL_RG`, which OpenGL 1.5 lacks) meets both conditions; the specification
-/// does not order them, and `GL_INVALID_OPERATION` is what Mesa records (piglit's
-/// `draw-pixels` expects it).
+/// from the format's (section 3.6.4), a depth/stencil type with another format
+/// (EXT_packed_depth_stencil and ARB_depth_buffer_float, "Errors"), or a packed float type with
+/// a format other than `GL_RGB` (EXT_packed_float, EXT_texture_shared_exponent). A packed type
+/// with an unknown format meets both conditions; the specification does not order them, and
+/// `GL_INVALID_OPERATION` is what Mesa records (piglit's `draw-pixels` expects it).
 pub fn parse(format_: GLenum, type_: GLenum) -> Result<(Format, Type), GLenum> {
     let t = pixel_type(type_);
     let Some(f) = format(format_) else {
-        return Err(if matches!(t, Some(Type::Packed(_))) { gl::GL_INVALID_OPERATION } else { gl::GL_INVALID_ENUM });
+        let packed = matches!(t, Some(Type::Packed(_) | Type::Uint10F11F11FRev | Type::Uint5999Rev));
+        return Err(if packed { gl::GL_INVALID_OPERATION } else { gl::GL_INVALID_ENUM });
     };
     let Some(t) = t else { return Err(gl::GL_INVALID_ENUM) };
     let depth_stencil_type = matches!(t, Type::Uint24_8 | Type::Float32Uint24_8Rev);
@@ -152,8 +165,9 @@ pub fn parse(format_: GLenum, type_: GLenum) -> Result<(Format, Type), GLenum> {
         _ if f.kind == Kind::DepthStencil && !depth_stencil_type => Err(gl::GL_INVALID_ENUM),
         _ if depth_stencil_type && f.kind != Kind::DepthStencil => Err(gl::GL_INVALID_OPERATION),
         Type::Bitmap if !matches!(f.kind, Kind::Index | Kind::Stencil) => Err(gl::GL_INVALID_ENUM),
+        Type::Uint10F11F11FRev | Type::Uint5999Rev if f.gl != gl::GL_RGB => Err(gl::GL_INVALID_OPERATION),
         // Table 3.8: the three-field types match `GL_RGB` only, the four-field ones `GL_RGBA`
-        // and `GL_BGRA`.
+        // and `GL_BGRA` (and EXT_abgr's `GL_ABGR_EXT`, which EXT_packed_pixels allows).
         Type::Packed(p) if !(f.kind == Kind::Color && f.components == p.fields.len() && f.gl != gl::GL_BGR && f.components >= 3) => {
             Err(gl::GL_INVALID_OPERATION)
         }
@@ -173,7 +187,7 @@ impl Type {
             Type::U32 | Type::I32 | Type::F32 => 4,
             Type::Bitmap => 0,
             Type::Packed(p) => p.size,
-            Type::Uint24_8 => 4,
+            Type::Uint24_8 | Type::Uint10F11F11FRev | Type::Uint5999Rev => 4,
             Type::Float32Uint24_8Rev => 8,
         }
     }
@@ -186,7 +200,7 @@ impl Type {
 
     /// Elements per group of `format` (1 for the types that pack a whole group).
     pub fn elements(self, format: Format) -> usize {
-        if matches!(self, Type::Packed(_) | Type::Uint24_8 | Type::Float32Uint24_8Rev) { 1 } else { format.components }
+        if matches!(self, Type::Packed(_) | Type::Uint24_8 | Type::Float32Uint24_8Rev | Type::Uint10F11F11FRev | Type::Uint5999Rev) { 1 } else { format.components }
     }
 
     /// The layout of a `w` × `h` × `d` image of `format` with `modes`.
@@ -324,6 +338,17 @@ impl Codec<'_> {
                             let depth = f32::from_bits(read_uint(bytes, at, 4, swap));
                             out.extend([f64::from(depth), f64::from(read_uint(bytes, at + 4, 4, swap) & 0xff)]);
                         }
+                        Type::Uint10F11F11FRev => {
+                            let raw = read_uint(bytes, at, 4, swap);
+                            let (r, g, b) = (raw & 0x7ff, (raw >> 11) & 0x7ff, raw >> 22);
+                            let rgb = [small_float::from_unsigned_float(r, 6), small_float::from_unsigned_float(g, 6), small_float::from_unsigned_float(b, 5)];
+                            out.extend(rgb.map(f64::from));
+                        }
+                        Type::Uint5999Rev => {
+                            let raw = read_uint(bytes, at, 4, swap);
+                            let rgb = small_float::from_rgb9e5([raw & 0x1ff, (raw >> 9) & 0x1ff, (raw >> 18) & 0x1ff], raw >> 27);
+                            out.extend(rgb.map(f64::from));
+                        }
                         t => {
                             for c in 0..n {
                                 out.push(decode_element(t, read_uint(bytes, at + c * size, size, swap), self.normalized()));
@@ -372,6 +397,14 @@ impl Codec<'_> {
                             write_uint(bytes, at, 4, swap, g[0].to_bits());
                             write_uint(bytes, at + 4, 4, swap, stencil_byte(g[1]));
                         }
+                        Type::Uint10F11F11FRev => {
+                            let [r, gr, b] = [(g[0], 6), (g[1], 6), (g[2], 5)].map(|(v, man)| small_float::to_unsigned_float(v, man));
+                            write_uint(bytes, at, 4, swap, r | gr << 11 | b << 22);
+                        }
+                        Type::Uint5999Rev => {
+                            let ([r, gr, b], e) = small_float::to_rgb9e5([g[0], g[1], g[2]]);
+                            write_uint(bytes, at, 4, swap, r | gr << 9 | b << 18 | e << 27);
+                        }
                         t => {
                             for (c, &v) in g.iter().enumerate() {
                                 write_uint(bytes, at + c * size, size, swap, encode_element(t, v, self.normalized()));
@@ -395,9 +428,11 @@ pub fn to_rgba(format: GLenum, g: &[f32]) -> [f32; 4] {
         gl::GL_ALPHA => [0.0, 0.0, 0.0, c(0)],
         gl::GL_LUMINANCE => [c(0), c(0), c(0), 1.0],
         gl::GL_LUMINANCE_ALPHA => [c(0), c(0), c(0), c(1)],
+        gl::GL_RG => [c(0), c(1), 0.0, 1.0],
         gl::GL_RGB => [c(0), c(1), c(2), 1.0],
         gl::GL_BGR => [c(2), c(1), c(0), 1.0],
         gl::GL_BGRA => [c(2), c(1), c(0), c(3)],
+        gl::GL_ABGR_EXT => [c(3), c(2), c(1), c(0)],
         _ => [c(0), c(1), c(2), c(3)],
     }
 }
@@ -426,9 +461,11 @@ pub fn from_rgba(format: GLenum, c: [f32; 4], luminance: Luminance, out: &mut Ve
         gl::GL_ALPHA => out.push(c[3]),
         gl::GL_LUMINANCE => out.push(l),
         gl::GL_LUMINANCE_ALPHA => out.extend([l, c[3]]),
+        gl::GL_RG => out.extend([c[0], c[1]]),
         gl::GL_RGB => out.extend([c[0], c[1], c[2]]),
         gl::GL_BGR => out.extend([c[2], c[1], c[0]]),
         gl::GL_BGRA => out.extend([c[2], c[1], c[0], c[3]]),
+        gl::GL_ABGR_EXT => out.extend([c[3], c[2], c[1], c[0]]),
         _ => out.extend(c),
     }
 }
@@ -555,7 +592,11 @@ mod tests {
         assert_eq!(parse(gl::GL_RGBA, gl::GL_UNSIGNED_SHORT_5_6_5), Err(gl::GL_INVALID_OPERATION));
         assert_eq!(parse(gl::GL_RGB, gl::GL_BITMAP), Err(gl::GL_INVALID_ENUM));
         assert_eq!(parse(gl::GL_TEXTURE_2D, gl::GL_FLOAT), Err(gl::GL_INVALID_ENUM));
-        assert_eq!(parse(gl::GL_RG, gl::GL_UNSIGNED_BYTE), Err(gl::GL_INVALID_ENUM));
+        assert_eq!(parse(gl::GL_RG_INTEGER, gl::GL_UNSIGNED_BYTE), Err(gl::GL_INVALID_ENUM));
+        assert!(parse(gl::GL_RG, gl::GL_UNSIGNED_BYTE).is_ok());
+        assert_eq!(parse(gl::GL_RGBA, gl::GL_UNSIGNED_INT_10F_11F_11F_REV), Err(gl::GL_INVALID_OPERATION));
+        assert_eq!(parse(gl::GL_BGR, gl::GL_UNSIGNED_INT_5_9_9_9_REV), Err(gl::GL_INVALID_OPERATION));
+        assert!(parse(gl::GL_RGB, gl::GL_UNSIGNED_INT_5_9_9_9_REV).is_ok());
         assert_eq!(parse(gl::GL_BGR, gl::GL_UNSIGNED_SHORT_5_6_5), Err(gl::GL_INVALID_OPERATION));
         assert!(parse(gl::GL_RGB, gl::GL_UNSIGNED_BYTE_3_3_2).is_ok());
         assert_eq!(parse(gl::GL_RG, gl::GL_UNSIGNED_SHORT_4_4_4_4), Err(gl::GL_INVALID_OPERATION));
@@ -629,6 +670,7 @@ mod tests {
         assert_eq!(out.map(|b| b as i8), [127, -128, 63, -64]);
         let mut v = Vec::new();
         from_rgba(gl::GL_BGR, [0.1, 0.2, 0.3, 1.0], Luminance::Sum, &mut v);
+        assert_eq!(to_rgba(gl::GL_ABGR_EXT, &[0.25, 0.5, 0.75, 1.0]), [1.0, 0.75, 0.5, 0.25]);
         from_rgba(gl::GL_LUMINANCE, [0.5, 0.25, 0.5, 1.0], Luminance::Sum, &mut v);
         from_rgba(gl::GL_LUMINANCE_ALPHA, [0.5, 0.25, 0.125, 0.75], Luminance::Red, &mut v);
         assert_eq!(v, [0.3, 0.2, 0.1, 1.0, 0.5, 0.75]);

@@ -121,7 +121,7 @@ impl Context {
         if !self.pixels.raster.valid || self.raster_event(RasterEvent::DrawPixels) {
             return;
         }
-        let data = match unsafe { self.unpack_client(ft, [w, h, 1], pixels, false, "glDrawPixels") } {
+        let data = match unsafe { self.unpack_client(ft, [w, h, 1], pixels, false, true, "glDrawPixels") } {
             Ok(Some(unpacked)) => pixel_data(unpacked),
             Ok(None) => return self.null_pointer("glDrawPixels"),
             Err(()) => return,
@@ -218,7 +218,7 @@ impl Context {
             self.log_no_readback(command);
             return None;
         };
-        Some(self.pixels.transfer.apply(format, &groups_of(&read, format.components), false))
+        Some(self.pixels.transfer.apply(format, &groups_of(&read, format.components), false, true))
     }
 
     /// Reads `rect` of the buffers that groups of `kind` come from (colour for colours and
@@ -271,19 +271,19 @@ impl Context {
         if read.len() != w * h {
             return log::warn!("glReadPixels: the renderer returned {} pixels instead of {}", read.len(), w * h);
         }
-        let values = self.transfer_for_pack(f, &read, codec::Luminance::Sum);
+        let values = self.transfer_for_pack(f, &read, codec::Luminance::Sum, true);
         unsafe { self.pack_client((f, t), [w, h, 1], pixels, &values, "glReadPixels") }
     }
 
     /// Pixel transfer for packing (section 4.3.2): colours are scaled, biased, mapped, clamped
-    /// and converted to `format` (luminance formed as `luminance` says); depth and stencil
+    /// (when `clamp`) and converted to `format` (luminance formed as `luminance` says); depth and stencil
     /// values take their own transfer.
-    pub(crate) fn transfer_for_pack(&self, f: codec::Format, read: &[[f32; 4]], luminance: codec::Luminance) -> Vec<f32> {
+    pub(crate) fn transfer_for_pack(&self, f: codec::Format, read: &[[f32; 4]], luminance: codec::Luminance, clamp: bool) -> Vec<f32> {
         let t = &self.pixels.transfer;
         let mut values = Vec::with_capacity(read.len() * f.components);
         match f.kind {
-            Kind::Color => read.iter().for_each(|&c| codec::from_rgba(f.gl, t.color(c), luminance, &mut values)),
-            _ => match t.apply(f, &groups_of(read, f.components), true) {
+            Kind::Color => read.iter().for_each(|&c| codec::from_rgba(f.gl, t.color(c, clamp), luminance, &mut values)),
+            _ => match t.apply(f, &groups_of(read, f.components), true, clamp) {
                 Unpacked::Depth(v) => values = v,
                 Unpacked::Stencil(v) | Unpacked::Index(v) => values = v.iter().map(|&i| i as f32).collect(),
                 Unpacked::DepthStencil(d, s) => values = d.iter().zip(&s).flat_map(|(&d, &s)| [d, s as f32]).collect(),

@@ -12,6 +12,7 @@ pub mod codec;
 mod depth_stencil_tests;
 pub mod draw;
 pub mod raster;
+pub mod small_float;
 pub mod store;
 pub mod transfer;
 
@@ -75,7 +76,8 @@ impl Context {
     }
 
     /// Reads a `w` × `h` × `d` image from client memory or the unpack buffer
-    /// ([`Context::unpack_bytes`]) with the unpack modes and applies pixel transfer.
+    /// ([`Context::unpack_bytes`]) with the unpack modes and applies pixel transfer (colours
+    /// clamped to [0, 1] when `clamp`).
     /// `Ok(None)` for a null client pointer; `Err(())` after `GL_OUT_OF_MEMORY` when the image
     /// is too large to read, or the unpack buffer's `GL_INVALID_OPERATION`. Sizes must have
     /// been checked non-negative.
@@ -88,6 +90,7 @@ impl Context {
         [w, h, d]: [usize; 3],
         pixels: *const c_void,
         keep_index: bool,
+        clamp: bool,
         command: &'static str,
     ) -> Result<Option<Unpacked>, ()> {
         let modes = self.pixels.store.unpack;
@@ -99,7 +102,7 @@ impl Context {
         };
         let Some(bytes) = (unsafe { self.unpack_bytes(pixels, layout.span, ty.datum_size(), command) })? else { return Ok(None) };
         let groups = Codec { format, ty, layout, modes: &modes }.decode(&bytes, w, h, d);
-        Ok(Some(self.pixels.transfer.apply(format, &groups, keep_index)))
+        Ok(Some(self.pixels.transfer.apply(format, &groups, keep_index, clamp)))
     }
 
     /// Writes `values` (groups of `format`, in format order) to client memory or the pack

@@ -76,7 +76,7 @@ impl Default for PixelTransfer {
 /// Pixels after unpacking and pixel transfer.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Unpacked {
-    /// RGBA colours clamped to [0, 1].
+    /// RGBA colours, clamped to [0, 1] unless unpacked for an unclamped texture.
     Rgba(Vec<[f32; 4]>),
     /// Colour indices (kept as indices for colour-index textures and palettes).
     Index(Vec<i64>),
@@ -115,12 +115,15 @@ impl PixelTransfer {
         shifted.wrapping_add(i64::from(self.index_offset))
     }
 
-    /// RGBA scale, bias and colour maps, clamped (sections 3.6.5 and 4.3.2).
-    pub fn color(&self, c: [f32; 4]) -> [f32; 4] {
+    /// RGBA scale, bias and colour maps, clamped to [0, 1] when `clamp` (sections 3.6.5 and
+    /// 4.3.2; OpenGL 3.0 section 3.7.5 leaves the values of floating-point and
+    /// signed-normalized textures unclamped).
+    pub fn color(&self, c: [f32; 4], clamp: bool) -> [f32; 4] {
         let mut out = [0.0; 4];
         for i in 0..4 {
             let v = c[i] * self.scale[i] + self.bias[i];
-            out[i] = if self.map_color { self.lookup_color(C_TO_C + i, v) } else { v }.clamp(0.0, 1.0);
+            let v = if self.map_color { self.lookup_color(C_TO_C + i, v) } else { v };
+            out[i] = if clamp { v.clamp(0.0, 1.0) } else { v };
         }
         out
     }
@@ -131,8 +134,9 @@ impl PixelTransfer {
     }
 
     /// Applies pixel transfer to groups decoded from `format`. Colour indices become RGBA
-    /// unless `keep_index` (colour-index textures and palettes keep them).
-    pub fn apply(&self, format: Format, groups: &[f64], keep_index: bool) -> Unpacked {
+    /// unless `keep_index` (colour-index textures and palettes keep them); colours are clamped
+    /// to [0, 1] when `clamp` (see [`PixelTransfer::color`]).
+    pub fn apply(&self, format: Format, groups: &[f64], keep_index: bool, clamp: bool) -> Unpacked {
         let n = format.components;
         let narrow = |g: &[f64]| {
             let mut c = [0.0f32; 4];
@@ -140,7 +144,7 @@ impl PixelTransfer {
             c
         };
         match format.kind {
-            Kind::Color => Unpacked::Rgba(groups.chunks_exact(n).map(|g| self.color(to_rgba(format.gl, &narrow(g)[..n.min(4)]))).collect()),
+            Kind::Color => Unpacked::Rgba(groups.chunks_exact(n).map(|g| self.color(to_rgba(format.gl, &narrow(g)[..n.min(4)]), clamp)).collect()),
             Kind::Index => {
                 let shifted = groups.iter().map(|&i| self.shift_index(i));
                 if keep_index {
@@ -429,17 +433,17 @@ mod tests {
         ctx.glPixelTransferi(gl::GL_INDEX_SHIFT, 1);
         ctx.glPixelTransferi(gl::GL_INDEX_OFFSET, 1);
         let rgba = codec::format(gl::GL_RGBA).unwrap();
-        assert_eq!(ctx.pixels.transfer.apply(rgba, &[1.0, 1.0, 0.5, 1.0], false), Unpacked::Rgba(vec![[0.5, 1.0, 0.75, 1.0]]));
+        assert_eq!(ctx.pixels.transfer.apply(rgba, &[1.0, 1.0, 0.5, 1.0], false, true), Unpacked::Rgba(vec![[0.5, 1.0, 0.75, 1.0]]));
         let index = codec::format(gl::GL_COLOR_INDEX).unwrap();
-        assert_eq!(ctx.pixels.transfer.apply(index, &[3.0], true), Unpacked::Index(vec![7]));
+        assert_eq!(ctx.pixels.transfer.apply(index, &[3.0], true, true), Unpacked::Index(vec![7]));
         let ramp = [0.0f32, 0.25, 0.5, 1.0, 0.0, 0.0, 0.0, 1.0];
         unsafe { ctx.glPixelMapfv(gl::GL_PIXEL_MAP_I_TO_R, 8, ramp.as_ptr()) };
-        assert_eq!(ctx.pixels.transfer.apply(index, &[1.0], false), Unpacked::Rgba(vec![[1.0, 0.0, 0.0, 0.0]]));
+        assert_eq!(ctx.pixels.transfer.apply(index, &[1.0], false, true), Unpacked::Rgba(vec![[1.0, 0.0, 0.0, 0.0]]));
         ctx.glPixelTransferf(gl::GL_MAP_COLOR, 1.0);
         let two = [1.0f32, 0.0];
         unsafe { ctx.glPixelMapfv(gl::GL_PIXEL_MAP_G_TO_G, 2, two.as_ptr()) };
         // Green 1.0 maps to the last entry (0.0).
-        assert_eq!(ctx.pixels.transfer.color([0.0, 1.0, 0.0, 0.0])[1], 0.0);
+        assert_eq!(ctx.pixels.transfer.color([0.0, 1.0, 0.0, 0.0], true)[1], 0.0);
         ctx.glPixelTransferf(gl::GL_TEXTURE_2D, 1.0);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
     }
@@ -448,17 +452,17 @@ mod tests {
     fn depth_stencil_groups_take_depth_and_index_transfer() {
         let (mut ctx, _) = Context::with_recording();
         let ds = codec::format(gl::GL_DEPTH_STENCIL).unwrap();
-        assert_eq!(ctx.pixels.transfer.apply(ds, &[0.25, 3.0, 1.0, 255.0], false), Unpacked::DepthStencil(vec![0.25, 1.0], vec![3, 255]));
+        assert_eq!(ctx.pixels.transfer.apply(ds, &[0.25, 3.0, 1.0, 255.0], false, true), Unpacked::DepthStencil(vec![0.25, 1.0], vec![3, 255]));
         ctx.glPixelTransferf(gl::GL_DEPTH_SCALE, 2.0);
         ctx.glPixelTransferf(gl::GL_DEPTH_BIAS, 0.125);
         ctx.glPixelTransferi(gl::GL_INDEX_SHIFT, 2);
         ctx.glPixelTransferi(gl::GL_INDEX_OFFSET, 1);
         // 0.25 × 2 + 0.125 and 1.0 × 2 + 0.125 (clamped); 3 << 2 + 1 and 255 << 2 + 1.
-        assert_eq!(ctx.pixels.transfer.apply(ds, &[0.25, 3.0, 1.0, 255.0], false), Unpacked::DepthStencil(vec![0.625, 1.0], vec![13, 1021]));
+        assert_eq!(ctx.pixels.transfer.apply(ds, &[0.25, 3.0, 1.0, 255.0], false, true), Unpacked::DepthStencil(vec![0.625, 1.0], vec![13, 1021]));
         let map = [5.0f32, 6.0, 7.0, 8.0];
         unsafe { ctx.glPixelMapfv(gl::GL_PIXEL_MAP_S_TO_S, 4, map.as_ptr()) };
         ctx.glPixelTransferi(gl::GL_MAP_STENCIL, 1);
         // 13 & 3 = 1 → 6; 1021 & 3 = 1 → 6.
-        assert_eq!(ctx.pixels.transfer.apply(ds, &[0.25, 3.0, 1.0, 255.0], false), Unpacked::DepthStencil(vec![0.625, 1.0], vec![6, 6]));
+        assert_eq!(ctx.pixels.transfer.apply(ds, &[0.25, 3.0, 1.0, 255.0], false, true), Unpacked::DepthStencil(vec![0.625, 1.0], vec![6, 6]));
     }
 }

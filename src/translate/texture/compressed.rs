@@ -11,11 +11,11 @@ use std::sync::Arc;
 
 use super::super::Context;
 use super::super::gl::{self, GLenum, GLint, GLsizei};
-use super::formats::{Base, S3tc};
+use super::formats::{self, Base, S3tc};
 use super::image::{SizeCheck, check_level, check_size, image_target};
 use super::objects::Level;
 use super::s3tc;
-use crate::frame::texture::{TexImage, TexelFormat};
+use crate::frame::texture::{Precision, TexImage, TexelFormat};
 
 /// Bytes of a compressed image of `size` (width, height, depth).
 pub fn image_size(format: S3tc, size: [usize; 3]) -> usize {
@@ -106,7 +106,8 @@ impl Context {
             let Ok(bytes) = (unsafe { self.unpack_bytes(data, expected, 1, command) }) else { return };
             let Some(bytes) = bytes else { return self.null_pointer(command) };
             let texels = s3tc::decode(format, size[0], size[1], &bytes).unwrap_or_default();
-            lvl.image = Arc::new(TexImage { width: size[0] as u32, height: size[1] as u32, depth: 1, border: 0, texels, depth_values: Vec::new() });
+            let precision = formats::internal_format(internalformat).map_or(Precision::Unorm8, |i| i.storage.precision());
+            lvl.image = Arc::new(TexImage { width: size[0] as u32, height: size[1] as u32, depth: 1, border: 0, texels, precision, ..TexImage::default() });
             lvl.compressed = Some(bytes.into_owned().into());
         }
         self.store_level(dest, level, Some(lvl));

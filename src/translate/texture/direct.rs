@@ -1,5 +1,6 @@
 //! Texture images that need no conversion: tightly packed `GL_UNSIGNED_BYTE` RGB or RGBA
-//! pixels, pixel transfer at its initial state, stored in an RGB or RGBA texture. Unpacking
+//! pixels, pixel transfer at its initial state, stored in an RGB or RGBA texture of 8-bit
+//! (or sRGB 8-bit) storage. Unpacking
 //! (OpenGL 1.5 section 3.6.4: c / 255, scale 1, bias 0, no colour map) then storing as 8-bit
 //! texels (round(c · 255)) gives back the client's bytes, so they are copied (alpha 255 for
 //! RGB) instead of going through the general path's conversion to floating point, which is
@@ -10,8 +11,8 @@ use std::ffi::c_void;
 use super::super::Context;
 use super::super::gl;
 use super::super::pixels::codec::{Format, Type};
-use super::formats::Base;
-use crate::frame::texture::TexelFormat;
+use super::formats::{Base, Internal};
+use crate::frame::texture::{Precision, TexelFormat};
 
 impl Context {
     /// The canonical RGBA8 texels of a `w` × `h` × `d` image at `pixels` (client memory or the
@@ -24,7 +25,7 @@ impl Context {
     pub(crate) unsafe fn direct_texels(
         &mut self,
         (format, ty): (Format, Type),
-        base: Base,
+        internal: Internal,
         [w, h, d]: [usize; 3],
         pixels: *const c_void,
         command: &'static str,
@@ -36,7 +37,8 @@ impl Context {
         };
         let t = &self.pixels.transfer;
         let identity = !t.map_color && t.scale == [1.0; 4] && t.bias == [0.0; 4];
-        let stored = matches!(base, Base::Texel(TexelFormat::Rgba | TexelFormat::Rgb));
+        let base = internal.base;
+        let stored = matches!(base, Base::Texel(TexelFormat::Rgba | TexelFormat::Rgb)) && internal.storage.precision() != Precision::Float;
         if ty != Type::U8 || !identity || !stored {
             return Ok(None);
         }

@@ -1,6 +1,8 @@
 //! Texture internal formats (OpenGL 1.5 tables 3.15–3.16, ARB_texture_compression,
 //! EXT_texture_compression_s3tc, EXT_paletted_texture, EXT_packed_depth_stencil,
-//! ARB_depth_buffer_float) and the conversion of pixels to the canonical RGBA8 texels glrt
+//! ARB_depth_buffer_float, ARB_texture_rg, EXT_texture_snorm, ARB_texture_float,
+//! EXT_texture_sRGB, EXT_packed_float, EXT_texture_shared_exponent; how each stores its
+//! components is [`super::storage`]'s) and the conversion of pixels to the canonical RGBA8 texels glrt
 //! stores (depth also at full precision), and back (table 6.1).
 //!
 //! Depth/stencil formats (`GL_DEPTH_STENCIL`, `GL_DEPTH24_STENCIL8`, `GL_DEPTH32F_STENCIL8`)
@@ -9,6 +11,7 @@
 //! level for `glGetTexImage` ([`stencil_bits`] tells them apart).
 
 use super::super::gl::{self, GLenum};
+use super::storage::{self, Storage};
 use crate::frame::texture::TexelFormat;
 
 /// The base internal format of a texture image.
@@ -46,9 +49,10 @@ impl S3tc {
     pub fn of(internal: GLenum) -> Option<S3tc> {
         Some(match internal {
             gl::GL_COMPRESSED_RGB_S3TC_DXT1_EXT => S3tc::Dxt1Rgb,
-            gl::GL_COMPRESSED_RGBA_S3TC_DXT1_EXT => S3tc::Dxt1Rgba,
-            gl::GL_COMPRESSED_RGBA_S3TC_DXT3_EXT => S3tc::Dxt3,
-            gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT => S3tc::Dxt5,
+            gl::GL_COMPRESSED_RGBA_S3TC_DXT1_EXT | gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT => S3tc::Dxt1Rgba,
+            gl::GL_COMPRESSED_RGBA_S3TC_DXT3_EXT | gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT3_EXT => S3tc::Dxt3,
+            gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT | gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT5_EXT => S3tc::Dxt5,
+            gl::GL_COMPRESSED_SRGB_S3TC_DXT1_EXT => S3tc::Dxt1Rgb,
             _ => return None,
         })
     }
@@ -71,6 +75,8 @@ pub struct Internal {
     pub reported: GLenum,
     /// Base format.
     pub base: Base,
+    /// How the colour components are stored.
+    pub storage: Storage,
 }
 
 /// The internal format `internal` of `glTexImage`/`glCopyTexImage`, if accepted.
@@ -113,11 +119,68 @@ pub fn internal_format(internal: GLenum) -> Option<Internal> {
         | gl::GL_COMPRESSED_RGBA_S3TC_DXT1_EXT
         | gl::GL_COMPRESSED_RGBA_S3TC_DXT3_EXT
         | gl::GL_COMPRESSED_RGBA_S3TC_DXT5_EXT => texel(Rgba),
+        gl::GL_RED | gl::GL_COMPRESSED_RED | gl::GL_R8 | gl::GL_R16 | gl::GL_R16F | gl::GL_R32F | gl::GL_RED_SNORM | gl::GL_R8_SNORM | gl::GL_R16_SNORM => texel(Red),
+        gl::GL_RG | gl::GL_COMPRESSED_RG | gl::GL_RG8 | gl::GL_RG16 | gl::GL_RG16F | gl::GL_RG32F | gl::GL_RG_SNORM | gl::GL_RG8_SNORM | gl::GL_RG16_SNORM => texel(Rg),
+        gl::GL_RGB_SNORM | gl::GL_RGB8_SNORM | gl::GL_RGB16_SNORM | gl::GL_RGB16F | gl::GL_RGB32F => texel(Rgb),
+        gl::GL_R11F_G11F_B10F | gl::GL_RGB9_E5 => texel(Rgb),
+        gl::GL_SRGB | gl::GL_SRGB8 | gl::GL_COMPRESSED_SRGB | gl::GL_COMPRESSED_SRGB_S3TC_DXT1_EXT => texel(Rgb),
+        gl::GL_RGBA_SNORM | gl::GL_RGBA8_SNORM | gl::GL_RGBA16_SNORM | gl::GL_RGBA16F | gl::GL_RGBA32F => texel(Rgba),
+        gl::GL_SRGB_ALPHA
+        | gl::GL_SRGB8_ALPHA8
+        | gl::GL_COMPRESSED_SRGB_ALPHA
+        | gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT
+        | gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT3_EXT
+        | gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT5_EXT => texel(Rgba),
+        gl::GL_ALPHA_SNORM | gl::GL_ALPHA8_SNORM | gl::GL_ALPHA16_SNORM | gl::GL_ALPHA16F_ARB | gl::GL_ALPHA32F_ARB => texel(Alpha),
+        gl::GL_LUMINANCE_SNORM
+        | gl::GL_LUMINANCE8_SNORM
+        | gl::GL_LUMINANCE16_SNORM
+        | gl::GL_LUMINANCE16F_ARB
+        | gl::GL_LUMINANCE32F_ARB
+        | gl::GL_SLUMINANCE
+        | gl::GL_SLUMINANCE8
+        | gl::GL_COMPRESSED_SLUMINANCE => texel(Luminance),
+        gl::GL_LUMINANCE_ALPHA_SNORM
+        | gl::GL_LUMINANCE8_ALPHA8_SNORM
+        | gl::GL_LUMINANCE16_ALPHA16_SNORM
+        | gl::GL_LUMINANCE_ALPHA16F_ARB
+        | gl::GL_LUMINANCE_ALPHA32F_ARB
+        | gl::GL_SLUMINANCE_ALPHA
+        | gl::GL_SLUMINANCE8_ALPHA8
+        | gl::GL_COMPRESSED_SLUMINANCE_ALPHA => texel(LuminanceAlpha),
+        gl::GL_INTENSITY_SNORM | gl::GL_INTENSITY8_SNORM | gl::GL_INTENSITY16_SNORM | gl::GL_INTENSITY16F_ARB | gl::GL_INTENSITY32F_ARB => texel(Intensity),
         _ => return None,
     };
-    let generic = matches!(internal, gl::GL_COMPRESSED_ALPHA..=gl::GL_COMPRESSED_RGBA);
-    let reported = if generic { base_enum(base) } else { internal };
-    Some(Internal { reported, base })
+    // The generic compressed formats are stored uncompressed and report their uncompressed
+    // counterpart (ARB_texture_compression; EXT_texture_sRGB's generic ones the unsized sRGB
+    // formats).
+    let reported = match internal {
+        gl::GL_COMPRESSED_ALPHA..=gl::GL_COMPRESSED_RGBA | gl::GL_COMPRESSED_RED | gl::GL_COMPRESSED_RG => base_enum(base),
+        gl::GL_COMPRESSED_SRGB => gl::GL_SRGB,
+        gl::GL_COMPRESSED_SRGB_ALPHA => gl::GL_SRGB_ALPHA,
+        gl::GL_COMPRESSED_SLUMINANCE => gl::GL_SLUMINANCE,
+        gl::GL_COMPRESSED_SLUMINANCE_ALPHA => gl::GL_SLUMINANCE_ALPHA,
+        _ => internal,
+    };
+    let has = match base {
+        Base::Texel(f) => components(f),
+        Base::ColorIndex => [true; 4],
+    };
+    Some(Internal { reported, base, storage: storage::of(internal, has) })
+}
+
+/// Which of R, G, B and A of a colour the texels of a base format keep (table 3.15;
+/// luminance and intensity come from R).
+pub fn components(base: TexelFormat) -> [bool; 4] {
+    use TexelFormat::*;
+    match base {
+        Alpha => [false, false, false, true],
+        Luminance | Intensity | Red | Depth => [true, false, false, false],
+        LuminanceAlpha => [true, false, false, true],
+        Rg => [true, true, false, false],
+        Rgb => [true, true, true, false],
+        Rgba => [true; 4],
+    }
 }
 
 /// The unsized enum of a base format.
@@ -132,32 +195,88 @@ pub fn base_enum(base: Base) -> GLenum {
             TexelFormat::Rgb => gl::GL_RGB,
             TexelFormat::Rgba => gl::GL_RGBA,
             TexelFormat::Depth => gl::GL_DEPTH_COMPONENT,
+            TexelFormat::Red => gl::GL_RED,
+            TexelFormat::Rg => gl::GL_RG,
         },
     }
 }
 
+/// What a size or type query of `glGetTexLevelParameter` asks about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Queried {
+    /// A component the base format does not have.
+    Absent,
+    /// Colour component 0–3 (R, G, B, A of the colour the texels are made from).
+    Color(usize),
+    /// The depth component.
+    Depth,
+}
+
+/// The component `pname` (`GL_TEXTURE_RED_SIZE` ... `GL_TEXTURE_DEPTH_SIZE`, or
+/// ARB_texture_float's `GL_TEXTURE_RED_TYPE_ARB` ... `GL_TEXTURE_DEPTH_TYPE_ARB`) names in a
+/// level of `base`; `None` for another `pname`.
+fn queried(base: Base, pname: GLenum) -> Option<Queried> {
+    use TexelFormat::*;
+    let (index, has): (usize, fn(TexelFormat) -> bool) = match pname {
+        gl::GL_TEXTURE_RED_SIZE | gl::GL_TEXTURE_RED_TYPE => (0, |f| matches!(f, Red | Rg | Rgb | Rgba)),
+        gl::GL_TEXTURE_GREEN_SIZE | gl::GL_TEXTURE_GREEN_TYPE => (1, |f| matches!(f, Rg | Rgb | Rgba)),
+        gl::GL_TEXTURE_BLUE_SIZE | gl::GL_TEXTURE_BLUE_TYPE => (2, |f| matches!(f, Rgb | Rgba)),
+        gl::GL_TEXTURE_ALPHA_SIZE | gl::GL_TEXTURE_ALPHA_TYPE => (3, |f| matches!(f, Alpha | LuminanceAlpha | Rgba)),
+        gl::GL_TEXTURE_LUMINANCE_SIZE | gl::GL_TEXTURE_LUMINANCE_TYPE => (0, |f| matches!(f, Luminance | LuminanceAlpha)),
+        gl::GL_TEXTURE_INTENSITY_SIZE | gl::GL_TEXTURE_INTENSITY_TYPE => (0, |f| f == Intensity),
+        gl::GL_TEXTURE_DEPTH_SIZE | gl::GL_TEXTURE_DEPTH_TYPE => {
+            return Some(if base == Base::Texel(Depth) { Queried::Depth } else { Queried::Absent });
+        }
+        _ => return None,
+    };
+    Some(match base {
+        Base::Texel(f) if has(f) => Queried::Color(index),
+        _ => Queried::Absent,
+    })
+}
+
+/// The storage of a colour level of `base` and (reported) internal format `internal`.
+pub fn level_storage(base: Base, internal: GLenum) -> Storage {
+    let has = match base {
+        Base::Texel(f) => components(f),
+        Base::ColorIndex => [true; 4],
+    };
+    storage::of(internal, has)
+}
+
 /// Bits of each stored component, for `glGetTexLevelParameter` (`GL_TEXTURE_RED_SIZE` ...
-/// `GL_TEXTURE_INTENSITY_SIZE`, `GL_TEXTURE_DEPTH_SIZE`, `GL_TEXTURE_STENCIL_SIZE`): glrt
-/// stores 8 bits for each colour component the base format has, depth with [`depth_bits`]
-/// and stencil with [`stencil_bits`] of `internal`.
+/// `GL_TEXTURE_INTENSITY_SIZE`, `GL_TEXTURE_DEPTH_SIZE`, `GL_TEXTURE_STENCIL_SIZE`): colour
+/// components as [`super::storage`] keeps them, depth with [`depth_bits`] and stencil with
+/// [`stencil_bits`] of `internal`.
 pub fn component_bits(base: Base, internal: GLenum, pname: GLenum) -> Option<i64> {
     if pname == gl::GL_TEXTURE_STENCIL_SIZE {
         return Some(if base == Base::Texel(TexelFormat::Depth) { i64::from(stencil_bits(internal)) } else { 0 });
     }
-    use TexelFormat::*;
-    let has = match (pname, base) {
-        (_, Base::ColorIndex) => false,
-        (gl::GL_TEXTURE_RED_SIZE | gl::GL_TEXTURE_GREEN_SIZE | gl::GL_TEXTURE_BLUE_SIZE, Base::Texel(f)) => matches!(f, Rgb | Rgba),
-        (gl::GL_TEXTURE_ALPHA_SIZE, Base::Texel(f)) => matches!(f, Alpha | LuminanceAlpha | Rgba),
-        (gl::GL_TEXTURE_LUMINANCE_SIZE, Base::Texel(f)) => matches!(f, Luminance | LuminanceAlpha),
-        (gl::GL_TEXTURE_INTENSITY_SIZE, Base::Texel(f)) => f == Intensity,
-        (gl::GL_TEXTURE_DEPTH_SIZE, Base::Texel(f)) => f == Depth,
-        _ => return None,
-    };
-    Some(match (has, pname) {
-        (false, _) => 0,
-        (true, gl::GL_TEXTURE_DEPTH_SIZE) => i64::from(depth_bits(internal)),
-        (true, _) => 8,
+    if pname == gl::GL_TEXTURE_SHARED_SIZE {
+        return Some(if internal == gl::GL_RGB9_E5 { 5 } else { 0 });
+    }
+    if matches!(pname, gl::GL_TEXTURE_RED_TYPE..=gl::GL_TEXTURE_DEPTH_TYPE) {
+        return None;
+    }
+    Some(match queried(base, pname)? {
+        Queried::Absent => 0,
+        Queried::Depth => i64::from(depth_bits(internal)),
+        Queried::Color(i) => i64::from(level_storage(base, internal).bits[i]),
+    })
+}
+
+/// The data type of a component (ARB_texture_float's `GL_TEXTURE_RED_TYPE_ARB` ...
+/// `GL_TEXTURE_DEPTH_TYPE_ARB`): `GL_NONE` for a missing component, else
+/// `GL_UNSIGNED_NORMALIZED_ARB`, `GL_SIGNED_NORMALIZED` or `GL_FLOAT` (32-bit float depth).
+pub fn component_type(base: Base, internal: GLenum, pname: GLenum) -> Option<GLenum> {
+    if !matches!(pname, gl::GL_TEXTURE_RED_TYPE..=gl::GL_TEXTURE_DEPTH_TYPE) {
+        return None;
+    }
+    Some(match queried(base, pname)? {
+        Queried::Absent => gl::GL_NONE,
+        Queried::Depth if matches!(internal, gl::GL_DEPTH_COMPONENT32F | gl::GL_DEPTH32F_STENCIL8) => gl::GL_FLOAT,
+        Queried::Depth => gl::GL_UNSIGNED_NORMALIZED,
+        Queried::Color(_) => level_storage(base, internal).component_type(),
     })
 }
 
@@ -217,6 +336,8 @@ pub fn expand(base: TexelFormat, c: [f32; 4]) -> [f32; 4] {
         TexelFormat::Luminance | TexelFormat::Depth => [r, r, r, 1.0],
         TexelFormat::LuminanceAlpha => [r, r, r, a],
         TexelFormat::Intensity => [r, r, r, r],
+        TexelFormat::Red => [r, 0.0, 0.0, 1.0],
+        TexelFormat::Rg => [r, g, 0.0, 1.0],
         TexelFormat::Rgb => [r, g, b, 1.0],
         TexelFormat::Rgba => [r, g, b, a],
     }
@@ -228,14 +349,16 @@ pub fn texel(base: TexelFormat, c: [f32; 4]) -> [u8; 4] {
     expand(base, c).map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
 }
 
-/// The RGBA colour of a canonical texel for `glGetTexImage` (table 6.1): luminance and
-/// intensity go to R with G = B = 0.
-pub fn texel_to_rgba(base: TexelFormat, t: [u8; 4]) -> [f32; 4] {
-    let [r, g, b, a] = t.map(|v| f32::from(v) / 255.0);
+/// The RGBA colour of a stored texel (the 8-bit texel's components over 255, or the `f32`
+/// values of a float level) for `glGetTexImage` (table 6.1): luminance and intensity go to R
+/// with G = B = 0.
+pub fn texel_to_rgba(base: TexelFormat, t: [f32; 4]) -> [f32; 4] {
+    let [r, g, b, a] = t;
     match base {
         TexelFormat::Alpha => [0.0, 0.0, 0.0, a],
-        TexelFormat::Luminance | TexelFormat::Intensity | TexelFormat::Depth => [r, 0.0, 0.0, 1.0],
+        TexelFormat::Luminance | TexelFormat::Intensity | TexelFormat::Depth | TexelFormat::Red => [r, 0.0, 0.0, 1.0],
         TexelFormat::LuminanceAlpha => [r, 0.0, 0.0, a],
+        TexelFormat::Rg => [r, g, 0.0, 1.0],
         TexelFormat::Rgb => [r, g, b, 1.0],
         TexelFormat::Rgba => [r, g, b, a],
     }
@@ -255,7 +378,20 @@ mod tests {
         assert!(internal_format(5).is_none());
         assert!(internal_format(gl::GL_BGRA).is_none());
         assert_eq!(texel(TexelFormat::Intensity, [0.5, 0.0, 0.0, 0.0]), [128; 4]);
-        assert_eq!(texel_to_rgba(TexelFormat::LuminanceAlpha, [255, 255, 255, 0]), [1.0, 0.0, 0.0, 0.0]);
+        assert_eq!(texel_to_rgba(TexelFormat::LuminanceAlpha, [1.0, 1.0, 1.0, 0.0]), [1.0, 0.0, 0.0, 0.0]);
+        let rg16f = internal_format(gl::GL_RG16F).unwrap();
+        assert_eq!(rg16f.base, Base::Texel(TexelFormat::Rg));
+        assert_eq!(component_bits(rg16f.base, gl::GL_RG16F, gl::GL_TEXTURE_GREEN_SIZE), Some(16));
+        assert_eq!(component_bits(rg16f.base, gl::GL_RG16F, gl::GL_TEXTURE_BLUE_SIZE), Some(0));
+        assert_eq!(component_type(rg16f.base, gl::GL_RG16F, gl::GL_TEXTURE_RED_TYPE), Some(gl::GL_FLOAT));
+        assert_eq!(component_type(rg16f.base, gl::GL_RG16F, gl::GL_TEXTURE_ALPHA_TYPE), Some(gl::GL_NONE));
+        let l16 = internal_format(gl::GL_LUMINANCE16_ALPHA16).unwrap().base;
+        assert_eq!(component_bits(l16, gl::GL_LUMINANCE16_ALPHA16, gl::GL_TEXTURE_LUMINANCE_SIZE), Some(16));
+        assert_eq!(component_type(l16, gl::GL_LUMINANCE16_ALPHA16, gl::GL_TEXTURE_LUMINANCE_TYPE), Some(gl::GL_UNSIGNED_NORMALIZED));
+        assert_eq!(component_type(internal_format(gl::GL_R8_SNORM).unwrap().base, gl::GL_R8_SNORM, gl::GL_TEXTURE_RED_TYPE), Some(gl::GL_SIGNED_NORMALIZED));
+        assert_eq!(internal_format(gl::GL_COMPRESSED_SLUMINANCE).unwrap().reported, gl::GL_SLUMINANCE);
+        assert_eq!(internal_format(gl::GL_COMPRESSED_RG).unwrap().reported, gl::GL_RG);
+        assert_eq!(component_bits(Base::Texel(TexelFormat::Rgb), gl::GL_RGB9_E5, gl::GL_TEXTURE_SHARED_SIZE), Some(5));
         assert_eq!(component_bits(Base::Texel(TexelFormat::Alpha), gl::GL_ALPHA, gl::GL_TEXTURE_RED_SIZE), Some(0));
         assert_eq!(stored_depth(0.5, 16), (32768.0 / 65535.0) as f32);
         assert_eq!(stored_depth(-1.0, 24), 0.0);

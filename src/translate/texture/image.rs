@@ -19,7 +19,7 @@ use super::formats::{self, Base, Internal, S3tc};
 use super::objects::{Level, Target, TextureObject};
 use super::palette::Palette;
 use crate::frame::pixels::{PixelBuffer, PixelKind};
-use crate::frame::texture::{TexImage, TexelFormat};
+use crate::frame::texture::{Precision, TexImage, TexelFormat};
 
 /// Where an image command writes: the kind of texture, the cube face, and whether it is a
 /// proxy.
@@ -115,6 +115,8 @@ pub fn resolve_indices(indices: &[u16], palette: &Palette) -> Vec<u8> {
 struct Converted {
     /// Canonical RGBA8 texels.
     texels: Vec<u8>,
+    /// RGBA `f32` texels of [`Precision::Float`] levels (empty otherwise).
+    values: Vec<f32>,
     /// Depth values at the internal format's precision (depth formats only).
     depth: Vec<f32>,
     /// Colour indices (paletted formats only).
@@ -147,7 +149,6 @@ fn write_object_region(obj: &mut TextureObject, palette: &Palette, face: usize, 
 }
 
 fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, palette: &Palette) -> Converted {
-    let colour = |texels| Converted { texels, depth: Vec::new(), indices: None, stencil: None };
     match (base, data) {
         (Base::ColorIndex, data) => {
             let mask = (1i64 << formats::index_bits(internal)) - 1;
@@ -155,7 +156,7 @@ fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, p
                 Some(Unpacked::Index(ix)) => ix.iter().map(|&i| (i & mask) as u16).collect(),
                 _ => vec![0; count],
             };
-            Converted { texels: resolve_indices(&indices, palette), depth: Vec::new(), indices: Some(Arc::new(indices)), stencil: None }
+            Converted { texels: resolve_indices(&indices, palette), values: Vec::new(), depth: Vec::new(), indices: Some(Arc::new(indices)), stencil: None }
         }
         (Base::Texel(TexelFormat::Depth), data) => {
             let bits = formats::depth_bits(internal);
@@ -170,10 +171,18 @@ fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, p
                 Arc::new((0..depth.len()).map(|i| stencil.get(i).map_or(0, |&s| (s & mask) as u8)).collect())
             });
             let texels = depth.iter().flat_map(|&d| formats::texel(TexelFormat::Depth, [d, d, d, 1.0])).collect();
-            Converted { texels, depth, indices: None, stencil }
+            Converted { texels, values: Vec::new(), depth, indices: None, stencil }
         }
-        (Base::Texel(f), Some(Unpacked::Rgba(c))) => colour(c.iter().flat_map(|&c| formats::texel(f, c)).collect()),
-        (Base::Texel(_), _) => colour(vec![0; count * 4]),
+        (Base::Texel(f), data) => {
+            let storage = formats::level_storage(base, internal);
+            let colours = match data {
+                Some(Unpacked::Rgba(c)) => c.iter().map(|&c| formats::expand(f, storage.round(c))).collect(),
+                _ => vec![[0.0; 4]; count],
+            };
+            let texels = colours.iter().flat_map(|&c| formats::texel(TexelFormat::Rgba, c)).collect();
+            let values = if storage.precision() == Precision::Float { colours.into_iter().flatten().collect() } else { Vec::new() };
+            Converted { texels, values, depth: Vec::new(), indices: None, stencil: None }
+        }
     }
 }
 
@@ -185,10 +194,11 @@ fn build_level(internal: Internal, size: [usize; 3], border: usize, data: Option
 
 /// A level of `size` (border included) holding `converted`.
 fn level_of(internal: Internal, size: [usize; 3], border: usize, converted: Converted) -> Level {
-    let Converted { texels, depth, indices, stencil } = converted;
+    let Converted { texels, values, depth, indices, stencil } = converted;
     let [w, h, d] = size.map(|v| v as u32);
+    let precision = internal.storage.precision();
     let mut level = Level {
-        image: Arc::new(TexImage { width: w, height: h, depth: d, border: border as u32, texels, depth_values: depth }),
+        image: Arc::new(TexImage { width: w, height: h, depth: d, border: border as u32, texels, precision, values, depth_values: depth }),
         size,
         border,
         internal_format: internal.reported,
@@ -223,6 +233,9 @@ fn write_region(level: &mut Level, offset: [usize; 3], size: [usize; 3], src: &C
             for x in 0..size[0] {
                 let dst = ((offset[2] + z) * lh + offset[1] + y) * lw + offset[0] + x;
                 if let (Some(d), Some(s)) = (image.texels.get_mut(dst * 4..dst * 4 + 4), src.texels.get(i * 4..i * 4 + 4)) {
+                    d.copy_from_slice(s);
+                }
+                if let (Some(d), Some(s)) = (image.values.get_mut(dst * 4..dst * 4 + 4), src.values.get(i * 4..i * 4 + 4)) {
                     d.copy_from_slice(s);
                 }
                 if let (Some(d), Some(&s)) = (image.depth_values.get_mut(dst), src.depth.get(i)) {
@@ -330,12 +343,12 @@ impl Context {
             let proxy = Level { image: Arc::default(), size, border, internal_format: internal.reported, base: internal.base, compressed: None, indices: None, stencil: None };
             return self.store_level(dest, level, Some(proxy));
         }
-        let Ok(direct) = (unsafe { self.direct_texels(ft, internal.base, size, pixels, command) }) else { return };
+        let Ok(direct) = (unsafe { self.direct_texels(ft, internal, size, pixels, command) }) else { return };
         let image = if let Some(texels) = direct {
-            level_of(internal, size, border, Converted { texels, depth: Vec::new(), indices: None, stencil: None })
+            level_of(internal, size, border, Converted { texels, values: Vec::new(), depth: Vec::new(), indices: None, stencil: None })
         } else {
             let keep_index = internal.base == Base::ColorIndex;
-            let Ok(data) = (unsafe { self.unpack_client(ft, size, pixels, keep_index, command) }) else { return };
+            let Ok(data) = (unsafe { self.unpack_client(ft, size, pixels, keep_index, !internal.storage.unclamped(), command) }) else { return };
             self.with_dest(dest, |_, palette| build_level(internal, size, border, data, palette))
         };
         self.store_level(dest, level, Some(image));
@@ -440,7 +453,9 @@ impl Context {
         if let Err(e) = check_format_pair(ft.0, base) {
             return self.set_error_in(e, command);
         }
-        let Ok(data) = (unsafe { self.unpack_client(ft, sz, pixels, base == Base::ColorIndex, command) }) else { return };
+        let internal = self.with_dest(dest, |obj, _| obj.level(dest.face, level).map_or(gl::GL_NONE, |l| l.internal_format));
+        let clamp = !formats::level_storage(base, internal).unclamped();
+        let Ok(data) = (unsafe { self.unpack_client(ft, sz, pixels, base == Base::ColorIndex, clamp, command) }) else { return };
         let Some(data) = data else { return self.null_pointer(command) };
         self.write_sub_image(dest, level, off, sz, base, data);
     }
@@ -652,10 +667,13 @@ impl Context {
         let rgba: Vec<[f32; 4]> = if depth_level {
             let stencil = |i: usize| lvl.stencil.as_ref().and_then(|s| s.get(i)).map_or(0.0, |&s| f32::from(s));
             lvl.image.depth_values.iter().enumerate().map(|(i, &d)| [d, stencil(i), 0.0, 1.0]).collect()
+        } else if lvl.image.precision == Precision::Float {
+            lvl.image.values.chunks_exact(4).map(|c| formats::texel_to_rgba(texel_format, [c[0], c[1], c[2], c[3]])).collect()
         } else {
-            lvl.image.texels.chunks_exact(4).map(|c| formats::texel_to_rgba(texel_format, [c[0], c[1], c[2], c[3]])).collect()
+            lvl.image.texels.chunks_exact(4).map(|c| formats::texel_to_rgba(texel_format, [c[0], c[1], c[2], c[3]].map(|v| f32::from(v) / 255.0))).collect()
         };
-        let values = self.transfer_for_pack(f, &rgba, Luminance::Red);
+        let clamp = !formats::level_storage(lvl.base, lvl.internal_format).unclamped();
+        let values = self.transfer_for_pack(f, &rgba, Luminance::Red, clamp);
         unsafe { self.pack_client((f, t), lvl.size, pixels, &values, CMD) }
     }
 
@@ -676,6 +694,10 @@ impl Context {
             gl::GL_TEXTURE_INDEX_SIZE_EXT => {
                 let paletted = lvl.as_ref().filter(|l| l.base == Base::ColorIndex);
                 Value::int(paletted.map_or(0, |l| i64::from(formats::index_bits(l.internal_format))))
+            }
+            gl::GL_TEXTURE_RED_TYPE..=gl::GL_TEXTURE_DEPTH_TYPE => {
+                let ty = lvl.as_ref().map_or(gl::GL_NONE, |l| formats::component_type(l.base, l.internal_format, pname).unwrap_or(gl::GL_NONE));
+                Value::int(i64::from(ty))
             }
             gl::GL_TEXTURE_COMPRESSED_IMAGE_SIZE => {
                 let (Some(l), Some(fmt)) = (lvl.as_ref(), s3tc) else { return Err(gl::GL_INVALID_OPERATION) };

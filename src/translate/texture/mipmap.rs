@@ -48,10 +48,17 @@ pub fn downsample(src: &[u8], size: [usize; 3]) -> (Vec<u8>, [usize; 3]) {
     (out, out_size)
 }
 
-/// Halves depth values `src` (`size` without border) with a box filter.
-pub fn downsample_depth(src: &[f32], size: [usize; 3]) -> Vec<f32> {
+/// Halves `f32` texels of `per_texel` values (depth values, or the RGBA values of float
+/// levels) `src` (`size` without border) with a box filter.
+pub fn downsample_floats(src: &[f32], per_texel: usize, size: [usize; 3]) -> Vec<f32> {
     let (groups, _) = footprints(size);
-    groups.iter().map(|g| g.iter().map(|&i| src.get(i).copied().unwrap_or(0.0)).sum::<f32>() / g.len() as f32).collect()
+    let mut out = Vec::with_capacity(groups.len() * per_texel);
+    for g in groups {
+        for c in 0..per_texel {
+            out.push(g.iter().map(|&i| src.get(i * per_texel + c).copied().unwrap_or(0.0)).sum::<f32>() / g.len() as f32);
+        }
+    }
+    out
 }
 
 /// Removes the border of an image whose texels are `per_texel` consecutive values of `data`.
@@ -83,6 +90,8 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
     let mut size: [usize; 3] = std::array::from_fn(|i| if i < dims { top.size[i] - 2 * border } else { 1 });
     let mut texels = interior(&top.image.texels, 4, top.size, border);
     let mut depth = interior(&top.image.depth_values, 1, top.size, border);
+    let mut values = interior(&top.image.values, 4, top.size, border);
+    let precision = top.image.precision;
     let base_format = match top.base {
         Base::ColorIndex => Base::Texel(TexelFormat::Rgba),
         b => b,
@@ -90,11 +99,12 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
     let mut level = base;
     while size.iter().any(|&s| s > 1) && level + 1 < obj.faces.first().map_or(0, Vec::len) {
         let (next, next_size) = downsample(&texels, size);
-        let next_depth = if depth.is_empty() { Vec::new() } else { downsample_depth(&depth, size) };
+        let next_depth = if depth.is_empty() { Vec::new() } else { downsample_floats(&depth, 1, size) };
+        let next_values = if values.is_empty() { Vec::new() } else { downsample_floats(&values, 4, size) };
         level += 1;
         let [w, h, d] = next_size.map(|v| v as u32);
         let mut generated = Level {
-            image: Arc::new(TexImage { width: w, height: h, depth: d, border: 0, texels: next.clone(), depth_values: next_depth.clone() }),
+            image: Arc::new(TexImage { width: w, height: h, depth: d, border: 0, texels: next.clone(), precision, values: next_values.clone(), depth_values: next_depth.clone() }),
             size: next_size,
             border: 0,
             internal_format: top.internal_format,
@@ -107,13 +117,14 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
         *obj.level_slot(face, level) = Some(generated);
         texels = next;
         depth = next_depth;
+        values = next_values;
         size = next_size;
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::{downsample, downsample_depth};
+    use super::{downsample, downsample_floats};
 
     #[test]
     fn box_filter_averages_and_rounds() {
@@ -124,7 +135,9 @@ mod tests {
         let row = [0, 0, 0, 0, 100, 100, 100, 100, 1, 1, 1, 1, 2, 2, 2, 2];
         assert_eq!(downsample(&row, [4, 1, 1]), (vec![50, 50, 50, 50, 2, 2, 2, 2], [2, 1, 1]));
         // Depth averages without rounding to 8 bits.
-        assert_eq!(downsample_depth(&[0.125, 0.25, 0.5, 0.0], [2, 2, 1]), vec![0.21875]);
-        assert_eq!(downsample_depth(&[0.1, 0.3, 1.0, 0.5], [4, 1, 1]), vec![0.2, 0.75]);
+        assert_eq!(downsample_floats(&[0.125, 0.25, 0.5, 0.0], 1, [2, 2, 1]), vec![0.21875]);
+        assert_eq!(downsample_floats(&[0.1, 0.3, 1.0, 0.5], 1, [4, 1, 1]), vec![0.2, 0.75]);
+        // Float levels average each of their four values, beyond [0, 1] too.
+        assert_eq!(downsample_floats(&[-1.0, 2.0, 0.0, 0.0, -3.0, 4.0, 0.0, 1.0], 4, [2, 1, 1]), vec![-2.0, 3.0, 0.0, 0.5]);
     }
 }

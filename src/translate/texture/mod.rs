@@ -43,6 +43,7 @@ pub mod palette;
 pub mod params;
 pub mod s3tc;
 pub mod snapshot;
+pub mod storage;
 pub mod texgen;
 
 use super::Context;

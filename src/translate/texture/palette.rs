@@ -107,7 +107,7 @@ impl Context {
             self.set_error_in(gl::GL_INVALID_ENUM, command);
             return None;
         }
-        match unsafe { self.unpack_client(ft, [count, 1, 1], data, false, command) } {
+        match unsafe { self.unpack_client(ft, [count, 1, 1], data, false, true, command) } {
             Ok(Some(Unpacked::Rgba(c))) => Some(c.iter().map(|&c| formats::texel(base, c)).collect()),
             Ok(_) => {
                 self.null_pointer(command);
@@ -196,8 +196,8 @@ impl Context {
         }
         let palette = self.with_palette(pt, |p| p.clone());
         let base = palette.base.unwrap_or(TexelFormat::Rgba);
-        let rgba: Vec<[f32; 4]> = palette.entries.iter().map(|&e| formats::texel_to_rgba(base, e)).collect();
-        let values = self.transfer_for_pack(f, &rgba, Luminance::Red);
+        let rgba: Vec<[f32; 4]> = palette.entries.iter().map(|&e| formats::texel_to_rgba(base, e.map(|v| f32::from(v) / 255.0))).collect();
+        let values = self.transfer_for_pack(f, &rgba, Luminance::Red, true);
         unsafe { self.pack_client((f, t), [rgba.len(), 1, 1], data, &values, CMD) }
     }
 

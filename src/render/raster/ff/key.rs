@@ -319,7 +319,7 @@ fn unit_word(unit: &TextureUnit, content: &crate::frame::texture::TextureContent
         TexelFormat::Luminance => 1,
         TexelFormat::LuminanceAlpha => 2,
         TexelFormat::Intensity => 3,
-        TexelFormat::Rgb => 4,
+        TexelFormat::Rgb | TexelFormat::Red | TexelFormat::Rg => 4,
         TexelFormat::Rgba => 5,
         TexelFormat::Depth => match content.sampler.depth_mode {
             DepthMode::Alpha => 0,

@@ -5,7 +5,8 @@
 //! [`prepare`] turns a [`Draw`] into [`Batch`]es: packed vertices ([`vertex`]), the uniform
 //! block ([`uniforms`]), the shader key ([`key`]), and the primitives Vulkan cannot rasterize
 //! as OpenGL does converted to triangles ([`convert`]: polygon modes, wide and stippled
-//! lines, points).
+//! lines, points). A draw whose vertex stage is an OpenGL 2.0 program's is not converted:
+//! [`native`] makes its batches.
 //!
 //! The contract with the Vulkan side (`render::raster` device code):
 //! - vertices are interleaved `f32`s, [`VERTEX_FLOATS`] per vertex, with the attributes of
@@ -22,8 +23,8 @@
 //! - the pipeline enables `shaderClipDistance` with `gl_ClipDistance[6]` written by
 //!   `ff.vert` (planes not enabled get 1);
 //! - [`Batch::topology`] is a list topology (`*_LIST`; points and lines arrive expanded to
-//!   triangles); the provoking vertex is already placed first (Vulkan's default), so no
-//!   extension is needed for flat shading;
+//!   triangles, except from [`native`]); the provoking vertex is already placed first
+//!   (Vulkan's default), so no extension is needed for flat shading;
 //! - per batch, the renderer writes the render target's height with
 //!   [`uniforms::set_framebuffer_height`] (the polygon stipple needs it), culls with
 //!   [`Batch::cull`] (not `RasterState::cull`: lines and points arrive as triangles of either
@@ -32,17 +33,19 @@
 //!   front face is set from [`crate::frame::RasterState::front_face`] for that viewport so
 //!   that `gl_FrontFacing` is OpenGL's facing, culling is [`Batch::cull`] (not the state's),
 //!   depth bias (the state's polygon offset) only where [`Batch::polygon_offset`] is set; line
-//!   width stays 1 and no point size or wide-line feature is needed.
+//!   width stays 1 and no point size or wide-line feature is needed, except for [`native`]
+//!   batches (the state's line width, `gl_PointSize`, [`Batch::polygon_mode`]).
 
 pub mod convert;
 pub mod key;
+pub mod native;
 pub mod uniforms;
 pub mod vertex;
 
 pub use key::ShaderKey;
 pub use vertex::{VERTEX_ATTRIBUTES, VERTEX_FLOATS, VertexAttribute};
 
-use crate::frame::state::Face;
+use crate::frame::state::{Face, PolygonMode};
 use crate::frame::{Draw, Topology};
 
 /// Texture units the shaders implement.
@@ -65,10 +68,16 @@ pub fn fragment_spirv() -> &'static [u8] {
 /// may overlap (filled faces, then edges) and are drawn in the order [`prepare`] returns.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Batch {
-    /// A list topology: always [`Topology::Triangles`] (lines and points arrive expanded).
+    /// A list topology: [`Topology::Triangles`] (lines and points arrive expanded) but for
+    /// [`native`] batches.
     pub topology: Topology,
+    /// How triangles are rasterized: [`PolygonMode::Fill`] but for [`native`] batches.
+    pub polygon_mode: PolygonMode,
     /// Packed vertices, [`VERTEX_FLOATS`] per vertex.
     pub vertices: Vec<f32>,
+    /// The generic attributes of a program's vertex stage ([`vertex::pack_generic`]; empty
+    /// without one).
+    pub generic: Vec<f32>,
     /// Indices into `vertices`, the provoking vertex first in each primitive.
     pub indices: Vec<u32>,
     /// The shader specialisation.
@@ -91,6 +100,9 @@ pub fn prepare(draw: &Draw) -> Vec<Batch> {
     }
     let packed = vertex::pack(draw);
     let uniforms = uniforms::pack(draw);
+    if let Some(program) = draw.program.as_ref().filter(|p| p.program.vertex.is_some()) {
+        return native::prepare(draw, program, packed, uniforms);
+    }
     let parts: Vec<_> = convert::convert(draw, &packed).into_iter().filter(|part| !part.indices.is_empty()).collect();
     // The draw's own vertices go to the parts that keep them: moved into the last of them.
     let mut sharing = parts.iter().filter(|part| part.vertices.is_none()).count();
@@ -103,7 +115,9 @@ pub fn prepare(draw: &Draw) -> Vec<Batch> {
         .into_iter()
         .map(|part| Batch {
             topology: Topology::Triangles,
+            polygon_mode: PolygonMode::Fill,
             vertices: part.vertices.unwrap_or_else(&mut own_vertices),
+            generic: Vec::new(),
             indices: part.indices,
             shader: key::shader_key(draw, part.primitive, part.facing),
             uniforms: uniforms.clone(),

@@ -3,6 +3,7 @@
 
 use super::MAX_UNITS;
 use crate::frame::Draw;
+use crate::frame::program::ShaderProgram;
 
 /// Floats per packed vertex.
 pub const VERTEX_FLOATS: usize = 36;
@@ -71,6 +72,32 @@ pub fn pack(draw: &Draw) -> Vec<f32> {
     out
 }
 
+/// The generic attribute indices (1 to 15) a program's vertex stage reads, in the order of
+/// [`ShaderProgram::attributes`], each once: the order of [`pack_generic`]'s vec4s.
+pub fn generic_indices(program: &ShaderProgram) -> Vec<u32> {
+    let mut out: Vec<u32> = Vec::new();
+    for &i in &program.attributes {
+        if (1..16).contains(&i) && !out.contains(&i) {
+            out.push(i);
+        }
+    }
+    out
+}
+
+/// Interleaves the generic attributes `indices` of the draw's vertices, 4 floats each per
+/// vertex; an attribute the draw lacks is (0, 0, 0, 1).
+pub fn pack_generic(draw: &Draw, indices: &[u32]) -> Vec<f32> {
+    let v = &draw.vertices;
+    let mut out = Vec::with_capacity(v.len() * 4 * indices.len());
+    for i in 0..v.position.len() {
+        for &index in indices {
+            let value = v.generic.get(index as usize).and_then(|a| a.get(i));
+            out.extend_from_slice(&value.unwrap_or([0.0, 0.0, 0.0, 1.0]));
+        }
+    }
+    out
+}
+
 /// The packed vertex `i` of `packed`.
 pub fn get(packed: &[f32], i: u32) -> &[f32] {
     let start = i as usize * VERTEX_FLOATS;
@@ -98,6 +125,18 @@ mod tests {
         assert_eq!(second[FOG_COORD], 9.0);
         assert_eq!(&second[TEXCOORD..TEXCOORD + 4], &[0.0, 0.0, 0.0, 1.0], "unit 0 had none");
         assert_eq!(&second[TEXCOORD + 4..TEXCOORD + 8], &[7.0, 8.0, 0.0, 1.0]);
+    }
+
+    #[test]
+    fn generic_attributes_interleave_with_defaults() {
+        let mut draw = Draw::default();
+        draw.vertices.position = vec![[0.0; 4], [1.0; 4]];
+        draw.vertices.generic = vec![Attrib::default(), Attrib::default(), Attrib { values: vec![[2.0; 4], [3.0; 4]] }];
+        let program = ShaderProgram { id: 1, vertex: None, fragment: None, samplers: Vec::new(), attributes: vec![4, 2, 0, 2, 16] };
+        let indices = generic_indices(&program);
+        assert_eq!(indices, vec![4, 2]);
+        let packed = pack_generic(&draw, &indices);
+        assert_eq!(packed, vec![0.0, 0.0, 0.0, 1.0, 2.0, 2.0, 2.0, 2.0, 0.0, 0.0, 0.0, 1.0, 3.0, 3.0, 3.0, 3.0]);
     }
 
     #[test]

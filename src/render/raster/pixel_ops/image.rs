@@ -51,7 +51,7 @@ static NEXT_IMAGE_VERSION: AtomicU64 = AtomicU64::new(1 << 63);
 /// without mipmaps or wrapping, so each fragment takes the colour of its pixel (the texture
 /// cache frees it a few frames after its last use).
 fn image_texture(width: u32, height: u32, texels: Vec<u8>) -> TextureRef {
-    let image = TexImage { width, height, depth: 1, border: 0, texels, depth_values: Vec::new() };
+    let image = TexImage { width, height, depth: 1, border: 0, texels, ..TexImage::default() };
     let sampler = Sampler {
         min_filter: MinFilter { texel: Filter::Nearest, mipmap: None },
         mag_filter: Filter::Nearest,
