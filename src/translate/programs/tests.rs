@@ -428,3 +428,19 @@ fn real_compile_and_link() {
     assert_eq!(draw.vertices.generic[5].get(0), Some([0.1, 0.2, 0.3, 1.0]));
     assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
 }
+
+#[test]
+fn a_deleted_program_goes_with_the_last_context_using_it() {
+    let (mut a, _) = Context::with_recording();
+    let (mut b, _) = Context::with_recording();
+    b.shared = a.shared.clone();
+    let p = fake_program(&mut a, true);
+    unsafe {
+        dispatch::glUseProgram(&mut b, p);
+        dispatch::glDeleteProgram(&mut a, p);
+        dispatch::glUseProgram(&mut a, 0);
+    }
+    assert_eq!(unsafe { dispatch::glIsProgram(&mut a, p) }, 1, "still in use by the other context");
+    drop(b);
+    assert_eq!(unsafe { dispatch::glIsProgram(&mut a, p) }, 0);
+}
