@@ -125,10 +125,11 @@ impl Context {
         for f in [|m: Mat4| m, |m: Mat4| m.inverse(), |m: Mat4| m.transpose(), |m: Mat4| m.inverse().transpose()] {
             tex.iter().for_each(|&m| b.mat4(f(m)));
         }
-        let normal = Mat3::from_mat4(mv).inverse().transpose();
-        b.mat3(normal);
-        // gl_NormalScale: the rescale factor of section 2.11.3.
-        b.float(1.0 / Vec3::new(mv.x_axis.z, mv.y_axis.z, mv.z_axis.z).length());
+        let inverse = Mat3::from_mat4(mv).inverse();
+        b.mat3(inverse.transpose());
+        // gl_NormalScale: the rescale factor of section 2.11.3, from the third row of the
+        // inverse of the modelview's upper 3x3.
+        b.float(1.0 / Vec3::new(inverse.x_axis.z, inverse.y_axis.z, inverse.z_axis.z).length());
         let [near, far] = self.viewport.depth_range.map(|v| v as f32);
         b.align(4);
         [near, far, far - near].iter().for_each(|&x| b.float(x));
@@ -282,11 +283,14 @@ mod tests {
             dispatch::glFogf(&mut ctx, gl::GL_FOG_START, 1.0);
             dispatch::glActiveTexture(&mut ctx, gl::GL_TEXTURE3);
             dispatch::glTexEnvfv(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_COLOR, [0.5, 0.25, 0.125, 1.0].as_ptr());
+            dispatch::glEnable(&mut ctx, gl::GL_VERTEX_PROGRAM_POINT_SIZE);
+            dispatch::glScalef(&mut ctx, 2.0, 2.0, 2.0);
         }
         let depth = [[1, 2, 1, 0]; 8];
         let b = ctx.pack_builtins(&depth);
         let top = |m: &str| at("GlrtBuiltins", m);
         assert_eq!(b.len(), top("glrt_Flags") + 16, "the block's size");
+        assert_eq!(u32::from_ne_bytes(b[top("glrt_Flags")..][..4].try_into().unwrap()), 1, "GL_VERTEX_PROGRAM_POINT_SIZE");
         assert_eq!(f32_at(&b, top("glrt_DepthRange") + at("glrt_DepthRangeParameters", "diff")), 0.5);
         assert_eq!(f32_at(&b, top("glrt_ClipPlane") + 5 * 16 + 12), 4.0, "planes by index, enabled or not");
         assert_eq!(f32_at(&b, top("glrt_Point") + at("glrt_PointParameters", "size")), 5.0);
@@ -297,9 +301,11 @@ mod tests {
         assert_eq!(f32_at(&b, light(3, "spotCutoff")), 60.0);
         assert_eq!(f32_at(&b, top("glrt_Fog") + at("glrt_FogParameters", "scale")), 0.5);
         assert_eq!(f32_at(&b, top("glrt_TextureEnvColor") + 3 * 16 + 4), 0.25);
-        assert_eq!(f32_at(&b, top("glrt_NormalScale")), 1.0);
+        assert_eq!(f32_at(&b, top("glrt_NormalScale")), 2.0, "undoes the scale the normal matrix gives");
         let mat3 = top("glrt_NormalMatrix");
-        assert_eq!([f32_at(&b, mat3), f32_at(&b, mat3 + 16 + 4), f32_at(&b, mat3 + 32 + 8)], [1.0; 3]);
+        assert_eq!([f32_at(&b, mat3), f32_at(&b, mat3 + 16 + 4), f32_at(&b, mat3 + 32 + 8)], [0.5; 3]);
+        assert_eq!(f32_at(&b, top("glrt_ModelViewMatrixInverse") + 16 + 4), 0.5);
+        assert_eq!(f32_at(&b, top("glrt_ModelViewProjectionMatrix")), 2.0);
         let scene = top("glrt_FrontLightModelProduct") + at("glrt_LightModelProducts", "sceneColor");
         assert!((f32_at(&b, scene) - 0.04).abs() < 1e-6, "emission + ambient * model ambient (0.2 * 0.2)");
         for m in ["glrt_LightModel", "glrt_BackLightProduct", "glrt_ObjectPlaneQ", "glrt_TextureMatrixInverseTranspose"] {
