@@ -142,6 +142,29 @@ fn generic_arrays_in_draws_and_display_lists() {
 }
 
 #[test]
+fn lists_compiled_without_a_program_keep_generic_arrays() {
+    let (mut ctx, _) = Context::with_recording();
+    let positions: [f32; 6] = [0.0, 0.0, 1.0, 0.0, 0.0, 1.0];
+    let extra: [f32; 3] = [4.0, 5.0, 6.0];
+    unsafe {
+        dispatch::glVertexPointer(&mut ctx, 2, gl::GL_FLOAT, 0, positions.as_ptr().cast());
+        dispatch::glEnableClientState(&mut ctx, gl::GL_VERTEX_ARRAY);
+        dispatch::glVertexAttribPointer(&mut ctx, 9, 1, gl::GL_FLOAT, 0, 0, extra.as_ptr().cast());
+        dispatch::glEnableVertexAttribArray(&mut ctx, 9);
+        dispatch::glNewList(&mut ctx, 1, gl::GL_COMPILE);
+        dispatch::glDrawArrays(&mut ctx, gl::GL_TRIANGLES, 0, 3);
+        dispatch::glEndList(&mut ctx);
+        dispatch::glCallList(&mut ctx, 1);
+    }
+    assert!(ctx.frame.draws[0].vertices.generic.is_empty(), "no program when the list runs");
+    fake_program(&mut ctx, true);
+    unsafe { dispatch::glCallList(&mut ctx, 1) };
+    let v = &ctx.frame.draws.last().unwrap().vertices;
+    assert_eq!(v.generic[9].values, vec![[4.0, 0.0, 0.0, 1.0], [5.0, 0.0, 0.0, 1.0], [6.0, 0.0, 0.0, 1.0]]);
+    assert_eq!(v.generic[8].values, vec![[0.0, 0.0, 0.0, 1.0]]);
+}
+
+#[test]
 fn current_values_in_lists_attrib_stacks_and_buffer_arrays() {
     let (mut ctx, _) = Context::with_recording();
     unsafe {
