@@ -17,8 +17,10 @@ pub const MAX_FRAGMENT_UNIFORM_COMPONENTS: usize = 1024;
 pub const MAX_VARYING_FLOATS: usize = 64;
 /// Texture image units a vertex shader samples (`GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS`).
 pub const MAX_VERTEX_TEXTURE_IMAGE_UNITS: usize = 4;
-/// Texture image units of both shaders together (`GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS`).
-pub const MAX_COMBINED_TEXTURE_IMAGE_UNITS: usize = 8;
+/// Texture image units of both shaders together (`GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS`): the
+/// fixed-function units, which both stages share (`glActiveTexture` takes units below the
+/// larger of this and `GL_MAX_TEXTURE_COORDS`, OpenGL 2.0 section 3.8.13).
+pub const MAX_COMBINED_TEXTURE_IMAGE_UNITS: usize = MAX_TEXTURE_UNITS;
 /// Colour buffers a fragment shader writes (`GL_MAX_DRAW_BUFFERS`).
 pub const MAX_DRAW_BUFFERS: usize = 1;
 /// Lights (`GL_MAX_LIGHTS`).
