@@ -45,6 +45,7 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_ARB_draw_buffers",
     "GL_ARB_texture_rectangle",
     "GL_NV_point_sprite",
+    "GL_EXT_texture_integer",
 ];
 
 /// Commands allowed between `glBegin` and `glEnd` besides the attribute families

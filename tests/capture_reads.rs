@@ -48,6 +48,13 @@ fn addr<T>(p: *const T) -> u64 {
     p as usize as u64
 }
 
+/// Whether one of `reads` holds `bytes` at `address`.
+fn covers(reads: &Reads, address: u64, bytes: &[u8]) -> bool {
+    reads.iter().any(|(a, b)| {
+        address >= *a && (address - a) as usize + bytes.len() <= b.len() && b[(address - a) as usize..][..bytes.len()] == *bytes
+    })
+}
+
 #[test]
 fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
     let (path, live_log) = (scratch("reads.glrtcap"), scratch("live.frames"));
@@ -64,7 +71,15 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
     let buffer_data: Vec<f32> = (0..12).map(|i| i as f32).collect();
     let mut seen_vertex_bytes = Vec::new();
     let pixel = |frame: usize| [40 * frame as u8, 255, 0, 255];
+    // glShaderSource's strings: one with a length (no NUL), one NUL-terminated.
+    let (part1, part2) = (b"void main() {XXXX".to_vec(), c" gl_FragColor = vec4(1.0); }".to_owned());
+    let strings: Vec<*const GLchar> = vec![part1.as_ptr().cast(), part2.as_ptr()];
+    let lengths: Vec<GLint> = vec![13, -1];
+    let generic: Vec<[f32; 2]> = (0..4).map(|i| [i as f32, -1.0]).collect();
+    let range_indices: [u8; 3] = [0, 2, 1];
     unsafe {
+        let shader = gl::glCreateShader(GL_FRAGMENT_SHADER);
+        gl::glShaderSource(shader, 2, strings.as_ptr(), lengths.as_ptr());
         let base = gl::glGenLists(3);
         for i in 0..3 {
             gl::glNewList(base + i, GL_COMPILE);
@@ -91,6 +106,10 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
             gl::glEnableClientState(GL_VERTEX_ARRAY);
             gl::glVertexPointer(3, GL_FLOAT, 0, vertices.as_ptr().cast());
             gl::glDrawElements(GL_TRIANGLES, 3, GL_UNSIGNED_SHORT, indices.as_ptr().cast());
+            gl::glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 0, generic.as_ptr().cast());
+            gl::glEnableVertexAttribArray(1);
+            gl::glDrawRangeElements(GL_POINTS, 0, 2, 3, GL_UNSIGNED_BYTE, range_indices.as_ptr().cast());
+            gl::glDisableVertexAttribArray(1);
             gl::glBegin(GL_POINTS);
             gl::glArrayElement(2);
             gl::glEnd();
@@ -131,6 +150,16 @@ fn captures_record_exactly_the_client_memory_read_and_replay_exactly() {
         let mut expected = vec![(addr(indices.as_ptr()), bytes_of(&indices)), range];
         expected.sort();
         assert_eq!(*reads, expected, "frame {frame}: indices and vertices 1..=7 as they were at the draw");
+    }
+    let source = of("glShaderSource");
+    assert_eq!(source.len(), 1);
+    let pointer_bytes: Vec<u8> = strings.iter().flat_map(|p| (*p as usize).to_ne_bytes()).collect();
+    assert!(covers(&source[0], addr(strings.as_ptr()), &pointer_bytes), "the string pointers");
+    assert!(covers(&source[0], addr(lengths.as_ptr()), &bytes_of(&lengths)), "the lengths");
+    assert!(covers(&source[0], addr(part1.as_ptr()), &part1[..13]), "a string of a given length");
+    assert!(covers(&source[0], addr(part2.as_ptr()), part2.to_bytes_with_nul()), "a NUL-terminated string");
+    for reads in of("glDrawRangeElements") {
+        assert!(covers(&reads, addr(generic.as_ptr()), &bytes_of(&generic[..3])), "generic array elements 0..=2");
     }
     for (frame, reads) in of("glArrayElement").iter().enumerate() {
         assert_eq!(*reads, vec![element(frame, 2)], "glArrayElement(2) reads vertex 2");

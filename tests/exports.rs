@@ -173,8 +173,8 @@ fn unimplemented_command_raises_invalid_operation() {
     // Safety: a context is current; the commands take scalars only.
     unsafe {
         assert_eq!(exports::glGetError(), GL_NO_ERROR);
-        // glBeginConditionalRender belongs to GL 3.0, which glrt does not implement.
-        exports::glBeginConditionalRender(1, 0x8E13); // GL_QUERY_WAIT
+        // glUniform1ui belongs to GL 3.0, which glrt does not implement.
+        exports::glUniform1ui(0, 1);
         assert_eq!(exports::glGetError(), GL_INVALID_OPERATION);
         assert_eq!(exports::glGetError(), GL_NO_ERROR, "glGetError clears the flag");
     }

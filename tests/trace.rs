@@ -124,6 +124,8 @@ fn errors_results_and_pointers_in_process() {
     let indices = [2u8, 1, 0];
     let image: Vec<u8> = (0..14).collect();
     let proc_name = c"glBegin";
+    let parts = [c"void main()".as_ptr(), c" {}XX".as_ptr()];
+    let lengths = [-1, 3];
     unsafe {
         gl::glEnable(GL_TEXTURE_2D); // no context yet
         let ctx = headless::glrtCreateContext(std::ptr::null_mut());
@@ -150,6 +152,8 @@ fn errors_results_and_pointers_in_process() {
         // With a pixel unpack buffer bound the pointer is an offset: its address only.
         gl::glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 1);
         gl::glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB as i32, 2, 2, 0, GL_RGB, GL_UNSIGNED_BYTE, std::ptr::without_provenance(8));
+        let shader = gl::glCreateShader(GL_FRAGMENT_SHADER);
+        gl::glShaderSource(shader, 2, parts.as_ptr(), lengths.as_ptr());
         glXGetProcAddress(proc_name.as_ptr().cast());
         headless::glrtSwapBuffers();
         headless::glrtMakeCurrent(std::ptr::null_mut(), 0, 0);
@@ -188,6 +192,8 @@ fn errors_results_and_pointers_in_process() {
             ),
             "0 glBindBuffer(target=GL_PIXEL_UNPACK_BUFFER, buffer=1)".to_owned(),
             "0 glTexImage2D(target=GL_TEXTURE_2D, level=0, internalformat=GL_RGB, width=2, height=2, border=0, format=GL_RGB, type=GL_UNSIGNED_BYTE, pixels=0x8)".to_owned(),
+            "0 glCreateShader(type=GL_FRAGMENT_SHADER) = 1".to_owned(),
+            format!("0 glShaderSource(shader=1, count=2, string={:p}[\"void main()\", \" {{}}\"], length={:p})", parts.as_ptr(), lengths.as_ptr()),
             format!("0 glXGetProcAddress(procName={:p}\"glBegin\") = {:p}", proc_name.as_ptr(), gl::glBegin as *const ()),
             "0 == end of frame (glrtSwapBuffers)".to_owned(),
         ]

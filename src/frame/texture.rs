@@ -14,6 +14,9 @@
 //! rounded to the internal format's precision (a renderer uploads those, for example as
 //! `R32G32B32A32_SFLOAT`); their `texels` are the same values clamped to [0, 1] at 8 bits.
 //!
+//! Integer formats (EXT_texture_integer) keep their components exactly, as `i64` in
+//! [`TexImage::integers`] ([`Precision::Integer`]).
+//!
 //! Depth levels also carry their values at full precision in [`TexImage::depth_values`] (one
 //! `f32` per texel, already rounded to the internal format's 16 or 24 bits; 32-bit formats keep
 //! the `f32`). A renderer reads depth levels from there (for example into a 32-bit float or
@@ -97,6 +100,10 @@ pub enum Precision {
     Srgb8,
     /// RGBA `f32` [`TexImage::values`] beside the 8-bit `texels`.
     Float,
+    /// Signed or unsigned integers in [`TexImage::integers`] (EXT_texture_integer); the 8-bit
+    /// `texels` are zero. Fixed-function texturing of integer textures is undefined, so such
+    /// levels never reach a frame (`translate::texture::snapshot` treats them as unbound).
+    Integer,
 }
 
 /// Everything a renderer needs to build a texture and its sampler.
@@ -131,6 +138,10 @@ pub struct TexImage {
     /// [`Precision::Float`]: `width * height * depth * 4` values in the order of `texels`;
     /// empty otherwise.
     pub values: Vec<f32>,
+    /// [`Precision::Integer`]: `width * height * depth * 4` integer components in the order of
+    /// `texels` (expanded as they are, with 0 and 1 for missing components), already clamped
+    /// to the internal format's range; empty otherwise.
+    pub integers: Vec<i64>,
     /// Depth formats: `width * height * depth` depth values in [0, 1], in the order of
     /// `texels`; empty for colour formats (see the module doc).
     pub depth_values: Vec<f32>,

@@ -88,13 +88,13 @@ fn save_lighting(ctx: &Context, out: &mut Vec<Restore>) {
 fn save_color_buffer(ctx: &Context, out: &mut Vec<Restore>) {
     out.push(caps(ctx, [gl::GL_ALPHA_TEST, gl::GL_BLEND, gl::GL_DITHER, gl::GL_INDEX_LOGIC_OP, gl::GL_COLOR_LOGIC_OP]));
     let f = &ctx.fixed;
-    let saved = (f.fragment, f.clear.color, f.clear.index, f.buffers.draw);
-    out.push(value(saved, |ctx, (fragment, color, index, draw)| {
+    let saved = (f.fragment, (f.clear.color, f.clear.color_integer), f.clear.index, f.buffers.draw);
+    out.push(value(saved, |ctx, (fragment, (color, color_integer), index, draw)| {
         let f = ctx.fixed_mut();
         let g = &mut f.fragment;
         (g.alpha, g.blend, g.logic_op, g.color_mask, g.index_mask) =
             (fragment.alpha, fragment.blend, fragment.logic_op, fragment.color_mask, fragment.index_mask);
-        (f.clear.color, f.clear.index, f.buffers.draw) = (color, index, draw);
+        (f.clear.color, f.clear.color_integer, f.clear.index, f.buffers.draw) = (color, color_integer, index, draw);
     }));
 }
 

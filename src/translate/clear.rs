@@ -4,7 +4,7 @@
 
 use super::Context;
 use super::get::Value;
-use super::gl::{self, GLbitfield, GLclampd, GLclampf, GLenum, GLfloat, GLint};
+use super::gl::{self, GLbitfield, GLclampd, GLclampf, GLenum, GLfloat, GLint, GLuint};
 use super::implementation::STENCIL_BITS;
 use crate::frame::Clear;
 
@@ -13,6 +13,12 @@ use crate::frame::Clear;
 pub struct ClearValues {
     /// `glClearColor`, clamped to [0, 1].
     pub color: [f32; 4],
+    /// `glClearColorIiEXT` / `glClearColorIuiEXT` (EXT_texture_integer): the clear value of
+    /// integer colour buffers, stored unmodified. glrt's colour buffers are never integer
+    /// (integer attachments are `GL_FRAMEBUFFER_UNSUPPORTED_EXT`), so no clear uses it; the
+    /// spec leaves clearing other buffers with an integer clear colour undefined, and glrt
+    /// keeps clearing them with [`ClearValues::color`].
+    pub color_integer: [i64; 4],
     /// `glClearIndex`.
     pub index: f32,
     /// `glClearDepth`, clamped to [0, 1].
@@ -25,7 +31,7 @@ pub struct ClearValues {
 
 impl Default for ClearValues {
     fn default() -> ClearValues {
-        ClearValues { color: [0.0; 4], index: 0.0, depth: 1.0, stencil: 0, accum: [0.0; 4] }
+        ClearValues { color: [0.0; 4], color_integer: [0; 4], index: 0.0, depth: 1.0, stencil: 0, accum: [0.0; 4] }
     }
 }
 
@@ -37,6 +43,18 @@ impl Context {
     /// `glClearColor`.
     pub fn glClearColor(&mut self, red: GLclampf, green: GLclampf, blue: GLclampf, alpha: GLclampf) {
         self.fixed_mut().clear.color = [red, green, blue, alpha].map(|c| c.clamp(0.0, 1.0));
+    }
+
+    /// `glClearColorIiEXT` (EXT_texture_integer): the clear value of signed integer colour
+    /// buffers.
+    pub fn glClearColorIiEXT(&mut self, red: GLint, green: GLint, blue: GLint, alpha: GLint) {
+        self.fixed_mut().clear.color_integer = [red, green, blue, alpha].map(i64::from);
+    }
+
+    /// `glClearColorIuiEXT` (EXT_texture_integer): the clear value of unsigned integer colour
+    /// buffers.
+    pub fn glClearColorIuiEXT(&mut self, red: GLuint, green: GLuint, blue: GLuint, alpha: GLuint) {
+        self.fixed_mut().clear.color_integer = [red, green, blue, alpha].map(i64::from);
     }
 
     /// `glClearIndex`.

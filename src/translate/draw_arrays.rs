@@ -15,6 +15,7 @@ use super::assemble::{Primitive, assemble};
 use super::convert::read_slice;
 use super::gl::{self, GLenum, GLint, GLsizei, GLuint};
 use super::immediate::{Batch, CurrentAttribs, bits};
+use super::limits::MAX_VERTEX_ATTRIBS;
 use super::lists::ListOp;
 use crate::frame::Attrib;
 
@@ -112,17 +113,17 @@ impl Context {
         }
     }
 
-    /// Fetches the vertices of a draw into `batch`; returns the batch vertex of each element
-    /// (`None`: in order) and which attributes came from arrays, or `None` (after raising any
-    /// error) when nothing is drawn.
+    /// Fetches the vertices of a draw into `batch`, with `generic` generic attributes; returns
+    /// the batch vertex of each element (`None`: in order) and which attributes came from
+    /// arrays, or `None` (after raising any error) when nothing is drawn.
     fn fetch(
         &mut self,
         elements: Elements<'_>,
         command: &'static str,
+        generic: usize,
         batch: &mut Batch,
     ) -> Option<(Option<Vec<u32>>, FromArrays)> {
         let current = *self.immediate.current();
-        let generic = self.generic_attributes();
         let fetched = self.with_sources(command, |s, _| {
             // Elements past the end of a vertex buffer would all be zero: not fetched, so a
             // wrong count cannot allocate without bound.
@@ -183,7 +184,8 @@ impl Context {
     /// Draws `elements` now, reusing the immediate-mode batch storage.
     fn draw_now(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str) {
         let mut batch = self.immediate.take_batch();
-        if let Some((order, from_arrays)) = self.fetch(elements, command, &mut batch) {
+        let generic = self.generic_attributes();
+        if let Some((order, from_arrays)) = self.fetch(elements, command, generic, &mut batch) {
             self.submit(primitive, &batch, order.as_deref(), from_arrays.color);
         }
         self.immediate.batch = batch;
@@ -193,7 +195,11 @@ impl Context {
     /// taken from arrays use the then-current values.
     fn draw_compiled(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str) {
         let mut batch = Batch::default();
-        let Some((order, from_arrays)) = self.fetch(elements, command, &mut batch) else { return };
+        // Generic arrays are kept whether or not a program is in use now: one may be when the
+        // list runs.
+        let generic_arrays = self.arrays.generic[1..].iter().any(|a| a.enabled);
+        let generic = if generic_arrays { MAX_VERTEX_ATTRIBS } else { self.generic_attributes() };
+        let Some((order, from_arrays)) = self.fetch(elements, command, generic, &mut batch) else { return };
         let fetched = Fetched { batch, order, from_arrays };
         // The generated dispatch applies the glBegin/glEnd rule to this deferred draw.
         self.lists.record(ListOp::Deferred(Box::new(move |ctx| {

@@ -61,6 +61,9 @@ impl Context {
             gl::GL_INDEX_BITS => Value::int(0),
             gl::GL_AUX_BUFFERS => Value::int(0),
             gl::GL_RGBA_MODE => Value::bool(true),
+            // EXT_texture_integer: whether the colour buffers hold integers; glrt's never do
+            // (integer attachments are GL_FRAMEBUFFER_UNSUPPORTED_EXT).
+            gl::GL_RGBA_INTEGER_MODE_EXT => Value::bool(false),
             gl::GL_INDEX_MODE => Value::bool(false),
             gl::GL_DOUBLEBUFFER => Value::bool(true),
             gl::GL_STEREO => Value::bool(false),
@@ -96,6 +99,7 @@ mod tests {
             (gl::GL_DOUBLEBUFFER, 1),
             (gl::GL_STEREO, 0),
             (gl::GL_RGBA_MODE, 1),
+            (gl::GL_RGBA_INTEGER_MODE_EXT, 0),
             (gl::GL_SAMPLES, 0),
         ] {
             unsafe { ctx.glGetIntegerv(pname, v.as_mut_ptr()) };

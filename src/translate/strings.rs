@@ -35,7 +35,10 @@ const SHADING_LANGUAGE_VERSION: &str = "1.10\0";
 /// `GL_EXT_packed_float`, `GL_EXT_texture_sRGB`, `GL_EXT_texture_shared_exponent`,
 /// `GL_EXT_texture_snorm`) are complete for textures (`translate::texture::storage`); their
 /// formats are `GL_FRAMEBUFFER_UNSUPPORTED_EXT` as framebuffer attachments where they keep more
-/// than 8 bits, which the specifications allow.
+/// than 8 bits, which the specifications allow. `GL_EXT_texture_integer` stores its formats
+/// exactly and has its whole pixel path; integer attachments are `GL_FRAMEBUFFER_UNSUPPORTED_EXT`
+/// (allowed), so no colour buffer is integer, and fixed-function sampling of integer textures
+/// (undefined by the specification) leaves the unit untextured (`translate::texture::snapshot`).
 const EXTENSIONS: &str = concat!(
     "GL_ARB_depth_buffer_float ",
     "GL_ARB_depth_texture ",
@@ -96,6 +99,7 @@ const EXTENSIONS: &str = concat!(
     "GL_EXT_texture_edge_clamp ",
     "GL_EXT_texture_env_add ",
     "GL_EXT_texture_env_combine ",
+    "GL_EXT_texture_integer ",
     "GL_EXT_texture_lod_bias ",
     "GL_EXT_texture_object ",
     "GL_EXT_texture_sRGB ",

@@ -603,12 +603,17 @@ mod tests {
             (gl::GL_RG8_SNORM, gl::GL_FRAMEBUFFER_UNSUPPORTED_EXT),
             (gl::GL_RG8, gl::GL_FRAMEBUFFER_COMPLETE_EXT),
             (gl::GL_SRGB8_ALPHA8, gl::GL_FRAMEBUFFER_COMPLETE_EXT),
+            // EXT_texture_integer allows integer attachments to be unsupported.
+            (gl::GL_RGBA8UI_EXT, gl::GL_FRAMEBUFFER_UNSUPPORTED_EXT),
+            (gl::GL_RGB32I_EXT, gl::GL_FRAMEBUFFER_UNSUPPORTED_EXT),
         ] {
+            let integer = matches!(format, gl::GL_RGBA8UI_EXT | gl::GL_RGB32I_EXT);
+            let (pixels, type_) = if integer { (gl::GL_RGBA_INTEGER_EXT, gl::GL_INT) } else { (gl::GL_RGBA, gl::GL_FLOAT) };
             storage(&mut ctx, 1, format, 16, 16);
             ctx.glFramebufferRenderbufferEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_RENDERBUFFER_EXT, 1);
             assert_eq!((ctx.glGetError(), status(&mut ctx)), (gl::GL_NO_ERROR, want), "renderbuffer {format:#x}");
             ctx.glBindTexture(gl::GL_TEXTURE_2D, 5);
-            unsafe { ctx.glTexImage2D(gl::GL_TEXTURE_2D, 0, format as i32, 16, 16, 0, gl::GL_RGBA, gl::GL_FLOAT, std::ptr::null()) };
+            unsafe { ctx.glTexImage2D(gl::GL_TEXTURE_2D, 0, format as i32, 16, 16, 0, pixels, type_, std::ptr::null()) };
             ctx.glFramebufferTexture2DEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, gl::GL_TEXTURE_2D, 5, 0);
             assert_eq!((ctx.glGetError(), status(&mut ctx)), (gl::GL_NO_ERROR, want), "texture {format:#x}");
         }

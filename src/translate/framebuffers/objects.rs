@@ -58,10 +58,11 @@ pub fn renderbuffer_format(internal: GLenum) -> Option<Holds> {
 }
 
 /// Whether glrt renders to an image of `internal` without loss: colour formats of at most 8
-/// unsigned-normalized (or sRGB) bits a component, and depth/stencil formats. Others are
-/// `GL_FRAMEBUFFER_UNSUPPORTED_EXT` when attached.
+/// unsigned-normalized (or sRGB) bits a component, and depth/stencil formats. Others, integer
+/// formats (EXT_texture_integer allows this) included, are `GL_FRAMEBUFFER_UNSUPPORTED_EXT`
+/// when attached.
 pub fn renders_exactly(internal: GLenum) -> bool {
-    formats::internal_format(internal).is_none_or(|i| i.base == Base::Texel(TexelFormat::Depth) || i.storage.precision() != Precision::Float)
+    formats::internal_format(internal).is_none_or(|i| i.base == Base::Texel(TexelFormat::Depth) || matches!(i.storage.precision(), Precision::Unorm8 | Precision::Srgb8))
 }
 
 /// Whether `internal` is a compressed format (never renderable).

@@ -236,6 +236,34 @@ mod tests {
         words.iter().flat_map(|w| w.to_le_bytes()).collect()
     }
 
+    #[test]
+    fn limits_are_the_constants_of_the_block() {
+        let (mut ctx, _) = Context::with_recording();
+        let text = include_str!("../../../shaders/glsl_builtins.glsl");
+        let constant = |name: &str| -> i32 {
+            let line = text.lines().find(|l| l.starts_with(&format!("const int glrt_{name} "))).unwrap_or_else(|| panic!("{name}"));
+            line.split('=').nth(1).unwrap().trim().trim_end_matches(';').parse().unwrap()
+        };
+        for (name, pname) in [
+            ("MaxLights", gl::GL_MAX_LIGHTS),
+            ("MaxClipPlanes", gl::GL_MAX_CLIP_PLANES),
+            ("MaxTextureUnits", gl::GL_MAX_TEXTURE_UNITS),
+            ("MaxTextureCoords", gl::GL_MAX_TEXTURE_COORDS),
+            ("MaxVertexAttribs", gl::GL_MAX_VERTEX_ATTRIBS),
+            ("MaxVertexUniformComponents", gl::GL_MAX_VERTEX_UNIFORM_COMPONENTS),
+            ("MaxVaryingFloats", gl::GL_MAX_VARYING_FLOATS),
+            ("MaxVertexTextureImageUnits", gl::GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS),
+            ("MaxCombinedTextureImageUnits", gl::GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS),
+            ("MaxTextureImageUnits", gl::GL_MAX_TEXTURE_IMAGE_UNITS),
+            ("MaxFragmentUniformComponents", gl::GL_MAX_FRAGMENT_UNIFORM_COMPONENTS),
+            ("MaxDrawBuffers", gl::GL_MAX_DRAW_BUFFERS),
+        ] {
+            let mut v = -1;
+            unsafe { dispatch::glGetIntegerv(&mut ctx, pname, &mut v) };
+            assert_eq!(v, constant(name), "{name}");
+        }
+    }
+
     fn f32_at(b: &[u8], at: usize) -> f32 {
         f32::from_ne_bytes(b[at..at + 4].try_into().unwrap())
     }
@@ -256,11 +284,14 @@ mod tests {
             dispatch::glFogf(&mut ctx, gl::GL_FOG_START, 1.0);
             dispatch::glActiveTexture(&mut ctx, gl::GL_TEXTURE3);
             dispatch::glTexEnvfv(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_COLOR, [0.5, 0.25, 0.125, 1.0].as_ptr());
+            dispatch::glEnable(&mut ctx, gl::GL_VERTEX_PROGRAM_POINT_SIZE);
+            dispatch::glScalef(&mut ctx, 2.0, 2.0, 2.0);
         }
         let depth = [[1, 2, 1, 0]; 8];
         let b = ctx.pack_builtins(&depth);
         let top = |m: &str| at("GlrtBuiltins", m);
         assert_eq!(b.len(), top("glrt_Flags") + 16, "the block's size");
+        assert_eq!(u32::from_ne_bytes(b[top("glrt_Flags")..][..4].try_into().unwrap()), 1, "GL_VERTEX_PROGRAM_POINT_SIZE");
         assert_eq!(f32_at(&b, top("glrt_DepthRange") + at("glrt_DepthRangeParameters", "diff")), 0.5);
         assert_eq!(f32_at(&b, top("glrt_ClipPlane") + 5 * 16 + 12), 4.0, "planes by index, enabled or not");
         assert_eq!(f32_at(&b, top("glrt_Point") + at("glrt_PointParameters", "size")), 5.0);
@@ -271,9 +302,11 @@ mod tests {
         assert_eq!(f32_at(&b, light(3, "spotCutoff")), 60.0);
         assert_eq!(f32_at(&b, top("glrt_Fog") + at("glrt_FogParameters", "scale")), 0.5);
         assert_eq!(f32_at(&b, top("glrt_TextureEnvColor") + 3 * 16 + 4), 0.25);
-        assert_eq!(f32_at(&b, top("glrt_NormalScale")), 1.0);
+        assert_eq!(f32_at(&b, top("glrt_NormalScale")), 2.0, "undoes the scale the normal matrix gives");
         let mat3 = top("glrt_NormalMatrix");
-        assert_eq!([f32_at(&b, mat3), f32_at(&b, mat3 + 16 + 4), f32_at(&b, mat3 + 32 + 8)], [1.0; 3]);
+        assert_eq!([f32_at(&b, mat3), f32_at(&b, mat3 + 16 + 4), f32_at(&b, mat3 + 32 + 8)], [0.5; 3]);
+        assert_eq!(f32_at(&b, top("glrt_ModelViewMatrixInverse") + 16 + 4), 0.5);
+        assert_eq!(f32_at(&b, top("glrt_ModelViewProjectionMatrix")), 2.0);
         let scene = top("glrt_FrontLightModelProduct") + at("glrt_LightModelProducts", "sceneColor");
         assert!((f32_at(&b, scene) - 0.04).abs() < 1e-6, "emission + ambient * model ambient (0.2 * 0.2)");
         for m in ["glrt_LightModel", "glrt_BackLightProduct", "glrt_ObjectPlaneQ", "glrt_TextureMatrixInverseTranspose"] {

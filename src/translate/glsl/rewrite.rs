@@ -64,8 +64,8 @@ pub struct StageInput<'a> {
     pub sampler_slots: &'a HashMap<String, u32>,
     /// Sampler type names by name (as declared).
     pub sampler_types: &'a HashMap<String, String>,
-    /// Varying locations by name.
-    pub varying_locations: &'a HashMap<String, u32>,
+    /// Varying location and first component by name.
+    pub varying_locations: &'a HashMap<String, (u32, u32)>,
     /// Generic attribute index of each attribute, by name (vertex stage).
     pub attribute_indices: &'a HashMap<String, u32>,
 }
@@ -185,8 +185,11 @@ fn declare_interface(out: &mut String, input: &StageInput) {
     }
     let direction = if input.stage == Stage::Fragment { "in" } else { "out" };
     for v in &input.decls.varyings {
-        if let Some(location) = input.varying_locations.get(&v.name) {
-            let _ = writeln!(out, "layout(location = {location}) {direction} {};", declarator(v));
+        if let Some((location, component)) = input.varying_locations.get(&v.name) {
+            // Vulkan GLSL allows `component` on scalars and vectors only.
+            let packable = matches!(&v.ty, Type::Basic(b) if b.columns == 1);
+            let at = if packable { format!("location = {location}, component = {component}") } else { format!("location = {location}") };
+            let _ = writeln!(out, "layout({at}) {direction} {};", declarator(v));
         }
     }
     for a in &input.decls.attributes {

@@ -174,20 +174,13 @@ fn try_link(shaders: &[&CompiledShader], attribute_bindings: &HashMap<String, u3
     })
 }
 
-/// Locations of the program's varyings: the vertex stage's in declaration order; the fragment
-/// stage may only read varyings the vertex stage declares (with the same type).
-fn varying_locations(vertex: Option<&Unit>, fragment: Option<&Unit>) -> Result<HashMap<String, u32>, String> {
-    let mut out = HashMap::new();
-    let mut next = FIRST_USER_VARYING;
-    if let Some(v) = vertex {
-        for var in &v.decls.varyings {
-            out.insert(var.name.clone(), next);
-            next += locations(var);
-        }
-    }
-    if next > MAX_LOCATIONS {
-        return Err(format!("error: too many varyings: glrt has {} vec4 locations for them\n", MAX_LOCATIONS - FIRST_USER_VARYING));
-    }
+/// Where the program's varyings go: the vertex stage's, packed by [`pack_varyings`]; the
+/// fragment stage may only read varyings the vertex stage declares (with the same type).
+fn varying_locations(vertex: Option<&Unit>, fragment: Option<&Unit>) -> Result<HashMap<String, (u32, u32)>, String> {
+    let out = match vertex {
+        Some(v) => pack_varyings(&v.decls.varyings)?,
+        None => HashMap::new(),
+    };
     if let Some(f) = fragment {
         for var in f.decls.varyings.iter().filter(|var| f.references(&var.name)) {
             let written = vertex.and_then(|v| v.decls.varyings.iter().find(|w| w.name == var.name));
@@ -197,6 +190,36 @@ fn varying_locations(vertex: Option<&Unit>, fragment: Option<&Unit>) -> Result<H
                 Some(_) => {}
             }
         }
+    }
+    Ok(out)
+}
+
+/// Packs varyings into the vec4 locations from [`FIRST_USER_VARYING`] (GLSL 1.10 section
+/// 7.6 lets an implementation pack them, and `GL_MAX_VARYING_FLOATS` counts floats): each
+/// gets a location and a first component (Vulkan's `component` qualifier). Scalars and vectors
+/// (and arrays of them) share locations, largest first, in the first place they fit; a matrix
+/// takes whole locations, one per column. The error says when they do not fit.
+fn pack_varyings(varyings: &[Variable]) -> Result<HashMap<String, (u32, u32)>, String> {
+    let count = (MAX_LOCATIONS - FIRST_USER_VARYING) as usize;
+    let mut used = vec![[false; 4]; count];
+    let mut order: Vec<&Variable> = varyings.iter().collect();
+    let width = |v: &Variable| match &v.ty {
+        Type::Basic(b) if b.columns == 1 => b.rows as usize,
+        _ => 4,
+    };
+    order.sort_by_key(|v| std::cmp::Reverse((width(v), locations(v))));
+    let mut out = HashMap::new();
+    for v in order {
+        let (w, n) = (width(v), locations(v) as usize);
+        let fits = |l: usize, c: usize| l + n <= count && (l..l + n).all(|i| used[i][c..c + w].iter().all(|u| !u));
+        let place = (0..count).flat_map(|l| (0..=4 - w).map(move |c| (l, c))).find(|&(l, c)| fits(l, c));
+        let Some((l, c)) = place else {
+            return Err(format!("error: too many varyings: '{}' does not fit in the {count} vec4 locations glrt has for them\n", v.name));
+        };
+        for row in &mut used[l..l + n] {
+            row[c..c + w].iter_mut().for_each(|u| *u = true);
+        }
+        out.insert(v.name.clone(), (FIRST_USER_VARYING + l as u32, c as u32));
     }
     Ok(out)
 }

@@ -1,7 +1,8 @@
 //! Client pixel formats and types (OpenGL 1.5 tables 3.5, 3.6 and 3.8, with the
 //! `GL_DEPTH_STENCIL` format and its two packed types of EXT_packed_depth_stencil and
 //! ARB_depth_buffer_float, the `GL_RG` format of ARB_texture_rg and the packed float types of
-//! EXT_packed_float and EXT_texture_shared_exponent): parsing and checking `format`/`type` pairs, and decoding or encoding
+//! EXT_packed_float and EXT_texture_shared_exponent, the `*_INTEGER` formats of
+//! EXT_texture_integer (with ARB_texture_rg's `GL_RG_INTEGER`)): parsing and checking `format`/`type` pairs, and decoding or encoding
 //! pixel groups in client memory laid out as [`Layout`] says, with byte swapping and bit order.
 
 use super::super::convert::{norm_i8, norm_i16, norm_i32, norm_u8, norm_u16, norm_u32};
@@ -14,6 +15,9 @@ use super::store::{Layout, StoreModes};
 pub enum Kind {
     /// Colour components (normalized).
     Color,
+    /// Integer colour components (EXT_texture_integer's `*_INTEGER` formats): not normalized,
+    /// no pixel transfer.
+    Integer,
     /// Colour indices (integers).
     Index,
     /// Stencil indices (integers).
@@ -108,6 +112,10 @@ pub fn format(format: GLenum) -> Option<Format> {
         gl::GL_LUMINANCE_ALPHA | gl::GL_RG => (2, Kind::Color),
         gl::GL_RGB | gl::GL_BGR => (3, Kind::Color),
         gl::GL_RGBA | gl::GL_BGRA | gl::GL_ABGR_EXT => (4, Kind::Color),
+        gl::GL_RED_INTEGER | gl::GL_GREEN_INTEGER | gl::GL_BLUE_INTEGER | gl::GL_ALPHA_INTEGER | gl::GL_LUMINANCE_INTEGER_EXT => (1, Kind::Integer),
+        gl::GL_LUMINANCE_ALPHA_INTEGER_EXT | gl::GL_RG_INTEGER => (2, Kind::Integer),
+        gl::GL_RGB_INTEGER | gl::GL_BGR_INTEGER => (3, Kind::Integer),
+        gl::GL_RGBA_INTEGER | gl::GL_BGRA_INTEGER => (4, Kind::Integer),
         _ => return None,
     };
     Some(Format { gl: format, components, kind })
@@ -152,7 +160,8 @@ pub fn pixel_type(type_: GLenum) -> Option<Type> {
 /// (EXT_packed_depth_stencil and ARB_depth_buffer_float, "Errors"), or a packed float type with
 /// a format other than `GL_RGB` (EXT_packed_float, EXT_texture_shared_exponent). A packed type
 /// with an unknown format meets both conditions; the specification does not order them, and
-/// `GL_INVALID_OPERATION` is what Mesa records (piglit's `draw-pixels` expects it).
+/// `GL_INVALID_OPERATION` is what Mesa records (piglit's `draw-pixels` expects it). An integer
+/// format with `GL_FLOAT` is `GL_INVALID_ENUM` (EXT_texture_integer, "Errors").
 pub fn parse(format_: GLenum, type_: GLenum) -> Result<(Format, Type), GLenum> {
     let t = pixel_type(type_);
     let Some(f) = format(format_) else {
@@ -165,10 +174,18 @@ pub fn parse(format_: GLenum, type_: GLenum) -> Result<(Format, Type), GLenum> {
         _ if f.kind == Kind::DepthStencil && !depth_stencil_type => Err(gl::GL_INVALID_ENUM),
         _ if depth_stencil_type && f.kind != Kind::DepthStencil => Err(gl::GL_INVALID_OPERATION),
         Type::Bitmap if !matches!(f.kind, Kind::Index | Kind::Stencil) => Err(gl::GL_INVALID_ENUM),
+        Type::F32 if f.kind == Kind::Integer => Err(gl::GL_INVALID_ENUM),
         Type::Uint10F11F11FRev | Type::Uint5999Rev if f.gl != gl::GL_RGB => Err(gl::GL_INVALID_OPERATION),
         // Table 3.8: the three-field types match `GL_RGB` only, the four-field ones `GL_RGBA`
-        // and `GL_BGRA` (and EXT_abgr's `GL_ABGR_EXT`, which EXT_packed_pixels allows).
-        Type::Packed(p) if !(f.kind == Kind::Color && f.components == p.fields.len() && f.gl != gl::GL_BGR && f.components >= 3) => {
+        // and `GL_BGRA` (and EXT_abgr's `GL_ABGR_EXT`, which EXT_packed_pixels allows); OpenGL
+        // 3.0's table 3.8 adds `GL_RGB_INTEGER`, `GL_RGBA_INTEGER` and `GL_BGRA_INTEGER`, whose
+        // fields are unnormalized integers (piglit's `ext_texture_integer-texformats`).
+        Type::Packed(p)
+            if !(matches!(f.kind, Kind::Color | Kind::Integer)
+                && f.components == p.fields.len()
+                && !matches!(f.gl, gl::GL_BGR | gl::GL_BGR_INTEGER)
+                && f.components >= 3) =>
+        {
             Err(gl::GL_INVALID_OPERATION)
         }
         _ => Ok((f, t)),
@@ -327,7 +344,8 @@ impl Codec<'_> {
                             let raw = read_uint(bytes, at, size, swap);
                             for &(shift, bits) in p.fields {
                                 let max = (1u32 << bits) - 1;
-                                out.push(f64::from(((raw >> shift) & max) as f32 / max as f32));
+                                let field = (raw >> shift) & max;
+                                out.push(if self.normalized() { f64::from(field as f32 / max as f32) } else { f64::from(field) });
                             }
                         }
                         Type::Uint24_8 => {
@@ -417,20 +435,80 @@ impl Codec<'_> {
     }
 }
 
+impl Codec<'_> {
+    /// Encodes integer components `values` (`format.components` a pixel, in format order) into
+    /// `bytes`, each clamped to the representable range of the type, or of its bit field for
+    /// packed types (EXT_texture_integer, "Final Conversion" of section 4.3.2), leaving
+    /// padding and skipped pixels as they were. Only the plain integer and packed types pair
+    /// with integer formats ([`parse`]).
+    pub fn encode_integers(&self, bytes: &mut [u8], values: &[i64], w: usize, h: usize, d: usize) {
+        let n = self.format.components;
+        let size = self.ty.element_size();
+        let swap = self.modes.swap_bytes && size > 1;
+        let (min, max) = match self.ty {
+            Type::U8 => (0, i64::from(u8::MAX)),
+            Type::I8 => (i64::from(i8::MIN), i64::from(i8::MAX)),
+            Type::U16 => (0, i64::from(u16::MAX)),
+            Type::I16 => (i64::from(i16::MIN), i64::from(i16::MAX)),
+            Type::I32 => (i64::from(i32::MIN), i64::from(i32::MAX)),
+            _ => (0, i64::from(u32::MAX)),
+        };
+        let mut groups = values.chunks_exact(n);
+        for z in 0..d {
+            for y in 0..h {
+                for x in 0..w {
+                    let Some(g) = groups.next() else { return };
+                    let at = self.layout.offset(x, y, z);
+                    if let Type::Packed(p) = self.ty {
+                        let raw = p.fields.iter().zip(g).fold(0u32, |raw, (&(shift, bits), &v)| raw | (v.clamp(0, (1i64 << bits) - 1) as u32) << shift);
+                        write_uint(bytes, at, size, swap, raw);
+                        continue;
+                    }
+                    for (c, &v) in g.iter().enumerate() {
+                        write_uint(bytes, at + c * size, size, swap, v.clamp(min, max) as u32);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The colour format an integer format (EXT_texture_integer's table 3.6) has the components
+/// of (`GL_RGBA_INTEGER` → `GL_RGBA`...); any other format itself.
+pub fn color_counterpart(format: GLenum) -> GLenum {
+    match format {
+        gl::GL_RED_INTEGER => gl::GL_RED,
+        gl::GL_GREEN_INTEGER => gl::GL_GREEN,
+        gl::GL_BLUE_INTEGER => gl::GL_BLUE,
+        gl::GL_ALPHA_INTEGER => gl::GL_ALPHA,
+        gl::GL_RG_INTEGER => gl::GL_RG,
+        gl::GL_RGB_INTEGER => gl::GL_RGB,
+        gl::GL_RGBA_INTEGER => gl::GL_RGBA,
+        gl::GL_BGR_INTEGER => gl::GL_BGR,
+        gl::GL_BGRA_INTEGER => gl::GL_BGRA,
+        gl::GL_LUMINANCE_INTEGER_EXT => gl::GL_LUMINANCE,
+        gl::GL_LUMINANCE_ALPHA_INTEGER_EXT => gl::GL_LUMINANCE_ALPHA,
+        f => f,
+    }
+}
+
 /// Expands a colour group of `format` to RGBA (section 3.6.4, "Conversion to RGB" and "Final
 /// Expansion to RGBA"): luminance is copied to R, G and B, missing components are 0, alpha 1.
-pub fn to_rgba(format: GLenum, g: &[f32]) -> [f32; 4] {
-    let c = |i: usize| g.get(i).copied().unwrap_or(0.0);
-    match format {
-        gl::GL_RED => [c(0), 0.0, 0.0, 1.0],
-        gl::GL_GREEN => [0.0, c(0), 0.0, 1.0],
-        gl::GL_BLUE => [0.0, 0.0, c(0), 1.0],
-        gl::GL_ALPHA => [0.0, 0.0, 0.0, c(0)],
-        gl::GL_LUMINANCE => [c(0), c(0), c(0), 1.0],
+/// Generic over the component type: `f32` colours, and the `i64` components of integer
+/// formats, expanded with 0 and 1 alike (EXT_texture_integer).
+pub fn to_rgba<T: Copy + From<u8>>(format: GLenum, g: &[T]) -> [T; 4] {
+    let (zero, one) = (T::from(0), T::from(1));
+    let c = |i: usize| g.get(i).copied().unwrap_or(zero);
+    match color_counterpart(format) {
+        gl::GL_RED => [c(0), zero, zero, one],
+        gl::GL_GREEN => [zero, c(0), zero, one],
+        gl::GL_BLUE => [zero, zero, c(0), one],
+        gl::GL_ALPHA => [zero, zero, zero, c(0)],
+        gl::GL_LUMINANCE => [c(0), c(0), c(0), one],
         gl::GL_LUMINANCE_ALPHA => [c(0), c(0), c(0), c(1)],
-        gl::GL_RG => [c(0), c(1), 0.0, 1.0],
-        gl::GL_RGB => [c(0), c(1), c(2), 1.0],
-        gl::GL_BGR => [c(2), c(1), c(0), 1.0],
+        gl::GL_RG => [c(0), c(1), zero, one],
+        gl::GL_RGB => [c(0), c(1), c(2), one],
+        gl::GL_BGR => [c(2), c(1), c(0), one],
         gl::GL_BGRA => [c(2), c(1), c(0), c(3)],
         gl::GL_ABGR_EXT => [c(3), c(2), c(1), c(0)],
         _ => [c(0), c(1), c(2), c(3)],
@@ -454,6 +532,17 @@ pub fn from_rgba(format: GLenum, c: [f32; 4], luminance: Luminance, out: &mut Ve
         Luminance::Sum => (c[0] + c[1] + c[2]).clamp(0.0, 1.0),
         Luminance::Red => c[0],
     };
+    select(format, c, l, out);
+}
+
+/// Selects the components of integer format `format` from an integer RGBA colour; luminance
+/// is R (EXT_texture_integer, "Conversion to L").
+pub fn from_integer_rgba(format: GLenum, c: [i64; 4], out: &mut Vec<i64>) {
+    select(color_counterpart(format), c, c[0], out);
+}
+
+/// The components of colour format `format` from an RGBA colour with luminance `l`.
+fn select<T: Copy>(format: GLenum, c: [T; 4], l: T, out: &mut Vec<T>) {
     match format {
         gl::GL_RED => out.push(c[0]),
         gl::GL_GREEN => out.push(c[1]),
@@ -592,7 +681,7 @@ mod tests {
         assert_eq!(parse(gl::GL_RGBA, gl::GL_UNSIGNED_SHORT_5_6_5), Err(gl::GL_INVALID_OPERATION));
         assert_eq!(parse(gl::GL_RGB, gl::GL_BITMAP), Err(gl::GL_INVALID_ENUM));
         assert_eq!(parse(gl::GL_TEXTURE_2D, gl::GL_FLOAT), Err(gl::GL_INVALID_ENUM));
-        assert_eq!(parse(gl::GL_RG_INTEGER, gl::GL_UNSIGNED_BYTE), Err(gl::GL_INVALID_ENUM));
+        assert_eq!(parse(gl::GL_RG_INTEGER, gl::GL_FLOAT), Err(gl::GL_INVALID_ENUM));
         assert!(parse(gl::GL_RG, gl::GL_UNSIGNED_BYTE).is_ok());
         assert_eq!(parse(gl::GL_RGBA, gl::GL_UNSIGNED_INT_10F_11F_11F_REV), Err(gl::GL_INVALID_OPERATION));
         assert_eq!(parse(gl::GL_BGR, gl::GL_UNSIGNED_INT_5_9_9_9_REV), Err(gl::GL_INVALID_OPERATION));
@@ -647,6 +736,51 @@ mod tests {
         assert_eq!(c.layout.span, 4);
         let c = codec(gl::GL_DEPTH_STENCIL, gl::GL_FLOAT_32_UNSIGNED_INT_24_8_REV, &plain, 3, 2);
         assert_eq!((c.layout.row_stride, c.layout.span), (24, 48));
+    }
+
+    #[test]
+    fn integer_formats_parse_and_pack_clamped() {
+        for f in [gl::GL_RGBA_INTEGER_EXT, gl::GL_LUMINANCE_ALPHA_INTEGER_EXT, gl::GL_BGR_INTEGER_EXT, gl::GL_ALPHA_INTEGER_EXT] {
+            assert_eq!(parse(f, gl::GL_FLOAT), Err(gl::GL_INVALID_ENUM), "{f:#x}");
+            assert_eq!(parse(f, gl::GL_BITMAP), Err(gl::GL_INVALID_ENUM), "{f:#x}");
+            assert_eq!(parse(f, gl::GL_UNSIGNED_INT).map(|(f, _)| f.kind), Ok(Kind::Integer), "{f:#x}");
+        }
+        assert_eq!(parse(gl::GL_BGR_INTEGER_EXT, gl::GL_UNSIGNED_SHORT_5_6_5), Err(gl::GL_INVALID_OPERATION));
+        assert_eq!(parse(gl::GL_RGB_INTEGER_EXT, gl::GL_UNSIGNED_INT_8_8_8_8), Err(gl::GL_INVALID_OPERATION));
+        // Packed integer fields are unnormalized; packing clamps to each field.
+        let plain = StoreModes::default();
+        let c = codec(gl::GL_BGRA_INTEGER_EXT, gl::GL_UNSIGNED_SHORT_1_5_5_5_REV, &plain, 1, 1);
+        let raw = 0b1_00111_00010_00001u16;
+        assert_eq!(c.decode(&raw.to_ne_bytes(), 1, 1, 1), [1.0, 2.0, 7.0, 1.0]);
+        let mut out = [0u8; 2];
+        c.encode_integers(&mut out, &[1, 2, 7, 1], 1, 1, 1);
+        assert_eq!(u16::from_ne_bytes(out), raw);
+        c.encode_integers(&mut out, &[-3, 99, 0, 5], 1, 1, 1);
+        assert_eq!(u16::from_ne_bytes(out), 0b1_00000_11111_00000);
+        assert_eq!(parse(gl::GL_RGB_INTEGER_EXT, gl::GL_UNSIGNED_INT_10F_11F_11F_REV), Err(gl::GL_INVALID_OPERATION));
+        assert_eq!(parse(gl::GL_RGBA_INTEGER_EXT, gl::GL_UNSIGNED_INT_24_8), Err(gl::GL_INVALID_OPERATION));
+        // Integers decode unnormalized, every bit of 32-bit ones kept.
+        let m = StoreModes::default();
+        let c = codec(gl::GL_RGBA_INTEGER_EXT, gl::GL_INT, &m, 1, 1);
+        let bytes: Vec<u8> = [i32::MIN, -1, 0, i32::MAX].iter().flat_map(|v| v.to_ne_bytes()).collect();
+        assert_eq!(c.decode(&bytes, 1, 1, 1), [f64::from(i32::MIN), -1.0, 0.0, f64::from(i32::MAX)]);
+        let c = codec(gl::GL_RGBA_INTEGER_EXT, gl::GL_UNSIGNED_INT, &m, 1, 1);
+        assert_eq!(c.decode(&u32::MAX.to_ne_bytes().repeat(4), 1, 1, 1)[0], f64::from(u32::MAX));
+        // Packing clamps to the type.
+        let c = codec(gl::GL_RGBA_INTEGER_EXT, gl::GL_BYTE, &m, 1, 1);
+        let mut out = [0u8; 4];
+        c.encode_integers(&mut out, &[-1000, 1000, -5, 5], 1, 1, 1);
+        assert_eq!(out.map(|b| b as i8), [-128, 127, -5, 5]);
+        let c = codec(gl::GL_RGBA_INTEGER_EXT, gl::GL_UNSIGNED_SHORT, &m, 1, 1);
+        let mut out = [0u8; 8];
+        c.encode_integers(&mut out, &[-1, 70000, 3, 65535], 1, 1, 1);
+        assert_eq!([0, 2, 4, 6].map(|i| u16::from_ne_bytes([out[i], out[i + 1]])), [0, 65535, 3, 65535]);
+        assert_eq!(to_rgba(gl::GL_BGR_INTEGER_EXT, &[3i64, 2, 1]), [1, 2, 3, 1]);
+        assert_eq!(to_rgba(gl::GL_LUMINANCE_ALPHA_INTEGER_EXT, &[-4i64, 9]), [-4, -4, -4, 9]);
+        let mut v = Vec::new();
+        from_integer_rgba(gl::GL_LUMINANCE_ALPHA_INTEGER_EXT, [5, 6, 7, 8], &mut v);
+        from_integer_rgba(gl::GL_BGRA_INTEGER_EXT, [5, 6, 7, 8], &mut v);
+        assert_eq!(v, [5, 8, 7, 6, 5, 8]);
     }
 
     #[test]

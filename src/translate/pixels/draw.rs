@@ -111,12 +111,19 @@ impl Context {
 
     /// `glDrawPixels`: the image is unpacked and transferred now and drawn at the raster
     /// position with the zoom (nothing while the raster position is invalid; in feedback mode
-    /// `GL_DRAW_PIXEL_TOKEN` instead, nothing in selection mode).
+    /// `GL_DRAW_PIXEL_TOKEN` instead, nothing in selection mode). An integer format
+    /// (EXT_texture_integer) is `GL_INVALID_OPERATION`, with any type (`GL_FLOAT` included):
+    /// OpenGL 3.0 section 3.7.4 bans drawing integer pixels without a fragment shader that
+    /// writes integers, and glrt's colour buffers are not integer; Mesa and piglit's
+    /// `ext_texture_integer-api-drawpixels` agree.
     ///
     /// # Safety
     /// A non-null `pixels` must point to the image the unpack modes describe.
     pub unsafe fn glDrawPixels(&mut self, width: GLsizei, height: GLsizei, format: GLenum, type_: GLenum, pixels: *const c_void) {
         let Some([w, h]) = size2(self, width, height, "glDrawPixels") else { return };
+        if codec::format(format).is_some_and(|f| f.kind == Kind::Integer) {
+            return self.set_error_in(gl::GL_INVALID_OPERATION, "glDrawPixels");
+        }
         let Some(ft) = self.parse_pixel_format(format, type_, "glDrawPixels") else { return };
         if !self.pixels.raster.valid || self.raster_event(RasterEvent::DrawPixels) {
             return;
@@ -227,7 +234,7 @@ impl Context {
     /// the stencil index in the second. `None` when the renderer cannot read back.
     fn read_groups(&mut self, kind: Kind, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
         let buffer = match kind {
-            Kind::Color | Kind::Index => PixelBuffer::Color,
+            Kind::Color | Kind::Index | Kind::Integer => PixelBuffer::Color,
             Kind::Depth => PixelBuffer::Depth,
             Kind::Stencil => PixelBuffer::Stencil,
             Kind::DepthStencil => {
@@ -248,7 +255,8 @@ impl Context {
     }
 
     /// `glReadPixels`: checks its arguments (`GL_INVALID_OPERATION` for `GL_COLOR_INDEX`,
-    /// as glrt's framebuffers are RGBA), then asks the renderer for the pixels of the frame so
+    /// as glrt's framebuffers are RGBA, and for EXT_texture_integer's integer formats, as
+    /// they are not integer either; `GL_FLOAT` with those is `GL_INVALID_ENUM` first), then asks the renderer for the pixels of the frame so
     /// far and packs them with pixel transfer and the pack modes. Without a renderer that can
     /// read back, the client's memory is left untouched (logged once).
     ///
@@ -258,7 +266,7 @@ impl Context {
     pub unsafe fn glReadPixels(&mut self, x: GLint, y: GLint, width: GLsizei, height: GLsizei, format: GLenum, type_: GLenum, pixels: *mut c_void) {
         let Some([w, h]) = size2(self, width, height, "glReadPixels") else { return };
         let Some((f, t)) = self.parse_pixel_format(format, type_, "glReadPixels") else { return };
-        if f.kind == Kind::Index {
+        if matches!(f.kind, Kind::Index | Kind::Integer) {
             return self.set_error_in(gl::GL_INVALID_OPERATION, "glReadPixels");
         }
         if t.layout(f, &self.pixels.store.pack, w, h, 1).is_none() {
@@ -287,7 +295,7 @@ impl Context {
                 Unpacked::Depth(v) => values = v,
                 Unpacked::Stencil(v) | Unpacked::Index(v) => values = v.iter().map(|&i| i as f32).collect(),
                 Unpacked::DepthStencil(d, s) => values = d.iter().zip(&s).flat_map(|(&d, &s)| [d, s as f32]).collect(),
-                Unpacked::Rgba(_) => {}
+                Unpacked::Rgba(_) | Unpacked::Integer(_) => {}
             },
         }
         values
@@ -317,10 +325,12 @@ impl Context {
     }
 }
 
-/// The image data of transferred pixels.
+/// The image data of transferred pixels. Integer components (which `glDrawPixels` refuses;
+/// no read-back yields them, glrt's buffers not being integer) are clamped to [0, 1].
 pub(crate) fn pixel_data(unpacked: Unpacked) -> PixelData {
     match unpacked {
         Unpacked::Rgba(c) => PixelData::Rgba8(rgba8(&c).into()),
+        Unpacked::Integer(c) => PixelData::Rgba8(rgba8(&c.iter().map(|c| c.map(|v| v.clamp(0, 1) as f32)).collect::<Vec<_>>()).into()),
         Unpacked::Depth(d) => PixelData::Depth(d.into()),
         Unpacked::Stencil(s) | Unpacked::Index(s) => PixelData::Stencil(s.iter().map(|&v| v as u32).collect()),
         Unpacked::DepthStencil(d, s) => PixelData::DepthStencil(d.into(), s.iter().map(|&v| v as u32).collect()),

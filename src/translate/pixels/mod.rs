@@ -119,10 +119,28 @@ impl Context {
         values: &[f32],
         command: &'static str,
     ) {
+        unsafe { self.pack_with((format, ty), [w, h, d], pixels, command, |codec, bytes| codec.encode(bytes, values, w, h, d)) }
+    }
+
+    /// [`Context::pack_client`] for integer components (EXT_texture_integer's `*_INTEGER`
+    /// formats), each clamped to the type ([`Codec::encode_integers`]).
+    ///
+    /// # Safety
+    /// As [`Context::pack_client`].
+    pub(crate) unsafe fn pack_client_integers(&mut self, (format, ty): (Format, Type), [w, h, d]: [usize; 3], pixels: *mut c_void, values: &[i64], command: &'static str) {
+        unsafe { self.pack_with((format, ty), [w, h, d], pixels, command, |codec, bytes| codec.encode_integers(bytes, values, w, h, d)) }
+    }
+
+    /// Lays out a `w` × `h` × `d` image of `format` and `ty` with the pack modes and lets
+    /// `encode` write it into client memory or the pack buffer.
+    ///
+    /// # Safety
+    /// As [`Context::pack_client`].
+    unsafe fn pack_with(&mut self, (format, ty): (Format, Type), [w, h, d]: [usize; 3], pixels: *mut c_void, command: &'static str, encode: impl FnOnce(&Codec, &mut [u8])) {
         let modes = self.pixels.store.pack;
         let Some(layout) = ty.layout(format, &modes, w, h, d) else { return self.set_error_in(gl::GL_OUT_OF_MEMORY, command) };
         let codec = Codec { format, ty, layout, modes: &modes };
-        unsafe { self.pack_bytes(pixels, layout.span, ty.datum_size(), command, |bytes| codec.encode(bytes, values, w, h, d)) }
+        unsafe { self.pack_bytes(pixels, layout.span, ty.datum_size(), command, |bytes| encode(&codec, bytes)) }
     }
 
     /// Records a command that reads an image into the display list being compiled, with a copy

@@ -78,6 +78,9 @@ impl Default for PixelTransfer {
 pub enum Unpacked {
     /// RGBA colours, clamped to [0, 1] unless unpacked for an unclamped texture.
     Rgba(Vec<[f32; 4]>),
+    /// Integer RGBA components (EXT_texture_integer): expanded to RGBA with 0 and 1, no pixel
+    /// transfer.
+    Integer(Vec<[i64; 4]>),
     /// Colour indices (kept as indices for colour-index textures and palettes).
     Index(Vec<i64>),
     /// Depth values clamped to [0, 1].
@@ -144,6 +147,9 @@ impl PixelTransfer {
             c
         };
         match format.kind {
+            // "None of the operations defined in this section affect integer RGBA component
+            // pixel groups" (EXT_texture_integer, section 3.6.5).
+            Kind::Integer => Unpacked::Integer(groups.chunks_exact(n).map(|g| to_rgba(format.gl, &g.iter().map(|&v| v as i64).collect::<Vec<_>>())).collect()),
             Kind::Color => Unpacked::Rgba(groups.chunks_exact(n).map(|g| self.color(to_rgba(format.gl, &narrow(g)[..n.min(4)]), clamp)).collect()),
             Kind::Index => {
                 let shifted = groups.iter().map(|&i| self.shift_index(i));

@@ -195,6 +195,7 @@ pub(super) struct Active {
 /// # Safety
 /// `name` must have room for `buf_size` bytes; `length`, `size` and `type_` must be null or
 /// writable.
+#[allow(clippy::too_many_arguments)]
 pub(super) unsafe fn write_active(
     ctx: &mut Context,
     command: &'static str,

@@ -149,6 +149,21 @@ impl ProgramTable {
         }
     }
 
+    /// One context stops using program `name`: a program flagged for deletion goes with its
+    /// last use, and a failed relink's executable stays only while the program is in use.
+    fn stop_using(&mut self, name: GLuint) {
+        if let Ok(p) = self.program_mut(name) {
+            p.uses = p.uses.saturating_sub(1);
+            if p.uses == 0 {
+                if p.delete_pending {
+                    self.remove_program(name);
+                } else if !p.link_ok {
+                    p.linked = None;
+                }
+            }
+        }
+    }
+
     /// Deletes program `name` now: its shaders are detached.
     fn remove_program(&mut self, name: GLuint) {
         if let Some(Object::Program(p)) = self.objects.remove(&name) {
@@ -164,6 +179,15 @@ impl ProgramTable {
 pub struct ProgramState {
     /// The program object in use.
     pub current: GLuint,
+}
+
+impl Drop for super::Context {
+    /// A destroyed context stops using its program (which goes if it was deleted meanwhile:
+    /// the share group may outlive the context).
+    fn drop(&mut self) {
+        let current = self.programs.current;
+        self.shared.lock().programs.stop_using(current);
+    }
 }
 
 #[cfg(test)]

@@ -234,17 +234,7 @@ impl Context {
         if let Ok(p) = table.program_mut(program) {
             p.uses += 1;
         }
-        if let Ok(p) = table.program_mut(previous) {
-            p.uses = p.uses.saturating_sub(1);
-            if p.uses == 0 {
-                if p.delete_pending {
-                    table.remove_program(previous);
-                } else if !p.link_ok {
-                    // A failed relink's executable stays only while the program is in use.
-                    p.linked = None;
-                }
-            }
-        }
+        table.stop_using(previous);
     }
 
     /// `glDeleteProgram`: a program in use is flagged and goes when it stops being used;

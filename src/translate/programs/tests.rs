@@ -279,7 +279,7 @@ fn uniform_values_land_in_the_block() {
         dispatch::glUniform1f(&mut ctx, f, 2.5);
         dispatch::glUniform3f(&mut ctx, v, 1.0, 2.0, 3.0);
         dispatch::glUniform1fv(&mut ctx, a2, 5, [7.0, 8.0, 9.0].as_ptr());
-        dispatch::glUniformMatrix3fv(&mut ctx, m, 1, gl::GL_TRUE as u8, mat.as_ptr());
+        dispatch::glUniformMatrix3fv(&mut ctx, m, 1, gl::GL_TRUE, mat.as_ptr());
         dispatch::glUniform1i(&mut ctx, sm, -4);
         dispatch::glUniform2f(&mut ctx, lc, 0.0, 0.5);
     }
@@ -312,7 +312,8 @@ fn uniform_errors() {
     unsafe { dispatch::glUniform1f(&mut ctx, f, 1.0) };
     assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "no current program");
     unsafe { dispatch::glUseProgram(&mut ctx, p) };
-    let cases: [(&str, Box<dyn Fn(&mut Context)>, u32); 10] = [
+    type Case = (&'static str, Box<dyn Fn(&mut Context)>, u32);
+    let cases: [Case; 10] = [
         ("location -1 is ignored", Box::new(|c| unsafe { dispatch::glUniform1f(c, -1, 1.0) }), gl::GL_NO_ERROR),
         ("unknown location", Box::new(|c| unsafe { dispatch::glUniform1f(c, 99, 1.0) }), gl::GL_INVALID_OPERATION),
         ("integer into float", Box::new(move |c| unsafe { dispatch::glUniform1i(c, f, 1) }), gl::GL_INVALID_OPERATION),
@@ -426,4 +427,20 @@ fn real_compile_and_link() {
     assert!(draw.program.as_ref().is_some_and(|d| d.program.vertex.is_some() && d.program.fragment.is_some()));
     assert_eq!(draw.vertices.generic[5].get(0), Some([0.1, 0.2, 0.3, 1.0]));
     assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+}
+
+#[test]
+fn a_deleted_program_goes_with_the_last_context_using_it() {
+    let (mut a, _) = Context::with_recording();
+    let (mut b, _) = Context::with_recording();
+    b.shared = a.shared.clone();
+    let p = fake_program(&mut a, true);
+    unsafe {
+        dispatch::glUseProgram(&mut b, p);
+        dispatch::glDeleteProgram(&mut a, p);
+        dispatch::glUseProgram(&mut a, 0);
+    }
+    assert_eq!(unsafe { dispatch::glIsProgram(&mut a, p) }, 1, "still in use by the other context");
+    drop(b);
+    assert_eq!(unsafe { dispatch::glIsProgram(&mut a, p) }, 0);
 }

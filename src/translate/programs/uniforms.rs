@@ -326,6 +326,7 @@ impl Context {
     /// # Safety
     /// `name` must have room for `bufSize` bytes; `length`, `size` and `type_` must be null or
     /// writable.
+    #[allow(clippy::too_many_arguments)]
     pub unsafe fn glGetActiveUniform(
         &mut self,
         program: GLuint,

@@ -38,7 +38,7 @@ impl Context {
         let t = &self.pixels.transfer;
         let identity = !t.map_color && t.scale == [1.0; 4] && t.bias == [0.0; 4];
         let base = internal.base;
-        let stored = matches!(base, Base::Texel(TexelFormat::Rgba | TexelFormat::Rgb)) && internal.storage.precision() != Precision::Float;
+        let stored = matches!(base, Base::Texel(TexelFormat::Rgba | TexelFormat::Rgb)) && matches!(internal.storage.precision(), Precision::Unorm8 | Precision::Srgb8);
         if ty != Type::U8 || !identity || !stored {
             return Ok(None);
         }

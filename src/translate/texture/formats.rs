@@ -1,7 +1,8 @@
 //! Texture internal formats (OpenGL 1.5 tables 3.15–3.16, ARB_texture_compression,
 //! EXT_texture_compression_s3tc, EXT_paletted_texture, EXT_packed_depth_stencil,
 //! ARB_depth_buffer_float, ARB_texture_rg, EXT_texture_snorm, ARB_texture_float,
-//! EXT_texture_sRGB, EXT_packed_float, EXT_texture_shared_exponent; how each stores its
+//! EXT_texture_sRGB, EXT_packed_float, EXT_texture_shared_exponent, EXT_texture_integer (with
+//! ARB_texture_rg's integer red and red-green formats); how each stores its
 //! components is [`super::storage`]'s) and the conversion of pixels to the canonical RGBA8 texels glrt
 //! stores (depth also at full precision), and back (table 6.1).
 //!
@@ -149,6 +150,29 @@ pub fn internal_format(internal: GLenum) -> Option<Internal> {
         | gl::GL_SLUMINANCE8_ALPHA8
         | gl::GL_COMPRESSED_SLUMINANCE_ALPHA => texel(LuminanceAlpha),
         gl::GL_INTENSITY_SNORM | gl::GL_INTENSITY8_SNORM | gl::GL_INTENSITY16_SNORM | gl::GL_INTENSITY16F_ARB | gl::GL_INTENSITY32F_ARB => texel(Intensity),
+        gl::GL_RGBA8I | gl::GL_RGBA16I | gl::GL_RGBA32I | gl::GL_RGBA8UI | gl::GL_RGBA16UI | gl::GL_RGBA32UI => texel(Rgba),
+        gl::GL_RGB8I | gl::GL_RGB16I | gl::GL_RGB32I | gl::GL_RGB8UI | gl::GL_RGB16UI | gl::GL_RGB32UI => texel(Rgb),
+        gl::GL_RG8I | gl::GL_RG16I | gl::GL_RG32I | gl::GL_RG8UI | gl::GL_RG16UI | gl::GL_RG32UI => texel(Rg),
+        gl::GL_R8I | gl::GL_R16I | gl::GL_R32I | gl::GL_R8UI | gl::GL_R16UI | gl::GL_R32UI => texel(Red),
+        gl::GL_ALPHA8I_EXT | gl::GL_ALPHA16I_EXT | gl::GL_ALPHA32I_EXT | gl::GL_ALPHA8UI_EXT | gl::GL_ALPHA16UI_EXT | gl::GL_ALPHA32UI_EXT => texel(Alpha),
+        gl::GL_INTENSITY8I_EXT
+        | gl::GL_INTENSITY16I_EXT
+        | gl::GL_INTENSITY32I_EXT
+        | gl::GL_INTENSITY8UI_EXT
+        | gl::GL_INTENSITY16UI_EXT
+        | gl::GL_INTENSITY32UI_EXT => texel(Intensity),
+        gl::GL_LUMINANCE8I_EXT
+        | gl::GL_LUMINANCE16I_EXT
+        | gl::GL_LUMINANCE32I_EXT
+        | gl::GL_LUMINANCE8UI_EXT
+        | gl::GL_LUMINANCE16UI_EXT
+        | gl::GL_LUMINANCE32UI_EXT => texel(Luminance),
+        gl::GL_LUMINANCE_ALPHA8I_EXT
+        | gl::GL_LUMINANCE_ALPHA16I_EXT
+        | gl::GL_LUMINANCE_ALPHA32I_EXT
+        | gl::GL_LUMINANCE_ALPHA8UI_EXT
+        | gl::GL_LUMINANCE_ALPHA16UI_EXT
+        | gl::GL_LUMINANCE_ALPHA32UI_EXT => texel(LuminanceAlpha),
         _ => return None,
     };
     // The generic compressed formats are stored uncompressed and report their uncompressed
@@ -267,7 +291,8 @@ pub fn component_bits(base: Base, internal: GLenum, pname: GLenum) -> Option<i64
 
 /// The data type of a component (ARB_texture_float's `GL_TEXTURE_RED_TYPE_ARB` ...
 /// `GL_TEXTURE_DEPTH_TYPE_ARB`): `GL_NONE` for a missing component, else
-/// `GL_UNSIGNED_NORMALIZED_ARB`, `GL_SIGNED_NORMALIZED` or `GL_FLOAT` (32-bit float depth).
+/// `GL_UNSIGNED_NORMALIZED_ARB`, `GL_SIGNED_NORMALIZED`, `GL_FLOAT` (32-bit float depth), or
+/// EXT_texture_integer's `GL_INT` and `GL_UNSIGNED_INT`.
 pub fn component_type(base: Base, internal: GLenum, pname: GLenum) -> Option<GLenum> {
     if !matches!(pname, gl::GL_TEXTURE_RED_TYPE..=gl::GL_TEXTURE_DEPTH_TYPE) {
         return None;
@@ -329,16 +354,19 @@ pub fn index_bits(internal: GLenum) -> u32 {
 /// An RGBA colour (or a depth value in R) as a base format's texels hold it: table 3.15's
 /// component choice, expanded as [`crate::frame::texture`] describes. The border colour is
 /// expanded the same way, so that the sampler's border matches the texels (section 3.8.7).
-pub fn expand(base: TexelFormat, c: [f32; 4]) -> [f32; 4] {
+/// Generic over the component type: `f32` colours, and the `i64` components of integer
+/// formats (EXT_texture_integer), whose missing components are 0 and 1 as well.
+pub fn expand<T: Copy + From<u8>>(base: TexelFormat, c: [T; 4]) -> [T; 4] {
     let [r, g, b, a] = c;
+    let (zero, one) = (T::from(0), T::from(1));
     match base {
-        TexelFormat::Alpha => [0.0, 0.0, 0.0, a],
-        TexelFormat::Luminance | TexelFormat::Depth => [r, r, r, 1.0],
+        TexelFormat::Alpha => [zero, zero, zero, a],
+        TexelFormat::Luminance | TexelFormat::Depth => [r, r, r, one],
         TexelFormat::LuminanceAlpha => [r, r, r, a],
         TexelFormat::Intensity => [r, r, r, r],
-        TexelFormat::Red => [r, 0.0, 0.0, 1.0],
-        TexelFormat::Rg => [r, g, 0.0, 1.0],
-        TexelFormat::Rgb => [r, g, b, 1.0],
+        TexelFormat::Red => [r, zero, zero, one],
+        TexelFormat::Rg => [r, g, zero, one],
+        TexelFormat::Rgb => [r, g, b, one],
         TexelFormat::Rgba => [r, g, b, a],
     }
 }
@@ -351,15 +379,16 @@ pub fn texel(base: TexelFormat, c: [f32; 4]) -> [u8; 4] {
 
 /// The RGBA colour of a stored texel (the 8-bit texel's components over 255, or the `f32`
 /// values of a float level) for `glGetTexImage` (table 6.1): luminance and intensity go to R
-/// with G = B = 0.
-pub fn texel_to_rgba(base: TexelFormat, t: [f32; 4]) -> [f32; 4] {
+/// with G = B = 0. Generic as [`expand`] is (the integers of integer levels).
+pub fn texel_to_rgba<T: Copy + From<u8>>(base: TexelFormat, t: [T; 4]) -> [T; 4] {
     let [r, g, b, a] = t;
+    let (zero, one) = (T::from(0), T::from(1));
     match base {
-        TexelFormat::Alpha => [0.0, 0.0, 0.0, a],
-        TexelFormat::Luminance | TexelFormat::Intensity | TexelFormat::Depth | TexelFormat::Red => [r, 0.0, 0.0, 1.0],
-        TexelFormat::LuminanceAlpha => [r, 0.0, 0.0, a],
-        TexelFormat::Rg => [r, g, 0.0, 1.0],
-        TexelFormat::Rgb => [r, g, b, 1.0],
+        TexelFormat::Alpha => [zero, zero, zero, a],
+        TexelFormat::Luminance | TexelFormat::Intensity | TexelFormat::Depth | TexelFormat::Red => [r, zero, zero, one],
+        TexelFormat::LuminanceAlpha => [r, zero, zero, a],
+        TexelFormat::Rg => [r, g, zero, one],
+        TexelFormat::Rgb => [r, g, b, one],
         TexelFormat::Rgba => [r, g, b, a],
     }
 }
@@ -410,5 +439,30 @@ mod tests {
             assert_eq!(component_bits(base, internal, gl::GL_TEXTURE_LUMINANCE_SIZE), Some(0), "{internal:#x}");
         }
         assert_eq!(component_bits(Base::Texel(TexelFormat::Rgba), gl::GL_RGBA8, gl::GL_TEXTURE_STENCIL_SIZE), Some(0));
+    }
+
+    #[test]
+    fn integer_formats_report_sizes_and_types() {
+        for (internal, base, pname, bits, ty) in [
+            (gl::GL_RGBA32UI_EXT, TexelFormat::Rgba, gl::GL_TEXTURE_ALPHA_SIZE, 32, gl::GL_UNSIGNED_INT),
+            (gl::GL_RGB16I_EXT, TexelFormat::Rgb, gl::GL_TEXTURE_BLUE_SIZE, 16, gl::GL_INT),
+            (gl::GL_ALPHA8I_EXT, TexelFormat::Alpha, gl::GL_TEXTURE_ALPHA_SIZE, 8, gl::GL_INT),
+            (gl::GL_INTENSITY16UI_EXT, TexelFormat::Intensity, gl::GL_TEXTURE_INTENSITY_SIZE, 16, gl::GL_UNSIGNED_INT),
+            (gl::GL_LUMINANCE32I_EXT, TexelFormat::Luminance, gl::GL_TEXTURE_LUMINANCE_SIZE, 32, gl::GL_INT),
+            (gl::GL_LUMINANCE_ALPHA8UI_EXT, TexelFormat::LuminanceAlpha, gl::GL_TEXTURE_ALPHA_SIZE, 8, gl::GL_UNSIGNED_INT),
+            (gl::GL_RG32I, TexelFormat::Rg, gl::GL_TEXTURE_GREEN_SIZE, 32, gl::GL_INT),
+            (gl::GL_R8UI, TexelFormat::Red, gl::GL_TEXTURE_RED_SIZE, 8, gl::GL_UNSIGNED_INT),
+        ] {
+            let i = internal_format(internal).unwrap();
+            assert_eq!((i.base, i.reported), (Base::Texel(base), internal), "{internal:#x}");
+            assert!(i.storage.is_integer(), "{internal:#x}");
+            assert_eq!(component_bits(i.base, internal, pname), Some(bits), "{internal:#x}");
+            let type_pname = pname - gl::GL_TEXTURE_RED_SIZE + gl::GL_TEXTURE_RED_TYPE;
+            assert_eq!(component_type(i.base, internal, type_pname), Some(ty), "{internal:#x}");
+            assert_eq!(component_type(i.base, internal, gl::GL_TEXTURE_DEPTH_TYPE), Some(gl::GL_NONE));
+        }
+        assert_eq!(component_bits(Base::Texel(TexelFormat::Alpha), gl::GL_ALPHA16UI_EXT, gl::GL_TEXTURE_RED_SIZE), Some(0));
+        assert_eq!(expand(TexelFormat::LuminanceAlpha, [-7i64, 0, 0, 9]), [-7, -7, -7, 9]);
+        assert_eq!(texel_to_rgba(TexelFormat::Rgb, [1i64 << 32, 2, 3, 0]), [1 << 32, 2, 3, 1]);
     }
 }

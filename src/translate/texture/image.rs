@@ -116,11 +116,14 @@ pub fn resolve_indices(indices: &[u16], palette: &Palette) -> Vec<u8> {
 }
 
 /// Pixels converted for storage in a level.
+#[derive(Default)]
 struct Converted {
     /// Canonical RGBA8 texels.
     texels: Vec<u8>,
     /// RGBA `f32` texels of [`Precision::Float`] levels (empty otherwise).
     values: Vec<f32>,
+    /// RGBA integer texels of [`Precision::Integer`] levels (empty otherwise).
+    integers: Vec<i64>,
     /// Depth values at the internal format's precision (depth formats only).
     depth: Vec<f32>,
     /// Colour indices (paletted formats only).
@@ -160,7 +163,7 @@ fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, p
                 Some(Unpacked::Index(ix)) => ix.iter().map(|&i| (i & mask) as u16).collect(),
                 _ => vec![0; count],
             };
-            Converted { texels: resolve_indices(&indices, palette), values: Vec::new(), depth: Vec::new(), indices: Some(Arc::new(indices)), stencil: None }
+            Converted { texels: resolve_indices(&indices, palette), indices: Some(Arc::new(indices)), ..Converted::default() }
         }
         (Base::Texel(TexelFormat::Depth), data) => {
             let bits = formats::depth_bits(internal);
@@ -175,7 +178,17 @@ fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, p
                 Arc::new((0..depth.len()).map(|i| stencil.get(i).map_or(0, |&s| (s & mask) as u8)).collect())
             });
             let texels = depth.iter().flat_map(|&d| formats::texel(TexelFormat::Depth, [d, d, d, 1.0])).collect();
-            Converted { texels, values: Vec::new(), depth, indices: None, stencil }
+            Converted { texels, depth, stencil, ..Converted::default() }
+        }
+        (Base::Texel(f), data) if formats::level_storage(base, internal).is_integer() => {
+            // Integer formats keep the components clamped to their range (EXT_texture_integer
+            // section 3.8.1); their 8-bit texels stay zero (see `crate::frame::texture`).
+            let storage = formats::level_storage(base, internal);
+            let integers: Vec<i64> = match data {
+                Some(Unpacked::Integer(c)) => c.iter().flat_map(|&c| formats::expand(f, storage.clamp_integers(c))).collect(),
+                _ => (0..count).flat_map(|_| formats::expand(f, [0; 4])).collect(),
+            };
+            Converted { texels: vec![0; integers.len()], integers, ..Converted::default() }
         }
         (Base::Texel(f), data) => {
             let storage = formats::level_storage(base, internal);
@@ -185,7 +198,7 @@ fn convert(base: Base, internal: GLenum, data: Option<Unpacked>, count: usize, p
             };
             let texels = colours.iter().flat_map(|&c| formats::texel(TexelFormat::Rgba, c)).collect();
             let values = if storage.precision() == Precision::Float { colours.into_iter().flatten().collect() } else { Vec::new() };
-            Converted { texels, values, depth: Vec::new(), indices: None, stencil: None }
+            Converted { texels, values, ..Converted::default() }
         }
     }
 }
@@ -198,11 +211,11 @@ fn build_level(internal: Internal, size: [usize; 3], border: usize, data: Option
 
 /// A level of `size` (border included) holding `converted`.
 fn level_of(internal: Internal, size: [usize; 3], border: usize, converted: Converted) -> Level {
-    let Converted { texels, values, depth, indices, stencil } = converted;
+    let Converted { texels, values, integers, depth, indices, stencil } = converted;
     let [w, h, d] = size.map(|v| v as u32);
     let precision = internal.storage.precision();
     let mut level = Level {
-        image: Arc::new(TexImage { width: w, height: h, depth: d, border: border as u32, texels, precision, values, depth_values: depth }),
+        image: Arc::new(TexImage { width: w, height: h, depth: d, border: border as u32, texels, precision, values, integers, depth_values: depth }),
         size,
         border,
         internal_format: internal.reported,
@@ -242,6 +255,9 @@ fn write_region(level: &mut Level, offset: [usize; 3], size: [usize; 3], src: &C
                 if let (Some(d), Some(s)) = (image.values.get_mut(dst * 4..dst * 4 + 4), src.values.get(i * 4..i * 4 + 4)) {
                     d.copy_from_slice(s);
                 }
+                if let (Some(d), Some(s)) = (image.integers.get_mut(dst * 4..dst * 4 + 4), src.integers.get(i * 4..i * 4 + 4)) {
+                    d.copy_from_slice(s);
+                }
                 if let (Some(d), Some(&s)) = (image.depth_values.get_mut(dst), src.depth.get(i)) {
                     *d = s;
                 }
@@ -262,13 +278,17 @@ fn write_region(level: &mut Level, offset: [usize; 3], size: [usize; 3], src: &C
 /// with depth and depth/stencil internal formats, in any pairing, and no other pixels do
 /// (`GL_INVALID_OPERATION`; EXT_packed_depth_stencil section 3.8.1, which Mesa applies to
 /// `GL_STENCIL_INDEX` too), paletted internal formats need `GL_COLOR_INDEX`, and
-/// `GL_STENCIL_INDEX` is no colour texture format (`GL_INVALID_ENUM`).
-fn check_format_pair(format: Format, base: Base) -> Result<(), GLenum> {
+/// `GL_STENCIL_INDEX` is no colour texture format (`GL_INVALID_ENUM`). Integer internal formats
+/// (`integer`) need the `*_INTEGER` formats and other formats refuse them
+/// (`GL_INVALID_OPERATION`; EXT_texture_integer section 3.8.1).
+fn check_format_pair(format: Format, base: Base, integer: bool) -> Result<(), GLenum> {
     let depth_base = base == Base::Texel(TexelFormat::Depth);
     match format.kind {
         Kind::Depth | Kind::DepthStencil if !depth_base => Err(gl::GL_INVALID_OPERATION),
-        Kind::Color | Kind::Index | Kind::Stencil if depth_base => Err(gl::GL_INVALID_OPERATION),
+        Kind::Color | Kind::Index | Kind::Stencil | Kind::Integer if depth_base => Err(gl::GL_INVALID_OPERATION),
         Kind::Stencil => Err(gl::GL_INVALID_ENUM),
+        Kind::Integer if !integer => Err(gl::GL_INVALID_OPERATION),
+        kind if integer && kind != Kind::Integer => Err(gl::GL_INVALID_OPERATION),
         Kind::Color if base == Base::ColorIndex => Err(gl::GL_INVALID_OPERATION),
         _ => Ok(()),
     }
@@ -329,7 +349,7 @@ impl Context {
         };
         let checked = check_level(dest.target, level)
             .and_then(|l| Ok((l, check_size(dest.target, l, size, border)?)))
-            .and_then(|v| check_format_pair(ft.0, internal.base).map(|()| v))
+            .and_then(|v| check_format_pair(ft.0, internal.base, internal.storage.is_integer()).map(|()| v))
             .and_then(|v| check_depth_target(dest.target, internal.base).map(|()| v))
             .and_then(|v| check_compressed_internal(internalformat as GLenum, dims, border).map(|()| v));
         let (level, fit) = match checked {
@@ -349,7 +369,7 @@ impl Context {
         }
         let Ok(direct) = (unsafe { self.direct_texels(ft, internal, size, pixels, command) }) else { return };
         let image = if let Some(texels) = direct {
-            level_of(internal, size, border, Converted { texels, values: Vec::new(), depth: Vec::new(), indices: None, stencil: None })
+            level_of(internal, size, border, Converted { texels, ..Converted::default() })
         } else {
             let keep_index = internal.base == Base::ColorIndex;
             let Ok(data) = (unsafe { self.unpack_client(ft, size, pixels, keep_index, !internal.storage.unclamped(), command) }) else { return };
@@ -454,11 +474,12 @@ impl Context {
         self.write_back_framebuffer();
         let Some((dest, level, off, sz, base)) = self.check_sub_image(dims, target, level, offset, size, command) else { return };
         let Some(ft) = self.parse_pixel_format(format, type_, command) else { return };
-        if let Err(e) = check_format_pair(ft.0, base) {
+        let internal = self.with_dest(dest, |obj, _| obj.level(dest.face, level).map_or(gl::GL_NONE, |l| l.internal_format));
+        let storage = formats::level_storage(base, internal);
+        if let Err(e) = check_format_pair(ft.0, base, storage.is_integer()) {
             return self.set_error_in(e, command);
         }
-        let internal = self.with_dest(dest, |obj, _| obj.level(dest.face, level).map_or(gl::GL_NONE, |l| l.internal_format));
-        let clamp = !formats::level_storage(base, internal).unclamped();
+        let clamp = !storage.unclamped();
         let Ok(data) = (unsafe { self.unpack_client(ft, sz, pixels, base == Base::ColorIndex, clamp, command) }) else { return };
         let Some(data) = data else { return self.null_pointer(command) };
         self.write_sub_image(dest, level, off, sz, base, data);
@@ -575,8 +596,10 @@ impl Context {
     /// specified as 1, 2, 3, or 4") or a colour index raises `GL_INVALID_ENUM`, as in Mesa
     /// (the spec names no error). Depth/stencil formats copy depth and stencil
     /// (EXT_packed_depth_stencil section 3.8.2; glrt's visuals have both buffers, so its
-    /// `GL_INVALID_OPERATION` for a missing one never applies). The level is allocated
-    /// zero-filled and the copy is recorded in the frame.
+    /// `GL_INVALID_OPERATION` for a missing one never applies). An integer internal format
+    /// is `GL_INVALID_OPERATION`, glrt's colour buffers not being integer (EXT_texture_integer
+    /// section 3.8.2). The level is allocated zero-filled and the copy is recorded in the
+    /// frame.
     fn copy_tex_image(&mut self, dims: usize, target: GLenum, level: GLint, internalformat: GLenum, x: GLint, y: GLint, size: [GLsizei; 2], border: GLint, command: &'static str) {
         self.write_back_framebuffer();
         let Some(dest) = image_target(dims, target).filter(|d| !d.proxy) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
@@ -584,7 +607,8 @@ impl Context {
         let Some(internal) = internal else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         let checked = check_level(dest.target, level)
             .and_then(|l| Ok((l, check_size(dest.target, l, [size[0], size[1], 1], border)?)))
-            .and_then(|v| check_compressed_internal(internalformat, dims, border).map(|()| v));
+            .and_then(|v| check_compressed_internal(internalformat, dims, border).map(|()| v))
+            .and_then(|v| if internal.storage.is_integer() { Err(gl::GL_INVALID_OPERATION) } else { Ok(v) });
         let (level, size3) = match checked {
             Ok((l, SizeCheck::Fits(s))) => (l, s),
             Ok((_, SizeCheck::TooLarge)) => return self.set_error_in(gl::GL_INVALID_VALUE, command),
@@ -606,12 +630,17 @@ impl Context {
         self.copy_tex_image(2, target, level, internalformat, x, y, [width, height], border, "glCopyTexImage2D");
     }
 
-    /// `glCopyTexSubImage1D/2D/3D`: the region checks of `glTexSubImage`; the copy is recorded
-    /// in the frame and the content version changes.
+    /// `glCopyTexSubImage1D/2D/3D`: the region checks of `glTexSubImage`, and
+    /// `GL_INVALID_OPERATION` for an integer level (as `glCopyTexImage2D`); the copy is
+    /// recorded in the frame and the content version changes.
     fn copy_tex_sub_image(&mut self, dims: usize, target: GLenum, level: GLint, offset: [GLint; 3], src: [i32; 4], command: &'static str) {
         self.write_back_framebuffer();
         let size = [src[2], if dims >= 2 { src[3] } else { 1 }, 1];
         let Some((dest, level, off, _, base)) = self.check_sub_image(dims, target, level, offset, size, command) else { return };
+        let internal = self.with_dest(dest, |obj, _| obj.level(dest.face, level).map_or(gl::GL_NONE, |l| l.internal_format));
+        if formats::level_storage(base, internal).is_integer() {
+            return self.set_error_in(gl::GL_INVALID_OPERATION, command);
+        }
         self.with_dest(dest, |obj, _| obj.touch());
         self.record_texture_copy(dest, level, off, [src[0], src[1], size[0], size[1]], base);
     }
@@ -636,7 +665,9 @@ impl Context {
     /// type (`GL_COLOR_INDEX` and `GL_STENCIL_INDEX` included), `GL_INVALID_VALUE` for a bad
     /// level, `GL_INVALID_OPERATION` for a colour format from a depth level, `GL_DEPTH_COMPONENT`
     /// from a colour level, or `GL_DEPTH_STENCIL` from a level without stencil
-    /// (EXT_packed_depth_stencil section 6.1.4). Unspecified levels write nothing.
+    /// (EXT_packed_depth_stencil section 6.1.4), or an integer format from a non-integer level
+    /// and the reverse (EXT_texture_integer; integer levels are packed without pixel transfer,
+    /// luminance from R, each component clamped to the type). Unspecified levels write nothing.
     ///
     /// # Safety
     /// A non-null `pixels` must point to writable memory as the pack modes describe.
@@ -658,13 +689,22 @@ impl Context {
             Base::ColorIndex => TexelFormat::Rgba,
         };
         let depth_level = texel_format == TexelFormat::Depth;
+        let integer_level = lvl.image.precision == Precision::Integer;
         let mismatch = match f.kind {
             Kind::DepthStencil => formats::stencil_bits(lvl.internal_format) == 0,
             Kind::Depth => !depth_level,
-            _ => depth_level,
+            Kind::Integer => !integer_level,
+            _ => depth_level || integer_level,
         };
         if mismatch {
             return self.set_error_in(gl::GL_INVALID_OPERATION, CMD);
+        }
+        if integer_level {
+            let mut values = Vec::with_capacity(lvl.image.integers.len());
+            for c in lvl.image.integers.chunks_exact(4) {
+                codec::from_integer_rgba(f.gl, formats::texel_to_rgba(texel_format, [c[0], c[1], c[2], c[3]]), &mut values);
+            }
+            return unsafe { self.pack_client_integers((f, t), lvl.size, pixels, &values, CMD) };
         }
         // Depth levels answer from their full-precision values, with the stencil index in
         // the second component.

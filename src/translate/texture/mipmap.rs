@@ -61,6 +61,22 @@ pub fn downsample_floats(src: &[f32], per_texel: usize, size: [usize; 3]) -> Vec
     out
 }
 
+/// Halves the integer texels (four components each) of an integer level (EXT_texture_integer)
+/// `src` (`size` without border) with a box filter, each average rounded to nearest (halves
+/// away from zero), so that the components stay within the format's range.
+pub fn downsample_integers(src: &[i64], size: [usize; 3]) -> Vec<i64> {
+    let (groups, _) = footprints(size);
+    let mut out = Vec::with_capacity(groups.len() * 4);
+    for g in groups {
+        let n = g.len() as i64;
+        for c in 0..4 {
+            let sum: i64 = g.iter().map(|&i| src.get(i * 4 + c).copied().unwrap_or(0)).sum();
+            out.push(if sum >= 0 { (sum + n / 2) / n } else { (sum - n / 2) / n });
+        }
+    }
+    out
+}
+
 /// Removes the border of an image whose texels are `per_texel` consecutive values of `data`.
 fn interior<T: Copy>(data: &[T], per_texel: usize, size: [usize; 3], border: usize) -> Vec<T> {
     if border == 0 {
@@ -94,6 +110,7 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
     let mut texels = interior(&top.image.texels, 4, top.size, border);
     let mut depth = interior(&top.image.depth_values, 1, top.size, border);
     let mut values = interior(&top.image.values, 4, top.size, border);
+    let mut integers = interior(&top.image.integers, 4, top.size, border);
     let precision = top.image.precision;
     let base_format = match top.base {
         Base::ColorIndex => Base::Texel(TexelFormat::Rgba),
@@ -104,10 +121,11 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
         let (next, next_size) = downsample(&texels, size);
         let next_depth = if depth.is_empty() { Vec::new() } else { downsample_floats(&depth, 1, size) };
         let next_values = if values.is_empty() { Vec::new() } else { downsample_floats(&values, 4, size) };
+        let next_integers = if integers.is_empty() { Vec::new() } else { downsample_integers(&integers, size) };
         level += 1;
         let [w, h, d] = next_size.map(|v| v as u32);
         let mut generated = Level {
-            image: Arc::new(TexImage { width: w, height: h, depth: d, border: 0, texels: next.clone(), precision, values: next_values.clone(), depth_values: next_depth.clone() }),
+            image: Arc::new(TexImage { width: w, height: h, depth: d, border: 0, texels: next.clone(), precision, values: next_values.clone(), integers: next_integers.clone(), depth_values: next_depth.clone() }),
             size: next_size,
             border: 0,
             internal_format: top.internal_format,
@@ -121,6 +139,7 @@ pub fn generate(obj: &mut TextureObject, face: usize, base: usize) {
         texels = next;
         depth = next_depth;
         values = next_values;
+        integers = next_integers;
         size = next_size;
     }
 }

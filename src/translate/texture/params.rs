@@ -21,6 +21,11 @@ pub struct TexParams {
     pub wrap: [GLenum; 3],
     /// `GL_TEXTURE_BORDER_COLOR`.
     pub border_color: [f32; 4],
+    /// `GL_TEXTURE_BORDER_COLOR` as integers, when it was last set with
+    /// `glTexParameterIivEXT`/`glTexParameterIuivEXT` (EXT_texture_integer: "stored with an
+    /// internal data type of integer"; see [`super::params_integer`]); `None` when set as
+    /// floats.
+    pub border_integers: Option<[i64; 4]>,
     /// `GL_TEXTURE_PRIORITY`.
     pub priority: f32,
     /// `GL_TEXTURE_MIN_LOD`, `GL_TEXTURE_MAX_LOD`.
@@ -44,6 +49,7 @@ impl Default for TexParams {
             mag_filter: gl::GL_LINEAR,
             wrap: [gl::GL_REPEAT; 3],
             border_color: [0.0; 4],
+            border_integers: None,
             priority: 1.0,
             lod: [-1000.0, 1000.0],
             levels: [0, 1000],
@@ -122,7 +128,7 @@ impl TexParams {
 
     /// Sets `pname` from `values` (already converted to floats); the error of section 3.8.4
     /// otherwise. Returns whether anything changed.
-    fn set(&mut self, pname: GLenum, v: &[f64]) -> Result<(), GLenum> {
+    pub(super) fn set(&mut self, pname: GLenum, v: &[f64]) -> Result<(), GLenum> {
         let first = *v.first().ok_or(gl::GL_INVALID_ENUM)?;
         let as_enum = first as GLenum;
         let pick = |allowed: &[GLenum]| if allowed.contains(&as_enum) { Ok(as_enum) } else { Err(gl::GL_INVALID_ENUM) };
@@ -145,6 +151,7 @@ impl TexParams {
             gl::GL_TEXTURE_BORDER_COLOR => {
                 let c: [f64; 4] = v.try_into().map_err(|_| gl::GL_INVALID_ENUM)?;
                 self.border_color = c.map(|x| x.clamp(0.0, 1.0) as f32);
+                self.border_integers = None;
             }
             gl::GL_TEXTURE_PRIORITY => self.priority = first.clamp(0.0, 1.0) as f32,
             gl::GL_TEXTURE_MIN_LOD => self.lod[0] = first as f32,
@@ -192,13 +199,13 @@ impl TexParams {
 }
 
 /// Values `glTexParameter*v`/`glGetTexParameter*v` read or write for `pname`.
-fn param_count(pname: GLenum) -> usize {
+pub(super) fn param_count(pname: GLenum) -> usize {
     if pname == gl::GL_TEXTURE_BORDER_COLOR { 4 } else { 1 }
 }
 
 impl Context {
     /// Sets a parameter of the texture bound to `target`.
-    fn tex_parameter(&mut self, target: GLenum, pname: GLenum, values: &[f64], command: &'static str) {
+    pub(super) fn tex_parameter(&mut self, target: GLenum, pname: GLenum, values: &[f64], command: &'static str) {
         let Some(t) = Target::from_gl(target) else { return self.set_error_in(gl::GL_INVALID_ENUM, command) };
         if let Err(e) = self.with_bound_texture(t, |obj| {
             let mut params = obj.params;
@@ -275,7 +282,7 @@ impl Context {
 
     /// The value of a parameter of the texture bound to `target`, raising `GL_INVALID_ENUM`
     /// for an unknown target or name.
-    fn tex_parameter_value(&mut self, target: GLenum, pname: GLenum, command: &'static str) -> Option<Value> {
+    pub(super) fn tex_parameter_value(&mut self, target: GLenum, pname: GLenum, command: &'static str) -> Option<Value> {
         let value = Target::from_gl(target).and_then(|t| self.with_bound_texture(t, |obj| obj.params.get(pname)));
         if value.is_none() {
             self.set_error_in(gl::GL_INVALID_ENUM, command);

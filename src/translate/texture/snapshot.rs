@@ -52,6 +52,15 @@ pub fn is_complete(obj: &TextureObject, target: Target) -> bool {
 
 /// The image the renderer samples for a level: paletted levels resolved with `shared` when the
 /// shared palette is in use.
+/// Whether the base level of `obj` has an integer format (EXT_texture_integer). Fixed-function
+/// texturing of integer textures is undefined (section 3.8: "the result of using fixed
+/// functionality with integer textures is undefined"); glrt keeps it harmless by leaving the
+/// unit as if no texture were enabled, so integer levels never reach a frame.
+fn is_integer(obj: &TextureObject) -> bool {
+    let base = obj.params.levels[0].max(0) as usize;
+    obj.level(0, base).is_some_and(|l| l.image.precision == crate::frame::texture::Precision::Integer)
+}
+
 fn level_image(level: &Level, shared: Option<&Palette>) -> Arc<TexImage> {
     match (&level.indices, shared) {
         (Some(indices), Some(palette)) => Arc::new(TexImage { texels: resolve_indices(indices, palette), ..(*level.image).clone() }),
@@ -120,7 +129,7 @@ impl Context {
                 let target = self.enabled_target(unit)?;
                 let name = self.texture.bindings[unit][target.index()];
                 self.with_object(target, name, |obj| {
-                    is_complete(obj, target).then(|| texture_ref(name, obj, target, shared.as_ref().map(|(p, v)| (p, *v))))
+                    (is_complete(obj, target) && !is_integer(obj)).then(|| texture_ref(name, obj, target, shared.as_ref().map(|(p, v)| (p, *v))))
                 })
             })
             .collect()

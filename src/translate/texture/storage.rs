@@ -10,7 +10,8 @@
 //! (EXT_texture_snorm), floating-point (ARB_texture_float, ARB_texture_rg), packed-float
 //! (EXT_packed_float) and shared-exponent (EXT_texture_shared_exponent) formats keep `f32`
 //! values rounded to the format's bits; sRGB formats (EXT_texture_sRGB) keep sRGB-encoded
-//! bytes.
+//! bytes. Integer formats (EXT_texture_integer, and ARB_texture_rg's `GL_R8I`...) keep their
+//! components exactly as integers ([`Precision::Integer`]), clamped to the format's range.
 
 use super::super::convert::{norm_i8, norm_i16};
 use super::super::gl::{self, GLenum};
@@ -32,6 +33,10 @@ pub enum Encoding {
     PackedFloat,
     /// 9-bit mantissas with a shared 5-bit exponent (EXT_texture_shared_exponent).
     SharedExponent,
+    /// Signed integers (EXT_texture_integer).
+    Int,
+    /// Unsigned integers (EXT_texture_integer).
+    Uint,
 }
 
 /// The storage of an internal format.
@@ -110,6 +115,54 @@ pub fn of(internal: GLenum, has: [bool; 4]) -> Storage {
         | gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT1_EXT
         | gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT3_EXT
         | gl::GL_COMPRESSED_SRGB_ALPHA_S3TC_DXT5_EXT => (Srgb, 8, 8),
+        gl::GL_RGBA8I
+        | gl::GL_RGB8I
+        | gl::GL_RG8I
+        | gl::GL_R8I
+        | gl::GL_ALPHA8I_EXT
+        | gl::GL_INTENSITY8I_EXT
+        | gl::GL_LUMINANCE8I_EXT
+        | gl::GL_LUMINANCE_ALPHA8I_EXT => (Int, 8, 8),
+        gl::GL_RGBA16I
+        | gl::GL_RGB16I
+        | gl::GL_RG16I
+        | gl::GL_R16I
+        | gl::GL_ALPHA16I_EXT
+        | gl::GL_INTENSITY16I_EXT
+        | gl::GL_LUMINANCE16I_EXT
+        | gl::GL_LUMINANCE_ALPHA16I_EXT => (Int, 16, 16),
+        gl::GL_RGBA32I
+        | gl::GL_RGB32I
+        | gl::GL_RG32I
+        | gl::GL_R32I
+        | gl::GL_ALPHA32I_EXT
+        | gl::GL_INTENSITY32I_EXT
+        | gl::GL_LUMINANCE32I_EXT
+        | gl::GL_LUMINANCE_ALPHA32I_EXT => (Int, 32, 32),
+        gl::GL_RGBA8UI
+        | gl::GL_RGB8UI
+        | gl::GL_RG8UI
+        | gl::GL_R8UI
+        | gl::GL_ALPHA8UI_EXT
+        | gl::GL_INTENSITY8UI_EXT
+        | gl::GL_LUMINANCE8UI_EXT
+        | gl::GL_LUMINANCE_ALPHA8UI_EXT => (Uint, 8, 8),
+        gl::GL_RGBA16UI
+        | gl::GL_RGB16UI
+        | gl::GL_RG16UI
+        | gl::GL_R16UI
+        | gl::GL_ALPHA16UI_EXT
+        | gl::GL_INTENSITY16UI_EXT
+        | gl::GL_LUMINANCE16UI_EXT
+        | gl::GL_LUMINANCE_ALPHA16UI_EXT => (Uint, 16, 16),
+        gl::GL_RGBA32UI
+        | gl::GL_RGB32UI
+        | gl::GL_RG32UI
+        | gl::GL_R32UI
+        | gl::GL_ALPHA32UI_EXT
+        | gl::GL_INTENSITY32UI_EXT
+        | gl::GL_LUMINANCE32UI_EXT
+        | gl::GL_LUMINANCE_ALPHA32UI_EXT => (Uint, 32, 32),
         gl::GL_R11F_G11F_B10F => return Storage { encoding: PackedFloat, bits: [11, 11, 10, 0] },
         gl::GL_RGB9_E5 => return Storage { encoding: SharedExponent, bits: [9, 9, 9, 0] },
         _ => (Unorm, 8, 8),
@@ -125,6 +178,7 @@ impl Storage {
     pub fn precision(self) -> Precision {
         match self.encoding {
             Encoding::Srgb => Precision::Srgb8,
+            Encoding::Int | Encoding::Uint => Precision::Integer,
             Encoding::Unorm if self.bits.iter().all(|&b| b <= 8) => Precision::Unorm8,
             _ => Precision::Float,
         }
@@ -142,7 +196,27 @@ impl Storage {
             Encoding::Unorm | Encoding::Srgb => gl::GL_UNSIGNED_NORMALIZED,
             Encoding::Snorm => gl::GL_SIGNED_NORMALIZED,
             Encoding::Float | Encoding::PackedFloat | Encoding::SharedExponent => gl::GL_FLOAT,
+            Encoding::Int => gl::GL_INT,
+            Encoding::Uint => gl::GL_UNSIGNED_INT,
         }
+    }
+
+    /// Whether the components are integers (EXT_texture_integer's table 3.16), which need
+    /// the `*_INTEGER` pixel formats.
+    pub fn is_integer(self) -> bool {
+        matches!(self.encoding, Encoding::Int | Encoding::Uint)
+    }
+
+    /// An unpacked integer colour (R, G, B, A) clamped to the representable range of each
+    /// component of an integer format (EXT_texture_integer section 3.8.1): [−2^(n−1),
+    /// 2^(n−1) − 1] for signed, [0, 2^n − 1] for unsigned formats of n bits. Components the
+    /// base format drops are left as they are.
+    pub fn clamp_integers(self, c: [i64; 4]) -> [i64; 4] {
+        std::array::from_fn(|i| match (self.encoding, self.bits[i]) {
+            (_, 0) => c[i],
+            (Encoding::Int, n) => c[i].clamp(-(1i64 << (n - 1)), (1i64 << (n - 1)) - 1),
+            (_, n) => c[i].clamp(0, (1i64 << n) - 1),
+        })
     }
 
     /// An unpacked colour (R, G, B, A before the base format's component choice) rounded to
@@ -173,7 +247,7 @@ impl Storage {
                 let max = f64::from((1u32 << b) - 1);
                 ((f64::from(v.clamp(0.0, 1.0)) * max).round() / max) as f32
             }
-            (Encoding::SharedExponent, _) => v,
+            (Encoding::SharedExponent | Encoding::Int | Encoding::Uint, _) => v,
         }
     }
 }
@@ -214,5 +288,20 @@ mod tests {
         assert_eq!(of(gl::GL_LUMINANCE16_ALPHA16, [true, false, false, true]).bits, [16, 0, 0, 16]);
         assert_eq!(of(gl::GL_RGB32F, [true, true, true, false]).component_type(), gl::GL_FLOAT);
         assert!(!of(gl::GL_RGB16, RGBA).unclamped() && of(gl::GL_R8_SNORM, RGBA).unclamped());
+    }
+
+    #[test]
+    fn integer_formats_clamp_to_their_range() {
+        let i8s = of(gl::GL_RGBA8I_EXT, RGBA);
+        assert_eq!((i8s.precision(), i8s.bits, i8s.component_type()), (Precision::Integer, [8; 4], gl::GL_INT));
+        assert_eq!(i8s.clamp_integers([-1000, 1000, -128, 127]), [-128, 127, -128, 127]);
+        let u16s = of(gl::GL_LUMINANCE_ALPHA16UI_EXT, [true, false, false, true]);
+        assert_eq!((u16s.bits, u16s.component_type()), ([16, 0, 0, 16], gl::GL_UNSIGNED_INT));
+        assert_eq!(u16s.clamp_integers([-5, 7, 9, 70000]), [0, 7, 9, 65535]);
+        let u32s = of(gl::GL_RGBA32UI_EXT, RGBA);
+        assert_eq!(u32s.clamp_integers([-1, 4294967295, 4294967296, 0]), [0, 4294967295, 4294967295, 0]);
+        let i32s = of(gl::GL_ALPHA32I_EXT, [false, false, false, true]);
+        assert_eq!(i32s.clamp_integers([0, 0, 0, -3_000_000_000]), [0, 0, 0, i64::from(i32::MIN)]);
+        assert!(of(gl::GL_R16UI, RGBA).is_integer() && !of(gl::GL_RGBA16, RGBA).is_integer());
     }
 }

@@ -49,7 +49,7 @@ fn array_state_and_queries() {
     let data = [0u8; 64];
     let p = data.as_ptr().cast::<c_void>();
     unsafe {
-        dispatch::glVertexAttribPointer(&mut ctx, 2, 3, gl::GL_UNSIGNED_SHORT, gl::GL_TRUE as u8, 12, p);
+        dispatch::glVertexAttribPointer(&mut ctx, 2, 3, gl::GL_UNSIGNED_SHORT, gl::GL_TRUE, 12, p);
         dispatch::glEnableVertexAttribArray(&mut ctx, 2);
     }
     assert_eq!(attrib_iv(&mut ctx, 2, gl::GL_VERTEX_ATTRIB_ARRAY_ENABLED), 1);
@@ -59,7 +59,7 @@ fn array_state_and_queries() {
     assert_eq!(attrib_iv(&mut ctx, 2, gl::GL_VERTEX_ATTRIB_ARRAY_NORMALIZED), 1);
     assert_eq!(attrib_iv(&mut ctx, 2, gl::GL_VERTEX_ATTRIB_ARRAY_BUFFER_BINDING), 0);
     let mut got: *mut c_void = std::ptr::null_mut();
-    unsafe { dispatch::glGetVertexAttribPointerv(&mut ctx, 2, gl::GL_VERTEX_ATTRIB_ARRAY_POINTER, &mut got) };
+    unsafe { dispatch::glGetVertexAttribPointerv(&mut ctx, 2, gl::GL_VERTEX_ATTRIB_ARRAY_POINTER, &raw mut got) };
     assert_eq!(got as usize, p as usize);
     unsafe { dispatch::glPushClientAttrib(&mut ctx, gl::GL_CLIENT_VERTEX_ARRAY_BIT) };
     unsafe { dispatch::glDisableVertexAttribArray(&mut ctx, 2) };
@@ -117,7 +117,7 @@ fn generic_arrays_in_draws_and_display_lists() {
     unsafe {
         dispatch::glVertexAttribPointer(&mut ctx, 0, 2, gl::GL_FLOAT, 0, 0, positions.as_ptr().cast());
         dispatch::glEnableVertexAttribArray(&mut ctx, 0);
-        dispatch::glVertexAttribPointer(&mut ctx, 3, 2, gl::GL_UNSIGNED_BYTE, gl::GL_TRUE as u8, 0, extra.as_ptr().cast());
+        dispatch::glVertexAttribPointer(&mut ctx, 3, 2, gl::GL_UNSIGNED_BYTE, gl::GL_TRUE, 0, extra.as_ptr().cast());
         dispatch::glEnableVertexAttribArray(&mut ctx, 3);
         dispatch::glVertexAttrib1f(&mut ctx, 4, 6.0);
         dispatch::glDrawArrays(&mut ctx, gl::GL_TRIANGLES, 0, 3);
@@ -139,4 +139,67 @@ fn generic_arrays_in_draws_and_display_lists() {
     assert_eq!(v.generic[3].values[..3], [[1.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, 1.0], [0.2, 0.2, 0.0, 1.0]], "arrays read at compile time");
     assert_eq!(v.generic[4].get(0), Some([2.0, 0.0, 0.0, 1.0]), "other attributes current at execution");
     assert_eq!(current(&mut ctx, 3), [0.2, 0.2, 0.0, 1.0], "glArrayElement in the list set the current value");
+}
+
+#[test]
+fn lists_compiled_without_a_program_keep_generic_arrays() {
+    let (mut ctx, _) = Context::with_recording();
+    let positions: [f32; 6] = [0.0, 0.0, 1.0, 0.0, 0.0, 1.0];
+    let extra: [f32; 3] = [4.0, 5.0, 6.0];
+    unsafe {
+        dispatch::glVertexPointer(&mut ctx, 2, gl::GL_FLOAT, 0, positions.as_ptr().cast());
+        dispatch::glEnableClientState(&mut ctx, gl::GL_VERTEX_ARRAY);
+        dispatch::glVertexAttribPointer(&mut ctx, 9, 1, gl::GL_FLOAT, 0, 0, extra.as_ptr().cast());
+        dispatch::glEnableVertexAttribArray(&mut ctx, 9);
+        dispatch::glNewList(&mut ctx, 1, gl::GL_COMPILE);
+        dispatch::glDrawArrays(&mut ctx, gl::GL_TRIANGLES, 0, 3);
+        dispatch::glEndList(&mut ctx);
+        dispatch::glCallList(&mut ctx, 1);
+    }
+    assert!(ctx.frame.draws[0].vertices.generic.is_empty(), "no program when the list runs");
+    fake_program(&mut ctx, true);
+    unsafe { dispatch::glCallList(&mut ctx, 1) };
+    let v = &ctx.frame.draws.last().unwrap().vertices;
+    assert_eq!(v.generic[9].values, vec![[4.0, 0.0, 0.0, 1.0], [5.0, 0.0, 0.0, 1.0], [6.0, 0.0, 0.0, 1.0]]);
+    assert_eq!(v.generic[8].values, vec![[0.0, 0.0, 0.0, 1.0]]);
+}
+
+#[test]
+fn current_values_in_lists_attrib_stacks_and_buffer_arrays() {
+    let (mut ctx, _) = Context::with_recording();
+    unsafe {
+        dispatch::glNewList(&mut ctx, 1, gl::GL_COMPILE);
+        dispatch::glVertexAttrib4fv(&mut ctx, 7, [1.0, 2.0, 3.0, 4.0].as_ptr());
+        dispatch::glEndList(&mut ctx);
+    }
+    assert_eq!(current(&mut ctx, 7), [0.0, 0.0, 0.0, 1.0], "compiled, not executed");
+    unsafe { dispatch::glCallList(&mut ctx, 1) };
+    assert_eq!(current(&mut ctx, 7), [1.0, 2.0, 3.0, 4.0]);
+    unsafe {
+        dispatch::glPushAttrib(&mut ctx, gl::GL_CURRENT_BIT | gl::GL_ENABLE_BIT);
+        dispatch::glVertexAttrib1f(&mut ctx, 7, 0.0);
+        dispatch::glEnable(&mut ctx, gl::GL_VERTEX_PROGRAM_TWO_SIDE);
+        dispatch::glPopAttrib(&mut ctx);
+    }
+    assert_eq!(current(&mut ctx, 7), [1.0, 2.0, 3.0, 4.0], "GL_CURRENT_BIT holds generic values");
+    assert_eq!(unsafe { dispatch::glIsEnabled(&mut ctx, gl::GL_VERTEX_PROGRAM_TWO_SIDE) }, 0, "GL_ENABLE_BIT holds it");
+    fake_program(&mut ctx, true);
+    let data: [f32; 6] = [0.0, 0.0, 1.0, 0.0, 0.0, 1.0];
+    let mut vbo = 0;
+    unsafe {
+        dispatch::glGenBuffers(&mut ctx, 1, &mut vbo);
+        dispatch::glBindBuffer(&mut ctx, gl::GL_ARRAY_BUFFER, vbo);
+        dispatch::glBufferData(&mut ctx, gl::GL_ARRAY_BUFFER, 24, data.as_ptr().cast(), gl::GL_STATIC_DRAW);
+        dispatch::glVertexAttribPointer(&mut ctx, 0, 2, gl::GL_FLOAT, 0, 0, std::ptr::null());
+        dispatch::glVertexAttribPointer(&mut ctx, 6, 1, gl::GL_FLOAT, 0, 8, std::ptr::without_provenance(4));
+        dispatch::glEnableVertexAttribArray(&mut ctx, 0);
+        dispatch::glEnableVertexAttribArray(&mut ctx, 6);
+        dispatch::glBindBuffer(&mut ctx, gl::GL_ARRAY_BUFFER, 0);
+        dispatch::glDrawArrays(&mut ctx, gl::GL_TRIANGLES, 0, 3);
+    }
+    assert_eq!(attrib_iv(&mut ctx, 6, gl::GL_VERTEX_ATTRIB_ARRAY_BUFFER_BINDING), vbo as i32);
+    let v = &ctx.frame.draws[0].vertices;
+    assert_eq!(v.position[2], [0.0, 1.0, 0.0, 1.0]);
+    assert_eq!(v.generic[6].values, vec![[0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.0, 1.0], [1.0, 0.0, 0.0, 1.0]], "from the buffer object");
+    assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
 }
