@@ -44,6 +44,7 @@ pub const EXTENSIONS: &[&str] = &[
     "GL_EXT_blend_equation_separate",
     "GL_ARB_draw_buffers",
     "GL_ARB_texture_rectangle",
+    "GL_NV_point_sprite",
     "GL_EXT_texture_integer",
 ];
 

@@ -168,14 +168,17 @@ vec4 tex_env(int unit, uint word, uint rgb_word, uint alpha_word, vec4 cf, vec4 
 
 // Point sprite coordinates (OpenGL 2.0 section 3.3) for a unit that replaces them: v_raster.xy
 // is the fragment centre's window offset from the point's exact position and v_misc.z the
-// size, so s = 1/2 + (x_f + 1/2 - x_w) / size, and t likewise upwards or downwards.
+// size, so s = 1/2 + (x_f + 1/2 - x_w) / size, and t likewise upwards or downwards; r is 0 or,
+// with GL_NV_point_sprite's r mode, the vertex's s / q or r / q.
 vec4 sprite_coord(uint word, vec4 tex) {
     uint replace = field(word, COORD_REPLACE_SHIFT, COORD_REPLACE_BITS);
     if (replace == 0u) {
         return tex;
     }
     vec2 st = 0.5 + v_raster.xy / max(v_misc.z, 1e-6);
-    return vec4(st.x, replace == 2u ? st.y : 1.0 - st.y, 0.0, 1.0);
+    uint r_mode = field(word, SPRITE_R_SHIFT, SPRITE_R_BITS);
+    float r = r_mode == 1u ? tex.s / tex.q : r_mode == 2u ? tex.p / tex.q : 0.0;
+    return vec4(st.x, replace == 2u ? st.y : 1.0 - st.y, r, 1.0);
 }
 
 void main() {

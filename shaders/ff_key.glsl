@@ -77,6 +77,8 @@ const uint CLAMP_SHIFT = 25u;     // bit c: coordinate c clamped to [0, 1] (GL_C
 const uint CLAMP_BITS = 3u;
 const uint COORD_REPLACE_SHIFT = 28u; // point sprites: 0 off, 1 t downwards, 2 t upwards
 const uint COORD_REPLACE_BITS = 2u;
+const uint SPRITE_R_SHIFT = 30u;      // replaced r: 0 zero, 1 s / q, 2 r / q
+const uint SPRITE_R_BITS = 2u;
 
 // Words KEY_COMBINE_RGBn and KEY_COMBINE_ALPHAn.
 const uint COMBINE_FN_SHIFT = 0u;

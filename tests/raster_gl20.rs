@@ -288,3 +288,38 @@ fn rectangle_textures_take_texel_coordinates() {
     }
     assert_eq!(pixel(&mut ctx, 60, 40), colors[2], "clamped to the edge texel");
 }
+
+/// `GL_NV_point_sprite`'s r mode: a replaced coordinate set takes r = 0, the vertex's s, or
+/// its r, here read from a 3D texture of two slices (red below r = 1/2, green above).
+#[test]
+fn point_sprite_r_mode() {
+    let mut ctx = context();
+    let (red, green) = ([255, 0, 0, 255], [0, 255, 0, 255]);
+    let texels = [red, green].concat();
+    unsafe {
+        dispatch::glClear(&mut ctx, gl::GL_COLOR_BUFFER_BIT);
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_3D, 1);
+        dispatch::glTexImage3D(&mut ctx, gl::GL_TEXTURE_3D, 0, gl::GL_RGBA as i32, 1, 1, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_3D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_3D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_TEXTURE_ENV, gl::GL_TEXTURE_ENV_MODE, gl::GL_REPLACE as i32);
+        dispatch::glEnable(&mut ctx, gl::GL_TEXTURE_3D);
+        dispatch::glEnable(&mut ctx, gl::GL_POINT_SPRITE);
+        dispatch::glTexEnvi(&mut ctx, gl::GL_POINT_SPRITE, gl::GL_COORD_REPLACE, 1);
+        dispatch::glPointSize(&mut ctx, 8.0);
+    }
+    // (mode, vertex s, vertex r, expected colour)
+    let cases = [(gl::GL_ZERO, 0.9, 0.8, red), (gl::GL_S, 0.9, 0.2, green), (gl::GL_S, 0.1, 0.8, red), (gl::GL_R, 0.1, 0.8, green)];
+    for (i, &(mode, s, r, _)) in cases.iter().enumerate() {
+        unsafe {
+            dispatch::glPointParameteriNV(&mut ctx, gl::GL_POINT_SPRITE_R_MODE_NV, mode as i32);
+            dispatch::glBegin(&mut ctx, gl::GL_POINTS);
+            dispatch::glTexCoord3f(&mut ctx, s, 0.5, r);
+            dispatch::glVertex2f(&mut ctx, 8.0 + 16.0 * i as f32, 8.0);
+            dispatch::glEnd(&mut ctx);
+        }
+    }
+    for (i, &(mode, _, _, color)) in cases.iter().enumerate() {
+        assert_eq!(pixel(&mut ctx, 8 + 16 * i as i32, 8), color, "case {i}, mode {mode:#x}");
+    }
+}

@@ -280,7 +280,8 @@ pub struct Point {
 
 /// Point sprites (OpenGL 2.0 section 3.3): the point is a square of the unrounded derived size
 /// centred on its exact window position, and the units that replace their coordinates get
-/// s from 0 to 1 left to right and t from 0 to 1 along the origin's direction (r = 0, q = 1).
+/// s from 0 to 1 left to right, t from 0 to 1 along the origin's direction, r as
+/// [`PointSprite::r`] says (0 in OpenGL 2.0) and q = 1.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct PointSprite {
     /// Bit `u` set when texture unit `u` replaces its coordinates (`GL_COORD_REPLACE`).
@@ -288,6 +289,21 @@ pub struct PointSprite {
     /// `GL_POINT_SPRITE_COORD_ORIGIN` is `GL_LOWER_LEFT`: t grows upwards (with the initial
     /// `GL_UPPER_LEFT`, downwards).
     pub lower_left: bool,
+    /// The replaced r coordinate (`GL_POINT_SPRITE_R_MODE_NV`).
+    pub r: SpriteR,
+}
+
+/// The r coordinate of a replaced point sprite coordinate set (`GL_NV_point_sprite`'s
+/// `GL_POINT_SPRITE_R_MODE_NV`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SpriteR {
+    /// 0 (`GL_ZERO`, and always in OpenGL 2.0).
+    #[default]
+    Zero,
+    /// The vertex's s / q (`GL_S`).
+    S,
+    /// The vertex's r / q (`GL_R`).
+    R,
 }
 
 impl Default for Point {

@@ -4,7 +4,7 @@
 use super::gl::{self, GLenum};
 use crate::frame::state::{
     BlendEquation, BlendFactor, ColorMaterialMode, CompareFunc, Face, FogMode, FogSource, LogicOp, PolygonMode,
-    ShadeModel, StencilOp, Winding,
+    ShadeModel, SpriteR, StencilOp, Winding,
 };
 
 /// Pairs of a GL enum and the Rust value it stands for.
@@ -71,6 +71,9 @@ pub(crate) const BLEND_EQUATION: EnumTable<BlendEquation> = EnumTable(&[
     (gl::GL_MIN, BlendEquation::Min),
     (gl::GL_MAX, BlendEquation::Max),
 ]);
+
+/// `GL_POINT_SPRITE_R_MODE_NV` values.
+pub(crate) const SPRITE_R: EnumTable<SpriteR> = EnumTable(&[(gl::GL_ZERO, SpriteR::Zero), (gl::GL_S, SpriteR::S), (gl::GL_R, SpriteR::R)]);
 
 /// Stencil operations.
 pub(crate) const STENCIL_OP: EnumTable<StencilOp> = EnumTable(&[

@@ -1,13 +1,14 @@
 //! Rasterization parameters (OpenGL 1.5 chapter 3): points and point parameters (3.3), lines
 //! and line stipple (3.4), culling, polygon mode and polygon offset (3.5), and multisample
 //! coverage (3.2.1), with their queries (tables 6.12 to 6.14); point sprites (OpenGL 2.0
-//! section 3.3, `GL_ARB_point_sprite`): `GL_POINT_SPRITE_COORD_ORIGIN` here, `GL_COORD_REPLACE`
+//! section 3.3, `GL_ARB_point_sprite`, `GL_NV_point_sprite`): `GL_POINT_SPRITE_COORD_ORIGIN`
+//! and `GL_POINT_SPRITE_R_MODE_NV` here, `GL_COORD_REPLACE`
 //! with the texture environments ([`super::texture::env`]). The polygon stipple pattern is
 //! in [`super::stipple`].
 
 use super::Context;
 use super::dispatch;
-use super::enums::{FACE, POLYGON_MODE, WINDING};
+use super::enums::{FACE, POLYGON_MODE, SPRITE_R, WINDING};
 use super::get::Value;
 use super::gl::{self, GLboolean, GLclampf, GLenum, GLfloat, GLint, GLushort};
 use super::params::Shape;
@@ -59,7 +60,8 @@ impl Default for RasterizationState {
 /// Parameters of `glPointParameter*`.
 fn point_shape(pname: GLenum) -> Option<Shape> {
     Some(match pname {
-        gl::GL_POINT_SIZE_MIN | gl::GL_POINT_SIZE_MAX | gl::GL_POINT_FADE_THRESHOLD_SIZE | gl::GL_POINT_SPRITE_COORD_ORIGIN => {
+        gl::GL_POINT_SIZE_MIN | gl::GL_POINT_SIZE_MAX | gl::GL_POINT_FADE_THRESHOLD_SIZE | gl::GL_POINT_SPRITE_COORD_ORIGIN
+        | gl::GL_POINT_SPRITE_R_MODE_NV => {
             Shape::SCALAR
         }
         gl::GL_POINT_DISTANCE_ATTENUATION => Shape::plain(3),
@@ -125,13 +127,20 @@ impl Context {
 
     /// Sets a point parameter (section 3.3): `GL_INVALID_VALUE` for a negative size or
     /// threshold; `GL_INVALID_ENUM` for a sprite origin other than `GL_LOWER_LEFT` and
-    /// `GL_UPPER_LEFT` (OpenGL 2.0 section 2.5: an enum not allowed).
+    /// `GL_UPPER_LEFT` (OpenGL 2.0 section 2.5: an enum not allowed) and for an r mode other
+    /// than `GL_ZERO`, `GL_S` and `GL_R` (`GL_NV_point_sprite`).
     fn set_point_parameter(&mut self, pname: GLenum, v: [f32; 4], command: &'static str) {
         if pname == gl::GL_POINT_SPRITE_COORD_ORIGIN {
             return match v[0] as GLenum {
                 gl::GL_LOWER_LEFT => self.fixed_mut().raster.sprite.lower_left = true,
                 gl::GL_UPPER_LEFT => self.fixed_mut().raster.sprite.lower_left = false,
                 _ => self.set_error_in(gl::GL_INVALID_ENUM, command),
+            };
+        }
+        if pname == gl::GL_POINT_SPRITE_R_MODE_NV {
+            return match SPRITE_R.parse(v[0] as GLenum) {
+                Some(r) => self.fixed_mut().raster.sprite.r = r,
+                None => self.set_error_in(gl::GL_INVALID_ENUM, command),
             };
         }
         if pname != gl::GL_POINT_DISTANCE_ATTENUATION && (v[0].is_nan() || v[0] < 0.0) {
@@ -232,6 +241,7 @@ impl Context {
             gl::GL_POINT_SIZE_MAX => Value::float(r.point.size_max),
             gl::GL_POINT_FADE_THRESHOLD_SIZE => Value::float(r.point.fade_threshold),
             gl::GL_POINT_DISTANCE_ATTENUATION => Value::floats(&r.point.attenuation),
+            gl::GL_POINT_SPRITE_R_MODE_NV => SPRITE_R.value(r.sprite.r),
             gl::GL_POINT_SPRITE_COORD_ORIGIN => Value::int(if r.sprite.lower_left { gl::GL_LOWER_LEFT } else { gl::GL_UPPER_LEFT }),
             gl::GL_SAMPLE_COVERAGE_VALUE => Value::float(r.sample_coverage.0),
             gl::GL_SAMPLE_COVERAGE_INVERT => Value::bool(r.sample_coverage.1),
@@ -353,12 +363,19 @@ mod tests {
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
         assert_eq!(int(&ctx, gl::GL_POINT_SPRITE_COORD_ORIGIN), gl::GL_LOWER_LEFT as i32);
 
+        assert_eq!(int(&ctx, gl::GL_POINT_SPRITE_R_MODE_NV), gl::GL_ZERO as i32);
+        ctx.glPointParameteri(gl::GL_POINT_SPRITE_R_MODE_NV, gl::GL_T as i32);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_ENUM);
+        ctx.glPointParameteri(gl::GL_POINT_SPRITE_R_MODE_NV, gl::GL_R as i32);
+        assert_eq!(int(&ctx, gl::GL_POINT_SPRITE_R_MODE_NV), gl::GL_R as i32);
+        ctx.glPointParameteri(gl::GL_POINT_SPRITE_R_MODE_NV, gl::GL_ZERO as i32);
+
         ctx.glEnable(gl::GL_POINT_SMOOTH);
         assert_eq!(ctx.raster_snapshot().point.sprite, None);
         assert!(ctx.raster_snapshot().point.smooth);
         ctx.glEnable(gl::GL_POINT_SPRITE);
         let point = ctx.raster_snapshot().point;
-        assert_eq!(point.sprite, Some(PointSprite { coord_replace: 0b100, lower_left: true }));
+        assert_eq!(point.sprite, Some(PointSprite { coord_replace: 0b100, lower_left: true, ..PointSprite::default() }));
         assert!(!point.smooth, "sprites ignore GL_POINT_SMOOTH");
 
         // The point attribute group holds the enable, the origin and each unit's replacement.
@@ -368,6 +385,6 @@ mod tests {
         ctx.glActiveTexture(gl::GL_TEXTURE2);
         ctx.glTexEnvi(gl::GL_POINT_SPRITE, gl::GL_COORD_REPLACE, 0);
         ctx.glPopAttrib();
-        assert_eq!(ctx.raster_snapshot().point.sprite, Some(PointSprite { coord_replace: 0b100, lower_left: true }));
+        assert_eq!(ctx.raster_snapshot().point.sprite, Some(PointSprite { coord_replace: 0b100, lower_left: true, ..PointSprite::default() }));
     }
 }

@@ -108,6 +108,7 @@ const EXTENSIONS: &str = concat!(
     "GL_EXT_vertex_array ",
     "GL_IBM_texture_mirrored_repeat ",
     "GL_NV_blend_square ",
+    "GL_NV_point_sprite ",
     "GL_SGIS_generate_mipmap ",
     "GL_SGIS_multitexture ",
     "GL_SGIS_texture_edge_clamp ",

@@ -424,11 +424,13 @@ impl Context {
         let (kind, face) = match (dims, textarget) {
             (1, gl::GL_TEXTURE_1D) => (Target::D1, 0),
             (2, gl::GL_TEXTURE_2D) => (Target::D2, 0),
+            (2, gl::GL_TEXTURE_RECTANGLE_ARB) => (Target::Rect, 0),
             (2, _) if cube_face => (Target::Cube, textarget - gl::GL_TEXTURE_CUBE_MAP_POSITIVE_X),
             (3, gl::GL_TEXTURE_3D) => (Target::D3, 0),
             _ => return self.set_error_in(gl::GL_INVALID_ENUM, command),
         };
-        let max_level = if kind == Target::D3 { MAX_3D_TEXTURE_SIZE } else { MAX_TEXTURE_SIZE }.ilog2() as GLint;
+        // Rectangle textures have level 0 only (ARB_texture_rectangle with EXT_framebuffer_object).
+        let max_level = kind.max_levels() as GLint - 1;
         if !(0..=max_level).contains(&level) || !(0..MAX_3D_TEXTURE_SIZE as GLint).contains(&zoffset) {
             return self.set_error_in(gl::GL_INVALID_VALUE, command);
         }

@@ -434,5 +434,15 @@ mod rectangle_tests {
         assert_eq!((snapshot.content.kind, snapshot.id), (TextureKind::Rect, 3), "rectangle before 2D");
         ctx.glBindTexture(rect, 4);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION, "a 2D texture's name");
+
+        // A framebuffer object takes level 0 of a rectangle texture.
+        let mut fbo = 0;
+        unsafe { dispatch::glGenFramebuffersEXT(&mut ctx, 1, &mut fbo) };
+        ctx.glBindFramebufferEXT(gl::GL_FRAMEBUFFER_EXT, fbo);
+        ctx.glFramebufferTexture2DEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, rect, 3, 1);
+        assert_eq!(ctx.glGetError(), gl::GL_INVALID_VALUE);
+        ctx.glFramebufferTexture2DEXT(gl::GL_FRAMEBUFFER_EXT, gl::GL_COLOR_ATTACHMENT0_EXT, rect, 3, 0);
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+        assert_eq!(ctx.glCheckFramebufferStatusEXT(gl::GL_FRAMEBUFFER_EXT), gl::GL_FRAMEBUFFER_COMPLETE_EXT);
     }
 }

@@ -121,6 +121,9 @@ pub const CLAMP: Field = Field::new(25, 3);
 /// 1 with t from 0 at the top (`GL_UPPER_LEFT`), 2 with t from 0 at the bottom
 /// (`GL_LOWER_LEFT`).
 pub const COORD_REPLACE: Field = Field::new(28, 2);
+/// Unit word: the replaced r coordinate of a point sprite (`GL_POINT_SPRITE_R_MODE_NV`): 0 zero,
+/// 1 the vertex's s / q, 2 its r / q.
+pub const SPRITE_R: Field = Field::new(30, 2);
 
 /// Combiner word: function (replace, modulate, add, add signed, interpolate, subtract,
 /// dot3 RGB, dot3 RGBA).
@@ -163,6 +166,7 @@ pub const GLSL_FIELDS: &[(&str, Field)] = &[
     ("CLAMP", CLAMP),
     ("DEPTH", DEPTH),
     ("COORD_REPLACE", COORD_REPLACE),
+    ("SPRITE_R", SPRITE_R),
     ("COMBINE_FN", COMBINE_FN),
     ("SOURCE", SOURCE),
     ("OPERAND", OPERAND),
@@ -224,6 +228,7 @@ pub fn shader_key(draw: &Draw, primitive: Primitive, facing: Facing) -> ShaderKe
             words[UNIT + u] = unit_word(&unit, &texture.content);
             if let Some(sprite) = draw.state.point.sprite.filter(|s| primitive == Primitive::Point && s.coord_replace & (1 << u) != 0) {
                 COORD_REPLACE.set(&mut words[UNIT + u], 1 + sprite.lower_left as u32);
+                SPRITE_R.set(&mut words[UNIT + u], sprite.r as u32);
             }
             if unit.env.mode == EnvMode::Combine {
                 let env = &unit.env;
