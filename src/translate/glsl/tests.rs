@@ -5,6 +5,7 @@ use std::collections::HashMap;
 
 use super::*;
 use crate::frame::program::SamplerKind;
+use crate::render::raster::ff::uniforms::tests::spirv_offsets;
 
 fn compiled(stage: Stage, src: &str) -> CompiledShader {
     let c = compile(stage, src);
@@ -20,28 +21,8 @@ fn linked(shaders: &[&CompiledShader]) -> LinkedProgram {
 
 /// `member name → Offset` of the block type `block` in SPIR-V words.
 fn block_offsets(words: &[u32], block: &str) -> HashMap<String, u32> {
-    let string = |w: &[u32]| -> String {
-        let bytes: Vec<u8> = w.iter().flat_map(|x| x.to_le_bytes()).take_while(|&b| b != 0).collect();
-        String::from_utf8(bytes).expect("utf-8 name")
-    };
-    let (mut names, mut members, mut offsets) = (HashMap::new(), HashMap::new(), Vec::new());
-    let mut i = 5;
-    while i < words.len() {
-        let (count, op) = ((words[i] >> 16) as usize, words[i] & 0xffff);
-        let args = &words[i + 1..i + count];
-        match op {
-            5 => drop(names.insert(args[0], string(&args[1..]))),
-            6 => drop(members.insert((args[0], args[1]), string(&args[2..]))),
-            72 if args[2] == 35 => offsets.push((args[0], args[1], args[3])),
-            _ => {}
-        }
-        i += count.max(1);
-    }
-    offsets
-        .into_iter()
-        .filter(|(ty, _, _)| names.get(ty).is_some_and(|n| n == block))
-        .map(|(ty, m, off)| (members[&(ty, m)].clone(), off))
-        .collect()
+    let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
+    spirv_offsets(&bytes).into_iter().filter(|((ty, _), _)| ty == block).map(|((_, member), off)| (member, off as u32)).collect()
 }
 
 #[test]
