@@ -141,7 +141,7 @@ static REPLY_PREVIOUS: AtomicUsize = AtomicUsize::new(0);
 
 unsafe extern "C" fn record_reply_error(dpy: *mut XDisplay, event: *mut xlib::XErrorEvent) -> c_int {
     // Safety: Xlib passes a valid event.
-    let (serial, code) = unsafe { ((*event).serial as u64, (*event).error_code) };
+    let (serial, code) = unsafe { ((*event).serial, (*event).error_code) };
     if dpy as usize == REPLY_DISPLAY.load(Ordering::Relaxed) && serial >= REPLY_SERIAL.load(Ordering::Relaxed) {
         TRAPPED.store(code.max(1), Ordering::Relaxed);
         return 0;
@@ -169,7 +169,7 @@ pub unsafe fn trapped_reply<R>(x: &Xlib, dpy: *mut XDisplay, f: impl FnOnce() ->
     // Safety (all calls): `dpy` is live; the handler is restored before returning.
     unsafe {
         REPLY_DISPLAY.store(dpy as usize, Ordering::Relaxed);
-        REPLY_SERIAL.store((x.XNextRequest)(dpy) as u64, Ordering::Relaxed);
+        REPLY_SERIAL.store((x.XNextRequest)(dpy), Ordering::Relaxed);
         TRAPPED.store(0, Ordering::Relaxed);
         let previous = (x.XSetErrorHandler)(Some(record_reply_error));
         REPLY_PREVIOUS.store(previous.map_or(0, |h| h as usize), Ordering::Relaxed);

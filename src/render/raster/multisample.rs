@@ -110,11 +110,10 @@ pub fn passes(samples: u32, state: &Multisample, alpha_to_one_supported: bool) -
     if samples <= 1 {
         return vec![(SampleState::SINGLE, [0.0; 2])];
     }
-    if !state.enabled {
-        if let Some(at) = locations(samples) {
+    if !state.enabled
+        && let Some(at) = locations(samples) {
             return at.iter().enumerate().map(|(i, l)| (SampleState { samples, mask: 1 << i, ..SampleState::SINGLE }, [l[0] - 0.5, l[1] - 0.5])).collect();
         }
-    }
     let mask = match state.coverage {
         Some((value, invert)) if state.enabled => coverage_mask(samples, value, invert),
         _ => u32::MAX,

@@ -156,12 +156,11 @@ impl Context {
             out
         };
         let mut images = Vec::new();
-        if color {
-            if let Some(source) = read_back(self, PixelBuffer::Color) {
+        if color
+            && let Some(source) = read_back(self, PixelBuffer::Color) {
                 let bytes: Vec<u8> = resample(&source, linear).iter().flat_map(|c| c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)).collect();
                 images.push((PixelData::Rgba8(bytes.into()), false));
             }
-        }
         let depths = if depth { read_back(self, PixelBuffer::Depth).map(|s| resample(&s, false).iter().map(|p| p[0]).collect::<Vec<f32>>()) } else { None };
         let stencils = if stencil { read_back(self, PixelBuffer::Stencil).map(|s| resample(&s, false).iter().map(|p| p[0] as u32).collect::<Vec<u32>>()) } else { None };
         match (depths, stencils) {

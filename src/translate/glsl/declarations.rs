@@ -157,13 +157,11 @@ fn classify(tokens: &[Token], decls: &mut Declarations, consts: &mut HashMap<Str
     };
     if qualifiers.contains(&"const") && kind.is_none() {
         // `const int N = 4;`: remembered for array sizes.
-        if let [ty, name, eq, value, ..] = body {
-            if ty.text == "int" && eq.text == "=" {
-                if let Ok(v) = value.text.parse() {
+        if let [ty, name, eq, value, ..] = body
+            && ty.text == "int" && eq.text == "="
+                && let Ok(v) = value.text.parse() {
                     consts.insert(name.text.clone(), v);
                 }
-            }
-        }
         return Ok(Statement::Const);
     }
     let Some(make) = kind else { return Ok(Statement::Other) };

@@ -52,8 +52,8 @@ pub fn lay_out(uniforms: &[Variable], structs: &HashMap<String, Vec<Variable>>) 
     let mut layout = UniformLayout::default();
     let mut offset = 0u32;
     for u in uniforms {
-        if let Type::Basic(b) = &u.ty {
-            if let Some(kind) = b.sampler() {
+        if let Type::Basic(b) = &u.ty
+            && let Some(kind) = b.sampler() {
                 if u.array.is_some() {
                     return Err(format!("glrt: sampler arrays ('{}') are not supported", u.name));
                 }
@@ -66,7 +66,6 @@ pub fn lay_out(uniforms: &[Variable], structs: &HashMap<String, Vec<Variable>>) 
                 layout.active.push(ActiveUniform { name: u.name.clone(), ty: b.gl, size: 1, storage: UniformStorage::Sampler { first_slot: slot } });
                 continue;
             }
-        }
         let (align, size) = var_align_size(u, structs);
         offset = offset.next_multiple_of(align);
         flatten(&u.name, u, offset, structs, &mut layout.active)?;

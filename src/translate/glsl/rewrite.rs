@@ -303,11 +303,10 @@ fn matching_parens(tokens: &[Token]) -> HashMap<usize, usize> {
     for (i, t) in tokens.iter().enumerate() {
         if t.kind == Kind::Punct && t.text == "(" {
             open.push(i);
-        } else if t.kind == Kind::Punct && t.text == ")" {
-            if let Some(o) = open.pop() {
+        } else if t.kind == Kind::Punct && t.text == ")"
+            && let Some(o) = open.pop() {
                 pairs.insert(o, i);
             }
-        }
     }
     pairs
 }
