@@ -444,3 +444,27 @@ fn a_deleted_program_goes_with_the_last_context_using_it() {
     drop(b);
     assert_eq!(unsafe { dispatch::glIsProgram(&mut a, p) }, 0);
 }
+
+#[test]
+fn sampler_slots_take_the_texture_bound_to_their_unit_enabled_or_not() {
+    let (mut ctx, _) = Context::with_recording();
+    let p = fake_program(&mut ctx, true);
+    let [tex, texs] = ["tex", "texs"].map(|n| location(&mut ctx, p, n));
+    let texel = [255u8, 0, 0, 255];
+    unsafe {
+        dispatch::glActiveTexture(&mut ctx, gl::GL_TEXTURE2);
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_2D, 5);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 1, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texel.as_ptr().cast());
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_3D, 6);
+        dispatch::glUniform1i(&mut ctx, tex, 2);
+        dispatch::glUniform1iv(&mut ctx, texs, 2, [2, 3].as_ptr());
+        dispatch::glBegin(&mut ctx, gl::GL_POINTS);
+        dispatch::glVertex2f(&mut ctx, 0.0, 0.0);
+        dispatch::glEnd(&mut ctx);
+    }
+    assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
+    let draw = ctx.frame.draws[0].program.clone().unwrap();
+    let ids: Vec<Option<u32>> = draw.textures.iter().map(|t| t.as_ref().map(|t| t.id)).collect();
+    assert_eq!(ids, vec![Some(5), None, None], "the 2D texture of unit 2, not enabled; no complete 3D texture");
+}
