@@ -201,7 +201,9 @@ const NORMAL_RULES: PointerRules = PointerRules {
     sizes: &[3],
     types: &[gl::GL_BYTE, gl::GL_SHORT, gl::GL_INT, gl::GL_FLOAT, gl::GL_DOUBLE],
 };
-const COLOR_TYPES: &[GLenum] = &[
+/// Component types of colour arrays, which generic attribute arrays take too
+/// (`glVertexAttribPointer`).
+pub(crate) const COLOR_TYPES: &[GLenum] = &[
     gl::GL_BYTE,
     gl::GL_UNSIGNED_BYTE,
     gl::GL_SHORT,

@@ -17,17 +17,6 @@ use super::get::Value;
 use super::immediate::bits;
 use super::limits::MAX_VERTEX_ATTRIBS;
 
-/// Component types `glVertexAttribPointer` accepts.
-const TYPES: [GLenum; 8] = [
-    gl::GL_BYTE,
-    gl::GL_UNSIGNED_BYTE,
-    gl::GL_SHORT,
-    gl::GL_UNSIGNED_SHORT,
-    gl::GL_INT,
-    gl::GL_UNSIGNED_INT,
-    gl::GL_FLOAT,
-    gl::GL_DOUBLE,
-];
 
 impl Context {
     /// How many generic attributes draws store now: all while a program is in use, none
@@ -70,7 +59,7 @@ impl Context {
         if index as usize >= MAX_VERTEX_ATTRIBS || !(1..=4).contains(&size) || stride < 0 {
             return self.set_error_in(gl::GL_INVALID_VALUE, command);
         }
-        if !TYPES.contains(&type_) {
+        if !super::arrays::COLOR_TYPES.contains(&type_) {
             return self.set_error_in(gl::GL_INVALID_ENUM, command);
         }
         let buffer = self.arrays.array_buffer;
