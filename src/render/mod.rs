@@ -4,6 +4,7 @@
 pub mod frame_log;
 pub mod present;
 pub mod raster;
+pub mod trace;
 
 use std::sync::Arc;
 

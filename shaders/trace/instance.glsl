@@ -1,0 +1,28 @@
+// One traced instance: a geometry (bottom-level BVH) placed in eye space. Mirrors
+// `render::trace::scene::GpuInstance`. Traversal (bvh.glsl) reads the transform, the BLAS root
+// and the first triangle; shading reads the rest.
+
+#ifndef TRACE_INSTANCE_GLSL
+#define TRACE_INSTANCE_GLSL
+
+#include "trace/bindings.glsl"
+
+// Instance flags.
+#define INSTANCE_ALPHA_TESTED 1u  // traversal asks trace_alpha_accept() before accepting a hit
+#define INSTANCE_EMISSIVE 2u      // its albedo is also emitted light
+
+struct Instance {
+    vec4 object_to_eye[3];   // rows of the affine object-to-eye matrix
+    vec4 eye_to_object[3];   // rows of its inverse
+    vec4 previous_object_to_eye[3]; // last frame's object_to_eye (motion vectors); the same when unknown
+    uint blas_root;          // index of the geometry's root in the BLAS node buffer
+    uint first_triangle;     // index of the geometry's first triangle in the triangle buffers
+    uint flags;              // INSTANCE_* bits
+    uint material;           // index into the material buffer
+};
+
+layout(set = TRACE_SET, binding = BINDING_INSTANCES, std430) readonly buffer Instances {
+    Instance instances[];
+};
+
+#endif

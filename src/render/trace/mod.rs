@@ -1,0 +1,21 @@
+//! The compute path tracer (`GLRT_MODE=pathtrace`): traces the traced classes of a
+//! [`crate::frame::Frame`] (static, movable, dynamic draws) with BVH traversal in compute
+//! shaders, so it runs on every Vulkan 1.2 device, lavapipe included (DESIGN.md, "Ray tracing
+//! back ends"), and hands the traced image and depth to the raster renderer, which draws the
+//! sky, translucent and overlay draws around it in program order (thesis 4.3.6).
+//!
+//! Space: rays are traced in the **eye space of the current frame** (camera at the origin,
+//! looking down −z, as OpenGL's modelview leaves it). Each traced draw is an instance whose
+//! object-to-eye transform is its modelview; geometry stays in object space in its bottom-level
+//! BVH, reused across frames by geometry key; the top-level BVH over the instances is rebuilt
+//! every frame. GL lights are stored in eye space already.
+//!
+//! Parts:
+//! - [`bindings`]: descriptor bindings shared with `shaders/trace/bindings.glsl`.
+//! - `bvh`: bottom-level BVHs of triangle sets and the per-frame top-level BVH (CPU build,
+//!   GPU layout, CPU traversal for tests); `shaders/trace/bvh.glsl` traverses them.
+//! - `texels`: every texture level the tracer samples, packed into one storage buffer (no
+//!   descriptor indexing on lavapipe); `shaders/trace/texels.glsl` samples it.
+//! - `settings`: `glrt.toml` `[pathtrace]` and `GLRT_*` settings.
+
+pub mod bindings;
