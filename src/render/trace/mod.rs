@@ -19,3 +19,6 @@
 //! - `settings`: `glrt.toml` `[pathtrace]` and `GLRT_*` settings.
 
 pub mod bindings;
+pub mod gpu_types;
+pub mod lights;
+pub mod scene;
