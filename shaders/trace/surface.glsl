@@ -53,6 +53,14 @@ bool trace_alpha_accept(uint instance, uint triangle, vec2 bary) {
 
 #include "trace/bvh.glsl"
 
+// The object-space corners of global triangle `triangle`.
+void trace_triangle_vertices(uint triangle, out vec3 v0, out vec3 v1, out vec3 v2) {
+    BvhTriangle t = triangles[triangle];
+    v0 = t.v0.xyz;
+    v1 = v0 + t.e1.xyz;
+    v2 = v0 + t.e2.xyz;
+}
+
 // An object-space vector or point through the instance's rows.
 vec3 instance_transform(vec4 rows[3], vec4 v) {
     return vec3(dot(rows[0], v), dot(rows[1], v), dot(rows[2], v));

@@ -22,3 +22,8 @@ pub mod bindings;
 pub mod gpu_types;
 pub mod lights;
 pub mod scene;
+pub mod pipelines;
+pub mod resident;
+pub mod settings;
+pub mod tracer;
+pub mod bvh;
