@@ -144,3 +144,51 @@ fn directional_light_on_a_plane_gives_albedo_over_pi_e_cos() {
         }
     }
 }
+
+/// An alpha-tested quad (left texel transparent, right texel opaque) between a directional
+/// light and a floor casts the shadow of its opaque half only: traversal runs the alpha test
+/// on shadow rays too.
+#[test]
+fn alpha_tested_geometry_casts_cut_out_shadows() {
+    let mut ctx = context(Settings { spp: 1, bounces: 0, sun_angle: 0.0, ..Settings::default() });
+    let mut texture = 0u32;
+    let texels: [u8; 8] = [255, 255, 255, 0, 255, 255, 255, 255];
+    unsafe {
+        dispatch::glGenTextures(&mut ctx, 1, &mut texture);
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_2D, texture);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+    }
+    let quad = |ctx: &mut Context, [x0, y0, x1, y1]: [f32; 4], z: f32| unsafe {
+        dispatch::glBegin(ctx, gl::GL_QUADS);
+        dispatch::glNormal3f(ctx, 0.0, 0.0, 1.0);
+        for ([x, y], [s, t]) in [([x0, y0], [0.0, 0.0]), ([x1, y0], [1.0, 0.0]), ([x1, y1], [1.0, 1.0]), ([x0, y1], [0.0, 1.0])] {
+            dispatch::glTexCoord2f(ctx, s, t);
+            dispatch::glVertex3f(ctx, x, y, z);
+        }
+        dispatch::glEnd(ctx);
+    };
+    let image = render(&mut ctx, 2, [0.0; 3], |ctx| unsafe {
+        lit_material(ctx, 1.0);
+        dispatch::glEnable(ctx, gl::GL_LIGHT0);
+        // Towards the light: up in z and +x, so shadows fall 2 units to −x from z = −3 to −5.
+        let position = [1.0f32, 0.0, 1.0, 0.0];
+        dispatch::glLightfv(ctx, gl::GL_LIGHT0, gl::GL_POSITION, position.as_ptr());
+        quad(ctx, [-10.0, -10.0, 10.0, 10.0], -5.0);
+        dispatch::glEnable(ctx, gl::GL_TEXTURE_2D);
+        dispatch::glEnable(ctx, gl::GL_ALPHA_TEST);
+        dispatch::glAlphaFunc(ctx, gl::GL_GREATER, 0.5);
+        quad(ctx, [0.0, 0.0, 2.0, 2.0], -3.0);
+        dispatch::glDisable(ctx, gl::GL_ALPHA_TEST);
+        dispatch::glDisable(ctx, gl::GL_TEXTURE_2D);
+    });
+    // Window x of eye-space x on the floor (z = −5) with the 60° camera.
+    let column = |x: f32| ((x / (5.0 * 30f32.to_radians().tan()) * 0.5 + 0.5) * SIZE as f32) as i32;
+    let row = column(1.0);
+    let at = |x: i32| image[(row * SIZE + x) as usize][0];
+    let lit = encoded(std::f64::consts::FRAC_1_SQRT_2);
+    assert!((at(column(-1.5)) as f64 - lit).abs() <= 1.5, "behind the transparent half the floor is lit: {} against {lit:.1}", at(column(-1.5)));
+    assert_eq!(at(column(-0.5)), 0, "behind the opaque half the floor is in shadow");
+    assert!((at(column(-2.5)) as f64 - lit).abs() <= 1.5, "beside the shadow the floor is lit");
+}

@@ -16,6 +16,7 @@ use super::pipelines::{COMPOSITE_PUSH_BYTES, GROUP, TracePipelines};
 use super::resident::Resident;
 use super::scene::{self, MaterialDefaults};
 use super::settings::{Settings, Tonemap};
+use super::texels::TexelPool;
 use super::bindings;
 use crate::frame::{Draw, Frame};
 use crate::render::raster::device::{Buffer, Check, Device, Result};
@@ -58,6 +59,9 @@ pub struct Tracer {
     settings: Settings,
     pipelines: TracePipelines,
     resident: Resident,
+    texels: TexelPool,
+    /// The texel pool on the GPU and its capacity in words.
+    texel_buffer: Option<(Buffer, usize)>,
     pixels: Option<PixelBuffers>,
     /// Ray counters per frame in flight (host-readable).
     counters: Vec<Buffer>,
@@ -90,6 +94,8 @@ impl Tracer {
             settings,
             pipelines,
             resident: Resident::default(),
+            texels: TexelPool::default(),
+            texel_buffer: None,
             pixels: None,
             counters,
             pools,
@@ -138,6 +144,14 @@ impl Tracer {
         self.resident.uploaded = 0;
         self.resident.insert_all(device, cmd, rec.ring, new, frame.number)?;
 
+        // Textures of unit 0.
+        let textured: Vec<Option<&crate::frame::TextureRef>> =
+            draws.iter().map(|d| d.texture_units.first().copied().flatten().and_then(|_| d.textures.first().and_then(Option::as_ref))).collect();
+        let refs: Vec<&crate::frame::TextureRef> = textured.iter().flatten().copied().collect();
+        let mut indices = self.texels.prepare(&refs).into_iter();
+        let texture_of: Vec<Option<u32>> = textured.iter().map(|t| t.and_then(|_| indices.next())).collect();
+        self.upload_texels(device, cmd, rec.ring)?;
+
         // Instances, materials, lights.
         let defaults = MaterialDefaults::default();
         let mut instances = Vec::with_capacity(draws.len());
@@ -146,7 +160,7 @@ impl Tracer {
         let mut signature = Xxh3::new();
         for (i, (draw, &key)) in draws.iter().zip(&keys).enumerate() {
             let Some(placement) = self.resident.lookup(key, frame.number) else { continue };
-            let material = scene::material(draw, None, &defaults);
+            let material = scene::material(draw, texture_of[i], &defaults);
             let previous = draw.instance.and_then(|inst| inst.previous_modelview).unwrap_or(draw.modelview);
             let eye_to_object = draw.modelview.inverse();
             let flags = if material.alpha_func != 7 { INSTANCE_ALPHA_TESTED } else { 0 };
@@ -221,6 +235,34 @@ impl Tracer {
         Ok(())
     }
 
+    /// Copies the texel pool's new words to the GPU (all of them into a larger buffer when it
+    /// grew past the buffer).
+    fn upload_texels(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut crate::render::raster::upload::Ring) -> Result<()> {
+        let ranges = self.texels.take_uploads();
+        let words = self.texels.words();
+        let needed = words.len().max(1);
+        let ranges = if self.texel_buffer.as_ref().is_none_or(|(_, capacity)| *capacity < needed) {
+            device.wait_idle()?;
+            if let Some((old, _)) = self.texel_buffer.take() {
+                device.destroy_buffer(old);
+            }
+            let capacity = needed.next_power_of_two();
+            let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
+            self.texel_buffer = Some((device.create_buffer("glrt texel pool", capacity as u64 * 4, usage, MemoryLocation::GpuOnly)?, capacity));
+            vec![0..words.len()]
+        } else {
+            ranges
+        };
+        let Some((buffer, _)) = &self.texel_buffer else { return Ok(()) };
+        for range in ranges.into_iter().filter(|r| !r.is_empty()) {
+            let src = ring.push(device, bytemuck::cast_slice(&words[range.clone()]), 16)?;
+            let region = [vk::BufferCopy { src_offset: src.offset, dst_offset: range.start as u64 * 4, size: range.len() as u64 * 4 }];
+            // Safety: both buffers live for the frame; the range lies in both.
+            unsafe { device.raw.cmd_copy_buffer(cmd, src.buffer, buffer.raw, &region) };
+        }
+        Ok(())
+    }
+
     /// (Re)creates the per-pixel buffers for a traced image of `size`.
     fn ensure_pixels(&mut self, device: &Device, size: [u32; 2]) -> Result<()> {
         if self.pixels.as_ref().is_some_and(|p| p.size == size) {
@@ -268,8 +310,8 @@ impl Tracer {
         let material_slice = push(bytemuck::cast_slice(materials))?;
         let light_slice = push(bytemuck::cast_slice(lights))?;
         let tlas_slice = push(bytemuck::cast_slice(&tlas.nodes))?;
-        let texels_slice = push(&[])?;
-        let textures_slice = push(&[])?;
+        let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
+        let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(()) };
         let whole = |b: &Buffer| (b.raw, 0, vk::WHOLE_SIZE);
         let counters = &self.counters[slot];
         let mut table = vec![(vk::Buffer::null(), 0, 0); bindings::COUNT as usize];
@@ -281,7 +323,7 @@ impl Tracer {
         table[bindings::ATTRIBUTES as usize] = (attributes.0, 0, attributes.1);
         table[bindings::MATERIALS as usize] = material_slice;
         table[bindings::LIGHTS as usize] = light_slice;
-        table[bindings::TEXELS as usize] = texels_slice;
+        table[bindings::TEXELS as usize] = whole(texel_buffer);
         table[bindings::TEXTURES as usize] = textures_slice;
         table[bindings::ACCUMULATION as usize] = whole(&pixels.accumulation[self.parity]);
         table[bindings::GBUFFER as usize] = whole(&pixels.gbuffer);
@@ -337,6 +379,9 @@ impl Tracer {
     /// Frees everything (the GPU must be idle).
     pub fn destroy(&mut self, device: &Device) {
         self.resident.destroy(device);
+        if let Some((b, _)) = self.texel_buffer.take() {
+            device.destroy_buffer(b);
+        }
         if let Some(p) = self.pixels.take() {
             destroy_pixels(device, p);
         }
