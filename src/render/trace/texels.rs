@@ -8,9 +8,9 @@
 //! - 2D and rectangle textures as they are; 1D textures as 2D images one texel high; cube maps
 //!   and 3D textures flat, face 0 (+X) or slice 0 only (logged once);
 //! - the levels from the base level (`GL_TEXTURE_BASE_LEVEL`) as the raster back end takes them
-//!   ([`level_chain`]: each halves the one above), stored consecutively; borders are dropped,
-//!   the inner image is sampled (logged once), so `GL_CLAMP` and `GL_CLAMP_TO_BORDER` are
-//!   approximated by clamp-to-edge (no border colour);
+//!   (`render::raster::textures::level_chain`: each halves the one above), stored
+//!   consecutively; borders are dropped, the inner image is sampled (logged once), so
+//!   `GL_CLAMP` and `GL_CLAMP_TO_BORDER` are approximated by clamp-to-edge (no border colour);
 //! - levels the texture does not have are generated on the CPU with the 2×2 box filter of
 //!   `GL_GENERATE_MIPMAP` ([`downsample`]) so that ray-cone LOD always has a chain down to 1×1:
 //!   for a mipmapped texture up to its max level; for a texture whose minification filter
