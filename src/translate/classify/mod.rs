@@ -34,7 +34,7 @@ pub mod world_feed;
 
 use glam::{Mat4, Vec4};
 
-use crate::frame::class::{DrawClass, FrameStats, Instance, Match};
+use crate::frame::class::{DrawClass, FrameStats, Instance, MaterialOverride, Match};
 use crate::frame::{Draw, Frame};
 use matching::{Found, Matcher, Probe, Record};
 use routing::Tags;
@@ -47,7 +47,9 @@ struct Traced {
     draw: usize,
     tags: Tags,
     geometry: u64,
-    material: u64,
+    /// Hash of the textures, draw state and material: the static world's material key.
+    material_key: u64,
+    material: MaterialOverride,
 }
 
 /// Hash tracking across the frames of one context.
@@ -129,7 +131,7 @@ impl Classifier {
             let model = model_of(inverse.as_ref(), draw, f, class == DrawClass::Static && !t.tags.static_ && !recovered.cut);
             let in_world = !t.tags.dynamic && (class == DrawClass::Static || model.as_ref().is_some_and(view::is_identity));
             let offered = match model {
-                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material)),
+                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material_key, t.material)),
                 _ => None,
             };
             if class == DrawClass::Static && f.matched == Match::New && offered.is_none() {
@@ -141,7 +143,7 @@ impl Classifier {
             // Motion vectors only from the frame just before (not from an instance seen again).
             let previous_modelview = f.previous.filter(|p| p.age == 0 && !recovered.cut).map(|p| p.modelview);
             draw.class = class;
-            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, emissive: t.tags.emissive });
+            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, material: t.material });
             let probe = self.probes[self.records.len()];
             self.records.push(Record { id: f.id, probe, ordinal: f.ordinal, modelview: draw.modelview, model, class, age: 0 });
         }
@@ -178,6 +180,7 @@ impl Classifier {
             for t in draw.textures.iter().flatten().take(hashes.len()) {
                 (hashes[n], n) = (self.textures.hash(t), n + 1);
             }
+            let unit0 = draw.textures.first().and_then(Option::as_ref).map(|_| hashes[0]);
             let tags = self.config.tags(hashes[..n].iter().copied());
             draw.instance = None;
             if let Some(class) = routing::raster_class(draw, !self.traced.is_empty(), tags) {
@@ -192,7 +195,9 @@ impl Classifier {
                 slot: keys::combine(&[texture, state, draw.vertices.len() as u64, draw.indices.len() as u64]),
                 anchor: (draw.modelview * first).truncate(),
             });
-            self.traced.push(Traced { draw: i, tags, geometry, material: keys::combine(&[texture, state]) });
+            let material = self.config.material(unit0, tags);
+            let [m0, m1] = material.key();
+            self.traced.push(Traced { draw: i, tags, geometry, material_key: keys::combine(&[texture, state, m0, m1]), material });
         }
     }
 }
