@@ -157,7 +157,7 @@ pub fn number_in(value: &toml::Value, range: RangeInclusive<f64>) -> Result<f64,
 pub fn integer_in(value: &toml::Value, range: RangeInclusive<i64>) -> Result<i64, String> {
     match value {
         toml::Value::Integer(i) if range.contains(i) => Ok(*i),
-        _ => Err(format!("expected an integer in {}..={}, found {}", shown(value), range.start(), range.end())),
+        _ => Err(format!("expected an integer in {}..={}, found {}", range.start(), range.end(), shown(value))),
     }
 }
 
@@ -166,7 +166,7 @@ pub fn one_of(value: &toml::Value, names: &[&str]) -> Result<usize, String> {
     value
         .as_str()
         .and_then(|s| names.iter().position(|n| *n == s))
-        .ok_or_else(|| format!("expected one of \"{}\", found {}", shown(value), names.join("\", \"")))
+        .ok_or_else(|| format!("expected one of \"{}\", found {}", names.join("\", \""), shown(value)))
 }
 
 impl Config {

@@ -310,6 +310,26 @@ mod tests {
     }
 
     #[test]
+    fn materials_reach_instances_and_the_static_world() {
+        let texture = texture_hash::tests::texture(5, 1, 200);
+        let hash = texture_hash::content_hash(&texture.content);
+        let text = format!("emissive = [\"{hash:#x}\"]\n[materials]\n\"{hash:#x}\" = {{ roughness = 0.1, metalness = 1 }}\n");
+        let (config, warnings) = crate::config::Config::parse(&text, "g.toml").unwrap();
+        assert!(warnings.is_empty(), "{warnings:?}");
+        let mut c = Classifier::with_config(config::Config::from(&config));
+        let camera = Mat4::from_translation(Vec3::new(0.0, 0.0, -10.0));
+        let textured = || Draw { textures: vec![Some(texture.clone())], ..draw(4, 0.0, camera) };
+        classify(&mut c, 0, vec![textured(), draw(4, 10.0, camera)]);
+        let f = classify(&mut c, 1, vec![textured(), draw(4, 10.0, camera)]);
+        let listed = MaterialOverride { roughness: 0.1, metalness: 1.0, emissive: 1.0 };
+        assert_eq!(f.draws[0].instance.unwrap().material, listed, "[materials], emissive from the list");
+        assert_eq!(f.draws[1].instance.unwrap().material, MaterialOverride::default());
+        let chunks: Vec<(Option<u32>, MaterialOverride)> = f.static_world.iter().map(|c| (c.texture.as_ref().map(|t| t.id), c.material)).collect();
+        assert!(chunks.contains(&(Some(5), listed)) && chunks.contains(&(None, MaterialOverride::default())), "{chunks:?}");
+        assert!(chunks.iter().all(|&(id, m)| (id == Some(5)) == (m == listed)), "{chunks:?}");
+    }
+
+    #[test]
     fn the_view_chains_through_other_static_draws() {
         let mut c = Classifier::with_config(config::Config::default());
         let placed = Mat4::from_translation(Vec3::new(4.0, 0.0, 0.0));
