@@ -2,8 +2,9 @@
 //!
 //! Data flows one way (see `DESIGN.md` in the planning repository and the README):
 //! application → [`gl_entry`] (C ABI) → [`translate`] (OpenGL 1.x semantics) → [`frame::Frame`]
-//! → [`render`] (Vulkan) → window or PNG.
+//! → [`render`] (Vulkan) → window or PNG. [`config`] reads `glrt.toml` for both sides.
 
+pub mod config;
 pub mod frame;
 pub mod gl_entry;
 pub mod logging;

@@ -78,8 +78,36 @@ pub struct Instance {
     pub model: Option<Mat4>,
     /// xxh3 of the object-space positions, indices, texture coordinates and topology.
     pub geometry_key: u64,
-    /// A texture of the draw is tagged `emissive` in `glrt.toml`.
-    pub emissive: bool,
+    /// Surface parameters from `glrt.toml` (`[materials]` and the `emissive` list).
+    pub material: MaterialOverride,
+}
+
+/// What OpenGL 1.x does not say about a traced surface, set per texture hash in `glrt.toml`
+/// (`[materials]`, keyed by the draw's unit-0 texture; the `emissive` list). Without an entry:
+/// a rough dielectric (roughness 0.8: GL 1.x surfaces are mostly diffuse with a dull
+/// specular highlight), not emitting (1.0 when a texture is in the `emissive` list).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MaterialOverride {
+    /// Perceptual roughness, 0 (mirror) ..= 1 (rough).
+    pub roughness: f32,
+    /// 0 (dielectric) ..= 1 (metal: the texture colour tints reflections).
+    pub metalness: f32,
+    /// Emitted radiance as a multiple of the surface's colour (texture times vertex colour);
+    /// 0: none.
+    pub emissive: f32,
+}
+
+impl Default for MaterialOverride {
+    fn default() -> MaterialOverride {
+        MaterialOverride { roughness: 0.8, metalness: 0.0, emissive: 0.0 }
+    }
+}
+
+impl MaterialOverride {
+    /// The bits of the three values, to key surfaces by.
+    pub fn key(&self) -> [u64; 2] {
+        [u64::from(self.roughness.to_bits()) << 32 | u64::from(self.metalness.to_bits()), u64::from(self.emissive.to_bits())]
+    }
 }
 
 /// The camera, recovered from the modelview of draws that are static in the world.

@@ -4,6 +4,7 @@
 //! by [`StaticChunk::id`], and frees it when the chunk leaves the list.
 
 use super::TextureRef;
+use super::class::MaterialOverride;
 
 /// A piece of the persistent static world: world-space triangles of one material, stable
 /// while it lives (its id is never given to other content).
@@ -11,8 +12,10 @@ use super::TextureRef;
 pub struct StaticChunk {
     /// Unique for the life of the world that built it.
     pub id: u64,
-    /// Hash of the texture and draw state the triangles are drawn with.
-    pub material: u64,
+    /// Hash of the textures, draw state and material the triangles are drawn with.
+    pub material_key: u64,
+    /// Surface parameters from `glrt.toml` (those of the draws the triangles came from).
+    pub material: MaterialOverride,
     /// Texture of the triangles (unit 0).
     pub texture: Option<TextureRef>,
     /// World-space positions, 3 per triangle, with the program's winding.

@@ -2,7 +2,7 @@
 //! (floor, ceiling, walls cut into 1 m surfaces of (2·detail)² quads), the surfaces whose
 //! bounds meet the frustum offered every frame in per-material batches (nearest first, each
 //! triangle from another first vertex each frame), the camera turning in 120 frames.
-//! Compiles glrt's module file as it is, with the one type it needs from `glrt::frame`.
+//! Compiles glrt's module files as they are, with the one type it needs from `glrt::frame`.
 //!
 //! Usage: `static-world-bench [DETAIL] [FRAMES]` (default 6 and 360). Prints one line per
 //! phase: frames, triangles offered per frame, ms per frame (mean, median, max), GB/s of
@@ -12,6 +12,9 @@
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextureRef;
 
+#[path = "../../../src/frame/class.rs"]
+pub mod class;
+
 #[path = "../../../src/frame/world.rs"]
 pub mod world;
 
@@ -20,7 +23,7 @@ pub mod static_world;
 
 /// The paths the module files use inside glrt.
 mod frame {
-    pub use crate::{TextureRef, world};
+    pub use crate::{TextureRef, class, world};
 }
 
 use std::time::Instant;
@@ -139,7 +142,7 @@ fn main() {
         let start = Instant::now();
         world.begin_frame(frame, clip);
         for (material, positions) in &batches {
-            world.offer(WorldTriangles { material: *material, texture: None, positions, texcoords: None });
+            world.offer(WorldTriangles { material_key: *material, material: Default::default(), texture: None, positions, texcoords: None });
         }
         let update = world.end_frame();
         let ms = start.elapsed().as_secs_f64() * 1000.0;

@@ -16,7 +16,7 @@
 //!   GPU layout, CPU traversal for tests); `shaders/trace/bvh.glsl` traverses them.
 //! - [`texels`]: every texture level the tracer samples, packed into one storage buffer (no
 //!   descriptor indexing on lavapipe); `shaders/trace/texels.glsl` samples it.
-//! - `settings`: `glrt.toml` `[pathtrace]` and `GLRT_*` settings.
+//! - [`settings`]: `glrt.toml` `[pathtrace]` and `GLRT_*` settings.
 //! - [`scene`]: traced draws as geometries, instances and materials; [`lights`]: GL lights as
 //!   physical lights; [`gpu_types`]: the structures the shaders read.
 //! - [`resident`]: geometries on the GPU; [`pipelines`]: the tracer's pipelines;

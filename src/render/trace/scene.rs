@@ -115,20 +115,16 @@ pub fn geometry(draw: &Draw) -> Geometry {
     geometry
 }
 
-/// Material defaults and overrides the tracer applies (from the settings).
+/// Material values the tracer applies where neither GL nor `glrt.toml` says otherwise.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MaterialDefaults {
-    /// Roughness of surfaces without an override.
-    pub roughness: f32,
-    /// Metalness of surfaces without an override.
-    pub metalness: f32,
     /// Dielectric reflectance at normal incidence of unlit surfaces.
     pub specular: f32,
 }
 
 impl Default for MaterialDefaults {
     fn default() -> MaterialDefaults {
-        MaterialDefaults { roughness: 0.8, metalness: 0.0, specular: 0.04 }
+        MaterialDefaults { specular: 0.04 }
     }
 }
 
@@ -137,6 +133,8 @@ impl Default for MaterialDefaults {
 /// Lit draws take their specular reflectance from the GL material (0 for the default
 /// material, so a default lit surface is Lambertian) and their roughness from its shininess
 /// (Blinn-Phong exponent n to GGX alpha = sqrt(2 / (n + 2))); emission is the GL material's.
+/// Roughness, metalness and emission otherwise come from the draw's `glrt.toml` material
+/// ([`crate::frame::class::MaterialOverride`], defaults included).
 pub fn material(draw: &Draw, texture: Option<u32>, defaults: &MaterialDefaults) -> GpuMaterial {
     let unit = draw.texture_units.first().copied().flatten();
     let texenv = match unit.map(|u| u.env.mode) {
@@ -146,7 +144,8 @@ pub fn material(draw: &Draw, texture: Option<u32>, defaults: &MaterialDefaults) 
         Some(EnvMode::Add) => 4,
         _ => 0,
     };
-    let (mut roughness, mut specular, mut emission) = (defaults.roughness, defaults.specular, [0.0; 4]);
+    let over = draw.instance.map(|i| i.material).unwrap_or_default();
+    let (mut roughness, mut specular, mut emission) = (over.roughness, defaults.specular, [0.0; 4]);
     if let Some(l) = &draw.state.lighting {
         let s = l.front.specular;
         specular = 0.04 * s[0].max(s[1]).max(s[2]).clamp(0.0, 1.0);
@@ -156,9 +155,7 @@ pub fn material(draw: &Draw, texture: Option<u32>, defaults: &MaterialDefaults) 
         let e = l.front.emission;
         emission = [srgb_to_linear(e[0]), srgb_to_linear(e[1]), srgb_to_linear(e[2]), 0.0];
     }
-    if draw.instance.is_some_and(|i| i.emissive) {
-        emission[3] = 1.0;
-    }
+    emission[3] = over.emissive.max(0.0);
     let (alpha_func, alpha_ref) = match draw.state.alpha_test {
         Some((func, reference)) if texture.is_some() => (func as u32, reference),
         _ => (CompareFunc::Always as u32, 0.0),
@@ -169,7 +166,7 @@ pub fn material(draw: &Draw, texture: Option<u32>, defaults: &MaterialDefaults) 
         texture: texture.unwrap_or(NO_TEXTURE),
         texenv,
         roughness,
-        metalness: defaults.metalness,
+        metalness: over.metalness.clamp(0.0, 1.0),
         specular,
         alpha_func,
         alpha_ref,

@@ -20,6 +20,7 @@
 
 use glam::Vec3;
 
+use crate::config::{Key, Table, integer_in, number, number_in, one_of, shown};
 
 /// How traced radiance becomes display colour.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -92,9 +93,154 @@ impl Default for Settings {
     }
 }
 
+/// A direction `[x, y, z]` (numbers, not all zero), normalised.
+fn direction(value: &toml::Value) -> Result<Vec3, String> {
+    let expected = || format!("expected a direction [x, y, z], not zero, found {}", shown(value));
+    let items = value.as_array().filter(|a| a.len() == 3).ok_or_else(expected)?;
+    let mut v = [0.0; 3];
+    for (c, item) in v.iter_mut().zip(items) {
+        *c = number(item, |_| true, "a number").map_err(|_| expected())? as f32;
+    }
+    Vec3::from(v).try_normalize().ok_or_else(expected)
+}
+
+/// A boolean.
+fn boolean(value: &toml::Value) -> Result<bool, String> {
+    value.as_bool().ok_or_else(|| format!("expected true or false, found {}", shown(value)))
+}
+
+impl Table for Settings {
+    const NAME: &'static str = "pathtrace";
+    const KEYS: &'static [Key<Settings>] = &[
+        Key { name: "spp", set: |s, v| integer_in(v, 1..=64).map(|x| s.spp = x as u32) },
+        Key { name: "bounces", set: |s, v| integer_in(v, 0..=8).map(|x| s.bounces = x as u32) },
+        Key { name: "resolution_scale", set: |s, v| number_in(v, 0.25..=1.0).map(|x| s.resolution_scale = x as f32) },
+        Key { name: "light_scale", set: |s, v| number(v, |x| x > 0.0, "a number > 0").map(|x| s.light_scale = x as f32) },
+        Key { name: "sun_direction", set: |s, v| direction(v).map(|d| s.sun_direction = Some(d)) },
+        Key { name: "sun_angle", set: |s, v| number_in(v, 0.0..=10.0).map(|x| s.sun_angle = x as f32) },
+        Key {
+            name: "tonemap",
+            set: |s, v| one_of(v, &["aces", "reinhard", "none"]).map(|i| s.tonemap = [Tonemap::Aces, Tonemap::Reinhard, Tonemap::Clamp][i]),
+        },
+        Key { name: "exposure", set: |s, v| number_in(v, -10.0..=10.0).map(|x| s.exposure = x as f32) },
+        Key { name: "accumulate", set: |s, v| integer_in(v, 1..=65536).map(|x| s.accumulate = x as u32) },
+        Key { name: "lightmaps", set: |s, v| one_of(v, &["ignore", "keep"]).map(|i| s.lightmaps = [Lightmaps::Ignore, Lightmaps::Keep][i]) },
+        Key { name: "temporal", set: |s, v| boolean(v).map(|b| s.temporal = b) },
+    ];
+}
+
 impl Settings {
-    /// The settings of this process (provisional: the defaults until glrt.toml is read).
+    /// The settings of this process, read at the first call from the process's
+    /// configuration ([`crate::config::Config::of_process`]); problems are reported then.
     pub fn of_process() -> Settings {
-        Settings::default()
+        static SETTINGS: std::sync::OnceLock<Settings> = std::sync::OnceLock::new();
+        *SETTINGS.get_or_init(|| {
+            let (settings, problems) = crate::config::Config::of_process().table::<Settings>();
+            crate::config::warn(&problems);
+            settings
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Config;
+
+    /// The settings and problems of `[pathtrace]` holding `body`, with the variables `env`.
+    fn read(body: &str, env: &[(&str, &str)]) -> (Settings, Vec<String>) {
+        let (mut c, warnings) = Config::parse(&format!("[pathtrace]\n{body}"), "p.toml").unwrap();
+        assert!(warnings.is_empty(), "{warnings:?}");
+        c.apply_env(env.iter().map(|(k, v)| (k.to_string(), v.to_string()))).unwrap();
+        c.table::<Settings>()
+    }
+
+    #[test]
+    fn every_key_is_read() {
+        let body = "spp = 8\nbounces = 0\nresolution_scale = 0.5\nlight_scale = 2\nsun_direction = [0, 2, 0]\nsun_angle = 0\n\
+                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"keep\"\ntemporal = false\n";
+        let (s, problems) = read(body, &[]);
+        assert!(problems.is_empty(), "{problems:?}");
+        let expected = Settings {
+            spp: 8,
+            bounces: 0,
+            resolution_scale: 0.5,
+            light_scale: 2.0,
+            sun_direction: Some(Vec3::Y),
+            sun_angle: 0.0,
+            tonemap: Tonemap::Reinhard,
+            exposure: -1.5,
+            accumulate: 65536,
+            lightmaps: Lightmaps::Keep,
+            temporal: false,
+        };
+        assert_eq!(s, expected);
+        assert_eq!(read("tonemap = \"none\"\n", &[]).0.tonemap, Tonemap::Clamp);
+        assert_eq!(read("", &[]), (Settings::default(), vec![]));
+        assert_eq!(Settings::KEYS.len(), 11);
+    }
+
+    #[test]
+    fn bad_values_are_reported_with_their_line_and_the_default_kept() {
+        let cases = [
+            ("spp = 0", "spp: expected an integer in 1..=64, found 0"),
+            ("spp = 65", "spp: expected an integer in 1..=64, found 65"),
+            ("spp = 2.0", "spp: expected an integer in 1..=64, found 2.0"),
+            ("bounces = 9", "bounces: expected an integer in 0..=8, found 9"),
+            ("resolution_scale = 0.2", "resolution_scale: expected a number in 0.25..=1, found 0.2"),
+            ("light_scale = 0", "light_scale: expected a number > 0, found 0"),
+            ("light_scale = inf", "light_scale: expected a number > 0, found inf"),
+            ("sun_direction = [0, 0, 0]", "sun_direction: expected a direction [x, y, z], not zero, found [0, 0, 0]"),
+            ("sun_direction = [1, 2]", "sun_direction: expected a direction [x, y, z], not zero, found [1, 2]"),
+            ("sun_direction = \"up\"", "sun_direction: expected a direction [x, y, z], not zero, found \"up\""),
+            ("sun_angle = 11", "sun_angle: expected a number in 0..=10, found 11"),
+            ("tonemap = \"filmic\"", "tonemap: expected one of \"aces\", \"reinhard\", \"none\", found \"filmic\""),
+            ("exposure = -10.5", "exposure: expected a number in -10..=10, found -10.5"),
+            ("accumulate = 0", "accumulate: expected an integer in 1..=65536, found 0"),
+            ("lightmaps = true", "lightmaps: expected one of \"ignore\", \"keep\", found true"),
+            ("temporal = 1", "temporal: expected true or false, found 1"),
+        ];
+        for (line, message) in cases {
+            let (s, problems) = read(&format!("\n{line}\n"), &[]);
+            assert_eq!(s, Settings::default(), "{line}");
+            assert_eq!(problems, [format!("p.toml:3: pathtrace.{message}; the default is used")], "{line}");
+        }
+        let (s, problems) = read("spp = 4\nsamples = 3\n", &[]);
+        assert_eq!(s.spp, 4);
+        assert_eq!(problems.len(), 1);
+        assert!(problems[0].starts_with("p.toml:3: pathtrace.samples: unknown key (known: spp, bounces, resolution_scale,"), "{}", problems[0]);
+    }
+
+    #[test]
+    fn variables_override_the_file() {
+        let env = [
+            ("GLRT_SPP", "16"),
+            ("GLRT_TONEMAP", "none"),
+            ("GLRT_SUN_DIRECTION", "[1, 0, 0]"),
+            ("GLRT_TEMPORAL", "false"),
+            ("GLRT_EXPOSURE", "2"),
+            ("GLRT_MODE", "raster"),
+        ];
+        let (s, problems) = read("spp = 4\ntonemap = \"reinhard\"\n", &env);
+        assert!(problems.is_empty(), "{problems:?}");
+        assert_eq!((s.spp, s.tonemap, s.sun_direction, s.temporal, s.exposure), (16, Tonemap::Clamp, Some(Vec3::X), false, 2.0));
+    }
+
+    #[test]
+    fn bad_variables_are_reported_and_leave_the_file_value() {
+        let env = [("GLRT_SPP", "lots"), ("GLRT_BOUNCES", "-1"), ("GLRT_LIGHTMAPS", ""), ("GLRT_RESOLUTION_SCALE", "[0.5")];
+        let (s, problems) = read("spp = 4\n", &env);
+        assert_eq!((s.spp, s.bounces, s.lightmaps, s.resolution_scale), (4, 2, Lightmaps::Ignore, 1.0));
+        assert_eq!(problems, [
+            "GLRT_SPP: expected an integer in 1..=64, found \"lots\"; the variable is ignored",
+            "GLRT_BOUNCES: expected an integer in 0..=8, found -1; the variable is ignored",
+            "GLRT_RESOLUTION_SCALE: expected a number in 0.25..=1, found \"[0.5\"; the variable is ignored",
+            "GLRT_LIGHTMAPS: expected one of \"ignore\", \"keep\", found \"\"; the variable is ignored",
+        ]);
+    }
+
+    #[test]
+    fn the_process_settings_are_read_once() {
+        assert_eq!(Settings::of_process(), Settings::of_process());
     }
 }

@@ -34,7 +34,7 @@ pub mod world_feed;
 
 use glam::{Mat4, Vec4};
 
-use crate::frame::class::{DrawClass, FrameStats, Instance, Match};
+use crate::frame::class::{DrawClass, FrameStats, Instance, MaterialOverride, Match};
 use crate::frame::{Draw, Frame};
 use matching::{Found, Matcher, Probe, Record};
 use routing::Tags;
@@ -47,7 +47,9 @@ struct Traced {
     draw: usize,
     tags: Tags,
     geometry: u64,
-    material: u64,
+    /// Hash of the textures, draw state and material: the static world's material key.
+    material_key: u64,
+    material: MaterialOverride,
 }
 
 /// Hash tracking across the frames of one context.
@@ -129,7 +131,7 @@ impl Classifier {
             let model = model_of(inverse.as_ref(), draw, f, class == DrawClass::Static && !t.tags.static_ && !recovered.cut);
             let in_world = !t.tags.dynamic && (class == DrawClass::Static || model.as_ref().is_some_and(view::is_identity));
             let offered = match model {
-                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material)),
+                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material_key, t.material)),
                 _ => None,
             };
             if class == DrawClass::Static && f.matched == Match::New && offered.is_none() {
@@ -141,7 +143,7 @@ impl Classifier {
             // Motion vectors only from the frame just before (not from an instance seen again).
             let previous_modelview = f.previous.filter(|p| p.age == 0 && !recovered.cut).map(|p| p.modelview);
             draw.class = class;
-            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, emissive: t.tags.emissive });
+            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, material: t.material });
             let probe = self.probes[self.records.len()];
             self.records.push(Record { id: f.id, probe, ordinal: f.ordinal, modelview: draw.modelview, model, class, age: 0 });
         }
@@ -178,6 +180,7 @@ impl Classifier {
             for t in draw.textures.iter().flatten().take(hashes.len()) {
                 (hashes[n], n) = (self.textures.hash(t), n + 1);
             }
+            let unit0 = draw.textures.first().and_then(Option::as_ref).map(|_| hashes[0]);
             let tags = self.config.tags(hashes[..n].iter().copied());
             draw.instance = None;
             if let Some(class) = routing::raster_class(draw, !self.traced.is_empty(), tags) {
@@ -192,7 +195,9 @@ impl Classifier {
                 slot: keys::combine(&[texture, state, draw.vertices.len() as u64, draw.indices.len() as u64]),
                 anchor: (draw.modelview * first).truncate(),
             });
-            self.traced.push(Traced { draw: i, tags, geometry, material: keys::combine(&[texture, state]) });
+            let material = self.config.material(unit0, tags);
+            let [m0, m1] = material.key();
+            self.traced.push(Traced { draw: i, tags, geometry, material_key: keys::combine(&[texture, state, m0, m1]), material });
         }
     }
 }
@@ -302,6 +307,26 @@ mod tests {
         assert!(f3.stats.camera_cut && f3.stats.static_chunks_released > 0, "{:?}", f3.stats);
         assert_eq!(f3.stats.static_world_triangles, 0);
         assert!(f3.draws[0].instance.unwrap().previous_modelview.is_none());
+    }
+
+    #[test]
+    fn materials_reach_instances_and_the_static_world() {
+        let texture = texture_hash::tests::texture(5, 1, 200);
+        let hash = texture_hash::content_hash(&texture.content);
+        let text = format!("emissive = [\"{hash:#x}\"]\n[materials]\n\"{hash:#x}\" = {{ roughness = 0.1, metalness = 1 }}\n");
+        let (config, warnings) = crate::config::Config::parse(&text, "g.toml").unwrap();
+        assert!(warnings.is_empty(), "{warnings:?}");
+        let mut c = Classifier::with_config(config::Config::from(&config));
+        let camera = Mat4::from_translation(Vec3::new(0.0, 0.0, -10.0));
+        let textured = || Draw { textures: vec![Some(texture.clone())], ..draw(4, 0.0, camera) };
+        classify(&mut c, 0, vec![textured(), draw(4, 10.0, camera)]);
+        let f = classify(&mut c, 1, vec![textured(), draw(4, 10.0, camera)]);
+        let listed = MaterialOverride { roughness: 0.1, metalness: 1.0, emissive: 1.0 };
+        assert_eq!(f.draws[0].instance.unwrap().material, listed, "[materials], emissive from the list");
+        assert_eq!(f.draws[1].instance.unwrap().material, MaterialOverride::default());
+        let chunks: Vec<(Option<u32>, MaterialOverride)> = f.static_world.iter().map(|c| (c.texture.as_ref().map(|t| t.id), c.material)).collect();
+        assert!(chunks.contains(&(Some(5), listed)) && chunks.contains(&(None, MaterialOverride::default())), "{chunks:?}");
+        assert!(chunks.iter().all(|&(id, m)| (id == Some(5)) == (m == listed)), "{chunks:?}");
     }
 
     #[test]

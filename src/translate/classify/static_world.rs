@@ -61,6 +61,7 @@ use std::sync::Arc;
 use glam::{Mat4, Vec3, Vec4};
 
 use crate::frame::TextureRef;
+use crate::frame::class::MaterialOverride;
 use crate::frame::world::StaticChunk;
 
 /// Size of the grid vertices are quantised to, in world units: coarse enough that two copies of
@@ -119,8 +120,10 @@ type Map<K, V> = HashMap<K, V, BuildHasherDefault<KeyHasher>>;
 
 /// The world-space triangles of one opaque draw, offered to [`StaticWorld::offer`].
 pub struct WorldTriangles<'a> {
-    /// Hash of the texture id and draw state (computed by the caller).
-    pub material: u64,
+    /// Hash of the texture ids, draw state and material (computed by the caller).
+    pub material_key: u64,
+    /// Surface parameters (the same for every offer of one `material_key`).
+    pub material: MaterialOverride,
     /// Texture of unit 0.
     pub texture: Option<&'a TextureRef>,
     /// World-space positions, 3 per triangle (a trailing partial triangle is ignored).
@@ -166,8 +169,15 @@ struct Tri {
 struct Pending {
     tick: u64,
     material: u64,
-    texture: Option<TextureRef>,
+    look: Look,
     tri: Tri,
+}
+
+/// What the renderer draws a chunk's triangles with besides their key.
+#[derive(Clone)]
+struct Look {
+    texture: Option<TextureRef>,
+    material: MaterialOverride,
 }
 
 /// Where a world triangle lives: chunk (index into `StaticWorld::chunks`, or [`JOINING`]) and
@@ -313,7 +323,7 @@ impl StaticWorld {
         for i in 0..count {
             let positions = [t.positions[3 * i], t.positions[3 * i + 1], t.positions[3 * i + 2]];
             self.sample_facing(&positions);
-            let key = triangle_key(&positions, t.material);
+            let key = triangle_key(&positions, t.material_key);
             if self.see_next(key)
                 || self.see(key)
                 || self.aliases.get(&key).copied().is_some_and(|original| self.see(original))
@@ -340,8 +350,8 @@ impl StaticWorld {
                     let uv = texcoords.map(|uv| [uv[3 * i], uv[3 * i + 1], uv[3 * i + 2]]);
                     entry.insert(Pending {
                         tick: self.tick,
-                        material: t.material,
-                        texture: t.texture.cloned(),
+                        material: t.material_key,
+                        look: Look { texture: t.texture.cloned(), material: t.material },
                         tri: Tri { positions, texcoords: uv },
                     });
                     offered.new_triangles += 1;
@@ -507,18 +517,18 @@ impl StaticWorld {
         let joining = std::mem::take(&mut self.joining);
         let cell_size = *self.cell_size.get_or_insert_with(|| first_cell_size(&joining));
         // Group by (material, cell), keeping the order of appearance.
-        let mut groups: Vec<((u64, u32), Vec<Moved>, Option<TextureRef>)> = Vec::new();
+        let mut groups: Vec<((u64, u32), Vec<Moved>, Look)> = Vec::new();
         let mut group_of: Map<(u64, u32), usize> = Map::default();
         for (key, p) in joining {
             let coords = (centroid(&p.tri.positions) / cell_size).floor().as_ivec3().to_array();
             let cell = self.cell(coords);
             let g = *group_of.entry((p.material, cell)).or_insert_with(|| {
-                groups.push(((p.material, cell), Vec::new(), p.texture.clone()));
+                groups.push(((p.material, cell), Vec::new(), p.look.clone()));
                 groups.len() - 1
             });
             groups[g].1.push(Moved { key, tri: p.tri, seen: self.tick, missed: 0 });
         }
-        for ((material, cell), mut tris, texture) in groups {
+        for ((material, cell), mut tris, look) in groups {
             let existing = self.groups.get(&(material, cell)).map_or(0, Vec::len);
             if existing >= MAX_CHUNKS_PER_CELL {
                 let mut merged = Vec::new();
@@ -528,7 +538,7 @@ impl StaticWorld {
                 merged.append(&mut tris);
                 tris = merged;
             }
-            self.build_chunk(material, texture, cell, tris);
+            self.build_chunk(material, look, cell, tris);
         }
     }
 
@@ -561,7 +571,7 @@ impl StaticWorld {
     }
 
     /// Builds a chunk of `tris` in `cell` (nothing when empty) and points their slots at it.
-    fn build_chunk(&mut self, material: u64, texture: Option<TextureRef>, cell: u32, tris: Vec<Moved>) {
+    fn build_chunk(&mut self, material: u64, look: Look, cell: u32, tris: Vec<Moved>) {
         if tris.is_empty() {
             return;
         }
@@ -591,7 +601,7 @@ impl StaticWorld {
             missed.push(t.missed);
             self.slots.insert(t.key, Loc { chunk: index, index: i as u32 });
         }
-        let chunk = Arc::new(StaticChunk { id, material, texture, positions, texcoords });
+        let chunk = Arc::new(StaticChunk { id, material_key: material, material: look.material, texture: look.texture, positions, texcoords });
         self.changes.new_chunks += 1;
         self.changes.upload_bytes += chunk.upload_bytes();
         self.groups.entry((material, cell)).or_default().push(index);
@@ -626,7 +636,8 @@ impl StaticWorld {
         }
         for index in touched {
             let Some(Some(live)) = self.chunks.get(index as usize) else { continue };
-            let (material, cell, texture) = (live.chunk.material, live.cell, live.chunk.texture.clone());
+            let (material, cell) = (live.chunk.material_key, live.cell);
+            let look = Look { texture: live.chunk.texture.clone(), material: live.chunk.material };
             if let Entry::Occupied(mut group) = self.groups.entry((material, cell)) {
                 group.get_mut().retain(|&other| other != index);
                 if group.get().is_empty() {
@@ -638,7 +649,7 @@ impl StaticWorld {
             for t in gone {
                 self.forget(t.key, material, &t.tri.positions);
             }
-            self.build_chunk(material, texture, cell, kept);
+            self.build_chunk(material, look, cell, kept);
         }
     }
 
@@ -871,7 +882,7 @@ mod tests {
     }
 
     fn offer(world: &mut StaticWorld, material: u64, positions: &[[f32; 3]], texcoords: &[[f32; 2]]) -> usize {
-        let o = world.offer(WorldTriangles { material, texture: None, positions, texcoords: Some(texcoords) });
+        let o = world.offer(WorldTriangles { material_key: material, material: MaterialOverride::default(), texture: None, positions, texcoords: Some(texcoords) });
         o.static_triangles + o.new_triangles
     }
 
@@ -880,7 +891,7 @@ mod tests {
         let mut keys = HashSet::new();
         for c in update.chunks.iter() {
             for t in c.positions.chunks(3) {
-                assert!(keys.insert(triangle_key(&[t[0], t[1], t[2]], c.material)), "duplicate triangle {t:?}");
+                assert!(keys.insert(triangle_key(&[t[0], t[1], t[2]], c.material_key)), "duplicate triangle {t:?}");
             }
         }
         keys
@@ -906,7 +917,7 @@ mod tests {
         world.begin_frame(f, m);
         let mut total = Offered::default();
         for &(material, positions) in batches {
-            let o = world.offer(WorldTriangles { material, texture: None, positions, texcoords: None });
+            let o = world.offer(WorldTriangles { material_key: material, material: MaterialOverride::default(), texture: None, positions, texcoords: None });
             total.static_triangles += o.static_triangles;
             total.new_triangles += o.new_triangles;
         }

@@ -43,13 +43,14 @@ impl TextureHashes {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use std::sync::Arc;
 
     use super::*;
     use crate::frame::texture::TexImage;
 
-    fn texture(id: u32, version: u64, texel: u8) -> TextureRef {
+    /// A 1×1 texture `id` of content `version` whose red texel is `texel`.
+    pub(crate) fn texture(id: u32, version: u64, texel: u8) -> TextureRef {
         let image = TexImage { width: 1, height: 1, depth: 1, texels: vec![texel, 0, 0, 255], ..TexImage::default() };
         let content = TextureContent { faces: vec![vec![Some(Arc::new(image))]], ..TextureContent::default() };
         TextureRef { id, version, content: Arc::new(content) }

@@ -5,6 +5,7 @@ use glam::{Mat4, Vec4};
 
 use super::static_world::{Offered, StaticWorld, WorldTriangles};
 use crate::frame::Draw;
+use crate::frame::class::MaterialOverride;
 
 /// Buffers reused from draw to draw (no allocation once they have grown).
 #[derive(Default)]
@@ -14,8 +15,9 @@ pub struct WorldFeed {
 }
 
 impl WorldFeed {
-    /// Offers the triangles of `draw`, taken to the world by `model`, as material `material`.
-    pub fn offer(&mut self, world: &mut StaticWorld, draw: &Draw, model: &Mat4, material: u64) -> Offered {
+    /// Offers the triangles of `draw`, taken to the world by `model`, as material
+    /// `material_key` with the parameters `material`.
+    pub fn offer(&mut self, world: &mut StaticWorld, draw: &Draw, model: &Mat4, material_key: u64, material: MaterialOverride) -> Offered {
         self.positions.clear();
         self.texcoords.clear();
         let texcoords = draw.vertices.texcoords.first().filter(|t| !t.values.is_empty());
@@ -33,6 +35,7 @@ impl WorldFeed {
         self.positions.truncate(whole);
         let texcoords = (self.texcoords.len() == self.positions.len()).then_some(&self.texcoords[..]);
         world.offer(WorldTriangles {
+            material_key,
             material,
             texture: draw.textures.iter().flatten().next(),
             positions: &self.positions,
