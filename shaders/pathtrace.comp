@@ -1,8 +1,8 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // The compute path tracer's tracing pass: per traced pixel, `samples` paths of a primary ray,
-// next-event estimation at every vertex (one shadow ray per light) and `bounces` indirect
-// bounces (cosine-weighted diffuse or GGX visible-normal specular); writes the noisy radiance
+// next-event estimation at every vertex (one shadow ray per light), `bounces` indirect
+// bounces and the environment through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular); writes the noisy radiance
 // and the primary hit's G-buffer (trace/gbuffer.glsl). src/render/trace/mod.rs describes the
 // scene it reads.
 
@@ -73,16 +73,17 @@ void main() {
         vec3 radiance = vec3(0.0);
         float cone_width = 0.0;
         float cone_spread = frame.params.w * max(scale.x, scale.y);
-        for (uint depth = 0u; depth <= bounces; depth++) {
-            if (depth == 0u) {
-                primary += 1u;
-            }
-            TraceHit hit;
-            bool found = (depth > 0u || in_viewport) && trace_closest(origin, dir, 0.0, 1e30, hit);
-            if (!found) {
-                radiance += throughput * frame.environment.rgb;
-                break;
-            }
+        primary += 1u;
+        TraceHit hit;
+        bool hit_found = in_viewport && trace_closest(origin, dir, 0.0, 1e30, hit);
+        if (!hit_found) {
+            radiance = frame.environment.rgb;
+        }
+        // Vertex `depth` of the path: emission, next-event estimation towards every light,
+        // then a continuation ray; the environment is found by continuation rays that miss
+        // (also after the last vertex, so bounces = 0 is direct light with the sky included),
+        // and a continuation ray past the last vertex that hits adds nothing.
+        for (uint depth = 0u; hit_found; depth++) {
             cone_width += cone_spread * hit.t;
             Surface s = surface_at(hit, origin, dir, cone_width);
             vec3 v = -dir;
@@ -102,9 +103,6 @@ void main() {
             for (uint i = 0u; i < light_count; i++) {
                 radiance += throughput * direct_light(s, v, i, rng, shadow);
             }
-            if (depth == bounces) {
-                break;
-            }
             vec3 l;
             bool chose_specular;
             vec3 u = vec3(rng_next2(rng), rng_next(rng));
@@ -121,12 +119,19 @@ void main() {
             } else {
                 diffuse += 1u;
             }
+            if (all(equal(throughput, vec3(0.0)))) {
+                break;
+            }
             origin = offset_ray(s.position, s.geometric);
             dir = l;
             // After a bounce the cone spreads as wide as the lobe sampled (textures seen by
             // diffuse rays are read from small levels).
             cone_spread = max(cone_spread, chose_specular ? ggx_alpha(s) : 1.0);
-            if (all(equal(throughput, vec3(0.0)))) {
+            if (!trace_closest(origin, dir, 0.0, 1e30, hit)) {
+                radiance += throughput * frame.environment.rgb;
+                break;
+            }
+            if (depth == bounces) {
                 break;
             }
         }
