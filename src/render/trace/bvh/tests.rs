@@ -285,11 +285,11 @@ fn refit_follows_moved_vertices() {
 }
 
 #[test]
-fn too_deep_trees_fall_back_to_median_split() {
+fn deep_subtrees_are_rebalanced_within_the_depth_limit() {
     let mut rng = Rng(31337);
     let tris = soup(&mut rng, 1000, 0.05);
     let full = Blas::build(&tris);
-    let limit = 9; // 1000 / 4 per leaf = 250 leaves: a median split is 8 deep
+    let limit = 10; // 1000 / 4 per leaf = 250 leaves: a median split is 8 deep
     assert!(depth(&full.nodes, 0) > limit, "PLOC's tree is already shallow; pick a lower limit");
     let shallow = Blas::build_limited(&tris, BvhBuildParams::medium_build(), limit);
     assert!(depth(&shallow.nodes, 0) <= limit);
@@ -324,17 +324,20 @@ fn bvh_build_speed() {
     let mut rng = Rng(42);
     let mut tris = soup(&mut rng, 500_000, 0.01);
     tris.extend(sphere(500, 1000));
-    for (name, params) in [("fast", BvhBuildParams::fast_build()), ("medium", BvhBuildParams::medium_build()), ("slow (no pre-split)", BvhBuildParams { pre_split: false, ..BvhBuildParams::slow_build() })] {
-        let start = Instant::now();
-        let blas = Blas::build_limited(&tris, BvhBuildParams { max_prims_per_leaf: 8, ..params }, MAX_DEPTH);
-        println!(
-            "{name}: {} triangles in {:.0} ms, SAH {:.1}, {} nodes, depth {}",
-            tris.len(),
-            start.elapsed().as_secs_f64() * 1e3,
-            sah(&blas.nodes),
-            blas.nodes.len(),
-            depth(&blas.nodes, 0)
-        );
+    let presets = [("fast", BvhBuildParams::fast_build()), ("medium", BvhBuildParams::medium_build()), ("slow, no pre-split", BvhBuildParams { pre_split: false, ..BvhBuildParams::slow_build() })];
+    for (name, params) in presets {
+        for max_depth in [MAX_DEPTH, 48, 1000] {
+            let start = Instant::now();
+            let blas = Blas::build_limited(&tris, BvhBuildParams { max_prims_per_leaf: 8, ..params }, max_depth);
+            println!(
+                "{name}, depth limit {max_depth}: {} triangles in {:.0} ms, SAH {:.1}, {} nodes, depth {}",
+                tris.len(),
+                start.elapsed().as_secs_f64() * 1e3,
+                sah(&blas.nodes),
+                blas.nodes.len(),
+                depth(&blas.nodes, 0)
+            );
+        }
     }
     let boxes: Vec<Aabb> = (0..10_000).map(|_| {
         let c = rng.vec(50.0);
@@ -344,3 +347,4 @@ fn bvh_build_speed() {
     let tlas = Tlas::build(&boxes);
     println!("TLAS: 10k instances in {:.2} ms, SAH {:.1}, depth {}", start.elapsed().as_secs_f64() * 1e3, sah(&tlas.nodes), depth(&tlas.nodes, 0));
 }
+
