@@ -5,7 +5,6 @@
 
 mod lavapipe;
 
-use std::ffi::CStr;
 use std::process::Command;
 
 use ash::vk;
@@ -46,18 +45,22 @@ fn grid(n: usize) -> Vec<[Vec3; 3]> {
         let (x, y) = (i as f32 / n as f32 * 2.0 - 1.0, j as f32 / n as f32 * 2.0 - 1.0);
         Vec3::new(x, y, 0.2 * (x * 3.0).sin() * (y * 2.0).cos())
     };
-    (0..n * n).flat_map(|k| {
-        let (i, j) = (k % n, k / n);
-        [[p(i, j), p(i + 1, j), p(i + 1, j + 1)], [p(i, j), p(i + 1, j + 1), p(i, j + 1)]]
-    }).collect()
+    (0..n * n)
+        .flat_map(|k| {
+            let (i, j) = (k % n, k / n);
+            [[p(i, j), p(i + 1, j), p(i + 1, j + 1)], [p(i, j), p(i + 1, j + 1), p(i, j + 1)]]
+        })
+        .collect()
 }
 
 /// `n` random triangles about `size` large in [-1, 1]³.
 fn soup(rng: &mut Rng, n: usize, size: f32) -> Vec<[Vec3; 3]> {
-    (0..n).map(|_| {
-        let c = rng.vec(1.0);
-        [c + rng.vec(size), c + rng.vec(size), c + rng.vec(size)]
-    }).collect()
+    (0..n)
+        .map(|_| {
+            let c = rng.vec(1.0);
+            [c + rng.vec(size), c + rng.vec(size), c + rng.vec(size)]
+        })
+        .collect()
 }
 
 /// The scene on the CPU and the bytes of its GPU buffers.
@@ -154,29 +157,42 @@ fn trace_on_gpu(device: &Device, world: &World, rays: &[Ray]) -> Vec<GpuResult> 
         let module = raw.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(&spv), None).expect("shader module");
         let layout_bindings: Vec<_> = buffers
             .iter()
-            .map(|(b, _)| vk::DescriptorSetLayoutBinding::default().binding(*b).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).descriptor_count(1).stage_flags(vk::ShaderStageFlags::COMPUTE))
+            .map(|(b, _)| {
+                vk::DescriptorSetLayoutBinding::default()
+                    .binding(*b)
+                    .descriptor_type(vk::DescriptorType::STORAGE_BUFFER)
+                    .descriptor_count(1)
+                    .stage_flags(vk::ShaderStageFlags::COMPUTE)
+            })
             .collect();
         let set_layout = raw.create_descriptor_set_layout(&vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings), None).expect("set layout");
         let push = [vk::PushConstantRange::default().stage_flags(vk::ShaderStageFlags::COMPUTE).size(4)];
         let layouts = [set_layout];
-        let pipeline_layout = raw.create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&layouts).push_constant_ranges(&push), None).expect("pipeline layout");
-        let stage = vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::COMPUTE).module(module).name(CStr::from_bytes_with_nul(b"main\0").unwrap());
+        let pipeline_layout = raw
+            .create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&layouts).push_constant_ranges(&push), None)
+            .expect("pipeline layout");
+        let stage = vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::COMPUTE).module(module).name(c"main");
         let pipeline = raw
             .create_compute_pipelines(vk::PipelineCache::null(), &[vk::ComputePipelineCreateInfo::default().stage(stage).layout(pipeline_layout)], None)
             .expect("compute pipeline")[0];
         let sizes = [vk::DescriptorPoolSize::default().ty(vk::DescriptorType::STORAGE_BUFFER).descriptor_count(buffers.len() as u32)];
         let pool = raw.create_descriptor_pool(&vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes), None).expect("pool");
         let set = raw.allocate_descriptor_sets(&vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&layouts)).expect("set")[0];
-        let infos: Vec<[vk::DescriptorBufferInfo; 1]> = buffers.iter().map(|(_, b)| [vk::DescriptorBufferInfo::default().buffer(b.raw).range(vk::WHOLE_SIZE)]).collect();
+        let infos: Vec<[vk::DescriptorBufferInfo; 1]> =
+            buffers.iter().map(|(_, b)| [vk::DescriptorBufferInfo::default().buffer(b.raw).range(vk::WHOLE_SIZE)]).collect();
         let writes: Vec<_> = buffers
             .iter()
             .zip(&infos)
-            .map(|((binding, _), info)| vk::WriteDescriptorSet::default().dst_set(set).dst_binding(*binding).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info))
+            .map(|((binding, _), info)| {
+                vk::WriteDescriptorSet::default().dst_set(set).dst_binding(*binding).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info)
+            })
             .collect();
         raw.update_descriptor_sets(&writes, &[]);
         let command_pool = raw.create_command_pool(&vk::CommandPoolCreateInfo::default().queue_family_index(device.queue_family), None).expect("command pool");
         let cmd = raw
-            .allocate_command_buffers(&vk::CommandBufferAllocateInfo::default().command_pool(command_pool).level(vk::CommandBufferLevel::PRIMARY).command_buffer_count(1))
+            .allocate_command_buffers(
+                &vk::CommandBufferAllocateInfo::default().command_pool(command_pool).level(vk::CommandBufferLevel::PRIMARY).command_buffer_count(1),
+            )
             .expect("command buffer")[0];
         raw.begin_command_buffer(cmd, &vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT)).expect("begin");
         raw.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline);
@@ -218,7 +234,7 @@ fn trace_on_gpu(device: &Device, world: &World, rays: &[Ray]) -> Vec<GpuResult> 
 
 /// The alpha test of the shader: odd triangles are rejected.
 fn even(_: u32, triangle: u32, _: Vec2) -> bool {
-    triangle % 2 == 0
+    triangle.is_multiple_of(2)
 }
 
 #[test]

@@ -57,7 +57,7 @@ impl Blas {
     /// Builds the BVH of `triangles` (each `[v0, v1, v2]`, object space). Never panics: see the
     /// module doc for empty, degenerate and non-finite input.
     pub fn build(triangles: &[[Vec3; 3]]) -> Blas {
-        let params = BvhBuildParams { max_prims_per_leaf: BLAS_LEAF_SIZE, ..BvhBuildParams::medium_build() };
+        let params = BvhBuildParams { max_prims_per_leaf: BLAS_LEAF_SIZE, ..BvhBuildParams::fast_build() };
         Self::build_limited(triangles, params, MAX_DEPTH)
     }
 
