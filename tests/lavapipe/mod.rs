@@ -11,6 +11,11 @@ use glrt::translate::{Context, dispatch, gl};
 
 /// The renderer `make` creates, on lavapipe when its ICD file exists.
 pub fn renderer_with(make: impl FnOnce() -> Result<Renderer, Error>) -> Renderer {
+    select(make)
+}
+
+/// What `make` creates (a renderer, a device) with Vulkan on lavapipe when its ICD file exists.
+pub fn select<T>(make: impl FnOnce() -> Result<T, Error>) -> T {
     let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
     if std::path::Path::new(lavapipe).exists() {
         // Safety: set before any thread of this test binary loads Vulkan; every test sets the

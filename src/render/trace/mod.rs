@@ -12,7 +12,7 @@
 //!
 //! Parts:
 //! - [`bindings`]: descriptor bindings shared with `shaders/trace/bindings.glsl`.
-//! - `bvh`: bottom-level BVHs of triangle sets and the per-frame top-level BVH (CPU build,
+//! - [`bvh`]: bottom-level BVHs of triangle sets and the per-frame top-level BVH (CPU build,
 //!   GPU layout, CPU traversal for tests); `shaders/trace/bvh.glsl` traverses them.
 //! - [`texels`]: every texture level the tracer samples, packed into one storage buffer (no
 //!   descriptor indexing on lavapipe); `shaders/trace/texels.glsl` samples it.

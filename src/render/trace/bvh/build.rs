@@ -1,14 +1,17 @@
 //! Building [`Blas`]es and [`Tlas`]es: obvhs' PLOC builder on the primitives' boxes, flattened
-//! into [`GpuNode`]s in depth-first order (children after parents), with a median-split
-//! fallback for trees deeper than [`MAX_DEPTH`] or a failed obvhs build.
+//! into [`GpuNode`]s in depth-first order (children after parents). PLOC trees are not
+//! balanced (depth ~50 for 10k triangles, ~65 for 1M): subtrees that would make a path longer
+//! than [`MAX_DEPTH`] are rebuilt by median split, which is logarithmic, as deep in the tree as
+//! still fits; a failed obvhs build is median-split whole.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::time::Duration;
 
+use bytemuck::Zeroable;
+
 use glam::Vec3;
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::Bvh2;
-use obvhs::bvh2::node::Bvh2Node;
 
 use super::{Aabb, GpuChild, GpuNode, GpuTriangle, LEAF, MAX_COORD, MAX_DEPTH};
 
@@ -54,7 +57,7 @@ impl Blas {
     /// Builds the BVH of `triangles` (each `[v0, v1, v2]`, object space). Never panics: see the
     /// module doc for empty, degenerate and non-finite input.
     pub fn build(triangles: &[[Vec3; 3]]) -> Blas {
-        let params = BvhBuildParams { max_prims_per_leaf: BLAS_LEAF_SIZE, ..BvhBuildParams::medium_build() };
+        let params = BvhBuildParams { max_prims_per_leaf: BLAS_LEAF_SIZE, ..BvhBuildParams::fast_build() };
         Self::build_limited(triangles, params, MAX_DEPTH)
     }
 
@@ -136,103 +139,151 @@ impl Tlas {
 }
 
 /// The flattened BVH over `boxes` and the primitive order its leaves index: obvhs with
-/// `params`, or, when that fails or is deeper than `max_depth`, a median split with leaves of
-/// at most `fallback_leaf` primitives. Empty input gives one node of two empty leaves.
+/// `params`, its subtrees that would make a path longer than `max_depth` nodes replaced by
+/// median splits with leaves of at most `fallback_leaf` primitives (all of it when obvhs
+/// fails). Empty input gives one node of two empty leaves.
 fn build_nodes(boxes: &[Aabb], params: BvhBuildParams, fallback_leaf: usize, max_depth: usize) -> (Vec<GpuNode>, Vec<u32>) {
     if boxes.is_empty() {
-        return empty_nodes();
+        return (vec![GpuNode { children: [GpuChild::empty(Aabb::EMPTY); 2] }], Vec::new());
     }
     let prims: Vec<obvhs::aabb::Aabb> = boxes.iter().map(|b| b.to_obvhs()).collect();
     // obvhs is third-party code run on the host program's geometry: a panic in it must not
-    // reach the program, so it degrades to the fallback.
+    // reach the program, so it degrades to a median split of everything.
     let built = catch_unwind(AssertUnwindSafe(|| obvhs::bvh2::builder::build_bvh2(&prims, params, &mut Duration::default())));
-    if let Some(flat) = built.ok().and_then(|bvh| flatten(&bvh, max_depth)) {
-        return flat;
-    }
-    // A median split over n primitives is ceil(log2(n / leaf)) nodes deep: below MAX_DEPTH
-    // for any count that fits memory (max_depth is lower only in tests that force this path).
-    flatten(&median_split(&prims, fallback_leaf), usize::MAX).unwrap_or_else(empty_nodes)
-}
-
-/// The BVH over nothing: one node of two empty leaves, so that traversal reads a valid root.
-fn empty_nodes() -> (Vec<GpuNode>, Vec<u32>) {
-    (vec![GpuNode { children: [GpuChild::empty(Aabb::EMPTY); 2] }], Vec::new())
-}
-
-/// `bvh` as [`GpuNode`]s in depth-first order with the primitive order of its leaves, or
-/// `None` when some path has more than `max_depth` nodes.
-fn flatten(bvh: &Bvh2, max_depth: usize) -> Option<(Vec<GpuNode>, Vec<u32>)> {
-    let root = bvh.nodes.first()?;
-    let mut nodes = Vec::with_capacity(bvh.nodes.len() / 2 + 1);
-    let mut order = Vec::with_capacity(bvh.primitive_indices.len());
+    let bvh = built.ok().filter(|bvh| !bvh.nodes.is_empty());
+    let mut flat = Flattener { prims: &prims, leaf: fallback_leaf.max(1), max_depth, nodes: Vec::new(), order: Vec::new(), shape: Vec::new() };
+    let root = match &bvh {
+        Some(bvh) => {
+            flat.shape = shapes(bvh);
+            flat.child(bvh, 0, 1)
+        }
+        None => flat.median(&mut (0..prims.len() as u32).collect::<Vec<_>>()),
+    };
     if root.is_leaf() {
-        let leaf = leaf_child(bvh, root, &mut order);
-        nodes.push(GpuNode { children: [leaf, GpuChild::empty(leaf.bounds())] });
-    } else {
-        flatten_inner(bvh, 0, 1, max_depth, &mut nodes, &mut order)?;
+        flat.nodes.push(GpuNode { children: [root, GpuChild::empty(root.bounds())] });
     }
-    Some((nodes, order))
+    (flat.nodes, flat.order)
 }
 
-/// Emits the inner obvhs node `id`, at `depth` (the root is 1), and its subtree.
-fn flatten_inner(bvh: &Bvh2, id: usize, depth: usize, max_depth: usize, nodes: &mut Vec<GpuNode>, order: &mut Vec<u32>) -> Option<()> {
-    if depth > max_depth {
-        return None;
-    }
-    let at = nodes.len();
-    nodes.push(bytemuck::Zeroable::zeroed());
-    let first = bvh.nodes[id].first_index as usize;
-    for slot in 0..2 {
-        let node = &bvh.nodes[first + slot];
-        let child = if node.is_leaf() {
-            leaf_child(bvh, node, order)
+/// Height (nodes on the longest downward path, 0 for a leaf) and primitive count of every
+/// node of `bvh`, computed without recursion (an obvhs tree may be deep).
+fn shapes(bvh: &Bvh2) -> Vec<(usize, usize)> {
+    let mut shape = vec![(0, 0); bvh.nodes.len()];
+    let mut stack = vec![(0usize, false)];
+    while let Some((id, done)) = stack.pop() {
+        let node = &bvh.nodes[id];
+        if node.is_leaf() {
+            shape[id] = (0, node.prim_count as usize);
+        } else if done {
+            let (a, b) = (shape[node.first_index as usize], shape[node.first_index as usize + 1]);
+            shape[id] = (1 + a.0.max(b.0), a.1 + b.1);
         } else {
-            let b = Aabb::from_obvhs(node.aabb());
-            let child = GpuChild { min: b.min.into(), index: nodes.len() as u32, max: b.max.into(), meta: 0 };
-            flatten_inner(bvh, first + slot, depth + 1, max_depth, nodes, order)?;
-            child
-        };
-        nodes[at].children[slot] = child;
+            stack.extend([(id, true), (node.first_index as usize, false), (node.first_index as usize + 1, false)]);
+        }
     }
-    Some(())
+    shape
 }
 
-/// The child slot of the obvhs leaf `node`; appends its primitives to `order`.
-fn leaf_child(bvh: &Bvh2, node: &Bvh2Node, order: &mut Vec<u32>) -> GpuChild {
-    let b = Aabb::from_obvhs(node.aabb());
-    let first = node.first_index as usize;
-    let index = order.len() as u32;
-    order.extend_from_slice(&bvh.primitive_indices[first..first + node.prim_count as usize]);
-    GpuChild { min: b.min.into(), index, max: b.max.into(), meta: LEAF | node.prim_count }
-}
-
-/// A balanced BVH: split at the median centroid along the widest centroid axis, down to
-/// `leaf` primitives.
-fn median_split(prims: &[obvhs::aabb::Aabb], leaf: usize) -> Bvh2 {
-    let mut indices: Vec<u32> = (0..prims.len() as u32).collect();
-    let mut nodes = vec![Bvh2Node::default()];
-    split(prims, &mut indices, 0, 0, leaf.max(1), &mut nodes);
-    Bvh2 { nodes, primitive_indices: indices, ..Bvh2::default() }
-}
-
-/// Fills `nodes[slot]` with the subtree over `indices`, which start at `offset` in the
-/// primitive order.
-fn split(prims: &[obvhs::aabb::Aabb], indices: &mut [u32], offset: u32, slot: usize, leaf: usize, nodes: &mut Vec<Bvh2Node>) {
-    let bounds = indices.iter().fold(obvhs::aabb::Aabb::empty(), |b, &i| b.union(&prims[i as usize]));
-    if indices.len() <= leaf {
-        nodes[slot] = Bvh2Node::new(bounds, indices.len() as u32, offset);
-        return;
+/// Nodes on the longest path of a median split over `count` primitives with `leaf` per leaf.
+fn median_height(mut count: usize, leaf: usize) -> usize {
+    let mut height = 0;
+    while count > leaf {
+        count -= count / 2;
+        height += 1;
     }
-    let centroids = indices.iter().fold(obvhs::aabb::Aabb::empty(), |mut b, &i| *b.extend(prims[i as usize].center()));
-    let axis = centroids.largest_axis();
-    let mid = indices.len() / 2;
-    indices.select_nth_unstable_by(mid, |&a, &b| prims[a as usize].center_axis(axis).total_cmp(&prims[b as usize].center_axis(axis)));
-    let first = nodes.len();
-    nodes.extend([Bvh2Node::default(); 2]);
-    nodes[slot] = Bvh2Node::new(bounds, 0, first as u32);
-    let (low, high) = indices.split_at_mut(mid);
-    split(prims, low, offset, first, leaf, nodes);
-    split(prims, high, offset + mid as u32, first + 1, leaf, nodes);
+    height
 }
-#[cfg(test)]
-pub(super) fn flatten_for_tests(bvh: &Bvh2) -> Vec<GpuNode> { flatten(bvh, usize::MAX).unwrap().0 }
+
+/// Writes [`GpuNode`]s in depth-first order (children after parents).
+struct Flattener<'a> {
+    /// The primitives' boxes.
+    prims: &'a [obvhs::aabb::Aabb],
+    /// Leaf size of median splits.
+    leaf: usize,
+    /// The most nodes on a path.
+    max_depth: usize,
+    /// The output nodes.
+    nodes: Vec<GpuNode>,
+    /// The output primitive order.
+    order: Vec<u32>,
+    /// [`shapes`] of the obvhs tree.
+    shape: Vec<(usize, usize)>,
+}
+
+impl Flattener<'_> {
+    /// The child slot for obvhs node `id`, whose node (if inner) lands at `depth` (the root is
+    /// 1). Invariant: a median split of its primitives fits there. It keeps obvhs' split while
+    /// the whole subtree fits or both children could still be median-split one level lower,
+    /// and median-splits it otherwise.
+    fn child(&mut self, bvh: &Bvh2, id: usize, depth: usize) -> GpuChild {
+        let node = &bvh.nodes[id];
+        if node.is_leaf() {
+            let first = node.first_index as usize;
+            return self.leaf_child(&bvh.primitive_indices[first..first + node.prim_count as usize]);
+        }
+        let (a, b) = (node.first_index as usize, node.first_index as usize + 1);
+        let fits = depth - 1 + self.shape[id].0 <= self.max_depth;
+        let split_fits = [a, b].iter().all(|&c| depth + median_height(self.shape[c].1, self.leaf) <= self.max_depth);
+        if !fits && !split_fits {
+            let mut indices = Vec::with_capacity(self.shape[id].1);
+            collect(bvh, id, &mut indices);
+            return self.median(&mut indices);
+        }
+        let at = self.push_node();
+        let children = [self.child(bvh, a, depth + 1), self.child(bvh, b, depth + 1)];
+        self.nodes[at].children = children;
+        self.inner_child(at)
+    }
+
+    /// The child slot of a median split over `indices` (reordered).
+    fn median(&mut self, indices: &mut [u32]) -> GpuChild {
+        if indices.len() <= self.leaf {
+            return self.leaf_child(indices);
+        }
+        let prims = self.prims;
+        let centroids = indices.iter().fold(obvhs::aabb::Aabb::empty(), |mut b, &i| *b.extend(prims[i as usize].center()));
+        let axis = centroids.largest_axis();
+        let mid = indices.len() / 2;
+        indices.select_nth_unstable_by(mid, |&a, &b| prims[a as usize].center_axis(axis).total_cmp(&prims[b as usize].center_axis(axis)));
+        let at = self.push_node();
+        let (low, high) = indices.split_at_mut(mid);
+        let children = [self.median(low), self.median(high)];
+        self.nodes[at].children = children;
+        self.inner_child(at)
+    }
+
+    /// Appends a node to fill in later; returns its index.
+    fn push_node(&mut self) -> usize {
+        self.nodes.push(GpuNode::zeroed());
+        self.nodes.len() - 1
+    }
+
+    /// The child slot of the filled node `at`: its box is the union of its children's.
+    fn inner_child(&self, at: usize) -> GpuChild {
+        let [a, b] = self.nodes[at].children;
+        let bounds = a.bounds().union(&b.bounds());
+        GpuChild { min: bounds.min.into(), index: at as u32, max: bounds.max.into(), meta: 0 }
+    }
+
+    /// The child slot of a leaf of `prims`; appends them to the order.
+    fn leaf_child(&mut self, prims: &[u32]) -> GpuChild {
+        let bounds = prims.iter().fold(Aabb::EMPTY, |b, &i| b.union(&Aabb::from_obvhs(&self.prims[i as usize])));
+        let index = self.order.len() as u32;
+        self.order.extend_from_slice(prims);
+        GpuChild { min: bounds.min.into(), index, max: bounds.max.into(), meta: LEAF | prims.len() as u32 }
+    }
+}
+
+/// Appends the primitives under obvhs node `id` to `out`.
+fn collect(bvh: &Bvh2, id: usize, out: &mut Vec<u32>) {
+    let mut stack = vec![id];
+    while let Some(id) = stack.pop() {
+        let node = &bvh.nodes[id];
+        if node.is_leaf() {
+            let first = node.first_index as usize;
+            out.extend_from_slice(&bvh.primitive_indices[first..first + node.prim_count as usize]);
+        } else {
+            stack.extend([node.first_index as usize, node.first_index as usize + 1]);
+        }
+    }
+}

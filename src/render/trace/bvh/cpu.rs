@@ -90,7 +90,9 @@ pub fn any(scene: &Scene, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32, accept:
 
 /// `1 / d` with components of magnitude below [`TINY`] replaced by ±`TINY` (`bvh_inverse`).
 fn inverse(d: Vec3) -> Vec3 {
-    let safe = |x: f32| if x.abs() < TINY { if x >= 0.0 { TINY } else { -TINY } } else { x };
+    let safe = |x: f32| {
+        if x.abs() < TINY { if x >= 0.0 { TINY } else { -TINY } } else { x }
+    };
     Vec3::ONE / Vec3::new(safe(d.x), safe(d.y), safe(d.z))
 }
 
@@ -113,13 +115,13 @@ pub(super) fn intersect(tri: &GpuTriangle, o: Vec3, d: Vec3, tmin: f32, tmax: f3
     let e2 = Vec3::from(tri.e2);
     let p = d.cross(e2);
     let det = e1.dot(p);
-    if !(det.abs() > 0.0) {
+    if det == 0.0 || det.is_nan() {
         return None;
     }
     let inv = 1.0 / det;
     let s = o - Vec3::from(tri.v0);
     let u = s.dot(p) * inv;
-    if !(u >= 0.0 && u <= 1.0) {
+    if !(0.0..=1.0).contains(&u) {
         return None;
     }
     let q = s.cross(e1);
@@ -168,12 +170,14 @@ fn trace(scene: &Scene, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32, any_hit: 
         if let Some((id, inst)) = instance {
             for slot in order {
                 let c = &node.children[slot];
-                if !(entry[slot] < MISS) || !c.is_leaf() {
+                if entry[slot] == MISS || !c.is_leaf() {
                     continue;
                 }
                 for k in c.index..c.index + (c.meta & !LEAF) {
                     let triangle = inst.first_triangle + k;
-                    let Some((t, bary)) = intersect(&scene.triangles[triangle as usize], o, d, tmin, t_max) else { continue };
+                    let Some((t, bary)) = intersect(&scene.triangles[triangle as usize], o, d, tmin, t_max) else {
+                        continue;
+                    };
                     if inst.alpha_tested && !accept(id, triangle, bary) {
                         continue;
                     }
