@@ -93,7 +93,12 @@ pub fn dumping_sink(dir: &std::path::Path, first: u64) -> Result<Box<dyn FrameSi
 
 /// `GLRT_MODE` when it names a mode without a renderer.
 fn mode_without_renderer() -> Option<String> {
-    std::env::var("GLRT_MODE").ok().filter(|mode| !mode.is_empty() && mode != "raster")
+    std::env::var("GLRT_MODE").ok().filter(|mode| !mode.is_empty() && mode != "raster" && mode != "pathtrace")
+}
+
+/// Whether `GLRT_MODE` asks for the path tracer.
+fn path_traced() -> bool {
+    std::env::var("GLRT_MODE").is_ok_and(|mode| mode == "pathtrace")
 }
 
 /// The sample counts above 1 that the renderer of [`default_sink`] draws multisampled
@@ -109,7 +114,13 @@ fn renderer_from_env() -> Box<dyn FrameSink> {
         eprintln!("glrt: GLRT_MODE={mode} has no renderer yet; frames are not drawn");
         return Box::new(NullSink::default());
     }
-    match raster::renderer::Renderer::new() {
+    let renderer = raster::renderer::Renderer::new().and_then(|mut renderer| {
+        if path_traced() {
+            renderer.enable_tracing(trace::settings::Settings::of_process())?;
+        }
+        Ok(renderer)
+    });
+    match renderer {
         Ok(renderer) => Box::new(renderer),
         Err(e) => {
             eprintln!("glrt: {e}; frames are not drawn");

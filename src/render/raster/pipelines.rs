@@ -415,7 +415,7 @@ impl Pipelines {
     }
 }
 
-fn shader_module(device: &Device, spirv: &[u8]) -> Result<vk::ShaderModule> {
+pub(crate) fn shader_module(device: &Device, spirv: &[u8]) -> Result<vk::ShaderModule> {
     let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
     // Safety: the SPIR-V was produced by the build's shader compiler.
     unsafe { device.raw.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(&words), None) }.check("vkCreateShaderModule")

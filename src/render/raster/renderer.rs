@@ -67,6 +67,9 @@ pub struct Renderer {
     failed: bool,
     /// The accumulation buffer.
     accum: pixel_ops::accum::Accum,
+    /// The path tracer (`GLRT_MODE=pathtrace`): traces the traced draws and composites them
+    /// where the first of them comes in program order.
+    tracer: Option<crate::render::trace::tracer::Tracer>,
 }
 
 /// The renderer's state other than the slots (borrowed apart from them by [`Recorder`]).
@@ -120,6 +123,11 @@ pub struct Recorder<'a> {
 }
 
 impl Recorder<'_> {
+    /// The frame-in-flight slot recorded into.
+    pub fn slot(&self) -> usize {
+        self.slot
+    }
+
     /// Begins the dynamic-rendering pass on the target (no-op if begun).
     pub fn begin_rendering(&mut self) {
         if *self.rendering {
@@ -421,7 +429,22 @@ impl Renderer {
             outputs: Vec::new(),
             failed: false,
             accum: pixel_ops::accum::Accum::default(),
+            tracer: None,
         })
+    }
+
+    /// Path traces the traced draws of the next frames with `settings` (see
+    /// [`crate::render::trace`]); the other draws stay rasterized around them.
+    pub fn enable_tracing(&mut self, settings: crate::render::trace::settings::Settings) -> Result<()> {
+        if self.tracer.is_none() {
+            self.tracer = Some(crate::render::trace::tracer::Tracer::new(&self.parts.device, settings, self.slots.len())?);
+        }
+        Ok(())
+    }
+
+    /// The path tracer, when tracing is enabled (statistics: rays, frames).
+    pub fn tracer(&self) -> Option<&crate::render::trace::tracer::Tracer> {
+        self.tracer.as_ref()
     }
 
     /// The device.
@@ -512,14 +535,18 @@ impl Renderer {
     /// Records what of `frame` is not recorded yet.
     fn record(&mut self, frame: &Frame) -> Result<()> {
         let mut accum = std::mem::take(&mut self.accum);
-        let result = self.record_with(frame, &mut accum);
+        let mut tracer = self.tracer.take();
+        let result = self.record_with(frame, &mut accum, tracer.as_mut());
         self.accum = accum;
+        self.tracer = tracer;
         result
     }
 
-    /// [`Renderer::record`] with the accumulation buffer taken out of `self` (pixel operations
-    /// that read the framebuffer submit and wait in the middle of the frame).
-    fn record_with(&mut self, frame: &Frame, accum: &mut pixel_ops::accum::Accum) -> Result<()> {
+    /// [`Renderer::record`] with the accumulation buffer and the tracer taken out of `self`
+    /// (pixel operations that read the framebuffer submit and wait in the middle of the frame).
+    /// With a tracer, traced draws are not rasterized: the traced image is composited in
+    /// place of the first of them.
+    fn record_with(&mut self, frame: &Frame, accum: &mut pixel_ops::accum::Accum, mut tracer: Option<&mut crate::render::trace::tracer::Tracer>) -> Result<()> {
         let mut progress = match self.progress {
             Some(p) if p.frame == frame.number => p,
             _ => Progress { frame: frame.number, ..Progress::default() },
@@ -538,6 +565,7 @@ impl Renderer {
         let query_of = |index: usize| frame.occlusion_queries.iter().find(|(_, range)| range.contains(&index)).map(|(q, _)| *q);
         if let Some(last) = progress.draws.checked_sub(1).and_then(|i| frame.draws.get(i))
             && last.indices.len() > progress.last_indices
+            && !(tracer.is_some() && crate::render::trace::scene::is_traced(last))
         {
             record_into!(last.state.framebuffer);
             rec.query = (frame.number, query_of(progress.draws - 1));
@@ -593,7 +621,14 @@ impl Renderer {
             if let Some(draw) = frame.draws.get(index) {
                 record_into!(draw.state.framebuffer);
                 rec.query = (frame.number, query_of(index));
-                draw_in_buffers(&mut rec, draw)?;
+                match tracer.as_deref_mut() {
+                    Some(tracer) if crate::render::trace::scene::is_traced(draw) => {
+                        if crate::render::trace::scene::first_traced(frame) == Some(index) {
+                            tracer.record(&mut rec, frame)?;
+                        }
+                    }
+                    _ => draw_in_buffers(&mut rec, draw)?,
+                }
                 progress.draws = index + 1;
                 progress.last_indices = draw.indices.len();
             }
@@ -809,6 +844,9 @@ impl Drop for Renderer {
             target.destroy(device);
         }
         self.parts.pipelines.destroy(device);
+        if let Some(mut tracer) = self.tracer.take() {
+            tracer.destroy(device);
+        }
         self.parts.occlusion.destroy(device);
         self.parts.textures.destroy(device);
     }

@@ -92,7 +92,7 @@ pub struct Textures {
 
 /// What the texels of an uploaded image are.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Upload {
+pub(crate) enum Upload {
     /// RGBA8 texels (linear or sRGB).
     Rgba8,
     /// RGBA `f32` values.
@@ -383,7 +383,7 @@ fn destroy_entry(device: &Device, e: Entry) {
 }
 
 /// The levels uploaded: from `base`, while each exists and halves the one above, up to `max`.
-fn level_chain(faces: &[Vec<Option<std::sync::Arc<TexImage>>>], base: usize, max: usize, kind: TextureKind) -> Vec<std::sync::Arc<TexImage>> {
+pub(crate) fn level_chain(faces: &[Vec<Option<std::sync::Arc<TexImage>>>], base: usize, max: usize, kind: TextureKind) -> Vec<std::sync::Arc<TexImage>> {
     let Some(levels) = faces.first() else { return Vec::new() };
     let mut chain: Vec<std::sync::Arc<TexImage>> = Vec::new();
     for level in base..=max.max(base) {
@@ -407,7 +407,7 @@ fn level_chain(faces: &[Vec<Option<std::sync::Arc<TexImage>>>], base: usize, max
 }
 
 /// Width, height and depth without the border.
-fn interior(img: &TexImage) -> [u32; 3] {
+pub(crate) fn interior(img: &TexImage) -> [u32; 3] {
     let b = img.border;
     let h_border = if img.height > 1 { b } else { 0 };
     let d_border = if img.depth > 1 { b } else { 0 };
@@ -416,7 +416,7 @@ fn interior(img: &TexImage) -> [u32; 3] {
 
 /// The texel bytes of the interior of `img` as `upload` says (a float upload of a level
 /// without values converts its RGBA8 texels).
-fn texel_bytes(img: &TexImage, upload: Upload) -> Vec<u8> {
+pub(crate) fn texel_bytes(img: &TexImage, upload: Upload) -> Vec<u8> {
     let [w, h, d] = interior(img).map(|v| v as usize);
     let b = img.border as usize;
     let (bx, by, bz) = (b, if img.height > 1 { b } else { 0 }, if img.depth > 1 { b } else { 0 });

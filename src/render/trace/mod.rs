@@ -14,9 +14,21 @@
 //! - [`bindings`]: descriptor bindings shared with `shaders/trace/bindings.glsl`.
 //! - `bvh`: bottom-level BVHs of triangle sets and the per-frame top-level BVH (CPU build,
 //!   GPU layout, CPU traversal for tests); `shaders/trace/bvh.glsl` traverses them.
-//! - `texels`: every texture level the tracer samples, packed into one storage buffer (no
+//! - [`texels`]: every texture level the tracer samples, packed into one storage buffer (no
 //!   descriptor indexing on lavapipe); `shaders/trace/texels.glsl` samples it.
 //! - [`settings`]: `glrt.toml` `[pathtrace]` and `GLRT_*` settings.
+//! - [`scene`]: traced draws as geometries, instances and materials; [`lights`]: GL lights as
+//!   physical lights; [`gpu_types`]: the structures the shaders read.
+//! - [`resident`]: geometries on the GPU; [`pipelines`]: the tracer's pipelines;
+//!   [`tracer`]: one traced frame, recorded into the raster renderer's command buffer.
 
 pub mod bindings;
+pub mod bvh;
+pub mod gpu_types;
+pub mod lights;
+pub mod pipelines;
+pub mod resident;
+pub mod scene;
 pub mod settings;
+pub mod texels;
+pub mod tracer;

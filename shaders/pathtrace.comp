@@ -1,0 +1,151 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// The compute path tracer's tracing pass: per traced pixel, `samples` paths of a primary ray,
+// next-event estimation at every vertex (one shadow ray per light) and `bounces` indirect
+// bounces (cosine-weighted diffuse or GGX visible-normal specular); writes the noisy radiance
+// and the primary hit's G-buffer (trace/gbuffer.glsl). src/render/trace/mod.rs describes the
+// scene it reads.
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+#include "trace/lights.glsl"
+#include "trace/gbuffer.glsl"
+
+shared uint group_rays[4];
+
+// The eye-space ray through window position `window` (GL window coordinates, y up).
+void camera_ray(vec2 window, out vec3 origin, out vec3 dir) {
+    vec2 ndc = 2.0 * (window - frame.viewport.xy) / frame.viewport.zw - 1.0;
+    vec4 near = frame.inverse_projection * vec4(ndc, -1.0, 1.0);
+    vec4 far = frame.inverse_projection * vec4(ndc, 1.0, 1.0);
+    origin = near.xyz / near.w;
+    dir = normalize(far.xyz / far.w - origin);
+}
+
+// Window depth of eye-space point p (glDepthRange applied).
+float window_depth(mat4 projection, vec3 p) {
+    vec4 clip = projection * vec4(p, 1.0);
+    float ndc = clip.z / clip.w;
+    return mix(frame.depth_range.x, frame.depth_range.y, ndc * 0.5 + 0.5);
+}
+
+vec2 window_xy(mat4 projection, vec3 p) {
+    vec4 clip = projection * vec4(p, 1.0);
+    return frame.viewport.xy + (clip.xy / clip.w * 0.5 + 0.5) * frame.viewport.zw;
+}
+
+void main() {
+    if (gl_LocalInvocationIndex < 4u) {
+        group_rays[gl_LocalInvocationIndex] = 0u;
+    }
+    barrier();
+
+    uvec2 pixel = gl_GlobalInvocationID.xy;
+    uvec2 size = frame.size.xy;
+    bool inside = all(lessThan(pixel, size));
+    uint samples = max(frame.counts.y, 1u);
+    uint bounces = frame.counts.z;
+    uint light_count = frame.counts.w;
+    // Window pixels per traced pixel.
+    vec2 scale = vec2(frame.size.zw) / vec2(size);
+
+    vec3 radiance_sum = vec3(0.0);
+    GSample g;
+    g.radiance = vec4(0.0);
+    g.albedo = 0u;
+    g.normal = 0u;
+    g.depth = 1.0;
+    g.view_z = 0.0;
+    g.motion = vec2(0.0);
+    g.material = 0u;
+    g.instance = 0xffffffffu;
+    uint primary = 0u, shadow = 0u, diffuse = 0u, specular = 0u;
+
+    for (uint sample_index = 0u; inside && sample_index < samples; sample_index++) {
+        Rng rng = rng_seed(pixel, frame.counts.x, sample_index);
+        // The first sample of a frame goes through the pixel centre, so the G-buffer is stable.
+        vec2 jitter = sample_index == 0u ? vec2(0.5) : rng_next2(rng);
+        vec2 window = (vec2(pixel) + jitter) * scale;
+        vec3 origin, dir;
+        camera_ray(window, origin, dir);
+        bool in_viewport = all(greaterThanEqual(window, frame.viewport.xy)) && all(lessThan(window, frame.viewport.xy + frame.viewport.zw));
+        vec3 throughput = vec3(1.0);
+        vec3 radiance = vec3(0.0);
+        float cone_width = 0.0;
+        float cone_spread = frame.params.w * max(scale.x, scale.y);
+        for (uint depth = 0u; depth <= bounces; depth++) {
+            if (depth == 0u) {
+                primary += 1u;
+            }
+            TraceHit hit;
+            bool found = (depth > 0u || in_viewport) && trace_closest(origin, dir, 0.0, 1e30, hit);
+            if (!found) {
+                radiance += throughput * frame.environment.rgb;
+                break;
+            }
+            cone_width += cone_spread * hit.t;
+            Surface s = surface_at(hit, origin, dir, cone_width);
+            vec3 v = -dir;
+            if (depth == 0u && sample_index == 0u) {
+                Instance inst = instances[hit.instance];
+                g.albedo = packUnorm4x8(vec4(s.albedo, s.alpha));
+                g.normal = pack_normal(s.normal);
+                g.depth = window_depth(frame.projection, s.position);
+                g.view_z = -s.position.z;
+                vec3 object = instance_transform(inst.eye_to_object, vec4(s.position, 1.0));
+                vec3 previous = instance_transform(inst.previous_object_to_eye, vec4(object, 1.0));
+                g.motion = (window_xy(frame.projection, s.position) - window_xy(frame.previous_projection, previous)) / scale;
+                g.material = packUnorm4x8(vec4(s.roughness, s.metalness, 0.0, 0.0));
+                g.instance = hit.instance;
+            }
+            radiance += throughput * s.emission;
+            for (uint i = 0u; i < light_count; i++) {
+                radiance += throughput * direct_light(s, v, i, rng, shadow);
+            }
+            if (depth == bounces) {
+                break;
+            }
+            vec3 l;
+            bool chose_specular;
+            vec3 u = vec3(rng_next2(rng), rng_next(rng));
+            if (!brdf_sample(s, v, u, l, chose_specular)) {
+                break;
+            }
+            float pdf = brdf_pdf(s, v, l);
+            if (pdf <= 0.0) {
+                break;
+            }
+            throughput *= brdf_eval_cos(s, v, l) / pdf;
+            if (chose_specular) {
+                specular += 1u;
+            } else {
+                diffuse += 1u;
+            }
+            origin = offset_ray(s.position, s.geometric);
+            dir = l;
+            // After a bounce the cone spreads as wide as the lobe sampled (textures seen by
+            // diffuse rays are read from small levels).
+            cone_spread = max(cone_spread, chose_specular ? ggx_alpha(s) : 1.0);
+            if (all(equal(throughput, vec3(0.0)))) {
+                break;
+            }
+        }
+        radiance_sum += radiance;
+    }
+
+    atomicAdd(group_rays[0], primary);
+    atomicAdd(group_rays[1], shadow);
+    atomicAdd(group_rays[2], diffuse);
+    atomicAdd(group_rays[3], specular);
+    if (inside) {
+        g.radiance = vec4(radiance_sum / float(samples), 1.0);
+        gbuffer[pixel.y * size.x + pixel.x] = g;
+    }
+    barrier();
+    if (gl_LocalInvocationIndex == 0u) {
+        atomicAdd(counters.primary_rays, group_rays[0]);
+        atomicAdd(counters.shadow_rays, group_rays[1]);
+        atomicAdd(counters.diffuse_rays, group_rays[2]);
+        atomicAdd(counters.specular_rays, group_rays[3]);
+    }
+}

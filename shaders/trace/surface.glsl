@@ -1,0 +1,126 @@
+// What a ray hit: the shading inputs of a traced triangle (position, normals, albedo from the
+// GL colour and texture unit 0, material), and the alpha test that traversal asks for.
+// Include after bvh.glsl's prerequisites: defines trace_alpha_accept(), then includes bvh.glsl.
+
+#ifndef TRACE_SURFACE_GLSL
+#define TRACE_SURFACE_GLSL
+
+#include "gl_compare.glsl"
+#include "trace/scene.glsl"
+#include "trace/pack.glsl"
+#include "trace/texels.glsl"
+#include "trace/brdf.glsl"
+
+const uint NO_TEXTURE = 0xffffffffu;
+
+// The GL colour of a triangle corner interpolated at bary, still display-encoded.
+vec4 corner_color(TriangleAttributes a, vec2 bary) {
+    return unpackUnorm4x8(a.corner[0].color) * (1.0 - bary.x - bary.y) + unpackUnorm4x8(a.corner[1].color) * bary.x
+        + unpackUnorm4x8(a.corner[2].color) * bary.y;
+}
+
+vec2 corner_uv(TriangleAttributes a, vec2 bary) {
+    return a.corner[0].uv * (1.0 - bary.x - bary.y) + a.corner[1].uv * bary.x + a.corner[2].uv * bary.y;
+}
+
+// GL's texture environment of unit 0 (OpenGL 1.5 table 3.22, RGBA formats), display-encoded.
+vec4 apply_texenv(Material m, vec4 base, vec4 tex) {
+    switch (m.texenv) {
+    case TEXENV_REPLACE: return tex;
+    case TEXENV_DECAL: return vec4(mix(base.rgb, tex.rgb, tex.a), base.a);
+    case TEXENV_BLEND: return vec4(mix(base.rgb, m.env_color.rgb, tex.rgb), base.a * tex.a);
+    case TEXENV_ADD: return vec4(min(base.rgb + tex.rgb, 1.0), base.a * tex.a);
+    default: return base * tex;
+    }
+}
+
+// The colour (display-encoded RGBA) of a triangle at bary, textured at level of detail lod.
+vec4 surface_color(Material m, TriangleAttributes a, vec2 bary, float lod) {
+    vec4 base = corner_color(a, bary);
+    if (m.texture == NO_TEXTURE) {
+        return base;
+    }
+    return apply_texenv(m, base, texel_sample(m.texture, corner_uv(a, bary), lod));
+}
+
+// Traversal's question for alpha-tested instances: does the alpha test pass at this point?
+// (Sampled at the base level: traversal knows no ray cone.)
+bool trace_alpha_accept(uint instance, uint triangle, vec2 bary) {
+    Material m = materials[instances[instance].material];
+    float alpha = surface_color(m, attributes[triangle], bary, 0.0).a;
+    return compare(m.alpha_func, alpha, m.alpha_ref);
+}
+
+#include "trace/bvh.glsl"
+
+// The object-space corners of global triangle `triangle`.
+void trace_triangle_vertices(uint triangle, out vec3 v0, out vec3 v1, out vec3 v2) {
+    BvhTriangle t = triangles[triangle];
+    v0 = t.v0.xyz;
+    v1 = v0 + t.e1.xyz;
+    v2 = v0 + t.e2.xyz;
+}
+
+// An object-space vector or point through the instance's rows.
+vec3 instance_transform(vec4 rows[3], vec4 v) {
+    return vec3(dot(rows[0], v), dot(rows[1], v), dot(rows[2], v));
+}
+
+// The shading inputs at `hit` of a ray (origin, unit dir); cone_width is the ray cone's width
+// at the hit (texture level of detail).
+Surface surface_at(TraceHit hit, vec3 origin, vec3 dir, float cone_width) {
+    Instance inst = instances[hit.instance];
+    TriangleAttributes a = attributes[hit.triangle];
+    Material m = materials[inst.material];
+    vec3 p0, p1, p2;
+    trace_triangle_vertices(hit.triangle, p0, p1, p2);
+    vec3 e1 = instance_transform(inst.object_to_eye, vec4(p1 - p0, 0.0));
+    vec3 e2 = instance_transform(inst.object_to_eye, vec4(p2 - p0, 0.0));
+    vec3 ng = cross(e1, e2);
+    float area2 = length(ng);
+    ng = area2 > 0.0 ? ng / area2 : -dir;
+    bool back = dot(ng, dir) > 0.0;
+    if (back) {
+        ng = -ng;
+    }
+
+    Surface s;
+    s.position = origin + dir * hit.t;
+    s.geometric = ng;
+    s.normal = ng;
+    if (a.corner[0].normal != 0u || a.corner[1].normal != 0u || a.corner[2].normal != 0u) {
+        float w0 = 1.0 - hit.bary.x - hit.bary.y;
+        vec3 n = unpack_normal(a.corner[0].normal) * w0 + unpack_normal(a.corner[1].normal) * hit.bary.x
+            + unpack_normal(a.corner[2].normal) * hit.bary.y;
+        // Normals go through the inverse transpose: the columns of eye_to_object's rows.
+        n = inst.eye_to_object[0].xyz * n.x + inst.eye_to_object[1].xyz * n.y + inst.eye_to_object[2].xyz * n.z;
+        float len = length(n);
+        if (len > 0.0) {
+            n /= len;
+            s.normal = dot(n, ng) < 0.0 ? -n : n;
+        }
+    }
+
+    // Ray-cone level of detail (Akenine-Möller et al. 2021, "Improved Shader and Texture
+    // Level of Detail Using Ray Cones"): texels per eye-space unit of the triangle, times the
+    // cone's footprint.
+    float lod = 0.0;
+    if (m.texture != NO_TEXTURE) {
+        vec2 size = texel_size(m.texture);
+        vec2 t1 = (a.corner[1].uv - a.corner[0].uv) * size;
+        vec2 t2 = (a.corner[2].uv - a.corner[0].uv) * size;
+        float texel_area = abs(t1.x * t2.y - t1.y * t2.x);
+        float cos_view = max(abs(dot(ng, dir)), 1e-3);
+        lod = area2 > 0.0 && texel_area > 0.0 ? 0.5 * log2(texel_area / area2) + log2(max(cone_width, 1e-12) / cos_view) : 0.0;
+    }
+    vec4 color = surface_color(m, a, hit.bary, lod);
+    s.albedo = srgb_to_linear(color.rgb);
+    s.alpha = color.a;
+    s.emission = m.emission.rgb + s.albedo * m.emission.a;
+    s.roughness = m.roughness;
+    s.metalness = m.metalness;
+    s.specular = m.specular;
+    return s;
+}
+
+#endif

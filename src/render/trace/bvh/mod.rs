@@ -1,0 +1,186 @@
+//! The BVHs of the compute tracer: a bottom-level BVH ([`Blas`]) per triangle set, in object
+//! space and reused across frames, and a top-level BVH ([`Tlas`]) over the instances, in eye
+//! space and rebuilt every frame. Built on the CPU, uploaded as flat arrays of [`GpuNode`] and
+//! [`GpuTriangle`], traversed by `shaders/trace/bvh.glsl`; [`cpu`] is the same traversal in
+//! Rust (tests, reference).
+//!
+//! Build: `obvhs`' PLOC (Morton-sorted nearest-neighbour clustering), then reinsertion
+//! optimisation and an SAH-driven leaf collapse (up to 8 triangles per BLAS leaf, one instance
+//! per TLAS leaf). obvhs has no binned/sweep SAH builder; among its PLOC presets, "medium" is
+//! used for BLASes (geometry is built once and reused) and "fast" for the per-frame TLAS.
+//! A tree deeper than the traversal stack (or a panic inside obvhs) falls back to a median-split
+//! build whose depth is logarithmic ([`build`]), so the GPU stack never overflows.
+//!
+//! Layout (std430, mirrored by the GLSL structs of `bvh.glsl`; `tests` checks the sizes):
+//! - a [`GpuNode`] is 64 bytes holding both children's boxes, so one fetch tests both. Each
+//!   child is `(min.xyz, index)`, `(max.xyz, meta)`. `meta == 0`: an inner child, `index` is a
+//!   node of the same BVH (relative to its root for a BLAS: the GPU adds the instance's
+//!   `blas_root`). `meta & LEAF`: a leaf of `meta & !LEAF` primitives from `index` on
+//!   (BLAS: triangles relative to the geometry's first, the GPU adds `first_triangle`; TLAS:
+//!   always one instance, `index` = the instance). A leaf of 0 primitives is an empty child
+//!   (a BVH whose root is one leaf, or the empty BLAS).
+//! - children come after their parents (node 0 is the root): [`Blas::refit`] sweeps backwards.
+//! - a [`GpuTriangle`] is `v0, e1 = v1 - v0, e2 = v2 - v0` (Möller–Trumbore), 48 bytes.
+//!
+//! Robustness: non-finite positions make their triangle degenerate (collapsed onto its first
+//! finite vertex, or the origin): it is kept in place, so `order` stays a permutation and refit
+//! keeps the topology, and it is never hit. Finite coordinates are clamped to ±[`MAX_COORD`] so
+//! that box and triangle arithmetic cannot overflow. Degenerate triangles (zero area) never hit.
+
+pub mod build;
+pub mod cpu;
+#[cfg(test)]
+mod tests;
+
+use bytemuck::{Pod, Zeroable};
+use glam::{Affine3A, Vec3, Vec3A};
+
+pub use build::{Blas, Tlas};
+
+/// Bit of a child's `meta` word marking a leaf; the low bits count its primitives.
+pub const LEAF: u32 = 0x8000_0000;
+/// The most nodes on any root-to-leaf path of a BVH built here (TLAS or BLAS). Traversal pushes
+/// at most one entry per level, so its one stack of `2 * MAX_DEPTH` entries (`BVH_STACK_SIZE`
+/// in `bvh.glsl`) holds a TLAS path and a BLAS path.
+pub const MAX_DEPTH: usize = 32;
+/// Largest magnitude of a coordinate in a BVH; larger finite ones are clamped to it. Its square
+/// still fits an `f32`, so products in the triangle and box tests stay finite.
+pub const MAX_COORD: f32 = 1.0e18;
+
+/// An axis-aligned box. Empty when `min > max` on some axis ([`Aabb::EMPTY`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Aabb {
+    /// Lowest corner.
+    pub min: Vec3,
+    /// Highest corner.
+    pub max: Vec3,
+}
+
+impl Aabb {
+    /// The box containing nothing; the identity of [`Aabb::union`].
+    pub const EMPTY: Aabb = Aabb { min: Vec3::INFINITY, max: Vec3::NEG_INFINITY };
+
+    /// The box of `points`.
+    pub fn of_points(points: &[Vec3]) -> Aabb {
+        points.iter().fold(Aabb::EMPTY, |b, &p| Aabb { min: b.min.min(p), max: b.max.max(p) })
+    }
+
+    /// Whether the box contains no point (also when a bound is NaN).
+    pub fn is_empty(&self) -> bool {
+        !(self.min.cmple(self.max).all())
+    }
+
+    /// Whether the box is non-empty with finite bounds.
+    pub fn is_finite(&self) -> bool {
+        !self.is_empty() && self.min.is_finite() && self.max.is_finite()
+    }
+
+    /// The smallest box containing both.
+    pub fn union(&self, other: &Aabb) -> Aabb {
+        Aabb { min: self.min.min(other.min), max: self.max.max(other.max) }
+    }
+
+    /// Half the surface area (the SAH's measure); 0 for an empty box.
+    pub fn half_area(&self) -> f32 {
+        if self.is_empty() {
+            return 0.0;
+        }
+        let d = self.max - self.min;
+        d.x * d.y + d.y * d.z + d.z * d.x
+    }
+
+    /// The box of this box's corners transformed by `m` (Arvo's method: per output axis, the
+    /// smaller and larger products of each input axis). An empty box stays empty.
+    pub fn transformed(&self, m: &Affine3A) -> Aabb {
+        if self.is_empty() {
+            return Aabb::EMPTY;
+        }
+        let mut min = m.translation;
+        let mut max = m.translation;
+        for (axis, column) in [m.matrix3.x_axis, m.matrix3.y_axis, m.matrix3.z_axis].into_iter().enumerate() {
+            let a = column * self.min[axis];
+            let b = column * self.max[axis];
+            min += a.min(b);
+            max += a.max(b);
+        }
+        Aabb { min: min.into(), max: max.into() }
+    }
+
+    /// obvhs' box type.
+    fn to_obvhs(self) -> obvhs::aabb::Aabb {
+        obvhs::aabb::Aabb::new(Vec3A::from(self.min), Vec3A::from(self.max))
+    }
+
+    /// From obvhs' box type.
+    fn from_obvhs(b: &obvhs::aabb::Aabb) -> Aabb {
+        Aabb { min: b.min.into(), max: b.max.into() }
+    }
+}
+
+/// One child slot of a [`GpuNode`]: its box, with the child reference in the `w` words
+/// (`bvh.glsl`: `vec4` pairs, the words read with `floatBitsToUint`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuChild {
+    /// Lowest corner of the child's box.
+    pub min: [f32; 3],
+    /// Inner child: its node index. Leaf: its first primitive.
+    pub index: u32,
+    /// Highest corner of the child's box.
+    pub max: [f32; 3],
+    /// 0 for an inner child; [`LEAF`] | primitive count for a leaf.
+    pub meta: u32,
+}
+
+impl GpuChild {
+    /// An empty leaf (no primitives) with the box `bounds` (the sibling's, so it costs no extra
+    /// box hits; zero when empty).
+    fn empty(bounds: Aabb) -> GpuChild {
+        let b = if bounds.is_empty() { Aabb { min: Vec3::ZERO, max: Vec3::ZERO } } else { bounds };
+        GpuChild { min: b.min.into(), index: 0, max: b.max.into(), meta: LEAF }
+    }
+
+    /// The child's box.
+    pub fn bounds(&self) -> Aabb {
+        Aabb { min: self.min.into(), max: self.max.into() }
+    }
+
+    /// Whether the child is a leaf.
+    pub fn is_leaf(&self) -> bool {
+        self.meta & LEAF != 0
+    }
+}
+
+/// A BVH node: the boxes and references of its two children (`BvhNode` in `bvh.glsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuNode {
+    /// The two children, in no particular order (traversal visits the nearer first).
+    pub children: [GpuChild; 2],
+}
+
+/// A triangle as the traversal tests it (`BvhTriangle` in `bvh.glsl`): a vertex and the two
+/// edges from it, each padded to a `vec4`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
+pub struct GpuTriangle {
+    /// The first vertex.
+    pub v0: [f32; 3],
+    /// Padding (`v0.w`).
+    pub pad0: u32,
+    /// `v1 - v0`.
+    pub e1: [f32; 3],
+    /// Padding (`e1.w`).
+    pub pad1: u32,
+    /// `v2 - v0`.
+    pub e2: [f32; 3],
+    /// Padding (`e2.w`).
+    pub pad2: u32,
+}
+
+impl GpuTriangle {
+    /// The stored form of `[v0, v1, v2]` (already sanitised).
+    fn new(t: &[Vec3; 3]) -> GpuTriangle {
+        GpuTriangle { v0: t[0].into(), pad0: 0, e1: (t[1] - t[0]).into(), pad1: 0, e2: (t[2] - t[0]).into(), pad2: 0 }
+    }
+}

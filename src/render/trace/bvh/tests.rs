@@ -1,0 +1,365 @@
+//! BVH build, refit and traversal checked against brute force over every triangle (same
+//! intersection arithmetic, so distances compare exactly), and the GPU layout's sizes.
+
+use std::time::Instant;
+
+use glam::{Affine3A, Quat, Vec2, Vec3};
+use obvhs::BvhBuildParams;
+
+use super::cpu::{self, Hit, Instance, Scene};
+use super::{Aabb, Blas, GpuChild, GpuNode, GpuTriangle, LEAF, MAX_DEPTH, Tlas};
+
+/// A deterministic xorshift generator.
+struct Rng(u64);
+
+impl Rng {
+    fn f32(&mut self) -> f32 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    /// A point uniformly in [-s, s]³.
+    fn vec(&mut self, s: f32) -> Vec3 {
+        Vec3::new(self.f32() * 2.0 - 1.0, self.f32() * 2.0 - 1.0, self.f32() * 2.0 - 1.0) * s
+    }
+}
+
+/// `n` random triangles of size about `size` in [-1, 1]³.
+fn soup(rng: &mut Rng, n: usize, size: f32) -> Vec<[Vec3; 3]> {
+    (0..n)
+        .map(|_| {
+            let c = rng.vec(1.0);
+            [c + rng.vec(size), c + rng.vec(size), c + rng.vec(size)]
+        })
+        .collect()
+}
+
+/// A UV sphere of radius 1 at the origin (shared edges and vertices).
+fn sphere(rings: usize, segments: usize) -> Vec<[Vec3; 3]> {
+    let p = |r: usize, s: usize| {
+        let (theta, phi) = (r as f32 / rings as f32 * std::f32::consts::PI, s as f32 / segments as f32 * std::f32::consts::TAU);
+        Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin())
+    };
+    let mut out = Vec::new();
+    for r in 0..rings {
+        for s in 0..segments {
+            out.push([p(r, s), p(r + 1, s), p(r + 1, s + 1)]);
+            out.push([p(r, s), p(r + 1, s + 1), p(r, s + 1)]);
+        }
+    }
+    out
+}
+
+/// A placed geometry: its triangles (object space), its transform, alpha testing.
+struct Placed<'a> {
+    triangles: &'a [[Vec3; 3]],
+    object_to_eye: Affine3A,
+    alpha_tested: bool,
+}
+
+/// The shared buffers of a scene of BLASes and instances, as an uploader lays them out.
+struct Built {
+    blas: Vec<Blas>,
+    tlas: Tlas,
+    nodes: Vec<GpuNode>,
+    triangles: Vec<GpuTriangle>,
+    instances: Vec<Instance>,
+}
+
+impl Built {
+    fn new(placed: &[Placed], blas: Vec<Blas>) -> Built {
+        let (mut nodes, mut triangles) = (Vec::new(), Vec::new());
+        let mut instances = Vec::new();
+        let mut bounds = Vec::new();
+        for (p, b) in placed.iter().zip(&blas) {
+            let (root, first) = b.append_to(&mut nodes, &mut triangles);
+            instances.push(Instance::new(&p.object_to_eye, root, first, p.alpha_tested));
+            bounds.push(b.bounds.transformed(&p.object_to_eye));
+        }
+        Built { blas, tlas: Tlas::build(&bounds), nodes, triangles, instances }
+    }
+
+    fn scene(&self) -> Scene<'_> {
+        Scene { tlas: &self.tlas.nodes, blas_nodes: &self.nodes, triangles: &self.triangles, instances: &self.instances }
+    }
+}
+
+/// Builds each placed geometry's BLAS and the TLAS.
+fn build(placed: &[Placed]) -> Built {
+    Built::new(placed, placed.iter().map(|p| Blas::build(p.triangles)).collect())
+}
+
+/// Rejects odd triangles (the alpha test of these tests).
+fn even(_: u32, triangle: u32, _: Vec2) -> bool {
+    triangle % 2 == 0
+}
+
+/// The closest accepted hit by testing every triangle of every instance: as (t, instance,
+/// index in the placed input).
+fn brute(built: &Built, placed: &[Placed], o: Vec3, d: Vec3, tmax: f32) -> Option<(f32, u32, u32)> {
+    let mut best: Option<(f32, u32, u32)> = None;
+    for (i, (p, b)) in placed.iter().zip(&built.blas).enumerate() {
+        let inst = &built.instances[i];
+        let (oo, od) = (cpu::transform(&inst.eye_to_object, o, 1.0), cpu::transform(&inst.eye_to_object, d, 0.0));
+        for (k, &input) in b.order.iter().enumerate() {
+            let global = inst.first_triangle + k as u32;
+            let limit = best.map_or(tmax, |h| h.0);
+            if let Some((t, _)) = cpu::intersect(&built.triangles[global as usize], oo, od, 0.0, limit)
+                && (!p.alpha_tested || even(i as u32, global, Vec2::ZERO))
+            {
+                best = Some((t, i as u32, input));
+            }
+        }
+    }
+    best
+}
+
+/// Traces `rays` random rays from around the scene through it; checks closest and any hits
+/// against brute force; returns how many hit.
+fn check_rays(built: &Built, placed: &[Placed], rng: &mut Rng, rays: usize, spread: f32) -> usize {
+    let scene = built.scene();
+    let mut hits = 0;
+    for _ in 0..rays {
+        let o = rng.vec(spread);
+        let d = (rng.vec(0.7) - o).normalize_or(Vec3::X);
+        let tmax = if rng.f32() < 0.5 { f32::INFINITY } else { rng.f32() * 4.0 };
+        let got = cpu::closest(&scene, o, d, 0.0, tmax, even);
+        let want = brute(built, placed, o, d, tmax);
+        let got_key = got.map(|h: Hit| (h.t, h.instance, built.blas[h.instance as usize].order[(h.triangle - built.instances[h.instance as usize].first_triangle) as usize]));
+        match (got_key, want) {
+            (Some(g), Some(w)) => {
+                assert_eq!(g.0, w.0, "t differs: ray {o} {d}: {g:?} vs {w:?}");
+                // Equal t on another triangle is a tie (shared edge or vertex): either is right.
+                hits += 1;
+            }
+            (g, w) => assert_eq!(g, w, "ray {o} {d} tmax {tmax}"),
+        }
+        assert_eq!(cpu::any(&scene, o, d, 0.0, tmax, even), want.is_some(), "any: ray {o} {d} tmax {tmax}");
+    }
+    hits
+}
+
+/// The most nodes on a root-to-leaf path.
+fn depth(nodes: &[GpuNode], node: usize) -> usize {
+    1 + nodes[node].children.iter().filter(|c| !c.is_leaf()).map(|c| depth(nodes, c.index as usize)).max().unwrap_or(0)
+}
+
+/// The SAH cost relative to the root's area: 1 per node visited, 1 per triangle tested.
+fn sah(nodes: &[GpuNode]) -> f32 {
+    let root = nodes[0].children[0].bounds().union(&nodes[0].children[1].bounds()).half_area();
+    let mut cost = 0.0;
+    for n in nodes {
+        cost += n.children[0].bounds().union(&n.children[1].bounds()).half_area();
+        for c in n.children.iter().filter(|c| c.is_leaf()) {
+            cost += c.bounds().half_area() * (c.meta & !LEAF) as f32;
+        }
+    }
+    cost / root
+}
+
+#[test]
+fn gpu_struct_sizes_match_the_glsl() {
+    assert_eq!(size_of::<GpuChild>(), 32);
+    assert_eq!(size_of::<GpuNode>(), 64);
+    assert_eq!(size_of::<GpuTriangle>(), 48);
+    assert_eq!(std::mem::offset_of!(GpuChild, index), 12);
+    assert_eq!(std::mem::offset_of!(GpuChild, max), 16);
+    assert_eq!(std::mem::offset_of!(GpuChild, meta), 28);
+    assert_eq!(std::mem::offset_of!(GpuTriangle, e1), 16);
+    assert_eq!(std::mem::offset_of!(GpuTriangle, e2), 32);
+}
+
+#[test]
+fn soup_matches_brute_force() {
+    let mut rng = Rng(0x1234_5678_9abc);
+    let tris = soup(&mut rng, 3000, 0.1);
+    let placed = [Placed { triangles: &tris, object_to_eye: Affine3A::IDENTITY, alpha_tested: false }];
+    let built = build(&placed);
+    let mut order = built.blas[0].order.clone();
+    order.sort_unstable();
+    assert_eq!(order, (0..3000).collect::<Vec<u32>>(), "order is a permutation");
+    assert!(depth(&built.blas[0].nodes, 0) <= MAX_DEPTH);
+    let hits = check_rays(&built, &placed, &mut rng, 4000, 1.5);
+    assert!(hits > 1000, "only {hits} hits");
+}
+
+#[test]
+fn mesh_and_transformed_instances_match_brute_force() {
+    let mut rng = Rng(99);
+    let ball = sphere(24, 48);
+    let rocks = soup(&mut rng, 500, 0.2);
+    let single = [[Vec3::ZERO, Vec3::X, Vec3::Y]];
+    let t = |s: f32, r: Quat, at: Vec3| Affine3A::from_scale_rotation_translation(Vec3::splat(s), r, at);
+    let placed = [
+        Placed { triangles: &ball, object_to_eye: t(0.5, Quat::from_rotation_y(0.3), Vec3::new(0.0, 0.0, -1.0)), alpha_tested: false },
+        Placed { triangles: &rocks, object_to_eye: t(0.7, Quat::from_rotation_x(1.1), Vec3::new(0.8, 0.2, 0.0)), alpha_tested: true },
+        Placed { triangles: &ball, object_to_eye: t(0.3, Quat::IDENTITY, Vec3::new(-0.6, -0.5, 0.4)), alpha_tested: false },
+        Placed { triangles: &single, object_to_eye: t(2.0, Quat::from_rotation_z(0.5), Vec3::new(-1.0, 0.5, -0.5)), alpha_tested: false },
+        Placed { triangles: &[], object_to_eye: Affine3A::IDENTITY, alpha_tested: false },
+        Placed {
+            triangles: &ball,
+            object_to_eye: Affine3A::from_mat3_translation(glam::Mat3::from_diagonal(Vec3::new(0.2, 1.0, 0.4)), Vec3::new(0.5, -0.7, -0.6)),
+            alpha_tested: false,
+        },
+    ];
+    let built = build(&placed);
+    let hits = check_rays(&built, &placed, &mut rng, 4000, 1.5);
+    assert!(hits > 1000, "only {hits} hits");
+    // The alpha-tested instance passes rays through its odd triangles.
+    let scene = built.scene();
+    let first = built.instances[1].first_triangle;
+    let mut passed = 0;
+    for k in 0..built.blas[1].triangles.len() as u32 {
+        let tri = &built.triangles[(first + k) as usize];
+        let object = Vec3::from(tri.v0) + Vec3::from(tri.e1) * 0.3 + Vec3::from(tri.e2) * 0.3;
+        let eye = placed[1].object_to_eye.transform_point3(object);
+        let o = Vec3::new(0.0, 0.0, 3.0);
+        let hit = cpu::closest(&scene, o, eye - o, 0.0, f32::INFINITY, even);
+        if (first + k) % 2 == 1 {
+            assert!(hit.is_none_or(|h| h.triangle != first + k), "rejected triangle {k} was hit");
+            passed += 1;
+        }
+    }
+    assert!(passed > 100);
+}
+
+#[test]
+fn empty_and_degenerate_input() {
+    let empty = Blas::build(&[]);
+    assert_eq!((empty.nodes.len(), empty.triangles.len(), empty.order.len()), (1, 0, 0));
+    assert!(empty.bounds.is_empty());
+    let tlas = Tlas::build(&[]);
+    assert_eq!(tlas.nodes.len(), 1);
+    let scene = Scene { tlas: &tlas.nodes, blas_nodes: &empty.nodes, triangles: &[], instances: &[] };
+    assert_eq!(cpu::closest(&scene, Vec3::ZERO, Vec3::NEG_Z, 0.0, f32::INFINITY, even), None);
+    assert!(!cpu::any(&scene, Vec3::ZERO, Vec3::NEG_Z, 0.0, f32::INFINITY, even));
+
+    // Zero-area, NaN and infinite triangles build and are never hit; the good one is.
+    let (nan, inf) = (f32::NAN, f32::INFINITY);
+    let tris = [
+        [Vec3::ZERO; 3],
+        [Vec3::ZERO, Vec3::X, Vec3::X * 2.0],
+        [Vec3::new(nan, 0.0, 0.0), Vec3::X, Vec3::Y],
+        [Vec3::splat(inf), Vec3::splat(-inf), Vec3::Y],
+        [Vec3::new(-1.0, -1.0, -2.0), Vec3::new(1.0, -1.0, -2.0), Vec3::new(0.0, 1.0, -2.0)],
+        [Vec3::splat(1e30), Vec3::splat(-1e30), Vec3::new(1e30, 0.0, 0.0)],
+    ];
+    let blas = Blas::build(&tris);
+    assert!(blas.bounds.is_finite());
+    let mut order = blas.order.clone();
+    order.sort_unstable();
+    assert_eq!(order, [0, 1, 2, 3, 4, 5]);
+    let instances = [Instance::new(&Affine3A::IDENTITY, 0, 0, false)];
+    let tlas = Tlas::build(&[blas.bounds, Aabb::EMPTY, Aabb { min: Vec3::splat(nan), max: Vec3::ONE }]);
+    let scene = Scene { tlas: &tlas.nodes, blas_nodes: &blas.nodes, triangles: &blas.triangles, instances: &instances };
+    let hit = cpu::closest(&scene, Vec3::ZERO, Vec3::NEG_Z, 0.0, f32::INFINITY, even).expect("the good triangle");
+    assert_eq!((hit.t, hit.instance, blas.order[hit.triangle as usize]), (2.0, 0, 4));
+    let mut rng = Rng(5);
+    for _ in 0..2000 {
+        let d = rng.vec(1.0);
+        if let Some(h) = cpu::closest(&scene, rng.vec(0.5), d, 0.0, f32::INFINITY, even) {
+            assert!(matches!(blas.order[h.triangle as usize], 4 | 5), "hit degenerate triangle {h:?}");
+        }
+    }
+}
+
+#[test]
+fn refit_follows_moved_vertices() {
+    let mut rng = Rng(777);
+    let before = soup(&mut rng, 2000, 0.1);
+    let mut blas = Blas::build(&before);
+    let after: Vec<[Vec3; 3]> = before.iter().map(|t| {
+        let shift = rng.vec(0.3);
+        t.map(|v| v * 1.3 + shift + rng.vec(0.02))
+    }).collect();
+    let topology: Vec<_> = blas.nodes.iter().map(|n| n.children.map(|c| (c.index, c.meta))).collect();
+    assert!(!blas.refit(&after[1..]), "a different count is refused");
+    assert!(blas.refit(&after));
+    assert_eq!(topology, blas.nodes.iter().map(|n| n.children.map(|c| (c.index, c.meta))).collect::<Vec<_>>());
+    let placed = [Placed { triangles: &after, object_to_eye: Affine3A::IDENTITY, alpha_tested: false }];
+    let built = Built::new(&placed, vec![blas]);
+    let hits = check_rays(&built, &placed, &mut rng, 3000, 2.0);
+    assert!(hits > 500, "only {hits} hits");
+}
+
+#[test]
+fn too_deep_trees_fall_back_to_median_split() {
+    let mut rng = Rng(31337);
+    let tris = soup(&mut rng, 1000, 0.05);
+    let full = Blas::build(&tris);
+    let limit = 9; // 1000 / 4 per leaf = 250 leaves: a median split is 8 deep
+    assert!(depth(&full.nodes, 0) > limit, "PLOC's tree is already shallow; pick a lower limit");
+    let shallow = Blas::build_limited(&tris, BvhBuildParams::medium_build(), limit);
+    assert!(depth(&shallow.nodes, 0) <= limit);
+    let placed = [Placed { triangles: &tris, object_to_eye: Affine3A::IDENTITY, alpha_tested: false }];
+    let built = Built::new(&placed, vec![shallow]);
+    check_rays(&built, &placed, &mut rng, 2000, 1.5);
+
+    let boxes: Vec<Aabb> = (0..3000).map(|_| Aabb::of_points(&[rng.vec(1.0), rng.vec(1.0)])).collect();
+    let tlas = Tlas::build_limited(&boxes, 12);
+    assert!(depth(&tlas.nodes, 0) <= 12);
+    let mut leaves: Vec<u32> = tlas.nodes.iter().flat_map(|n| n.children).filter(|c| c.is_leaf()).map(|c| c.index).collect();
+    leaves.sort_unstable();
+    assert_eq!(leaves, (0..3000).collect::<Vec<u32>>());
+}
+
+#[test]
+fn transformed_box_is_the_box_of_transformed_corners() {
+    let b = Aabb { min: Vec3::new(-1.0, 0.0, 2.0), max: Vec3::new(3.0, 1.0, 5.0) };
+    let m = Affine3A::from_scale_rotation_translation(Vec3::new(2.0, 0.5, 1.0), Quat::from_euler(glam::EulerRot::XYZ, 0.3, -1.2, 2.0), Vec3::new(4.0, -2.0, 1.0));
+    let corners: Vec<Vec3> = (0..8).map(|i| m.transform_point3(Vec3::select(glam::BVec3::new(i & 1 != 0, i & 2 != 0, i & 4 != 0), b.max, b.min))).collect();
+    let want = Aabb::of_points(&corners);
+    let got = b.transformed(&m);
+    assert!(got.min.abs_diff_eq(want.min, 1e-5) && got.max.abs_diff_eq(want.max, 1e-5), "{got:?} vs {want:?}");
+    assert!(Aabb::EMPTY.transformed(&m).is_empty());
+}
+
+/// Build time and SAH cost of 1M triangles per obvhs preset, and of a 10k-instance TLAS
+/// (`cargo test --lib trace::bvh -- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn bvh_build_speed() {
+    let mut rng = Rng(42);
+    let mut tris = soup(&mut rng, 500_000, 0.01);
+    tris.extend(sphere(500, 1000));
+    for (name, params) in [("fast", BvhBuildParams::fast_build()), ("medium", BvhBuildParams::medium_build()), ("slow (no pre-split)", BvhBuildParams { pre_split: false, ..BvhBuildParams::slow_build() })] {
+        let start = Instant::now();
+        let blas = Blas::build_limited(&tris, BvhBuildParams { max_prims_per_leaf: 8, ..params }, MAX_DEPTH);
+        println!(
+            "{name}: {} triangles in {:.0} ms, SAH {:.1}, {} nodes, depth {}",
+            tris.len(),
+            start.elapsed().as_secs_f64() * 1e3,
+            sah(&blas.nodes),
+            blas.nodes.len(),
+            depth(&blas.nodes, 0)
+        );
+    }
+    let boxes: Vec<Aabb> = (0..10_000).map(|_| {
+        let c = rng.vec(50.0);
+        Aabb { min: c - rng.vec(1.0).abs(), max: c + rng.vec(1.0).abs() }
+    }).collect();
+    let start = Instant::now();
+    let tlas = Tlas::build(&boxes);
+    println!("TLAS: 10k instances in {:.2} ms, SAH {:.1}, depth {}", start.elapsed().as_secs_f64() * 1e3, sah(&tlas.nodes), depth(&tlas.nodes, 0));
+}
+
+#[test]
+#[ignore]
+fn tmp_depths() {
+    let mut rng = Rng(42);
+    let mut tris = soup(&mut rng, 500_000, 0.01);
+    tris.extend(sphere(500, 1000));
+    for n in [10_000usize, 100_000, 1_500_000] {
+        let boxes: Vec<obvhs::aabb::Aabb> = tris[tris.len()-n..].iter().map(|t| Aabb::of_points(t).to_obvhs()).collect();
+        for params in [BvhBuildParams::fast_build(), BvhBuildParams::medium_build()] {
+            let start = Instant::now();
+            let bvh = obvhs::bvh2::builder::build_bvh2(&boxes, params, &mut std::time::Duration::default());
+            let t = start.elapsed();
+            let start = Instant::now();
+            let flat = super::build::flatten_for_tests(&bvh);
+            println!("{n}: obvhs {:.0} ms, flatten {:.0} ms, depth {}", t.as_secs_f64()*1e3, start.elapsed().as_secs_f64()*1e3, depth(&flat, 0));
+        }
+    }
+}

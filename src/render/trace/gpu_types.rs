@@ -1,0 +1,155 @@
+//! The structures the tracing shaders read, as `#[repr(C)]` mirrors of `shaders/trace/`
+//! (`scene.glsl`, `instance.glsl`); the tests compare their sizes with the std430 layouts.
+
+use bytemuck::{Pod, Zeroable};
+
+/// `TraceFrameBlock` of `scene.glsl`: camera, settings and counts of one frame.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuFrame {
+    /// Eye to clip, this frame (column-major).
+    pub projection: [[f32; 4]; 4],
+    /// Its inverse.
+    pub inverse_projection: [[f32; 4]; 4],
+    /// Eye to clip, last frame.
+    pub previous_projection: [[f32; 4]; 4],
+    /// Linear radiance of missed rays (rgb).
+    pub environment: [f32; 4],
+    /// The GL viewport: x, y, width, height in window pixels.
+    pub viewport: [f32; 4],
+    /// `glDepthRange` near, far; two unused.
+    pub depth_range: [f32; 4],
+    /// Exposure multiplier, history cap in frames, unused, ray-cone spread of one traced pixel.
+    pub params: [f32; 4],
+    /// Traced width and height, window width and height.
+    pub size: [u32; 4],
+    /// Frame index (random seed), samples per pixel, bounces, light count.
+    pub counts: [u32; 4],
+    /// `FRAME_*` bits, instance count, two unused.
+    pub flags: [u32; 4],
+}
+
+/// `Corner` of `scene.glsl`: the shading attributes of one triangle corner.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuCorner {
+    /// Texture coordinates of unit 0.
+    pub uv: [f32; 2],
+    /// Object-space normal, octahedral snorm16x2; 0 when the geometric normal is used.
+    pub normal: u32,
+    /// Base colour, display-encoded unorm8 RGBA.
+    pub color: u32,
+}
+
+/// `TriangleAttributes` of `scene.glsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTriangleAttributes {
+    /// The three corners, in the triangle's vertex order.
+    pub corner: [GpuCorner; 3],
+}
+
+/// `Material` of `scene.glsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuMaterial {
+    /// Linear emitted radiance (rgb); a: emissive scale applied to the albedo.
+    pub emission: [f32; 4],
+    /// `GL_TEXTURE_ENV_COLOR`.
+    pub env_color: [f32; 4],
+    /// Texel pool index of unit 0's texture, or `NO_TEXTURE`.
+    pub texture: u32,
+    /// `TEXENV_*` of unit 0.
+    pub texenv: u32,
+    /// Roughness (GGX alpha = roughness²).
+    pub roughness: f32,
+    /// Metalness.
+    pub metalness: f32,
+    /// Dielectric reflectance at normal incidence.
+    pub specular: f32,
+    /// Alpha test compare function, `gl_compare.glsl` order (7: always).
+    pub alpha_func: u32,
+    /// Alpha test reference.
+    pub alpha_ref: f32,
+    /// Padding.
+    pub pad: u32,
+}
+
+/// `Light` of `scene.glsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLight {
+    /// Eye space; w = 0: directional (xyz: unit direction towards the light).
+    pub position: [f32; 4],
+    /// Directional: irradiance at normal incidence; point: intensity (rgb); a: radius.
+    pub radiance: [f32; 4],
+    /// Unit spot direction; w: cos(cutoff), or −2 without a spot.
+    pub spot: [f32; 4],
+    /// x: spot exponent; y: cosine of a directional light's angular radius.
+    pub params: [f32; 4],
+}
+
+/// `Instance` of `instance.glsl`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuInstance {
+    /// Rows of the affine object-to-eye matrix.
+    pub object_to_eye: [[f32; 4]; 3],
+    /// Rows of its inverse.
+    pub eye_to_object: [[f32; 4]; 3],
+    /// Last frame's object-to-eye rows (the same when unknown).
+    pub previous_object_to_eye: [[f32; 4]; 3],
+    /// Root of its geometry in the BLAS node buffer.
+    pub blas_root: u32,
+    /// First triangle of its geometry in the triangle buffers.
+    pub first_triangle: u32,
+    /// `INSTANCE_*` bits.
+    pub flags: u32,
+    /// Index into the material buffer.
+    pub material: u32,
+}
+
+/// `Material::texture` without a texture.
+pub const NO_TEXTURE: u32 = u32::MAX;
+/// Instance flag: traversal runs the alpha test.
+pub const INSTANCE_ALPHA_TESTED: u32 = 1;
+/// Instance flag: emits its albedo.
+pub const INSTANCE_EMISSIVE: u32 = 2;
+/// `GpuFrame::flags[0]` bit: perspective camera.
+pub const FRAME_PERSPECTIVE: u32 = 4;
+
+/// Per-pixel bytes of the G-buffer (`GSample` of `gbuffer.glsl`).
+pub const GSAMPLE_BYTES: u64 = 48;
+/// Per-pixel bytes of the accumulation buffers (`AccumSample`).
+pub const ACCUM_SAMPLE_BYTES: u64 = 32;
+/// Per-pixel bytes of the composite's input (`OutputSample`).
+pub const OUTPUT_SAMPLE_BYTES: u64 = 8;
+/// Bytes of the ray counters.
+pub const COUNTER_BYTES: u64 = 16;
+
+/// The rows of the affine part of `m` (its last row is taken as 0, 0, 0, 1).
+pub fn rows(m: &glam::Mat4) -> [[f32; 4]; 3] {
+    let t = m.transpose();
+    [t.x_axis.to_array(), t.y_axis.to_array(), t.z_axis.to_array()]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_match_the_std430_layouts() {
+        // std430: vec4/mat4 members are 16-aligned; these are the block sizes glslang gives.
+        assert_eq!(std::mem::size_of::<GpuFrame>(), 3 * 64 + 4 * 16 + 3 * 16);
+        assert_eq!(std::mem::size_of::<GpuTriangleAttributes>(), 48);
+        assert_eq!(std::mem::size_of::<GpuMaterial>(), 64);
+        assert_eq!(std::mem::size_of::<GpuLight>(), 64);
+        assert_eq!(std::mem::size_of::<GpuInstance>(), 160);
+    }
+
+    #[test]
+    fn rows_are_the_affine_rows() {
+        let m = glam::Mat4::from_translation(glam::Vec3::new(1.0, 2.0, 3.0));
+        assert_eq!(rows(&m), [[1.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, 2.0], [0.0, 0.0, 1.0, 3.0]]);
+    }
+}

@@ -1,0 +1,139 @@
+//! GL lights as physical lights (DESIGN.md, "The frame"; issue 6 part 2).
+//!
+//! OpenGL lights a surface of diffuse reflectance `m` with `m · d · cos θ · att` (display
+//! units, `d` the light's diffuse colour, `att = 1 / (k0 + k1 r + k2 r²)`). The path tracer
+//! needs physical quantities whose Lambertian result, `albedo / π · E · cos θ`, looks the same:
+//!
+//! - a **directional** light (`w = 0`) becomes a sun of irradiance `E = π · linear(d)` at normal
+//!   incidence, with the angular size of the settings (soft shadows);
+//! - a **positional** light becomes a point light of intensity `I` with inverse-square falloff,
+//!   fitted to GL's attenuation at the distance `r₀` from the light to the viewer, as RTX Remix
+//!   fits legacy lights: `I = π · linear(d) · r₀² · att(r₀)`. A purely quadratic attenuation
+//!   (`k0 = k1 = 0`) gives exactly `π · linear(d) / k2` at every distance; the GL default (no
+//!   attenuation) matches GL's brightness where the camera is and falls off physically
+//!   around it. Spot cone and exponent are kept as GL defines them.
+//!
+//! GL's ambient terms are left out: indirect light and the environment replace them.
+
+use glam::{Mat4, Vec3};
+
+use super::gpu_types::GpuLight;
+use super::scene::srgb_to_linear;
+use crate::frame::state::Light;
+
+/// How GL lights are converted.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightSettings {
+    /// Multiplies every light.
+    pub scale: f32,
+    /// Angular diameter of directional lights, in degrees.
+    pub sun_angle: f32,
+    /// A direction towards the sun in the world frame, for the strongest directional light.
+    pub sun_direction: Option<Vec3>,
+}
+
+impl Default for LightSettings {
+    fn default() -> LightSettings {
+        LightSettings { scale: 1.0, sun_angle: 0.53, sun_direction: None }
+    }
+}
+
+/// Distance below which a positional light counts as at the viewer (the fit uses this one).
+const NEAREST_FIT: f32 = 1e-3;
+
+/// The physical light of GL light `light`.
+pub fn convert(light: &Light, settings: &LightSettings) -> GpuLight {
+    let d = light.diffuse;
+    let color = Vec3::new(srgb_to_linear(d[0]), srgb_to_linear(d[1]), srgb_to_linear(d[2])) * std::f32::consts::PI * settings.scale.max(0.0);
+    let [x, y, z, w] = light.position;
+    if w == 0.0 {
+        let dir = Vec3::new(x, y, z).try_normalize().unwrap_or(Vec3::Z);
+        let radius = (settings.sun_angle.clamp(0.0, 180.0) * 0.5).to_radians();
+        return GpuLight {
+            position: [dir.x, dir.y, dir.z, 0.0],
+            radiance: [color.x, color.y, color.z, 0.0],
+            spot: [0.0, 0.0, -1.0, -2.0],
+            params: [0.0, radius.cos(), 0.0, 0.0],
+        };
+    }
+    let p = Vec3::new(x, y, z) / w;
+    let r = p.length().max(NEAREST_FIT);
+    let [k0, k1, k2] = light.attenuation;
+    let att = k0 + k1 * r + k2 * r * r;
+    let intensity = if att > 0.0 { color * (r * r / att) } else { Vec3::ZERO };
+    let spot = Vec3::from_array(light.spot_direction).try_normalize().unwrap_or(Vec3::NEG_Z);
+    let cutoff = if light.spot_cutoff >= 180.0 { -2.0 } else { light.spot_cutoff.to_radians().cos() };
+    GpuLight {
+        position: [p.x, p.y, p.z, 1.0],
+        radiance: [intensity.x, intensity.y, intensity.z, 0.0],
+        spot: [spot.x, spot.y, spot.z, cutoff],
+        params: [light.spot_exponent, 1.0, 0.0, 0.0],
+    }
+}
+
+/// The lights of a frame: the distinct enabled GL lights of `lights` (each with the eye space
+/// it was specified in), converted; the sun direction of the settings replaces the direction
+/// of the strongest directional light, taken to eye space by `view` (world to eye).
+pub fn gather<'a>(lights: impl IntoIterator<Item = &'a Light>, view: Option<&Mat4>, settings: &LightSettings) -> Vec<GpuLight> {
+    let mut seen: Vec<&Light> = Vec::new();
+    for light in lights {
+        let black = light.diffuse[..3].iter().all(|&c| c <= 0.0);
+        if !black && !seen.contains(&light) {
+            seen.push(light);
+        }
+    }
+    let mut out: Vec<GpuLight> = seen.iter().map(|l| convert(l, settings)).collect();
+    if let (Some(sun), Some(view)) = (settings.sun_direction, view) {
+        let strength = |l: &GpuLight| l.radiance[0] + l.radiance[1] + l.radiance[2];
+        let strongest = out.iter_mut().filter(|l| l.position[3] == 0.0).max_by(|a, b| strength(a).total_cmp(&strength(b)));
+        if let Some(light) = strongest {
+            let dir = view.transform_vector3(sun).try_normalize().unwrap_or(Vec3::Z);
+            light.position = [dir.x, dir.y, dir.z, 0.0];
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_white_directional_light_has_irradiance_pi() {
+        let l = convert(&Light::initial(0), &LightSettings { sun_angle: 0.0, ..LightSettings::default() });
+        assert_eq!(l.position, [0.0, 0.0, 1.0, 0.0]);
+        assert!((l.radiance[0] - std::f32::consts::PI).abs() < 1e-6);
+        assert_eq!(l.params[1], 1.0);
+    }
+
+    #[test]
+    fn quadratic_attenuation_is_matched_exactly() {
+        let light = Light { position: [0.0, 3.0, -4.0, 1.0], attenuation: [0.0, 0.0, 0.5], ..Light::initial(0) };
+        let l = convert(&light, &LightSettings::default());
+        // I / r² = π / (k2 r²) at every distance: I = π / k2.
+        assert!((l.radiance[1] - std::f32::consts::PI / 0.5).abs() < 1e-4, "{:?}", l.radiance);
+        assert_eq!(l.position, [0.0, 3.0, -4.0, 1.0]);
+        assert_eq!(l.spot[3], -2.0);
+    }
+
+    #[test]
+    fn constant_attenuation_is_fitted_at_the_viewer_distance() {
+        let light = Light { position: [0.0, 0.0, -10.0, 2.0], spot_cutoff: 60.0, ..Light::initial(0) };
+        let l = convert(&light, &LightSettings::default());
+        // At r = 5 from the viewer, I / r² equals GL's unattenuated π · d.
+        assert!((l.radiance[0] / 25.0 - std::f32::consts::PI).abs() < 1e-4);
+        assert!((l.spot[3] - 0.5).abs() < 1e-6);
+    }
+
+    #[test]
+    fn duplicates_and_black_lights_are_dropped_and_the_sun_is_overridden() {
+        let sun = Light::initial(0);
+        let black = Light::initial(1);
+        let view = Mat4::from_rotation_y(std::f32::consts::FRAC_PI_2);
+        let settings = LightSettings { sun_direction: Some(Vec3::X), ..LightSettings::default() };
+        let lights = gather([&sun, &sun, &black], Some(&view), &settings);
+        assert_eq!(lights.len(), 1);
+        let expected = view.transform_vector3(Vec3::X);
+        assert!(Vec3::from_slice(&lights[0].position[..3]).distance(expected) < 1e-6);
+    }
+}

@@ -1,0 +1,439 @@
+//! The compute path tracer's frame: gathers the traced draws of a [`Frame`] into the scene
+//! buffers, traces it (`pathtrace.comp`), runs the temporal pass (`trace_resolve.comp`), and
+//! composites the result into the raster framebuffer with its depth, at the place in program
+//! order of the first traced draw ([`super::scene::first_traced`]). The raster renderer calls
+//! [`Tracer::record`] there and skips the traced draws.
+
+use ash::vk;
+use glam::{Affine3A, Mat4};
+use gpu_allocator::MemoryLocation;
+use xxhash_rust::xxh3::Xxh3;
+
+use super::bvh::Tlas;
+use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight, GpuMaterial, FRAME_PERSPECTIVE, INSTANCE_ALPHA_TESTED};
+use super::lights::{self, LightSettings};
+use super::pipelines::{COMPOSITE_PUSH_BYTES, GROUP, TracePipelines};
+use super::resident::Resident;
+use super::scene::{self, MaterialDefaults};
+use super::settings::{Settings, Tonemap};
+use super::texels::TexelPool;
+use super::bindings;
+use crate::frame::{Draw, Frame};
+use crate::render::raster::device::{Buffer, Check, Device, Result};
+use crate::render::raster::renderer::Recorder;
+
+/// Frames a moving camera's history keeps (the temporal filter's weight is 1 / (n + 1)).
+const MOVING_HISTORY: f32 = 8.0;
+
+/// Per-pixel buffers of one traced size.
+struct PixelBuffers {
+    size: [u32; 2],
+    gbuffer: Buffer,
+    /// Accumulation, ping-ponged: one is written this frame, the other read as history.
+    accumulation: [Buffer; 2],
+    output: Buffer,
+}
+
+/// What the last frame looked like, for the temporal pass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Previous {
+    signature: u64,
+    projection: Mat4,
+}
+
+/// Rays traced in one frame, by kind.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    /// Camera rays.
+    pub primary: u64,
+    /// Shadow rays of next-event estimation.
+    pub shadow: u64,
+    /// Indirect rays of the diffuse lobe.
+    pub diffuse: u64,
+    /// Indirect rays of the specular lobe.
+    pub specular: u64,
+}
+
+/// The compute path tracer.
+pub struct Tracer {
+    settings: Settings,
+    pipelines: TracePipelines,
+    resident: Resident,
+    texels: TexelPool,
+    /// The texel pool on the GPU and its capacity in words.
+    texel_buffer: Option<(Buffer, usize)>,
+    pixels: Option<PixelBuffers>,
+    /// Ray counters per frame in flight (host-readable).
+    counters: Vec<Buffer>,
+    /// Descriptor pools per frame in flight.
+    pools: Vec<vk::DescriptorPool>,
+    frame_index: u32,
+    parity: usize,
+    previous: Option<Previous>,
+    /// Rays of the last frame whose counters were read (a frame in flight behind).
+    pub rays: RayCounts,
+    /// Frames traced.
+    pub frames: u64,
+}
+
+impl Tracer {
+    /// Creates the tracer's pipelines and buffers for `slots` frames in flight.
+    pub fn new(device: &Device, settings: Settings, slots: usize) -> Result<Tracer> {
+        let pipelines = TracePipelines::new(device)?;
+        let mut counters = Vec::new();
+        let mut pools = Vec::new();
+        for _ in 0..slots {
+            let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
+            counters.push(device.create_buffer("glrt ray counters", gpu_types::COUNTER_BYTES, usage, MemoryLocation::GpuToCpu)?);
+            let sizes = [vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: bindings::COUNT + 1 }];
+            let info = vk::DescriptorPoolCreateInfo::default().max_sets(2).pool_sizes(&sizes);
+            // Safety: valid create info; destroyed in `destroy`.
+            pools.push(unsafe { device.raw.create_descriptor_pool(&info, None) }.check("vkCreateDescriptorPool")?);
+        }
+        Ok(Tracer {
+            settings,
+            pipelines,
+            resident: Resident::default(),
+            texels: TexelPool::default(),
+            texel_buffer: None,
+            pixels: None,
+            counters,
+            pools,
+            frame_index: 0,
+            parity: 0,
+            previous: None,
+            rays: RayCounts::default(),
+            frames: 0,
+        })
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// Reads the ray counters of the frame slot `slot` last traced (its fence has signalled).
+    fn read_counters(&mut self, slot: usize) {
+        if let Some(buffer) = self.counters.get_mut(slot) {
+            let bytes = buffer.mapped();
+            if bytes.len() >= 16 {
+                let word = |i: usize| u32::from_le_bytes([bytes[4 * i], bytes[4 * i + 1], bytes[4 * i + 2], bytes[4 * i + 3]]) as u64;
+                self.rays = RayCounts { primary: word(0), shadow: word(1), diffuse: word(2), specular: word(3) };
+            }
+        }
+    }
+
+    /// Traces the traced draws of `frame` and composites them into `rec`'s framebuffer.
+    pub fn record(&mut self, rec: &mut Recorder<'_>, frame: &Frame) -> Result<()> {
+        let slot = rec.slot();
+        self.read_counters(slot);
+        rec.end_rendering();
+        let device = rec.device;
+        let cmd = rec.cmd;
+        let draws: Vec<&Draw> = frame.draws.iter().filter(|d| scene::is_traced(d)).collect();
+        let Some(camera) = draws.first() else { return Ok(()) };
+
+        // Geometry: build and upload what is new.
+        let keys: Vec<u64> = draws.iter().map(|d| scene::geometry_key(d)).collect();
+        let mut new = Vec::new();
+        for (draw, &key) in draws.iter().zip(&keys) {
+            if self.resident.lookup(key, frame.number).is_none() && !new.iter().any(|(k, _)| *k == key) {
+                new.push((key, scene::geometry(draw)));
+            }
+        }
+        self.resident.uploaded = 0;
+        self.resident.insert_all(device, cmd, rec.ring, new, frame.number)?;
+
+        // Textures of unit 0.
+        let textured: Vec<Option<&crate::frame::TextureRef>> =
+            draws.iter().map(|d| d.texture_units.first().copied().flatten().and_then(|_| d.textures.first().and_then(Option::as_ref))).collect();
+        let refs: Vec<&crate::frame::TextureRef> = textured.iter().flatten().copied().collect();
+        let mut indices = self.texels.prepare(&refs).into_iter();
+        let texture_of: Vec<Option<u32>> = textured.iter().map(|t| t.and_then(|_| indices.next())).collect();
+        self.upload_texels(device, cmd, rec.ring)?;
+
+        // Instances, materials, lights.
+        let defaults = MaterialDefaults::default();
+        let mut instances = Vec::with_capacity(draws.len());
+        let mut materials = Vec::with_capacity(draws.len());
+        let mut bounds = Vec::with_capacity(draws.len());
+        let mut signature = Xxh3::new();
+        for (i, (draw, &key)) in draws.iter().zip(&keys).enumerate() {
+            let Some(placement) = self.resident.lookup(key, frame.number) else { continue };
+            let material = scene::material(draw, texture_of[i], &defaults);
+            let previous = draw.instance.and_then(|inst| inst.previous_modelview).unwrap_or(draw.modelview);
+            let eye_to_object = draw.modelview.inverse();
+            let flags = if material.alpha_func != 7 { INSTANCE_ALPHA_TESTED } else { 0 };
+            instances.push(GpuInstance {
+                object_to_eye: gpu_types::rows(&draw.modelview),
+                eye_to_object: gpu_types::rows(&eye_to_object),
+                previous_object_to_eye: gpu_types::rows(&previous),
+                blas_root: placement.blas_root,
+                first_triangle: placement.first_triangle,
+                flags,
+                material: i as u32,
+            });
+            materials.push(material);
+            bounds.push(placement.bounds.transformed(&Affine3A::from_mat4(draw.modelview)));
+            signature.update(&key.to_le_bytes());
+            signature.update(bytemuck::cast_slice(&draw.modelview.to_cols_array()));
+        }
+        let tlas = Tlas::build(&bounds);
+        let light_settings = LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction };
+        let gl_lights = draws.iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));
+        let lights: Vec<GpuLight> = lights::gather(gl_lights, frame.view.as_ref().map(|v| &v.view), &light_settings);
+        signature.update(bytemuck::cast_slice(&lights));
+
+        // Camera and sizes.
+        let state = &camera.state;
+        let window = rec.target.size;
+        let scale = self.settings.resolution_scale.clamp(0.25, 1.0);
+        let traced = window.map(|w| ((w as f32 * scale).ceil() as u32).max(1));
+        let environment = environment(frame);
+        signature.update(bytemuck::cast_slice(&camera.projection.to_cols_array()));
+        signature.update(bytemuck::cast_slice(&environment));
+        signature.update(bytemuck::cast_slice(&traced));
+        let signature = signature.digest();
+        let still = self.previous.is_some_and(|p| p.signature == signature);
+        let history = if self.pixels.as_ref().is_none_or(|p| p.size != traced) {
+            0.0
+        } else if still {
+            self.settings.accumulate as f32
+        } else if self.settings.temporal && self.previous.is_some() {
+            MOVING_HISTORY
+        } else {
+            0.0
+        };
+        self.ensure_pixels(device, traced)?;
+        let [vx, vy, vw, vh] = state.viewport;
+        let projection = camera.projection;
+        let perspective = projection.w_axis.w == 0.0;
+        let fov = 2.0 * (1.0 / projection.y_axis.y.abs().max(1e-6)).atan();
+        let spread = if perspective { fov / traced[1].max(1) as f32 } else { 0.0 };
+        let tonemap = match self.settings.tonemap {
+            Tonemap::Clamp => 0,
+            Tonemap::Reinhard => 1,
+            Tonemap::Aces => 2,
+        };
+        let gpu_frame = GpuFrame {
+            projection: projection.to_cols_array_2d(),
+            inverse_projection: projection.inverse().to_cols_array_2d(),
+            previous_projection: self.previous.map_or(projection, |p| p.projection).to_cols_array_2d(),
+            environment,
+            viewport: [vx as f32, vy as f32, vw as f32, vh as f32],
+            depth_range: [state.depth_range[0] as f32, state.depth_range[1] as f32, 0.0, 0.0],
+            params: [2f32.powf(self.settings.exposure), history, 0.0, spread],
+            size: [traced[0], traced[1], window[0], window[1]],
+            counts: [self.frame_index, self.settings.spp.max(1), self.settings.bounces, lights.len() as u32],
+            flags: [tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 }, instances.len() as u32, u32::from(still), 0],
+        };
+        self.record_passes(rec, &gpu_frame, &instances, &materials, &lights, &tlas)?;
+        self.previous = Some(Previous { signature, projection });
+        self.frame_index = self.frame_index.wrapping_add(1);
+        self.parity ^= 1;
+        self.frames += 1;
+        Ok(())
+    }
+
+    /// Copies the texel pool's new words to the GPU (all of them into a larger buffer when it
+    /// grew past the buffer).
+    fn upload_texels(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut crate::render::raster::upload::Ring) -> Result<()> {
+        let ranges = self.texels.take_uploads();
+        let words = self.texels.words();
+        let needed = words.len().max(1);
+        let ranges = if self.texel_buffer.as_ref().is_none_or(|(_, capacity)| *capacity < needed) {
+            device.wait_idle()?;
+            if let Some((old, _)) = self.texel_buffer.take() {
+                device.destroy_buffer(old);
+            }
+            let capacity = needed.next_power_of_two();
+            let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
+            self.texel_buffer = Some((device.create_buffer("glrt texel pool", capacity as u64 * 4, usage, MemoryLocation::GpuOnly)?, capacity));
+            vec![0..words.len()]
+        } else {
+            ranges
+        };
+        let Some((buffer, _)) = &self.texel_buffer else { return Ok(()) };
+        for range in ranges.into_iter().filter(|r| !r.is_empty()) {
+            let src = ring.push(device, bytemuck::cast_slice(&words[range.clone()]), 16)?;
+            let region = [vk::BufferCopy { src_offset: src.offset, dst_offset: range.start as u64 * 4, size: range.len() as u64 * 4 }];
+            // Safety: both buffers live for the frame; the range lies in both.
+            unsafe { device.raw.cmd_copy_buffer(cmd, src.buffer, buffer.raw, &region) };
+        }
+        Ok(())
+    }
+
+    /// (Re)creates the per-pixel buffers for a traced image of `size`.
+    fn ensure_pixels(&mut self, device: &Device, size: [u32; 2]) -> Result<()> {
+        if self.pixels.as_ref().is_some_and(|p| p.size == size) {
+            return Ok(());
+        }
+        device.wait_idle()?;
+        if let Some(old) = self.pixels.take() {
+            destroy_pixels(device, old);
+        }
+        let n = size[0] as u64 * size[1] as u64;
+        let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
+        let make = |name, bytes: u64| device.create_buffer(name, n * bytes, usage, MemoryLocation::GpuOnly);
+        self.pixels = Some(PixelBuffers {
+            size,
+            gbuffer: make("glrt G-buffer", gpu_types::GSAMPLE_BYTES)?,
+            accumulation: [make("glrt accumulation", gpu_types::ACCUM_SAMPLE_BYTES)?, make("glrt accumulation", gpu_types::ACCUM_SAMPLE_BYTES)?],
+            output: make("glrt traced output", gpu_types::OUTPUT_SAMPLE_BYTES)?,
+        });
+        Ok(())
+    }
+
+    /// Uploads the frame's small buffers, writes the descriptor sets, dispatches both passes
+    /// and draws the composite.
+    fn record_passes(&mut self, rec: &mut Recorder<'_>, gpu_frame: &GpuFrame, instances: &[GpuInstance], materials: &[GpuMaterial], lights: &[GpuLight], tlas: &Tlas) -> Result<()> {
+        let device = rec.device;
+        let cmd = rec.cmd;
+        let slot = rec.slot();
+        let Some(pixels) = &self.pixels else { return Ok(()) };
+        let Some([nodes, triangles, attributes]) = self.resident.buffers() else { return Ok(()) };
+        let align = device.properties.limits.min_storage_buffer_offset_alignment.max(16);
+        // A binding's range must not be empty: empty arrays get one zeroed element.
+        let mut push = |bytes: &[u8]| -> Result<(vk::Buffer, u64, u64)> {
+            let padded;
+            let bytes = if bytes.is_empty() {
+                padded = [0u8; 64];
+                &padded[..]
+            } else {
+                bytes
+            };
+            let s = rec.ring.push(device, bytes, align)?;
+            Ok((s.buffer, s.offset, bytes.len() as u64))
+        };
+        let frame_slice = push(bytemuck::bytes_of(gpu_frame))?;
+        let instance_slice = push(bytemuck::cast_slice(instances))?;
+        let material_slice = push(bytemuck::cast_slice(materials))?;
+        let light_slice = push(bytemuck::cast_slice(lights))?;
+        let tlas_slice = push(bytemuck::cast_slice(&tlas.nodes))?;
+        let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
+        let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(()) };
+        let whole = |b: &Buffer| (b.raw, 0, vk::WHOLE_SIZE);
+        let counters = &self.counters[slot];
+        let mut table = vec![(vk::Buffer::null(), 0, 0); bindings::COUNT as usize];
+        table[bindings::FRAME as usize] = frame_slice;
+        table[bindings::BLAS_NODES as usize] = (nodes.0, 0, nodes.1);
+        table[bindings::TLAS_NODES as usize] = tlas_slice;
+        table[bindings::TRIANGLES as usize] = (triangles.0, 0, triangles.1);
+        table[bindings::INSTANCES as usize] = instance_slice;
+        table[bindings::ATTRIBUTES as usize] = (attributes.0, 0, attributes.1);
+        table[bindings::MATERIALS as usize] = material_slice;
+        table[bindings::LIGHTS as usize] = light_slice;
+        table[bindings::TEXELS as usize] = whole(texel_buffer);
+        table[bindings::TEXTURES as usize] = textures_slice;
+        table[bindings::ACCUMULATION as usize] = whole(&pixels.accumulation[self.parity]);
+        table[bindings::GBUFFER as usize] = whole(&pixels.gbuffer);
+        table[bindings::OUTPUT as usize] = whole(&pixels.output);
+        table[bindings::COUNTERS as usize] = whole(counters);
+        table[bindings::HISTORY as usize] = whole(&pixels.accumulation[self.parity ^ 1]);
+
+        let pool = self.pools[slot];
+        // Safety (this block): the pool's sets of this slot's previous frame are finished (the
+        // slot's fence signalled before its recording began); every buffer in `table` lives
+        // until this frame finishes.
+        unsafe {
+            device.raw.reset_descriptor_pool(pool, vk::DescriptorPoolResetFlags::empty()).check("vkResetDescriptorPool")?;
+            let layouts = [self.pipelines.set_layout, self.pipelines.composite_set_layout];
+            let sets = device.raw.allocate_descriptor_sets(&vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&layouts)).check("vkAllocateDescriptorSets")?;
+            let infos: Vec<[vk::DescriptorBufferInfo; 1]> = table.iter().map(|&(buffer, offset, range)| [vk::DescriptorBufferInfo { buffer, offset, range }]).collect();
+            let output_info = [vk::DescriptorBufferInfo { buffer: pixels.output.raw, offset: 0, range: vk::WHOLE_SIZE }];
+            let mut writes: Vec<vk::WriteDescriptorSet> = infos
+                .iter()
+                .enumerate()
+                .map(|(b, info)| vk::WriteDescriptorSet::default().dst_set(sets[0]).dst_binding(b as u32).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info))
+                .collect();
+            writes.push(vk::WriteDescriptorSet::default().dst_set(sets[1]).dst_binding(0).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(&output_info));
+            device.raw.update_descriptor_sets(&writes, &[]);
+
+            let d = &device.raw;
+            d.cmd_fill_buffer(cmd, counters.raw, 0, vk::WHOLE_SIZE, 0);
+            barrier(d, cmd, vk::PipelineStageFlags2::TRANSFER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+            let groups = [gpu_frame.size[0].div_ceil(GROUP), gpu_frame.size[1].div_ceil(GROUP)];
+            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.layout, 0, &[sets[0]], &[]);
+            d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.pathtrace);
+            d.cmd_dispatch(cmd, groups[0], groups[1], 1);
+            barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+            d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.resolve);
+            d.cmd_dispatch(cmd, groups[0], groups[1], 1);
+            barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::HOST);
+
+            let pipeline = self.pipelines.composite(device, rec.target.samples)?;
+            rec.begin_rendering();
+            let [w, h] = rec.target.size;
+            let d = &rec.device.raw;
+            d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, pipeline);
+            d.cmd_set_viewport(cmd, 0, &[vk::Viewport { x: 0.0, y: 0.0, width: w as f32, height: h as f32, min_depth: 0.0, max_depth: 1.0 }]);
+            d.cmd_set_scissor(cmd, 0, &[vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width: w, height: h } }]);
+            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.composite_layout, 0, &[sets[1]], &[]);
+            let sizes: [u32; 4] = [gpu_frame.size[0], gpu_frame.size[1], w, h];
+            d.cmd_push_constants(cmd, self.pipelines.composite_layout, vk::ShaderStageFlags::FRAGMENT, 0, &bytemuck::cast_slice(&sizes)[..COMPOSITE_PUSH_BYTES as usize]);
+            d.cmd_draw(cmd, 3, 1, 0, 0);
+        }
+        Ok(())
+    }
+
+    /// Frees everything (the GPU must be idle).
+    pub fn destroy(&mut self, device: &Device) {
+        self.resident.destroy(device);
+        if let Some((b, _)) = self.texel_buffer.take() {
+            device.destroy_buffer(b);
+        }
+        if let Some(p) = self.pixels.take() {
+            destroy_pixels(device, p);
+        }
+        for b in self.counters.drain(..) {
+            device.destroy_buffer(b);
+        }
+        for pool in self.pools.drain(..) {
+            // Safety: the GPU is idle.
+            unsafe { device.raw.destroy_descriptor_pool(pool, None) };
+        }
+        self.pipelines.destroy(device);
+    }
+}
+
+fn destroy_pixels(device: &Device, p: PixelBuffers) {
+    let [a, b] = p.accumulation;
+    for buffer in [p.gbuffer, a, b, p.output] {
+        device.destroy_buffer(buffer);
+    }
+}
+
+/// A full memory barrier from `src` to `dst` stages.
+///
+/// # Safety
+/// `cmd` is recording outside a rendering pass.
+unsafe fn barrier(d: &ash::Device, cmd: vk::CommandBuffer, src: vk::PipelineStageFlags2, dst: vk::PipelineStageFlags2) {
+    let barrier = [vk::MemoryBarrier2::default()
+        .src_stage_mask(src)
+        .src_access_mask(vk::AccessFlags2::MEMORY_WRITE)
+        .dst_stage_mask(dst)
+        .dst_access_mask(vk::AccessFlags2::MEMORY_READ | vk::AccessFlags2::MEMORY_WRITE)];
+    // Safety: per the function's contract.
+    unsafe { d.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().memory_barriers(&barrier)) };
+}
+
+/// The radiance of missed rays: the frame's first colour clear of the window, linear.
+fn environment(frame: &Frame) -> [f32; 4] {
+    let clear = frame.clears.iter().filter(|c| c.framebuffer == crate::frame::Framebuffer::default()).find_map(|c| c.color);
+    let [r, g, b, _] = clear.unwrap_or([0.0; 4]);
+    [scene::srgb_to_linear(r), scene::srgb_to_linear(g), scene::srgb_to_linear(b), 0.0]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_environment_is_the_linear_clear_colour() {
+        let frame = Frame { clears: vec![crate::frame::Clear { color: Some([1.0, 0.5, 0.0, 1.0]), ..Default::default() }], ..Frame::default() };
+        let env = environment(&frame);
+        assert_eq!(env[0], 1.0);
+        assert!((env[1] - 0.214_041).abs() < 1e-5);
+        assert_eq!(environment(&Frame::default()), [0.0; 4]);
+    }
+}

@@ -1,0 +1,194 @@
+//! Physics of the compute path tracer on lavapipe (issue 6): scenes drawn through the GL API,
+//! traced with tone mapping off (the output is the sRGB encoding of the radiance), and the
+//! radiance read back compared with what light transport says it must be.
+
+mod lavapipe;
+
+use glrt::render::raster::renderer::Renderer;
+use glrt::render::trace::settings::{Settings, Tonemap};
+use glrt::translate::{Context, dispatch, gl};
+
+const SIZE: i32 = 24;
+
+/// A context tracing with `settings` (tone mapping off), a `SIZE`² drawable and a
+/// perspective camera at the origin looking down −z with a 60° field of view.
+fn context(settings: Settings) -> Context {
+    let mut renderer = lavapipe::renderer_with(Renderer::without_outputs);
+    renderer.enable_tracing(Settings { tonemap: Tonemap::Clamp, exposure: 0.0, ..settings }).expect("the tracer's pipelines");
+    let mut ctx = lavapipe::context_on(renderer);
+    ctx.bind_drawable(SIZE, SIZE);
+    unsafe {
+        dispatch::glViewport(&mut ctx, 0, 0, SIZE, SIZE);
+        dispatch::glMatrixMode(&mut ctx, gl::GL_PROJECTION);
+        let n = 0.1f64;
+        let h = n * (30f64).to_radians().tan();
+        dispatch::glFrustum(&mut ctx, -h, h, -h, h, n, 100.0);
+        dispatch::glMatrixMode(&mut ctx, gl::GL_MODELVIEW);
+        dispatch::glLoadIdentity(&mut ctx);
+    }
+    ctx
+}
+
+/// The linear value of an 8-bit sRGB-encoded component.
+fn linear(c: u8) -> f64 {
+    let c = c as f64 / 255.0;
+    if c <= 0.04045 { c / 12.92 } else { ((c + 0.055) / 1.055).powf(2.4) }
+}
+
+/// The 8-bit sRGB encoding of linear value `v`.
+fn encoded(v: f64) -> f64 {
+    let v = v.clamp(0.0, 1.0);
+    255.0 * if v <= 0.0031308 { v * 12.92 } else { 1.055 * v.powf(1.0 / 2.4) - 0.055 }
+}
+
+/// Lighting on with light 0 off, a white Lambertian front material of diffuse `albedo`.
+fn lit_material(ctx: &mut Context, albedo: f32) {
+    unsafe {
+        dispatch::glEnable(ctx, gl::GL_LIGHTING);
+        dispatch::glDisable(ctx, gl::GL_LIGHT0);
+        let diffuse = [albedo, albedo, albedo, 1.0];
+        dispatch::glMaterialfv(ctx, gl::GL_FRONT_AND_BACK, gl::GL_DIFFUSE, diffuse.as_ptr());
+        let black = [0.0f32, 0.0, 0.0, 1.0];
+        dispatch::glMaterialfv(ctx, gl::GL_FRONT_AND_BACK, gl::GL_SPECULAR, black.as_ptr());
+    }
+}
+
+/// A sphere of `radius` at `center`, as latitude bands of quads with outward normals.
+fn sphere(ctx: &mut Context, center: [f32; 3], radius: f32) {
+    let (bands, segments) = (24, 48);
+    let point = |i: i32, j: i32| {
+        let theta = std::f32::consts::PI * i as f32 / bands as f32;
+        let phi = 2.0 * std::f32::consts::PI * j as f32 / segments as f32;
+        [theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin()]
+    };
+    unsafe {
+        dispatch::glBegin(ctx, gl::GL_QUADS);
+        for i in 0..bands {
+            for j in 0..segments {
+                for (a, b) in [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)] {
+                    let n = point(a, b);
+                    dispatch::glNormal3f(ctx, n[0], n[1], n[2]);
+                    dispatch::glVertex3f(ctx, center[0] + radius * n[0], center[1] + radius * n[1], center[2] + radius * n[2]);
+                }
+            }
+        }
+        dispatch::glEnd(ctx);
+    }
+}
+
+/// Draws `frames` frames with `scene`, then reads the RGBA8 image (rows bottom to top).
+fn render(ctx: &mut Context, frames: usize, clear: [f32; 3], mut scene: impl FnMut(&mut Context)) -> Vec<[u8; 4]> {
+    for _ in 0..frames {
+        unsafe {
+            dispatch::glClearColor(ctx, clear[0], clear[1], clear[2], 1.0);
+            dispatch::glClear(ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
+            dispatch::glEnable(ctx, gl::GL_DEPTH_TEST);
+        }
+        scene(ctx);
+        ctx.end_frame();
+    }
+    let mut out = vec![[0u8; 4]; (SIZE * SIZE) as usize];
+    unsafe { dispatch::glReadPixels(ctx, 0, 0, SIZE, SIZE, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+    out
+}
+
+/// White furnace: a Lambertian sphere of albedo 1 inside a uniform environment of radiance 1
+/// reflects exactly the environment (one bounce suffices: a convex body never sees itself),
+/// so every pixel of the sphere reads 1 — the sampling weights conserve energy.
+#[test]
+fn white_furnace_sphere_renders_as_the_environment() {
+    let mut ctx = context(Settings { spp: 4, bounces: 1, ..Settings::default() });
+    let image = render(&mut ctx, 4, [1.0; 3], |ctx| {
+        lit_material(ctx, 1.0);
+        sphere(ctx, [0.0, 0.0, -4.0], 1.0);
+    });
+    let centre = image[(SIZE / 2 * SIZE + SIZE / 2) as usize];
+    assert_eq!(centre[..3], [255, 255, 255], "the sphere's centre");
+    let darkest = image.iter().map(|p| p[0].min(p[1]).min(p[2])).min().unwrap();
+    assert!(darkest >= 253, "every pixel, sphere or environment, reads 1 (darkest {darkest})");
+
+    // The same sphere with albedo 0.5 (GL 0.5 encoded → 0.214 linear) reflects 0.214.
+    let mut ctx = context(Settings { spp: 4, bounces: 1, ..Settings::default() });
+    let image = render(&mut ctx, 4, [1.0; 3], |ctx| {
+        lit_material(ctx, 0.5);
+        sphere(ctx, [0.0, 0.0, -4.0], 1.0);
+    });
+    let centre = image[(SIZE / 2 * SIZE + SIZE / 2) as usize];
+    let expected = encoded(linear(128)); // GL colour 0.5 stored as 128
+    assert!((centre[0] as f64 - expected).abs() <= 2.0, "{centre:?} against {expected}");
+}
+
+/// A plane of albedo a under a directional light of irradiance E, at incidence θ: radiance
+/// a / π · E · cos θ, with E = π for GL's white light (src/render/trace/lights.rs).
+#[test]
+fn directional_light_on_a_plane_gives_albedo_over_pi_e_cos() {
+    for degrees in [0.0f32, 30.0, 60.0, 75.0] {
+        let theta = degrees.to_radians();
+        let mut ctx = context(Settings { spp: 1, bounces: 0, sun_angle: 0.0, ..Settings::default() });
+        let image = render(&mut ctx, 2, [0.0; 3], |ctx| unsafe {
+            lit_material(ctx, 0.8);
+            dispatch::glEnable(ctx, gl::GL_LIGHT0);
+            let position = [0.0, theta.sin(), theta.cos(), 0.0f32];
+            dispatch::glLightfv(ctx, gl::GL_LIGHT0, gl::GL_POSITION, position.as_ptr());
+            dispatch::glBegin(ctx, gl::GL_QUADS);
+            dispatch::glNormal3f(ctx, 0.0, 0.0, 1.0);
+            for [x, y] in [[-10.0, -10.0], [10.0, -10.0], [10.0, 10.0], [-10.0, 10.0]] {
+                dispatch::glVertex3f(ctx, x, y, -3.0);
+            }
+            dispatch::glEnd(ctx);
+        });
+        let albedo = linear(204); // GL 0.8 → 204
+        let expected = encoded(albedo / std::f64::consts::PI * std::f64::consts::PI * (theta as f64).cos());
+        for p in [image[0], image[(SIZE * SIZE / 2 + SIZE / 2) as usize], image[(SIZE * SIZE - 1) as usize]] {
+            assert!((p[0] as f64 - expected).abs() <= 1.5, "θ = {degrees}°: {p:?} against {expected:.1}");
+        }
+    }
+}
+
+/// An alpha-tested quad (left texel transparent, right texel opaque) between a directional
+/// light and a floor casts the shadow of its opaque half only: traversal runs the alpha test
+/// on shadow rays too.
+#[test]
+fn alpha_tested_geometry_casts_cut_out_shadows() {
+    let mut ctx = context(Settings { spp: 1, bounces: 0, sun_angle: 0.0, ..Settings::default() });
+    let mut texture = 0u32;
+    let texels: [u8; 8] = [255, 255, 255, 0, 255, 255, 255, 255];
+    unsafe {
+        dispatch::glGenTextures(&mut ctx, 1, &mut texture);
+        dispatch::glBindTexture(&mut ctx, gl::GL_TEXTURE_2D, texture);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(&mut ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+    }
+    let quad = |ctx: &mut Context, [x0, y0, x1, y1]: [f32; 4], z: f32| unsafe {
+        dispatch::glBegin(ctx, gl::GL_QUADS);
+        dispatch::glNormal3f(ctx, 0.0, 0.0, 1.0);
+        for ([x, y], [s, t]) in [([x0, y0], [0.0, 0.0]), ([x1, y0], [1.0, 0.0]), ([x1, y1], [1.0, 1.0]), ([x0, y1], [0.0, 1.0])] {
+            dispatch::glTexCoord2f(ctx, s, t);
+            dispatch::glVertex3f(ctx, x, y, z);
+        }
+        dispatch::glEnd(ctx);
+    };
+    let image = render(&mut ctx, 2, [0.0; 3], |ctx| unsafe {
+        lit_material(ctx, 1.0);
+        dispatch::glEnable(ctx, gl::GL_LIGHT0);
+        // Towards the light: up in z and +x, so shadows fall 2 units to −x from z = −3 to −5.
+        let position = [1.0f32, 0.0, 1.0, 0.0];
+        dispatch::glLightfv(ctx, gl::GL_LIGHT0, gl::GL_POSITION, position.as_ptr());
+        quad(ctx, [-10.0, -10.0, 10.0, 10.0], -5.0);
+        dispatch::glEnable(ctx, gl::GL_TEXTURE_2D);
+        dispatch::glEnable(ctx, gl::GL_ALPHA_TEST);
+        dispatch::glAlphaFunc(ctx, gl::GL_GREATER, 0.5);
+        quad(ctx, [0.0, 0.0, 2.0, 2.0], -3.0);
+        dispatch::glDisable(ctx, gl::GL_ALPHA_TEST);
+        dispatch::glDisable(ctx, gl::GL_TEXTURE_2D);
+    });
+    // Window x of eye-space x on the floor (z = −5) with the 60° camera.
+    let column = |x: f32| ((x / (5.0 * 30f32.to_radians().tan()) * 0.5 + 0.5) * SIZE as f32) as i32;
+    let row = column(1.0);
+    let at = |x: i32| image[(row * SIZE + x) as usize][0];
+    let lit = encoded(std::f64::consts::FRAC_1_SQRT_2);
+    assert!((at(column(-1.5)) as f64 - lit).abs() <= 1.5, "behind the transparent half the floor is lit: {} against {lit:.1}", at(column(-1.5)));
+    assert_eq!(at(column(-0.5)), 0, "behind the opaque half the floor is in shadow");
+    assert!((at(column(-2.5)) as f64 - lit).abs() <= 1.5, "beside the shadow the floor is lit");
+}
