@@ -200,7 +200,7 @@ impl Config {
                 warnings.push(format!("{}: {key}: expected a table ([{key}]), found {}; the defaults are used", at(), shown(value)));
             }
         }
-        table.retain(|key, value| TABLES.iter().any(|t| *t == key) && value.is_table());
+        table.retain(|key, value| TABLES.contains(&key) && value.is_table());
         if let Some(toml::Value::Table(materials)) = table.get("materials") {
             config.materials = config.read_materials(materials, &mut warnings);
         }
@@ -410,8 +410,8 @@ mod tests {
     impl Table for Knobs {
         const NAME: &'static str = "pathtrace";
         const KEYS: &'static [Key<Knobs>] = &[
-            Key { name: "count", set: |k, v| Ok(k.count = integer_in(v, 1..=8)?) },
-            Key { name: "mode", set: |k, v| Ok(k.mode = one_of(v, &["a", "b"])?) },
+            Key { name: "count", set: |k, v| integer_in(v, 1..=8).map(|x| k.count = x) },
+            Key { name: "mode", set: |k, v| one_of(v, &["a", "b"]).map(|i| k.mode = i) },
         ];
     }
 
