@@ -424,11 +424,11 @@ impl Scene {
                     }
                 }
                 Light::Point { position, intensity } => {
-                    let d = position - origin;
+                    let d = position - p;
                     let dist = d.length();
                     let wi = d / dist;
                     let cos = n.dot(wi);
-                    if cos > 0.0 && !self.occluded(origin, wi, dist) {
+                    if cos > 0.0 && !self.occluded(origin, wi, (position - origin).length()) {
                         e += intensity * cos / (dist * dist);
                     }
                 }
@@ -436,11 +436,11 @@ impl Scene {
         }
         for emitter in self.surfaces.iter().filter(|s| s.emission != DVec3::ZERO) {
             let (q, nq) = emitter.sample_point(rng);
-            let d = q - origin;
+            let d = q - p;
             let dist = d.length();
             let wi = d / dist;
             let (cos, cos_q) = (n.dot(wi), -nq.dot(wi));
-            if cos > 0.0 && cos_q > 0.0 && !self.occluded(origin, wi, dist * (1.0 - 1e-9) - RAY_OFFSET) {
+            if cos > 0.0 && cos_q > 0.0 && !self.occluded(origin, wi, dist - 2.0 * RAY_OFFSET) {
                 e += emitter.emission * (cos * cos_q * emitter.area() / (dist * dist));
             }
         }
@@ -577,8 +577,9 @@ pub enum CornellLight {
     /// A 0.5 × 0.5 square emitter (surface `"light"`, radiance 12, albedo 0.78) facing down
     /// 0.005 below the ceiling's centre.
     Area,
-    /// A point light of intensity 2.5 W/sr at `(0, 0.9, -3.6)`, 0.1 below the ceiling's
-    /// centre: what a GL 1.x program (which has no area lights) can express.
+    /// A point light of intensity 2 W/sr at `(0, 0.6, -3.6)`, 0.4 below the ceiling's centre:
+    /// what a GL 1.x program (which has no area lights) can express. (Closer to the ceiling, the
+    /// hot spot above it makes indirect light converge much more slowly.)
     Point,
 }
 
@@ -611,7 +612,7 @@ pub fn cornell_box(light: CornellLight) -> Scene {
             Vec::new()
         }
         CornellLight::Point => {
-            vec![Light::Point { position: DVec3::new(0.0, 0.9, -3.6), intensity: DVec3::splat(2.5) }]
+            vec![Light::Point { position: DVec3::new(0.0, 0.6, -3.6), intensity: DVec3::splat(2.0) }]
         }
     };
     Scene { surfaces, lights, environment: DVec3::ZERO, camera: Camera::perspective(40.0, 1.0, 1.0, 10.0) }
@@ -669,6 +670,6 @@ pub fn glowing_box(albedo: f64, emission: f64) -> Scene {
             .collect(),
         lights: Vec::new(),
         environment: DVec3::ZERO,
-        camera: Camera::perspective(60.0, 1.0, 0.1, 10.0),
+        camera: Camera::perspective(40.0, 1.0, 0.1, 10.0),
     }
 }
