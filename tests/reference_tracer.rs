@@ -1,7 +1,7 @@
 //! The CPU reference path tracer (`tests/common/reference_tracer.rs`) checked against physics it
 //! must reproduce before the GPU path tracer is compared with it: the white furnace, Lambert's
-//! cosine law, inverse-square point lights, the form factor of a rectangular emitter, the bounce
-//! series of a glowing enclosure, and colour bleeding in the Cornell box.
+//! cosine law, inverse-square point lights, the form factor of a rectangular emitter, a spherical
+//! emitter, the bounce series of a glowing enclosure, and colour bleeding in the Cornell box.
 //!
 //! Run `cargo test --test reference_tracer -- --ignored` to write `target/reference-cornell.png`
 //! and `target/reference-cornell-point.png` for eyeballing.
@@ -85,6 +85,36 @@ fn white_furnace_every_pixel_is_the_environment() {
 }
 
 #[test]
+fn white_furnace_holds_for_the_tessellated_sphere() {
+    // Any convex surface of albedo 1 works; this one can be drawn through GL as it is.
+    let mut scene = white_furnace();
+    let faces = tessellate_sphere(DVec3::new(0.0, 0.0, -3.0), 1.0, 12, 6);
+    assert_eq!(faces.len(), 72);
+    for face in &faces {
+        let (corners, centroid) = match *face {
+            Shape::Triangle(t) => (vec![t[0], t[1], t[2]], (t[0] + t[1] + t[2]) / 3.0),
+            Shape::Quad(q) => (q.to_vec(), (q[0] + q[1] + q[2] + q[3]) / 4.0),
+            Shape::Sphere { .. } => unreachable!("faces are flat"),
+        };
+        let normal = (corners[1] - corners[0]).cross(corners[2] - corners[0]);
+        assert!(normal.dot(centroid - DVec3::new(0.0, 0.0, -3.0)) > 0.0, "{face:?} faces inwards");
+        if let [a, _, _, d] = corners[..] {
+            assert!(normal.dot(d - a).abs() < 1e-12, "{face:?} is not planar");
+        }
+    }
+    scene.surfaces = faces.into_iter().map(|shape| Surface::new("facet", shape, DVec3::ONE)).collect();
+    let image = scene.render(&Settings::new(16, 16, 4, 3));
+    let lit = (0..16).filter(|&y| scene.intersect(DVec3::ZERO, scene.camera.pixel_center(16, 16, 8, y), 1e9).is_some());
+    assert!(lit.count() > 4, "the sphere is in view");
+    for y in 0..16 {
+        for x in 0..16 {
+            let what = format!("pixel ({x}, {y})");
+            assert_within(&what, image.at(x, y), DVec3::ONE, image.error_at(x, y), 3.0, 1e-9);
+        }
+    }
+}
+
+#[test]
 fn lit_plane_follows_lamberts_cosine_law() {
     let albedo = DVec3::new(0.8, 0.5, 0.2);
     let irradiance = DVec3::new(PI, 2.0, 1.0);
@@ -140,23 +170,48 @@ fn corner_form_factor(a: f64, b: f64, c: f64) -> f64 {
 
 #[test]
 fn rectangular_emitter_matches_its_form_factor() {
-    // A 1 × 0.6 emitter 0.5 in front of the lit plane (z = −2), facing it.
+    // A 1 × 0.6 emitter 0.5 in front of the lit plane (z = −2), facing it: as a quad, then as
+    // two triangles. Its front faces −z (towards the plane): corners counter-clockwise from there.
     let albedo = DVec3::splat(0.5);
     let emission = DVec3::new(4.0, 2.0, 1.0);
+    let [a, b, c, d] = [(-0.5, -0.3), (-0.5, 0.3), (0.5, 0.3), (0.5, -0.3)].map(|(x, y)| DVec3::new(x, y, -1.5));
+    let expected = albedo * emission * 4.0 * corner_form_factor(0.5, 0.3, 0.5);
+    for shapes in [vec![Shape::Quad([a, b, c, d])], vec![Shape::Triangle([a, b, c]), Shape::Triangle([a, c, d])]] {
+        let mut scene = lit_plane(0.0, albedo, DVec3::ZERO);
+        scene.lights.clear();
+        for shape in shapes {
+            scene.surfaces.push(Surface { name: "emitter", shape, albedo: DVec3::ZERO, emission });
+        }
+        let settings = Settings::new(1, 1, 2, 0);
+        // Look at the plane right below the emitter's centre from between the two.
+        let (l, error) = ray_estimate(&scene, DVec3::new(0.0, 0.0, -1.9), DVec3::NEG_Z, &settings, 20_000);
+        assert!(error.x < 0.01 * l.x, "standard error {error} of {l}");
+        assert_within("rectangle", l, expected, error, 4.0, 0.0);
+        // Seen from behind, the emitter neither emits nor lights anything in front of it.
+        let (back, _) = ray_estimate(&scene, DVec3::new(0.0, 0.0, -1.0), DVec3::NEG_Z, &settings, 4);
+        assert_eq!(back, DVec3::ZERO);
+    }
+}
+
+#[test]
+fn spherical_emitter_lights_like_a_point_of_intensity_pi_r2_le() {
+    // A sphere of radius r and radiance Le wholly above the horizon gives E = π Le r² cosθ / d².
+    let albedo = DVec3::splat(0.8);
+    let emission = DVec3::new(1.0, 2.0, 3.0);
     let mut scene = lit_plane(0.0, albedo, DVec3::ZERO);
     scene.lights.clear();
-    let corners = [(-0.5, -0.3), (-0.5, 0.3), (0.5, 0.3), (0.5, -0.3)].map(|(x, y)| DVec3::new(x, y, -1.5));
-    scene.surfaces.push(Surface { name: "emitter", shape: Shape::Quad(corners), albedo: DVec3::ZERO, emission });
-    // Its front faces −z (towards the plane): corners counter-clockwise seen from there.
-    let form_factor = 4.0 * corner_form_factor(0.5, 0.3, 0.5);
+    let sphere = Shape::Sphere { center: DVec3::new(0.0, 0.0, -1.0), radius: 0.2 };
+    scene.surfaces.push(Surface { name: "ball", shape: sphere, albedo: DVec3::ZERO, emission });
     let settings = Settings::new(1, 1, 2, 0);
-    // Look at the plane right below the emitter's centre from between the two.
-    let (l, error) = ray_estimate(&scene, DVec3::new(0.0, 0.0, -1.9), DVec3::NEG_Z, &settings, 20_000);
-    assert!(error.x < 0.01 * l.x, "standard error {error} of {l}");
-    assert_within("rectangle", l, albedo * emission * form_factor, error, 4.0, 0.0);
-    // Seen from behind, the emitter neither emits nor lights anything in front of it.
-    let (back, _) = ray_estimate(&scene, DVec3::new(0.0, 0.0, -1.0), DVec3::NEG_Z, &settings, 4);
-    assert_eq!(back, DVec3::ZERO);
+    for target in [DVec3::new(0.0, 0.0, -2.0), DVec3::new(0.5, 0.0, -2.0)] {
+        let to_light = DVec3::new(0.0, 0.0, -1.0) - target;
+        let expected = albedo * emission * 0.04 * to_light.normalize().z / to_light.length_squared();
+        let origin = DVec3::new(0.3, -0.4, -1.9);
+        // Uniform area sampling wastes the far half of the sphere: more samples.
+        let (l, error) = ray_estimate(&scene, origin, (target - origin).normalize(), &settings, 80_000);
+        assert!(error.x < 0.01 * l.x, "standard error {error} of {l}");
+        assert_within(&format!("at {target}"), l, expected, error, 4.0, 0.0);
+    }
 }
 
 #[test]
@@ -226,4 +281,3 @@ fn save_cornell_png() {
         println!("{}", path.display());
     }
 }
-

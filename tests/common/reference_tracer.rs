@@ -186,15 +186,16 @@ impl Surface {
             let n = uniform_sphere(rng.next_f64(), rng.next_f64());
             return (center + n * radius, n);
         }
-        let areas: Vec<f64> = self.triangles().map(|[a, b, c]| (b - a).cross(c - a).length()).collect();
-        let mut pick = rng.next_f64() * areas.iter().sum::<f64>();
+        // Pick a triangle in proportion to its area (twice the area on both sides of `<`).
+        let mut pick = rng.next_f64() * 2.0 * self.area();
         let mut chosen = [DVec3::ZERO; 3];
-        for (t, area) in self.triangles().zip(&areas) {
+        for t in self.triangles() {
             chosen = t;
-            if pick < *area {
+            let double_area = (t[1] - t[0]).cross(t[2] - t[0]).length();
+            if pick < double_area {
                 break;
             }
-            pick -= area;
+            pick -= double_area;
         }
         let [a, b, c] = chosen;
         let su = rng.next_f64().sqrt();
@@ -403,6 +404,15 @@ impl Scene {
         self.surfaces.iter().any(|s| s.intersect(origin, dir, t_max).is_some())
     }
 
+    /// Whether the segment from `origin` to `target` is free, `target`'s own surface excluded:
+    /// the shadow ray aims at `target` itself (not along a direction measured from elsewhere),
+    /// so that the surface it lies on is met at the segment's end even at grazing angles.
+    fn visible(&self, origin: DVec3, target: DVec3) -> bool {
+        let d = target - origin;
+        let length = d.length();
+        !self.occluded(origin, d / length, length - RAY_OFFSET)
+    }
+
     /// Light arriving at `p` (normal `n`, facing the side being shaded) from every light and
     /// emitter, weighted by the cosine at `p`: one shadow-ray sample each. The BRDF is applied by
     /// the caller.
@@ -428,7 +438,7 @@ impl Scene {
                     let dist = d.length();
                     let wi = d / dist;
                     let cos = n.dot(wi);
-                    if cos > 0.0 && !self.occluded(origin, wi, (position - origin).length()) {
+                    if cos > 0.0 && self.visible(origin, position) {
                         e += intensity * cos / (dist * dist);
                     }
                 }
@@ -440,7 +450,7 @@ impl Scene {
             let dist = d.length();
             let wi = d / dist;
             let (cos, cos_q) = (n.dot(wi), -nq.dot(wi));
-            if cos > 0.0 && cos_q > 0.0 && !self.occluded(origin, wi, dist - 2.0 * RAY_OFFSET) {
+            if cos > 0.0 && cos_q > 0.0 && self.visible(origin, q) {
                 e += emitter.emission * (cos * cos_q * emitter.area() / (dist * dist));
             }
         }
@@ -564,6 +574,31 @@ fn block(name: &'static str, centre: (f64, f64), half: (f64, f64), height: f64, 
         quads.push(Surface::new(name, rect(a, b - a, up), albedo));
     }
     quads
+}
+
+/// A sphere as `slices × stacks` planar faces (triangles at the poles, trapezoids between),
+/// fronts outside, with `+y` as its axis: the same faces can be drawn through GL and traced here.
+pub fn tessellate_sphere(center: DVec3, radius: f64, slices: usize, stacks: usize) -> Vec<Shape> {
+    let point = |stack: usize, slice: usize| {
+        let theta = PI * stack as f64 / stacks as f64;
+        let phi = 2.0 * PI * slice as f64 / slices as f64;
+        center + DVec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin()) * radius
+    };
+    let mut faces = Vec::new();
+    for i in 0..stacks {
+        for j in 0..slices {
+            // Counter-clockwise seen from outside: down the meridian, then along the parallel.
+            let (a, b, c, d) = (point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1));
+            faces.push(if i == 0 {
+                Shape::Triangle([a, b, c])
+            } else if i == stacks - 1 {
+                Shape::Triangle([a, b, d])
+            } else {
+                Shape::Quad([a, b, c, d])
+            });
+        }
+    }
+    faces
 }
 
 /// Lambertian albedos of the classic Cornell box (linear RGB).
