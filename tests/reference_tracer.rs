@@ -271,7 +271,7 @@ fn cornell_box_bleeds_red_and_green_onto_the_floor() {
 }
 
 #[test]
-#[ignore = "writes target/reference-cornell*.png for eyeballing (about a minute in a debug build)"]
+#[ignore = "writes target/reference-cornell*.png for eyeballing (one to two minutes in a debug build on 2 cores)"]
 fn save_cornell_png() {
     let target = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).parent().expect("target dir").to_path_buf();
     for (light, name) in [(CornellLight::Area, "reference-cornell.png"), (CornellLight::Point, "reference-cornell-point.png")] {
