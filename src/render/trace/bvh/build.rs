@@ -96,11 +96,8 @@ impl Blas {
                 }
             });
             for (slot, b) in boxes.iter().enumerate() {
-                let fitted = if b.is_empty() { boxes[1 - slot] } else { *b };
-                let child = &mut self.nodes[n].children[slot];
-                let fitted = if fitted.is_empty() { Aabb { min: Vec3::ZERO, max: Vec3::ZERO } } else { fitted };
-                child.min = fitted.min.into();
-                child.max = fitted.max.into();
+                // An empty leaf takes its sibling's box, as when built.
+                self.nodes[n].children[slot].set_bounds(if b.is_empty() { boxes[1 - slot] } else { *b });
             }
         }
         self.bounds = clean.iter().fold(Aabb::EMPTY, |b, t| b.union(&Aabb::of_points(t)));

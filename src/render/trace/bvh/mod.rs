@@ -137,10 +137,19 @@ pub struct GpuChild {
 
 impl GpuChild {
     /// An empty leaf (no primitives) with the box `bounds` (the sibling's, so it costs no extra
-    /// box hits; zero when empty).
+    /// box hits).
     fn empty(bounds: Aabb) -> GpuChild {
+        let mut child = GpuChild { min: [0.0; 3], index: 0, max: [0.0; 3], meta: LEAF };
+        child.set_bounds(bounds);
+        child
+    }
+
+    /// Sets the child's box; an empty one is stored as the point at the origin (the GPU box
+    /// test swaps inverted bounds, so an inverted box would not miss).
+    fn set_bounds(&mut self, bounds: Aabb) {
         let b = if bounds.is_empty() { Aabb { min: Vec3::ZERO, max: Vec3::ZERO } } else { bounds };
-        GpuChild { min: b.min.into(), index: 0, max: b.max.into(), meta: LEAF }
+        self.min = b.min.into();
+        self.max = b.max.into();
     }
 
     /// The child's box.
