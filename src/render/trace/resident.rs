@@ -75,8 +75,8 @@ pub struct Resident {
     pub uploaded: u64,
 }
 
-/// Copies `bytes` through the ring into `dst` at byte `offset`.
-fn upload(device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, dst: vk::Buffer, offset: u64, bytes: &[u8]) -> Result<()> {
+/// Copies `bytes` through the ring into `dst` at byte `offset` (recorded into `cmd`).
+pub fn upload(device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, dst: vk::Buffer, offset: u64, bytes: &[u8]) -> Result<()> {
     if bytes.is_empty() {
         return Ok(());
     }

@@ -189,7 +189,7 @@ pub fn pack_unorm8(c: [f32; 4]) -> u32 {
 /// (which the shaders read as "no normal").
 pub fn pack_normal(n: Vec3) -> u32 {
     let sum = n.x.abs() + n.y.abs() + n.z.abs();
-    if !(sum > 0.0) || !sum.is_finite() {
+    if sum.is_nan() || sum <= 0.0 || sum.is_infinite() {
         return 0;
     }
     let n = n / sum;

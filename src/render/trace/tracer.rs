@@ -249,18 +249,12 @@ impl Tracer {
             let capacity = needed.next_power_of_two();
             let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
             self.texel_buffer = Some((device.create_buffer("glrt texel pool", capacity as u64 * 4, usage, MemoryLocation::GpuOnly)?, capacity));
-            vec![0..words.len()]
+            std::iter::once(0..words.len()).collect()
         } else {
             ranges
         };
         let Some((buffer, _)) = &self.texel_buffer else { return Ok(()) };
-        for range in ranges.into_iter().filter(|r| !r.is_empty()) {
-            let src = ring.push(device, bytemuck::cast_slice(&words[range.clone()]), 16)?;
-            let region = [vk::BufferCopy { src_offset: src.offset, dst_offset: range.start as u64 * 4, size: range.len() as u64 * 4 }];
-            // Safety: both buffers live for the frame; the range lies in both.
-            unsafe { device.raw.cmd_copy_buffer(cmd, src.buffer, buffer.raw, &region) };
-        }
-        Ok(())
+        ranges.into_iter().try_for_each(|range| super::resident::upload(device, cmd, ring, buffer.raw, range.start as u64 * 4, bytemuck::cast_slice(&words[range])))
     }
 
     /// (Re)creates the per-pixel buffers for a traced image of `size`.
