@@ -48,6 +48,12 @@ pub struct Totals {
     pub trace_seconds: f64,
     /// Frames whose pass time is in `trace_seconds`.
     pub timed_frames: u64,
+    /// Frames recorded, and the triangles and instances of their traced scenes, summed.
+    pub scenes: u64,
+    /// See `scenes`.
+    pub scene_triangles: u64,
+    /// See `scenes`.
+    pub scene_instances: u64,
 }
 
 impl Totals {
@@ -67,6 +73,13 @@ impl Totals {
         }
     }
 
+    /// Adds one recorded frame's traced scene.
+    pub fn add_scene(&mut self, triangles: u64, instances: u64) {
+        self.scenes += 1;
+        self.scene_triangles += triangles;
+        self.scene_instances += instances;
+    }
+
     /// One line: per-frame averages and, when every frame was timed, rays per second of the
     /// tracing pass by kind.
     pub fn summary(&self) -> String {
@@ -76,9 +89,12 @@ impl Totals {
         let n = self.frames as f64;
         let r = &self.rays;
         let per_ray = |work: u64| work as f64 / r.total().max(1) as f64;
+        let scenes = self.scenes.max(1) as f64;
         let mut line = format!(
-            "path tracer: {} frames; per frame: {:.0} primary, {:.0} shadow, {:.0} diffuse, {:.0} specular rays; per ray: {:.1} nodes, {:.1} triangle tests",
+            "path tracer: {} frames; scene: {:.0} triangles in {:.0} instances; per frame: {:.0} primary, {:.0} shadow, {:.0} diffuse, {:.0} specular rays; per ray: {:.1} nodes, {:.1} triangle tests",
             self.frames,
+            self.scene_triangles as f64 / scenes,
+            self.scene_instances as f64 / scenes,
             r.primary as f64 / n,
             r.shadow as f64 / n,
             r.diffuse as f64 / n,
@@ -120,8 +136,10 @@ mod tests {
         let frame = RayCounts { primary: 1_000_000, shadow: 2_000_000, diffuse: 500_000, specular: 0, nodes_visited: 35_000_000, triangles_tested: 7_000_000 };
         t.add(frame, Some(0.001));
         t.add(frame, Some(0.001));
+        t.add_scene(1000, 3);
+        t.add_scene(3000, 5);
         let s = t.summary();
-        assert!(s.contains("2 frames"), "{s}");
+        assert!(s.contains("2 frames; scene: 2000 triangles in 4 instances"), "{s}");
         assert!(s.contains("per ray: 10.0 nodes, 2.0 triangle tests"), "{s}");
         assert!(s.contains("tracing pass 1.000 ms per frame; Mrays/s: 1000.0 primary, 2000.0 shadow, 500.0 diffuse, 0.0 specular, 3500.0 all"), "{s}");
         t.add(frame, None);
