@@ -84,6 +84,7 @@ impl Context {
         };
         self.frame.read_buffer = self.read_color_buffer();
         self.frame.read_framebuffer = framebuffer;
+        self.classify.route_partial(&mut self.frame);
         self.sink.read_pixels(&self.frame, buffer, rect)
     }
 

@@ -175,13 +175,7 @@ impl Classifier {
         self.traced.clear();
         self.probes.clear();
         for (i, draw) in frame.draws.iter_mut().enumerate() {
-            let mut hashes = [0u64; crate::translate::limits::MAX_TEXTURE_UNITS];
-            let mut n = 0;
-            for t in draw.textures.iter().flatten().take(hashes.len()) {
-                (hashes[n], n) = (self.textures.hash(t), n + 1);
-            }
-            let unit0 = draw.textures.first().and_then(Option::as_ref).map(|_| hashes[0]);
-            let tags = self.config.tags(hashes[..n].iter().copied());
+            let (tags, unit0) = self.tags_of(draw);
             draw.instance = None;
             if let Some(class) = routing::raster_class(draw, !self.traced.is_empty(), tags) {
                 draw.class = class;
@@ -198,6 +192,35 @@ impl Classifier {
             let material = self.config.material(unit0, tags);
             let [m0, m1] = material.key();
             self.traced.push(Traced { draw: i, tags, geometry, material_key: keys::combine(&[texture, state, m0, m1]), material });
+        }
+    }
+}
+
+impl Classifier {
+    /// The `glrt.toml` tags of `draw`'s textures, and the hash of unit 0's texture.
+    fn tags_of(&mut self, draw: &Draw) -> (Tags, Option<u64>) {
+        let mut hashes = [0u64; crate::translate::limits::MAX_TEXTURE_UNITS];
+        let mut n = 0;
+        for t in draw.textures.iter().flatten().take(hashes.len()) {
+            (hashes[n], n) = (self.textures.hash(t), n + 1);
+        }
+        let unit0 = draw.textures.first().and_then(Option::as_ref).map(|_| hashes[0]);
+        (self.config.tags(hashes[..n].iter().copied()), unit0)
+    }
+
+    /// Routes the draws of a frame read back before it ends (`glReadPixels` before the swap),
+    /// so that the renderer traces what it will trace when the frame ends: a raster class by
+    /// the rules of [`routing`], or `Dynamic` for a traced draw (its exact class needs the whole
+    /// frame's matching; [`Classifier::classify`] replaces every class when the frame ends).
+    /// Draws routed by an earlier read-back keep their class.
+    pub fn route_partial(&mut self, frame: &mut Frame) {
+        let mut traced_before = false;
+        for draw in &mut frame.draws {
+            if draw.class == DrawClass::Unclassified {
+                let (tags, _) = self.tags_of(draw);
+                draw.class = routing::raster_class(draw, traced_before, tags).unwrap_or(DrawClass::Dynamic);
+            }
+            traced_before |= draw.class.is_traced();
         }
     }
 }
@@ -307,6 +330,20 @@ mod tests {
         assert!(f3.stats.camera_cut && f3.stats.static_chunks_released > 0, "{:?}", f3.stats);
         assert_eq!(f3.stats.static_world_triangles, 0);
         assert!(f3.draws[0].instance.unwrap().previous_modelview.is_none());
+    }
+
+    #[test]
+    fn a_frame_read_back_before_it_ends_is_routed_as_its_end_will_be() {
+        let mut c = Classifier::with_config(config::Config::default());
+        let camera = Mat4::from_translation(Vec3::new(0.0, -1.0, -20.0));
+        let mut hud = draw(2, 0.0, Mat4::IDENTITY);
+        hud.projection = Mat4::from_scale(Vec3::new(1.0 / 32.0, 1.0 / 32.0, -1.0)); // glOrtho: last row (0, 0, 0, 1)
+        let mut frame = Frame { number: 0, draws: vec![draw(8, 0.0, camera), hud], ..Frame::default() };
+        c.route_partial(&mut frame);
+        assert_eq!([frame.draws[0].class, frame.draws[1].class], [DrawClass::Dynamic, DrawClass::Overlay]);
+        // The end of the frame gives the traced draw its class from matching.
+        c.classify(&mut frame, |_| None);
+        assert_eq!([frame.draws[0].class, frame.draws[1].class], [DrawClass::Static, DrawClass::Overlay]);
     }
 
     #[test]
