@@ -349,8 +349,17 @@ impl Tracer {
             let groups = [gpu_frame.size[0].div_ceil(GROUP), gpu_frame.size[1].div_ceil(GROUP)];
             d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.layout, 0, &[sets[0]], &[]);
             d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.pathtrace);
-            d.cmd_dispatch(cmd, groups[0], groups[1], 1);
-            barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+            // One dispatch per sample, each adding its share to the G-buffer's radiance. Lavapipe
+            // (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS) stops every loop of a shader after the
+            // loops of one call of it (a SIMD batch of invocations) have run 65535 iterations
+            // in all; one invocation tracing every sample of its pixel (a traversal loop per
+            // ray) silently lost the light of the later samples: beyond about 48 samples of 3
+            // bounces in tests/pathtrace_cornell.rs's Cornell box.
+            for sample in 0..gpu_frame.counts[1] {
+                d.cmd_push_constants(cmd, self.pipelines.layout, vk::ShaderStageFlags::COMPUTE, 0, &sample.to_ne_bytes());
+                d.cmd_dispatch(cmd, groups[0], groups[1], 1);
+                barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+            }
             d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.resolve);
             d.cmd_dispatch(cmd, groups[0], groups[1], 1);
             barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::HOST);
