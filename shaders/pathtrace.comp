@@ -2,14 +2,22 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
-// The compute path tracer's tracing pass: per traced pixel, `samples` paths of a primary ray,
+// The compute path tracer's tracing pass: per traced pixel, one path of a primary ray,
 // next-event estimation at every vertex (one shadow ray per light), `bounces` indirect
-// bounces and the environment through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular); writes the noisy radiance
-// and the primary hit's G-buffer (trace/gbuffer.glsl). src/render/trace/mod.rs describes the
-// scene it reads. Ray counts and traversal work are summed per subgroup (subgroup arithmetic,
-// which lavapipe and the desktop drivers have) and added to the counters once per subgroup.
+// bounces and the environment through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular); adds its
+// share of the noisy radiance (1 / `samples`) to the G-buffer, which sample 0 writes with the
+// primary hit (trace/gbuffer.glsl). The tracer dispatches this pass once per sample of the
+// frame (see `record_passes` in src/render/trace/tracer.rs for why). src/render/trace/mod.rs
+// describes the scene it reads. Ray counts and traversal work are summed per subgroup (subgroup
+// arithmetic, which lavapipe and the desktop drivers have) and added to the counters once per
+// subgroup.
 
 layout(local_size_x = 8, local_size_y = 8) in;
+
+// The sample of the frame this dispatch traces, 0 to samples - 1.
+layout(push_constant) uniform Pass {
+    uint sample_index;
+} pass;
 
 #include "trace/lights.glsl"
 #include "trace/gbuffer.glsl"
@@ -45,7 +53,7 @@ void main() {
     // Window pixels per traced pixel.
     vec2 scale = vec2(frame.size.zw) / vec2(size);
 
-    vec3 radiance_sum = vec3(0.0);
+    uint sample_index = pass.sample_index;
     GSample g;
     g.radiance = vec4(0.0);
     g.albedo = 0u;
@@ -57,7 +65,8 @@ void main() {
     g.instance = 0xffffffffu;
     uint primary = 0u, shadow = 0u, diffuse = 0u, specular = 0u;
 
-    for (uint sample_index = 0u; inside && sample_index < samples; sample_index++) {
+    vec3 radiance = vec3(0.0);
+    if (inside) {
         Rng rng = rng_seed(pixel, frame.counts.x, sample_index);
         // The first sample of a frame goes through the pixel centre, so the G-buffer is stable.
         vec2 jitter = sample_index == 0u ? vec2(0.5) : rng_next2(rng);
@@ -66,7 +75,6 @@ void main() {
         camera_ray(window, origin, dir);
         bool in_viewport = all(greaterThanEqual(window, frame.viewport.xy)) && all(lessThan(window, frame.viewport.xy + frame.viewport.zw));
         vec3 throughput = vec3(1.0);
-        vec3 radiance = vec3(0.0);
         float cone_width = 0.0;
         float cone_spread = frame.params.w * max(scale.x, scale.y);
         primary += 1u;
@@ -131,12 +139,14 @@ void main() {
                 break;
             }
         }
-        radiance_sum += radiance;
     }
 
-    if (inside) {
-        g.radiance = vec4(radiance_sum / float(samples), 1.0);
-        gbuffer[pixel.y * size.x + pixel.x] = g;
+    uint index = pixel.y * size.x + pixel.x;
+    if (inside && sample_index == 0u) {
+        g.radiance = vec4(radiance / float(samples), 1.0);
+        gbuffer[index] = g;
+    } else if (inside) {
+        gbuffer[index].radiance.rgb += radiance / float(samples);
     }
     // One atomic per subgroup and counter.
     uvec4 rays = subgroupAdd(uvec4(primary, shadow, diffuse, specular));

@@ -16,6 +16,9 @@ use crate::render::raster::target::COLOR_FORMAT;
 /// Push constants of the composite: traced size and framebuffer size.
 pub const COMPOSITE_PUSH_BYTES: u32 = 16;
 
+/// Push constants of the compute pipelines: the sample a tracing dispatch traces (`pathtrace.comp`'s `Pass`).
+pub const TRACE_PUSH_BYTES: u32 = 4;
+
 /// Local size of both compute shaders, in each dimension.
 pub const GROUP: u32 = 8;
 
@@ -68,9 +71,12 @@ impl TracePipelines {
     pub fn new(device: &Device) -> Result<TracePipelines> {
         let set_layout = storage_layout(device, bindings::COUNT, vk::ShaderStageFlags::COMPUTE)?;
         let set_layouts = [set_layout];
+        let trace_push = [vk::PushConstantRange { stage_flags: vk::ShaderStageFlags::COMPUTE, offset: 0, size: TRACE_PUSH_BYTES }];
         // Safety (this block): valid create infos; objects are destroyed in `destroy`.
-        let layout = unsafe { device.raw.create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts), None) }
-            .check("vkCreatePipelineLayout")?;
+        let layout = unsafe {
+            device.raw.create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts).push_constant_ranges(&trace_push), None)
+        }
+        .check("vkCreatePipelineLayout")?;
         let pathtrace = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/pathtrace.comp.spv")))?;
         let resolve = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/trace_resolve.comp.spv")))?;
         let composite_set_layout = storage_layout(device, 1, vk::ShaderStageFlags::FRAGMENT)?;

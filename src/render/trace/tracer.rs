@@ -368,12 +368,21 @@ impl Tracer {
                 d.cmd_reset_query_pool(cmd, pool, 2 * slot as u32, 2);
                 d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, 2 * slot as u32);
             }
-            d.cmd_dispatch(cmd, groups[0], groups[1], 1);
+            // One dispatch per sample, each adding its share to the G-buffer's radiance. Lavapipe
+            // (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS) stops every loop of a shader after the
+            // loops of one call of it (a SIMD batch of invocations) have run 65535 iterations
+            // in all; one invocation tracing every sample of its pixel (a traversal loop per
+            // ray) silently lost the light of the later samples: beyond about 48 samples of 3
+            // bounces in tests/pathtrace_cornell.rs's Cornell box.
+            for sample in 0..gpu_frame.counts[1] {
+                d.cmd_push_constants(cmd, self.pipelines.layout, vk::ShaderStageFlags::COMPUTE, 0, &sample.to_ne_bytes());
+                d.cmd_dispatch(cmd, groups[0], groups[1], 1);
+                barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+            }
             if let Some(pool) = self.timestamps {
                 d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, 2 * slot as u32 + 1);
             }
             self.unread[slot] = true;
-            barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
             d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.resolve);
             d.cmd_dispatch(cmd, groups[0], groups[1], 1);
             barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::HOST);
