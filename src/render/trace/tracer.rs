@@ -94,7 +94,7 @@ impl Tracer {
             settings,
             pipelines,
             resident: Resident::default(),
-            texels: TexelPool::default(),
+            texels: TexelPool::new(super::texels::MAX_WORDS, slots),
             texel_buffer: None,
             pixels: None,
             counters,
