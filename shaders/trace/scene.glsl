@@ -67,7 +67,7 @@ layout(set = TRACE_SET, binding = BINDING_MATERIALS, std430) readonly buffer Mat
 
 struct Light {
     vec4 position;  // eye space; w = 0: directional, xyz = unit direction towards the light
-    vec4 radiance;  // directional: irradiance at normal incidence; point: intensity (rgb); a: radius
+    vec4 radiance;  // directional: irradiance at normal incidence; point: intensity (rgb); a: sphere radius (0: a point)
     vec4 spot;      // unit direction the spot points at; w: cos(cutoff), or -2 without a spot
     vec4 params;    // x: spot exponent; y: cos of a directional light's angular radius
 };

@@ -179,7 +179,8 @@ impl Tracer {
             signature.update(bytemuck::cast_slice(&draw.modelview.to_cols_array()));
         }
         let tlas = Tlas::build(&bounds);
-        let light_settings = LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction };
+        let light_settings =
+            LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction, radius: self.settings.light_radius };
         let gl_lights = draws.iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));
         let lights: Vec<GpuLight> = lights::gather(gl_lights, frame.view.as_ref().map(|v| &v.view), &light_settings);
         signature.update(bytemuck::cast_slice(&lights));
