@@ -2,7 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // The compute path tracer's tracing pass: per traced pixel, `samples` paths of a primary ray,
 // next-event estimation at every vertex (one shadow ray per light), `bounces` indirect
-// bounces and the environment through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular); writes the noisy radiance
+// bounces and the environment through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular); a path ends on a
+// baked surface (a kept lightmap, render::trace::scene), which only emits; writes the noisy radiance
 // and the primary hit's G-buffer (trace/gbuffer.glsl). src/render/trace/mod.rs describes the
 // scene it reads.
 
@@ -100,6 +101,9 @@ void main() {
                 g.instance = hit.instance;
             }
             radiance += throughput * s.emission;
+            if (s.baked) {
+                break;
+            }
             for (uint i = 0u; i < light_count; i++) {
                 radiance += throughput * direct_light(s, v, i, rng, shadow);
             }

@@ -8,7 +8,7 @@ mod reference_tracer;
 
 use glam::DVec3;
 use glrt::render::raster::renderer::Renderer;
-use glrt::render::trace::settings::{Settings, Tonemap};
+use glrt::render::trace::settings::{Lightmaps, Settings, Tonemap};
 use glrt::translate::{Context, dispatch, gl};
 
 const SIZE: i32 = 24;
@@ -195,6 +195,139 @@ fn alpha_tested_geometry_casts_cut_out_shadows() {
     assert!((at(column(-1.5)) as f64 - lit).abs() <= 1.5, "behind the transparent half the floor is lit: {} against {lit:.1}", at(column(-1.5)));
     assert_eq!(at(column(-0.5)), 0, "behind the opaque half the floor is in shadow");
     assert!((at(column(-2.5)) as f64 - lit).abs() <= 1.5, "beside the shadow the floor is lit");
+}
+
+/// A `levels.len()` × 1 texture of opaque grey texels `levels`, nearest-filtered, bound to the
+/// active unit.
+fn grey_texture(ctx: &mut Context, levels: &[u8]) -> u32 {
+    let texels: Vec<u8> = levels.iter().flat_map(|&v| [v, v, v, 255]).collect();
+    let mut texture = 0u32;
+    unsafe {
+        dispatch::glGenTextures(ctx, 1, &mut texture);
+        dispatch::glBindTexture(ctx, gl::GL_TEXTURE_2D, texture);
+        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        let width = levels.len() as i32;
+        dispatch::glTexImage2D(ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, width, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+    }
+    texture
+}
+
+/// How unit 1 combines its lightmap with unit 0's result.
+#[derive(Clone, Copy)]
+enum UnitOne {
+    /// `GL_MODULATE`.
+    Modulate,
+    /// `GL_COMBINE`: `MODULATE` of `TEXTURE` and `PREVIOUS`, `RGB_SCALE` 2 (an overbright lightmap).
+    Overbright,
+    /// `GL_DECAL` (not a lightmap).
+    Decal,
+}
+
+/// Unlit quads (corners in order) textured with `albedo` on unit 0 and `lightmap` on unit 1
+/// combined by `unit_one`; both units' (s, t) run from (0, 0) at the first corner to (1, 1) at
+/// the third.
+fn lightmapped_quads(ctx: &mut Context, albedo: u32, lightmap: u32, unit_one: UnitOne, quads: &[[[f32; 3]; 4]]) {
+    unsafe {
+        dispatch::glActiveTexture(ctx, gl::GL_TEXTURE0);
+        dispatch::glEnable(ctx, gl::GL_TEXTURE_2D);
+        dispatch::glBindTexture(ctx, gl::GL_TEXTURE_2D, albedo);
+        dispatch::glActiveTexture(ctx, gl::GL_TEXTURE1);
+        dispatch::glEnable(ctx, gl::GL_TEXTURE_2D);
+        dispatch::glBindTexture(ctx, gl::GL_TEXTURE_2D, lightmap);
+        let env = |ctx: &mut Context, pname, value: u32| dispatch::glTexEnvi(ctx, gl::GL_TEXTURE_ENV, pname, value as i32);
+        match unit_one {
+            UnitOne::Modulate => env(ctx, gl::GL_TEXTURE_ENV_MODE, gl::GL_MODULATE),
+            UnitOne::Decal => env(ctx, gl::GL_TEXTURE_ENV_MODE, gl::GL_DECAL),
+            UnitOne::Overbright => {
+                env(ctx, gl::GL_TEXTURE_ENV_MODE, gl::GL_COMBINE);
+                env(ctx, gl::GL_COMBINE_RGB, gl::GL_MODULATE);
+                env(ctx, gl::GL_SOURCE0_RGB, gl::GL_TEXTURE);
+                env(ctx, gl::GL_SOURCE1_RGB, gl::GL_PREVIOUS);
+                dispatch::glTexEnvf(ctx, gl::GL_TEXTURE_ENV, gl::GL_RGB_SCALE, 2.0);
+            }
+        }
+        dispatch::glBegin(ctx, gl::GL_QUADS);
+        for quad in quads {
+            for (corner, [s, t]) in quad.iter().zip([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]) {
+                dispatch::glMultiTexCoord2f(ctx, gl::GL_TEXTURE0, s, t);
+                dispatch::glMultiTexCoord2f(ctx, gl::GL_TEXTURE1, s, t);
+                dispatch::glVertex3f(ctx, corner[0], corner[1], corner[2]);
+            }
+        }
+        dispatch::glEnd(ctx);
+        dispatch::glDisable(ctx, gl::GL_TEXTURE_2D);
+        dispatch::glActiveTexture(ctx, gl::GL_TEXTURE0);
+        dispatch::glDisable(ctx, gl::GL_TEXTURE_2D);
+    }
+}
+
+/// The sRGB decoding continued past 1 (`shaders/trace/pack.glsl`, `srgb_decode`).
+fn decoded(v: f64) -> f64 {
+    if v <= 0.04045 { v / 12.92 } else { ((v + 0.055) / 1.055).powf(2.4) }
+}
+
+/// A lightmapped quad filling the view (albedo texture grey 200, lightmap 64 left of x = 0 and
+/// 192 right of it) in front of an environment and no lights. Ignored, the lightmap leaves an
+/// unlit surface: black before a black environment. Kept, the surface shows its baked light,
+/// albedo × lightmap (scene.rs), and reflects no traced light: the same values before a grey
+/// environment. `RGB_SCALE` 2 scales the encoded lightmap before decoding; a decal on unit 1 is
+/// not a lightmap.
+#[test]
+fn kept_lightmaps_show_their_baked_light_and_ignored_ones_none() {
+    let quad = [[-10.0, -10.0, -3.0], [10.0, -10.0, -3.0], [10.0, 10.0, -3.0], [-10.0, 10.0, -3.0]];
+    let image = |lightmaps: Lightmaps, unit_one: UnitOne, environment: f32| {
+        let mut ctx = context(Settings { spp: 1, bounces: 1, lightmaps, ..Settings::default() });
+        let albedo = grey_texture(&mut ctx, &[200]);
+        let lightmap = grey_texture(&mut ctx, &[64, 192]);
+        let image = render(&mut ctx, 2, [environment; 3], |ctx| lightmapped_quads(ctx, albedo, lightmap, unit_one, &[quad]));
+        // Row 12, a column each side of x = 0.
+        [image[(12 * SIZE + 4) as usize][0], image[(12 * SIZE + 19) as usize][0]]
+    };
+    let albedo = linear(200);
+    let modulated = [64u8, 192].map(|l| encoded(albedo * linear(l)));
+    assert_eq!(image(Lightmaps::Ignore, UnitOne::Modulate, 0.0), [0, 0], "ignored: nothing lights the quad");
+    let kept = image(Lightmaps::Keep, UnitOne::Modulate, 0.5);
+    for (got, want) in kept.iter().zip(modulated) {
+        assert!((*got as f64 - want).abs() <= 1.0, "kept: {kept:?} against {modulated:?}");
+    }
+    let overbright = image(Lightmaps::Keep, UnitOne::Overbright, 0.5);
+    let want = encoded(albedo * decoded(2.0 * 64.0 / 255.0));
+    assert!((overbright[0] as f64 - want).abs() <= 1.0, "RGB_SCALE 2: {overbright:?} against {want:.1}");
+    assert_eq!(overbright[1], 255, "2 × 192 saturates the display, as in GL");
+    assert_eq!(image(Lightmaps::Keep, UnitOne::Decal, 0.0), [0, 0], "a decal on unit 1 is not baked light");
+}
+
+/// A white Lambertian sphere inside a lightmapped box (white albedo, lightmap grey `v`) and no
+/// lights: the box's walls emit their baked radiance linear(v) and the sphere, lit only by them
+/// (one bounce), reflects exactly that — the whole image reads `v`, as a white furnace does.
+/// Ignored, the lightmap lights nothing and everything is black.
+#[test]
+fn baked_surfaces_light_the_others_once() {
+    let h = 10.0f32;
+    let box_faces = [
+        [[-h, -h, -h], [h, -h, -h], [h, h, -h], [-h, h, -h]],
+        [[-h, -h, h], [h, -h, h], [h, h, h], [-h, h, h]],
+        [[-h, -h, -h], [-h, h, -h], [-h, h, h], [-h, -h, h]],
+        [[h, -h, -h], [h, h, -h], [h, h, h], [h, -h, h]],
+        [[-h, -h, -h], [h, -h, -h], [h, -h, h], [-h, -h, h]],
+        [[-h, h, -h], [h, h, -h], [h, h, h], [-h, h, h]],
+    ];
+    for (lightmaps, want) in [(Lightmaps::Keep, 150u8), (Lightmaps::Ignore, 0)] {
+        let mut ctx = context(Settings { spp: 4, bounces: 1, lightmaps, ..Settings::default() });
+        let white = grey_texture(&mut ctx, &[255]);
+        let lightmap = grey_texture(&mut ctx, &[150]);
+        let image = render(&mut ctx, 2, [0.0; 3], |ctx| {
+            lightmapped_quads(ctx, white, lightmap, UnitOne::Modulate, &box_faces);
+            lit_material(ctx, 1.0);
+            sphere(ctx, [0.0, 0.0, -4.0], 1.0);
+            unsafe { dispatch::glDisable(ctx, gl::GL_LIGHTING) };
+        });
+        let centre = image[(SIZE / 2 * SIZE + SIZE / 2) as usize][0];
+        assert!(centre.abs_diff(want) <= 1, "{lightmaps:?}: the sphere's centre reads {centre}, not {want}");
+        let (lo, hi) = image.iter().fold((255, 0), |(lo, hi), p| (p[0].min(lo), p[0].max(hi)));
+        assert!(lo.abs_diff(want) <= 2 && hi.abs_diff(want) <= 2, "{lightmaps:?}: every pixel reads {want}: {lo}..={hi}");
+    }
 }
 
 /// Eye-space point of the floor at z = `depth` seen through the centre of pixel (x, y).

@@ -15,7 +15,7 @@
 //! tonemap = "aces"          # "aces", "reinhard", "none" (clamp)
 //! exposure = 0.0            # EV offset, -10..=10
 //! accumulate = 1024         # frames accumulated while the camera stands still, 1..=65536
-//! lightmaps = "ignore"      # "ignore" or "keep" (a second unit modulated over the first)
+//! lightmaps = "ignore"      # "ignore" or "keep" (a second unit modulated over the first: baked light)
 //! temporal = true           # temporal filter with reprojection while moving
 //! ```
 
@@ -36,13 +36,15 @@ pub enum Tonemap {
 }
 
 /// What the tracer does with a second texture unit modulated over the first (a lightmap: the
-/// light baked by the game, which tracing computes itself).
+/// light baked by the game, which tracing computes itself; `scene`'s module doc says why
+/// neither choice counts it twice).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Lightmaps {
-    /// Left out of the albedo (`"ignore"`).
+    /// Left out: the surface reflects traced light (`"ignore"`).
     #[default]
     Ignore,
-    /// Multiplied into the albedo (`"keep"`).
+    /// The surface shows its baked light, albedo × lightmap, as emitted radiance and reflects
+    /// no traced light (`"keep"`).
     Keep,
 }
 
@@ -73,7 +75,7 @@ pub struct Settings {
     pub exposure: f32,
     /// Frames accumulated at most while the camera stands still, 1..=65536.
     pub accumulate: u32,
-    /// Whether a second texture unit modulated over the first is part of the albedo.
+    /// Whether a second texture unit modulated over the first is traced as baked light.
     pub lightmaps: Lightmaps,
     /// The temporal filter (with reprojection while the camera moves).
     pub temporal: bool,
