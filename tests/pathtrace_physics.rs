@@ -267,41 +267,45 @@ fn decoded(v: f64) -> f64 {
     if v <= 0.04045 { v / 12.92 } else { ((v + 0.055) / 1.055).powf(2.4) }
 }
 
-/// A lightmapped quad filling the view (albedo texture grey 200, lightmap 64 left of x = 0 and
-/// 192 right of it) in front of an environment and no lights. Ignored, the lightmap leaves an
-/// unlit surface: black before a black environment. Kept, the surface shows its baked light,
-/// albedo × lightmap (scene.rs), and reflects no traced light: the same values before a grey
-/// environment. `RGB_SCALE` 2 scales the encoded lightmap before decoding; a decal on unit 1 is
-/// not a lightmap.
+/// Three lightmapped quads across the view (albedo texture grey 200, lightmap 64 left of x = 0
+/// and 192 right of it), unit 1 modulating (top), modulating with `RGB_SCALE` 2 (middle) and a
+/// decal (bottom), and no lights nor environment. Ignored, the lightmaps leave unlit surfaces:
+/// black. Kept, a surface shows its baked light, albedo × lightmap (scene.rs), the scale
+/// applied to the encoded lightmap before decoding; a decal on unit 1 is not a lightmap.
 #[test]
 fn kept_lightmaps_show_their_baked_light_and_ignored_ones_none() {
-    let quad = [[-10.0, -10.0, -3.0], [10.0, -10.0, -3.0], [10.0, 10.0, -3.0], [-10.0, 10.0, -3.0]];
-    let image = |lightmaps: Lightmaps, unit_one: UnitOne, environment: f32| {
+    let band = |y0: f32, y1: f32| [[-10.0, y0, -3.0], [10.0, y0, -3.0], [10.0, y1, -3.0], [-10.0, y1, -3.0]];
+    let bands = [(UnitOne::Modulate, band(0.6, 10.0), 20), (UnitOne::Overbright, band(-0.5, 0.5), 12), (UnitOne::Decal, band(-10.0, -0.6), 3)];
+    let image = |lightmaps: Lightmaps| {
         let mut ctx = context(Settings { spp: 1, bounces: 1, lightmaps, ..Settings::default() });
         let albedo = grey_texture(&mut ctx, &[200]);
         let lightmap = grey_texture(&mut ctx, &[64, 192]);
-        let image = render(&mut ctx, 2, [environment; 3], |ctx| lightmapped_quads(ctx, albedo, lightmap, unit_one, &[quad]));
-        // Row 12, a column each side of x = 0.
-        [image[(12 * SIZE + 4) as usize][0], image[(12 * SIZE + 19) as usize][0]]
+        let image = render(&mut ctx, 2, [0.0; 3], |ctx| {
+            for (unit_one, quad, _) in bands {
+                lightmapped_quads(ctx, albedo, lightmap, unit_one, &[quad]);
+            }
+        });
+        // Per band, a column each side of x = 0.
+        bands.map(|(_, _, row)| [image[(row * SIZE + 4) as usize][0], image[(row * SIZE + 19) as usize][0]])
     };
+    assert_eq!(image(Lightmaps::Ignore), [[0, 0]; 3], "ignored: nothing lights the quads");
+    let [modulate, overbright, decal] = image(Lightmaps::Keep);
     let albedo = linear(200);
-    let modulated = [64u8, 192].map(|l| encoded(albedo * linear(l)));
-    assert_eq!(image(Lightmaps::Ignore, UnitOne::Modulate, 0.0), [0, 0], "ignored: nothing lights the quad");
-    let kept = image(Lightmaps::Keep, UnitOne::Modulate, 0.5);
-    for (got, want) in kept.iter().zip(modulated) {
-        assert!((*got as f64 - want).abs() <= 1.0, "kept: {kept:?} against {modulated:?}");
+    let want = [64u8, 192].map(|l| encoded(albedo * linear(l)));
+    for (got, want) in modulate.iter().zip(want) {
+        assert!((*got as f64 - want).abs() <= 1.0, "kept: {modulate:?} against {want:.1}");
     }
-    let overbright = image(Lightmaps::Keep, UnitOne::Overbright, 0.5);
     let want = encoded(albedo * decoded(2.0 * 64.0 / 255.0));
     assert!((overbright[0] as f64 - want).abs() <= 1.0, "RGB_SCALE 2: {overbright:?} against {want:.1}");
     assert_eq!(overbright[1], 255, "2 × 192 saturates the display, as in GL");
-    assert_eq!(image(Lightmaps::Keep, UnitOne::Decal, 0.0), [0, 0], "a decal on unit 1 is not baked light");
+    assert_eq!(decal, [0, 0], "a decal on unit 1 is not baked light");
 }
 
 /// A white Lambertian sphere inside a lightmapped box (white albedo, lightmap grey `v`) and no
 /// lights: the box's walls emit their baked radiance linear(v) and the sphere, lit only by them
 /// (one bounce), reflects exactly that — the whole image reads `v`, as a white furnace does.
-/// Ignored, the lightmap lights nothing and everything is black.
+/// The walls read `v` too: they reflect none of the light they send each other (which their
+/// lightmaps hold already). Ignored, the lightmap lights nothing and everything is black.
 #[test]
 fn baked_surfaces_light_the_others_once() {
     let h = 10.0f32;
@@ -372,7 +376,7 @@ const INTENSITY: f64 = 25.0 * std::f64::consts::PI;
 /// area, sharing nothing with the shaders), within the noise of the frames accumulated.
 #[test]
 fn sphere_lights_keep_the_irradiance_and_soften_shadows() {
-    const FRAMES: usize = 48;
+    const FRAMES: usize = 32;
     const SPP: u32 = 4;
     let albedo = linear(204);
     let unshadowed = |x: i32, y: i32| {
