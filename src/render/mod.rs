@@ -80,15 +80,24 @@ pub fn default_sink() -> Box<dyn FrameSink> {
     frame_log::wrap_from_env(renderer_from_env())
 }
 
-/// The sink of a replay that writes frames as PNG (`glrt replay --out`): the Vulkan raster
-/// renderer (the one renderer that makes pixels, whatever `GLRT_MODE` says), writing frames
-/// `first` and later to `dir/frame-NNNNN.png` (see [`raster::dump`]), behind the frame log as
-/// in [`default_sink`]. The error says why no frames could be written (no Vulkan device,
-/// directory not writable).
+/// The sink of a replay that writes frames as PNG (`glrt replay --out`): the Vulkan renderer
+/// (path traced when `GLRT_MODE` asks for it, rasterized otherwise: a mode without a renderer
+/// still gets pixels), writing frames `first` and later to `dir/frame-NNNNN.png` (see
+/// [`raster::dump`]), behind the frame log as in [`default_sink`]. The error says why no
+/// frames could be written (no Vulkan device, directory not writable).
 pub fn dumping_sink(dir: &std::path::Path, first: u64) -> Result<Box<dyn FrameSink>, String> {
     let dump = raster::dump::Dump::new(dir.to_path_buf(), first)?;
-    let renderer = raster::renderer::Renderer::with_dump(Some(dump)).map_err(|e| e.to_string())?;
+    let renderer = renderer_for_mode(Some(dump)).map_err(|e| e.to_string())?;
     Ok(frame_log::wrap_from_env(Box::new(renderer)))
+}
+
+/// The Vulkan renderer, with the path tracer enabled when `GLRT_MODE` asks for it.
+fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result<raster::renderer::Renderer> {
+    let mut renderer = raster::renderer::Renderer::with_dump(dump)?;
+    if path_traced() {
+        renderer.enable_tracing(trace::settings::Settings::of_process())?;
+    }
+    Ok(renderer)
 }
 
 /// `GLRT_MODE` when it names a mode without a renderer.
@@ -114,13 +123,7 @@ fn renderer_from_env() -> Box<dyn FrameSink> {
         eprintln!("glrt: GLRT_MODE={mode} has no renderer yet; frames are not drawn");
         return Box::new(NullSink::default());
     }
-    let renderer = raster::renderer::Renderer::new().and_then(|mut renderer| {
-        if path_traced() {
-            renderer.enable_tracing(trace::settings::Settings::of_process())?;
-        }
-        Ok(renderer)
-    });
-    match renderer {
+    match renderer_for_mode(raster::dump::Dump::from_env()) {
         Ok(renderer) => Box::new(renderer),
         Err(e) => {
             eprintln!("glrt: {e}; frames are not drawn");

@@ -19,6 +19,7 @@
 //! - [`settings`]: `glrt.toml` `[pathtrace]` and `GLRT_*` settings.
 //! - [`scene`]: traced draws as geometries, instances and materials; [`lights`]: GL lights as
 //!   physical lights; [`gpu_types`]: the structures the shaders read.
+//! - [`stats`]: rays traced by kind, traversal work and the tracing pass's GPU time.
 //! - [`resident`]: geometries on the GPU; [`pipelines`]: the tracer's pipelines;
 //!   [`tracer`]: one traced frame, recorded into the raster renderer's command buffer.
 
@@ -30,5 +31,6 @@ pub mod pipelines;
 pub mod resident;
 pub mod scene;
 pub mod settings;
+pub mod stats;
 pub mod texels;
 pub mod tracer;
