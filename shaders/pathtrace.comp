@@ -4,8 +4,7 @@
 #extension GL_KHR_shader_subgroup_basic : require
 // The compute path tracer's tracing pass: per traced pixel, `samples` paths of a primary ray,
 // next-event estimation at every vertex (one shadow ray per light), `bounces` indirect
-// bounces and the environment through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular); a path ends on a
-// baked surface (a kept lightmap, render::trace::scene), which only emits; writes the noisy radiance
+// bounces and the environment through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular); writes the noisy radiance
 // and the primary hit's G-buffer (trace/gbuffer.glsl). src/render/trace/mod.rs describes the
 // scene it reads. Ray counts and traversal work are summed per subgroup (subgroup arithmetic,
 // which lavapipe and the desktop drivers have) and added to the counters once per subgroup.
@@ -97,6 +96,7 @@ void main() {
                 g.instance = hit.instance;
             }
             radiance += throughput * s.emission;
+            // A baked surface (a kept lightmap, render::trace::scene) only emits: the path ends.
             if (s.baked) {
                 break;
             }
