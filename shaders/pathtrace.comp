@@ -104,6 +104,10 @@ void main() {
                 g.instance = hit.instance;
             }
             radiance += throughput * s.emission;
+            // A baked surface (a kept lightmap, render::trace::scene) only emits: the path ends.
+            if (s.baked) {
+                break;
+            }
             for (uint i = 0u; i < light_count; i++) {
                 radiance += throughput * direct_light(s, v, i, rng, shadow);
             }

@@ -162,7 +162,7 @@ fn gpu_sampling_matches_the_cpu_mirror() {
     let mut rng = Lcg(0x7e7e15);
     let textures = textures(&mut rng);
     // Budget: everything but the 32×32 texture (1365 words with its chain) fits.
-    let mut pool = TexelPool::new(1200);
+    let mut pool = TexelPool::new(1200, 0);
     let indices = pool.prepare(&textures.iter().collect::<Vec<_>>());
     assert_eq!(pool.textures()[indices[10] as usize].levels, 0, "the 32×32 texture is over budget");
     assert!(indices[..10].iter().all(|&i| pool.textures()[i as usize].levels > 0));

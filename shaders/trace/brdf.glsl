@@ -16,6 +16,7 @@ struct Surface {
     float metalness;
     float specular;     // dielectric F0
     float alpha;        // coverage (texture and colour alpha)
+    bool baked;         // a kept lightmap holds its light: emission is all it sends, it reflects nothing
 };
 
 // Reflectance at normal incidence.

@@ -1,5 +1,6 @@
 // Direct light from the scene's lights (GL lights converted by src/render/trace/lights.rs):
-// next-event estimation with one shadow ray per light.
+// next-event estimation with one shadow ray per light; directional lights of an angular size
+// and sphere lights are sampled uniformly in the cone of directions they fill.
 
 #ifndef TRACE_LIGHTS_GLSL
 #define TRACE_LIGHTS_GLSL
@@ -37,25 +38,35 @@ vec3 direct_light(Surface s, vec3 v, uint i, inout Rng rng, inout uint shadow_ra
         distance = 1e30;
         incident = light.radiance.rgb;
     } else {
-        vec3 center = light.position.xyz;
-        float radius = light.radiance.a;
-        if (radius > 0.0) {
-            // A point on the disc of the sphere's radius facing the surface.
-            vec2 u = rng_next2(rng);
-            float r = radius * sqrt(u.x);
-            float phi = 2.0 * PI * u.y;
-            mat3 frame = basis(normalize(s.position - center));
-            center += frame * vec3(r * cos(phi), r * sin(phi), 0.0);
-        }
-        vec3 to_light = center - s.position;
-        distance = length(to_light);
-        if (distance <= 0.0) {
+        vec3 to_center = light.position.xyz - s.position;
+        float d2 = dot(to_center, to_center);
+        if (d2 <= 0.0) {
             return vec3(0.0);
         }
-        l = to_light / distance;
-        incident = light.radiance.rgb / (distance * distance);
+        float d = sqrt(d2);
+        vec3 axis = to_center / d;
+        float r = light.radiance.a;
+        if (r > 0.0) {
+            // A sphere of radiance I / (pi r^2) (lights.rs): a direction uniform in the cone it
+            // fills, of solid angle 2 pi (1 - cos_max) (all directions from inside it), so
+            // incident = radiance * solid angle. 1 - cos_max is written without cancellation.
+            float r2 = r * r;
+            bool outside = d2 > r2;
+            float cos_max = outside ? sqrt(1.0 - r2 / d2) : -1.0;
+            float one_minus_cos = outside ? (r2 / d2) / (1.0 + cos_max) : 2.0;
+            l = sample_cone(axis, cos_max, rng_next2(rng));
+            // The shadow ray ends on the sphere: the near root from outside, the far from inside.
+            float b = dot(l, to_center);
+            float h = sqrt(max(r2 - (d2 - b * b), 0.0));
+            distance = outside ? b - h : b + h;
+            incident = light.radiance.rgb * (2.0 * one_minus_cos / r2);
+        } else {
+            l = axis;
+            distance = d;
+            incident = light.radiance.rgb / d2;
+        }
         if (light.spot.w > -1.5) {
-            float c = dot(-l, light.spot.xyz);
+            float c = dot(-axis, light.spot.xyz);
             if (c < light.spot.w) {
                 return vec3(0.0);
             }

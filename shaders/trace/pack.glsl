@@ -5,9 +5,14 @@
 
 // sRGB transfer functions (IEC 61966-2-1): GL colours and texels are display-encoded; light is
 // transported in linear units.
-vec3 srgb_to_linear(vec3 c) {
-    c = clamp(c, 0.0, 1.0);
+
+// The decoding curve, continued past 1 (for scaled values, c >= 0).
+vec3 srgb_decode(vec3 c) {
     return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+}
+
+vec3 srgb_to_linear(vec3 c) {
+    return srgb_decode(clamp(c, 0.0, 1.0));
 }
 
 vec3 linear_to_srgb(vec3 c) {

@@ -31,6 +31,7 @@ struct Corner {
     vec2 uv;        // texture coordinates of unit 0 (after the texture matrix)
     uint normal;    // object-space normal, octahedral snorm16x2 (0: use the geometric normal)
     uint color;     // base colour, sRGB-encoded unorm8 RGBA (GL's colour or material diffuse)
+    vec2 lightmap_uv; // texture coordinates of unit 1 (after its texture matrix), or 0
 };
 
 struct TriangleAttributes {
@@ -58,7 +59,11 @@ struct Material {
     float specular;     // dielectric reflectance at normal incidence (F0)
     uint alpha_func;    // the alpha test's compare function (gl_compare.glsl order; 7: always)
     float alpha_ref;
-    uint pad;
+    uint lightmap;      // texel pool index of a kept lightmap (unit 1), or 0xffffffff
+    float lightmap_scale; // multiplies the lightmap's encoded texels (GL's RGB_SCALE)
+    uint pad0;
+    uint pad1;
+    uint pad2;
 };
 
 layout(set = TRACE_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials {
@@ -67,7 +72,7 @@ layout(set = TRACE_SET, binding = BINDING_MATERIALS, std430) readonly buffer Mat
 
 struct Light {
     vec4 position;  // eye space; w = 0: directional, xyz = unit direction towards the light
-    vec4 radiance;  // directional: irradiance at normal incidence; point: intensity (rgb); a: radius
+    vec4 radiance;  // directional: irradiance at normal incidence; point: intensity (rgb); a: sphere radius (0: a point)
     vec4 spot;      // unit direction the spot points at; w: cos(cutoff), or -2 without a spot
     vec4 params;    // x: spot exponent; y: cos of a directional light's angular radius
 };

@@ -1,5 +1,6 @@
 // What a ray hit: the shading inputs of a traced triangle (position, normals, albedo from the
-// GL colour and texture unit 0, material), and the alpha test that traversal asks for.
+// GL colour and texture unit 0, baked light from a kept lightmap on unit 1, material), and the
+// alpha test that traversal asks for.
 // Include after bvh.glsl's prerequisites: defines trace_alpha_accept(), then includes bvh.glsl.
 
 #ifndef TRACE_SURFACE_GLSL
@@ -21,6 +22,22 @@ vec4 corner_color(TriangleAttributes a, vec2 bary) {
 
 vec2 corner_uv(TriangleAttributes a, vec2 bary) {
     return a.corner[0].uv * (1.0 - bary.x - bary.y) + a.corner[1].uv * bary.x + a.corner[2].uv * bary.y;
+}
+
+vec2 corner_lightmap_uv(TriangleAttributes a, vec2 bary) {
+    return a.corner[0].lightmap_uv * (1.0 - bary.x - bary.y) + a.corner[1].lightmap_uv * bary.x + a.corner[2].lightmap_uv * bary.y;
+}
+
+// Ray-cone level of detail of texture `tex` mapped by the corner coordinates c0, c1, c2
+// (Akenine-Möller et al. 2021, "Improved Shader and Texture Level of Detail Using Ray Cones"):
+// texels per eye-space unit of the triangle (of doubled eye-space area area2), times the
+// cone's footprint (cone_width, seen at cosine cos_view).
+float cone_lod(uint tex, vec2 c0, vec2 c1, vec2 c2, float area2, float cone_width, float cos_view) {
+    vec2 size = texel_size(tex);
+    vec2 t1 = (c1 - c0) * size;
+    vec2 t2 = (c2 - c0) * size;
+    float texel_area = abs(t1.x * t2.y - t1.y * t2.x);
+    return area2 > 0.0 && texel_area > 0.0 ? 0.5 * log2(texel_area / area2) + log2(max(cone_width, 1e-12) / cos_view) : 0.0;
 }
 
 // GL's texture environment of unit 0 (OpenGL 1.5 table 3.22, RGBA formats), display-encoded.
@@ -101,22 +118,23 @@ Surface surface_at(TraceHit hit, vec3 origin, vec3 dir, float cone_width) {
         }
     }
 
-    // Ray-cone level of detail (Akenine-Möller et al. 2021, "Improved Shader and Texture
-    // Level of Detail Using Ray Cones"): texels per eye-space unit of the triangle, times the
-    // cone's footprint.
+    float cos_view = max(abs(dot(ng, dir)), 1e-3);
     float lod = 0.0;
     if (m.texture != NO_TEXTURE) {
-        vec2 size = texel_size(m.texture);
-        vec2 t1 = (a.corner[1].uv - a.corner[0].uv) * size;
-        vec2 t2 = (a.corner[2].uv - a.corner[0].uv) * size;
-        float texel_area = abs(t1.x * t2.y - t1.y * t2.x);
-        float cos_view = max(abs(dot(ng, dir)), 1e-3);
-        lod = area2 > 0.0 && texel_area > 0.0 ? 0.5 * log2(texel_area / area2) + log2(max(cone_width, 1e-12) / cos_view) : 0.0;
+        lod = cone_lod(m.texture, a.corner[0].uv, a.corner[1].uv, a.corner[2].uv, area2, cone_width, cos_view);
     }
     vec4 color = surface_color(m, a, hit.bary, lod);
     s.albedo = srgb_to_linear(color.rgb);
     s.alpha = color.a;
     s.emission = m.emission.rgb + s.albedo * m.emission.a;
+    // A kept lightmap (render::trace::scene's module doc): the surface sends its baked light,
+    // albedo x decoded (scale x lightmap), and reflects no traced light.
+    s.baked = m.lightmap != NO_TEXTURE;
+    if (s.baked) {
+        float lightmap_lod = cone_lod(m.lightmap, a.corner[0].lightmap_uv, a.corner[1].lightmap_uv, a.corner[2].lightmap_uv, area2, cone_width, cos_view);
+        vec3 lightmap = texel_sample(m.lightmap, corner_lightmap_uv(a, hit.bary), lightmap_lod).rgb;
+        s.emission += s.albedo * srgb_decode(max(lightmap * m.lightmap_scale, 0.0));
+    }
     s.roughness = m.roughness;
     s.metalness = m.metalness;
     s.specular = m.specular;

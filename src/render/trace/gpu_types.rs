@@ -39,6 +39,8 @@ pub struct GpuCorner {
     pub normal: u32,
     /// Base colour, display-encoded unorm8 RGBA.
     pub color: u32,
+    /// Texture coordinates of unit 1 (the lightmap's; zero when unit 1 is not enabled).
+    pub lightmap_uv: [f32; 2],
 }
 
 /// `TriangleAttributes` of `scene.glsl`.
@@ -71,8 +73,12 @@ pub struct GpuMaterial {
     pub alpha_func: u32,
     /// Alpha test reference.
     pub alpha_ref: f32,
+    /// Texel pool index of unit 1's texture when it is a kept lightmap, or `NO_TEXTURE`.
+    pub lightmap: u32,
+    /// Multiplies the lightmap's display-encoded texels (GL's `RGB_SCALE` of unit 1).
+    pub lightmap_scale: f32,
     /// Padding.
-    pub pad: u32,
+    pub pad: [u32; 3],
 }
 
 /// `Light` of `scene.glsl`.
@@ -141,8 +147,9 @@ mod tests {
     fn sizes_match_the_std430_layouts() {
         // std430: vec4/mat4 members are 16-aligned; these are the block sizes glslang gives.
         assert_eq!(std::mem::size_of::<GpuFrame>(), 3 * 64 + 4 * 16 + 3 * 16);
-        assert_eq!(std::mem::size_of::<GpuTriangleAttributes>(), 48);
-        assert_eq!(std::mem::size_of::<GpuMaterial>(), 64);
+        // Corner: vec2, uint, uint, vec2 (8-aligned, 24 bytes).
+        assert_eq!(std::mem::size_of::<GpuTriangleAttributes>(), 72);
+        assert_eq!(std::mem::size_of::<GpuMaterial>(), 80);
         assert_eq!(std::mem::size_of::<GpuLight>(), 64);
         assert_eq!(std::mem::size_of::<GpuInstance>(), 160);
     }

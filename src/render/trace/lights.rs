@@ -12,6 +12,16 @@
 //!   (`k0 = k1 = 0`) gives exactly `π · linear(d) / k2` at every distance; the GL default (no
 //!   attenuation) matches GL's brightness where the camera is and falls off physically
 //!   around it. Spot cone and exponent are kept as GL defines them.
+//! - with a `light_radius` r > 0 (settings), a positional light is a **sphere** of that radius
+//!   of the same intensity: a uniform (Lambertian) emitter of radiance `L = I / (π r²)`, whose
+//!   intensity towards every direction is `L · π r² = I`. Its irradiance on a surface that
+//!   sees all of it (the sphere above its horizon) is exactly the point light's, `I cos θ /
+//!   d²` (Lagarde and de Rousiers 2014, "Moving Frostbite to PBR", section 4.7.2), so such
+//!   receivers see GL's brightness at any distance; shadows get penumbrae. `shaders/trace/lights.glsl` samples the cone of
+//!   directions the sphere fills as seen from the shaded point (uniform in solid angle,
+//!   Shirley et al. 1996), with one shadow ray to the sphere's surface; the spot cone
+//!   applies to the direction from the sphere's centre. Lights are not geometry: camera and
+//!   bounce rays do not see them.
 //!
 //! GL's ambient terms are left out: indirect light and the environment replace them.
 
@@ -30,11 +40,13 @@ pub struct LightSettings {
     pub sun_angle: f32,
     /// A direction towards the sun in the world frame, for the strongest directional light.
     pub sun_direction: Option<Vec3>,
+    /// Radius of positional lights (0: points).
+    pub radius: f32,
 }
 
 impl Default for LightSettings {
     fn default() -> LightSettings {
-        LightSettings { scale: 1.0, sun_angle: 0.53, sun_direction: None }
+        LightSettings { scale: 1.0, sun_angle: 0.53, sun_direction: None, radius: 0.0 }
     }
 }
 
@@ -65,7 +77,7 @@ pub fn convert(light: &Light, settings: &LightSettings) -> GpuLight {
     let cutoff = if light.spot_cutoff >= 180.0 { -2.0 } else { light.spot_cutoff.to_radians().cos() };
     GpuLight {
         position: [p.x, p.y, p.z, 1.0],
-        radiance: [intensity.x, intensity.y, intensity.z, 0.0],
+        radiance: [intensity.x, intensity.y, intensity.z, settings.radius.max(0.0)],
         spot: [spot.x, spot.y, spot.z, cutoff],
         params: [light.spot_exponent, 1.0, 0.0, 0.0],
     }
@@ -123,6 +135,9 @@ mod tests {
         // At r = 5 from the viewer, I / r² equals GL's unattenuated π · d.
         assert!((l.radiance[0] / 25.0 - std::f32::consts::PI).abs() < 1e-4);
         assert!((l.spot[3] - 0.5).abs() < 1e-6);
+        assert_eq!(l.radiance[3], 0.0, "a point by default");
+        let sphere = convert(&light, &LightSettings { radius: 0.25, ..LightSettings::default() });
+        assert_eq!(sphere.radiance, [l.radiance[0], l.radiance[1], l.radiance[2], 0.25], "the same intensity, a radius");
     }
 
     #[test]

@@ -11,10 +11,11 @@
 //! light_scale = 1.0         # multiplies every light converted from glLight, > 0
 //! sun_direction = [0.3, 1.0, 0.2]  # towards the sun, world frame; absent: GL's own
 //! sun_angle = 0.53          # angular diameter of directional lights, degrees, 0..=10
+//! light_radius = 0.0        # radius of point and spot lights, eye-space units, >= 0 (0: points)
 //! tonemap = "aces"          # "aces", "reinhard", "none" (clamp)
 //! exposure = 0.0            # EV offset, -10..=10
 //! accumulate = 1024         # frames accumulated while the camera stands still, 1..=65536
-//! lightmaps = "ignore"      # "ignore" or "keep" (a second unit modulated over the first)
+//! lightmaps = "ignore"      # "ignore" or "keep" (a second unit modulated over the first: baked light)
 //! temporal = true           # temporal filter with reprojection while moving
 //! ```
 
@@ -35,13 +36,15 @@ pub enum Tonemap {
 }
 
 /// What the tracer does with a second texture unit modulated over the first (a lightmap: the
-/// light baked by the game, which tracing computes itself).
+/// light baked by the game, which tracing computes itself; `scene`'s module doc says why
+/// neither choice counts it twice).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Lightmaps {
-    /// Left out of the albedo (`"ignore"`).
+    /// Left out: the surface reflects traced light (`"ignore"`).
     #[default]
     Ignore,
-    /// Multiplied into the albedo (`"keep"`).
+    /// The surface shows its baked light, albedo × lightmap, as emitted radiance and reflects
+    /// no traced light (`"keep"`).
     Keep,
 }
 
@@ -63,13 +66,16 @@ pub struct Settings {
     /// Angular diameter of directional lights in degrees, 0..=10 (0: hard shadows; the sun
     /// is 0.53).
     pub sun_angle: f32,
+    /// Radius of the spheres that point and spot lights become, in the eye-space units of
+    /// the game, >= 0 (0: points, hard shadows). The intensity stays the same.
+    pub light_radius: f32,
     /// The tone curve.
     pub tonemap: Tonemap,
     /// Exposure offset in EV (stops), -10..=10: radiance is multiplied by 2^exposure.
     pub exposure: f32,
     /// Frames accumulated at most while the camera stands still, 1..=65536.
     pub accumulate: u32,
-    /// Whether a second texture unit modulated over the first is part of the albedo.
+    /// Whether a second texture unit modulated over the first is traced as baked light.
     pub lightmaps: Lightmaps,
     /// The temporal filter (with reprojection while the camera moves).
     pub temporal: bool,
@@ -84,6 +90,7 @@ impl Default for Settings {
             light_scale: 1.0,
             sun_direction: None,
             sun_angle: 0.53,
+            light_radius: 0.0,
             tonemap: Tonemap::Aces,
             exposure: 0.0,
             accumulate: 1024,
@@ -118,6 +125,7 @@ impl Table for Settings {
         Key { name: "light_scale", set: |s, v| number(v, |x| x > 0.0, "a number > 0").map(|x| s.light_scale = x as f32) },
         Key { name: "sun_direction", set: |s, v| direction(v).map(|d| s.sun_direction = Some(d)) },
         Key { name: "sun_angle", set: |s, v| number_in(v, 0.0..=10.0).map(|x| s.sun_angle = x as f32) },
+        Key { name: "light_radius", set: |s, v| number(v, |x| x >= 0.0, "a number >= 0").map(|x| s.light_radius = x as f32) },
         Key {
             name: "tonemap",
             set: |s, v| one_of(v, &["aces", "reinhard", "none"]).map(|i| s.tonemap = [Tonemap::Aces, Tonemap::Reinhard, Tonemap::Clamp][i]),
@@ -157,7 +165,7 @@ mod tests {
 
     #[test]
     fn every_key_is_read() {
-        let body = "spp = 8\nbounces = 0\nresolution_scale = 0.5\nlight_scale = 2\nsun_direction = [0, 2, 0]\nsun_angle = 0\n\
+        let body = "spp = 8\nbounces = 0\nresolution_scale = 0.5\nlight_scale = 2\nsun_direction = [0, 2, 0]\nsun_angle = 0\nlight_radius = 0.25\n\
                     tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"keep\"\ntemporal = false\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
@@ -168,6 +176,7 @@ mod tests {
             light_scale: 2.0,
             sun_direction: Some(Vec3::Y),
             sun_angle: 0.0,
+            light_radius: 0.25,
             tonemap: Tonemap::Reinhard,
             exposure: -1.5,
             accumulate: 65536,
@@ -177,7 +186,7 @@ mod tests {
         assert_eq!(s, expected);
         assert_eq!(read("tonemap = \"none\"\n", &[]).0.tonemap, Tonemap::Clamp);
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
-        assert_eq!(Settings::KEYS.len(), 11);
+        assert_eq!(Settings::KEYS.len(), 12);
     }
 
     #[test]
@@ -194,6 +203,7 @@ mod tests {
             ("sun_direction = [1, 2]", "sun_direction: expected a direction [x, y, z], not zero, found [1, 2]"),
             ("sun_direction = \"up\"", "sun_direction: expected a direction [x, y, z], not zero, found \"up\""),
             ("sun_angle = 11", "sun_angle: expected a number in 0..=10, found 11"),
+            ("light_radius = -0.5", "light_radius: expected a number >= 0, found -0.5"),
             ("tonemap = \"filmic\"", "tonemap: expected one of \"aces\", \"reinhard\", \"none\", found \"filmic\""),
             ("exposure = -10.5", "exposure: expected a number in -10..=10, found -10.5"),
             ("accumulate = 0", "accumulate: expected an integer in 1..=65536, found 0"),
@@ -219,11 +229,13 @@ mod tests {
             ("GLRT_SUN_DIRECTION", "[1, 0, 0]"),
             ("GLRT_TEMPORAL", "false"),
             ("GLRT_EXPOSURE", "2"),
+            ("GLRT_LIGHT_RADIUS", "0.1"),
             ("GLRT_MODE", "raster"),
         ];
         let (s, problems) = read("spp = 4\ntonemap = \"reinhard\"\n", &env);
         assert!(problems.is_empty(), "{problems:?}");
         assert_eq!((s.spp, s.tonemap, s.sun_direction, s.temporal, s.exposure), (16, Tonemap::Clamp, Some(Vec3::X), false, 2.0));
+        assert_eq!(s.light_radius, 0.1);
     }
 
     #[test]

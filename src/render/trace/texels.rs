@@ -22,20 +22,30 @@
 //!   depth and other formats are sampled through their canonical 8-bit texels (clamped to
 //!   [0, 1]).
 //!
-//! Memory: the pool is one growing array of at most a budget of words ([`MAX_WORDS`] by
-//! default, 128 MiB). Space is found first-fit in a list of free ranges, else at the end.
+//! Memory: the pool is one growing array of at most a budget of words ([`MAX_WORDS`] for the
+//! tracer, 128 MiB). Space is found first-fit in a list of free ranges, else at the end.
 //! [`TexelPool::prepare`] is called once per frame; versions unused for [`KEEP_FRAMES`] frames
 //! are freed, and so is every other version of a texture the frame uses (an animated texture
-//! or lightmap updated each frame keeps one version packed). When the budget is exceeded,
-//! versions this frame does not use are evicted, least recently used first; a texture that
-//! still does not fit is sampled as its average colour (logged once) and packed in a later
-//! frame when space allows. Nothing fails.
+//! or lightmap updated each frame keeps one version packed, plus the versions frames in flight
+//! still read). When the budget is exceeded, versions this frame does not use are evicted,
+//! least recently used first; a texture that still does not fit is sampled as its average
+//! colour (logged once) and packed in a later frame when space allows. Nothing fails.
+//!
+//! Frames in flight: the GPU may still run the last `frames_in_flight − 1` frames while the
+//! next one is prepared, and those read the words of the versions they used. Freed words are
+//! therefore *retired*, not free: a range freed while frame N is prepared joins the free list
+//! when frame N + `frames_in_flight` is prepared, when every frame that could read it (N − 1
+//! at the latest, since a version is freed only in a frame that does not use it) has finished
+//! — the renderer waits for a slot's fence before it records into it again. Space evicted
+//! under pressure is thus used `frames_in_flight` frames later, not in the frame that evicts
+//! (with one frame in flight or none, in the same frame), the way the geometry cache keys its
+//! frees on frame numbers (`resident.rs`).
 //!
 //! Uploads: the caller copies [`TexelPool::take_uploads`]' word ranges of
 //! [`TexelPool::words`] (and the whole, small table, [`TexelPool::textures`]) into its
-//! buffers, ordered on the queue after the previous frames' reads (space freed under pressure
-//! may be rewritten in the next frame). The GPU buffer must hold [`TexelPool::words`]' length;
-//! when it is reallocated, all of it is uploaded.
+//! buffers in the frame it prepared; no word a frame in flight reads is among them. The GPU
+//! buffer must hold [`TexelPool::words`]' length; when it is reallocated (after waiting for
+//! the GPU), all of it is uploaded.
 
 pub mod sample;
 #[cfg(test)]
@@ -156,6 +166,11 @@ pub struct TexelPool {
     budget: usize,
     /// Free ranges of `words`, sorted, disjoint and not adjacent.
     free: Vec<Range<usize>>,
+    /// Ranges freed while frames in flight may still read them, with the frame that freed
+    /// them; they join `free` `frames_in_flight` frames later.
+    retired: Vec<(u64, Range<usize>)>,
+    /// Frames the GPU may be running when a frame is prepared, that one included.
+    frames_in_flight: u64,
     entries: HashMap<(u32, u64), Entry>,
     table: Vec<GpuTexture>,
     /// Table slots of freed entries.
@@ -166,16 +181,22 @@ pub struct TexelPool {
     frame: u64,
 }
 
-impl Default for TexelPool {
-    fn default() -> TexelPool {
-        TexelPool::new(MAX_WORDS)
-    }
-}
-
 impl TexelPool {
-    /// An empty pool of at most `budget` words.
-    pub fn new(budget: usize) -> TexelPool {
-        TexelPool { words: Vec::new(), budget, free: Vec::new(), entries: HashMap::new(), table: Vec::new(), free_slots: Vec::new(), dirty: Vec::new(), frame: 0 }
+    /// An empty pool of at most `budget` words, for a renderer with `frames_in_flight` frame
+    /// slots (see the module doc).
+    pub fn new(budget: usize, frames_in_flight: usize) -> TexelPool {
+        TexelPool {
+            words: Vec::new(),
+            budget,
+            free: Vec::new(),
+            retired: Vec::new(),
+            frames_in_flight: frames_in_flight as u64,
+            entries: HashMap::new(),
+            table: Vec::new(),
+            free_slots: Vec::new(),
+            dirty: Vec::new(),
+            frame: 0,
+        }
     }
 
     /// Starts a frame that samples `textures`: frees what the frame no longer needs, packs
@@ -195,6 +216,7 @@ impl TexelPool {
         for key in stale {
             self.release(key);
         }
+        self.reclaim();
         textures.iter().map(|t| self.index_of(t)).collect()
     }
 
@@ -269,28 +291,55 @@ impl TexelPool {
         slot
     }
 
-    /// Finds `n` words: first fit, else at the end, else after evicting the versions this
-    /// frame does not use, least recently used first. `None` when they cannot be found.
+    /// Finds `n` words: first fit, else at the end. Else evicts the versions this frame does
+    /// not use, least recently used first, until `n` words will be free once the retired
+    /// ranges are reclaimed, and returns `None`: a later frame finds them (this one, when
+    /// nothing is in flight). `None` without evicting when they can never be found.
     fn place(&mut self, n: usize) -> Option<Range<usize>> {
         let evictable: usize = self.entries.values().filter(|e| e.used < self.frame).map(|e| e.range.len()).sum();
-        let available = self.budget.saturating_sub(self.words.len()) + self.free.iter().map(Range::len).sum::<usize>() + evictable;
+        let retired: usize = self.retired.iter().map(|(_, r)| r.len()).sum();
+        let available = self.budget.saturating_sub(self.words.len()) + self.free.iter().map(Range::len).sum::<usize>() + retired + evictable;
         if n > available {
             return None;
         }
         loop {
+            self.reclaim();
             if let Some(range) = self.allocate(n) {
                 return Some(range);
             }
+            if self.fits_later(n) {
+                return None;
+            }
             let lru = self.entries.iter().filter(|(_, e)| e.used < self.frame && !e.range.is_empty()).min_by_key(|(_, e)| e.used).map(|(k, _)| *k)?;
-            let slot = self.entries.get(&lru).map(|e| e.slot);
-            self.free_range(self.entries.get(&lru).map(|e| e.range.clone()).unwrap_or_default());
             // The evicted version keeps its slot, sampled as its average colour, until
             // `prepare` releases it.
-            if let (Some(e), Some(slot)) = (self.entries.get_mut(&lru), slot) {
-                e.range = 0..0;
-                self.table[slot as usize].levels = 0;
+            if let Some(e) = self.entries.get_mut(&lru) {
+                let range = std::mem::take(&mut e.range);
+                self.table[e.slot as usize].levels = 0;
+                self.retire(range);
             }
         }
+    }
+
+    /// Whether `n` contiguous words will be free, at the end of the pool within the budget
+    /// or in the free and retired ranges merged.
+    fn fits_later(&self, n: usize) -> bool {
+        let mut ranges: Vec<Range<usize>> = self.free.iter().cloned().chain(self.retired.iter().map(|(_, r)| r.clone())).collect();
+        ranges.sort_by_key(|r| r.start);
+        let room = self.budget.saturating_sub(self.words.len());
+        let mut run = self.words.len()..self.words.len();
+        for r in ranges.into_iter().rev() {
+            if r.end == run.start {
+                run.start = r.start;
+            } else {
+                run = r;
+            }
+            let tail = if run.end == self.words.len() { room } else { 0 };
+            if run.len() + tail >= n {
+                return true;
+            }
+        }
+        room >= n
     }
 
     /// `n` words from the free list or the end of the pool, within the budget.
@@ -309,6 +358,23 @@ impl TexelPool {
         }
         self.words.resize(start + n, 0);
         Some(start..start + n)
+    }
+
+    /// Frees `range` once the frames in flight are done with it ([`TexelPool::reclaim`]).
+    fn retire(&mut self, range: Range<usize>) {
+        if !range.is_empty() {
+            self.retired.push((self.frame, range));
+        }
+    }
+
+    /// Frees the retired ranges no frame in flight can read any more.
+    fn reclaim(&mut self) {
+        let (frame, in_flight) = (self.frame, self.frames_in_flight);
+        let (ready, waiting): (Vec<_>, Vec<_>) = std::mem::take(&mut self.retired).into_iter().partition(|(freed, _)| freed + in_flight <= frame);
+        self.retired = waiting;
+        for (_, range) in ready {
+            self.free_range(range);
+        }
     }
 
     /// Returns `range` to the free list, merging neighbours; free space at the end shrinks
@@ -331,10 +397,11 @@ impl TexelPool {
         }
     }
 
-    /// Frees a version: its words and its table slot.
+    /// Frees a version: its table slot now (the table is copied whole each frame), its words
+    /// once the frames in flight are done.
     fn release(&mut self, key: (u32, u64)) {
         if let Some(e) = self.entries.remove(&key) {
-            self.free_range(e.range);
+            self.retire(e.range);
             self.table[e.slot as usize] = GpuTexture::default();
             self.free_slots.push(e.slot);
         }

@@ -98,7 +98,7 @@ impl Tracer {
             settings,
             pipelines,
             resident: Resident::default(),
-            texels: TexelPool::default(),
+            texels: TexelPool::new(super::texels::MAX_WORDS, slots),
             texel_buffer: None,
             pixels: None,
             counters,
@@ -157,12 +157,11 @@ impl Tracer {
         self.resident.uploaded = 0;
         self.resident.insert_all(device, cmd, rec.ring, new, frame.number)?;
 
-        // Textures of unit 0.
-        let textured: Vec<Option<&crate::frame::TextureRef>> =
-            draws.iter().map(|d| d.texture_units.first().copied().flatten().and_then(|_| d.textures.first().and_then(Option::as_ref))).collect();
-        let refs: Vec<&crate::frame::TextureRef> = textured.iter().flatten().copied().collect();
+        // Textures: unit 0, and unit 1 where it is a kept lightmap.
+        let textured: Vec<[Option<&crate::frame::TextureRef>; 2]> = draws.iter().map(|d| scene::traced_textures(d, self.settings.lightmaps)).collect();
+        let refs: Vec<&crate::frame::TextureRef> = textured.iter().flatten().flatten().copied().collect();
         let mut indices = self.texels.prepare(&refs).into_iter();
-        let texture_of: Vec<Option<u32>> = textured.iter().map(|t| t.and_then(|_| indices.next())).collect();
+        let texture_of: Vec<[Option<u32>; 2]> = textured.iter().map(|units| units.map(|t| t.and_then(|_| indices.next()))).collect();
         self.upload_texels(device, cmd, rec.ring)?;
 
         // Instances, materials, lights.
@@ -171,6 +170,11 @@ impl Tracer {
         let mut materials = Vec::with_capacity(draws.len());
         let mut bounds = Vec::with_capacity(draws.len());
         let mut signature = Xxh3::new();
+        // New texture contents (an updated lightmap, an animated texture) restart accumulation.
+        for t in &refs {
+            signature.update(&u64::from(t.id).to_le_bytes());
+            signature.update(&t.version.to_le_bytes());
+        }
         for (i, (draw, &key)) in draws.iter().zip(&keys).enumerate() {
             let Some(placement) = self.resident.lookup(key, frame.number) else { continue };
             let material = scene::material(draw, texture_of[i], &defaults);
@@ -194,7 +198,8 @@ impl Tracer {
         let tlas = Tlas::build(&bounds);
         let traced_triangles: usize = draws.iter().map(|d| d.indices.len() / 3).sum();
         self.totals.add_scene(traced_triangles as u64, instances.len() as u64);
-        let light_settings = LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction };
+        let light_settings =
+            LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction, radius: self.settings.light_radius };
         let gl_lights = draws.iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));
         let lights: Vec<GpuLight> = lights::gather(gl_lights, frame.view.as_ref().map(|v| &v.view), &light_settings);
         signature.update(bytemuck::cast_slice(&lights));

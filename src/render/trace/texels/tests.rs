@@ -37,6 +37,14 @@ fn quad(s: Sampler) -> TextureRef {
     texture(7, 1, vec![level(2, 2, 0, &[RED, GREEN, BLUE, WHITE])], s)
 }
 
+/// Frames in flight of the renderer the tests' pools serve.
+const IN_FLIGHT: u64 = 2;
+
+/// A pool of the default budget serving `IN_FLIGHT` frames in flight.
+fn new_pool() -> TexelPool {
+    TexelPool::new(MAX_WORDS, IN_FLIGHT as usize)
+}
+
 fn rgba(c: [u8; 4]) -> [f32; 4] {
     c.map(|v| f32::from(v) / 255.0)
 }
@@ -52,7 +60,7 @@ fn word(c: [u8; 4]) -> u32 {
 #[test]
 fn packs_given_levels_consecutively_as_rgba8_words() {
     let t = texture(1, 1, vec![level(2, 2, 0, &[RED, GREEN, BLUE, WHITE]), level(1, 1, 0, &[[10, 20, 30, 40]])], sampler(Filter::Linear, Some(Filter::Linear), Filter::Linear, Wrap::MirroredRepeat));
-    let mut pool = TexelPool::default();
+    let mut pool = new_pool();
     assert_eq!(pool.prepare(&[&t]), [0]);
     assert_eq!(pool.words(), [word(RED), word(GREEN), word(BLUE), word(WHITE), word([10, 20, 30, 40])]);
     let g = pool.textures()[0];
@@ -74,7 +82,7 @@ fn missing_levels_are_box_filtered_down_to_one_texel() {
     // 4×2, no mipmaps: levels 4×2, 2×1 and 1×1 are packed, the last two generated.
     let pixels: Vec<[u8; 4]> = [0u8, 40, 80, 120, 160, 200, 240, 255].iter().map(|&v| [v, 0, 0, 255]).collect();
     let t = texture(1, 1, vec![level(4, 2, 0, &pixels)], sampler(Filter::Linear, None, Filter::Linear, Wrap::Repeat));
-    let mut pool = TexelPool::default();
+    let mut pool = new_pool();
     pool.prepare(&[&t]);
     let g = pool.textures()[0];
     assert_eq!(g.levels, 3);
@@ -118,7 +126,7 @@ fn base_level_borders_cubes_and_3d_textures_pack_their_first_image() {
     slices.texels[4..].copy_from_slice(&RED);
     d3.faces = vec![vec![Some(Arc::new(slices))]];
     let d3 = TextureRef { id: 4, version: 1, content: Arc::new(d3) };
-    let mut pool = TexelPool::default();
+    let mut pool = new_pool();
     let at = pool.prepare(&[&based, &bordered, &cube, &d3]);
     let colours: Vec<[f32; 4]> = at.iter().map(|&i| pool.sample(i, [0.5, 0.5], 0.0)).collect();
     assert_eq!(colours, [rgba(GREEN), rgba(BLUE), rgba(WHITE), rgba(GREEN)]);
@@ -133,7 +141,7 @@ fn odd_textures_do_not_panic() {
     let zero = texture(3, 1, vec![level(0, 0, 0, &[])], s);
     let short = TextureRef { id: 4, version: 1, content: Arc::new(TextureContent { faces: vec![vec![Some(Arc::new(TexImage { width: 4, height: 4, depth: 1, ..TexImage::default() }))]], ..TextureContent::default() }) };
     let huge = texture(5, 1, vec![Some(Arc::new(TexImage { width: (1 << 24) + 1, height: 1, depth: 1, ..TexImage::default() }))], s);
-    let mut pool = TexelPool::default();
+    let mut pool = new_pool();
     let at = pool.prepare(&[&none, &no_base, &zero, &short, &huge]);
     assert_eq!([at[0], at[1], at[4]], [NO_TEXTURE; 3]);
     assert_eq!(pool.sample(NO_TEXTURE, [0.3, 0.3], 0.0), [1.0; 4]);
@@ -148,7 +156,7 @@ fn odd_textures_do_not_panic() {
 #[test]
 fn unused_versions_are_freed_and_their_space_reused() {
     let (a, b) = (grey(1, 4, 4, 10), grey(2, 2, 2, 20));
-    let mut pool = TexelPool::default();
+    let mut pool = new_pool();
     assert_eq!(pool.prepare(&[&a, &b]), [0, 1]);
     let a_words = pool.textures()[0].words();
     assert_eq!(a_words, 16 + 4 + 1);
@@ -160,14 +168,22 @@ fn unused_versions_are_freed_and_their_space_reused() {
     pool.prepare(&[&b]);
     assert_eq!(pool.textures()[0], GpuTexture::default(), "a is freed after {KEEP_FRAMES} frames");
     assert_eq!(pool.take_uploads(), vec![0..a_words + 5]);
-    // c takes a's slot and, first fit, a's words.
+    // Once the frames in flight are done with a's words, c takes a's slot and, first fit,
+    // a's words.
+    for _ in 1..IN_FLIGHT {
+        pool.prepare(&[&b]);
+    }
     let c = grey(3, 2, 2, 30);
     assert_eq!(pool.prepare(&[&b, &c]), [1, 0]);
     assert_eq!(pool.textures()[0].offset, 0);
     assert_eq!(pool.take_uploads(), vec![0..5]);
     assert_eq!(pool.sample(0, [0.5, 0.5], 0.0), rgba([30, 30, 30, 255]));
-    // Freeing the last texture in the pool shrinks it.
+    // Freeing the last texture in the pool shrinks it, when its words are reclaimed.
     for _ in 0..=KEEP_FRAMES {
+        pool.prepare(&[&c]);
+    }
+    assert_eq!(pool.words().len(), a_words + 5, "b's words are retired, not yet free");
+    for _ in 0..IN_FLIGHT {
         pool.prepare(&[&c]);
     }
     assert_eq!(pool.words().len(), 5);
@@ -178,10 +194,10 @@ fn a_new_version_frees_the_old_one() {
     let v1 = grey(1, 2, 2, 10);
     let mut v2 = grey(1, 2, 2, 20);
     v2.version = 2;
-    let mut pool = TexelPool::default();
+    let mut pool = new_pool();
     assert_eq!(pool.prepare(&[&v1]), [0]);
-    assert_eq!(pool.prepare(&[&v2]), [0], "v1's slot and words are reused at once");
-    assert_eq!(pool.words().len(), 5);
+    assert_eq!(pool.prepare(&[&v2]), [0], "v1's slot is reused at once");
+    assert_eq!(pool.textures()[0].offset, 5, "v1's words are not: the last frame may still read them");
     assert_eq!(pool.sample(0, [0.5, 0.5], 0.0), rgba([20, 20, 20, 255]));
     // Both versions in one frame: both kept.
     let at = pool.prepare(&[&v1, &v2]);
@@ -189,20 +205,58 @@ fn a_new_version_frees_the_old_one() {
 }
 
 #[test]
+fn freed_words_are_handed_out_again_only_after_the_frames_in_flight() {
+    // A texture updated every frame (a lightmap): each frame frees the last frame's version.
+    let version = |v: u64| {
+        let mut t = grey(1, 2, 2, v as u8 * 10);
+        t.version = v;
+        t
+    };
+    for in_flight in [0u64, 1, 2, 3] {
+        let mut pool = TexelPool::new(MAX_WORDS, in_flight as usize);
+        let mut offsets = Vec::new();
+        for v in 1..=8 {
+            let at = pool.prepare(&[&version(v)])[0];
+            offsets.push(pool.textures()[at as usize].offset as usize);
+            assert_eq!(pool.take_uploads(), vec![offsets[offsets.len() - 1]..offsets[offsets.len() - 1] + 5]);
+        }
+        // Version v's words are freed in frame v + 1; nothing may take them before frame
+        // v + 1 + in_flight, which they go to (first fit, every version the same size).
+        for (i, offset) in offsets.iter().enumerate() {
+            if let Some(owner) = offsets[..i].iter().rposition(|o| o == offset) {
+                let (frame, owner) = (i as u64 + 1, owner as u64 + 1);
+                assert!(frame >= owner + 1 + in_flight, "{in_flight} in flight: frame {frame} reuses version {owner}'s words: {offsets:?}");
+            }
+        }
+        let cycle = in_flight as usize + 1;
+        assert_eq!(offsets, (0..8).map(|i| 5 * (i % cycle)).collect::<Vec<_>>(), "{in_flight} in flight");
+    }
+}
+
+#[test]
 fn over_budget_textures_sample_their_average_colour() {
     // Budget 30 words: a 4×4 chain takes 21, a second one does not fit.
     let (a, b) = (grey(1, 4, 4, 10), grey(2, 4, 4, 90));
-    let mut pool = TexelPool::new(30);
+    let mut pool = TexelPool::new(30, IN_FLIGHT as usize);
     assert_eq!(pool.prepare(&[&a, &b]), [0, 1]);
     assert_eq!(pool.textures()[1].levels, 0);
     assert_eq!(pool.sample(1, [0.3, 0.7], 0.0), rgba([90, 90, 90, 255]));
     assert_eq!(pool.words().len(), 21);
-    // Next frame only b is used: a is evicted for it, keeping b's slot.
+    assert_eq!(pool.take_uploads(), vec![0..21]);
+    // Next frame only b is used: a is evicted for it, but the frame in flight still reads
+    // a's words, so b stays average-coloured until they are reclaimed.
+    assert_eq!(pool.prepare(&[&b]), [1]);
+    assert_eq!(pool.textures()[0].levels, 0, "a is left with its average colour");
+    for _ in 1..IN_FLIGHT {
+        assert_eq!(pool.prepare(&[&b]), [1]);
+        assert_eq!(pool.textures()[1].levels, 0, "a's words are retired");
+    }
+    assert!(pool.take_uploads().is_empty(), "nothing is written while a's words may be read");
     assert_eq!(pool.prepare(&[&b]), [1]);
     assert_eq!(pool.textures()[1].levels, 3);
     assert_eq!(pool.textures()[1].offset, 0);
+    assert_eq!(pool.take_uploads(), vec![0..21]);
     assert_eq!(pool.sample(1, [0.3, 0.7], 0.0), rgba([90, 90, 90, 255]));
-    assert_eq!(pool.textures()[0].levels, 0, "a is left with its average colour");
     // a again, with b: a does not fit and stays average-coloured; nothing used is evicted.
     assert_eq!(pool.prepare(&[&a, &b]), [0, 1]);
     assert_eq!((pool.textures()[0].levels, pool.textures()[1].levels), (0, 3));
@@ -216,14 +270,14 @@ fn over_budget_textures_sample_their_average_colour() {
 
 #[test]
 fn nearest_and_bilinear_at_centres_and_midpoints() {
-    let mut pool = TexelPool::default();
+    let mut pool = new_pool();
     let near = pool.prepare(&[&quad(sampler(Filter::Nearest, None, Filter::Nearest, Wrap::Repeat))])[0];
     // Texel centres; t = 0.25 is the bottom row (red, green).
     assert_near(pool.sample(near, [0.25, 0.25], 0.0), rgba(RED));
     assert_near(pool.sample(near, [0.75, 0.25], -1.0), rgba(GREEN));
     assert_near(pool.sample(near, [0.25, 0.75], 0.0), rgba(BLUE));
     assert_near(pool.sample(near, [0.75, 0.75], 0.0), rgba(WHITE));
-    let mut pool = TexelPool::default();
+    let mut pool = new_pool();
     let lin = pool.prepare(&[&quad(sampler(Filter::Linear, None, Filter::Linear, Wrap::ClampToEdge))])[0];
     assert_near(pool.sample(lin, [0.25, 0.25], 0.0), rgba(RED));
     // Midway between red and green, and the centre of all four.
@@ -236,7 +290,7 @@ fn nearest_and_bilinear_at_centres_and_midpoints() {
 #[test]
 fn wrap_modes_at_the_edges() {
     let at = |wrap, uv| {
-        let mut pool = TexelPool::default();
+        let mut pool = new_pool();
         let i = pool.prepare(&[&quad(sampler(Filter::Linear, None, Filter::Linear, wrap))])[0];
         pool.sample(i, uv, 0.0)
     };
@@ -248,7 +302,7 @@ fn wrap_modes_at_the_edges() {
     assert_near(at(Wrap::MirroredRepeat, [0.0, 0.25]), rgba(RED));
     // Nearest: s = 1.25 repeats to red, mirrors to green; t = -0.25 repeats to the top row.
     let nearest = |wrap, uv| {
-        let mut pool = TexelPool::default();
+        let mut pool = new_pool();
         let i = pool.prepare(&[&quad(sampler(Filter::Nearest, None, Filter::Nearest, wrap))])[0];
         pool.sample(i, uv, 0.0)
     };
@@ -265,7 +319,7 @@ fn level_selection_nearest_and_trilinear() {
     // 2×2 plus a grey 1×1 level (given, not the average).
     let levels = || vec![level(2, 2, 0, &[RED, GREEN, BLUE, WHITE]), level(1, 1, 0, &[[100, 100, 100, 255]])];
     let grey = rgba([100, 100, 100, 255]);
-    let mut pool = TexelPool::default();
+    let mut pool = new_pool();
     let tri = texture(1, 1, levels(), sampler(Filter::Linear, Some(Filter::Linear), Filter::Nearest, Wrap::Repeat));
     let nmn = texture(2, 1, levels(), sampler(Filter::Nearest, Some(Filter::Nearest), Filter::Linear, Wrap::Repeat));
     let at = pool.prepare(&[&tri, &nmn]);
@@ -304,7 +358,7 @@ fn rectangle_textures_take_texel_coordinates_and_srgb_decodes() {
     img.precision = Precision::Srgb8;
     srgb.faces = vec![vec![Some(Arc::new(img))]];
     let srgb = TextureRef { id: 2, version: 1, content: Arc::new(srgb) };
-    let mut pool = TexelPool::default();
+    let mut pool = new_pool();
     let at = pool.prepare(&[&rect, &srgb]);
     assert!(pool.textures()[at[0] as usize].has(GpuTexture::RECT));
     assert_near(pool.sample(at[0], [1.5, 0.5], 0.0), rgba(GREEN));
