@@ -1,7 +1,8 @@
 //! The demo and glxgears path traced on lavapipe, replayed from their captures
 //! (`tests/fixtures/*.glrtcap`) with `glrt replay --out` and `GLRT_MODE=pathtrace`, against
-//! the images committed in `tests/reference/pathtrace/`; and the demo's HUD text, which the
-//! path-traced frame must show exactly as the rasterized one.
+//! the images committed in `tests/reference/pathtrace/` (lavapipe's, and the NVIDIA H200's
+//! of the same replay); and the demo's HUD text, which the path-traced frame must show
+//! exactly as the rasterized one.
 //!
 //! Settings: traced at a quarter of the resolution (`GLRT_RESOLUTION_SCALE=0.25`, so a frame
 //! costs about a second on lavapipe), 1 sample per pixel, 1 bounce, the default tone mapping.
@@ -9,7 +10,10 @@
 //! makes the same image again; the tolerance (`images::compare`, 24 per channel, 1% of the
 //! pixels, mean difference below 2) leaves room for another processor's floating point.
 //! To remake the references after a deliberate change, run this test and copy
-//! `target/<profile>/pathtrace-replay/{demo,glxgears}-3.png` to `tests/reference/pathtrace/`.
+//! `target/<profile>/pathtrace-replay/{demo,glxgears}-3.png` to `tests/reference/pathtrace/`;
+//! on the GPU machine, `GLRT_MODE=pathtrace GLRT_RESOLUTION_SCALE=0.25 GLRT_SPP=1
+//! GLRT_BOUNCES=1 glrt replay tests/fixtures/NAME.glrtcap --frames 3..4 --out DIR` makes
+//! `DIR/frame-00003.png`, the `NAME-3-nvidia-h200.png` reference.
 
 mod common;
 mod images;
@@ -46,30 +50,35 @@ fn replay_frame_3(name: &str, mode: &str) -> PathBuf {
     dir.join("frame-00003.png")
 }
 
-/// Frame 3 of fixture `name`, path traced, against its reference.
-fn matches_reference(name: &str) -> Image {
+/// Frame 3 of fixture `name`, path traced here, against the references: lavapipe's
+/// (`NAME-3.png`) and the NVIDIA H200's (`NAME-3-nvidia-h200.png`, the same replay and
+/// settings with a release build on the GPU machine: the tracer makes the same image on both).
+fn matches_references(name: &str) -> Image {
+    let dir = lib_dir().join("pathtrace-replay");
     let here = Image::load_png(&replay_frame_3(name, "pathtrace"));
-    let kept = lib_dir().join("pathtrace-replay").join(format!("{name}-3.png"));
+    let kept = dir.join(format!("{name}-3.png"));
     here.save_png(&kept);
-    let reference = Image::load_png(&Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/reference/pathtrace/{name}-3.png")));
-    let diff = lib_dir().join("pathtrace-replay").join(format!("{name}-3-diff.png"));
-    difference_image(&here, &reference).save_png(&diff);
-    let d = compare(&here, &reference, TOLERANCE);
-    eprintln!("{name}: {:.3}% mismatched, {:.3}% identical, mean |difference| {:.4}", d.mismatched * 100.0, d.identical * 100.0, d.mean_abs);
-    assert!(
-        d.mismatched <= MAX_MISMATCHED && d.mean_abs <= MAX_MEAN_ABS,
-        "{name}: {:.2}% of the pixels differ, mean {:.3} (this run: {}, difference: {})",
-        d.mismatched * 100.0,
-        d.mean_abs,
-        kept.display(),
-        diff.display()
-    );
+    for reference in [format!("{name}-3.png"), format!("{name}-3-nvidia-h200.png")] {
+        let expected = Image::load_png(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference/pathtrace").join(&reference));
+        let diff = dir.join(format!("diff-{reference}"));
+        difference_image(&here, &expected).save_png(&diff);
+        let d = compare(&here, &expected, TOLERANCE);
+        eprintln!("{name} against {reference}: {:.3}% mismatched, {:.3}% identical, mean |difference| {:.4}", d.mismatched * 100.0, d.identical * 100.0, d.mean_abs);
+        assert!(
+            d.mismatched <= MAX_MISMATCHED && d.mean_abs <= MAX_MEAN_ABS,
+            "{name} against {reference}: {:.2}% of the pixels differ, mean {:.3} (this run: {}, difference: {})",
+            d.mismatched * 100.0,
+            d.mean_abs,
+            kept.display(),
+            diff.display()
+        );
+    }
     here
 }
 
 #[test]
 fn the_demo_path_traced_matches_its_reference_and_keeps_the_raster_hud() {
-    let traced = matches_reference("demo");
+    let traced = matches_references("demo");
     // The HUD's text colours (demo/scene/hud.rs): every pixel of text in the rasterized frame
     // is the same in the path-traced one.
     let raster = Image::load_png(&replay_frame_3("demo", "raster"));
@@ -92,5 +101,5 @@ fn the_demo_path_traced_matches_its_reference_and_keeps_the_raster_hud() {
 
 #[test]
 fn glxgears_path_traced_matches_its_reference() {
-    matches_reference("glxgears");
+    matches_references("glxgears");
 }
