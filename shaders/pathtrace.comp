@@ -2,7 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // The compute path tracer's tracing pass: per traced pixel, `samples` paths of a primary ray,
 // next-event estimation at every vertex (one shadow ray per light), `bounces` indirect
-// bounces and the environment through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular); writes the noisy radiance
+// bounces and the environment (trace/environment.glsl: the sky cube map or the clear colour)
+// through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal
+// specular), and through primary rays that miss; writes the noisy radiance
 // and the primary hit's G-buffer (trace/gbuffer.glsl). src/render/trace/mod.rs describes the
 // scene it reads.
 
@@ -10,6 +12,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "trace/lights.glsl"
 #include "trace/gbuffer.glsl"
+#include "trace/environment.glsl"
 
 shared uint group_rays[4];
 
@@ -77,7 +80,7 @@ void main() {
         TraceHit hit;
         bool hit_found = in_viewport && trace_closest(origin, dir, 0.0, 1e30, hit);
         if (!hit_found) {
-            radiance = frame.environment.rgb;
+            radiance = environment(dir);
         }
         // Vertex `depth` of the path: emission, next-event estimation towards every light,
         // then a continuation ray; the environment is found by continuation rays that miss
@@ -128,7 +131,7 @@ void main() {
             // diffuse rays are read from small levels).
             cone_spread = max(cone_spread, chose_specular ? ggx_alpha(s) : 1.0);
             if (!trace_closest(origin, dir, 0.0, 1e30, hit)) {
-                radiance += throughput * frame.environment.rgb;
+                radiance += throughput * environment(dir);
                 break;
             }
             if (depth == bounces) {
