@@ -22,7 +22,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 xvfb() { xvfb-run -a -s "-screen 0 1280x1024x24" "$@"; }
 # The environment without glrt settings and without LD_LIBRARY_PATH (a command prefix).
-clean=(env -u GLRT_TRACE -u GLRT_CAPTURE -u GLRT_CAPTURE_FRAMES -u GLRT_DUMP -u GLRT_PASSTHROUGH -u LD_LIBRARY_PATH)
+clean=(env -u GLRT_TRACE -u GLRT_CAPTURE -u GLRT_CAPTURE_FRAMES -u GLRT_DUMP -u GLRT_PASSTHROUGH -u LD_LIBRARY_PATH GLRT_MODE=raster)
 # frames/s from the demo's "frame time ms: avg X" line on standard input.
 fps() { sed -n 's/.*frame time ms: avg \([0-9.]*\).*/\1/p' | awk '{ printf "%.1f", 1000 / $1 }'; }
 

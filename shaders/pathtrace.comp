@@ -1,20 +1,21 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_basic : require
 // The compute path tracer's tracing pass: per traced pixel, `samples` paths of a primary ray,
 // next-event estimation at every vertex (one shadow ray per light), `bounces` indirect
 // bounces and the environment (trace/environment.glsl: the sky cube map or the clear colour)
 // through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal
 // specular), and through primary rays that miss; writes the noisy radiance
 // and the primary hit's G-buffer (trace/gbuffer.glsl). src/render/trace/mod.rs describes the
-// scene it reads.
+// scene it reads. Ray counts and traversal work are summed per subgroup (subgroup arithmetic,
+// which lavapipe and the desktop drivers have) and added to the counters once per subgroup.
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "trace/lights.glsl"
 #include "trace/gbuffer.glsl"
 #include "trace/environment.glsl"
-
-shared uint group_rays[4];
 
 // The eye-space ray through window position `window` (GL window coordinates, y up).
 void camera_ray(vec2 window, out vec3 origin, out vec3 dir) {
@@ -38,11 +39,6 @@ vec2 window_xy(mat4 projection, vec3 p) {
 }
 
 void main() {
-    if (gl_LocalInvocationIndex < 4u) {
-        group_rays[gl_LocalInvocationIndex] = 0u;
-    }
-    barrier();
-
     uvec2 pixel = gl_GlobalInvocationID.xy;
     uvec2 size = frame.size.xy;
     bool inside = all(lessThan(pixel, size));
@@ -141,19 +137,19 @@ void main() {
         radiance_sum += radiance;
     }
 
-    atomicAdd(group_rays[0], primary);
-    atomicAdd(group_rays[1], shadow);
-    atomicAdd(group_rays[2], diffuse);
-    atomicAdd(group_rays[3], specular);
     if (inside) {
         g.radiance = vec4(radiance_sum / float(samples), 1.0);
         gbuffer[pixel.y * size.x + pixel.x] = g;
     }
-    barrier();
-    if (gl_LocalInvocationIndex == 0u) {
-        atomicAdd(counters.primary_rays, group_rays[0]);
-        atomicAdd(counters.shadow_rays, group_rays[1]);
-        atomicAdd(counters.diffuse_rays, group_rays[2]);
-        atomicAdd(counters.specular_rays, group_rays[3]);
+    // One atomic per subgroup and counter.
+    uvec4 rays = subgroupAdd(uvec4(primary, shadow, diffuse, specular));
+    uvec2 work = subgroupAdd(uvec2(bvh_nodes_visited, bvh_triangles_tested));
+    if (subgroupElect()) {
+        atomicAdd(counters.primary_rays, rays.x);
+        atomicAdd(counters.shadow_rays, rays.y);
+        atomicAdd(counters.diffuse_rays, rays.z);
+        atomicAdd(counters.specular_rays, rays.w);
+        atomicAdd(counters.nodes_visited, work.x);
+        atomicAdd(counters.triangles_tested, work.y);
     }
 }

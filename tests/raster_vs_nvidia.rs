@@ -2,7 +2,7 @@
 //! through glrt on this machine's device (lavapipe in CI), against the image the NVIDIA H100
 //! driver produced from the same binary, committed as
 //! `tests/reference/demo-206-nvidia-h100.png`. Made on the GPU machine with
-//! `GLRT_DUMP=... LD_LIBRARY_PATH=<dir of libGL.so.1 → libglrt.so> glrt-demo --headless
+//! `GLRT_MODE=raster GLRT_DUMP=... LD_LIBRARY_PATH=<dir of libGL.so.1 → libglrt.so> glrt-demo --headless
 //! --frames 1 --first-frame 206 --size 320x240 --screenshot demo-206-nvidia-h100.png`.
 //! Same metric and tolerance as `raster_vs_mesa.rs`.
 

@@ -122,6 +122,10 @@ vec3 bvh_transform(vec4 rows[3], vec3 v, float w) {
 }
 
 // Both queries: with any_hit, returns at the first accepted hit.
+// Work of this invocation's traversals so far (statistics: nodes visited, triangles tested).
+uint bvh_nodes_visited = 0u;
+uint bvh_triangles_tested = 0u;
+
 bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out TraceHit hit) {
     hit.t = tmax;
     hit.instance = BVH_NONE;
@@ -140,6 +144,7 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
     uint sp = 0u;
     uint next = 0u;
     while (true) {
+        bvh_nodes_visited++;
         if ((next & BVH_LEAF) != 0u) {
             instance = next & ~BVH_LEAF;
             o = bvh_transform(instances[instance].eye_to_object, origin, 1.0);
@@ -164,6 +169,7 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
                 uint first = floatBitsToUint(n.child[2 * c].w);
                 uint end = first + (meta & ~BVH_LEAF);
                 for (uint k = first; k < end; k++) {
+                    bvh_triangles_tested++;
                     uint triangle = first_triangle + k;
                     float t;
                     vec2 bary;

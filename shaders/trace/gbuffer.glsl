@@ -56,6 +56,8 @@ layout(set = TRACE_SET, binding = BINDING_COUNTERS, std430) buffer Counters {
     uint shadow_rays;
     uint diffuse_rays;
     uint specular_rays;
+    uint nodes_visited;     // BVH nodes (TLAS and BLAS) visited by all rays
+    uint triangles_tested;  // ray-triangle tests of all rays
 } counters;
 
 #endif

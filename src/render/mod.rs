@@ -74,53 +74,80 @@ impl FrameSink for RecordingSink {
 }
 
 /// The sink a new context presents to, behind the frame log when `GLRT_FRAME_LOG` is set (see
-/// [`frame_log`]): the Vulkan raster renderer when `GLRT_MODE` is unset or `raster` and a
-/// device is available, else the [`NullSink`] (with one message on stderr saying why).
+/// [`frame_log`]): the Vulkan renderer of the mode [`Mode::of_process`] chooses when a device
+/// is available, else the [`NullSink`] (with one message on stderr saying why).
 pub fn default_sink() -> Box<dyn FrameSink> {
     frame_log::wrap_from_env(renderer_from_env())
 }
 
-/// The sink of a replay that writes frames as PNG (`glrt replay --out`): the Vulkan raster
-/// renderer (the one renderer that makes pixels, whatever `GLRT_MODE` says), writing frames
-/// `first` and later to `dir/frame-NNNNN.png` (see [`raster::dump`]), behind the frame log as
-/// in [`default_sink`]. The error says why no frames could be written (no Vulkan device,
-/// directory not writable).
+/// The sink of a replay that writes frames as PNG (`glrt replay --out`): the Vulkan renderer
+/// (of the mode `GLRT_MODE` chooses; a mode without a renderer still gets pixels, rasterized),
+/// writing frames `first` and later to `dir/frame-NNNNN.png` (see [`raster::dump`]), behind
+/// the frame log as in [`default_sink`]. The error says why no frames could be written (no
+/// Vulkan device, directory not writable).
 pub fn dumping_sink(dir: &std::path::Path, first: u64) -> Result<Box<dyn FrameSink>, String> {
     let dump = raster::dump::Dump::new(dir.to_path_buf(), first)?;
-    let renderer = raster::renderer::Renderer::with_dump(Some(dump)).map_err(|e| e.to_string())?;
+    let renderer = renderer_for_mode(Some(dump)).map_err(|e| e.to_string())?;
     Ok(frame_log::wrap_from_env(Box::new(renderer)))
 }
 
-/// `GLRT_MODE` when it names a mode without a renderer.
-fn mode_without_renderer() -> Option<String> {
-    std::env::var("GLRT_MODE").ok().filter(|mode| !mode.is_empty() && mode != "raster" && mode != "pathtrace")
+/// How frames are rendered, from `GLRT_MODE`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Mode {
+    /// `raster`: everything rasterized.
+    Raster,
+    /// `pathtrace`: the traced classes path traced, the others rasterized around them.
+    PathTrace,
+    /// Unset or empty: path traced on a GPU; rasterized on a CPU device (lavapipe), where the
+    /// compute tracer takes seconds per frame.
+    Default,
 }
 
-/// Whether `GLRT_MODE` asks for the path tracer.
-fn path_traced() -> bool {
-    std::env::var("GLRT_MODE").is_ok_and(|mode| mode == "pathtrace")
+impl Mode {
+    /// The mode `GLRT_MODE` names; `Err` with the value when it names a mode without a renderer.
+    fn of_process() -> Result<Mode, String> {
+        match std::env::var("GLRT_MODE").unwrap_or_default().as_str() {
+            "" => Ok(Mode::Default),
+            "raster" => Ok(Mode::Raster),
+            "pathtrace" => Ok(Mode::PathTrace),
+            other => Err(other.to_owned()),
+        }
+    }
+}
+
+/// The Vulkan renderer, path tracing when the mode says so on its device.
+fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result<raster::renderer::Renderer> {
+    let mut renderer = raster::renderer::Renderer::with_dump(dump)?;
+    let cpu = renderer.device().properties.device_type == ash::vk::PhysicalDeviceType::CPU;
+    let traced = match Mode::of_process() {
+        Ok(Mode::PathTrace) => true,
+        Ok(Mode::Default) if cpu => {
+            log::info!("glrt: the Vulkan device is a CPU: rasterizing (GLRT_MODE=pathtrace traces anyway, at seconds per frame)");
+            false
+        }
+        Ok(Mode::Default) => true,
+        Ok(Mode::Raster) | Err(_) => false,
+    };
+    if traced {
+        renderer.enable_tracing(trace::settings::Settings::of_process())?;
+    }
+    Ok(renderer)
 }
 
 /// The sample counts above 1 that the renderer of [`default_sink`] draws multisampled
 /// framebuffers with (what GLX offers as multisampled configurations): those of the Vulkan
 /// device, probed once per process; none when frames are not drawn.
 pub fn multisample_counts() -> &'static [u32] {
-    if mode_without_renderer().is_some() { &[] } else { raster::multisample::probe() }
+    if Mode::of_process().is_err() { &[] } else { raster::multisample::probe() }
 }
 
 /// The renderer `GLRT_MODE` asks for, or the [`NullSink`].
 fn renderer_from_env() -> Box<dyn FrameSink> {
-    if let Some(mode) = mode_without_renderer() {
+    if let Err(mode) = Mode::of_process() {
         eprintln!("glrt: GLRT_MODE={mode} has no renderer yet; frames are not drawn");
         return Box::new(NullSink::default());
     }
-    let renderer = raster::renderer::Renderer::new().and_then(|mut renderer| {
-        if path_traced() {
-            renderer.enable_tracing(trace::settings::Settings::of_process())?;
-        }
-        Ok(renderer)
-    });
-    match renderer {
+    match renderer_for_mode(raster::dump::Dump::from_env()) {
         Ok(renderer) => Box::new(renderer),
         Err(e) => {
             eprintln!("glrt: {e}; frames are not drawn");

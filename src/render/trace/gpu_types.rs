@@ -128,7 +128,7 @@ pub const ACCUM_SAMPLE_BYTES: u64 = 32;
 /// Per-pixel bytes of the composite's input (`OutputSample`).
 pub const OUTPUT_SAMPLE_BYTES: u64 = 8;
 /// Bytes of the ray counters.
-pub const COUNTER_BYTES: u64 = 16;
+pub const COUNTER_BYTES: u64 = 24;
 
 /// The rows of the affine part of `m` (its last row is taken as 0, 0, 0, 1).
 pub fn rows(m: &glam::Mat4) -> [[f32; 4]; 3] {

@@ -26,6 +26,7 @@
 //! - [`scene`]: traced draws as geometries, instances and materials; [`lights`]: GL lights as
 //!   physical lights; [`sky`]: the sky draws as the environment cube map; [`gpu_types`]: the
 //!   structures the shaders read.
+//! - [`stats`]: rays traced by kind, traversal work and the tracing pass's GPU time.
 //! - [`resident`]: geometries on the GPU; [`pipelines`]: the tracer's pipelines;
 //!   [`tracer`]: one traced frame, recorded into the raster renderer's command buffer.
 
@@ -38,5 +39,6 @@ pub mod resident;
 pub mod scene;
 pub mod settings;
 pub mod sky;
+pub mod stats;
 pub mod texels;
 pub mod tracer;

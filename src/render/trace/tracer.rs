@@ -17,6 +17,7 @@ use super::resident::Resident;
 use super::scene::{self, MaterialDefaults};
 use super::settings::{Settings, Tonemap};
 use super::sky::Sky;
+use super::stats::{RayCounts, Totals};
 use super::texels::TexelPool;
 use super::bindings;
 use crate::frame::{Draw, Frame};
@@ -42,19 +43,6 @@ struct Previous {
     projection: Mat4,
 }
 
-/// Rays traced in one frame, by kind.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct RayCounts {
-    /// Camera rays.
-    pub primary: u64,
-    /// Shadow rays of next-event estimation.
-    pub shadow: u64,
-    /// Indirect rays of the diffuse lobe.
-    pub diffuse: u64,
-    /// Indirect rays of the specular lobe.
-    pub specular: u64,
-}
-
 /// The compute path tracer.
 pub struct Tracer {
     settings: Settings,
@@ -70,11 +58,18 @@ pub struct Tracer {
     counters: Vec<Buffer>,
     /// Descriptor pools per frame in flight.
     pools: Vec<vk::DescriptorPool>,
+    /// Two timestamps per frame in flight around the tracing pass (`None`: the device has no
+    /// timestamps on compute queues, or is a CPU).
+    timestamps: Option<vk::QueryPool>,
+    /// Per frame in flight: whether it traced a frame whose counters were not read yet.
+    unread: Vec<bool>,
     frame_index: u32,
     parity: usize,
     previous: Option<Previous>,
     /// Rays of the last frame whose counters were read (a frame in flight behind).
     pub rays: RayCounts,
+    /// Sums over every frame whose counters were read.
+    pub totals: Totals,
     /// Frames traced.
     pub frames: u64,
 }
@@ -96,6 +91,15 @@ impl Tracer {
             // Safety: valid create info; destroyed in `destroy`.
             pools.push(unsafe { device.raw.create_descriptor_pool(&info, None) }.check("vkCreateDescriptorPool")?);
         }
+        // lavapipe's timestamps do not bracket its compute work (they read ~0): CPU devices get none.
+        let timed = device.properties.limits.timestamp_compute_and_graphics == vk::TRUE && device.properties.device_type != vk::PhysicalDeviceType::CPU;
+        let timestamps = if timed {
+            let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(2 * slots as u32);
+            // Safety: valid create info; destroyed in `destroy`.
+            Some(unsafe { device.raw.create_query_pool(&info, None) }.check("vkCreateQueryPool")?)
+        } else {
+            None
+        };
         Ok(Tracer {
             settings,
             pipelines,
@@ -106,10 +110,13 @@ impl Tracer {
             pixels: None,
             counters,
             pools,
+            timestamps,
+            unread: vec![false; slots],
             frame_index: 0,
             parity: 0,
             previous: None,
             rays: RayCounts::default(),
+            totals: Totals::default(),
             frames: 0,
         })
     }
@@ -119,23 +126,29 @@ impl Tracer {
         &self.settings
     }
 
-    /// Reads the ray counters of the frame slot `slot` last traced (its fence has signalled).
-    fn read_counters(&mut self, slot: usize) {
-        if let Some(buffer) = self.counters.get_mut(slot) {
-            let bytes = buffer.mapped();
-            if bytes.len() >= 16 {
-                let word = |i: usize| u32::from_le_bytes([bytes[4 * i], bytes[4 * i + 1], bytes[4 * i + 2], bytes[4 * i + 3]]) as u64;
-                self.rays = RayCounts { primary: word(0), shadow: word(1), diffuse: word(2), specular: word(3) };
-            }
+    /// Reads the ray counters and the pass time of the frame slot `slot` last traced (its
+    /// fence has signalled) into `rays` and `totals`, once per traced frame.
+    fn read_counters(&mut self, device: &Device, slot: usize) {
+        if !self.unread.get_mut(slot).is_some_and(std::mem::take) {
+            return;
         }
+        let Some(rays) = self.counters.get_mut(slot).and_then(|b| RayCounts::from_counters(b.mapped())) else { return };
+        let seconds = self.timestamps.and_then(|pool| {
+            let mut ticks = [0u64; 2];
+            // Safety: both queries were written by the slot's finished frame.
+            unsafe { device.raw.get_query_pool_results(pool, 2 * slot as u32, &mut ticks, vk::QueryResultFlags::TYPE_64) }.ok()?;
+            Some(ticks[1].wrapping_sub(ticks[0]) as f64 * device.properties.limits.timestamp_period as f64 * 1e-9)
+        });
+        self.rays = rays;
+        self.totals.add(rays, seconds);
     }
 
     /// Traces the traced draws of `frame` and composites them into `rec`'s framebuffer.
     pub fn record(&mut self, rec: &mut Recorder<'_>, frame: &Frame) -> Result<()> {
         let slot = rec.slot();
-        self.read_counters(slot);
-        rec.end_rendering();
         let device = rec.device;
+        self.read_counters(device, slot);
+        rec.end_rendering();
         let cmd = rec.cmd;
         let draws: Vec<&Draw> = frame.draws.iter().filter(|d| scene::is_traced(d)).collect();
         let Some(camera) = draws.first() else { return Ok(()) };
@@ -186,6 +199,8 @@ impl Tracer {
             signature.update(bytemuck::cast_slice(&draw.modelview.to_cols_array()));
         }
         let tlas = Tlas::build(&bounds);
+        let traced_triangles: usize = draws.iter().map(|d| d.indices.len() / 3).sum();
+        self.totals.add_scene(traced_triangles as u64, instances.len() as u64);
         let light_settings = LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction };
         let gl_lights = draws.iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));
         let lights: Vec<GpuLight> = lights::gather(gl_lights, frame.view.as_ref().map(|v| &v.view), &light_settings);
@@ -364,7 +379,15 @@ impl Tracer {
             let groups = [gpu_frame.size[0].div_ceil(GROUP), gpu_frame.size[1].div_ceil(GROUP)];
             d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.layout, 0, &[sets[0]], &[]);
             d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.pathtrace);
+            if let Some(pool) = self.timestamps {
+                d.cmd_reset_query_pool(cmd, pool, 2 * slot as u32, 2);
+                d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, 2 * slot as u32);
+            }
             d.cmd_dispatch(cmd, groups[0], groups[1], 1);
+            if let Some(pool) = self.timestamps {
+                d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, 2 * slot as u32 + 1);
+            }
+            self.unread[slot] = true;
             barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
             d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.resolve);
             d.cmd_dispatch(cmd, groups[0], groups[1], 1);
@@ -387,6 +410,16 @@ impl Tracer {
 
     /// Frees everything (the GPU must be idle).
     pub fn destroy(&mut self, device: &Device) {
+        for slot in 0..self.unread.len() {
+            self.read_counters(device, slot);
+        }
+        if self.totals.frames > 0 {
+            log::info!("{}", self.totals.summary());
+        }
+        if let Some(pool) = self.timestamps.take() {
+            // Safety: the GPU is idle.
+            unsafe { device.raw.destroy_query_pool(pool, None) };
+        }
         self.resident.destroy(device);
         if let Some((b, _)) = self.texel_buffer.take() {
             device.destroy_buffer(b);

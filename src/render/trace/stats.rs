@@ -1,0 +1,148 @@
+//! What the path tracer did: rays traced by kind and traversal work per frame (counted by
+//! `pathtrace.comp` into the counters buffer), the GPU time of the tracing pass (timestamps
+//! around its dispatch), and the totals of a run, which [`Totals::summary`] turns into rays per
+//! second (logged at `GLRT_LOG=info` when the tracer is destroyed: the numbers of `bench/`).
+
+/// Rays traced in one frame, by kind, and the traversal work they cost.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayCounts {
+    /// Camera rays.
+    pub primary: u64,
+    /// Shadow rays of next-event estimation.
+    pub shadow: u64,
+    /// Indirect rays of the diffuse lobe.
+    pub diffuse: u64,
+    /// Indirect rays of the specular lobe.
+    pub specular: u64,
+    /// BVH nodes visited by all rays (top and bottom levels).
+    pub nodes_visited: u64,
+    /// Ray-triangle intersection tests of all rays.
+    pub triangles_tested: u64,
+}
+
+impl RayCounts {
+    /// Words of the counters buffer, in the order of `Counters` in `shaders/trace/gbuffer.glsl`.
+    pub const WORDS: usize = 6;
+
+    /// The counts in the counters buffer's bytes (`None` when too short).
+    pub fn from_counters(bytes: &[u8]) -> Option<RayCounts> {
+        let words: Vec<u64> = bytes.chunks_exact(4).take(Self::WORDS).map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]) as u64).collect();
+        let &[primary, shadow, diffuse, specular, nodes_visited, triangles_tested] = words.as_slice() else { return None };
+        Some(RayCounts { primary, shadow, diffuse, specular, nodes_visited, triangles_tested })
+    }
+
+    /// Every ray traced.
+    pub fn total(&self) -> u64 {
+        self.primary + self.shadow + self.diffuse + self.specular
+    }
+}
+
+/// The sums over the frames of a run whose counters and pass times were read.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Totals {
+    /// Frames counted.
+    pub frames: u64,
+    /// Rays and work, summed.
+    pub rays: RayCounts,
+    /// GPU seconds of the tracing pass, summed over the frames that had timestamps.
+    pub trace_seconds: f64,
+    /// Frames whose pass time is in `trace_seconds`.
+    pub timed_frames: u64,
+    /// Frames recorded, and the triangles and instances of their traced scenes, summed.
+    pub scenes: u64,
+    /// See `scenes`.
+    pub scene_triangles: u64,
+    /// See `scenes`.
+    pub scene_instances: u64,
+}
+
+impl Totals {
+    /// Adds one frame: its counts and, when the device timed it, its tracing pass's seconds.
+    pub fn add(&mut self, rays: RayCounts, trace_seconds: Option<f64>) {
+        self.frames += 1;
+        let r = &mut self.rays;
+        r.primary += rays.primary;
+        r.shadow += rays.shadow;
+        r.diffuse += rays.diffuse;
+        r.specular += rays.specular;
+        r.nodes_visited += rays.nodes_visited;
+        r.triangles_tested += rays.triangles_tested;
+        if let Some(s) = trace_seconds {
+            self.trace_seconds += s;
+            self.timed_frames += 1;
+        }
+    }
+
+    /// Adds one recorded frame's traced scene.
+    pub fn add_scene(&mut self, triangles: u64, instances: u64) {
+        self.scenes += 1;
+        self.scene_triangles += triangles;
+        self.scene_instances += instances;
+    }
+
+    /// One line: per-frame averages and, when every frame was timed, rays per second of the
+    /// tracing pass by kind.
+    pub fn summary(&self) -> String {
+        if self.frames == 0 {
+            return "path tracer: no frame traced".to_owned();
+        }
+        let n = self.frames as f64;
+        let r = &self.rays;
+        let per_ray = |work: u64| work as f64 / r.total().max(1) as f64;
+        let scenes = self.scenes.max(1) as f64;
+        let mut line = format!(
+            "path tracer: {} frames; scene: {:.0} triangles in {:.0} instances; per frame: {:.0} primary, {:.0} shadow, {:.0} diffuse, {:.0} specular rays; per ray: {:.1} nodes, {:.1} triangle tests",
+            self.frames,
+            self.scene_triangles as f64 / scenes,
+            self.scene_instances as f64 / scenes,
+            r.primary as f64 / n,
+            r.shadow as f64 / n,
+            r.diffuse as f64 / n,
+            r.specular as f64 / n,
+            per_ray(r.nodes_visited),
+            per_ray(r.triangles_tested),
+        );
+        if self.timed_frames == self.frames && self.trace_seconds > 0.0 {
+            let rate = |count: u64| count as f64 / self.trace_seconds / 1e6;
+            line += &format!(
+                "; tracing pass {:.3} ms per frame; Mrays/s: {:.1} primary, {:.1} shadow, {:.1} diffuse, {:.1} specular, {:.1} all",
+                self.trace_seconds * 1e3 / n,
+                rate(r.primary),
+                rate(r.shadow),
+                rate(r.diffuse),
+                rate(r.specular),
+                rate(r.total()),
+            );
+        }
+        line
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn counters_are_read_in_shader_order() {
+        let bytes: Vec<u8> = (1u32..=6).flat_map(u32::to_le_bytes).collect();
+        let r = RayCounts::from_counters(&bytes).unwrap();
+        assert_eq!(r, RayCounts { primary: 1, shadow: 2, diffuse: 3, specular: 4, nodes_visited: 5, triangles_tested: 6 });
+        assert_eq!(RayCounts::from_counters(&bytes[..20]), None);
+    }
+
+    #[test]
+    fn the_summary_gives_rates_of_the_timed_pass() {
+        let mut t = Totals::default();
+        let frame = RayCounts { primary: 1_000_000, shadow: 2_000_000, diffuse: 500_000, specular: 0, nodes_visited: 35_000_000, triangles_tested: 7_000_000 };
+        t.add(frame, Some(0.001));
+        t.add(frame, Some(0.001));
+        t.add_scene(1000, 3);
+        t.add_scene(3000, 5);
+        let s = t.summary();
+        assert!(s.contains("2 frames; scene: 2000 triangles in 4 instances"), "{s}");
+        assert!(s.contains("per ray: 10.0 nodes, 2.0 triangle tests"), "{s}");
+        assert!(s.contains("tracing pass 1.000 ms per frame; Mrays/s: 1000.0 primary, 2000.0 shadow, 500.0 diffuse, 0.0 specular, 3500.0 all"), "{s}");
+        t.add(frame, None);
+        assert!(!t.summary().contains("Mrays/s"), "an untimed frame leaves the rates out");
+    }
+}
