@@ -106,7 +106,9 @@ pub struct Sky {
     layout: vk::ImageLayout,
     /// Where faces are drawn (created at the first sky, with the window's alpha).
     faces: Option<Target>,
+    /// What the cube holds (`None`: nothing drawn yet).
     drawn: Option<Drawn>,
+    /// Times the cube was drawn: the version [`Sky::update`] returns.
     version: u64,
 }
 
@@ -149,9 +151,9 @@ impl Sky {
     }
 
     /// Makes the cube hold the environment of `frame`, drawing it into `rec`'s command buffer
-    /// when it changed, and leaves it readable by shaders. Returns the version of the
-    /// content (from 1, changes whenever the cube is drawn again), or `None` when the frame has no
-    /// sky draws: the environment is then the clear colour alone.
+    /// when it changed, and leaves it readable by shaders. Returns the version of the content
+    /// (from 1, changes whenever the cube is drawn again), or `None` when the frame has no sky
+    /// draws: the environment is then the clear colour alone.
     pub fn update(&mut self, rec: &mut Recorder<'_>, frame: &Frame) -> Result<Option<u64>> {
         if self.layout == vk::ImageLayout::UNDEFINED {
             transition(rec, self.cube.raw, &mut self.layout, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
