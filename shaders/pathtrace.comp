@@ -4,11 +4,13 @@
 #extension GL_KHR_shader_subgroup_basic : require
 // The compute path tracer's tracing pass: per traced pixel, one path of a primary ray,
 // next-event estimation at every vertex (one shadow ray per light), `bounces` indirect
-// bounces and the environment through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular); adds its
-// share of the noisy radiance (1 / `samples`) to the G-buffer, which sample 0 writes with the
-// primary hit (trace/gbuffer.glsl). The tracer dispatches this pass once per sample of the
-// frame (see `record_passes` in src/render/trace/tracer.rs for why). src/render/trace/mod.rs
-// describes the scene it reads. Ray counts and traversal work are summed per subgroup (subgroup
+// bounces and the environment (trace/environment.glsl: the sky cube map or the clear colour)
+// through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal
+// specular), and through primary rays that miss; adds its share of the noisy radiance
+// (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
+// (trace/gbuffer.glsl). The tracer dispatches this pass once per sample of the frame (see
+// `record_passes` in src/render/trace/tracer.rs for why). src/render/trace/mod.rs describes
+// the scene it reads. Ray counts and traversal work are summed per subgroup (subgroup
 // arithmetic, which lavapipe and the desktop drivers have) and added to the counters once per
 // subgroup.
 
@@ -21,6 +23,7 @@ layout(push_constant) uniform Pass {
 
 #include "trace/lights.glsl"
 #include "trace/gbuffer.glsl"
+#include "trace/environment.glsl"
 
 // The eye-space ray through window position `window` (GL window coordinates, y up).
 void camera_ray(vec2 window, out vec3 origin, out vec3 dir) {
@@ -81,7 +84,7 @@ void main() {
         TraceHit hit;
         bool hit_found = in_viewport && trace_closest(origin, dir, 0.0, 1e30, hit);
         if (!hit_found) {
-            radiance = frame.environment.rgb;
+            radiance = environment(dir);
         }
         // Vertex `depth` of the path: emission, next-event estimation towards every light,
         // then a continuation ray; the environment is found by continuation rays that miss
@@ -136,7 +139,7 @@ void main() {
             // diffuse rays are read from small levels).
             cone_spread = max(cone_spread, chose_specular ? ggx_alpha(s) : 1.0);
             if (!trace_closest(origin, dir, 0.0, 1e30, hit)) {
-                radiance += throughput * frame.environment.rgb;
+                radiance += throughput * environment(dir);
                 break;
             }
             if (depth == bounces) {

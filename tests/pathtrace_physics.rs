@@ -435,3 +435,119 @@ fn sphere_lights_keep_the_irradiance_and_soften_shadows() {
         assert!((got - reference).abs() <= bound, "row {y}: {got:.4} against the reference {reference:.4} (± {bound:.4}; visible fraction {p:.2})");
     }
 }
+
+/// A sky box around the eye, drawn unlit with depth writes off before the scene (so it is a
+/// `Sky` draw): the cube [-10, 10]³, each face split into 2×2 quads coloured `above` where
+/// the quad's centre lies on the positive side of `axis` (0: x, 1: y, 2: z) and `below`
+/// elsewhere, so the sky is `above` in every direction d with d[axis] > 0. The quads face
+/// inwards and back faces are culled, as games draw their sky boxes.
+fn sky_box(ctx: &mut Context, axis: usize, above: [f32; 3], below: [f32; 3]) {
+    unsafe {
+        dispatch::glDisable(ctx, gl::GL_LIGHTING);
+        dispatch::glEnable(ctx, gl::GL_CULL_FACE);
+        dispatch::glDepthMask(ctx, gl::GL_FALSE);
+        dispatch::glBegin(ctx, gl::GL_QUADS);
+        for face in 0..3 {
+            let (u, v) = ((face + 1) % 3, (face + 2) % 3);
+            for sign in [-10.0f32, 10.0] {
+                for [u0, v0] in [[-10.0f32, -10.0], [0.0, -10.0], [-10.0, 0.0], [0.0, 0.0]] {
+                    let mut centre = [0.0f32; 3];
+                    (centre[face], centre[u], centre[v]) = (sign, u0 + 5.0, v0 + 5.0);
+                    let [r, g, b] = if centre[axis] > 0.0 { above } else { below };
+                    dispatch::glColor3f(ctx, r, g, b);
+                    // Counter-clockwise seen from the positive side of the face's axis.
+                    let mut corners = [[0.0, 0.0], [10.0, 0.0], [10.0, 10.0], [0.0, 10.0]];
+                    if sign > 0.0 {
+                        corners.reverse();
+                    }
+                    for [du, dv] in corners {
+                        let mut p = [0.0f32; 3];
+                        (p[face], p[u], p[v]) = (sign, u0 + du, v0 + dv);
+                        dispatch::glVertex3f(ctx, p[0], p[1], p[2]);
+                    }
+                }
+            }
+        }
+        dispatch::glEnd(ctx);
+        dispatch::glDepthMask(ctx, gl::GL_TRUE);
+        dispatch::glDisable(ctx, gl::GL_CULL_FACE);
+        dispatch::glColor3f(ctx, 1.0, 1.0, 1.0);
+    }
+}
+
+/// The sky's colour (GL values) on the positive side of its split.
+const ABOVE: [f32; 3] = [0.9, 0.5, 0.25];
+/// The sky's colour on the negative side.
+const BELOW: [f32; 3] = [0.0, 0.25, 1.0];
+/// The clear colour (what missed rays would see without the sky).
+const CLEAR: [f32; 3] = [0.2; 3];
+
+/// A quad: its normal and corners.
+type Quad = ([f32; 3], [[f32; 3]; 4]);
+
+/// A floor at y = −1 facing up, under the camera.
+const FLOOR: Quad = ([0.0, 1.0, 0.0], [[-50.0, -1.0, 50.0], [50.0, -1.0, 50.0], [50.0, -1.0, -50.0], [-50.0, -1.0, -50.0]]);
+
+/// The image of `frames` frames of [`sky_box`] split along `axis` over a white Lambertian
+/// quad.
+fn plane_under_sky(axis: usize, (normal, corners): Quad, frames: usize) -> Vec<[u8; 4]> {
+    let mut ctx = context(Settings { spp: 4, bounces: 1, ..Settings::default() });
+    render(&mut ctx, frames, CLEAR, |ctx| unsafe {
+        sky_box(ctx, axis, ABOVE, BELOW);
+        lit_material(ctx, 1.0);
+        dispatch::glBegin(ctx, gl::GL_QUADS);
+        dispatch::glNormal3f(ctx, normal[0], normal[1], normal[2]);
+        for [x, y, z] in corners {
+            dispatch::glVertex3f(ctx, x, y, z);
+        }
+        dispatch::glEnd(ctx);
+    })
+}
+
+/// The sky draws are the environment: a white Lambertian plane under a sky that is one
+/// colour on the side its normal faces and another behind it sees only the first (the cube
+/// map is sampled by direction; a plane never sees itself), so its radiance is that colour —
+/// albedo × the cosine-weighted mean of the sky over the hemisphere — not the clear colour.
+/// One plane per axis (a floor facing +y, a wall facing +x, a wall facing +z): a cube face
+/// mirrored or swapped shows the other colour. Where the primary ray misses, the window shows
+/// the rasterized sky, as in raster mode.
+#[test]
+fn the_sky_draws_light_the_scene_as_its_environment() {
+    // GL colours stored as 8 bits (0.9 → 230, 0.5 → 128, 0.25 → 64).
+    let stored = ABOVE.map(|c| (c * 255.0).round() as u8);
+    let half = SIZE / 4;
+    // (axis, the plane's normal and corners, a pixel on it, a pixel of sky above it).
+    let cases = [
+        (1, FLOOR, [SIZE / 2, half], Some([SIZE / 2, SIZE - half])),
+        (0, ([1.0, 0.0, 0.0], [[-1.0, -50.0, 50.0], [-1.0, -50.0, -50.0], [-1.0, 50.0, -50.0], [-1.0, 50.0, 50.0]]), [half, SIZE / 2], Some([SIZE - half, SIZE / 2])),
+        (2, ([0.0, 0.0, 1.0], [[-50.0, -50.0, -3.0], [50.0, -50.0, -3.0], [50.0, 50.0, -3.0], [-50.0, 50.0, -3.0]]), [SIZE / 2, SIZE / 2], None),
+    ];
+    for (axis, quad, lit_pixel, sky_pixel) in cases {
+        let image = plane_under_sky(axis, quad, 3);
+        let at = |[x, y]: [i32; 2]| image[(y * SIZE + x) as usize];
+        let lit = at(lit_pixel);
+        for c in 0..3 {
+            let expected = encoded(linear(stored[c]));
+            assert!((lit[c] as f64 - expected).abs() <= 3.0, "axis {axis}: the plane reads {lit:?}, the sky above it is {stored:?}");
+        }
+        if let Some(p) = sky_pixel {
+            let sky = at(p);
+            assert!(sky[..3].iter().zip(stored).all(|(&a, b)| a.abs_diff(b) <= 1), "axis {axis}: the visible sky is the rasterized one: {sky:?} against {stored:?}");
+        }
+    }
+}
+
+/// A floor under a sky split along x sees half of each colour, cosine-weighted: its radiance
+/// is the mean of both (linear), measured as the mean over floor pixels symmetric about the
+/// centre column (accumulated over still frames).
+#[test]
+fn a_floor_under_a_sky_of_two_halves_reads_their_mean() {
+    let image = plane_under_sky(0, FLOOR, 8);
+    let pixels: Vec<[u8; 4]> = (0..SIZE / 2 - 1).flat_map(|y| (4..SIZE - 4).map(move |x| (x, y))).map(|(x, y)| image[(y * SIZE + x) as usize]).collect();
+    for c in 0..3 {
+        let mean = pixels.iter().map(|p| linear(p[c])).sum::<f64>() / pixels.len() as f64;
+        let [a, b] = [ABOVE[c], BELOW[c]].map(|v| linear((v * 255.0).round() as u8));
+        let expected = 0.5 * (a + b);
+        assert!((mean - expected).abs() <= 0.02, "channel {c}: mean radiance {mean:.4} over {} pixels against {expected:.4}", pixels.len());
+    }
+}

@@ -1,7 +1,8 @@
 // Descriptor bindings of the compute path tracer (set 0 of every tracing pipeline). Mirrors
 // src/render/trace/bindings.rs. Every buffer is a std430 storage buffer: lavapipe inlines
 // uniform-buffer values and recompiles per value (see ff_uniforms.glsl), and has no descriptor
-// indexing, so scene data lives in a fixed set of large buffers.
+// indexing, so scene data lives in a fixed set of large buffers. The one image is the sky's
+// cube map, after the buffers.
 
 #ifndef TRACE_BINDINGS_GLSL
 #define TRACE_BINDINGS_GLSL
@@ -22,5 +23,6 @@
 #define BINDING_OUTPUT 12      // tone-mapped colour and depth per pixel, read by the composite
 #define BINDING_COUNTERS 13    // ray counters (statistics)
 #define BINDING_HISTORY 14     // previous frame's G-buffer and colour (temporal filter)
+#define BINDING_SKY 15         // the sky draws' environment cube map, a samplerCube (environment.glsl)
 
 #endif

@@ -11,12 +11,13 @@
 // TraceFrame.flags bits.
 #define FRAME_TONEMAP_MASK 3u     // 0: clamp, 1: Reinhard, 2: ACES
 #define FRAME_PERSPECTIVE 4u      // perspective camera (else orthographic)
+#define FRAME_SKY 8u              // missed rays sample the sky cube map (environment.glsl)
 
 layout(set = TRACE_SET, binding = BINDING_FRAME, std430) readonly buffer TraceFrameBlock {
     mat4 projection;            // eye to clip, this frame
     mat4 inverse_projection;
     mat4 previous_projection;   // eye to clip, last frame (motion vectors)
-    vec4 environment;           // linear radiance of missed rays (rgb)
+    vec4 environment;           // linear radiance of missed rays (rgb) without FRAME_SKY
     vec4 viewport;              // the GL viewport traced: x, y, width, height in window pixels
     vec4 depth_range;           // near, far of glDepthRange; z, w unused
     vec4 params;                // x: exposure multiplier; y: history cap (frames); z: unused;

@@ -167,6 +167,33 @@ impl Recorder<'_> {
         }
     }
 
+    /// Runs `record` with a recorder drawing into the back colour image of `target` instead
+    /// of the framebuffer (an image the renderer does not own: the tracer's environment faces,
+    /// [`crate::render::trace::sky`]), its draws counted in no occlusion query; the pass on
+    /// the framebuffer is ended before, and the one on `target` after.
+    pub fn with_target<T>(&mut self, target: &mut Target, record: impl FnOnce(&mut Recorder<'_>) -> Result<T>) -> Result<T> {
+        self.end_rendering();
+        let mut color = Plane::Color;
+        let mut rec = Recorder {
+            device: self.device,
+            cmd: self.cmd,
+            target,
+            ring: self.ring,
+            descriptors: self.descriptors,
+            pipelines: self.pipelines,
+            textures: self.textures,
+            rendering: self.rendering,
+            color: &mut color,
+            occlusion: self.occlusion,
+            slot: self.slot,
+            query: (self.query.0, None),
+            framebuffer: self.framebuffer,
+        };
+        let result = record(&mut rec);
+        rec.end_rendering();
+        result
+    }
+
     /// Makes the rendering pass draw into the colour image of `buffer` (ending the pass when
     /// it drew into the other).
     pub fn set_color_buffer(&mut self, buffer: ColorBuffer) {

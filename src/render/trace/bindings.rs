@@ -1,5 +1,5 @@
 //! Descriptor bindings of the tracing pipelines (set 0), as `shaders/trace/bindings.glsl`
-//! numbers them; every binding is a storage buffer.
+//! numbers them: storage buffers `0..COUNT`, then the sky's cube map ([`SKY`]).
 
 /// `TraceFrame`: camera, settings, counts.
 pub const FRAME: u32 = 0;
@@ -32,5 +32,7 @@ pub const COUNTERS: u32 = 13;
 /// The previous frame's G-buffer and colour (temporal filter).
 pub const HISTORY: u32 = 14;
 
-/// Number of bindings.
+/// Number of storage-buffer bindings (`0..COUNT`).
 pub const COUNT: u32 = 15;
+/// The environment cube map of the sky draws ([`super::sky`]): a combined image sampler.
+pub const SKY: u32 = COUNT;

@@ -13,7 +13,7 @@ pub struct GpuFrame {
     pub inverse_projection: [[f32; 4]; 4],
     /// Eye to clip, last frame.
     pub previous_projection: [[f32; 4]; 4],
-    /// Linear radiance of missed rays (rgb).
+    /// Linear radiance of missed rays (rgb) when the frame has no sky draws.
     pub environment: [f32; 4],
     /// The GL viewport: x, y, width, height in window pixels.
     pub viewport: [f32; 4],
@@ -123,6 +123,9 @@ pub const INSTANCE_ALPHA_TESTED: u32 = 1;
 pub const INSTANCE_EMISSIVE: u32 = 2;
 /// `GpuFrame::flags[0]` bit: perspective camera.
 pub const FRAME_PERSPECTIVE: u32 = 4;
+/// `GpuFrame::flags[0]` bit: missed rays sample the sky's cube map ([`super::sky`]), not
+/// `GpuFrame::environment`.
+pub const FRAME_SKY: u32 = 8;
 
 /// Per-pixel bytes of the G-buffer (`GSample` of `gbuffer.glsl`).
 pub const GSAMPLE_BYTES: u64 = 48;

@@ -10,6 +10,12 @@
 //! BVH, reused across frames by geometry key; the top-level BVH over the instances is rebuilt
 //! every frame. GL lights are stored in eye space already.
 //!
+//! Environment: a ray that leaves the scene sees the frame's `Sky` draws, rendered by the
+//! raster pipelines into an eye-space cube map around the eye ([`sky`]); without sky draws,
+//! the linear clear colour. The cube lights and is reflected in the traced surfaces; the sky
+//! visible where primary rays miss stays the rasterized one (the composite leaves those
+//! pixels to the framebuffer).
+//!
 //! Parts:
 //! - [`bindings`]: descriptor bindings shared with `shaders/trace/bindings.glsl`.
 //! - [`bvh`]: bottom-level BVHs of triangle sets and the per-frame top-level BVH (CPU build,
@@ -18,7 +24,8 @@
 //!   descriptor indexing on lavapipe); `shaders/trace/texels.glsl` samples it.
 //! - [`settings`]: `glrt.toml` `[pathtrace]` and `GLRT_*` settings.
 //! - [`scene`]: traced draws as geometries, instances and materials; [`lights`]: GL lights as
-//!   physical lights; [`gpu_types`]: the structures the shaders read.
+//!   physical lights; [`sky`]: the sky draws as the environment cube map; [`gpu_types`]: the
+//!   structures the shaders read.
 //! - [`stats`]: rays traced by kind, traversal work and the tracing pass's GPU time.
 //! - [`resident`]: geometries on the GPU; [`pipelines`]: the tracer's pipelines;
 //!   [`tracer`]: one traced frame, recorded into the raster renderer's command buffer.
@@ -31,6 +38,7 @@ pub mod pipelines;
 pub mod resident;
 pub mod scene;
 pub mod settings;
+pub mod sky;
 pub mod stats;
 pub mod texels;
 pub mod tracer;

@@ -1,5 +1,5 @@
 //! The tracer's Vulkan objects that do not change with the scene: the descriptor set layout
-//! of [`super::bindings`] (every binding a storage buffer), the two compute pipelines
+//! of [`super::bindings`] (storage buffers and the sky's cube map), the two compute pipelines
 //! (`pathtrace.comp`, `trace_resolve.comp`) and the composite's graphics pipelines (one per
 //! sample count of the framebuffer it draws into).
 
@@ -42,10 +42,13 @@ pub struct TracePipelines {
     composite: HashMap<u32, vk::Pipeline>,
 }
 
-/// A descriptor set layout of `count` storage buffers visible to `stages`.
-fn storage_layout(device: &Device, count: u32, stages: vk::ShaderStageFlags) -> Result<vk::DescriptorSetLayout> {
+/// A descriptor set layout of `count` storage buffers visible to `stages`, then combined
+/// image samplers at the bindings `samplers`.
+fn descriptor_set_layout(device: &Device, count: u32, samplers: &[u32], stages: vk::ShaderStageFlags) -> Result<vk::DescriptorSetLayout> {
+    let binding = |b, ty| vk::DescriptorSetLayoutBinding::default().binding(b).descriptor_type(ty).descriptor_count(1).stage_flags(stages);
     let bindings: Vec<_> = (0..count)
-        .map(|b| vk::DescriptorSetLayoutBinding::default().binding(b).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).descriptor_count(1).stage_flags(stages))
+        .map(|b| binding(b, vk::DescriptorType::STORAGE_BUFFER))
+        .chain(samplers.iter().map(|&b| binding(b, vk::DescriptorType::COMBINED_IMAGE_SAMPLER)))
         .collect();
     // Safety: valid create info.
     unsafe { device.raw.create_descriptor_set_layout(&vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings), None) }
@@ -69,7 +72,7 @@ fn compute_pipeline(device: &Device, layout: vk::PipelineLayout, spirv: &[u8]) -
 impl TracePipelines {
     /// Creates the layouts and the compute pipelines.
     pub fn new(device: &Device) -> Result<TracePipelines> {
-        let set_layout = storage_layout(device, bindings::COUNT, vk::ShaderStageFlags::COMPUTE)?;
+        let set_layout = descriptor_set_layout(device, bindings::COUNT, &[bindings::SKY], vk::ShaderStageFlags::COMPUTE)?;
         let set_layouts = [set_layout];
         let trace_push = [vk::PushConstantRange { stage_flags: vk::ShaderStageFlags::COMPUTE, offset: 0, size: TRACE_PUSH_BYTES }];
         // Safety (this block): valid create infos; objects are destroyed in `destroy`.
@@ -79,7 +82,7 @@ impl TracePipelines {
         .check("vkCreatePipelineLayout")?;
         let pathtrace = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/pathtrace.comp.spv")))?;
         let resolve = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/trace_resolve.comp.spv")))?;
-        let composite_set_layout = storage_layout(device, 1, vk::ShaderStageFlags::FRAGMENT)?;
+        let composite_set_layout = descriptor_set_layout(device, 1, &[], vk::ShaderStageFlags::FRAGMENT)?;
         let composite_sets = [composite_set_layout];
         let push = [vk::PushConstantRange { stage_flags: vk::ShaderStageFlags::FRAGMENT, offset: 0, size: COMPOSITE_PUSH_BYTES }];
         let composite_layout = unsafe {

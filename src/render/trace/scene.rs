@@ -51,6 +51,12 @@ pub fn first_traced(frame: &Frame) -> Option<usize> {
     frame.draws.iter().position(is_traced)
 }
 
+/// The colour of the frame's first colour clear of the window (GL values): the environment
+/// of missed rays, or where the sky draws' environment starts ([`super::sky`]).
+pub fn clear_color(frame: &Frame) -> Option<[f32; 4]> {
+    frame.clears.iter().filter(|c| c.framebuffer == Framebuffer::default()).find_map(|c| c.color)
+}
+
 /// The key the GPU geometry cache stores a draw's geometry under: everything
 /// [`geometry`] reads (positions, indices, texture coordinates of units 0 and 1 after their
 /// texture matrices, base colours, normals when lit). The instance's key (hash tracking)

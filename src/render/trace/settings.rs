@@ -17,6 +17,7 @@
 //! accumulate = 1024         # frames accumulated while the camera stands still, 1..=65536
 //! lightmaps = "ignore"      # "ignore" or "keep" (a second unit modulated over the first: baked light)
 //! temporal = true           # temporal filter with reprojection while moving
+//! sky_size = 128            # faces of the sky's environment cube map, pixels, 16..=2048
 //! ```
 
 use glam::Vec3;
@@ -79,6 +80,9 @@ pub struct Settings {
     pub lightmaps: Lightmaps,
     /// The temporal filter (with reprojection while the camera moves).
     pub temporal: bool,
+    /// Width and height of each face of the environment cube map the sky draws are rendered
+    /// into ([`super::sky`]), 16..=2048.
+    pub sky_size: u32,
 }
 
 impl Default for Settings {
@@ -96,6 +100,7 @@ impl Default for Settings {
             accumulate: 1024,
             lightmaps: Lightmaps::Ignore,
             temporal: true,
+            sky_size: 128,
         }
     }
 }
@@ -134,6 +139,7 @@ impl Table for Settings {
         Key { name: "accumulate", set: |s, v| integer_in(v, 1..=65536).map(|x| s.accumulate = x as u32) },
         Key { name: "lightmaps", set: |s, v| one_of(v, &["ignore", "keep"]).map(|i| s.lightmaps = [Lightmaps::Ignore, Lightmaps::Keep][i]) },
         Key { name: "temporal", set: |s, v| boolean(v).map(|b| s.temporal = b) },
+        Key { name: "sky_size", set: |s, v| integer_in(v, 16..=2048).map(|x| s.sky_size = x as u32) },
     ];
 }
 
@@ -166,7 +172,7 @@ mod tests {
     #[test]
     fn every_key_is_read() {
         let body = "spp = 8\nbounces = 0\nresolution_scale = 0.5\nlight_scale = 2\nsun_direction = [0, 2, 0]\nsun_angle = 0\nlight_radius = 0.25\n\
-                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"keep\"\ntemporal = false\n";
+                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"keep\"\ntemporal = false\nsky_size = 64\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
         let expected = Settings {
@@ -182,6 +188,7 @@ mod tests {
             accumulate: 65536,
             lightmaps: Lightmaps::Keep,
             temporal: false,
+            sky_size: 64,
         };
         assert_eq!(s, expected);
         assert_eq!(read("tonemap = \"none\"\n", &[]).0.tonemap, Tonemap::Clamp);
@@ -209,6 +216,7 @@ mod tests {
             ("accumulate = 0", "accumulate: expected an integer in 1..=65536, found 0"),
             ("lightmaps = true", "lightmaps: expected one of \"ignore\", \"keep\", found true"),
             ("temporal = 1", "temporal: expected true or false, found 1"),
+            ("sky_size = 8", "sky_size: expected an integer in 16..=2048, found 8"),
         ];
         for (line, message) in cases {
             let (s, problems) = read(&format!("\n{line}\n"), &[]);

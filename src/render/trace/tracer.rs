@@ -10,12 +10,13 @@ use gpu_allocator::MemoryLocation;
 use xxhash_rust::xxh3::Xxh3;
 
 use super::bvh::Tlas;
-use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight, GpuMaterial, FRAME_PERSPECTIVE, INSTANCE_ALPHA_TESTED};
+use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight, GpuMaterial, FRAME_PERSPECTIVE, FRAME_SKY, INSTANCE_ALPHA_TESTED};
 use super::lights::{self, LightSettings};
 use super::pipelines::{COMPOSITE_PUSH_BYTES, GROUP, TracePipelines};
 use super::resident::Resident;
 use super::scene::{self, MaterialDefaults};
 use super::settings::{Settings, Tonemap};
+use super::sky::Sky;
 use super::stats::{RayCounts, Totals};
 use super::texels::TexelPool;
 use super::bindings;
@@ -50,6 +51,8 @@ pub struct Tracer {
     texels: TexelPool,
     /// The texel pool on the GPU and its capacity in words.
     texel_buffer: Option<(Buffer, usize)>,
+    /// The environment cube map of the sky draws.
+    sky: Option<Sky>,
     pixels: Option<PixelBuffers>,
     /// Ray counters per frame in flight (host-readable).
     counters: Vec<Buffer>,
@@ -80,7 +83,10 @@ impl Tracer {
         for _ in 0..slots {
             let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
             counters.push(device.create_buffer("glrt ray counters", gpu_types::COUNTER_BYTES, usage, MemoryLocation::GpuToCpu)?);
-            let sizes = [vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: bindings::COUNT + 1 }];
+            let sizes = [
+                vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: bindings::COUNT + 1 },
+                vk::DescriptorPoolSize { ty: vk::DescriptorType::COMBINED_IMAGE_SAMPLER, descriptor_count: 1 },
+            ];
             let info = vk::DescriptorPoolCreateInfo::default().max_sets(2).pool_sizes(&sizes);
             // Safety: valid create info; destroyed in `destroy`.
             pools.push(unsafe { device.raw.create_descriptor_pool(&info, None) }.check("vkCreateDescriptorPool")?);
@@ -100,6 +106,7 @@ impl Tracer {
             resident: Resident::default(),
             texels: TexelPool::new(super::texels::MAX_WORDS, slots),
             texel_buffer: None,
+            sky: Some(Sky::new(device, settings.sky_size)?),
             pixels: None,
             counters,
             pools,
@@ -210,8 +217,13 @@ impl Tracer {
         let scale = self.settings.resolution_scale.clamp(0.25, 1.0);
         let traced = window.map(|w| ((w as f32 * scale).ceil() as u32).max(1));
         let environment = environment(frame);
+        let sky = match &mut self.sky {
+            Some(sky) => sky.update(rec, frame)?,
+            None => None,
+        };
         signature.update(bytemuck::cast_slice(&camera.projection.to_cols_array()));
         signature.update(bytemuck::cast_slice(&environment));
+        signature.update(&sky.unwrap_or(0).to_le_bytes());
         signature.update(bytemuck::cast_slice(&traced));
         let signature = signature.digest();
         let still = self.previous.is_some_and(|p| p.signature == signature);
@@ -245,7 +257,7 @@ impl Tracer {
             params: [2f32.powf(self.settings.exposure), history, 0.0, spread],
             size: [traced[0], traced[1], window[0], window[1]],
             counts: [self.frame_index, self.settings.spp.max(1), self.settings.bounces, lights.len() as u32],
-            flags: [tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 }, instances.len() as u32, u32::from(still), 0],
+            flags: [tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 } | if sky.is_some() { FRAME_SKY } else { 0 }, instances.len() as u32, u32::from(still), 0],
         };
         self.record_passes(rec, &gpu_frame, &instances, &materials, &lights, &tlas)?;
         self.previous = Some(Previous { signature, projection });
@@ -326,6 +338,7 @@ impl Tracer {
         let tlas_slice = push(bytemuck::cast_slice(&tlas.nodes))?;
         let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
         let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(()) };
+        let Some(sky) = &self.sky else { return Ok(()) };
         let whole = |b: &Buffer| (b.raw, 0, vk::WHOLE_SIZE);
         let counters = &self.counters[slot];
         let mut table = vec![(vk::Buffer::null(), 0, 0); bindings::COUNT as usize];
@@ -355,11 +368,13 @@ impl Tracer {
             let sets = device.raw.allocate_descriptor_sets(&vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&layouts)).check("vkAllocateDescriptorSets")?;
             let infos: Vec<[vk::DescriptorBufferInfo; 1]> = table.iter().map(|&(buffer, offset, range)| [vk::DescriptorBufferInfo { buffer, offset, range }]).collect();
             let output_info = [vk::DescriptorBufferInfo { buffer: pixels.output.raw, offset: 0, range: vk::WHOLE_SIZE }];
+            let sky_info = [sky.descriptor()];
             let mut writes: Vec<vk::WriteDescriptorSet> = infos
                 .iter()
                 .enumerate()
                 .map(|(b, info)| vk::WriteDescriptorSet::default().dst_set(sets[0]).dst_binding(b as u32).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info))
                 .collect();
+            writes.push(vk::WriteDescriptorSet::default().dst_set(sets[0]).dst_binding(bindings::SKY).descriptor_type(vk::DescriptorType::COMBINED_IMAGE_SAMPLER).image_info(&sky_info));
             writes.push(vk::WriteDescriptorSet::default().dst_set(sets[1]).dst_binding(0).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(&output_info));
             device.raw.update_descriptor_sets(&writes, &[]);
 
@@ -423,6 +438,9 @@ impl Tracer {
         if let Some((b, _)) = self.texel_buffer.take() {
             device.destroy_buffer(b);
         }
+        if let Some(sky) = self.sky.take() {
+            sky.destroy(device);
+        }
         if let Some(p) = self.pixels.take() {
             destroy_pixels(device, p);
         }
@@ -458,10 +476,10 @@ unsafe fn barrier(d: &ash::Device, cmd: vk::CommandBuffer, src: vk::PipelineStag
     unsafe { d.cmd_pipeline_barrier2(cmd, &vk::DependencyInfo::default().memory_barriers(&barrier)) };
 }
 
-/// The radiance of missed rays: the frame's first colour clear of the window, linear.
+/// The radiance of missed rays when the frame has no sky draws: the frame's first colour
+/// clear of the window, linear.
 fn environment(frame: &Frame) -> [f32; 4] {
-    let clear = frame.clears.iter().filter(|c| c.framebuffer == crate::frame::Framebuffer::default()).find_map(|c| c.color);
-    let [r, g, b, _] = clear.unwrap_or([0.0; 4]);
+    let [r, g, b, _] = scene::clear_color(frame).unwrap_or([0.0; 4]);
     [scene::srgb_to_linear(r), scene::srgb_to_linear(g), scene::srgb_to_linear(b), 0.0]
 }
 
