@@ -193,7 +193,7 @@ mod tests {
         assert_eq!(s, expected);
         assert_eq!(read("tonemap = \"none\"\n", &[]).0.tonemap, Tonemap::Clamp);
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
-        assert_eq!(Settings::KEYS.len(), 12);
+        assert_eq!(Settings::KEYS.len(), 13);
     }
 
     #[test]
