@@ -10,6 +10,12 @@
 //! BVH, reused across frames by geometry key; the top-level BVH over the instances is rebuilt
 //! every frame. GL lights are stored in eye space already.
 //!
+//! The persistent static world of hash tracking is traced too ([`chunks`]): each chunk is an
+//! instance of world-space triangles placed by the recovered view, built once, and traced
+//! whether the program drew it this frame or not; the draws the chunks hold are left out.
+//! A dynamic draw whose vertices moved refits its last BVH instead of building a new one
+//! ([`tracks`], [`resident`]).
+//!
 //! Parts:
 //! - [`bindings`]: descriptor bindings shared with `shaders/trace/bindings.glsl`.
 //! - [`bvh`]: bottom-level BVHs of triangle sets and the per-frame top-level BVH (CPU build,
@@ -17,14 +23,18 @@
 //! - [`texels`]: every texture level the tracer samples, packed into one storage buffer (no
 //!   descriptor indexing on lavapipe); `shaders/trace/texels.glsl` samples it.
 //! - [`settings`]: `glrt.toml` `[pathtrace]` and `GLRT_*` settings.
-//! - [`scene`]: traced draws as geometries, instances and materials; [`lights`]: GL lights as
-//!   physical lights; [`gpu_types`]: the structures the shaders read.
+//! - [`scene`]: traced draws as geometries, instances and materials; [`chunks`]: the static
+//!   world's chunks as geometries; [`instances`]: a frame's instances, draws and chunks;
+//!   [`lights`]: GL lights as physical lights; [`gpu_types`]: the structures the shaders read.
+//! - [`tracks`]: dynamic instances across frames (what their next shape refits).
 //! - [`resident`]: geometries on the GPU; [`pipelines`]: the tracer's pipelines;
 //!   [`tracer`]: one traced frame, recorded into the raster renderer's command buffer.
 
 pub mod bindings;
 pub mod bvh;
+pub mod chunks;
 pub mod gpu_types;
+pub mod instances;
 pub mod lights;
 pub mod pipelines;
 pub mod resident;
@@ -32,3 +42,4 @@ pub mod scene;
 pub mod settings;
 pub mod texels;
 pub mod tracer;
+pub mod tracks;

@@ -11,12 +11,14 @@ use xxhash_rust::xxh3::Xxh3;
 
 use super::bvh::Tlas;
 use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight, GpuMaterial, FRAME_PERSPECTIVE, INSTANCE_ALPHA_TESTED};
+use super::instances::{self, Item, Source};
 use super::lights::{self, LightSettings};
 use super::pipelines::{COMPOSITE_PUSH_BYTES, GROUP, TracePipelines};
-use super::resident::Resident;
+use super::resident::{NewGeometry, Resident};
 use super::scene::{self, MaterialDefaults};
 use super::settings::{Settings, Tonemap};
 use super::texels::TexelPool;
+use super::tracks::Tracks;
 use super::bindings;
 use crate::frame::{Draw, Frame};
 use crate::render::raster::device::{Buffer, Check, Device, Result};
@@ -39,6 +41,8 @@ struct PixelBuffers {
 struct Previous {
     signature: u64,
     projection: Mat4,
+    /// The recovered view (world to eye), when there was one.
+    view: Option<Mat4>,
 }
 
 /// Rays traced in one frame, by kind.
@@ -54,11 +58,29 @@ pub struct RayCounts {
     pub specular: u64,
 }
 
+/// What one traced frame's acceleration structures held, and the BVH work it took.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneCounts {
+    /// Instances of traced draws.
+    pub draw_instances: u32,
+    /// Instances of static-world chunks.
+    pub chunk_instances: u32,
+    /// Traced draws left out because the static world holds all their triangles.
+    pub covered_draws: u32,
+    /// Triangles of all instances.
+    pub triangles: u64,
+    /// Geometries whose BVH was built in this frame.
+    pub built: u32,
+    /// Geometries whose BVH was refitted in this frame.
+    pub refitted: u32,
+}
+
 /// The compute path tracer.
 pub struct Tracer {
     settings: Settings,
     pipelines: TracePipelines,
     resident: Resident,
+    tracks: Tracks,
     texels: TexelPool,
     /// The texel pool on the GPU and its capacity in words.
     texel_buffer: Option<(Buffer, usize)>,
@@ -72,6 +94,8 @@ pub struct Tracer {
     previous: Option<Previous>,
     /// Rays of the last frame whose counters were read (a frame in flight behind).
     pub rays: RayCounts,
+    /// The scene of the last frame traced.
+    pub scene: SceneCounts,
     /// Frames traced.
     pub frames: u64,
 }
@@ -94,6 +118,7 @@ impl Tracer {
             settings,
             pipelines,
             resident: Resident::default(),
+            tracks: Tracks::default(),
             texels: TexelPool::default(),
             texel_buffer: None,
             pixels: None,
@@ -103,6 +128,7 @@ impl Tracer {
             parity: 0,
             previous: None,
             rays: RayCounts::default(),
+            scene: SceneCounts::default(),
             frames: 0,
         })
     }
@@ -133,20 +159,30 @@ impl Tracer {
         let draws: Vec<&Draw> = frame.draws.iter().filter(|d| scene::is_traced(d)).collect();
         let Some(camera) = draws.first() else { return Ok(()) };
 
-        // Geometry: build and upload what is new.
-        let keys: Vec<u64> = draws.iter().map(|d| scene::geometry_key(d)).collect();
-        let mut new = Vec::new();
-        for (draw, &key) in draws.iter().zip(&keys) {
-            if self.resident.lookup(key, frame.number).is_none() && !new.iter().any(|(k, _)| *k == key) {
-                new.push((key, scene::geometry(draw)));
+        let previous_view = self.previous.and_then(|p| p.view).filter(|_| !frame.stats.camera_cut);
+        let (items, covered_draws) = instances::gather(frame, &draws, previous_view);
+
+        // Geometry: build (or refit) and upload what is new.
+        let mut new: Vec<NewGeometry> = Vec::new();
+        for item in &items {
+            if self.resident.lookup(item.key, frame.number).is_none() && !new.iter().any(|n| n.key == item.key) {
+                let refit_from = match item.source {
+                    Source::Draw(draw) => self.tracks.refit_source(draw),
+                    Source::Chunk(_) => None,
+                };
+                new.push(NewGeometry { key: item.key, geometry: item.geometry(), refit_from });
             }
         }
-        self.resident.uploaded = 0;
         self.resident.insert_all(device, cmd, rec.ring, new, frame.number)?;
+        for item in &items {
+            if let Source::Draw(draw) = item.source {
+                self.tracks.record(draw, item.key, frame.number);
+            }
+        }
+        self.tracks.prune(frame.number);
 
         // Textures of unit 0.
-        let textured: Vec<Option<&crate::frame::TextureRef>> =
-            draws.iter().map(|d| d.texture_units.first().copied().flatten().and_then(|_| d.textures.first().and_then(Option::as_ref))).collect();
+        let textured: Vec<Option<&crate::frame::TextureRef>> = items.iter().map(Item::texture).collect();
         let refs: Vec<&crate::frame::TextureRef> = textured.iter().flatten().copied().collect();
         let mut indices = self.texels.prepare(&refs).into_iter();
         let texture_of: Vec<Option<u32>> = textured.iter().map(|t| t.and_then(|_| indices.next())).collect();
@@ -154,30 +190,35 @@ impl Tracer {
 
         // Instances, materials, lights.
         let defaults = MaterialDefaults::default();
-        let mut instances = Vec::with_capacity(draws.len());
-        let mut materials = Vec::with_capacity(draws.len());
-        let mut bounds = Vec::with_capacity(draws.len());
+        let mut instances = Vec::with_capacity(items.len());
+        let mut materials = Vec::with_capacity(items.len());
+        let mut bounds = Vec::with_capacity(items.len());
         let mut signature = Xxh3::new();
-        for (i, (draw, &key)) in draws.iter().zip(&keys).enumerate() {
-            let Some(placement) = self.resident.lookup(key, frame.number) else { continue };
-            let material = scene::material(draw, texture_of[i], &defaults);
-            let previous = draw.instance.and_then(|inst| inst.previous_modelview).unwrap_or(draw.modelview);
-            let eye_to_object = draw.modelview.inverse();
+        let mut counts = SceneCounts { covered_draws, built: self.resident.built, refitted: self.resident.refitted, ..SceneCounts::default() };
+        for (i, item) in items.iter().enumerate() {
+            let Some(placement) = self.resident.lookup(item.key, frame.number) else { continue };
+            let material = item.material(texture_of[i], &defaults);
             let flags = if material.alpha_func != 7 { INSTANCE_ALPHA_TESTED } else { 0 };
             instances.push(GpuInstance {
-                object_to_eye: gpu_types::rows(&draw.modelview),
-                eye_to_object: gpu_types::rows(&eye_to_object),
-                previous_object_to_eye: gpu_types::rows(&previous),
+                object_to_eye: gpu_types::rows(&item.object_to_eye),
+                eye_to_object: gpu_types::rows(&item.object_to_eye.inverse()),
+                previous_object_to_eye: gpu_types::rows(&item.previous_object_to_eye),
                 blas_root: placement.blas_root,
                 first_triangle: placement.first_triangle,
                 flags,
-                material: i as u32,
+                material: materials.len() as u32,
             });
             materials.push(material);
-            bounds.push(placement.bounds.transformed(&Affine3A::from_mat4(draw.modelview)));
-            signature.update(&key.to_le_bytes());
-            signature.update(bytemuck::cast_slice(&draw.modelview.to_cols_array()));
+            bounds.push(placement.bounds.transformed(&Affine3A::from_mat4(item.object_to_eye)));
+            signature.update(&item.key.to_le_bytes());
+            signature.update(bytemuck::cast_slice(&item.object_to_eye.to_cols_array()));
+            match item.source {
+                Source::Draw(_) => counts.draw_instances += 1,
+                Source::Chunk(_) => counts.chunk_instances += 1,
+            }
+            counts.triangles += item.triangles() as u64;
         }
+        self.scene = counts;
         let tlas = Tlas::build(&bounds);
         let light_settings = LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction };
         let gl_lights = draws.iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));
@@ -228,7 +269,7 @@ impl Tracer {
             flags: [tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 }, instances.len() as u32, u32::from(still), 0],
         };
         self.record_passes(rec, &gpu_frame, &instances, &materials, &lights, &tlas)?;
-        self.previous = Some(Previous { signature, projection });
+        self.previous = Some(Previous { signature, projection, view: frame.view.map(|v| v.view) });
         self.frame_index = self.frame_index.wrapping_add(1);
         self.parity ^= 1;
         self.frames += 1;
@@ -401,7 +442,7 @@ fn destroy_pixels(device: &Device, p: PixelBuffers) {
 ///
 /// # Safety
 /// `cmd` is recording outside a rendering pass.
-unsafe fn barrier(d: &ash::Device, cmd: vk::CommandBuffer, src: vk::PipelineStageFlags2, dst: vk::PipelineStageFlags2) {
+pub(super) unsafe fn barrier(d: &ash::Device, cmd: vk::CommandBuffer, src: vk::PipelineStageFlags2, dst: vk::PipelineStageFlags2) {
     let barrier = [vk::MemoryBarrier2::default()
         .src_stage_mask(src)
         .src_access_mask(vk::AccessFlags2::MEMORY_WRITE)

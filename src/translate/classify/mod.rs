@@ -19,7 +19,8 @@
 //! 5. the static world ([`world_feed`] → `static_world`): every traced draw not tagged
 //!    `dynamic` whose vertices are in the world frame (model ≈ identity) or which is a
 //!    `Static` instance (taken to the world by its model) is offered as world-space
-//!    triangles; a camera cut clears the world first;
+//!    triangles; a camera cut clears the world first; an instance whose triangles are all in
+//!    the world is marked ([`Instance::in_static_world`]);
 //! 6. statistics ([`crate::frame::class::FrameStats`]).
 
 pub mod config;
@@ -143,7 +144,8 @@ impl Classifier {
             // Motion vectors only from the frame just before (not from an instance seen again).
             let previous_modelview = f.previous.filter(|p| p.age == 0 && !recovered.cut).map(|p| p.modelview);
             draw.class = class;
-            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, material: t.material });
+            let in_static_world = offered.is_some_and(|o| o.all_static());
+            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, material: t.material, in_static_world });
             let probe = self.probes[self.records.len()];
             self.records.push(Record { id: f.id, probe, ordinal: f.ordinal, modelview: draw.modelview, model, class, age: 0 });
         }
