@@ -332,6 +332,26 @@ mod tests {
     }
 
     #[test]
+    fn draws_whose_triangles_all_joined_the_world_are_marked() {
+        let mut c = Classifier::with_config(config::Config::default());
+        let camera = Mat4::from_translation(Vec3::new(0.0, -1.0, -20.0));
+        let marked = |f: &Frame| f.draws.iter().map(|d| d.instance.unwrap().in_static_world).collect::<Vec<_>>();
+        // Seen once: pending; seen again: in the world.
+        assert_eq!(marked(&classify(&mut c, 0, vec![draw(8, 0.0, camera)])), [false]);
+        assert_eq!(marked(&classify(&mut c, 1, vec![draw(8, 0.0, camera)])), [true]);
+        // The batch grows by two triangles never seen: partly in the world, not marked, until
+        // they joined too.
+        assert_eq!(marked(&classify(&mut c, 2, vec![draw(10, 0.0, camera)])), [false]);
+        let f = classify(&mut c, 3, vec![draw(10, 0.0, camera)]);
+        assert_eq!((marked(&f), f.stats.static_world_triangles), (vec![true], 10));
+        // A draw tagged nothing but moving every frame (dynamic by slot) is never marked.
+        for k in 4..8 {
+            let f = classify(&mut c, k, vec![draw(10, 0.0, camera), draw(3, 30.0 + k as f32 * 0.37, camera)]);
+            assert!(!marked(&f)[1], "frame {k}");
+        }
+    }
+
+    #[test]
     fn the_view_chains_through_other_static_draws() {
         let mut c = Classifier::with_config(config::Config::default());
         let placed = Mat4::from_translation(Vec3::new(4.0, 0.0, 0.0));

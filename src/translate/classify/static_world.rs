@@ -979,6 +979,41 @@ mod tests {
     }
 
     #[test]
+    fn chunks_carry_colours_coordinates_and_the_draw_state() {
+        let mut world = StaticWorld::new();
+        let positions = wall(2);
+        let texcoords: Vec<[f32; 2]> = positions.iter().map(|p| [p[0], p[1]]).collect();
+        let colors: Vec<[u8; 4]> = (0..positions.len()).map(|i| [i as u8, 0, 255, 255]).collect();
+        let state = crate::frame::RasterState { depth_write: true, ..Default::default() };
+        let shading = ChunkShading { state: Arc::new(state), texture_unit: Some(crate::frame::TextureUnit::default()) };
+        let mut last = None;
+        for f in 0..2 {
+            world.begin_frame(f, front_view());
+            let o = world.offer(WorldTriangles {
+                material_key: 1,
+                material: MaterialOverride::default(),
+                texture: None,
+                positions: &positions,
+                texcoords: Some(&texcoords),
+                colors: Some(&colors),
+                shading: &shading,
+            });
+            assert_eq!((o.triangles, o.all_static()), (4, f == 1), "frame {f}: {o:?}");
+            last = Some(world.end_frame());
+        }
+        let update = last.unwrap();
+        assert_eq!(update.triangles, 4);
+        for c in update.chunks.iter() {
+            assert_eq!((c.shading.clone(), c.colors.len(), c.texcoords.len()), (shading.clone(), c.positions.len(), c.positions.len()));
+            for (k, p) in c.positions.iter().enumerate() {
+                let i = positions.iter().position(|q| q == p).unwrap();
+                assert_eq!((c.colors[k][2], c.texcoords[k]), (255, texcoords[i]));
+            }
+            assert_eq!(c.upload_bytes(), c.positions.len() as u64 * 24);
+        }
+    }
+
+    #[test]
     fn the_key_ignores_the_first_vertex_and_keeps_winding_and_material() {
         let t = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
         let key = triangle_key(&t, 7);
