@@ -1,7 +1,8 @@
-//! The compute path tracer's frame: gathers the traced draws of a [`Frame`] into the scene
-//! buffers, traces it (`pathtrace.comp`), runs the temporal pass (`trace_resolve.comp`), and
-//! composites the result into the raster framebuffer with its depth, at the place in program
-//! order of the first traced draw ([`super::scene::first_traced`]). The raster renderer calls
+//! The compute path tracer's frame: gathers the instances of a [`Frame`] (traced draws and
+//! the static world's chunks, [`super::instances`]) into the scene buffers, traces it
+//! (`pathtrace.comp`), runs the temporal pass (`trace_resolve.comp`), and composites the
+//! result into the raster framebuffer with its depth, at the place in program order of the
+//! first traced draw ([`super::scene::first_traced`]). The raster renderer calls
 //! [`Tracer::record`] there and skips the traced draws.
 
 use ash::vk;
