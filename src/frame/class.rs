@@ -80,6 +80,9 @@ pub struct Instance {
     pub geometry_key: u64,
     /// Surface parameters from `glrt.toml` (`[materials]` and the `emissive` list).
     pub material: MaterialOverride,
+    /// Every triangle of the draw is in [`crate::frame::Frame::static_world`] at the end of
+    /// this frame (a renderer that draws the chunks leaves the draw out).
+    pub in_static_world: bool,
 }
 
 /// What OpenGL 1.x does not say about a traced surface, set per texture hash in `glrt.toml`

@@ -3,8 +3,22 @@
 //! builds them). A renderer uploads a chunk and builds its acceleration structure once, keyed
 //! by [`StaticChunk::id`], and frees it when the chunk leaves the list.
 
-use super::TextureRef;
+use std::sync::Arc;
+
 use super::class::MaterialOverride;
+use super::{RasterState, TextureRef, TextureUnit};
+
+/// How a chunk's triangles are shaded besides their texture and material: the state of the
+/// draw that offered the chunk's first triangle. The static world's material key hashes the
+/// parts of it that split chunks (alpha test function, culling, lighting on or off, texture
+/// environments); the rest (the lit material's colours, the alpha reference) is that draw's.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ChunkShading {
+    /// Raster state of the draw.
+    pub state: Arc<RasterState>,
+    /// Texture environment of unit 0 (`None`: unit 0 not enabled).
+    pub texture_unit: Option<TextureUnit>,
+}
 
 /// A piece of the persistent static world: world-space triangles of one material, stable
 /// while it lives (its id is never given to other content).
@@ -20,8 +34,12 @@ pub struct StaticChunk {
     pub texture: Option<TextureRef>,
     /// World-space positions, 3 per triangle, with the program's winding.
     pub positions: Vec<[f32; 3]>,
-    /// Texture coordinates of unit 0: empty, or 3 per triangle.
+    /// Texture coordinates of unit 0 after its texture matrix: empty, or 3 per triangle.
     pub texcoords: Vec<[f32; 2]>,
+    /// Primary colours, unorm8 RGBA: empty (every corner opaque white), or 3 per triangle.
+    pub colors: Vec<[u8; 4]>,
+    /// Draw state the triangles are shaded with.
+    pub shading: ChunkShading,
 }
 
 impl StaticChunk {
@@ -30,9 +48,9 @@ impl StaticChunk {
         self.positions.len() / 3
     }
 
-    /// Bytes a renderer uploads for this chunk: positions (12 per vertex) and texture
-    /// coordinates (8 per vertex).
+    /// Bytes a renderer uploads for this chunk: positions (12 per vertex), texture
+    /// coordinates (8 per vertex) and colours (4 per vertex).
     pub fn upload_bytes(&self) -> u64 {
-        (self.positions.len() * 12 + self.texcoords.len() * 8) as u64
+        (self.positions.len() * 12 + self.texcoords.len() * 8 + self.colors.len() * 4) as u64
     }
 }

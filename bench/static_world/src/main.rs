@@ -12,6 +12,14 @@
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextureRef;
 
+/// Stand-in for glrt's draw state (the bench shades nothing).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct RasterState;
+
+/// Stand-in for glrt's texture unit state.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TextureUnit;
+
 #[path = "../../../src/frame/class.rs"]
 pub mod class;
 
@@ -30,6 +38,7 @@ use std::time::Instant;
 
 use glam::{Mat4, Vec3, Vec4};
 use static_world::{StaticWorld, WorldTriangles};
+use world::ChunkShading;
 
 const TURN: u64 = 120;
 const EYE: Vec3 = Vec3::new(0.0, 1.6, 0.0);
@@ -141,8 +150,9 @@ fn main() {
         let offered: usize = batches.iter().map(|(_, b)| b.len() / 3).sum();
         let start = Instant::now();
         world.begin_frame(frame, clip);
+        let shading = ChunkShading::default();
         for (material, positions) in &batches {
-            world.offer(WorldTriangles { material_key: *material, material: Default::default(), texture: None, positions, texcoords: None });
+            world.offer(WorldTriangles { material_key: *material, material: Default::default(), texture: None, positions, texcoords: None, colors: None, shading: &shading });
         }
         let update = world.end_frame();
         let ms = start.elapsed().as_secs_f64() * 1000.0;

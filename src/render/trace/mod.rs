@@ -16,6 +16,12 @@
 //! visible where primary rays miss stays the rasterized one (the composite leaves those
 //! pixels to the framebuffer).
 //!
+//! The persistent static world of hash tracking is traced too ([`chunks`]): each chunk is an
+//! instance of world-space triangles placed by the recovered view, built once, and traced
+//! whether the program drew it this frame or not; the draws the chunks hold are left out.
+//! A dynamic draw whose vertices moved refits its last BVH instead of building a new one
+//! ([`tracks`], [`resident`]).
+//!
 //! Parts:
 //! - [`bindings`]: descriptor bindings shared with `shaders/trace/bindings.glsl`.
 //! - [`bvh`]: bottom-level BVHs of triangle sets and the per-frame top-level BVH (CPU build,
@@ -23,16 +29,20 @@
 //! - [`texels`]: every texture level the tracer samples, packed into one storage buffer (no
 //!   descriptor indexing on lavapipe); `shaders/trace/texels.glsl` samples it.
 //! - [`settings`]: `glrt.toml` `[pathtrace]` and `GLRT_*` settings.
-//! - [`scene`]: traced draws as geometries, instances and materials; [`lights`]: GL lights as
-//!   physical lights; [`sky`]: the sky draws as the environment cube map; [`gpu_types`]: the
-//!   structures the shaders read.
+//! - [`scene`]: traced draws as geometries, instances and materials; [`chunks`]: the static
+//!   world's chunks as geometries; [`instances`]: a frame's instances, draws and chunks;
+//!   [`lights`]: GL lights as physical lights; [`sky`]: the sky draws as the environment cube
+//!   map; [`gpu_types`]: the structures the shaders read.
+//! - [`tracks`]: dynamic instances across frames (what their next shape refits).
 //! - [`stats`]: rays traced by kind, traversal work and the tracing pass's GPU time.
 //! - [`resident`]: geometries on the GPU; [`pipelines`]: the tracer's pipelines;
 //!   [`tracer`]: one traced frame, recorded into the raster renderer's command buffer.
 
 pub mod bindings;
 pub mod bvh;
+pub mod chunks;
 pub mod gpu_types;
+pub mod instances;
 pub mod lights;
 pub mod pipelines;
 pub mod resident;
@@ -42,3 +52,4 @@ pub mod sky;
 pub mod stats;
 pub mod texels;
 pub mod tracer;
+pub mod tracks;

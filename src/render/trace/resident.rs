@@ -8,6 +8,15 @@
 //! the geometries not used for [`KEEP_FRAMES`] frames are dropped and the live ones are
 //! copied again, packed, into buffers of twice the live size (the GPU is idle meanwhile):
 //! dynamic geometry, new every frame, costs an occasional repack, not a leak.
+//!
+//! Refit: a new geometry may name a resident one it replaces (the same dynamic instance last
+//! frame, same triangle count: [`NewGeometry::refit_from`]). Its BVH is then refitted to the
+//! new positions ([`Blas::refit`]: same tree, new boxes) instead of built, unless the refitted
+//! tree's SAH cost exceeds [`REFIT_COST_LIMIT`] times that of the last build (the shape drifted
+//! too far: built anew). When no other instance of this frame uses the replaced geometry, the
+//! refitted one takes its place in the buffers (same sizes: written in place, after a barrier
+//! so that frames still in flight finish reading the old shape first); otherwise it is placed
+//! at the free end like a new one.
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -15,7 +24,7 @@ use std::sync::Arc;
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 
-use super::bvh::{Aabb, Blas, GpuNode, GpuTriangle};
+use super::bvh::{Aabb, Blas, GpuNode, GpuTriangle, sah_cost};
 use super::gpu_types::GpuTriangleAttributes;
 use super::scene::Geometry;
 use crate::render::raster::device::{Buffer, Device, Result};
@@ -23,6 +32,20 @@ use crate::render::raster::upload::Ring;
 
 /// Frames a geometry stays after its last use.
 pub const KEEP_FRAMES: u64 = 120;
+/// A refitted BVH whose SAH cost exceeds this multiple of its last build's is built anew.
+pub const REFIT_COST_LIMIT: f32 = 1.5;
+
+/// A geometry not yet resident, to build (or refit) and place.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct NewGeometry {
+    /// Its key.
+    pub key: u64,
+    /// Its triangles and attributes.
+    pub geometry: Geometry,
+    /// A resident geometry with the same triangle count that this one replaces (a dynamic
+    /// instance's last shape): its BVH is refitted rather than a new one built.
+    pub refit_from: Option<u64>,
+}
 
 /// A geometry's place in the shared buffers.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,9 +59,44 @@ pub struct Placement {
 }
 
 /// A geometry built on the CPU (kept to copy it again when the buffers are repacked).
+#[derive(Clone)]
 struct Built {
     blas: Blas,
     attributes: Vec<GpuTriangleAttributes>,
+    /// SAH cost of the BVH when it was last built (refits compare with it).
+    built_cost: f32,
+}
+
+impl Built {
+    /// Builds the BVH of `geometry`.
+    fn new(geometry: &Geometry) -> Built {
+        let blas = Blas::build(&geometry.triangles);
+        let attributes = ordered(&blas, geometry);
+        Built { built_cost: sah_cost(&blas.nodes), blas, attributes }
+    }
+
+    /// This BVH refitted to `geometry` (same triangle count), if its SAH cost stays within
+    /// [`REFIT_COST_LIMIT`] of the last build's.
+    fn refitted(mut self, geometry: &Geometry) -> Option<Built> {
+        if !self.blas.refit(&geometry.triangles) || sah_cost(&self.blas.nodes) > REFIT_COST_LIMIT * self.built_cost {
+            return None;
+        }
+        self.attributes = ordered(&self.blas, geometry);
+        Some(self)
+    }
+}
+
+/// The attributes of `geometry` in the triangle order of `blas`.
+fn ordered(blas: &Blas, geometry: &Geometry) -> Vec<GpuTriangleAttributes> {
+    blas.order.iter().map(|&i| geometry.attributes.get(i as usize).copied().unwrap_or_default()).collect()
+}
+
+/// Where a refitted geometry goes.
+enum Refit {
+    /// Into the place of the geometry it replaces (entry re-keyed already).
+    InPlace,
+    /// At the free end (the replaced geometry is still used in this frame).
+    Elsewhere(Built),
 }
 
 struct Entry {
@@ -71,8 +129,12 @@ pub struct Resident {
     nodes: Shared,
     triangles: Shared,
     attributes: Shared,
-    /// Bytes copied to the GPU in the current frame (statistics).
+    /// Bytes copied to the GPU by the last [`Resident::insert_all`] (statistics).
     pub uploaded: u64,
+    /// Geometries whose BVH the last [`Resident::insert_all`] built.
+    pub built: u32,
+    /// Geometries whose BVH the last [`Resident::insert_all`] refitted.
+    pub refitted: u32,
 }
 
 /// Copies `bytes` through the ring into `dst` at byte `offset` (recorded into `cmd`).
@@ -95,6 +157,8 @@ impl Default for Resident {
             triangles: Shared::new(std::mem::size_of::<GpuTriangle>() as u64),
             attributes: Shared::new(std::mem::size_of::<GpuTriangleAttributes>() as u64),
             uploaded: 0,
+            built: 0,
+            refitted: 0,
         }
     }
 }
@@ -107,45 +171,92 @@ impl Resident {
         Some(entry.placement)
     }
 
-    /// Builds the BVHs of `geometries` (new keys) and places them, recording their uploads
-    /// into `cmd`. Call once per frame, before recording anything that reads the buffers: when
-    /// they are full it repacks them (waiting for the GPU), which moves every placement.
-    pub fn insert_all(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, geometries: Vec<(u64, Geometry)>, frame: u64) -> Result<()> {
-        let built: Vec<(u64, Arc<Built>)> = geometries
-            .into_iter()
-            .map(|(key, geometry)| {
-                let blas = Blas::build(&geometry.triangles);
-                let attributes = blas.order.iter().map(|&i| geometry.attributes.get(i as usize).copied().unwrap_or_default()).collect();
-                (key, Arc::new(Built { blas, attributes }))
-            })
-            .collect();
-        let n: u64 = built.iter().map(|(_, b)| b.blas.nodes.len() as u64).sum();
-        let t: u64 = built.iter().map(|(_, b)| b.blas.triangles.len() as u64).sum();
-        if !self.nodes.fits(n) || !self.triangles.fits(t) || !self.attributes.fits(t) {
-            self.repack(device, cmd, ring, frame, n, t)?;
+    /// Builds (or refits) the BVHs of `geometries` (new keys) and places them, recording their
+    /// uploads into `cmd`. Call once per frame, before recording anything that reads the
+    /// buffers: when they are full it repacks them (waiting for the GPU), which moves every
+    /// placement.
+    pub fn insert_all(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, geometries: Vec<NewGeometry>, frame: u64) -> Result<()> {
+        (self.uploaded, self.built, self.refitted) = (0, 0, 0);
+        let mut in_place = Vec::new();
+        let mut to_place: Vec<(u64, Arc<Built>)> = Vec::new();
+        for new in geometries {
+            match self.refit(&new, frame) {
+                Some(Refit::InPlace) => in_place.push(new.key),
+                Some(Refit::Elsewhere(built)) => to_place.push((new.key, Arc::new(built))),
+                None => {
+                    to_place.push((new.key, Arc::new(Built::new(&new.geometry))));
+                    self.built += 1;
+                    continue;
+                }
+            }
+            self.refitted += 1;
         }
-        for (key, built) in built {
+        let n: u64 = to_place.iter().map(|(_, b)| b.blas.nodes.len() as u64).sum();
+        let t: u64 = to_place.iter().map(|(_, b)| b.blas.triangles.len() as u64).sum();
+        if !self.nodes.fits(n) || !self.triangles.fits(t) || !self.attributes.fits(t) {
+            // Copies every live geometry, the ones refitted in place included.
+            self.repack(device, cmd, ring, frame, n, t)?;
+        } else if !in_place.is_empty() {
+            // Safety: `cmd` is recording outside a rendering pass (the tracer ended it).
+            unsafe { super::tracer::barrier(&device.raw, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::TRANSFER) };
+            for key in in_place {
+                if let Some(entry) = self.entries.get(&key) {
+                    let (built, placement) = (entry.built.clone(), entry.placement);
+                    self.write(device, cmd, ring, &built, &placement)?;
+                }
+            }
+        }
+        for (key, built) in to_place {
             let placement = self.place(device, cmd, ring, &built)?;
             self.entries.insert(key, Entry { built, placement, last_used: frame });
         }
         Ok(())
     }
 
+    /// Refits the BVH of `new.refit_from` to `new` (see the module doc). In place, the entry
+    /// is re-keyed to `new.key` (its upload is left to the caller). `None` when there is
+    /// nothing to refit or the refitted tree is too poor (the replaced geometry is then
+    /// dropped if this frame does not use it).
+    fn refit(&mut self, new: &NewGeometry, frame: u64) -> Option<Refit> {
+        let from = new.refit_from?;
+        let entry = self.entries.get(&from)?;
+        if entry.built.blas.order.len() != new.geometry.triangles.len() {
+            return None;
+        }
+        if entry.last_used == frame {
+            return entry.built.as_ref().clone().refitted(&new.geometry).map(Refit::Elsewhere);
+        }
+        let entry = self.entries.remove(&from)?;
+        let built = Arc::try_unwrap(entry.built).unwrap_or_else(|shared| shared.as_ref().clone()).refitted(&new.geometry)?;
+        let placement = Placement { bounds: built.blas.bounds, ..entry.placement };
+        self.entries.insert(new.key, Entry { built: Arc::new(built), placement, last_used: frame });
+        Some(Refit::InPlace)
+    }
+
     /// Copies `built` to the free end of the buffers.
     fn place(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, built: &Built) -> Result<Placement> {
         let placement = Placement { blas_root: self.nodes.used as u32, first_triangle: self.triangles.used as u32, bounds: built.blas.bounds };
-        for (shared, bytes) in [
-            (&mut self.nodes, bytemuck::cast_slice::<_, u8>(&built.blas.nodes)),
-            (&mut self.triangles, bytemuck::cast_slice(&built.blas.triangles)),
-            (&mut self.attributes, bytemuck::cast_slice(&built.attributes)),
+        self.write(device, cmd, ring, built, &placement)?;
+        self.nodes.used += built.blas.nodes.len() as u64;
+        self.triangles.used += built.blas.triangles.len() as u64;
+        self.attributes.used += built.attributes.len() as u64;
+        Ok(placement)
+    }
+
+    /// Copies `built` into the buffers at `placement`.
+    fn write(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, built: &Built, placement: &Placement) -> Result<()> {
+        let (root, first) = (u64::from(placement.blas_root), u64::from(placement.first_triangle));
+        for (shared, at, bytes) in [
+            (&self.nodes, root, bytemuck::cast_slice::<_, u8>(&built.blas.nodes)),
+            (&self.triangles, first, bytemuck::cast_slice(&built.blas.triangles)),
+            (&self.attributes, first, bytemuck::cast_slice(&built.attributes)),
         ] {
             if let Some(buffer) = &shared.buffer {
-                upload(device, cmd, ring, buffer.raw, shared.used * shared.stride, bytes)?;
+                upload(device, cmd, ring, buffer.raw, at * shared.stride, bytes)?;
             }
-            shared.used += bytes.len() as u64 / shared.stride;
             self.uploaded += bytes.len() as u64;
         }
-        Ok(placement)
+        Ok(())
     }
 
     /// Drops geometries unused for [`KEEP_FRAMES`], makes buffers of twice the live size plus
@@ -204,5 +315,46 @@ impl Resident {
             }
         }
         self.entries.clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::Vec3;
+
+    use super::*;
+    use crate::render::trace::gpu_types::GpuCorner;
+
+    /// A `side` × `side` grid of small triangles in the xy plane, offset by `shift`, each
+    /// triangle's texture coordinate its index; `place(i)` picks the cell of triangle `i`.
+    fn grid(side: usize, shift: Vec3, place: impl Fn(usize) -> usize) -> Geometry {
+        let mut g = Geometry::default();
+        for i in 0..side * side {
+            let cell = place(i);
+            let p = Vec3::new((cell % side) as f32, (cell / side) as f32, 0.0) + shift;
+            g.triangles.push([p, p + Vec3::X * 0.9, p + Vec3::Y * 0.9]);
+            g.attributes.push(GpuTriangleAttributes { corner: [GpuCorner { uv: [i as f32, 0.0], ..GpuCorner::default() }; 3] });
+        }
+        g
+    }
+
+    #[test]
+    fn a_refit_keeps_the_layout_until_the_tree_degrades() {
+        let built = Built::new(&grid(32, Vec3::ZERO, |i| i));
+        let moved = grid(32, Vec3::new(3.0, -2.0, 1.0), |i| i);
+        let refitted = built.clone().refitted(&moved).expect("a rigid move keeps the tree as good");
+        assert_eq!((refitted.blas.nodes.len(), refitted.blas.order.clone()), (built.blas.nodes.len(), built.blas.order.clone()));
+        assert_eq!(refitted.blas.bounds.min, Vec3::new(3.0, -2.0, 1.0));
+        for (k, &i) in refitted.blas.order.iter().enumerate() {
+            assert_eq!(refitted.attributes[k].corner[0].uv[0], i as f32, "attributes follow the BVH order");
+        }
+        assert_eq!(refitted.built_cost, built.built_cost);
+
+        // Every triangle moved to a far cell: the leaves' boxes span the grid, the tree is poor.
+        let scrambled = grid(32, Vec3::ZERO, |i| i * 397 % 1024);
+        assert!(built.clone().refitted(&scrambled).is_none());
+        let mut fewer = moved.clone();
+        fewer.triangles.pop();
+        assert!(built.refitted(&fewer).is_none(), "another triangle count");
     }
 }

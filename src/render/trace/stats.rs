@@ -1,5 +1,5 @@
 //! What the path tracer did: rays traced by kind and traversal work per frame (counted by
-//! `pathtrace.comp` into the counters buffer), the GPU time of the tracing pass (timestamps
+//! `pathtrace.comp` into the counters buffer), what the scene held ([`SceneCounts`]), the GPU time of the tracing pass (timestamps
 //! around its dispatch), and the totals of a run, which [`Totals::summary`] turns into rays per
 //! second (logged at `GLRT_LOG=info` when the tracer is destroyed: the numbers of `bench/`).
 
@@ -37,6 +37,23 @@ impl RayCounts {
     }
 }
 
+/// What one traced frame's acceleration structures held, and the BVH work it took.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneCounts {
+    /// Instances of traced draws.
+    pub draw_instances: u32,
+    /// Instances of static-world chunks.
+    pub chunk_instances: u32,
+    /// Traced draws left out because the static world holds all their triangles.
+    pub covered_draws: u32,
+    /// Triangles of all instances.
+    pub triangles: u64,
+    /// Geometries whose BVH was built in this frame.
+    pub built: u32,
+    /// Geometries whose BVH was refitted in this frame.
+    pub refitted: u32,
+}
+
 /// The sums over the frames of a run whose counters and pass times were read.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Totals {
@@ -48,12 +65,23 @@ pub struct Totals {
     pub trace_seconds: f64,
     /// Frames whose pass time is in `trace_seconds`.
     pub timed_frames: u64,
-    /// Frames recorded, and the triangles and instances of their traced scenes, summed.
+    /// Frames recorded.
     pub scenes: u64,
-    /// See `scenes`.
-    pub scene_triangles: u64,
-    /// See `scenes`.
-    pub scene_instances: u64,
+    /// Their scenes' counts, summed.
+    pub scene: SceneTotals,
+}
+
+/// [`SceneCounts`] summed over frames.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SceneTotals {
+    /// Triangles of all instances.
+    pub triangles: u64,
+    /// Instances of draws and of chunks.
+    pub instances: u64,
+    /// BVHs built.
+    pub built: u64,
+    /// BVHs refitted.
+    pub refitted: u64,
 }
 
 impl Totals {
@@ -74,10 +102,13 @@ impl Totals {
     }
 
     /// Adds one recorded frame's traced scene.
-    pub fn add_scene(&mut self, triangles: u64, instances: u64) {
+    pub fn add_scene(&mut self, counts: &SceneCounts) {
         self.scenes += 1;
-        self.scene_triangles += triangles;
-        self.scene_instances += instances;
+        let t = &mut self.scene;
+        t.triangles += counts.triangles;
+        t.instances += u64::from(counts.draw_instances + counts.chunk_instances);
+        t.built += u64::from(counts.built);
+        t.refitted += u64::from(counts.refitted);
     }
 
     /// One line: per-frame averages and, when every frame was timed, rays per second of the
@@ -91,10 +122,12 @@ impl Totals {
         let per_ray = |work: u64| work as f64 / r.total().max(1) as f64;
         let scenes = self.scenes.max(1) as f64;
         let mut line = format!(
-            "path tracer: {} frames; scene: {:.0} triangles in {:.0} instances; per frame: {:.0} primary, {:.0} shadow, {:.0} diffuse, {:.0} specular rays; per ray: {:.1} nodes, {:.1} triangle tests",
+            "path tracer: {} frames; scene: {:.0} triangles in {:.0} instances, {:.1} BVHs built and {:.1} refitted per frame; per frame: {:.0} primary, {:.0} shadow, {:.0} diffuse, {:.0} specular rays; per ray: {:.1} nodes, {:.1} triangle tests",
             self.frames,
-            self.scene_triangles as f64 / scenes,
-            self.scene_instances as f64 / scenes,
+            self.scene.triangles as f64 / scenes,
+            self.scene.instances as f64 / scenes,
+            self.scene.built as f64 / scenes,
+            self.scene.refitted as f64 / scenes,
             r.primary as f64 / n,
             r.shadow as f64 / n,
             r.diffuse as f64 / n,
@@ -136,10 +169,10 @@ mod tests {
         let frame = RayCounts { primary: 1_000_000, shadow: 2_000_000, diffuse: 500_000, specular: 0, nodes_visited: 35_000_000, triangles_tested: 7_000_000 };
         t.add(frame, Some(0.001));
         t.add(frame, Some(0.001));
-        t.add_scene(1000, 3);
-        t.add_scene(3000, 5);
+        t.add_scene(&SceneCounts { draw_instances: 1, chunk_instances: 2, triangles: 1000, built: 3, ..SceneCounts::default() });
+        t.add_scene(&SceneCounts { draw_instances: 5, triangles: 3000, refitted: 1, ..SceneCounts::default() });
         let s = t.summary();
-        assert!(s.contains("2 frames; scene: 2000 triangles in 4 instances"), "{s}");
+        assert!(s.contains("2 frames; scene: 2000 triangles in 4 instances, 1.5 BVHs built and 0.5 refitted per frame"), "{s}");
         assert!(s.contains("per ray: 10.0 nodes, 2.0 triangle tests"), "{s}");
         assert!(s.contains("tracing pass 1.000 ms per frame; Mrays/s: 1000.0 primary, 2000.0 shadow, 500.0 diffuse, 0.0 specular, 3500.0 all"), "{s}");
         t.add(frame, None);

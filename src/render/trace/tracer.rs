@@ -1,7 +1,8 @@
-//! The compute path tracer's frame: gathers the traced draws of a [`Frame`] into the scene
-//! buffers, traces it (`pathtrace.comp`), runs the temporal pass (`trace_resolve.comp`), and
-//! composites the result into the raster framebuffer with its depth, at the place in program
-//! order of the first traced draw ([`super::scene::first_traced`]). The raster renderer calls
+//! The compute path tracer's frame: gathers the instances of a [`Frame`] (traced draws and
+//! the static world's chunks, [`super::instances`]) into the scene buffers, traces it
+//! (`pathtrace.comp`), runs the temporal pass (`trace_resolve.comp`), and composites the
+//! result into the raster framebuffer with its depth, at the place in program order of the
+//! first traced draw ([`super::scene::first_traced`]). The raster renderer calls
 //! [`Tracer::record`] there and skips the traced draws.
 
 use ash::vk;
@@ -11,14 +12,16 @@ use xxhash_rust::xxh3::Xxh3;
 
 use super::bvh::Tlas;
 use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight, GpuMaterial, FRAME_PERSPECTIVE, FRAME_SKY, INSTANCE_ALPHA_TESTED};
+use super::instances::{self, Source};
 use super::lights::{self, LightSettings};
 use super::pipelines::{COMPOSITE_PUSH_BYTES, GROUP, TracePipelines};
-use super::resident::Resident;
+use super::resident::{NewGeometry, Resident};
 use super::scene::{self, MaterialDefaults};
 use super::settings::{Settings, Tonemap};
 use super::sky::Sky;
-use super::stats::{RayCounts, Totals};
+use super::stats::{RayCounts, SceneCounts, Totals};
 use super::texels::TexelPool;
+use super::tracks::Tracks;
 use super::bindings;
 use crate::frame::{Draw, Frame};
 use crate::render::raster::device::{Buffer, Check, Device, Result};
@@ -41,6 +44,8 @@ struct PixelBuffers {
 struct Previous {
     signature: u64,
     projection: Mat4,
+    /// The recovered view (world to eye), when there was one.
+    view: Option<Mat4>,
 }
 
 /// The compute path tracer.
@@ -48,6 +53,7 @@ pub struct Tracer {
     settings: Settings,
     pipelines: TracePipelines,
     resident: Resident,
+    tracks: Tracks,
     texels: TexelPool,
     /// The texel pool on the GPU and its capacity in words.
     texel_buffer: Option<(Buffer, usize)>,
@@ -70,6 +76,8 @@ pub struct Tracer {
     pub rays: RayCounts,
     /// Sums over every frame whose counters were read.
     pub totals: Totals,
+    /// The scene of the last frame traced.
+    pub scene: SceneCounts,
     /// Frames traced.
     pub frames: u64,
 }
@@ -104,6 +112,7 @@ impl Tracer {
             settings,
             pipelines,
             resident: Resident::default(),
+            tracks: Tracks::default(),
             texels: TexelPool::new(super::texels::MAX_WORDS, slots),
             texel_buffer: None,
             sky: Some(Sky::new(device, settings.sky_size)?),
@@ -117,6 +126,7 @@ impl Tracer {
             previous: None,
             rays: RayCounts::default(),
             totals: Totals::default(),
+            scene: SceneCounts::default(),
             frames: 0,
         })
     }
@@ -153,19 +163,30 @@ impl Tracer {
         let draws: Vec<&Draw> = frame.draws.iter().filter(|d| scene::is_traced(d)).collect();
         let Some(camera) = draws.first() else { return Ok(()) };
 
-        // Geometry: build and upload what is new.
-        let keys: Vec<u64> = draws.iter().map(|d| scene::geometry_key(d)).collect();
-        let mut new = Vec::new();
-        for (draw, &key) in draws.iter().zip(&keys) {
-            if self.resident.lookup(key, frame.number).is_none() && !new.iter().any(|(k, _)| *k == key) {
-                new.push((key, scene::geometry(draw)));
+        let previous_view = self.previous.and_then(|p| p.view).filter(|_| !frame.stats.camera_cut);
+        let (items, covered_draws) = instances::gather(frame, &draws, previous_view);
+
+        // Geometry: build (or refit) and upload what is new.
+        let mut new: Vec<NewGeometry> = Vec::new();
+        for item in &items {
+            if self.resident.lookup(item.key, frame.number).is_none() && !new.iter().any(|n| n.key == item.key) {
+                let refit_from = match item.source {
+                    Source::Draw(draw) => self.tracks.refit_source(draw),
+                    Source::Chunk(_) => None,
+                };
+                new.push(NewGeometry { key: item.key, geometry: item.geometry(), refit_from });
             }
         }
-        self.resident.uploaded = 0;
         self.resident.insert_all(device, cmd, rec.ring, new, frame.number)?;
+        for item in &items {
+            if let Source::Draw(draw) = item.source {
+                self.tracks.record(draw, item.key, frame.number);
+            }
+        }
+        self.tracks.prune(frame.number);
 
         // Textures: unit 0, and unit 1 where it is a kept lightmap.
-        let textured: Vec<[Option<&crate::frame::TextureRef>; 2]> = draws.iter().map(|d| scene::traced_textures(d, self.settings.lightmaps)).collect();
+        let textured: Vec<[Option<&crate::frame::TextureRef>; 2]> = items.iter().map(|item| item.textures(self.settings.lightmaps)).collect();
         let refs: Vec<&crate::frame::TextureRef> = textured.iter().flatten().flatten().copied().collect();
         let mut indices = self.texels.prepare(&refs).into_iter();
         let texture_of: Vec<[Option<u32>; 2]> = textured.iter().map(|units| units.map(|t| t.and_then(|_| indices.next()))).collect();
@@ -173,38 +194,42 @@ impl Tracer {
 
         // Instances, materials, lights.
         let defaults = MaterialDefaults::default();
-        let mut instances = Vec::with_capacity(draws.len());
-        let mut materials = Vec::with_capacity(draws.len());
-        let mut bounds = Vec::with_capacity(draws.len());
+        let mut instances = Vec::with_capacity(items.len());
+        let mut materials = Vec::with_capacity(items.len());
+        let mut bounds = Vec::with_capacity(items.len());
         let mut signature = Xxh3::new();
         // New texture contents (an updated lightmap, an animated texture) restart accumulation.
         for t in &refs {
             signature.update(&u64::from(t.id).to_le_bytes());
             signature.update(&t.version.to_le_bytes());
         }
-        for (i, (draw, &key)) in draws.iter().zip(&keys).enumerate() {
-            let Some(placement) = self.resident.lookup(key, frame.number) else { continue };
-            let material = scene::material(draw, texture_of[i], &defaults);
-            let previous = draw.instance.and_then(|inst| inst.previous_modelview).unwrap_or(draw.modelview);
-            let eye_to_object = draw.modelview.inverse();
+        let mut counts = SceneCounts { covered_draws, built: self.resident.built, refitted: self.resident.refitted, ..SceneCounts::default() };
+        for (i, item) in items.iter().enumerate() {
+            let Some(placement) = self.resident.lookup(item.key, frame.number) else { continue };
+            let material = item.material(texture_of[i], &defaults);
             let flags = if material.alpha_func != 7 { INSTANCE_ALPHA_TESTED } else { 0 };
             instances.push(GpuInstance {
-                object_to_eye: gpu_types::rows(&draw.modelview),
-                eye_to_object: gpu_types::rows(&eye_to_object),
-                previous_object_to_eye: gpu_types::rows(&previous),
+                object_to_eye: gpu_types::rows(&item.object_to_eye),
+                eye_to_object: gpu_types::rows(&item.object_to_eye.inverse()),
+                previous_object_to_eye: gpu_types::rows(&item.previous_object_to_eye),
                 blas_root: placement.blas_root,
                 first_triangle: placement.first_triangle,
                 flags,
-                material: i as u32,
+                material: materials.len() as u32,
             });
             materials.push(material);
-            bounds.push(placement.bounds.transformed(&Affine3A::from_mat4(draw.modelview)));
-            signature.update(&key.to_le_bytes());
-            signature.update(bytemuck::cast_slice(&draw.modelview.to_cols_array()));
+            bounds.push(placement.bounds.transformed(&Affine3A::from_mat4(item.object_to_eye)));
+            signature.update(&item.key.to_le_bytes());
+            signature.update(bytemuck::cast_slice(&item.object_to_eye.to_cols_array()));
+            match item.source {
+                Source::Draw(_) => counts.draw_instances += 1,
+                Source::Chunk(_) => counts.chunk_instances += 1,
+            }
+            counts.triangles += item.triangles() as u64;
         }
+        self.scene = counts;
+        self.totals.add_scene(&counts);
         let tlas = Tlas::build(&bounds);
-        let traced_triangles: usize = draws.iter().map(|d| d.indices.len() / 3).sum();
-        self.totals.add_scene(traced_triangles as u64, instances.len() as u64);
         let light_settings =
             LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction, radius: self.settings.light_radius };
         let gl_lights = draws.iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));
@@ -260,7 +285,7 @@ impl Tracer {
             flags: [tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 } | if sky.is_some() { FRAME_SKY } else { 0 }, instances.len() as u32, u32::from(still), 0],
         };
         self.record_passes(rec, &gpu_frame, &instances, &materials, &lights, &tlas)?;
-        self.previous = Some(Previous { signature, projection });
+        self.previous = Some(Previous { signature, projection, view: frame.view.map(|v| v.view) });
         self.frame_index = self.frame_index.wrapping_add(1);
         self.parity ^= 1;
         self.frames += 1;
@@ -466,7 +491,7 @@ fn destroy_pixels(device: &Device, p: PixelBuffers) {
 ///
 /// # Safety
 /// `cmd` is recording outside a rendering pass.
-unsafe fn barrier(d: &ash::Device, cmd: vk::CommandBuffer, src: vk::PipelineStageFlags2, dst: vk::PipelineStageFlags2) {
+pub(super) unsafe fn barrier(d: &ash::Device, cmd: vk::CommandBuffer, src: vk::PipelineStageFlags2, dst: vk::PipelineStageFlags2) {
     let barrier = [vk::MemoryBarrier2::default()
         .src_stage_mask(src)
         .src_access_mask(vk::AccessFlags2::MEMORY_WRITE)

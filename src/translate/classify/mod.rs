@@ -19,7 +19,8 @@
 //! 5. the static world ([`world_feed`] → `static_world`): every traced draw not tagged
 //!    `dynamic` whose vertices are in the world frame (model ≈ identity) or which is a
 //!    `Static` instance (taken to the world by its model) is offered as world-space
-//!    triangles; a camera cut clears the world first;
+//!    triangles; a camera cut clears the world first; an instance whose triangles are all in
+//!    the world is marked ([`Instance::in_static_world`]);
 //! 6. statistics ([`crate::frame::class::FrameStats`]).
 
 pub mod config;
@@ -143,7 +144,8 @@ impl Classifier {
             // Motion vectors only from the frame just before (not from an instance seen again).
             let previous_modelview = f.previous.filter(|p| p.age == 0 && !recovered.cut).map(|p| p.modelview);
             draw.class = class;
-            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, material: t.material });
+            let in_static_world = offered.is_some_and(|o| o.all_static());
+            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, material: t.material, in_static_world });
             let probe = self.probes[self.records.len()];
             self.records.push(Record { id: f.id, probe, ordinal: f.ordinal, modelview: draw.modelview, model, class, age: 0 });
         }
@@ -364,6 +366,26 @@ mod tests {
         let chunks: Vec<(Option<u32>, MaterialOverride)> = f.static_world.iter().map(|c| (c.texture.as_ref().map(|t| t.id), c.material)).collect();
         assert!(chunks.contains(&(Some(5), listed)) && chunks.contains(&(None, MaterialOverride::default())), "{chunks:?}");
         assert!(chunks.iter().all(|&(id, m)| (id == Some(5)) == (m == listed)), "{chunks:?}");
+    }
+
+    #[test]
+    fn draws_whose_triangles_all_joined_the_world_are_marked() {
+        let mut c = Classifier::with_config(config::Config::default());
+        let camera = Mat4::from_translation(Vec3::new(0.0, -1.0, -20.0));
+        let marked = |f: &Frame| f.draws.iter().map(|d| d.instance.unwrap().in_static_world).collect::<Vec<_>>();
+        // Seen once: pending; seen again: in the world.
+        assert_eq!(marked(&classify(&mut c, 0, vec![draw(8, 0.0, camera)])), [false]);
+        assert_eq!(marked(&classify(&mut c, 1, vec![draw(8, 0.0, camera)])), [true]);
+        // The batch grows by two triangles never seen: partly in the world, not marked, until
+        // they joined too.
+        assert_eq!(marked(&classify(&mut c, 2, vec![draw(10, 0.0, camera)])), [false]);
+        let f = classify(&mut c, 3, vec![draw(10, 0.0, camera)]);
+        assert_eq!((marked(&f), f.stats.static_world_triangles), (vec![true], 10));
+        // A draw tagged nothing but moving every frame (dynamic by slot) is never marked.
+        for k in 4..8 {
+            let f = classify(&mut c, k, vec![draw(10, 0.0, camera), draw(3, 30.0 + k as f32 * 0.37, camera)]);
+            assert!(!marked(&f)[1], "frame {k}");
+        }
     }
 
     #[test]

@@ -29,7 +29,10 @@
 //!   Triangles joining a cell go into a new chunk of that cell; when a cell of one material would
 //!   hold more than [`MAX_CHUNKS_PER_CELL`] chunks, they are merged into one (the merge counts as
 //!   new and released chunks). When nothing joins or leaves, the chunk list is the same `Arc` and
-//!   the upload is zero.
+//!   the upload is zero. A chunk carries what a renderer shades its triangles with when no draw
+//!   of them is in the frame: per corner the texture coordinates and primary colour as first
+//!   offered, and the texture, material and draw state ([`ChunkShading`]) of the draw that
+//!   offered its first triangle.
 //! - **Anti-culling.** A triangle the program stops drawing stays: a wall behind the camera is
 //!   still in the traced scene, for shadows and bounced light.
 //! - **Release.** Everything goes on [`StaticWorld::clear`] (camera cut, level change) or when
@@ -62,7 +65,7 @@ use glam::{Mat4, Vec3, Vec4};
 
 use crate::frame::TextureRef;
 use crate::frame::class::MaterialOverride;
-use crate::frame::world::StaticChunk;
+use crate::frame::world::{ChunkShading, StaticChunk};
 
 /// Size of the grid vertices are quantised to, in world units: coarse enough that two copies of
 /// a triangle through the program's transforms usually land on the same points, fine enough
@@ -130,15 +133,29 @@ pub struct WorldTriangles<'a> {
     pub positions: &'a [[f32; 3]],
     /// Texture coordinates of unit 0, 3 per triangle (ignored unless as long as `positions`).
     pub texcoords: Option<&'a [[f32; 2]]>,
+    /// Primary colours, 3 per triangle (ignored unless as long as `positions`; `None`: white).
+    pub colors: Option<&'a [[u8; 4]]>,
+    /// Draw state (the same for every offer of one `material_key` in what the key hashes).
+    pub shading: &'a ChunkShading,
 }
 
 /// What [`StaticWorld::offer`] found in one draw.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Offered {
+    /// Triangles offered.
+    pub triangles: usize,
     /// Triangles in the persistent world (already, or joining in this frame).
     pub static_triangles: usize,
     /// Triangles never seen before (now pending).
     pub new_triangles: usize,
+}
+
+impl Offered {
+    /// Whether every triangle offered is in the world at the end of the frame: the chunks hold
+    /// the whole draw.
+    pub fn all_static(&self) -> bool {
+        self.triangles > 0 && self.static_triangles == self.triangles
+    }
 }
 
 /// The end of a frame: the chunks the renderer must hold now, and what changed.
@@ -163,6 +180,7 @@ pub struct WorldUpdate {
 struct Tri {
     positions: [[f32; 3]; 3],
     texcoords: Option<[[f32; 2]; 3]>,
+    colors: Option<[[u8; 4]; 3]>,
 }
 
 /// A triangle seen in one frame, waiting to be seen again.
@@ -178,6 +196,7 @@ struct Pending {
 struct Look {
     texture: Option<TextureRef>,
     material: MaterialOverride,
+    shading: ChunkShading,
 }
 
 /// Where a world triangle lives: chunk (index into `StaticWorld::chunks`, or [`JOINING`]) and
@@ -315,7 +334,8 @@ impl StaticWorld {
     pub fn offer(&mut self, t: WorldTriangles<'_>) -> Offered {
         let count = t.positions.len() / 3;
         let texcoords = t.texcoords.filter(|uv| uv.len() >= count * 3);
-        let mut offered = Offered::default();
+        let colors = t.colors.filter(|c| c.len() >= count * 3);
+        let mut offered = Offered { triangles: count, ..Offered::default() };
         // First pass: triangles already in the world; the others wait in `unknown`.
         let mut unknown = std::mem::take(&mut self.unknown);
         unknown.clear();
@@ -348,11 +368,12 @@ impl StaticWorld {
                 Entry::Vacant(entry) => {
                     let positions = [t.positions[3 * i], t.positions[3 * i + 1], t.positions[3 * i + 2]];
                     let uv = texcoords.map(|uv| [uv[3 * i], uv[3 * i + 1], uv[3 * i + 2]]);
+                    let rgba = colors.map(|c| [c[3 * i], c[3 * i + 1], c[3 * i + 2]]);
                     entry.insert(Pending {
                         tick: self.tick,
                         material: t.material_key,
-                        look: Look { texture: t.texture.cloned(), material: t.material },
-                        tri: Tri { positions, texcoords: uv },
+                        look: Look { texture: t.texture.cloned(), material: t.material, shading: t.shading.clone() },
+                        tri: Tri { positions, texcoords: uv, colors: rgba },
                     });
                     offered.new_triangles += 1;
                 }
@@ -565,7 +586,8 @@ impl StaticWorld {
                 let positions = [c.positions[3 * i], c.positions[3 * i + 1], c.positions[3 * i + 2]];
                 let texcoords = (!c.texcoords.is_empty())
                     .then(|| [c.texcoords[3 * i], c.texcoords[3 * i + 1], c.texcoords[3 * i + 2]]);
-                Moved { key: live.keys[i], tri: Tri { positions, texcoords }, seen: live.seen[i], missed: live.missed[i] }
+                let colors = (!c.colors.is_empty()).then(|| [c.colors[3 * i], c.colors[3 * i + 1], c.colors[3 * i + 2]]);
+                Moved { key: live.keys[i], tri: Tri { positions, texcoords, colors }, seen: live.seen[i], missed: live.missed[i] }
             })
             .collect()
     }
@@ -582,9 +604,11 @@ impl StaticWorld {
         let id = self.next_id;
         self.next_id += 1;
         let with_uv = tris.iter().any(|t| t.tri.texcoords.is_some());
+        let with_colors = tris.iter().any(|t| t.tri.colors.is_some());
         let n = tris.len();
         let mut positions = Vec::with_capacity(n * 3);
         let mut texcoords = Vec::with_capacity(if with_uv { n * 3 } else { 0 });
+        let mut colors = Vec::with_capacity(if with_colors { n * 3 } else { 0 });
         let (mut keys, mut seen, mut missed) = (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
         let (mut min, mut max) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         for (i, t) in tris.iter().enumerate() {
@@ -596,12 +620,24 @@ impl StaticWorld {
             if with_uv {
                 texcoords.extend_from_slice(&t.tri.texcoords.unwrap_or_default());
             }
+            if with_colors {
+                colors.extend_from_slice(&t.tri.colors.unwrap_or([[255; 4]; 3]));
+            }
             keys.push(t.key);
             seen.push(t.seen);
             missed.push(t.missed);
             self.slots.insert(t.key, Loc { chunk: index, index: i as u32 });
         }
-        let chunk = Arc::new(StaticChunk { id, material_key: material, material: look.material, texture: look.texture, positions, texcoords });
+        let chunk = Arc::new(StaticChunk {
+            id,
+            material_key: material,
+            material: look.material,
+            texture: look.texture,
+            positions,
+            texcoords,
+            colors,
+            shading: look.shading,
+        });
         self.changes.new_chunks += 1;
         self.changes.upload_bytes += chunk.upload_bytes();
         self.groups.entry((material, cell)).or_default().push(index);
@@ -637,7 +673,7 @@ impl StaticWorld {
         for index in touched {
             let Some(Some(live)) = self.chunks.get(index as usize) else { continue };
             let (material, cell) = (live.chunk.material_key, live.cell);
-            let look = Look { texture: live.chunk.texture.clone(), material: live.chunk.material };
+            let look = Look { texture: live.chunk.texture.clone(), material: live.chunk.material, shading: live.chunk.shading.clone() };
             if let Entry::Occupied(mut group) = self.groups.entry((material, cell)) {
                 group.get_mut().retain(|&other| other != index);
                 if group.get().is_empty() {
@@ -882,7 +918,16 @@ mod tests {
     }
 
     fn offer(world: &mut StaticWorld, material: u64, positions: &[[f32; 3]], texcoords: &[[f32; 2]]) -> usize {
-        let o = world.offer(WorldTriangles { material_key: material, material: MaterialOverride::default(), texture: None, positions, texcoords: Some(texcoords) });
+        let shading = ChunkShading::default();
+        let o = world.offer(WorldTriangles {
+            material_key: material,
+            material: MaterialOverride::default(),
+            texture: None,
+            positions,
+            texcoords: Some(texcoords),
+            colors: None,
+            shading: &shading,
+        });
         o.static_triangles + o.new_triangles
     }
 
@@ -917,11 +962,55 @@ mod tests {
         world.begin_frame(f, m);
         let mut total = Offered::default();
         for &(material, positions) in batches {
-            let o = world.offer(WorldTriangles { material_key: material, material: MaterialOverride::default(), texture: None, positions, texcoords: None });
+            let shading = ChunkShading::default();
+            let o = world.offer(WorldTriangles {
+                material_key: material,
+                material: MaterialOverride::default(),
+                texture: None,
+                positions,
+                texcoords: None,
+                colors: None,
+                shading: &shading,
+            });
             total.static_triangles += o.static_triangles;
             total.new_triangles += o.new_triangles;
         }
         (world.end_frame(), total)
+    }
+
+    #[test]
+    fn chunks_carry_colours_coordinates_and_the_draw_state() {
+        let mut world = StaticWorld::new();
+        let positions = wall(2);
+        let texcoords: Vec<[f32; 2]> = positions.iter().map(|p| [p[0], p[1]]).collect();
+        let colors: Vec<[u8; 4]> = (0..positions.len()).map(|i| [i as u8, 0, 255, 255]).collect();
+        let state = crate::frame::RasterState { depth_write: true, ..Default::default() };
+        let shading = ChunkShading { state: Arc::new(state), texture_unit: Some(crate::frame::TextureUnit::default()) };
+        let mut last = None;
+        for f in 0..2 {
+            world.begin_frame(f, front_view());
+            let o = world.offer(WorldTriangles {
+                material_key: 1,
+                material: MaterialOverride::default(),
+                texture: None,
+                positions: &positions,
+                texcoords: Some(&texcoords),
+                colors: Some(&colors),
+                shading: &shading,
+            });
+            assert_eq!((o.triangles, o.all_static()), (4, f == 1), "frame {f}: {o:?}");
+            last = Some(world.end_frame());
+        }
+        let update = last.unwrap();
+        assert_eq!(update.triangles, 4);
+        for c in update.chunks.iter() {
+            assert_eq!((c.shading.clone(), c.colors.len(), c.texcoords.len()), (shading.clone(), c.positions.len(), c.positions.len()));
+            for (k, p) in c.positions.iter().enumerate() {
+                let i = positions.iter().position(|q| q == p).unwrap();
+                assert_eq!((c.colors[k][2], c.texcoords[k]), (255, texcoords[i]));
+            }
+            assert_eq!(c.upload_bytes(), c.positions.len() as u64 * 24);
+        }
     }
 
     #[test]

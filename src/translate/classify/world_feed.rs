@@ -1,17 +1,26 @@
 //! The seam to the persistent static world (`static_world`): the world-space triangles of one
-//! traced draw, built in reused buffers and offered to [`StaticWorld::offer`].
+//! traced draw, built in reused buffers and offered to [`StaticWorld::offer`], with what a
+//! renderer shades them with (unit 0's coordinates after its texture matrix, primary colours
+//! when not all white, the draw state).
 
 use glam::{Mat4, Vec4};
 
 use super::static_world::{Offered, StaticWorld, WorldTriangles};
 use crate::frame::Draw;
 use crate::frame::class::MaterialOverride;
+use crate::frame::world::ChunkShading;
 
 /// Buffers reused from draw to draw (no allocation once they have grown).
 #[derive(Default)]
 pub struct WorldFeed {
     positions: Vec<[f32; 3]>,
     texcoords: Vec<[f32; 2]>,
+    colors: Vec<[u8; 4]>,
+}
+
+/// `c` as unorm8 RGBA.
+fn unorm8(c: [f32; 4]) -> [u8; 4] {
+    c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
 }
 
 impl WorldFeed {
@@ -20,7 +29,10 @@ impl WorldFeed {
     pub fn offer(&mut self, world: &mut StaticWorld, draw: &Draw, model: &Mat4, material_key: u64, material: MaterialOverride) -> Offered {
         self.positions.clear();
         self.texcoords.clear();
+        self.colors.clear();
         let texcoords = draw.vertices.texcoords.first().filter(|t| !t.values.is_empty());
+        let uv_matrix = draw.texture_matrices.first().copied().flatten().filter(|m| *m != Mat4::IDENTITY);
+        let colors = Some(&draw.vertices.color).filter(|c| c.values.iter().any(|c| *c != [1.0; 4]));
         let identity = *model == Mat4::IDENTITY;
         for &i in &draw.indices {
             let Some(p) = draw.vertices.position.get(i as usize) else { continue };
@@ -28,18 +40,27 @@ impl WorldFeed {
             let w = if w.w != 0.0 && w.w != 1.0 { w / w.w } else { w };
             self.positions.push([w.x, w.y, w.z]);
             if let Some(t) = texcoords.and_then(|t| t.get(i as usize)) {
-                self.texcoords.push([t[0], t[1]]);
+                let t = uv_matrix.map_or(Vec4::from_array(t), |m| m * Vec4::from_array(t));
+                let q = if t.w != 0.0 { t.w } else { 1.0 };
+                self.texcoords.push([t.x / q, t.y / q]);
+            }
+            if let Some(c) = colors.and_then(|c| c.get(i as usize)) {
+                self.colors.push(unorm8(c));
             }
         }
         let whole = self.positions.len() / 3 * 3;
         self.positions.truncate(whole);
         let texcoords = (self.texcoords.len() == self.positions.len()).then_some(&self.texcoords[..]);
+        let colors = (self.colors.len() == self.positions.len()).then_some(&self.colors[..]);
+        let shading = ChunkShading { state: draw.state.clone(), texture_unit: draw.texture_units.first().copied().flatten() };
         world.offer(WorldTriangles {
             material_key,
             material,
             texture: draw.textures.iter().flatten().next(),
             positions: &self.positions,
             texcoords,
+            colors,
+            shading: &shading,
         })
     }
 }

@@ -120,6 +120,26 @@ impl Aabb {
     }
 }
 
+/// The SAH cost of the BVH `nodes` (root first) relative to its root's box: 1 per node
+/// visited and 1 per primitive tested, each weighted by the chance that a ray through the
+/// root's box enters the node's (area ratio). Compares trees of one geometry (a refitted tree
+/// with its build); 0 when the root's box has no area.
+pub fn sah_cost(nodes: &[GpuNode]) -> f32 {
+    let Some(root) = nodes.first() else { return 0.0 };
+    let area = root.children[0].bounds().union(&root.children[1].bounds()).half_area();
+    if !(area > 0.0 && area.is_finite()) {
+        return 0.0;
+    }
+    let mut cost = 0.0;
+    for n in nodes {
+        cost += n.children[0].bounds().union(&n.children[1].bounds()).half_area();
+        for c in n.children.iter().filter(|c| c.is_leaf()) {
+            cost += c.bounds().half_area() * (c.meta & !LEAF) as f32;
+        }
+    }
+    cost / area
+}
+
 /// One child slot of a [`GpuNode`]: its box, with the child reference in the `w` words
 /// (`bvh.glsl`: `vec4` pairs, the words read with `floatBitsToUint`).
 #[repr(C)]

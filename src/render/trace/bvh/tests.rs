@@ -7,7 +7,7 @@ use glam::{Affine3A, Quat, Vec2, Vec3};
 use obvhs::BvhBuildParams;
 
 use super::cpu::{self, Hit, Instance, Scene};
-use super::{Aabb, Blas, GpuChild, GpuNode, GpuTriangle, LEAF, MAX_DEPTH, Tlas};
+use super::{Aabb, Blas, GpuChild, GpuNode, GpuTriangle, MAX_DEPTH, Tlas, sah_cost};
 
 /// A deterministic xorshift generator.
 struct Rng(u64);
@@ -148,19 +148,6 @@ fn depth(nodes: &[GpuNode], node: usize) -> usize {
     1 + nodes[node].children.iter().filter(|c| !c.is_leaf()).map(|c| depth(nodes, c.index as usize)).max().unwrap_or(0)
 }
 
-/// The SAH cost relative to the root's area: 1 per node visited, 1 per triangle tested.
-fn sah(nodes: &[GpuNode]) -> f32 {
-    let root = nodes[0].children[0].bounds().union(&nodes[0].children[1].bounds()).half_area();
-    let mut cost = 0.0;
-    for n in nodes {
-        cost += n.children[0].bounds().union(&n.children[1].bounds()).half_area();
-        for c in n.children.iter().filter(|c| c.is_leaf()) {
-            cost += c.bounds().half_area() * (c.meta & !LEAF) as f32;
-        }
-    }
-    cost / root
-}
-
 #[test]
 fn gpu_struct_sizes_match_the_glsl() {
     assert_eq!(size_of::<GpuChild>(), 32);
@@ -289,6 +276,49 @@ fn refit_follows_moved_vertices() {
     assert!(hits > 500, "only {hits} hits");
 }
 
+/// The sphere of [`sphere`] wobbled at `time` (every vertex moved along its direction, as an
+/// animated mesh deforms), placed at `centre`.
+fn wobbled(ball: &[[Vec3; 3]], time: f32, centre: Vec3) -> Vec<[Vec3; 3]> {
+    ball.iter().map(|t| t.map(|v| centre + v * (1.0 + 0.25 * (5.0 * v.x + 3.0 * time).sin() * (4.0 * v.y - 2.0 * time).cos()))).collect()
+}
+
+#[test]
+fn a_refitted_deformed_mesh_hits_as_a_fresh_build() {
+    let ball = sphere(40, 80);
+    let mut refitted = Blas::build(&wobbled(&ball, 0.0, Vec3::ZERO));
+    // Ten frames of animation, refitted each frame; the mesh also drifts sideways.
+    let mut shape = Vec::new();
+    for frame in 1..=10 {
+        shape = wobbled(&ball, 0.3 * frame as f32, Vec3::new(0.05 * frame as f32, 0.0, 0.0));
+        assert!(refitted.refit(&shape));
+    }
+    let fresh = Blas::build(&shape);
+    let placed = [Placed { triangles: &shape, object_to_eye: Affine3A::from_rotation_y(0.4), alpha_tested: false }];
+    let (a, b) = (Built::new(&placed, vec![refitted]), Built::new(&placed, vec![fresh]));
+    let (sa, sb) = (a.scene(), b.scene());
+    let mut rng = Rng(2024);
+    let mut hits = 0;
+    for _ in 0..5000 {
+        let o = rng.vec(2.5);
+        let d = (rng.vec(1.0) - o).normalize_or(Vec3::X);
+        let input = |built: &Built, h: Hit| built.blas[0].order[h.triangle as usize];
+        let (ha, hb) = (cpu::closest(&sa, o, d, 0.0, f32::INFINITY, even), cpu::closest(&sb, o, d, 0.0, f32::INFINITY, even));
+        match (ha, hb) {
+            (Some(x), Some(y)) => {
+                assert_eq!(x.t, y.t, "ray {o} {d}: {x:?} vs {y:?}");
+                // Another triangle at the same t is a tie on a shared edge or vertex.
+                let (tx, ty) = (input(&a, x), input(&b, y));
+                assert!(tx == ty || ball[tx as usize].iter().any(|v| ball[ty as usize].contains(v)), "ray {o} {d}: triangle {tx} vs {ty}");
+                hits += 1;
+            }
+            (x, y) => assert_eq!(x.is_some(), y.is_some(), "ray {o} {d}"),
+        }
+        assert_eq!(cpu::any(&sa, o, d, 0.0, 3.0, even), cpu::any(&sb, o, d, 0.0, 3.0, even), "any: ray {o} {d}");
+    }
+    assert!(hits > 2000, "only {hits} hits");
+    check_rays(&a, &placed, &mut rng, 1000, 2.5);
+}
+
 #[test]
 fn deep_subtrees_are_rebalanced_within_the_depth_limit() {
     let mut rng = Rng(31337);
@@ -343,7 +373,7 @@ fn bvh_build_speed() {
                 "{name}, depth limit {max_depth}: {} triangles in {:.0} ms, SAH {:.1}, {} nodes, depth {}",
                 tris.len(),
                 start.elapsed().as_secs_f64() * 1e3,
-                sah(&blas.nodes),
+                sah_cost(&blas.nodes),
                 blas.nodes.len(),
                 depth(&blas.nodes, 0)
             );
@@ -357,5 +387,38 @@ fn bvh_build_speed() {
         .collect();
     let start = Instant::now();
     let tlas = Tlas::build(&boxes);
-    println!("TLAS: 10k instances in {:.2} ms, SAH {:.1}, depth {}", start.elapsed().as_secs_f64() * 1e3, sah(&tlas.nodes), depth(&tlas.nodes, 0));
+    println!("TLAS: 10k instances in {:.2} ms, SAH {:.1}, depth {}", start.elapsed().as_secs_f64() * 1e3, sah_cost(&tlas.nodes), depth(&tlas.nodes, 0));
+}
+
+/// CPU time of a refit against a full build for deformed meshes of 10k and 100k triangles
+/// (`cargo test --lib trace::bvh -- --ignored --nocapture refit_speed`), and the SAH cost of
+/// the refitted tree against a fresh build's after 30 frames of animation.
+#[test]
+#[ignore]
+fn refit_speed() {
+    for (rings, segments) in [(50, 100), (160, 320)] {
+        let ball = sphere(rings, segments);
+        let frames = 30;
+        let mut blas = Blas::build(&wobbled(&ball, 0.0, Vec3::ZERO));
+        let (mut build_s, mut refit_s) = (0.0, 0.0);
+        let mut fresh = blas.clone();
+        for frame in 1..=frames {
+            let shape = wobbled(&ball, 0.1 * frame as f32, Vec3::ZERO);
+            let start = Instant::now();
+            assert!(blas.refit(&shape));
+            refit_s += start.elapsed().as_secs_f64();
+            let start = Instant::now();
+            fresh = Blas::build(&shape);
+            build_s += start.elapsed().as_secs_f64();
+        }
+        println!(
+            "{} triangles: build {:.2} ms, refit {:.2} ms per frame ({:.1}x); SAH after {frames} frames: refitted {:.1}, fresh build {:.1}",
+            ball.len(),
+            build_s * 1e3 / frames as f64,
+            refit_s * 1e3 / frames as f64,
+            build_s / refit_s,
+            sah_cost(&blas.nodes),
+            sah_cost(&fresh.nodes)
+        );
+    }
 }

@@ -1,0 +1,155 @@
+//! The persistent static world in the tracer (anti-culling, DESIGN.md "Hash tracking"): every
+//! chunk of [`Frame::static_world`] is traced, drawn this frame or not, so a wall behind the
+//! camera that the program culled still casts its shadow and bounces light.
+//!
+//! - **Geometry.** A chunk is a geometry of world-space triangles, its BVH built once and
+//!   cached by [`key`] (its id and content; the resident cache drops it some frames after the
+//!   world released it). Its instance places it in eye space by the frame's view, like a draw
+//!   whose modelview is the view.
+//! - **Shading.** A chunk is shaded as a draw of its triangles with the chunk's draw state
+//!   ([`crate::frame::world::ChunkShading`]) would be ([`scene::geometry`],
+//!   [`scene::material`]): texture of unit 0 with its environment, the `glrt.toml` material,
+//!   the alpha test, and as base colour the primary colour the chunk keeps per corner (Quake 3
+//!   draws lightmapped world surfaces white, its vertex-lit ones with baked light in the
+//!   colour: either way what the draw itself would be traced with), or the lit material's
+//!   diffuse colour. Chunks keep no normals: lit chunks use the geometric normal (flat shading
+//!   of faceted world geometry; a smooth lit mesh in the world loses its interpolated normals).
+//! - **Draws.** A draw whose triangles are all in the chunks at the end of the frame
+//!   ([`crate::frame::class::Instance::in_static_world`]) is not traced: the chunks hold it.
+//!   A draw with triangles not in the world yet (pending: seen in one frame only) is traced
+//!   whole, so nothing is missing; its triangles already in the world are then present twice,
+//!   at the same place, for the frames until the rest joins (one frame for a static surface
+//!   seen in consecutive frames).
+
+use std::sync::Arc;
+
+use glam::Mat4;
+use xxhash_rust::xxh3::Xxh3;
+
+use super::gpu_types::GpuMaterial;
+use super::scene::{self, Geometry, MaterialDefaults};
+use crate::frame::class::{DrawClass, Instance};
+use crate::frame::world::StaticChunk;
+use crate::frame::{Attrib, Draw, Frame, TextureRef};
+
+/// The view and the chunks to trace in `frame`: the static world, when hash tracking recovered
+/// a camera and the world holds chunks.
+pub fn traced_world(frame: &Frame) -> Option<(Mat4, &[Arc<StaticChunk>])> {
+    let view = frame.view.as_ref()?;
+    (!frame.static_world.is_empty()).then_some((view.view, &frame.static_world[..]))
+}
+
+/// Whether the static world holds every triangle of `draw` (traced through the chunks).
+pub fn is_covered(draw: &Draw) -> bool {
+    draw.instance.is_some_and(|i| i.in_static_world)
+}
+
+/// The key the GPU geometry cache stores `chunk` under: its id, with its material key, size
+/// and first triangle (ids are unique within one world; these tell two worlds apart).
+pub fn key(chunk: &StaticChunk) -> u64 {
+    let mut h = Xxh3::new();
+    h.update(b"static chunk");
+    h.update(&chunk.id.to_le_bytes());
+    h.update(&chunk.material_key.to_le_bytes());
+    h.update(&(chunk.positions.len() as u64).to_le_bytes());
+    h.update(bytemuck::cast_slice(&chunk.positions[..chunk.positions.len().min(3)]));
+    h.digest()
+}
+
+/// The texture of unit 0 the chunk is shaded with (none when unit 0 was not enabled).
+pub fn texture(chunk: &StaticChunk) -> Option<&TextureRef> {
+    chunk.shading.texture_unit.and(chunk.texture.as_ref())
+}
+
+/// The world-space geometry of `chunk`.
+pub fn geometry(chunk: &StaticChunk) -> Geometry {
+    scene::geometry(&as_draw(chunk, true))
+}
+
+/// The material of `chunk`, whose unit-0 texture is `texture` in the texel pool.
+pub fn material(chunk: &StaticChunk, texture: Option<u32>, defaults: &MaterialDefaults) -> GpuMaterial {
+    scene::material(&as_draw(chunk, false), [texture, None], defaults)
+}
+
+/// `chunk` as the draw of its triangles in the world frame: its state, texture, material and,
+/// with `vertices`, its positions, texture coordinates and colours (one vertex per corner).
+fn as_draw(chunk: &StaticChunk, vertices: bool) -> Draw {
+    let mut draw = Draw {
+        state: chunk.shading.state.clone(),
+        textures: vec![chunk.texture.clone()],
+        texture_units: vec![chunk.shading.texture_unit],
+        class: DrawClass::Static,
+        instance: Some(Instance { model: Some(Mat4::IDENTITY), material: chunk.material, in_static_world: true, ..Instance::default() }),
+        ..Draw::default()
+    };
+    if vertices {
+        let v = &mut draw.vertices;
+        v.position = chunk.positions.iter().map(|p| [p[0], p[1], p[2], 1.0]).collect();
+        v.texcoords = vec![Attrib { values: chunk.texcoords.iter().map(|t| [t[0], t[1], 0.0, 1.0]).collect() }];
+        v.color = Attrib { values: chunk.colors.iter().map(|c| c.map(|x| f32::from(x) / 255.0)).collect() };
+        draw.vertex_count = v.position.len();
+        draw.indices = (0..draw.vertex_count as u32).collect();
+    }
+    draw
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::frame::RasterState;
+    use crate::frame::TextureUnit;
+    use crate::frame::class::{MaterialOverride, View};
+    use crate::frame::state::{CompareFunc, Lighting};
+    use crate::frame::world::ChunkShading;
+    use crate::render::trace::gpu_types::NO_TEXTURE;
+
+    fn chunk(colors: Vec<[u8; 4]>, state: RasterState) -> StaticChunk {
+        StaticChunk {
+            id: 3,
+            material_key: 9,
+            material: MaterialOverride { roughness: 0.3, metalness: 1.0, emissive: 0.0 },
+            texture: None,
+            positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [5.0, 0.0, 0.0], [6.0, 0.0, 0.0], [5.0, 1.0, 0.0]],
+            texcoords: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.5], [0.5, 0.5], [0.5, 0.5]],
+            colors,
+            shading: ChunkShading { state: Arc::new(state), texture_unit: Some(TextureUnit::default()) },
+        }
+    }
+
+    #[test]
+    fn a_chunk_is_shaded_as_its_draw_would_be() {
+        let colors = vec![[255, 0, 0, 255], [255, 0, 0, 255], [255, 0, 0, 255], [0, 0, 255, 255], [0, 0, 255, 255], [0, 0, 255, 255]];
+        let c = chunk(colors, RasterState { alpha_test: Some((CompareFunc::Greater, 0.5)), ..RasterState::default() });
+        let g = geometry(&c);
+        assert_eq!(g.triangles.len(), 2);
+        assert_eq!(g.triangles[1][1], glam::Vec3::new(6.0, 0.0, 0.0));
+        let corner = g.attributes[1].corner[0];
+        assert_eq!((corner.uv, corner.color, corner.normal), ([0.5, 0.5], scene::pack_unorm8([0.0, 0.0, 1.0, 1.0]), 0));
+        let m = material(&c, Some(4), &MaterialDefaults::default());
+        assert_eq!((m.texture, m.roughness, m.metalness, m.alpha_func, m.alpha_ref), (4, 0.3, 1.0, CompareFunc::Greater as u32, 0.5));
+
+        // Without colours the base colour is white; lit, it is the material's diffuse colour.
+        let white = geometry(&chunk(Vec::new(), RasterState::default()));
+        assert_eq!(white.attributes[0].corner[2].color, scene::pack_unorm8([1.0; 4]));
+        let mut lighting = Lighting::default();
+        lighting.front.diffuse = [0.5, 0.25, 1.0, 1.0];
+        let lit = geometry(&chunk(Vec::new(), RasterState { lighting: Some(lighting), ..RasterState::default() }));
+        assert_eq!((lit.attributes[0].corner[1].color, lit.attributes[0].corner[1].normal), (scene::pack_unorm8([0.5, 0.25, 1.0, 1.0]), 0));
+        assert_eq!(material(&c, None, &MaterialDefaults::default()).texture, NO_TEXTURE);
+    }
+
+    #[test]
+    fn the_world_is_traced_with_a_view_and_chunks() {
+        let c = Arc::new(chunk(Vec::new(), RasterState::default()));
+        let view = View { view: Mat4::from_translation(glam::Vec3::new(0.0, 0.0, -4.0)), ..View::default() };
+        let frame = Frame { view: Some(view), static_world: vec![c.clone()].into(), ..Frame::default() };
+        let (m, chunks) = traced_world(&frame).expect("a view and chunks");
+        assert_eq!((m, chunks.len()), (view.view, 1));
+        assert!(traced_world(&Frame { view: None, ..frame.clone() }).is_none());
+        assert!(traced_world(&Frame { static_world: Vec::new().into(), ..frame }).is_none());
+        let other = StaticChunk { id: 4, ..(*c).clone() };
+        assert_ne!(key(&c), key(&other));
+        assert_eq!(key(&c), key(&c.as_ref().clone()));
+        assert!(texture(&c).is_none());
+    }
+}
