@@ -18,6 +18,8 @@ pub struct ChunkShading {
     pub state: Arc<RasterState>,
     /// Texture environment of unit 0 (`None`: unit 0 not enabled).
     pub texture_unit: Option<TextureUnit>,
+    /// Whether the draw had a texture on unit 1 (a lightmap, say), which chunks do not carry.
+    pub multitextured: bool,
 }
 
 /// A piece of the persistent static world: world-space triangles of one material, stable

@@ -29,6 +29,7 @@ use xxhash_rust::xxh3::Xxh3;
 use super::gpu_types::GpuMaterial;
 use super::scene::{self, Geometry, MaterialDefaults};
 use crate::frame::class::{DrawClass, Instance};
+use crate::frame::state::{ColorMaterial, ColorMaterialMode, Lighting};
 use crate::frame::world::StaticChunk;
 use crate::frame::{Attrib, Draw, Frame, TextureRef};
 
@@ -74,8 +75,19 @@ pub fn material(chunk: &StaticChunk, texture: Option<u32>, defaults: &MaterialDe
 /// `chunk` as the draw of its triangles in the world frame: its state, texture, material and,
 /// with `vertices`, its positions, texture coordinates and colours (one vertex per corner).
 fn as_draw(chunk: &StaticChunk, vertices: bool) -> Draw {
+    // A chunk holds triangles of draws with different material colours: its colours carry
+    // each triangle's base colour (white when absent), so a lit state tracks them.
+    let state = match &chunk.shading.state.lighting {
+        Some(lighting) => {
+            let mut state = (*chunk.shading.state).clone();
+            let color_material = ColorMaterial { mode: ColorMaterialMode::AmbientAndDiffuse, ..ColorMaterial::default() };
+            state.lighting = Some(Lighting { color_material: Some(color_material), ..lighting.clone() });
+            Arc::new(state)
+        }
+        None => chunk.shading.state.clone(),
+    };
     let mut draw = Draw {
-        state: chunk.shading.state.clone(),
+        state,
         textures: vec![chunk.texture.clone()],
         texture_units: vec![chunk.shading.texture_unit],
         class: DrawClass::Static,
@@ -99,7 +111,7 @@ mod tests {
     use crate::frame::RasterState;
     use crate::frame::TextureUnit;
     use crate::frame::class::{MaterialOverride, View};
-    use crate::frame::state::{CompareFunc, Lighting};
+    use crate::frame::state::CompareFunc;
     use crate::frame::world::ChunkShading;
     use crate::render::trace::gpu_types::NO_TEXTURE;
 
@@ -112,7 +124,7 @@ mod tests {
             positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [5.0, 0.0, 0.0], [6.0, 0.0, 0.0], [5.0, 1.0, 0.0]],
             texcoords: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.5], [0.5, 0.5], [0.5, 0.5]],
             colors,
-            shading: ChunkShading { state: Arc::new(state), texture_unit: Some(TextureUnit::default()) },
+            shading: ChunkShading { state: Arc::new(state), texture_unit: Some(TextureUnit::default()), multitextured: false },
         }
     }
 
@@ -128,13 +140,18 @@ mod tests {
         let m = material(&c, Some(4), &MaterialDefaults::default());
         assert_eq!((m.texture, m.roughness, m.metalness, m.alpha_func, m.alpha_ref), (4, 0.3, 1.0, CompareFunc::Greater as u32, 0.5));
 
-        // Without colours the base colour is white; lit, it is the material's diffuse colour.
+        // Without colours the base colour is white, lit or not: the world feed puts a lit
+        // draw's diffuse colour in the chunk's colours (chunks mix draws of other materials,
+        // so the state's diffuse colour, the first draw's, is not used).
         let white = geometry(&chunk(Vec::new(), RasterState::default()));
         assert_eq!(white.attributes[0].corner[2].color, scene::pack_unorm8([1.0; 4]));
         let mut lighting = Lighting::default();
         lighting.front.diffuse = [0.5, 0.25, 1.0, 1.0];
-        let lit = geometry(&chunk(Vec::new(), RasterState { lighting: Some(lighting), ..RasterState::default() }));
-        assert_eq!((lit.attributes[0].corner[1].color, lit.attributes[0].corner[1].normal), (scene::pack_unorm8([0.5, 0.25, 1.0, 1.0]), 0));
+        let lit_state = RasterState { lighting: Some(lighting), ..RasterState::default() };
+        let lit = geometry(&chunk(Vec::new(), lit_state.clone()));
+        assert_eq!((lit.attributes[0].corner[1].color, lit.attributes[0].corner[1].normal), (scene::pack_unorm8([1.0; 4]), 0));
+        let red = geometry(&chunk(vec![[255, 0, 0, 255]; 6], lit_state));
+        assert_eq!(red.attributes[1].corner[0].color, scene::pack_unorm8([1.0, 0.0, 0.0, 1.0]));
         assert_eq!(material(&c, None, &MaterialDefaults::default()).texture, NO_TEXTURE);
     }
 

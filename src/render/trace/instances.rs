@@ -36,13 +36,17 @@ pub struct Item<'a> {
 
 /// The instances of `frame` whose traced draws are `draws`, and how many draws were left out
 /// because the static world holds them. `previous_view` is the last traced frame's view
-/// (`None` after a camera cut).
-pub fn gather<'a>(frame: &'a Frame, draws: &[&'a Draw], previous_view: Option<Mat4>) -> (Vec<Item<'a>>, u32) {
+/// (`None` after a camera cut). Chunks do not carry unit 1: with `lightmaps` kept, draws with a
+/// kept lightmap are traced themselves and chunks of multitextured draws are left out (such
+/// geometry is traced as drawn, without anti-culling).
+pub fn gather<'a>(frame: &'a Frame, draws: &[&'a Draw], previous_view: Option<Mat4>, lightmaps: Lightmaps) -> (Vec<Item<'a>>, u32) {
     let world = chunks::traced_world(frame);
+    let keep = lightmaps == Lightmaps::Keep;
     let mut items = Vec::with_capacity(draws.len() + world.map_or(0, |(_, c)| c.len()));
     let mut covered = 0;
     for &draw in draws {
-        if world.is_some() && chunks::is_covered(draw) {
+        let lightmapped = keep && scene::traced_textures(draw, lightmaps)[1].is_some();
+        if world.is_some() && chunks::is_covered(draw) && !lightmapped {
             covered += 1;
             continue;
         }
@@ -50,7 +54,7 @@ pub fn gather<'a>(frame: &'a Frame, draws: &[&'a Draw], previous_view: Option<Ma
         items.push(Item { source: Source::Draw(draw), key: scene::geometry_key(draw), object_to_eye: draw.modelview, previous_object_to_eye: previous });
     }
     if let Some((view, list)) = world {
-        for chunk in list {
+        for chunk in list.iter().filter(|c| !(keep && c.shading.multitextured)) {
             items.push(Item { source: Source::Chunk(chunk), key: chunks::key(chunk), object_to_eye: view, previous_object_to_eye: previous_view.unwrap_or(view) });
         }
     }

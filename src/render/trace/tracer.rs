@@ -164,7 +164,7 @@ impl Tracer {
         let Some(camera) = draws.first() else { return Ok(()) };
 
         let previous_view = self.previous.and_then(|p| p.view).filter(|_| !frame.stats.camera_cut);
-        let (items, covered_draws) = instances::gather(frame, &draws, previous_view);
+        let (items, covered_draws) = instances::gather(frame, &draws, previous_view, self.settings.lightmaps);
 
         // Geometry: build (or refit) and upload what is new.
         let mut new: Vec<NewGeometry> = Vec::new();

@@ -1,12 +1,14 @@
 //! The seam to the persistent static world (`static_world`): the world-space triangles of one
 //! traced draw, built in reused buffers and offered to [`StaticWorld::offer`], with what a
-//! renderer shades them with (unit 0's coordinates after its texture matrix, primary colours
-//! when not all white, the draw state).
+//! renderer shades them with (unit 0's coordinates after its texture matrix, base colours
+//! when not all white — the vertex colours, or a lit draw's diffuse material colour — and the
+//! draw state).
 
 use glam::{Mat4, Vec4};
 
 use super::static_world::{Offered, StaticWorld, WorldTriangles};
 use crate::frame::Draw;
+use crate::frame::state::{ColorMaterialMode, Lighting};
 use crate::frame::class::MaterialOverride;
 use crate::frame::world::ChunkShading;
 
@@ -23,6 +25,11 @@ fn unorm8(c: [f32; 4]) -> [u8; 4] {
     c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
 }
 
+/// Whether a lit draw's diffuse colour follows the vertex colour (`glColorMaterial`).
+fn tracks_diffuse(lighting: &Lighting) -> bool {
+    lighting.color_material.is_some_and(|c| matches!(c.mode, ColorMaterialMode::Diffuse | ColorMaterialMode::AmbientAndDiffuse))
+}
+
 impl WorldFeed {
     /// Offers the triangles of `draw`, taken to the world by `model`, as material
     /// `material_key` with the parameters `material`.
@@ -32,7 +39,10 @@ impl WorldFeed {
         self.colors.clear();
         let texcoords = draw.vertices.texcoords.first().filter(|t| !t.values.is_empty());
         let uv_matrix = draw.texture_matrices.first().copied().flatten().filter(|m| *m != Mat4::IDENTITY);
-        let colors = Some(&draw.vertices.color).filter(|c| c.values.iter().any(|c| *c != [1.0; 4]));
+        // The base colour the tracer shades with: the vertex colour, or the material's diffuse
+        // colour of a lit draw whose diffuse does not track the colour (`trace::scene`).
+        let lit_diffuse = draw.state.lighting.as_ref().filter(|l| !tracks_diffuse(l)).map(|l| l.front.diffuse);
+        let colors = Some(&draw.vertices.color).filter(|c| lit_diffuse.is_some_and(|d| d != [1.0; 4]) || c.values.iter().any(|c| *c != [1.0; 4]));
         let identity = *model == Mat4::IDENTITY;
         for &i in &draw.indices {
             let Some(p) = draw.vertices.position.get(i as usize) else { continue };
@@ -45,14 +55,15 @@ impl WorldFeed {
                 self.texcoords.push([t.x / q, t.y / q]);
             }
             if let Some(c) = colors.and_then(|c| c.get(i as usize)) {
-                self.colors.push(unorm8(c));
+                self.colors.push(unorm8(lit_diffuse.unwrap_or(c)));
             }
         }
         let whole = self.positions.len() / 3 * 3;
         self.positions.truncate(whole);
         let texcoords = (self.texcoords.len() == self.positions.len()).then_some(&self.texcoords[..]);
         let colors = (self.colors.len() == self.positions.len()).then_some(&self.colors[..]);
-        let shading = ChunkShading { state: draw.state.clone(), texture_unit: draw.texture_units.first().copied().flatten() };
+        let multitextured = draw.texture_units.get(1).copied().flatten().is_some() && draw.textures.get(1).is_some_and(Option::is_some);
+        let shading = ChunkShading { state: draw.state.clone(), texture_unit: draw.texture_units.first().copied().flatten(), multitextured };
         world.offer(WorldTriangles {
             material_key,
             material,
