@@ -918,17 +918,14 @@ mod tests {
     }
 
     fn offer(world: &mut StaticWorld, material: u64, positions: &[[f32; 3]], texcoords: &[[f32; 2]]) -> usize {
-        let shading = ChunkShading::default();
-        let o = world.offer(WorldTriangles {
-            material_key: material,
-            material: MaterialOverride::default(),
-            texture: None,
-            positions,
-            texcoords: Some(texcoords),
-            colors: None,
-            shading: &shading,
-        });
+        let o = offer_plain(world, material, positions, Some(texcoords));
         o.static_triangles + o.new_triangles
+    }
+
+    /// Offers `positions` (and `texcoords`) of `material` with default shading.
+    fn offer_plain(world: &mut StaticWorld, material: u64, positions: &[[f32; 3]], texcoords: Option<&[[f32; 2]]>) -> Offered {
+        let shading = ChunkShading::default();
+        world.offer(WorldTriangles { material_key: material, material: MaterialOverride::default(), texture: None, positions, texcoords, colors: None, shading: &shading })
     }
 
     /// Every chunk triangle's key: the world holds each once.
@@ -962,16 +959,7 @@ mod tests {
         world.begin_frame(f, m);
         let mut total = Offered::default();
         for &(material, positions) in batches {
-            let shading = ChunkShading::default();
-            let o = world.offer(WorldTriangles {
-                material_key: material,
-                material: MaterialOverride::default(),
-                texture: None,
-                positions,
-                texcoords: None,
-                colors: None,
-                shading: &shading,
-            });
+            let o = offer_plain(world, material, positions, None);
             total.static_triangles += o.static_triangles;
             total.new_triangles += o.new_triangles;
         }
