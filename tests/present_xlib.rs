@@ -45,6 +45,7 @@ fn assert_shows(x: &Xlib, dpy: *mut xlib::Display, drawable: u64, [w, h]: [u32; 
 /// Window, resize, pixmap and both transports on a screen of `depth` bits whose channels
 /// have `bits` bits.
 fn check_server(depth: u32, bits: [u32; 3]) {
+    let _one = ONE_X_ERROR_HANDLER.lock().unwrap_or_else(|e| e.into_inner());
     let Some(server) = x11::Xvfb::start(depth) else { return };
     let x = Xlib::open().expect("libX11");
     let dpy = server.open(&x);
@@ -105,6 +106,7 @@ fn presents_on_a_16_bit_screen() {
 
 #[test]
 fn falls_back_to_put_image_when_the_server_refuses_shared_memory() {
+    let _one = ONE_X_ERROR_HANDLER.lock().unwrap_or_else(|e| e.into_inner());
     let Some(server) = x11::Xvfb::start_with(24, true) else { return };
     let x = Xlib::open().expect("libX11");
     let dpy = server.open_tcp(&x);
@@ -118,6 +120,11 @@ fn falls_back_to_put_image_when_the_server_refuses_shared_memory() {
 
 static APP_ERRORS: std::sync::Mutex<Vec<u8>> = std::sync::Mutex::new(Vec::new());
 
+/// Xlib's error handler is one per process and the presenter traps errors by swapping it: the
+/// tests of this file run one at a time, so that none sees another's handler (the swap-size
+/// test failed when a presenter's trap replaced its handler under load).
+static ONE_X_ERROR_HANDLER: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 unsafe extern "C" fn app_handler(_: *mut xlib::Display, e: *mut xlib::XErrorEvent) -> std::ffi::c_int {
     APP_ERRORS.lock().unwrap().push(unsafe { (*e).error_code });
     0
@@ -127,6 +134,7 @@ unsafe extern "C" fn app_handler(_: *mut xlib::Display, e: *mut xlib::XErrorEven
 /// application, an earlier error of the application's still reaches the application's handler.
 #[test]
 fn swap_size_check_traps_only_its_own_error() {
+    let _one = ONE_X_ERROR_HANDLER.lock().unwrap_or_else(|e| e.into_inner());
     let Some(server) = x11::Xvfb::start(24) else { return };
     let x = Xlib::open().expect("libX11");
     let dpy = server.open(&x);
