@@ -166,7 +166,10 @@ pub const EXTRA_ALIASES: &[(&str, &str)] = &[
     ("AreTexturesResidentEXT", "AreTexturesResident"),
 ];
 
-pub const EXTRA_COMMANDS: &[(&str, &[(&str, &str)], &str)] = &[
+/// A command the registry lacks: name, parameters (name, Rust type), return type.
+pub type ExtraCommand = (&'static str, &'static [(&'static str, &'static str)], &'static str);
+
+pub const EXTRA_COMMANDS: &[ExtraCommand] = &[
     ("glSelectTextureSGIS", &[("target", "types::GLenum")], "()"),
     ("glMTexCoord2fSGIS", &[("target", "types::GLenum"), ("s", "types::GLfloat"), ("t", "types::GLfloat")], "()"),
 ];

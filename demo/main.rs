@@ -149,7 +149,7 @@ fn run(o: &Options) -> Result<(), Failure> {
     let surface = if o.headless {
         Surface::Headless(HeadlessContext::open(&lib, o.width, o.height)?)
     } else {
-        Surface::X11(X11Window::open(&lib, o.width, o.height, "glrt-demo")?)
+        Surface::X11(Box::new(X11Window::open(&lib, o.width, o.height, "glrt-demo")?))
     };
     let api = gl::GlApi::load(&lib)?;
     println!(

@@ -41,7 +41,7 @@ const GLX_DEPTH_SIZE: c_int = 12;
 /// A drawable with a current GL context.
 pub enum Surface {
     /// An X11 window.
-    X11(X11Window),
+    X11(Box<X11Window>),
     /// glrt's off-screen drawable.
     Headless(HeadlessContext),
 }

@@ -347,7 +347,7 @@ fn exact(ctx: &mut Context, (internal, format, ty): (GLenum, GLenum, GLenum), ra
     let error = unsafe { dispatch::glGetError(ctx) };
     let same = |i: usize| match ty {
         gl::GL_BYTE => data[i] == out[i] || (data[i] as i8 == -128 && out[i] as i8 == -127),
-        gl::GL_SHORT if i % 2 == 0 => {
+        gl::GL_SHORT if i.is_multiple_of(2) => {
             let (d, o) = (i16::from_ne_bytes([data[i], data[i + 1]]), i16::from_ne_bytes([out[i], out[i + 1]]));
             d == o || (d == -32768 && o == -32767)
         }

@@ -24,7 +24,7 @@ enum Path {
     /// Off-screen: nothing to show.
     Offscreen,
     /// A Vulkan swapchain on the window.
-    Swapchain(SwapchainPresenter),
+    Swapchain(Box<SwapchainPresenter>),
     /// Xlib, from a read-back.
     Xlib(XlibPresenter),
     /// The drawable cannot be shown (gone, or an unsupported visual): frames are dropped.
@@ -68,7 +68,7 @@ impl Presenter {
                     SwapchainPresenter::new(gpu, window, target.size, target.swap_interval)
                 });
                 match chain {
-                    Some(Ok(chain)) => Path::Swapchain(chain),
+                    Some(Ok(chain)) => Path::Swapchain(Box::new(chain)),
                     Some(Err(why)) => {
                         log::info!("present: no Vulkan swapchain on window {:#x} ({why:?}): using Xlib", window.drawable);
                         // Safety: as documented.

@@ -232,8 +232,8 @@ impl Context {
         let bit = 1 << self.active_texture_unit();
         let sprite = &mut self.fixed_mut().raster.sprite;
         match values.first() {
-            Some(&v) if v == 0.0 => sprite.coord_replace &= !bit,
-            Some(&v) if v == 1.0 => sprite.coord_replace |= bit,
+            Some(0.0) => sprite.coord_replace &= !bit,
+            Some(1.0) => sprite.coord_replace |= bit,
             _ => self.set_error_in(gl::GL_INVALID_VALUE, command),
         }
     }
