@@ -373,11 +373,6 @@ impl Pipelines {
             vk::DynamicState::STENCIL_REFERENCE,
         ];
         let dynamic = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic_states);
-        let color_formats = [COLOR_FORMAT];
-        let mut rendering = vk::PipelineRenderingCreateInfo::default()
-            .color_attachment_formats(&color_formats)
-            .depth_attachment_format(self.depth_format)
-            .stencil_attachment_format(self.depth_format);
         let info = vk::GraphicsPipelineCreateInfo::default()
             .stages(&stages)
             .vertex_input_state(&vertex_input)
@@ -388,14 +383,8 @@ impl Pipelines {
             .depth_stencil_state(&depth)
             .color_blend_state(&blend)
             .dynamic_state(&dynamic)
-            .layout(self.layout)
-            .push_next(&mut rendering);
-        // Safety: every referenced object is alive; the formats match the target.
-        let pipelines = unsafe { device.raw.create_graphics_pipelines(vk::PipelineCache::null(), &[info], None) };
-        match pipelines {
-            Ok(p) => Ok(p[0]),
-            Err((_, r)) => Err(super::device::Error::Vulkan("vkCreateGraphicsPipelines", r)),
-        }
+            .layout(self.layout);
+        create_for_target(&device.raw, self.depth_format, info)
     }
 
     /// Destroys every pipeline and layout (the GPU must be idle).
@@ -419,6 +408,24 @@ pub(crate) fn shader_module(device: &Device, spirv: &[u8]) -> Result<vk::ShaderM
     let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
     // Safety: the SPIR-V was produced by the build's shader compiler.
     unsafe { device.raw.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(&words), None) }.check("vkCreateShaderModule")
+}
+
+/// Creates a graphics pipeline drawing into the raster target (dynamic rendering: the RGBA8
+/// colour image and a depth/stencil image of `depth_format`) from `info`, whose states and
+/// layout are set.
+pub(crate) fn create_for_target(device: &ash::Device, depth_format: vk::Format, info: vk::GraphicsPipelineCreateInfo) -> Result<vk::Pipeline> {
+    let color_formats = [COLOR_FORMAT];
+    let mut rendering = vk::PipelineRenderingCreateInfo::default()
+        .color_attachment_formats(&color_formats)
+        .depth_attachment_format(depth_format)
+        .stencil_attachment_format(depth_format);
+    let info = info.push_next(&mut rendering);
+    // Safety: every object `info` refers to is alive (the caller's states); the formats are the
+    // target's.
+    match unsafe { device.create_graphics_pipelines(vk::PipelineCache::null(), &[info], None) } {
+        Ok(p) => Ok(p[0]),
+        Err((_, r)) => Err(super::device::Error::Vulkan("vkCreateGraphicsPipelines", r)),
+    }
 }
 
 #[cfg(test)]

@@ -10,8 +10,7 @@ use ash::vk;
 use super::bindings;
 use crate::render::raster::device::{Check, Device, Error, Result};
 use crate::render::raster::multisample;
-use crate::render::raster::pipelines::shader_module;
-use crate::render::raster::target::COLOR_FORMAT;
+use crate::render::raster::pipelines::{create_for_target, shader_module};
 
 /// Push constants of the composite: traced size and framebuffer size.
 pub const COMPOSITE_PUSH_BYTES: u32 = 16;
@@ -125,11 +124,6 @@ impl TracePipelines {
         let blend = vk::PipelineColorBlendStateCreateInfo::default().attachments(&attachments);
         let dynamic_states = [vk::DynamicState::VIEWPORT, vk::DynamicState::SCISSOR];
         let dynamic = vk::PipelineDynamicStateCreateInfo::default().dynamic_states(&dynamic_states);
-        let color_formats = [COLOR_FORMAT];
-        let mut rendering = vk::PipelineRenderingCreateInfo::default()
-            .color_attachment_formats(&color_formats)
-            .depth_attachment_format(device.depth_format)
-            .stencil_attachment_format(device.depth_format);
         let info = vk::GraphicsPipelineCreateInfo::default()
             .stages(&stages)
             .vertex_input_state(&vertex_input)
@@ -140,13 +134,8 @@ impl TracePipelines {
             .depth_stencil_state(&depth)
             .color_blend_state(&blend)
             .dynamic_state(&dynamic)
-            .layout(self.composite_layout)
-            .push_next(&mut rendering);
-        // Safety: every referenced object is alive; the formats are the raster target's.
-        let pipeline = match unsafe { device.raw.create_graphics_pipelines(vk::PipelineCache::null(), &[info], None) } {
-            Ok(p) => p[0],
-            Err((_, r)) => return Err(Error::Vulkan("vkCreateGraphicsPipelines", r)),
-        };
+            .layout(self.composite_layout);
+        let pipeline = create_for_target(&device.raw, device.depth_format, info)?;
         self.composite.insert(samples, pipeline);
         Ok(pipeline)
     }
