@@ -11,7 +11,7 @@
 
 mod lavapipe;
 
-use glrt::render::raster::renderer::Renderer;
+use glrt::render::frame::Renderer;
 use glrt::render::trace::settings::{Settings, Tonemap};
 use glrt::translate::{Context, dispatch, gl};
 

@@ -12,7 +12,7 @@ use std::sync::{Arc, Mutex};
 
 use glrt::frame::Frame;
 use glrt::frame::pixels::PixelBuffer;
-use glrt::render::raster::renderer::Renderer;
+use glrt::render::frame::Renderer;
 use glrt::render::trace::settings::{Settings, Tonemap};
 use glrt::render::trace::stats::SceneCounts;
 use glrt::render::{FrameSink, Target};
@@ -115,7 +115,7 @@ fn frame(ctx: &mut Context, occluder: bool) {
 }
 
 fn counts(renderer: &Arc<Mutex<Renderer>>) -> SceneCounts {
-    renderer.lock().unwrap().tracer().expect("tracing").scene
+    renderer.lock().unwrap().tracer().expect("tracing").statistics().scene
 }
 
 /// The roof, drawn in the first two frames (so that it joins the static world) and then

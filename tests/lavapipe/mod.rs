@@ -5,7 +5,7 @@
 #![allow(dead_code)]
 
 use glrt::render::raster::device::Error;
-use glrt::render::raster::renderer::Renderer;
+use glrt::render::frame::Renderer;
 use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
 
