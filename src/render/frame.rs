@@ -1,5 +1,5 @@
 //! The Vulkan renderer ([`Renderer`], the [`FrameSink`] of a context): one [`Frame`] in, one
-//! image out, as a sequence of stages that [`Renderer::record`] runs top to bottom (kajiya's
+//! image out, as a sequence of stages that `Renderer::record` runs top to bottom (kajiya's
 //! `world_render_passes.rs` is the model, DESIGN.md "The frame in the renderer"):
 //!
 //! 1. raster composite, first part ([`Raster::record`]): the clears, pixel operations and
@@ -18,7 +18,7 @@
 //! rasterized. Denoising (issue 20) and radiosity (issue 19) are stages between 3 and 4.
 //!
 //! A frame read back before its end (`glReadPixels`, pixel copies) is recorded in parts: each
-//! call of [`Renderer::record`] goes on where the last one stopped ([`Raster::recorded_draws`]),
+//! call of `Renderer::record` goes on where the last one stopped ([`Raster::recorded_draws`]),
 //! so the traced stages run once per frame, when the recording first passes the traced place.
 
 use crate::frame::pixels::PixelBuffer;
@@ -106,7 +106,9 @@ impl Renderer {
     fn record(&mut self, frame: &Frame) -> Result<()> {
         let traced_at = self.tracing.as_ref().and_then(|_| scene::first_traced(frame));
         let rasterized = |draw: &Draw| traced_at.is_none() || !scene::is_traced(draw);
+        // Raster composite up to the traced image's place: clears, pixel operations, draws.
         self.raster.record(frame, traced_at, &rasterized)?;
+        // The traced stages, once per frame, in place of the first traced draw.
         if let Some(tracing) = &mut self.tracing
             && let Some(at) = traced_at
             && self.raster.recorded_draws(frame) == at
@@ -115,6 +117,8 @@ impl Renderer {
             tracing.record(&mut rec, frame, &frame.draws[at])?;
             self.raster.skip_draw(frame, at);
         }
+        // Raster composite, the rest: the draws after it (glass, HUD), over the traced image
+        // and depth-tested against its depth.
         self.raster.record(frame, None, &rasterized)
     }
 
@@ -143,10 +147,14 @@ impl Tracing {
     /// Records the traced stages of `frame` into `rec` (the window's framebuffer, at the place
     /// of `camera`, the first traced draw).
     fn record(&mut self, rec: &mut Recorder<'_>, frame: &Frame, camera: &Draw) -> Result<()> {
+        // Upload and acceleration structures.
         let scene = self.backend.build(rec, frame, camera)?;
+        // Trace: the G-buffer and radiance (nothing when no geometry is on the GPU yet).
         let Some(radiance) = self.backend.trace(rec, &scene)? else { return Ok(()) };
-        // Denoising (issue 20) and radiosity (issue 19) come here: stages on the radiance.
+        // Denoising (issue 20) and radiosity (issue 19) come here, as stages on `radiance`.
+        // Resolve: temporal filter, tone mapping.
         let image = self.backend.resolve(rec, radiance)?;
+        // Composite: the traced colour and depth into the framebuffer.
         self.composite.record(rec, &image)
     }
 
