@@ -3,14 +3,15 @@
 //! `world_render_passes.rs` is the model, DESIGN.md "The frame in the renderer"):
 //!
 //! 1. raster composite, first part ([`Raster::record`]): the clears, pixel operations and
-//!    raster draws placed before the first traced draw, in program order;
+//!    raster draws placed before the first traced draw (the sky), in program order;
 //! 2. upload and acceleration structures ([`RayTracer::build`]) of the traced draws and the
 //!    static world;
 //! 3. trace ([`RayTracer::trace`]): the G-buffer and radiance;
 //! 4. resolve ([`RayTracer::resolve`]): temporal filter and tone mapping;
 //! 5. composite ([`Composite::record`]): the traced colour and depth into the framebuffer, at
 //!    the place of the first traced draw;
-//! 6. raster composite, the rest: sky, translucent and overlay draws over the traced image;
+//! 6. raster composite, the rest: the draws after it (translucent, overlay) over the traced
+//!    image, depth-tested against its depth;
 //! 7. present ([`Raster::present`]: back to front at a swap, the outputs, submission) or read
 //!    back ([`Raster::read`]).
 //!
