@@ -9,7 +9,7 @@
 // specular), and through primary rays that miss; adds its share of the noisy radiance
 // (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
 // (trace/gbuffer.glsl). The tracer dispatches this pass once per sample of the frame (see
-// `record_passes` in src/render/trace/tracer.rs for why). src/render/trace/mod.rs describes
+// `dispatch` in src/render/trace/compute.rs for why). src/render/trace/mod.rs describes
 // the scene it reads. Ray counts and traversal work are summed per subgroup (subgroup
 // arithmetic, which lavapipe and the desktop drivers have) and added to the counters once per
 // subgroup.

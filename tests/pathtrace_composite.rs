@@ -11,8 +11,11 @@
 
 mod lavapipe;
 
-use glrt::render::raster::renderer::Renderer;
+use std::sync::{Arc, Mutex};
+
+use glrt::render::frame::Renderer;
 use glrt::render::trace::settings::{Settings, Tonemap};
+use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
 
 const SIZE: i32 = 24;
@@ -23,16 +26,22 @@ const HUD: [f32; 3] = [1.0, 0.75, 0.0];
 const HUD_RECT: [i32; 4] = [1, 1, 7, 5];
 
 /// A context drawing into a `SIZE`² drawable, path traced when `traced`, with a perspective
-/// camera at the origin looking down −z.
-fn context(traced: bool) -> Context {
+/// camera at the origin looking down −z, and its renderer.
+fn shared_context(traced: bool) -> (Context, Arc<Mutex<Renderer>>) {
     let mut renderer = lavapipe::renderer_with(Renderer::without_outputs);
     if traced {
         let settings = Settings { spp: 1, bounces: 0, sun_angle: 0.0, tonemap: Tonemap::Clamp, exposure: 0.0, ..Settings::default() };
         renderer.enable_tracing(settings).expect("the tracer's pipelines");
     }
-    let mut ctx = lavapipe::context_on(renderer);
+    let renderer = Arc::new(Mutex::new(renderer));
+    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(lavapipe::Shared(renderer.clone())) });
     ctx.bind_drawable(SIZE, SIZE);
-    ctx
+    (ctx, renderer)
+}
+
+/// [`shared_context`]'s context.
+fn context(traced: bool) -> Context {
+    shared_context(traced).0
 }
 
 /// A quad at depth `z` (eye space) spanning x in `xs`, y in [-10, 10].
@@ -47,11 +56,19 @@ fn quad(ctx: &mut Context, xs: [f32; 2], z: f32) {
     }
 }
 
+/// The drawable's RGBA8 image (rows bottom to top), read from the read buffer.
+fn read(ctx: &mut Context) -> Vec<[u8; 4]> {
+    let mut out = vec![[0u8; 4]; (SIZE * SIZE) as usize];
+    unsafe { dispatch::glReadPixels(ctx, 0, 0, SIZE, SIZE, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+    out
+}
+
 /// Draws two frames: a lit wall at z = −3 filling the view; with `extras`, then glass over
 /// its left half (z = −2), glass behind it on the right (z = −5) and the HUD square. Returns
-/// the RGBA8 image (rows bottom to top).
-fn render(ctx: &mut Context, extras: bool) -> Vec<[u8; 4]> {
-    for _ in 0..2 {
+/// the RGBA8 image (rows bottom to top). With `read_before_hud` (and `extras`), the second
+/// frame is also read back before its HUD, into it.
+fn render(ctx: &mut Context, extras: bool, mut read_before_hud: Option<&mut Vec<[u8; 4]>>) -> Vec<[u8; 4]> {
+    for frame in 0..2 {
         unsafe {
             dispatch::glViewport(ctx, 0, 0, SIZE, SIZE);
             dispatch::glClearColor(ctx, 0.0, 0.0, 0.0, 1.0);
@@ -86,6 +103,11 @@ fn render(ctx: &mut Context, extras: bool) -> Vec<[u8; 4]> {
                 quad(ctx, [0.0, 10.0], -5.0);
                 dispatch::glDisable(ctx, gl::GL_BLEND);
                 dispatch::glDepthMask(ctx, gl::GL_TRUE);
+                if frame == 1
+                    && let Some(image) = read_before_hud.as_deref_mut()
+                {
+                    *image = read(ctx);
+                }
 
                 dispatch::glDisable(ctx, gl::GL_DEPTH_TEST);
                 dispatch::glMatrixMode(ctx, gl::GL_PROJECTION);
@@ -100,9 +122,7 @@ fn render(ctx: &mut Context, extras: bool) -> Vec<[u8; 4]> {
         }
         ctx.end_frame();
     }
-    let mut out = vec![[0u8; 4]; (SIZE * SIZE) as usize];
-    unsafe { dispatch::glReadPixels(ctx, 0, 0, SIZE, SIZE, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
-    out
+    read(ctx)
 }
 
 /// Whether window pixel (x, y) lies in the HUD square.
@@ -142,11 +162,11 @@ fn check_composition(mode: &str, plain: &[[u8; 4]], composed: &[[u8; 4]]) -> [us
 #[test]
 fn glass_and_hud_compose_over_the_traced_image_as_in_raster_mode() {
     let mut traced = context(true);
-    let traced_plain = render(&mut traced, false);
-    let traced_composed = render(&mut traced, true);
+    let traced_plain = render(&mut traced, false, None);
+    let traced_composed = render(&mut traced, true, None);
     let mut raster = context(false);
-    let raster_plain = render(&mut raster, false);
-    let raster_composed = render(&mut raster, true);
+    let raster_plain = render(&mut raster, false, None);
+    let raster_composed = render(&mut raster, true, None);
 
     // The traced wall is lit: encode(0.6 decoded · cos 0) = 0.6 · 255 after the round trip.
     let centre = traced_plain[(SIZE / 2 * SIZE + SIZE / 2) as usize];
@@ -156,4 +176,34 @@ fn glass_and_hud_compose_over_the_traced_image_as_in_raster_mode() {
     let raster_counts = check_composition("raster", &raster_plain, &raster_composed);
     assert_eq!(traced_counts, raster_counts);
     assert!(traced_counts.iter().all(|&n| n >= 24), "every region was checked: {traced_counts:?}");
+}
+
+/// A traced frame read back before its end (after the glass, before the HUD) shows the traced
+/// wall under the glass, and ends as the same frame read only at its end, traced once: the
+/// traced stages ran at the read and not again, and the HUD drawn after the read is there.
+#[test]
+fn a_traced_frame_read_back_before_its_end_is_traced_once() {
+    let (mut ctx, renderer) = shared_context(true);
+    let traced_frames = || renderer.lock().unwrap().tracer().expect("tracing").statistics().frames;
+    let plain = render(&mut ctx, false, None);
+    let composed = render(&mut ctx, true, None);
+    assert_eq!(traced_frames(), 4);
+    let mut before_hud = Vec::new();
+    let composed_after_read = render(&mut ctx, true, Some(&mut before_hud));
+    assert_eq!(traced_frames(), 6, "each frame traced once");
+    assert_eq!(composed_after_read, composed, "the frame read before its end, at its end");
+    let mut hud = 0;
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            let i = (y * SIZE + x) as usize;
+            if in_hud(x, y) {
+                assert_ne!(before_hud[i], composed[i], "no HUD yet at ({x}, {y})");
+                hud += 1;
+            } else {
+                assert_eq!(before_hud[i], composed[i], "the traced wall and the glass at ({x}, {y})");
+            }
+        }
+    }
+    assert_eq!(hud, 24);
+    assert_ne!(before_hud, plain, "the glass shows");
 }

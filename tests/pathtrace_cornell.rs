@@ -42,7 +42,7 @@
 //! number of bounces: the tracer with 2 bounces reads all pixels 4.0 % to 6.3 % dark (20 σ),
 //! the floor up to 8 %; with 4 bounces 1.6 % to 3.6 % bright (11 σ). The tracer as it was before it
 //! dispatched each sample on its own read them 6.2 % to 6.5 % dark, the tall block's front
-//! 20 % (lavapipe's loop limit, src/render/trace/tracer.rs).
+//! 20 % (lavapipe's loop limit, src/render/trace/compute.rs).
 //!
 //! The test takes 25 s of CPU time, three quarters of it the tracer's: about 15 s on 2 idle
 //! cores (estimated), 60 s measured on 2 cores shared with other builds.
@@ -53,7 +53,7 @@ mod reference_tracer;
 mod lavapipe;
 
 use glam::DVec3;
-use glrt::render::raster::renderer::Renderer;
+use glrt::render::frame::Renderer;
 use glrt::render::trace::settings::{Settings, Tonemap};
 use glrt::translate::{Context, dispatch, gl};
 use reference_tracer::{CornellLight, Hit, Image, Light, Scene, Shape, cornell_box, linear_to_srgb, srgb_to_linear};
@@ -63,7 +63,7 @@ const SIZE: usize = 32;
 /// Indirect bounces after the primary hit, both sides.
 const BOUNCES: u32 = 3;
 /// The tracer's samples per pixel in one frame: above what one shader invocation could trace
-/// on lavapipe before the tracer dispatched each sample on its own (src/render/trace/tracer.rs).
+/// on lavapipe before the tracer dispatched each sample on its own (src/render/trace/compute.rs).
 const GPU_SPP: u32 = 64;
 /// Frames the tracer accumulates.
 const GPU_FRAMES: u32 = 2;

@@ -7,7 +7,7 @@ mod lavapipe;
 mod reference_tracer;
 
 use glam::DVec3;
-use glrt::render::raster::renderer::Renderer;
+use glrt::render::frame::Renderer;
 use glrt::render::trace::settings::{Lightmaps, Settings, Tonemap};
 use glrt::translate::{Context, dispatch, gl};
 

@@ -17,7 +17,7 @@ use x11_dl::xlib::{self, Xlib};
 #[test]
 fn glfinish_puts_the_frame_on_a_glx_pixmap() {
     let Some(server) = x11::Xvfb::start(24) else { return };
-    if let Err(e) = glrt::render::raster::renderer::Renderer::without_outputs() {
+    if let Err(e) = glrt::render::frame::Renderer::without_outputs() {
         eprintln!("skipped: no Vulkan renderer ({e})");
         return;
     }

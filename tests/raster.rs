@@ -5,7 +5,7 @@
 
 mod lavapipe;
 
-use glrt::render::raster::renderer::Renderer;
+use glrt::render::frame::Renderer;
 use glrt::translate::{Context, dispatch, gl};
 use lavapipe::pixel;
 
@@ -315,7 +315,7 @@ fn pipelines_and_textures_are_created_once_and_unused_textures_dropped() {
     let mut counts = Vec::new();
     for frame in frames {
         renderer.present(frame);
-        counts.push((renderer.pipeline_count(), renderer.texture_count()));
+        counts.push((renderer.raster().pipeline_count(), renderer.raster().texture_count()));
     }
     // One pipeline for textured and one for untextured draws, created once.
     assert_eq!(counts[0].0, 1);

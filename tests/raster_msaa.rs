@@ -6,7 +6,7 @@
 
 mod lavapipe;
 
-use glrt::render::raster::renderer::Renderer;
+use glrt::render::frame::Renderer;
 use glrt::render::{Surface, Target};
 use glrt::translate::{Context, dispatch, gl};
 

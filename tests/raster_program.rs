@@ -16,7 +16,7 @@ use glrt::frame::texture::{DepthMode, Sampler, TexImage, TexelFormat, TextureCon
 use glrt::frame::{Attrib, Clear, Draw, Frame, RasterState, Topology};
 use glrt::frame::pixels::PixelBuffer;
 use glrt::render::FrameSink;
-use glrt::render::raster::renderer::Renderer;
+use glrt::render::frame::Renderer;
 use glrt::translate::glsl::{self, CompiledShader, LinkedProgram, Stage, UniformStorage};
 use glrt::translate::{dispatch, gl};
 use std::collections::HashMap;
@@ -192,7 +192,7 @@ fn a_fragment_program_reads_its_uniforms_and_sampler_slots_after_the_fixed_funct
     let pixels = render(&mut r, &f);
     assert_near(at(&pixels, 16, 16), [128, 128, 64, 128], "inside the fixed-function quad");
     assert_near(at(&pixels, 4, 4), [0, 0, 0, 0], "outside");
-    assert_eq!(r.program_count(), 1);
+    assert_eq!(r.raster().program_count(), 1);
 }
 
 #[test]
@@ -306,12 +306,12 @@ fn program_modules_are_freed_when_no_draw_uses_them() {
     let mut r = renderer();
     let mut f = frame(vec![rect([0.0, 0.0, 32.0, 32.0], 0.0, [1.0; 4], state(), Some(run))]);
     r.present(f.clone());
-    assert_eq!((r.program_count(), r.pipeline_count()), (1, 1));
+    assert_eq!((r.raster().program_count(), r.raster().pipeline_count()), (1, 1));
     f.draws.clear();
     for number in 1..=12 {
         r.present(Frame { number, ..f.clone() });
     }
-    assert_eq!((r.program_count(), r.pipeline_count()), (0, 0), "the program and its pipeline went");
+    assert_eq!((r.raster().program_count(), r.raster().pipeline_count()), (0, 0), "the program and its pipeline went");
 }
 
 

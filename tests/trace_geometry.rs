@@ -10,33 +10,13 @@ mod lavapipe;
 
 use std::sync::{Arc, Mutex};
 
-use glrt::frame::Frame;
-use glrt::frame::pixels::PixelBuffer;
-use glrt::render::raster::renderer::Renderer;
+use glrt::render::frame::Renderer;
 use glrt::render::trace::settings::{Settings, Tonemap};
 use glrt::render::trace::stats::SceneCounts;
-use glrt::render::{FrameSink, Target};
 use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
 
 const SIZE: i32 = 24;
-
-/// A renderer shared between a context and the test (which reads the tracer's statistics).
-struct Shared(Arc<Mutex<Renderer>>);
-
-impl FrameSink for Shared {
-    fn present(&mut self, frame: Frame) {
-        self.0.lock().unwrap().present(frame);
-    }
-
-    fn set_target(&mut self, target: Target) {
-        self.0.lock().unwrap().set_target(target);
-    }
-
-    fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
-        self.0.lock().unwrap().read_pixels(frame, buffer, rect)
-    }
-}
 
 /// A tracing context (direct light only, hard shadows, tone mapping off) on a `SIZE`²
 /// drawable with a 60° perspective camera at the origin looking down −z, and its renderer.
@@ -45,7 +25,7 @@ fn context() -> (Context, Arc<Mutex<Renderer>>) {
     let settings = Settings { spp: 1, bounces: 0, sun_angle: 0.0, tonemap: Tonemap::Clamp, exposure: 0.0, ..Settings::default() };
     renderer.enable_tracing(settings).expect("the tracer's pipelines");
     let renderer = Arc::new(Mutex::new(renderer));
-    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(Shared(renderer.clone())) });
+    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(lavapipe::Shared(renderer.clone())) });
     ctx.bind_drawable(SIZE, SIZE);
     unsafe {
         dispatch::glViewport(&mut ctx, 0, 0, SIZE, SIZE);
@@ -115,7 +95,7 @@ fn frame(ctx: &mut Context, occluder: bool) {
 }
 
 fn counts(renderer: &Arc<Mutex<Renderer>>) -> SceneCounts {
-    renderer.lock().unwrap().tracer().expect("tracing").scene
+    renderer.lock().unwrap().tracer().expect("tracing").statistics().scene
 }
 
 /// The roof, drawn in the first two frames (so that it joins the static world) and then

@@ -1,6 +1,11 @@
-//! Rendering: consumes [`Frame`]s. The Vulkan back ends come here; for now the sinks that keep
-//! frames for tests and for programs run without a renderer.
+//! Rendering: consumes [`Frame`]s. The Vulkan renderer is [`frame::Renderer`]: a frame's
+//! stages in order, read top to bottom there; [`raster`] provides the command recording and
+//! the raster stages (clears, pixel operations, draws in program order, read-back, present),
+//! [`trace`] the path-tracing stages behind one back-end trait ([`trace::RayTracer`]), and
+//! [`present`] the window. [`default_sink`] chooses the renderer of the mode (`GLRT_MODE`);
+//! the sinks below keep frames for tests and for programs run without a renderer.
 
+pub mod frame;
 pub mod frame_log;
 pub mod present;
 pub mod raster;
@@ -116,8 +121,8 @@ impl Mode {
 }
 
 /// The Vulkan renderer, path tracing when the mode says so on its device.
-fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result<raster::renderer::Renderer> {
-    let mut renderer = raster::renderer::Renderer::with_dump(dump)?;
+fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result<frame::Renderer> {
+    let mut renderer = frame::Renderer::with_dump(dump)?;
     let cpu = renderer.device().properties.device_type == ash::vk::PhysicalDeviceType::CPU;
     let traced = match Mode::of_process() {
         Ok(Mode::PathTrace) => true,

@@ -1,11 +1,16 @@
-//! Shared helpers of the tests that draw through the Vulkan raster renderer: the renderer on
-//! Mesa lavapipe (when its ICD file exists; the machine's Vulkan driver otherwise), a context
-//! drawing into it, and pixel read-back.
+//! Shared helpers of the tests that draw through the Vulkan renderer: the renderer on Mesa
+//! lavapipe (when its ICD file exists; the machine's Vulkan driver otherwise), a context
+//! drawing into it, a renderer shared with the test, and pixel read-back.
 
 #![allow(dead_code)]
 
+use std::sync::{Arc, Mutex};
+
+use glrt::frame::Frame;
+use glrt::frame::pixels::PixelBuffer;
+use glrt::render::frame::Renderer;
 use glrt::render::raster::device::Error;
-use glrt::render::raster::renderer::Renderer;
+use glrt::render::{FrameSink, Target};
 use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
 
@@ -23,6 +28,23 @@ pub fn select<T>(make: impl FnOnce() -> Result<T, Error>) -> T {
         unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
     }
     make().expect("a Vulkan device (lavapipe)")
+}
+
+/// A renderer shared between a context and the test (which reads its statistics).
+pub struct Shared(pub Arc<Mutex<Renderer>>);
+
+impl FrameSink for Shared {
+    fn present(&mut self, frame: Frame) {
+        self.0.lock().unwrap().present(frame);
+    }
+
+    fn set_target(&mut self, target: Target) {
+        self.0.lock().unwrap().set_target(target);
+    }
+
+    fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        self.0.lock().unwrap().read_pixels(frame, buffer, rect)
+    }
 }
 
 /// A context drawing into `renderer`, not yet bound to a drawable.

@@ -1,6 +1,10 @@
-//! The raster back end: renders [`crate::frame::Frame`]s with Vulkan as OpenGL 1.x specifies
+//! The raster stages: render [`crate::frame::Frame`]s with Vulkan as OpenGL 1.x specifies
 //! (the reference image, the fallback without ray tracing, and the path that draws translucent,
-//! sky and HUD geometry over traced images).
+//! sky and HUD geometry over traced images). [`renderer::Raster`] is one stage provider of
+//! [`crate::render::frame::Renderer`]: it records the frame's command buffer (frames in
+//! flight, framebuffers), the clears, pixel operations and draws in program order, the
+//! read-back and the presentation; it knows nothing of tracing (the frame renderer tells it
+//! which draws to leave out and where to stop).
 //!
 //! - [`ff`]: the fixed-function pipeline as shaders: turns a [`crate::frame::Draw`] into
 //!   [`ff::Batch`]es (packed vertices, indices, a shader key and the uniform block).
@@ -11,7 +15,8 @@
 //! - [`pipelines`]: pipelines per (shader key, fixed state), cached; [`conv`]: state → Vulkan.
 //! - [`programs`]: OpenGL 2.0 programs on the device (shader modules, descriptor set 1).
 //! - [`textures`]: texture images and samplers.
-//! - [`renderer`]: the [`renderer::Renderer`] sink (frame order, read-back, present).
+//! - [`renderer`]: [`renderer::Raster`] (frame order, read-back, present) and the
+//!   [`renderer::Recorder`] every stage records with.
 //! - [`output`]: consumers of presented frames ([`output::FrameOutput`]): [`dump`]
 //!   (`GLRT_DUMP`), presentation.
 //! - [`multisample`]: sample counts, coverage and the passes of a multisampled draw.

@@ -1,18 +1,24 @@
-//! The raster renderer: a [`FrameSink`] that draws each [`Frame`] with Vulkan.
+//! The raster stage ([`Raster`]): the frame's command recording and the raster part of every
+//! frame, one stage provider of [`crate::render::frame::Renderer`].
 //!
-//! A frame is recorded into the command buffer of the current frame-in-flight [`Slot`] in
-//! program order: at each draw index, the clears placed before it, then the pixel operations
-//! placed before it, then the draw. `read_pixels` renders the frame so far (remembering in
-//! [`Progress`] how far it got, so a frame read several times is drawn once), submits, waits
-//! and copies the rectangle back; `present` finishes the frame and submits it without waiting
-//! (two frames in flight: the program's next frame is assembled while the GPU draws this one).
+//! [`Raster::record`] records a frame into the command buffer of the current frame-in-flight
+//! [`Slot`] in program order: at each draw index, the clears placed before it, then the pixel
+//! operations placed before it, then the draw, if it is one the caller rasterizes; it can stop
+//! before a given draw, where the caller records another stage (the traced image) and then
+//! marks that draw done ([`Raster::skip_draw`]). It remembers in [`Progress`] how far it got,
+//! so a frame read back several times is drawn once: [`Raster::read`] submits, waits and
+//! copies a rectangle back; [`Raster::present`] finishes the frame and submits it without
+//! waiting (two frames in flight: the program's next frame is assembled while the GPU draws
+//! this one). It also owns the framebuffers (the window's, framebuffer objects'), occlusion
+//! queries and the accumulation buffer.
 //!
-//! Extension points for the pixel path and presentation: [`Recorder`] gives the device, the
-//! current command buffer, the [`Target`] images and the upload ring, and starts or ends the
-//! dynamic-rendering pass on demand ([`super::pixel_ops::record`] receives one per pixel
-//! operation); [`FrameOutput`]s added with [`Renderer::add_output`] record their copies at
-//! the end of each presented frame, give the submission semaphores, and hear when the GPU
-//! finished it (the `GLRT_DUMP` writer is one).
+//! Extension points for the other stages, the pixel path and presentation: [`Recorder`]
+//! gives the device, the current command buffer, the [`Target`] images, the upload ring and
+//! the frame's descriptor sets, and starts or ends the dynamic-rendering pass on demand
+//! ([`super::pixel_ops::record`] receives one per pixel operation, the tracer one per traced
+//! frame); [`FrameOutput`]s added with [`Raster::add_output`] record their copies at the end
+//! of each presented frame, give the submission semaphores, and hear when the GPU finished it
+//! (the `GLRT_DUMP` writer and the window are two).
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -22,7 +28,7 @@ use ash::vk;
 use super::commands::{SetKey, Slot};
 use super::occlusion::Occlusion;
 use super::output::{FrameOutput, SubmitSync};
-use super::device::{Device, Error, Result};
+use super::device::{Device, Result};
 use super::ff;
 use super::pipelines::{FixedState, PipelineKey, Pipelines};
 use super::target::{Plane, Target};
@@ -32,10 +38,9 @@ use crate::frame::pixels::{PixelBuffer, PixelOp};
 use crate::frame::state::{Stencil, StencilFaces};
 use crate::frame::framebuffer::FramebufferKey;
 use crate::frame::{Clear, ColorBuffer, Draw, DrawBuffers, Frame, FrameEnd, Framebuffer, RasterState};
-use crate::render::FrameSink;
 
 /// Frames in flight.
-const FRAMES_IN_FLIGHT: usize = 2;
+pub const FRAMES_IN_FLIGHT: usize = 2;
 
 /// How much of which frame is already recorded.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -53,8 +58,8 @@ pub struct Progress {
     pub last_indices: usize,
 }
 
-/// The Vulkan raster renderer.
-pub struct Renderer {
+/// The raster stage and the frame's command recording.
+pub struct Raster {
     parts: Parts,
     slots: Vec<Slot>,
     current: usize,
@@ -63,13 +68,8 @@ pub struct Renderer {
     progress: Option<Progress>,
     /// Frame dumps (`GLRT_DUMP`), presentation.
     outputs: Vec<Box<dyn FrameOutput>>,
-    /// Set after a device error: frames are dropped.
-    failed: bool,
     /// The accumulation buffer.
     accum: pixel_ops::accum::Accum,
-    /// The path tracer (`GLRT_MODE=pathtrace`): traces the traced draws and composites them
-    /// where the first of them comes in program order.
-    tracer: Option<crate::render::trace::tracer::Tracer>,
 }
 
 /// The renderer's state other than the slots (borrowed apart from them by [`Recorder`]).
@@ -88,9 +88,9 @@ struct Parts {
     rendering: bool,
     /// The colour image the rendering pass draws into.
     color: Plane,
-    /// Samples per pixel of the target ([`FrameSink::set_target`]).
+    /// Samples per pixel of the target ([`Raster::set_target`]).
     samples: u32,
-    /// Whether the target has destination alpha ([`FrameSink::set_target`]).
+    /// Whether the target has destination alpha ([`Raster::set_target`]).
     alpha: bool,
 }
 
@@ -410,32 +410,16 @@ impl Recorder<'_> {
     }
 }
 
-impl Renderer {
-    /// Creates the renderer on the device chosen by `GLRT_DEVICE` (see [`Device::new`]),
-    /// dumping frames where `GLRT_DUMP` says.
-    pub fn new() -> Result<Renderer> {
-        Renderer::with_dump(super::dump::Dump::from_env())
-    }
-
-    /// Creates the renderer on the device chosen by `GLRT_DEVICE`, dumping frames to `dump`
-    /// (and presenting them to the window, if any).
-    pub fn with_dump(dump: Option<super::dump::Dump>) -> Result<Renderer> {
-        let mut renderer = Renderer::without_outputs()?;
-        if let Some(dump) = dump {
-            renderer.add_output(Box::new(dump));
-        }
-        renderer.add_output(Box::new(crate::render::present::window_output::WindowOutput::new()));
-        Ok(renderer)
-    }
-
-    /// Creates the renderer with no [`FrameOutput`]: frames stay in the framebuffer.
-    pub fn without_outputs() -> Result<Renderer> {
+impl Raster {
+    /// Creates the stage on the device chosen by `GLRT_DEVICE` (see [`Device::new`]), with no
+    /// [`FrameOutput`]: frames stay in the framebuffer until outputs are added.
+    pub fn new() -> Result<Raster> {
         let device = Device::new()?;
         let pipelines = Pipelines::new(&device)?;
         let textures = Textures::new(&device);
         let slots = (0..FRAMES_IN_FLIGHT).map(|_| Slot::new(&device)).collect::<Result<Vec<_>>>()?;
         let occlusion = Occlusion::new(FRAMES_IN_FLIGHT, device.features.occlusion_query_precise);
-        Ok(Renderer {
+        Ok(Raster {
             parts: Parts {
                 device,
                 occlusion,
@@ -454,24 +438,8 @@ impl Renderer {
             recording: false,
             progress: None,
             outputs: Vec::new(),
-            failed: false,
             accum: pixel_ops::accum::Accum::default(),
-            tracer: None,
         })
-    }
-
-    /// Path traces the traced draws of the next frames with `settings` (see
-    /// [`crate::render::trace`]); the other draws stay rasterized around them.
-    pub fn enable_tracing(&mut self, settings: crate::render::trace::settings::Settings) -> Result<()> {
-        if self.tracer.is_none() {
-            self.tracer = Some(crate::render::trace::tracer::Tracer::new(&self.parts.device, settings, self.slots.len())?);
-        }
-        Ok(())
-    }
-
-    /// The path tracer, when tracing is enabled (statistics: rays, frames).
-    pub fn tracer(&self) -> Option<&crate::render::trace::tracer::Tracer> {
-        self.tracer.as_ref()
     }
 
     /// The device.
@@ -501,7 +469,7 @@ impl Renderer {
 
     /// A [`Recorder`] on the current slot for a frame of `size`, starting the command buffer
     /// and (re)creating the target when needed (new size, sample count or alpha). It records into
-    /// the active framebuffer ([`Renderer::switch_to`]): the window's, or a framebuffer
+    /// the active framebuffer ([`Raster::switch_to`]): the window's, or a framebuffer
     /// object's images (created on first use, single-sampled).
     pub fn recorder(&mut self, size: [u32; 2]) -> Result<Recorder<'_>> {
         let max = self.parts.device.properties.limits.max_image_dimension2_d;
@@ -559,21 +527,43 @@ impl Renderer {
         })
     }
 
-    /// Records what of `frame` is not recorded yet.
-    fn record(&mut self, frame: &Frame) -> Result<()> {
+    /// A [`Recorder`] into `framebuffer` (`None`: the window's) for a frame of `size`, the
+    /// rendering pass on another framebuffer ended first.
+    pub fn recorder_into(&mut self, framebuffer: Option<FramebufferKey>, size: [u32; 2]) -> Result<Recorder<'_>> {
+        if self.parts.active != framebuffer {
+            self.end_pass();
+            self.switch_to(framebuffer);
+        }
+        self.recorder(size)
+    }
+
+    /// Records what of `frame` is not recorded yet, in program order, up to the draw `until`
+    /// (exclusive: the clears and pixel operations placed before it are recorded) or to the
+    /// end; of the draws, those `rasterized` accepts (the others are another stage's).
+    pub fn record(&mut self, frame: &Frame, until: Option<usize>, rasterized: &dyn Fn(&Draw) -> bool) -> Result<()> {
         let mut accum = std::mem::take(&mut self.accum);
-        let mut tracer = self.tracer.take();
-        let result = self.record_with(frame, &mut accum, tracer.as_mut());
+        let result = self.record_with(frame, until, rasterized, &mut accum);
         self.accum = accum;
-        self.tracer = tracer;
         result
     }
 
-    /// [`Renderer::record`] with the accumulation buffer and the tracer taken out of `self`
-    /// (pixel operations that read the framebuffer submit and wait in the middle of the frame).
-    /// With a tracer, traced draws are not rasterized: the traced image is composited in
-    /// place of the first of them.
-    fn record_with(&mut self, frame: &Frame, accum: &mut pixel_ops::accum::Accum, mut tracer: Option<&mut crate::render::trace::tracer::Tracer>) -> Result<()> {
+    /// Draws of `frame` recorded so far (or marked done by [`Raster::skip_draw`]).
+    pub fn recorded_draws(&self, frame: &Frame) -> usize {
+        self.progress.filter(|p| p.frame == frame.number).map_or(0, |p| p.draws)
+    }
+
+    /// Marks draw `index` of `frame` as recorded without rasterizing it (another stage drew
+    /// in its place); the draws before it were recorded.
+    pub fn skip_draw(&mut self, frame: &Frame, index: usize) {
+        if let Some(draw) = frame.draws.get(index) {
+            let progress = self.progress.filter(|p| p.frame == frame.number).unwrap_or_default();
+            self.progress = Some(Progress { frame: frame.number, draws: index + 1, last_indices: draw.indices.len(), ..progress });
+        }
+    }
+
+    /// [`Raster::record`] with the accumulation buffer taken out of `self` (pixel operations
+    /// that read the framebuffer submit and wait in the middle of the frame).
+    fn record_with(&mut self, frame: &Frame, until: Option<usize>, rasterized: &dyn Fn(&Draw) -> bool, accum: &mut pixel_ops::accum::Accum) -> Result<()> {
         let mut progress = match self.progress {
             Some(p) if p.frame == frame.number => p,
             _ => Progress { frame: frame.number, ..Progress::default() },
@@ -592,14 +582,14 @@ impl Renderer {
         let query_of = |index: usize| frame.occlusion_queries.iter().find(|(_, range)| range.contains(&index)).map(|(q, _)| *q);
         if let Some(last) = progress.draws.checked_sub(1).and_then(|i| frame.draws.get(i))
             && last.indices.len() > progress.last_indices
-            && !(tracer.is_some() && crate::render::trace::scene::is_traced(last))
+            && rasterized(last)
         {
             record_into!(last.state.framebuffer);
             rec.query = (frame.number, query_of(progress.draws - 1));
             draw_in_buffers(&mut rec, &tail(last, progress.last_indices))?;
             progress.last_indices = last.indices.len();
         }
-        for index in progress.draws..=frame.draws.len() {
+        for index in progress.draws..=until.unwrap_or(frame.draws.len()) {
             // Clears and pixel operations before this draw, in program order (their rectangles
             // count in no occlusion query).
             loop {
@@ -645,16 +635,11 @@ impl Renderer {
                     (_, None) => break,
                 }
             }
-            if let Some(draw) = frame.draws.get(index) {
-                record_into!(draw.state.framebuffer);
-                rec.query = (frame.number, query_of(index));
-                match tracer.as_deref_mut() {
-                    Some(tracer) if crate::render::trace::scene::is_traced(draw) => {
-                        if crate::render::trace::scene::first_traced(frame) == Some(index) {
-                            tracer.record(&mut rec, frame)?;
-                        }
-                    }
-                    _ => draw_in_buffers(&mut rec, draw)?,
+            if let Some(draw) = frame.draws.get(index).filter(|_| until != Some(index)) {
+                if rasterized(draw) {
+                    record_into!(draw.state.framebuffer);
+                    rec.query = (frame.number, query_of(index));
+                    draw_in_buffers(&mut rec, draw)?;
                 }
                 progress.draws = index + 1;
                 progress.last_indices = draw.indices.len();
@@ -665,7 +650,7 @@ impl Renderer {
     }
 
     /// Submits the current slot's commands and waits for them (the slot starts again on the
-    /// next [`Renderer::recorder`]); occlusion counts recorded so far are read.
+    /// next [`Raster::recorder`]); occlusion counts recorded so far are read.
     fn flush(&mut self) -> Result<()> {
         if self.recording {
             self.end_pass();
@@ -686,10 +671,9 @@ impl Renderer {
         }
     }
 
-    /// Renders `frame` so far and copies `rect` of `buffer` back, colour from the frame's read
-    /// buffer (see [`FrameSink::read_pixels`]).
+    /// Submits what is recorded of `frame` and copies `rect` of `buffer` back, colour from the
+    /// frame's read buffer (see [`crate::render::FrameSink::read_pixels`]).
     pub fn read(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
-        self.record(frame)?;
         self.end_pass();
         self.switch_to(key_of(&frame.read_framebuffer));
         self.recorder(frame.size)?;
@@ -713,9 +697,9 @@ impl Renderer {
         Ok(Some(copy.finish(&self.parts.device)))
     }
 
-    /// Finishes `frame` and submits it without waiting.
-    pub fn finish(&mut self, frame: &Frame) -> Result<()> {
-        self.record(frame)?;
+    /// Finishes the recorded `frame` (the back buffer copied to the front at a swap, the
+    /// outputs' copies) and submits it without waiting; the next frame starts on the next slot.
+    pub fn present(&mut self, frame: &Frame) -> Result<()> {
         self.end_pass();
         self.switch_to(None);
         let slot = self.current;
@@ -785,19 +769,10 @@ impl Renderer {
         Ok(())
     }
 
-    fn fail(&mut self, e: Error) {
-        if !self.failed {
-            eprintln!("glrt: the Vulkan renderer stopped: {e}; frames are no longer drawn");
-        }
-        self.failed = true;
-    }
-}
-
-impl FrameSink for Renderer {
-    /// Also takes the drawable's sample count and destination alpha: the framebuffer is
-    /// recreated with them at the next frame (a count the device cannot render gives a
-    /// single-sampled one, logged).
-    fn set_target(&mut self, target: crate::render::Target) {
+    /// Where the next frames go (see [`crate::render::FrameSink::set_target`]): the
+    /// framebuffer is recreated with the drawable's sample count and destination alpha at the
+    /// next frame (a count the device cannot render gives a single-sampled one, logged).
+    pub fn set_target(&mut self, target: crate::render::Target) {
         let counts = &self.parts.device.features.sample_counts;
         self.parts.samples = if target.samples <= 1 || counts.contains(&target.samples) {
             target.samples.max(1)
@@ -811,47 +786,26 @@ impl FrameSink for Renderer {
         }
     }
 
-    fn present(&mut self, frame: Frame) {
-        if self.failed {
-            return;
-        }
-        if let Err(e) = self.finish(&frame) {
-            self.fail(e);
-        }
-    }
-
-    fn occlusion_counter_bits(&self) -> u32 {
+    /// Bits of the occlusion sample counter (see
+    /// [`crate::render::FrameSink::occlusion_counter_bits`]).
+    pub fn occlusion_counter_bits(&self) -> u32 {
         self.parts.occlusion.counter_bits()
     }
 
-    /// Waits for the frame in flight that ended `frame` when the result is not known yet.
-    fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
+    /// Samples that passed for occlusion query `query` of frame number `frame`, waiting for
+    /// the frame in flight that ended it when the result is not known yet (see
+    /// [`crate::render::FrameSink::occlusion_result`]).
+    pub fn occlusion_result(&mut self, frame: u64, query: u32) -> Result<Option<u64>> {
         if let Some(count) = self.parts.occlusion.result(frame, query) {
-            return Some(count);
+            return Ok(Some(count));
         }
-        let slot = (0..self.slots.len()).find(|&i| self.parts.occlusion.holds(i, frame))?;
-        if let Err(e) = self.wait_slot(slot) {
-            self.fail(e);
-            return None;
-        }
-        self.parts.occlusion.result(frame, query)
-    }
-
-    fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
-        if self.failed {
-            return None;
-        }
-        match self.read(frame, buffer, rect) {
-            Ok(pixels) => pixels,
-            Err(e) => {
-                self.fail(e);
-                None
-            }
-        }
+        let Some(slot) = (0..self.slots.len()).find(|&i| self.parts.occlusion.holds(i, frame)) else { return Ok(None) };
+        self.wait_slot(slot)?;
+        Ok(self.parts.occlusion.result(frame, query))
     }
 }
 
-impl Drop for Renderer {
+impl Drop for Raster {
     fn drop(&mut self) {
         if let Err(e) = self.wait_all() {
             log::warn!("glrt: waiting for the GPU at shutdown: {e}");
@@ -871,9 +825,6 @@ impl Drop for Renderer {
             target.destroy(device);
         }
         self.parts.pipelines.destroy(device);
-        if let Some(mut tracer) = self.tracer.take() {
-            tracer.destroy(device);
-        }
         self.parts.occlusion.destroy(device);
         self.parts.textures.destroy(device);
     }

@@ -1,14 +1,20 @@
-//! The compute path tracer (`GLRT_MODE=pathtrace`): traces the traced classes of a
-//! [`crate::frame::Frame`] (static, movable, dynamic draws) with BVH traversal in compute
-//! shaders, so it runs on every Vulkan 1.2 device, lavapipe included (DESIGN.md, "Ray tracing
-//! back ends"), and hands the traced image and depth to the raster renderer, which draws the
-//! sky, translucent and overlay draws around it in program order (thesis 4.3.6).
+//! Path tracing (`GLRT_MODE=pathtrace`): traces the traced classes of a [`Frame`] (static,
+//! movable, dynamic draws) and hands the traced image and depth to the raster composite, which
+//! draws the sky, translucent and overlay draws around it in program order (thesis 4.3.6).
+//! [`crate::render::frame`] runs the stages: [`RayTracer::build`], [`RayTracer::trace`],
+//! [`RayTracer::resolve`], then [`composite`].
+//!
+//! A ray-tracing back end implements [`RayTracer`]; [`backend`] chooses it for a device (one
+//! place). Today the only one is [`compute`], BVH traversal in compute shaders, which runs on
+//! every Vulkan 1.2 device, lavapipe included (DESIGN.md, "Ray tracing back ends"); a hardware
+//! back end (`VK_KHR_ray_tracing_pipeline`) goes beside it, reading the same [`GpuScene`] and
+//! writing the same G-buffer, radiance and output layouts (`shaders/trace/gbuffer.glsl`).
 //!
 //! Space: rays are traced in the **eye space of the current frame** (camera at the origin,
 //! looking down −z, as OpenGL's modelview leaves it). Each traced draw is an instance whose
 //! object-to-eye transform is its modelview; geometry stays in object space in its bottom-level
-//! BVH, reused across frames by geometry key; the top-level BVH over the instances is rebuilt
-//! every frame. GL lights are stored in eye space already.
+//! acceleration structure, reused across frames by geometry key; the top level over the
+//! instances is rebuilt every frame. GL lights are stored in eye space already.
 //!
 //! Environment: a ray that leaves the scene sees the frame's `Sky` draws, rendered by the
 //! raster pipelines into an eye-space cube map around the eye ([`sky`]); without sky draws,
@@ -22,25 +28,30 @@
 //! A dynamic draw whose vertices moved refits its last BVH instead of building a new one
 //! ([`tracks`], [`resident`]).
 //!
-//! Parts:
-//! - [`bindings`]: descriptor bindings shared with `shaders/trace/bindings.glsl`.
-//! - [`bvh`]: bottom-level BVHs of triangle sets and the per-frame top-level BVH (CPU build,
-//!   GPU layout, CPU traversal for tests); `shaders/trace/bvh.glsl` traverses them.
-//! - [`texels`]: every texture level the tracer samples, packed into one storage buffer (no
-//!   descriptor indexing on lavapipe); `shaders/trace/texels.glsl` samples it.
-//! - [`settings`]: `glrt.toml` `[pathtrace]` and `GLRT_*` settings.
+//! Parts shared by the back ends:
 //! - [`scene`]: traced draws as geometries, instances and materials; [`chunks`]: the static
 //!   world's chunks as geometries; [`instances`]: a frame's instances, draws and chunks;
 //!   [`lights`]: GL lights as physical lights; [`sky`]: the sky draws as the environment cube
 //!   map; [`gpu_types`]: the structures the shaders read.
+//! - [`texels`]: every texture level the tracer samples, packed into one storage buffer (no
+//!   descriptor indexing on lavapipe); `shaders/trace/texels.glsl` samples it.
 //! - [`tracks`]: dynamic instances across frames (what their next shape refits).
+//! - [`settings`]: `glrt.toml` `[pathtrace]` and `GLRT_*` settings.
 //! - [`stats`]: rays traced by kind, traversal work and the tracing pass's GPU time.
-//! - [`resident`]: geometries on the GPU; [`pipelines`]: the tracer's pipelines;
-//!   [`tracer`]: one traced frame, recorded into the raster renderer's command buffer.
+//! - [`composite`]: the traced image drawn into the raster framebuffer with its depth.
+//!
+//! The compute back end:
+//! - [`compute`]: the [`RayTracer`] implementation, one traced frame.
+//! - [`bvh`]: bottom-level BVHs of triangle sets and the per-frame top-level BVH (CPU build,
+//!   GPU layout, CPU traversal for tests); `shaders/trace/bvh.glsl` traverses them.
+//! - [`resident`]: geometries and their BVHs on the GPU; [`pipelines`]: the compute pipelines;
+//!   [`bindings`]: their descriptor bindings, shared with `shaders/trace/bindings.glsl`.
 
 pub mod bindings;
 pub mod bvh;
 pub mod chunks;
+pub mod composite;
+pub mod compute;
 pub mod gpu_types;
 pub mod instances;
 pub mod lights;
@@ -51,5 +62,83 @@ pub mod settings;
 pub mod sky;
 pub mod stats;
 pub mod texels;
-pub mod tracer;
 pub mod tracks;
+
+use ash::vk;
+
+use crate::frame::{Draw, Frame};
+use crate::render::raster::device::{Device, Result};
+use crate::render::raster::renderer::Recorder;
+use gpu_types::{GpuFrame, GpuInstance, GpuLight, GpuMaterial};
+use settings::Settings;
+use stats::Statistics;
+
+/// A ray-tracing back end: turns the traced draws of a frame into a traced image, recording
+/// into the frame's command buffer at the place of its first traced draw
+/// ([`scene::first_traced`]). The renderer calls [`RayTracer::build`], [`RayTracer::trace`]
+/// and [`RayTracer::resolve`] in that order, once per frame; stages of other modules
+/// (denoising, radiosity) go between `trace` and `resolve`, reading and writing the radiance.
+pub trait RayTracer: Send {
+    /// Upload and acceleration structures: gathers the frame's traced draws (`camera`, the
+    /// first of them, gives the projection and viewport) and the static world's chunks as
+    /// instances, uploads new geometry and textures, builds or refits the bottom-level
+    /// acceleration structures of new or moved geometry and the top level over the instances.
+    /// Returns the records the tracing shaders read.
+    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, camera: &Draw) -> Result<GpuScene>;
+
+    /// Traces `scene` into the G-buffer (primary hits) and the radiance accumulated for this
+    /// frame; `None` when nothing could be traced (no geometry on the GPU yet).
+    fn trace(&mut self, rec: &mut Recorder<'_>, scene: &GpuScene) -> Result<Option<Radiance>>;
+
+    /// Resolves `radiance` into the image to composite: the temporal filter over the frames
+    /// before, exposure and tone mapping, and each pixel's depth.
+    fn resolve(&mut self, rec: &mut Recorder<'_>, radiance: Radiance) -> Result<TracedImage>;
+
+    /// Rays, traversal work, scenes and frames traced so far.
+    fn statistics(&self) -> &Statistics;
+
+    /// Frees the back end's GPU objects (the GPU must be idle); its statistics are final then.
+    fn destroy(&mut self, device: &Device);
+}
+
+/// A frame's scene as the tracing shaders of every back end read it ([`gpu_types`]): camera,
+/// sizes and settings, then instances, materials and lights. The acceleration structures over
+/// the instances are the back end's own.
+pub struct GpuScene {
+    /// Camera, sizes and settings.
+    pub frame: GpuFrame,
+    /// One per traced draw or static-world chunk.
+    pub instances: Vec<GpuInstance>,
+    /// One per instance.
+    pub materials: Vec<GpuMaterial>,
+    /// The frame's GL lights as physical lights.
+    pub lights: Vec<GpuLight>,
+}
+
+/// A traced frame's G-buffer and radiance, in the back end's per-pixel buffers until
+/// [`RayTracer::resolve`] turns them into a [`TracedImage`].
+pub struct Radiance {
+    /// The traced size (the window's, times the resolution scale).
+    pub size: [u32; 2],
+    /// The back end's descriptor set of the frame (its buffers and the frame's records).
+    set: vk::DescriptorSet,
+    /// The buffer the resolve writes the image into.
+    output: vk::Buffer,
+}
+
+/// The image a back end traced and resolved: per pixel of `size` (row 0 the bottom, as GL
+/// has it) the tone-mapped colour and the window depth of the primary hit, 1 where the ray
+/// missed (`OutputSample` of `shaders/trace/gbuffer.glsl`). [`composite`] draws it.
+pub struct TracedImage {
+    /// The traced size.
+    pub size: [u32; 2],
+    /// The per-pixel samples, readable by fragment shaders and the host.
+    pub output: vk::Buffer,
+}
+
+/// The ray-tracing back end for `device`, with `settings`, for `frames_in_flight` frames in
+/// flight: the compute tracer (the hardware one of issue 21 is to be chosen here where the
+/// device has `VK_KHR_ray_tracing_pipeline` and measures faster).
+pub fn backend(device: &Device, settings: Settings, frames_in_flight: usize) -> Result<Box<dyn RayTracer>> {
+    Ok(Box::new(compute::ComputeTracer::new(device, settings, frames_in_flight)?))
+}

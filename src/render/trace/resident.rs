@@ -198,7 +198,7 @@ impl Resident {
             self.repack(device, cmd, ring, frame, n, t)?;
         } else if !in_place.is_empty() {
             // Safety: `cmd` is recording outside a rendering pass (the tracer ended it).
-            unsafe { super::tracer::barrier(&device.raw, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::TRANSFER) };
+            unsafe { super::compute::barrier(&device.raw, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::TRANSFER) };
             for key in in_place {
                 if let Some(entry) = self.entries.get(&key) {
                     let (built, placement) = (entry.built.clone(), entry.placement);

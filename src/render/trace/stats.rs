@@ -1,7 +1,21 @@
 //! What the path tracer did: rays traced by kind and traversal work per frame (counted by
-//! `pathtrace.comp` into the counters buffer), what the scene held ([`SceneCounts`]), the GPU time of the tracing pass (timestamps
-//! around its dispatch), and the totals of a run, which [`Totals::summary`] turns into rays per
-//! second (logged at `GLRT_LOG=info` when the tracer is destroyed: the numbers of `bench/`).
+//! `pathtrace.comp` into the counters buffer), what the scene held ([`SceneCounts`]), the GPU
+//! time of the tracing pass (timestamps around its dispatch), and the totals of a run, which
+//! [`Totals::summary`] turns into rays per second (logged at `GLRT_LOG=info` when the renderer
+//! is dropped: the numbers of `bench/`). A back end reports them as [`Statistics`].
+
+/// What a ray-tracing back end reports ([`super::RayTracer::statistics`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Statistics {
+    /// Rays of the last frame whose counters were read (a frame in flight behind).
+    pub rays: RayCounts,
+    /// Sums over every frame whose counters were read.
+    pub totals: Totals,
+    /// The scene of the last frame traced.
+    pub scene: SceneCounts,
+    /// Frames traced.
+    pub frames: u64,
+}
 
 /// Rays traced in one frame, by kind, and the traversal work they cost.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

@@ -1,9 +1,11 @@
-//! The compute path tracer's frame: gathers the instances of a [`Frame`] (traced draws and
-//! the static world's chunks, [`super::instances`]) into the scene buffers, traces it
-//! (`pathtrace.comp`), runs the temporal pass (`trace_resolve.comp`), and composites the
-//! result into the raster framebuffer with its depth, at the place in program order of the
-//! first traced draw ([`super::scene::first_traced`]). The raster renderer calls
-//! [`Tracer::record`] there and skips the traced draws.
+//! The compute back end ([`ComputeTracer`], a [`RayTracer`]): BVHs built on the CPU
+//! ([`super::bvh`], [`super::resident`]) and traversed in compute shaders, so it runs on every
+//! Vulkan 1.2 device, lavapipe included. Its stages: [`RayTracer::build`] gathers the instances
+//! of a [`Frame`] (traced draws and the static world's chunks, [`super::instances`]), builds or
+//! refits their bottom-level BVHs, uploads geometry and texels and builds the top-level BVH;
+//! [`RayTracer::trace`] runs `pathtrace.comp`, one dispatch per sample; [`RayTracer::resolve`]
+//! runs the temporal pass and tone mapping (`trace_resolve.comp`) into the image that
+//! [`super::composite`] draws.
 
 use ash::vk;
 use glam::{Affine3A, Mat4};
@@ -11,18 +13,18 @@ use gpu_allocator::MemoryLocation;
 use xxhash_rust::xxh3::Xxh3;
 
 use super::bvh::Tlas;
-use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight, GpuMaterial, FRAME_PERSPECTIVE, FRAME_SKY, INSTANCE_ALPHA_TESTED};
+use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight, FRAME_PERSPECTIVE, FRAME_SKY, INSTANCE_ALPHA_TESTED};
 use super::instances::{self, Source};
 use super::lights::{self, LightSettings};
-use super::pipelines::{COMPOSITE_PUSH_BYTES, GROUP, TracePipelines};
+use super::pipelines::{GROUP, TracePipelines};
 use super::resident::{NewGeometry, Resident};
 use super::scene::{self, MaterialDefaults};
 use super::settings::{Settings, Tonemap};
 use super::sky::Sky;
-use super::stats::{RayCounts, SceneCounts, Totals};
+use super::stats::{RayCounts, SceneCounts, Statistics};
 use super::texels::TexelPool;
 use super::tracks::Tracks;
-use super::bindings;
+use super::{GpuScene, Radiance, RayTracer, TracedImage, bindings};
 use crate::frame::{Draw, Frame};
 use crate::render::raster::device::{Buffer, Check, Device, Result};
 use crate::render::raster::renderer::Recorder;
@@ -49,7 +51,7 @@ struct Previous {
 }
 
 /// The compute path tracer.
-pub struct Tracer {
+pub struct ComputeTracer {
     settings: Settings,
     pipelines: TracePipelines,
     resident: Resident,
@@ -72,19 +74,14 @@ pub struct Tracer {
     frame_index: u32,
     parity: usize,
     previous: Option<Previous>,
-    /// Rays of the last frame whose counters were read (a frame in flight behind).
-    pub rays: RayCounts,
-    /// Sums over every frame whose counters were read.
-    pub totals: Totals,
-    /// The scene of the last frame traced.
-    pub scene: SceneCounts,
-    /// Frames traced.
-    pub frames: u64,
+    /// The top-level BVH of the frame being traced ([`RayTracer::build`] makes it).
+    tlas: Tlas,
+    statistics: Statistics,
 }
 
-impl Tracer {
+impl ComputeTracer {
     /// Creates the tracer's pipelines and buffers for `slots` frames in flight.
-    pub fn new(device: &Device, settings: Settings, slots: usize) -> Result<Tracer> {
+    pub fn new(device: &Device, settings: Settings, slots: usize) -> Result<ComputeTracer> {
         let pipelines = TracePipelines::new(device)?;
         let mut counters = Vec::new();
         let mut pools = Vec::new();
@@ -92,10 +89,10 @@ impl Tracer {
             let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
             counters.push(device.create_buffer("glrt ray counters", gpu_types::COUNTER_BYTES, usage, MemoryLocation::GpuToCpu)?);
             let sizes = [
-                vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: bindings::COUNT + 1 },
+                vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: bindings::COUNT },
                 vk::DescriptorPoolSize { ty: vk::DescriptorType::COMBINED_IMAGE_SAMPLER, descriptor_count: 1 },
             ];
-            let info = vk::DescriptorPoolCreateInfo::default().max_sets(2).pool_sizes(&sizes);
+            let info = vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes);
             // Safety: valid create info; destroyed in `destroy`.
             pools.push(unsafe { device.raw.create_descriptor_pool(&info, None) }.check("vkCreateDescriptorPool")?);
         }
@@ -108,7 +105,7 @@ impl Tracer {
         } else {
             None
         };
-        Ok(Tracer {
+        Ok(ComputeTracer {
             settings,
             pipelines,
             resident: Resident::default(),
@@ -124,20 +121,13 @@ impl Tracer {
             frame_index: 0,
             parity: 0,
             previous: None,
-            rays: RayCounts::default(),
-            totals: Totals::default(),
-            scene: SceneCounts::default(),
-            frames: 0,
+            tlas: Tlas::build(&[]),
+            statistics: Statistics::default(),
         })
     }
 
-    /// The settings.
-    pub fn settings(&self) -> &Settings {
-        &self.settings
-    }
-
     /// Reads the ray counters and the pass time of the frame slot `slot` last traced (its
-    /// fence has signalled) into `rays` and `totals`, once per traced frame.
+    /// fence has signalled) into the statistics' `rays` and `totals`, once per traced frame.
     fn read_counters(&mut self, device: &Device, slot: usize) {
         if !self.unread.get_mut(slot).is_some_and(std::mem::take) {
             return;
@@ -149,19 +139,162 @@ impl Tracer {
             unsafe { device.raw.get_query_pool_results(pool, 2 * slot as u32, &mut ticks, vk::QueryResultFlags::TYPE_64) }.ok()?;
             Some(ticks[1].wrapping_sub(ticks[0]) as f64 * device.properties.limits.timestamp_period as f64 * 1e-9)
         });
-        self.rays = rays;
-        self.totals.add(rays, seconds);
+        self.statistics.rays = rays;
+        self.statistics.totals.add(rays, seconds);
     }
 
-    /// Traces the traced draws of `frame` and composites them into `rec`'s framebuffer.
-    pub fn record(&mut self, rec: &mut Recorder<'_>, frame: &Frame) -> Result<()> {
+    /// Copies the texel pool's new words to the GPU (all of them into a larger buffer when it
+    /// grew past the buffer).
+    fn upload_texels(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut crate::render::raster::upload::Ring) -> Result<()> {
+        let ranges = self.texels.take_uploads();
+        let words = self.texels.words();
+        let needed = words.len().max(1);
+        let ranges = if self.texel_buffer.as_ref().is_none_or(|(_, capacity)| *capacity < needed) {
+            device.wait_idle()?;
+            if let Some((old, _)) = self.texel_buffer.take() {
+                device.destroy_buffer(old);
+            }
+            let capacity = needed.next_power_of_two();
+            let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
+            self.texel_buffer = Some((device.create_buffer("glrt texel pool", capacity as u64 * 4, usage, MemoryLocation::GpuOnly)?, capacity));
+            std::iter::once(0..words.len()).collect()
+        } else {
+            ranges
+        };
+        let Some((buffer, _)) = &self.texel_buffer else { return Ok(()) };
+        ranges.into_iter().try_for_each(|range| super::resident::upload(device, cmd, ring, buffer.raw, range.start as u64 * 4, bytemuck::cast_slice(&words[range])))
+    }
+
+    /// (Re)creates the per-pixel buffers for a traced image of `size`.
+    fn ensure_pixels(&mut self, device: &Device, size: [u32; 2]) -> Result<()> {
+        if self.pixels.as_ref().is_some_and(|p| p.size == size) {
+            return Ok(());
+        }
+        device.wait_idle()?;
+        if let Some(old) = self.pixels.take() {
+            destroy_pixels(device, old);
+        }
+        let n = size[0] as u64 * size[1] as u64;
+        let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
+        let make = |name, bytes: u64| device.create_buffer(name, n * bytes, usage, MemoryLocation::GpuOnly);
+        self.pixels = Some(PixelBuffers {
+            size,
+            gbuffer: make("glrt G-buffer", gpu_types::GSAMPLE_BYTES)?,
+            accumulation: [make("glrt accumulation", gpu_types::ACCUM_SAMPLE_BYTES)?, make("glrt accumulation", gpu_types::ACCUM_SAMPLE_BYTES)?],
+            output: make("glrt traced output", gpu_types::OUTPUT_SAMPLE_BYTES)?,
+        });
+        Ok(())
+    }
+
+    /// Uploads the frame's small buffers, writes the descriptor set and dispatches the tracing
+    /// pass ([`RayTracer::trace`]); `None` when no geometry is on the GPU yet.
+    fn dispatch(&mut self, rec: &mut Recorder<'_>, scene: &GpuScene) -> Result<Option<Radiance>> {
+        let device = rec.device;
+        let cmd = rec.cmd;
+        let slot = rec.slot();
+        let gpu_frame = &scene.frame;
+        let Some(pixels) = &self.pixels else { return Ok(None) };
+        let Some([nodes, triangles, attributes]) = self.resident.buffers() else { return Ok(None) };
+        let align = device.properties.limits.min_storage_buffer_offset_alignment.max(16);
+        // A binding's range must not be empty: empty arrays get one zeroed element.
+        let mut push = |bytes: &[u8]| -> Result<(vk::Buffer, u64, u64)> {
+            let padded;
+            let bytes = if bytes.is_empty() {
+                padded = [0u8; 64];
+                &padded[..]
+            } else {
+                bytes
+            };
+            let s = rec.ring.push(device, bytes, align)?;
+            Ok((s.buffer, s.offset, bytes.len() as u64))
+        };
+        let frame_slice = push(bytemuck::bytes_of(gpu_frame))?;
+        let instance_slice = push(bytemuck::cast_slice(&scene.instances))?;
+        let material_slice = push(bytemuck::cast_slice(&scene.materials))?;
+        let light_slice = push(bytemuck::cast_slice(&scene.lights))?;
+        let tlas_slice = push(bytemuck::cast_slice(&self.tlas.nodes))?;
+        let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
+        let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(None) };
+        let Some(sky) = &self.sky else { return Ok(None) };
+        let whole = |b: &Buffer| (b.raw, 0, vk::WHOLE_SIZE);
+        let counters = &self.counters[slot];
+        let mut table = vec![(vk::Buffer::null(), 0, 0); bindings::COUNT as usize];
+        table[bindings::FRAME as usize] = frame_slice;
+        table[bindings::BLAS_NODES as usize] = (nodes.0, 0, nodes.1);
+        table[bindings::TLAS_NODES as usize] = tlas_slice;
+        table[bindings::TRIANGLES as usize] = (triangles.0, 0, triangles.1);
+        table[bindings::INSTANCES as usize] = instance_slice;
+        table[bindings::ATTRIBUTES as usize] = (attributes.0, 0, attributes.1);
+        table[bindings::MATERIALS as usize] = material_slice;
+        table[bindings::LIGHTS as usize] = light_slice;
+        table[bindings::TEXELS as usize] = whole(texel_buffer);
+        table[bindings::TEXTURES as usize] = textures_slice;
+        table[bindings::ACCUMULATION as usize] = whole(&pixels.accumulation[self.parity]);
+        table[bindings::GBUFFER as usize] = whole(&pixels.gbuffer);
+        table[bindings::OUTPUT as usize] = whole(&pixels.output);
+        table[bindings::COUNTERS as usize] = whole(counters);
+        table[bindings::HISTORY as usize] = whole(&pixels.accumulation[self.parity ^ 1]);
+
+        let pool = self.pools[slot];
+        // Safety (this block): the pool's sets of this slot's previous frame are finished (the
+        // slot's fence signalled before its recording began); every buffer in `table` lives
+        // until this frame finishes.
+        let set = unsafe {
+            device.raw.reset_descriptor_pool(pool, vk::DescriptorPoolResetFlags::empty()).check("vkResetDescriptorPool")?;
+            let layouts = [self.pipelines.set_layout];
+            let set = device.raw.allocate_descriptor_sets(&vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&layouts)).check("vkAllocateDescriptorSets")?[0];
+            let infos: Vec<[vk::DescriptorBufferInfo; 1]> = table.iter().map(|&(buffer, offset, range)| [vk::DescriptorBufferInfo { buffer, offset, range }]).collect();
+            let sky_info = [sky.descriptor()];
+            let mut writes: Vec<vk::WriteDescriptorSet> = infos
+                .iter()
+                .enumerate()
+                .map(|(b, info)| vk::WriteDescriptorSet::default().dst_set(set).dst_binding(b as u32).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info))
+                .collect();
+            writes.push(vk::WriteDescriptorSet::default().dst_set(set).dst_binding(bindings::SKY).descriptor_type(vk::DescriptorType::COMBINED_IMAGE_SAMPLER).image_info(&sky_info));
+            device.raw.update_descriptor_sets(&writes, &[]);
+
+            let d = &device.raw;
+            d.cmd_fill_buffer(cmd, counters.raw, 0, vk::WHOLE_SIZE, 0);
+            barrier(d, cmd, vk::PipelineStageFlags2::TRANSFER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+            let groups = [gpu_frame.size[0].div_ceil(GROUP), gpu_frame.size[1].div_ceil(GROUP)];
+            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.layout, 0, &[set], &[]);
+            d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.pathtrace);
+            if let Some(pool) = self.timestamps {
+                d.cmd_reset_query_pool(cmd, pool, 2 * slot as u32, 2);
+                d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, 2 * slot as u32);
+            }
+            // One dispatch per sample, each adding its share to the G-buffer's radiance. Lavapipe
+            // (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS) stops every loop of a shader after the
+            // loops of one call of it (a SIMD batch of invocations) have run 65535 iterations
+            // in all; one invocation tracing every sample of its pixel (a traversal loop per
+            // ray) silently lost the light of the later samples: beyond about 48 samples of 3
+            // bounces in tests/pathtrace_cornell.rs's Cornell box.
+            for sample in 0..gpu_frame.counts[1] {
+                d.cmd_push_constants(cmd, self.pipelines.layout, vk::ShaderStageFlags::COMPUTE, 0, &sample.to_ne_bytes());
+                d.cmd_dispatch(cmd, groups[0], groups[1], 1);
+                barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+            }
+            if let Some(pool) = self.timestamps {
+                d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, 2 * slot as u32 + 1);
+            }
+            self.unread[slot] = true;
+            set
+        };
+        Ok(Some(Radiance { size: [gpu_frame.size[0], gpu_frame.size[1]], set, output: pixels.output.raw }))
+    }
+}
+
+impl RayTracer for ComputeTracer {
+    /// Gathers the instances, builds the BVHs of new geometry (or refits the last BVH of a
+    /// moved dynamic draw) on the CPU and uploads them with the texels, draws the sky cube
+    /// when it changed, and builds the top-level BVH over the instances on the CPU.
+    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, camera: &Draw) -> Result<GpuScene> {
         let slot = rec.slot();
         let device = rec.device;
         self.read_counters(device, slot);
         rec.end_rendering();
         let cmd = rec.cmd;
         let draws: Vec<&Draw> = frame.draws.iter().filter(|d| scene::is_traced(d)).collect();
-        let Some(camera) = draws.first() else { return Ok(()) };
 
         let previous_view = self.previous.and_then(|p| p.view).filter(|_| !frame.stats.camera_cut);
         let (items, covered_draws) = instances::gather(frame, &draws, previous_view, self.settings.lightmaps);
@@ -227,9 +360,9 @@ impl Tracer {
             }
             counts.triangles += item.triangles() as u64;
         }
-        self.scene = counts;
-        self.totals.add_scene(&counts);
-        let tlas = Tlas::build(&bounds);
+        self.statistics.scene = counts;
+        self.statistics.totals.add_scene(&counts);
+        self.tlas = Tlas::build(&bounds);
         let light_settings =
             LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction, radius: self.settings.light_radius };
         let gl_lights = draws.iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));
@@ -284,176 +417,44 @@ impl Tracer {
             counts: [self.frame_index, self.settings.spp.max(1), self.settings.bounces, lights.len() as u32],
             flags: [tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 } | if sky.is_some() { FRAME_SKY } else { 0 }, instances.len() as u32, u32::from(still), 0],
         };
-        self.record_passes(rec, &gpu_frame, &instances, &materials, &lights, &tlas)?;
         self.previous = Some(Previous { signature, projection, view: frame.view.map(|v| v.view) });
         self.frame_index = self.frame_index.wrapping_add(1);
+        self.statistics.frames += 1;
+        Ok(GpuScene { frame: gpu_frame, instances, materials, lights })
+    }
+
+    /// Dispatches `pathtrace.comp` once per sample into the G-buffer and the accumulation
+    /// buffer of this frame's parity (the other one is the temporal pass's history).
+    fn trace(&mut self, rec: &mut Recorder<'_>, scene: &GpuScene) -> Result<Option<Radiance>> {
+        let radiance = self.dispatch(rec, scene);
         self.parity ^= 1;
-        self.frames += 1;
-        Ok(())
+        radiance
     }
 
-    /// Copies the texel pool's new words to the GPU (all of them into a larger buffer when it
-    /// grew past the buffer).
-    fn upload_texels(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut crate::render::raster::upload::Ring) -> Result<()> {
-        let ranges = self.texels.take_uploads();
-        let words = self.texels.words();
-        let needed = words.len().max(1);
-        let ranges = if self.texel_buffer.as_ref().is_none_or(|(_, capacity)| *capacity < needed) {
-            device.wait_idle()?;
-            if let Some((old, _)) = self.texel_buffer.take() {
-                device.destroy_buffer(old);
-            }
-            let capacity = needed.next_power_of_two();
-            let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
-            self.texel_buffer = Some((device.create_buffer("glrt texel pool", capacity as u64 * 4, usage, MemoryLocation::GpuOnly)?, capacity));
-            std::iter::once(0..words.len()).collect()
-        } else {
-            ranges
-        };
-        let Some((buffer, _)) = &self.texel_buffer else { return Ok(()) };
-        ranges.into_iter().try_for_each(|range| super::resident::upload(device, cmd, ring, buffer.raw, range.start as u64 * 4, bytemuck::cast_slice(&words[range])))
-    }
-
-    /// (Re)creates the per-pixel buffers for a traced image of `size`.
-    fn ensure_pixels(&mut self, device: &Device, size: [u32; 2]) -> Result<()> {
-        if self.pixels.as_ref().is_some_and(|p| p.size == size) {
-            return Ok(());
-        }
-        device.wait_idle()?;
-        if let Some(old) = self.pixels.take() {
-            destroy_pixels(device, old);
-        }
-        let n = size[0] as u64 * size[1] as u64;
-        let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
-        let make = |name, bytes: u64| device.create_buffer(name, n * bytes, usage, MemoryLocation::GpuOnly);
-        self.pixels = Some(PixelBuffers {
-            size,
-            gbuffer: make("glrt G-buffer", gpu_types::GSAMPLE_BYTES)?,
-            accumulation: [make("glrt accumulation", gpu_types::ACCUM_SAMPLE_BYTES)?, make("glrt accumulation", gpu_types::ACCUM_SAMPLE_BYTES)?],
-            output: make("glrt traced output", gpu_types::OUTPUT_SAMPLE_BYTES)?,
-        });
-        Ok(())
-    }
-
-    /// Uploads the frame's small buffers, writes the descriptor sets, dispatches both passes
-    /// and draws the composite.
-    fn record_passes(&mut self, rec: &mut Recorder<'_>, gpu_frame: &GpuFrame, instances: &[GpuInstance], materials: &[GpuMaterial], lights: &[GpuLight], tlas: &Tlas) -> Result<()> {
-        let device = rec.device;
-        let cmd = rec.cmd;
-        let slot = rec.slot();
-        let Some(pixels) = &self.pixels else { return Ok(()) };
-        let Some([nodes, triangles, attributes]) = self.resident.buffers() else { return Ok(()) };
-        let align = device.properties.limits.min_storage_buffer_offset_alignment.max(16);
-        // A binding's range must not be empty: empty arrays get one zeroed element.
-        let mut push = |bytes: &[u8]| -> Result<(vk::Buffer, u64, u64)> {
-            let padded;
-            let bytes = if bytes.is_empty() {
-                padded = [0u8; 64];
-                &padded[..]
-            } else {
-                bytes
-            };
-            let s = rec.ring.push(device, bytes, align)?;
-            Ok((s.buffer, s.offset, bytes.len() as u64))
-        };
-        let frame_slice = push(bytemuck::bytes_of(gpu_frame))?;
-        let instance_slice = push(bytemuck::cast_slice(instances))?;
-        let material_slice = push(bytemuck::cast_slice(materials))?;
-        let light_slice = push(bytemuck::cast_slice(lights))?;
-        let tlas_slice = push(bytemuck::cast_slice(&tlas.nodes))?;
-        let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
-        let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(()) };
-        let Some(sky) = &self.sky else { return Ok(()) };
-        let whole = |b: &Buffer| (b.raw, 0, vk::WHOLE_SIZE);
-        let counters = &self.counters[slot];
-        let mut table = vec![(vk::Buffer::null(), 0, 0); bindings::COUNT as usize];
-        table[bindings::FRAME as usize] = frame_slice;
-        table[bindings::BLAS_NODES as usize] = (nodes.0, 0, nodes.1);
-        table[bindings::TLAS_NODES as usize] = tlas_slice;
-        table[bindings::TRIANGLES as usize] = (triangles.0, 0, triangles.1);
-        table[bindings::INSTANCES as usize] = instance_slice;
-        table[bindings::ATTRIBUTES as usize] = (attributes.0, 0, attributes.1);
-        table[bindings::MATERIALS as usize] = material_slice;
-        table[bindings::LIGHTS as usize] = light_slice;
-        table[bindings::TEXELS as usize] = whole(texel_buffer);
-        table[bindings::TEXTURES as usize] = textures_slice;
-        table[bindings::ACCUMULATION as usize] = whole(&pixels.accumulation[self.parity]);
-        table[bindings::GBUFFER as usize] = whole(&pixels.gbuffer);
-        table[bindings::OUTPUT as usize] = whole(&pixels.output);
-        table[bindings::COUNTERS as usize] = whole(counters);
-        table[bindings::HISTORY as usize] = whole(&pixels.accumulation[self.parity ^ 1]);
-
-        let pool = self.pools[slot];
-        // Safety (this block): the pool's sets of this slot's previous frame are finished (the
-        // slot's fence signalled before its recording began); every buffer in `table` lives
-        // until this frame finishes.
+    /// Dispatches `trace_resolve.comp`: the temporal filter over the history and tone mapping
+    /// into the output buffer, made readable by the composite and the host.
+    fn resolve(&mut self, rec: &mut Recorder<'_>, radiance: Radiance) -> Result<TracedImage> {
+        let (d, cmd) = (&rec.device.raw, rec.cmd);
+        let groups = radiance.size.map(|s| s.div_ceil(GROUP));
+        // Safety: `cmd` is recording outside a rendering pass (`trace` ended it); the set's
+        // buffers live until this frame finishes.
         unsafe {
-            device.raw.reset_descriptor_pool(pool, vk::DescriptorPoolResetFlags::empty()).check("vkResetDescriptorPool")?;
-            let layouts = [self.pipelines.set_layout, self.pipelines.composite_set_layout];
-            let sets = device.raw.allocate_descriptor_sets(&vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&layouts)).check("vkAllocateDescriptorSets")?;
-            let infos: Vec<[vk::DescriptorBufferInfo; 1]> = table.iter().map(|&(buffer, offset, range)| [vk::DescriptorBufferInfo { buffer, offset, range }]).collect();
-            let output_info = [vk::DescriptorBufferInfo { buffer: pixels.output.raw, offset: 0, range: vk::WHOLE_SIZE }];
-            let sky_info = [sky.descriptor()];
-            let mut writes: Vec<vk::WriteDescriptorSet> = infos
-                .iter()
-                .enumerate()
-                .map(|(b, info)| vk::WriteDescriptorSet::default().dst_set(sets[0]).dst_binding(b as u32).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info))
-                .collect();
-            writes.push(vk::WriteDescriptorSet::default().dst_set(sets[0]).dst_binding(bindings::SKY).descriptor_type(vk::DescriptorType::COMBINED_IMAGE_SAMPLER).image_info(&sky_info));
-            writes.push(vk::WriteDescriptorSet::default().dst_set(sets[1]).dst_binding(0).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(&output_info));
-            device.raw.update_descriptor_sets(&writes, &[]);
-
-            let d = &device.raw;
-            d.cmd_fill_buffer(cmd, counters.raw, 0, vk::WHOLE_SIZE, 0);
-            barrier(d, cmd, vk::PipelineStageFlags2::TRANSFER, vk::PipelineStageFlags2::COMPUTE_SHADER);
-            let groups = [gpu_frame.size[0].div_ceil(GROUP), gpu_frame.size[1].div_ceil(GROUP)];
-            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.layout, 0, &[sets[0]], &[]);
-            d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.pathtrace);
-            if let Some(pool) = self.timestamps {
-                d.cmd_reset_query_pool(cmd, pool, 2 * slot as u32, 2);
-                d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, 2 * slot as u32);
-            }
-            // One dispatch per sample, each adding its share to the G-buffer's radiance. Lavapipe
-            // (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS) stops every loop of a shader after the
-            // loops of one call of it (a SIMD batch of invocations) have run 65535 iterations
-            // in all; one invocation tracing every sample of its pixel (a traversal loop per
-            // ray) silently lost the light of the later samples: beyond about 48 samples of 3
-            // bounces in tests/pathtrace_cornell.rs's Cornell box.
-            for sample in 0..gpu_frame.counts[1] {
-                d.cmd_push_constants(cmd, self.pipelines.layout, vk::ShaderStageFlags::COMPUTE, 0, &sample.to_ne_bytes());
-                d.cmd_dispatch(cmd, groups[0], groups[1], 1);
-                barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
-            }
-            if let Some(pool) = self.timestamps {
-                d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, 2 * slot as u32 + 1);
-            }
-            self.unread[slot] = true;
+            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.layout, 0, &[radiance.set], &[]);
             d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.resolve);
             d.cmd_dispatch(cmd, groups[0], groups[1], 1);
             barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::HOST);
-
-            let pipeline = self.pipelines.composite(device, rec.target.samples)?;
-            rec.begin_rendering();
-            let [w, h] = rec.target.size;
-            let d = &rec.device.raw;
-            d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, pipeline);
-            d.cmd_set_viewport(cmd, 0, &[vk::Viewport { x: 0.0, y: 0.0, width: w as f32, height: h as f32, min_depth: 0.0, max_depth: 1.0 }]);
-            d.cmd_set_scissor(cmd, 0, &[vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width: w, height: h } }]);
-            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.composite_layout, 0, &[sets[1]], &[]);
-            let sizes: [u32; 4] = [gpu_frame.size[0], gpu_frame.size[1], w, h];
-            d.cmd_push_constants(cmd, self.pipelines.composite_layout, vk::ShaderStageFlags::FRAGMENT, 0, &bytemuck::cast_slice(&sizes)[..COMPOSITE_PUSH_BYTES as usize]);
-            d.cmd_draw(cmd, 3, 1, 0, 0);
         }
-        Ok(())
+        Ok(TracedImage { size: radiance.size, output: radiance.output })
     }
 
-    /// Frees everything (the GPU must be idle).
-    pub fn destroy(&mut self, device: &Device) {
+    fn statistics(&self) -> &Statistics {
+        &self.statistics
+    }
+
+    /// Reads the counters of the frames in flight first (the GPU must be idle).
+    fn destroy(&mut self, device: &Device) {
         for slot in 0..self.unread.len() {
             self.read_counters(device, slot);
-        }
-        if self.totals.frames > 0 {
-            log::info!("{}", self.totals.summary());
         }
         if let Some(pool) = self.timestamps.take() {
             // Safety: the GPU is idle.
