@@ -17,7 +17,7 @@ use std::sync::Arc;
 
 use common::gl;
 use glrt::frame::pixels::{PixelData, PixelKind};
-use glrt::render::RecordingSink;
+use glrt::frame::RecordingSink;
 use glrt::translate::capture::{self, reader::{Capture, Record}, replay, table::COMMANDS};
 use glrt::translate::gl::*;
 

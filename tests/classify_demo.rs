@@ -17,7 +17,7 @@ use std::sync::{Arc, OnceLock};
 use glam::Mat4;
 use glrt::frame::class::{DrawClass, FrameStats, Match, View};
 use glrt::frame::{DrawSource, Frame};
-use glrt::render::FrameSink;
+use glrt::frame::FrameSink;
 use glrt::translate::capture::reader::Capture;
 use glrt::translate::capture::replay;
 use parking_lot::Mutex;

@@ -8,7 +8,7 @@
 mod x11;
 
 use glrt::render::present::xlib::XlibPresenter;
-use glrt::render::{Surface, XDrawable};
+use glrt::frame::{Surface, XDrawable};
 use x11_dl::xlib::{self, Xlib};
 
 /// A test image, rows bottom to top: red rises to the right, green upwards, blue on a checker.

@@ -288,7 +288,7 @@ fn a_new_drawable_size_recreates_the_framebuffer() {
 
 #[test]
 fn pipelines_and_textures_are_created_once_and_unused_textures_dropped() {
-    use glrt::render::FrameSink;
+    use glrt::frame::FrameSink;
     // Frames recorded by translate, then given to a renderer directly to look at its caches.
     let (mut ctx, sink) = Context::with_recording();
     ctx.bind_drawable(SIZE, SIZE);

@@ -7,7 +7,7 @@
 mod lavapipe;
 
 use glrt::render::raster::renderer::Renderer;
-use glrt::render::{Surface, Target};
+use glrt::frame::{Surface, Target};
 use glrt::translate::{Context, dispatch, gl};
 
 const SIZE: i32 = 16;

@@ -15,7 +15,7 @@ use glrt::frame::state::{Blend, BlendFactor, CompareFunc, Line, PolygonMode, Ste
 use glrt::frame::texture::{DepthMode, Sampler, TexImage, TexelFormat, TextureContent, TextureKind, TextureRef};
 use glrt::frame::{Attrib, Clear, Draw, Frame, RasterState, Topology};
 use glrt::frame::pixels::PixelBuffer;
-use glrt::render::FrameSink;
+use glrt::frame::FrameSink;
 use glrt::render::raster::renderer::Renderer;
 use glrt::translate::glsl::{self, CompiledShader, LinkedProgram, Stage, UniformStorage};
 use glrt::translate::{dispatch, gl};

@@ -15,7 +15,7 @@ use glrt::frame::pixels::PixelBuffer;
 use glrt::render::raster::renderer::Renderer;
 use glrt::render::trace::settings::{Settings, Tonemap};
 use glrt::render::trace::stats::SceneCounts;
-use glrt::render::{FrameSink, Target};
+use glrt::frame::{FrameSink, Target};
 use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
 

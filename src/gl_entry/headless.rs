@@ -10,7 +10,8 @@ use parking_lot::Mutex;
 
 use super::current::{self, SharedContext};
 use super::shim::with_current;
-use crate::render::{self, FrameSink, Surface, Target};
+use crate::render;
+use crate::frame::{FrameSink, Surface, Target};
 use crate::translate::capture::{self, format::SwapKind};
 use crate::translate::Context;
 use crate::translate::context::ContextConfig;

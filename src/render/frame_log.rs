@@ -12,7 +12,7 @@ use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::Path;
 
-use super::FrameSink;
+use crate::frame::FrameSink;
 use crate::frame::Frame;
 
 /// The environment variable naming the log file.
@@ -101,7 +101,7 @@ impl FrameSink for FrameLog {
         self.inner.present(frame);
     }
 
-    fn set_target(&mut self, target: crate::render::Target) {
+    fn set_target(&mut self, target: crate::frame::Target) {
         self.inner.set_target(target);
     }
 
@@ -135,7 +135,7 @@ pub fn wrap_from_env(inner: Box<dyn FrameSink>) -> Box<dyn FrameSink> {
 mod tests {
     use super::*;
     use crate::frame::{Clear, Draw};
-    use crate::render::RecordingSink;
+    use crate::frame::RecordingSink;
 
     #[test]
     fn one_line_per_frame_and_frames_go_on_to_the_inner_sink() {

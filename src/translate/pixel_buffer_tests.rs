@@ -9,7 +9,7 @@ use std::ffi::c_void;
 
 use crate::frame::Frame;
 use crate::frame::pixels::{PixelBuffer, PixelData, PixelKind};
-use crate::render::FrameSink;
+use crate::frame::FrameSink;
 use crate::translate::context::ContextConfig;
 use crate::translate::{Context, dispatch, gl};
 

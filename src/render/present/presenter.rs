@@ -8,7 +8,8 @@
 
 use super::swapchain::{Gpu, Presented, Source, SwapchainPresenter};
 use super::xlib::XlibPresenter;
-use super::{Surface, Target, display_epoch};
+use super::display_epoch;
+use crate::frame::{Surface, Target};
 
 /// The rendered frame as a presenter needs it: the GPU image for a swapchain, or its pixels.
 pub trait FrameImage {

@@ -36,9 +36,8 @@ use super::ff;
 use super::multisample::{self, SampleState};
 use super::programs::{self, Programs};
 use super::target::COLOR_FORMAT;
-use crate::frame::program::ShaderProgram;
+use crate::frame::program::{GENERIC_ATTRIBUTE_LOCATION, ShaderProgram};
 use crate::frame::state::{Face, RasterState, Stencil, StencilFaces, Winding};
-use crate::translate::glsl::GENERIC_ATTRIBUTE_LOCATION;
 
 /// Descriptor bindings of set 0 (see the `ff` module doc): the uniform block, then 2D, 3D and
 /// cube samplers of each unit.

@@ -32,7 +32,7 @@ use crate::frame::pixels::{PixelBuffer, PixelOp};
 use crate::frame::state::{Stencil, StencilFaces};
 use crate::frame::framebuffer::FramebufferKey;
 use crate::frame::{Clear, ColorBuffer, Draw, DrawBuffers, Frame, FrameEnd, Framebuffer, RasterState};
-use crate::render::FrameSink;
+use crate::frame::FrameSink;
 
 /// Frames in flight.
 const FRAMES_IN_FLIGHT: usize = 2;
@@ -797,7 +797,7 @@ impl FrameSink for Renderer {
     /// Also takes the drawable's sample count and destination alpha: the framebuffer is
     /// recreated with them at the next frame (a count the device cannot render gives a
     /// single-sampled one, logged).
-    fn set_target(&mut self, target: crate::render::Target) {
+    fn set_target(&mut self, target: crate::frame::Target) {
         let counts = &self.parts.device.features.sample_counts;
         self.parts.samples = if target.samples <= 1 || counts.contains(&target.samples) {
             target.samples.max(1)

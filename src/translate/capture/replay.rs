@@ -38,7 +38,7 @@ pub struct Options {
 pub struct SinkWrapper(pub Arc<WrapSink>);
 
 /// What a [`SinkWrapper`] calls.
-pub type WrapSink = dyn Fn(Option<Box<dyn crate::render::FrameSink>>) -> Box<dyn crate::render::FrameSink> + Send + Sync;
+pub type WrapSink = dyn Fn(Option<Box<dyn crate::frame::FrameSink>>) -> Box<dyn crate::frame::FrameSink> + Send + Sync;
 
 impl std::fmt::Debug for SinkWrapper {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {

@@ -6,7 +6,7 @@
 
 use crate::frame::Frame;
 use crate::frame::pixels::{PixelBuffer, PixelData, PixelKind};
-use crate::render::FrameSink;
+use crate::frame::FrameSink;
 use crate::translate::context::ContextConfig;
 use crate::translate::{Context, dispatch, gl};
 
