@@ -25,7 +25,8 @@ pub fn write_all(model: &Model, out: &Path) -> io::Result<()> {
     let traced: Vec<&Command> = model.commands.iter().filter(|c| is_traced(c)).collect();
     fs::write(out.join("trace_groups.rs"), crate::emit_trace::groups(model, &traced))?;
     fs::write(out.join("fuzz_calls.rs"), crate::emit_fuzz::fuzz_calls(model))?;
-    fs::write(out.join("capture_table.rs"), crate::emit_capture::table(model))?;
+    fs::write(out.join("capture_commands.rs"), crate::emit_capture::commands(model))?;
+    fs::write(out.join("replay_calls.rs"), crate::emit_capture::calls(model))?;
     Ok(())
 }
 

@@ -12,8 +12,8 @@
 //!   (`gl_entry::trace::groups`);
 //! - `fuzz_calls.rs`: a random-argument caller of every served command, for the robustness
 //!   test (`translate::robustness`);
-//! - `capture_table.rs`: the command table of capture files and the replay thunks
-//!   (`translate::capture::table`);
+//! - `capture_commands.rs`: the command table of capture files (`translate::capture::table`);
+//! - `replay_calls.rs`: the replay thunks, command id to C export (`replay::calls`);
 //! - `shaders/*.spv`: the renderer's GLSL shaders compiled to SPIR-V (`shaders.rs`).
 //!
 //! A command is implemented when `translate` defines a method with exactly its C name

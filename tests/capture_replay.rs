@@ -11,7 +11,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use glrt::translate::capture::reader::{Capture, Record};
+use glrt::replay::reader::{Capture, Record};
 use images::Image;
 
 mod images;

@@ -18,8 +18,7 @@ use glam::Mat4;
 use glrt::frame::class::{DrawClass, FrameStats, Match, View};
 use glrt::frame::{DrawSource, Frame};
 use glrt::frame::FrameSink;
-use glrt::translate::capture::reader::Capture;
-use glrt::translate::capture::replay;
+use glrt::replay::{self, reader::Capture};
 use parking_lot::Mutex;
 
 /// Frames captured.

@@ -14,7 +14,8 @@ use std::process::ExitCode;
 
 use std::sync::Arc;
 
-use glrt::translate::capture::{self, reader::Capture, replay, summary::Summary};
+use glrt::replay::{self, reader::Capture, summary::Summary};
+use glrt::translate::capture;
 use glrt::translate::classify::report::{StatsPrinter, TextureCatalog};
 
 const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] [--stats] | glrt dump FILE";

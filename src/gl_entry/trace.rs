@@ -48,6 +48,7 @@ use parking_lot::Mutex;
 use super::current::with_slot;
 use super::mode::{self, Mode};
 use super::trace_sizes::{self, Typed};
+use crate::translate::classify::texture_hash;
 use crate::translate::gl::{self, GLbitfield, GLchar, GLenum, GLint, GLsizei};
 
 /// The gl.xml enum groups the log prints parameters by: `(name, value)` per member.
@@ -96,12 +97,14 @@ fn keeps(filter: Option<&str>, name: &str) -> bool {
 }
 
 /// Opens the log `GLRT_TRACE` names (with `GLRT_TRACE_FILTER`), at most once per process
-/// ([`super::mode`] calls it at the first GL call); true when it is open.
+/// ([`super::mode`] calls it at the first GL call), and has hash tracking announce texture
+/// hashes to it ([`note`]); true when it is open.
 pub(super) fn open_from_environment() -> bool {
     if LOG.get().is_none()
         && let Some(log) = open()
     {
         let _ = LOG.set(log);
+        texture_hash::announce_hashes_to(|id, hash| note(format_args!("texture {id} hash {hash:#018x}")));
     }
     LOG.get().is_some()
 }
@@ -162,7 +165,7 @@ pub fn frame_end(name: &'static str) {
 /// Writes a comment line `N # text` (frame number `N`), such as the hash of a texture whose
 /// content changed (`translate::classify`); nothing when tracing is off, or when
 /// `GLRT_TRACE_FILTER` is set and `text` does not contain it.
-pub fn note(text: std::fmt::Arguments<'_>) {
+fn note(text: std::fmt::Arguments<'_>) {
     let Some(log) = mode::special().filter(|m| m.tracing()).and_then(|_| LOG.get()) else { return };
     let text = text.to_string();
     if !keeps(log.filter.as_deref(), &text) {

@@ -103,7 +103,7 @@ fn compress(file: BufWriter<File>, batches: Receiver<Vec<u8>>) -> io::Result<()>
 mod tests {
     use super::*;
     use crate::translate::capture::format::{Event, SwapKind};
-    use crate::translate::capture::reader::{Capture, Record};
+    use crate::replay::reader::{Capture, Record};
     use crate::translate::capture::table::COMMANDS;
 
     #[test]

@@ -10,6 +10,8 @@
 use std::collections::BTreeSet;
 use std::ffi::{c_int, c_void};
 
+use crate::translate::capture::AddressMap;
+
 /// Bytes per window.
 const WINDOW: u64 = 1 << 32;
 /// Most windows a capture may use (the region is `(windows + 1) × 4 GiB` of address space).
@@ -121,25 +123,6 @@ impl Shadow {
         first..last
     }
 
-    /// Where captured `address` is in the shadow; values below 4 GiB and in windows the
-    /// capture does not use are returned unchanged.
-    pub fn translate(&self, address: u64) -> u64 {
-        match self.windows.binary_search(&(address >> 32)) {
-            Ok(slot) => self.base as u64 + slot as u64 * WINDOW + (address & (WINDOW - 1)),
-            Err(_) => address,
-        }
-    }
-
-    /// The captured address of shadow `address` (inverse of [`Shadow::translate`]); other
-    /// addresses are returned unchanged.
-    pub fn original(&self, address: u64) -> u64 {
-        let offset = address.wrapping_sub(self.base as u64);
-        match self.windows.get((offset / WINDOW) as usize) {
-            Some(window) if address >= self.base as u64 => (window << 32) | (offset & (WINDOW - 1)),
-            _ => address,
-        }
-    }
-
     /// Writes `bytes` that the program had at captured `address`.
     pub fn write(&self, address: u64, bytes: &[u8]) -> Result<(), String> {
         let start = self.translate(address);
@@ -161,6 +144,27 @@ impl Shadow {
     pub fn windows_of(address: u64, len: u64) -> impl Iterator<Item = u64> {
         let last = address.saturating_add(len.saturating_sub(1));
         (address >> 32)..=(last >> 32)
+    }
+}
+
+impl AddressMap for Shadow {
+    /// Where captured `address` is in the shadow; values below 4 GiB and in windows the
+    /// capture does not use are returned unchanged.
+    fn translate(&self, address: u64) -> u64 {
+        match self.windows.binary_search(&(address >> 32)) {
+            Ok(slot) => self.base as u64 + slot as u64 * WINDOW + (address & (WINDOW - 1)),
+            Err(_) => address,
+        }
+    }
+
+    /// The captured address of shadow `address` (inverse of [`AddressMap::translate`]);
+    /// other addresses are returned unchanged.
+    fn original(&self, address: u64) -> u64 {
+        let offset = address.wrapping_sub(self.base as u64);
+        match self.windows.get((offset / WINDOW) as usize) {
+            Some(window) if address >= self.base as u64 => (window << 32) | (offset & (WINDOW - 1)),
+            _ => address,
+        }
     }
 }
 

@@ -4,9 +4,9 @@
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
 
-use super::format::Event;
 use super::reader::{Capture, Record};
-use super::table::COMMANDS;
+use crate::translate::capture::format::Event;
+use crate::translate::capture::table::COMMANDS;
 
 /// One texture image upload (`glTexImage*`, `glTexSubImage*`).
 #[derive(Clone, Debug, PartialEq, Eq)]

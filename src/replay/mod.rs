@@ -1,17 +1,53 @@
-//! Replaying a capture on this thread without any window system: headless contexts of the
-//! captured sizes, every call through the generated C exports, client memory from the
-//! [`Shadow`]. See the module documentation of [`super`] for why the result is exact.
+//! Reading and replaying captures (`glrt replay|dump|info FILE`): a client of the exported C
+//! API, apart from the recorder (`translate::capture`) as apitrace keeps its retracer apart
+//! from its tracer. It depends on everything below it: the capture file format and command
+//! table (`translate::capture`), the generated C exports and headless contexts
+//! ([`crate::gl_entry`]), and the renderer for `--out` ([`crate::render::dumping_sink`]);
+//! nothing below names it.
+//!
+//! - [`reader`]: reads a capture file, never trusting it;
+//! - [`summary`]: what a capture holds (`glrt info FILE`);
+//! - [`shadow`]: the replay's copy of the captured program's address space;
+//! - [`calls`]: the generated thunks that call a command's export with recorded arguments;
+//! - [`run`] (here): replays a capture on this thread.
+//!
+//! **Replay** creates headless contexts of the captured sizes and calls the same generated C
+//! exports a program calls ([`calls::call`]), so the call log and capture hooks work during a
+//! replay too. Client memory lives in a *shadow* of the captured address space: each 4 GiB
+//! window of addresses the capture uses maps to a slot of one reserved region, pointer
+//! arguments in those windows are translated into it, and each call's recorded bytes are
+//! written there before the call. Values below 4 GiB (buffer offsets, null) pass unchanged;
+//! memory below 4 GiB that the capture read (the data of a program that is not position
+//! independent) is mapped at its own address. The shadow is installed as the recorder's
+//! address map while the replay runs, so that a capture made during a replay maps addresses
+//! back through it and writes a byte-identical file.
+//!
+//! Replay checks every length in the file, but runs the recorded GL calls as they are: a
+//! hand-made capture whose arguments make a call read far past its recorded memory can crash
+//! the replay, as it would the program (the compressed body's checksums and the trailer's
+//! hash refuse accidental damage first).
+
+pub mod reader;
+pub mod shadow;
+pub mod summary;
 
 use std::collections::{BTreeSet, HashMap};
 use std::ffi::c_void;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use super::format::{Event, SwapKind};
-use super::reader::{Capture, Record};
-use super::shadow::Shadow;
-use super::table::{self, COMMANDS};
-use crate::gl_entry::headless;
+use crate::frame::FrameSink;
+use crate::gl_entry::{current, headless};
+use crate::translate::capture::format::{Event, SwapKind};
+use crate::translate::capture::table::COMMANDS;
+use crate::translate::capture::{self, AddressMap};
+use reader::{Capture, Record};
+use shadow::Shadow;
+
+/// The generated replay thunks: command id and raw arguments → the command's C export.
+pub mod calls {
+    include!(concat!(env!("OUT_DIR"), "/replay_calls.rs"));
+}
 
 /// How to replay.
 #[derive(Clone, Debug, Default)]
@@ -38,7 +74,7 @@ pub struct Options {
 pub struct SinkWrapper(pub Arc<WrapSink>);
 
 /// What a [`SinkWrapper`] calls.
-pub type WrapSink = dyn Fn(Option<Box<dyn crate::frame::FrameSink>>) -> Box<dyn crate::frame::FrameSink> + Send + Sync;
+pub type WrapSink = dyn Fn(Option<Box<dyn FrameSink>>) -> Box<dyn FrameSink> + Send + Sync;
 
 impl std::fmt::Debug for SinkWrapper {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -76,7 +112,7 @@ fn layout(capture: &Capture) -> Result<Shadow, String> {
                 pointed.extend(Shadow::low_pages_of(a, 1));
             }
         }
-        if windows.len() > super::shadow::MAX_WINDOWS {
+        if windows.len() > shadow::MAX_WINDOWS {
             break;
         }
     }
@@ -89,7 +125,7 @@ struct Mapping;
 
 impl Drop for Mapping {
     fn drop(&mut self) {
-        *super::CANONICAL.write() = None;
+        capture::map_addresses(None);
     }
 }
 
@@ -99,12 +135,12 @@ pub fn run(capture: &Capture, options: &Options) -> Result<Outcome, String> {
     // Before any sink is made: renderers log the device they chose.
     crate::logging::init();
     let shadow = Arc::new(layout(capture)?);
-    *super::CANONICAL.write() = Some(shadow.clone());
+    capture::map_addresses(Some(shadow.clone()));
     let _mapping = Mapping;
     let mut contexts: HashMap<u32, *mut c_void> = HashMap::new();
     let result = replay_records(capture, options, &shadow, &mut contexts);
     // Released without a make-current event: the capture of a replay ends as the original.
-    crate::gl_entry::current::make_current(0, None);
+    current::make_current(0, None);
     for (_, handle) in contexts {
         headless::glrtDestroyContext(handle);
     }
@@ -130,7 +166,7 @@ fn replay_records(
                 }
                 // Safety: every pointer argument is translated into the shadow, which holds
                 // the bytes the call read and is writable wherever the program's memory was.
-                if !unsafe { table::call(id, &args, &translate) } {
+                if !unsafe { calls::call(id, &args, &translate) } {
                     return Err(fail(format!("{} cannot be replayed", COMMANDS[id].0)));
                 }
                 outcome.calls += 1;

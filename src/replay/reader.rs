@@ -7,8 +7,8 @@ use std::fmt;
 use std::io::Read;
 use std::sync::OnceLock;
 
-use super::format::{self, Event, SwapKind};
-use super::table::COMMANDS;
+use crate::translate::capture::format::{self, Event, SwapKind};
+use crate::translate::capture::table::COMMANDS;
 
 /// Largest decompressed body a reader accepts (bytes).
 const MAX_BODY: u64 = 4 << 30;
