@@ -76,7 +76,7 @@ fn dump(args: &[String]) -> Result<(), String> {
     // Safety: single-threaded so far; nothing else reads the environment concurrently.
     unsafe { std::env::set_var("GLRT_TRACE", "/dev/stdout") };
     replay::run(&capture, &replay::Options::default())?;
-    glrt::gl_entry::trace::flush();
+    glrt::gl_entry::call_log::flush();
     Ok(())
 }
 

@@ -112,7 +112,7 @@ pub extern "C" fn glrtSwapBuffers() {
 
 /// Ends the current frame as `kind` did (a glX swap first takes the drawable size it read).
 pub fn swap(kind: SwapKind) {
-    super::trace::frame_end(kind.name());
+    super::call_log::frame_end(kind.name());
     with_current(kind.name(), |c| {
         if let SwapKind::Glx { width, height } = kind {
             c.bind_drawable(width, height);

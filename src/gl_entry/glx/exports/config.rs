@@ -1,6 +1,7 @@
 //! GLX exports for visuals and framebuffer configurations (GLX 1.4 sections 3.3.3 and 3.4):
 //! `glXChooseVisual`, `glXGetConfig`, `glXChooseFBConfig`, `glXGetFBConfigs`,
-//! `glXGetFBConfigAttrib`, `glXGetVisualFromFBConfig`. The state is in [`super::glx::config`].
+//! `glXGetFBConfigAttrib`, `glXGetVisualFromFBConfig`. The state is in
+//! [`crate::gl_entry::glx::config`].
 
 #![allow(non_snake_case)]
 
@@ -9,10 +10,10 @@ use std::ffi::{c_int, c_ulong};
 use x11_dl::glx::*;
 use x11_dl::xlib::{self, Xlib};
 
-use super::glx::config::{self, FbConfig, Request};
-use super::glx::{XDisplay, connection, malloc_array};
-use super::glx::entry::glx_export;
-use super::glx_types::types;
+use crate::gl_entry::glx::config::{self, FbConfig, Request};
+use crate::gl_entry::glx::{XDisplay, connection, malloc_array};
+use crate::gl_entry::glx::entry::glx_export;
+use crate::gl_entry::glx::types::types;
 
 /// The `XVisualInfo` of visual `id` on `screen`, allocated by Xlib (the application frees it
 /// with `XFree`); null when the server has no such visual.

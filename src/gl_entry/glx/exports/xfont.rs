@@ -1,13 +1,14 @@
-//! The `glXUseXFont` export (GLX 1.4 section 3.5.5); the work is in [`super::glx::xfont`].
+//! The `glXUseXFont` export (GLX 1.4 section 3.5.5); the work is in
+//! [`crate::gl_entry::glx::xfont`].
 
 #![allow(non_snake_case)]
 
 use std::ffi::c_int;
 
-use super::glx::context::binding;
-use super::glx::{connection, xfont};
-use super::glx::entry::glx_export;
-use super::glx_types::types;
+use crate::gl_entry::glx::context::binding;
+use crate::gl_entry::glx::{connection, xfont};
+use crate::gl_entry::glx::entry::glx_export;
+use crate::gl_entry::glx::types::types;
 
 /// `glXUseXFont`: display lists `list .. list + count` draw characters `first ..` of `font`
 /// with `glBitmap`. Needs a current context (its display is used); without one it does

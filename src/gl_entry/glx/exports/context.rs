@@ -1,6 +1,6 @@
 //! GLX exports for rendering contexts (GLX 1.4 sections 3.3.7 and 3.5.1,
 //! GLX_ARB_create_context and GLX_ARB_create_context_profile). The state is in
-//! [`super::glx::context`].
+//! [`crate::gl_entry::glx::context`].
 
 #![allow(non_snake_case)]
 
@@ -10,12 +10,12 @@ use x11_dl::glx::arb::*;
 use x11_dl::glx::*;
 use x11_dl::xlib;
 
-use super::glx::config::{self, FbConfig, read_pairs};
-use super::glx::context;
-use super::glx::{BAD_ACCESS, BAD_MATCH, BAD_VALUE, GlxError, XError, connection, report};
-use super::glx_config::config_of_visual;
-use super::glx::entry::glx_export;
-use super::glx_types::types;
+use crate::gl_entry::glx::config::{self, FbConfig, read_pairs};
+use crate::gl_entry::glx::context;
+use crate::gl_entry::glx::{BAD_ACCESS, BAD_MATCH, BAD_VALUE, GlxError, XError, connection, report};
+use super::config::config_of_visual;
+use crate::gl_entry::glx::entry::glx_export;
+use crate::gl_entry::glx::types::types;
 use crate::gl_entry::current;
 
 /// Creates a context of `config` or reports why not (to the application's X error handler).

@@ -5,9 +5,7 @@
 //! the OpenGL 1.5 specification (tables 3.19 and 3.24, sections 2.11.4, 2.14.1, 3.10) and the
 //! `glTexEnv`, `glTexParameter`, `glFog`, `glLightModel`, `glTexGen` and `glPointParameter`
 //! reference pages. The commands are found by the build script: any whose parameters include
-//! a `GLenum pname` followed by a scalar `param` ([`Trace::param_of`]).
-//!
-//! [`Trace::param_of`]: super::trace::Trace::param_of
+//! a `GLenum pname` followed by a scalar `param` ([`super::Entry::param_of`]).
 
 use crate::translate::gl::{self, GLenum};
 

@@ -13,7 +13,7 @@
 //! context, those pointers print their address only (guessing the other library's state could
 //! read past the program's memory).
 
-use super::current::with_slot;
+use crate::gl_entry::current::with_slot;
 use crate::translate::gl::{self, GLenum, GLsizei};
 use crate::translate::pixels::codec;
 

@@ -11,11 +11,11 @@ use std::ffi::{CStr, c_char, c_int};
 use x11_dl::glx::*;
 use x11_dl::xlib;
 
-use super::exports::proc_address;
-use super::passthrough;
-use super::glx::{connection, glx_extension};
-use super::glx::entry::glx_export;
-use super::glx_types::types;
+use crate::gl_entry::exports::proc_address;
+use crate::gl_entry::passthrough;
+use crate::gl_entry::glx::{connection, glx_extension};
+use crate::gl_entry::glx::entry::glx_export;
+use crate::gl_entry::glx::types::types;
 
 /// The GLX extensions glrt implements.
 pub const EXTENSIONS: &CStr = c"GLX_ARB_create_context GLX_ARB_create_context_profile \

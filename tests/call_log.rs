@@ -1,4 +1,4 @@
-//! The call log (`GLRT_TRACE`, `gl_entry::trace`): `glrt-demo --headless` through glrt's
+//! The call log (`GLRT_TRACE`, `gl_entry::call_log`): `glrt-demo --headless` through glrt's
 //! `libGL.so.1` (`target/<profile>/libGL.so.1`, a symlink to `libglrt.so` made here when
 //! missing) writes the lines the module documents; and calls made in this process through the
 //! exports show the errors they raise.
@@ -10,7 +10,7 @@ use std::process::{Command, Output};
 
 use common::lib_dir;
 
-use glrt::gl_entry::glx_query::glXGetProcAddress;
+use glrt::gl_entry::glx::exports::query::glXGetProcAddress;
 use glrt::gl_entry::{exports as gl, headless};
 use glrt::translate::gl::*;
 

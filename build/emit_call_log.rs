@@ -1,7 +1,7 @@
-//! The call-log side of the generated exports (`GLRT_TRACE`, `gl_entry::trace`): how each
+//! The call-log side of the generated exports (`GLRT_TRACE`, `gl_entry::call_log`): how each
 //! parameter of a command is printed, chosen from its C type, its gl.xml enum group and, for
 //! client pointers, the fixed length gl.xml gives (`len="3"`); and the tables of the enum groups
-//! the printing uses (`trace_groups.rs`, included as `gl_entry::trace::groups`).
+//! the printing uses (`call_log_groups.rs`, included as `gl_entry::call_log::groups`).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write as _;
@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use crate::emit::HEADER;
 use crate::model::{Command, Model, Param};
 
-/// Scalar C types the trace prints by value (every other non-pointer type prints as `?`).
+/// Scalar C types the call log prints by value (every other non-pointer type prints as `?`).
 const SCALARS: &[&str] = &[
     "GLenum", "GLboolean", "GLbitfield", "GLbyte", "GLubyte", "GLshort", "GLushort", "GLint", "GLuint",
     "GLsizei", "GLfloat", "GLclampf", "GLdouble", "GLclampd", "GLchar", "GLcharARB", "GLhalf",
@@ -17,14 +17,14 @@ const SCALARS: &[&str] = &[
     "GLsizeiptrARB", "GLint64", "GLuint64", "GLint64EXT", "GLuint64EXT", "GLhandleARB",
 ];
 
-/// Whether `ty` (`types::GLfloat`) is a scalar the trace prints by value.
+/// Whether `ty` (`types::GLfloat`) is a scalar the call log prints by value.
 fn is_scalar(ty: &str) -> bool {
     ty.strip_prefix("types::").is_some_and(|t| SCALARS.contains(&t))
 }
 
 /// `(command, parameter) -> N` for every `const` pointer parameter gl.xml gives a numeric
 /// length (`<param len="16">const <ptype>GLfloat</ptype> *<name>m</name></param>`): the
-/// values the trace can print without knowing what the command does with them.
+/// values the call log can print without knowing what the command does with them.
 pub fn fixed_lengths() -> BTreeMap<(String, String), usize> {
     let xml = std::str::from_utf8(khronos_api::GL_XML).expect("gl.xml is UTF-8");
     let mut lens = BTreeMap::new();
@@ -51,9 +51,9 @@ fn between<'a>(s: &'a str, start: &str, end: &str) -> Option<&'a str> {
     Some(&rest[..rest.find(end)?])
 }
 
-/// The Rust path of a group's table in `trace_groups.rs`.
+/// The Rust path of a group's table in `call_log_groups.rs`.
 fn group_path(group: &str) -> String {
-    format!("crate::gl_entry::trace::groups::{group}")
+    format!("crate::gl_entry::call_log::groups::{group}")
 }
 
 /// Whether `model` has a table for `p`'s group (gl.xml names some groups it never defines).
@@ -62,17 +62,17 @@ fn group_of<'a>(model: &Model, p: &'a Param) -> Option<&'a str> {
 }
 
 /// The vector state commands (`glLightfv`, `glTexParameteriv`...), whose `params` count
-/// depends on `pname` (`gl_entry::trace_sizes::values_of`).
+/// depends on `pname` (`gl_entry::call_log::sizes::values_of`).
 const PNAME_VECTORS: &[&str] =
     &["glLight", "glLightModel", "glMaterial", "glFog", "glTexEnv", "glTexParameter", "glTexGen", "glPointParameter"];
 
 /// The printing of a `const` pointer parameter whose size depends on other arguments or on
-/// GL state (`gl_entry::trace_sizes`), `None` for other parameters.
+/// GL state (`gl_entry::call_log::sizes`), `None` for other parameters.
 fn variable_size(c: &Command, p: &Param, prefix: &str) -> Option<String> {
     let (label, name) = (p.name.trim_matches('_'), format!("{prefix}{}", p.name));
     let has = |n: &str| c.params.iter().any(|q| q.name == n);
     let arg = |n: &str| if has(n) { format!("{prefix}{n}") } else { "1".to_owned() };
-    let sizes = "crate::gl_entry::trace_sizes";
+    let sizes = "crate::gl_entry::call_log::sizes";
     let base = c.name.trim_end_matches("ARB").trim_end_matches("EXT").strip_suffix('v').and_then(|n| n.strip_suffix(['f', 'i', 'd']));
     if p.name == "params" && has("pname") && base.is_some_and(|b| PNAME_VECTORS.contains(&b)) {
         return Some(format!("__t.values_if(\"{label}\", {name}, {sizes}::values_of({prefix}pname))"));
@@ -95,7 +95,7 @@ fn variable_size(c: &Command, p: &Param, prefix: &str) -> Option<String> {
     Some(format!("__t.typed(\"{label}\", {name}, {typed})"))
 }
 
-/// The statement that prints parameter `p` of command `c` into the trace `t`.
+/// The statement that prints parameter `p` of command `c` into the call-log entry `t`.
 fn print_param(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, p: &Param, prefix: &str) -> String {
     let (label, ty) = (p.name.trim_matches('_'), p.ty.as_str());
     let name = format!("{prefix}{}", p.name);
@@ -151,7 +151,7 @@ fn forward(model: &Model, c: &Command, prefix: &str) -> String {
 /// The branch is a function of its own, never inlined, with its own copy of `call`: the
 /// export's plain path then has its one call of glrt's work, inlined as without the branch,
 /// and one relaxed load more.
-pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, prefix: &str, call: &str) -> String {
+pub fn special_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c: &Command, prefix: &str, call: &str) -> String {
     let ret = if c.ret == "()" { String::new() } else { format!(" -> {}", c.ret) };
     let params: String = c.params.iter().map(|p| format!(", {prefix}{}: {}", p.name, p.ty)).collect();
     let args: String = c.params.iter().map(|p| format!(", {prefix}{}", p.name)).collect();
@@ -164,7 +164,7 @@ pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c:
     )
     .unwrap();
     writeln!(s, "            let __call = || if __mode.passthrough() {{\n                {}\n            }} else {{\n                {call}\n            }};", forward(model, c, prefix)).unwrap();
-    writeln!(s, "            if let Some(mut __t) = crate::gl_entry::trace::begin(__mode, \"{}\") {{", c.name).unwrap();
+    writeln!(s, "            if let Some(mut __t) = crate::gl_entry::call_log::begin(__mode, \"{}\") {{", c.name).unwrap();
     for p in &c.params {
         writeln!(s, "                {}", print_param(model, lens, c, p, prefix)).unwrap();
     }
@@ -184,8 +184,8 @@ pub fn traced_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c:
     s
 }
 
-/// `trace_groups.rs`: one table of `(name, value)` per enum group a traced parameter names.
-pub fn groups(model: &Model, traced: &[&Command]) -> String {
+/// `call_log_groups.rs`: one table of `(name, value)` per enum group a logged parameter names.
+pub fn groups(model: &Model, logged: &[&Command]) -> String {
     let integer: BTreeSet<&str> = model
         .enums
         .iter()
@@ -194,7 +194,7 @@ pub fn groups(model: &Model, traced: &[&Command]) -> String {
         .collect();
     // ErrorCode: results of glGetError and the errors calls raise.
     let used: BTreeSet<&str> = std::iter::once("ErrorCode")
-        .chain(traced.iter()
+        .chain(logged.iter()
         .flat_map(|c| &c.params)
         .filter(|p| ["types::GLenum", "types::GLbitfield", "types::GLint"].contains(&p.ty.as_str()))
         .filter_map(|p| group_of(model, p)))

@@ -9,13 +9,13 @@ use std::ffi::{c_int, c_uint};
 use x11_dl::glx::*;
 use x11_dl::xlib;
 
-use super::glx::context;
-use super::glx::drawable::{self, Kind};
-use super::glx::{BAD_VALUE, GlxError, XError, connection, report};
-use super::glx_drawable::MAX_SWAP_INTERVAL;
-use super::glx::entry::glx_export;
-use super::glx_types::types;
-use super::shim::with_current;
+use crate::gl_entry::glx::context;
+use crate::gl_entry::glx::drawable::{self, Kind};
+use crate::gl_entry::glx::{BAD_VALUE, GlxError, XError, connection, report};
+use super::drawable::MAX_SWAP_INTERVAL;
+use crate::gl_entry::glx::entry::glx_export;
+use crate::gl_entry::glx::types::types;
+use crate::gl_entry::shim::with_current;
 
 /// `glXSwapBuffers`: when `drawable` is the draw drawable of this thread's current context
 /// and that context is double-buffered, ends its frame (`Context::end_frame`), after
@@ -46,7 +46,7 @@ pub unsafe extern "C" fn glXSwapBuffers(dpy: *mut types::Display, drawable: type
             crate::translate::capture::swapped(crate::translate::capture::format::SwapKind::Glx { width, height });
         }
     });
-    super::trace::frame_end("glXSwapBuffers");
+    crate::gl_entry::call_log::frame_end("glXSwapBuffers");
 }
 
 /// `glXWaitGL`: OpenGL rendering issued before it completes before later X rendering. glrt

@@ -10,7 +10,7 @@
 //!   the group member of that value, else as numbers;
 //! - `GLint`/`GLfloat` `param`s of a `pname` whose value is a constant
 //!   (`glTexParameterf(..., pname=GL_TEXTURE_MIN_FILTER, param=GL_LINEAR)`) by name, from the
-//!   table in [`super::trace_params`];
+//!   table in [`params`];
 //! - bitfields of a gl.xml group as an OR of its names (`GL_COLOR_BUFFER_BIT|GL_DEPTH_BUFFER_BIT`),
 //!   with any bits no name covers in hex;
 //! - pointers: `NULL`, or the address; where gl.xml gives a fixed length (`glVertex3fv`: 3,
@@ -36,6 +36,9 @@
 //! is reported once on standard error and tracing stays off. When off, an export pays one
 //! relaxed atomic load ([`begin`]).
 
+pub mod params;
+pub mod sizes;
+
 use std::fmt::Write as _;
 use std::fs::File;
 use std::io::{self, BufWriter, Write as _};
@@ -47,14 +50,14 @@ use parking_lot::Mutex;
 
 use super::current::with_slot;
 use super::mode::{self, Mode};
-use super::trace_sizes::{self, Typed};
+use sizes::Typed;
 use crate::translate::classify::texture_hash;
 use crate::translate::gl::{self, GLbitfield, GLchar, GLenum, GLint, GLsizei};
 
 /// The gl.xml enum groups the log prints parameters by: `(name, value)` per member.
 #[allow(non_upper_case_globals)]
 pub mod groups {
-    include!(concat!(env!("OUT_DIR"), "/trace_groups.rs"));
+    include!(concat!(env!("OUT_DIR"), "/call_log_groups.rs"));
 }
 
 /// The current frame number.
@@ -69,8 +72,8 @@ struct Log {
 /// The log, once `GLRT_TRACE` named a file that could be created.
 static LOG: OnceLock<Log> = OnceLock::new();
 
-/// A call being logged: its line, written by [`Trace::end`].
-pub struct Trace {
+/// A call being logged: its line, written by [`Entry::end`].
+pub struct Entry {
     line: String,
     /// Whether an argument was printed (for the separators).
     args: usize,
@@ -78,7 +81,7 @@ pub struct Trace {
 
 /// Starts the log line of a call to `name`, or `None` when tracing is off in `mode` or
 /// `name` does not match `GLRT_TRACE_FILTER`.
-pub fn begin(mode: Mode, name: &'static str) -> Option<Trace> {
+pub fn begin(mode: Mode, name: &'static str) -> Option<Entry> {
     if !mode.tracing() {
         return None;
     }
@@ -88,7 +91,7 @@ pub fn begin(mode: Mode, name: &'static str) -> Option<Trace> {
     }
     let mut line = String::with_capacity(96);
     let _ = write!(line, "{} {name}(", FRAME.load(Ordering::Relaxed));
-    Some(Trace { line, args: 0 })
+    Some(Entry { line, args: 0 })
 }
 
 /// Whether `GLRT_TRACE_FILTER` (`filter`) keeps calls to `name`: a substring match.
@@ -222,7 +225,7 @@ pub const FIRST_VALUES: usize = 16;
 /// Appends the first [`FIRST_VALUES`] elements of `typed` in `bytes`: `[1, 2, 3]`, with `...`
 /// when there are more. `GL_2_BYTES`..`GL_4_BYTES` names are big-endian (section 5.4).
 fn print_elements(out: &mut String, bytes: &[u8], typed: Typed) {
-    let size = trace_sizes::element_size(typed.type_).unwrap_or(1);
+    let size = sizes::element_size(typed.type_).unwrap_or(1);
     out.push('[');
     for (i, e) in bytes.chunks_exact(size).take(FIRST_VALUES).enumerate() {
         if i > 0 {
@@ -290,7 +293,7 @@ fn print_bits(out: &mut String, bits: GLbitfield, group: &[(&'static str, u64)])
     }
 }
 
-impl Trace {
+impl Entry {
     /// Starts the next argument, `name=`; the caller appends the value.
     pub(crate) fn next(&mut self, name: &str) -> &mut String {
         if self.args > 0 {
@@ -328,11 +331,11 @@ impl Trace {
     }
 
     /// The scalar `param` of a command that takes a `pname` (`glTexParameterf`, `glFogi`): by
-    /// name when `pname` takes constants ([`super::trace_params`]) and `value` is one of
+    /// name when `pname` takes constants ([`params`]) and `value` is one of
     /// them, else as the number.
     pub fn param_of<T: Arg + Into<f64>>(&mut self, name: &str, pname: GLenum, value: T) {
         let out = self.next(name);
-        match super::trace_params::name_of(pname, value.into()) {
+        match params::name_of(pname, value.into()) {
             Some(constant) => out.push_str(constant),
             None => value.print(out),
         }
@@ -362,10 +365,10 @@ impl Trace {
         out.push(']');
     }
 
-    /// [`Trace::values`] when the length is known (`Some`), else the address only.
+    /// [`Entry::values`] when the length is known (`Some`), else the address only.
     ///
     /// # Safety
-    /// As [`Trace::values`].
+    /// As [`Entry::values`].
     pub unsafe fn values_if<T: Arg>(&mut self, name: &str, ptr: *const T, len: Option<usize>) {
         match len {
             // Safety: as documented.
@@ -466,7 +469,7 @@ impl Trace {
         result
     }
 
-    /// Ends the argument list (for calls not run through [`Trace::observe`]).
+    /// Ends the argument list (for calls not run through [`Entry::observe`]).
     pub fn close_args(&mut self) {
         self.line.push(')');
     }
@@ -533,7 +536,7 @@ mod tests {
 
     #[test]
     fn arguments_and_fixed_length_pointers() {
-        let mut t = Trace { line: "0 glFoo(".into(), args: 0 };
+        let mut t = Entry { line: "0 glFoo(".into(), args: 0 };
         let v = [1.0f32, 2.5, -3.0];
         t.arg("x", 0.5f32);
         unsafe { t.values("v", v.as_ptr(), 3) };
@@ -547,7 +550,7 @@ mod tests {
 
     #[test]
     fn integers_of_a_group_print_members_by_name() {
-        let mut t = Trace { line: String::new(), args: 0 };
+        let mut t = Entry { line: String::new(), args: 0 };
         t.int_or_enum("internalformat", gl::GL_RGB as GLint, groups::InternalFormat);
         t.int_or_enum("internalformat", 3, groups::InternalFormat);
         assert_eq!(t.line, "internalformat=GL_RGB, internalformat=3");

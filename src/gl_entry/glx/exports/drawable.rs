@@ -1,6 +1,6 @@
 //! GLX exports for drawables (GLX 1.4 section 3.3.5 and 3.3.6): GLX windows, pixmaps
 //! (GLX 1.3 and 1.2 styles) and pbuffers, `glXQueryDrawable`, `glXSelectEvent`. The state is
-//! in [`super::glx::drawable`].
+//! in [`crate::gl_entry::glx::drawable`].
 
 #![allow(non_snake_case)]
 
@@ -10,12 +10,12 @@ use x11_dl::glx::ext::*;
 use x11_dl::glx::*;
 use x11_dl::xlib::{self, Xlib};
 
-use super::glx::config::{self, FbConfig, MAX_PBUFFER_SIDE, read_pairs};
-use super::glx::drawable::{self, Drawable, Kind};
-use super::glx::{BAD_ALLOC, BAD_MATCH, BAD_VALUE, GlxError, XDisplay, XError, connection, context, report};
-use super::glx_config::config_of_visual;
-use super::glx::entry::glx_export;
-use super::glx_types::types;
+use crate::gl_entry::glx::config::{self, FbConfig, MAX_PBUFFER_SIDE, read_pairs};
+use crate::gl_entry::glx::drawable::{self, Drawable, Kind};
+use crate::gl_entry::glx::{BAD_ALLOC, BAD_MATCH, BAD_VALUE, GlxError, XDisplay, XError, connection, context, report};
+use super::config::config_of_visual;
+use crate::gl_entry::glx::entry::glx_export;
+use crate::gl_entry::glx::types::types;
 
 /// Largest swap interval accepted (`GLX_MAX_SWAP_INTERVAL_EXT`).
 pub const MAX_SWAP_INTERVAL: c_int = 1000;
