@@ -16,8 +16,8 @@ use std::process::Command;
 use std::sync::Arc;
 
 use common::gl;
-use glrt::frame::pixels::{PixelData, PixelKind};
 use glrt::frame::RecordingSink;
+use glrt::frame::pixels::{PixelData, PixelKind};
 use glrt::replay::{self, reader::{Capture, Record}};
 use glrt::translate::capture::{self, table::COMMANDS};
 use glrt::translate::gl::*;

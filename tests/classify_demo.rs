@@ -15,9 +15,9 @@ use std::process::Command;
 use std::sync::{Arc, OnceLock};
 
 use glam::Mat4;
+use glrt::frame::FrameSink;
 use glrt::frame::class::{DrawClass, FrameStats, Match, View};
 use glrt::frame::{DrawSource, Frame};
-use glrt::frame::FrameSink;
 use glrt::replay::{self, reader::Capture};
 use parking_lot::Mutex;
 

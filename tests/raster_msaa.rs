@@ -6,8 +6,8 @@
 
 mod lavapipe;
 
-use glrt::render::raster::renderer::Renderer;
 use glrt::frame::{Surface, Target};
+use glrt::render::raster::renderer::Renderer;
 use glrt::translate::{Context, dispatch, gl};
 
 const SIZE: i32 = 16;

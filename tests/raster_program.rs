@@ -10,16 +10,16 @@ mod lavapipe;
 
 use std::sync::Arc;
 
+use std::collections::HashMap;
+use glrt::frame::FrameSink;
+use glrt::frame::pixels::PixelBuffer;
 use glrt::frame::program::{ProgramDraw, SamplerKind, ShaderProgram};
 use glrt::frame::state::{Blend, BlendFactor, CompareFunc, Line, PolygonMode, Stencil, StencilFaces, StencilOp};
 use glrt::frame::texture::{DepthMode, Sampler, TexImage, TexelFormat, TextureContent, TextureKind, TextureRef};
 use glrt::frame::{Attrib, Clear, Draw, Frame, RasterState, Topology};
-use glrt::frame::pixels::PixelBuffer;
-use glrt::frame::FrameSink;
 use glrt::render::raster::renderer::Renderer;
 use glrt::translate::glsl::{self, CompiledShader, LinkedProgram, Stage, UniformStorage};
 use glrt::translate::{dispatch, gl};
-use std::collections::HashMap;
 
 /// Window size of every test.
 const SIZE: i32 = 32;

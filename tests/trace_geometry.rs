@@ -12,10 +12,10 @@ use std::sync::{Arc, Mutex};
 
 use glrt::frame::Frame;
 use glrt::frame::pixels::PixelBuffer;
+use glrt::frame::{FrameSink, Target};
 use glrt::render::raster::renderer::Renderer;
 use glrt::render::trace::settings::{Settings, Tonemap};
 use glrt::render::trace::stats::SceneCounts;
-use glrt::frame::{FrameSink, Target};
 use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
 

@@ -10,10 +10,10 @@ use parking_lot::Mutex;
 
 use super::current::{self, SharedContext};
 use super::shim::with_current;
-use crate::render;
 use crate::frame::{FrameSink, Surface, Target};
-use crate::translate::capture::{self, format::SwapKind};
+use crate::render;
 use crate::translate::Context;
+use crate::translate::capture::{self, format::SwapKind};
 use crate::translate::context::ContextConfig;
 use crate::translate::context::SharedObjects;
 

@@ -36,13 +36,14 @@ use std::ffi::c_void;
 use std::path::PathBuf;
 use std::sync::Arc;
 
+use reader::{Capture, Record};
+use shadow::Shadow;
+
 use crate::frame::FrameSink;
 use crate::gl_entry::{current, headless};
 use crate::translate::capture::format::{Event, SwapKind};
 use crate::translate::capture::table::COMMANDS;
 use crate::translate::capture::{self, AddressMap};
-use reader::{Capture, Record};
-use shadow::Shadow;
 
 /// The generated replay thunks: command id and raw arguments → the command's C export.
 pub mod calls {

@@ -8,8 +8,8 @@
 use std::ffi::c_void;
 
 use crate::frame::Frame;
-use crate::frame::pixels::{PixelBuffer, PixelData, PixelKind};
 use crate::frame::FrameSink;
+use crate::frame::pixels::{PixelBuffer, PixelData, PixelKind};
 use crate::translate::context::ContextConfig;
 use crate::translate::{Context, dispatch, gl};
 

@@ -47,10 +47,10 @@ use std::sync::OnceLock;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 use parking_lot::Mutex;
+use sizes::Typed;
 
 use super::current::with_slot;
 use super::mode::{self, Mode};
-use sizes::Typed;
 use crate::translate::classify::texture_hash;
 use crate::translate::gl::{self, GLbitfield, GLchar, GLenum, GLint, GLsizei};
 

@@ -16,8 +16,8 @@ use x11_dl::glx::*;
 
 use super::config::read_pairs;
 
-use crate::gl_entry::mode::{self, Mode};
 use crate::gl_entry::call_log::{self, Entry};
+use crate::gl_entry::mode::{self, Mode};
 use crate::translate::convert::ReturnDefault;
 
 /// A GLX argument or result as the call log prints it.

@@ -18,8 +18,8 @@ use parking_lot::Mutex;
 use x11_dl::xlib::{self, Xlib};
 use x11_dl::xshm::{XShmSegmentInfo, Xext};
 
-use super::pixel_format::PixelFormat;
 use super::display_epoch;
+use super::pixel_format::PixelFormat;
 use crate::frame::{Surface, XDrawable};
 
 /// Xlib, loaded once (the application's `libX11.so.6` is already in the process).

@@ -446,8 +446,8 @@ mod tests {
 #[cfg(test)]
 mod readback_tests {
     use crate::frame::Frame;
-    use crate::frame::pixels::PixelBuffer;
     use crate::frame::FrameSink;
+    use crate::frame::pixels::PixelBuffer;
     use crate::translate::context::ContextConfig;
     use crate::translate::{Context, dispatch, gl};
 

@@ -11,9 +11,9 @@ use x11_dl::glx::*;
 use x11_dl::xlib::{self, Xlib};
 
 use crate::gl_entry::glx::config::{self, FbConfig, Request};
-use crate::gl_entry::glx::{XDisplay, connection, malloc_array};
 use crate::gl_entry::glx::entry::glx_export;
 use crate::gl_entry::glx::types::types;
+use crate::gl_entry::glx::{XDisplay, connection, malloc_array};
 
 /// The `XVisualInfo` of visual `id` on `screen`, allocated by Xlib (the application frees it
 /// with `XFree`); null when the server has no such visual.

@@ -10,13 +10,13 @@ use x11_dl::glx::arb::*;
 use x11_dl::glx::*;
 use x11_dl::xlib;
 
+use super::config::config_of_visual;
+use crate::gl_entry::current;
 use crate::gl_entry::glx::config::{self, FbConfig, read_pairs};
 use crate::gl_entry::glx::context;
-use crate::gl_entry::glx::{BAD_ACCESS, BAD_MATCH, BAD_VALUE, GlxError, XError, connection, report};
-use super::config::config_of_visual;
 use crate::gl_entry::glx::entry::glx_export;
 use crate::gl_entry::glx::types::types;
-use crate::gl_entry::current;
+use crate::gl_entry::glx::{BAD_ACCESS, BAD_MATCH, BAD_VALUE, GlxError, XError, connection, report};
 
 /// Creates a context of `config` or reports why not (to the application's X error handler).
 fn create(dpy: *mut types::Display, name: &'static str, config: Option<&FbConfig>, share: types::GLXContext) -> types::GLXContext {

@@ -10,12 +10,12 @@ use x11_dl::glx::ext::*;
 use x11_dl::glx::*;
 use x11_dl::xlib::{self, Xlib};
 
+use super::config::config_of_visual;
 use crate::gl_entry::glx::config::{self, FbConfig, MAX_PBUFFER_SIDE, read_pairs};
 use crate::gl_entry::glx::drawable::{self, Drawable, Kind};
-use crate::gl_entry::glx::{BAD_ALLOC, BAD_MATCH, BAD_VALUE, GlxError, XDisplay, XError, connection, context, report};
-use super::config::config_of_visual;
 use crate::gl_entry::glx::entry::glx_export;
 use crate::gl_entry::glx::types::types;
+use crate::gl_entry::glx::{BAD_ALLOC, BAD_MATCH, BAD_VALUE, GlxError, XDisplay, XError, connection, context, report};
 
 /// Largest swap interval accepted (`GLX_MAX_SWAP_INTERVAL_EXT`).
 pub const MAX_SWAP_INTERVAL: c_int = 1000;

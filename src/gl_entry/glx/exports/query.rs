@@ -12,10 +12,10 @@ use x11_dl::glx::*;
 use x11_dl::xlib;
 
 use crate::gl_entry::exports::proc_address;
-use crate::gl_entry::passthrough;
-use crate::gl_entry::glx::{connection, glx_extension};
 use crate::gl_entry::glx::entry::glx_export;
 use crate::gl_entry::glx::types::types;
+use crate::gl_entry::glx::{connection, glx_extension};
+use crate::gl_entry::passthrough;
 
 /// The GLX extensions glrt implements.
 pub const EXTENSIONS: &CStr = c"GLX_ARB_create_context GLX_ARB_create_context_profile \

@@ -9,12 +9,12 @@ use std::ffi::{c_int, c_uint};
 use x11_dl::glx::*;
 use x11_dl::xlib;
 
+use super::drawable::MAX_SWAP_INTERVAL;
 use crate::gl_entry::glx::context;
 use crate::gl_entry::glx::drawable::{self, Kind};
-use crate::gl_entry::glx::{BAD_VALUE, GlxError, XError, connection, report};
-use super::drawable::MAX_SWAP_INTERVAL;
 use crate::gl_entry::glx::entry::glx_export;
 use crate::gl_entry::glx::types::types;
+use crate::gl_entry::glx::{BAD_VALUE, GlxError, XError, connection, report};
 use crate::gl_entry::shim::with_current;
 
 /// `glXSwapBuffers`: when `drawable` is the draw drawable of this thread's current context

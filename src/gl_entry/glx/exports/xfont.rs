@@ -6,9 +6,9 @@
 use std::ffi::c_int;
 
 use crate::gl_entry::glx::context::binding;
-use crate::gl_entry::glx::{connection, xfont};
 use crate::gl_entry::glx::entry::glx_export;
 use crate::gl_entry::glx::types::types;
+use crate::gl_entry::glx::{connection, xfont};
 
 /// `glXUseXFont`: display lists `list .. list + count` draw characters `first ..` of `font`
 /// with `glBitmap`. Needs a current context (its display is used); without one it does
