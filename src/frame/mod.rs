@@ -2,6 +2,11 @@
 //! read-back that needs pixels): draws in object space with their state, clears, and what the
 //! renderer needs to resolve textures. No GL enums here: `translate` converts them to these
 //! types.
+//!
+//! This is the interface layer between the two sides, and names neither: where frames go
+//! ([`sink::FrameSink`], to a [`target::Target`]), and the few definitions both sides must
+//! share (the mipmap box filter in [`mipmap`], [`class::orthographic`], the shader interface
+//! constants of [`program`]).
 
 pub mod class;
 pub mod framebuffer;
