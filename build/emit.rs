@@ -22,10 +22,11 @@ pub fn write_all(model: &Model, out: &Path) -> io::Result<()> {
     fs::write(out.join("gl_enums.rs"), enums(model))?;
     fs::write(out.join("dispatch.rs"), dispatch(model))?;
     fs::write(out.join("exports.rs"), exports(model))?;
-    let traced: Vec<&Command> = model.commands.iter().filter(|c| is_traced(c)).collect();
-    fs::write(out.join("trace_groups.rs"), crate::emit_trace::groups(model, &traced))?;
+    let logged: Vec<&Command> = model.commands.iter().filter(|c| is_logged(c)).collect();
+    fs::write(out.join("call_log_groups.rs"), crate::emit_call_log::groups(model, &logged))?;
     fs::write(out.join("fuzz_calls.rs"), crate::emit_fuzz::fuzz_calls(model))?;
-    fs::write(out.join("capture_table.rs"), crate::emit_capture::table(model))?;
+    fs::write(out.join("capture_commands.rs"), crate::emit_capture::commands(model))?;
+    fs::write(out.join("replay_calls.rs"), crate::emit_capture::calls(model))?;
     Ok(())
 }
 
@@ -268,7 +269,7 @@ fn rect_body(c: &Command, suffix: &str, vector: bool) -> String {
 
 /// Whether the generated export of `c` writes the call log (`GLRT_TRACE`): every GL command
 /// but those exported by hand and the GLX names glrt does not implement.
-fn is_traced(c: &Command) -> bool {
+fn is_logged(c: &Command) -> bool {
     !matches!(c.route, Route::Hand(_)) && !c.is_glx
 }
 
@@ -279,7 +280,7 @@ fn exports(model: &Model) -> String {
          use crate::translate::dispatch;\n\
          use super::shim;\n\n",
     );
-    let lens = crate::emit_trace::fixed_lengths();
+    let lens = crate::emit_call_log::fixed_lengths();
     let capture_ids = crate::emit_capture::ids(model);
     let mut glx_missing = String::new();
     let mut missing_index = 0usize;
@@ -295,7 +296,7 @@ fn exports(model: &Model) -> String {
                     "/// `{name}`: not implemented; logs once.\n\
                      #[unsafe(no_mangle)]\npub unsafe extern \"C\" fn {name}({}){ret} {{\n    let __call = || {call};\n{}    __call()\n}}\n",
                     unused.join(", "),
-                    crate::emit_trace::traced_branch(model, &lens, c, "_", &call),
+                    crate::emit_call_log::special_branch(model, &lens, c, "_", &call),
                 )
                 .unwrap();
                 missing_index += 1;
@@ -318,13 +319,13 @@ fn exports(model: &Model) -> String {
                 writeln!(s, "pub unsafe extern \"C\" fn {name}({params}){ret} {{").unwrap();
                 s.push_str(&crate::emit_capture::hook(c, &capture_ids, prefix));
                 writeln!(s, "    let __call = || {call};").unwrap();
-                s.push_str(&crate::emit_trace::traced_branch(model, &lens, c, prefix, &call));
+                s.push_str(&crate::emit_call_log::special_branch(model, &lens, c, prefix, &call));
                 s.push_str("    __call()\n}\n\n");
             }
         }
     }
     writeln!(s, "/// GLX names glvnd's libGL.so.1 exports that glrt does not implement.").unwrap();
-    s.push_str("pub mod glx_missing {\n    #[allow(unused_imports)] use crate::gl_entry::glx_types::{types, __gl_imports};\n\n");
+    s.push_str("pub mod glx_missing {\n    #[allow(unused_imports)] use crate::gl_entry::glx::types::{types, __gl_imports};\n\n");
     s.push_str(&glx_missing);
     s.push_str("}\n\n");
     writeln!(s, "/// How many exported functions are not implemented (one log latch each).").unwrap();

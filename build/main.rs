@@ -8,12 +8,12 @@
 //!   (`translate::dispatch`);
 //! - `exports.rs`: the C ABI shim of every exported name and the `glXGetProcAddress` table
 //!   (`gl_entry::exports`), each writing the call log when `GLRT_TRACE` is set;
-//! - `trace_groups.rs`: the gl.xml enum groups the call log prints parameters by
-//!   (`gl_entry::trace::groups`);
+//! - `call_log_groups.rs`: the gl.xml enum groups the call log prints parameters by
+//!   (`gl_entry::call_log::groups`);
 //! - `fuzz_calls.rs`: a random-argument caller of every served command, for the robustness
 //!   test (`translate::robustness`);
-//! - `capture_table.rs`: the command table of capture files and the replay thunks
-//!   (`translate::capture::table`);
+//! - `capture_commands.rs`: the command table of capture files (`translate::capture::table`);
+//! - `replay_calls.rs`: the replay thunks, command id to C export (`replay::calls`);
 //! - `shaders/*.spv`: the renderer's GLSL shaders compiled to SPIR-V (`shaders.rs`).
 //!
 //! A command is implemented when `translate` defines a method with exactly its C name
@@ -22,9 +22,9 @@
 //! `GL_INVALID_OPERATION` and log their name once.
 
 mod emit;
+mod emit_call_log;
 mod emit_capture;
 mod emit_fuzz;
-mod emit_trace;
 mod model;
 mod overlay;
 mod scan;

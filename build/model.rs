@@ -27,7 +27,7 @@ pub enum Route {
     Rect { suffix: String, vector: bool },
     /// An alias (`glActiveTextureARB`) of a command that is served.
     Alias(String),
-    /// Exported by hand in `gl_entry` (module file stem).
+    /// Exported by hand in `gl_entry` (module path below `gl_entry`: `glx::exports::swap`).
     Hand(String),
     /// Not implemented: raises `GL_INVALID_OPERATION` (GLX: returns zero) and logs once.
     Missing,

@@ -13,26 +13,37 @@ pub fn identifiers_after(dir: &Path, marker: &str, prefix: &str) -> BTreeSet<Str
     found
 }
 
-/// C functions exported by hand: `(module file stem, name)` for each `extern "C" fn gl...` in
-/// the top level of `dir`.
+/// C functions exported by hand: `(module path below dir, name)` for each `extern "C" fn gl...`
+/// in the `.rs` files under `dir` (`("headless", "glrtSwapBuffers")`,
+/// `("glx::exports::swap", "glXSwapBuffers")`).
 pub fn hand_exports(dir: &Path) -> Vec<(String, String)> {
     let mut found = Vec::new();
+    hand_exports_under(dir, &[], &mut found);
+    found
+}
+
+/// [`hand_exports`] of the folder `dir`, the module `module`.
+fn hand_exports_under(dir: &Path, module: &[String], found: &mut Vec<(String, String)>) {
     let mut entries: Vec<_> = fs::read_dir(dir).expect("gl_entry dir").flatten().collect();
     entries.sort_by_key(|e| e.path());
     for entry in entries {
         let path = entry.path();
+        let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+        if path.is_dir() {
+            hand_exports_under(&path, &[module, &[stem]].concat(), found);
+            continue;
+        }
         if path.extension().is_none_or(|e| e != "rs") {
             continue;
         }
-        let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
+        let inner = if stem == "mod" { module.to_vec() } else { [module, &[stem]].concat() };
         let text = fs::read_to_string(&path).expect("reading source");
         for name in identifiers_in(&text, "extern \"C\" fn ", "", false) {
             if name.starts_with("gl") {
-                found.push((stem.clone(), name));
+                found.push((inner.join("::"), name));
             }
         }
     }
-    found
 }
 
 /// Identifiers following `marker` in `text`, with `prefix` put back in front; with

@@ -6,7 +6,7 @@
 #                                     it is installed; skipped with a message otherwise
 # and says which frames are byte-identical. The tolerance comparison is a test: copy
 # OUT_DIR/device back and run
-#   GLRT_DEVICE_FRAMES=OUT_DIR/device cargo test --test capture_replay -- --ignored device
+#   GLRT_DEVICE_FRAMES=OUT_DIR/device cargo test --test end_to_end -- --ignored device_frames
 # Needs no Rust toolchain: only the glrt binary, built elsewhere.
 #   bash scripts/device_replay.sh OUT_DIR [GLRT]   (GLRT default: target/release/glrt, else
 #                                                   target/debug/glrt)

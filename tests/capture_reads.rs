@@ -16,9 +16,10 @@ use std::process::Command;
 use std::sync::Arc;
 
 use common::gl;
+use glrt::frame::RecordingSink;
 use glrt::frame::pixels::{PixelData, PixelKind};
-use glrt::render::RecordingSink;
-use glrt::translate::capture::{self, reader::{Capture, Record}, replay, table::COMMANDS};
+use glrt::replay::{self, reader::{Capture, Record}};
+use glrt::translate::capture::{self, table::COMMANDS};
 use glrt::translate::gl::*;
 
 fn scratch(name: &str) -> PathBuf {

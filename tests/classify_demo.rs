@@ -4,8 +4,8 @@
 //! first frames may upload static geometry while the camera turns. `glrt replay --stats`,
 //! `glrt info` and the call log are checked on the 4-frame fixture.
 //!
-//! The demo's draws, in order (see tests/demo.rs for how batches merge): sky, floor, ceiling
-//! and walls, pillars (display list), door, animated mesh (`glDrawElements`), glass, HUD bar.
+//! The demo's draws, in order (see tests/end_to_end/demo.rs for how batches merge): sky, floor,
+//! ceiling and walls, pillars (display list), door, animated mesh (`glDrawElements`), glass, HUD bar.
 //! Needs `cargo build` first (the demo runs through `target/<profile>/libglrt.so`).
 
 mod programs;
@@ -15,11 +15,10 @@ use std::process::Command;
 use std::sync::{Arc, OnceLock};
 
 use glam::Mat4;
+use glrt::frame::FrameSink;
 use glrt::frame::class::{DrawClass, FrameStats, Match, View};
 use glrt::frame::{DrawSource, Frame};
-use glrt::render::FrameSink;
-use glrt::translate::capture::reader::Capture;
-use glrt::translate::capture::replay;
+use glrt::replay::{self, reader::Capture};
 use parking_lot::Mutex;
 
 /// Frames captured.

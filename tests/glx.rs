@@ -13,14 +13,14 @@ use std::process::{Child, Command, Stdio};
 use std::sync::atomic::{AtomicU8, Ordering};
 use std::time::{Duration, Instant};
 
-use glrt::gl_entry::glx_config::*;
-use glrt::gl_entry::glx_context::*;
-use glrt::gl_entry::glx_drawable::*;
-use glrt::gl_entry::glx_query::*;
-use glrt::gl_entry::glx_swap::*;
-use glrt::gl_entry::glx_types::types;
-use glrt::gl_entry::glx_xfont::glXUseXFont;
 use glrt::gl_entry::exports as gl;
+use glrt::gl_entry::glx::exports::config::*;
+use glrt::gl_entry::glx::exports::context::*;
+use glrt::gl_entry::glx::exports::drawable::*;
+use glrt::gl_entry::glx::exports::query::*;
+use glrt::gl_entry::glx::exports::swap::*;
+use glrt::gl_entry::glx::exports::xfont::glXUseXFont;
+use glrt::gl_entry::glx::types::types;
 use glrt::translate::gl::{
     GL_ALPHA_BITS, GL_COLOR_BUFFER_BIT, GL_COMPILE, GL_RGBA, GL_SAMPLE_BUFFERS, GL_SAMPLES, GL_UNSIGNED_BYTE, GL_VIEWPORT,
 };

@@ -7,9 +7,9 @@
 mod x11;
 
 use glrt::gl_entry::exports as gl;
-use glrt::gl_entry::glx_context::*;
-use glrt::gl_entry::glx_drawable::*;
-use glrt::gl_entry::glx_config::*;
+use glrt::gl_entry::glx::exports::config::*;
+use glrt::gl_entry::glx::exports::context::*;
+use glrt::gl_entry::glx::exports::drawable::*;
 use glrt::translate::gl::*;
 use x11_dl::glx::*;
 use x11_dl::xlib::{self, Xlib};

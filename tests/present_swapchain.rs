@@ -12,8 +12,9 @@ mod x11;
 use std::time::{Duration, Instant};
 
 use ash::vk;
+use glrt::frame::{Surface, Target, XDrawable};
 use glrt::render::present::swapchain::{self, Gpu, Presented, Source, SwapchainPresenter};
-use glrt::render::{FrameImage, Presenter, Surface, Target, XDrawable};
+use glrt::render::{FrameImage, Presenter};
 use x11_dl::xlib::{self, Xlib};
 
 /// A test image, rows bottom to top (as OpenGL reads them).

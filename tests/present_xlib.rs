@@ -7,8 +7,8 @@
 #[path = "x11/mod.rs"]
 mod x11;
 
+use glrt::frame::{Surface, XDrawable};
 use glrt::render::present::xlib::XlibPresenter;
-use glrt::render::{Surface, XDrawable};
 use x11_dl::xlib::{self, Xlib};
 
 /// A test image, rows bottom to top: red rises to the right, green upwards, blue on a checker.

@@ -4,9 +4,10 @@
 //! Neither may panic, and an error must name an offset inside the input.
 #![no_main]
 
-use glrt::translate::capture::{format, reader::Capture, table::COMMANDS};
-use libfuzzer_sys::fuzz_target;
 use std::sync::OnceLock;
+use glrt::replay::reader::Capture;
+use glrt::translate::capture::{format, table::COMMANDS};
+use libfuzzer_sys::fuzz_target;
 
 fn read_all(capture: &Capture, limit: usize) {
     for record in capture.records() {

@@ -1,5 +1,5 @@
 // Ray traversal of the compute tracer's BVHs (render::trace::bvh; render::trace::bvh::cpu is
-// the same algorithm in Rust, operation for operation, and tests/trace_bvh.rs checks they
+// the same algorithm in Rust, operation for operation, and tests/pathtrace/bvh.rs checks they
 // agree on lavapipe).
 //
 // Rays are in eye space. The TLAS over the instances and, on reaching an instance, its BLAS

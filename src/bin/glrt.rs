@@ -14,7 +14,8 @@ use std::process::ExitCode;
 
 use std::sync::Arc;
 
-use glrt::translate::capture::{self, reader::Capture, replay, summary::Summary};
+use glrt::replay::{self, reader::Capture, summary::Summary};
+use glrt::translate::capture;
 use glrt::translate::classify::report::{StatsPrinter, TextureCatalog};
 
 const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] [--stats] | glrt dump FILE";
@@ -75,7 +76,7 @@ fn dump(args: &[String]) -> Result<(), String> {
     // Safety: single-threaded so far; nothing else reads the environment concurrently.
     unsafe { std::env::set_var("GLRT_TRACE", "/dev/stdout") };
     replay::run(&capture, &replay::Options::default())?;
-    glrt::gl_entry::trace::flush();
+    glrt::gl_entry::call_log::flush();
     Ok(())
 }
 

@@ -142,6 +142,12 @@ impl View {
     }
 }
 
+/// Whether `projection` is orthographic (its last row is `(0, 0, 0, 1)`): such draws are 2D
+/// overlays to hash tracking, and no sky backdrop to the tracer.
+pub fn orthographic(projection: &Mat4) -> bool {
+    projection.row(3) == glam::Vec4::W
+}
+
 /// A count per counted class ([`DrawClass::COUNTED`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct ClassCounts(pub [u64; 6]);

@@ -2,12 +2,20 @@
 //! read-back that needs pixels): draws in object space with their state, clears, and what the
 //! renderer needs to resolve textures. No GL enums here: `translate` converts them to these
 //! types.
+//!
+//! This is the interface layer between the two sides, and names neither: where frames go
+//! ([`sink::FrameSink`], to a [`target::Target`]), and the few definitions both sides must
+//! share (the mipmap box filter in [`mipmap`], [`class::orthographic`], the shader interface
+//! constants of [`program`]).
 
 pub mod class;
 pub mod framebuffer;
+pub mod mipmap;
 pub mod pixels;
 pub mod program;
+pub mod sink;
 pub mod state;
+pub mod target;
 pub mod texture;
 pub mod vertex;
 pub mod world;
@@ -17,7 +25,9 @@ use std::sync::Arc;
 use glam::Mat4;
 
 pub use framebuffer::Framebuffer;
+pub use sink::{FrameSink, NullSink, RecordingSink};
 pub use state::{ColorBuffer, DrawBuffers, RasterState};
+pub use target::{Surface, Target, XDrawable};
 pub use texture::TextureRef;
 pub use vertex::{Attrib, Vertices};
 
@@ -32,16 +42,16 @@ pub struct Frame {
     pub clears: Vec<Clear>,
     /// Occlusion queries ended in this frame: query name and the draws (indices into
     /// [`Frame::draws`]) between its `glBeginQuery` and `glEndQuery`; the renderer counts their
-    /// samples that pass and answers through [`crate::render::FrameSink::occlusion_result`].
+    /// samples that pass and answers through [`crate::frame::FrameSink::occlusion_result`].
     pub occlusion_queries: Vec<(u32, std::ops::Range<usize>)>,
     /// Bitmaps, pixel images and copies, in program order with the draws.
     pub pixels: Vec<pixels::PixelOp>,
     /// Width and height of the drawable, in pixels (`[0, 0]` when no drawable was bound).
     pub size: [u32; 2],
-    /// The colour buffer [`crate::render::FrameSink::read_pixels`] reads (`glReadBuffer` at
+    /// The colour buffer [`crate::frame::FrameSink::read_pixels`] reads (`glReadBuffer` at
     /// the time of the read).
     pub read_buffer: ColorBuffer,
-    /// The framebuffer [`crate::render::FrameSink::read_pixels`] reads (the read framebuffer
+    /// The framebuffer [`crate::frame::FrameSink::read_pixels`] reads (the read framebuffer
     /// binding at the time of the read).
     pub read_framebuffer: Framebuffer,
     /// Framebuffer-object attachments that no longer exist (renderbuffers deleted or given new

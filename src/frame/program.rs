@@ -43,6 +43,9 @@ pub struct ShaderProgram {
     pub attributes: Vec<u32>,
 }
 
+/// Vulkan location of generic vertex attribute 1 in a program's vertex stage (attribute 0 is
+/// `gl_Vertex`, location 0; generic attribute `i` is at this `+ i - 1`).
+pub const GENERIC_ATTRIBUTE_LOCATION: u32 = 10;
 /// Binding in set 1 of the built-in state block (`shaders/glsl_builtins.glsl`).
 pub const BUILTINS_BINDING: u32 = 0;
 /// Binding in set 1 of the block of the program's own uniforms.

@@ -40,6 +40,12 @@ pub(crate) fn with_slot<R>(f: impl FnOnce(&mut Option<Current>) -> R) -> R {
     }
 }
 
+/// Whether this thread's current context is compiling a display list (what a capture's
+/// frame range asks of each drawing command: `translate::capture::begin`).
+pub fn compiling_list() -> bool {
+    with_slot(|slot| slot.as_ref().is_some_and(|c| c.context.lists.compiling()))
+}
+
 /// Runs `f` with this thread's current context when there is one that is not broken and no
 /// other call is using it (re-entry); otherwise returns `None`. The GL calls' path: one
 /// thread-local access, no allocation.

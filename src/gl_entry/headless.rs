@@ -10,9 +10,10 @@ use parking_lot::Mutex;
 
 use super::current::{self, SharedContext};
 use super::shim::with_current;
-use crate::render::{self, FrameSink, Surface, Target};
-use crate::translate::capture::{self, format::SwapKind};
+use crate::frame::{FrameSink, Surface, Target};
+use crate::render;
 use crate::translate::Context;
+use crate::translate::capture::{self, format::SwapKind};
 use crate::translate::context::ContextConfig;
 use crate::translate::context::SharedObjects;
 
@@ -111,7 +112,7 @@ pub extern "C" fn glrtSwapBuffers() {
 
 /// Ends the current frame as `kind` did (a glX swap first takes the drawable size it read).
 pub fn swap(kind: SwapKind) {
-    super::trace::frame_end(kind.name());
+    super::call_log::frame_end(kind.name());
     with_current(kind.name(), |c| {
         if let SwapKind::Glx { width, height } = kind {
             c.bind_drawable(width, height);

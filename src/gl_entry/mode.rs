@@ -1,5 +1,5 @@
 //! What the exports do besides glrt's own work: write the call log (`GLRT_TRACE`,
-//! [`super::trace`]) and forward every call to another OpenGL library (`GLRT_PASSTHROUGH`,
+//! [`super::call_log`]) and forward every call to another OpenGL library (`GLRT_PASSTHROUGH`,
 //! [`super::passthrough`]).
 //!
 //! Both are read from the environment at the first GL or GLX call and kept in one byte, so an
@@ -66,7 +66,7 @@ fn read_environment() -> u8 {
     if MODE.compare_exchange(UNREAD, READING, Ordering::Acquire, Ordering::Relaxed).is_ok() {
         READER.with(|r| r.set(true));
         let mut mode = 0;
-        if super::trace::open_from_environment() {
+        if super::call_log::open_from_environment() {
             mode |= TRACE;
         }
         if super::passthrough::open_from_environment() {

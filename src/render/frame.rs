@@ -24,7 +24,7 @@
 
 use crate::frame::pixels::PixelBuffer;
 use crate::frame::{Draw, Frame};
-use crate::render::FrameSink;
+use crate::frame::FrameSink;
 use crate::render::raster::device::{Device, Error, Result};
 use crate::render::raster::dump::Dump;
 use crate::render::raster::output::FrameOutput;
@@ -173,7 +173,7 @@ impl Tracing {
 impl FrameSink for Renderer {
     /// Also takes the drawable's sample count and destination alpha (see
     /// [`Raster::set_target`]).
-    fn set_target(&mut self, target: crate::render::Target) {
+    fn set_target(&mut self, target: crate::frame::Target) {
         self.raster.set_target(target);
     }
 

@@ -12,8 +12,8 @@ use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::Path;
 
-use super::FrameSink;
 use crate::frame::Frame;
+use crate::frame::FrameSink;
 
 /// The environment variable naming the log file.
 pub const VARIABLE: &str = "GLRT_FRAME_LOG";
@@ -101,7 +101,7 @@ impl FrameSink for FrameLog {
         self.inner.present(frame);
     }
 
-    fn set_target(&mut self, target: crate::render::Target) {
+    fn set_target(&mut self, target: crate::frame::Target) {
         self.inner.set_target(target);
     }
 
@@ -134,8 +134,8 @@ pub fn wrap_from_env(inner: Box<dyn FrameSink>) -> Box<dyn FrameSink> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::frame::RecordingSink;
     use crate::frame::{Clear, Draw};
-    use crate::render::RecordingSink;
 
     #[test]
     fn one_line_per_frame_and_frames_go_on_to_the_inner_sink() {

@@ -1,9 +1,10 @@
-//! Rendering: consumes [`Frame`]s. The Vulkan renderer is [`frame::Renderer`]: a frame's
-//! stages in order, read top to bottom there; [`raster`] provides the command recording and
-//! the raster stages (clears, pixel operations, draws in program order, read-back, present),
-//! [`trace`] the path-tracing stages behind one back-end trait ([`trace::RayTracer`]), and
-//! [`present`] the window. [`default_sink`] chooses the renderer of the mode (`GLRT_MODE`);
-//! the sinks below keep frames for tests and for programs run without a renderer.
+//! Rendering: draws [`crate::frame::Frame`]s with Vulkan. The Vulkan renderer is
+//! [`frame::Renderer`], a [`FrameSink`] (defined in [`crate::frame`], the interface between the
+//! layers): a frame's stages in order, read top to bottom there; [`raster`] provides the command
+//! recording and the raster stages (clears, pixel operations, draws in program order,
+//! read-back, present), [`trace`] the path-tracing stages behind one back-end trait
+//! ([`trace::RayTracer`]), and [`present`] the window. [`default_sink`] chooses the renderer of
+//! the mode (`GLRT_MODE`).
 
 pub mod frame;
 pub mod frame_log;
@@ -11,72 +12,9 @@ pub mod present;
 pub mod raster;
 pub mod trace;
 
-use std::sync::Arc;
+use crate::frame::{FrameSink, NullSink};
 
-use parking_lot::Mutex;
-
-use crate::frame::Frame;
-use crate::frame::pixels::PixelBuffer;
-
-pub use present::{FrameImage, Presenter, Surface, Target, XDrawable};
-
-/// Receives each finished frame.
-pub trait FrameSink: Send {
-    /// Takes the frame that `glXSwapBuffers` (or a read-back) ended.
-    fn present(&mut self, frame: Frame);
-
-    /// Where the next frames go: called when a context is made current on a drawable and when
-    /// that drawable's size changes (only then: the target differs from the previous one).
-    /// The default ignores it (sinks that keep frames in memory).
-    fn set_target(&mut self, _target: Target) {}
-
-    /// Samples that passed for occlusion query `query` of frame number `frame` (listed in
-    /// that frame's [`Frame::occlusion_queries`]), once that frame was presented; `None` while
-    /// unknown. A renderer whose [`FrameSink::occlusion_counter_bits`] is not 0 must answer
-    /// every query of a presented frame eventually. The default counts nothing.
-    fn occlusion_result(&mut self, _frame: u64, _query: u32) -> Option<u64> {
-        None
-    }
-
-    /// Bits of the renderer's sample counter (`GL_QUERY_COUNTER_BITS`); 0 when it does not
-    /// count samples (the default).
-    fn occlusion_counter_bits(&self) -> u32 {
-        0
-    }
-    /// Renders `frame` so far (it is not ended) and reads the rectangle `rect` (x, y, width,
-    /// height, window coordinates) of `buffer`: RGBA for colour, the value in the first
-    /// component for depth and stencil; rows bottom to top. `None` when the sink cannot
-    /// render (the caller leaves the client's memory untouched).
-    fn read_pixels(&mut self, _frame: &Frame, _buffer: PixelBuffer, _rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
-        None
-    }
-}
-
-/// Drops frames, keeping only how many were presented (used when no renderer is available).
-#[derive(Default)]
-pub struct NullSink {
-    /// Frames presented so far.
-    pub presented: u64,
-}
-
-impl FrameSink for NullSink {
-    fn present(&mut self, _frame: Frame) {
-        self.presented += 1;
-    }
-}
-
-/// Keeps every frame in a shared list, for tests.
-#[derive(Clone, Default)]
-pub struct RecordingSink {
-    /// The frames presented so far.
-    pub frames: Arc<Mutex<Vec<Frame>>>,
-}
-
-impl FrameSink for RecordingSink {
-    fn present(&mut self, frame: Frame) {
-        self.frames.lock().push(frame);
-    }
-}
+pub use present::{FrameImage, Presenter};
 
 /// The sink a new context presents to, behind the frame log when `GLRT_FRAME_LOG` is set (see
 /// [`frame_log`]): the Vulkan renderer of the mode [`Mode::of_process`] chooses when a device

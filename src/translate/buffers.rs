@@ -76,7 +76,7 @@ impl Context {
     }
 
     /// Reads `rect` of `buffer` (the read buffer, for colour) of the frame so far through the
-    /// renderer ([`crate::render::FrameSink::read_pixels`]).
+    /// renderer ([`crate::frame::FrameSink::read_pixels`]).
     pub(crate) fn read_framebuffer(&mut self, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
         let Ok(framebuffer) = self.read_framebuffer_object() else {
             self.set_error_in(gl::GL_INVALID_FRAMEBUFFER_OPERATION_EXT, "read");

@@ -8,7 +8,7 @@ use parking_lot::Mutex;
 use super::error::ErrorState;
 use super::lists::{ListState, ListTable};
 use crate::frame::Frame;
-use crate::render::{FrameSink, RecordingSink};
+use crate::frame::{FrameSink, RecordingSink};
 
 /// Objects shared by the contexts of one share group (`glXCreateContext`'s `shareList`):
 /// display lists, texture objects, buffer objects, renderbuffer and framebuffer objects.
@@ -82,7 +82,7 @@ pub struct Context {
     /// Size of the drawable last made current, `(width, height)`.
     pub(crate) drawable_size: Option<(i32, i32)>,
     /// Where the renderer was last told frames go (`translate::target`).
-    pub(crate) target: Option<crate::render::Target>,
+    pub(crate) target: Option<crate::frame::Target>,
     /// Hash tracking: classes, instances, view and static world of each frame.
     pub(crate) classify: super::classify::Classifier,
 }

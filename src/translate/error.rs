@@ -16,7 +16,7 @@ pub struct ErrorState {
 }
 
 impl Context {
-    /// The latched error, without clearing it (for the call log, `gl_entry::trace`).
+    /// The latched error, without clearing it (for the call log, `gl_entry::call_log`).
     pub(crate) fn latched_error(&self) -> GLenum {
         self.errors.latched
     }

@@ -113,7 +113,7 @@ mod tests {
 
     #[test]
     fn sample_queries_answer_the_drawable() {
-        use crate::render::{Surface, Target};
+        use crate::frame::{Surface, Target};
         let (mut ctx, _) = Context::with_recording();
         let samples = |ctx: &Context| [gl::GL_SAMPLE_BUFFERS, gl::GL_SAMPLES].map(|p| ctx.query(p).unwrap().to_ints()[0]);
         ctx.bind_target(Target { size: [8, 8], surface: Surface::Offscreen, swap_interval: 0, samples: 4, alpha: true });
@@ -124,7 +124,7 @@ mod tests {
 
     #[test]
     fn alpha_bits_answer_the_drawable() {
-        use crate::render::{Surface, Target};
+        use crate::frame::{Surface, Target};
         let (mut ctx, _) = Context::with_recording();
         let alpha_bits = |ctx: &Context| ctx.query(gl::GL_ALPHA_BITS).unwrap().to_ints()[0];
         let rgb = Target { size: [8, 8], surface: Surface::Offscreen, swap_interval: 0, samples: 1, alpha: false };

@@ -8,8 +8,8 @@
 use std::ffi::c_void;
 
 use crate::frame::Frame;
+use crate::frame::FrameSink;
 use crate::frame::pixels::{PixelBuffer, PixelData, PixelKind};
-use crate::render::FrameSink;
 use crate::translate::context::ContextConfig;
 use crate::translate::{Context, dispatch, gl};
 

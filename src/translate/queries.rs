@@ -4,7 +4,7 @@
 //! Samples are counted by the renderer, not here. Each ended query is listed in the frame
 //! being assembled ([`crate::frame::Frame::occlusion_queries`]: its name and the range of
 //! draws it covers) and its result is asked of the renderer through
-//! [`crate::render::FrameSink::occlusion_result`] once that frame has been handed over:
+//! [`crate::frame::FrameSink::occlusion_result`] once that frame has been handed over:
 //! - `GL_QUERY_RESULT_AVAILABLE` is false while the query's frame is still being assembled or
 //!   the renderer has not answered;
 //! - `GL_QUERY_RESULT` waits as the specification says: if the query's frame is still being
@@ -224,7 +224,7 @@ mod tests {
     use parking_lot::Mutex;
 
     use crate::frame::Frame;
-    use crate::render::FrameSink;
+    use crate::frame::FrameSink;
     use crate::translate::context::ContextConfig;
     use crate::translate::gl::{self, GLuint};
     use crate::translate::{Context, dispatch};

@@ -1,10 +1,10 @@
 //! The context's drawable as the renderer sees it: made current on a drawable (GLX 1.4
 //! section 3.3.7) the viewport takes its size the first time only, and the renderer is told
-//! where frames go ([`crate::render::FrameSink::set_target`]) whenever that changes, including
+//! where frames go ([`crate::frame::FrameSink::set_target`]) whenever that changes, including
 //! when the window is resized (which never changes the viewport).
 
 use super::Context;
-use crate::render::{Surface, Target};
+use crate::frame::{Surface, Target};
 
 impl Context {
     /// Called when the context is made current on a drawable: sizes the viewport the first
@@ -41,7 +41,7 @@ mod tests {
     use parking_lot::Mutex;
 
     use crate::frame::Frame;
-    use crate::render::{FrameSink, Surface, Target};
+    use crate::frame::{FrameSink, Surface, Target};
     use crate::translate::Context;
     use crate::translate::context::ContextConfig;
     use crate::translate::gl;

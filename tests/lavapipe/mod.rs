@@ -10,7 +10,7 @@ use glrt::frame::Frame;
 use glrt::frame::pixels::PixelBuffer;
 use glrt::render::frame::Renderer;
 use glrt::render::raster::device::Error;
-use glrt::render::{FrameSink, Target};
+use glrt::frame::{FrameSink, Target};
 use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
 

@@ -1,4 +1,4 @@
-// Samples the texel pool at a list of queries (tests/trace_texels.rs): one invocation per
+// Samples the texel pool at a list of queries (tests/pathtrace/texels.rs): one invocation per
 // query, result i = (texel_sample(texture, uv, lod)), and the texture's texel_size in a
 // second vec4.
 #version 460

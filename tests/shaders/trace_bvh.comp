@@ -1,4 +1,4 @@
-// tests/trace_bvh.rs: one ray per invocation through shaders/trace/bvh.glsl; writes the
+// tests/pathtrace/bvh.rs: one ray per invocation through shaders/trace/bvh.glsl; writes the
 // closest hit and the any-hit answer. The alpha test rejects odd triangles.
 #version 450
 #extension GL_GOOGLE_include_directive : require

@@ -9,7 +9,7 @@
 //! `GLX_ALPHA_SIZE` at 0 gets an RGB configuration first (table 3.4: alpha bits count only
 //! when asked for, then the smaller buffer wins), one asking for alpha gets only RGBA ones.
 //! The renderer keeps alpha at 1 in the colour buffers of an RGB drawable
-//! ([`crate::render::Target::alpha`]). glrt renders into its own buffers, so every
+//! ([`crate::frame::Target::alpha`]). glrt renders into its own buffers, so every
 //! configuration supports windows, pixmaps and pbuffers.
 //!
 //! The same four follow per sample count the Vulkan device renders multisampled

@@ -12,7 +12,7 @@ use parking_lot::Mutex;
 use x11_dl::xlib::{self, Xlib};
 
 use super::XDisplay;
-use crate::render::{Surface, Target, XDrawable};
+use crate::frame::{Surface, Target, XDrawable};
 
 /// What a drawable is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -16,8 +16,8 @@ use x11_dl::glx::*;
 
 use super::config::read_pairs;
 
+use crate::gl_entry::call_log::{self, Entry};
 use crate::gl_entry::mode::{self, Mode};
-use crate::gl_entry::trace::{self, Trace};
 use crate::translate::convert::ReturnDefault;
 
 /// A GLX argument or result as the call log prints it.
@@ -159,7 +159,7 @@ impl GlxValue for () {
 ///
 /// # Safety
 /// As [`GlxValue::print`].
-pub unsafe fn arg<T: GlxValue>(t: &mut Trace, name: &str, value: T) {
+pub unsafe fn arg<T: GlxValue>(t: &mut Entry, name: &str, value: T) {
     // Safety: as documented.
     unsafe { value.print(t.next(name.trim_start_matches('_'))) };
 }
@@ -171,7 +171,7 @@ pub fn run<R: GlxValue + ReturnDefault>(
     name: &'static str,
     bool_result: bool,
     own: impl FnOnce() -> R,
-    args: impl FnOnce(&mut Trace),
+    args: impl FnOnce(&mut Entry),
     forward: impl FnOnce() -> Option<R>,
 ) -> R {
     match mode::special() {
@@ -189,11 +189,11 @@ pub fn special<R: GlxValue + ReturnDefault>(
     name: &'static str,
     bool_result: bool,
     own: impl FnOnce() -> R,
-    args: impl FnOnce(&mut Trace),
+    args: impl FnOnce(&mut Entry),
     forward: impl FnOnce() -> Option<R>,
 ) -> R {
     let call = || if mode.passthrough() { forward().unwrap_or_else(R::return_default) } else { super::guard(name, own) };
-    let Some(mut t) = trace::begin(mode, name) else { return call() };
+    let Some(mut t) = call_log::begin(mode, name) else { return call() };
     args(&mut t);
     t.close_args();
     let result = call();

@@ -1,7 +1,11 @@
-//! GLX 1.4 on the application's own Xlib `Display`: the state behind the `glX*` exports of
-//! `gl_entry::glx_*` (framebuffer configurations, contexts, drawables, fonts), and what every
-//! export shares: Xlib loaded once, panic guards, trapping the X errors of glrt's own requests
-//! and reporting GLX errors to the application's error handler.
+//! GLX 1.4 on the application's own Xlib `Display`. The `glX*` C functions are in
+//! [`exports`], one file per part of the API beside the file of the state it works on:
+//! `exports/config.rs` and [`config`] (framebuffer configurations), `exports/context.rs` and
+//! [`context`], `exports/drawable.rs` and [`drawable`], `exports/xfont.rs` and [`xfont`]; and
+//! `exports/query.rs` and `exports/swap.rs`, whose state is elsewhere (the exports table, the
+//! current context). Here: what every export shares, Xlib loaded once, panic guards
+//! ([`entry`]), trapping the X errors of glrt's own requests and reporting GLX errors to the
+//! application's error handler; and the GLX C types ([`types`]).
 //!
 //! glrt does not use the server's GLX extension: it renders into its own buffers, so GLX
 //! objects are client-side state keyed by the application's `Display` pointer.
@@ -10,6 +14,8 @@ pub mod config;
 pub mod context;
 pub mod drawable;
 pub mod entry;
+pub mod exports;
+pub mod types;
 pub mod xfont;
 
 use std::collections::HashSet;

@@ -2,12 +2,13 @@
 //!
 //! - [`presenter`]: [`Presenter`], what a renderer owns per target: picks the path and shows
 //!   each frame ([`presenter::FrameImage`] is what it needs of the rendered frame).
-//! - [`target`]: what a context draws to ([`Target`]), handed to the renderer through
-//!   [`crate::render::FrameSink::set_target`].
 //! - [`pixel_format`]: RGBA8 to the pixel layout of an X visual.
 //! - [`swapchain`]: a Vulkan swapchain on the window (the normal path).
 //! - [`window_output`]: the raster renderer's output that presents its frames.
 //! - [`xlib`]: the fallback presenter, `XShmPutImage` (MIT-SHM) or `XPutImage` of a read-back.
+//!
+//! What a context draws to ([`crate::frame::Target`]) reaches the renderer through
+//! [`crate::frame::FrameSink::set_target`].
 //!
 //! Xlib requests go to the application's own `Display`, on the application's thread, inside
 //! its `glXSwapBuffers`/`glFinish` (synchronously), so no display lock is needed beyond what
@@ -16,7 +17,6 @@
 pub mod pixel_format;
 pub mod presenter;
 pub mod swapchain;
-pub mod target;
 pub mod window_output;
 pub mod xlib;
 
@@ -25,7 +25,6 @@ use std::collections::HashMap;
 use parking_lot::Mutex;
 
 pub use presenter::{FrameImage, Presenter};
-pub use target::{Surface, Target, XDrawable};
 
 /// How many times each display address was closed (see [`display_closed`]).
 static CLOSES: Mutex<Option<HashMap<usize, u64>>> = Mutex::new(None);

@@ -6,9 +6,10 @@
 //! `vulkan` is the same as `auto`: without a usable swapchain there is no other way to show
 //! a frame).
 
+use super::display_epoch;
 use super::swapchain::{Gpu, Presented, Source, SwapchainPresenter};
 use super::xlib::XlibPresenter;
-use super::{Surface, Target, display_epoch};
+use crate::frame::{Surface, Target};
 
 /// The rendered frame as a presenter needs it: the GPU image for a swapchain, or its pixels.
 pub trait FrameImage {

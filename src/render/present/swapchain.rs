@@ -19,7 +19,8 @@ use std::ffi::CStr;
 
 use ash::vk;
 
-use super::{XDrawable, display_epoch};
+use super::display_epoch;
+use crate::frame::XDrawable;
 
 /// Instance extensions a presenting renderer enables (when the loader offers them all).
 pub const INSTANCE_EXTENSIONS: [&CStr; 2] = [ash::khr::surface::NAME, ash::khr::xlib_surface::NAME];

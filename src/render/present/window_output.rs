@@ -14,7 +14,8 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 
 use super::swapchain::{Gpu, Source};
-use super::{FrameImage, Presenter, Target};
+use super::{FrameImage, Presenter};
+use crate::frame::Target;
 use crate::render::raster::device::{Buffer, Device, Result};
 use crate::render::raster::output::{FrameOutput, SubmitSync};
 use crate::render::raster::renderer::Recorder;

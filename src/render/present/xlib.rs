@@ -18,8 +18,9 @@ use parking_lot::Mutex;
 use x11_dl::xlib::{self, Xlib};
 use x11_dl::xshm::{XShmSegmentInfo, Xext};
 
+use super::display_epoch;
 use super::pixel_format::PixelFormat;
-use super::{Surface, XDrawable, display_epoch};
+use crate::frame::{Surface, XDrawable};
 
 /// Xlib, loaded once (the application's `libX11.so.6` is already in the process).
 fn xlib_fns() -> Option<&'static Xlib> {

@@ -22,7 +22,7 @@
 //! with the sample mask `1 << i` and the viewport moved by `location(i) − (½, ½)`: sample `i`
 //! of every pixel then lies where the pixel centre lay before the move, so its coverage,
 //! depth and interpolated values are the centre's, and each sample holds what a single-sampled
-//! drawable holds (`tests/raster_msaa.rs` compares the two images), for every primitive, at
+//! drawable holds (`tests/raster/msaa.rs` compares the two images), for every primitive, at
 //! the cost of one draw per sample ([`passes`]).
 //!
 //! Not done: with `GL_MULTISAMPLE` on, sections 3.3.3 and 3.4.4 ignore `GL_POINT_SMOOTH` and

@@ -33,8 +33,8 @@ pub trait FrameOutput: Send {
     fn record(&mut self, rec: &mut Recorder<'_>, slot: usize, frame: u64) -> Result<SubmitSync>;
 
     /// The context was made current on `target`, or its size or swap interval changed
-    /// ([`crate::render::FrameSink::set_target`]).
-    fn set_target(&mut self, _device: &Device, _target: crate::render::Target) {}
+    /// ([`crate::frame::FrameSink::set_target`]).
+    fn set_target(&mut self, _device: &Device, _target: crate::frame::Target) {}
 
     /// Called right after the submission of `slot` (for example to queue the present).
     fn submitted(&mut self, _device: &Device, _slot: usize) -> Result<()> {

@@ -14,7 +14,7 @@
 //!   coordinates (y up) land in images whose row 0 is the top of the window (see
 //!   [`super::target`]). Vulkan's winding is defined as seen on screen (its area formula
 //!   carries a minus sign for the downward y), and the flipped viewport shows the image as GL
-//!   does, so GL's windings map unchanged ([`front_face`]; `tests/raster.rs` checks it).
+//!   does, so GL's windings map unchanged ([`front_face`]; `tests/raster/draws.rs` checks it).
 //! - **depth**: `ff.vert` maps GL clip depth [-w, w] to Vulkan's [0, w]; the viewport's
 //!   depth range is GL's `glDepthRange`.
 //! - **logic op**: used when the device has `logicOp` (lavapipe and NVIDIA do); otherwise the
@@ -36,9 +36,8 @@ use super::ff;
 use super::multisample::{self, SampleState};
 use super::programs::{self, Programs};
 use super::target::COLOR_FORMAT;
-use crate::frame::program::ShaderProgram;
+use crate::frame::program::{GENERIC_ATTRIBUTE_LOCATION, ShaderProgram};
 use crate::frame::state::{Face, RasterState, Stencil, StencilFaces, Winding};
-use crate::translate::glsl::GENERIC_ATTRIBUTE_LOCATION;
 
 /// Descriptor bindings of set 0 (see the `ff` module doc): the uniform block, then 2D, 3D and
 /// cube samplers of each unit.

@@ -1,5 +1,5 @@
 //! Copies a window rectangle of the colour, depth or stencil image into host memory and
-//! converts it to what [`crate::render::FrameSink::read_pixels`] returns: one `[f32; 4]` per
+//! converts it to what [`crate::frame::FrameSink::read_pixels`] returns: one `[f32; 4]` per
 //! pixel, rows bottom to top; colour as RGBA in [0, 1], depth in [0, 1] and stencil as its
 //! integer value in the first component. Pixels of the rectangle outside the window are 0
 //! (their values are undefined in OpenGL, section 4.3.2).

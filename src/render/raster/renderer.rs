@@ -672,7 +672,7 @@ impl Raster {
     }
 
     /// Submits what is recorded of `frame` and copies `rect` of `buffer` back, colour from the
-    /// frame's read buffer (see [`crate::render::FrameSink::read_pixels`]).
+    /// frame's read buffer (see [`crate::frame::FrameSink::read_pixels`]).
     pub fn read(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Result<Option<Vec<[f32; 4]>>> {
         self.end_pass();
         self.switch_to(key_of(&frame.read_framebuffer));
@@ -769,10 +769,10 @@ impl Raster {
         Ok(())
     }
 
-    /// Where the next frames go (see [`crate::render::FrameSink::set_target`]): the
+    /// Where the next frames go (see [`crate::frame::FrameSink::set_target`]): the
     /// framebuffer is recreated with the drawable's sample count and destination alpha at the
     /// next frame (a count the device cannot render gives a single-sampled one, logged).
-    pub fn set_target(&mut self, target: crate::render::Target) {
+    pub fn set_target(&mut self, target: crate::frame::Target) {
         let counts = &self.parts.device.features.sample_counts;
         self.parts.samples = if target.samples <= 1 || counts.contains(&target.samples) {
             target.samples.max(1)
@@ -787,14 +787,14 @@ impl Raster {
     }
 
     /// Bits of the occlusion sample counter (see
-    /// [`crate::render::FrameSink::occlusion_counter_bits`]).
+    /// [`crate::frame::FrameSink::occlusion_counter_bits`]).
     pub fn occlusion_counter_bits(&self) -> u32 {
         self.parts.occlusion.counter_bits()
     }
 
     /// Samples that passed for occlusion query `query` of frame number `frame`, waiting for
     /// the frame in flight that ended it when the result is not known yet (see
-    /// [`crate::render::FrameSink::occlusion_result`]).
+    /// [`crate::frame::FrameSink::occlusion_result`]).
     pub fn occlusion_result(&mut self, frame: u64, query: u32) -> Result<Option<u64>> {
         if let Some(count) = self.parts.occlusion.result(frame, query) {
             return Ok(Some(count));

@@ -268,7 +268,7 @@ impl ComputeTracer {
             // loops of one call of it (a SIMD batch of invocations) have run 65535 iterations
             // in all; one invocation tracing every sample of its pixel (a traversal loop per
             // ray) silently lost the light of the later samples: beyond about 48 samples of 3
-            // bounces in tests/pathtrace_cornell.rs's Cornell box.
+            // bounces in tests/pathtrace/cornell.rs's Cornell box.
             for sample in 0..gpu_frame.counts[1] {
                 d.cmd_push_constants(cmd, self.pipelines.layout, vk::ShaderStageFlags::COMPUTE, 0, &sample.to_ne_bytes());
                 d.cmd_dispatch(cmd, groups[0], groups[1], 1);

@@ -31,14 +31,13 @@ use std::sync::Arc;
 use ash::vk;
 use glam::{Mat3, Mat4};
 
-use crate::frame::class::DrawClass;
+use crate::frame::class::{DrawClass, orthographic};
 use crate::frame::state::Winding;
 use crate::frame::{Clear, Draw, Frame, Framebuffer, RasterState};
 use crate::render::raster::device::{Check, Device, Image, Result};
 use crate::render::raster::renderer::Recorder;
 use crate::render::raster::target::{Plane, Target};
 use crate::render::raster::textures::image_barrier;
-use crate::translate::classify::routing::orthographic;
 
 /// The format of the cube: the faces' RGBA8 bits, decoded from sRGB by the sampler.
 const CUBE_FORMAT: vk::Format = vk::Format::R8G8B8A8_SRGB;

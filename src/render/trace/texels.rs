@@ -57,10 +57,10 @@ use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
 
+use crate::frame::mipmap::downsample;
 use crate::frame::texture::{Filter, Precision, TexImage, TextureContent, TextureKind, TextureRef, Wrap};
 use crate::render::raster::renderer::log_once;
 use crate::render::raster::textures::{Upload, interior, level_chain, texel_bytes};
-use crate::translate::texture::mipmap::downsample;
 
 pub use sample::{sample, texel_size};
 

@@ -1,4 +1,16 @@
-//! Frame capture and replay (`GLRT_CAPTURE=path`, `glrt replay|dump|info FILE`).
+//! Frame capture (`GLRT_CAPTURE=path`): the recording side. Reading and replaying a capture
+//! (`glrt replay|dump|info FILE`) is the `replay` module's, a client of the exported C API
+//! above `gl_entry`, as apitrace keeps its retracer apart from its tracer.
+//!
+//! **Why recording lives here.** The GL commands of `translate` report the client memory they
+//! read ([`reads::note`]: vertex arrays as their elements are fetched, pixels as the unpack
+//! state lays them out) and map pointers found in client memory ([`client_pointer`]); only
+//! they know those ranges, so the recorder must be reachable from `translate`, which names
+//! nothing above itself. The generated C exports (`gl_entry`) open each call's record
+//! ([`begin`]) and report the window-system events ([`context_created`], [`made_current`],
+//! [`swapped`]); what a record needs from above is handed down at the call (whether the
+//! current context is compiling a display list) or installed by the replay
+//! ([`map_addresses`]).
 //!
 //! **What is recorded.** Every GL call the generated C exports receive (command id and raw
 //! arguments: integer and float bits, pointers as addresses), with exactly the client memory
@@ -11,15 +23,12 @@
 //! memory at the same place. The file layout is in [`mod@format`]; records are written by a
 //! background thread ([`writer`]).
 //!
-//! **Replay** ([`replay`]) creates headless contexts of the captured sizes and calls the same
-//! generated C exports a program calls ([`table::call`]), so the call log and capture hooks
-//! work during a replay too. Client memory lives in a *shadow* of the captured address space:
-//! each 4 GiB window of addresses the capture uses maps to a slot of one reserved region,
-//! pointer arguments in those windows are translated into it, and each call's recorded bytes
-//! are written there before the call. Values below 4 GiB (buffer offsets, null) pass
-//! unchanged; memory below 4 GiB that the capture read (the data of a program that is not
-//! position independent) is mapped at its own address. A capture made during a replay maps addresses back through the same shadow
-//! ([`captured_address`]), so replaying with `GLRT_CAPTURE` set writes a byte-identical file.
+//! **Replay** creates headless contexts of the captured sizes and calls the same generated C
+//! exports a program calls, so the call log and capture hooks work during a replay too. Client
+//! memory lives in a *shadow* of the captured address space, which the replay installs here
+//! as an [`AddressMap`] while it runs: a capture made during a replay maps addresses back
+//! through it ([`captured_address`]), so replaying with `GLRT_CAPTURE` set writes a
+//! byte-identical file.
 //!
 //! **Frame ranges.** `GLRT_CAPTURE_FRAMES=A..B` (frames count from 0, ended by swaps, `B`
 //! excluded) records frames `A` to `B - 1` completely; before `A` it drops the commands that
@@ -37,35 +46,26 @@
 //! ([`mapped_writes`]).
 //!
 //! Limits: one recording thread is assumed (the calls of all threads go to one stream);
-//! a program
-//! killed before the capture is finished (at exit, or after the last frame of
-//! `GLRT_CAPTURE_FRAMES`) leaves a file readers refuse. Replay checks every length in the
-//! file, but runs the recorded GL calls as they are: a hand-made capture whose arguments make
-//! a call read far past its recorded memory can crash the replay, as it would the program
-//! (the compressed body's checksums and the trailer's hash refuse accidental damage first).
+//! a program killed before the capture is finished (at exit, or after the last frame of
+//! `GLRT_CAPTURE_FRAMES`) leaves a file readers refuse.
 
 pub mod format;
-pub mod reader;
 pub mod reads;
-pub mod replay;
-pub mod shadow;
-pub mod summary;
 pub mod writer;
 
 use std::cell::RefCell;
 use std::path::Path;
-use std::sync::OnceLock;
 use std::sync::atomic::{AtomicU8, AtomicU32, AtomicU64, Ordering};
+use std::sync::{Arc, OnceLock};
 
 use parking_lot::RwLock;
 
 use format::{Event, SwapKind};
 use writer::Writer;
 
-/// The generated command table: names, signatures and replay thunks.
+/// The generated command table: every captured command's name and signature by capture id.
 pub mod table {
-    include!(concat!(env!("OUT_DIR"), "/capture_table.rs"));
-    pub use super::Raw;
+    include!(concat!(env!("OUT_DIR"), "/capture_commands.rs"));
 }
 
 /// A GL argument as the 64 raw bits a capture stores, and back (lossless for its type).
@@ -145,8 +145,27 @@ static FRAME: AtomicU64 = AtomicU64::new(0);
 /// Context ids, counted from 1 in creation order (the same order in a replay).
 static NEXT_CONTEXT: AtomicU32 = AtomicU32::new(1);
 
-/// Maps a replay's shadow addresses back to captured ones while a replay runs.
-static CANONICAL: RwLock<Option<std::sync::Arc<shadow::Shadow>>> = RwLock::new(None);
+/// How the addresses of a replay relate to those of the captured program: the replay's copy
+/// of the captured address space, installed with [`map_addresses`] while a replay runs.
+pub trait AddressMap: Send + Sync {
+    /// Where captured `address` is in this process; addresses outside the map are returned
+    /// unchanged.
+    fn translate(&self, address: u64) -> u64;
+    /// The captured address of `address` of this process (the inverse of
+    /// [`AddressMap::translate`]); addresses outside the map are returned unchanged.
+    fn original(&self, address: u64) -> u64;
+}
+
+/// The address map of the replay that runs, if one does.
+static CANONICAL: RwLock<Option<Arc<dyn AddressMap>>> = RwLock::new(None);
+
+/// Installs the address map of a replay that starts (`None` when it ends): while one is
+/// installed, pointers read from client memory are translated ([`client_pointer`]), recorded
+/// addresses are mapped back ([`captured_address`]), and writes through buffer mappings are
+/// not recorded again ([`mapped_writes`]: the replayed file holds them).
+pub fn map_addresses(map: Option<Arc<dyn AddressMap>>) {
+    *CANONICAL.write() = map;
+}
 
 /// The open session, opening it on first use from `GLRT_CAPTURE` and `GLRT_CAPTURE_FRAMES`.
 fn session() -> Option<&'static Session> {
@@ -240,12 +259,6 @@ pub fn captured_address(address: u64) -> u64 {
     CANONICAL.read().as_ref().map_or(address, |s| s.original(address))
 }
 
-/// Whether this thread's current context is compiling a display list (whose drawing
-/// commands are state: they are kept before the first captured frame).
-fn compiling_list() -> bool {
-    crate::gl_entry::current::with_slot(|slot| slot.as_ref().is_some_and(|c| c.context.lists.compiling()))
-}
-
 /// A pointer a command read from client memory (`glMultiDrawElements`' index lists): in a
 /// replay it holds a captured address, mapped here into the replay's shadow; otherwise it is
 /// returned as it is.
@@ -288,17 +301,19 @@ pub struct CallRecord<const N: usize> {
 }
 
 /// Starts recording a call to command `id` (the generated exports call this first); `args`
-/// gives the raw arguments. `None`, after one relaxed load, when capture is off.
+/// gives the raw arguments; `compiling_list` says whether the calling thread's current context
+/// is compiling a display list (whose drawing commands are state: they are kept before the
+/// first captured frame). `None`, after one relaxed load, when capture is off.
 #[inline]
-pub fn begin<const N: usize>(id: usize, args: impl FnOnce() -> [u64; N]) -> Option<CallRecord<N>> {
+pub fn begin<const N: usize>(id: usize, args: impl FnOnce() -> [u64; N], compiling_list: fn() -> bool) -> Option<CallRecord<N>> {
     if STATE.load(Ordering::Relaxed) == OFF {
         return None;
     }
-    begin_slow(id, args())
+    begin_slow(id, args(), compiling_list)
 }
 
 #[cold]
-fn begin_slow<const N: usize>(id: usize, args: [u64; N]) -> Option<CallRecord<N>> {
+fn begin_slow<const N: usize>(id: usize, args: [u64; N], compiling_list: fn() -> bool) -> Option<CallRecord<N>> {
     let session = session()?;
     let frame = FRAME.load(Ordering::Relaxed);
     if frame < session.first && session.draws_only.get(id).copied().unwrap_or(false) && !compiling_list() {

@@ -102,8 +102,8 @@ fn compress(file: BufWriter<File>, batches: Receiver<Vec<u8>>) -> io::Result<()>
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::replay::reader::{Capture, Record};
     use crate::translate::capture::format::{Event, SwapKind};
-    use crate::translate::capture::reader::{Capture, Record};
     use crate::translate::capture::table::COMMANDS;
 
     #[test]

@@ -10,7 +10,7 @@ use parking_lot::Mutex;
 
 use crate::frame::Frame;
 use crate::frame::pixels::PixelBuffer;
-use crate::render::{FrameSink, NullSink, Target};
+use crate::frame::{FrameSink, NullSink, Target};
 
 /// Prints each frame's [`crate::frame::class::FrameStats`] as one JSON line on standard
 /// output, then hands the frame to `inner`.

@@ -15,9 +15,7 @@
 //!
 //! Tags `static`, `dynamic` and `emissive` apply to traced draws (see `super`).
 
-use glam::Mat4;
-
-use crate::frame::class::DrawClass;
+use crate::frame::class::{DrawClass, orthographic};
 use crate::frame::state::{Blend, BlendFactor};
 use crate::frame::{Draw, Topology};
 
@@ -38,11 +36,6 @@ pub struct Tags {
     pub static_: bool,
     /// `dynamic`.
     pub dynamic: bool,
-}
-
-/// Whether `projection` is orthographic.
-pub fn orthographic(projection: &Mat4) -> bool {
-    projection.row(3) == glam::Vec4::W
 }
 
 /// Whether blending leaves the source as it is.

@@ -1,9 +1,12 @@
 //! Texture hashes, the names `glrt.toml` tags textures by: xxh3 of the level-0 texels of the
 //! first face (canonical RGBA8, so the same image has the same hash whatever format the
-//! program uploaded it in), computed once per content version. A new hash is written to the
-//! `GLRT_TRACE` call log as `N # texture ID hash 0x…` so that users can learn them.
+//! program uploaded it in), computed once per content version. A new hash is announced to
+//! whoever asked ([`announce_hashes_to`]): the `GLRT_TRACE` call log, which lives above
+//! `translate` in `gl_entry`, writes it as `N # texture ID hash 0x…` so that users can learn
+//! them.
 
 use std::collections::HashMap;
+use std::sync::OnceLock;
 
 use crate::frame::TextureRef;
 use crate::frame::texture::TextureContent;
@@ -17,6 +20,16 @@ pub fn content_hash(content: &TextureContent) -> u64 {
         h.update(&image.texels);
         h.digest()
     })
+}
+
+/// What receives new texture hashes, once installed.
+static ANNOUNCE: OnceLock<fn(u32, u64)> = OnceLock::new();
+
+/// Makes `announce` receive the texture id and hash each time a texture's hash is new or
+/// has changed. Installed once per process (by the call log when it opens); later calls are
+/// ignored.
+pub fn announce_hashes_to(announce: fn(u32, u64)) {
+    let _ = ANNOUNCE.set(announce);
 }
 
 /// The hash of each texture's current content version.
@@ -35,8 +48,8 @@ impl TextureHashes {
         }
         let hash = content_hash(&texture.content);
         let changed = self.by_id.insert(texture.id, (texture.version, hash)).is_none_or(|(_, old)| old != hash);
-        if changed {
-            crate::gl_entry::trace::note(format_args!("texture {} hash {hash:#018x}", texture.id));
+        if changed && let Some(announce) = ANNOUNCE.get() {
+            announce(texture.id, hash);
         }
         hash
     }

@@ -19,8 +19,7 @@
 
 use glam::{Mat4, Vec3};
 
-use super::routing::orthographic;
-use crate::frame::class::View;
+use crate::frame::class::{View, orthographic};
 
 /// What view recovery needs of a traced draw.
 #[derive(Clone, Copy, Debug)]

@@ -10,7 +10,7 @@
 //! - **Writing back**: when drawing moves away from that framebuffer object (another binding,
 //!   a changed attachment, deleting it) or a texture command reads or changes texture images
 //!   (`glGetTexImage`, `glGenerateMipmapEXT`), the attached levels are read back through the
-//!   renderer ([`crate::render::FrameSink::read_pixels`]) and written into the textures, which
+//!   renderer ([`crate::frame::FrameSink::read_pixels`]) and written into the textures, which
 //!   get a new content version; draws that sample them afterwards see what was rendered.
 //!
 //! A write-back waits for the GPU, so a program that renders to a texture every frame pays one

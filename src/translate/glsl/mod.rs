@@ -34,8 +34,8 @@
 //!   (`render::raster::ff::VERTEX_ATTRIBUTES`, locations 0 to 9: `gl_Vertex` is location 0,
 //!   `gl_Color` 1, `gl_SecondaryColor` 2, `gl_Normal` 3, `gl_FogCoord` 4,
 //!   `gl_MultiTexCoord0..3` 5 to 8), and generic attribute `i` (1 to 15) at location
-//!   [`GENERIC_ATTRIBUTE_LOCATION`] `+ i - 1`, as `vec4` (a matrix attribute takes one
-//!   location, and one generic index, per column).
+//!   [`crate::frame::program::GENERIC_ATTRIBUTE_LOCATION`] `+ i - 1`, as `vec4` (a matrix
+//!   attribute takes one location, and one generic index, per column).
 //! - **Varyings** between the stages: the fixed-function ones of `shaders/ff_varyings.glsl`
 //!   at their locations (so a program stage pairs with a fixed-function stage), then the
 //!   program's own varyings from location [`FIRST_USER_VARYING`], one location per `vec4`,
@@ -54,8 +54,6 @@ use std::sync::Arc;
 
 use crate::frame::program::ShaderProgram;
 
-/// Vulkan location of generic vertex attribute 1 (attribute 0 is `gl_Vertex`, location 0).
-pub const GENERIC_ATTRIBUTE_LOCATION: u32 = 10;
 /// Vulkan location of the first varying a program declares itself.
 pub const FIRST_USER_VARYING: u32 = 14;
 

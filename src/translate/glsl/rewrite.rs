@@ -15,6 +15,7 @@ use std::fmt::Write;
 use super::Stage;
 use super::declarations::{Declarations, Statement, Type, Variable};
 use super::tokens::{Kind, Token};
+use crate::frame::program::GENERIC_ATTRIBUTE_LOCATION;
 
 /// Keywords, types and built-in functions of GLSL 1.20 that keep their names.
 const KEPT: &[&str] = &[
@@ -198,7 +199,7 @@ fn declare_interface(out: &mut String, input: &StageInput) {
                 let _ = writeln!(out, "{};", declarator(a));
             }
             Some(&index) => {
-                let location = super::GENERIC_ATTRIBUTE_LOCATION + index - 1;
+                let location = GENERIC_ATTRIBUTE_LOCATION + index - 1;
                 let _ = writeln!(out, "layout(location = {location}) in {};", declarator(a));
             }
         }

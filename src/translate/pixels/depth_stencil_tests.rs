@@ -5,8 +5,8 @@
 //! internal format copies both buffers.
 
 use crate::frame::Frame;
+use crate::frame::FrameSink;
 use crate::frame::pixels::{PixelBuffer, PixelData, PixelKind};
-use crate::render::FrameSink;
 use crate::translate::context::ContextConfig;
 use crate::translate::{Context, dispatch, gl};
 

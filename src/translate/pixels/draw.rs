@@ -229,7 +229,7 @@ impl Context {
     }
 
     /// Reads `rect` of the buffers that groups of `kind` come from (colour for colours and
-    /// indices), as [`crate::render::FrameSink::read_pixels`] returns them; depth/stencil
+    /// indices), as [`crate::frame::FrameSink::read_pixels`] returns them; depth/stencil
     /// groups read the depth and the stencil buffer and hold the depth in the first component,
     /// the stencil index in the second. `None` when the renderer cannot read back.
     fn read_groups(&mut self, kind: Kind, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
@@ -446,8 +446,8 @@ mod tests {
 #[cfg(test)]
 mod readback_tests {
     use crate::frame::Frame;
+    use crate::frame::FrameSink;
     use crate::frame::pixels::PixelBuffer;
-    use crate::render::FrameSink;
     use crate::translate::context::ContextConfig;
     use crate::translate::{Context, dispatch, gl};
 

@@ -5,7 +5,7 @@
 //! back by `Context::pack_client` (see [`super::pixel_buffers`]).
 //!
 //! Bitmaps, images and copies go into [`crate::frame::Frame::pixels`] in order with the draws;
-//! read-backs ask the renderer through [`crate::render::FrameSink::read_pixels`].
+//! read-backs ask the renderer through [`crate::frame::FrameSink::read_pixels`].
 
 pub mod codec;
 #[cfg(test)]

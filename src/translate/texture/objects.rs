@@ -412,7 +412,7 @@ mod tests {
 
 #[cfg(test)]
 mod share_tests {
-    use crate::render::NullSink;
+    use crate::frame::NullSink;
     use crate::translate::context::ContextConfig;
     use crate::translate::{Context, dispatch, gl};
 

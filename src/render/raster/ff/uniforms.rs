@@ -218,7 +218,7 @@ pub fn pack(draw: &Draw) -> Vec<u8> {
 }
 
 /// `GL_RESCALE_NORMAL`'s factor (section 2.11.3): one over the length of the third row of the
-/// inverse modelview's upper 3×3, as [`crate::translate::Context::eye_normal`] computes it.
+/// inverse modelview's upper 3×3, as `translate::Context::eye_normal` computes it.
 pub fn rescale_factor(modelview: &Mat4) -> f32 {
     let row = modelview.inverse().row(2).truncate().length();
     if row > 0.0 { 1.0 / row } else { 1.0 }

@@ -42,7 +42,7 @@ pub fn writes_color(op: &PixelOp) -> bool {
 }
 
 /// Records `op`; `read` holds the pixels of [`source`]'s rectangle when it names one (as
-/// [`crate::render::FrameSink::read_pixels`] returns them).
+/// [`crate::frame::FrameSink::read_pixels`] returns them).
 pub fn record(rec: &mut Recorder<'_>, accum: &mut accum::Accum, op: &PixelOp, read: Option<&[[f32; 4]]>) -> Result<()> {
     match &op.kind {
         PixelKind::Bitmap { window_pos, size, color, mask } => bitmap::record(rec, &op.state, &op.raster, *window_pos, size[0] as usize, *color, mask),

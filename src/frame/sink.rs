@@ -1,0 +1,70 @@
+//! The sink a context hands its frames to: the one seam between `translate`, which makes
+//! [`Frame`]s, and `render`, which draws them (or a test, which keeps them). The Vulkan
+//! renderer implements [`FrameSink`]; [`NullSink`] and [`RecordingSink`] are the two sinks
+//! that draw nothing.
+
+use std::sync::Arc;
+
+use parking_lot::Mutex;
+
+use super::Frame;
+use super::pixels::PixelBuffer;
+use super::target::Target;
+
+/// Receives each finished frame.
+pub trait FrameSink: Send {
+    /// Takes the frame that `glXSwapBuffers` (or a read-back) ended.
+    fn present(&mut self, frame: Frame);
+
+    /// Where the next frames go: called when a context is made current on a drawable and when
+    /// that drawable's size changes (only then: the target differs from the previous one).
+    /// The default ignores it (sinks that keep frames in memory).
+    fn set_target(&mut self, _target: Target) {}
+
+    /// Samples that passed for occlusion query `query` of frame number `frame` (listed in
+    /// that frame's [`Frame::occlusion_queries`]), once that frame was presented; `None` while
+    /// unknown. A renderer whose [`FrameSink::occlusion_counter_bits`] is not 0 must answer
+    /// every query of a presented frame eventually. The default counts nothing.
+    fn occlusion_result(&mut self, _frame: u64, _query: u32) -> Option<u64> {
+        None
+    }
+
+    /// Bits of the renderer's sample counter (`GL_QUERY_COUNTER_BITS`); 0 when it does not
+    /// count samples (the default).
+    fn occlusion_counter_bits(&self) -> u32 {
+        0
+    }
+    /// Renders `frame` so far (it is not ended) and reads the rectangle `rect` (x, y, width,
+    /// height, window coordinates) of `buffer`: RGBA for colour, the value in the first
+    /// component for depth and stencil; rows bottom to top. `None` when the sink cannot
+    /// render (the caller leaves the client's memory untouched).
+    fn read_pixels(&mut self, _frame: &Frame, _buffer: PixelBuffer, _rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        None
+    }
+}
+
+/// Drops frames, keeping only how many were presented (used when no renderer is available).
+#[derive(Default)]
+pub struct NullSink {
+    /// Frames presented so far.
+    pub presented: u64,
+}
+
+impl FrameSink for NullSink {
+    fn present(&mut self, _frame: Frame) {
+        self.presented += 1;
+    }
+}
+
+/// Keeps every frame in a shared list, for tests.
+#[derive(Clone, Default)]
+pub struct RecordingSink {
+    /// The frames presented so far.
+    pub frames: Arc<Mutex<Vec<Frame>>>,
+}
+
+impl FrameSink for RecordingSink {
+    fn present(&mut self, frame: Frame) {
+        self.frames.lock().push(frame);
+    }
+}

@@ -1,0 +1,305 @@
+//! `shaders/trace/bvh.glsl` on lavapipe equals `render::trace::bvh::cpu`: a compute shader
+//! (`tests/shaders/trace_bvh.comp`, compiled here with `glslangValidator`) traces a few
+//! thousand rays through a scene of transformed instances, one of them alpha-tested (odd
+//! triangles rejected), with both queries; every answer must match the CPU traversal.
+
+use crate::lavapipe;
+
+use std::process::Command;
+
+use ash::vk;
+use glam::{Affine3A, Quat, Vec2, Vec3};
+use gpu_allocator::MemoryLocation;
+
+use glrt::render::raster::device::{Buffer, Device};
+use glrt::render::trace::bindings;
+use glrt::render::trace::bvh::cpu::{self, Instance, Scene};
+use glrt::render::trace::bvh::{Blas, GpuNode, GpuTriangle, Tlas};
+
+/// `INSTANCE_ALPHA_TESTED` of `instance.glsl`.
+const INSTANCE_ALPHA_TESTED: u32 = 1;
+/// Bindings of the test shader's rays and results.
+const RAYS: u32 = 15;
+const RESULTS: u32 = 16;
+
+/// A deterministic xorshift generator.
+struct Rng(u64);
+
+impl Rng {
+    fn f32(&mut self) -> f32 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    /// A point uniformly in [-s, s]³.
+    fn vec(&mut self, s: f32) -> Vec3 {
+        Vec3::new(self.f32() * 2.0 - 1.0, self.f32() * 2.0 - 1.0, self.f32() * 2.0 - 1.0) * s
+    }
+}
+
+/// A grid of `n` × `n` quads (two triangles each) over [-1, 1]² in the z = 0 plane, bumped.
+fn grid(n: usize) -> Vec<[Vec3; 3]> {
+    let p = |i: usize, j: usize| {
+        let (x, y) = (i as f32 / n as f32 * 2.0 - 1.0, j as f32 / n as f32 * 2.0 - 1.0);
+        Vec3::new(x, y, 0.2 * (x * 3.0).sin() * (y * 2.0).cos())
+    };
+    (0..n * n)
+        .flat_map(|k| {
+            let (i, j) = (k % n, k / n);
+            [[p(i, j), p(i + 1, j), p(i + 1, j + 1)], [p(i, j), p(i + 1, j + 1), p(i, j + 1)]]
+        })
+        .collect()
+}
+
+/// `n` random triangles about `size` large in [-1, 1]³.
+fn soup(rng: &mut Rng, n: usize, size: f32) -> Vec<[Vec3; 3]> {
+    (0..n)
+        .map(|_| {
+            let c = rng.vec(1.0);
+            [c + rng.vec(size), c + rng.vec(size), c + rng.vec(size)]
+        })
+        .collect()
+}
+
+/// The scene on the CPU and the bytes of its GPU buffers.
+struct World {
+    tlas: Tlas,
+    nodes: Vec<GpuNode>,
+    triangles: Vec<GpuTriangle>,
+    instances: Vec<Instance>,
+    /// `Instance` records of `instance.glsl` (160 bytes each).
+    instance_words: Vec<u32>,
+}
+
+impl World {
+    fn new(placed: &[(Vec<[Vec3; 3]>, Affine3A, bool)]) -> World {
+        let (mut nodes, mut triangles, mut instances, mut instance_words, mut bounds) = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for (tris, object_to_eye, alpha) in placed {
+            let blas = Blas::build(tris);
+            let (root, first) = blas.append_to(&mut nodes, &mut triangles);
+            bounds.push(blas.bounds.transformed(object_to_eye));
+            let inst = Instance::new(object_to_eye, root, first, *alpha);
+            let rows = cpu::affine_rows(object_to_eye);
+            for row in rows.iter().chain(&inst.eye_to_object).chain(&rows) {
+                instance_words.extend(row.to_array().map(f32::to_bits));
+            }
+            instance_words.extend([root, first, if *alpha { INSTANCE_ALPHA_TESTED } else { 0 }, 0]);
+            instances.push(inst);
+        }
+        World { tlas: Tlas::build(&bounds), nodes, triangles, instances, instance_words }
+    }
+
+    fn scene(&self) -> Scene<'_> {
+        Scene { tlas: &self.tlas.nodes, blas_nodes: &self.nodes, triangles: &self.triangles, instances: &self.instances }
+    }
+}
+
+/// One ray: origin, tmin, direction, tmax.
+#[derive(Clone, Copy)]
+struct Ray {
+    origin: Vec3,
+    dir: Vec3,
+    tmin: f32,
+    tmax: f32,
+}
+
+/// What the shader wrote for one ray.
+#[derive(Clone, Copy, Debug)]
+struct GpuResult {
+    t: f32,
+    instance: u32,
+    triangle: u32,
+    closest: bool,
+    any: bool,
+    bary: Vec2,
+}
+
+/// The test shader's SPIR-V words.
+fn compile_shader() -> Vec<u32> {
+    let out = std::env::temp_dir().join(format!("glrt-trace-bvh-{}.spv", std::process::id()));
+    let status = Command::new("glslangValidator")
+        .args(["-V", "--target-env", "vulkan1.1", "-Ishaders", "-o"])
+        .arg(&out)
+        .arg("tests/shaders/trace_bvh.comp")
+        .output()
+        .expect("glslangValidator (apt-get install glslang-tools)");
+    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stdout));
+    let bytes = std::fs::read(&out).expect("the SPIR-V");
+    let _ = std::fs::remove_file(&out);
+    ash::util::read_spv(&mut std::io::Cursor::new(bytes)).expect("SPIR-V words")
+}
+
+/// A host-visible storage buffer holding `bytes`.
+fn upload(device: &Device, name: &str, bytes: &[u8], location: MemoryLocation) -> Buffer {
+    let mut buffer = device.create_buffer(name, bytes.len() as u64, vk::BufferUsageFlags::STORAGE_BUFFER, location).expect("buffer");
+    buffer.mapped()[..bytes.len()].copy_from_slice(bytes);
+    buffer
+}
+
+/// Traces `rays` through `world` with the shader on `device`.
+fn trace_on_gpu(device: &Device, world: &World, rays: &[Ray]) -> Vec<GpuResult> {
+    let raw = &device.raw;
+    let ray_words: Vec<f32> = rays.iter().flat_map(|r| [r.origin.x, r.origin.y, r.origin.z, r.tmin, r.dir.x, r.dir.y, r.dir.z, r.tmax]).collect();
+    let buffers = [
+        (bindings::BLAS_NODES, upload(device, "blas", bytemuck::cast_slice(&world.nodes), MemoryLocation::CpuToGpu)),
+        (bindings::TLAS_NODES, upload(device, "tlas", bytemuck::cast_slice(&world.tlas.nodes), MemoryLocation::CpuToGpu)),
+        (bindings::TRIANGLES, upload(device, "triangles", bytemuck::cast_slice(&world.triangles), MemoryLocation::CpuToGpu)),
+        (bindings::INSTANCES, upload(device, "instances", bytemuck::cast_slice(&world.instance_words), MemoryLocation::CpuToGpu)),
+        (RAYS, upload(device, "rays", bytemuck::cast_slice(&ray_words), MemoryLocation::CpuToGpu)),
+        (RESULTS, upload(device, "results", &vec![0u8; rays.len() * 32], MemoryLocation::GpuToCpu)),
+    ];
+    let spv = compile_shader();
+    // Safety: every object is created from `raw`, used while alive, and destroyed after the
+    // fence says the GPU is done.
+    unsafe {
+        let module = raw.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(&spv), None).expect("shader module");
+        let layout_bindings: Vec<_> = buffers
+            .iter()
+            .map(|(b, _)| {
+                vk::DescriptorSetLayoutBinding::default()
+                    .binding(*b)
+                    .descriptor_type(vk::DescriptorType::STORAGE_BUFFER)
+                    .descriptor_count(1)
+                    .stage_flags(vk::ShaderStageFlags::COMPUTE)
+            })
+            .collect();
+        let set_layout = raw.create_descriptor_set_layout(&vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings), None).expect("set layout");
+        let push = [vk::PushConstantRange::default().stage_flags(vk::ShaderStageFlags::COMPUTE).size(4)];
+        let layouts = [set_layout];
+        let pipeline_layout = raw
+            .create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&layouts).push_constant_ranges(&push), None)
+            .expect("pipeline layout");
+        let stage = vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::COMPUTE).module(module).name(c"main");
+        let pipeline = raw
+            .create_compute_pipelines(vk::PipelineCache::null(), &[vk::ComputePipelineCreateInfo::default().stage(stage).layout(pipeline_layout)], None)
+            .expect("compute pipeline")[0];
+        let sizes = [vk::DescriptorPoolSize::default().ty(vk::DescriptorType::STORAGE_BUFFER).descriptor_count(buffers.len() as u32)];
+        let pool = raw.create_descriptor_pool(&vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes), None).expect("pool");
+        let set = raw.allocate_descriptor_sets(&vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&layouts)).expect("set")[0];
+        let infos: Vec<[vk::DescriptorBufferInfo; 1]> =
+            buffers.iter().map(|(_, b)| [vk::DescriptorBufferInfo::default().buffer(b.raw).range(vk::WHOLE_SIZE)]).collect();
+        let writes: Vec<_> = buffers
+            .iter()
+            .zip(&infos)
+            .map(|((binding, _), info)| {
+                vk::WriteDescriptorSet::default().dst_set(set).dst_binding(*binding).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info)
+            })
+            .collect();
+        raw.update_descriptor_sets(&writes, &[]);
+        let command_pool = raw.create_command_pool(&vk::CommandPoolCreateInfo::default().queue_family_index(device.queue_family), None).expect("command pool");
+        let cmd = raw
+            .allocate_command_buffers(
+                &vk::CommandBufferAllocateInfo::default().command_pool(command_pool).level(vk::CommandBufferLevel::PRIMARY).command_buffer_count(1),
+            )
+            .expect("command buffer")[0];
+        raw.begin_command_buffer(cmd, &vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT)).expect("begin");
+        raw.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline);
+        raw.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, pipeline_layout, 0, &[set], &[]);
+        raw.cmd_push_constants(cmd, pipeline_layout, vk::ShaderStageFlags::COMPUTE, 0, &(rays.len() as u32).to_ne_bytes());
+        raw.cmd_dispatch(cmd, (rays.len() as u32).div_ceil(64), 1, 1);
+        let barrier = [vk::MemoryBarrier::default().src_access_mask(vk::AccessFlags::SHADER_WRITE).dst_access_mask(vk::AccessFlags::HOST_READ)];
+        raw.cmd_pipeline_barrier(cmd, vk::PipelineStageFlags::COMPUTE_SHADER, vk::PipelineStageFlags::HOST, vk::DependencyFlags::empty(), &barrier, &[], &[]);
+        raw.end_command_buffer(cmd).expect("end");
+        let fence = raw.create_fence(&vk::FenceCreateInfo::default(), None).expect("fence");
+        let cmds = [cmd];
+        raw.queue_submit(device.queue, &[vk::SubmitInfo::default().command_buffers(&cmds)], fence).expect("submit");
+        raw.wait_for_fences(&[fence], true, u64::MAX).expect("wait");
+        raw.destroy_fence(fence, None);
+        raw.destroy_command_pool(command_pool, None);
+        raw.destroy_descriptor_pool(pool, None);
+        raw.destroy_pipeline(pipeline, None);
+        raw.destroy_pipeline_layout(pipeline_layout, None);
+        raw.destroy_descriptor_set_layout(set_layout, None);
+        raw.destroy_shader_module(module, None);
+    }
+    let mut buffers = buffers.map(|(_, b)| b);
+    let words: Vec<u32> = bytemuck::cast_slice(&buffers[5].mapped()[..rays.len() * 32]).to_vec();
+    for b in buffers {
+        device.destroy_buffer(b);
+    }
+    words
+        .chunks(8)
+        .map(|w| GpuResult {
+            t: f32::from_bits(w[0]),
+            instance: w[1],
+            triangle: w[2],
+            closest: w[3] & 1 != 0,
+            any: w[3] & 2 != 0,
+            bary: Vec2::new(f32::from_bits(w[4]), f32::from_bits(w[5])),
+        })
+        .collect()
+}
+
+/// The alpha test of the shader: odd triangles are rejected.
+fn even(_: u32, triangle: u32, _: Vec2) -> bool {
+    triangle.is_multiple_of(2)
+}
+
+#[test]
+fn gpu_traversal_equals_cpu_traversal() {
+    let mut rng = Rng(0x5eed_f00d);
+    let t = |s: f32, r: Quat, at: Vec3| Affine3A::from_scale_rotation_translation(Vec3::splat(s), r, at);
+    let placed = vec![
+        (grid(40), t(0.8, Quat::from_rotation_x(-1.2), Vec3::new(0.0, -0.6, -0.8)), false),
+        (soup(&mut rng, 600, 0.25), t(0.5, Quat::from_rotation_y(0.7), Vec3::new(0.5, 0.3, 0.0)), true),
+        (soup(&mut rng, 400, 0.1), t(0.6, Quat::from_rotation_z(2.0), Vec3::new(-0.5, 0.1, 0.2)), false),
+        (vec![[Vec3::ZERO, Vec3::X, Vec3::Y]], t(1.5, Quat::from_rotation_y(-0.4), Vec3::new(-1.0, 0.6, -1.0)), false),
+        (Vec::new(), Affine3A::IDENTITY, false),
+        (grid(8), Affine3A::from_mat3_translation(glam::Mat3::from_diagonal(Vec3::new(0.3, 1.0, 0.5)), Vec3::new(0.6, -0.4, 0.5)), false),
+    ];
+    let world = World::new(&placed);
+    let scene = world.scene();
+
+    let mut rays: Vec<Ray> = (0..4000)
+        .map(|_| {
+            let origin = rng.vec(1.6);
+            let dir = (rng.vec(0.8) - origin) * (0.5 + rng.f32());
+            let tmax = if rng.f32() < 0.5 { f32::INFINITY } else { rng.f32() * 3.0 };
+            Ray { origin, dir, tmin: if rng.f32() < 0.2 { 0.05 } else { 0.0 }, tmax }
+        })
+        .collect();
+    // Rays at the odd (rejected) triangles of the alpha-tested instance, ending just past them.
+    let alpha = &world.instances[1];
+    let first = alpha.first_triangle;
+    let count = placed[1].0.len() as u32;
+    let targeted = rays.len();
+    for k in (1..count).step_by(2) {
+        let tri = &world.triangles[(first + k) as usize];
+        let object = Vec3::from(tri.v0) + Vec3::from(tri.e1) * 0.3 + Vec3::from(tri.e2) * 0.3;
+        let origin = Vec3::new(0.1, 0.2, 3.0);
+        let dir = placed[1].1.transform_point3(object) - origin;
+        rays.push(Ray { origin, dir, tmin: 0.0, tmax: 1.001 });
+    }
+
+    let device = lavapipe::select(Device::new);
+    let got = trace_on_gpu(&device, &world, &rays);
+    let mut hits = [0usize; 6];
+    let mut passed_through = 0;
+    for (i, (ray, g)) in rays.iter().zip(&got).enumerate() {
+        let want = cpu::closest(&scene, ray.origin, ray.dir, ray.tmin, ray.tmax, even);
+        let any = cpu::any(&scene, ray.origin, ray.dir, ray.tmin, ray.tmax, even);
+        assert_eq!(g.any, any, "ray {i}: trace_any");
+        match want {
+            Some(w) => {
+                assert!(g.closest, "ray {i}: GPU missed {w:?}");
+                assert_eq!((g.instance, g.triangle), (w.instance, w.triangle), "ray {i}: t {} vs {}", g.t, w.t);
+                assert!((g.t - w.t).abs() <= 1e-4 * w.t.abs(), "ray {i}: t {} vs {}", g.t, w.t);
+                assert!(g.bary.abs_diff_eq(w.bary, 1e-3), "ray {i}: bary {} vs {}", g.bary, w.bary);
+                hits[w.instance as usize] += 1;
+            }
+            None => assert!(!g.closest, "ray {i}: GPU hit {g:?}, CPU missed"),
+        }
+        if i >= targeted {
+            let aimed = first + 1 + 2 * (i - targeted) as u32;
+            assert!(!(g.closest && g.triangle == aimed), "ray {i}: rejected triangle {aimed} hit");
+            passed_through += usize::from(!g.any);
+        }
+    }
+    println!("hits per instance: {hits:?}; rays through rejected triangles with no other hit: {passed_through}");
+    assert!(hits.iter().sum::<usize>() > 1500, "{hits:?}");
+    assert!(hits[0] > 100 && hits[1] > 100 && hits[2] > 50 && hits[3] > 10 && hits[5] > 10, "{hits:?}");
+    assert_eq!(hits[4], 0);
+    assert!(passed_through > 50, "{passed_through}");
+}

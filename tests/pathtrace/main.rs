@@ -1,0 +1,18 @@
+//! The compute path tracer on Mesa lavapipe (the machine's Vulkan driver when its ICD file is
+//! missing), one test binary: its BVH traversal ([`bvh`]) and texel pool ([`texels`]) against
+//! their CPU mirrors, geometry kept across frames ([`geometry`]), light transport against
+//! physics ([`physics`]) and against the independent CPU tracer of [`reference_tracer`]
+//! ([`cornell`], which [`reference`] checks first), and composition with the raster path
+//! ([`composite`]).
+
+#[path = "../lavapipe/mod.rs"]
+mod lavapipe;
+mod reference_tracer;
+
+mod bvh;
+mod composite;
+mod cornell;
+mod geometry;
+mod physics;
+mod reference;
+mod texels;
