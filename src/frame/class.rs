@@ -23,14 +23,25 @@ pub enum DrawClass {
     Overlay,
     /// Raster: the sky, drawn behind everything; also the environment of missed rays.
     Sky,
+    /// Traced as part of an earlier traced draw: one pass of a multi-pass material over that
+    /// draw's triangles (a lightmap, detail, glow or decal pass; [`crate::frame::Draw::layer`]
+    /// says which draw and what the pass does). Rasterized like any draw when nothing traces.
+    Layer,
     /// Not drawn by the renderer (a texture listed under `ignore`, or no colour written).
     Ignored,
 }
 
 impl DrawClass {
-    /// The six counted classes, in the order of [`ClassCounts`] and of the JSON keys.
-    pub const COUNTED: [DrawClass; 6] =
-        [DrawClass::Static, DrawClass::Movable, DrawClass::Dynamic, DrawClass::Translucent, DrawClass::Overlay, DrawClass::Sky];
+    /// The seven counted classes, in the order of [`ClassCounts`] and of the JSON keys.
+    pub const COUNTED: [DrawClass; 7] = [
+        DrawClass::Static,
+        DrawClass::Movable,
+        DrawClass::Dynamic,
+        DrawClass::Translucent,
+        DrawClass::Overlay,
+        DrawClass::Sky,
+        DrawClass::Layer,
+    ];
 
     /// Whether the class is traced (in the acceleration structures).
     pub fn is_traced(self) -> bool {
@@ -46,6 +57,7 @@ impl DrawClass {
             DrawClass::Translucent => "translucent",
             DrawClass::Overlay => "overlay",
             DrawClass::Sky => "sky",
+            DrawClass::Layer => "layer",
             DrawClass::Unclassified => "unclassified",
             DrawClass::Ignored => "ignored",
         }
@@ -83,7 +95,67 @@ pub struct Instance {
     /// Every triangle of the draw is in [`crate::frame::Frame::static_world`] at the end of
     /// this frame (a renderer that draws the chunks leaves the draw out).
     pub in_static_world: bool,
+    /// Where the surface's light comes from: traced, its vertex colours, or baked.
+    pub lighting: SurfaceLighting,
+    /// Bit `u` set: texture unit `u` of the draw holds baked light (a lightmap), not colour.
+    pub light_units: u8,
 }
+
+/// How a traced surface is lit: what hash tracking (`translate::classify`) concluded from its
+/// textures, vertex colours and layers. The renderer shows every surface as the rasterizer
+/// would; this says which parts of that colour are light, so traced light is never counted
+/// twice.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum SurfaceLighting {
+    /// Its colour (textures times vertex colour) is its albedo; it reflects traced light (GL
+    /// lit draws, and unlit surfaces whose colour is constant).
+    #[default]
+    Traced,
+    /// Its vertex colours are lighting the program computed (a vertex-lit model: colours that
+    /// change as it moves or turns, or vary over a constant material): the albedo is its
+    /// colour without them, and it reflects traced light.
+    VertexLit,
+    /// Its light is baked: in a lightmap ([`Instance::light_units`] or a
+    /// [`LayerRole::BakedLight`] layer) or in its vertex colours (an unlit static surface
+    /// whose colours vary). It emits the colour the rasterizer shows, and reflects no traced
+    /// light of what the bake already holds.
+    Baked,
+}
+
+/// What a pass over an earlier traced draw's triangles does to that surface, from its blend
+/// function and texture (`translate::classify` decides).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum LayerRole {
+    /// Multiplies the surface by baked light: a lightmap pass (`GL_DST_COLOR, GL_ZERO` or
+    /// `GL_ZERO, GL_SRC_COLOR` of a lightmap texture).
+    BakedLight,
+    /// Multiplies the surface's colour by a texture that is not light: a texture pass over a
+    /// lightmap base, a detail texture (`GL_DST_COLOR, GL_SRC_COLOR`: 2x modulate).
+    Albedo,
+    /// Adds light (`GL_ONE, GL_ONE`, `GL_SRC_ALPHA, GL_ONE`): glows, dynamic-light passes.
+    Emission,
+    /// Blended over the colour by its alpha (`GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA`): decals.
+    Decal,
+}
+
+/// A draw of class [`DrawClass::Layer`]: one pass of a multi-pass material over the triangles
+/// of an earlier traced draw of the same frame, its base. The renderer evaluates the base and
+/// its layers, in program order, as one surface (the pass's own blend function and depth test
+/// say how it combines, as the rasterizer would).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layer {
+    /// Index in [`crate::frame::Frame::draws`] of the base draw.
+    pub base: usize,
+    /// For each triangle of this draw, the triangle of the base draw it lies on (its corners
+    /// are the base triangle's corners in the same order).
+    pub triangles: std::sync::Arc<[u32]>,
+    /// What the pass does to the surface.
+    pub role: LayerRole,
+}
+
+/// Most passes a traced surface keeps as layers (the base's texture units not counted); passes
+/// past it stay rasterized over the traced image.
+pub const MAX_LAYERS: usize = 4;
 
 /// What OpenGL 1.x does not say about a traced surface, set per texture hash in `glrt.toml`
 /// (`[materials]`, keyed by the draw's unit-0 texture; the `emissive` list). Without an entry:
@@ -150,7 +222,7 @@ pub fn orthographic(projection: &Mat4) -> bool {
 
 /// A count per counted class ([`DrawClass::COUNTED`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct ClassCounts(pub [u64; 6]);
+pub struct ClassCounts(pub [u64; 7]);
 
 impl ClassCounts {
     /// Adds `n` to `class` (classes that are not counted are left out).
@@ -236,7 +308,7 @@ mod tests {
         s.classes.add(DrawClass::Ignored, 5);
         s.triangles.add(DrawClass::Static, 12);
         let line = s.json_line(7);
-        assert!(line.starts_with("{\"frame\":7,\"static_upload_bytes\":96,\"classes\":{\"static\":0,\"movable\":0,\"dynamic\":0,\"translucent\":0,\"overlay\":0,\"sky\":1},\"triangles\":{\"static\":12,"), "{line}");
+        assert!(line.starts_with("{\"frame\":7,\"static_upload_bytes\":96,\"classes\":{\"static\":0,\"movable\":0,\"dynamic\":0,\"translucent\":0,\"overlay\":0,\"sky\":1,\"layer\":0},\"triangles\":{\"static\":12,"), "{line}");
         assert!(line.ends_with("\"camera_cut\":true,\"vertex_bytes\":0,\"classify_ms\":0.000}") && !line.contains('\n'), "{line}");
         assert_eq!((s.classes.get(DrawClass::Sky), s.classes.get(DrawClass::Ignored)), (1, 0));
     }

@@ -125,6 +125,8 @@ pub struct Draw {
     pub class: class::DrawClass,
     /// Its identity across frames, for traced draws.
     pub instance: Option<class::Instance>,
+    /// For a draw of class [`class::DrawClass::Layer`]: the traced draw it is a pass over.
+    pub layer: Option<class::Layer>,
 }
 
 /// How one texture unit combines and generates coordinates in a draw (sections 2.10.4 and

@@ -84,6 +84,7 @@ pub fn content_hash(frame: &Frame) -> u64 {
             program,
             class: _,
             instance: _,
+            layer: _,
         } = draw;
         let _ = write!(
             h,

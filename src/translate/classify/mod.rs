@@ -145,7 +145,7 @@ impl Classifier {
             let previous_modelview = f.previous.filter(|p| p.age == 0 && !recovered.cut).map(|p| p.modelview);
             draw.class = class;
             let in_static_world = offered.is_some_and(|o| o.all_static());
-            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, material: t.material, in_static_world });
+            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, material: t.material, in_static_world, ..Instance::default() });
             let probe = self.probes[self.records.len()];
             self.records.push(Record { id: f.id, probe, ordinal: f.ordinal, modelview: draw.modelview, model, class, age: 0 });
         }
