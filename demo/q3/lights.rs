@@ -31,10 +31,11 @@ pub const POINT_LIGHTS: [PointLight; 4] = [
     // In front of the courtyard's panel.
     PointLight { origin: Vec3::new(1020.0, 192.0, 192.0), colour: Vec3::new(1.0, 0.9, 0.7), intensity: 20_000.0 },
 ];
-/// Towards the sun: from the east, high, so that sunlight falls through the doorway into the
-/// hall and the courtyard's east wall shades the floor in front of it.
+/// Towards the sun: from the east-south-east, 41° high, so that sunlight falls through the
+/// doorway into the hall and the courtyard's south wall shades the southern part of its floor
+/// and of its west wall (a diagonal edge).
 pub fn sun_direction() -> Vec3 {
-    Vec3::new(0.62, 0.12, 0.78).normalize()
+    Vec3::new(0.6, -0.45, 0.66).normalize()
 }
 /// Sunlight on a surface facing the sun.
 pub const SUN: Vec3 = Vec3::new(1.0, 0.92, 0.75);
@@ -117,6 +118,9 @@ mod tests {
         let level = Level::new();
         let sunlit = |p: Vec3| level.reaches_sky(p, sun_direction());
         assert!(sunlit(Vec3::new(700.0, 200.0, 1.0)));
+        // The south wall's shadow: on the floor near it, on the west wall low and south.
+        assert!(!sunlit(Vec3::new(700.0, 50.0, 1.0)));
+        assert!(!sunlit(Vec3::new(529.0, 60.0, 100.0)) && sunlit(Vec3::new(529.0, 60.0, 250.0)));
         // Right in front of the east wall, the wall itself is between the floor and the sun.
         assert!(!sunlit(Vec3::new(1000.0, 200.0, 1.0)));
         // The patch of sun on the hall floor inside the doorway, not beside it.
