@@ -2,10 +2,14 @@
 //! at run time and resolves every function with `dlsym` (extensions with
 //! `glXGetProcAddressARB`), opens an Xlib window with GLX (or uses glrt's headless context),
 //! and draws a room with pillars (display list), a swinging door, an animated mesh (client
-//! arrays), glass, a sky, lights, fog and a HUD (`glBitmap` text).
+//! arrays), glass, a sky, lights, fog and a HUD (`glBitmap` text). `--rebatch` draws a world
+//! re-batched per texture every frame as Quake 3 does ([`rebatch`]); `--q3` draws a level
+//! exactly as ioquake3's OpenGL 1 renderer draws one ([`q3`]: baked lightmaps, multi-pass
+//! shaders, vertex-lit models, dynamic lights, sky, 3D HUD icons).
 //!
 //! Usage: `glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH]
-//! [--screenshot PNG] [--bench-immediate [VERTICES]]`. At the end it prints the frame count and frame times.
+//! [--screenshot PNG] [--bench-immediate [VERTICES]] [--rebatch [--detail N] [--verbose]]
+//! [--q3 [--verbose]]`. At the end it prints the frame count and frame times.
 
 mod bench;
 mod font;
