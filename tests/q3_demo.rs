@@ -3,9 +3,10 @@
 //! courtyard looking west at the doorway, the rocket flying away towards it) replayed in raster
 //! mode against Mesa's image of the same frame (`tests/reference/q3-412-mesa.png`, llvmpipe
 //! under Xvfb) and checked for light and shadow; the class hash tracking gives each draw of the
-//! fixture's last frame, written down draw by draw; and the demo's whole path through glrt
-//! without a GL error. `tests/fixtures/make.sh` remakes the fixture and the reference. Run
-//! `cargo build` first (the demo runs through `target/<profile>/libglrt.so`).
+//! fixture's last frame, written down draw by draw; the fixture still being what the demo
+//! draws; and the demo's whole path through glrt without a GL error. `tests/fixtures/make.sh`
+//! remakes the fixture and the reference. Run `cargo build` first (the demo runs through
+//! `target/<profile>/libglrt.so`).
 
 mod images;
 mod programs;
@@ -223,6 +224,21 @@ fn each_draw_of_the_fixture_gets_the_class_written_down() {
     }
     let triangles = DrawClass::COUNTED.map(|c| frames[3].stats.triangles.get(c));
     assert_eq!(triangles, [790, 516, 144, 634, 56, 768]);
+}
+
+/// The fixture is what the demo draws today: its frames 409 to 412 drawn live through glrt give
+/// the frame log recorded with the fixture (draws, vertices, clears and content hash per frame).
+/// When the demo changes, `tests/fixtures/make.sh` remakes the fixture and this file's numbers.
+#[test]
+fn the_fixture_is_what_the_demo_draws_today() {
+    let log = programs::scratch("q3_demo", "live.frames");
+    let _ = std::fs::remove_file(&log);
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_glrt-demo"));
+    cmd.args(["--q3", "--headless", "--first-frame", "409", "--frames", "4", "--size", "320x240"]).env("LD_LIBRARY_PATH", programs::lib_dir()).env("GLRT_FRAME_LOG", &log).env("GLRT_MODE", "none");
+    let (out, stopped) = programs::run_for(cmd, Duration::from_secs(120));
+    assert!(!stopped && out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let recorded = std::fs::read_to_string(repo("tests/fixtures/q3.frames")).expect("q3.frames");
+    assert_eq!(std::fs::read_to_string(&log).expect("frame log"), recorded, "the demo changed: run tests/fixtures/make.sh");
 }
 
 /// The whole camera path (480 frames at 160 × 120) through glrt without a renderer
