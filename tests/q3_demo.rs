@@ -115,12 +115,19 @@ fn the_replayed_frame_is_mesas_lit_and_shadowed_with_its_hud_icons() {
     assert!(armour > 40, "armour icon: {armour} yellow pixels");
 }
 
+/// Blend factors (source, destination) of a draw that blends.
+type Blending = Option<(BlendFactor, BlendFactor)>;
+
 /// What the tests need of a draw.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct DrawSummary {
     class: DrawClass,
     triangles: usize,
-    blend: Option<(BlendFactor, BlendFactor)>,
+    blend: Blending,
+}
+
+const fn draw(class: DrawClass, triangles: usize, blend: Blending) -> DrawSummary {
+    DrawSummary { class, triangles, blend }
 }
 
 #[derive(Clone, Debug)]
@@ -147,59 +154,58 @@ fn classified_frames() -> Vec<FrameSummary> {
     let options = replay::Options { sink: Some(replay::SinkWrapper(Arc::new(move |_| Box::new(keep.clone())))), ..Default::default() };
     let outcome = replay::run(&capture, &options).expect("replay");
     assert_eq!(outcome.frames, 4);
-    let frames = sink.0.lock().clone();
-    frames
+    sink.0.lock().clone()
 }
 
 /// The draws of the fixture's last frame (demo frame 412), in order, as glrt classifies them
-/// today: (class, triangles, blending). glrt merges the sky's triangle strips per side.
-const FRAME_3: [(DrawClass, usize, Option<(BlendFactor, BlendFactor)>); 30] = [
+/// today: class, triangles, blending. glrt merges the sky's triangle strips per side.
+const FRAME_3: [DrawSummary; 30] = [
     // The sky box (depth range 1..1): 4 sides around, 4 strips of 8 quads each, and the top,
     // then the cloud layer added over them.
-    (Sky, 64, None),
-    (Sky, 64, None),
-    (Sky, 64, None),
-    (Sky, 64, None),
-    (Sky, 128, None),
-    (Sky, 384, Some((One, One))),
+    draw(Sky, 64, None),
+    draw(Sky, 64, None),
+    draw(Sky, 64, None),
+    draw(Sky, 64, None),
+    draw(Sky, 128, None),
+    draw(Sky, 384, Some((One, One))),
     // Floor tiles, base × lightmap on two units; every visible floor surface is near the
     // rocket, so the batch is followed by its dynamic light pass.
-    (Static, 118, None),
-    (Translucent, 18, Some((One, One))),
+    draw(Static, 118, None),
+    draw(Translucent, 18, Some((One, One))),
     // Concrete, base × lightmap, and its dynamic light pass.
-    (Static, 240, None),
-    (Translucent, 14, Some((One, One))),
+    draw(Static, 240, None),
+    draw(Translucent, 14, Some((One, One))),
     // Brick, base × lightmap, then the detail pass over the same triangles.
-    (Static, 404, None),
-    (Translucent, 404, Some((DstColor, SrcColor))),
+    draw(Static, 404, None),
+    draw(Translucent, 404, Some((DstColor, SrcColor))),
     // Metal (the doorway and the hall's east wall): base, then the lightmap as a second pass
     // (`GL_EQUAL` depth).
-    (Static, 26, None),
-    (Translucent, 26, Some((DstColor, Zero))),
+    draw(Static, 26, None),
+    draw(Translucent, 26, Some((DstColor, Zero))),
     // The hall's light panel seen through the doorway, base × lightmap, then its glow.
-    (Static, 2, None),
-    (Translucent, 2, Some((One, One))),
+    draw(Static, 2, None),
+    draw(Translucent, 2, Some((One, One))),
     // The two players: new vertices every frame (walk cycle blended on the CPU).
-    (Dynamic, 72, None),
-    (Dynamic, 72, None),
+    draw(Dynamic, 72, None),
+    draw(Dynamic, 72, None),
     // The armour (spinning), the rocket (flying), the view weapon (depth range 0..0.3).
-    (Movable, 144, None),
-    (Movable, 12, None),
-    (Movable, 24, None),
+    draw(Movable, 144, None),
+    draw(Movable, 12, None),
+    draw(Movable, 24, None),
     // Blended shaders: the water, the armour's additive shell, three smoke puffs in one
     // batch, the rocket's flame.
-    (Translucent, 18, Some((SrcAlpha, OneMinusSrcAlpha))),
-    (Translucent, 144, Some((One, One))),
-    (Translucent, 6, Some((SrcAlpha, OneMinusSrcAlpha))),
-    (Translucent, 2, Some((One, One))),
+    draw(Translucent, 18, Some((SrcAlpha, OneMinusSrcAlpha))),
+    draw(Translucent, 144, Some((One, One))),
+    draw(Translucent, 6, Some((SrcAlpha, OneMinusSrcAlpha))),
+    draw(Translucent, 2, Some((One, One))),
     // The HUD's 3D icons, head and armour, each in its own viewport after a depth clear:
     // traced today (turning: movable).
-    (Movable, 192, None),
-    (Movable, 144, None),
+    draw(Movable, 192, None),
+    draw(Movable, 144, None),
     // 2D: the numbers (7 characters), the crosshair, "FRAME 00412" with its shadow.
-    (Overlay, 14, Some((SrcAlpha, OneMinusSrcAlpha))),
-    (Overlay, 2, Some((SrcAlpha, OneMinusSrcAlpha))),
-    (Overlay, 40, Some((SrcAlpha, OneMinusSrcAlpha))),
+    draw(Overlay, 14, Some((SrcAlpha, OneMinusSrcAlpha))),
+    draw(Overlay, 2, Some((SrcAlpha, OneMinusSrcAlpha))),
+    draw(Overlay, 40, Some((SrcAlpha, OneMinusSrcAlpha))),
 ];
 
 /// Each draw of the last frame gets the class written down in [`FRAME_3`], and the per-class
@@ -210,7 +216,7 @@ const FRAME_3: [(DrawClass, usize, Option<(BlendFactor, BlendFactor)>); 30] = [
 #[test]
 fn each_draw_of_the_fixture_gets_the_class_written_down() {
     let frames = classified_frames();
-    let actual: Vec<(DrawClass, usize, Option<(BlendFactor, BlendFactor)>)> = frames[3].draws.iter().map(|d| (d.class, d.triangles, d.blend)).collect();
+    let actual = &frames[3].draws;
     for (i, (a, e)) in actual.iter().zip(&FRAME_3).enumerate() {
         assert_eq!(a, e, "draw {i}");
     }

@@ -46,7 +46,7 @@ pub fn world_surfaces(level: &Level, shader_of: &[ShaderId], shaders: &Shaders, 
 }
 
 /// Half the size of the box a model is culled by.
-pub const MODEL_RADIUS: f32 = 40.0;
+const MODEL_RADIUS: f32 = 40.0;
 
 /// The surfaces of `entities` drawn in `view` (one surface each).
 pub fn entity_surfaces(entities: &[RefEntity], shaders: &Shaders, view: &ViewParms) -> Vec<DrawSurf> {

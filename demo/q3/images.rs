@@ -1,6 +1,6 @@
 //! The images of `--q3`, made procedurally (no files) and uploaded the way Quake 3's
 //! `R_CreateImage` does: texture names counted from 1024 without `glGenTextures`, RGBA data
-//! with an `GL_RGB8`/`GL_RGBA8` internal format, mipmaps built on the CPU by a 2 × 2 box filter
+//! with a `GL_RGB8` or `GL_RGBA8` internal format, mipmaps built on the CPU by a 2 × 2 box filter
 //! and uploaded level by level, `GL_LINEAR_MIPMAP_NEAREST` (Q3's default `r_textureMode`)
 //! for mipmapped images, clamped or repeating wrap.
 
