@@ -5,8 +5,8 @@
 use crate::gl::Gl;
 
 /// Glyph width and height in font pixels.
-const GLYPH_W: usize = 5;
-const GLYPH_H: usize = 7;
+pub const GLYPH_W: usize = 5;
+pub const GLYPH_H: usize = 7;
 /// Screen pixels per font pixel.
 const SCALE: usize = 2;
 /// Bitmap size passed to `glBitmap`: 16 × 16 (two bytes per row).
@@ -61,6 +61,12 @@ const GLYPHS: &[(char, [u8; GLYPH_H])] = &[
     (')', [0b01000, 0b00100, 0b00010, 0b00010, 0b00010, 0b00100, 0b01000]),
     ('?', [0b01110, 0b10001, 0b00001, 0b00010, 0b00100, 0b00000, 0b00100]),
 ];
+
+/// The rows of glyph `c` (top row first, the leftmost pixel in bit 4), `None` when the font
+/// has no such glyph.
+pub fn glyph_rows(c: char) -> Option<[u8; GLYPH_H]> {
+    GLYPHS.iter().find(|g| g.0 == c).map(|g| g.1)
+}
 
 /// `glBitmap` images of every glyph, built once.
 pub struct Font {

@@ -16,15 +16,23 @@ pub type GLdouble = f64;
 pub type GLboolean = u8;
 pub type GLbitfield = u32;
 
-pub const GL_TRIANGLES: GLenum = 0x0004;
-pub const GL_QUADS: GLenum = 0x0007;
-pub const GL_DEPTH_BUFFER_BIT: GLbitfield = 0x0100;
-pub const GL_COLOR_BUFFER_BIT: GLbitfield = 0x4000;
 pub const GL_FALSE: GLboolean = 0;
 pub const GL_TRUE: GLboolean = 1;
+pub const GL_NO_ERROR: GLenum = 0x0000;
+pub const GL_ZERO: GLenum = 0x0000;
+pub const GL_ONE: GLenum = 0x0001;
+pub const GL_TRIANGLES: GLenum = 0x0004;
+pub const GL_TRIANGLE_STRIP: GLenum = 0x0005;
+pub const GL_QUADS: GLenum = 0x0007;
+pub const GL_DEPTH_BUFFER_BIT: GLbitfield = 0x0100;
+pub const GL_EQUAL: GLenum = 0x0202;
 pub const GL_LEQUAL: GLenum = 0x0203;
+pub const GL_SRC_COLOR: GLenum = 0x0300;
 pub const GL_SRC_ALPHA: GLenum = 0x0302;
 pub const GL_ONE_MINUS_SRC_ALPHA: GLenum = 0x0303;
+pub const GL_DST_COLOR: GLenum = 0x0306;
+pub const GL_FRONT: GLenum = 0x0404;
+pub const GL_BACK: GLenum = 0x0405;
 pub const GL_FRONT_AND_BACK: GLenum = 0x0408;
 pub const GL_CULL_FACE: GLenum = 0x0B44;
 pub const GL_LIGHTING: GLenum = 0x0B50;
@@ -37,6 +45,7 @@ pub const GL_FOG_COLOR: GLenum = 0x0B66;
 pub const GL_DEPTH_TEST: GLenum = 0x0B71;
 pub const GL_NORMALIZE: GLenum = 0x0BA1;
 pub const GL_BLEND: GLenum = 0x0BE2;
+pub const GL_SCISSOR_TEST: GLenum = 0x0C11;
 pub const GL_PERSPECTIVE_CORRECTION_HINT: GLenum = 0x0C50;
 pub const GL_UNPACK_ALIGNMENT: GLenum = 0x0CF5;
 pub const GL_PACK_ALIGNMENT: GLenum = 0x0D05;
@@ -50,12 +59,14 @@ pub const GL_LINEAR_ATTENUATION: GLenum = 0x1208;
 pub const GL_COMPILE: GLenum = 0x1300;
 pub const GL_UNSIGNED_BYTE: GLenum = 0x1401;
 pub const GL_UNSIGNED_SHORT: GLenum = 0x1403;
+pub const GL_UNSIGNED_INT: GLenum = 0x1405;
 pub const GL_FLOAT: GLenum = 0x1406;
 pub const GL_SHININESS: GLenum = 0x1601;
 pub const GL_AMBIENT_AND_DIFFUSE: GLenum = 0x1602;
 pub const GL_MODELVIEW: GLenum = 0x1700;
 pub const GL_PROJECTION: GLenum = 0x1701;
 pub const GL_RGB: GLenum = 0x1907;
+pub const GL_RGBA: GLenum = 0x1908;
 pub const GL_SMOOTH: GLenum = 0x1D01;
 pub const GL_VENDOR: GLenum = 0x1F00;
 pub const GL_RENDERER: GLenum = 0x1F01;
@@ -65,16 +76,23 @@ pub const GL_MODULATE: GLenum = 0x2100;
 pub const GL_TEXTURE_ENV_MODE: GLenum = 0x2200;
 pub const GL_TEXTURE_ENV: GLenum = 0x2300;
 pub const GL_LINEAR: GLenum = 0x2601;
+pub const GL_LINEAR_MIPMAP_NEAREST: GLenum = 0x2701;
 pub const GL_TEXTURE_MAG_FILTER: GLenum = 0x2800;
 pub const GL_TEXTURE_MIN_FILTER: GLenum = 0x2801;
 pub const GL_TEXTURE_WRAP_S: GLenum = 0x2802;
 pub const GL_TEXTURE_WRAP_T: GLenum = 0x2803;
 pub const GL_REPEAT: GLenum = 0x2901;
+pub const GL_COLOR_BUFFER_BIT: GLbitfield = 0x4000;
+pub const GL_CLIP_PLANE0: GLenum = 0x3000;
 pub const GL_LIGHT0: GLenum = 0x4000;
 pub const GL_LIGHT1: GLenum = 0x4001;
+pub const GL_RGB8: GLenum = 0x8051;
+pub const GL_RGBA8: GLenum = 0x8058;
 pub const GL_VERTEX_ARRAY: GLenum = 0x8074;
 pub const GL_NORMAL_ARRAY: GLenum = 0x8075;
+pub const GL_COLOR_ARRAY: GLenum = 0x8076;
 pub const GL_TEXTURE_COORD_ARRAY: GLenum = 0x8078;
+pub const GL_CLAMP_TO_EDGE: GLenum = 0x812F;
 pub const GL_TEXTURE0_ARB: GLenum = 0x84C0;
 pub const GL_TEXTURE1_ARB: GLenum = 0x84C1;
 
@@ -91,6 +109,11 @@ fn_table!(
         fn glShadeModel(mode: GLenum);
         fn glDepthFunc(func: GLenum);
         fn glDepthMask(flag: GLboolean);
+        fn glDepthRange(near: GLdouble, far: GLdouble);
+        fn glScissor(x: GLint, y: GLint, w: GLsizei, h: GLsizei);
+        fn glCullFace(mode: GLenum);
+        fn glDrawBuffer(mode: GLenum);
+        fn glGetError() -> GLenum;
         fn glBlendFunc(s: GLenum, d: GLenum);
         fn glMatrixMode(mode: GLenum);
         fn glLoadIdentity();
@@ -134,6 +157,7 @@ fn_table!(
         fn glVertexPointer(size: GLint, ty: GLenum, stride: GLsizei, ptr: *const c_void);
         fn glNormalPointer(ty: GLenum, stride: GLsizei, ptr: *const c_void);
         fn glTexCoordPointer(size: GLint, ty: GLenum, stride: GLsizei, ptr: *const c_void);
+        fn glColorPointer(size: GLint, ty: GLenum, stride: GLsizei, ptr: *const c_void);
         fn glDrawElements(mode: GLenum, count: GLsizei, ty: GLenum, indices: *const c_void);
         fn glRasterPos2i(x: GLint, y: GLint);
         fn glBitmap(w: GLsizei, h: GLsizei, xorig: GLfloat, yorig: GLfloat, xmove: GLfloat, ymove: GLfloat, bitmap: *const u8);
@@ -144,14 +168,17 @@ fn_table!(
 
 fn_table!(
     /// `GL_ARB_multitexture` (resolved with `glXGetProcAddressARB`).
+    #[derive(Clone, Copy)]
     Multitexture {
         fn glActiveTextureARB(texture: GLenum);
+        fn glClientActiveTextureARB(texture: GLenum);
         fn glMultiTexCoord2fARB(target: GLenum, s: GLfloat, t: GLfloat);
     }
 );
 
 fn_table!(
     /// `GL_EXT_compiled_vertex_array` (resolved with `glXGetProcAddressARB`).
+    #[derive(Clone, Copy)]
     LockArrays {
         fn glLockArraysEXT(first: GLint, count: GLsizei);
         fn glUnlockArraysEXT();

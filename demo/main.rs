@@ -2,15 +2,20 @@
 //! at run time and resolves every function with `dlsym` (extensions with
 //! `glXGetProcAddressARB`), opens an Xlib window with GLX (or uses glrt's headless context),
 //! and draws a room with pillars (display list), a swinging door, an animated mesh (client
-//! arrays), glass, a sky, lights, fog and a HUD (`glBitmap` text).
+//! arrays), glass, a sky, lights, fog and a HUD (`glBitmap` text). `--rebatch` draws a world
+//! re-batched per texture every frame as Quake 3 does ([`rebatch`]); `--q3` draws a level
+//! exactly as ioquake3's OpenGL 1 renderer draws one ([`q3`]: baked lightmaps, multi-pass
+//! shaders, vertex-lit models, dynamic lights, sky, 3D HUD icons).
 //!
 //! Usage: `glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH]
-//! [--screenshot PNG] [--bench-immediate [VERTICES]]`. At the end it prints the frame count and frame times.
+//! [--screenshot PNG] [--bench-immediate [VERTICES]] [--rebatch [--detail N] [--verbose]]
+//! [--q3 [--verbose]]`. At the end it prints the frame count and frame times.
 
 mod bench;
 mod font;
 mod gl;
 mod loader;
+mod q3;
 mod rebatch;
 mod scene;
 mod screenshot;
@@ -37,13 +42,20 @@ struct Options {
     bench_vertices: Option<u64>,
     /// `--rebatch`: the Quake-3-like world instead of the scene.
     rebatch: bool,
+    /// `--q3`: the level drawn as ioquake3's renderer draws one, instead of the scene.
+    q3: bool,
     /// `--detail`: quads along each side of a rebatch surface cell (1..=64).
     detail: u32,
-    /// `--verbose`: one line per rebatch frame (surfaces, triangles and draws).
+    /// `--verbose`: one line per `--rebatch` or `--q3` frame (surfaces, batches, draws).
     verbose: bool,
 }
 
-const USAGE: &str = "usage: glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH] [--screenshot PNG] [--bench-immediate [VERTICES]] [--rebatch [--detail N] [--verbose]]";
+const USAGE: &str = "usage: glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH] [--screenshot PNG] [--bench-immediate [VERTICES]] [--rebatch [--detail N] [--verbose]] [--q3 [--verbose]]
+
+  --q3  a Quake-3-like level drawn as ioquake3's OpenGL 1 renderer draws one: lightmaps baked
+        at start-up on texture unit 1 or as a GL_DST_COLOR, GL_ZERO pass, detail and additive
+        glow passes, vertex-lit animated models, a dynamic light pass, a sky box, water,
+        sprites, 3D HUD icons and a 2D HUD, along a scripted camera path of 480 frames";
 
 fn parse_args(args: &[String]) -> Result<Options, String> {
     let mut o = Options {
@@ -56,6 +68,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         screenshot: None,
         bench_vertices: None,
         rebatch: false,
+        q3: false,
         detail: 1,
         verbose: false,
     };
@@ -93,6 +106,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
                 o.bench_vertices = Some(n);
             }
             "--rebatch" => o.rebatch = true,
+            "--q3" => o.q3 = true,
             "--detail" => {
                 o.detail = value("a count")?.parse().map_err(|e| format!("--detail: {e}"))?;
                 if !(1..=64).contains(&o.detail) {
@@ -162,7 +176,9 @@ fn run(o: &Options) -> Result<(), Failure> {
         bench::run(&api, &surface, vertices, o.width, o.height);
         return Ok(());
     }
-    let mut program = if o.rebatch {
+    let mut program = if o.q3 {
+        Program::Q3(Box::new(q3::Q3::new(&api, o.width, o.height, o.verbose)?))
+    } else if o.rebatch {
         Program::Rebatch(rebatch::World::new(&api.gl, o.detail, o.width, o.height, o.verbose))
     } else {
         Program::Scene(scene::Scene::new(&api, o.width, o.height))
@@ -170,7 +186,7 @@ fn run(o: &Options) -> Result<(), Failure> {
     let mut times = FrameTimes::default();
     for n in 0..o.frames {
         let start = Instant::now();
-        program.draw(&api, o.first_frame.saturating_add(n));
+        program.draw(&api, o.first_frame.saturating_add(n))?;
         if n + 1 == o.frames
             && let Some(path) = &o.screenshot
         {
@@ -190,20 +206,25 @@ fn run(o: &Options) -> Result<(), Failure> {
 enum Program {
     Scene(scene::Scene),
     Rebatch(rebatch::World),
+    Q3(Box<q3::Q3>),
 }
 
 impl Program {
-    fn draw(&mut self, api: &gl::GlApi, frame: u64) {
+    /// Draws frame `frame`; fails when the program found a GL error.
+    fn draw(&mut self, api: &gl::GlApi, frame: u64) -> Result<(), String> {
         match self {
             Program::Scene(scene) => scene.draw(api, frame),
             Program::Rebatch(world) => world.draw(&api.gl, frame),
+            Program::Q3(q3) => return q3.draw(&api.gl, frame),
         }
+        Ok(())
     }
 
     fn delete(&self, api: &gl::GlApi) {
         match self {
             Program::Scene(scene) => scene.delete(api),
             Program::Rebatch(world) => world.delete(&api.gl),
+            Program::Q3(q3) => q3.delete(&api.gl),
         }
     }
 }
@@ -255,7 +276,8 @@ mod tests {
         );
         assert_eq!(o.lib, "/x/libGL.so.1");
         assert_eq!(o.bench_vertices, None);
-        assert!(!o.rebatch && !o.verbose && o.detail == 1);
+        assert!(!o.rebatch && !o.q3 && !o.verbose && o.detail == 1);
+        assert!(parse_args(&args("--q3 --verbose")).is_ok_and(|q| q.q3 && q.verbose));
         let r = parse_args(&args("--rebatch --detail 4 --verbose")).unwrap();
         assert!(r.rebatch && r.verbose && r.detail == 4);
         assert_eq!(

@@ -194,7 +194,7 @@ fn view(frame: u64) -> Mat4 {
 
 /// Whether the box may meet the frustum of `clip` (false only when its 8 corners are all
 /// outside one clip plane).
-fn box_meets_frustum(clip: &Mat4, min: Vec3, max: Vec3) -> bool {
+pub fn box_meets_frustum(clip: &Mat4, min: Vec3, max: Vec3) -> bool {
     let corners: [Vec4; 8] = std::array::from_fn(|i| {
         let pick = |bit: usize, lo: f32, hi: f32| if i & bit == 0 { lo } else { hi };
         *clip * Vec4::new(pick(1, min.x, max.x), pick(2, min.y, max.y), pick(4, min.z, max.z), 1.0)

@@ -46,7 +46,7 @@ fn image(texel: fn(usize, usize) -> [u8; 3]) -> Vec<u8> {
 }
 
 /// Small deterministic noise in 0..=31 from a texel position.
-fn noise(x: usize, y: usize) -> u8 {
+pub fn noise(x: usize, y: usize) -> u8 {
     let h = (x as u32).wrapping_mul(73_856_093) ^ (y as u32).wrapping_mul(19_349_663);
     (h.wrapping_mul(2_654_435_761) >> 27) as u8
 }
@@ -56,7 +56,8 @@ fn checker(x: usize, y: usize) -> [u8; 3] {
     if (x / 16 + y / 16).is_multiple_of(2) { [200 + n, 200 + n, 190 + n] } else { [60 + n, 60 + n, 70 + n] }
 }
 
-fn brick(x: usize, y: usize) -> [u8; 3] {
+/// Red bricks in light mortar, 32 × 16 texels each (rows offset by half a brick).
+pub fn brick(x: usize, y: usize) -> [u8; 3] {
     let row = y / 16;
     let offset = if row.is_multiple_of(2) { 0 } else { 16 };
     let mortar = y % 16 < 2 || (x + offset) % 32 < 2;
@@ -71,7 +72,8 @@ fn wood(x: usize, y: usize) -> [u8; 3] {
     [v(140), v(90), v(45)]
 }
 
-fn stone(x: usize, y: usize) -> [u8; 3] {
+/// Grey speckled stone.
+pub fn stone(x: usize, y: usize) -> [u8; 3] {
     let n = noise(x, y) + noise(x / 4, y / 4) * 2;
     [110 + n, 110 + n, 115 + n]
 }

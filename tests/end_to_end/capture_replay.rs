@@ -2,8 +2,9 @@
 //! draws the same frames as the live run, replaying with `GLRT_CAPTURE` set writes the same
 //! file byte for byte, and damaged files are refused with the offset and cause.
 //!
-//! Fixtures in `tests/fixtures/`: `demo.glrtcap` (4 frames of `glrt-demo --headless`) and
-//! `glxgears.glrtcap` (frames of Mesa's glxgears under Xvfb, through glrt's libGL.so.1);
+//! Fixtures in `tests/fixtures/`: `demo.glrtcap` (4 frames of `glrt-demo --headless`),
+//! `q3.glrtcap` (4 frames of `glrt-demo --q3 --headless`) and `glxgears.glrtcap` (frames of
+//! Mesa's glxgears under Xvfb, through glrt's libGL.so.1);
 //! `tests/fixtures/*.frames` are the frame logs of the live runs that made them
 //! (`tests/fixtures/make.sh` remakes both). The range test runs `glrt-demo` through
 //! `target/<profile>/libglrt.so`: run `cargo build` first.
@@ -79,6 +80,11 @@ fn demo_replays_to_the_same_frames_and_the_same_file() {
 #[test]
 fn glxgears_replays_to_the_same_frames_and_the_same_file() {
     round_trip("glxgears");
+}
+
+#[test]
+fn q3_replays_to_the_same_frames_and_the_same_file() {
+    round_trip("q3");
 }
 
 /// A deterministic xorshift generator for the mutation tests.

@@ -1,0 +1,282 @@
+//! `glrt-demo --q3` (demo/q3/), the Quake-3-like workload: its capture fixture
+//! `tests/fixtures/q3.glrtcap` (frames 409 to 412 of the camera's path at 320 × 240: in the
+//! courtyard looking west at the doorway, the rocket flying away towards it) replayed in raster
+//! mode against Mesa's image of the same frame (`tests/reference/q3-412-mesa.png`, llvmpipe
+//! under Xvfb) and checked for light and shadow; the class hash tracking gives each draw of the
+//! fixture's last frame, written down draw by draw; the fixture still being what the demo
+//! draws; and the demo's whole path through glrt without a GL error. `tests/fixtures/make.sh`
+//! remakes the fixture and the reference. Run `cargo build` first (the demo runs through
+//! `target/<profile>/libglrt.so`).
+
+mod images;
+mod programs;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::Arc;
+use std::time::Duration;
+
+use glrt::frame::Frame;
+use glrt::frame::class::{DrawClass, FrameStats};
+use glrt::frame::state::BlendFactor;
+use glrt::frame::FrameSink;
+use glrt::replay::reader::Capture;
+use glrt::replay;
+use images::{Image, compare};
+use parking_lot::Mutex;
+use BlendFactor::{DstColor, One, OneMinusSrcAlpha, SrcAlpha, SrcColor, Zero};
+use DrawClass::{Dynamic, Movable, Overlay, Sky, Static, Translucent};
+
+fn repo(path: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
+}
+
+fn fixture() -> PathBuf {
+    repo("tests/fixtures/q3.glrtcap")
+}
+
+/// Frame 3 of the fixture replayed by `glrt replay --out` in raster mode on lavapipe.
+fn raster_frame_3() -> Image {
+    let dir = programs::scratch("q3_demo", "raster");
+    let _ = std::fs::remove_dir_all(&dir);
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_glrt"));
+    cmd.arg("replay").arg(fixture()).args(["--frames", "3..4", "--out"]).arg(&dir);
+    for key in ["GLRT_CAPTURE", "GLRT_FRAME_LOG", "GLRT_DUMP", "GLRT_CONFIG"] {
+        cmd.env_remove(key);
+    }
+    cmd.env("GLRT_MODE", "raster");
+    let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+    if Path::new(lavapipe).exists() {
+        cmd.env("VK_DRIVER_FILES", lavapipe);
+    }
+    let out = cmd.output().expect("run glrt replay");
+    assert!(out.status.success(), "glrt replay: {}", String::from_utf8_lossy(&out.stderr));
+    Image::load_png(&dir.join("frame-00003.png"))
+}
+
+/// Rec. 709 luminance of a pixel.
+fn luminance([r, g, b]: [u8; 3]) -> f64 {
+    0.2126 * f64::from(r) + 0.7152 * f64::from(g) + 0.0722 * f64::from(b)
+}
+
+/// Mean luminance of the rectangle `[x0, y0, x1, y1)` (y from the top).
+fn mean_luminance(image: &Image, [x0, y0, x1, y1]: [usize; 4]) -> f64 {
+    let sum: f64 = (y0..y1).flat_map(|y| (x0..x1).map(move |x| (x, y))).map(|(x, y)| luminance(image.pixel(x, y))).sum();
+    sum / ((x1 - x0) * (y1 - y0)) as f64
+}
+
+/// Pixels of the rectangle that `f` accepts.
+fn count(image: &Image, [x0, y0, x1, y1]: [usize; 4], f: impl Fn([u8; 3]) -> bool) -> usize {
+    (y0..y1).flat_map(|y| (x0..x1).map(move |x| (x, y))).filter(|&(x, y)| f(image.pixel(x, y))).count()
+}
+
+/// The replayed frame is Mesa's frame (the same metric as `tests/raster_vs_mesa.rs`: per
+/// channel within 24, at most 1% of the pixels unmatched), lit, shadowed where the level is
+/// shadowed, and shows the HUD's 3D icons.
+#[test]
+fn the_replayed_frame_is_mesas_lit_and_shadowed_with_its_hud_icons() {
+    let frame = raster_frame_3();
+    assert_eq!((frame.width, frame.height), (320, 240));
+    let mesa = Image::load_png(&repo("tests/reference/q3-412-mesa.png"));
+    let d = compare(&frame, &mesa, 24);
+    eprintln!("against Mesa: {:.3}% mismatched, mean |difference| {:.4}", d.mismatched * 100.0, d.mean_abs);
+    assert!(d.mismatched <= 0.01 && d.mean_abs <= 2.0, "glrt against Mesa: {d:?}");
+
+    // Lit: the baked light makes a frame of mean luminance 68 (Mesa's), nowhere near black or
+    // white.
+    let mean = mean_luminance(&frame, [0, 0, 320, 240]);
+    assert!((50.0..90.0).contains(&mean), "mean luminance {mean:.1}");
+    // Regions of the lit level (demo/q3/level.rs), each well above black: the courtyard's west
+    // wall in the sun above the doorway, its north wall in the sun, the courtyard floor in the
+    // sun in front of the doorway, the hall seen through the doorway, the sky top left.
+    let lit = [
+        ("sunlit west wall", [160, 40, 220, 90], 60.0),
+        ("north wall", [250, 20, 300, 120], 40.0),
+        ("sunlit floor", [100, 150, 200, 165], 90.0),
+        ("hall through the doorway", [130, 95, 150, 130], 30.0),
+        ("sky", [0, 0, 10, 10], 60.0),
+    ];
+    for (what, rect, least) in lit {
+        let l = mean_luminance(&frame, rect);
+        eprintln!("{what} {rect:?}: mean luminance {l:.1}");
+        assert!(l > least, "{what} {rect:?}: mean luminance {l:.1}");
+    }
+    // Shadowed: the same wall (same bricks, same lightmap page) below the diagonal edge of the
+    // south wall's shadow is less than a third as bright as where the sun reaches it.
+    let (sun, shade) = (mean_luminance(&frame, [160, 40, 220, 90]), mean_luminance(&frame, [70, 110, 110, 130]));
+    eprintln!("west wall: {shade:.1} in the shadow, {sun:.1} in the sun");
+    assert!(shade * 3.0 < sun, "west wall: {shade:.1} in the shadow, {sun:.1} in the sun");
+    // The 3D icons of the status bar (GL viewports [143, 0, 24, 24] and [235, 0, 24, 24] in the
+    // bottom row): the head's skin and the armour's yellow plates.
+    let skin = count(&frame, [143, 216, 167, 240], |[r, g, b]| r > 120 && r > g + 15 && g > b + 15);
+    let armour = count(&frame, [235, 216, 259, 240], |[r, g, b]| r > 110 && g > 90 && b < 60);
+    eprintln!("icons: {skin} skin pixels, {armour} yellow pixels");
+    assert!(skin > 300, "head icon: {skin} skin pixels");
+    assert!(armour > 40, "armour icon: {armour} yellow pixels");
+}
+
+/// Blend factors (source, destination) of a draw that blends.
+type Blending = Option<(BlendFactor, BlendFactor)>;
+
+/// What the tests need of a draw.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct DrawSummary {
+    class: DrawClass,
+    triangles: usize,
+    blend: Blending,
+}
+
+const fn draw(class: DrawClass, triangles: usize, blend: Blending) -> DrawSummary {
+    DrawSummary { class, triangles, blend }
+}
+
+#[derive(Clone, Debug)]
+struct FrameSummary {
+    draws: Vec<DrawSummary>,
+    stats: FrameStats,
+}
+
+#[derive(Clone, Default)]
+struct Summaries(Arc<Mutex<Vec<FrameSummary>>>);
+
+impl FrameSink for Summaries {
+    fn present(&mut self, frame: Frame) {
+        let draws = frame.draws.iter().map(|d| DrawSummary { class: d.class, triangles: d.indices.len() / 3, blend: d.state.blend.map(|b| (b.src_rgb, b.dst_rgb)) }).collect();
+        self.0.lock().push(FrameSummary { draws, stats: frame.stats });
+    }
+}
+
+/// The fixture's frames, replayed and classified in this process.
+fn classified_frames() -> Vec<FrameSummary> {
+    let capture = Capture::open(&fixture()).expect("capture");
+    let sink = Summaries::default();
+    let keep = sink.clone();
+    let options = replay::Options { sink: Some(replay::SinkWrapper(Arc::new(move |_| Box::new(keep.clone())))), ..Default::default() };
+    let outcome = replay::run(&capture, &options).expect("replay");
+    assert_eq!(outcome.frames, 4);
+    sink.0.lock().clone()
+}
+
+/// The draws of the fixture's last frame (demo frame 412), in order, as glrt classifies them
+/// today: class, triangles, blending. glrt merges the sky's triangle strips per side.
+const FRAME_3: [DrawSummary; 30] = [
+    // The sky box (depth range 1..1): 4 sides around, 4 strips of 8 quads each, and the top,
+    // then the cloud layer added over them.
+    draw(Sky, 64, None),
+    draw(Sky, 64, None),
+    draw(Sky, 64, None),
+    draw(Sky, 64, None),
+    draw(Sky, 128, None),
+    draw(Sky, 384, Some((One, One))),
+    // Floor tiles, base × lightmap on two units; every visible floor surface is near the
+    // rocket, so the batch is followed by its dynamic light pass.
+    draw(Static, 118, None),
+    draw(Translucent, 18, Some((One, One))),
+    // Concrete, base × lightmap, and its dynamic light pass.
+    draw(Static, 240, None),
+    draw(Translucent, 14, Some((One, One))),
+    // Brick, base × lightmap, then the detail pass over the same triangles.
+    draw(Static, 404, None),
+    draw(Translucent, 404, Some((DstColor, SrcColor))),
+    // Metal (the doorway and the hall's east wall): base, then the lightmap as a second pass
+    // (`GL_EQUAL` depth).
+    draw(Static, 26, None),
+    draw(Translucent, 26, Some((DstColor, Zero))),
+    // The hall's light panel seen through the doorway, base × lightmap, then its glow.
+    draw(Static, 2, None),
+    draw(Translucent, 2, Some((One, One))),
+    // The two players: new vertices every frame (walk cycle blended on the CPU).
+    draw(Dynamic, 72, None),
+    draw(Dynamic, 72, None),
+    // The armour (spinning), the rocket (flying), the view weapon (depth range 0..0.3).
+    draw(Movable, 144, None),
+    draw(Movable, 12, None),
+    draw(Movable, 24, None),
+    // Blended shaders: the water, the armour's additive shell, three smoke puffs in one
+    // batch, the rocket's flame.
+    draw(Translucent, 18, Some((SrcAlpha, OneMinusSrcAlpha))),
+    draw(Translucent, 144, Some((One, One))),
+    draw(Translucent, 6, Some((SrcAlpha, OneMinusSrcAlpha))),
+    draw(Translucent, 2, Some((One, One))),
+    // The HUD's 3D icons, head and armour, each in its own viewport after a depth clear:
+    // traced today (turning: movable).
+    draw(Movable, 192, None),
+    draw(Movable, 144, None),
+    // 2D: the numbers (7 characters), the crosshair, "FRAME 00412" with its shadow.
+    draw(Overlay, 14, Some((SrcAlpha, OneMinusSrcAlpha))),
+    draw(Overlay, 2, Some((SrcAlpha, OneMinusSrcAlpha))),
+    draw(Overlay, 40, Some((SrcAlpha, OneMinusSrcAlpha))),
+];
+
+/// Each draw of the last frame gets the class written down in [`FRAME_3`], and the per-class
+/// counts of `Frame.stats` follow: 5 static (the world's first stages), 5 movable (armour,
+/// rocket, weapon, two HUD icons), 2 dynamic (the players), 9 translucent (3 second stages:
+/// detail, lightmap pass, glow; 2 dynamic light passes; 4 blended shaders), 3 overlay (2D),
+/// 6 sky. In frame 0 nothing has moved yet: the 12 traced draws are all static.
+#[test]
+fn each_draw_of_the_fixture_gets_the_class_written_down() {
+    let frames = classified_frames();
+    let actual = &frames[3].draws;
+    for (i, (a, e)) in actual.iter().zip(&FRAME_3).enumerate() {
+        assert_eq!(a, e, "draw {i}");
+    }
+    assert_eq!(actual.len(), FRAME_3.len(), "{actual:?}");
+    let counts = |f: &FrameSummary| DrawClass::COUNTED.map(|c| f.stats.classes.get(c));
+    // Order: static, movable, dynamic, translucent, overlay, sky.
+    assert_eq!(counts(&frames[0]), [12, 0, 0, 9, 3, 6, 0], "frame 0");
+    for (n, f) in frames.iter().enumerate().skip(1) {
+        assert_eq!(counts(f), [5, 5, 2, 9, 3, 6, 0], "frame {n}");
+        assert_eq!(f.stats.matches_found, 12, "frame {n}: every traced draw found again");
+    }
+    let triangles = DrawClass::COUNTED.map(|c| frames[3].stats.triangles.get(c));
+    assert_eq!(triangles, [790, 516, 144, 634, 56, 768, 0]);
+}
+
+/// The fixture is what the demo draws today: its frames 409 to 412 drawn live through glrt give
+/// the frame log recorded with the fixture (draws, vertices, clears and content hash per frame).
+/// When the demo changes, `tests/fixtures/make.sh` remakes the fixture and this file's numbers.
+#[test]
+fn the_fixture_is_what_the_demo_draws_today() {
+    let log = programs::scratch("q3_demo", "live.frames");
+    let _ = std::fs::remove_file(&log);
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_glrt-demo"));
+    cmd.args(["--q3", "--headless", "--first-frame", "409", "--frames", "4", "--size", "320x240"]).env("LD_LIBRARY_PATH", programs::lib_dir()).env("GLRT_FRAME_LOG", &log).env("GLRT_MODE", "none");
+    let (out, stopped) = programs::run_for(cmd, Duration::from_secs(120));
+    assert!(!stopped && out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let recorded = std::fs::read_to_string(repo("tests/fixtures/q3.frames")).expect("q3.frames");
+    assert_eq!(std::fs::read_to_string(&log).expect("frame log"), recorded, "the demo changed: run tests/fixtures/make.sh");
+}
+
+/// The whole camera path (480 frames at 160 × 120) through glrt without a renderer
+/// (`GLRT_MODE=none`): no GL error (the demo checks `glGetError` every frame and fails on
+/// one), and what is drawn changes with the view: the sky only when the courtyard's opening
+/// is in view, the batches and draw calls with the surfaces in view and the rocket.
+#[test]
+fn the_whole_path_runs_through_glrt_without_a_gl_error() {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_glrt-demo"));
+    cmd.args(["--q3", "--verbose", "--headless", "--frames", "480", "--size", "160x120"]).env("LD_LIBRARY_PATH", programs::lib_dir()).env("GLRT_MODE", "none");
+    let (out, stopped) = programs::run_for(cmd, Duration::from_secs(300));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(!stopped && out.status.success(), "{:?}\n{stdout}\n{}", out.status, String::from_utf8_lossy(&out.stderr));
+    // "q3 frame F: S surfaces, B batches, D glDrawElements, G glBegin"
+    let frames: Vec<[usize; 4]> = stdout
+        .lines()
+        .filter_map(|l| l.strip_prefix("q3 frame "))
+        .map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            [w[1], w[3], w[5], w[7]].map(|n| n.parse().unwrap_or_else(|_| panic!("{l}")))
+        })
+        .collect();
+    assert_eq!(frames.len(), 480);
+    let with_sky = frames.iter().filter(|f| f[3] == 24).count();
+    assert!(frames.iter().all(|f| f[3] == 0 || f[3] == 24), "the sky box: 5 sides, 24 strips");
+    assert!(with_sky > 400 && with_sky < 480, "the sky is drawn in {with_sky} frames");
+    // Every batch makes at least one draw; second stages and dynamic light passes more.
+    assert!(frames.iter().all(|f| f[2] >= f[1] && f[2] > f[1]));
+    let mut batches: Vec<usize> = frames.iter().map(|f| f[1]).collect();
+    batches.sort();
+    batches.dedup();
+    assert!(batches.len() >= 5, "batches per frame vary with the view: {batches:?}");
+    assert!(stdout.contains("q3 shader textures/q3demo/metal: Generic, 2 stages\n"), "{stdout}");
+    assert!(stdout.contains("q3 shader textures/q3demo/floor: LightmappedMultitexture, 1 stages, lightmap on unit 1\n"));
+}
