@@ -5,24 +5,26 @@
 // src/render/raster/ff/mod.rs for the interface.
 
 #define FF_FRAGMENT
+#include "generated/texenv_codes.glsl"
+#include "generated/ff_interface.glsl"
 #include "ff_key.glsl"
 #include "ff_uniforms.glsl"
 #include "ff_varyings.glsl"
 #include "gl_compare.glsl"
 #include "ff_fragment_ops.glsl"
 
-layout(set = 0, binding = 1) uniform sampler2D tex2d_0;
-layout(set = 0, binding = 2) uniform sampler2D tex2d_1;
-layout(set = 0, binding = 3) uniform sampler2D tex2d_2;
-layout(set = 0, binding = 4) uniform sampler2D tex2d_3;
-layout(set = 0, binding = 5) uniform sampler3D tex3d_0;
-layout(set = 0, binding = 6) uniform sampler3D tex3d_1;
-layout(set = 0, binding = 7) uniform sampler3D tex3d_2;
-layout(set = 0, binding = 8) uniform sampler3D tex3d_3;
-layout(set = 0, binding = 9) uniform samplerCube texcube_0;
-layout(set = 0, binding = 10) uniform samplerCube texcube_1;
-layout(set = 0, binding = 11) uniform samplerCube texcube_2;
-layout(set = 0, binding = 12) uniform samplerCube texcube_3;
+layout(set = 0, binding = BINDING_SAMPLER_2D + 0u) uniform sampler2D tex2d_0;
+layout(set = 0, binding = BINDING_SAMPLER_2D + 1u) uniform sampler2D tex2d_1;
+layout(set = 0, binding = BINDING_SAMPLER_2D + 2u) uniform sampler2D tex2d_2;
+layout(set = 0, binding = BINDING_SAMPLER_2D + 3u) uniform sampler2D tex2d_3;
+layout(set = 0, binding = BINDING_SAMPLER_3D + 0u) uniform sampler3D tex3d_0;
+layout(set = 0, binding = BINDING_SAMPLER_3D + 1u) uniform sampler3D tex3d_1;
+layout(set = 0, binding = BINDING_SAMPLER_3D + 2u) uniform sampler3D tex3d_2;
+layout(set = 0, binding = BINDING_SAMPLER_3D + 3u) uniform sampler3D tex3d_3;
+layout(set = 0, binding = BINDING_SAMPLER_CUBE + 0u) uniform samplerCube texcube_0;
+layout(set = 0, binding = BINDING_SAMPLER_CUBE + 1u) uniform samplerCube texcube_1;
+layout(set = 0, binding = BINDING_SAMPLER_CUBE + 2u) uniform samplerCube texcube_2;
+layout(set = 0, binding = BINDING_SAMPLER_CUBE + 3u) uniform samplerCube texcube_3;
 
 layout(location = 0) out vec4 out_color;
 

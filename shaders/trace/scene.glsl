@@ -1,17 +1,14 @@
 // The traced scene as the compute shaders read it: per-frame constants, per-triangle shading
-// attributes, materials and lights. Mirrors src/render/trace/gpu_types.rs (whose tests compare
-// sizes). Everything is in the eye space of the current frame.
+// attributes, materials and lights. Mirrored by src/render/trace/gpu_types.rs, whose layouts
+// the build checks against this file's compiled SPIR-V; the flags are generated from
+// src/render/trace/shader_constants.rs. Everything is in the eye space of the current frame.
 
 #ifndef TRACE_SCENE_GLSL
 #define TRACE_SCENE_GLSL
 
+#include "generated/trace_constants.glsl"
 #include "trace/bindings.glsl"
 #include "trace/instance.glsl"
-
-// TraceFrame.flags bits.
-#define FRAME_TONEMAP_MASK 3u     // 0: clamp, 1: Reinhard, 2: ACES
-#define FRAME_PERSPECTIVE 4u      // perspective camera (else orthographic)
-#define FRAME_SKY 8u              // missed rays sample the sky cube map (environment.glsl)
 
 layout(set = TRACE_SET, binding = BINDING_FRAME, std430) readonly buffer TraceFrameBlock {
     mat4 projection;            // eye to clip, this frame
@@ -62,9 +59,7 @@ struct Material {
     float alpha_ref;
     uint lightmap;      // texel pool index of a kept lightmap (unit 1), or 0xffffffff
     float lightmap_scale; // multiplies the lightmap's encoded texels (GL's RGB_SCALE)
-    uint pad0;
-    uint pad1;
-    uint pad2;
+    uint pad[3];
 };
 
 layout(set = TRACE_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials {

@@ -12,8 +12,6 @@
 #include "trace/texels.glsl"
 #include "trace/brdf.glsl"
 
-const uint NO_TEXTURE = 0xffffffffu;
-
 // The GL colour of a triangle corner interpolated at bary, still display-encoded.
 vec4 corner_color(TriangleAttributes a, vec2 bary) {
     return unpackUnorm4x8(a.corner[0].color) * (1.0 - bary.x - bary.y) + unpackUnorm4x8(a.corner[1].color) * bary.x
@@ -73,9 +71,9 @@ bool trace_alpha_accept(uint instance, uint triangle, vec2 bary) {
 // The object-space corners of global triangle `triangle`.
 void trace_triangle_vertices(uint triangle, out vec3 v0, out vec3 v1, out vec3 v2) {
     BvhTriangle t = triangles[triangle];
-    v0 = t.v0.xyz;
-    v1 = v0 + t.e1.xyz;
-    v2 = v0 + t.e2.xyz;
+    v0 = t.v0;
+    v1 = v0 + t.e1;
+    v2 = v0 + t.e2;
 }
 
 // An object-space vector or point through the instance's rows.

@@ -1,9 +1,12 @@
 //! Rendering: consumes [`Frame`]s. The Vulkan back ends come here; for now the sinks that keep
 //! frames for tests and for programs run without a renderer.
 
+#[macro_use]
+pub mod shader_abi;
 pub mod frame_log;
 pub mod present;
 pub mod raster;
+pub mod texenv;
 pub mod trace;
 
 use std::sync::Arc;

@@ -113,7 +113,7 @@ mod tests {
     use crate::frame::class::{MaterialOverride, View};
     use crate::frame::state::CompareFunc;
     use crate::frame::world::ChunkShading;
-    use crate::render::trace::gpu_types::NO_TEXTURE;
+    use crate::render::trace::shader_constants::NO_TEXTURE;
 
     fn chunk(colors: Vec<[u8; 4]>, state: RasterState) -> StaticChunk {
         StaticChunk {

@@ -23,7 +23,9 @@
 //! ([`tracks`], [`resident`]).
 //!
 //! Parts:
-//! - [`bindings`]: descriptor bindings shared with `shaders/trace/bindings.glsl`.
+//! - [`bindings`]: descriptor bindings and [`shader_constants`]: flags and special values, both
+//!   shared with the shaders as generated headers ([`crate::render::shader_abi`]).
+//! - [`gpu_types`]: the structures the shaders read, checked against the compiled SPIR-V.
 //! - [`bvh`]: bottom-level BVHs of triangle sets and the per-frame top-level BVH (CPU build,
 //!   GPU layout, CPU traversal for tests); `shaders/trace/bvh.glsl` traverses them.
 //! - [`texels`]: every texture level the tracer samples, packed into one storage buffer (no
@@ -32,7 +34,7 @@
 //! - [`scene`]: traced draws as geometries, instances and materials; [`chunks`]: the static
 //!   world's chunks as geometries; [`instances`]: a frame's instances, draws and chunks;
 //!   [`lights`]: GL lights as physical lights; [`sky`]: the sky draws as the environment cube
-//!   map; [`gpu_types`]: the structures the shaders read.
+//!   map.
 //! - [`tracks`]: dynamic instances across frames (what their next shape refits).
 //! - [`stats`]: rays traced by kind, traversal work and the tracing pass's GPU time.
 //! - [`resident`]: geometries on the GPU; [`pipelines`]: the tracer's pipelines;
@@ -48,6 +50,7 @@ pub mod pipelines;
 pub mod resident;
 pub mod scene;
 pub mod settings;
+pub mod shader_constants;
 pub mod sky;
 pub mod stats;
 pub mod texels;

@@ -12,14 +12,14 @@ use crate::render::raster::device::{Check, Device, Error, Result};
 use crate::render::raster::multisample;
 use crate::render::raster::pipelines::{create_for_target, shader_module};
 
-/// Push constants of the composite: traced size and framebuffer size.
+/// Push constants of the composite: traced size and framebuffer size (`trace_composite.frag`'s
+/// `Sizes`).
 pub const COMPOSITE_PUSH_BYTES: u32 = 16;
 
 /// Push constants of the compute pipelines: the sample a tracing dispatch traces (`pathtrace.comp`'s `Pass`).
 pub const TRACE_PUSH_BYTES: u32 = 4;
 
-/// Local size of both compute shaders, in each dimension.
-pub const GROUP: u32 = 8;
+include!(concat!(env!("OUT_DIR"), "/layouts/trace_push_constants.rs"));
 
 /// Layouts, compute pipelines and composite pipelines.
 pub struct TracePipelines {

@@ -28,7 +28,8 @@
 use glam::{Mat4, Vec3, Vec4};
 use xxhash_rust::xxh3::Xxh3;
 
-use super::gpu_types::{GpuCorner, GpuMaterial, GpuTriangleAttributes, NO_TEXTURE};
+use super::gpu_types::{GpuCorner, GpuMaterial, GpuTriangleAttributes};
+use super::shader_constants::NO_TEXTURE;
 use super::settings::Lightmaps;
 use crate::frame::state::{ColorMaterialMode, CompareFunc, Lighting};
 use crate::frame::texture::{CombineFn, CombineOperand, CombineSource, EnvMode, TextureRef};
