@@ -44,6 +44,7 @@ const LAYOUTS: &[LayoutFile] = &[
                     mirror("TraceFrameBlock", Rust::Struct("GpuFrame")),
                     mirror("Corner", Rust::Struct("GpuCorner")),
                     mirror("TriangleAttributes", Rust::Struct("GpuTriangleAttributes")),
+                    mirror("Layer", Rust::Struct("GpuLayer")),
                     mirror("Material", Rust::Struct("GpuMaterial")),
                     mirror("Light", Rust::Struct("GpuLight")),
                     mirror("Instance", Rust::Struct("GpuInstance")),

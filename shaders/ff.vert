@@ -6,6 +6,7 @@
 
 #include "generated/texenv_codes.glsl"
 #include "generated/ff_interface.glsl"
+#include "bit_field.glsl"
 #include "ff_key.glsl"
 #include "ff_uniforms.glsl"
 #include "ff_varyings.glsl"

@@ -1,7 +1,7 @@
 // The shader key of the fixed-function shaders: the specialisation constants (the words of
 // src/render/raster/ff/key.rs). Their bit fields (`<NAME>_SHIFT`, `<NAME>_BITS`) and codes come
-// from generated/texenv_codes.glsl and generated/ff_interface.glsl, which the including shader
-// includes first.
+// from generated/texenv_codes.glsl and generated/ff_interface.glsl, read with bit_field.glsl's
+// field(); the including shader includes those first.
 
 layout(constant_id = 0) const uint KEY_GENERAL = 0u;
 layout(constant_id = 1) const uint KEY_CLIP = 0u;
@@ -17,10 +17,6 @@ layout(constant_id = 10) const uint KEY_COMBINE_ALPHA0 = 0u;
 layout(constant_id = 11) const uint KEY_COMBINE_ALPHA1 = 0u;
 layout(constant_id = 12) const uint KEY_COMBINE_ALPHA2 = 0u;
 layout(constant_id = 13) const uint KEY_COMBINE_ALPHA3 = 0u;
-
-uint field(uint word, uint shift, uint bits) {
-    return (word >> shift) & ((1u << bits) - 1u);
-}
 
 #define GENERAL(NAME) field(KEY_GENERAL, NAME##_SHIFT, NAME##_BITS)
 

@@ -105,11 +105,6 @@ fn combine_word(f: CombineFn, sources: [CombineSource; 3], operands: [CombineOpe
     w
 }
 
-/// The scale a combiner word applies to its result (1, 2 or 4).
-pub fn combine_scale(word: u32) -> f32 {
-    (1 << SCALE.get(word)) as f32
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -145,8 +140,7 @@ mod tests {
         assert_eq!(COMBINE_FN.get(w), 7);
         assert_eq!([0, 1, 2].map(|i| SOURCE.nth(i).get(w)), [4, 5, 7]);
         assert_eq!([0, 1, 2].map(|i| OPERAND.nth(i).get(w)), [3, 0, 2]);
-        assert_eq!((SCALE.get(w), combine_scale(w)), (2, 4.0));
-        assert_eq!(combine_scale(alpha), 2.0);
+        assert_eq!((SCALE.get(w), SCALE.get(alpha)), (2, 1), "log2 of 4 and 2");
         assert_eq!(combine_words(&TextureEnv::default()), [0, 0], "combiner words only for COMBINE");
     }
 

@@ -6,6 +6,8 @@
 
 use bytemuck::{Pod, Zeroable};
 
+use super::shader_constants::TRACED_UNITS;
+
 /// `TraceFrameBlock` of `scene.glsl`: camera, settings and counts of one frame.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -36,14 +38,12 @@ pub struct GpuFrame {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuCorner {
-    /// Texture coordinates of unit 0.
-    pub uv: [f32; 2],
+    /// Texture coordinates of each traced unit (zero when the unit is not enabled).
+    pub uv: [[f32; 2]; TRACED_UNITS],
     /// Object-space normal, octahedral snorm16x2; 0 when the geometric normal is used.
     pub normal: u32,
     /// Base colour, display-encoded unorm8 RGBA.
     pub color: u32,
-    /// Texture coordinates of unit 1 (the lightmap's; zero when unit 1 is not enabled).
-    pub lightmap_uv: [f32; 2],
 }
 
 /// `TriangleAttributes` of `scene.glsl`.
@@ -54,18 +54,34 @@ pub struct GpuTriangleAttributes {
     pub corner: [GpuCorner; 3],
 }
 
+/// `Layer` of `scene.glsl`: one traced texture unit of a material (see [`super::scene`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLayer {
+    /// `GL_TEXTURE_ENV_COLOR`.
+    pub env_color: [f32; 4],
+    /// Texel pool index of the unit's texture, or `NO_TEXTURE`.
+    pub texture: u32,
+    /// The unit word's `FORMAT` and `ENV` fields ([`crate::render::texenv::unit_bits`]).
+    pub env: u32,
+    /// The RGB combiner word ([`crate::render::texenv::combine_words`]).
+    pub combine_rgb: u32,
+    /// The alpha combiner word.
+    pub combine_alpha: u32,
+    /// `LAYER_*` of [`super::shader_constants`].
+    pub role: u32,
+    /// Padding.
+    pub pad: [u32; 3],
+}
+
 /// `Material` of `scene.glsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuMaterial {
     /// Linear emitted radiance (rgb); a: emissive scale applied to the albedo.
     pub emission: [f32; 4],
-    /// `GL_TEXTURE_ENV_COLOR`.
-    pub env_color: [f32; 4],
-    /// Texel pool index of unit 0's texture, or `NO_TEXTURE`.
-    pub texture: u32,
-    /// `TEXENV_*` of unit 0.
-    pub texenv: u32,
+    /// Layer `u`: texture unit `u`.
+    pub layer: [GpuLayer; TRACED_UNITS],
     /// Roughness (GGX alpha = roughness²).
     pub roughness: f32,
     /// Metalness.
@@ -76,10 +92,6 @@ pub struct GpuMaterial {
     pub alpha_func: u32,
     /// Alpha test reference.
     pub alpha_ref: f32,
-    /// Texel pool index of unit 1's texture when it is a kept lightmap, or `NO_TEXTURE`.
-    pub lightmap: u32,
-    /// Multiplies the lightmap's display-encoded texels (GL's `RGB_SCALE` of unit 1).
-    pub lightmap_scale: f32,
     /// Padding.
     pub pad: [u32; 3],
 }

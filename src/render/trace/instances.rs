@@ -37,16 +37,17 @@ pub struct Item<'a> {
 /// The instances of `frame` whose traced draws are `draws`, and how many draws were left out
 /// because the static world holds them. `previous_view` is the last traced frame's view
 /// (`None` after a camera cut). Chunks do not carry unit 1: with `lightmaps` kept, draws with a
-/// kept lightmap are traced themselves and chunks of multitextured draws are left out (such
-/// geometry is traced as drawn, without anti-culling).
+/// traced unit 1 (a kept lightmap or another environment) are traced themselves and chunks of
+/// multitextured draws are left out (such geometry is traced as drawn, without anti-culling).
+/// With lightmaps ignored, chunks keep standing for their draws and lose unit 1.
 pub fn gather<'a>(frame: &'a Frame, draws: &[&'a Draw], previous_view: Option<Mat4>, lightmaps: Lightmaps) -> (Vec<Item<'a>>, u32) {
     let world = chunks::traced_world(frame);
     let keep = lightmaps == Lightmaps::Keep;
     let mut items = Vec::with_capacity(draws.len() + world.map_or(0, |(_, c)| c.len()));
     let mut covered = 0;
     for &draw in draws {
-        let lightmapped = keep && scene::traced_textures(draw, lightmaps)[1].is_some();
-        if world.is_some() && chunks::is_covered(draw) && !lightmapped {
+        let second_unit = keep && scene::traced_textures(draw, lightmaps)[1].is_some();
+        if world.is_some() && chunks::is_covered(draw) && !second_unit {
             covered += 1;
             continue;
         }
@@ -70,8 +71,8 @@ impl<'a> Item<'a> {
         }
     }
 
-    /// The textures it is shaded with: unit 0's, and unit 1's when it is a kept lightmap
-    /// (`scene::traced_textures`; chunks carry unit 0 only).
+    /// The textures it is shaded with, per traced unit (`scene::traced_textures`; chunks carry
+    /// unit 0 only).
     pub fn textures(&self, lightmaps: Lightmaps) -> [Option<&'a TextureRef>; 2] {
         match self.source {
             Source::Draw(d) => scene::traced_textures(d, lightmaps),
@@ -79,7 +80,7 @@ impl<'a> Item<'a> {
         }
     }
 
-    /// Its material, with its textures (unit 0, lightmap) at `textures` in the texel pool.
+    /// Its material, with its textures (per traced unit) at `textures` in the texel pool.
     pub fn material(&self, textures: [Option<u32>; 2], defaults: &MaterialDefaults) -> GpuMaterial {
         match self.source {
             Source::Draw(d) => scene::material(d, textures, defaults),

@@ -10,6 +10,18 @@ glsl_constants! {
     /// texel pool samples it as opaque white).
     const NO_TEXTURE: u32 = u32::MAX;
 
+    /// Texture units a material traces, each a [`GpuLayer`](super::gpu_types::GpuLayer): the
+    /// units whose coordinates a triangle's corners carry.
+    const TRACED_UNITS: usize = 2;
+    /// `GpuLayer::role`: the unit does not texture (or is left out).
+    const LAYER_OFF: u32 = 0;
+    /// `GpuLayer::role`: the unit's texture environment applies to the surface colour, after
+    /// the layers before it (`texenv.glsl`).
+    const LAYER_COLOR: u32 = 1;
+    /// `GpuLayer::role`: a kept lightmap: the unit's texels, times its RGB scale, are the
+    /// surface's baked irradiance (`super::scene`'s module doc).
+    const LAYER_BAKED_LIGHT: u32 = 2;
+
     /// `GpuInstance::flags`: traversal runs the alpha test (`trace_alpha_accept`).
     const INSTANCE_ALPHA_TESTED: u32 = 1;
 

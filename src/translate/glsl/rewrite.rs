@@ -80,6 +80,7 @@ pub fn rewrite(input: &StageInput) -> String {
     for part in [
         include_str!(concat!(env!("OUT_DIR"), "/glsl/generated/texenv_codes.glsl")),
         include_str!(concat!(env!("OUT_DIR"), "/glsl/generated/ff_interface.glsl")),
+        include_str!("../../../shaders/bit_field.glsl"),
         include_str!("../../../shaders/ff_key.glsl"),
         include_str!("../../../shaders/ff_uniforms.glsl"),
         include_str!("../../../shaders/ff_varyings.glsl"),
