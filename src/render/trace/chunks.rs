@@ -124,7 +124,7 @@ mod tests {
             positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [5.0, 0.0, 0.0], [6.0, 0.0, 0.0], [5.0, 1.0, 0.0]],
             texcoords: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.5], [0.5, 0.5], [0.5, 0.5]],
             colors,
-            shading: ChunkShading { state: Arc::new(state), texture_unit: Some(TextureUnit::default()), multitextured: false },
+            shading: ChunkShading { state: Arc::new(state), texture_unit: Some(TextureUnit::default()), second_unit: None },
         }
     }
 

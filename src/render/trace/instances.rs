@@ -36,17 +36,16 @@ pub struct Item<'a> {
 
 /// The instances of `frame` whose traced draws are `draws`, and how many draws were left out
 /// because the static world holds them. `previous_view` is the last traced frame's view
-/// (`None` after a camera cut). Chunks do not carry unit 1: with `lightmaps` kept, draws with a
-/// traced unit 1 (a kept lightmap or another environment) are traced themselves and chunks of
-/// multitextured draws are left out (such geometry is traced as drawn, without anti-culling).
-/// With lightmaps ignored, chunks keep standing for their draws and lose unit 1.
+/// (`None` after a camera cut). Chunks do not carry unit 1: draws whose unit 1 is traced (a
+/// colour layer, or a lightmap `lightmaps` keeps: `scene::traces_second_unit`) are traced
+/// themselves, and the chunks of such draws are left out (that geometry is traced as drawn,
+/// without anti-culling).
 pub fn gather<'a>(frame: &'a Frame, draws: &[&'a Draw], previous_view: Option<Mat4>, lightmaps: Lightmaps) -> (Vec<Item<'a>>, u32) {
     let world = chunks::traced_world(frame);
-    let keep = lightmaps == Lightmaps::Keep;
     let mut items = Vec::with_capacity(draws.len() + world.map_or(0, |(_, c)| c.len()));
     let mut covered = 0;
     for &draw in draws {
-        let second_unit = keep && scene::traced_textures(draw, lightmaps)[1].is_some();
+        let second_unit = scene::traced_textures(draw, lightmaps)[1].is_some();
         if world.is_some() && chunks::is_covered(draw) && !second_unit {
             covered += 1;
             continue;
@@ -55,7 +54,7 @@ pub fn gather<'a>(frame: &'a Frame, draws: &[&'a Draw], previous_view: Option<Ma
         items.push(Item { source: Source::Draw(draw), key: scene::geometry_key(draw), object_to_eye: draw.modelview, previous_object_to_eye: previous });
     }
     if let Some((view, list)) = world {
-        for chunk in list.iter().filter(|c| !(keep && c.shading.multitextured)) {
+        for chunk in list.iter().filter(|c| !c.shading.second_unit.is_some_and(|u| scene::traces_second_unit(&u, lightmaps))) {
             items.push(Item { source: Source::Chunk(chunk), key: chunks::key(chunk), object_to_eye: view, previous_object_to_eye: previous_view.unwrap_or(view) });
         }
     }

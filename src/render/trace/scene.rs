@@ -145,17 +145,18 @@ pub fn is_lightmap(unit: &TextureUnit) -> bool {
 }
 
 /// The textures the tracer samples for `draw`, per traced unit: the unit's texture when a
-/// target is enabled there, but for a lightmap on unit 1 ([`is_lightmap`]) that `lightmaps`
-/// does not keep.
+/// target is enabled there, but for a lightmap on unit 1 that `lightmaps` does not keep
+/// ([`traces_second_unit`]).
 pub fn traced_textures(draw: &Draw, lightmaps: Lightmaps) -> [Option<&TextureRef>; TRACED_UNITS] {
     let texture = |unit: usize| draw.textures.get(unit).and_then(Option::as_ref).filter(|_| enabled(draw, unit));
-    let kept = |unit: usize| unit != LIGHTMAP_UNIT || lightmaps == Lightmaps::Keep || !has_lightmap(draw);
+    let kept = |unit: usize| unit != LIGHTMAP_UNIT || draw.texture_units.get(unit).copied().flatten().is_some_and(|u| traces_second_unit(&u, lightmaps));
     std::array::from_fn(|unit| texture(unit).filter(|_| kept(unit)))
 }
 
-/// Whether unit 1 is enabled and multiplies unit 0's result ([`is_lightmap`]).
-fn has_lightmap(draw: &Draw) -> bool {
-    draw.texture_units.get(LIGHTMAP_UNIT).copied().flatten().is_some_and(|u| is_lightmap(&u))
+/// Whether unit 1, enabled with a texture and the environment of `unit`, is traced: as a
+/// colour layer, or as a lightmap ([`is_lightmap`]) when `lightmaps` keeps them.
+pub fn traces_second_unit(unit: &TextureUnit, lightmaps: Lightmaps) -> bool {
+    lightmaps == Lightmaps::Keep || !is_lightmap(unit)
 }
 
 /// Whether the lit base colour follows the vertex colour (`glColorMaterial` on diffuse).
