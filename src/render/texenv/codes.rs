@@ -3,7 +3,7 @@
 //! a unit's word, the fields of a combiner word, and the codes of each.
 //!
 //! The fixed-function shaders read these words as specialisation constants (the unit words of
-//! `ff::key`, whose other fields are `ff::key_fields`); the tracer reads them from its
+//! `ff::key`, whose other fields are `ff::shader_interface`); the tracer reads them from its
 //! materials (`trace::scene`).
 
 glsl_constants! {

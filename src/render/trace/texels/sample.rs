@@ -72,7 +72,7 @@ fn level(words: &[u32], t: &GpuTexture, level: u32, uv: [f32; 2], linear: bool) 
     std::array::from_fn(|c| mix(mix(t00[c], t10[c], a), mix(t01[c], t11[c], a), b))
 }
 
-/// Integer texel index `i` wrapped into [0, n) by `mode` (`GpuTexture::WRAP_*`).
+/// Integer texel index `i` wrapped into [0, n) by `mode` (`TEXEL_WRAP_*`).
 fn wrap(i: i64, n: i64, mode: u32) -> i64 {
     match mode {
         TEXEL_WRAP_CLAMP => i.clamp(0, n - 1),
