@@ -14,7 +14,11 @@
 //!   test (`translate::robustness`);
 //! - `capture_commands.rs`: the command table of capture files (`translate::capture::table`);
 //! - `replay_calls.rs`: the replay thunks, command id to C export (`replay::calls`);
-//! - `shaders/*.spv`: the renderer's GLSL shaders compiled to SPIR-V (`shaders.rs`).
+//! - `glsl/generated/*.glsl`: the constants Rust shares with the shaders, as GLSL headers
+//!   (`glsl_constants.rs`);
+//! - `shaders/*.spv`: the renderer's GLSL shaders compiled to SPIR-V, and `layouts/*.rs`: the
+//!   assertions that hold the Rust mirrors of their structs to the compiled layouts
+//!   (`shaders.rs`, `spirv_layout.rs`).
 //!
 //! A command is implemented when `translate` defines a method with exactly its C name
 //! (`fn glVertex4f(`); the generator finds these by scanning the sources, so exporting a new
@@ -25,10 +29,12 @@ mod emit;
 mod emit_call_log;
 mod emit_capture;
 mod emit_fuzz;
+mod glsl_constants;
 mod model;
 mod overlay;
 mod scan;
 mod shaders;
+mod spirv_layout;
 
 use std::path::PathBuf;
 
@@ -39,7 +45,8 @@ fn main() {
     }
     let model = model::Model::load();
     emit::write_all(&model, &out).expect("writing generated sources");
-    shaders::compile_all(&out);
+    let include = glsl_constants::write_all(&out);
+    shaders::compile_all(&out, &include);
     // The library is a drop-in libGL.so.1.
     println!("cargo:rustc-cdylib-link-arg=-Wl,-soname,libGL.so.1");
     // Its own gl*/glX* symbols bind inside it: loaded as a glvnd vendor, libGL.so.1's and

@@ -2,17 +2,87 @@
 //! with `glslangValidator` (Debian's `glslang-tools`, installed by `scripts/setup.sh`), into
 //! `OUT_DIR/shaders/<file name>.spv`; the renderer embeds them with
 //! `include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ff.vert.spv"))`. Files included by others
-//! end in `.glsl` and are not compiled on their own.
+//! end in `.glsl` and are not compiled on their own; the generated headers of
+//! `glsl_constants.rs` are on the include path.
+//!
+//! Then checks the Rust mirrors of [`LAYOUTS`] against the compiled SPIR-V
+//! (`spirv_layout.rs`): each entry becomes `OUT_DIR/layouts/<name>.rs`, `const` assertions
+//! that the module holding the mirrors includes.
 
 use std::path::Path;
 use std::process::Command;
 
+use crate::spirv_layout::{self, Mirror, Rust};
+
 /// Stages compiled, by file extension.
 const STAGES: &[&str] = &["vert", "frag", "comp", "geom"];
 
-/// Compiles `shaders/*` into `out/shaders/`; panics with the compiler's message (the build
-/// fails) when a shader does not compile or the compiler is missing.
-pub fn compile_all(out: &Path) {
+/// A generated file of layout assertions: its name and, per shader, the mirrors checked
+/// against that shader's SPIR-V.
+struct LayoutFile {
+    name: &'static str,
+    shaders: &'static [(&'static str, &'static [Mirror])],
+}
+
+const fn mirror(glsl: &'static str, rust: Rust) -> Mirror {
+    Mirror { glsl, rust }
+}
+
+/// The fixed-function uniform block and its structs (both stages declare them).
+const FF_UNIFORMS: &[Mirror] =
+    &[mirror("FF", Rust::Struct("FfBlock")), mirror("Material", Rust::Struct("FfMaterial")), mirror("Light", Rust::Struct("FfLight"))];
+
+/// Every struct Rust shares with the shaders, by the module that includes its assertions.
+const LAYOUTS: &[LayoutFile] = &[
+    // render::trace::gpu_types
+    LayoutFile {
+        name: "trace_gpu_types",
+        shaders: &[
+            (
+                "pathtrace.comp",
+                &[
+                    mirror("TraceFrameBlock", Rust::Struct("GpuFrame")),
+                    mirror("Corner", Rust::Struct("GpuCorner")),
+                    mirror("TriangleAttributes", Rust::Struct("GpuTriangleAttributes")),
+                    mirror("Layer", Rust::Struct("GpuLayer")),
+                    mirror("Material", Rust::Struct("GpuMaterial")),
+                    mirror("Light", Rust::Struct("GpuLight")),
+                    mirror("Instance", Rust::Struct("GpuInstance")),
+                    mirror("Counters", Rust::Struct("GpuCounters")),
+                    mirror("GSample", Rust::SizeConstant("GSAMPLE_BYTES")),
+                ],
+            ),
+            ("trace_resolve.comp", &[mirror("AccumSample", Rust::SizeConstant("ACCUM_SAMPLE_BYTES")), mirror("OutputSample", Rust::SizeConstant("OUTPUT_SAMPLE_BYTES"))]),
+        ],
+    },
+    // render::trace::texels
+    LayoutFile { name: "trace_texels", shaders: &[("pathtrace.comp", &[mirror("GpuTexture", Rust::Struct("GpuTexture"))])] },
+    // render::trace::bvh
+    LayoutFile {
+        name: "trace_bvh",
+        shaders: &[(
+            "pathtrace.comp",
+            &[mirror("BvhNode", Rust::Struct("GpuNode")), mirror("BvhChild", Rust::Struct("GpuChild")), mirror("BvhTriangle", Rust::Struct("GpuTriangle"))],
+        )],
+    },
+    // render::trace::pipelines
+    LayoutFile {
+        name: "trace_push_constants",
+        shaders: &[
+            ("pathtrace.comp", &[mirror("Pass", Rust::SizeConstant("TRACE_PUSH_BYTES"))]),
+        ],
+    },
+    // render::trace::composite
+    LayoutFile { name: "trace_composite", shaders: &[("trace_composite.frag", &[mirror("Sizes", Rust::SizeConstant("PUSH_BYTES"))])] },
+    // render::raster::ff::uniforms
+    LayoutFile { name: "ff_uniforms", shaders: &[("ff.vert", FF_UNIFORMS), ("ff.frag", FF_UNIFORMS)] },
+];
+
+/// Compiles `shaders/*` into `out/shaders/` with `include` (the generated headers) on the
+/// include path, then writes the layout assertions into `out/layouts/`; panics with the
+/// compiler's or the checker's message (the build fails) when a shader does not compile, the
+/// compiler is missing or a mirrored struct cannot be found or mirrored.
+pub fn compile_all(out: &Path, include: &Path) {
     println!("cargo:rerun-if-changed=shaders");
     let dest = out.join("shaders");
     std::fs::create_dir_all(&dest).expect("creating OUT_DIR/shaders");
@@ -26,7 +96,9 @@ pub fn compile_all(out: &Path) {
         let name = src.file_name().and_then(|n| n.to_str()).expect("shader file name");
         let spv = dest.join(format!("{name}.spv"));
         let output = Command::new("glslangValidator")
-            .args(["-V", "--target-env", "vulkan1.1", "-Ishaders", "-o"])
+            .args(["-V", "--target-env", "vulkan1.1", "-Ishaders"])
+            .arg(format!("-I{}", include.display()))
+            .arg("-o")
             .arg(&spv)
             .arg(&src)
             .output()
@@ -41,5 +113,16 @@ pub fn compile_all(out: &Path) {
                 String::from_utf8_lossy(&output.stderr)
             );
         }
+    }
+    let layouts = out.join("layouts");
+    std::fs::create_dir_all(&layouts).expect("creating OUT_DIR/layouts");
+    for file in LAYOUTS {
+        let mut text = String::from("// Generated by build/shaders.rs from the compiled SPIR-V: the layouts Rust mirrors.\n");
+        for (shader, mirrors) in file.shaders {
+            let spirv = std::fs::read(dest.join(format!("{shader}.spv"))).expect("reading compiled SPIR-V");
+            let module = spirv_layout::Module::decode(&spirv).unwrap_or_else(|e| panic!("{shader}.spv: {e}"));
+            text += &spirv_layout::assertions(&module, shader, mirrors).unwrap_or_else(|e| panic!("layouts {}: {e}", file.name));
+        }
+        std::fs::write(layouts.join(format!("{}.rs", file.name)), text).expect("writing layout assertions");
     }
 }

@@ -2,27 +2,32 @@
 #extension GL_GOOGLE_include_directive : require
 // Fixed-function fragment stage (OpenGL 1.5 sections 3.3 to 3.5 for antialiasing coverage and
 // stipples, 3.8 texturing, 3.9 colour sum, 3.10 fog, 3.12 coverage, 4.1.4 alpha test): see
-// src/render/raster/ff/mod.rs for the interface.
+// src/render/raster/ff/mod.rs for the interface. The texture environment is texenv.glsl's,
+// shared with the path tracer.
 
 #define FF_FRAGMENT
+#include "generated/texenv_codes.glsl"
+#include "generated/ff_interface.glsl"
+#include "bit_field.glsl"
 #include "ff_key.glsl"
 #include "ff_uniforms.glsl"
 #include "ff_varyings.glsl"
 #include "gl_compare.glsl"
 #include "ff_fragment_ops.glsl"
+#include "texenv.glsl"
 
-layout(set = 0, binding = 1) uniform sampler2D tex2d_0;
-layout(set = 0, binding = 2) uniform sampler2D tex2d_1;
-layout(set = 0, binding = 3) uniform sampler2D tex2d_2;
-layout(set = 0, binding = 4) uniform sampler2D tex2d_3;
-layout(set = 0, binding = 5) uniform sampler3D tex3d_0;
-layout(set = 0, binding = 6) uniform sampler3D tex3d_1;
-layout(set = 0, binding = 7) uniform sampler3D tex3d_2;
-layout(set = 0, binding = 8) uniform sampler3D tex3d_3;
-layout(set = 0, binding = 9) uniform samplerCube texcube_0;
-layout(set = 0, binding = 10) uniform samplerCube texcube_1;
-layout(set = 0, binding = 11) uniform samplerCube texcube_2;
-layout(set = 0, binding = 12) uniform samplerCube texcube_3;
+layout(set = 0, binding = BINDING_SAMPLER_2D + 0u) uniform sampler2D tex2d_0;
+layout(set = 0, binding = BINDING_SAMPLER_2D + 1u) uniform sampler2D tex2d_1;
+layout(set = 0, binding = BINDING_SAMPLER_2D + 2u) uniform sampler2D tex2d_2;
+layout(set = 0, binding = BINDING_SAMPLER_2D + 3u) uniform sampler2D tex2d_3;
+layout(set = 0, binding = BINDING_SAMPLER_3D + 0u) uniform sampler3D tex3d_0;
+layout(set = 0, binding = BINDING_SAMPLER_3D + 1u) uniform sampler3D tex3d_1;
+layout(set = 0, binding = BINDING_SAMPLER_3D + 2u) uniform sampler3D tex3d_2;
+layout(set = 0, binding = BINDING_SAMPLER_3D + 3u) uniform sampler3D tex3d_3;
+layout(set = 0, binding = BINDING_SAMPLER_CUBE + 0u) uniform samplerCube texcube_0;
+layout(set = 0, binding = BINDING_SAMPLER_CUBE + 1u) uniform samplerCube texcube_1;
+layout(set = 0, binding = BINDING_SAMPLER_CUBE + 2u) uniform samplerCube texcube_2;
+layout(set = 0, binding = BINDING_SAMPLER_CUBE + 3u) uniform samplerCube texcube_3;
 
 layout(location = 0) out vec4 out_color;
 
@@ -70,100 +75,9 @@ vec4 sample_unit(uint word, sampler2D s2, sampler3D s3, samplerCube sc, vec4 c, 
             d = compare(depth - 2u, r, d) ? 1.0 : 0.0;
         }
         uint format = field(word, FORMAT_SHIFT, FORMAT_BITS);
-        t = format == 0u ? vec4(0.0, 0.0, 0.0, d) : format == 3u ? vec4(d) : vec4(d, d, d, 1.0);
+        t = format == FORMAT_ALPHA ? vec4(0.0, 0.0, 0.0, d) : format == FORMAT_INTENSITY ? vec4(d) : vec4(d, d, d, 1.0);
     }
     return t;
-}
-
-// Argument `i` of a combiner word (section 3.8.13, table 3.24).
-vec4 combine_source(uint word, uint i, vec4 ct, vec4 texel[MAX_UNITS], vec4 cc, vec4 primary, vec4 previous) {
-    uint source = field(word, SOURCE_SHIFT + 3u * i, SOURCE_BITS);
-    switch (source) {
-    case 0u: return ct;
-    case 1u: return texel[0];
-    case 2u: return texel[1];
-    case 3u: return texel[2];
-    case 4u: return texel[3];
-    case 5u: return cc;
-    case 6u: return primary;
-    default: return previous;
-    }
-}
-
-// The RGB combiner's argument i after its operand (table 3.25).
-vec3 rgb_arg(uint word, uint i, vec4 ct, vec4 texel[MAX_UNITS], vec4 cc, vec4 primary, vec4 previous) {
-    vec4 v = combine_source(word, i, ct, texel, cc, primary, previous);
-    uint op = field(word, OPERAND_SHIFT + 2u * i, OPERAND_BITS);
-    return op == 0u ? v.rgb : op == 1u ? 1.0 - v.rgb : op == 2u ? vec3(v.a) : vec3(1.0 - v.a);
-}
-
-// The alpha combiner's argument i after its operand (table 3.26: SRC_ALPHA or
-// ONE_MINUS_SRC_ALPHA).
-float alpha_arg(uint word, uint i, vec4 ct, vec4 texel[MAX_UNITS], vec4 cc, vec4 primary, vec4 previous) {
-    vec4 v = combine_source(word, i, ct, texel, cc, primary, previous);
-    uint op = field(word, OPERAND_SHIFT + 2u * i, OPERAND_BITS);
-    return (op & 1u) == 0u ? v.a : 1.0 - v.a;
-}
-
-// The combiner functions of table 3.23 (DOT3 only for RGB).
-vec3 combine3(uint f, vec3 a0, vec3 a1, vec3 a2) {
-    switch (f) {
-    case 0u: return a0;
-    case 1u: return a0 * a1;
-    case 2u: return a0 + a1;
-    case 3u: return a0 + a1 - 0.5;
-    case 4u: return a0 * a2 + a1 * (1.0 - a2);
-    case 5u: return a0 - a1;
-    default: return vec3(4.0 * dot(a0 - 0.5, a1 - 0.5));
-    }
-}
-
-float combine1(uint f, float a0, float a1, float a2) {
-    return combine3(f, vec3(a0), vec3(a1), vec3(a2)).x;
-}
-
-// The texture function of unit `unit` (section 3.8.13, table 3.22 with the base-format rules).
-vec4 tex_env(int unit, uint word, uint rgb_word, uint alpha_word, vec4 cf, vec4 ct, vec4 texel[MAX_UNITS], vec4 primary) {
-    uint env = field(word, ENV_SHIFT, ENV_BITS);
-    uint format = field(word, FORMAT_SHIFT, FORMAT_BITS);
-    bool has_color = format != 0u;
-    bool has_alpha = format == 0u || format == 2u || format == 3u || format == 5u;
-    bool intensity = format == 3u;
-    vec4 cc = u.env_color[unit];
-    vec3 c = cf.rgb;
-    float a = cf.a;
-    if (env == 0u) {
-        c = has_color ? cf.rgb * ct.rgb : cf.rgb;
-        a = has_alpha ? cf.a * ct.a : cf.a;
-    } else if (env == 1u) {
-        c = has_color ? ct.rgb : cf.rgb;
-        a = has_alpha ? ct.a : cf.a;
-    } else if (env == 2u) {
-        c = mix(cf.rgb, ct.rgb, ct.a);
-    } else if (env == 3u) {
-        c = has_color ? mix(cf.rgb, cc.rgb, ct.rgb) : cf.rgb;
-        a = intensity ? mix(cf.a, cc.a, ct.a) : has_alpha ? cf.a * ct.a : cf.a;
-    } else if (env == 4u) {
-        c = has_color ? cf.rgb + ct.rgb : cf.rgb;
-        a = intensity ? cf.a + ct.a : has_alpha ? cf.a * ct.a : cf.a;
-    } else {
-        uint frgb = field(rgb_word, COMBINE_FN_SHIFT, COMBINE_FN_BITS);
-        c = combine3(frgb,
-            rgb_arg(rgb_word, 0u, ct, texel, cc, primary, cf),
-            rgb_arg(rgb_word, 1u, ct, texel, cc, primary, cf),
-            rgb_arg(rgb_word, 2u, ct, texel, cc, primary, cf));
-        c *= float(1u << field(rgb_word, SCALE_SHIFT, SCALE_BITS));
-        if (frgb == 7u) {
-            a = c.r;
-        } else {
-            a = combine1(field(alpha_word, COMBINE_FN_SHIFT, COMBINE_FN_BITS),
-                alpha_arg(alpha_word, 0u, ct, texel, cc, primary, cf),
-                alpha_arg(alpha_word, 1u, ct, texel, cc, primary, cf),
-                alpha_arg(alpha_word, 2u, ct, texel, cc, primary, cf));
-            a *= float(1u << field(alpha_word, SCALE_SHIFT, SCALE_BITS));
-        }
-    }
-    return clamp(vec4(c, a), 0.0, 1.0);
 }
 
 // Point sprite coordinates (OpenGL 2.0 section 3.3) for a unit that replaces them: v_raster.xy
@@ -207,7 +121,7 @@ void main() {
         if (field(word, TARGET_SHIFT, TARGET_BITS) != 0u) {
             uint rgb = i == 0 ? KEY_COMBINE_RGB0 : i == 1 ? KEY_COMBINE_RGB1 : i == 2 ? KEY_COMBINE_RGB2 : KEY_COMBINE_RGB3;
             uint alpha = i == 0 ? KEY_COMBINE_ALPHA0 : i == 1 ? KEY_COMBINE_ALPHA1 : i == 2 ? KEY_COMBINE_ALPHA2 : KEY_COMBINE_ALPHA3;
-            color = tex_env(i, word, rgb, alpha, color, texel[i], texel, primary);
+            color = tex_env(word, rgb, alpha, u.env_color[i], color, texel[i], texel, primary);
         }
     }
 

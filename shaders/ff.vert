@@ -4,17 +4,20 @@
 // points and lines): see src/render/raster/ff/mod.rs for the interface (vertex layout,
 // descriptor bindings, specialisation constants) and convert.rs for the expanded primitives.
 
+#include "generated/texenv_codes.glsl"
+#include "generated/ff_interface.glsl"
+#include "bit_field.glsl"
 #include "ff_key.glsl"
 #include "ff_uniforms.glsl"
 #include "ff_varyings.glsl"
 
-layout(location = 0) in vec4 in_position;
-layout(location = 1) in vec4 in_color;
-layout(location = 2) in vec4 in_secondary;
-layout(location = 3) in vec3 in_normal;
-layout(location = 4) in float in_fog_coord;
-layout(location = 5) in vec4 in_texcoord[MAX_UNITS];
-layout(location = 9) in vec4 in_raster;
+layout(location = LOCATION_POSITION) in vec4 in_position;
+layout(location = LOCATION_COLOR) in vec4 in_color;
+layout(location = LOCATION_SECONDARY) in vec4 in_secondary;
+layout(location = LOCATION_NORMAL) in vec3 in_normal;
+layout(location = LOCATION_FOG_COORD) in float in_fog_coord;
+layout(location = LOCATION_TEXCOORD) in vec4 in_texcoord[MAX_UNITS];
+layout(location = LOCATION_RASTER) in vec4 in_raster;
 
 out float gl_ClipDistance[MAX_CLIP_PLANES];
 

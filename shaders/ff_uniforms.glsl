@@ -1,16 +1,12 @@
-// The per-draw block of the fixed-function shaders (std140). Mirrors
-// src/render/raster/ff/uniforms.rs, whose test compares its offsets with this block's
-// compiled SPIR-V.
+// The per-draw block of the fixed-function shaders (std140). Mirrored by
+// src/render/raster/ff/uniforms.rs (FfBlock), whose layout the build checks against the
+// compiled SPIR-V; MAX_UNITS, MAX_LIGHTS and MAX_CLIP_PLANES come from the generated headers.
 //
 // It is a read-only storage buffer, not a uniform buffer: Mesa's lavapipe inlines uniform
 // buffer values that feed branches or locals used five times or more (lvp_inline_uniforms.c)
 // and compiles a new LLVM variant whenever those values change, so every draw with a new
 // material or matrix cost a shader compile (glxgears: 4 frames/s as a uniform buffer, 900 as
 // a storage buffer). Storage buffer reads are never inlined.
-
-const int MAX_UNITS = 4;
-const int MAX_LIGHTS = 8;
-const int MAX_CLIP_PLANES = 6;
 
 struct Material {
     vec4 ambient;
@@ -29,7 +25,7 @@ struct Light {
     vec4 params;      // cos(cutoff) or -2 without spot, attenuation k0, k1, k2
 };
 
-layout(set = 0, binding = 0, std140) readonly buffer FF {
+layout(set = 0, binding = BINDING_UNIFORMS, std140) readonly buffer FF {
     mat4 modelview;
     mat4 projection;
     mat4 normal_matrix;               // inverse transpose of the modelview

@@ -3,15 +3,15 @@
 // outputs as plain variables that glsl_vertex_main.glsl passes on. Included after
 // ff_key.glsl, ff_uniforms.glsl, ff_varyings.glsl, gl_compare.glsl and glsl_builtins.glsl.
 
-layout(location = 0) in vec4 glrt_Vertex;
-layout(location = 1) in vec4 glrt_Color;
-layout(location = 2) in vec4 glrt_SecondaryColor;
-layout(location = 3) in vec3 glrt_Normal;
-layout(location = 4) in float glrt_FogCoord;
-layout(location = 5) in vec4 glrt_MultiTexCoord0;
-layout(location = 6) in vec4 glrt_MultiTexCoord1;
-layout(location = 7) in vec4 glrt_MultiTexCoord2;
-layout(location = 8) in vec4 glrt_MultiTexCoord3;
+layout(location = LOCATION_POSITION) in vec4 glrt_Vertex;
+layout(location = LOCATION_COLOR) in vec4 glrt_Color;
+layout(location = LOCATION_SECONDARY) in vec4 glrt_SecondaryColor;
+layout(location = LOCATION_NORMAL) in vec3 glrt_Normal;
+layout(location = LOCATION_FOG_COORD) in float glrt_FogCoord;
+layout(location = LOCATION_TEXCOORD + 0u) in vec4 glrt_MultiTexCoord0;
+layout(location = LOCATION_TEXCOORD + 1u) in vec4 glrt_MultiTexCoord1;
+layout(location = LOCATION_TEXCOORD + 2u) in vec4 glrt_MultiTexCoord2;
+layout(location = LOCATION_TEXCOORD + 3u) in vec4 glrt_MultiTexCoord3;
 // Units beyond glrt_MaxTextureCoords have no coordinates: their initial value.
 const vec4 glrt_MultiTexCoord4 = vec4(0.0, 0.0, 0.0, 1.0);
 const vec4 glrt_MultiTexCoord5 = vec4(0.0, 0.0, 0.0, 1.0);

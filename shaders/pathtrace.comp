@@ -14,8 +14,6 @@
 // arithmetic, which lavapipe and the desktop drivers have) and added to the counters once per
 // subgroup.
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
 // The sample of the frame this dispatch traces, 0 to samples - 1.
 layout(push_constant) uniform Pass {
     uint sample_index;
@@ -24,6 +22,8 @@ layout(push_constant) uniform Pass {
 #include "trace/lights.glsl"
 #include "trace/gbuffer.glsl"
 #include "trace/environment.glsl"
+
+layout(local_size_x = TRACE_GROUP, local_size_y = TRACE_GROUP) in;
 
 // The eye-space ray through window position `window` (GL window coordinates, y up).
 void camera_ray(vec2 window, out vec3 origin, out vec3 dir) {

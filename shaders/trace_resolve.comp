@@ -7,17 +7,17 @@
 // then exposure, tone mapping and sRGB encoding for the composite. The A-SVGF denoiser of a
 // later issue replaces this pass, reading the same G-buffer.
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
 #include "trace/scene.glsl"
 #include "trace/pack.glsl"
 #include "trace/gbuffer.glsl"
 
+layout(local_size_x = TRACE_GROUP, local_size_y = TRACE_GROUP) in;
+
 vec3 tonemap(vec3 x, uint op) {
-    if (op == 1u) {
+    if (op == TONEMAP_REINHARD) {
         return x / (1.0 + x);
     }
-    if (op == 2u) {
+    if (op == TONEMAP_ACES) {
         // ACES filmic curve fitted by Narkowicz (2015).
         return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
     }

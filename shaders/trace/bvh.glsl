@@ -9,7 +9,7 @@
 // of the hit inner children (or TLAS instances, pushed with BVH_LEAF set) the nearer is
 // visited next and the farther pushed.
 //
-// Stack: BVH_STACK_SIZE = 2 * render::trace::bvh::MAX_DEPTH entries. The builder keeps every
+// Stack: BVH_STACK_SIZE = 2 * BVH_MAX_DEPTH entries. The builder keeps every
 // root-to-leaf path of a TLAS or BLAS within MAX_DEPTH nodes and a traversal pushes at most
 // one entry per level, so a TLAS path plus a BLAS path fit. A push that would not fit is
 // dropped (hits behind it are lost, nothing is read or written out of bounds).
@@ -19,20 +19,21 @@
 // before accepting a hit (triangle: global index; bary: weights of v1, v2). The including
 // shader must define it before including this file.
 //
-// Layout (std430): BvhNode = 2 children, each (min.xyz, index bits) (max.xyz, meta bits).
-// meta == 0: inner child, index = node (BLAS: relative to the instance's blas_root).
+// Layout (std430, mirrored by render::trace::bvh's GpuNode, GpuChild and GpuTriangle, checked
+// by the build): BvhNode = 2 children, each min, index, max, meta (a vec3 and a uint fill 16
+// bytes). meta == 0: inner child, index = node (BLAS: relative to the instance's blas_root).
 // meta & BVH_LEAF: leaf of (meta & ~BVH_LEAF) primitives from index (BLAS: triangles relative
 // to first_triangle; TLAS: one instance, index = the instance); 0 primitives = empty child.
-// BvhTriangle = v0, e1 = v1 - v0, e2 = v2 - v0 (w unused).
+// BvhTriangle = v0, e1 = v1 - v0, e2 = v2 - v0, each padded to 16 bytes.
 
 #ifndef TRACE_BVH_GLSL
 #define TRACE_BVH_GLSL
 
+#include "generated/trace_constants.glsl"
 #include "trace/bindings.glsl"
 #include "trace/instance.glsl"
 
-#define BVH_LEAF 0x80000000u
-#define BVH_STACK_SIZE 64
+#define BVH_STACK_SIZE (2 * BVH_MAX_DEPTH)
 #define BVH_NONE 0xffffffffu
 // Entry distance of a missed box.
 #define BVH_MISS uintBitsToFloat(0x7f800000u)
@@ -41,14 +42,24 @@
 // Widens a box's exit distance to cover rounding (1 + 4 ulp).
 #define BVH_BOX_SLACK 1.0000005
 
+struct BvhChild {
+    vec3 min;      // lowest corner of the child's box
+    uint index;    // inner child: its node; leaf: its first primitive
+    vec3 max;      // highest corner
+    uint meta;     // 0 for an inner child; BVH_LEAF | primitive count for a leaf
+};
+
 struct BvhNode {
-    vec4 child[4]; // [2c] = (min.xyz, index), [2c + 1] = (max.xyz, meta) of child c
+    BvhChild children[2];
 };
 
 struct BvhTriangle {
-    vec4 v0;
-    vec4 e1;
-    vec4 e2;
+    vec3 v0;
+    uint pad0;
+    vec3 e1;
+    uint pad1;
+    vec3 e2;
+    uint pad2;
 };
 
 layout(set = TRACE_SET, binding = BINDING_BLAS_NODES, std430) readonly buffer BlasNodes {
@@ -79,8 +90,8 @@ vec3 bvh_inverse(vec3 d) {
 
 // Entry distance into the box of child c of n clipped to [tmin, tmax], or BVH_MISS.
 float bvh_box(BvhNode n, uint c, vec3 o, vec3 inv, float tmin, float tmax) {
-    vec3 t0 = (n.child[2 * c].xyz - o) * inv;
-    vec3 t1 = (n.child[2 * c + 1].xyz - o) * inv;
+    vec3 t0 = (n.children[c].min - o) * inv;
+    vec3 t1 = (n.children[c].max - o) * inv;
     vec3 near = min(t0, t1);
     vec3 far = max(t0, t1);
     float tn = max(max(near.x, near.y), max(near.z, tmin));
@@ -92,15 +103,15 @@ float bvh_box(BvhNode n, uint c, vec3 o, vec3 inv, float tmin, float tmax) {
 bool bvh_triangle(BvhTriangle tri, vec3 o, vec3 d, float tmin, float tmax, out float t, out vec2 bary) {
     t = 0.0;
     bary = vec2(0.0);
-    vec3 e1 = tri.e1.xyz;
-    vec3 e2 = tri.e2.xyz;
+    vec3 e1 = tri.e1;
+    vec3 e2 = tri.e2;
     vec3 p = cross(d, e2);
     float det = dot(e1, p);
     if (!(abs(det) > 0.0)) {
         return false;
     }
     float inv = 1.0 / det;
-    vec3 s = o - tri.v0.xyz;
+    vec3 s = o - tri.v0;
     float u = dot(s, p) * inv;
     if (!(u >= 0.0 && u <= 1.0)) {
         return false;
@@ -162,11 +173,11 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
         if (instance != BVH_NONE) {
             for (uint i = 0u; i < 2u; i++) {
                 uint c = order[i];
-                uint meta = floatBitsToUint(n.child[2 * c + 1].w);
+                uint meta = n.children[c].meta;
                 if (!(entry[c] < BVH_MISS) || (meta & BVH_LEAF) == 0u) {
                     continue;
                 }
-                uint first = floatBitsToUint(n.child[2 * c].w);
+                uint first = n.children[c].index;
                 uint end = first + (meta & ~BVH_LEAF);
                 for (uint k = first; k < end; k++) {
                     bvh_triangles_tested++;
@@ -193,13 +204,13 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
         next = BVH_NONE;
         for (uint i = 0u; i < 2u; i++) {
             uint c = order[i];
-            uint meta = floatBitsToUint(n.child[2 * c + 1].w);
+            uint meta = n.children[c].meta;
             bool leaf = (meta & BVH_LEAF) != 0u;
             // Hit, still in range after this node's leaves, an inner node or (TLAS) an instance.
             if (!(entry[c] < BVH_MISS && entry[c] <= hit.t && (instance == BVH_NONE || !leaf) && meta != BVH_LEAF)) {
                 continue;
             }
-            uint index = floatBitsToUint(n.child[2 * c].w);
+            uint index = n.children[c].index;
             uint target = leaf ? (index | BVH_LEAF) : index;
             if (next == BVH_NONE) {
                 next = target;

@@ -1,15 +1,12 @@
-// One traced instance: a geometry (bottom-level BVH) placed in eye space. Mirrors
-// `render::trace::scene::GpuInstance`. Traversal (bvh.glsl) reads the transform, the BLAS root
+// One traced instance: a geometry (bottom-level BVH) placed in eye space. Mirrored by
+// `render::trace::gpu_types::GpuInstance`. Traversal (bvh.glsl) reads the transform, the BLAS root
 // and the first triangle; shading reads the rest.
 
 #ifndef TRACE_INSTANCE_GLSL
 #define TRACE_INSTANCE_GLSL
 
+#include "generated/trace_constants.glsl"
 #include "trace/bindings.glsl"
-
-// Instance flags.
-#define INSTANCE_ALPHA_TESTED 1u  // traversal asks trace_alpha_accept() before accepting a hit
-#define INSTANCE_EMISSIVE 2u      // its albedo is also emitted light
 
 struct Instance {
     vec4 object_to_eye[3];   // rows of the affine object-to-eye matrix

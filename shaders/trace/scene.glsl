@@ -1,17 +1,14 @@
 // The traced scene as the compute shaders read it: per-frame constants, per-triangle shading
-// attributes, materials and lights. Mirrors src/render/trace/gpu_types.rs (whose tests compare
-// sizes). Everything is in the eye space of the current frame.
+// attributes, materials and lights. Mirrored by src/render/trace/gpu_types.rs, whose layouts
+// the build checks against this file's compiled SPIR-V; the flags are generated from
+// src/render/trace/shader_constants.rs. Everything is in the eye space of the current frame.
 
 #ifndef TRACE_SCENE_GLSL
 #define TRACE_SCENE_GLSL
 
+#include "generated/trace_constants.glsl"
 #include "trace/bindings.glsl"
 #include "trace/instance.glsl"
-
-// TraceFrame.flags bits.
-#define FRAME_TONEMAP_MASK 3u     // 0: clamp, 1: Reinhard, 2: ACES
-#define FRAME_PERSPECTIVE 4u      // perspective camera (else orthographic)
-#define FRAME_SKY 8u              // missed rays sample the sky cube map (environment.glsl)
 
 layout(set = TRACE_SET, binding = BINDING_FRAME, std430) readonly buffer TraceFrameBlock {
     mat4 projection;            // eye to clip, this frame
@@ -29,10 +26,9 @@ layout(set = TRACE_SET, binding = BINDING_FRAME, std430) readonly buffer TraceFr
 
 // The shading attributes of one triangle corner.
 struct Corner {
-    vec2 uv;        // texture coordinates of unit 0 (after the texture matrix)
+    vec2 uv[TRACED_UNITS]; // texture coordinates of each traced unit (after its texture matrix), or 0
     uint normal;    // object-space normal, octahedral snorm16x2 (0: use the geometric normal)
     uint color;     // base colour, sRGB-encoded unorm8 RGBA (GL's colour or material diffuse)
-    vec2 lightmap_uv; // texture coordinates of unit 1 (after its texture matrix), or 0
 };
 
 struct TriangleAttributes {
@@ -43,28 +39,27 @@ layout(set = TRACE_SET, binding = BINDING_ATTRIBUTES, std430) readonly buffer At
     TriangleAttributes attributes[];
 };
 
-// How texture unit 0 combines with the base colour (GL texture environment).
-#define TEXENV_MODULATE 0u
-#define TEXENV_REPLACE 1u
-#define TEXENV_DECAL 2u
-#define TEXENV_BLEND 3u
-#define TEXENV_ADD 4u
+// One traced texture unit of a material: what texenv.glsl's tex_env needs to apply it, and
+// what the surface makes of it (render::trace::scene's module doc).
+struct Layer {
+    vec4 env_color;     // GL_TEXTURE_ENV_COLOR
+    uint texture;       // texel pool index, or NO_TEXTURE
+    uint env;           // the unit word's FORMAT and ENV fields (generated/texenv_codes.glsl)
+    uint combine_rgb;   // the combiner words (ENV_COMBINE)
+    uint combine_alpha;
+    uint role;          // LAYER_*
+    uint pad[3];
+};
 
 struct Material {
     vec4 emission;      // linear emitted radiance (rgb); a: emissive scale applied to the albedo
-    vec4 env_color;     // GL_TEXTURE_ENV_COLOR (BLEND), sRGB-encoded
-    uint texture;       // texel pool index of unit 0, or 0xffffffff
-    uint texenv;        // TEXENV_*
+    Layer layer[TRACED_UNITS]; // layer u: texture unit u, with corner coordinates uv[u]
     float roughness;    // GGX alpha = roughness^2
     float metalness;
     float specular;     // dielectric reflectance at normal incidence (F0)
     uint alpha_func;    // the alpha test's compare function (gl_compare.glsl order; 7: always)
     float alpha_ref;
-    uint lightmap;      // texel pool index of a kept lightmap (unit 1), or 0xffffffff
-    float lightmap_scale; // multiplies the lightmap's encoded texels (GL's RGB_SCALE)
-    uint pad0;
-    uint pad1;
-    uint pad2;
+    uint pad[3];
 };
 
 layout(set = TRACE_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials {

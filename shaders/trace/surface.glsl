@@ -1,6 +1,7 @@
 // What a ray hit: the shading inputs of a traced triangle (position, normals, albedo from the
-// GL colour and texture unit 0, baked light from a kept lightmap on unit 1, material), and the
-// alpha test that traversal asks for.
+// GL colour through the texture environment of the material's colour layers, texenv.glsl,
+// baked light from a kept lightmap layer, material), and the alpha test that traversal asks
+// for. render::trace::scene's module doc describes the layers.
 // Include after bvh.glsl's prerequisites: defines trace_alpha_accept(), then includes bvh.glsl.
 
 #ifndef TRACE_SURFACE_GLSL
@@ -11,8 +12,7 @@
 #include "trace/pack.glsl"
 #include "trace/texels.glsl"
 #include "trace/brdf.glsl"
-
-const uint NO_TEXTURE = 0xffffffffu;
+#include "texenv.glsl"
 
 // The GL colour of a triangle corner interpolated at bary, still display-encoded.
 vec4 corner_color(TriangleAttributes a, vec2 bary) {
@@ -20,12 +20,9 @@ vec4 corner_color(TriangleAttributes a, vec2 bary) {
         + unpackUnorm4x8(a.corner[2].color) * bary.y;
 }
 
-vec2 corner_uv(TriangleAttributes a, vec2 bary) {
-    return a.corner[0].uv * (1.0 - bary.x - bary.y) + a.corner[1].uv * bary.x + a.corner[2].uv * bary.y;
-}
-
-vec2 corner_lightmap_uv(TriangleAttributes a, vec2 bary) {
-    return a.corner[0].lightmap_uv * (1.0 - bary.x - bary.y) + a.corner[1].lightmap_uv * bary.x + a.corner[2].lightmap_uv * bary.y;
+// The coordinates of traced unit `unit` interpolated at bary.
+vec2 corner_uv(TriangleAttributes a, uint unit, vec2 bary) {
+    return a.corner[0].uv[unit] * (1.0 - bary.x - bary.y) + a.corner[1].uv[unit] * bary.x + a.corner[2].uv[unit] * bary.y;
 }
 
 // Ray-cone level of detail of texture `tex` mapped by the corner coordinates c0, c1, c2
@@ -40,31 +37,50 @@ float cone_lod(uint tex, vec2 c0, vec2 c1, vec2 c2, float area2, float cone_widt
     return area2 > 0.0 && texel_area > 0.0 ? 0.5 * log2(texel_area / area2) + log2(max(cone_width, 1e-12) / cos_view) : 0.0;
 }
 
-// GL's texture environment of unit 0 (OpenGL 1.5 table 3.22, RGBA formats), display-encoded.
-vec4 apply_texenv(Material m, vec4 base, vec4 tex) {
-    switch (m.texenv) {
-    case TEXENV_REPLACE: return tex;
-    case TEXENV_DECAL: return vec4(mix(base.rgb, tex.rgb, tex.a), base.a);
-    case TEXENV_BLEND: return vec4(mix(base.rgb, m.env_color.rgb, tex.rgb), base.a * tex.a);
-    case TEXENV_ADD: return vec4(min(base.rgb + tex.rgb, 1.0), base.a * tex.a);
-    default: return base * tex;
+// The texels of the material's layers at bary, each at its level of detail; white for units
+// that are off and for the units past the traced ones (texenv.glsl's crossbar reads them all).
+void layer_texels(Material m, TriangleAttributes a, vec2 bary, float lod[TRACED_UNITS], out vec4 texel[MAX_UNITS]) {
+    for (int u = 0; u < MAX_UNITS; u++) {
+        texel[u] = vec4(1.0);
+    }
+    for (uint u = 0u; u < TRACED_UNITS; u++) {
+        if (m.layer[u].role != LAYER_OFF) {
+            texel[u] = texel_sample(m.layer[u].texture, corner_uv(a, u, bary), lod[u]);
+        }
     }
 }
 
-// The colour (display-encoded RGBA) of a triangle at bary, textured at level of detail lod.
-vec4 surface_color(Material m, TriangleAttributes a, vec2 bary, float lod) {
-    vec4 base = corner_color(a, bary);
-    if (m.texture == NO_TEXTURE) {
-        return base;
+// The colour (display-encoded RGBA) of a triangle at bary: the primary colour through the
+// texture environment of each colour layer, as the rasterizer's texture units apply it.
+vec4 surface_color(Material m, TriangleAttributes a, vec2 bary, vec4 texel[MAX_UNITS]) {
+    vec4 primary = corner_color(a, bary);
+    vec4 color = primary;
+    for (uint u = 0u; u < TRACED_UNITS; u++) {
+        Layer l = m.layer[u];
+        if (l.role == LAYER_COLOR) {
+            color = tex_env(l.env, l.combine_rgb, l.combine_alpha, l.env_color, color, texel[u], texel, primary);
+        }
     }
-    return apply_texenv(m, base, texel_sample(m.texture, corner_uv(a, bary), lod));
+    return color;
+}
+
+// The factor of a baked-light layer's texels: its RGB scale under GL_COMBINE, else 1.
+float layer_scale(Layer l) {
+    return field(l.env, ENV_SHIFT, ENV_BITS) == ENV_COMBINE ? float(1u << field(l.combine_rgb, SCALE_SHIFT, SCALE_BITS)) : 1.0;
 }
 
 // Traversal's question for alpha-tested instances: does the alpha test pass at this point?
 // (Sampled at the base level: traversal knows no ray cone.)
 bool trace_alpha_accept(uint instance, uint triangle, vec2 bary) {
     Material m = materials[instances[instance].material];
-    float alpha = surface_color(m, attributes[triangle], bary, 0.0).a;
+    TriangleAttributes a = attributes[triangle];
+    float lod[TRACED_UNITS];
+    for (uint u = 0u; u < TRACED_UNITS; u++) {
+        lod[u] = 0.0;
+    }
+    vec4 texel[MAX_UNITS];
+    layer_texels(m, a, bary, lod, texel);
+    float alpha = surface_color(m, a, bary, texel).a;
     return compare(m.alpha_func, alpha, m.alpha_ref);
 }
 
@@ -73,9 +89,9 @@ bool trace_alpha_accept(uint instance, uint triangle, vec2 bary) {
 // The object-space corners of global triangle `triangle`.
 void trace_triangle_vertices(uint triangle, out vec3 v0, out vec3 v1, out vec3 v2) {
     BvhTriangle t = triangles[triangle];
-    v0 = t.v0.xyz;
-    v1 = v0 + t.e1.xyz;
-    v2 = v0 + t.e2.xyz;
+    v0 = t.v0;
+    v1 = v0 + t.e1;
+    v2 = v0 + t.e2;
 }
 
 // An object-space vector or point through the instance's rows.
@@ -119,21 +135,25 @@ Surface surface_at(TraceHit hit, vec3 origin, vec3 dir, float cone_width) {
     }
 
     float cos_view = max(abs(dot(ng, dir)), 1e-3);
-    float lod = 0.0;
-    if (m.texture != NO_TEXTURE) {
-        lod = cone_lod(m.texture, a.corner[0].uv, a.corner[1].uv, a.corner[2].uv, area2, cone_width, cos_view);
+    float lod[TRACED_UNITS];
+    for (uint u = 0u; u < TRACED_UNITS; u++) {
+        uint tex = m.layer[u].role == LAYER_OFF ? NO_TEXTURE : m.layer[u].texture;
+        lod[u] = tex == NO_TEXTURE ? 0.0 : cone_lod(tex, a.corner[0].uv[u], a.corner[1].uv[u], a.corner[2].uv[u], area2, cone_width, cos_view);
     }
-    vec4 color = surface_color(m, a, hit.bary, lod);
+    vec4 texel[MAX_UNITS];
+    layer_texels(m, a, hit.bary, lod, texel);
+    vec4 color = surface_color(m, a, hit.bary, texel);
     s.albedo = srgb_to_linear(color.rgb);
     s.alpha = color.a;
     s.emission = m.emission.rgb + s.albedo * m.emission.a;
     // A kept lightmap (render::trace::scene's module doc): the surface sends its baked light,
     // albedo x decoded (scale x lightmap), and reflects no traced light.
-    s.baked = m.lightmap != NO_TEXTURE;
-    if (s.baked) {
-        float lightmap_lod = cone_lod(m.lightmap, a.corner[0].lightmap_uv, a.corner[1].lightmap_uv, a.corner[2].lightmap_uv, area2, cone_width, cos_view);
-        vec3 lightmap = texel_sample(m.lightmap, corner_lightmap_uv(a, hit.bary), lightmap_lod).rgb;
-        s.emission += s.albedo * srgb_decode(max(lightmap * m.lightmap_scale, 0.0));
+    s.baked = false;
+    for (uint u = 0u; u < TRACED_UNITS; u++) {
+        if (m.layer[u].role == LAYER_BAKED_LIGHT) {
+            s.baked = true;
+            s.emission += s.albedo * srgb_decode(max(texel[u].rgb * layer_scale(m.layer[u]), 0.0));
+        }
     }
     s.roughness = m.roughness;
     s.metalness = m.metalness;

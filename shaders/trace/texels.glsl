@@ -1,10 +1,11 @@
 // The texel pool: every texture the path tracer samples, as RGBA8 words (red in the low byte)
-// in one storage buffer, and a table of GpuTexture records into it. Mirrors
-// src/render/trace/texels.rs (GpuTexture, its flag constants) and texels/sample.rs (the same
-// sampling math on the CPU, which the tests compare with this file).
+// in one storage buffer, and a table of GpuTexture records into it. Mirrored by
+// src/render/trace/texels.rs (GpuTexture; its TEXEL_* flags are generated from
+// src/render/trace/shader_constants.rs) and texels/sample.rs (the same sampling math on the
+// CPU, which the tests compare with this file).
 //
 //   vec4 texel_sample(uint tex, vec2 uv, float lod)
-//     tex: table index, or TEXEL_NONE (opaque white);
+//     tex: table index, or NO_TEXTURE (opaque white);
 //     uv: GL texture coordinates (s, t), t = 0 the first row (the bottom row as GL stores it);
 //         in texels for rectangle textures;
 //     lod: GL's lambda, log2 of base-level texels per footprint (the caller computes it from
@@ -14,27 +15,13 @@
 //     within a level; nearest level or linear between levels), the LOD range; returns RGBA in
 //     [0, 1] (sRGB textures decoded to linear).
 //   vec2 texel_size(uint tex)
-//     base level width and height in texels ((1, 1) for TEXEL_NONE).
+//     base level width and height in texels ((1, 1) for NO_TEXTURE).
 
 #ifndef TRACE_TEXELS_GLSL
 #define TRACE_TEXELS_GLSL
 
+#include "generated/trace_constants.glsl"
 #include "trace/bindings.glsl"
-
-#define TEXEL_NONE 0xffffffffu
-
-// GpuTexture.flags: wrap of s in bits 0-1, of t in bits 2-3, then filter bits.
-#define TEXEL_WRAP_REPEAT 0u
-#define TEXEL_WRAP_CLAMP 1u
-#define TEXEL_WRAP_MIRROR 2u
-#define TEXEL_WRAP_T_SHIFT 2u
-#define TEXEL_MAG_LINEAR 16u     // magnification is bilinear
-#define TEXEL_MIN_LINEAR 32u     // minification within a level is bilinear
-#define TEXEL_MIPMAP 64u         // minification uses the levels
-#define TEXEL_MIP_LINEAR 128u    // minification blends the two nearest levels
-#define TEXEL_RECT 256u          // coordinates in texels
-#define TEXEL_SRGB 512u          // texels are sRGB-encoded
-#define TEXEL_MAG_TO_HALF 1024u  // magnification up to lod 0.5 (linear mag, NEAREST_MIPMAP_* min)
 
 // Texel coordinates are clamped to +-2^24 before they become integers.
 #define TEXEL_COORD_LIMIT 16777216
@@ -120,7 +107,7 @@ vec4 texel_level(GpuTexture t, uint level, vec2 uv, bool linear) {
 }
 
 vec4 texel_sample(uint tex, vec2 uv, float lod) {
-    if (tex == TEXEL_NONE) {
+    if (tex == NO_TEXTURE) {
         return vec4(1.0);
     }
     GpuTexture t = texture_table[tex];
@@ -151,7 +138,7 @@ vec4 texel_sample(uint tex, vec2 uv, float lod) {
 }
 
 vec2 texel_size(uint tex) {
-    if (tex == TEXEL_NONE) {
+    if (tex == NO_TEXTURE) {
         return vec2(1.0);
     }
     return vec2(float(texture_table[tex].width), float(texture_table[tex].height));

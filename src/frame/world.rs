@@ -18,8 +18,10 @@ pub struct ChunkShading {
     pub state: Arc<RasterState>,
     /// Texture environment of unit 0 (`None`: unit 0 not enabled).
     pub texture_unit: Option<TextureUnit>,
-    /// Whether the draw had a texture on unit 1 (a lightmap, say), which chunks do not carry.
-    pub multitextured: bool,
+    /// Texture environment of unit 1 when the draw had a texture there (a lightmap, a detail
+    /// texture), which chunks do not carry: the tracer decides from it whether the draw is
+    /// traced itself instead.
+    pub second_unit: Option<TextureUnit>,
 }
 
 /// A piece of the persistent static world: world-space triangles of one material, stable

@@ -7,9 +7,12 @@
 //! the mode (`GLRT_MODE`).
 
 pub mod frame;
+#[macro_use]
+pub mod shader_abi;
 pub mod frame_log;
 pub mod present;
 pub mod raster;
+pub mod texenv;
 pub mod trace;
 
 use crate::frame::{FrameSink, NullSink};

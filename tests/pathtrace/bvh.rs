@@ -15,9 +15,8 @@ use glrt::render::raster::device::{Buffer, Device};
 use glrt::render::trace::bindings;
 use glrt::render::trace::bvh::cpu::{self, Instance, Scene};
 use glrt::render::trace::bvh::{Blas, GpuNode, GpuTriangle, Tlas};
+use glrt::render::trace::shader_constants::INSTANCE_ALPHA_TESTED;
 
-/// `INSTANCE_ALPHA_TESTED` of `instance.glsl`.
-const INSTANCE_ALPHA_TESTED: u32 = 1;
 /// Bindings of the test shader's rays and results.
 const RAYS: u32 = 15;
 const RESULTS: u32 = 16;
@@ -120,7 +119,7 @@ struct GpuResult {
 fn compile_shader() -> Vec<u32> {
     let out = std::env::temp_dir().join(format!("glrt-trace-bvh-{}.spv", std::process::id()));
     let status = Command::new("glslangValidator")
-        .args(["-V", "--target-env", "vulkan1.1", "-Ishaders", "-o"])
+        .args(["-V", "--target-env", "vulkan1.1", "-Ishaders", concat!("-I", env!("OUT_DIR"), "/glsl"), "-o"])
         .arg(&out)
         .arg("tests/shaders/trace_bvh.comp")
         .output()

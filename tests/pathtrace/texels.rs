@@ -15,7 +15,8 @@ use crate::lavapipe;
 use glrt::frame::texture::{Filter, MinFilter, Precision, Sampler, TexImage, TextureContent, TextureKind, TextureRef, Wrap};
 use glrt::render::raster::device::{Buffer, Device};
 use glrt::render::trace::bindings;
-use glrt::render::trace::texels::{NO_TEXTURE, TexelPool, sample, texel_size};
+use glrt::render::trace::shader_constants::NO_TEXTURE;
+use glrt::render::trace::texels::{TexelPool, sample, texel_size};
 
 /// Compiles the probe shader to SPIR-V words.
 fn probe_spirv() -> Vec<u32> {
@@ -24,6 +25,7 @@ fn probe_spirv() -> Vec<u32> {
     let status = Command::new("glslangValidator")
         .args(["-V", "--target-env", "vulkan1.1"])
         .arg(format!("-I{}", root.join("shaders").display()))
+        .arg(concat!("-I", env!("OUT_DIR"), "/glsl"))
         .arg(root.join("tests/shaders/texels_probe.comp"))
         .arg("-o")
         .arg(&out)

@@ -8,7 +8,7 @@ use ash::vk;
 
 use super::device::{Check, Device, Result};
 use super::output::SubmitSync;
-use super::pipelines::BINDINGS;
+use super::ff::shader_interface::BINDING_COUNT;
 use super::upload::Ring;
 
 /// Descriptor sets per pool.
@@ -103,7 +103,7 @@ impl Descriptors {
             }
             let sizes = [
                 vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER_DYNAMIC, descriptor_count: SETS_PER_POOL * 2 },
-                vk::DescriptorPoolSize { ty: vk::DescriptorType::COMBINED_IMAGE_SAMPLER, descriptor_count: SETS_PER_POOL * (BINDINGS - 1) },
+                vk::DescriptorPoolSize { ty: vk::DescriptorType::COMBINED_IMAGE_SAMPLER, descriptor_count: SETS_PER_POOL * (BINDING_COUNT - 1) },
             ];
             let info = vk::DescriptorPoolCreateInfo::default().max_sets(SETS_PER_POOL).pool_sizes(&sizes);
             // Safety: valid create info.

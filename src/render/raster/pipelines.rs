@@ -33,19 +33,32 @@ use ash::vk;
 use super::conv;
 use super::device::{Check, Device, Result};
 use super::ff;
+use super::ff::shader_interface::{BINDING_COUNT, BINDING_SAMPLER_2D, BINDING_SAMPLER_3D, BINDING_SAMPLER_CUBE, BINDING_UNIFORMS};
+use crate::render::texenv::codes::MAX_UNITS;
 use super::multisample::{self, SampleState};
 use super::programs::{self, Programs};
 use super::target::COLOR_FORMAT;
 use crate::frame::program::{GENERIC_ATTRIBUTE_LOCATION, ShaderProgram};
 use crate::frame::state::{Face, RasterState, Stencil, StencilFaces, Winding};
 
-/// Descriptor bindings of set 0 (see the `ff` module doc): the uniform block, then 2D, 3D and
-/// cube samplers of each unit.
-pub const BINDINGS: u32 = 1 + 3 * ff::MAX_UNITS as u32;
+// Set 0 (see the `ff` module doc): the uniform block, then the 2D, 3D and cube samplers of
+// each unit, [`BINDING_COUNT`] in all; the descriptor code relies on that order.
+const _: () = assert!(
+    BINDING_UNIFORMS == 0
+        && BINDING_SAMPLER_2D == 1
+        && BINDING_SAMPLER_3D == BINDING_SAMPLER_2D + MAX_UNITS as u32
+        && BINDING_SAMPLER_CUBE == BINDING_SAMPLER_3D + MAX_UNITS as u32
+        && BINDING_COUNT == BINDING_SAMPLER_CUBE + MAX_UNITS as u32
+);
 
 /// Binding of the 2D/3D/cube sampler of unit `unit`.
 pub fn sampler_binding(kind: SamplerKind, unit: usize) -> u32 {
-    1 + kind as u32 * ff::MAX_UNITS as u32 + unit as u32
+    let first = match kind {
+        SamplerKind::D2 => BINDING_SAMPLER_2D,
+        SamplerKind::D3 => BINDING_SAMPLER_3D,
+        SamplerKind::Cube => BINDING_SAMPLER_CUBE,
+    };
+    first + unit as u32
 }
 
 /// The sampler types of the texture bindings.
@@ -178,7 +191,7 @@ impl Pipelines {
     /// Creates the layouts and shader modules.
     pub fn new(device: &Device) -> Result<Pipelines> {
         let d = &device.raw;
-        let bindings: Vec<_> = (0..BINDINGS)
+        let bindings: Vec<_> = (0..BINDING_COUNT)
             .map(|b| {
                 vk::DescriptorSetLayoutBinding::default()
                     .binding(b)
@@ -462,6 +475,6 @@ mod tests {
         assert_eq!(sampler_binding(SamplerKind::D2, 0), 1);
         assert_eq!(sampler_binding(SamplerKind::D3, 1), 6);
         assert_eq!(sampler_binding(SamplerKind::Cube, 3), 12);
-        assert_eq!(BINDINGS, 13);
+        assert_eq!(BINDING_COUNT, 13);
     }
 }

@@ -36,8 +36,9 @@ use std::collections::HashMap;
 use ash::vk;
 
 use super::device::{Check, Device, Image, Result};
-use super::ff;
-use super::pipelines::{BINDINGS, SamplerKind, sampler_binding};
+use crate::render::texenv::codes::MAX_UNITS;
+use super::ff::shader_interface::BINDING_COUNT;
+use super::pipelines::{SamplerKind, sampler_binding};
 use super::upload::Ring;
 use crate::frame::program::{self, MAX_SAMPLERS};
 use crate::frame::texture::{DepthMode, Filter, Precision, Sampler, TexImage, TexelFormat, TextureKind, TextureRef, Wrap};
@@ -47,7 +48,7 @@ use crate::frame::texture::{DepthMode, Filter, Precision, Sampler, TexImage, Tex
 pub const KEEP_FRAMES: u64 = 8;
 
 /// Image view and sampler of each sampler binding (bindings 1..).
-pub type Bindings = [(vk::ImageView, vk::Sampler); BINDINGS as usize - 1];
+pub type Bindings = [(vk::ImageView, vk::Sampler); BINDING_COUNT as usize - 1];
 
 /// Image view and sampler of each sampler slot of a program (set 1).
 pub type SlotBindings = [(vk::ImageView, vk::Sampler); MAX_SAMPLERS];
@@ -152,11 +153,11 @@ impl Textures {
 
     /// Views and samplers of bindings 1.. for a draw with `textures` (per unit) and the
     /// units' LOD biases; uploads must have been recorded ([`Textures::upload`]).
-    pub fn bindings(&mut self, device: &Device, textures: &[Option<TextureRef>], lod_bias: [f32; ff::MAX_UNITS]) -> Result<Bindings> {
+    pub fn bindings(&mut self, device: &Device, textures: &[Option<TextureRef>], lod_bias: [f32; MAX_UNITS]) -> Result<Bindings> {
         let white = self.white.as_ref().map(|w| [w[0].view, w[1].view, w[2].view]).unwrap_or_default();
         let default_sampler = self.sampler(device, &Sampler::default(), 0.0)?;
-        let mut out: Bindings = std::array::from_fn(|i| (white[i / ff::MAX_UNITS], default_sampler));
-        for (unit, t) in textures.iter().enumerate().take(ff::MAX_UNITS) {
+        let mut out: Bindings = std::array::from_fn(|i| (white[i / MAX_UNITS], default_sampler));
+        for (unit, t) in textures.iter().enumerate().take(MAX_UNITS) {
             let Some(t) = t else { continue };
             let frame = self.frame;
             let Some(entry) = self.entries.get_mut(&(t.id, t.version)) else { continue };

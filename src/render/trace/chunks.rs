@@ -113,7 +113,7 @@ mod tests {
     use crate::frame::class::{MaterialOverride, View};
     use crate::frame::state::CompareFunc;
     use crate::frame::world::ChunkShading;
-    use crate::render::trace::gpu_types::NO_TEXTURE;
+    use crate::render::trace::shader_constants::NO_TEXTURE;
 
     fn chunk(colors: Vec<[u8; 4]>, state: RasterState) -> StaticChunk {
         StaticChunk {
@@ -124,21 +124,22 @@ mod tests {
             positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [5.0, 0.0, 0.0], [6.0, 0.0, 0.0], [5.0, 1.0, 0.0]],
             texcoords: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.5], [0.5, 0.5], [0.5, 0.5]],
             colors,
-            shading: ChunkShading { state: Arc::new(state), texture_unit: Some(TextureUnit::default()), multitextured: false },
+            shading: ChunkShading { state: Arc::new(state), texture_unit: Some(TextureUnit::default()), second_unit: None },
         }
     }
 
     #[test]
     fn a_chunk_is_shaded_as_its_draw_would_be() {
         let colors = vec![[255, 0, 0, 255], [255, 0, 0, 255], [255, 0, 0, 255], [0, 0, 255, 255], [0, 0, 255, 255], [0, 0, 255, 255]];
-        let c = chunk(colors, RasterState { alpha_test: Some((CompareFunc::Greater, 0.5)), ..RasterState::default() });
+        let mut c = chunk(colors, RasterState { alpha_test: Some((CompareFunc::Greater, 0.5)), ..RasterState::default() });
+        c.texture = Some(TextureRef { id: 7, version: 1, content: Arc::new(crate::frame::texture::TextureContent::default()) });
         let g = geometry(&c);
         assert_eq!(g.triangles.len(), 2);
         assert_eq!(g.triangles[1][1], glam::Vec3::new(6.0, 0.0, 0.0));
         let corner = g.attributes[1].corner[0];
-        assert_eq!((corner.uv, corner.color, corner.normal), ([0.5, 0.5], scene::pack_unorm8([0.0, 0.0, 1.0, 1.0]), 0));
+        assert_eq!((corner.uv[0], corner.color, corner.normal), ([0.5, 0.5], scene::pack_unorm8([0.0, 0.0, 1.0, 1.0]), 0));
         let m = material(&c, Some(4), &MaterialDefaults::default());
-        assert_eq!((m.texture, m.roughness, m.metalness, m.alpha_func, m.alpha_ref), (4, 0.3, 1.0, CompareFunc::Greater as u32, 0.5));
+        assert_eq!((m.layer[0].texture, m.roughness, m.metalness, m.alpha_func, m.alpha_ref), (4, 0.3, 1.0, CompareFunc::Greater as u32, 0.5));
 
         // Without colours the base colour is white, lit or not: the world feed puts a lit
         // draw's diffuse colour in the chunk's colours (chunks mix draws of other materials,
@@ -152,7 +153,7 @@ mod tests {
         assert_eq!((lit.attributes[0].corner[1].color, lit.attributes[0].corner[1].normal), (scene::pack_unorm8([1.0; 4]), 0));
         let red = geometry(&chunk(vec![[255, 0, 0, 255]; 6], lit_state));
         assert_eq!(red.attributes[1].corner[0].color, scene::pack_unorm8([1.0, 0.0, 0.0, 1.0]));
-        assert_eq!(material(&c, None, &MaterialDefaults::default()).texture, NO_TEXTURE);
+        assert_eq!(material(&c, None, &MaterialDefaults::default()).layer[0].texture, NO_TEXTURE);
     }
 
     #[test]

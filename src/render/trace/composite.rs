@@ -20,6 +20,8 @@ use crate::render::raster::renderer::Recorder;
 /// Push constants: traced size and framebuffer size.
 const PUSH_BYTES: u32 = 16;
 
+include!(concat!(env!("OUT_DIR"), "/layouts/trace_composite.rs"));
+
 /// The composite's layouts, shaders and pipelines (one per sample count of the framebuffer).
 pub struct Composite {
     /// Set 0: binding 0, the traced image's samples (a dynamic storage buffer, so the frame's

@@ -13,13 +13,14 @@ use gpu_allocator::MemoryLocation;
 use xxhash_rust::xxh3::Xxh3;
 
 use super::bvh::Tlas;
-use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight, FRAME_PERSPECTIVE, FRAME_SKY, INSTANCE_ALPHA_TESTED};
+use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight};
 use super::instances::{self, Source};
 use super::lights::{self, LightSettings};
-use super::pipelines::{GROUP, TracePipelines};
+use super::pipelines::TracePipelines;
 use super::resident::{NewGeometry, Resident};
 use super::scene::{self, MaterialDefaults};
 use super::settings::{Settings, Tonemap};
+use super::shader_constants::{FRAME_PERSPECTIVE, FRAME_SKY, INSTANCE_ALPHA_TESTED, TONEMAP_ACES, TONEMAP_CLAMP, TONEMAP_REINHARD, TRACE_GROUP};
 use super::sky::Sky;
 use super::stats::{RayCounts, SceneCounts, Statistics};
 use super::texels::TexelPool;
@@ -256,7 +257,7 @@ impl ComputeTracer {
             let d = &device.raw;
             d.cmd_fill_buffer(cmd, counters.raw, 0, vk::WHOLE_SIZE, 0);
             barrier(d, cmd, vk::PipelineStageFlags2::TRANSFER, vk::PipelineStageFlags2::COMPUTE_SHADER);
-            let groups = [gpu_frame.size[0].div_ceil(GROUP), gpu_frame.size[1].div_ceil(GROUP)];
+            let groups = [gpu_frame.size[0].div_ceil(TRACE_GROUP), gpu_frame.size[1].div_ceil(TRACE_GROUP)];
             d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.layout, 0, &[set], &[]);
             d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.pathtrace);
             if let Some(pool) = self.timestamps {
@@ -401,9 +402,9 @@ impl RayTracer for ComputeTracer {
         let fov = 2.0 * (1.0 / projection.y_axis.y.abs().max(1e-6)).atan();
         let spread = if perspective { fov / traced[1].max(1) as f32 } else { 0.0 };
         let tonemap = match self.settings.tonemap {
-            Tonemap::Clamp => 0,
-            Tonemap::Reinhard => 1,
-            Tonemap::Aces => 2,
+            Tonemap::Clamp => TONEMAP_CLAMP,
+            Tonemap::Reinhard => TONEMAP_REINHARD,
+            Tonemap::Aces => TONEMAP_ACES,
         };
         let gpu_frame = GpuFrame {
             projection: projection.to_cols_array_2d(),
@@ -435,7 +436,7 @@ impl RayTracer for ComputeTracer {
     /// into the output buffer, made readable by the composite and the host.
     fn resolve(&mut self, rec: &mut Recorder<'_>, radiance: Radiance) -> Result<TracedImage> {
         let (d, cmd) = (&rec.device.raw, rec.cmd);
-        let groups = radiance.size.map(|s| s.div_ceil(GROUP));
+        let groups = radiance.size.map(|s| s.div_ceil(TRACE_GROUP));
         // Safety: `cmd` is recording outside a rendering pass (`trace` ended it); the set's
         // buffers live until this frame finishes.
         unsafe {

@@ -1,7 +1,12 @@
 //! The structures the tracing shaders read, as `#[repr(C)]` mirrors of `shaders/trace/`
-//! (`scene.glsl`, `instance.glsl`); the tests compare their sizes with the std430 layouts.
+//! (`scene.glsl`, `instance.glsl`, `gbuffer.glsl`); the build checks their sizes, field offsets
+//! and field types against the compiled `pathtrace.comp` and `trace_resolve.comp`
+//! (`OUT_DIR/layouts/trace_gpu_types.rs`, see [`crate::render::shader_abi`]). Their flag bits
+//! are [`super::shader_constants`].
 
 use bytemuck::{Pod, Zeroable};
+
+use super::shader_constants::TRACED_UNITS;
 
 /// `TraceFrameBlock` of `scene.glsl`: camera, settings and counts of one frame.
 #[repr(C)]
@@ -33,14 +38,12 @@ pub struct GpuFrame {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuCorner {
-    /// Texture coordinates of unit 0.
-    pub uv: [f32; 2],
+    /// Texture coordinates of each traced unit (zero when the unit is not enabled).
+    pub uv: [[f32; 2]; TRACED_UNITS],
     /// Object-space normal, octahedral snorm16x2; 0 when the geometric normal is used.
     pub normal: u32,
     /// Base colour, display-encoded unorm8 RGBA.
     pub color: u32,
-    /// Texture coordinates of unit 1 (the lightmap's; zero when unit 1 is not enabled).
-    pub lightmap_uv: [f32; 2],
 }
 
 /// `TriangleAttributes` of `scene.glsl`.
@@ -51,18 +54,34 @@ pub struct GpuTriangleAttributes {
     pub corner: [GpuCorner; 3],
 }
 
+/// `Layer` of `scene.glsl`: one traced texture unit of a material (see [`super::scene`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLayer {
+    /// `GL_TEXTURE_ENV_COLOR`.
+    pub env_color: [f32; 4],
+    /// Texel pool index of the unit's texture, or `NO_TEXTURE`.
+    pub texture: u32,
+    /// The unit word's `FORMAT` and `ENV` fields ([`crate::render::texenv::unit_bits`]).
+    pub env: u32,
+    /// The RGB combiner word ([`crate::render::texenv::combine_words`]).
+    pub combine_rgb: u32,
+    /// The alpha combiner word.
+    pub combine_alpha: u32,
+    /// `LAYER_*` of [`super::shader_constants`].
+    pub role: u32,
+    /// Padding.
+    pub pad: [u32; 3],
+}
+
 /// `Material` of `scene.glsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuMaterial {
     /// Linear emitted radiance (rgb); a: emissive scale applied to the albedo.
     pub emission: [f32; 4],
-    /// `GL_TEXTURE_ENV_COLOR`.
-    pub env_color: [f32; 4],
-    /// Texel pool index of unit 0's texture, or `NO_TEXTURE`.
-    pub texture: u32,
-    /// `TEXENV_*` of unit 0.
-    pub texenv: u32,
+    /// Layer `u`: texture unit `u`.
+    pub layer: [GpuLayer; TRACED_UNITS],
     /// Roughness (GGX alpha = roughness²).
     pub roughness: f32,
     /// Metalness.
@@ -73,10 +92,6 @@ pub struct GpuMaterial {
     pub alpha_func: u32,
     /// Alpha test reference.
     pub alpha_ref: f32,
-    /// Texel pool index of unit 1's texture when it is a kept lightmap, or `NO_TEXTURE`.
-    pub lightmap: u32,
-    /// Multiplies the lightmap's display-encoded texels (GL's `RGB_SCALE` of unit 1).
-    pub lightmap_scale: f32,
     /// Padding.
     pub pad: [u32; 3],
 }
@@ -115,26 +130,35 @@ pub struct GpuInstance {
     pub material: u32,
 }
 
-/// `Material::texture` without a texture.
-pub const NO_TEXTURE: u32 = u32::MAX;
-/// Instance flag: traversal runs the alpha test.
-pub const INSTANCE_ALPHA_TESTED: u32 = 1;
-/// Instance flag: emits its albedo.
-pub const INSTANCE_EMISSIVE: u32 = 2;
-/// `GpuFrame::flags[0]` bit: perspective camera.
-pub const FRAME_PERSPECTIVE: u32 = 4;
-/// `GpuFrame::flags[0]` bit: missed rays sample the sky's cube map ([`super::sky`]), not
-/// `GpuFrame::environment`.
-pub const FRAME_SKY: u32 = 8;
-
 /// Per-pixel bytes of the G-buffer (`GSample` of `gbuffer.glsl`).
 pub const GSAMPLE_BYTES: u64 = 48;
 /// Per-pixel bytes of the accumulation buffers (`AccumSample`).
 pub const ACCUM_SAMPLE_BYTES: u64 = 32;
 /// Per-pixel bytes of the composite's input (`OutputSample`).
 pub const OUTPUT_SAMPLE_BYTES: u64 = 8;
+
+/// `Counters` of `gbuffer.glsl`: rays traced and traversal work, summed over a frame.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Pod, Zeroable)]
+pub struct GpuCounters {
+    /// Primary (camera) rays.
+    pub primary_rays: u32,
+    /// Shadow rays of next-event estimation.
+    pub shadow_rays: u32,
+    /// Indirect rays of the diffuse lobe.
+    pub diffuse_rays: u32,
+    /// Indirect rays of the specular lobe.
+    pub specular_rays: u32,
+    /// BVH nodes (TLAS and BLAS) visited by all rays.
+    pub nodes_visited: u32,
+    /// Ray-triangle tests of all rays.
+    pub triangles_tested: u32,
+}
+
 /// Bytes of the ray counters.
-pub const COUNTER_BYTES: u64 = 24;
+pub const COUNTER_BYTES: u64 = size_of::<GpuCounters>() as u64;
+
+include!(concat!(env!("OUT_DIR"), "/layouts/trace_gpu_types.rs"));
 
 /// The rows of the affine part of `m` (its last row is taken as 0, 0, 0, 1).
 pub fn rows(m: &glam::Mat4) -> [[f32; 4]; 3] {
@@ -145,17 +169,6 @@ pub fn rows(m: &glam::Mat4) -> [[f32; 4]; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn sizes_match_the_std430_layouts() {
-        // std430: vec4/mat4 members are 16-aligned; these are the block sizes glslang gives.
-        assert_eq!(std::mem::size_of::<GpuFrame>(), 3 * 64 + 4 * 16 + 3 * 16);
-        // Corner: vec2, uint, uint, vec2 (8-aligned, 24 bytes).
-        assert_eq!(std::mem::size_of::<GpuTriangleAttributes>(), 72);
-        assert_eq!(std::mem::size_of::<GpuMaterial>(), 80);
-        assert_eq!(std::mem::size_of::<GpuLight>(), 64);
-        assert_eq!(std::mem::size_of::<GpuInstance>(), 160);
-    }
 
     #[test]
     fn rows_are_the_affine_rows() {

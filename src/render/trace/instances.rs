@@ -36,17 +36,17 @@ pub struct Item<'a> {
 
 /// The instances of `frame` whose traced draws are `draws`, and how many draws were left out
 /// because the static world holds them. `previous_view` is the last traced frame's view
-/// (`None` after a camera cut). Chunks do not carry unit 1: with `lightmaps` kept, draws with a
-/// kept lightmap are traced themselves and chunks of multitextured draws are left out (such
-/// geometry is traced as drawn, without anti-culling).
+/// (`None` after a camera cut). Chunks do not carry unit 1: draws whose unit 1 is traced (a
+/// colour layer, or a lightmap `lightmaps` keeps: `scene::traces_second_unit`) are traced
+/// themselves, and the chunks of such draws are left out (that geometry is traced as drawn,
+/// without anti-culling).
 pub fn gather<'a>(frame: &'a Frame, draws: &[&'a Draw], previous_view: Option<Mat4>, lightmaps: Lightmaps) -> (Vec<Item<'a>>, u32) {
     let world = chunks::traced_world(frame);
-    let keep = lightmaps == Lightmaps::Keep;
     let mut items = Vec::with_capacity(draws.len() + world.map_or(0, |(_, c)| c.len()));
     let mut covered = 0;
     for &draw in draws {
-        let lightmapped = keep && scene::traced_textures(draw, lightmaps)[1].is_some();
-        if world.is_some() && chunks::is_covered(draw) && !lightmapped {
+        let second_unit = scene::traced_textures(draw, lightmaps)[1].is_some();
+        if world.is_some() && chunks::is_covered(draw) && !second_unit {
             covered += 1;
             continue;
         }
@@ -54,7 +54,7 @@ pub fn gather<'a>(frame: &'a Frame, draws: &[&'a Draw], previous_view: Option<Ma
         items.push(Item { source: Source::Draw(draw), key: scene::geometry_key(draw), object_to_eye: draw.modelview, previous_object_to_eye: previous });
     }
     if let Some((view, list)) = world {
-        for chunk in list.iter().filter(|c| !(keep && c.shading.multitextured)) {
+        for chunk in list.iter().filter(|c| !c.shading.second_unit.is_some_and(|u| scene::traces_second_unit(&u, lightmaps))) {
             items.push(Item { source: Source::Chunk(chunk), key: chunks::key(chunk), object_to_eye: view, previous_object_to_eye: previous_view.unwrap_or(view) });
         }
     }
@@ -70,8 +70,8 @@ impl<'a> Item<'a> {
         }
     }
 
-    /// The textures it is shaded with: unit 0's, and unit 1's when it is a kept lightmap
-    /// (`scene::traced_textures`; chunks carry unit 0 only).
+    /// The textures it is shaded with, per traced unit (`scene::traced_textures`; chunks carry
+    /// unit 0 only).
     pub fn textures(&self, lightmaps: Lightmaps) -> [Option<&'a TextureRef>; 2] {
         match self.source {
             Source::Draw(d) => scene::traced_textures(d, lightmaps),
@@ -79,7 +79,7 @@ impl<'a> Item<'a> {
         }
     }
 
-    /// Its material, with its textures (unit 0, lightmap) at `textures` in the texel pool.
+    /// Its material, with its textures (per traced unit) at `textures` in the texel pool.
     pub fn material(&self, textures: [Option<u32>; 2], defaults: &MaterialDefaults) -> GpuMaterial {
         match self.source {
             Source::Draw(d) => scene::material(d, textures, defaults),

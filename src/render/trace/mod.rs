@@ -32,7 +32,9 @@
 //! - [`scene`]: traced draws as geometries, instances and materials; [`chunks`]: the static
 //!   world's chunks as geometries; [`instances`]: a frame's instances, draws and chunks;
 //!   [`lights`]: GL lights as physical lights; [`sky`]: the sky draws as the environment cube
-//!   map; [`gpu_types`]: the structures the shaders read.
+//!   map; [`gpu_types`]: the structures the shaders read, checked against the compiled SPIR-V;
+//!   [`shader_constants`]: flags and special values shared with the shaders as generated headers
+//!   ([`crate::render::shader_abi`]).
 //! - [`texels`]: every texture level the tracer samples, packed into one storage buffer (no
 //!   descriptor indexing on lavapipe); `shaders/trace/texels.glsl` samples it.
 //! - [`tracks`]: dynamic instances across frames (what their next shape refits).
@@ -59,6 +61,7 @@ pub mod pipelines;
 pub mod resident;
 pub mod scene;
 pub mod settings;
+pub mod shader_constants;
 pub mod sky;
 pub mod stats;
 pub mod texels;

@@ -11,8 +11,7 @@ use crate::render::raster::pipelines::shader_module;
 /// Push constants of the compute pipelines: the sample a tracing dispatch traces (`pathtrace.comp`'s `Pass`).
 pub const TRACE_PUSH_BYTES: u32 = 4;
 
-/// Local size of both compute shaders, in each dimension.
-pub const GROUP: u32 = 8;
+include!(concat!(env!("OUT_DIR"), "/layouts/trace_push_constants.rs"));
 
 /// The layouts and the compute pipelines.
 pub struct TracePipelines {

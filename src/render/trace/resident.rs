@@ -333,7 +333,7 @@ mod tests {
             let cell = place(i);
             let p = Vec3::new((cell % side) as f32, (cell / side) as f32, 0.0) + shift;
             g.triangles.push([p, p + Vec3::X * 0.9, p + Vec3::Y * 0.9]);
-            g.attributes.push(GpuTriangleAttributes { corner: [GpuCorner { uv: [i as f32, 0.0], ..GpuCorner::default() }; 3] });
+            g.attributes.push(GpuTriangleAttributes { corner: [GpuCorner { uv: [[i as f32, 0.0], [0.0; 2]], ..GpuCorner::default() }; 3] });
         }
         g
     }
@@ -346,7 +346,7 @@ mod tests {
         assert_eq!((refitted.blas.nodes.len(), refitted.blas.order.clone()), (built.blas.nodes.len(), built.blas.order.clone()));
         assert_eq!(refitted.blas.bounds.min, Vec3::new(3.0, -2.0, 1.0));
         for (k, &i) in refitted.blas.order.iter().enumerate() {
-            assert_eq!(refitted.attributes[k].corner[0].uv[0], i as f32, "attributes follow the BVH order");
+            assert_eq!(refitted.attributes[k].corner[0].uv[0][0], i as f32, "attributes follow the BVH order");
         }
         assert_eq!(refitted.built_cost, built.built_cost);
 

@@ -5,13 +5,35 @@
 //! GL state is interpreted here, on the CPU, once per draw: the base colour of a corner is
 //! what OpenGL would feed the texture stage (the vertex colour, or the material's diffuse
 //! colour when lighting is on without colour material), normals are kept only for lit draws
-//! (unlit GL geometry has no meaningful normals: the geometric normal is used), texture unit
-//! 0 is the albedo texture. Units past 1 (detail textures and the like) are left out.
+//! (unlit GL geometry has no meaningful normals: the geometric normal is used).
 //!
-//! **Lightmaps** (unit 1 multiplying the result of unit 0, [`lightmap_scale`]) hold light the
+//! **Materials are stacks of layers.** A material holds one [`GpuLayer`] per traced texture
+//! unit: units 0 and 1 ([`TRACED_UNITS`]), the units whose coordinates the triangle corners
+//! carry; units past 1 are left out. A layer is what `shaders/texenv.glsl`'s `tex_env` needs
+//! to apply the unit (its texture in the texel pool, its unit and combiner words and
+//! environment colour, [`crate::render::texenv`]) and a role. `shaders/trace/surface.glsl`
+//! walks the layers in order: a [`LAYER_COLOR`] layer combines its texel with the colour so
+//! far, starting from the primary colour, through the same `tex_env` that `ff.frag` calls per
+//! enabled unit, so every GL 1.x environment (`REPLACE`, `MODULATE`, `DECAL`, `BLEND`, `ADD`,
+//! and `COMBINE` with its functions, sources including other units' texels, operands and
+//! scales) gives the traced surface the raster colour as its albedo; a [`LAYER_BAKED_LIGHT`]
+//! layer is a kept lightmap (below); [`LAYER_OFF`] layers are skipped.
+//!
+//! Multi-pass surfaces (a base pass, then lightmap, detail and glow passes over the same
+//! triangles) extend the stack without a second evaluator: each later pass becomes one more
+//! layer whose combiner words state its framebuffer blend with the layers below as a combine
+//! of `PREVIOUS` and its texture: (`DST_COLOR`, `ZERO`) is `MODULATE`, a detail pass
+//! (`DST_COLOR`, `SRC_COLOR`) is `MODULATE` with `RGB_SCALE` 2, (`SRC_ALPHA`,
+//! `ONE_MINUS_SRC_ALPHA`) is `INTERPOLATE` by the texture's alpha. A lightmap pass takes the
+//! role [`LAYER_BAKED_LIGHT`] as a lightmap unit does; an additive (`ONE`, `ONE`) pass takes a
+//! new emission role whose result adds to the emitted radiance instead of the albedo; the
+//! layer array grows, and each layer names the coordinate set of its pass.
+//!
+//! **Lightmaps** (unit 1 multiplying the result of unit 0, [`is_lightmap`]) hold light the
 //! game baked: direct and indirect, everything that arrives at the surface. Tracing computes
 //! that light itself, so counting both would count it twice. With [`Lightmaps::Ignore`] (the
-//! default) unit 1 is left out and the surface is an ordinary reflector of traced light. With
+//! default) unit 1 is left out ([`LAYER_OFF`]) and the surface is an ordinary reflector of
+//! traced light. With
 //! [`Lightmaps::Keep`] a lightmapped surface is a *baked* surface, as in RTX Remix or Quake 2
 //! RTX's lightmapped mode: the lightmap is taken as its irradiance `E = π · L_map` (`L_map`
 //! the texel decoded from display encoding after GL's `RGB_SCALE`, so a white lightmap texel
@@ -28,11 +50,13 @@
 use glam::{Mat4, Vec3, Vec4};
 use xxhash_rust::xxh3::Xxh3;
 
-use super::gpu_types::{GpuCorner, GpuMaterial, GpuTriangleAttributes, NO_TEXTURE};
+use super::gpu_types::{GpuCorner, GpuLayer, GpuMaterial, GpuTriangleAttributes};
 use super::settings::Lightmaps;
+use super::shader_constants::{LAYER_BAKED_LIGHT, LAYER_COLOR, LAYER_OFF, NO_TEXTURE, TRACED_UNITS};
 use crate::frame::state::{ColorMaterialMode, CompareFunc, Lighting};
 use crate::frame::texture::{CombineFn, CombineOperand, CombineSource, EnvMode, TextureRef};
 use crate::frame::{Draw, Frame, Framebuffer, Topology, TextureUnit};
+use crate::render::texenv;
 
 /// Whether `draw` is traced: a triangle draw of a traced class into the window's framebuffer,
 /// run by the fixed-function pipeline (a GLSL program's output cannot be traced: those draws
@@ -100,37 +124,39 @@ fn enabled(draw: &Draw, unit: usize) -> bool {
     draw.texture_units.get(unit).is_some_and(Option::is_some)
 }
 
-/// The scale a unit applies to its texture when it multiplies the previous unit's result by
-/// it (OpenGL 1.3 section 3.8.13: unit 1 combines with unit 0's result): 1 for `MODULATE`;
-/// `RGB_SCALE` for a `COMBINE` whose RGB function is `MODULATE` of `PREVIOUS` and `TEXTURE`
-/// colours (the usual "overbright" lightmap). `None` for every other environment: `REPLACE`,
-/// `DECAL`, `BLEND`, `ADD` or other combiners on unit 1 are not lightmaps (decals, detail,
-/// glow and environment maps) and are left out like the units past 1.
-pub fn lightmap_scale(unit: &TextureUnit) -> Option<f32> {
+/// Whether a unit multiplies the previous unit's result by its texture (OpenGL 1.3 section
+/// 3.8.13: unit 1 combines with unit 0's result), as a lightmap does: `MODULATE`, or a
+/// `COMBINE` whose RGB function is `MODULATE` of `PREVIOUS` and `TEXTURE` colours, with any
+/// `RGB_SCALE` (the usual "overbright" lightmap; the baked light is the texel times that
+/// scale). Every other environment on unit 1 (`REPLACE`, `DECAL`, `BLEND`, `ADD`, other
+/// combiners: decals, detail, glow and environment maps) is a colour layer.
+pub fn is_lightmap(unit: &TextureUnit) -> bool {
     let env = &unit.env;
     match env.mode {
-        EnvMode::Modulate => Some(1.0),
+        EnvMode::Modulate => true,
         EnvMode::Combine => {
             let [a, b, _] = env.source_rgb;
             let sources = matches!((a, b), (CombineSource::Previous, CombineSource::Texture) | (CombineSource::Texture, CombineSource::Previous));
             let colours = env.operand_rgb[..2].iter().all(|&o| o == CombineOperand::SrcColor);
-            (env.combine_rgb == CombineFn::Modulate && sources && colours).then_some(env.scale[0])
+            env.combine_rgb == CombineFn::Modulate && sources && colours
         }
-        _ => None,
+        _ => false,
     }
 }
 
-/// The textures the tracer samples for `draw`: unit 0's when a target is enabled there
-/// (the albedo), and unit 1's when it is a lightmap ([`lightmap_scale`]) kept by `lightmaps`.
-pub fn traced_textures(draw: &Draw, lightmaps: Lightmaps) -> [Option<&TextureRef>; 2] {
+/// The textures the tracer samples for `draw`, per traced unit: the unit's texture when a
+/// target is enabled there, but for a lightmap on unit 1 that `lightmaps` does not keep
+/// ([`traces_second_unit`]).
+pub fn traced_textures(draw: &Draw, lightmaps: Lightmaps) -> [Option<&TextureRef>; TRACED_UNITS] {
     let texture = |unit: usize| draw.textures.get(unit).and_then(Option::as_ref).filter(|_| enabled(draw, unit));
-    let lightmap = texture(LIGHTMAP_UNIT).filter(|_| lightmaps == Lightmaps::Keep && lightmap_unit(draw).is_some());
-    [texture(0), lightmap]
+    let kept = |unit: usize| unit != LIGHTMAP_UNIT || draw.texture_units.get(unit).copied().flatten().is_some_and(|u| traces_second_unit(&u, lightmaps));
+    std::array::from_fn(|unit| texture(unit).filter(|_| kept(unit)))
 }
 
-/// The scale of unit 1 when it is enabled and multiplies unit 0's result ([`lightmap_scale`]).
-fn lightmap_unit(draw: &Draw) -> Option<f32> {
-    draw.texture_units.get(LIGHTMAP_UNIT).copied().flatten().and_then(|u| lightmap_scale(&u))
+/// Whether unit 1, enabled with a texture and the environment of `unit`, is traced: as a
+/// colour layer, or as a lightmap ([`is_lightmap`]) when `lightmaps` keeps them.
+pub fn traces_second_unit(unit: &TextureUnit, lightmaps: Lightmaps) -> bool {
+    lightmaps == Lightmaps::Keep || !is_lightmap(unit)
 }
 
 /// Whether the lit base colour follows the vertex colour (`glColorMaterial` on diffuse).
@@ -169,7 +195,7 @@ pub fn geometry(draw: &Draw) -> Geometry {
     let v = &draw.vertices;
     let lit = draw.state.lighting.as_ref();
     let diffuse = lit.filter(|l| !tracks_diffuse(l)).map(|l| l.front.diffuse);
-    let matrices = [texture_matrix(draw, 0), texture_matrix(draw, LIGHTMAP_UNIT)];
+    let matrices: [Option<Mat4>; TRACED_UNITS] = std::array::from_fn(|unit| texture_matrix(draw, unit));
     let corner = |i: u32| -> ([f32; 4], GpuCorner) {
         let i = i as usize;
         let p = v.position.get(i).copied().unwrap_or([0.0, 0.0, 0.0, 1.0]);
@@ -178,9 +204,8 @@ pub fn geometry(draw: &Draw) -> Geometry {
             (Some(_), Some(n)) => pack_normal(Vec3::from_array(n)),
             _ => 0,
         };
-        let uv = texcoord(draw, 0, matrices[0], i);
-        let lightmap_uv = texcoord(draw, LIGHTMAP_UNIT, matrices[1], i);
-        (p, GpuCorner { uv, normal, color: pack_unorm8(color), lightmap_uv })
+        let uv = std::array::from_fn(|unit| texcoord(draw, unit, matrices[unit], i));
+        (p, GpuCorner { uv, normal, color: pack_unorm8(color) })
     };
     let mut geometry = Geometry::default();
     for tri in draw.indices.chunks_exact(3) {
@@ -207,24 +232,33 @@ impl Default for MaterialDefaults {
     }
 }
 
-/// The material of a traced draw whose [`traced_textures`] are `textures` in the texel pool
-/// (unit 0's, and a kept lightmap).
+/// The material of a traced draw whose [`traced_textures`] are `textures` in the texel pool.
 ///
-/// Lit draws take their specular reflectance from the GL material (0 for the default
-/// material, so a default lit surface is Lambertian) and their roughness from its shininess
-/// (Blinn-Phong exponent n to GGX alpha = sqrt(2 / (n + 2))); emission is the GL material's.
-/// Roughness, metalness and emission otherwise come from the draw's `glrt.toml` material
-/// ([`crate::frame::class::MaterialOverride`], defaults included).
-pub fn material(draw: &Draw, textures: [Option<u32>; 2], defaults: &MaterialDefaults) -> GpuMaterial {
-    let [texture, lightmap] = textures;
-    let unit = draw.texture_units.first().copied().flatten();
-    let lightmap = lightmap.zip(lightmap_unit(draw));
-    let texenv = match unit.map(|u| u.env.mode) {
-        Some(EnvMode::Replace) => 1,
-        Some(EnvMode::Decal) => 2,
-        Some(EnvMode::Blend) => 3,
-        Some(EnvMode::Add) => 4,
-        _ => 0,
+/// Each traced unit with a texture is a layer (see the module doc): [`LAYER_BAKED_LIGHT`] for a
+/// kept lightmap, [`LAYER_COLOR`] otherwise. Lit draws take their specular reflectance from
+/// the GL material (0 for the default material, so a default lit surface is Lambertian) and
+/// their roughness from its shininess (Blinn-Phong exponent n to GGX alpha = sqrt(2 / (n +
+/// 2))); emission is the GL material's. Roughness, metalness and emission otherwise come from
+/// the draw's `glrt.toml` material ([`crate::frame::class::MaterialOverride`], defaults
+/// included).
+pub fn material(draw: &Draw, textures: [Option<u32>; TRACED_UNITS], defaults: &MaterialDefaults) -> GpuMaterial {
+    let layer = |unit: usize| {
+        let env = draw.texture_units.get(unit).copied().flatten();
+        let content = draw.textures.get(unit).and_then(Option::as_ref).map(|t| &t.content);
+        let (Some(texture), Some(env), Some(content)) = (textures[unit], env, content) else {
+            return GpuLayer { texture: NO_TEXTURE, role: LAYER_OFF, ..GpuLayer::default() };
+        };
+        let [combine_rgb, combine_alpha] = texenv::combine_words(&env.env);
+        let baked = unit == LIGHTMAP_UNIT && is_lightmap(&env);
+        GpuLayer {
+            env_color: env.env.color,
+            texture,
+            env: texenv::unit_bits(&env, content),
+            combine_rgb,
+            combine_alpha,
+            role: if baked { LAYER_BAKED_LIGHT } else { LAYER_COLOR },
+            pad: [0; 3],
+        }
     };
     let over = draw.instance.map(|i| i.material).unwrap_or_default();
     let (mut roughness, mut specular, mut emission) = (over.roughness, defaults.specular, [0.0; 4]);
@@ -239,21 +273,17 @@ pub fn material(draw: &Draw, textures: [Option<u32>; 2], defaults: &MaterialDefa
     }
     emission[3] = over.emissive.max(0.0);
     let (alpha_func, alpha_ref) = match draw.state.alpha_test {
-        Some((func, reference)) if texture.is_some() => (func as u32, reference),
+        Some((func, reference)) if textures.iter().any(Option::is_some) => (func as u32, reference),
         _ => (CompareFunc::Always as u32, 0.0),
     };
     GpuMaterial {
         emission,
-        env_color: unit.map_or([0.0; 4], |u| u.env.color),
-        texture: texture.unwrap_or(NO_TEXTURE),
-        texenv,
+        layer: std::array::from_fn(layer),
         roughness,
         metalness: over.metalness.clamp(0.0, 1.0),
         specular,
         alpha_func,
         alpha_ref,
-        lightmap: lightmap.map_or(NO_TEXTURE, |(index, _)| index),
-        lightmap_scale: lightmap.map_or(0.0, |(_, scale)| scale),
         pad: [0; 3],
     }
 }
@@ -294,6 +324,7 @@ mod tests {
     use super::*;
     use crate::frame::class::DrawClass;
     use crate::frame::texture::{TextureContent, TextureEnv};
+    use crate::render::texenv::codes::{ENV, ENV_COMBINE, ENV_DECAL, FORMAT, FORMAT_LUMINANCE, SCALE};
     use crate::frame::{Attrib, RasterState, Vertices};
     use std::sync::Arc;
 
@@ -347,9 +378,11 @@ mod tests {
         let mut draw = quad(DrawClass::Static);
         draw.state = Arc::new(RasterState { lighting: Some(Lighting::default()), ..RasterState::default() });
         let m = material(&draw, [None; 2], &MaterialDefaults::default());
-        assert_eq!((m.specular, m.texture, m.alpha_func, m.lightmap), (0.0, NO_TEXTURE, 7, NO_TEXTURE));
-        let unlit = material(&quad(DrawClass::Static), [Some(3), None], &MaterialDefaults::default());
-        assert_eq!((unlit.specular, unlit.texture), (0.04, 3));
+        assert_eq!((m.specular, m.alpha_func), (0.0, 7));
+        assert!(m.layer.iter().all(|l| (l.texture, l.role) == (NO_TEXTURE, LAYER_OFF)), "{:?}", m.layer);
+        let unlit = material(&lightmapped(TextureEnv::default()), [Some(3), None], &MaterialDefaults::default());
+        assert_eq!((unlit.specular, unlit.layer[0].texture, unlit.layer[0].role), (0.04, 3, LAYER_COLOR));
+        assert_eq!(unlit.layer[1].role, LAYER_OFF, "unit 1's texture is not traced");
     }
 
     /// `quad` textured on unit 0 and with texture 2 on unit 1 of environment `env`; unit 1's
@@ -366,9 +399,9 @@ mod tests {
     }
 
     #[test]
-    fn modulating_units_are_lightmaps_with_their_scale() {
+    fn modulating_units_are_lightmaps() {
         let modulate = TextureEnv::default();
-        assert_eq!(lightmap_scale(&TextureUnit { env: modulate, ..TextureUnit::default() }), Some(1.0));
+        assert!(is_lightmap(&TextureUnit { env: modulate, ..TextureUnit::default() }));
         let overbright = TextureEnv {
             mode: EnvMode::Combine,
             combine_rgb: CombineFn::Modulate,
@@ -376,7 +409,7 @@ mod tests {
             scale: [2.0, 1.0],
             ..TextureEnv::default()
         };
-        assert_eq!(lightmap_scale(&TextureUnit { env: overbright, ..TextureUnit::default() }), Some(2.0));
+        assert!(is_lightmap(&TextureUnit { env: overbright, ..TextureUnit::default() }));
         let not_lightmaps = [
             TextureEnv { mode: EnvMode::Decal, ..modulate },
             TextureEnv { mode: EnvMode::Add, ..modulate },
@@ -387,7 +420,7 @@ mod tests {
             TextureEnv { operand_rgb: [CombineOperand::SrcColor, CombineOperand::OneMinusSrcColor, CombineOperand::SrcColor], ..overbright },
         ];
         for env in not_lightmaps {
-            assert_eq!(lightmap_scale(&TextureUnit { env, ..TextureUnit::default() }), None, "{env:?}");
+            assert!(!is_lightmap(&TextureUnit { env, ..TextureUnit::default() }), "{env:?}");
         }
     }
 
@@ -398,17 +431,19 @@ mod tests {
         assert_eq!(ids(traced_textures(&draw, Lightmaps::Ignore)), [Some(1), None]);
         assert_eq!(ids(traced_textures(&draw, Lightmaps::Keep)), [Some(1), Some(2)]);
         let decal = lightmapped(TextureEnv { mode: EnvMode::Decal, ..TextureEnv::default() });
-        assert_eq!(ids(traced_textures(&decal, Lightmaps::Keep)), [Some(1), None], "a decal on unit 1 is not a lightmap");
+        for lightmaps in [Lightmaps::Ignore, Lightmaps::Keep] {
+            assert_eq!(ids(traced_textures(&decal, lightmaps)), [Some(1), Some(2)], "a decal on unit 1 is a colour layer");
+        }
         let mut disabled = draw.clone();
         disabled.texture_units[1] = None;
         assert_eq!(ids(traced_textures(&disabled, Lightmaps::Keep)), [Some(1), None]);
 
         // Unit 1's coordinates after its texture matrix (s halved), divided by q; unit 0's too.
         let g = geometry(&draw);
-        assert_eq!(g.attributes[0].corner.map(|c| c.lightmap_uv), [[0.0, 0.0], [0.5, 0.0], [0.5, 1.0]]);
-        assert_eq!(g.attributes[1].corner[2].lightmap_uv, [0.0, 1.0], "(0, 2, 0, 2) divided by q");
-        assert_eq!(g.attributes[0].corner[0].uv, [0.25, 0.75]);
-        assert_eq!(geometry(&disabled).attributes[0].corner[1].lightmap_uv, [0.0, 0.0]);
+        assert_eq!(g.attributes[0].corner.map(|c| c.uv[1]), [[0.0, 0.0], [0.5, 0.0], [0.5, 1.0]]);
+        assert_eq!(g.attributes[1].corner[2].uv[1], [0.0, 1.0], "(0, 2, 0, 2) divided by q");
+        assert_eq!(g.attributes[0].corner[0].uv[0], [0.25, 0.75]);
+        assert_eq!(geometry(&disabled).attributes[0].corner[1].uv[1], [0.0, 0.0]);
         // The key sees unit 1's coordinates and matrix, and whether the unit is on.
         let mut moved = draw.clone();
         moved.vertices.texcoords[1].values[1][0] = 0.75;
@@ -418,9 +453,43 @@ mod tests {
         assert!(keys.iter().enumerate().all(|(i, k)| keys[i + 1..].iter().all(|o| o != k)), "{keys:?}");
 
         let m = material(&draw, [Some(4), Some(5)], &MaterialDefaults::default());
-        assert_eq!((m.texture, m.lightmap, m.lightmap_scale), (4, 5, 1.0));
+        assert_eq!(m.layer.map(|l| (l.texture, l.role)), [(4, LAYER_COLOR), (5, LAYER_BAKED_LIGHT)]);
         let m = material(&decal, [Some(4), Some(5)], &MaterialDefaults::default());
-        assert_eq!((m.lightmap, m.lightmap_scale), (NO_TEXTURE, 0.0));
+        assert_eq!(m.layer.map(|l| (l.texture, l.role)), [(4, LAYER_COLOR), (5, LAYER_COLOR)]);
+        assert_eq!(ENV.get(m.layer[1].env), ENV_DECAL);
+    }
+
+    /// A `GL_COMBINE` unit becomes a colour layer with the words `ff.frag` gets for it, its
+    /// environment colour and its texture's base format; an overbright lightmap keeps its scale
+    /// in its combiner word.
+    #[test]
+    fn combine_units_carry_the_raster_words() {
+        let interpolate = TextureEnv {
+            mode: EnvMode::Combine,
+            combine_rgb: CombineFn::Interpolate,
+            source_rgb: [CombineSource::Texture, CombineSource::Constant, CombineSource::PrimaryColor],
+            color: [0.25, 0.5, 0.75, 1.0],
+            scale: [1.0, 4.0],
+            ..TextureEnv::default()
+        };
+        let mut draw = lightmapped(interpolate);
+        let luminance = TextureContent { format: crate::frame::texture::TexelFormat::Luminance, ..TextureContent::default() };
+        draw.textures[1] = Some(TextureRef { id: 2, version: 1, content: Arc::new(luminance) });
+        let m = material(&draw, [Some(4), Some(5)], &MaterialDefaults::default());
+        let l = m.layer[1];
+        let unit = draw.texture_units[1].expect("unit 1");
+        assert_eq!([l.combine_rgb, l.combine_alpha], texenv::combine_words(&interpolate));
+        assert_eq!((l.role, l.env_color, ENV.get(l.env), FORMAT.get(l.env)), (LAYER_COLOR, interpolate.color, ENV_COMBINE, FORMAT_LUMINANCE));
+        assert_eq!(l.env, texenv::unit_bits(&unit, &draw.textures[1].as_ref().expect("texture").content));
+        let overbright = TextureEnv {
+            mode: EnvMode::Combine,
+            combine_rgb: CombineFn::Modulate,
+            source_rgb: [CombineSource::Previous, CombineSource::Texture, CombineSource::Constant],
+            scale: [2.0, 1.0],
+            ..TextureEnv::default()
+        };
+        let m = material(&lightmapped(overbright), [Some(4), Some(5)], &MaterialDefaults::default());
+        assert_eq!((m.layer[1].role, SCALE.get(m.layer[1].combine_rgb)), (LAYER_BAKED_LIGHT, 1), "RGB_SCALE 2");
     }
 
     #[test]

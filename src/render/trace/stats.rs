@@ -17,6 +17,8 @@ pub struct Statistics {
     pub frames: u64,
 }
 
+use super::gpu_types::GpuCounters;
+
 /// Rays traced in one frame, by kind, and the traversal work they cost.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RayCounts {
@@ -35,14 +37,17 @@ pub struct RayCounts {
 }
 
 impl RayCounts {
-    /// Words of the counters buffer, in the order of `Counters` in `shaders/trace/gbuffer.glsl`.
-    pub const WORDS: usize = 6;
-
-    /// The counts in the counters buffer's bytes (`None` when too short).
+    /// The counts in the counters buffer's bytes ([`GpuCounters`]; `None` when too short).
     pub fn from_counters(bytes: &[u8]) -> Option<RayCounts> {
-        let words: Vec<u64> = bytes.chunks_exact(4).take(Self::WORDS).map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]) as u64).collect();
-        let &[primary, shadow, diffuse, specular, nodes_visited, triangles_tested] = words.as_slice() else { return None };
-        Some(RayCounts { primary, shadow, diffuse, specular, nodes_visited, triangles_tested })
+        let c: GpuCounters = bytemuck::pod_read_unaligned(bytes.get(..size_of::<GpuCounters>())?);
+        Some(RayCounts {
+            primary: c.primary_rays.into(),
+            shadow: c.shadow_rays.into(),
+            diffuse: c.diffuse_rays.into(),
+            specular: c.specular_rays.into(),
+            nodes_visited: c.nodes_visited.into(),
+            triangles_tested: c.triangles_tested.into(),
+        })
     }
 
     /// Every ray traced.

@@ -57,6 +57,10 @@ use std::sync::Arc;
 
 use bytemuck::{Pod, Zeroable};
 
+use super::shader_constants::{
+    NO_TEXTURE, TEXEL_MAG_LINEAR, TEXEL_MAG_TO_HALF, TEXEL_MIN_LINEAR, TEXEL_MIP_LINEAR, TEXEL_MIPMAP, TEXEL_RECT, TEXEL_SRGB, TEXEL_WRAP_CLAMP,
+    TEXEL_WRAP_MIRROR, TEXEL_WRAP_REPEAT, TEXEL_WRAP_T_SHIFT,
+};
 use crate::frame::mipmap::downsample;
 use crate::frame::texture::{Filter, Precision, TexImage, TextureContent, TextureKind, TextureRef, Wrap};
 use crate::render::raster::renderer::log_once;
@@ -64,8 +68,6 @@ use crate::render::raster::textures::{Upload, interior, level_chain, texel_bytes
 
 pub use sample::{sample, texel_size};
 
-/// Texture index meaning "no texture": samples as opaque white (`TEXEL_NONE` in texels.glsl).
-pub const NO_TEXTURE: u32 = u32::MAX;
 /// The default budget: 32 Mi texels, 128 MiB, the largest storage buffer lavapipe allows.
 pub const MAX_WORDS: usize = 32 << 20;
 /// Frames a version stays packed without being used.
@@ -75,8 +77,8 @@ const MAX_LEVELS: u32 = 32;
 /// The widest and highest texture packed (texel coordinates stay exact in `f32` up to it).
 const MAX_SIDE: u32 = 1 << 24;
 
-/// One texture of the table, as `GpuTexture` in `shaders/trace/texels.glsl` (std430, 32
-/// bytes). Level `l` is `max(width >> l, 1)` × `max(height >> l, 1)` texels, rows bottom to
+/// One texture of the table, as `GpuTexture` in `shaders/trace/texels.glsl` (std430, checked
+/// by the build against the compiled `pathtrace.comp`). Level `l` is `max(width >> l, 1)` × `max(height >> l, 1)` texels, rows bottom to
 /// top, and starts right after level `l − 1`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -89,7 +91,8 @@ pub struct GpuTexture {
     pub height: u32,
     /// Levels stored; 0 when the texture did not fit the budget and samples as `average`.
     pub levels: u32,
-    /// Wrap modes (bits 0–1: s, bits 2–3: t; `WRAP_*`) and the other flags of this type.
+    /// Wrap modes (bits 0–1: s, bits 2–3: t; `TEXEL_WRAP_*`) and the other `TEXEL_*` flags of
+    /// [`super::shader_constants`].
     pub flags: u32,
     /// Average colour of the base level, packed RGBA8 like the texels (sRGB-encoded when
     /// they are).
@@ -100,36 +103,12 @@ pub struct GpuTexture {
     pub lod_max: f32,
 }
 
-const _: () = assert!(size_of::<GpuTexture>() == 32);
+include!(concat!(env!("OUT_DIR"), "/layouts/trace_texels.rs"));
 
 impl GpuTexture {
-    /// Wrap mode `GL_REPEAT`.
-    pub const WRAP_REPEAT: u32 = 0;
-    /// Wrap mode `GL_CLAMP_TO_EDGE` (also `GL_CLAMP` and `GL_CLAMP_TO_BORDER`, approximated).
-    pub const WRAP_CLAMP: u32 = 1;
-    /// Wrap mode `GL_MIRRORED_REPEAT`.
-    pub const WRAP_MIRROR: u32 = 2;
-    /// Shift of the t wrap mode in `flags`.
-    pub const WRAP_T_SHIFT: u32 = 2;
-    /// Magnification is bilinear.
-    pub const MAG_LINEAR: u32 = 1 << 4;
-    /// Minification within a level is bilinear.
-    pub const MIN_LINEAR: u32 = 1 << 5;
-    /// Minification uses the levels (a GL mipmap filter, or a generated chain).
-    pub const MIPMAP: u32 = 1 << 6;
-    /// Minification blends the two nearest levels.
-    pub const MIP_LINEAR: u32 = 1 << 7;
-    /// Coordinates are in texels (rectangle textures).
-    pub const RECT: u32 = 1 << 8;
-    /// Texels are sRGB-encoded and decoded when sampled.
-    pub const SRGB: u32 = 1 << 9;
-    /// Magnification up to a LOD of 0.5, not 0 (OpenGL 1.5 section 3.8.9: linear
-    /// magnification with a `NEAREST_MIPMAP_*` minification filter).
-    pub const MAG_TO_HALF: u32 = 1 << 10;
-
     /// The wrap mode of s (`axis` 0) or t (1).
     pub fn wrap(&self, axis: u32) -> u32 {
-        (self.flags >> (axis * Self::WRAP_T_SHIFT)) & 3
+        (self.flags >> (axis * TEXEL_WRAP_T_SHIFT)) & 3
     }
 
     /// Whether `flag` is set.
@@ -440,23 +419,23 @@ impl Plan {
         let allowed = if mipmapped { (s.levels[1].saturating_sub(s.levels[0])).saturating_add(1) } else { MAX_LEVELS };
         let levels = full.min(allowed);
         let wrap = |w: Wrap| match w {
-            Wrap::Repeat => GpuTexture::WRAP_REPEAT,
-            Wrap::Clamp | Wrap::ClampToEdge | Wrap::ClampToBorder => GpuTexture::WRAP_CLAMP,
-            Wrap::MirroredRepeat => GpuTexture::WRAP_MIRROR,
+            Wrap::Repeat => TEXEL_WRAP_REPEAT,
+            Wrap::Clamp | Wrap::ClampToEdge | Wrap::ClampToBorder => TEXEL_WRAP_CLAMP,
+            Wrap::MirroredRepeat => TEXEL_WRAP_MIRROR,
         };
         let bit = |on: bool, flag: u32| if on { flag } else { 0 };
         let min_linear = s.min_filter.texel == Filter::Linear;
         let mag_linear = s.mag_filter == Filter::Linear;
         let mip_linear = s.min_filter.mipmap.map_or(min_linear, |m| m == Filter::Linear);
         let flags = wrap(s.wrap[0])
-            | wrap(s.wrap[1]) << GpuTexture::WRAP_T_SHIFT
-            | bit(mag_linear, GpuTexture::MAG_LINEAR)
-            | bit(min_linear, GpuTexture::MIN_LINEAR)
-            | bit(levels > 1, GpuTexture::MIPMAP)
-            | bit(levels > 1 && mip_linear, GpuTexture::MIP_LINEAR)
-            | bit(content.kind == TextureKind::Rect, GpuTexture::RECT)
-            | bit(top.precision == Precision::Srgb8, GpuTexture::SRGB)
-            | bit(mipmapped && mag_linear && !min_linear, GpuTexture::MAG_TO_HALF);
+            | wrap(s.wrap[1]) << TEXEL_WRAP_T_SHIFT
+            | bit(mag_linear, TEXEL_MAG_LINEAR)
+            | bit(min_linear, TEXEL_MIN_LINEAR)
+            | bit(levels > 1, TEXEL_MIPMAP)
+            | bit(levels > 1 && mip_linear, TEXEL_MIP_LINEAR)
+            | bit(content.kind == TextureKind::Rect, TEXEL_RECT)
+            | bit(top.precision == Precision::Srgb8, TEXEL_SRGB)
+            | bit(mipmapped && mag_linear && !min_linear, TEXEL_MAG_TO_HALF);
         let record = GpuTexture { offset: 0, width, height, levels, flags, average: 0, lod_min: s.lod[0], lod_max: s.lod[1] };
         Some(Plan { record, chain })
     }

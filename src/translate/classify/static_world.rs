@@ -973,7 +973,7 @@ mod tests {
         let texcoords: Vec<[f32; 2]> = positions.iter().map(|p| [p[0], p[1]]).collect();
         let colors: Vec<[u8; 4]> = (0..positions.len()).map(|i| [i as u8, 0, 255, 255]).collect();
         let state = crate::frame::RasterState { depth_write: true, ..Default::default() };
-        let shading = ChunkShading { state: Arc::new(state), texture_unit: Some(crate::frame::TextureUnit::default()), multitextured: false };
+        let shading = ChunkShading { state: Arc::new(state), texture_unit: Some(crate::frame::TextureUnit::default()), second_unit: None };
         let mut last = None;
         for f in 0..2 {
             world.begin_frame(f, front_view());

@@ -62,8 +62,8 @@ impl WorldFeed {
         self.positions.truncate(whole);
         let texcoords = (self.texcoords.len() == self.positions.len()).then_some(&self.texcoords[..]);
         let colors = (self.colors.len() == self.positions.len()).then_some(&self.colors[..]);
-        let multitextured = draw.texture_units.get(1).copied().flatten().is_some() && draw.textures.get(1).is_some_and(Option::is_some);
-        let shading = ChunkShading { state: draw.state.clone(), texture_unit: draw.texture_units.first().copied().flatten(), multitextured };
+        let second_unit = draw.texture_units.get(1).copied().flatten().filter(|_| draw.textures.get(1).is_some_and(Option::is_some));
+        let shading = ChunkShading { state: draw.state.clone(), texture_unit: draw.texture_units.first().copied().flatten(), second_unit };
         world.offer(WorldTriangles {
             material_key,
             material,

@@ -217,7 +217,7 @@ fn pack_light(b: &mut Std430, l: &Light) {
 
 #[cfg(test)]
 mod tests {
-    use crate::render::raster::ff::uniforms::tests::spirv_offsets;
+    use crate::render::shader_abi::spirv_layout::Module;
     use crate::translate::glsl::{Stage, compiler};
     use crate::translate::{Context, dispatch, gl};
 
@@ -270,8 +270,11 @@ mod tests {
 
     #[test]
     fn packed_values_sit_at_the_offsets_of_the_compiled_block() {
-        let off = spirv_offsets(&block_spirv());
-        let at = |s: &str, m: &str| *off.get(&(s.to_string(), m.to_string())).unwrap_or_else(|| panic!("{s}.{m}: {off:?}"));
+        let module = Module::decode(&block_spirv()).expect("SPIR-V");
+        let at = |s: &str, m: &str| {
+            let layout = module.layout(s).unwrap_or_else(|e| panic!("{s}: {e}"));
+            layout.members.iter().find(|x| x.name == m).map(|x| x.offset as usize).unwrap_or_else(|| panic!("{s}.{m}: {layout:?}"))
+        };
         let (mut ctx, _) = Context::with_recording();
         unsafe {
             dispatch::glDepthRange(&mut ctx, 0.25, 0.75);

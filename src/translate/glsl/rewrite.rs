@@ -79,6 +79,9 @@ pub fn rewrite(input: &StageInput) -> String {
         out.push_str("#define FF_FRAGMENT\n");
     }
     for part in [
+        include_str!(concat!(env!("OUT_DIR"), "/glsl/generated/texenv_codes.glsl")),
+        include_str!(concat!(env!("OUT_DIR"), "/glsl/generated/ff_interface.glsl")),
+        include_str!("../../../shaders/bit_field.glsl"),
         include_str!("../../../shaders/ff_key.glsl"),
         include_str!("../../../shaders/ff_uniforms.glsl"),
         include_str!("../../../shaders/ff_varyings.glsl"),

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use super::*;
 use crate::frame::program::SamplerKind;
-use crate::render::raster::ff::uniforms::tests::spirv_offsets;
+use crate::render::shader_abi::spirv_layout::Module;
 
 fn compiled(stage: Stage, src: &str) -> CompiledShader {
     let c = compile(stage, src);
@@ -22,7 +22,8 @@ fn linked(shaders: &[&CompiledShader]) -> LinkedProgram {
 /// `member name → Offset` of the block type `block` in SPIR-V words.
 fn block_offsets(words: &[u32], block: &str) -> HashMap<String, u32> {
     let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).collect();
-    spirv_offsets(&bytes).into_iter().filter(|((ty, _), _)| ty == block).map(|((_, member), off)| (member, off as u32)).collect()
+    let layout = Module::decode(&bytes).and_then(|m| m.layout(block)).unwrap_or_else(|e| panic!("{block}: {e}"));
+    layout.members.into_iter().map(|m| (m.name, m.offset)).collect()
 }
 
 #[test]

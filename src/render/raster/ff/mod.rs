@@ -14,7 +14,7 @@
 //! - descriptor set 0: binding 0 is a dynamic uniform buffer holding the [`Batch::uniforms`]
 //!   bytes (std140, exactly [`UNIFORM_SIZE`] bytes), visible to both stages, after
 //!   [`uniforms::set_framebuffer_height`] wrote the height of the render target into them;
-//!   texture unit `u` (0..[`MAX_UNITS`]) is a `sampler2D` at binding `1 + u` (1D textures are
+//!   texture unit `u` (0..[`MAX_UNITS`](crate::render::texenv::codes::MAX_UNITS)) is a `sampler2D` at binding `1 + u` (1D textures are
 //!   2D textures one texel high), a `sampler3D` at `5 + u` and a `samplerCube` at `9 + u`;
 //!   unused bindings hold a 1×1 white texture. Depth textures hold the depth in the red
 //!   channel (their RGBA8 texels already do); the shader compares and expands them, so their
@@ -39,6 +39,7 @@
 pub mod convert;
 pub mod key;
 pub mod native;
+pub mod shader_interface;
 pub mod uniforms;
 pub mod vertex;
 
@@ -48,11 +49,8 @@ pub use vertex::{VERTEX_ATTRIBUTES, VERTEX_FLOATS, VertexAttribute};
 use crate::frame::state::{Face, PolygonMode, StencilFaces};
 use crate::frame::{Draw, Topology};
 
-/// Texture units the shaders implement.
-pub const MAX_UNITS: usize = 4;
-
 /// Size of the uniform block every batch carries, in bytes.
-pub const UNIFORM_SIZE: usize = 2064;
+pub const UNIFORM_SIZE: usize = size_of::<uniforms::FfBlock>();
 
 /// The SPIR-V of the vertex shader.
 pub fn vertex_spirv() -> &'static [u8] {
@@ -163,7 +161,7 @@ mod tests {
         let b = &batches[0];
         assert_eq!((b.topology, b.indices.len(), b.vertices.len()), (Topology::Triangles, 6, 4 * VERTEX_FLOATS));
         assert_eq!(b.uniforms.len(), UNIFORM_SIZE);
-        assert_eq!(key::PRIMITIVE.get(b.shader.words[key::GENERAL]), Primitive::Line as u32);
+        assert_eq!(shader_interface::PRIMITIVE.get(b.shader.words[key::GENERAL]), Primitive::Line as u32);
     }
 
     #[test]

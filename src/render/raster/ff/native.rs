@@ -11,12 +11,13 @@
 //! edge takes its first vertex's values, not the polygon's provoking vertex's).
 //!
 //! The shader key is the fixed-function one of a filled triangle (`v_raster` is only
-//! meaningful for primitives the CPU expanded): [`key::PRIMITIVE`] triangle, no
-//! [`key::SMOOTH`] or [`key::LINE_STIPPLE`], the polygon stipple only for filled polygons,
-//! and [`key::TWO_SIDE`] from `GL_VERTEX_PROGRAM_TWO_SIDE`.
+//! meaningful for primitives the CPU expanded): [`shader_interface::PRIMITIVE`] triangle, no
+//! [`shader_interface::SMOOTH`] or [`shader_interface::LINE_STIPPLE`], the polygon stipple only for filled polygons,
+//! and [`shader_interface::TWO_SIDE`] from `GL_VERTEX_PROGRAM_TWO_SIDE`.
 
 use super::key::{self, Facing, Primitive};
-use super::{Batch, vertex};
+use super::{Batch, shader_interface, vertex};
+use crate::render::shader_abi::Field;
 use crate::frame::program::ProgramDraw;
 use crate::frame::state::{Face, PolygonMode};
 use crate::frame::{Draw, Topology};
@@ -39,10 +40,10 @@ pub fn prepare(draw: &Draw, program: &ProgramDraw, packed: Vec<f32>, uniforms: V
         let facing = if topology == Topology::Triangles { Facing::Rasterizer } else { Facing::Front };
         let mut shader = key::shader_key(draw, Primitive::Triangle, facing);
         let general = &mut shader.words[key::GENERAL];
-        clear(general, key::TWO_SIDE);
-        key::TWO_SIDE.set(general, program.two_side as u32);
+        clear(general, shader_interface::TWO_SIDE);
+        shader_interface::TWO_SIDE.set(general, program.two_side as u32);
         if topology != Topology::Triangles || mode != PolygonMode::Fill {
-            clear(general, key::POLYGON_STIPPLE);
+            clear(general, shader_interface::POLYGON_STIPPLE);
         }
         Batch {
             topology,
@@ -100,7 +101,7 @@ fn boundary_edges(draw: &Draw, count: u32) -> Vec<u32> {
 }
 
 /// Clears `field` in `word`.
-fn clear(word: &mut u32, field: key::Field) {
+fn clear(word: &mut u32, field: Field) {
     *word &= !(((1 << field.bits) - 1) << field.shift);
 }
 
@@ -135,9 +136,9 @@ mod tests {
         assert_eq!(b.indices, vec![1, 0, 3, 2], "provoking vertex first");
         assert_eq!(b.generic.len(), 4 * 4);
         let general = b.shader.words[key::GENERAL];
-        assert_eq!(key::PRIMITIVE.get(general), Primitive::Triangle as u32);
-        assert_eq!((key::SMOOTH.get(general), key::LINE_STIPPLE.get(general)), (0, 0));
-        assert_eq!((key::TWO_SIDE.get(general), key::FACING.get(general)), (1, Facing::Front as u32));
+        assert_eq!(shader_interface::PRIMITIVE.get(general), Primitive::Triangle as u32);
+        assert_eq!((shader_interface::SMOOTH.get(general), shader_interface::LINE_STIPPLE.get(general)), (0, 0));
+        assert_eq!((shader_interface::TWO_SIDE.get(general), shader_interface::FACING.get(general)), (1, Facing::Front as u32));
     }
 
     #[test]
@@ -150,7 +151,7 @@ mod tests {
         let summary: Vec<_> = batches.iter().map(|b| (b.polygon_mode, b.cull, b.polygon_offset)).collect();
         assert_eq!(summary, vec![(PolygonMode::Line, Some(Face::Back), false), (PolygonMode::Point, Some(Face::Front), true)]);
         assert_eq!(batches[0].indices, vec![2, 0, 1]);
-        assert!(batches.iter().all(|b| key::POLYGON_STIPPLE.get(b.shader.words[key::GENERAL]) == 0));
+        assert!(batches.iter().all(|b| shader_interface::POLYGON_STIPPLE.get(b.shader.words[key::GENERAL]) == 0));
         let mut quad = draw(Topology::Triangles, vec![0, 1, 2, 0, 2, 3], RasterState { polygon_mode: [PolygonMode::Line; 2], ..RasterState::default() });
         quad.edge_masks = vec![0b011, 0b110];
         let edges = prepare(&quad, &program_draw(false), vertex::pack(&quad), Vec::new());

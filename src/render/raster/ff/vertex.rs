@@ -1,7 +1,10 @@
 //! The packed vertex of `ff.vert`: a draw's structure-of-arrays attributes interleaved as
 //! [`VERTEX_FLOATS`] `f32`s per vertex, laid out as [`VERTEX_ATTRIBUTES`] says.
 
-use super::MAX_UNITS;
+use super::shader_interface::{
+    LOCATION_COLOR, LOCATION_FOG_COORD, LOCATION_NORMAL, LOCATION_POSITION, LOCATION_RASTER, LOCATION_SECONDARY, LOCATION_TEXCOORD,
+};
+use crate::render::texenv::codes::MAX_UNITS;
 use crate::frame::Draw;
 use crate::frame::program::ShaderProgram;
 
@@ -40,16 +43,16 @@ pub const RASTER: usize = TEXCOORD + 4 * MAX_UNITS;
 /// Position (4), colour (4), secondary colour (4), normal (3), fog coordinate (1), the
 /// texture coordinates of each unit (4 each), and the rasterization attribute (4).
 pub const VERTEX_ATTRIBUTES: &[VertexAttribute] = &[
-    VertexAttribute { location: 0, components: 4, offset: POSITION as u32 },
-    VertexAttribute { location: 1, components: 4, offset: COLOR as u32 },
-    VertexAttribute { location: 2, components: 4, offset: SECONDARY as u32 },
-    VertexAttribute { location: 3, components: 3, offset: NORMAL as u32 },
-    VertexAttribute { location: 4, components: 1, offset: FOG_COORD as u32 },
-    VertexAttribute { location: 5, components: 4, offset: TEXCOORD as u32 },
-    VertexAttribute { location: 6, components: 4, offset: TEXCOORD as u32 + 4 },
-    VertexAttribute { location: 7, components: 4, offset: TEXCOORD as u32 + 8 },
-    VertexAttribute { location: 8, components: 4, offset: TEXCOORD as u32 + 12 },
-    VertexAttribute { location: 9, components: 4, offset: RASTER as u32 },
+    VertexAttribute { location: LOCATION_POSITION, components: 4, offset: POSITION as u32 },
+    VertexAttribute { location: LOCATION_COLOR, components: 4, offset: COLOR as u32 },
+    VertexAttribute { location: LOCATION_SECONDARY, components: 4, offset: SECONDARY as u32 },
+    VertexAttribute { location: LOCATION_NORMAL, components: 3, offset: NORMAL as u32 },
+    VertexAttribute { location: LOCATION_FOG_COORD, components: 1, offset: FOG_COORD as u32 },
+    VertexAttribute { location: LOCATION_TEXCOORD, components: 4, offset: TEXCOORD as u32 },
+    VertexAttribute { location: LOCATION_TEXCOORD + 1, components: 4, offset: TEXCOORD as u32 + 4 },
+    VertexAttribute { location: LOCATION_TEXCOORD + 2, components: 4, offset: TEXCOORD as u32 + 8 },
+    VertexAttribute { location: LOCATION_TEXCOORD + 3, components: 4, offset: TEXCOORD as u32 + 12 },
+    VertexAttribute { location: LOCATION_RASTER, components: 4, offset: RASTER as u32 },
 ];
 
 /// Interleaves the draw's attributes; missing attributes take OpenGL's initial current values.

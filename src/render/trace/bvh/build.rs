@@ -1,7 +1,7 @@
 //! Building [`Blas`]es and [`Tlas`]es: obvhs' PLOC builder on the primitives' boxes, flattened
 //! into [`GpuNode`]s in depth-first order (children after parents). PLOC trees are not
 //! balanced (depth ~50 for 10k triangles, ~65 for 1M): subtrees that would make a path longer
-//! than [`MAX_DEPTH`] are rebuilt by median split, which is logarithmic, as deep in the tree as
+//! than [`BVH_MAX_DEPTH`] are rebuilt by median split, which is logarithmic, as deep in the tree as
 //! still fits; a failed obvhs build is median-split whole.
 
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -13,7 +13,8 @@ use glam::Vec3;
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::Bvh2;
 
-use super::{Aabb, GpuChild, GpuNode, GpuTriangle, LEAF, MAX_COORD, MAX_DEPTH};
+use super::{Aabb, GpuChild, GpuNode, GpuTriangle, MAX_COORD};
+use crate::render::trace::shader_constants::{BVH_LEAF, BVH_MAX_DEPTH};
 
 /// The bottom-level BVH of one triangle set, in object space. Node and triangle indices are
 /// relative to it: node 0 is the root, triangle 0 its first (see the module doc).
@@ -58,7 +59,7 @@ impl Blas {
     /// module doc for empty, degenerate and non-finite input.
     pub fn build(triangles: &[[Vec3; 3]]) -> Blas {
         let params = BvhBuildParams { max_prims_per_leaf: BLAS_LEAF_SIZE, ..BvhBuildParams::fast_build() };
-        Self::build_limited(triangles, params, MAX_DEPTH)
+        Self::build_limited(triangles, params, BVH_MAX_DEPTH)
     }
 
     /// [`Blas::build`] with obvhs' `params`, trees deeper than `max_depth` nodes rebuilt by
@@ -88,7 +89,7 @@ impl Blas {
         for n in (0..self.nodes.len()).rev() {
             let boxes = self.nodes[n].children.map(|c| {
                 if c.is_leaf() {
-                    let range = c.index as usize..(c.index + (c.meta & !LEAF)) as usize;
+                    let range = c.index as usize..(c.index + (c.meta & !BVH_LEAF)) as usize;
                     clean[range].iter().fold(Aabb::EMPTY, |b, t| b.union(&Aabb::of_points(t)))
                 } else {
                     let [a, b] = self.nodes[c.index as usize].children;
@@ -118,7 +119,7 @@ impl Tlas {
     /// Builds the BVH over instances whose eye-space boxes are `instance_bounds` (indexed as
     /// the instance buffer). Fast enough to run every frame for ~10k instances (PLOC, "fast").
     pub fn build(instance_bounds: &[Aabb]) -> Tlas {
-        Self::build_limited(instance_bounds, MAX_DEPTH)
+        Self::build_limited(instance_bounds, BVH_MAX_DEPTH)
     }
 
     /// [`Tlas::build`] with trees deeper than `max_depth` nodes rebuilt by median split.
@@ -128,7 +129,7 @@ impl Tlas {
         let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::fast_build() };
         let (mut nodes, order) = build_nodes(&boxes, params, 1, max_depth);
         // Leaves hold one primitive: point them at the instance itself.
-        for child in nodes.iter_mut().flat_map(|n| n.children.iter_mut()).filter(|c| c.is_leaf() && c.meta != LEAF) {
+        for child in nodes.iter_mut().flat_map(|n| n.children.iter_mut()).filter(|c| c.is_leaf() && c.meta != BVH_LEAF) {
             child.index = live[order[child.index as usize] as usize];
         }
         Tlas { nodes }
@@ -267,7 +268,7 @@ impl Flattener<'_> {
         let bounds = prims.iter().fold(Aabb::EMPTY, |b, &i| b.union(&Aabb::from_obvhs(&self.prims[i as usize])));
         let index = self.order.len() as u32;
         self.order.extend_from_slice(prims);
-        GpuChild { min: bounds.min.into(), index, max: bounds.max.into(), meta: LEAF | prims.len() as u32 }
+        GpuChild { min: bounds.min.into(), index, max: bounds.max.into(), meta: BVH_LEAF | prims.len() as u32 }
     }
 }
 

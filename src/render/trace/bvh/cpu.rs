@@ -3,17 +3,18 @@
 //!
 //! One loop walks the TLAS and, on reaching an instance, that instance's BLAS with the ray
 //! moved into object space (direction not renormalised, so `t` stays comparable), sharing one
-//! stack of `2 * MAX_DEPTH` entries: at each node both child boxes are tested, BLAS leaves
+//! stack of `2 * BVH_MAX_DEPTH` entries: at each node both child boxes are tested, BLAS leaves
 //! are intersected at once, and of the hit inner children (or TLAS instances, pushed with the
-//! [`LEAF`] bit) the nearer is visited next and the farther pushed. An entry that would
+//! [`BVH_LEAF`] bit) the nearer is visited next and the farther pushed. An entry that would
 //! overflow the stack is dropped (never happens for BVHs built by [`super::build`]).
 
 use glam::{Affine3A, Vec2, Vec3, Vec4};
 
-use super::{GpuChild, GpuNode, GpuTriangle, LEAF, MAX_DEPTH};
+use super::{GpuChild, GpuNode, GpuTriangle};
+use crate::render::trace::shader_constants::{BVH_LEAF, BVH_MAX_DEPTH};
 
 /// Entries of the traversal stack (`BVH_STACK_SIZE`).
-const STACK_SIZE: usize = 2 * MAX_DEPTH;
+const STACK_SIZE: usize = 2 * BVH_MAX_DEPTH;
 /// Smallest magnitude of a direction component before inversion (`BVH_TINY`).
 const TINY: f32 = 1.0e-20;
 /// Factor widening a box's exit distance to cover rounding (`BVH_BOX_SLACK`, 1 + 4 ulp).
@@ -151,8 +152,8 @@ fn trace(scene: &Scene, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32, any_hit: 
     let mut sp = 0;
     let mut next = 0u32;
     loop {
-        if next & LEAF != 0 {
-            let id = next & !LEAF;
+        if next & BVH_LEAF != 0 {
+            let id = next & !BVH_LEAF;
             let inst = &scene.instances[id as usize];
             o = transform(&inst.eye_to_object, origin, 1.0);
             d = transform(&inst.eye_to_object, dir, 0.0);
@@ -173,7 +174,7 @@ fn trace(scene: &Scene, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32, any_hit: 
                 if entry[slot] == MISS || !c.is_leaf() {
                     continue;
                 }
-                for k in c.index..c.index + (c.meta & !LEAF) {
+                for k in c.index..c.index + (c.meta & !BVH_LEAF) {
                     let triangle = inst.first_triangle + k;
                     let Some((t, bary)) = intersect(&scene.triangles[triangle as usize], o, d, tmin, t_max) else {
                         continue;
@@ -193,11 +194,11 @@ fn trace(scene: &Scene, origin: Vec3, dir: Vec3, tmin: f32, tmax: f32, any_hit: 
         for slot in order {
             let c = &node.children[slot];
             // Hit, still in range after this node's leaves, an inner node or (TLAS) an instance.
-            let visit = entry[slot] < MISS && entry[slot] <= t_max && (instance.is_none() || !c.is_leaf()) && c.meta != LEAF;
+            let visit = entry[slot] < MISS && entry[slot] <= t_max && (instance.is_none() || !c.is_leaf()) && c.meta != BVH_LEAF;
             if !visit {
                 continue;
             }
-            let target = if c.is_leaf() { c.index | LEAF } else { c.index };
+            let target = if c.is_leaf() { c.index | BVH_LEAF } else { c.index };
             if next == NONE {
                 next = target;
             } else if sp < STACK_SIZE {

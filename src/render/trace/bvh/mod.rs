@@ -10,15 +10,16 @@
 //! for both: on 1.5M triangles (`tests::bvh_build_speed`) it built 2.5x faster than "medium"
 //! with an SAH cost 2% lower, and "slow" (without spatial splits, which would duplicate
 //! triangles) was 1.5% lower than "fast" for 4x the time.
-//! Subtrees that would make a path longer than [`MAX_DEPTH`] nodes are rebuilt by median split
+//! Subtrees that would make a path longer than [`BVH_MAX_DEPTH`](super::shader_constants::BVH_MAX_DEPTH) nodes are rebuilt by median split
 //! (logarithmic depth), and a panic inside obvhs falls back to a median split of everything
 //! ([`build`]), so the GPU stack never overflows.
 //!
-//! Layout (std430, mirrored by the GLSL structs of `bvh.glsl`; `tests` checks the sizes):
+//! Layout (std430, mirrored by the GLSL structs of `bvh.glsl`; the build checks the sizes against
+//! the compiled `pathtrace.comp`, see [`crate::render::shader_abi`]):
 //! - a [`GpuNode`] is 64 bytes holding both children's boxes, so one fetch tests both. Each
 //!   child is `(min.xyz, index)`, `(max.xyz, meta)`. `meta == 0`: an inner child, `index` is a
 //!   node of the same BVH (relative to its root for a BLAS: the GPU adds the instance's
-//!   `blas_root`). `meta & LEAF`: a leaf of `meta & !LEAF` primitives from `index` on
+//!   `blas_root`). `meta & BVH_LEAF`: a leaf of `meta & !BVH_LEAF` primitives from `index` on
 //!   (BLAS: triangles relative to the geometry's first, the GPU adds `first_triangle`; TLAS:
 //!   always one instance, `index` = the instance). A leaf of 0 primitives is an empty child
 //!   (a BVH whose root is one leaf, or the empty BLAS).
@@ -38,14 +39,10 @@ mod tests;
 use bytemuck::{Pod, Zeroable};
 use glam::{Affine3A, Vec3, Vec3A};
 
+use super::shader_constants::BVH_LEAF;
+
 pub use build::{Blas, Tlas};
 
-/// Bit of a child's `meta` word marking a leaf; the low bits count its primitives.
-pub const LEAF: u32 = 0x8000_0000;
-/// The most nodes on any root-to-leaf path of a BVH built here (TLAS or BLAS). Traversal pushes
-/// at most one entry per level, so its one stack of `2 * MAX_DEPTH` entries (`BVH_STACK_SIZE`
-/// in `bvh.glsl`) holds a TLAS path and a BLAS path.
-pub const MAX_DEPTH: usize = 32;
 /// Largest magnitude of a coordinate in a BVH; larger finite ones are clamped to it. Its square
 /// still fits an `f32`, so products in the triangle and box tests stay finite.
 pub const MAX_COORD: f32 = 1.0e18;
@@ -134,14 +131,14 @@ pub fn sah_cost(nodes: &[GpuNode]) -> f32 {
     for n in nodes {
         cost += n.children[0].bounds().union(&n.children[1].bounds()).half_area();
         for c in n.children.iter().filter(|c| c.is_leaf()) {
-            cost += c.bounds().half_area() * (c.meta & !LEAF) as f32;
+            cost += c.bounds().half_area() * (c.meta & !BVH_LEAF) as f32;
         }
     }
     cost / area
 }
 
-/// One child slot of a [`GpuNode`]: its box, with the child reference in the `w` words
-/// (`bvh.glsl`: `vec4` pairs, the words read with `floatBitsToUint`).
+/// One child slot of a [`GpuNode`]: its box and the child it refers to (`BvhChild` in
+/// `bvh.glsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuChild {
@@ -151,7 +148,7 @@ pub struct GpuChild {
     pub index: u32,
     /// Highest corner of the child's box.
     pub max: [f32; 3],
-    /// 0 for an inner child; [`LEAF`] | primitive count for a leaf.
+    /// 0 for an inner child; [`BVH_LEAF`] | primitive count for a leaf.
     pub meta: u32,
 }
 
@@ -159,7 +156,7 @@ impl GpuChild {
     /// An empty leaf (no primitives) with the box `bounds` (the sibling's, so it costs no extra
     /// box hits).
     fn empty(bounds: Aabb) -> GpuChild {
-        let mut child = GpuChild { min: [0.0; 3], index: 0, max: [0.0; 3], meta: LEAF };
+        let mut child = GpuChild { min: [0.0; 3], index: 0, max: [0.0; 3], meta: BVH_LEAF };
         child.set_bounds(bounds);
         child
     }
@@ -179,7 +176,7 @@ impl GpuChild {
 
     /// Whether the child is a leaf.
     pub fn is_leaf(&self) -> bool {
-        self.meta & LEAF != 0
+        self.meta & BVH_LEAF != 0
     }
 }
 
@@ -209,6 +206,8 @@ pub struct GpuTriangle {
     /// Padding (`e2.w`).
     pub pad2: u32,
 }
+
+include!(concat!(env!("OUT_DIR"), "/layouts/trace_bvh.rs"));
 
 impl GpuTriangle {
     /// The stored form of `[v0, v1, v2]` (already sanitised).

@@ -7,7 +7,8 @@ use glam::{Affine3A, Quat, Vec2, Vec3};
 use obvhs::BvhBuildParams;
 
 use super::cpu::{self, Hit, Instance, Scene};
-use super::{Aabb, Blas, GpuChild, GpuNode, GpuTriangle, MAX_DEPTH, Tlas, sah_cost};
+use super::{Aabb, Blas, GpuNode, GpuTriangle, Tlas, sah_cost};
+use crate::render::trace::shader_constants::BVH_MAX_DEPTH;
 
 /// A deterministic xorshift generator.
 struct Rng(u64);
@@ -149,18 +150,6 @@ fn depth(nodes: &[GpuNode], node: usize) -> usize {
 }
 
 #[test]
-fn gpu_struct_sizes_match_the_glsl() {
-    assert_eq!(size_of::<GpuChild>(), 32);
-    assert_eq!(size_of::<GpuNode>(), 64);
-    assert_eq!(size_of::<GpuTriangle>(), 48);
-    assert_eq!(std::mem::offset_of!(GpuChild, index), 12);
-    assert_eq!(std::mem::offset_of!(GpuChild, max), 16);
-    assert_eq!(std::mem::offset_of!(GpuChild, meta), 28);
-    assert_eq!(std::mem::offset_of!(GpuTriangle, e1), 16);
-    assert_eq!(std::mem::offset_of!(GpuTriangle, e2), 32);
-}
-
-#[test]
 fn soup_matches_brute_force() {
     let mut rng = Rng(0x1234_5678_9abc);
     let tris = soup(&mut rng, 3000, 0.1);
@@ -169,7 +158,7 @@ fn soup_matches_brute_force() {
     let mut order = built.blas[0].order.clone();
     order.sort_unstable();
     assert_eq!(order, (0..3000).collect::<Vec<u32>>(), "order is a permutation");
-    assert!(depth(&built.blas[0].nodes, 0) <= MAX_DEPTH);
+    assert!(depth(&built.blas[0].nodes, 0) <= BVH_MAX_DEPTH);
     let hits = check_rays(&built, &placed, &mut rng, 4000, 1.5);
     assert!(hits > 1000, "only {hits} hits");
 }
@@ -366,7 +355,7 @@ fn bvh_build_speed() {
         ("slow, no pre-split", BvhBuildParams { pre_split: false, ..BvhBuildParams::slow_build() }),
     ];
     for (name, params) in presets {
-        for max_depth in [MAX_DEPTH, 48, 1000] {
+        for max_depth in [BVH_MAX_DEPTH, 48, 1000] {
             let start = Instant::now();
             let blas = Blas::build_limited(&tris, BvhBuildParams { max_prims_per_leaf: 8, ..params }, max_depth);
             println!(

@@ -5,7 +5,8 @@
 //! ⌊λ⌋ + 1 by the fraction of λ); texel addressing follows Vulkan's (nearest: ⌊u·w⌋; linear:
 //! ⌊u·w − ½⌋ and its right neighbour, each wrapped as an integer index).
 
-use super::{GpuTexture, NO_TEXTURE, level_size};
+use super::{GpuTexture, level_size};
+use crate::render::trace::shader_constants::{NO_TEXTURE, TEXEL_MAG_LINEAR, TEXEL_MAG_TO_HALF, TEXEL_MIN_LINEAR, TEXEL_MIPMAP, TEXEL_MIP_LINEAR, TEXEL_RECT, TEXEL_SRGB, TEXEL_WRAP_CLAMP, TEXEL_WRAP_MIRROR};
 
 /// Texel coordinates are clamped to ±2²⁴ before they become integers (as in the shader).
 const COORD_LIMIT: f32 = 16_777_216.0;
@@ -19,18 +20,18 @@ pub fn sample(words: &[u32], table: &[GpuTexture], texture: u32, uv: [f32; 2], l
         return decode(t.average, t.flags);
     }
     let size = [t.width as f32, t.height as f32];
-    let uv = if t.has(GpuTexture::RECT) { [uv[0] / size[0], uv[1] / size[1]] } else { uv };
+    let uv = if t.has(TEXEL_RECT) { [uv[0] / size[0], uv[1] / size[1]] } else { uv };
     let lod = if lod.is_nan() { 0.0 } else { lod.max(t.lod_min).min(t.lod_max) };
-    let switch = if t.has(GpuTexture::MAG_TO_HALF) { 0.5 } else { 0.0 };
+    let switch = if t.has(TEXEL_MAG_TO_HALF) { 0.5 } else { 0.0 };
     if lod <= switch {
-        return level(words, t, 0, uv, t.has(GpuTexture::MAG_LINEAR));
+        return level(words, t, 0, uv, t.has(TEXEL_MAG_LINEAR));
     }
-    let linear = t.has(GpuTexture::MIN_LINEAR);
-    if !t.has(GpuTexture::MIPMAP) {
+    let linear = t.has(TEXEL_MIN_LINEAR);
+    if !t.has(TEXEL_MIPMAP) {
         return level(words, t, 0, uv, linear);
     }
     let last = (t.levels - 1) as f32;
-    if !t.has(GpuTexture::MIP_LINEAR) {
+    if !t.has(TEXEL_MIP_LINEAR) {
         let d = if lod <= 0.5 { 0.0 } else { ((lod + 0.5).ceil() - 1.0).min(last) };
         return level(words, t, d as u32, uv, linear);
     }
@@ -71,11 +72,11 @@ fn level(words: &[u32], t: &GpuTexture, level: u32, uv: [f32; 2], linear: bool) 
     std::array::from_fn(|c| mix(mix(t00[c], t10[c], a), mix(t01[c], t11[c], a), b))
 }
 
-/// Integer texel index `i` wrapped into [0, n) by `mode` (`GpuTexture::WRAP_*`).
+/// Integer texel index `i` wrapped into [0, n) by `mode` (`TEXEL_WRAP_*`).
 fn wrap(i: i64, n: i64, mode: u32) -> i64 {
     match mode {
-        GpuTexture::WRAP_CLAMP => i.clamp(0, n - 1),
-        GpuTexture::WRAP_MIRROR => {
+        TEXEL_WRAP_CLAMP => i.clamp(0, n - 1),
+        TEXEL_WRAP_MIRROR => {
             let m = i.rem_euclid(2 * n);
             if m < n { m } else { 2 * n - 1 - m }
         }
@@ -86,7 +87,7 @@ fn wrap(i: i64, n: i64, mode: u32) -> i64 {
 /// A packed texel as RGBA in [0, 1], sRGB-decoded when `flags` says so.
 fn decode(texel: u32, flags: u32) -> [f32; 4] {
     let c = texel.to_le_bytes().map(|b| f32::from(b) / 255.0);
-    if flags & GpuTexture::SRGB == 0 {
+    if flags & TEXEL_SRGB == 0 {
         return c;
     }
     let linear = |v: f32| if v <= 0.04045 { v / 12.92 } else { ((v + 0.055) / 1.055).powf(2.4) };

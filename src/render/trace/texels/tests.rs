@@ -65,8 +65,8 @@ fn packs_given_levels_consecutively_as_rgba8_words() {
     assert_eq!(pool.words(), [word(RED), word(GREEN), word(BLUE), word(WHITE), word([10, 20, 30, 40])]);
     let g = pool.textures()[0];
     assert_eq!((g.offset, g.width, g.height, g.levels), (0, 2, 2, 2));
-    assert_eq!((g.wrap(0), g.wrap(1)), (GpuTexture::WRAP_MIRROR, GpuTexture::WRAP_MIRROR));
-    let filters = GpuTexture::MAG_LINEAR | GpuTexture::MIN_LINEAR | GpuTexture::MIPMAP | GpuTexture::MIP_LINEAR;
+    assert_eq!((g.wrap(0), g.wrap(1)), (TEXEL_WRAP_MIRROR, TEXEL_WRAP_MIRROR));
+    let filters = TEXEL_MAG_LINEAR | TEXEL_MIN_LINEAR | TEXEL_MIPMAP | TEXEL_MIP_LINEAR;
     assert_eq!(g.flags & !0xf, filters);
     // The average of the base level: (255 + 0 + 0 + 255) / 4 rounds to 128 in red.
     assert_eq!(g.average.to_le_bytes(), [128, 128, 128, 255]);
@@ -87,7 +87,7 @@ fn missing_levels_are_box_filtered_down_to_one_texel() {
     let g = pool.textures()[0];
     assert_eq!(g.levels, 3);
     assert_eq!(g.words(), 8 + 2 + 1);
-    assert!(g.has(GpuTexture::MIPMAP) && g.has(GpuTexture::MIP_LINEAR));
+    assert!(g.has(TEXEL_MIPMAP) && g.has(TEXEL_MIP_LINEAR));
     let red: Vec<u8> = pool.words()[8..].iter().map(|w| w.to_le_bytes()[0]).collect();
     // (0 + 40 + 160 + 200) / 4 = 100, (80 + 120 + 240 + 255) / 4 = 173.75; then (100 + 174) / 2.
     assert_eq!(red, [100, 174, 137]);
@@ -96,7 +96,7 @@ fn missing_levels_are_box_filtered_down_to_one_texel() {
     pool.prepare(&[&t, &n]);
     let g = pool.textures()[1];
     assert_eq!(g.levels, 3);
-    assert!(g.has(GpuTexture::MIPMAP) && !g.has(GpuTexture::MIP_LINEAR));
+    assert!(g.has(TEXEL_MIPMAP) && !g.has(TEXEL_MIP_LINEAR));
     // A mipmapped texture stops at its max level.
     let mut s = sampler(Filter::Linear, Some(Filter::Linear), Filter::Linear, Wrap::Repeat);
     s.levels = [0, 1];
@@ -360,7 +360,7 @@ fn rectangle_textures_take_texel_coordinates_and_srgb_decodes() {
     let srgb = TextureRef { id: 2, version: 1, content: Arc::new(srgb) };
     let mut pool = new_pool();
     let at = pool.prepare(&[&rect, &srgb]);
-    assert!(pool.textures()[at[0] as usize].has(GpuTexture::RECT));
+    assert!(pool.textures()[at[0] as usize].has(TEXEL_RECT));
     assert_near(pool.sample(at[0], [1.5, 0.5], 0.0), rgba(GREEN));
     assert_near(pool.sample(at[0], [0.5, 1.5], 0.0), rgba(BLUE));
     assert_eq!(texel_size(pool.textures(), at[0]), [2.0, 2.0]);
