@@ -14,7 +14,9 @@
 #   bash scripts/openarena.sh fps [WxH] [ROUNDS]                    (default 320x240, 2 rounds)
 #       The timedemo's frames per second through glrt raster (lavapipe), glrt GLRT_MODE=none (no
 #       renderer) and Mesa's own libGL.so.1 (llvmpipe), the three alternating ROUNDS times in
-#       one run; prints a Markdown table and the ratios to Mesa.
+#       one run; prints a Markdown table: frames per second and CPU milliseconds per frame (user
+#       + sys of the game, its libGL's threads and Xvfb, loading included; steadier than frames
+#       per second on a shared machine), each with its ratio to Mesa.
 #   bash scripts/openarena.sh frames WxH N DIR
 #       GLRT_DUMP=DIR in raster mode: every frame as DIR/frame-NNNNN.png until the game quits,
 #       N frames into the demo (about frame N + 38; the last two, in flight when the game exits
@@ -107,34 +109,40 @@ capture() {
 fps() {
     local size=${1:-320x240} rounds=${2:-2}
     local modes=(glrt-raster glrt-none mesa)
-    declare -A times=()
+    declare -A rates=() cpu=()
+    local TIMEFORMAT='%U %S'
     for ((round = 1; round <= rounds; round++)); do
         for mode in "${modes[@]}"; do
             local out="$tmp/$mode-$round.log"
+            # CPU seconds (user + sys) of everything the run started: the game, its libGL's
+            # threads, Xvfb; loading included.
             case $mode in
-            glrt-raster) game "$size" "$glrt_dir" GLRT_MODE=raster -- >"$out" ;;
-            glrt-none) game "$size" "$glrt_dir" GLRT_MODE=none -- >"$out" ;;
-            mesa) game "$size" "$(dirname "$mesa")" -- >"$out" ;;
+            glrt-raster) { time game "$size" "$glrt_dir" GLRT_MODE=raster -- >"$out"; } 2>"$out.cpu" ;;
+            glrt-none) { time game "$size" "$glrt_dir" GLRT_MODE=none -- >"$out"; } 2>"$out.cpu" ;;
+            mesa) { time game "$size" "$(dirname "$mesa")" -- >"$out"; } 2>"$out.cpu" ;;
             esac
-            local f
+            local f frames ms
             f=$(fps_of <"$out")
             [[ -n $f ]] || { tail -n 30 "$out" >&2; echo "openarena.sh: $mode: no timedemo result" >&2; exit 1; }
-            echo "openarena.sh: round $round $mode: $f fps" >&2
-            times[$mode]+="$f "
+            frames=$(sed -n 's/^\([0-9]*\) frames [0-9.]* seconds .*/\1/p' "$out" | tail -n 1)
+            ms=$(awk -v f="$frames" '{ printf "%.1f", 1000 * ($1 + $2) / f }' "$out.cpu")
+            echo "openarena.sh: round $round $mode: $f fps, $ms ms of CPU per frame" >&2
+            rates[$mode]+="$f "
+            cpu[$mode]+="$ms "
         done
     done
     echo "OpenArena timedemo $demo at $size, $profile build, $rounds rounds, $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg)"
     echo
-    echo "| libGL | frames/s per run | mean | / Mesa |"
-    echo "|-------|------------------|------|--------|"
-    local mesa_mean
-    mesa_mean=$(awk -v t="${times[mesa]}" 'BEGIN { n = split(t, v, " "); s = 0; for (i = 1; i <= n; i++) s += v[i]; print s / n }')
+    echo "| libGL | frames/s per run | mean | / Mesa | CPU ms per frame per run | mean | / Mesa |"
+    echo "|-------|------------------|------|--------|--------------------------|------|--------|"
     for mode in "${modes[@]}"; do
-        awk -v label="$mode" -v t="${times[$mode]}" -v m="$mesa_mean" 'BEGIN {
-            n = split(t, v, " "); s = 0; list = ""
-            for (i = 1; i <= n; i++) { s += v[i]; list = list (i > 1 ? ", " : "") v[i] }
-            printf "| %s | %s | %.1f | %.2fx |\n", label, list, s / n, s / n / m
-        }'
+        awk -v label="$mode" -v r="${rates[$mode]}" -v mr="${rates[mesa]}" -v c="${cpu[$mode]}" -v mc="${cpu[mesa]}" '
+            function mean(t, v, n, i, s) { n = split(t, v, " "); s = 0; for (i = 1; i <= n; i++) s += v[i]; return s / n }
+            function list(t, v, n, i, l) { n = split(t, v, " "); l = ""; for (i = 1; i <= n; i++) l = l (i > 1 ? ", " : "") v[i]; return l }
+            BEGIN {
+                printf "| %s | %s | %.1f | %.2fx | %s | %.1f | %.2fx |\n", label, list(r), mean(r), mean(r) / mean(mr),
+                    list(c), mean(c), mean(c) / mean(mc)
+            }'
     done
 }
 
@@ -149,8 +157,8 @@ frames() {
 
 command=${1:-}
 (($#)) && shift
-install
-build
+install >&2
+build >&2
 case $command in
 capture) capture "$@" ;;
 fps) fps "$@" ;;
