@@ -5,7 +5,8 @@
 //! - `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH]`: replays a capture headless
 //!   (frames before `A` are replayed too: they build the state; the replay stops after `B - 1`);
 //!   `--out` writes frames `A` and later as `DIR/frame-NNNNN.png` (by frame number) through the
-//!   Vulkan raster renderer; `--bench` prints the frame times (one frame's end to the next's);
+//!   Vulkan raster renderer; `--bench` prints the frame times of frames `A` and later (one
+//!   frame's end to the next's);
 //!   `--stats` prints hash tracking's statistics of each frame as one JSON line (keys in
 //!   README.md; frames are not rendered unless `--out` is given);
 //! - `glrt dump FILE`: the call log of a capture (the `GLRT_TRACE` format) on standard output.
@@ -81,6 +82,14 @@ fn dump(args: &[String]) -> Result<(), String> {
 }
 
 /// `--bench`: the frame times (from one frame's end to the next's) as the demo prints them.
+/// The frame times of frames `start` and later: `times[k]` is frame `k + 1`'s (from frame `k`'s
+/// end to its own), so frame `start`'s is `times[start - 1]`. Frames before `start` only
+/// rebuild state (a capture made with `GLRT_CAPTURE_FRAMES` draws nothing there).
+fn times_from(times: &[std::time::Duration], start: u64) -> &[std::time::Duration] {
+    let skip = usize::try_from(start.saturating_sub(1)).unwrap_or(usize::MAX).min(times.len());
+    &times[skip..]
+}
+
 fn frame_time_summary(times: &[std::time::Duration]) -> String {
     let ms: Vec<f64> = times.iter().map(|t| t.as_secs_f64() * 1e3).collect();
     if ms.is_empty() {
@@ -142,7 +151,7 @@ fn replay_command(args: &[String]) -> Result<(), String> {
     let outcome = replay::run(&capture, &options)?;
     println!("replayed {} calls, {} frames", outcome.calls, outcome.frames);
     if bench {
-        println!("{}", frame_time_summary(&outcome.frame_times));
+        println!("{}", frame_time_summary(times_from(&outcome.frame_times, frames.0)));
     }
     if let Some(dir) = &options.out {
         // The renderers are gone (the replay destroyed its contexts): every PNG is complete.
@@ -153,4 +162,21 @@ fn replay_command(args: &[String]) -> Result<(), String> {
         println!("wrote frames {}..{} to {}", frames.0, outcome.frames, dir.display());
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::times_from;
+    use std::time::Duration;
+
+    #[test]
+    fn bench_times_start_at_the_first_frame_asked_for() {
+        // The times of frames 1 to 5.
+        let times: Vec<Duration> = (1..=5).map(Duration::from_millis).collect();
+        assert_eq!(times_from(&times, 0), &times[..]);
+        assert_eq!(times_from(&times, 1), &times[..]);
+        assert_eq!(times_from(&times, 3), &times[2..]);
+        assert_eq!(times_from(&times, 3)[0], Duration::from_millis(3));
+        assert!(times_from(&times, 9).is_empty());
+    }
 }

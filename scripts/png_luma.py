@@ -1,0 +1,119 @@
+#!/usr/bin/env python3
+"""Mean luminance of PNG images (8-bit greyscale, RGB or RGBA, with or without alpha, not
+interlaced: what glrt's GLRT_DUMP and `glrt replay --out` write), with the standard library only.
+
+    png_luma.py FILE.png...                     one line per image: mean luma (0-255, Rec. 709
+                                                weights on the stored sRGB values), size, name
+    png_luma.py --shrink N IN.png OUT.png       also writes IN downscaled N times (box filter,
+                                                RGB) as OUT
+"""
+import struct
+import sys
+import zlib
+
+CHANNELS = {0: 1, 2: 3, 4: 2, 6: 4}  # colour type -> samples per pixel
+
+
+def read_png(path):
+    """(width, height, channels, rows) with rows as lists of bytes, filters undone."""
+    data = open(path, "rb").read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise SystemExit(f"{path}: not a PNG")
+    pos, idat, header = 8, [], None
+    while pos < len(data):
+        (length,) = struct.unpack(">I", data[pos:pos + 4])
+        kind, body = data[pos + 4:pos + 8], data[pos + 8:pos + 8 + length]
+        pos += 12 + length
+        if kind == b"IHDR":
+            header = struct.unpack(">IIBBBBB", body)
+        elif kind == b"IDAT":
+            idat.append(body)
+    width, height, depth, colour, _, _, interlace = header
+    if depth != 8 or colour not in CHANNELS or interlace:
+        raise SystemExit(f"{path}: only 8-bit non-interlaced grey/RGB/RGBA PNGs are read")
+    bpp = CHANNELS[colour]
+    raw = zlib.decompress(b"".join(idat))
+    stride = width * bpp
+    rows, prev = [], bytearray(stride)
+    for y in range(height):
+        start = y * (stride + 1)
+        kind, line = raw[start], bytearray(raw[start + 1:start + 1 + stride])
+        for i in range(stride):
+            a = line[i - bpp] if i >= bpp else 0
+            b = prev[i]
+            c = prev[i - bpp] if i >= bpp else 0
+            if kind == 1:
+                line[i] = (line[i] + a) & 255
+            elif kind == 2:
+                line[i] = (line[i] + b) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(line)
+        prev = line
+    return width, height, bpp, rows
+
+
+def rgb(bpp, line, x):
+    if bpp < 3:
+        v = line[x * bpp]
+        return v, v, v
+    return line[x * bpp], line[x * bpp + 1], line[x * bpp + 2]
+
+
+def mean_luma(width, height, bpp, rows):
+    total = 0.0
+    for line in rows:
+        for x in range(width):
+            r, g, b = rgb(bpp, line, x)
+            total += 0.2126 * r + 0.7152 * g + 0.0722 * b
+    return total / (width * height)
+
+
+def write_png(path, width, height, rows):
+    raw = b"".join(b"\x00" + bytes(line) for line in rows)
+
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+def shrink(width, height, bpp, rows, n):
+    w, h = width // n, height // n
+    out = []
+    for y in range(h):
+        line = bytearray()
+        for x in range(w):
+            acc = [0, 0, 0]
+            for yy in range(y * n, y * n + n):
+                for xx in range(x * n, x * n + n):
+                    for k, v in enumerate(rgb(bpp, rows[yy], xx)):
+                        acc[k] += v
+            line += bytes(round(v / (n * n)) for v in acc)
+        out.append(line)
+    return w, h, out
+
+
+def main(args):
+    if args[:1] == ["--shrink"] and len(args) == 4:
+        n, src, dst = int(args[1]), args[2], args[3]
+        w, h, bpp, rows = read_png(src)
+        sw, sh, small = shrink(w, h, bpp, rows, n)
+        write_png(dst, sw, sh, small)
+        print(f"{dst}: {sw}x{sh} from {src}")
+        return
+    if not args:
+        raise SystemExit(__doc__)
+    for path in args:
+        w, h, bpp, rows = read_png(path)
+        print(f"{mean_luma(w, h, bpp, rows):7.2f}  {w}x{h}  {path}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
