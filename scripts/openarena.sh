@@ -27,7 +27,8 @@
 #
 # Environment: BENCH_PROFILE=release|debug (default release), MESA_LIBGL (default the system
 # libGL.so.1), OA_DEMO (default demo088-test1), OA_WRAP (a command put before the engine),
-# OA_KEEP_RAW=FILE (capture: also keep the uncompressed .glrtcap there).
+# OA_KEEP_RAW=FILE (capture: also keep the uncompressed .glrtcap there), OA_SIZE (run: the
+# window size, default 320x240).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -156,7 +157,10 @@ frames() {
 }
 
 command=${1:-}
-(($#)) && shift
+case $command in
+capture | fps | frames | run) shift ;;
+*) sed -n '2,/^set /{/^#/p}' "$0" >&2; exit 2 ;;
+esac
 install >&2
 build >&2
 case $command in
@@ -169,5 +173,4 @@ run)
     (($#)) && shift
     game "${OA_SIZE:-320x240}" "$glrt_dir" "${envs[@]}" -- "$@"
     ;;
-*) sed -n '2,27p' "$0" >&2; exit 2 ;;
 esac
