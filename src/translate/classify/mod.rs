@@ -38,7 +38,7 @@ use glam::{Mat4, Vec4};
 use crate::frame::class::{DrawClass, FrameStats, Instance, MaterialOverride, Match};
 use crate::frame::{Draw, Frame};
 use matching::{Found, Matcher, Probe, Record};
-use routing::Tags;
+use routing::{Before, Tags};
 use static_world::StaticWorld;
 use view::{ViewInput, ViewTracker, same_place};
 
@@ -176,13 +176,16 @@ impl Classifier {
         self.lists.begin_frame(frame.number);
         self.traced.clear();
         self.probes.clear();
+        let mut before = Before::default();
         for (i, draw) in frame.draws.iter_mut().enumerate() {
+            before.clears_before(&frame.clears, i);
             let (tags, unit0) = self.tags_of(draw);
             draw.instance = None;
-            if let Some(class) = routing::raster_class(draw, !self.traced.is_empty(), tags) {
+            if let Some(class) = routing::raster_class(draw, &before, tags) {
                 draw.class = class;
                 continue;
             }
+            before.traced(draw);
             let geometry = self.lists.key(draw, list_version);
             let (texture, state) = (keys::texture_key(draw), self.states.key(draw));
             let first = draw.vertices.position.first().map_or(Vec4::W, |p| Vec4::from_array(*p));
@@ -216,13 +219,16 @@ impl Classifier {
     /// frame's matching; [`Classifier::classify`] replaces every class when the frame ends).
     /// Draws routed by an earlier read-back keep their class.
     pub fn route_partial(&mut self, frame: &mut Frame) {
-        let mut traced_before = false;
-        for draw in &mut frame.draws {
+        let mut before = Before::default();
+        for (i, draw) in frame.draws.iter_mut().enumerate() {
+            before.clears_before(&frame.clears, i);
             if draw.class == DrawClass::Unclassified {
                 let (tags, _) = self.tags_of(draw);
-                draw.class = routing::raster_class(draw, traced_before, tags).unwrap_or(DrawClass::Dynamic);
+                draw.class = routing::raster_class(draw, &before, tags).unwrap_or(DrawClass::Dynamic);
             }
-            traced_before |= draw.class.is_traced();
+            if draw.class.is_traced() {
+                before.traced(draw);
+            }
         }
     }
 }
