@@ -25,12 +25,12 @@
 //!    `dynamic` whose vertices are in the world frame (model ≈ identity) or which is a
 //!    `Static` instance (taken to the world by its model) is offered as world-space
 //!    triangles, unless the chunks would lose what it is: a draw with layers, a draw whose
-//!    lighting is not `Traced` (baked, or lit by its vertex colours), or whose unit 0 holds
-//!    light. Chunks carry unit 0's texture and coordinates, the colours and the draw state,
+//!    lighting is not `Traced` (baked, or lit by its vertex colours), or whose first texture
+//!    holds light. Chunks carry that texture, unit 0's coordinates, the colours and the draw state,
 //!    not the layers (other draws of the frame), nor unit 1, nor how the surface is lit; such
 //!    draws are traced as drawn (without anti-culling), and their triangles offered in earlier
-//!    frames leave the world as any triangle not drawn does. A traced-lit draw whose unit 1
-//!    holds light is offered: its chunks are its albedo, which is all the tracer takes of it.
+//!    frames leave the world as any triangle not drawn does. A traced-lit draw whose second
+//!    unit holds light is offered: its chunks are its albedo, all the tracer takes of it.
 //!    A camera cut clears the world first; an instance whose triangles are all in the world
 //!    is marked ([`Instance::in_static_world`]);
 //! 6. statistics ([`crate::frame::class::FrameStats`]).
@@ -169,7 +169,8 @@ impl Classifier {
             let colours = &mut self.colours;
             let lighting = lighting::surface_lighting(draw, class, t.light_units, t.baked_layer, || colours.changed(f.id, &draw.vertices.color.values, frame.number));
             // Chunks carry unit 0 and the colours, not layers nor how the surface is lit (rule 5).
-            let chunks_hold_it = self.layers.layers_of(k) == 0 && lighting == SurfaceLighting::Traced && t.light_units & 1 == 0;
+            let unit_light = lighting::first_unit(draw).is_some_and(|u| t.light_units >> u & 1 != 0);
+            let chunks_hold_it = self.layers.layers_of(k) == 0 && lighting == SurfaceLighting::Traced && !unit_light;
             let model = model_of(inverse.as_ref(), draw, f, class == DrawClass::Static && !t.tags.static_ && !recovered.cut);
             let in_world = chunks_hold_it && !t.tags.dynamic && (class == DrawClass::Static || model.as_ref().is_some_and(view::is_identity));
             let offered = match model {

@@ -7,11 +7,15 @@
 //! 3. an orthographic projection (last row of the projection `(0, 0, 0, 1)`) → `Overlay`;
 //! 4. at the far plane (`glDepthRange` near ≥ 0.999, as Quake 3 draws its sky) → `Sky`;
 //! 5. drawn before any traced draw of the frame with depth writes off → `Sky`;
-//! 6. drawn after a traced draw with the depth test off, or in another viewport or another
-//!    depth range than the frame's first traced draw, or after a depth clear made since that
-//!    draw → `Overlay`: 2D drawn over the scene, a view weapon squeezed into the front of the
-//!    depth range (Quake 3: 0..0.3), 3D HUD icons in their own viewports after a (scissored)
-//!    depth clear: rasterized as drawn, over the traced image;
+//! 6. drawn after a traced draw with the depth test off, or, into the framebuffer of the
+//!    frame's first traced draw, in another viewport or another depth range than that draw,
+//!    or after a depth clear made since it → `Overlay`: 2D drawn over the scene, a view
+//!    weapon squeezed into the front of the depth range (Quake 3: 0..0.3) or drawn after a
+//!    depth clear, 3D HUD icons in their own viewports after a (scissored) depth clear:
+//!    rasterized as drawn, over the traced image. A traced draw into another framebuffer
+//!    starts a scene of its own (a scene rendered to a texture first). Limit: a game that
+//!    draws a second view of the world before its main view in the same framebuffer (Quake
+//!    3's portals and mirrors) gets its main view rasterized;
 //! 7. blending that is not a plain replace (source factor one, destination zero) →
 //!    `Translucent`;
 //! 8. lines and points (not traced) → `Translucent`, the raster path in the 3D scene;
@@ -21,7 +25,7 @@
 
 use crate::frame::class::{DrawClass, orthographic};
 use crate::frame::state::{Blend, BlendFactor};
-use crate::frame::{Clear, Draw, Topology};
+use crate::frame::{Clear, Draw, Framebuffer, Topology};
 
 /// The `glrt.toml` tags of a draw's textures.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -45,11 +49,13 @@ pub struct Tags {
 }
 
 /// What routing knows of the frame before the draw it routes (rule 6).
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct Before {
-    /// Viewport and depth range of the frame's first traced draw, once there is one.
-    pub scene: Option<([i32; 4], [f64; 2])>,
-    /// The depth buffer was cleared after the first traced draw.
+    /// Framebuffer, viewport and depth range of the first traced draw of the frame, or of the
+    /// first since a traced draw went to another framebuffer (a scene rendered to a texture
+    /// first starts a scene of its own).
+    pub scene: Option<(Framebuffer, [i32; 4], [f64; 2])>,
+    /// The scene's depth buffer was cleared after its first traced draw.
     pub depth_cleared: bool,
     /// Clears of the frame taken into account so far.
     clears: usize,
@@ -59,20 +65,27 @@ impl Before {
     /// Takes in the clears of `clears` (a frame's, in program order) made before draw `draw`.
     pub fn clears_before(&mut self, clears: &[Clear], draw: usize) {
         while let Some(clear) = clears.get(self.clears).filter(|c| c.before_draw <= draw) {
-            self.depth_cleared |= self.scene.is_some() && clear.depth.is_some() && clear.depth_mask;
+            let of_the_scene = self.scene.as_ref().is_some_and(|scene| scene.0 == clear.framebuffer);
+            self.depth_cleared |= of_the_scene && clear.depth.is_some() && clear.depth_mask;
             self.clears += 1;
         }
     }
 
-    /// Notes a traced draw: the first one sets the scene's viewport and depth range.
+    /// Notes a traced draw: the first one (to its framebuffer) sets the scene.
     pub fn traced(&mut self, draw: &Draw) {
-        self.scene.get_or_insert((draw.state.viewport, draw.state.depth_range));
+        let s = &draw.state;
+        if self.scene.as_ref().is_none_or(|scene| scene.0 != s.framebuffer) {
+            self.scene = Some((s.framebuffer.clone(), s.viewport, s.depth_range));
+            self.depth_cleared = false;
+        }
     }
 
     /// Whether a draw with this state is drawn over the scene of the traced draws (rule 6).
     fn over_the_scene(&self, draw: &Draw) -> bool {
         let s = &draw.state;
-        self.scene.is_some_and(|scene| s.depth_test.is_none() || self.depth_cleared || scene != (s.viewport, s.depth_range))
+        self.scene.as_ref().is_some_and(|(framebuffer, viewport, depth_range)| {
+            s.depth_test.is_none() || (*framebuffer == s.framebuffer && (self.depth_cleared || (*viewport, *depth_range) != (s.viewport, s.depth_range)))
+        })
     }
 }
 
@@ -184,5 +197,22 @@ mod tests {
         let mut before = after_a_traced_draw();
         before.clears_before(&masked, 1);
         assert!(!before.depth_cleared, "depth writes off: the clear leaves depth alone");
+    }
+
+    #[test]
+    fn a_scene_rendered_to_a_texture_first_starts_a_scene_of_its_own() {
+        use crate::frame::framebuffer::FramebufferObject;
+        let none = Tags::default();
+        let object = Framebuffer::Object(std::sync::Arc::new(FramebufferObject { size: [64, 64], color: None, depth: None, stencil: None, alpha: false }));
+        let mut before = Before::default();
+        before.traced(&draw(|s| (s.framebuffer, s.viewport) = (object.clone(), [0, 0, 64, 64])));
+        // Its depth clear, then the window's scene in another viewport: traced, a new scene.
+        before.clears_before(&[Clear { depth: Some(1.0), depth_mask: true, framebuffer: object.clone(), ..Clear::default() }], 1);
+        let window = draw(|s| s.viewport = [0, 0, 320, 240]);
+        assert_eq!(raster_class(&window, &before, none), None);
+        before.traced(&window);
+        assert!(!before.depth_cleared);
+        assert_eq!(raster_class(&window, &before, none), None);
+        assert_eq!(raster_class(&draw(|s| s.viewport = [0, 0, 24, 24]), &before, none), Some(DrawClass::Overlay));
     }
 }
