@@ -1,6 +1,7 @@
 //! Multi-pass materials: a draw that is a later pass over triangles of an earlier traced draw
-//! of the frame, its base, becomes one of the base's layers ([`DrawClass::Layer`] with a
-//! [`crate::frame::class::Layer`]), traced as part of the base's surface and never on its own.
+//! of the frame, its base, becomes one of the base's layers
+//! ([`crate::frame::class::DrawClass::Layer`] with a [`crate::frame::class::Layer`]), traced
+//! as part of the base's surface and never on its own.
 //! Quake 3 draws the stages of a shader one after the other over the same locked arrays and
 //! indices (a detail, a lightmap, a glow pass), and a dynamic light as one more pass over the
 //! subset of the batch's triangles it reaches, with its own indices.

@@ -1,6 +1,6 @@
-//! Where a traced surface's light comes from ([`SurfaceLighting`], [`Instance::light_units`],
-//! and whether a multiplying layer is baked light): what the tracer needs so that it counts
-//! no light twice (issue 16).
+//! Where a traced surface's light comes from ([`SurfaceLighting`],
+//! [`crate::frame::class::Instance::light_units`], and whether a multiplying layer is baked
+//! light): what the tracer needs so that it counts no light twice (issue 16).
 //!
 //! - **Lightmaps.** A texture multiplied over another on the same triangles (texture unit `u`
 //!   modulating an earlier unit, or a pass `GL_DST_COLOR, GL_ZERO` / `GL_ZERO, GL_SRC_COLOR`
@@ -9,10 +9,10 @@
 //!   bakes 16 world units per lightmap texel against 1–2 per texel of a surface texture; a
 //!   detail texture is finer, never light). When a base pass's texture is the coarse one, it
 //!   is the lightmap under a texture pass (a first unit is light only by its tag: under a
-//!   finer unit it is as likely a surface under a detail texture). Densities are compared on up to [`SAMPLES`] triangles, through
-//!   each unit's texture matrix; a unit with generated coordinates, or a texture that is not
-//!   2D, is never compared. A texture tagged `lightmap` in `glrt.toml` is light wherever it
-//!   is.
+//!   finer unit it is as likely a surface under a detail texture). Densities are compared on
+//!   up to [`SAMPLES`] triangles, through each unit's texture matrix; a unit with generated
+//!   coordinates, or a texture that is not 2D, is never compared. A texture tagged `lightmap`
+//!   in `glrt.toml` is light wherever it is.
 //! - **Lighting** ([`surface_lighting`]), in this order: a GL-lit draw is `Traced` (its light
 //!   is the GL lights, which the tracer has; its light units are still reported); a draw with
 //!   a light unit or a `BakedLight` layer is `Baked`; an unlit draw whose vertex colours vary
@@ -34,7 +34,7 @@ use crate::frame::Draw;
 pub const LIGHTMAP_RATIO: f64 = 4.0;
 
 /// Triangles of a draw whose texel densities are compared, at most (spread over the draw).
-pub const SAMPLES: usize = 64;
+pub const SAMPLES: usize = 16;
 
 /// Frames a colour history is kept for an instance not drawn.
 const KEEP_FRAMES: u64 = 120;
@@ -190,7 +190,7 @@ impl ColourHistory {
         seen.changed
     }
 
-    /// Forgets instances not drawn for a while (every [`KEEP_FRAMES`] frames).
+    /// Forgets instances not drawn for a while (checked every 120 frames: `KEEP_FRAMES`).
     pub fn end_frame(&mut self, frame: u64) {
         if frame.is_multiple_of(KEEP_FRAMES) {
             self.seen.retain(|_, s| frame - s.frame.min(frame) < KEEP_FRAMES);
