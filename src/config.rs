@@ -12,6 +12,7 @@
 //! emissive = []                     # traced, emits light
 //! static = []                       # traced as static even if it moves
 //! dynamic = []                      # traced as dynamic (rebuilt each frame)
+//! lightmap = []                     # holds baked light (wherever it multiplies a surface)
 //!
 //! [pathtrace]                       # keys: render::trace::settings
 //! spp = 4
@@ -37,7 +38,7 @@ use std::ops::RangeInclusive;
 use std::path::{Path, PathBuf};
 
 /// The routing lists, the top-level keys, in the order of [`Config::lists`].
-pub const LIST_KEYS: [&str; 7] = ["ui", "sky", "ignore", "translucent", "emissive", "static", "dynamic"];
+pub const LIST_KEYS: [&str; 8] = ["ui", "sky", "ignore", "translucent", "emissive", "static", "dynamic", "lightmap"];
 
 /// The top-level tables: `[materials]` and the settings tables read through [`Table`].
 pub const TABLES: [&str; 2] = ["pathtrace", "materials"];
@@ -358,7 +359,7 @@ mod tests {
         assert_eq!(c.lists[0], HashSet::from([16, 32]));
         assert_eq!(c.lists[1], HashSet::from([255]));
         assert_eq!(warnings.len(), 1);
-        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, pathtrace, materials)"), "{}", warnings[0]);
+        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, lightmap, pathtrace, materials)"), "{}", warnings[0]);
     }
 
     #[test]

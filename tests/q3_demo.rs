@@ -11,13 +11,14 @@
 mod images;
 mod programs;
 
+use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::Arc;
 use std::time::Duration;
 
-use glrt::frame::Frame;
-use glrt::frame::class::{DrawClass, FrameStats};
+use glrt::frame::class::{DrawClass, FrameStats, LayerRole, SurfaceLighting};
+use glrt::frame::{Draw, Frame};
 use glrt::frame::state::BlendFactor;
 use glrt::frame::FrameSink;
 use glrt::replay::reader::Capture;
@@ -25,7 +26,9 @@ use glrt::replay;
 use images::{Image, compare};
 use parking_lot::Mutex;
 use BlendFactor::{DstColor, One, OneMinusSrcAlpha, SrcAlpha, SrcColor, Zero};
-use DrawClass::{Dynamic, Movable, Overlay, Sky, Static, Translucent};
+use DrawClass::{Dynamic, Layer, Movable, Overlay, Sky, Static, Translucent};
+use LayerRole::{Albedo, BakedLight, Emission};
+use SurfaceLighting::{Baked, VertexLit};
 
 fn repo(path: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join(path)
@@ -118,22 +121,57 @@ fn the_replayed_frame_is_mesas_lit_and_shadowed_with_its_hud_icons() {
 /// Blend factors (source, destination) of a draw that blends.
 type Blending = Option<(BlendFactor, BlendFactor)>;
 
+/// What a draw is to the surfaces of the traced scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Surface {
+    /// Not traced.
+    Raster,
+    /// Traced: how it is lit and its texture units that hold baked light.
+    Lit(SurfaceLighting, u8),
+    /// A layer over the draw of this index, with this role.
+    Over(usize, LayerRole),
+}
+
 /// What the tests need of a draw.
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct DrawSummary {
     class: DrawClass,
     triangles: usize,
     blend: Blending,
+    surface: Surface,
 }
 
+/// A raster draw.
 const fn draw(class: DrawClass, triangles: usize, blend: Blending) -> DrawSummary {
-    DrawSummary { class, triangles, blend }
+    DrawSummary { class, triangles, blend, surface: Surface::Raster }
+}
+
+/// A traced draw, opaque, lit so.
+const fn traced(class: DrawClass, triangles: usize, lighting: SurfaceLighting, light_units: u8) -> DrawSummary {
+    DrawSummary { class, triangles, blend: None, surface: Surface::Lit(lighting, light_units) }
+}
+
+/// A layer over draw `base`.
+const fn layer(triangles: usize, blend: (BlendFactor, BlendFactor), base: usize, role: LayerRole) -> DrawSummary {
+    DrawSummary { class: Layer, triangles, blend: Some(blend), surface: Surface::Over(base, role) }
+}
+
+impl DrawSummary {
+    fn of(d: &Draw) -> DrawSummary {
+        let surface = match (d.instance, &d.layer) {
+            (Some(i), _) => Surface::Lit(i.lighting, i.light_units),
+            (None, Some(l)) => Surface::Over(l.base, l.role),
+            (None, None) => Surface::Raster,
+        };
+        DrawSummary { class: d.class, triangles: d.indices.len() / 3, blend: d.state.blend.map(|b| (b.src_rgb, b.dst_rgb)), surface }
+    }
 }
 
 #[derive(Clone, Debug)]
 struct FrameSummary {
     draws: Vec<DrawSummary>,
     stats: FrameStats,
+    frame: Frame,
 }
 
 #[derive(Clone, Default)]
@@ -141,8 +179,8 @@ struct Summaries(Arc<Mutex<Vec<FrameSummary>>>);
 
 impl FrameSink for Summaries {
     fn present(&mut self, frame: Frame) {
-        let draws = frame.draws.iter().map(|d| DrawSummary { class: d.class, triangles: d.indices.len() / 3, blend: d.state.blend.map(|b| (b.src_rgb, b.dst_rgb)) }).collect();
-        self.0.lock().push(FrameSummary { draws, stats: frame.stats });
+        let draws = frame.draws.iter().map(DrawSummary::of).collect();
+        self.0.lock().push(FrameSummary { draws, stats: frame.stats, frame });
     }
 }
 
@@ -158,7 +196,8 @@ fn classified_frames() -> Vec<FrameSummary> {
 }
 
 /// The draws of the fixture's last frame (demo frame 412), in order, as glrt classifies them
-/// today: class, triangles, blending. glrt merges the sky's triangle strips per side.
+/// today: class, triangles, blending, and how traced draws are lit (with their light units)
+/// or which draw a layer lies on. glrt merges the sky's triangle strips per side.
 const FRAME_3: [DrawSummary; 30] = [
     // The sky box (depth range 1..1): 4 sides around, 4 strips of 8 quads each, and the top,
     // then the cloud layer added over them.
@@ -168,40 +207,43 @@ const FRAME_3: [DrawSummary; 30] = [
     draw(Sky, 64, None),
     draw(Sky, 128, None),
     draw(Sky, 384, Some((One, One))),
-    // Floor tiles, base × lightmap on two units; every visible floor surface is near the
-    // rocket, so the batch is followed by its dynamic light pass.
-    draw(Static, 118, None),
-    draw(Translucent, 18, Some((One, One))),
+    // Floor tiles, base × lightmap on two units (unit 1 holds baked light); every visible
+    // floor surface is near the rocket, so the batch is followed by its dynamic light pass
+    // over some of its triangles: emission.
+    traced(Static, 118, Baked, 0b10),
+    layer(18, (One, One), 6, Emission),
     // Concrete, base × lightmap, and its dynamic light pass.
-    draw(Static, 240, None),
-    draw(Translucent, 14, Some((One, One))),
-    // Brick, base × lightmap, then the detail pass over the same triangles.
-    draw(Static, 404, None),
-    draw(Translucent, 404, Some((DstColor, SrcColor))),
+    traced(Static, 240, Baked, 0b10),
+    layer(14, (One, One), 8, Emission),
+    // Brick, base × lightmap, then the detail pass over the same triangles (2 × modulate).
+    traced(Static, 404, Baked, 0b10),
+    layer(404, (DstColor, SrcColor), 10, Albedo),
     // Metal (the doorway and the hall's east wall): base, then the lightmap as a second pass
-    // (`GL_EQUAL` depth).
-    draw(Static, 26, None),
-    draw(Translucent, 26, Some((DstColor, Zero))),
+    // (`GL_EQUAL` depth): baked light by its coarse texels.
+    traced(Static, 26, Baked, 0),
+    layer(26, (DstColor, Zero), 12, BakedLight),
     // The hall's light panel seen through the doorway, base × lightmap, then its glow.
-    draw(Static, 2, None),
-    draw(Translucent, 2, Some((One, One))),
-    // The two players: new vertices every frame (walk cycle blended on the CPU).
-    draw(Dynamic, 72, None),
-    draw(Dynamic, 72, None),
-    // The armour (spinning), the rocket (flying), the view weapon (depth range 0..0.3).
-    draw(Movable, 144, None),
-    draw(Movable, 12, None),
-    draw(Movable, 24, None),
-    // Blended shaders: the water, the armour's additive shell, three smoke puffs in one
-    // batch, the rocket's flame.
+    traced(Static, 2, Baked, 0b10),
+    layer(2, (One, One), 14, Emission),
+    // The two players: new vertices every frame (walk cycle blended on the CPU), colours from
+    // the light grid.
+    traced(Dynamic, 72, VertexLit, 0),
+    traced(Dynamic, 72, VertexLit, 0),
+    // The armour (spinning), the rocket (flying), lit from the light grid; the view weapon
+    // (depth range 0..0.3) is drawn over the scene as it is.
+    traced(Movable, 144, VertexLit, 0),
+    traced(Movable, 12, VertexLit, 0),
+    draw(Overlay, 24, None),
+    // Blended shaders: the water, the armour's additive shell (its own deformed vertices),
+    // three smoke puffs in one batch, the rocket's flame.
     draw(Translucent, 18, Some((SrcAlpha, OneMinusSrcAlpha))),
     draw(Translucent, 144, Some((One, One))),
     draw(Translucent, 6, Some((SrcAlpha, OneMinusSrcAlpha))),
     draw(Translucent, 2, Some((One, One))),
     // The HUD's 3D icons, head and armour, each in its own viewport after a depth clear:
-    // traced today (turning: movable).
-    draw(Movable, 192, None),
-    draw(Movable, 144, None),
+    // drawn over the scene as they are.
+    draw(Overlay, 192, None),
+    draw(Overlay, 144, None),
     // 2D: the numbers (7 characters), the crosshair, "FRAME 00412" with its shadow.
     draw(Overlay, 14, Some((SrcAlpha, OneMinusSrcAlpha))),
     draw(Overlay, 2, Some((SrcAlpha, OneMinusSrcAlpha))),
@@ -209,10 +251,11 @@ const FRAME_3: [DrawSummary; 30] = [
 ];
 
 /// Each draw of the last frame gets the class written down in [`FRAME_3`], and the per-class
-/// counts of `Frame.stats` follow: 5 static (the world's first stages), 5 movable (armour,
-/// rocket, weapon, two HUD icons), 2 dynamic (the players), 9 translucent (3 second stages:
-/// detail, lightmap pass, glow; 2 dynamic light passes; 4 blended shaders), 3 overlay (2D),
-/// 6 sky. In frame 0 nothing has moved yet: the 12 traced draws are all static.
+/// counts of `Frame.stats` follow: 5 static (the world's first stages), 2 movable (armour,
+/// rocket), 2 dynamic (the players), 4 translucent (the blended shaders), 6 overlay (the view
+/// weapon, two HUD icons, 2D), 6 sky, 5 layers (detail, lightmap pass, glow, 2 dynamic light
+/// passes). In frame 0 nothing has moved yet: the 9 traced draws are all static (and the
+/// models, whose colours vary, baked).
 #[test]
 fn each_draw_of_the_fixture_gets_the_class_written_down() {
     let frames = classified_frames();
@@ -222,14 +265,52 @@ fn each_draw_of_the_fixture_gets_the_class_written_down() {
     }
     assert_eq!(actual.len(), FRAME_3.len(), "{actual:?}");
     let counts = |f: &FrameSummary| DrawClass::COUNTED.map(|c| f.stats.classes.get(c));
-    // Order: static, movable, dynamic, translucent, overlay, sky.
-    assert_eq!(counts(&frames[0]), [12, 0, 0, 9, 3, 6, 0], "frame 0");
+    // Order: static, movable, dynamic, translucent, overlay, sky, layer.
+    assert_eq!(counts(&frames[0]), [9, 0, 0, 4, 6, 6, 5], "frame 0");
+    let lit = |f: &FrameSummary| f.draws.iter().filter_map(|d| if let Surface::Lit(l, _) = d.surface { Some(l) } else { None }).collect::<Vec<_>>();
+    assert_eq!(lit(&frames[0]), [vec![Baked; 5], vec![Baked; 4]].concat(), "frame 0: the models before they moved");
     for (n, f) in frames.iter().enumerate().skip(1) {
-        assert_eq!(counts(f), [5, 5, 2, 9, 3, 6, 0], "frame {n}");
-        assert_eq!(f.stats.matches_found, 12, "frame {n}: every traced draw found again");
+        assert_eq!(counts(f), [5, 2, 2, 4, 6, 6, 5], "frame {n}");
+        assert_eq!(f.stats.matches_found, 9, "frame {n}: every traced draw found again");
     }
     let triangles = DrawClass::COUNTED.map(|c| frames[3].stats.triangles.get(c));
-    assert_eq!(triangles, [790, 516, 144, 634, 56, 768, 0]);
+    assert_eq!(triangles, [790, 156, 144, 170, 416, 768, 464]);
+}
+
+/// The corners of triangle `t` of `draw`, bit for bit.
+fn corners(draw: &Draw, t: usize) -> [[u32; 4]; 3] {
+    std::array::from_fn(|k| draw.vertices.position[draw.indices[3 * t + k] as usize].map(f32::to_bits))
+}
+
+/// No translucent draw is left for a stage that belongs to a traced surface: no triangle of a
+/// `Translucent` draw is a triangle (the same corners) of a traced draw before it seen
+/// through the same matrices; and each layer's triangles are its base's triangles, as its
+/// `triangles` say.
+#[test]
+fn no_translucent_draw_is_a_pass_over_a_traced_surface() {
+    let frames = classified_frames();
+    for (n, f) in frames.iter().enumerate() {
+        let draws = &f.frame.draws;
+        for (i, d) in draws.iter().enumerate().filter(|(_, d)| d.class == Translucent) {
+            let mine: HashSet<[[u32; 4]; 3]> = (0..d.indices.len() / 3).map(|t| corners(d, t)).collect();
+            for (j, base) in draws[..i].iter().enumerate().filter(|(_, b)| b.class.is_traced() && b.modelview == d.modelview && b.projection == d.projection) {
+                let shared = (0..base.indices.len() / 3).filter(|&t| mine.contains(&corners(base, t))).count();
+                assert_eq!(shared, 0, "frame {n}: translucent draw {i} over {shared} triangles of traced draw {j}");
+            }
+        }
+        let mut layers = 0;
+        for (i, d) in draws.iter().enumerate().filter(|(_, d)| d.class == Layer) {
+            let layer = d.layer.as_ref().unwrap_or_else(|| panic!("frame {n}: draw {i} is a layer without one"));
+            let base = &draws[layer.base];
+            assert!(layer.base < i && base.class.is_traced(), "frame {n}: draw {i} over draw {}", layer.base);
+            assert_eq!(layer.triangles.len(), d.indices.len() / 3);
+            for (t, &b) in layer.triangles.iter().enumerate() {
+                assert_eq!(corners(d, t), corners(base, b as usize), "frame {n}: draw {i}, triangle {t}");
+            }
+            layers += 1;
+        }
+        assert_eq!(layers, 5, "frame {n}");
+    }
 }
 
 /// The fixture is what the demo draws today: its frames 409 to 412 drawn live through glrt give

@@ -41,7 +41,13 @@ impl Config {
             return Tags::default();
         }
         let has = |k: usize| hashes.clone().any(|h| self.lists[k].contains(&h));
-        Tags { ui: has(0), sky: has(1), ignore: has(2), translucent: has(3), emissive: has(4), static_: has(5), dynamic: has(6) }
+        Tags { ui: has(0), sky: has(1), ignore: has(2), translucent: has(3), emissive: has(4), static_: has(5), dynamic: has(6), lightmap: has(7) }
+    }
+
+    /// Whether the texture of hash `hash` is tagged `lightmap`: it holds baked light wherever
+    /// it multiplies a surface, whatever its texel density (`super::lighting`).
+    pub fn is_lightmap(&self, hash: u64) -> bool {
+        self.lists[7].contains(&hash)
     }
 
     /// The material of a draw whose unit-0 texture has the hash `unit0` and whose textures
@@ -64,10 +70,12 @@ mod tests {
 
     #[test]
     fn tags_come_from_any_texture_of_the_draw() {
-        let (c, _) = crate::config::Config::parse("ui = [\"0x10\", 32]\nsky = [\"0XfF\"]\n", "g.toml").unwrap();
+        let (c, _) = crate::config::Config::parse("ui = [\"0x10\", 32]\nsky = [\"0XfF\"]\nlightmap = [\"0x40\"]\n", "g.toml").unwrap();
         let c = Config::from(&c);
         let tags = c.tags([1, 32].into_iter());
-        assert!(tags.ui && !tags.sky);
+        assert!(tags.ui && !tags.sky && !tags.lightmap);
+        assert!(c.tags([0x40].into_iter()).lightmap);
+        assert!(c.is_lightmap(0x40) && !c.is_lightmap(32));
         assert_eq!(Config::default().tags([32].into_iter()), Tags::default());
     }
 

@@ -1,30 +1,44 @@
 //! Hash tracking: at the end of each frame, every draw gets a class, every traced draw a
-//! stable instance id, the frame its recovered camera, the persistent static world and its
-//! statistics (DESIGN.md, "Hash tracking"). One [`Classifier`] per context, kept between
-//! frames.
+//! stable instance id and its lighting, the frame its recovered camera, the persistent static
+//! world and its statistics (DESIGN.md, "Hash tracking"). One [`Classifier`] per context, kept
+//! between frames.
 //!
 //! Per frame, in order:
 //! 1. routing ([`routing`]): raster classes (`Translucent`, `Overlay`, `Sky`, `Ignored`) by
-//!    state and `glrt.toml` texture tags ([`config`], texture hashes from [`texture_hash`]);
-//!    the other draws are traced;
+//!    state, by what came before in the frame, and by `glrt.toml` texture tags ([`config`],
+//!    texture hashes from [`texture_hash`]); a draw routed `Translucent` or traced that is a
+//!    later pass over triangles of an earlier traced draw is a `Layer` of it ([`layers`]),
+//!    its role from its blend function and, for a multiplying pass, from texel densities
+//!    ([`lighting`]); the other draws are traced;
 //! 2. keys ([`keys`]) and matching ([`matching`]) of the traced draws with the previous
-//!    frame's instances: exact (geometry + textures + state) or by slot;
+//!    frame's instances: exact (geometry + textures + state) or by slot; the texture units of
+//!    each that hold baked light ([`lighting`]);
 //! 3. the view ([`view`]) from the draws matched to static instances;
 //! 4. traced classes, in this order: a texture tagged `static` → `Static`, `dynamic` →
 //!    `Dynamic`; matched by slot (its vertices changed) → `Dynamic`; matched exactly an
 //!    instance that was `Movable` or `Dynamic` → the same class (a door that stopped is still
 //!    movable); matched exactly a `Static` instance → `Static` when its model matrix (world
 //!    frame; eye space without a view) is unchanged, else `Movable`; across a camera cut the
-//!    previous class is kept; new → `Static`;
+//!    previous class is kept; new → `Static`; then how each is lit ([`lighting`]: GL lights,
+//!    baked in a lightmap or its vertex colours, or vertex colours as lighting);
 //! 5. the static world ([`world_feed`] → `static_world`): every traced draw not tagged
 //!    `dynamic` whose vertices are in the world frame (model ≈ identity) or which is a
 //!    `Static` instance (taken to the world by its model) is offered as world-space
-//!    triangles; a camera cut clears the world first; an instance whose triangles are all in
-//!    the world is marked ([`Instance::in_static_world`]);
+//!    triangles, unless the chunks would lose what it is: a draw with layers, a draw whose
+//!    lighting is not `Traced` (baked, or lit by its vertex colours), or whose first texture
+//!    holds light. Chunks carry that texture, unit 0's coordinates, the colours and the draw state,
+//!    not the layers (other draws of the frame), nor unit 1, nor how the surface is lit; such
+//!    draws are traced as drawn (without anti-culling), and their triangles offered in earlier
+//!    frames leave the world as any triangle not drawn does. A traced-lit draw whose second
+//!    unit holds light is offered: its chunks are its albedo, all the tracer takes of it.
+//!    A camera cut clears the world first; an instance whose triangles are all in the world
+//!    is marked ([`Instance::in_static_world`]);
 //! 6. statistics ([`crate::frame::class::FrameStats`]).
 
 pub mod config;
 pub mod keys;
+pub mod layers;
+pub mod lighting;
 pub mod matching;
 pub mod report;
 pub mod routing;
@@ -35,10 +49,12 @@ pub mod world_feed;
 
 use glam::{Mat4, Vec4};
 
-use crate::frame::class::{DrawClass, FrameStats, Instance, MaterialOverride, Match};
+use crate::frame::class::{DrawClass, FrameStats, Instance, Layer, LayerRole, MaterialOverride, Match, SurfaceLighting};
 use crate::frame::{Draw, Frame};
+use crate::translate::limits::MAX_TEXTURE_UNITS;
+use layers::{Blending, LayerFinder};
 use matching::{Found, Matcher, Probe, Record};
-use routing::Tags;
+use routing::{Before, Tags};
 use static_world::StaticWorld;
 use view::{ViewInput, ViewTracker, same_place};
 
@@ -51,6 +67,23 @@ struct Traced {
     /// Hash of the textures, draw state and material: the static world's material key.
     material_key: u64,
     material: MaterialOverride,
+    /// Its texture units that hold baked light ([`Instance::light_units`]).
+    light_units: u8,
+    /// It has a [`LayerRole::BakedLight`] layer.
+    baked_layer: bool,
+}
+
+/// The hash of the texture of each texture unit of a draw.
+type UnitHashes = [Option<u64>; MAX_TEXTURE_UNITS];
+
+/// A pass found to be a layer of a traced draw.
+struct FoundLayer {
+    /// Its base's number in [`LayerFinder`] (the index in `Classifier::traced` during
+    /// [`Classifier::classify`]).
+    base: usize,
+    layer: Layer,
+    /// Light units it reveals on the base (a lightmap base pass under a texture pass).
+    base_units: u8,
 }
 
 /// Hash tracking across the frames of one context.
@@ -63,6 +96,8 @@ pub struct Classifier {
     view: ViewTracker,
     world: StaticWorld,
     feed: world_feed::WorldFeed,
+    layers: LayerFinder,
+    colours: lighting::ColourHistory,
     traced: Vec<Traced>,
     probes: Vec<Probe>,
     found: Vec<Found>,
@@ -99,6 +134,8 @@ impl Classifier {
             view: Default::default(),
             world: StaticWorld::new(),
             feed: Default::default(),
+            layers: Default::default(),
+            colours: Default::default(),
             traced: Vec::new(),
             probes: Vec::new(),
             found: Vec::new(),
@@ -126,11 +163,16 @@ impl Classifier {
         }
         self.records.clear();
         let mut instance_upload = 0;
-        for (t, f) in self.traced.iter().zip(&self.found) {
+        for (k, (t, f)) in self.traced.iter().zip(&self.found).enumerate() {
             let draw = &mut frame.draws[t.draw];
             let class = traced_class(t.tags, f, view.as_ref(), &draw.modelview, recovered.cut);
+            let colours = &mut self.colours;
+            let lighting = lighting::surface_lighting(draw, class, t.light_units, t.baked_layer, || colours.changed(f.id, &draw.vertices.color.values, frame.number));
+            // Chunks carry unit 0 and the colours, not layers nor how the surface is lit (rule 5).
+            let unit_light = lighting::first_unit(draw).is_some_and(|u| t.light_units >> u & 1 != 0);
+            let chunks_hold_it = self.layers.layers_of(k) == 0 && lighting == SurfaceLighting::Traced && !unit_light;
             let model = model_of(inverse.as_ref(), draw, f, class == DrawClass::Static && !t.tags.static_ && !recovered.cut);
-            let in_world = !t.tags.dynamic && (class == DrawClass::Static || model.as_ref().is_some_and(view::is_identity));
+            let in_world = chunks_hold_it && !t.tags.dynamic && (class == DrawClass::Static || model.as_ref().is_some_and(view::is_identity));
             let offered = match model {
                 Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material_key, t.material)),
                 _ => None,
@@ -145,10 +187,12 @@ impl Classifier {
             let previous_modelview = f.previous.filter(|p| p.age == 0 && !recovered.cut).map(|p| p.modelview);
             draw.class = class;
             let in_static_world = offered.is_some_and(|o| o.all_static());
-            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key: t.geometry, material: t.material, in_static_world, ..Instance::default() });
+            let (geometry_key, material, light_units) = (t.geometry, t.material, t.light_units);
+            draw.instance = Some(Instance { id: f.id, matched: f.matched, previous_modelview, model, geometry_key, material, in_static_world, lighting, light_units });
             let probe = self.probes[self.records.len()];
             self.records.push(Record { id: f.id, probe, ordinal: f.ordinal, modelview: draw.modelview, model, class, age: 0 });
         }
+        self.colours.end_frame(frame.number);
         self.matcher.finish(self.records.iter().copied(), recovered.cut);
         let update = self.world.end_frame();
         stats.static_upload_bytes = instance_upload + update.upload_bytes;
@@ -171,18 +215,33 @@ impl Classifier {
         stats.vertex_bytes = self.traced.iter().map(|t| vertex_bytes(&frame.draws[t.draw])).sum();
     }
 
-    /// Step 1: raster classes, and the keys and probes of the traced draws.
+    /// Steps 1 and 2: raster classes, layers, and the keys and probes of the traced draws.
     fn route(&mut self, frame: &mut Frame, list_version: &impl Fn(u32) -> Option<u64>) {
         self.lists.begin_frame(frame.number);
+        self.layers.begin_frame();
         self.traced.clear();
         self.probes.clear();
-        for (i, draw) in frame.draws.iter_mut().enumerate() {
-            let (tags, unit0) = self.tags_of(draw);
-            draw.instance = None;
-            if let Some(class) = routing::raster_class(draw, !self.traced.is_empty(), tags) {
+        let mut before = Before::default();
+        for i in 0..frame.draws.len() {
+            before.clears_before(&frame.clears, i);
+            let (tags, hashes) = self.tags_of(&frame.draws[i]);
+            let raster = routing::raster_class(&frame.draws[i], &before, tags);
+            let found = if matches!(raster, None | Some(DrawClass::Translucent)) { self.layer_of(&frame.draws, i, &hashes) } else { None };
+            let draw = &mut frame.draws[i];
+            (draw.instance, draw.layer) = (None, None);
+            if let Some(found) = found {
+                let base = &mut self.traced[found.base];
+                base.light_units |= found.base_units;
+                base.baked_layer |= found.layer.role == LayerRole::BakedLight;
+                (draw.class, draw.layer) = (DrawClass::Layer, Some(found.layer));
+                continue;
+            }
+            if let Some(class) = raster {
                 draw.class = class;
                 continue;
             }
+            before.traced(draw);
+            self.layers.add_base(i);
             let geometry = self.lists.key(draw, list_version);
             let (texture, state) = (keys::texture_key(draw), self.states.key(draw));
             let first = draw.vertices.position.first().map_or(Vec4::W, |p| Vec4::from_array(*p));
@@ -191,38 +250,68 @@ impl Classifier {
                 slot: keys::combine(&[texture, state, draw.vertices.len() as u64, draw.indices.len() as u64]),
                 anchor: (draw.modelview * first).truncate(),
             });
-            let material = self.config.material(unit0, tags);
+            let material = self.config.material(hashes[0], tags);
             let [m0, m1] = material.key();
-            self.traced.push(Traced { draw: i, tags, geometry, material_key: keys::combine(&[texture, state, m0, m1]), material });
+            let light_units = lighting::light_units(draw, |u| hashes[u].is_some_and(|h| self.config.is_lightmap(h)));
+            let material_key = keys::combine(&[texture, state, m0, m1]);
+            self.traced.push(Traced { draw: i, tags, geometry, material_key, material, light_units, baked_layer: false });
         }
+    }
+
+    /// Step 1's layers: draw `pass` of `draws` as a layer of an earlier base (`layers`), with
+    /// its role (`lighting` for a multiplying pass); `hashes`: its texture hashes.
+    fn layer_of(&mut self, draws: &[Draw], pass: usize, hashes: &UnitHashes) -> Option<FoundLayer> {
+        let blending = layers::blending(&draws[pass])?;
+        let (base, triangles) = self.layers.find(draws, pass)?;
+        let base_draw = &draws[self.layers.draw_of(base)];
+        let (role, base_units) = if blending == Blending::Multiply {
+            let tagged_pass = lighting::first_unit(&draws[pass]).and_then(|u| hashes[u]).is_some_and(|h| self.config.is_lightmap(h));
+            let base_texture = lighting::first_unit(base_draw).and_then(|u| base_draw.textures[u].as_ref());
+            let tagged_base = base_texture.is_some_and(|t| self.config.is_lightmap(self.textures.hash(t)));
+            let m = lighting::multiplied(base_draw, &draws[pass], &triangles, tagged_pass, tagged_base);
+            (if m.pass { LayerRole::BakedLight } else { LayerRole::Albedo }, m.base_units)
+        } else {
+            (blending.role(), 0)
+        };
+        Some(FoundLayer { base, layer: Layer { base: self.layers.draw_of(base), triangles, role }, base_units })
     }
 }
 
 impl Classifier {
-    /// The `glrt.toml` tags of `draw`'s textures, and the hash of unit 0's texture.
-    fn tags_of(&mut self, draw: &Draw) -> (Tags, Option<u64>) {
-        let mut hashes = [0u64; crate::translate::limits::MAX_TEXTURE_UNITS];
-        let mut n = 0;
-        for t in draw.textures.iter().flatten().take(hashes.len()) {
-            (hashes[n], n) = (self.textures.hash(t), n + 1);
+    /// The `glrt.toml` tags of `draw`'s textures, and the hash of each unit's texture.
+    fn tags_of(&mut self, draw: &Draw) -> (Tags, UnitHashes) {
+        let mut hashes: UnitHashes = [None; MAX_TEXTURE_UNITS];
+        for (h, t) in hashes.iter_mut().zip(&draw.textures) {
+            *h = t.as_ref().map(|t| self.textures.hash(t));
         }
-        let unit0 = draw.textures.first().and_then(Option::as_ref).map(|_| hashes[0]);
-        (self.config.tags(hashes[..n].iter().copied()), unit0)
+        (self.config.tags(hashes.iter().flatten().copied()), hashes)
     }
 
     /// Routes the draws of a frame read back before it ends (`glReadPixels` before the swap),
     /// so that the renderer traces what it will trace when the frame ends: a raster class by
-    /// the rules of [`routing`], or `Dynamic` for a traced draw (its exact class needs the whole
-    /// frame's matching; [`Classifier::classify`] replaces every class when the frame ends).
+    /// the rules of [`routing`], a `Layer` by those of [`layers`], or `Dynamic` for a traced
+    /// draw (its exact class needs the whole frame's matching; [`Classifier::classify`]
+    /// replaces every class when the frame ends).
     /// Draws routed by an earlier read-back keep their class.
     pub fn route_partial(&mut self, frame: &mut Frame) {
-        let mut traced_before = false;
-        for draw in &mut frame.draws {
-            if draw.class == DrawClass::Unclassified {
-                let (tags, _) = self.tags_of(draw);
-                draw.class = routing::raster_class(draw, traced_before, tags).unwrap_or(DrawClass::Dynamic);
+        self.layers.begin_frame();
+        let mut before = Before::default();
+        for i in 0..frame.draws.len() {
+            before.clears_before(&frame.clears, i);
+            if frame.draws[i].class == DrawClass::Unclassified {
+                let (tags, hashes) = self.tags_of(&frame.draws[i]);
+                let raster = routing::raster_class(&frame.draws[i], &before, tags);
+                let found = if matches!(raster, None | Some(DrawClass::Translucent)) { self.layer_of(&frame.draws, i, &hashes) } else { None };
+                let draw = &mut frame.draws[i];
+                (draw.class, draw.layer) = match found {
+                    Some(found) => (DrawClass::Layer, Some(found.layer)),
+                    None => (raster.unwrap_or(DrawClass::Dynamic), None),
+                };
             }
-            traced_before |= draw.class.is_traced();
+            if frame.draws[i].class.is_traced() {
+                before.traced(&frame.draws[i]);
+                self.layers.add_base(i);
+            }
         }
     }
 }
@@ -278,7 +367,11 @@ mod tests {
     use glam::Vec3;
 
     use super::*;
-    use crate::frame::state::{CompareFunc, RasterState};
+    use crate::frame::class::{LayerRole, SurfaceLighting};
+    use crate::frame::state::{Blend, BlendFactor, CompareFunc, RasterState};
+    use crate::frame::texture::EnvMode;
+    use crate::frame::{Attrib, Clear, TextureRef};
+    use lighting::tests::{sized, unit};
 
     /// A draw of `n` triangles side by side starting at `x`, seen through `modelview`.
     fn draw(n: usize, x: f32, modelview: Mat4) -> Draw {
@@ -295,6 +388,43 @@ mod tests {
         d.modelview = modelview;
         d.projection = view::perspective(1.0, 1.0, 0.1, 1000.0);
         d
+    }
+
+    /// [`draw`] textured with `units` (texture, and how many times its coordinates repeat
+    /// over each triangle's legs), every unit modulating.
+    fn textured(n: usize, x: f32, modelview: Mat4, units: &[(&TextureRef, f32)]) -> Draw {
+        let mut d = draw(n, x, modelview);
+        d.textures = units.iter().map(|(t, _)| Some((*t).clone())).collect();
+        d.texture_units = units.iter().map(|_| unit(EnvMode::Modulate)).collect();
+        let corners = |r: f32| (0..n).flat_map(move |_| [[0.0, 0.0, 0.0, 1.0], [r, 0.0, 0.0, 1.0], [0.0, r, 0.0, 1.0]]).collect();
+        d.vertices.texcoords = units.iter().map(|(_, r)| Attrib { values: corners(*r) }).collect();
+        d
+    }
+
+    /// `base`'s triangles `triangles` drawn again (vertices copied out) as a pass textured with
+    /// `units`, blending `factors` with depth test `depth` and depth writes off.
+    fn pass(base: &Draw, triangles: std::ops::Range<usize>, units: &[(&TextureRef, f32)], factors: (BlendFactor, BlendFactor), depth: CompareFunc) -> Draw {
+        let mut d = textured(triangles.len(), 0.0, base.modelview, units);
+        d.vertices.position = base.vertices.position[3 * triangles.start..3 * triangles.end].to_vec();
+        let blend = Blend { src_rgb: factors.0, dst_rgb: factors.1, ..Blend::default() };
+        d.state = Arc::new(RasterState { blend: Some(blend), depth_test: Some(depth), depth_write: false, ..(*base.state).clone() });
+        d
+    }
+
+    /// The layer of `draw` as (base, role, triangles).
+    fn layer(draw: &Draw) -> Option<(usize, LayerRole, Vec<u32>)> {
+        draw.layer.as_ref().map(|l| (l.base, l.role, l.triangles.to_vec()))
+    }
+
+    /// How traced `draw` is lit, and its light units.
+    fn lit(draw: &Draw) -> (SurfaceLighting, u8) {
+        draw.instance.map(|i| (i.lighting, i.light_units)).expect("traced")
+    }
+
+    /// `colours` as the per-vertex colours of `draw`.
+    fn coloured(mut draw: Draw, colour: impl Fn(usize) -> [f32; 4]) -> Draw {
+        draw.vertices.color = Attrib { values: (0..draw.vertices.len()).map(colour).collect() };
+        draw
     }
 
     fn classify(c: &mut Classifier, number: u64, draws: Vec<Draw>) -> Frame {
@@ -416,5 +546,138 @@ mod tests {
             assert!(view::same_place(&f.view.unwrap().view, &camera), "frame {k}");
             assert!(f.draws.iter().all(|d| d.instance.unwrap().model == Some(Mat4::IDENTITY)), "frame {k}: in the world frame");
         }
+    }
+
+    #[test]
+    fn multi_pass_materials_become_layers_of_their_base() {
+        use BlendFactor::{DstColor, One, OneMinusSrcAlpha, SrcAlpha, SrcColor, Zero};
+        use CompareFunc::{Equal, LessEqual};
+        use LayerRole::{Albedo, BakedLight, Decal, Emission};
+        // A 64² surface texture once over each triangle's legs, a 128² lightmap page of which a
+        // triangle covers a 16th across (64 times fewer texels), a 32² detail texture 8 times.
+        let (texture, page, detail) = (sized(1, 64, 64), sized(2, 128, 128), sized(3, 32, 32));
+        let camera = Mat4::from_translation(Vec3::new(0.0, -1.0, -20.0));
+        let frame = |c: &mut Classifier, number| {
+            // Quake 3's multitexture (base × lightmap on unit 1), its detail pass, a dynamic
+            // light pass over its triangles 2 and 3, a decal over triangle 0.
+            let floor = textured(4, 0.0, camera, &[(&texture, 1.0), (&page, 1.0 / 16.0)]);
+            let detail_pass = pass(&floor, 0..4, &[(&detail, 8.0)], (DstColor, SrcColor), LessEqual);
+            let dlight = pass(&floor, 2..4, &[(&texture, 1.0)], (One, One), Equal);
+            let decal = pass(&floor, 0..1, &[(&texture, 1.0)], (SrcAlpha, OneMinusSrcAlpha), LessEqual);
+            // A texture, then its lightmap as a pass; a lightmap base pass, then the texture
+            // multiplied over it (`GL_ZERO, GL_SRC_COLOR`).
+            let metal = textured(2, 10.0, camera, &[(&texture, 1.0)]);
+            let lightmap_pass = pass(&metal, 0..2, &[(&page, 1.0 / 16.0)], (DstColor, Zero), Equal);
+            let lightmap_base = textured(2, 20.0, camera, &[(&page, 1.0 / 16.0)]);
+            let texture_pass = pass(&lightmap_base, 0..2, &[(&texture, 1.0)], (Zero, SrcColor), LessEqual);
+            // Water over nothing traced; a pass over the floor's triangles seen elsewhere.
+            let water = pass(&draw(2, 30.0, camera), 0..2, &[(&texture, 1.0)], (SrcAlpha, OneMinusSrcAlpha), LessEqual);
+            let elsewhere = Draw { modelview: Mat4::IDENTITY, ..pass(&floor, 0..1, &[(&texture, 1.0)], (One, One), Equal) };
+            // A plain wall; a GL-lit wall with a lightmap on unit 1.
+            let wall = draw(2, 40.0, camera);
+            let mut lit_wall = textured(2, 50.0, camera, &[(&texture, 1.0), (&page, 1.0 / 16.0)]);
+            lit_wall.state = Arc::new(RasterState { lighting: Some(Default::default()), ..(*lit_wall.state).clone() });
+            let draws = vec![floor, detail_pass, dlight, decal, metal, lightmap_pass, lightmap_base, texture_pass, water, elsewhere, wall, lit_wall];
+            classify(c, number, draws)
+        };
+        let mut c = Classifier::with_config(config::Config::default());
+        for number in 0..3 {
+            let f = frame(&mut c, number);
+            let classes: Vec<DrawClass> = f.draws.iter().map(|d| d.class).collect();
+            use DrawClass::{Layer, Static, Translucent};
+            assert_eq!(classes, [Static, Layer, Layer, Layer, Static, Layer, Static, Layer, Translucent, Translucent, Static, Static], "frame {number}");
+            let layers: Vec<_> = f.draws.iter().filter_map(layer).collect();
+            assert_eq!(
+                layers,
+                [(0, Albedo, vec![0, 1, 2, 3]), (0, Emission, vec![2, 3]), (0, Decal, vec![0]), (4, BakedLight, vec![0, 1]), (6, Albedo, vec![0, 1])],
+                "frame {number}"
+            );
+            let bases = [0, 4, 6, 10, 11].map(|i| lit(&f.draws[i]));
+            use SurfaceLighting::{Baked, Traced};
+            assert_eq!(bases, [(Baked, 0b10), (Baked, 0), (Baked, 0b01), (Traced, 0), (Traced, 0b10)], "frame {number}");
+            assert_eq!((f.stats.classes.get(Layer), f.stats.triangles.get(Layer)), (5, 11));
+            // The static world holds the plain wall and the GL-lit one (its chunks are its
+            // albedo), none of the surfaces it would take layers or baked light from.
+            let in_world: Vec<bool> = f.draws.iter().filter_map(|d| d.instance).map(|i| i.in_static_world).collect();
+            assert_eq!(in_world, [false, false, false, number > 0, number > 0], "frame {number}");
+            assert_eq!(f.stats.static_world_triangles, if number > 0 { 4 } else { 0 }, "frame {number}");
+        }
+        // Read back before it ends, the frame is routed as its end will be.
+        let mut partial = frame(&mut Classifier::with_config(config::Config::default()), 0);
+        partial.draws.iter_mut().for_each(|d| (d.class, d.layer) = (DrawClass::Unclassified, None));
+        c.route_partial(&mut partial);
+        assert_eq!(partial.draws.iter().filter_map(layer).map(|l| (l.0, l.1)).collect::<Vec<_>>(), [(0, Albedo), (0, Emission), (0, Decal), (4, BakedLight), (6, Albedo)]);
+        assert_eq!([0, 4, 8].map(|i| partial.draws[i].class), [DrawClass::Dynamic, DrawClass::Dynamic, DrawClass::Translucent]);
+    }
+
+    #[test]
+    fn a_lightmap_tag_makes_a_texture_light_whatever_its_density() {
+        // The "lightmap" here is as fine as the texture.
+        let (texture, lightmap) = (sized(1, 64, 64), sized(2, 64, 64));
+        let hash = texture_hash::content_hash(&lightmap.content);
+        let (config, _) = crate::config::Config::parse(&format!("lightmap = [\"{hash:#x}\"]\n"), "g.toml").unwrap();
+        let camera = Mat4::from_translation(Vec3::new(0.0, 0.0, -10.0));
+        let base = textured(2, 0.0, camera, &[(&texture, 1.0)]);
+        let over = pass(&base, 0..2, &[(&lightmap, 1.0)], (BlendFactor::DstColor, BlendFactor::Zero), CompareFunc::Equal);
+        let two_units = textured(2, 10.0, camera, &[(&texture, 1.0), (&lightmap, 1.0)]);
+        let roles = |config: config::Config| {
+            let f = classify(&mut Classifier::with_config(config), 0, vec![base.clone(), over.clone(), two_units.clone()]);
+            (layer(&f.draws[1]).map(|l| l.1), lit(&f.draws[0]), lit(&f.draws[2]))
+        };
+        let untagged = roles(config::Config::default());
+        assert_eq!(untagged, (Some(LayerRole::Albedo), (SurfaceLighting::Traced, 0), (SurfaceLighting::Traced, 0)));
+        let tagged = roles(config::Config::from(&config));
+        assert_eq!(tagged, (Some(LayerRole::BakedLight), (SurfaceLighting::Baked, 0), (SurfaceLighting::Baked, 0b10)));
+    }
+
+    #[test]
+    fn vertex_colours_are_baked_light_or_lighting() {
+        let camera = Mat4::from_translation(Vec3::new(0.0, -1.0, -20.0));
+        let grey = |k: f32| move |i: usize| [0.2 + 0.1 * (i % 3) as f32 + k, 0.5, 0.5, 1.0];
+        let mut c = Classifier::with_config(config::Config::default());
+        for number in 0..3u64 {
+            let k = number as f32 * 0.01;
+            let place = Mat4::from_translation(Vec3::new(k, 0.0, 0.0));
+            let mut gl_lit = coloured(draw(2, 40.0, camera), grey(0.0));
+            gl_lit.state = Arc::new(RasterState { lighting: Some(Default::default()), ..(*gl_lit.state).clone() });
+            let draws = vec![
+                draw(8, 0.0, camera),                          // white: its colour is its albedo
+                coloured(draw(2, 10.0, camera), grey(0.0)),    // vertex-lit world: baked
+                coloured(draw(2, 20.0, camera), grey(k)),      // a model standing, light changing
+                coloured(draw(2, 30.0, camera * place), grey(0.0)), // a model moving
+                gl_lit,
+            ];
+            let f = classify(&mut c, number, draws);
+            let lighting: Vec<SurfaceLighting> = f.draws.iter().map(|d| lit(d).0).collect();
+            use SurfaceLighting::{Baked, Traced, VertexLit};
+            let expected = if number == 0 { [Traced, Baked, Baked, Baked, Traced] } else { [Traced, Baked, VertexLit, VertexLit, Traced] };
+            assert_eq!(lighting, expected, "frame {number}");
+            assert_eq!(f.draws[2].class, DrawClass::Static, "same geometry, same place");
+            // Chunks do not say how a surface is lit: only the traced-lit ones are offered.
+            let in_world: Vec<bool> = f.draws.iter().map(|d| d.instance.unwrap().in_static_world).collect();
+            assert_eq!(in_world, [number > 0, false, false, false, number > 0], "frame {number}");
+        }
+    }
+
+    #[test]
+    fn the_view_weapon_and_hud_icons_are_drawn_over_the_scene() {
+        let camera = Mat4::from_translation(Vec3::new(0.0, -1.0, -20.0));
+        let with = |d: Draw, f: &dyn Fn(&mut RasterState)| {
+            let mut s = (*d.state).clone();
+            f(&mut s);
+            Draw { state: Arc::new(s), ..d }
+        };
+        let draws = vec![
+            draw(8, 0.0, camera),
+            with(draw(2, 0.0, Mat4::IDENTITY), &|s| s.depth_range = [0.0, 0.3]), // weapon
+            draw(3, 20.0, camera),                                               // after the clear
+            with(draw(4, 0.0, Mat4::IDENTITY), &|s| s.viewport = [10, 0, 24, 24]), // icon
+        ];
+        let clear = Clear { before_draw: 2, depth: Some(1.0), depth_mask: true, scissor: Some([10, 0, 24, 24]), ..Clear::default() };
+        let mut frame = Frame { number: 0, draws, clears: vec![clear], ..Frame::default() };
+        Classifier::with_config(config::Config::default()).classify(&mut frame, |_| None);
+        let classes: Vec<DrawClass> = frame.draws.iter().map(|d| d.class).collect();
+        assert_eq!(classes, [DrawClass::Static, DrawClass::Overlay, DrawClass::Overlay, DrawClass::Overlay]);
+        assert!(frame.draws[1..].iter().all(|d| d.instance.is_none()));
     }
 }

@@ -94,7 +94,7 @@ const FACING_SAMPLE: u32 = 16;
 
 /// Hasher for keys that are hashes already (and small tuples of them): one multiply per word.
 #[derive(Default)]
-struct KeyHasher(u64);
+pub(super) struct KeyHasher(u64);
 
 impl Hasher for KeyHasher {
     fn finish(&self) -> u64 {
@@ -119,7 +119,8 @@ impl Hasher for KeyHasher {
     }
 }
 
-type Map<K, V> = HashMap<K, V, BuildHasherDefault<KeyHasher>>;
+/// A hash map keyed by hashes (or small tuples of them), with [`KeyHasher`].
+pub(super) type Map<K, V> = HashMap<K, V, BuildHasherDefault<KeyHasher>>;
 
 /// The world-space triangles of one opaque draw, offered to [`StaticWorld::offer`].
 pub struct WorldTriangles<'a> {
