@@ -84,7 +84,7 @@ struct Source {
 /// The modules of shared constants and the headers they become.
 const SOURCES: &[Source] = &[
     Source { name: "trace_bindings", rust: "src/render/trace/bindings.rs", constants: trace_bindings::CONSTANTS, fields: &[] },
-    Source { name: "trace_constants", rust: "src/render/trace/shader_constants.rs", constants: trace_constants::CONSTANTS, fields: &[] },
+    Source { name: "trace_constants", rust: "src/render/trace/shader_constants.rs", constants: trace_constants::CONSTANTS, fields: trace_constants::FIELDS },
     Source { name: "texenv_codes", rust: "src/render/texenv/codes.rs", constants: texenv_codes::CONSTANTS, fields: texenv_codes::FIELDS },
     Source { name: "ff_interface", rust: "src/render/raster/ff/shader_interface.rs", constants: ff_interface::CONSTANTS, fields: ff_interface::FIELDS },
 ];

@@ -3,10 +3,13 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
 // The compute path tracer's tracing pass: per traced pixel, one path of a primary ray,
-// next-event estimation at every vertex (one shadow ray per light), `bounces` indirect
-// bounces and the environment (trace/environment.glsl: the sky cube map or the clear colour)
-// through every continuation ray that misses (cosine-weighted diffuse or GGX visible-normal
-// specular), and through primary rays that miss; adds its share of the noisy radiance
+// next-event estimation at every vertex (one shadow ray per light, one towards a point of an
+// emissive triangle, trace/emitters.glsl, weighted against continuation rays that hit
+// emitters by multiple importance sampling), `bounces` indirect bounces and the environment
+// (trace/environment.glsl: the sky cube map or the clear colour) through every continuation
+// ray that misses (cosine-weighted diffuse or GGX visible-normal specular), and through
+// primary rays that miss; a baked surface (render::trace::material) ends the path with its
+// emission; adds its share of the noisy radiance
 // (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
 // (trace/gbuffer.glsl). The tracer dispatches this pass once per sample of the frame (see
 // `dispatch` in src/render/trace/compute.rs for why). src/render/trace/mod.rs describes
@@ -19,7 +22,7 @@ layout(push_constant) uniform Pass {
     uint sample_index;
 } pass;
 
-#include "trace/lights.glsl"
+#include "trace/emitters.glsl"
 #include "trace/gbuffer.glsl"
 #include "trace/environment.glsl"
 
@@ -53,6 +56,7 @@ void main() {
     uint samples = max(frame.counts.y, 1u);
     uint bounces = frame.counts.z;
     uint light_count = frame.counts.w;
+    uint emitter_count = frame.flags.z;
     // Window pixels per traced pixel.
     vec2 scale = vec2(frame.size.zw) / vec2(size);
 
@@ -86,10 +90,14 @@ void main() {
         if (!hit_found) {
             radiance = environment(dir);
         }
-        // Vertex `depth` of the path: emission, next-event estimation towards every light,
-        // then a continuation ray; the environment is found by continuation rays that miss
-        // (also after the last vertex, so bounces = 0 is direct light with the sky included),
-        // and a continuation ray past the last vertex that hits adds nothing.
+        // Vertex `depth` of the path: emission, next-event estimation towards every light and
+        // one emitter, then a continuation ray; the environment is found by continuation rays
+        // that miss (also after the last vertex, so bounces = 0 is direct light with the sky
+        // included), and a continuation ray past the last vertex that hits adds nothing (so
+        // the emitter sample of the last vertex counts whole). `bsdf_density` is the density
+        // with which the previous vertex chose the ray that reached this one, when it also
+        // sampled emitters (the MIS weight of the emission found here).
+        float bsdf_density = 0.0;
         for (uint depth = 0u; hit_found; depth++) {
             cone_width += cone_spread * hit.t;
             Surface s = surface_at(hit, origin, dir, cone_width);
@@ -106,13 +114,21 @@ void main() {
                 g.material = packUnorm4x8(vec4(s.roughness, s.metalness, 0.0, 0.0));
                 g.instance = hit.instance;
             }
-            radiance += throughput * s.emission;
-            // A baked surface (a kept lightmap, render::trace::scene) only emits: the path ends.
+            vec3 emitted = s.emission;
+            if (bsdf_density > 0.0 && s.emitter_density > 0.0) {
+                float w = mis_weight(bsdf_density, emitter_solid_angle_density(s, hit.t, abs(dot(s.geometric, dir))));
+                emitted -= (1.0 - w) * s.sampled_emission;
+            }
+            radiance += throughput * emitted;
+            // A baked surface (render::trace::material) only emits: the path ends.
             if (s.baked) {
                 break;
             }
             for (uint i = 0u; i < light_count; i++) {
                 radiance += throughput * direct_light(s, v, i, rng, shadow);
+            }
+            if (emitter_count > 0u) {
+                radiance += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces, rng, shadow);
             }
             vec3 l;
             bool chose_specular;
@@ -125,6 +141,7 @@ void main() {
                 break;
             }
             throughput *= brdf_eval_cos(s, v, l) / pdf;
+            bsdf_density = emitter_count > 0u ? pdf : 0.0;
             if (chose_specular) {
                 specular += 1u;
             } else {

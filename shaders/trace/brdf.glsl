@@ -11,12 +11,14 @@ struct Surface {
     vec3 normal;        // shading normal, on the side the ray came from
     vec3 geometric;     // geometric normal, on the side the ray came from
     vec3 albedo;        // linear
-    vec3 emission;      // linear radiance
+    vec3 emission;      // linear radiance it emits
+    vec3 sampled_emission; // the part of `emission` that next-event estimation samples (emitters.glsl)
+    float emitter_density; // the probability density per unit area (eye space) that emitter sampling picks this point; 0 when not listed
     float roughness;
     float metalness;
     float specular;     // dielectric F0
     float alpha;        // coverage (texture and colour alpha)
-    bool baked;         // a kept lightmap holds its light: emission is all it sends, it reflects nothing
+    bool baked;         // its light is baked: emission is all it sends, it reflects nothing
 };
 
 // Reflectance at normal incidence.

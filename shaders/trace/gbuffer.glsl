@@ -29,8 +29,8 @@ struct AccumSample {
     vec4 color;         // rgb: mean linear radiance; a: frames in the mean
     float view_z;
     uint normal;
-    uint pad0;
-    uint pad1;
+    uint material;      // the key of the material the mean is of (Material.key)
+    uint pad;
 };
 
 layout(set = TRACE_SET, binding = BINDING_ACCUMULATION, std430) buffer Accumulation {

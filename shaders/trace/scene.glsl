@@ -1,5 +1,5 @@
 // The traced scene as the compute shaders read it: per-frame constants, per-triangle shading
-// attributes, materials and lights. Mirrored by src/render/trace/gpu_types.rs, whose layouts
+// attributes and pass corners, materials, lights and emitters. Mirrored by src/render/trace/gpu_types.rs, whose layouts
 // the build checks against this file's compiled SPIR-V; the flags are generated from
 // src/render/trace/shader_constants.rs. Everything is in the eye space of the current frame.
 
@@ -17,11 +17,11 @@ layout(set = TRACE_SET, binding = BINDING_FRAME, std430) readonly buffer TraceFr
     vec4 environment;           // linear radiance of missed rays (rgb) without FRAME_SKY
     vec4 viewport;              // the GL viewport traced: x, y, width, height in window pixels
     vec4 depth_range;           // near, far of glDepthRange; z, w unused
-    vec4 params;                // x: exposure multiplier; y: history cap (frames); z: unused;
-                                // w: ray-cone spread angle of one traced pixel (radians)
+    vec4 params;                // x: exposure multiplier; y: history cap (frames); z: knee of
+                                // TONEMAP_KNEE; w: ray-cone spread angle of one traced pixel (radians)
     uvec4 size;                 // traced width, height; window width, height
     uvec4 counts;               // frame index (random seed), samples per pixel, bounces, lights
-    uvec4 flags;                // x: FRAME_* bits; y: instance count; z, w unused
+    uvec4 flags;                // x: FRAME_* bits; y: instance count; z: emitter count; w unused
 } frame;
 
 // The shading attributes of one triangle corner.
@@ -39,31 +39,64 @@ layout(set = TRACE_SET, binding = BINDING_ATTRIBUTES, std430) readonly buffer At
     TriangleAttributes attributes[];
 };
 
-// One traced texture unit of a material: what texenv.glsl's tex_env needs to apply it, and
-// what the surface makes of it (render::trace::scene's module doc).
+// One traced texture unit or pass of a material: what texenv.glsl's tex_env needs to apply it,
+// how a pass blends, and what the surface makes of it (render::trace::material's module doc).
 struct Layer {
     vec4 env_color;     // GL_TEXTURE_ENV_COLOR
+    vec4 blend_color;   // a pass's glBlendColor
     uint texture;       // texel pool index, or NO_TEXTURE
     uint env;           // the unit word's FORMAT and ENV fields (generated/texenv_codes.glsl)
     uint combine_rgb;   // the combiner words (ENV_COMBINE)
     uint combine_alpha;
     uint role;          // LAYER_*
-    uint pad[3];
+    uint blend;         // a pass's blend function (BLEND_* fields; units: GL_ONE, GL_ZERO)
+    uint alpha_func;    // a pass's alpha test (gl_compare.glsl order; 7: always)
+    float alpha_ref;
+};
+
+// What one triangle's corners carry for one pass of its surface.
+struct LayerCorners {
+    vec2 uv[3];         // the pass's unit-0 coordinates at each corner
+    uint color[3];      // the pass's primary colour at each corner, sRGB-encoded unorm8 RGBA
+    uint covered;       // 1: the pass covers the triangle; 0: it leaves it as it is
+};
+
+layout(set = TRACE_SET, binding = BINDING_LAYER_CORNERS, std430) readonly buffer LayerCornerBlock {
+    LayerCorners layer_corners[];
 };
 
 struct Material {
-    vec4 emission;      // linear emitted radiance (rgb); a: emissive scale applied to the albedo
-    Layer layer[TRACED_UNITS]; // layer u: texture unit u, with corner coordinates uv[u]
+    vec4 emission;      // linear emitted radiance (rgb); a: emissive scale applied to the raster colour
+    Layer layer[MATERIAL_LAYERS]; // layer u < TRACED_UNITS: texture unit u (corner coordinates uv[u]); then the passes
     float roughness;    // GGX alpha = roughness^2
     float metalness;
     float specular;     // dielectric reflectance at normal incidence (F0)
     uint alpha_func;    // the alpha test's compare function (gl_compare.glsl order; 7: always)
     float alpha_ref;
-    uint pad[3];
+    uint flags;         // MATERIAL_*
+    uint layer_corners; // the instance's first LayerCorners record (passes per triangle, BVH order)
+    uint passes;        // passes of the surface
+    uint emitters;      // the instance's first Emitter (one per triangle, BVH order), or NO_EMITTER
+    uint key;           // a hash of what the material shows (the temporal pass's history follows it)
+    uint pad[2];
 };
 
 layout(set = TRACE_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials {
     Material materials[];
+};
+
+// One emissive triangle of the frame: an entry of the alias table next-event estimation draws
+// triangles from in proportion to their power (render::trace::emitters).
+struct Emitter {
+    uint instance;      // its instance
+    uint triangle;      // its triangle (global index)
+    uint alias;         // the entry taken when the draw exceeds `threshold`
+    float threshold;
+    float probability;  // probability that a sample picks this triangle
+};
+
+layout(set = TRACE_SET, binding = BINDING_EMITTERS, std430) readonly buffer Emitters {
+    Emitter emitters[];
 };
 
 struct Light {

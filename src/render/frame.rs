@@ -11,7 +11,8 @@
 //! 5. composite ([`Composite::record`]): the traced colour and depth into the framebuffer, at
 //!    the place of the first traced draw;
 //! 6. raster composite, the rest: the draws after it (translucent, overlay) over the traced
-//!    image, depth-tested against its depth;
+//!    image, depth-tested against its depth; the passes of traced surfaces (draws of class
+//!    `Layer` the tracer evaluates, [`Surfaces`]) are not rasterized;
 //! 7. present ([`Raster::present`]: back to front at a swap, the outputs, submission) or read
 //!    back ([`Raster::read`]).
 //!
@@ -31,7 +32,8 @@ use crate::render::raster::output::FrameOutput;
 use crate::render::raster::renderer::{FRAMES_IN_FLIGHT, Raster, Recorder};
 use crate::render::trace::composite::Composite;
 use crate::render::trace::settings::Settings;
-use crate::render::trace::{self, RayTracer, scene};
+use crate::render::trace::surfaces::Surfaces;
+use crate::render::trace::{self, RayTracer};
 
 /// The Vulkan renderer: owns the stages of a frame.
 pub struct Renderer {
@@ -105,17 +107,20 @@ impl Renderer {
 
     /// Records what of `frame` is not recorded yet: the stages of the module doc, in order.
     fn record(&mut self, frame: &Frame) -> Result<()> {
-        let traced_at = self.tracing.as_ref().and_then(|_| scene::first_traced(frame));
-        let rasterized = |draw: &Draw| traced_at.is_none() || !scene::is_traced(draw);
+        // The traced surfaces (bases and their passes): neither is rasterized when tracing.
+        let surfaces = self.tracing.as_ref().map(|_| Surfaces::of(frame));
+        let traced_at = surfaces.as_ref().and_then(Surfaces::first);
+        let rasterized = |index: usize| !surfaces.as_ref().is_some_and(|s| s.is_traced(index));
         // Raster composite up to the traced image's place: clears, pixel operations, draws.
         self.raster.record(frame, traced_at, &rasterized)?;
         // The traced stages, once per frame, in place of the first traced draw.
         if let Some(tracing) = &mut self.tracing
+            && let Some(surfaces) = &surfaces
             && let Some(at) = traced_at
             && self.raster.recorded_draws(frame) == at
         {
             let mut rec = self.raster.recorder_into(None, frame.size)?;
-            tracing.record(&mut rec, frame, &frame.draws[at])?;
+            tracing.record(&mut rec, frame, surfaces, &frame.draws[at])?;
             self.raster.skip_draw(frame, at);
         }
         // Raster composite, the rest: the draws after it (glass, HUD), over the traced image
@@ -145,11 +150,11 @@ impl Renderer {
 }
 
 impl Tracing {
-    /// Records the traced stages of `frame` into `rec` (the window's framebuffer, at the place
-    /// of `camera`, the first traced draw).
-    fn record(&mut self, rec: &mut Recorder<'_>, frame: &Frame, camera: &Draw) -> Result<()> {
+    /// Records the traced stages of `frame`, whose traced surfaces are `surfaces`, into `rec`
+    /// (the window's framebuffer, at the place of `camera`, the first traced draw).
+    fn record(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw) -> Result<()> {
         // Upload and acceleration structures.
-        let scene = self.backend.build(rec, frame, camera)?;
+        let scene = self.backend.build(rec, frame, surfaces, camera)?;
         // Trace: the G-buffer and radiance (nothing when no geometry is on the GPU yet).
         let Some(radiance) = self.backend.trace(rec, &scene)? else { return Ok(()) };
         // Denoising (issue 20) and radiosity (issue 19) come here, as stages on `radiance`.

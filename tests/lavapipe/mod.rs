@@ -1,6 +1,7 @@
 //! Shared helpers of the tests that draw through the Vulkan renderer: the renderer on Mesa
 //! lavapipe (when its ICD file exists; the machine's Vulkan driver otherwise), a context
-//! drawing into it, a renderer shared with the test, and pixel read-back.
+//! drawing into it, a renderer shared with the test, a sink that classifies draws as the test
+//! says, and pixel read-back.
 
 #![allow(dead_code)]
 
@@ -45,6 +46,39 @@ impl FrameSink for Shared {
     fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
         self.0.lock().unwrap().read_pixels(frame, buffer, rect)
     }
+}
+
+/// A sink that edits every frame before `sink` takes it (presented or read back): the test
+/// states what hash tracking (`translate::classify`) concludes about its draws (layers, how
+/// surfaces are lit), so the renderer is tested on the frames it will get.
+pub struct Classified<S> {
+    /// The sink frames go to.
+    pub sink: S,
+    /// The edit.
+    pub edit: Box<dyn Fn(&mut Frame) + Send>,
+}
+
+impl<S: FrameSink> FrameSink for Classified<S> {
+    fn present(&mut self, mut frame: Frame) {
+        (self.edit)(&mut frame);
+        self.sink.present(frame);
+    }
+
+    fn set_target(&mut self, target: Target) {
+        self.sink.set_target(target);
+    }
+
+    fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
+        let mut frame = frame.clone();
+        (self.edit)(&mut frame);
+        self.sink.read_pixels(&frame, buffer, rect)
+    }
+}
+
+/// A context drawing into `renderer` through [`Classified`] with `edit`, not yet bound to a
+/// drawable.
+pub fn classified_context_on(renderer: Renderer, edit: impl Fn(&mut Frame) + Send + 'static) -> Context {
+    Context::new(ContextConfig { share: None, sink: Box::new(Classified { sink: renderer, edit: Box::new(edit) }) })
 }
 
 /// A context drawing into `renderer`, not yet bound to a drawable.

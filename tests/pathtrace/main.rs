@@ -2,17 +2,20 @@
 //! missing), one test binary: its BVH traversal ([`bvh`]) and texel pool ([`texels`]) against
 //! their CPU mirrors, geometry kept across frames ([`geometry`]), light transport against
 //! physics ([`physics`]) and against the independent CPU tracer of [`reference_tracer`]
-//! ([`cornell`], which [`reference`] checks first), and composition with the raster path
-//! ([`composite`]).
+//! ([`cornell`], which [`reference`] checks first), composition with the raster path
+//! ([`composite`]), and surfaces of several passes, baked light and emitters ([`surfaces`],
+//! on frames [`classified`] as hash tracking will classify them).
 
 #[path = "../lavapipe/mod.rs"]
 mod lavapipe;
 mod reference_tracer;
 
 mod bvh;
+mod classified;
 mod composite;
 mod cornell;
 mod geometry;
 mod physics;
 mod reference;
+mod surfaces;
 mod texels;

@@ -2,6 +2,7 @@
 //! traced with tone mapping off (the output is the sRGB encoding of the radiance), and the
 //! radiance read back compared with what light transport says it must be.
 
+use crate::classified;
 use crate::lavapipe;
 use crate::reference_tracer;
 
@@ -15,9 +16,14 @@ const SIZE: i32 = 24;
 /// A context tracing with `settings` (tone mapping off), a `SIZE`² drawable and a
 /// perspective camera at the origin looking down −z with a 60° field of view.
 fn context(settings: Settings) -> Context {
+    classified_context(settings, |_| {})
+}
+
+/// [`context`], its frames classified by `classify` (see `classified.rs`).
+fn classified_context(settings: Settings, classify: impl Fn(&mut glrt::frame::Frame) + Send + 'static) -> Context {
     let mut renderer = lavapipe::renderer_with(Renderer::without_outputs);
     renderer.enable_tracing(Settings { tonemap: Tonemap::Clamp, exposure: 0.0, ..settings }).expect("the tracer's pipelines");
-    let mut ctx = lavapipe::context_on(renderer);
+    let mut ctx = lavapipe::classified_context_on(renderer, classify);
     ctx.bind_drawable(SIZE, SIZE);
     unsafe {
         dispatch::glViewport(&mut ctx, 0, 0, SIZE, SIZE);
@@ -261,22 +267,18 @@ fn lightmapped_quads(ctx: &mut Context, albedo: u32, lightmap: u32, unit_one: Un
     }
 }
 
-/// The sRGB decoding continued past 1 (`shaders/trace/pack.glsl`, `srgb_decode`).
-fn decoded(v: f64) -> f64 {
-    if v <= 0.04045 { v / 12.92 } else { ((v + 0.055) / 1.055).powf(2.4) }
-}
-
 /// Three lightmapped quads across the view (albedo texture grey 200, lightmap 64 left of x = 0
 /// and 192 right of it), unit 1 modulating (top), modulating with `RGB_SCALE` 2 (middle) and a
-/// decal (bottom), and no lights nor environment. Ignored, the lightmaps leave unlit surfaces:
-/// black. Kept, a surface shows its baked light, albedo × lightmap (scene.rs), the scale
-/// applied to the encoded lightmap before decoding; a decal on unit 1 is not a lightmap.
+/// decal (bottom), and no lights nor environment. The two lightmaps are light units of baked
+/// surfaces (`classified::lightmap_units`). Ignored, they leave unlit surfaces: black. Kept, a
+/// surface shows its raster colour, albedo × lightmap in display values, the scale applied by
+/// the combiner and clamped as GL does (material.rs); a decal on unit 1 is not a lightmap.
 #[test]
 fn kept_lightmaps_show_their_baked_light_and_ignored_ones_none() {
     let band = |y0: f32, y1: f32| [[-10.0, y0, -3.0], [10.0, y0, -3.0], [10.0, y1, -3.0], [-10.0, y1, -3.0]];
     let bands = [(UnitOne::Modulate, band(0.6, 10.0), 20), (UnitOne::Overbright, band(-0.5, 0.5), 12), (UnitOne::Decal, band(-10.0, -0.6), 3)];
     let image = |lightmaps: Lightmaps| {
-        let mut ctx = context(Settings { spp: 1, bounces: 1, lightmaps, ..Settings::default() });
+        let mut ctx = classified_context(Settings { spp: 1, bounces: 1, lightmaps, ..Settings::default() }, classified::lightmap_units);
         let albedo = grey_texture(&mut ctx, &[200]);
         let lightmap = grey_texture(&mut ctx, &[64, 192]);
         let image = render(&mut ctx, 2, [0.0; 3], |ctx| {
@@ -289,12 +291,11 @@ fn kept_lightmaps_show_their_baked_light_and_ignored_ones_none() {
     };
     assert_eq!(image(Lightmaps::Ignore), [[0, 0]; 3], "ignored: nothing lights the quads");
     let [modulate, overbright, decal] = image(Lightmaps::Keep);
-    let albedo = linear(200);
-    let want = [64u8, 192].map(|l| encoded(albedo * linear(l)));
+    let want = [64.0, 192.0].map(|l| 200.0 * l / 255.0);
     for (got, want) in modulate.iter().zip(want) {
         assert!((*got as f64 - want).abs() <= 1.0, "kept: {modulate:?} against {want:.1}");
     }
-    let want = encoded(albedo * decoded(2.0 * 64.0 / 255.0));
+    let want = 2.0 * 200.0 * 64.0 / 255.0;
     assert!((overbright[0] as f64 - want).abs() <= 1.0, "RGB_SCALE 2: {overbright:?} against {want:.1}");
     assert_eq!(overbright[1], 255, "2 × 192 saturates the display, as in GL");
     assert_eq!(decal, [0, 0], "a decal on unit 1 is not baked light");
@@ -317,7 +318,7 @@ fn baked_surfaces_light_the_others_once() {
         [[-h, h, -h], [h, h, -h], [h, h, h], [-h, h, h]],
     ];
     for (lightmaps, want) in [(Lightmaps::Keep, 150u8), (Lightmaps::Ignore, 0)] {
-        let mut ctx = context(Settings { spp: 4, bounces: 1, lightmaps, ..Settings::default() });
+        let mut ctx = classified_context(Settings { spp: 4, bounces: 1, lightmaps, ..Settings::default() }, classified::lightmap_units);
         let white = grey_texture(&mut ctx, &[255]);
         let lightmap = grey_texture(&mut ctx, &[150]);
         let image = render(&mut ctx, 2, [0.0; 3], |ctx| {

@@ -539,8 +539,9 @@ impl Raster {
 
     /// Records what of `frame` is not recorded yet, in program order, up to the draw `until`
     /// (exclusive: the clears and pixel operations placed before it are recorded) or to the
-    /// end; of the draws, those `rasterized` accepts (the others are another stage's).
-    pub fn record(&mut self, frame: &Frame, until: Option<usize>, rasterized: &dyn Fn(&Draw) -> bool) -> Result<()> {
+    /// end; of the draws, those whose index `rasterized` accepts (the others are another
+    /// stage's).
+    pub fn record(&mut self, frame: &Frame, until: Option<usize>, rasterized: &dyn Fn(usize) -> bool) -> Result<()> {
         let mut accum = std::mem::take(&mut self.accum);
         let result = self.record_with(frame, until, rasterized, &mut accum);
         self.accum = accum;
@@ -563,7 +564,7 @@ impl Raster {
 
     /// [`Raster::record`] with the accumulation buffer taken out of `self` (pixel operations
     /// that read the framebuffer submit and wait in the middle of the frame).
-    fn record_with(&mut self, frame: &Frame, until: Option<usize>, rasterized: &dyn Fn(&Draw) -> bool, accum: &mut pixel_ops::accum::Accum) -> Result<()> {
+    fn record_with(&mut self, frame: &Frame, until: Option<usize>, rasterized: &dyn Fn(usize) -> bool, accum: &mut pixel_ops::accum::Accum) -> Result<()> {
         let mut progress = match self.progress {
             Some(p) if p.frame == frame.number => p,
             _ => Progress { frame: frame.number, ..Progress::default() },
@@ -582,7 +583,7 @@ impl Raster {
         let query_of = |index: usize| frame.occlusion_queries.iter().find(|(_, range)| range.contains(&index)).map(|(q, _)| *q);
         if let Some(last) = progress.draws.checked_sub(1).and_then(|i| frame.draws.get(i))
             && last.indices.len() > progress.last_indices
-            && rasterized(last)
+            && rasterized(progress.draws - 1)
         {
             record_into!(last.state.framebuffer);
             rec.query = (frame.number, query_of(progress.draws - 1));
@@ -636,7 +637,7 @@ impl Raster {
                 }
             }
             if let Some(draw) = frame.draws.get(index).filter(|_| until != Some(index)) {
-                if rasterized(draw) {
+                if rasterized(index) {
                     record_into!(draw.state.framebuffer);
                     rec.query = (frame.number, query_of(index));
                     draw_in_buffers(&mut rec, draw)?;

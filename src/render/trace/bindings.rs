@@ -34,8 +34,12 @@ glsl_constants! {
     const COUNTERS: u32 = 13;
     /// The previous frame's G-buffer and colour, for the temporal filter (`gbuffer.glsl`).
     const HISTORY: u32 = 14;
+    /// Per-triangle corners of the materials' passes, in BVH order (`scene.glsl`).
+    const LAYER_CORNERS: u32 = 15;
+    /// The frame's emissive triangles and their alias table (`scene.glsl`, `emitters.glsl`).
+    const EMITTERS: u32 = 16;
     /// Number of storage-buffer bindings (`0..COUNT`).
-    const COUNT: u32 = 15;
+    const COUNT: u32 = 17;
     /// The environment cube map of the sky draws ([`super::sky`]), a combined image sampler
     /// (`environment.glsl`).
     const SKY: u32 = COUNT;

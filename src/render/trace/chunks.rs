@@ -8,7 +8,7 @@
 //!   whose modelview is the view.
 //! - **Shading.** A chunk is shaded as a draw of its triangles with the chunk's draw state
 //!   ([`crate::frame::world::ChunkShading`]) would be ([`scene::geometry`],
-//!   [`scene::material`]): texture of unit 0 with its environment, the `glrt.toml` material,
+//!   [`material::material`]): a surface without passes whose light is traced; texture of unit 0 with its environment, the `glrt.toml` material,
 //!   the alpha test, and as base colour the primary colour the chunk keeps per corner (Quake 3
 //!   draws lightmapped world surfaces white, its vertex-lit ones with baked light in the
 //!   colour: either way what the draw itself would be traced with), or the lit material's
@@ -27,7 +27,11 @@ use glam::Mat4;
 use xxhash_rust::xxh3::Xxh3;
 
 use super::gpu_types::GpuMaterial;
-use super::scene::{self, Geometry, MaterialDefaults};
+use super::material::{self, MaterialDefaults};
+use super::scene::{self, Geometry};
+use super::settings::Lightmaps;
+use super::shader_constants::MATERIAL_LAYERS;
+use super::surfaces::Surface;
 use crate::frame::class::{DrawClass, Instance};
 use crate::frame::state::{ColorMaterial, ColorMaterialMode, Lighting};
 use crate::frame::world::StaticChunk;
@@ -64,12 +68,14 @@ pub fn texture(chunk: &StaticChunk) -> Option<&TextureRef> {
 
 /// The world-space geometry of `chunk`.
 pub fn geometry(chunk: &StaticChunk) -> Geometry {
-    scene::geometry(&as_draw(chunk, true))
+    scene::geometry(&Surface { base: &as_draw(chunk, true), passes: Vec::new() })
 }
 
 /// The material of `chunk`, whose unit-0 texture is `texture` in the texel pool.
 pub fn material(chunk: &StaticChunk, texture: Option<u32>, defaults: &MaterialDefaults) -> GpuMaterial {
-    scene::material(&as_draw(chunk, false), [texture, None], defaults)
+    let textures: [Option<u32>; MATERIAL_LAYERS] = std::array::from_fn(|i| texture.filter(|_| i == 0));
+    // The lighting of a chunk is traced: how baked surfaces are traced does not matter.
+    material::material(&Surface { base: &as_draw(chunk, false), passes: Vec::new() }, textures, defaults, Lightmaps::default())
 }
 
 /// `chunk` as the draw of its triangles in the world frame: its state, texture, material and,

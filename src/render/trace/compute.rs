@@ -13,14 +13,19 @@ use gpu_allocator::MemoryLocation;
 use xxhash_rust::xxh3::Xxh3;
 
 use super::bvh::Tlas;
+use super::emitters::{self, EmitterList, Estimate};
 use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight};
 use super::instances::{self, Source};
 use super::lights::{self, LightSettings};
+use super::material::{self, MaterialDefaults};
 use super::pipelines::TracePipelines;
 use super::resident::{NewGeometry, Resident};
-use super::scene::{self, MaterialDefaults};
-use super::settings::{Settings, Tonemap};
-use super::shader_constants::{FRAME_PERSPECTIVE, FRAME_SKY, INSTANCE_ALPHA_TESTED, TONEMAP_ACES, TONEMAP_CLAMP, TONEMAP_REINHARD, TRACE_GROUP};
+use super::scene;
+use super::settings::{KNEE, Settings, Tonemap};
+use super::shader_constants::{
+    FRAME_PERSPECTIVE, FRAME_SKY, INSTANCE_ALPHA_TESTED, MATERIAL_LAYERS, TONEMAP_ACES, TONEMAP_CLAMP, TONEMAP_KNEE, TONEMAP_REINHARD, TRACE_GROUP,
+};
+use super::surfaces::Surfaces;
 use super::sky::Sky;
 use super::stats::{RayCounts, SceneCounts, Statistics};
 use super::texels::TexelPool;
@@ -195,7 +200,7 @@ impl ComputeTracer {
         let slot = rec.slot();
         let gpu_frame = &scene.frame;
         let Some(pixels) = &self.pixels else { return Ok(None) };
-        let Some([nodes, triangles, attributes]) = self.resident.buffers() else { return Ok(None) };
+        let Some([nodes, triangles, attributes, layer_corners]) = self.resident.buffers() else { return Ok(None) };
         let align = device.properties.limits.min_storage_buffer_offset_alignment.max(16);
         // A binding's range must not be empty: empty arrays get one zeroed element.
         let mut push = |bytes: &[u8]| -> Result<(vk::Buffer, u64, u64)> {
@@ -213,6 +218,7 @@ impl ComputeTracer {
         let instance_slice = push(bytemuck::cast_slice(&scene.instances))?;
         let material_slice = push(bytemuck::cast_slice(&scene.materials))?;
         let light_slice = push(bytemuck::cast_slice(&scene.lights))?;
+        let emitter_slice = push(bytemuck::cast_slice(&scene.emitters))?;
         let tlas_slice = push(bytemuck::cast_slice(&self.tlas.nodes))?;
         let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
         let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(None) };
@@ -235,6 +241,8 @@ impl ComputeTracer {
         table[bindings::OUTPUT as usize] = whole(&pixels.output);
         table[bindings::COUNTERS as usize] = whole(counters);
         table[bindings::HISTORY as usize] = whole(&pixels.accumulation[self.parity ^ 1]);
+        table[bindings::LAYER_CORNERS as usize] = (layer_corners.0, 0, layer_corners.1);
+        table[bindings::EMITTERS as usize] = emitter_slice;
 
         let pool = self.pools[slot];
         // Safety (this block): the pool's sets of this slot's previous frame are finished (the
@@ -288,24 +296,26 @@ impl ComputeTracer {
 impl RayTracer for ComputeTracer {
     /// Gathers the instances, builds the BVHs of new geometry (or refits the last BVH of a
     /// moved dynamic draw) on the CPU and uploads them with the texels, draws the sky cube
-    /// when it changed, and builds the top-level BVH over the instances on the CPU.
-    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, camera: &Draw) -> Result<GpuScene> {
+    /// when it changed, builds the top-level BVH over the instances on the CPU and lists the
+    /// emissive triangles.
+    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw) -> Result<GpuScene> {
         let slot = rec.slot();
         let device = rec.device;
         self.read_counters(device, slot);
         rec.end_rendering();
         let cmd = rec.cmd;
-        let draws: Vec<&Draw> = frame.draws.iter().filter(|d| scene::is_traced(d)).collect();
+        let traced = surfaces.surfaces(frame);
+        let draws: Vec<&Draw> = traced.iter().map(|s| s.base).collect();
 
         let previous_view = self.previous.and_then(|p| p.view).filter(|_| !frame.stats.camera_cut);
-        let (items, covered_draws) = instances::gather(frame, &draws, previous_view, self.settings.lightmaps);
+        let (items, covered_draws) = instances::gather(frame, traced, previous_view);
 
         // Geometry: build (or refit) and upload what is new.
         let mut new: Vec<NewGeometry> = Vec::new();
         for item in &items {
             if self.resident.lookup(item.key, frame.number).is_none() && !new.iter().any(|n| n.key == item.key) {
-                let refit_from = match item.source {
-                    Source::Draw(draw) => self.tracks.refit_source(draw),
+                let refit_from = match &item.source {
+                    Source::Surface(surface) => self.tracks.refit_source(surface.base),
                     Source::Chunk(_) => None,
                 };
                 new.push(NewGeometry { key: item.key, geometry: item.geometry(), refit_from });
@@ -313,24 +323,25 @@ impl RayTracer for ComputeTracer {
         }
         self.resident.insert_all(device, cmd, rec.ring, new, frame.number)?;
         for item in &items {
-            if let Source::Draw(draw) = item.source {
-                self.tracks.record(draw, item.key, frame.number);
+            if let Source::Surface(surface) = &item.source {
+                self.tracks.record(surface.base, item.key, frame.number);
             }
         }
         self.tracks.prune(frame.number);
 
-        // Textures: unit 0, and unit 1 where it is a kept lightmap.
-        let textured: Vec<[Option<&crate::frame::TextureRef>; 2]> = items.iter().map(|item| item.textures(self.settings.lightmaps)).collect();
+        // Textures: the traced units' and the passes'.
+        let textured: Vec<[Option<&crate::frame::TextureRef>; MATERIAL_LAYERS]> = items.iter().map(|item| item.textures()).collect();
         let refs: Vec<&crate::frame::TextureRef> = textured.iter().flatten().flatten().copied().collect();
         let mut indices = self.texels.prepare(&refs).into_iter();
-        let texture_of: Vec<[Option<u32>; 2]> = textured.iter().map(|units| units.map(|t| t.and_then(|_| indices.next()))).collect();
+        let texture_of: Vec<[Option<u32>; MATERIAL_LAYERS]> = textured.iter().map(|units| units.map(|t| t.and_then(|_| indices.next()))).collect();
         self.upload_texels(device, cmd, rec.ring)?;
 
-        // Instances, materials, lights.
+        // Instances, materials, emitters, lights.
         let defaults = MaterialDefaults::default();
         let mut instances = Vec::with_capacity(items.len());
         let mut materials = Vec::with_capacity(items.len());
         let mut bounds = Vec::with_capacity(items.len());
+        let mut emitter_list = EmitterList::default();
         let mut signature = Xxh3::new();
         // New texture contents (an updated lightmap, an animated texture) restart accumulation.
         for t in &refs {
@@ -340,7 +351,20 @@ impl RayTracer for ComputeTracer {
         let mut counts = SceneCounts { covered_draws, built: self.resident.built, refitted: self.resident.refitted, ..SceneCounts::default() };
         for (i, item) in items.iter().enumerate() {
             let Some(placement) = self.resident.lookup(item.key, frame.number) else { continue };
-            let material = item.material(texture_of[i], &defaults);
+            let mut material = item.material(texture_of[i], &defaults, self.settings.lightmaps);
+            material.layer_corners = placement.first_layer_corners;
+            if self.settings.sample_emitters
+                && emitters::is_emissive(&material)
+                && let Some((triangles, attributes, corners)) = self.resident.contents(item.key)
+            {
+                let textures = self.texels.textures();
+                let average = |t: u32| textures.get(t as usize).map_or(u32::MAX, |t| t.average);
+                let weights = Estimate { material: &material, average: &average }.weights(triangles, attributes, corners, &item.object_to_eye);
+                if let Some(first) = emitter_list.add(instances.len() as u32, placement.first_triangle, &weights) {
+                    material.emitters = first;
+                }
+            }
+            material.key = material::key(&material);
             let flags = if material.alpha_func != 7 { INSTANCE_ALPHA_TESTED } else { 0 };
             instances.push(GpuInstance {
                 object_to_eye: gpu_types::rows(&item.object_to_eye),
@@ -355,8 +379,11 @@ impl RayTracer for ComputeTracer {
             bounds.push(placement.bounds.transformed(&Affine3A::from_mat4(item.object_to_eye)));
             signature.update(&item.key.to_le_bytes());
             signature.update(bytemuck::cast_slice(&item.object_to_eye.to_cols_array()));
+            // A new texture environment, pass or material changes the image as much as new
+            // geometry does (and the temporal pass drops the history of its pixels).
+            signature.update(&material.key.to_le_bytes());
             match item.source {
-                Source::Draw(_) => counts.draw_instances += 1,
+                Source::Surface(_) => counts.draw_instances += 1,
                 Source::Chunk(_) => counts.chunk_instances += 1,
             }
             counts.triangles += item.triangles() as u64;
@@ -405,7 +432,9 @@ impl RayTracer for ComputeTracer {
             Tonemap::Clamp => TONEMAP_CLAMP,
             Tonemap::Reinhard => TONEMAP_REINHARD,
             Tonemap::Aces => TONEMAP_ACES,
+            Tonemap::Knee => TONEMAP_KNEE,
         };
+        let emitters = emitter_list.finish();
         let gpu_frame = GpuFrame {
             projection: projection.to_cols_array_2d(),
             inverse_projection: projection.inverse().to_cols_array_2d(),
@@ -413,15 +442,15 @@ impl RayTracer for ComputeTracer {
             environment,
             viewport: [vx as f32, vy as f32, vw as f32, vh as f32],
             depth_range: [state.depth_range[0] as f32, state.depth_range[1] as f32, 0.0, 0.0],
-            params: [2f32.powf(self.settings.exposure), history, 0.0, spread],
+            params: [2f32.powf(self.settings.exposure), history, KNEE, spread],
             size: [traced[0], traced[1], window[0], window[1]],
             counts: [self.frame_index, self.settings.spp.max(1), self.settings.bounces, lights.len() as u32],
-            flags: [tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 } | if sky.is_some() { FRAME_SKY } else { 0 }, instances.len() as u32, u32::from(still), 0],
+            flags: [tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 } | if sky.is_some() { FRAME_SKY } else { 0 }, instances.len() as u32, emitters.len() as u32, 0],
         };
         self.previous = Some(Previous { signature, projection, view: frame.view.map(|v| v.view) });
         self.frame_index = self.frame_index.wrapping_add(1);
         self.statistics.frames += 1;
-        Ok(GpuScene { frame: gpu_frame, instances, materials, lights })
+        Ok(GpuScene { frame: gpu_frame, instances, materials, lights, emitters })
     }
 
     /// Dispatches `pathtrace.comp` once per sample into the G-buffer and the accumulation

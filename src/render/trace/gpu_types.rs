@@ -6,7 +6,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use super::shader_constants::TRACED_UNITS;
+use super::shader_constants::{MATERIAL_LAYERS, MAX_PASSES, TRACED_UNITS};
 
 /// `TraceFrameBlock` of `scene.glsl`: camera, settings and counts of one frame.
 #[repr(C)]
@@ -24,13 +24,14 @@ pub struct GpuFrame {
     pub viewport: [f32; 4],
     /// `glDepthRange` near, far; two unused.
     pub depth_range: [f32; 4],
-    /// Exposure multiplier, history cap in frames, unused, ray-cone spread of one traced pixel.
+    /// Exposure multiplier, history cap in frames, knee of the knee tone curve
+    /// ([`super::settings::Tonemap::Knee`]), ray-cone spread of one traced pixel.
     pub params: [f32; 4],
     /// Traced width and height, window width and height.
     pub size: [u32; 4],
     /// Frame index (random seed), samples per pixel, bounces, light count.
     pub counts: [u32; 4],
-    /// `FRAME_*` bits, instance count, two unused.
+    /// `FRAME_*` bits, instance count, emitter count ([`GpuEmitter`]), unused.
     pub flags: [u32; 4],
 }
 
@@ -54,12 +55,15 @@ pub struct GpuTriangleAttributes {
     pub corner: [GpuCorner; 3],
 }
 
-/// `Layer` of `scene.glsl`: one traced texture unit of a material (see [`super::scene`]).
+/// `Layer` of `scene.glsl`: one traced texture unit or pass of a material (see
+/// [`super::material`]).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLayer {
     /// `GL_TEXTURE_ENV_COLOR`.
     pub env_color: [f32; 4],
+    /// A pass's `glBlendColor`.
+    pub blend_color: [f32; 4],
     /// Texel pool index of the unit's texture, or `NO_TEXTURE`.
     pub texture: u32,
     /// The unit word's `FORMAT` and `ENV` fields ([`crate::render::texenv::unit_bits`]).
@@ -70,18 +74,37 @@ pub struct GpuLayer {
     pub combine_alpha: u32,
     /// `LAYER_*` of [`super::shader_constants`].
     pub role: u32,
-    /// Padding.
-    pub pad: [u32; 3],
+    /// A pass's blend function (`BLEND_*` fields of [`super::shader_constants`]).
+    pub blend: u32,
+    /// A pass's alpha test compare function, `gl_compare.glsl` order (7: always).
+    pub alpha_func: u32,
+    /// A pass's alpha test reference.
+    pub alpha_ref: f32,
+}
+
+/// `LayerCorners` of `scene.glsl`: what one triangle's corners carry for one pass of its
+/// surface (the pass's vertex attributes at the base triangle's corners). 40 bytes per
+/// triangle and pass; a surface of [`MAX_PASSES`] passes adds 160 bytes per triangle
+/// (53⅓ per corner) to the 72 of [`GpuTriangleAttributes`].
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLayerCorners {
+    /// Texture coordinates of the pass's unit 0 at each corner (after its texture matrix).
+    pub uv: [[f32; 2]; 3],
+    /// The pass's primary colour at each corner, display-encoded unorm8 RGBA.
+    pub color: [u32; 3],
+    /// 1 when the pass covers the triangle; 0: the pass leaves it as it is.
+    pub covered: u32,
 }
 
 /// `Material` of `scene.glsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuMaterial {
-    /// Linear emitted radiance (rgb); a: emissive scale applied to the albedo.
+    /// Linear emitted radiance (rgb); a: emissive scale applied to the raster colour.
     pub emission: [f32; 4],
-    /// Layer `u`: texture unit `u`.
-    pub layer: [GpuLayer; TRACED_UNITS],
+    /// Layer `u < TRACED_UNITS`: texture unit `u`; then pass `k` at `TRACED_UNITS + k`.
+    pub layer: [GpuLayer; MATERIAL_LAYERS],
     /// Roughness (GGX alpha = roughness²).
     pub roughness: f32,
     /// Metalness.
@@ -92,8 +115,39 @@ pub struct GpuMaterial {
     pub alpha_func: u32,
     /// Alpha test reference.
     pub alpha_ref: f32,
+    /// `MATERIAL_*` bits.
+    pub flags: u32,
+    /// The instance's first record in the layer-corner buffer ([`GpuLayerCorners`]: its
+    /// geometry's, `passes` per triangle, triangle after triangle in BVH order).
+    pub layer_corners: u32,
+    /// Passes of the surface (layers `TRACED_UNITS..TRACED_UNITS + passes`).
+    pub passes: u32,
+    /// The instance's first entry in the emitter list (one per triangle, in BVH order), or
+    /// `NO_EMITTER`.
+    pub emitters: u32,
+    /// A hash of what the material shows ([`super::material::key`]): the temporal pass keeps
+    /// a pixel's history only while its material's key stays.
+    pub key: u32,
     /// Padding.
-    pub pad: [u32; 3],
+    pub pad: [u32; 2],
+}
+
+/// `Emitter` of `scene.glsl`: one emissive triangle of the frame, an entry of the alias table
+/// that next-event estimation picks triangles from in proportion to their power
+/// ([`super::emitters`]).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuEmitter {
+    /// Its instance (index into the frame's instances).
+    pub instance: u32,
+    /// Its triangle (global index into the triangle buffers).
+    pub triangle: u32,
+    /// The entry taken instead when the draw exceeds `threshold`.
+    pub alias: u32,
+    /// Probability of keeping this entry once it is drawn (alias method).
+    pub threshold: f32,
+    /// Probability that a sample picks this triangle.
+    pub probability: f32,
 }
 
 /// `Light` of `scene.glsl`.
@@ -159,6 +213,8 @@ pub struct GpuCounters {
 pub const COUNTER_BYTES: u64 = size_of::<GpuCounters>() as u64;
 
 include!(concat!(env!("OUT_DIR"), "/layouts/trace_gpu_types.rs"));
+
+const _: () = assert!(MAX_PASSES == crate::frame::class::MAX_LAYERS, "a material traces every layer a surface may have");
 
 /// The rows of the affine part of `m` (its last row is taken as 0, 0, 0, 1).
 pub fn rows(m: &glam::Mat4) -> [[f32; 4]; 3] {

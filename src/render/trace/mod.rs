@@ -28,11 +28,19 @@
 //! A dynamic draw whose vertices moved refits its last BVH instead of building a new one
 //! ([`tracks`], [`resident`]).
 //!
+//! Surfaces: a traced draw and the draws of class `Layer` over it (lightmap, detail, glow and
+//! decal passes) are one traced surface ([`surfaces`]), evaluated as the rasterizer would draw
+//! it and split into albedo, baked light and emission ([`material`]); layer draws are then not
+//! rasterized. Emissive surfaces (additive passes, emissive materials) are also light sources
+//! that next-event estimation samples ([`emitters`]).
+//!
 //! Parts shared by the back ends:
-//! - [`scene`]: traced draws as geometries, instances and materials; [`chunks`]: the static
-//!   world's chunks as geometries; [`instances`]: a frame's instances, draws and chunks;
-//!   [`lights`]: GL lights as physical lights; [`sky`]: the sky draws as the environment cube
-//!   map; [`gpu_types`]: the structures the shaders read, checked against the compiled SPIR-V;
+//! - [`surfaces`]: which draws are traced, grouped into surfaces; [`scene`]: traced surfaces
+//!   as geometries; [`material`]: their materials; [`chunks`]: the static world's chunks as
+//!   geometries; [`instances`]: a frame's instances, surfaces and chunks; [`emitters`]: the
+//!   emissive triangles and their alias table; [`lights`]: GL lights as physical lights;
+//!   [`sky`]: the sky draws as the environment cube map; [`gpu_types`]: the structures the
+//!   shaders read, checked against the compiled SPIR-V;
 //!   [`shader_constants`]: flags and special values shared with the shaders as generated headers
 //!   ([`crate::render::shader_abi`]).
 //! - [`texels`]: every texture level the tracer samples, packed into one storage buffer (no
@@ -54,9 +62,11 @@ pub mod bvh;
 pub mod chunks;
 pub mod composite;
 pub mod compute;
+pub mod emitters;
 pub mod gpu_types;
 pub mod instances;
 pub mod lights;
+pub mod material;
 pub mod pipelines;
 pub mod resident;
 pub mod scene;
@@ -64,6 +74,7 @@ pub mod settings;
 pub mod shader_constants;
 pub mod sky;
 pub mod stats;
+pub mod surfaces;
 pub mod texels;
 pub mod tracks;
 
@@ -72,22 +83,24 @@ use ash::vk;
 use crate::frame::{Draw, Frame};
 use crate::render::raster::device::{Device, Result};
 use crate::render::raster::renderer::Recorder;
-use gpu_types::{GpuFrame, GpuInstance, GpuLight, GpuMaterial};
+use gpu_types::{GpuEmitter, GpuFrame, GpuInstance, GpuLight, GpuMaterial};
 use settings::Settings;
+use surfaces::Surfaces;
 use stats::Statistics;
 
-/// A ray-tracing back end: turns the traced draws of a frame into a traced image, recording
-/// into the frame's command buffer at the place of its first traced draw
-/// ([`scene::first_traced`]). The renderer calls [`RayTracer::build`], [`RayTracer::trace`]
+/// A ray-tracing back end: turns the traced surfaces of a frame into a traced image,
+/// recording into the frame's command buffer at the place of its first traced draw
+/// ([`surfaces::Surfaces::first`]). The renderer calls [`RayTracer::build`], [`RayTracer::trace`]
 /// and [`RayTracer::resolve`] in that order, once per frame; stages of other modules
 /// (denoising, radiosity) go between `trace` and `resolve`, reading and writing the radiance.
 pub trait RayTracer: Send {
-    /// Upload and acceleration structures: gathers the frame's traced draws (`camera`, the
-    /// first of them, gives the projection and viewport) and the static world's chunks as
-    /// instances, uploads new geometry and textures, builds or refits the bottom-level
-    /// acceleration structures of new or moved geometry and the top level over the instances.
-    /// Returns the records the tracing shaders read.
-    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, camera: &Draw) -> Result<GpuScene>;
+    /// Upload and acceleration structures: gathers the frame's traced surfaces, `surfaces`
+    /// (`camera`, the first base, gives the projection and viewport), and the static world's
+    /// chunks as instances, uploads new geometry and textures, builds or refits the
+    /// bottom-level acceleration structures of new or moved geometry and the top level over
+    /// the instances, and lists the emissive triangles. Returns the records the tracing shaders
+    /// read.
+    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw) -> Result<GpuScene>;
 
     /// Traces `scene` into the G-buffer (primary hits) and the radiance accumulated for this
     /// frame; `None` when nothing could be traced (no geometry on the GPU yet).
@@ -116,6 +129,8 @@ pub struct GpuScene {
     pub materials: Vec<GpuMaterial>,
     /// The frame's GL lights as physical lights.
     pub lights: Vec<GpuLight>,
+    /// The emissive triangles that next-event estimation samples ([`emitters`]).
+    pub emitters: Vec<GpuEmitter>,
 }
 
 /// A traced frame's G-buffer and radiance, in the back end's per-pixel buffers until

@@ -1,5 +1,5 @@
-//! Geometry on the GPU: the bottom-level BVHs, triangles and shading attributes of every
-//! traced geometry, in three device-local buffers shared by all geometries, keyed by
+//! Geometry on the GPU: the bottom-level BVHs, triangles, shading attributes and pass corners
+//! of every traced geometry, in four device-local buffers shared by all geometries, keyed by
 //! [`super::scene::geometry_key`].
 //!
 //! A geometry is built on the CPU the first time its key is seen and copied into the free end
@@ -25,7 +25,7 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 
 use super::bvh::{Aabb, Blas, GpuNode, GpuTriangle, sah_cost};
-use super::gpu_types::GpuTriangleAttributes;
+use super::gpu_types::{GpuLayerCorners, GpuTriangleAttributes};
 use super::scene::Geometry;
 use crate::render::raster::device::{Buffer, Device, Result};
 use crate::render::raster::upload::Ring;
@@ -54,6 +54,8 @@ pub struct Placement {
     pub blas_root: u32,
     /// Its first triangle in the triangle and attribute buffers.
     pub first_triangle: u32,
+    /// Its first record in the layer-corner buffer (`passes` records per triangle).
+    pub first_layer_corners: u32,
     /// Its object-space bounds.
     pub bounds: Aabb,
 }
@@ -63,6 +65,10 @@ pub struct Placement {
 struct Built {
     blas: Blas,
     attributes: Vec<GpuTriangleAttributes>,
+    /// The passes' corners, `passes` records per triangle, in BVH order.
+    layer_corners: Vec<GpuLayerCorners>,
+    /// Passes of the surface.
+    passes: usize,
     /// SAH cost of the BVH when it was last built (refits compare with it).
     built_cost: f32,
 }
@@ -71,24 +77,31 @@ impl Built {
     /// Builds the BVH of `geometry`.
     fn new(geometry: &Geometry) -> Built {
         let blas = Blas::build(&geometry.triangles);
-        let attributes = ordered(&blas, geometry);
-        Built { built_cost: sah_cost(&blas.nodes), blas, attributes }
+        let (attributes, layer_corners) = ordered(&blas, geometry);
+        Built { built_cost: sah_cost(&blas.nodes), blas, attributes, layer_corners, passes: geometry.passes }
     }
 
-    /// This BVH refitted to `geometry` (same triangle count), if its SAH cost stays within
-    /// [`REFIT_COST_LIMIT`] of the last build's.
+    /// This BVH refitted to `geometry` (same triangle count and passes), if its SAH cost stays
+    /// within [`REFIT_COST_LIMIT`] of the last build's.
     fn refitted(mut self, geometry: &Geometry) -> Option<Built> {
-        if !self.blas.refit(&geometry.triangles) || sah_cost(&self.blas.nodes) > REFIT_COST_LIMIT * self.built_cost {
+        if self.passes != geometry.passes || !self.blas.refit(&geometry.triangles) || sah_cost(&self.blas.nodes) > REFIT_COST_LIMIT * self.built_cost {
             return None;
         }
-        self.attributes = ordered(&self.blas, geometry);
+        (self.attributes, self.layer_corners) = ordered(&self.blas, geometry);
         Some(self)
     }
 }
 
-/// The attributes of `geometry` in the triangle order of `blas`.
-fn ordered(blas: &Blas, geometry: &Geometry) -> Vec<GpuTriangleAttributes> {
-    blas.order.iter().map(|&i| geometry.attributes.get(i as usize).copied().unwrap_or_default()).collect()
+/// The attributes and pass corners of `geometry` in the triangle order of `blas`.
+fn ordered(blas: &Blas, geometry: &Geometry) -> (Vec<GpuTriangleAttributes>, Vec<GpuLayerCorners>) {
+    let attributes = blas.order.iter().map(|&i| geometry.attributes.get(i as usize).copied().unwrap_or_default()).collect();
+    let n = geometry.passes;
+    let corners = blas
+        .order
+        .iter()
+        .flat_map(|&i| (0..n).map(move |k| geometry.layer_corners.get(i as usize * n + k).copied().unwrap_or_default()))
+        .collect();
+    (attributes, corners)
 }
 
 /// Where a refitted geometry goes.
@@ -105,7 +118,7 @@ struct Entry {
     last_used: u64,
 }
 
-/// One of the three shared buffers: capacity and fill in elements.
+/// One of the four shared buffers: capacity and fill in elements.
 struct Shared {
     buffer: Option<Buffer>,
     capacity: u64,
@@ -129,6 +142,7 @@ pub struct Resident {
     nodes: Shared,
     triangles: Shared,
     attributes: Shared,
+    layer_corners: Shared,
     /// Bytes copied to the GPU by the last [`Resident::insert_all`] (statistics).
     pub uploaded: u64,
     /// Geometries whose BVH the last [`Resident::insert_all`] built.
@@ -156,6 +170,7 @@ impl Default for Resident {
             nodes: Shared::new(std::mem::size_of::<GpuNode>() as u64),
             triangles: Shared::new(std::mem::size_of::<GpuTriangle>() as u64),
             attributes: Shared::new(std::mem::size_of::<GpuTriangleAttributes>() as u64),
+            layer_corners: Shared::new(std::mem::size_of::<GpuLayerCorners>() as u64),
             uploaded: 0,
             built: 0,
             refitted: 0,
@@ -193,9 +208,10 @@ impl Resident {
         }
         let n: u64 = to_place.iter().map(|(_, b)| b.blas.nodes.len() as u64).sum();
         let t: u64 = to_place.iter().map(|(_, b)| b.blas.triangles.len() as u64).sum();
-        if !self.nodes.fits(n) || !self.triangles.fits(t) || !self.attributes.fits(t) {
+        let c: u64 = to_place.iter().map(|(_, b)| b.layer_corners.len() as u64).sum();
+        if !self.nodes.fits(n) || !self.triangles.fits(t) || !self.attributes.fits(t) || !self.layer_corners.fits(c) {
             // Copies every live geometry, the ones refitted in place included.
-            self.repack(device, cmd, ring, frame, n, t)?;
+            self.repack(device, cmd, ring, frame, [n, t, c])?;
         } else if !in_place.is_empty() {
             // Safety: `cmd` is recording outside a rendering pass (the tracer ended it).
             unsafe { super::compute::barrier(&device.raw, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::TRANSFER) };
@@ -235,21 +251,28 @@ impl Resident {
 
     /// Copies `built` to the free end of the buffers.
     fn place(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, built: &Built) -> Result<Placement> {
-        let placement = Placement { blas_root: self.nodes.used as u32, first_triangle: self.triangles.used as u32, bounds: built.blas.bounds };
+        let placement = Placement {
+            blas_root: self.nodes.used as u32,
+            first_triangle: self.triangles.used as u32,
+            first_layer_corners: self.layer_corners.used as u32,
+            bounds: built.blas.bounds,
+        };
         self.write(device, cmd, ring, built, &placement)?;
         self.nodes.used += built.blas.nodes.len() as u64;
         self.triangles.used += built.blas.triangles.len() as u64;
         self.attributes.used += built.attributes.len() as u64;
+        self.layer_corners.used += built.layer_corners.len() as u64;
         Ok(placement)
     }
 
     /// Copies `built` into the buffers at `placement`.
     fn write(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, built: &Built, placement: &Placement) -> Result<()> {
-        let (root, first) = (u64::from(placement.blas_root), u64::from(placement.first_triangle));
+        let (root, first, corners) = (u64::from(placement.blas_root), u64::from(placement.first_triangle), u64::from(placement.first_layer_corners));
         for (shared, at, bytes) in [
             (&self.nodes, root, bytemuck::cast_slice::<_, u8>(&built.blas.nodes)),
             (&self.triangles, first, bytemuck::cast_slice(&built.blas.triangles)),
             (&self.attributes, first, bytemuck::cast_slice(&built.attributes)),
+            (&self.layer_corners, corners, bytemuck::cast_slice(&built.layer_corners)),
         ] {
             if let Some(buffer) = &shared.buffer {
                 upload(device, cmd, ring, buffer.raw, at * shared.stride, bytes)?;
@@ -260,17 +283,20 @@ impl Resident {
     }
 
     /// Drops geometries unused for [`KEEP_FRAMES`], makes buffers of twice the live size plus
-    /// `nodes`/`triangles` more, and copies the live geometries into them.
-    fn repack(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, frame: u64, nodes: u64, triangles: u64) -> Result<()> {
+    /// `more` (nodes, triangles, layer corners), and copies the live geometries into them.
+    fn repack(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, frame: u64, more: [u64; 3]) -> Result<()> {
         device.wait_idle()?;
         self.entries.retain(|_, e| frame.saturating_sub(e.last_used) < KEEP_FRAMES);
-        let live_nodes: u64 = self.entries.values().map(|e| e.built.blas.nodes.len() as u64).sum::<u64>() + nodes;
-        let live_triangles: u64 = self.entries.values().map(|e| e.built.blas.triangles.len() as u64).sum::<u64>() + triangles;
+        let live = |size: fn(&Built) -> usize| self.entries.values().map(|e| size(&e.built) as u64).sum::<u64>();
+        let live_nodes = live(|b| b.blas.nodes.len()) + more[0];
+        let live_triangles = live(|b| b.blas.triangles.len()) + more[1];
+        let live_corners = live(|b| b.layer_corners.len()) + more[2];
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
         for (shared, live, name) in [
             (&mut self.nodes, live_nodes, "glrt BLAS nodes"),
             (&mut self.triangles, live_triangles, "glrt triangles"),
             (&mut self.attributes, live_triangles, "glrt triangle attributes"),
+            (&mut self.layer_corners, live_corners, "glrt layer corners"),
         ] {
             if let Some(old) = shared.buffer.take() {
                 device.destroy_buffer(old);
@@ -290,11 +316,18 @@ impl Resident {
         Ok(())
     }
 
-    /// The three buffers (nodes, triangles, attributes) and their used bytes, once any
-    /// geometry was placed.
-    pub fn buffers(&self) -> Option<[(vk::Buffer, u64); 3]> {
+    /// The four buffers (nodes, triangles, attributes, layer corners) and their used bytes,
+    /// once any geometry was placed.
+    pub fn buffers(&self) -> Option<[(vk::Buffer, u64); 4]> {
         let get = |s: &Shared| s.buffer.as_ref().map(|b| (b.raw, (s.used * s.stride).max(s.stride)));
-        Some([get(&self.nodes)?, get(&self.triangles)?, get(&self.attributes)?])
+        Some([get(&self.nodes)?, get(&self.triangles)?, get(&self.attributes)?, get(&self.layer_corners)?])
+    }
+
+    /// The triangles (object space), attributes and pass corners of resident geometry `key`,
+    /// in BVH order (the emitter list reads them).
+    pub fn contents(&self, key: u64) -> Option<(&[GpuTriangle], &[GpuTriangleAttributes], &[GpuLayerCorners])> {
+        let b = &self.entries.get(&key)?.built;
+        Some((&b.blas.triangles, &b.attributes, &b.layer_corners))
     }
 
     /// Geometries on the GPU.
@@ -309,7 +342,7 @@ impl Resident {
 
     /// Frees the buffers (the GPU must be idle).
     pub fn destroy(&mut self, device: &Device) {
-        for shared in [&mut self.nodes, &mut self.triangles, &mut self.attributes] {
+        for shared in [&mut self.nodes, &mut self.triangles, &mut self.attributes, &mut self.layer_corners] {
             if let Some(b) = shared.buffer.take() {
                 device.destroy_buffer(b);
             }
@@ -334,7 +367,11 @@ mod tests {
             let p = Vec3::new((cell % side) as f32, (cell / side) as f32, 0.0) + shift;
             g.triangles.push([p, p + Vec3::X * 0.9, p + Vec3::Y * 0.9]);
             g.attributes.push(GpuTriangleAttributes { corner: [GpuCorner { uv: [[i as f32, 0.0], [0.0; 2]], ..GpuCorner::default() }; 3] });
+            // Two passes, the second covering every triangle.
+            g.layer_corners.push(GpuLayerCorners::default());
+            g.layer_corners.push(GpuLayerCorners { uv: [[i as f32, 0.0]; 3], covered: 1, ..GpuLayerCorners::default() });
         }
+        g.passes = 2;
         g
     }
 
@@ -347,6 +384,8 @@ mod tests {
         assert_eq!(refitted.blas.bounds.min, Vec3::new(3.0, -2.0, 1.0));
         for (k, &i) in refitted.blas.order.iter().enumerate() {
             assert_eq!(refitted.attributes[k].corner[0].uv[0][0], i as f32, "attributes follow the BVH order");
+            assert_eq!(refitted.layer_corners[2 * k + 1].uv[0][0], i as f32, "and so do the passes' corners");
+            assert_eq!(refitted.layer_corners[2 * k].covered, 0);
         }
         assert_eq!(refitted.built_cost, built.built_cost);
 
@@ -355,6 +394,9 @@ mod tests {
         assert!(built.clone().refitted(&scrambled).is_none());
         let mut fewer = moved.clone();
         fewer.triangles.pop();
-        assert!(built.refitted(&fewer).is_none(), "another triangle count");
+        assert!(built.clone().refitted(&fewer).is_none(), "another triangle count");
+        let mut one_pass = moved.clone();
+        one_pass.passes = 1;
+        assert!(built.refitted(&one_pass).is_none(), "another number of passes");
     }
 }

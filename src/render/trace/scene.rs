@@ -1,66 +1,34 @@
-//! What the path tracer takes from a [`Frame`]: the traced draws, each turned into a geometry
-//! (object-space triangles and their shading attributes, cached on the GPU by
-//! [`geometry_key`]), an instance (its modelview) and a material; the camera; the environment.
+//! What the path tracer takes from a [`Frame`]: each traced surface ([`Surface`]: a traced
+//! draw and its passes) turned into a geometry (object-space triangles, their shading
+//! attributes and the passes' corners, cached on the GPU by [`geometry_key`]); the camera's
+//! environment. Its instance is the base's modelview; its material is [`super::material`]'s.
 //!
 //! GL state is interpreted here, on the CPU, once per draw: the base colour of a corner is
 //! what OpenGL would feed the texture stage (the vertex colour, or the material's diffuse
 //! colour when lighting is on without colour material), normals are kept only for lit draws
-//! (unlit GL geometry has no meaningful normals: the geometric normal is used).
+//! (unlit GL geometry has no meaningful normals: the geometric normal is used). Corners carry
+//! the coordinates of texture units 0 and 1 ([`TRACED_UNITS`]).
 //!
-//! **Materials are stacks of layers.** A material holds one [`GpuLayer`] per traced texture
-//! unit: units 0 and 1 ([`TRACED_UNITS`]), the units whose coordinates the triangle corners
-//! carry; units past 1 are left out. A layer is what `shaders/texenv.glsl`'s `tex_env` needs
-//! to apply the unit (its texture in the texel pool, its unit and combiner words and
-//! environment colour, [`crate::render::texenv`]) and a role. `shaders/trace/surface.glsl`
-//! walks the layers in order: a [`LAYER_COLOR`] layer combines its texel with the colour so
-//! far, starting from the primary colour, through the same `tex_env` that `ff.frag` calls per
-//! enabled unit, so every GL 1.x environment (`REPLACE`, `MODULATE`, `DECAL`, `BLEND`, `ADD`,
-//! and `COMBINE` with its functions, sources including other units' texels, operands and
-//! scales) gives the traced surface the raster colour as its albedo; a [`LAYER_BAKED_LIGHT`]
-//! layer is a kept lightmap (below); [`LAYER_OFF`] layers are skipped.
-//!
-//! Multi-pass surfaces (a base pass, then lightmap, detail and glow passes over the same
-//! triangles) extend the stack without a second evaluator: each later pass becomes one more
-//! layer whose combiner words state its framebuffer blend with the layers below as a combine
-//! of `PREVIOUS` and its texture: (`DST_COLOR`, `ZERO`) is `MODULATE`, a detail pass
-//! (`DST_COLOR`, `SRC_COLOR`) is `MODULATE` with `RGB_SCALE` 2, (`SRC_ALPHA`,
-//! `ONE_MINUS_SRC_ALPHA`) is `INTERPOLATE` by the texture's alpha. A lightmap pass takes the
-//! role [`LAYER_BAKED_LIGHT`] as a lightmap unit does; an additive (`ONE`, `ONE`) pass takes a
-//! new emission role whose result adds to the emitted radiance instead of the albedo; the
-//! layer array grows, and each layer names the coordinate set of its pass.
-//!
-//! **Lightmaps** (unit 1 multiplying the result of unit 0, [`is_lightmap`]) hold light the
-//! game baked: direct and indirect, everything that arrives at the surface. Tracing computes
-//! that light itself, so counting both would count it twice. With [`Lightmaps::Ignore`] (the
-//! default) unit 1 is left out ([`LAYER_OFF`]) and the surface is an ordinary reflector of
-//! traced light. With
-//! [`Lightmaps::Keep`] a lightmapped surface is a *baked* surface, as in RTX Remix or Quake 2
-//! RTX's lightmapped mode: the lightmap is taken as its irradiance `E = π · L_map` (`L_map`
-//! the texel decoded from display encoding after GL's `RGB_SCALE`, so a white lightmap texel
-//! is the irradiance of a white GL light at normal incidence, lights.rs), and a Lambertian
-//! surface of albedo `a` under it sends `a / π · E = a · L_map` towards every direction. The
-//! tracer makes that its **emitted** radiance and lets it reflect **no traced light** (no
-//! light sampling, no continuation ray: a path ends on it), for camera rays and bounces
-//! alike. Each baked surface's light is then counted once, from the lightmap: the camera sees
-//! what the raster game shows (linear `a · L_map`, the encoded raster product where GL does
-//! not clamp), and surfaces without a lightmap (models, movers) receive the baked world's
-//! light as bounce light, which their traced light does not already hold. The lightmap's
-//! alpha is not used (lightmaps are RGB), and baked surfaces have no specular reflection.
+//! A pass (a draw of class `Layer`) lies on the base's triangles: its triangle `j` covers base
+//! triangle `layer.triangles[j]`, corner for corner. Each base triangle carries, per pass, a
+//! [`GpuLayerCorners`] record: the pass's unit-0 coordinates and base colour at its corners
+//! when the pass covers it, or `covered = 0` (a pass over some triangles only, such as a
+//! dynamic-light pass, leaves the others as they are). A pass drawn twice over one triangle
+//! keeps its last triangle there.
 
 use glam::{Mat4, Vec3, Vec4};
 use xxhash_rust::xxh3::Xxh3;
 
-use super::gpu_types::{GpuCorner, GpuLayer, GpuMaterial, GpuTriangleAttributes};
-use super::settings::Lightmaps;
-use super::shader_constants::{LAYER_BAKED_LIGHT, LAYER_COLOR, LAYER_OFF, NO_TEXTURE, TRACED_UNITS};
-use crate::frame::state::{ColorMaterialMode, CompareFunc, Lighting};
-use crate::frame::texture::{CombineFn, CombineOperand, CombineSource, EnvMode, TextureRef};
-use crate::frame::{Draw, Frame, Framebuffer, Topology, TextureUnit};
-use crate::render::texenv;
+use super::gpu_types::{GpuCorner, GpuLayerCorners, GpuTriangleAttributes};
+use super::shader_constants::TRACED_UNITS;
+use super::surfaces::Surface;
+use crate::frame::state::{ColorMaterialMode, Lighting};
+use crate::frame::{Draw, Frame, Framebuffer, Topology};
 
 /// Whether `draw` is traced: a triangle draw of a traced class into the window's framebuffer,
 /// run by the fixed-function pipeline (a GLSL program's output cannot be traced: those draws
-/// are rasterized over the traced image like translucent ones).
+/// are rasterized over the traced image like translucent ones). Traced draws are the bases of
+/// the traced surfaces ([`super::surfaces`]).
 pub fn is_traced(draw: &Draw) -> bool {
     draw.class.is_traced()
         && draw.topology == Topology::Triangles
@@ -69,23 +37,19 @@ pub fn is_traced(draw: &Draw) -> bool {
         && !draw.indices.is_empty()
 }
 
-/// Index of the first traced draw of `frame`: where the traced image is composited, so that
-/// draws before it (sky) are behind it and draws after it (glass, HUD) over it.
-pub fn first_traced(frame: &Frame) -> Option<usize> {
-    frame.draws.iter().position(is_traced)
-}
-
 /// The colour of the frame's first colour clear of the window (GL values): the environment
 /// of missed rays, or where the sky draws' environment starts ([`super::sky`]).
 pub fn clear_color(frame: &Frame) -> Option<[f32; 4]> {
     frame.clears.iter().filter(|c| c.framebuffer == Framebuffer::default()).find_map(|c| c.color)
 }
 
-/// The key the GPU geometry cache stores a draw's geometry under: everything
-/// [`geometry`] reads (positions, indices, texture coordinates of units 0 and 1 after their
-/// texture matrices, base colours, normals when lit). The instance's key (hash tracking)
-/// covers unit 0's coordinates only, so unit 1's are hashed here.
-pub fn geometry_key(draw: &Draw) -> u64 {
+/// The key the GPU geometry cache stores a surface's geometry under: everything [`geometry`]
+/// reads (positions, indices, texture coordinates of the traced units after their texture
+/// matrices, base colours, normals when lit; of each pass its indices, triangle map, unit-0
+/// coordinates and base colours). The base's instance key (hash tracking) covers unit 0's
+/// coordinates only, so unit 1's are hashed here.
+pub fn geometry_key(surface: &Surface) -> u64 {
+    let draw = surface.base;
     let mut h = Xxh3::new();
     h.update(&draw.instance.map_or(0, |i| i.geometry_key).to_le_bytes());
     if draw.instance.is_none() {
@@ -95,68 +59,50 @@ pub fn geometry_key(draw: &Draw) -> u64 {
             h.update(bytemuck::cast_slice(&t.values));
         }
     }
-    h.update(bytemuck::cast_slice(&draw.vertices.color.values));
-    if let Some(lighting) = &draw.state.lighting {
-        h.update(bytemuck::cast_slice(&draw.vertices.normal.values));
-        h.update(bytemuck::cast_slice(&lighting.front.diffuse));
-        h.update(&[u8::from(tracks_diffuse(lighting))]);
-    }
-    if let Some(m) = texture_matrix(draw, 0) {
-        h.update(bytemuck::cast_slice(&m.to_cols_array()));
-    }
-    if enabled(draw, LIGHTMAP_UNIT) {
-        h.update(&[1]);
-        if let Some(t) = draw.vertices.texcoords.get(LIGHTMAP_UNIT) {
-            h.update(bytemuck::cast_slice(&t.values));
+    hash_shading(&mut h, draw, 0);
+    for unit in 1..TRACED_UNITS {
+        if enabled(draw, unit) {
+            h.update(&[unit as u8]);
+            hash_shading(&mut h, draw, unit);
+            if let Some(t) = draw.vertices.texcoords.get(unit) {
+                h.update(bytemuck::cast_slice(&t.values));
+            }
         }
-        if let Some(m) = texture_matrix(draw, LIGHTMAP_UNIT) {
-            h.update(bytemuck::cast_slice(&m.to_cols_array()));
+    }
+    for pass in &surface.passes {
+        h.update(b"pass");
+        h.update(bytemuck::cast_slice(&pass.indices));
+        if let Some(layer) = &pass.layer {
+            h.update(bytemuck::cast_slice(&layer.triangles));
+        }
+        hash_shading(&mut h, pass, 0);
+        h.update(&[u8::from(enabled(pass, 0))]);
+        if let Some(t) = pass.vertices.texcoords.first().filter(|_| enabled(pass, 0)) {
+            h.update(bytemuck::cast_slice(&t.values));
         }
     }
     h.digest()
 }
 
-/// The texture unit a lightmap is bound to.
-const LIGHTMAP_UNIT: usize = 1;
-
-/// Whether texture unit `unit` of `draw` has a target enabled.
-fn enabled(draw: &Draw, unit: usize) -> bool {
-    draw.texture_units.get(unit).is_some_and(Option::is_some)
-}
-
-/// Whether a unit multiplies the previous unit's result by its texture (OpenGL 1.3 section
-/// 3.8.13: unit 1 combines with unit 0's result), as a lightmap does: `MODULATE`, or a
-/// `COMBINE` whose RGB function is `MODULATE` of `PREVIOUS` and `TEXTURE` colours, with any
-/// `RGB_SCALE` (the usual "overbright" lightmap; the baked light is the texel times that
-/// scale). Every other environment on unit 1 (`REPLACE`, `DECAL`, `BLEND`, `ADD`, other
-/// combiners: decals, detail, glow and environment maps) is a colour layer.
-pub fn is_lightmap(unit: &TextureUnit) -> bool {
-    let env = &unit.env;
-    match env.mode {
-        EnvMode::Modulate => true,
-        EnvMode::Combine => {
-            let [a, b, _] = env.source_rgb;
-            let sources = matches!((a, b), (CombineSource::Previous, CombineSource::Texture) | (CombineSource::Texture, CombineSource::Previous));
-            let colours = env.operand_rgb[..2].iter().all(|&o| o == CombineOperand::SrcColor);
-            env.combine_rgb == CombineFn::Modulate && sources && colours
+/// Hashes what [`base_color`] and the normals read of `draw` (for `unit` 0), and unit
+/// `unit`'s texture matrix.
+fn hash_shading(h: &mut Xxh3, draw: &Draw, unit: usize) {
+    if unit == 0 {
+        h.update(bytemuck::cast_slice(&draw.vertices.color.values));
+        if let Some(lighting) = &draw.state.lighting {
+            h.update(bytemuck::cast_slice(&draw.vertices.normal.values));
+            h.update(bytemuck::cast_slice(&lighting.front.diffuse));
+            h.update(&[u8::from(tracks_diffuse(lighting))]);
         }
-        _ => false,
+    }
+    if let Some(m) = texture_matrix(draw, unit) {
+        h.update(bytemuck::cast_slice(&m.to_cols_array()));
     }
 }
 
-/// The textures the tracer samples for `draw`, per traced unit: the unit's texture when a
-/// target is enabled there, but for a lightmap on unit 1 that `lightmaps` does not keep
-/// ([`traces_second_unit`]).
-pub fn traced_textures(draw: &Draw, lightmaps: Lightmaps) -> [Option<&TextureRef>; TRACED_UNITS] {
-    let texture = |unit: usize| draw.textures.get(unit).and_then(Option::as_ref).filter(|_| enabled(draw, unit));
-    let kept = |unit: usize| unit != LIGHTMAP_UNIT || draw.texture_units.get(unit).copied().flatten().is_some_and(|u| traces_second_unit(&u, lightmaps));
-    std::array::from_fn(|unit| texture(unit).filter(|_| kept(unit)))
-}
-
-/// Whether unit 1, enabled with a texture and the environment of `unit`, is traced: as a
-/// colour layer, or as a lightmap ([`is_lightmap`]) when `lightmaps` keeps them.
-pub fn traces_second_unit(unit: &TextureUnit, lightmaps: Lightmaps) -> bool {
-    lightmaps == Lightmaps::Keep || !is_lightmap(unit)
+/// Whether texture unit `unit` of `draw` has a target enabled.
+pub fn enabled(draw: &Draw, unit: usize) -> bool {
+    draw.texture_units.get(unit).is_some_and(Option::is_some)
 }
 
 /// Whether the lit base colour follows the vertex colour (`glColorMaterial` on diffuse).
@@ -181,31 +127,40 @@ fn texcoord(draw: &Draw, unit: usize, matrix: Option<Mat4>, i: usize) -> [f32; 2
     [t.x / q, t.y / q]
 }
 
-/// The geometry of a traced draw in object space: one entry per triangle.
+/// The colour of `draw`'s vertex `i` that OpenGL feeds its texture stage (see the module doc).
+fn base_color(draw: &Draw, i: usize) -> [f32; 4] {
+    let diffuse = draw.state.lighting.as_ref().filter(|l| !tracks_diffuse(l)).map(|l| l.front.diffuse);
+    diffuse.or_else(|| draw.vertices.color.get(i)).unwrap_or([1.0; 4])
+}
+
+/// The geometry of a traced surface in object space: one entry per triangle.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Geometry {
     /// Corner positions (divided by w).
     pub triangles: Vec<[Vec3; 3]>,
     /// Shading attributes, in the order of `triangles`.
     pub attributes: Vec<GpuTriangleAttributes>,
+    /// The passes' corners: `passes` records per triangle, in the order of `triangles`.
+    pub layer_corners: Vec<GpuLayerCorners>,
+    /// Passes of the surface.
+    pub passes: usize,
 }
 
-/// Builds the geometry of `draw` (see the module doc for what each attribute holds).
-pub fn geometry(draw: &Draw) -> Geometry {
+/// Builds the geometry of `surface` (see the module doc for what each attribute holds).
+pub fn geometry(surface: &Surface) -> Geometry {
+    let draw = surface.base;
     let v = &draw.vertices;
-    let lit = draw.state.lighting.as_ref();
-    let diffuse = lit.filter(|l| !tracks_diffuse(l)).map(|l| l.front.diffuse);
+    let lit = draw.state.lighting.is_some();
     let matrices: [Option<Mat4>; TRACED_UNITS] = std::array::from_fn(|unit| texture_matrix(draw, unit));
     let corner = |i: u32| -> ([f32; 4], GpuCorner) {
         let i = i as usize;
         let p = v.position.get(i).copied().unwrap_or([0.0, 0.0, 0.0, 1.0]);
-        let color = diffuse.or_else(|| v.color.get(i)).unwrap_or([1.0; 4]);
-        let normal = match (lit, v.normal.get(i)) {
-            (Some(_), Some(n)) => pack_normal(Vec3::from_array(n)),
+        let normal = match v.normal.get(i) {
+            Some(n) if lit => pack_normal(Vec3::from_array(n)),
             _ => 0,
         };
         let uv = std::array::from_fn(|unit| texcoord(draw, unit, matrices[unit], i));
-        (p, GpuCorner { uv, normal, color: pack_unorm8(color) })
+        (p, GpuCorner { uv, normal, color: pack_unorm8(base_color(draw, i)) })
     };
     let mut geometry = Geometry::default();
     for tri in draw.indices.chunks_exact(3) {
@@ -216,76 +171,24 @@ pub fn geometry(draw: &Draw) -> Geometry {
         }));
         geometry.attributes.push(GpuTriangleAttributes { corner: [c0, c1, c2] });
     }
+    let n = surface.passes.len();
+    geometry.passes = n;
+    geometry.layer_corners = vec![GpuLayerCorners::default(); geometry.triangles.len() * n];
+    for (k, pass) in surface.passes.iter().enumerate() {
+        let Some(layer) = &pass.layer else { continue };
+        let matrix = texture_matrix(pass, 0);
+        for (tri, &base) in pass.indices.chunks_exact(3).zip(layer.triangles.iter()) {
+            if let Some(record) = geometry.layer_corners.get_mut(base as usize * n + k) {
+                let corners = [tri[0], tri[1], tri[2]].map(|i| i as usize);
+                *record = GpuLayerCorners {
+                    uv: corners.map(|i| texcoord(pass, 0, matrix, i)),
+                    color: corners.map(|i| pack_unorm8(base_color(pass, i))),
+                    covered: 1,
+                };
+            }
+        }
+    }
     geometry
-}
-
-/// Material values the tracer applies where neither GL nor `glrt.toml` says otherwise.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct MaterialDefaults {
-    /// Dielectric reflectance at normal incidence of unlit surfaces.
-    pub specular: f32,
-}
-
-impl Default for MaterialDefaults {
-    fn default() -> MaterialDefaults {
-        MaterialDefaults { specular: 0.04 }
-    }
-}
-
-/// The material of a traced draw whose [`traced_textures`] are `textures` in the texel pool.
-///
-/// Each traced unit with a texture is a layer (see the module doc): [`LAYER_BAKED_LIGHT`] for a
-/// kept lightmap, [`LAYER_COLOR`] otherwise. Lit draws take their specular reflectance from
-/// the GL material (0 for the default material, so a default lit surface is Lambertian) and
-/// their roughness from its shininess (Blinn-Phong exponent n to GGX alpha = sqrt(2 / (n +
-/// 2))); emission is the GL material's. Roughness, metalness and emission otherwise come from
-/// the draw's `glrt.toml` material ([`crate::frame::class::MaterialOverride`], defaults
-/// included).
-pub fn material(draw: &Draw, textures: [Option<u32>; TRACED_UNITS], defaults: &MaterialDefaults) -> GpuMaterial {
-    let layer = |unit: usize| {
-        let env = draw.texture_units.get(unit).copied().flatten();
-        let content = draw.textures.get(unit).and_then(Option::as_ref).map(|t| &t.content);
-        let (Some(texture), Some(env), Some(content)) = (textures[unit], env, content) else {
-            return GpuLayer { texture: NO_TEXTURE, role: LAYER_OFF, ..GpuLayer::default() };
-        };
-        let [combine_rgb, combine_alpha] = texenv::combine_words(&env.env);
-        let baked = unit == LIGHTMAP_UNIT && is_lightmap(&env);
-        GpuLayer {
-            env_color: env.env.color,
-            texture,
-            env: texenv::unit_bits(&env, content),
-            combine_rgb,
-            combine_alpha,
-            role: if baked { LAYER_BAKED_LIGHT } else { LAYER_COLOR },
-            pad: [0; 3],
-        }
-    };
-    let over = draw.instance.map(|i| i.material).unwrap_or_default();
-    let (mut roughness, mut specular, mut emission) = (over.roughness, defaults.specular, [0.0; 4]);
-    if let Some(l) = &draw.state.lighting {
-        let s = l.front.specular;
-        specular = 0.04 * s[0].max(s[1]).max(s[2]).clamp(0.0, 1.0);
-        if specular > 0.0 {
-            roughness = (2.0 / (l.front.shininess + 2.0)).sqrt().sqrt();
-        }
-        let e = l.front.emission;
-        emission = [srgb_to_linear(e[0]), srgb_to_linear(e[1]), srgb_to_linear(e[2]), 0.0];
-    }
-    emission[3] = over.emissive.max(0.0);
-    let (alpha_func, alpha_ref) = match draw.state.alpha_test {
-        Some((func, reference)) if textures.iter().any(Option::is_some) => (func as u32, reference),
-        _ => (CompareFunc::Always as u32, 0.0),
-    };
-    GpuMaterial {
-        emission,
-        layer: std::array::from_fn(layer),
-        roughness,
-        metalness: over.metalness.clamp(0.0, 1.0),
-        specular,
-        alpha_func,
-        alpha_ref,
-        pad: [0; 3],
-    }
 }
 
 /// The linear value of a display-encoded (sRGB) component.
@@ -322,10 +225,8 @@ pub fn pack_normal(n: Vec3) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::frame::class::DrawClass;
-    use crate::frame::texture::{TextureContent, TextureEnv};
-    use crate::render::texenv::codes::{ENV, ENV_COMBINE, ENV_DECAL, FORMAT, FORMAT_LUMINANCE, SCALE};
-    use crate::frame::{Attrib, RasterState, Vertices};
+    use crate::frame::class::{DrawClass, Layer, LayerRole};
+    use crate::frame::{Attrib, RasterState, TextureUnit, Vertices};
     use std::sync::Arc;
 
     fn quad(class: DrawClass) -> Draw {
@@ -344,21 +245,27 @@ mod tests {
         }
     }
 
+    /// `draw` as a surface without passes.
+    fn alone(draw: &Draw) -> Surface<'_> {
+        Surface { base: draw, passes: Vec::new() }
+    }
+
     #[test]
     fn traced_draws_are_opaque_classes_of_triangles() {
         assert!(is_traced(&quad(DrawClass::Static)));
         assert!(!is_traced(&quad(DrawClass::Translucent)));
-        let frame = Frame { draws: vec![quad(DrawClass::Sky), quad(DrawClass::Movable), quad(DrawClass::Overlay)], ..Frame::default() };
-        assert_eq!(first_traced(&frame), Some(1));
+        assert!(!is_traced(&quad(DrawClass::Layer)));
     }
 
     #[test]
     fn geometry_divides_by_w_and_keeps_unlit_colours_without_normals() {
-        let g = geometry(&quad(DrawClass::Static));
+        let draw = quad(DrawClass::Static);
+        let g = geometry(&alone(&draw));
         assert_eq!(g.triangles.len(), 2);
         assert_eq!(g.triangles[1][2], Vec3::new(0.0, 1.0, 0.0));
         assert_eq!(g.attributes[0].corner[1].color, pack_unorm8([1.0, 0.5, 0.0, 1.0]));
         assert_eq!(g.attributes[0].corner[0].normal, 0, "unlit draws use the geometric normal");
+        assert_eq!((g.passes, g.layer_corners.len()), (0, 0));
     }
 
     #[test]
@@ -367,129 +274,82 @@ mod tests {
         let mut lighting = Lighting::default();
         lighting.front.diffuse = [0.25, 0.5, 0.75, 1.0];
         draw.state = Arc::new(RasterState { lighting: Some(lighting), ..RasterState::default() });
-        let g = geometry(&draw);
+        let g = geometry(&alone(&draw));
         assert_eq!(g.attributes[0].corner[0].color, pack_unorm8([0.25, 0.5, 0.75, 1.0]));
         assert_ne!(g.attributes[0].corner[0].normal, 0);
-        assert_ne!(geometry_key(&draw), geometry_key(&quad(DrawClass::Static)));
+        assert_ne!(geometry_key(&alone(&draw)), geometry_key(&alone(&quad(DrawClass::Static))));
     }
 
-    #[test]
-    fn default_lit_material_is_lambertian() {
+    /// `quad` with units 0 and 1 enabled; unit 1's coordinates are the positions' x, y,
+    /// through a texture matrix halving s.
+    fn two_units() -> Draw {
         let mut draw = quad(DrawClass::Static);
-        draw.state = Arc::new(RasterState { lighting: Some(Lighting::default()), ..RasterState::default() });
-        let m = material(&draw, [None; 2], &MaterialDefaults::default());
-        assert_eq!((m.specular, m.alpha_func), (0.0, 7));
-        assert!(m.layer.iter().all(|l| (l.texture, l.role) == (NO_TEXTURE, LAYER_OFF)), "{:?}", m.layer);
-        let unlit = material(&lightmapped(TextureEnv::default()), [Some(3), None], &MaterialDefaults::default());
-        assert_eq!((unlit.specular, unlit.layer[0].texture, unlit.layer[0].role), (0.04, 3, LAYER_COLOR));
-        assert_eq!(unlit.layer[1].role, LAYER_OFF, "unit 1's texture is not traced");
-    }
-
-    /// `quad` textured on unit 0 and with texture 2 on unit 1 of environment `env`; unit 1's
-    /// coordinates are the positions' x, y, through a texture matrix halving s.
-    fn lightmapped(env: TextureEnv) -> Draw {
-        let mut draw = quad(DrawClass::Static);
-        let texture = |id| Some(TextureRef { id, version: 1, content: Arc::new(TextureContent::default()) });
-        draw.textures = vec![texture(1), texture(2)];
-        draw.texture_units = vec![Some(TextureUnit::default()), Some(TextureUnit { env, ..TextureUnit::default() })];
+        draw.texture_units = vec![Some(TextureUnit::default()), Some(TextureUnit::default())];
         draw.texture_matrices = vec![Some(Mat4::IDENTITY), Some(Mat4::from_scale(Vec3::new(0.5, 1.0, 1.0)))];
-        let lightmap_uv = draw.vertices.position.iter().map(|p| [p[0], p[1], 0.0, p[3]]).collect();
-        draw.vertices.texcoords = vec![Attrib { values: vec![[0.25, 0.75, 0.0, 1.0]] }, Attrib { values: lightmap_uv }];
+        let second_uv = draw.vertices.position.iter().map(|p| [p[0], p[1], 0.0, p[3]]).collect();
+        draw.vertices.texcoords = vec![Attrib { values: vec![[0.25, 0.75, 0.0, 1.0]] }, Attrib { values: second_uv }];
         draw
     }
 
     #[test]
-    fn modulating_units_are_lightmaps() {
-        let modulate = TextureEnv::default();
-        assert!(is_lightmap(&TextureUnit { env: modulate, ..TextureUnit::default() }));
-        let overbright = TextureEnv {
-            mode: EnvMode::Combine,
-            combine_rgb: CombineFn::Modulate,
-            source_rgb: [CombineSource::Texture, CombineSource::Previous, CombineSource::Constant],
-            scale: [2.0, 1.0],
-            ..TextureEnv::default()
-        };
-        assert!(is_lightmap(&TextureUnit { env: overbright, ..TextureUnit::default() }));
-        let not_lightmaps = [
-            TextureEnv { mode: EnvMode::Decal, ..modulate },
-            TextureEnv { mode: EnvMode::Add, ..modulate },
-            TextureEnv { mode: EnvMode::Replace, ..modulate },
-            TextureEnv { mode: EnvMode::Blend, ..modulate },
-            TextureEnv { combine_rgb: CombineFn::Add, ..overbright },
-            TextureEnv { source_rgb: [CombineSource::Texture, CombineSource::PrimaryColor, CombineSource::Constant], ..overbright },
-            TextureEnv { operand_rgb: [CombineOperand::SrcColor, CombineOperand::OneMinusSrcColor, CombineOperand::SrcColor], ..overbright },
-        ];
-        for env in not_lightmaps {
-            assert!(!is_lightmap(&TextureUnit { env, ..TextureUnit::default() }), "{env:?}");
-        }
-    }
-
-    #[test]
-    fn kept_lightmaps_are_sampled_with_unit_1_coordinates() {
-        let draw = lightmapped(TextureEnv::default());
-        let ids = |t: [Option<&TextureRef>; 2]| t.map(|t| t.map(|t| t.id));
-        assert_eq!(ids(traced_textures(&draw, Lightmaps::Ignore)), [Some(1), None]);
-        assert_eq!(ids(traced_textures(&draw, Lightmaps::Keep)), [Some(1), Some(2)]);
-        let decal = lightmapped(TextureEnv { mode: EnvMode::Decal, ..TextureEnv::default() });
-        for lightmaps in [Lightmaps::Ignore, Lightmaps::Keep] {
-            assert_eq!(ids(traced_textures(&decal, lightmaps)), [Some(1), Some(2)], "a decal on unit 1 is a colour layer");
-        }
-        let mut disabled = draw.clone();
-        disabled.texture_units[1] = None;
-        assert_eq!(ids(traced_textures(&disabled, Lightmaps::Keep)), [Some(1), None]);
-
-        // Unit 1's coordinates after its texture matrix (s halved), divided by q; unit 0's too.
-        let g = geometry(&draw);
+    fn unit_1_coordinates_go_through_its_matrix_and_into_the_key() {
+        let draw = two_units();
+        let g = geometry(&alone(&draw));
         assert_eq!(g.attributes[0].corner.map(|c| c.uv[1]), [[0.0, 0.0], [0.5, 0.0], [0.5, 1.0]]);
         assert_eq!(g.attributes[1].corner[2].uv[1], [0.0, 1.0], "(0, 2, 0, 2) divided by q");
         assert_eq!(g.attributes[0].corner[0].uv[0], [0.25, 0.75]);
-        assert_eq!(geometry(&disabled).attributes[0].corner[1].uv[1], [0.0, 0.0]);
-        // The key sees unit 1's coordinates and matrix, and whether the unit is on.
+        let mut disabled = draw.clone();
+        disabled.texture_units[1] = None;
+        assert_eq!(geometry(&alone(&disabled)).attributes[0].corner[1].uv[1], [0.0, 0.0]);
         let mut moved = draw.clone();
         moved.vertices.texcoords[1].values[1][0] = 0.75;
         let mut scaled = draw.clone();
         scaled.texture_matrices[1] = Some(Mat4::IDENTITY);
-        let keys = [&draw, &moved, &scaled, &disabled].map(geometry_key);
+        let keys = [&draw, &moved, &scaled, &disabled].map(|d| geometry_key(&alone(d)));
         assert!(keys.iter().enumerate().all(|(i, k)| keys[i + 1..].iter().all(|o| o != k)), "{keys:?}");
-
-        let m = material(&draw, [Some(4), Some(5)], &MaterialDefaults::default());
-        assert_eq!(m.layer.map(|l| (l.texture, l.role)), [(4, LAYER_COLOR), (5, LAYER_BAKED_LIGHT)]);
-        let m = material(&decal, [Some(4), Some(5)], &MaterialDefaults::default());
-        assert_eq!(m.layer.map(|l| (l.texture, l.role)), [(4, LAYER_COLOR), (5, LAYER_COLOR)]);
-        assert_eq!(ENV.get(m.layer[1].env), ENV_DECAL);
     }
 
-    /// A `GL_COMBINE` unit becomes a colour layer with the words `ff.frag` gets for it, its
-    /// environment colour and its texture's base format; an overbright lightmap keeps its scale
-    /// in its combiner word.
+    /// A pass over triangle 1 of its base (its one triangle: vertices 2, 0, 1 of its own),
+    /// with unit 0's coordinates (s, t) = (10 i, 0) at vertex i and a colour per vertex.
+    fn pass_over_triangle_1() -> Draw {
+        let mut pass = quad(DrawClass::Layer);
+        pass.indices = vec![2, 0, 1];
+        pass.texture_units = vec![Some(TextureUnit::default())];
+        pass.vertices.texcoords = vec![Attrib { values: (0..4).map(|i| [10.0 * i as f32, 0.0, 0.0, 1.0]).collect() }];
+        pass.vertices.color = Attrib { values: vec![[1.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0], [1.0; 4]] };
+        pass.layer = Some(Layer { base: 0, triangles: Arc::from([1u32]), role: LayerRole::Emission });
+        pass
+    }
+
     #[test]
-    fn combine_units_carry_the_raster_words() {
-        let interpolate = TextureEnv {
-            mode: EnvMode::Combine,
-            combine_rgb: CombineFn::Interpolate,
-            source_rgb: [CombineSource::Texture, CombineSource::Constant, CombineSource::PrimaryColor],
-            color: [0.25, 0.5, 0.75, 1.0],
-            scale: [1.0, 4.0],
-            ..TextureEnv::default()
-        };
-        let mut draw = lightmapped(interpolate);
-        let luminance = TextureContent { format: crate::frame::texture::TexelFormat::Luminance, ..TextureContent::default() };
-        draw.textures[1] = Some(TextureRef { id: 2, version: 1, content: Arc::new(luminance) });
-        let m = material(&draw, [Some(4), Some(5)], &MaterialDefaults::default());
-        let l = m.layer[1];
-        let unit = draw.texture_units[1].expect("unit 1");
-        assert_eq!([l.combine_rgb, l.combine_alpha], texenv::combine_words(&interpolate));
-        assert_eq!((l.role, l.env_color, ENV.get(l.env), FORMAT.get(l.env)), (LAYER_COLOR, interpolate.color, ENV_COMBINE, FORMAT_LUMINANCE));
-        assert_eq!(l.env, texenv::unit_bits(&unit, &draw.textures[1].as_ref().expect("texture").content));
-        let overbright = TextureEnv {
-            mode: EnvMode::Combine,
-            combine_rgb: CombineFn::Modulate,
-            source_rgb: [CombineSource::Previous, CombineSource::Texture, CombineSource::Constant],
-            scale: [2.0, 1.0],
-            ..TextureEnv::default()
-        };
-        let m = material(&lightmapped(overbright), [Some(4), Some(5)], &MaterialDefaults::default());
-        assert_eq!((m.layer[1].role, SCALE.get(m.layer[1].combine_rgb)), (LAYER_BAKED_LIGHT, 1), "RGB_SCALE 2");
+    fn passes_carry_their_corners_on_the_base_triangles_they_cover() {
+        let base = quad(DrawClass::Static);
+        let pass = pass_over_triangle_1();
+        let untextured = Draw { texture_units: Vec::new(), ..pass_over_triangle_1() };
+        let surface = Surface { base: &base, passes: vec![&untextured, &pass] };
+        let g = geometry(&surface);
+        assert_eq!((g.passes, g.layer_corners.len()), (2, 4));
+        assert_eq!(g.layer_corners[0], GpuLayerCorners::default(), "triangle 0 is not covered by pass 0");
+        assert_eq!(g.layer_corners[1].covered, 0, "nor by pass 1");
+        let covered = g.layer_corners[3];
+        assert_eq!(covered.covered, 1);
+        assert_eq!(covered.uv, [[20.0, 0.0], [0.0, 0.0], [10.0, 0.0]], "the pass's vertices at the base triangle's corners");
+        assert_eq!(covered.color, [pack_unorm8([0.0, 0.0, 1.0, 1.0]), pack_unorm8([1.0, 0.0, 0.0, 1.0]), pack_unorm8([0.0, 1.0, 0.0, 1.0])]);
+        assert_eq!((g.layer_corners[2].covered, g.layer_corners[2].uv[0]), (1, [0.0, 0.0]), "without texturing the pass has no coordinates");
+
+        // The key sees the passes, their order, their coordinates and where they lie.
+        let mut elsewhere = pass_over_triangle_1();
+        elsewhere.layer = Some(Layer { base: 0, triangles: Arc::from([0u32]), role: LayerRole::Emission });
+        let mut recoloured = pass_over_triangle_1();
+        recoloured.vertices.color.values[0] = [0.5; 4];
+        let keys = [
+            geometry_key(&alone(&base)),
+            geometry_key(&surface),
+            geometry_key(&Surface { base: &base, passes: vec![&pass, &untextured] }),
+            geometry_key(&Surface { base: &base, passes: vec![&untextured, &elsewhere] }),
+            geometry_key(&Surface { base: &base, passes: vec![&untextured, &recoloured] }),
+        ];
+        assert!(keys.iter().enumerate().all(|(i, k)| keys[i + 1..].iter().all(|o| o != k)), "{keys:?}");
     }
 
     #[test]

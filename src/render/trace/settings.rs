@@ -12,10 +12,11 @@
 //! sun_direction = [0.3, 1.0, 0.2]  # towards the sun, world frame; absent: GL's own
 //! sun_angle = 0.53          # angular diameter of directional lights, degrees, 0..=10
 //! light_radius = 0.0        # radius of point and spot lights, eye-space units, >= 0 (0: points)
-//! tonemap = "aces"          # "aces", "reinhard", "none" (clamp)
+//! tonemap = "knee"          # "knee", "aces", "reinhard", "none" (clamp)
 //! exposure = 0.0            # EV offset, -10..=10
 //! accumulate = 1024         # frames accumulated while the camera stands still, 1..=65536
-//! lightmaps = "ignore"      # "ignore" or "keep" (a second unit modulated over the first: baked light)
+//! lightmaps = "keep"        # "keep" or "ignore" (baked surfaces traced as reflectors)
+//! sample_emitters = true    # next-event estimation of emissive surfaces
 //! temporal = true           # temporal filter with reprojection while moving
 //! sky_size = 128            # faces of the sky's environment cube map, pixels, 16..=2048
 //! ```
@@ -24,11 +25,21 @@ use glam::Vec3;
 
 use crate::config::{Key, Table, integer_in, number, number_in, one_of, shown};
 
+/// Where the knee tone curve ([`Tonemap::Knee`]) leaves the identity: linear radiance 0.8
+/// (display value 0.906, 231 of 255).
+pub const KNEE: f32 = 0.8;
+
 /// How traced radiance becomes display colour.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Tonemap {
-    /// The ACES filmic curve (`"aces"`).
+    /// Display-referred (`"knee"`): the identity up to the knee [`KNEE`], so a surface shows
+    /// the colour the rasterizer gives it, and above it a Reinhard shoulder, `k + (1 − k) t /
+    /// (1 + t)` with `t = (x − k) / (1 − k)`, which keeps the value and slope at the knee and
+    /// approaches display white: linear 1 shows as 0.9 (display 243 of 255), 2 as 0.971, 4 as
+    /// 0.989. Per channel.
     #[default]
+    Knee,
+    /// The ACES filmic curve fitted by Narkowicz (`"aces"`): changes every colour.
     Aces,
     /// Reinhard, `c / (1 + c)` (`"reinhard"`).
     Reinhard,
@@ -36,17 +47,19 @@ pub enum Tonemap {
     Clamp,
 }
 
-/// What the tracer does with a second texture unit modulated over the first (a lightmap: the
-/// light baked by the game, which tracing computes itself; `scene`'s module doc says why
-/// neither choice counts it twice).
+/// What the tracer does with surfaces whose light is baked
+/// ([`crate::frame::class::SurfaceLighting::Baked`]: a lightmap unit or pass, or baked vertex
+/// colours: light the game computed, which tracing computes itself; `super::material`'s module
+/// doc says why neither choice counts it twice).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Lightmaps {
-    /// Left out: the surface reflects traced light (`"ignore"`).
+    /// The surface shows its raster colour, albedo × baked light, as emitted radiance and
+    /// reflects no traced light (`"keep"`).
     #[default]
-    Ignore,
-    /// The surface shows its baked light, albedo × lightmap, as emitted radiance and reflects
-    /// no traced light (`"keep"`).
     Keep,
+    /// The baked light is left out: the surface reflects traced light with its albedo
+    /// (`"ignore"`).
+    Ignore,
 }
 
 /// The `[pathtrace]` settings.
@@ -76,8 +89,11 @@ pub struct Settings {
     pub exposure: f32,
     /// Frames accumulated at most while the camera stands still, 1..=65536.
     pub accumulate: u32,
-    /// Whether a second texture unit modulated over the first is traced as baked light.
+    /// Whether baked surfaces show their baked light.
     pub lightmaps: Lightmaps,
+    /// Next-event estimation of emissive surfaces (emission passes, emissive materials,
+    /// [`super::emitters`]); off, only continuation rays find them.
+    pub sample_emitters: bool,
     /// The temporal filter (with reprojection while the camera moves).
     pub temporal: bool,
     /// Width and height of each face of the environment cube map the sky draws are rendered
@@ -95,10 +111,11 @@ impl Default for Settings {
             sun_direction: None,
             sun_angle: 0.53,
             light_radius: 0.0,
-            tonemap: Tonemap::Aces,
+            tonemap: Tonemap::Knee,
             exposure: 0.0,
             accumulate: 1024,
-            lightmaps: Lightmaps::Ignore,
+            lightmaps: Lightmaps::Keep,
+            sample_emitters: true,
             temporal: true,
             sky_size: 128,
         }
@@ -133,11 +150,12 @@ impl Table for Settings {
         Key { name: "light_radius", set: |s, v| number(v, |x| x >= 0.0, "a number >= 0").map(|x| s.light_radius = x as f32) },
         Key {
             name: "tonemap",
-            set: |s, v| one_of(v, &["aces", "reinhard", "none"]).map(|i| s.tonemap = [Tonemap::Aces, Tonemap::Reinhard, Tonemap::Clamp][i]),
+            set: |s, v| one_of(v, &["knee", "aces", "reinhard", "none"]).map(|i| s.tonemap = [Tonemap::Knee, Tonemap::Aces, Tonemap::Reinhard, Tonemap::Clamp][i]),
         },
         Key { name: "exposure", set: |s, v| number_in(v, -10.0..=10.0).map(|x| s.exposure = x as f32) },
         Key { name: "accumulate", set: |s, v| integer_in(v, 1..=65536).map(|x| s.accumulate = x as u32) },
-        Key { name: "lightmaps", set: |s, v| one_of(v, &["ignore", "keep"]).map(|i| s.lightmaps = [Lightmaps::Ignore, Lightmaps::Keep][i]) },
+        Key { name: "lightmaps", set: |s, v| one_of(v, &["keep", "ignore"]).map(|i| s.lightmaps = [Lightmaps::Keep, Lightmaps::Ignore][i]) },
+        Key { name: "sample_emitters", set: |s, v| boolean(v).map(|b| s.sample_emitters = b) },
         Key { name: "temporal", set: |s, v| boolean(v).map(|b| s.temporal = b) },
         Key { name: "sky_size", set: |s, v| integer_in(v, 16..=2048).map(|x| s.sky_size = x as u32) },
     ];
@@ -172,7 +190,7 @@ mod tests {
     #[test]
     fn every_key_is_read() {
         let body = "spp = 8\nbounces = 0\nresolution_scale = 0.5\nlight_scale = 2\nsun_direction = [0, 2, 0]\nsun_angle = 0\nlight_radius = 0.25\n\
-                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"keep\"\ntemporal = false\nsky_size = 64\n";
+                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"ignore\"\nsample_emitters = false\ntemporal = false\nsky_size = 64\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
         let expected = Settings {
@@ -186,14 +204,18 @@ mod tests {
             tonemap: Tonemap::Reinhard,
             exposure: -1.5,
             accumulate: 65536,
-            lightmaps: Lightmaps::Keep,
+            lightmaps: Lightmaps::Ignore,
+            sample_emitters: false,
             temporal: false,
             sky_size: 64,
         };
         assert_eq!(s, expected);
         assert_eq!(read("tonemap = \"none\"\n", &[]).0.tonemap, Tonemap::Clamp);
+        assert_eq!(read("tonemap = \"aces\"\n", &[]).0.tonemap, Tonemap::Aces);
+        assert_eq!(read("tonemap = \"knee\"\nlightmaps = \"keep\"\n", &[]).0, Settings::default());
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
-        assert_eq!(Settings::KEYS.len(), 13);
+        assert_eq!((Settings::default().tonemap, Settings::default().lightmaps), (Tonemap::Knee, Lightmaps::Keep));
+        assert_eq!(Settings::KEYS.len(), 14);
     }
 
     #[test]
@@ -211,10 +233,11 @@ mod tests {
             ("sun_direction = \"up\"", "sun_direction: expected a direction [x, y, z], not zero, found \"up\""),
             ("sun_angle = 11", "sun_angle: expected a number in 0..=10, found 11"),
             ("light_radius = -0.5", "light_radius: expected a number >= 0, found -0.5"),
-            ("tonemap = \"filmic\"", "tonemap: expected one of \"aces\", \"reinhard\", \"none\", found \"filmic\""),
+            ("tonemap = \"filmic\"", "tonemap: expected one of \"knee\", \"aces\", \"reinhard\", \"none\", found \"filmic\""),
             ("exposure = -10.5", "exposure: expected a number in -10..=10, found -10.5"),
             ("accumulate = 0", "accumulate: expected an integer in 1..=65536, found 0"),
-            ("lightmaps = true", "lightmaps: expected one of \"ignore\", \"keep\", found true"),
+            ("lightmaps = true", "lightmaps: expected one of \"keep\", \"ignore\", found true"),
+            ("sample_emitters = \"yes\"", "sample_emitters: expected true or false, found \"yes\""),
             ("temporal = 1", "temporal: expected true or false, found 1"),
             ("sky_size = 8", "sky_size: expected an integer in 16..=2048, found 8"),
         ];
@@ -250,12 +273,12 @@ mod tests {
     fn bad_variables_are_reported_and_leave_the_file_value() {
         let env = [("GLRT_SPP", "lots"), ("GLRT_BOUNCES", "-1"), ("GLRT_LIGHTMAPS", ""), ("GLRT_RESOLUTION_SCALE", "[0.5")];
         let (s, problems) = read("spp = 4\n", &env);
-        assert_eq!((s.spp, s.bounces, s.lightmaps, s.resolution_scale), (4, 2, Lightmaps::Ignore, 1.0));
+        assert_eq!((s.spp, s.bounces, s.lightmaps, s.resolution_scale), (4, 2, Lightmaps::Keep, 1.0));
         assert_eq!(problems, [
             "GLRT_SPP: expected an integer in 1..=64, found \"lots\"; the variable is ignored",
             "GLRT_BOUNCES: expected an integer in 0..=8, found -1; the variable is ignored",
             "GLRT_RESOLUTION_SCALE: expected a number in 0.25..=1, found \"[0.5\"; the variable is ignored",
-            "GLRT_LIGHTMAPS: expected one of \"ignore\", \"keep\", found \"\"; the variable is ignored",
+            "GLRT_LIGHTMAPS: expected one of \"keep\", \"ignore\", found \"\"; the variable is ignored",
         ]);
     }
 

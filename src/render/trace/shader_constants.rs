@@ -1,6 +1,6 @@
-//! The flag bits and special values of the tracer's GPU records, shared with the tracing
-//! shaders as `generated/trace_constants.glsl` (see [`crate::render::shader_abi`]); the
-//! descriptor bindings are [`super::bindings`].
+//! The flag bits, codes and special values of the tracer's GPU records, shared with the
+//! tracing shaders as `generated/trace_constants.glsl` (see [`crate::render::shader_abi`]);
+//! the descriptor bindings are [`super::bindings`].
 
 glsl_constants! {
     /// Local size of the compute shaders in x and y.
@@ -13,14 +13,74 @@ glsl_constants! {
     /// Texture units a material traces, each a [`GpuLayer`](super::gpu_types::GpuLayer): the
     /// units whose coordinates a triangle's corners carry.
     const TRACED_UNITS: usize = 2;
-    /// `GpuLayer::role`: the unit does not texture (or is left out).
+    /// Passes (draws of class `Layer`) a material traces after its units, each a `GpuLayer`
+    /// whose corners are `GpuLayerCorners` records: `crate::frame::class::MAX_LAYERS`.
+    const MAX_PASSES: usize = 4;
+    /// Layers of a material: its units, then its passes.
+    const MATERIAL_LAYERS: usize = TRACED_UNITS + MAX_PASSES;
+    /// `GpuLayer::role`: the unit or pass does not texture (or is left out).
     const LAYER_OFF: u32 = 0;
-    /// `GpuLayer::role`: the unit's texture environment applies to the surface colour, after
-    /// the layers before it (`texenv.glsl`).
+    /// `GpuLayer::role`: colour: the unit's texture environment applies to the surface colour
+    /// after the layers before it (`texenv.glsl`); a pass blends its colour over it. Part of
+    /// the albedo.
     const LAYER_COLOR: u32 = 1;
-    /// `GpuLayer::role`: a kept lightmap: the unit's texels, times its RGB scale, are the
-    /// surface's baked irradiance (`super::scene`'s module doc).
+    /// `GpuLayer::role`: baked light: a light unit (`Instance::light_units`) or a lightmap
+    /// pass. Part of the raster colour, left out of the albedo (`super::material`'s module
+    /// doc).
     const LAYER_BAKED_LIGHT: u32 = 2;
+    /// `GpuLayer::role`: an additive pass: what it adds to the raster colour is emitted light,
+    /// left out of the albedo.
+    const LAYER_EMISSION: u32 = 3;
+
+    /// `GpuMaterial::flags`: baked: the surface emits its raster colour and reflects no traced
+    /// light (the path ends on it).
+    const MATERIAL_BAKED: u32 = 1;
+    /// `GpuMaterial::flags`: the vertex colours are light: the albedo takes white for their
+    /// RGB (a vertex-lit model, a surface baked into its vertex colours).
+    const MATERIAL_WHITE_PRIMARY: u32 = 2;
+    /// `GpuMaterial::emitters` of a surface that is not in the emitter list.
+    const NO_EMITTER: u32 = u32::MAX;
+
+    /// Blend factor of a pass (`GpuLayer::blend`, OpenGL 1.5 table 4.2): `GL_ZERO`.
+    const FACTOR_ZERO: u32 = 0;
+    /// `GL_ONE`.
+    const FACTOR_ONE: u32 = 1;
+    /// `GL_SRC_COLOR`.
+    const FACTOR_SRC_COLOR: u32 = 2;
+    /// `GL_ONE_MINUS_SRC_COLOR`.
+    const FACTOR_ONE_MINUS_SRC_COLOR: u32 = 3;
+    /// `GL_DST_COLOR`.
+    const FACTOR_DST_COLOR: u32 = 4;
+    /// `GL_ONE_MINUS_DST_COLOR`.
+    const FACTOR_ONE_MINUS_DST_COLOR: u32 = 5;
+    /// `GL_SRC_ALPHA`.
+    const FACTOR_SRC_ALPHA: u32 = 6;
+    /// `GL_ONE_MINUS_SRC_ALPHA`.
+    const FACTOR_ONE_MINUS_SRC_ALPHA: u32 = 7;
+    /// `GL_DST_ALPHA`.
+    const FACTOR_DST_ALPHA: u32 = 8;
+    /// `GL_ONE_MINUS_DST_ALPHA`.
+    const FACTOR_ONE_MINUS_DST_ALPHA: u32 = 9;
+    /// `GL_CONSTANT_COLOR`.
+    const FACTOR_CONSTANT_COLOR: u32 = 10;
+    /// `GL_ONE_MINUS_CONSTANT_COLOR`.
+    const FACTOR_ONE_MINUS_CONSTANT_COLOR: u32 = 11;
+    /// `GL_CONSTANT_ALPHA`.
+    const FACTOR_CONSTANT_ALPHA: u32 = 12;
+    /// `GL_ONE_MINUS_CONSTANT_ALPHA`.
+    const FACTOR_ONE_MINUS_CONSTANT_ALPHA: u32 = 13;
+    /// `GL_SRC_ALPHA_SATURATE`.
+    const FACTOR_SRC_ALPHA_SATURATE: u32 = 14;
+    /// Blend equation of a pass (table 4.1): `GL_FUNC_ADD`.
+    const EQUATION_ADD: u32 = 0;
+    /// `GL_FUNC_SUBTRACT`.
+    const EQUATION_SUBTRACT: u32 = 1;
+    /// `GL_FUNC_REVERSE_SUBTRACT`.
+    const EQUATION_REVERSE_SUBTRACT: u32 = 2;
+    /// `GL_MIN`.
+    const EQUATION_MIN: u32 = 3;
+    /// `GL_MAX`.
+    const EQUATION_MAX: u32 = 4;
 
     /// `GpuInstance::flags`: traversal runs the alpha test (`trace_alpha_accept`).
     const INSTANCE_ALPHA_TESTED: u32 = 1;
@@ -38,6 +98,9 @@ glsl_constants! {
     const TONEMAP_REINHARD: u32 = 1;
     /// Tone mapping: the ACES filmic curve fitted by Narkowicz (2015).
     const TONEMAP_ACES: u32 = 2;
+    /// Tone mapping: the identity up to the knee, a Reinhard shoulder above it
+    /// (`trace_resolve.comp`, [`super::settings::Tonemap::Knee`]).
+    const TONEMAP_KNEE: u32 = 3;
 
     /// `GpuTexture::flags`: wrap mode `GL_REPEAT` (s in bits 0-1, t in bits 2-3).
     const TEXEL_WRAP_REPEAT: u32 = 0;
@@ -69,4 +132,19 @@ glsl_constants! {
     /// pushes at most one entry per level, so its one stack of `2 * BVH_MAX_DEPTH` entries
     /// (`BVH_STACK_SIZE` in `bvh.glsl`) holds a TLAS path and a BLAS path.
     const BVH_MAX_DEPTH: usize = 32;
+}
+
+glsl_fields! {
+    /// `GpuLayer::blend`: source factor of the colour channels, `FACTOR_*`.
+    BLEND_SRC_RGB = (0, 4);
+    /// Destination factor of the colour channels.
+    BLEND_DST_RGB = (4, 4);
+    /// Source factor of alpha.
+    BLEND_SRC_ALPHA = (8, 4);
+    /// Destination factor of alpha.
+    BLEND_DST_ALPHA = (12, 4);
+    /// Equation of the colour channels, `EQUATION_*`.
+    BLEND_EQUATION_RGB = (16, 3);
+    /// Equation of alpha.
+    BLEND_EQUATION_ALPHA = (19, 3);
 }
