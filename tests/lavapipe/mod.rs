@@ -75,10 +75,10 @@ impl<S: FrameSink> FrameSink for Classified<S> {
     }
 }
 
-/// A context drawing into `renderer` through [`Classified`] with `edit`, not yet bound to a
-/// drawable.
-pub fn classified_context_on(renderer: Renderer, edit: impl Fn(&mut Frame) + Send + 'static) -> Context {
-    Context::new(ContextConfig { share: None, sink: Box::new(Classified { sink: renderer, edit: Box::new(edit) }) })
+/// A context drawing into `sink` (a renderer, a [`Shared`] one) through [`Classified`] with
+/// `edit`, not yet bound to a drawable.
+pub fn classified_context_on(sink: impl FrameSink + 'static, edit: impl Fn(&mut Frame) + Send + 'static) -> Context {
+    Context::new(ContextConfig { share: None, sink: Box::new(Classified { sink, edit: Box::new(edit) }) })
 }
 
 /// A context drawing into `renderer`, not yet bound to a drawable.

@@ -17,11 +17,14 @@
 use crate::classified;
 use crate::lavapipe;
 
+use std::sync::{Arc, Mutex};
+
 use glam::DVec3;
 use glrt::frame::Frame;
 use glrt::frame::class::SurfaceLighting;
 use glrt::render::frame::Renderer;
 use glrt::render::trace::settings::{Lightmaps, Settings};
+use glrt::render::trace::stats::SceneCounts;
 use glrt::translate::{Context, dispatch, gl};
 
 /// Largest difference, per 8-bit channel, between a traced and a raster pixel of a baked
@@ -325,9 +328,13 @@ fn horizontal(ctx: &mut Context, y: f64, [x0, x1, z0, z1]: [f64; 4], color: f32)
 }
 
 /// A tracing context (`settings`, the default tone curve) with a 60° perspective camera at
-/// the origin looking down −z, its frames classified by `classify`.
-fn floor_context(settings: Settings, classify: impl Fn(&mut Frame) + Send + 'static) -> Context {
-    let mut ctx = context(Some(settings), FLOOR_SIZE, classify);
+/// the origin looking down −z, its frames classified by `classify`, and its renderer.
+fn floor_context(settings: Settings, classify: impl Fn(&mut Frame) + Send + 'static) -> (Context, Arc<Mutex<Renderer>>) {
+    let mut renderer = lavapipe::renderer_with(Renderer::without_outputs);
+    renderer.enable_tracing(settings).expect("the tracer's pipelines");
+    let renderer = Arc::new(Mutex::new(renderer));
+    let mut ctx = lavapipe::classified_context_on(lavapipe::Shared(renderer.clone()), classify);
+    ctx.bind_drawable(FLOOR_SIZE, FLOOR_SIZE);
     unsafe {
         dispatch::glViewport(&mut ctx, 0, 0, FLOOR_SIZE, FLOOR_SIZE);
         dispatch::glMatrixMode(&mut ctx, gl::GL_PROJECTION);
@@ -336,7 +343,12 @@ fn floor_context(settings: Settings, classify: impl Fn(&mut Frame) + Send + 'sta
         dispatch::glMatrixMode(&mut ctx, gl::GL_MODELVIEW);
         dispatch::glLoadIdentity(&mut ctx);
     }
-    ctx
+    (ctx, renderer)
+}
+
+/// What the last traced frame of `renderer` held.
+fn counts(renderer: &Arc<Mutex<Renderer>>) -> SceneCounts {
+    renderer.lock().unwrap().tracer().expect("tracing").statistics().scene
 }
 
 /// The eye-space direction through window position (x, y) (pixel units).
@@ -408,7 +420,7 @@ fn floor_means(image: &[[u8; 4]], pixels: &[((i32, i32), DVec3)], expected: impl
 fn a_vertex_lit_model_is_lit_by_the_baked_ceiling_beside_it() {
     const FRAMES: usize = 6;
     let ceiling = [-3.0, 3.0, -7.0, -1.0];
-    let mut ctx = floor_context(Settings { spp: 8, bounces: 1, ..Settings::default() }, |frame| {
+    let (mut ctx, renderer) = floor_context(Settings { spp: 8, bounces: 1, ..Settings::default() }, |frame| {
         classified::lit(frame, |d| d.vertices.position[0][1] > 0.0, SurfaceLighting::Baked);
         classified::lit(frame, |d| d.vertices.position[0][1] < 0.0, SurfaceLighting::VertexLit);
     });
@@ -422,6 +434,7 @@ fn a_vertex_lit_model_is_lit_by_the_baked_ceiling_beside_it() {
         ctx.end_frame();
     }
     let image = read(&mut ctx, FLOOR_SIZE);
+    assert_eq!(counts(&renderer).emitters, 0, "a baked surface's light is everywhere: not in the emitter list");
     let light = linear(128.0);
     let floor = pixels_on(FLOOR, -1.0, 0.02);
     assert!(floor.len() >= 30, "{} floor pixels", floor.len());
@@ -440,9 +453,10 @@ fn a_vertex_lit_model_is_lit_by_the_baked_ceiling_beside_it() {
 
 /// The image of a floor (unlit, white: albedo 1, its light traced) under a black patch of
 /// ceiling with an additive glow pass of grey 0.8 (emission linear(204) = 0.604), accumulated
-/// over `frames` frames, emitters sampled as `sample_emitters` says.
-fn glow_over_floor(glow: [f64; 4], sample_emitters: bool, frames: usize) -> Vec<[u8; 4]> {
-    let mut ctx = floor_context(Settings { spp: 16, bounces: 1, sample_emitters, ..Settings::default() }, classified::passes);
+/// over `frames` frames, emitters sampled as `sample_emitters` says; with what the last frame
+/// held.
+fn glow_over_floor(glow: [f64; 4], sample_emitters: bool, frames: usize) -> (Vec<[u8; 4]>, SceneCounts) {
+    let (mut ctx, renderer) = floor_context(Settings { spp: 16, bounces: 1, sample_emitters, ..Settings::default() }, classified::passes);
     for _ in 0..frames {
         clear(&mut ctx);
         horizontal(&mut ctx, CEILING_Y, glow, 0.0);
@@ -461,7 +475,7 @@ fn glow_over_floor(glow: [f64; 4], sample_emitters: bool, frames: usize) -> Vec<
         horizontal(&mut ctx, -1.0, FLOOR, 1.0);
         ctx.end_frame();
     }
-    read(&mut ctx, FLOOR_SIZE)
+    (read(&mut ctx, FLOOR_SIZE), counts(&renderer))
 }
 
 /// An additive glow pass is light: the floor under it reflects its emission times the view
@@ -469,7 +483,7 @@ fn glow_over_floor(glow: [f64; 4], sample_emitters: bool, frames: usize) -> Vec<
 /// rays, weighted by multiple importance sampling, or by continuation rays alone. Both
 /// estimate the same integral: their means agree within 4 standard errors of their
 /// difference, and each is the view-factor law's within 4 standard errors and 3 %.
-/// Sampling the emitters makes the floor much less noisy (a count that shows it is used).
+/// Sampling the emitters (the glow's two triangles) makes the floor much less noisy.
 #[test]
 fn a_glow_pass_lights_the_floor_beside_it_with_and_without_emitter_sampling() {
     const FRAMES: usize = 8;
@@ -477,8 +491,11 @@ fn a_glow_pass_lights_the_floor_beside_it_with_and_without_emitter_sampling() {
     let emission = linear(204.0);
     let floor = pixels_on(FLOOR, -1.0, 0.02);
     let law = |p| emission * view_factor(p, glow);
-    let (sampled, want, sampled_error) = floor_means(&glow_over_floor(glow, true, FRAMES), &floor, law);
-    let (found, _, found_error) = floor_means(&glow_over_floor(glow, false, FRAMES), &floor, law);
+    let (image, with) = glow_over_floor(glow, true, FRAMES);
+    let (sampled, want, sampled_error) = floor_means(&image, &floor, law);
+    let (image, without) = glow_over_floor(glow, false, FRAMES);
+    let (found, _, found_error) = floor_means(&image, &floor, law);
+    assert_eq!((with.passes, with.emitters, without.passes, without.emitters), (1, 2, 1, 0), "the glow is a pass of its surface, and its two triangles the emitter list");
     eprintln!("floor under the glow: sampled {sampled:.4} ± {sampled_error:.4}, continuation rays alone {found:.4} ± {found_error:.4}, the law {want:.4}, over {} pixels", floor.len());
     assert!(want > 0.05, "the glow lights the floor measurably: {want:.3}");
     for (what, got, error) in [("sampled", sampled, sampled_error), ("found by continuation rays", found, found_error)] {

@@ -382,12 +382,16 @@ impl RayTracer for ComputeTracer {
             // A new texture environment, pass or material changes the image as much as new
             // geometry does (and the temporal pass drops the history of its pixels).
             signature.update(&material.key.to_le_bytes());
-            match item.source {
-                Source::Surface(_) => counts.draw_instances += 1,
+            match &item.source {
+                Source::Surface(surface) => {
+                    counts.draw_instances += 1;
+                    counts.passes += surface.passes.len() as u32;
+                }
                 Source::Chunk(_) => counts.chunk_instances += 1,
             }
             counts.triangles += item.triangles() as u64;
         }
+        counts.emitters = emitter_list.len() as u32;
         self.statistics.scene = counts;
         self.statistics.totals.add_scene(&counts);
         self.tlas = Tlas::build(&bounds);

@@ -120,6 +120,16 @@ impl EmitterList {
         Some(first)
     }
 
+    /// Entries listed so far.
+    pub fn len(&self) -> usize {
+        self.entries.len()
+    }
+
+    /// Whether nothing is listed.
+    pub fn is_empty(&self) -> bool {
+        self.entries.is_empty()
+    }
+
     /// The entries with their alias table: entry `i` is kept with probability
     /// `threshold`, else its `alias` is taken, so that triangle `i` is drawn with probability
     /// `probability` = its weight over the total.
@@ -172,6 +182,7 @@ mod tests {
         assert_eq!(list.add(3, 100, &[1.0, 0.0, 6.0, 2.0]), Some(0));
         assert_eq!(list.add(4, 7, &[0.0, 0.0]), None, "nothing emits");
         assert_eq!(list.add(5, 10, &[1.0]), Some(4));
+        assert_eq!(list.len(), 5);
         let table = list.finish();
         assert_eq!(table.iter().map(|e| (e.instance, e.triangle)).collect::<Vec<_>>(), [(3, 100), (3, 101), (3, 102), (3, 103), (5, 10)]);
         let weights = [1.0, 0.0, 6.0, 2.0, 1.0];
@@ -180,7 +191,7 @@ mod tests {
             assert!((p - want).abs() < 1e-6 && (f64::from(e.probability) - want).abs() < 1e-6, "entry {i}: drawn {p}, listed {}, weight {want}", e.probability);
         }
         assert!(table.iter().all(|e| (0.0..=1.0).contains(&e.threshold)));
-        assert!(EmitterList::default().finish().is_empty());
+        assert!(EmitterList::default().is_empty() && EmitterList::default().finish().is_empty());
     }
 
     #[test]

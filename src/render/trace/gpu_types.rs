@@ -97,7 +97,7 @@ pub struct GpuLayerCorners {
     pub covered: u32,
 }
 
-/// `Material` of `scene.glsl`.
+/// `Material` of `scene.glsl`: one per instance, 448 bytes (six layers of 64).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuMaterial {
@@ -213,6 +213,8 @@ pub struct GpuCounters {
 pub const COUNTER_BYTES: u64 = size_of::<GpuCounters>() as u64;
 
 include!(concat!(env!("OUT_DIR"), "/layouts/trace_gpu_types.rs"));
+
+const _: () = assert!(size_of::<GpuMaterial>() == 448 && size_of::<GpuLayerCorners>() == 40, "the sizes the docs give");
 
 const _: () = assert!(MAX_PASSES == crate::frame::class::MAX_LAYERS, "a material traces every layer a surface may have");
 

@@ -169,7 +169,7 @@ mod tests {
         let traced = world_draw(1, SurfaceLighting::Traced);
         let baked = world_draw(2, SurfaceLighting::Baked);
         let baked_too = world_draw(2, SurfaceLighting::Baked);
-        let chunks = vec![chunk_of(&traced, 10), chunk_of(&baked, 11)];
+        let chunks = [chunk_of(&traced, 10), chunk_of(&baked, 11)];
         let mut with_second_unit = (*chunk_of(&traced, 12)).clone();
         with_second_unit.shading.second_unit = Some(TextureUnit::default());
         let frame = Frame { view: Some(View::default()), static_world: vec![chunks[0].clone(), chunks[1].clone(), Arc::new(with_second_unit)].into(), ..Frame::default() };

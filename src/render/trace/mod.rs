@@ -1,5 +1,5 @@
 //! Path tracing (`GLRT_MODE=pathtrace`): traces the traced classes of a [`Frame`] (static,
-//! movable, dynamic draws) and hands the traced image and depth to the raster composite, which
+//! movable, dynamic draws, with the `Layer` draws over them) and hands the traced image and depth to the raster composite, which
 //! draws the sky, translucent and overlay draws around it in program order (thesis 4.3.6).
 //! [`crate::render::frame`] runs the stages: [`RayTracer::build`], [`RayTracer::trace`],
 //! [`RayTracer::resolve`], then [`composite`].

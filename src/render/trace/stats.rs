@@ -65,6 +65,10 @@ pub struct SceneCounts {
     pub chunk_instances: u32,
     /// Traced draws left out because the static world holds all their triangles.
     pub covered_draws: u32,
+    /// Passes (draws of class `Layer`) traced in the surfaces of the draw instances.
+    pub passes: u32,
+    /// Triangles in the emitter list (next-event estimation of emissive surfaces).
+    pub emitters: u32,
     /// Triangles of all instances.
     pub triangles: u64,
     /// Geometries whose BVH was built in this frame.
@@ -97,6 +101,10 @@ pub struct SceneTotals {
     pub triangles: u64,
     /// Instances of draws and of chunks.
     pub instances: u64,
+    /// Passes traced in surfaces.
+    pub passes: u64,
+    /// Triangles in the emitter lists.
+    pub emitters: u64,
     /// BVHs built.
     pub built: u64,
     /// BVHs refitted.
@@ -126,6 +134,8 @@ impl Totals {
         let t = &mut self.scene;
         t.triangles += counts.triangles;
         t.instances += u64::from(counts.draw_instances + counts.chunk_instances);
+        t.passes += u64::from(counts.passes);
+        t.emitters += u64::from(counts.emitters);
         t.built += u64::from(counts.built);
         t.refitted += u64::from(counts.refitted);
     }
@@ -141,10 +151,12 @@ impl Totals {
         let per_ray = |work: u64| work as f64 / r.total().max(1) as f64;
         let scenes = self.scenes.max(1) as f64;
         let mut line = format!(
-            "path tracer: {} frames; scene: {:.0} triangles in {:.0} instances, {:.1} BVHs built and {:.1} refitted per frame; per frame: {:.0} primary, {:.0} shadow, {:.0} diffuse, {:.0} specular rays; per ray: {:.1} nodes, {:.1} triangle tests",
+            "path tracer: {} frames; scene: {:.0} triangles in {:.0} instances with {:.0} passes, {:.0} emitter triangles, {:.1} BVHs built and {:.1} refitted per frame; per frame: {:.0} primary, {:.0} shadow, {:.0} diffuse, {:.0} specular rays; per ray: {:.1} nodes, {:.1} triangle tests",
             self.frames,
             self.scene.triangles as f64 / scenes,
             self.scene.instances as f64 / scenes,
+            self.scene.passes as f64 / scenes,
+            self.scene.emitters as f64 / scenes,
             self.scene.built as f64 / scenes,
             self.scene.refitted as f64 / scenes,
             r.primary as f64 / n,
@@ -188,10 +200,10 @@ mod tests {
         let frame = RayCounts { primary: 1_000_000, shadow: 2_000_000, diffuse: 500_000, specular: 0, nodes_visited: 35_000_000, triangles_tested: 7_000_000 };
         t.add(frame, Some(0.001));
         t.add(frame, Some(0.001));
-        t.add_scene(&SceneCounts { draw_instances: 1, chunk_instances: 2, triangles: 1000, built: 3, ..SceneCounts::default() });
-        t.add_scene(&SceneCounts { draw_instances: 5, triangles: 3000, refitted: 1, ..SceneCounts::default() });
+        t.add_scene(&SceneCounts { draw_instances: 1, chunk_instances: 2, triangles: 1000, built: 3, passes: 2, ..SceneCounts::default() });
+        t.add_scene(&SceneCounts { draw_instances: 5, triangles: 3000, refitted: 1, emitters: 10, ..SceneCounts::default() });
         let s = t.summary();
-        assert!(s.contains("2 frames; scene: 2000 triangles in 4 instances, 1.5 BVHs built and 0.5 refitted per frame"), "{s}");
+        assert!(s.contains("2 frames; scene: 2000 triangles in 4 instances with 1 passes, 5 emitter triangles, 1.5 BVHs built and 0.5 refitted per frame"), "{s}");
         assert!(s.contains("per ray: 10.0 nodes, 2.0 triangle tests"), "{s}");
         assert!(s.contains("tracing pass 1.000 ms per frame; Mrays/s: 1000.0 primary, 2000.0 shadow, 500.0 diffuse, 0.0 specular, 3500.0 all"), "{s}");
         t.add(frame, None);
