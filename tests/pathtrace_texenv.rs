@@ -24,7 +24,7 @@ use std::sync::Arc;
 
 use glrt::frame::texture::{TexImage, TextureContent};
 use glrt::render::frame::Renderer;
-use glrt::render::trace::settings::{Settings, Tonemap};
+use glrt::render::trace::settings::{Lightmaps, Settings, Tonemap};
 use glrt::translate::classify::texture_hash::content_hash;
 use glrt::translate::{Context, dispatch, gl};
 
@@ -69,7 +69,10 @@ fn tag_texture0_emissive() {
 fn context(traced: bool) -> Context {
     let mut renderer = lavapipe::renderer_with(Renderer::without_outputs);
     if traced {
-        let settings = Settings { spp: 1, bounces: 0, tonemap: Tonemap::Clamp, exposure: 0.0, ..Settings::default() };
+        // Lightmaps ignored: every band reflects traced light (none here), so only the emissive tag lights
+        // a band; the control band, unlit and not emissive, stays black (with `keep` its varying
+        // colours would make it a baked surface showing its raster colour).
+        let settings = Settings { spp: 1, bounces: 0, tonemap: Tonemap::Clamp, exposure: 0.0, lightmaps: Lightmaps::Ignore, ..Settings::default() };
         renderer.enable_tracing(settings).expect("the tracer's pipelines");
     }
     let mut ctx = lavapipe::context_on(renderer);
