@@ -80,19 +80,6 @@ fn context(traced: bool) -> Context {
     ctx
 }
 
-/// A nearest-filtered 2 × 2 RGBA texture of `texels`.
-fn texture(ctx: &mut Context, texels: &[u8; 16]) -> u32 {
-    let mut name = 0;
-    unsafe {
-        dispatch::glGenTextures(ctx, 1, &mut name);
-        dispatch::glBindTexture(ctx, gl::GL_TEXTURE_2D, name);
-        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
-        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
-        dispatch::glTexImage2D(ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
-    }
-    name
-}
-
 /// `glTexEnvi(GL_TEXTURE_ENV, pname, value)` on the active unit.
 fn env(ctx: &mut Context, pname: u32, value: u32) {
     unsafe { dispatch::glTexEnvi(ctx, gl::GL_TEXTURE_ENV, pname, value as i32) };
@@ -195,7 +182,7 @@ fn band_quad(ctx: &mut Context, i: usize) {
 /// perspective camera at the origin looking down −z, and reads the RGBA8 image back (rows
 /// bottom to top).
 fn render(ctx: &mut Context, modulate: bool) -> Vec<[u8; 4]> {
-    let textures = [texture(ctx, &TEXTURE0), texture(ctx, &TEXTURE1)];
+    let textures = [lavapipe::texture_2x2(ctx, &TEXTURE0), lavapipe::texture_2x2(ctx, &TEXTURE1)];
     for _ in 0..2 {
         unsafe {
             dispatch::glViewport(ctx, 0, 0, SIZE, SIZE);

@@ -99,3 +99,32 @@ pub fn pixel(ctx: &mut Context, x: i32, y: i32) -> [u8; 4] {
     unsafe { dispatch::glReadPixels(ctx, x, y, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
     out
 }
+
+/// A nearest-filtered 2 × 2 RGBA texture of `texels`, bound to `GL_TEXTURE_2D`.
+pub fn texture_2x2(ctx: &mut Context, texels: &[u8; 16]) -> u32 {
+    let mut name = 0;
+    // Safety: `name` and `texels` outlive the calls; the sizes match the arguments.
+    unsafe {
+        dispatch::glGenTextures(ctx, 1, &mut name);
+        dispatch::glBindTexture(ctx, gl::GL_TEXTURE_2D, name);
+        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
+        dispatch::glTexImage2D(ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
+    }
+    name
+}
+
+/// Binds a `size`² drawable with a 60° perspective camera at the origin looking down −z
+/// (near 0.1, far 100) and an identity modelview.
+pub fn perspective_60(ctx: &mut Context, size: i32) {
+    ctx.bind_drawable(size, size);
+    // Safety: plain state calls on a current context.
+    unsafe {
+        dispatch::glViewport(ctx, 0, 0, size, size);
+        dispatch::glMatrixMode(ctx, gl::GL_PROJECTION);
+        let h = 0.1 * (30f64).to_radians().tan();
+        dispatch::glFrustum(ctx, -h, h, -h, h, 0.1, 100.0);
+        dispatch::glMatrixMode(ctx, gl::GL_MODELVIEW);
+        dispatch::glLoadIdentity(ctx);
+    }
+}

@@ -26,15 +26,7 @@ fn context() -> (Context, Arc<Mutex<Renderer>>) {
     renderer.enable_tracing(settings).expect("the tracer's pipelines");
     let renderer = Arc::new(Mutex::new(renderer));
     let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(lavapipe::Shared(renderer.clone())) });
-    ctx.bind_drawable(SIZE, SIZE);
-    unsafe {
-        dispatch::glViewport(&mut ctx, 0, 0, SIZE, SIZE);
-        dispatch::glMatrixMode(&mut ctx, gl::GL_PROJECTION);
-        let h = 0.1 * (30f64).to_radians().tan();
-        dispatch::glFrustum(&mut ctx, -h, h, -h, h, 0.1, 100.0);
-        dispatch::glMatrixMode(&mut ctx, gl::GL_MODELVIEW);
-        dispatch::glLoadIdentity(&mut ctx);
-    }
+    lavapipe::perspective_60(&mut ctx, SIZE);
     (ctx, renderer)
 }
 

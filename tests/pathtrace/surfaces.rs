@@ -101,19 +101,6 @@ enum Band {
 
 const BANDS: [Band; 4] = [Band::LightmapPass, Band::LightmapUnit, Band::Detail, Band::Glow];
 
-/// A nearest-filtered 2 × 2 RGBA texture of `texels`.
-fn texture(ctx: &mut Context, texels: &[u8; 16]) -> u32 {
-    let mut name = 0;
-    unsafe {
-        dispatch::glGenTextures(ctx, 1, &mut name);
-        dispatch::glBindTexture(ctx, gl::GL_TEXTURE_2D, name);
-        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_NEAREST as i32);
-        dispatch::glTexParameteri(ctx, gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MAG_FILTER, gl::GL_NEAREST as i32);
-        dispatch::glTexImage2D(ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, texels.as_ptr().cast());
-    }
-    name
-}
-
 /// The quad of band `i` (window rows 8i to 8i + 8): at z = −2, as wide as the 90° view there,
 /// (s, t) from (0, 0) to (1, 1) across it on units 0 and 1, white.
 fn band_quad(ctx: &mut Context, i: usize) {
@@ -189,7 +176,7 @@ fn bands(traced: Option<Settings>) -> Vec<[u8; 4]> {
         classified::passes(frame);
         classified::lightmap_units(frame);
     });
-    let textures = [ALBEDO, LIGHTMAP, DETAIL, GLOW].map(|t| texture(&mut ctx, &t));
+    let textures = [ALBEDO, LIGHTMAP, DETAIL, GLOW].map(|t| lavapipe::texture_2x2(&mut ctx, &t));
     for _ in 0..2 {
         clear(&mut ctx);
         unsafe {
@@ -334,15 +321,7 @@ fn floor_context(settings: Settings, classify: impl Fn(&mut Frame) + Send + 'sta
     renderer.enable_tracing(settings).expect("the tracer's pipelines");
     let renderer = Arc::new(Mutex::new(renderer));
     let mut ctx = lavapipe::classified_context_on(lavapipe::Shared(renderer.clone()), classify);
-    ctx.bind_drawable(FLOOR_SIZE, FLOOR_SIZE);
-    unsafe {
-        dispatch::glViewport(&mut ctx, 0, 0, FLOOR_SIZE, FLOOR_SIZE);
-        dispatch::glMatrixMode(&mut ctx, gl::GL_PROJECTION);
-        let h = 0.1 * (30f64).to_radians().tan();
-        dispatch::glFrustum(&mut ctx, -h, h, -h, h, 0.1, 100.0);
-        dispatch::glMatrixMode(&mut ctx, gl::GL_MODELVIEW);
-        dispatch::glLoadIdentity(&mut ctx);
-    }
+    lavapipe::perspective_60(&mut ctx, FLOOR_SIZE);
     (ctx, renderer)
 }
 
@@ -521,7 +500,7 @@ fn a_new_texture_environment_restarts_the_accumulation_of_its_pixels() {
             classified::without_world(frame);
             classified::lit(frame, |_| true, SurfaceLighting::Baked);
         });
-        let albedo = texture(&mut ctx, &ALBEDO);
+        let albedo = lavapipe::texture_2x2(&mut ctx, &ALBEDO);
         let mut images = Vec::new();
         for frame in 0..5 {
             clear(&mut ctx);
