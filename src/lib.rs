@@ -2,7 +2,8 @@
 //!
 //! Data flows one way (see `DESIGN.md` in the planning repository and the README):
 //! application → [`gl_entry`] (C ABI) → [`translate`] (OpenGL 1.x semantics) → [`frame::Frame`]
-//! → [`render`] (Vulkan) → window or PNG. [`config`] reads `glrt.toml` for both sides.
+//! → [`render`] (Vulkan) → window or PNG. [`config`] reads `glrt.toml` for both sides;
+//! [`faults`] injects failures for the tests of the degrade paths.
 //!
 //! The layers name each other one way only (`tests/layering.rs` keeps it so):
 //! - [`frame`], the interface between the two sides (the frame, its sink, its target), names
@@ -16,6 +17,7 @@
 //! higher one at start (the call log's texture notes, the replay's address map).
 
 pub mod config;
+pub mod faults;
 pub mod frame;
 pub mod gl_entry;
 pub mod logging;

@@ -1,6 +1,7 @@
 //! The one-way layering of `src/` (the list is in `src/lib.rs`): `frame` names none of the
-//! other layers, `translate` and `render` name only `frame` (and the shared `config` and
-//! `logging`), `gl_entry` never names `replay`, and `config` and `logging` name no layer.
+//! other layers, `translate` and `render` name only `frame` (and the shared `config`,
+//! `logging` and `faults`), `gl_entry` never names `replay`, and `config`, `logging` and
+//! `faults` name no layer.
 //!
 //! Every file of the library is read as Rust tokens: each path that starts at `crate`
 //! (`crate::render::…`, `crate::{frame, render::…}`) or climbs out of its layer with `super`
@@ -20,6 +21,7 @@ const FORBIDDEN: &[(&str, &[&str])] = &[
     ("gl_entry", &["replay"]),
     ("config", &["frame", "translate", "render", "gl_entry", "replay"]),
     ("logging", &["frame", "translate", "render", "gl_entry", "replay"]),
+    ("faults", &["frame", "translate", "render", "gl_entry", "replay"]),
 ];
 
 /// A Rust token, as far as paths are concerned.

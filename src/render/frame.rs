@@ -19,6 +19,12 @@
 //! Without a [`RayTracer`] (raster mode) steps 2 to 5 are left out and every draw is
 //! rasterized. Denoising (issue 20) and radiosity (issue 19) are stages between 3 and 4.
 //!
+//! Failures degrade (DESIGN.md, "Files, variables, conventions"), each said once on stderr:
+//! tracing stages that cannot be created or fail in a frame (a shader the driver cannot
+//! compile, GPU memory) leave the renderer rasterizing every draw; any other error (a lost
+//! device, memory the raster stage needs) stops drawing: frames are dropped and read-backs
+//! are black.
+//!
 //! A frame read back before its end (`glReadPixels`, pixel copies) is recorded in parts: each
 //! call of `Renderer::record` goes on where the last one stopped ([`Raster::recorded_draws`]),
 //! so the traced stages run once per frame, when the recording first passes the traced place.
@@ -42,6 +48,8 @@ pub struct Renderer {
     raster: Raster,
     /// The path-tracing stages, when the mode traces.
     tracing: Option<Tracing>,
+    /// Tracing stages that failed, freed when the GPU is idle (frames in flight may use them).
+    retired: Option<Tracing>,
     /// Set after a device error: frames are dropped.
     failed: bool,
 }
@@ -72,7 +80,7 @@ impl Renderer {
 
     /// Creates the renderer with no [`FrameOutput`]: frames stay in the framebuffer.
     pub fn without_outputs() -> Result<Renderer> {
-        Ok(Renderer { raster: Raster::new()?, tracing: None, failed: false })
+        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false })
     }
 
     /// Path traces the traced draws of the next frames with `settings`, with the back end
@@ -80,7 +88,14 @@ impl Renderer {
     pub fn enable_tracing(&mut self, settings: Settings) -> Result<()> {
         if self.tracing.is_none() {
             let device = self.raster.device();
-            self.tracing = Some(Tracing { backend: trace::backend(device, settings, FRAMES_IN_FLIGHT)?, composite: Composite::new(device)? });
+            let mut backend = trace::backend(device, settings, FRAMES_IN_FLIGHT)?;
+            match Composite::new(device) {
+                Ok(composite) => self.tracing = Some(Tracing { backend, composite }),
+                Err(e) => {
+                    backend.destroy(device);
+                    return Err(e);
+                }
+            }
         }
         Ok(())
     }
@@ -120,8 +135,16 @@ impl Renderer {
             && self.raster.recorded_draws(frame) == at
         {
             let mut rec = self.raster.recorder_into(None, frame.size)?;
-            tracing.record(&mut rec, frame, surfaces, &frame.draws[at])?;
+            let traced = tracing.record(&mut rec, frame, surfaces, &frame.draws[at]);
             self.raster.skip_draw(frame, at);
+            match traced {
+                Err(e @ Error::Vulkan(_, ash::vk::Result::ERROR_DEVICE_LOST)) => return Err(e),
+                Err(e) => {
+                    eprintln!("glrt: path tracing stopped: {e}; frames are rasterized from now on");
+                    self.retired = self.tracing.take();
+                }
+                Ok(()) => {}
+            }
         }
         // Raster composite, the rest: the draws after it (glass, HUD), over the traced image
         // and depth-tested against its depth.
@@ -206,18 +229,26 @@ impl FrameSink for Renderer {
         }
     }
 
+    /// Black (zero depth and stencil) once the renderer stopped.
     fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
-        if self.failed {
-            return None;
-        }
-        match self.read(frame, buffer, rect) {
-            Ok(pixels) => pixels,
-            Err(e) => {
-                self.fail(e);
-                None
+        if !self.failed {
+            match self.read(frame, buffer, rect) {
+                Ok(pixels) => return pixels,
+                Err(e) => self.fail(e),
             }
         }
+        Some(black(buffer, rect))
     }
+}
+
+/// What a stopped renderer reads back: `rect` of black opaque colour, or of zero depth or
+/// stencil.
+fn black(buffer: PixelBuffer, [_, _, w, h]: [i32; 4]) -> Vec<[f32; 4]> {
+    let value = match buffer {
+        PixelBuffer::Color => [0.0, 0.0, 0.0, 1.0],
+        PixelBuffer::Depth | PixelBuffer::Stencil => [0.0; 4],
+    };
+    vec![value; w.max(0) as usize * h.max(0) as usize]
 }
 
 impl Drop for Renderer {
@@ -229,7 +260,7 @@ impl Drop for Renderer {
         }
         let device = self.raster.device();
         let _ = device.wait_idle();
-        if let Some(mut tracing) = self.tracing.take() {
+        for mut tracing in [self.tracing.take(), self.retired.take()].into_iter().flatten() {
             tracing.destroy(device);
         }
     }

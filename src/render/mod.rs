@@ -61,7 +61,8 @@ impl Mode {
     }
 }
 
-/// The Vulkan renderer, path tracing when the mode says so on its device.
+/// The Vulkan renderer, path tracing when the mode says so on its device (rasterizing, with a
+/// message, when the tracing stages cannot be made).
 fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result<frame::Renderer> {
     let mut renderer = frame::Renderer::with_dump(dump)?;
     let cpu = renderer.device().properties.device_type == ash::vk::PhysicalDeviceType::CPU;
@@ -74,8 +75,8 @@ fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result
         Ok(Mode::Default) => true,
         Ok(Mode::Raster) | Err(_) => false,
     };
-    if traced {
-        renderer.enable_tracing(trace::settings::Settings::of_process())?;
+    if traced && let Err(e) = renderer.enable_tracing(trace::settings::Settings::of_process()) {
+        eprintln!("glrt: path tracing is not available: {e}; frames are rasterized");
     }
     Ok(renderer)
 }

@@ -7,7 +7,8 @@
 //! The surface is checked with `vkGetPhysicalDeviceSurfaceSupportKHR` for the renderer's queue
 //! family; when it cannot present (an NVIDIA GPU with Xvfb) or anything here fails, the caller
 //! falls back to [`super::xlib::XlibPresenter`] with a read-back. `VK_ERROR_OUT_OF_DATE_KHR`,
-//! `VK_SUBOPTIMAL_KHR` and resizes ([`SwapchainPresenter::resize`]) recreate the swapchain.
+//! `VK_SUBOPTIMAL_KHR` and resizes ([`SwapchainPresenter::resize`]) recreate the swapchain; an
+//! acquisition found out of date is tried again on the new one, so the frame still shows.
 //! The swap interval picks the present mode: 0 is `IMMEDIATE` (else `MAILBOX`), any other value
 //! `FIFO` (intervals above 1 are shown as 1: Vulkan has no frame skipping).
 //!
@@ -235,31 +236,11 @@ impl SwapchainPresenter {
         }
         // Safety (all): as documented.
         unsafe {
-            if self.stale {
-                self.recreate()?;
-            }
-            let Some(chain) = self.chain.as_ref() else { return Ok(Presented::Skipped) };
             let frame = self.frame;
+            self.gpu.device.wait_for_fences(&[self.done[frame]], true, u64::MAX)?;
+            let Some(index) = self.acquire(frame)? else { return Ok(Presented::Skipped) };
+            let Some(chain) = self.chain.as_ref() else { return Ok(Presented::Skipped) };
             let device = &self.gpu.device;
-            device.wait_for_fences(&[self.done[frame]], true, u64::MAX)?;
-            let acquire = self.swapchain_fns.acquire_next_image(
-                chain.handle,
-                ACQUIRE_TIMEOUT_NS,
-                self.acquired[frame],
-                vk::Fence::null(),
-            );
-            let index = match acquire {
-                Ok((index, suboptimal)) => {
-                    self.stale |= suboptimal;
-                    index as usize
-                }
-                Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => {
-                    self.stale = true;
-                    return Ok(Presented::Skipped);
-                }
-                Err(vk::Result::TIMEOUT | vk::Result::NOT_READY) => return Ok(Presented::Skipped),
-                Err(e) => return Err(e.into()),
-            };
             let cmd = self.commands[frame];
             device.reset_command_buffer(cmd, vk::CommandBufferResetFlags::empty())?;
             device.begin_command_buffer(cmd, &vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT))?;
@@ -287,6 +268,44 @@ impl SwapchainPresenter {
             }
             Ok(Presented::Shown)
         }
+    }
+
+    /// Acquires the next image of the swapchain with the semaphore of frame slot `frame`,
+    /// recreating the swapchain first when it is stale. A swapchain found out of date (the
+    /// window changed since) is recreated and the acquisition tried once more, so the frame is
+    /// not lost; `None` when there is nothing to present to (a zero-sized window, an acquire
+    /// timeout, out of date twice).
+    ///
+    /// # Safety
+    /// The presenter's objects are live; slot `frame`'s last blit is done.
+    unsafe fn acquire(&mut self, frame: usize) -> Result<Option<usize>, Unusable> {
+        for _ in 0..2 {
+            // Safety (all): as documented.
+            unsafe {
+                if self.stale {
+                    self.recreate()?;
+                }
+                let Some(chain) = self.chain.as_ref() else { return Ok(None) };
+                let acquire = if crate::faults::fires(crate::faults::Fault::OutOfDate) {
+                    Err(vk::Result::ERROR_OUT_OF_DATE_KHR)
+                } else {
+                    self.swapchain_fns.acquire_next_image(chain.handle, ACQUIRE_TIMEOUT_NS, self.acquired[frame], vk::Fence::null())
+                };
+                match acquire {
+                    Ok((index, suboptimal)) => {
+                        self.stale |= suboptimal;
+                        return Ok(Some(index as usize));
+                    }
+                    Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => {
+                        log::info!("present: the swapchain is out of date: recreating it");
+                        self.stale = true;
+                    }
+                    Err(vk::Result::TIMEOUT | vk::Result::NOT_READY) => return Ok(None),
+                    Err(e) => return Err(e.into()),
+                }
+            }
+        }
+        Ok(None)
     }
 
     /// Whether the application's display is still open.

@@ -198,6 +198,9 @@ impl Slot {
             .wait_semaphores(&wait_semaphores)
             .wait_dst_stage_mask(&wait_stages)
             .signal_semaphores(&sync.signal)];
+        if crate::faults::fires(crate::faults::Fault::DeviceLost) {
+            return Err(super::device::Error::Vulkan("vkQueueSubmit", vk::Result::ERROR_DEVICE_LOST));
+        }
         // Safety: the command buffer is recording; the fence is unsignalled (reset in `wait`).
         unsafe {
             device.raw.end_command_buffer(self.cmd).check("vkEndCommandBuffer")?;

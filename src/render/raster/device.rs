@@ -393,6 +393,9 @@ impl Device {
     }
 
     fn allocate(&self, name: &str, requirements: vk::MemoryRequirements, location: MemoryLocation, linear: bool) -> Result<Allocation> {
+        if crate::faults::fires(crate::faults::Fault::Allocation) {
+            return Err(Error::Vulkan("vkAllocateMemory", vk::Result::ERROR_OUT_OF_DEVICE_MEMORY));
+        }
         self.allocator
             .lock()
             .allocate(&AllocationCreateDesc { name, requirements, location, linear, allocation_scheme: AllocationScheme::GpuAllocatorManaged })

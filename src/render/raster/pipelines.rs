@@ -26,12 +26,12 @@
 //!   locations of the `translate::glsl` contract; its pipelines draw points and lines with
 //!   Vulkan's topologies and polygon modes (`fillModeNonSolid`, see [`ff::native`]).
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use ash::vk;
 
 use super::conv;
-use super::device::{Check, Device, Result};
+use super::device::{Check, Device, Error, Result};
 use super::ff;
 use super::ff::shader_interface::{BINDING_COUNT, BINDING_SAMPLER_2D, BINDING_SAMPLER_3D, BINDING_SAMPLER_CUBE, BINDING_UNIFORMS};
 use crate::render::texenv::codes::MAX_UNITS;
@@ -185,6 +185,8 @@ pub struct Pipelines {
     programs: Programs,
     depth_format: vk::Format,
     cache: HashMap<PipelineKey, vk::Pipeline>,
+    /// Keys whose pipeline the driver could not create: their draws are skipped.
+    failed: HashSet<PipelineKey>,
 }
 
 impl Pipelines {
@@ -225,6 +227,7 @@ impl Pipelines {
                 programs: Programs::default(),
                 depth_format: device.depth_format,
                 cache: HashMap::new(),
+                failed: HashSet::new(),
             })
         }
     }
@@ -258,15 +261,32 @@ impl Pipelines {
     }
 
     /// The pipeline of `key`, created on first use (a key naming a program needs
-    /// [`Pipelines::use_program`] first).
-    pub fn get(&mut self, device: &Device, key: &PipelineKey) -> Result<vk::Pipeline> {
+    /// [`Pipelines::use_program`] first). `None` when the driver cannot create it (a shader it
+    /// fails to compile, no memory for it): the draws of that key are skipped, which is said
+    /// once, and the key is not tried again. A lost device is an error.
+    pub fn get(&mut self, device: &Device, key: &PipelineKey) -> Result<Option<vk::Pipeline>> {
         if let Some(&p) = self.cache.get(key) {
-            return Ok(p);
+            return Ok(Some(p));
         }
-        let pipeline = self.create(device, key)?;
-        self.cache.insert(*key, pipeline);
-        log::debug!("raster pipeline {} created: {key:?}", self.cache.len());
-        Ok(pipeline)
+        if self.failed.contains(key) {
+            return Ok(None);
+        }
+        match self.create(device, key) {
+            Ok(pipeline) => {
+                self.cache.insert(*key, pipeline);
+                log::debug!("raster pipeline {} created: {key:?}", self.cache.len());
+                Ok(Some(pipeline))
+            }
+            Err(e @ Error::Vulkan(_, vk::Result::ERROR_DEVICE_LOST)) => Err(e),
+            Err(e) => {
+                if self.failed.is_empty() {
+                    eprintln!("glrt: a raster pipeline cannot be created ({e}); the draws that need it are not drawn");
+                }
+                log::debug!("raster pipeline failed: {key:?}");
+                self.failed.insert(*key);
+                Ok(None)
+            }
+        }
     }
 
     /// Pipelines created so far.
@@ -287,7 +307,7 @@ impl Pipelines {
         let data = super::upload::bytemuck_free::bytes(&words);
         let spec = vk::SpecializationInfo::default().map_entries(&entries).data(data);
         let program = match key.program {
-            Some(id) => Some(self.programs.modules(id).ok_or_else(|| super::device::Error::Memory(format!("program {id} has no shader modules")))?),
+            Some(id) => Some(self.programs.modules(id).ok_or_else(|| Error::Memory(format!("program {id} has no shader modules")))?),
             None => None,
         };
         let vertex = program.and_then(|p| p.vertex).unwrap_or(self.vertex);
@@ -432,11 +452,14 @@ pub(crate) fn create_for_target(device: &ash::Device, depth_format: vk::Format, 
         .depth_attachment_format(depth_format)
         .stencil_attachment_format(depth_format);
     let info = info.push_next(&mut rendering);
+    if crate::faults::fires(crate::faults::Fault::ShaderCompile) {
+        return Err(Error::Vulkan("vkCreateGraphicsPipelines", vk::Result::ERROR_INVALID_SHADER_NV));
+    }
     // Safety: every object `info` refers to is alive (the caller's states); the formats are the
     // target's.
     match unsafe { device.create_graphics_pipelines(vk::PipelineCache::null(), &[info], None) } {
         Ok(p) => Ok(p[0]),
-        Err((_, r)) => Err(super::device::Error::Vulkan("vkCreateGraphicsPipelines", r)),
+        Err((_, r)) => Err(Error::Vulkan("vkCreateGraphicsPipelines", r)),
     }
 }
 

@@ -377,7 +377,7 @@ impl Recorder<'_> {
                     program: program.map(|(id, _)| id),
                     fixed: FixedState { samples, ..fixed },
                 };
-                let pipeline = self.pipelines.get(self.device, &key)?;
+                let Some(pipeline) = self.pipelines.get(self.device, &key)? else { continue };
                 let viewport = vk::Viewport { x: viewport.x + dx, y: viewport.y + dy, ..viewport };
                 // Safety: inside the pass; every handle is alive for the frame; the dynamic
                 // offset is aligned and within the ring chunk.

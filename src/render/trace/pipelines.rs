@@ -39,6 +39,9 @@ fn descriptor_set_layout(device: &Device, count: u32, samplers: &[u32], stages: 
 }
 
 fn compute_pipeline(device: &Device, layout: vk::PipelineLayout, spirv: &[u8]) -> Result<vk::Pipeline> {
+    if crate::faults::fires(crate::faults::Fault::ShaderCompile) {
+        return Err(Error::Vulkan("vkCreateComputePipelines", vk::Result::ERROR_INVALID_SHADER_NV));
+    }
     let module = shader_module(device, spirv)?;
     let stage = vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::COMPUTE).module(module).name(c"main");
     let info = vk::ComputePipelineCreateInfo::default().stage(stage).layout(layout);

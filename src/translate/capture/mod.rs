@@ -47,7 +47,8 @@
 //!
 //! Limits: one recording thread is assumed (the calls of all threads go to one stream);
 //! a program killed before the capture is finished (at exit, or after the last frame of
-//! `GLRT_CAPTURE_FRAMES`) leaves a file readers refuse.
+//! `GLRT_CAPTURE_FRAMES`) leaves a file readers refuse. A full disk ends the capture with a
+//! readable file of the frames written before ([`writer`]).
 
 pub mod format;
 pub mod reads;
@@ -376,7 +377,9 @@ pub fn swapped(kind: SwapKind) {
     }
     event(Event::Swap(kind));
     let frame = FRAME.fetch_add(1, Ordering::Relaxed) + 1;
-    if session().is_some_and(|s| frame >= s.end) {
-        finish();
+    match session() {
+        Some(s) if frame >= s.end => finish(),
+        Some(s) => s.writer.frame_ended(),
+        None => {}
     }
 }

@@ -1,9 +1,17 @@
 //! Writing a capture file: records are appended to an in-memory batch under a lock; full
-//! batches go to a background thread that LZ4-compresses them into the file, so the program
-//! only pays for encoding its calls.
+//! batches, and the batch that ends each frame, go to a background thread that LZ4-compresses
+//! them into the file, so the program only pays for encoding its calls.
+//!
+//! A write that fails (a full disk) ends the capture, said once on stderr, and the file is
+//! closed where the last batch that was written completely ended: the part of the block that
+//! failed is cut off, and the body's end mark, its checksum and the trailer follow. Batches end
+//! between records, so a reader gets every frame up to the last one that reached the disk
+//! (`glrt replay` and `glrt dump` read it as any finished capture). The program goes on,
+//! unrecorded. `disk-full@N` in `GLRT_FAULTS` ([`crate::faults`]) makes the file's disk full
+//! after N bytes.
 
 use std::fs::File;
-use std::io::{self, BufWriter, Write};
+use std::io::{self, Seek, SeekFrom, Write};
 use std::path::Path;
 use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
 use std::thread::JoinHandle;
@@ -25,7 +33,7 @@ pub struct Writer {
 
 struct State {
     batch: Vec<u8>,
-    /// `None` once finished.
+    /// `None` once finished, or once the compressing thread stopped on an error.
     queue: Option<SyncSender<Vec<u8>>>,
     thread: Option<JoinHandle<io::Result<()>>>,
 }
@@ -39,13 +47,19 @@ impl Writer {
     /// Creates `path`, writes the header, and starts the body with the description of
     /// `commands`.
     pub fn create(path: &Path, commands: &[(&str, &str)]) -> io::Result<Writer> {
-        let mut file = BufWriter::with_capacity(1 << 16, File::create(path)?);
+        Writer::create_on(path, commands, crate::faults::disk_room())
+    }
+
+    /// [`Writer::create`] on a disk with `room` bytes free (`None`: as much as the disk has).
+    fn create_on(path: &Path, commands: &[(&str, &str)], room: Option<u64>) -> io::Result<Writer> {
+        let mut file = CaptureFile::new(File::create(path)?, room);
         file.write_all(&format::header())?;
         let (queue, batches) = sync_channel::<Vec<u8>>(QUEUE);
-        let thread = std::thread::Builder::new().name("glrt-capture".into()).spawn(move || compress(file, batches))?;
-        let mut batch = Vec::with_capacity(BATCH);
-        batch.extend_from_slice(&format::described(&format::description(commands)));
-        Ok(Writer { state: Mutex::new(State { batch, queue: Some(queue), thread: Some(thread) }) })
+        // The description goes first, alone: a file cut short by a full disk still has it.
+        queue.send(format::described(&format::description(commands))).map_err(io::Error::other)?;
+        let path = path.to_path_buf();
+        let thread = std::thread::Builder::new().name("glrt-capture".into()).spawn(move || compress(file, batches, &path))?;
+        Ok(Writer { state: Mutex::new(State { batch: Vec::with_capacity(BATCH), queue: Some(queue), thread: Some(thread) }) })
     }
 
     /// Appends one record, encoded by `encode`.
@@ -56,10 +70,16 @@ impl Writer {
         }
         encode(&mut state.batch);
         if state.batch.len() >= BATCH {
-            let full = std::mem::replace(&mut state.batch, Vec::with_capacity(BATCH));
-            if let Some(queue) = &state.queue {
-                let _ = queue.send(full);
-            }
+            send(&mut state);
+        }
+    }
+
+    /// Sends the batch that ends a frame (the swap was the last record): the file then holds
+    /// that frame whatever happens to later writes.
+    pub fn frame_ended(&self) {
+        let mut state = self.state.lock();
+        if state.queue.is_some() && !state.batch.is_empty() {
+            send(&mut state);
         }
     }
 
@@ -81,18 +101,118 @@ impl Writer {
     }
 }
 
+/// Sends the batch to the compressing thread; once that thread stopped (a write failed),
+/// recording stops.
+fn send(state: &mut State) {
+    let full = std::mem::replace(&mut state.batch, Vec::with_capacity(BATCH));
+    if state.queue.as_ref().is_some_and(|queue| queue.send(full).is_err()) {
+        state.queue = None;
+    }
+}
+
+/// The capture file, counting the bytes written, with room for at most `room` bytes when the
+/// disk is made full on purpose ([`crate::faults::disk_room`]).
+struct CaptureFile {
+    file: File,
+    written: u64,
+    room: Option<u64>,
+}
+
+impl CaptureFile {
+    fn new(file: File, room: Option<u64>) -> CaptureFile {
+        CaptureFile { file, written: 0, room }
+    }
+
+    /// Cuts the file to its first `len` bytes and writes on from there.
+    fn truncate(&mut self, len: u64) -> io::Result<()> {
+        self.file.set_len(len)?;
+        self.file.seek(SeekFrom::Start(len))?;
+        self.written = len;
+        Ok(())
+    }
+}
+
+impl Write for CaptureFile {
+    fn write(&mut self, buf: &[u8]) -> io::Result<usize> {
+        let room = self.room.map_or(buf.len(), |room| room.saturating_sub(self.written).min(buf.len() as u64) as usize);
+        if room == 0 && !buf.is_empty() {
+            return Err(io::Error::from_raw_os_error(28)); // ENOSPC, as a full disk answers
+        }
+        let n = self.file.write(&buf[..room])?;
+        self.written += n as u64;
+        Ok(n)
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.file.flush()
+    }
+}
+
+/// Where the body can be ended: everything before is on disk.
+#[derive(Clone, Copy)]
+struct Checkpoint {
+    /// Bytes of the file.
+    file_len: u64,
+    /// Bytes of the body (decompressed).
+    body_len: u64,
+}
+
 /// The compressing thread: writes every batch into one LZ4 frame until the queue closes,
-/// then the trailer.
-fn compress(file: BufWriter<File>, batches: Receiver<Vec<u8>>) -> io::Result<()> {
+/// then the trailer; on a write error, ends the file at the last batch written (see the
+/// module doc) and stops, which the program sees as a closed queue.
+fn compress(file: CaptureFile, batches: Receiver<Vec<u8>>, path: &Path) -> io::Result<()> {
+    let room = file.room;
     let mut encoder = FrameEncoder::with_frame_info(frame_info(), file);
     let mut hash = xxhash_rust::xxh3::Xxh3::new();
-    let mut len = 0u64;
+    let mut content = xxhash_rust::xxh32::Xxh32::new(0);
+    let mut last: Option<Checkpoint> = None;
     for batch in batches {
+        // Each batch is flushed as its own blocks, so the file ends between records.
+        if let Err(e) = encoder.write_all(&batch).and_then(|()| encoder.flush()) {
+            return stop(encoder.into_inner(), last, &hash, &content, path, e);
+        }
         hash.update(&batch);
-        len += batch.len() as u64;
-        encoder.write_all(&batch)?;
+        content.update(&batch);
+        let body_len = last.map_or(0, |c| c.body_len) + batch.len() as u64;
+        last = Some(Checkpoint { file_len: encoder.get_ref().written, body_len });
     }
-    let mut file = encoder.finish().map_err(io::Error::other)?;
+    let finished = encoder.finish().map_err(io::Error::other).and_then(|mut file| {
+        write_trailer(&mut file, last.map_or(0, |c| c.body_len), &hash)?;
+        Ok(file)
+    });
+    match finished {
+        Ok(_) => Ok(()),
+        // The end itself did not fit: end at the last batch instead.
+        Err(e) => match File::options().write(true).open(path) {
+            Ok(file) => stop(CaptureFile::new(file, room), last, &hash, &content, path, e),
+            Err(_) => Err(e),
+        },
+    }
+}
+
+/// Ends the file at `last` after write error `error`: the failed block cut off, the LZ4 end
+/// mark, the content checksum and the trailer written. Says so once on stderr and returns
+/// `error`.
+fn stop(mut file: CaptureFile, last: Option<Checkpoint>, hash: &xxhash_rust::xxh3::Xxh3, content: &xxhash_rust::xxh32::Xxh32, path: &Path, error: io::Error) -> io::Result<()> {
+    let closed = last.ok_or_else(|| io::Error::other("not even the description was written")).and_then(|at| {
+        file.truncate(at.file_len)?;
+        file.write_all(&0u32.to_le_bytes())?; // LZ4 end mark
+        file.write_all(&content.digest().to_le_bytes())?;
+        write_trailer(&mut file, at.body_len, hash)?;
+        file.flush()
+    });
+    match closed {
+        Ok(()) => eprintln!(
+            "glrt: GLRT_CAPTURE: writing {} failed ({error}); the capture stops here and the file holds the frames written before",
+            path.display()
+        ),
+        Err(e) => eprintln!("glrt: GLRT_CAPTURE: writing {} failed ({error}); the capture stops and the file cannot be closed ({e})", path.display()),
+    }
+    Err(error)
+}
+
+/// Writes the trailer of a body of `len` bytes whose xxh3 is `hash`.
+fn write_trailer(file: &mut impl Write, len: u64, hash: &xxhash_rust::xxh3::Xxh3) -> io::Result<()> {
     file.write_all(format::TRAILER_MAGIC)?;
     file.write_all(&len.to_le_bytes())?;
     file.write_all(&hash.digest().to_le_bytes())?;
@@ -136,5 +256,38 @@ mod tests {
         assert_eq!(records[2], Record::Call { id, args: vec![0x4000, 0x1203, 0x7ffc_0000_1000], reads: vec![(0x7ffc_0000_1000, &params[..])] });
         assert_eq!(records[20_002..], [Record::Event(events[2]), Record::Event(events[3])]);
         assert_eq!(capture.writer, format!("glrt {}", env!("CARGO_PKG_VERSION")));
+    }
+
+    #[test]
+    fn a_full_disk_leaves_the_frames_written_before() {
+        let path = std::env::temp_dir().join(format!("glrt-writer-full-{}.glrtcap", std::process::id()));
+        let id = COMMANDS.iter().position(|c| c.0 == "glLightfv").unwrap();
+        let params: Vec<u8> = (0..64u8).collect();
+        // Each frame: 200 calls (about 14 KB), then its swap.
+        let frame = |writer: &Writer, n: u64| {
+            for i in 0..200u64 {
+                writer.record(|out| format::put_call(out, id, &[n, i, 0x1000], &[(0x1000, &params)]));
+            }
+            writer.record(|out| format::put_event(out, Event::Swap(SwapKind::Headless)));
+            writer.frame_ended();
+        };
+        // A disk with room for the description and a few frames (LZ4 compresses these
+        // records well).
+        Writer::create_on(&path, COMMANDS, None).unwrap().finish().unwrap();
+        let room = std::fs::metadata(&path).unwrap().len() + 6_000;
+        let writer = Writer::create_on(&path, COMMANDS, Some(room)).unwrap();
+        for n in 0..40 {
+            frame(&writer, n);
+        }
+        let error = writer.finish().unwrap_err();
+        assert_eq!(error.raw_os_error(), Some(28), "ENOSPC: {error}");
+        assert!(std::fs::metadata(&path).unwrap().len() <= room);
+        let capture = Capture::open(&path).unwrap();
+        let records: Vec<Record> = capture.records().map(|r| r.unwrap().1).collect();
+        std::fs::remove_file(&path).unwrap();
+        let swaps = records.iter().filter(|r| matches!(r, Record::Event(Event::Swap(_)))).count();
+        assert!((1..40).contains(&swaps), "{swaps} whole frames kept of 40");
+        assert_eq!(records.len(), swaps * 201, "the file ends after a frame's swap");
+        assert_eq!(records[201 * swaps - 2], Record::Call { id, args: vec![swaps as u64 - 1, 199, 0x1000], reads: vec![(0x1000, &params[..])] });
     }
 }
