@@ -149,58 +149,75 @@ impl Write for CaptureFile {
 }
 
 /// Where the body can be ended: everything before is on disk.
-#[derive(Clone, Copy)]
+#[derive(Clone)]
 struct Checkpoint {
     /// Bytes of the file.
     file_len: u64,
     /// Bytes of the body (decompressed).
     body_len: u64,
+    /// xxh3 of the body, for the trailer.
+    hash: xxhash_rust::xxh3::Xxh3,
+    /// xxh32 of the body, the LZ4 frame's content checksum.
+    content: xxhash_rust::xxh32::Xxh32,
 }
 
 /// The compressing thread: writes every batch into one LZ4 frame until the queue closes,
-/// then the trailer; on a write error, ends the file at the last batch written (see the
+/// then the trailer; on a write error, ends the file at a batch written before (see the
 /// module doc) and stops, which the program sees as a closed queue.
 fn compress(file: CaptureFile, batches: Receiver<Vec<u8>>, path: &Path) -> io::Result<()> {
     let room = file.room;
     let mut encoder = FrameEncoder::with_frame_info(frame_info(), file);
-    let mut hash = xxhash_rust::xxh3::Xxh3::new();
-    let mut content = xxhash_rust::xxh32::Xxh32::new(0);
-    let mut last: Option<Checkpoint> = None;
+    // The ends of the last two batches written: where the file can be closed when a write
+    // fails (the earlier one when closing at the last does not fit either).
+    let mut ends: [Option<Checkpoint>; 2] = [None, None];
     for batch in batches {
         // Each batch is flushed as its own blocks, so the file ends between records.
         if let Err(e) = encoder.write_all(&batch).and_then(|()| encoder.flush()) {
-            return stop(encoder.into_inner(), last, &hash, &content, path, e);
+            return stop(encoder.into_inner(), &ends, path, e);
         }
-        hash.update(&batch);
-        content.update(&batch);
-        let body_len = last.map_or(0, |c| c.body_len) + batch.len() as u64;
-        last = Some(Checkpoint { file_len: encoder.get_ref().written, body_len });
+        let mut end = ends[1].clone().unwrap_or_else(|| Checkpoint {
+            file_len: 0,
+            body_len: 0,
+            hash: xxhash_rust::xxh3::Xxh3::new(),
+            content: xxhash_rust::xxh32::Xxh32::new(0),
+        });
+        end.hash.update(&batch);
+        end.content.update(&batch);
+        end.body_len += batch.len() as u64;
+        end.file_len = encoder.get_ref().written;
+        ends = [ends[1].take(), Some(end)];
     }
     let finished = encoder.finish().map_err(io::Error::other).and_then(|mut file| {
-        write_trailer(&mut file, last.map_or(0, |c| c.body_len), &hash)?;
-        Ok(file)
+        let (len, hash) = ends[1].as_ref().map_or((0, xxhash_rust::xxh3::Xxh3::new()), |e| (e.body_len, e.hash.clone()));
+        write_trailer(&mut file, len, &hash)
     });
     match finished {
-        Ok(_) => Ok(()),
-        // The end itself did not fit: end at the last batch instead.
+        Ok(()) => Ok(()),
+        // The end itself did not fit: end at a batch instead.
         Err(e) => match File::options().write(true).open(path) {
-            Ok(file) => stop(CaptureFile::new(file, room), last, &hash, &content, path, e),
+            Ok(file) => stop(CaptureFile::new(file, room), &ends, path, e),
             Err(_) => Err(e),
         },
     }
 }
 
-/// Ends the file at `last` after write error `error`: the failed block cut off, the LZ4 end
-/// mark, the content checksum and the trailer written. Says so once on stderr and returns
-/// `error`.
-fn stop(mut file: CaptureFile, last: Option<Checkpoint>, hash: &xxhash_rust::xxh3::Xxh3, content: &xxhash_rust::xxh32::Xxh32, path: &Path, error: io::Error) -> io::Result<()> {
-    let closed = last.ok_or_else(|| io::Error::other("not even the description was written")).and_then(|at| {
+/// Ends the file at the last of `ends` where the end fits, after write error `error`: what
+/// follows cut off, the LZ4 end mark, the content checksum and the trailer written. Says so
+/// once on stderr and returns `error`.
+fn stop(mut file: CaptureFile, ends: &[Option<Checkpoint>; 2], path: &Path, error: io::Error) -> io::Result<()> {
+    let close = |file: &mut CaptureFile, at: &Checkpoint| {
         file.truncate(at.file_len)?;
         file.write_all(&0u32.to_le_bytes())?; // LZ4 end mark
-        file.write_all(&content.digest().to_le_bytes())?;
-        write_trailer(&mut file, at.body_len, hash)?;
-        file.flush()
-    });
+        file.write_all(&at.content.digest().to_le_bytes())?;
+        write_trailer(file, at.body_len, &at.hash)
+    };
+    let mut closed = Err(io::Error::other("not even the description was written"));
+    for at in ends.iter().rev().flatten() {
+        closed = close(&mut file, at);
+        if closed.is_ok() {
+            break;
+        }
+    }
     match closed {
         Ok(()) => eprintln!(
             "glrt: GLRT_CAPTURE: writing {} failed ({error}); the capture stops here and the file holds the frames written before",
