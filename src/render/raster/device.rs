@@ -1,15 +1,13 @@
-//! The Vulkan device: the loader (`libvulkan.so.1`, opened at run time), the instance, the
-//! physical device chosen by `GLRT_DEVICE` (an index into the enumeration, or a substring of
-//! the device name; otherwise a discrete GPU, then an integrated one, then anything, such as
+//! The Vulkan device of a renderer, made from the process's instance ([`super::instance`]):
+//! the physical device chosen by `GLRT_DEVICE` (an index into the enumeration, or a substring
+//! of the device name; otherwise a discrete GPU, then an integrated one, then anything, such as
 //! Mesa lavapipe on the CPU), one graphics queue, and the memory allocator.
 //!
 //! Vulkan 1.3 is required (dynamic rendering, negative viewport heights); lavapipe 22.3 and the
 //! NVIDIA driver both provide it. Optional features are probed and recorded in [`Features`]
 //! so the pipelines use them only where present (logic ops, wide lines, non-solid fill).
-//!
-//! `GLRT_VALIDATE=1` enables `VK_LAYER_KHRONOS_validation` when it is installed.
 
-use std::ffi::{CStr, CString};
+use std::ffi::CString;
 use std::mem::ManuallyDrop;
 
 use ash::vk;
@@ -19,7 +17,7 @@ use parking_lot::Mutex;
 
 /// What can go wrong in the back end. Everything degrades: the caller logs it once and drops
 /// to the null renderer (no panic crosses the C ABI).
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub enum Error {
     /// `libvulkan.so.1` could not be opened.
     NoLoader(String),
@@ -82,9 +80,9 @@ pub struct Features {
 
 /// The device and everything created once with it. Shared (`Arc`) by the renderer's parts.
 pub struct Device {
-    /// The loader.
+    /// The loader (the process's, [`super::instance`]).
     pub entry: ash::Entry,
-    /// The instance.
+    /// The instance (the process's, never destroyed).
     pub instance: ash::Instance,
     /// The chosen physical device.
     pub physical: vk::PhysicalDevice,
@@ -108,8 +106,6 @@ pub struct Device {
     pub swapchain: bool,
     /// Device memory.
     allocator: ManuallyDrop<Mutex<Allocator>>,
-    /// The validation messenger (`GLRT_VALIDATE=1`).
-    messenger: Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
 }
 
 /// A buffer and its memory.
@@ -141,38 +137,12 @@ pub struct Image {
     allocation: Allocation,
 }
 
-/// The name of the validation layer.
-const VALIDATION: &CStr = c"VK_LAYER_KHRONOS_validation";
-
 impl Device {
-    /// Opens the loader and creates the device chosen by `GLRT_DEVICE` (see the module doc).
+    /// Creates the device chosen by `GLRT_DEVICE` (see the module doc) on the process's
+    /// instance ([`super::instance`]).
     pub fn new() -> Result<Device> {
-        // Safety: loading libvulkan runs its initialisers; it is the system's Vulkan loader.
-        let entry = unsafe { ash::Entry::load() }.map_err(|e| Error::NoLoader(e.to_string()))?;
-        let (instance, enabled) = create_instance(&entry)?;
-        let messenger = enabled.validate.then(|| create_messenger(&entry, &instance)).flatten();
-        // A clone: `entry` (the loaded library) must outlive the clean-up below.
-        match Self::with_instance(entry.clone(), instance.clone(), enabled.surfaces, messenger.clone()) {
-            Ok(device) => Ok(device),
-            Err(e) => {
-                // Safety: nothing else was created from the instance.
-                unsafe {
-                    if let Some((utils, m)) = messenger {
-                        utils.destroy_debug_utils_messenger(m, None);
-                    }
-                    instance.destroy_instance(None);
-                }
-                Err(e)
-            }
-        }
-    }
-
-    fn with_instance(
-        entry: ash::Entry,
-        instance: ash::Instance,
-        surfaces: bool,
-        messenger: Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)>,
-    ) -> Result<Device> {
+        let shared = super::instance::get()?;
+        let (entry, instance, surfaces) = (shared.entry.clone(), shared.raw.clone(), shared.surfaces);
         // Safety: valid instance.
         let physicals = unsafe { instance.enumerate_physical_devices() }.check("vkEnumeratePhysicalDevices")?;
         let choice = std::env::var("GLRT_DEVICE").ok();
@@ -245,8 +215,11 @@ impl Device {
         if custom_border_color {
             info = info.push_next(&mut border);
         }
-        // Safety: valid create info; the features were checked above.
-        let raw = unsafe { instance.create_device(physical, &info, None) }.check("vkCreateDevice")?;
+        let raw = {
+            let _serialised = super::instance::lock_devices();
+            // Safety: valid create info; the features were checked above.
+            unsafe { instance.create_device(physical, &info, None) }.check("vkCreateDevice")?
+        };
         // Safety: family and index 0 were requested above.
         let queue = unsafe { raw.get_device_queue(queue_family, 0) };
         let allocator = Allocator::new(&AllocatorCreateDesc {
@@ -261,6 +234,7 @@ impl Device {
         let allocator = match allocator {
             Ok(a) => a,
             Err(e) => {
+                let _serialised = super::instance::lock_devices();
                 // Safety: nothing was created from the device.
                 unsafe { raw.destroy_device(None) };
                 return Err(e);
@@ -281,7 +255,6 @@ impl Device {
             custom_border_color,
             swapchain,
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
-            messenger,
         })
     }
 
@@ -412,114 +385,33 @@ impl Device {
 impl Drop for Device {
     fn drop(&mut self) {
         // Safety: every object created from the device was destroyed by its owner (they hold
-        // the `Arc<Device>`), so the allocator goes first, then the device and instance.
+        // the `Arc<Device>`), so the allocator goes first, then the device. The instance is
+        // the process's and stays.
         unsafe {
             let _ = self.raw.device_wait_idle();
             ManuallyDrop::drop(&mut self.allocator);
+            let _serialised = super::instance::lock_devices();
             self.raw.destroy_device(None);
-            if let Some((utils, m)) = self.messenger.take() {
-                utils.destroy_debug_utils_messenger(m, None);
-            }
-            self.instance.destroy_instance(None);
         }
     }
 }
 
-/// Creates the instance, with the X11 surface extensions when present, and the validation
-/// layer and debug utils when `GLRT_VALIDATE=1` and the layer is installed.
-fn create_instance(entry: &ash::Entry) -> Result<(ash::Instance, Instance)> {
-    let name = c"glrt";
-    let app = vk::ApplicationInfo::default().application_name(name).engine_name(name).api_version(vk::API_VERSION_1_3);
-    let mut layers: Vec<*const std::ffi::c_char> = Vec::new();
-    // Safety: valid entry.
-    let available = unsafe { entry.enumerate_instance_extension_properties(None) }.unwrap_or_default();
-    let mut extensions: Vec<*const std::ffi::c_char> = SURFACE_EXTENSIONS
-        .iter()
-        .filter(|want| available.iter().any(|e| e.extension_name_as_c_str() == Ok(**want)))
-        .map(|e| e.as_ptr())
-        .collect();
-    let surfaces = extensions.len() == SURFACE_EXTENSIONS.len();
-    if !surfaces {
-        extensions.clear();
-    }
-    if std::env::var("GLRT_VALIDATE").is_ok_and(|v| v == "1") {
-        // Safety: valid entry.
-        let available = unsafe { entry.enumerate_instance_layer_properties() }.unwrap_or_default();
-        if available.iter().any(|l| l.layer_name_as_c_str() == Ok(VALIDATION)) {
-            layers.push(VALIDATION.as_ptr());
-            extensions.push(ash::ext::debug_utils::NAME.as_ptr());
-        } else {
-            eprintln!("glrt: GLRT_VALIDATE=1 but {VALIDATION:?} is not installed");
-        }
-    }
-    let info = vk::InstanceCreateInfo::default().application_info(&app).enabled_layer_names(&layers).enabled_extension_names(&extensions);
-    // Safety: valid create info.
-    let instance = unsafe { entry.create_instance(&info, None) }.check("vkCreateInstance")?;
-    Ok((instance, Instance { validate: !layers.is_empty(), surfaces }))
-}
-
-/// What [`create_instance`] enabled.
-#[derive(Clone, Copy)]
-struct Instance {
-    /// The validation layer and debug utils.
-    validate: bool,
-    /// [`SURFACE_EXTENSIONS`].
-    surfaces: bool,
-}
-
-/// Instance extensions for presenting to X11 windows, enabled together when all are present.
-const SURFACE_EXTENSIONS: [&CStr; 2] = [ash::khr::surface::NAME, ash::khr::xlib_surface::NAME];
-
-/// A messenger printing validation warnings and errors to stderr.
-fn create_messenger(entry: &ash::Entry, instance: &ash::Instance) -> Option<(ash::ext::debug_utils::Instance, vk::DebugUtilsMessengerEXT)> {
-    let utils = ash::ext::debug_utils::Instance::new(entry, instance);
-    let info = vk::DebugUtilsMessengerCreateInfoEXT::default()
-        .message_severity(vk::DebugUtilsMessageSeverityFlagsEXT::WARNING | vk::DebugUtilsMessageSeverityFlagsEXT::ERROR)
-        .message_type(vk::DebugUtilsMessageTypeFlagsEXT::VALIDATION)
-        .pfn_user_callback(Some(validation_message));
-    // Safety: debug utils is enabled on the instance.
-    let messenger = unsafe { utils.create_debug_utils_messenger(&info, None) }.ok()?;
-    Some((utils, messenger))
-}
-
-/// Prints a validation message. Called by the layer from C: catches panics.
-unsafe extern "system" fn validation_message(
-    severity: vk::DebugUtilsMessageSeverityFlagsEXT,
-    _types: vk::DebugUtilsMessageTypeFlagsEXT,
-    data: *const vk::DebugUtilsMessengerCallbackDataEXT<'_>,
-    _user: *mut std::ffi::c_void,
-) -> vk::Bool32 {
-    if std::thread::panicking() {
-        return vk::FALSE;
-    }
-    let _ = std::panic::catch_unwind(|| {
-        // Safety: the layer passes valid callback data for the duration of the call.
-        let message = unsafe { data.as_ref().and_then(|d| d.message_as_c_str()) };
-        let text = message.map(|m| m.to_string_lossy().into_owned()).unwrap_or_default();
-        eprintln!("glrt: Vulkan validation ({severity:?}): {text}");
-    });
-    vk::FALSE
-}
-
-/// Device extensions enabled when present.
 /// The properties of the physical device `GLRT_DEVICE` chooses, read without creating a
 /// device (what the window-system layer needs before any context exists); `None` without a
 /// Vulkan 1.3 device.
 pub fn probe_properties() -> Option<vk::PhysicalDeviceProperties> {
-    // Safety: as in `Device::new`.
-    let entry = unsafe { ash::Entry::load() }.ok()?;
-    let (instance, _) = create_instance(&entry).ok()?;
-    // Safety: valid instance; the physical device comes from it; destroyed once, last.
+    let instance = &super::instance::get().ok()?.raw;
+    // Safety: valid instance; the physical device comes from it.
     unsafe {
         let physicals = instance.enumerate_physical_devices().unwrap_or_default();
         let choice = std::env::var("GLRT_DEVICE").ok();
-        let chosen = choose_physical(&instance, &physicals, choice.as_deref()).ok();
+        let chosen = choose_physical(instance, &physicals, choice.as_deref()).ok();
         let properties = chosen.map(|p| instance.get_physical_device_properties(p));
-        instance.destroy_instance(None);
         properties.filter(|p| p.api_version >= vk::API_VERSION_1_3)
     }
 }
 
+/// Device extensions enabled when present.
 fn device_extensions(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Vec<CString> {
     // Safety: valid physical device.
     let available = unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();

@@ -8,7 +8,8 @@
 //!
 //! - [`ff`]: the fixed-function pipeline as shaders: turns a [`crate::frame::Draw`] into
 //!   [`ff::Batch`]es (packed vertices, indices, a shader key and the uniform block).
-//! - [`device`]: loader, instance, physical-device choice (`GLRT_DEVICE`), queue, memory.
+//! - [`instance`]: the loader and the process's one Vulkan instance, shared by renderers.
+//! - [`device`]: physical-device choice (`GLRT_DEVICE`), device, queue, memory.
 //! - [`target`]: the colour and depth/stencil images (row 0 = top of the window).
 //! - [`commands`]: a frame in flight (command buffer, fence, upload ring, descriptor sets).
 //! - [`upload`]: the per-frame ring of vertices, indices and uniforms.
@@ -27,6 +28,7 @@ pub mod conv;
 pub mod device;
 pub mod dump;
 pub mod ff;
+pub mod instance;
 pub mod multisample;
 pub mod occlusion;
 pub mod output;
