@@ -21,9 +21,11 @@
 //!
 //! Failures degrade (DESIGN.md, "Files, variables, conventions"), each said once on stderr:
 //! tracing stages that cannot be created or fail in a frame (a shader the driver cannot
-//! compile, GPU memory) leave the renderer rasterizing every draw; any other error (a lost
-//! device, memory the raster stage needs) stops drawing: frames are dropped and read-backs
-//! are black.
+//! compile, GPU memory) leave the renderer rasterizing every draw; a lost device is replaced
+//! once by a new one (rasterizing; the frame that was being drawn is drawn again on it, from
+//! the `Frame`, which holds every texture's content; images drawn in earlier frames, such as
+//! framebuffer objects' textures, start black); any other error, or a second lost device,
+//! stops drawing: frames are dropped and read-backs are black.
 //!
 //! A frame read back before its end (`glReadPixels`, pixel copies) is recorded in parts: each
 //! call of `Renderer::record` goes on where the last one stopped ([`Raster::recorded_draws`]),
@@ -52,6 +54,10 @@ pub struct Renderer {
     retired: Option<Tracing>,
     /// Set after a device error: frames are dropped.
     failed: bool,
+    /// Whether the device was lost and replaced already (it is replaced once).
+    replaced: bool,
+    /// The drawable of the last [`FrameSink::set_target`], for a replacement device.
+    target: Option<crate::frame::Target>,
 }
 
 /// The path-tracing stages: a ray-tracing back end and the composite of its image.
@@ -80,7 +86,7 @@ impl Renderer {
 
     /// Creates the renderer with no [`FrameOutput`]: frames stay in the framebuffer.
     pub fn without_outputs() -> Result<Renderer> {
-        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false })
+        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None })
     }
 
     /// Path traces the traced draws of the next frames with `settings`, with the back end
@@ -163,6 +169,53 @@ impl Renderer {
         self.raster.read(frame, buffer, rect)
     }
 
+    /// Runs `op`; after a lost device, once per renderer, replaces the device
+    /// ([`Renderer::replace_device`]) and runs `op` again; `None` when it failed (said once,
+    /// and the renderer stopped).
+    fn attempt<T>(&mut self, mut op: impl FnMut(&mut Renderer) -> Result<T>) -> Option<T> {
+        if self.failed {
+            return None;
+        }
+        let e = match op(self) {
+            Ok(v) => return Some(v),
+            Err(e) => e,
+        };
+        if !self.replaced && matches!(e, Error::Vulkan(_, ash::vk::Result::ERROR_DEVICE_LOST)) {
+            self.replaced = true;
+            match self.replace_device() {
+                Ok(()) => {
+                    eprintln!("glrt: the Vulkan device was lost ({e}); rendering goes on, rasterized, on a new device");
+                    match op(self) {
+                        Ok(v) => return Some(v),
+                        Err(e) => self.fail(e),
+                    }
+                }
+                Err(new) => self.fail(Error::NoDevice(format!("the device was lost ({e}) and no new one could be made ({new})"))),
+            }
+            return None;
+        }
+        self.fail(e);
+        None
+    }
+
+    /// Moves the renderer to a new device, rasterizing: the outputs and the drawable go over;
+    /// the old device's stages are freed.
+    fn replace_device(&mut self) -> Result<()> {
+        let mut old = std::mem::replace(&mut self.raster, Raster::new()?);
+        let outputs = old.take_outputs();
+        for mut tracing in [self.tracing.take(), self.retired.take()].into_iter().flatten() {
+            tracing.destroy(old.device());
+        }
+        drop(old);
+        for output in outputs {
+            self.raster.add_output(output);
+        }
+        if let Some(target) = self.target {
+            self.raster.set_target(target);
+        }
+        Ok(())
+    }
+
     /// Reports `e` once; frames are dropped from now on.
     fn fail(&mut self, e: Error) {
         if !self.failed {
@@ -202,16 +255,12 @@ impl FrameSink for Renderer {
     /// Also takes the drawable's sample count and destination alpha (see
     /// [`Raster::set_target`]).
     fn set_target(&mut self, target: crate::frame::Target) {
+        self.target = Some(target);
         self.raster.set_target(target);
     }
 
     fn present(&mut self, frame: Frame) {
-        if self.failed {
-            return;
-        }
-        if let Err(e) = self.finish(&frame) {
-            self.fail(e);
-        }
+        self.attempt(|r| r.finish(&frame));
     }
 
     fn occlusion_counter_bits(&self) -> u32 {
@@ -220,24 +269,12 @@ impl FrameSink for Renderer {
 
     /// Waits for the frame in flight that ended `frame` when the result is not known yet.
     fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
-        match self.raster.occlusion_result(frame, query) {
-            Ok(count) => count,
-            Err(e) => {
-                self.fail(e);
-                None
-            }
-        }
+        self.attempt(|r| r.raster.occlusion_result(frame, query)).flatten()
     }
 
     /// Black (zero depth and stencil) once the renderer stopped.
     fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
-        if !self.failed {
-            match self.read(frame, buffer, rect) {
-                Ok(pixels) => return pixels,
-                Err(e) => self.fail(e),
-            }
-        }
-        Some(black(buffer, rect))
+        self.attempt(|r| r.read(frame, buffer, rect)).unwrap_or_else(|| Some(black(buffer, rect)))
     }
 }
 

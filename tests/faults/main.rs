@@ -1,9 +1,9 @@
-//! Faults injected with `GLRT_FAULTS` (`glrt::faults`) and survived: a device lost mid-frame,
-//! a GPU allocation that fails, a swapchain out of date, a shader the driver cannot compile
-//! (raster and tracer pipelines), a full disk while capturing (made full on purpose, and
-//! `/dev/full`). Each degrades as DESIGN.md says: one message, raster fallback or black
-//! frames, a capture closed with a valid trailer; and the program goes on (no panic, later GL
-//! calls answer, `glGetError` is `GL_NO_ERROR`).
+//! Faults injected with `GLRT_FAULTS` (`glrt::faults`) and survived: a device lost mid-frame
+//! (headless and on a window), a GPU allocation that fails, a swapchain out of date, a shader
+//! the driver cannot compile (raster and tracer pipelines), a full disk while capturing (made
+//! full on purpose, and `/dev/full`). Each degrades as DESIGN.md says: one message, a new
+//! device or raster fallback or black frames, a capture closed with a valid trailer; and the
+//! program goes on (no panic, later GL calls answer, `glGetError` is `GL_NO_ERROR`).
 //!
 //! The setting is per process, so each test runs its program in a child process: this test
 //! binary again, running only that test (`--exact`) with [`CHILD`] and the fault in its
@@ -120,15 +120,18 @@ const LEFT: [f32; 4] = [-1.0, -1.0, 0.0, 1.0];
 const RIGHT: [f32; 4] = [0.0, -1.0, 1.0, 1.0];
 
 /// The device is lost at the fourth frame submission (each read-back submits what is recorded,
-/// and so does the swap: frame 0's two read-backs and swap, then frame 1's read-back): that
-/// read-back and every later one are black, one message says the renderer stopped, and the
-/// program goes on.
+/// and so does the swap: frame 0's two read-backs and swap, then frame 1's read-back): a new
+/// device replaces it (said once) and frame 1 is drawn again there, so the read-back and the
+/// frames after are as drawn. A second loss stops the renderer (said once): read-backs are
+/// black from then on, and the program goes on.
 #[test]
 fn device_lost_mid_frame() {
     if !is_child() {
         let out = child("device_lost_mid_frame", &[("GLRT_FAULTS", "device-lost@4"), ("GLRT_MODE", "raster")]);
-        let err = ran_and_said_once(&out, "the Vulkan renderer stopped");
-        assert!(err.contains("vkQueueSubmit failed: The logical device has been lost"), "{err}");
+        let err = ran_and_said_once(&out, "the Vulkan device was lost");
+        assert!(err.contains("rendering goes on, rasterized, on a new device"), "{err}");
+        ran_and_said_once(&out, "the Vulkan renderer stopped");
+        assert_eq!(err.matches("The logical device has been lost").count(), 2, "{err}");
         return;
     }
     let ctx = make_current();
@@ -139,13 +142,24 @@ fn device_lost_mid_frame() {
     glrt::gl_entry::headless::glrtSwapBuffers();
     clear(BLUE);
     rect(GREEN, LEFT);
-    assert_eq!(pixel(48, 32), [0, 0, 0, 255], "the frame the device was lost in reads back black");
+    assert_eq!(pixel(48, 32), [0, 0, 255, 255], "the frame the device was lost in, drawn again on the new one");
+    assert_eq!(pixel(16, 32), [0, 255, 0, 255]);
     gl_still_answers();
+    glrt::gl_entry::headless::glrtSwapBuffers();
+    for _ in 0..2 {
+        clear(RED);
+        rect(GREEN, RIGHT);
+        assert_eq!(pixel(48, 32), [0, 255, 0, 255], "later frames on the new device");
+        assert_eq!(pixel(16, 32), [255, 0, 0, 255]);
+        glrt::gl_entry::headless::glrtSwapBuffers();
+    }
+    // The new device is lost too: the renderer stops.
+    arm(Fault::DeviceLost, 1);
     for _ in 0..3 {
         clear(RED);
         rect(GREEN, RIGHT);
+        assert_eq!(pixel(48, 32), [0, 0, 0, 255], "black once the renderer stopped");
         glrt::gl_entry::headless::glrtSwapBuffers();
-        assert_eq!(pixel(48, 32), [0, 0, 0, 255], "later frames are black");
     }
     let mut depth = [0.5f32; 4];
     // Safety: room for 2 × 2 values.
@@ -276,17 +290,57 @@ fn tracer_shader_compile_failure_rasterizes() {
     glrt::gl_entry::headless::glrtDestroyContext(ctx);
 }
 
+/// A pipeline of the path tracer does not compile in the first traced frame (made then): the
+/// renderer rasterizes from then on (said once); the traced quad shows in its raster colour.
+#[test]
+fn tracer_failing_mid_frame_rasterizes() {
+    if !is_child() {
+        let out = child("tracer_failing_mid_frame_rasterizes", &[("GLRT_MODE", "pathtrace")]);
+        let err = ran_and_said_once(&out, "path tracing stopped");
+        assert!(err.contains("ERROR_INVALID_SHADER_NV"), "{err}");
+        return;
+    }
+    let ctx = make_current();
+    // The next pipeline made: one of the tracer's, made in its first frame.
+    arm(Fault::ShaderCompile, 1);
+    // Safety: plain state calls on the current context.
+    unsafe {
+        gl::glMatrixMode(GL_PROJECTION);
+        gl::glFrustum(-0.1, 0.1, -0.1, 0.1, 0.1, 100.0);
+        gl::glMatrixMode(GL_MODELVIEW);
+        gl::glEnable(GL_DEPTH_TEST);
+    }
+    let quad = || unsafe {
+        // Safety: plain calls on the current context.
+        gl::glClear(GL_DEPTH_BUFFER_BIT);
+        gl::glColor3f(0.0, 1.0, 0.0);
+        gl::glBegin(GL_QUADS);
+        gl::glVertex3f(-1.0, -1.0, -2.0);
+        gl::glVertex3f(1.0, -1.0, -2.0);
+        gl::glVertex3f(1.0, 1.0, -2.0);
+        gl::glVertex3f(-1.0, 1.0, -2.0);
+        gl::glEnd();
+    };
+    clear(RED);
+    quad();
+    glrt::gl_entry::headless::glrtSwapBuffers();
+    for _ in 0..2 {
+        clear(RED);
+        quad();
+        assert_eq!(pixel(32, 32), [0, 255, 0, 255], "the quad, rasterized");
+        assert_eq!(pixel(1, 1), [255, 0, 0, 255]);
+        glrt::gl_entry::headless::glrtSwapBuffers();
+    }
+    assert_eq!(error(), GL_NO_ERROR);
+    glrt::gl_entry::headless::glrtDestroyContext(ctx);
+}
+
 /// The swapchain is out of date when frame 1's image is acquired (the second acquisition): it
 /// is recreated and frame 1 still reaches the window, and so do the frames after.
 #[test]
 fn swapchain_out_of_date() {
     if !is_child() {
-        let server = x11::Xvfb::start(24).expect("Xvfb is needed for this test: install it with `bash scripts/setup.sh`");
-        let out = child(
-            "swapchain_out_of_date",
-            &[("DISPLAY", &server.display), ("GLRT_FAULTS", "out-of-date@2"), ("GLRT_MODE", "raster"), ("GLRT_LOG", "info")],
-        );
-        assert!(out.status.success(), "the program failed ({}):\n{}", out.status, stderr(&out));
+        let out = window_child("swapchain_out_of_date", "out-of-date@2");
         if !stderr(&out).contains("through vulkan") {
             eprintln!("skipped: the device does not present to Xvfb windows here, no swapchain to make out of date:\n{}", stderr(&out));
             return;
@@ -294,6 +348,33 @@ fn swapchain_out_of_date() {
         ran_and_said_once(&out, "the swapchain is out of date");
         return;
     }
+    frames_reach_the_window();
+}
+
+/// The device is lost when frame 1 is submitted: on the new device, the window's presentation
+/// is made again and frame 1 and the frames after reach the window.
+#[test]
+fn device_lost_on_a_window() {
+    if !is_child() {
+        let out = window_child("device_lost_on_a_window", "device-lost@2");
+        ran_and_said_once(&out, "the Vulkan device was lost");
+        return;
+    }
+    frames_reach_the_window();
+}
+
+/// Runs window test `name` in a child on a private Xvfb with `faults`, raster mode and info logs;
+/// asserts it ended normally.
+fn window_child(name: &str, faults: &str) -> Output {
+    let server = x11::Xvfb::start(24).expect("Xvfb is needed for this test: install it with `bash scripts/setup.sh`");
+    let out = child(name, &[("DISPLAY", &server.display), ("GLRT_FAULTS", faults), ("GLRT_MODE", "raster"), ("GLRT_LOG", "info")]);
+    assert!(out.status.success(), "the program failed ({}):\n{}", out.status, stderr(&out));
+    out
+}
+
+/// A GLX program: a window cleared red, green and blue in three frames; each frame must reach
+/// the window (read back with `XGetImage`).
+fn frames_reach_the_window() {
     use glrt::gl_entry::glx::exports::{config::glXChooseVisual, context::*, swap::glXSwapBuffers};
     use glrt::gl_entry::glx::types::types;
     use x11_dl::xlib::Xlib;

@@ -22,12 +22,16 @@ pub fn renderer_with(make: impl FnOnce() -> Result<Renderer, Error>) -> Renderer
 
 /// What `make` creates (a renderer, a device) with Vulkan on lavapipe when its ICD file exists.
 pub fn select<T>(make: impl FnOnce() -> Result<T, Error>) -> T {
-    let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
-    if std::path::Path::new(lavapipe).exists() {
-        // Safety: set before any thread of this test binary loads Vulkan; every test sets the
-        // same value.
-        unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
-    }
+    static SELECT: std::sync::Once = std::sync::Once::new();
+    SELECT.call_once(|| {
+        let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
+        if std::path::Path::new(lavapipe).exists() {
+            // Safety: set once, by the first test that makes a device, before any thread of
+            // this binary loads Vulkan (the others wait here): no thread reads the environment
+            // in C (the Vulkan loader, a driver) while it changes.
+            unsafe { std::env::set_var("VK_DRIVER_FILES", lavapipe) };
+        }
+    });
     make().expect("a Vulkan device (lavapipe)")
 }
 

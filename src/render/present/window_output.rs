@@ -129,7 +129,7 @@ impl FrameOutput for WindowOutput {
         Ok(())
     }
 
-    fn destroy(&mut self, device: &Device) {
+    fn release(&mut self, device: &Device) {
         if let Some(Prepared::Pixels(_, buffer)) = self.prepared.take() {
             device.destroy_buffer(buffer);
         }

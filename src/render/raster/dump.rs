@@ -104,11 +104,16 @@ impl FrameOutput for Dump {
         }
     }
 
-    /// Frees the buffers (the GPU must be idle) and waits for the writer to finish.
-    fn destroy(&mut self, device: &Device) {
+    /// Frees the buffers: the frames in flight on `device` are not dumped.
+    fn release(&mut self, device: &Device) {
         for p in self.pending.drain(..).flatten() {
             device.destroy_buffer(p.buffer);
         }
+    }
+
+    /// Frees the buffers (the GPU must be idle) and waits for the writer to finish.
+    fn destroy(&mut self, device: &Device) {
+        self.release(device);
         self.jobs = None;
         if let Some(writer) = self.writer.take() {
             let _ = writer.join();

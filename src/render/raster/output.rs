@@ -45,6 +45,12 @@ pub trait FrameOutput: Send {
     /// what [`FrameOutput::record`] copied.
     fn completed(&mut self, _device: &Device, _slot: usize) {}
 
-    /// Frees the output's Vulkan objects (the GPU is idle).
-    fn destroy(&mut self, device: &Device);
+    /// Frees the output's Vulkan objects of `device`, which is replaced (it was lost): the
+    /// output goes on with the next device, whose [`FrameOutput::set_target`] follows.
+    fn release(&mut self, device: &Device);
+
+    /// Frees the output's Vulkan objects (the GPU is idle) and ends it.
+    fn destroy(&mut self, device: &Device) {
+        self.release(device);
+    }
 }

@@ -452,6 +452,20 @@ impl Raster {
         self.outputs.push(output);
     }
 
+    /// Takes the consumers of presented frames away, their objects of this stage's device
+    /// freed ([`FrameOutput::release`]): for a stage on a new device, after this one's was
+    /// lost.
+    pub fn take_outputs(&mut self) -> Vec<Box<dyn FrameOutput>> {
+        // A device that is not really gone (an injected loss) may still be running frames
+        // that write into the outputs' buffers.
+        let _ = self.parts.device.wait_idle();
+        let mut outputs = std::mem::take(&mut self.outputs);
+        for output in &mut outputs {
+            output.release(&self.parts.device);
+        }
+        outputs
+    }
+
     /// Pipelines created so far (tests, statistics).
     pub fn pipeline_count(&self) -> usize {
         self.parts.pipelines.len()
