@@ -26,9 +26,9 @@
 //! ```
 //!
 //! The trailer makes a truncated file (a capture that was not finished) an error even when
-//! the cut falls between LZ4 blocks. The writer ends a run of blocks after the description and
-//! after each frame's swap record, so a capture stopped by a full disk ends at a frame
-//! (`writer`).
+//! the cut falls between LZ4 blocks. The writer ends a run of blocks after the description,
+//! after each frame's swap record and after each batch of records, so a capture stopped by a
+//! full disk ends between records, with every frame before the cut whole (`writer`).
 //!
 //! Varints are LEB128 (at most 10 bytes). A reader matches the description's command names
 //! with its own table, so a capture made by another glrt build replays when the commands it
