@@ -108,8 +108,8 @@ fn fb_attrib(dpy: *mut types::Display, config: types::GLXFBConfig, attribute: c_
 }
 
 /// The server's visuals usable for RGBA rendering (TrueColor/DirectColor, depth 24 or 32),
-/// with their depths.
-fn server_visuals(x: &Xlib, dpy: *mut xlib::Display) -> HashMap<c_ulong, c_int> {
+/// with their depths and classes.
+fn server_visuals(x: &Xlib, dpy: *mut xlib::Display) -> HashMap<c_ulong, (c_int, c_int)> {
     unsafe {
         let mut template: xlib::XVisualInfo = std::mem::zeroed();
         let mut n = 0;
@@ -118,7 +118,7 @@ fn server_visuals(x: &Xlib, dpy: *mut xlib::Display) -> HashMap<c_ulong, c_int> 
         let set = all
             .iter()
             .filter(|v| matches!(v.class, xlib::TrueColor | xlib::DirectColor) && matches!(v.depth, 24 | 32))
-            .map(|v| (v.visualid, v.depth))
+            .map(|v| (v.visualid, (v.depth, v.class)))
             .collect();
         (x.XFree)(list.cast());
         set
@@ -158,18 +158,24 @@ fn glx_on_xvfb() {
     assert_eq!(vendor.to_bytes(), b"glrt");
     assert!(glXQueryServerString(dpy, 0, 99).is_null());
 
-    // Configurations: four RGBA ones per usable server visual and sample count (single-sampled,
-    // then each count the Vulkan device renders multisampled), and four RGB ones more for
-    // visuals of depth 24, each naming one of them.
+    // Configurations: per group of usable server visuals of one depth and class, four RGBA kinds
+    // per sample count (single-sampled, then each count the Vulkan device renders
+    // multisampled) and four RGB ones more at depth 24, dealt out over the group's visuals:
+    // as many configurations as the larger of the two counts.
     let counts = glrt::render::multisample_counts();
     let mut n = 0;
     let configs = unsafe { glXGetFBConfigs(dpy, 0, &mut n) };
-    let per_visual: usize = usable.values().map(|&depth| if depth == 24 { 8 } else { 4 }).sum();
-    assert_eq!(n as usize, per_visual * (1 + counts.len()));
+    let mut groups: HashMap<(c_int, c_int), usize> = HashMap::new();
+    for &group in usable.values() {
+        *groups.entry(group).or_default() += 1;
+    }
+    let kinds = |depth| if depth == 24 { 8 } else { 4 } * (1 + counts.len());
+    let expected: usize = groups.iter().map(|(&(depth, _), &visuals)| visuals.max(kinds(depth))).sum();
+    assert_eq!(n as usize, expected);
     let all = unsafe { std::slice::from_raw_parts(configs, n as usize) }.to_vec();
     unsafe { (x.XFree)(configs.cast()) };
     for &c in &all {
-        let depth = usable[&(fb_attrib(dpy, c, GLX_VISUAL_ID) as c_ulong)];
+        let (depth, _) = usable[&(fb_attrib(dpy, c, GLX_VISUAL_ID) as c_ulong)];
         let alpha = fb_attrib(dpy, c, GLX_ALPHA_SIZE);
         assert!(alpha == 8 || (alpha == 0 && depth == 24), "alpha {alpha} on a visual of depth {depth}");
         assert_eq!(fb_attrib(dpy, c, GLX_BUFFER_SIZE), 24 + alpha);
@@ -180,6 +186,12 @@ fn glx_on_xvfb() {
         assert_eq!(fb_attrib(dpy, c, GLX_SAMPLE_BUFFERS), c_int::from(samples > 0));
     }
     assert_eq!(fb_attrib(dpy, all[0], GLX_SAMPLES), 0, "single-sampled configurations first");
+    // Xvfb's GLX extension gives it a visual for every kind: no two configurations share one.
+    assert!(groups.iter().all(|(&(depth, _), &visuals)| visuals >= kinds(depth)), "Xvfb has few visuals: {groups:?}");
+    let mut named: Vec<c_int> = all.iter().map(|&c| fb_attrib(dpy, c, GLX_VISUAL_ID)).collect();
+    named.sort_unstable();
+    named.dedup();
+    assert_eq!(named.len(), all.len(), "a visual names one configuration");
     assert!(unsafe { glXGetFBConfigs(dpy, 7, &mut n) }.is_null());
     assert_eq!(n, 0);
 
