@@ -7,11 +7,12 @@
 //! One test function: the frame log is chosen by an environment variable read when a context
 //! is created, and the X server is shared by every step.
 
+#[path = "x11/mod.rs"]
+mod x11;
+
 use std::collections::HashMap;
-use std::ffi::{CString, c_int, c_uint, c_ulong};
-use std::process::{Child, Command, Stdio};
+use std::ffi::{c_int, c_uint, c_ulong};
 use std::sync::atomic::{AtomicU8, Ordering};
-use std::time::{Duration, Instant};
 
 use glrt::gl_entry::exports as gl;
 use glrt::gl_entry::glx::exports::config::*;
@@ -28,61 +29,6 @@ use x11_dl::glx::arb::*;
 use x11_dl::glx::ext::*;
 use x11_dl::glx::*;
 use x11_dl::xlib::{self, Xlib};
-
-/// An `Xvfb` server, killed when dropped.
-struct Server {
-    child: Child,
-    display: String,
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        // SIGTERM, not SIGKILL: Xvfb then removes its /tmp/.X<n>-lock and socket, which
-        // would otherwise pile up and use every display number.
-        let _ = std::process::Command::new("kill").arg(self.child.id().to_string()).status();
-        let _ = self.child.wait();
-    }
-}
-
-/// Starts `Xvfb` on a free display number and connects to it. A number whose lock file
-/// exists is skipped; if another server takes the number first, ours exits and the next
-/// number is tried.
-fn start_xvfb(x: &Xlib) -> (Server, *mut xlib::Display) {
-    for number in 90..400 {
-        if std::path::Path::new(&format!("/tmp/.X{number}-lock")).exists() {
-            continue;
-        }
-        let display = format!(":{number}");
-        let child = Command::new("Xvfb")
-            .args([display.as_str(), "-screen", "0", "640x480x24", "-nolisten", "tcp"])
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap_or_else(|e| panic!("cannot start Xvfb ({e}): run the project's setup script to install it"));
-        let mut server = Server { child, display };
-        if let Some(dpy) = open_display(x, &mut server) {
-            return (server, dpy);
-        }
-    }
-    panic!("no free X display number");
-}
-
-/// Connects to `server` once it accepts connections; `None` if it exited (number taken).
-fn open_display(x: &Xlib, server: &mut Server) -> Option<*mut xlib::Display> {
-    let name = CString::new(server.display.as_str()).unwrap();
-    let deadline = Instant::now() + Duration::from_secs(10);
-    loop {
-        if server.child.try_wait().ok().flatten().is_some() {
-            return None;
-        }
-        let dpy = unsafe { (x.XOpenDisplay)(name.as_ptr()) };
-        if !dpy.is_null() {
-            return Some(dpy);
-        }
-        assert!(Instant::now() < deadline, "Xvfb did not start");
-        std::thread::sleep(Duration::from_millis(50));
-    }
-}
 
 static LAST_ERROR: AtomicU8 = AtomicU8::new(0);
 
@@ -138,7 +84,8 @@ fn create_window(x: &Xlib, dpy: *mut xlib::Display, vis: &xlib::XVisualInfo, w: 
 #[test]
 fn glx_on_xvfb() {
     let x = Xlib::open().expect("libX11");
-    let (mut server, xdpy) = start_xvfb(&x);
+    let server = x11::Xvfb::start(24);
+    let xdpy = server.open(&x);
     let dpy = xdpy.cast::<types::Display>();
     unsafe { (x.XSetErrorHandler)(Some(record_error)) };
     let usable = server_visuals(&x, xdpy);
@@ -451,7 +398,7 @@ fn glx_on_xvfb() {
         (x.XFree)(vis.cast());
         (x.XCloseDisplay)(xdpy);
     }
-    let dpy = open_display(&x, &mut server).expect("reconnecting").cast::<types::Display>();
+    let dpy = server.open(&x).cast::<types::Display>();
     let mut width = u32::MAX;
     unsafe { glXQueryDrawable(dpy, pbuffer, GLX_WIDTH, &mut width) };
     assert_eq!(width, u32::MAX);

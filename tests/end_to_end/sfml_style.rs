@@ -14,7 +14,8 @@
 use std::process::Command;
 use std::time::Duration;
 
-use crate::programs::{Xvfb, lib_dir, run_for, scratch};
+use crate::programs::{lib_dir, run_for, scratch};
+use crate::x11::Xvfb;
 
 /// Frames the program draws.
 const FRAMES: u32 = 300;
@@ -52,7 +53,7 @@ fn sfml_style_window_changes_every_frame() {
         .expect("cc (a C compiler)");
     assert!(built.status.success(), "cc failed:\n{}", String::from_utf8_lossy(&built.stderr));
 
-    let x = Xvfb::start();
+    let x = Xvfb::start(24);
     let frame_log = scratch("sfml_style", "frames.jsonl");
     let mut cmd = Command::new(&program);
     cmd.arg(FRAMES.to_string())
