@@ -9,7 +9,9 @@
 //! object and read back into `translate`) is drawn as far as the read needs, and then whole,
 //! since the renderer has begun it. The window's buffers therefore start frame `A` as the
 //! renderer left them: a program that clears every frame (games do) gives frame `A` exactly;
-//! one that draws over its earlier frames shows only what it drew from `A` on.
+//! one that draws over its earlier frames shows only what it drew from `A` on. The path
+//! tracer's temporal history starts at `A` too: a traced frame `A` has the samples of its own
+//! frame, not those of the frames before it.
 
 use crate::frame::pixels::PixelBuffer;
 use crate::frame::{Frame, FrameSink, Target};

@@ -40,7 +40,9 @@ struct Nest {
 /// Held while a trap runs: one nest at a time, on one thread.
 static OWNER: ReentrantMutex<()> = ReentrantMutex::new(());
 /// Guards the nest itself for the moments it changes, and for the handler, which Xlib may call
-/// on any thread.
+/// on any thread. Held only around `XSetErrorHandler`, never across a request: a handler
+/// called on another thread (which may hold that display's lock while it runs) waits for the
+/// nest, never for a trap, so it cannot deadlock with a trap's `XSync`.
 static NEST: Mutex<Nest> = Mutex::new(Nest { traps: Vec::new(), application: None });
 
 /// glrt's handler while a trap runs: records the error in its trap, or forwards it.
