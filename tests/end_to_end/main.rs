@@ -7,8 +7,6 @@
 //! after frame ([`sfml_style`]), and images against Mesa ([`raster_vs_mesa`]) and an NVIDIA
 //! driver ([`raster_vs_nvidia`]).
 
-#[path = "../common/mod.rs"]
-mod common;
 #[path = "../images/mod.rs"]
 mod images;
 #[path = "../programs/mod.rs"]

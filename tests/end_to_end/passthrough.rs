@@ -5,13 +5,12 @@
 //! Needs Xvfb, `xwd` and `glxgears` (`bash scripts/setup.sh` installs them); fails, saying
 //! so, without them.
 
-use crate::common;
 use crate::x11;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::lib_dir;
+use crate::programs::lib_dir;
 
 /// The system libGL the calls are forwarded to (Debian's glvnd `libGL.so.1`, Mesa behind it).
 const SYSTEM_LIBGL: &str = "/usr/lib/x86_64-linux-gnu/libGL.so.1";

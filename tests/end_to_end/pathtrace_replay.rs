@@ -18,13 +18,12 @@
 //! `NAME-3-nvidia-h200.png` reference. The demo's lightmaps (unit 1) are light only where hash
 //! tracking says so (`Instance::light_units`); otherwise the tracer takes them as colour.
 
-use crate::common;
 use crate::images;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::lib_dir;
+use crate::programs::lib_dir;
 use images::{Image, compare, difference_image};
 
 /// Largest fraction of pixels without a match within `TOLERANCE`.

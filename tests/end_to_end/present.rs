@@ -6,6 +6,7 @@
 //! swapchain on lavapipe) and `GLRT_PRESENT=xlib` (the read-back fallback); the path taken is
 //! read from glrt's log and printed. Fails, saying so, when Xvfb or glxgears is missing.
 
+use crate::programs::lib_dir;
 use crate::x11;
 
 use std::ffi::CStr;
@@ -14,17 +15,6 @@ use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use x11_dl::xlib::{self, Xlib};
-
-/// `target/<profile>/` with the `libGL.so.1` symlink to `libglrt.so` (as tests/end_to_end/demo.rs).
-fn lib_dir() -> PathBuf {
-    let dir = Path::new(env!("CARGO_BIN_EXE_glrt-demo")).parent().expect("target dir").to_path_buf();
-    assert!(dir.join("libglrt.so").exists(), "{}/libglrt.so missing: run `cargo build`", dir.display());
-    let link = dir.join("libGL.so.1");
-    if std::fs::symlink_metadata(&link).is_err() {
-        let _ = std::os::unix::fs::symlink("libglrt.so", &link);
-    }
-    dir
-}
 
 /// A program running through glrt on `server`, killed on drop; its stderr goes to a file.
 struct Program {
