@@ -174,6 +174,8 @@ pub fn special_branch(model: &Model, lens: &BTreeMap<(String, String), usize>, c
         s.push_str("                let __r = __t.observe(__mode, __call);\n");
         if c.ret == "types::GLenum" {
             s.push_str("                __t.returned_enum(__r);\n");
+        } else if c.ret == "*const types::GLubyte" {
+            s.push_str("                __t.returned_string(__r);\n");
         } else if is_scalar(&c.ret) || c.ret.contains('*') {
             s.push_str("                __t.returned(__r);\n");
         }

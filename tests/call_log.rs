@@ -3,12 +3,13 @@
 //! missing) writes the lines the module documents; and calls made in this process through the
 //! exports show the errors they raise.
 
-mod common;
+#[path = "programs/mod.rs"]
+mod programs;
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
-use common::lib_dir;
+use programs::lib_dir;
 
 use glrt::gl_entry::glx::exports::query::glXGetProcAddress;
 use glrt::gl_entry::{exports as gl, headless};

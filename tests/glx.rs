@@ -7,11 +7,12 @@
 //! One test function: the frame log is chosen by an environment variable read when a context
 //! is created, and the X server is shared by every step.
 
+#[path = "x11/mod.rs"]
+mod x11;
+
 use std::collections::HashMap;
-use std::ffi::{CString, c_int, c_uint, c_ulong};
-use std::process::{Child, Command, Stdio};
+use std::ffi::{c_int, c_uint, c_ulong};
 use std::sync::atomic::{AtomicU8, Ordering};
-use std::time::{Duration, Instant};
 
 use glrt::gl_entry::exports as gl;
 use glrt::gl_entry::glx::exports::config::*;
@@ -28,61 +29,6 @@ use x11_dl::glx::arb::*;
 use x11_dl::glx::ext::*;
 use x11_dl::glx::*;
 use x11_dl::xlib::{self, Xlib};
-
-/// An `Xvfb` server, killed when dropped.
-struct Server {
-    child: Child,
-    display: String,
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        // SIGTERM, not SIGKILL: Xvfb then removes its /tmp/.X<n>-lock and socket, which
-        // would otherwise pile up and use every display number.
-        let _ = std::process::Command::new("kill").arg(self.child.id().to_string()).status();
-        let _ = self.child.wait();
-    }
-}
-
-/// Starts `Xvfb` on a free display number and connects to it. A number whose lock file
-/// exists is skipped; if another server takes the number first, ours exits and the next
-/// number is tried.
-fn start_xvfb(x: &Xlib) -> (Server, *mut xlib::Display) {
-    for number in 90..400 {
-        if std::path::Path::new(&format!("/tmp/.X{number}-lock")).exists() {
-            continue;
-        }
-        let display = format!(":{number}");
-        let child = Command::new("Xvfb")
-            .args([display.as_str(), "-screen", "0", "640x480x24", "-nolisten", "tcp"])
-            .stdout(Stdio::null())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap_or_else(|e| panic!("cannot start Xvfb ({e}): run the project's setup script to install it"));
-        let mut server = Server { child, display };
-        if let Some(dpy) = open_display(x, &mut server) {
-            return (server, dpy);
-        }
-    }
-    panic!("no free X display number");
-}
-
-/// Connects to `server` once it accepts connections; `None` if it exited (number taken).
-fn open_display(x: &Xlib, server: &mut Server) -> Option<*mut xlib::Display> {
-    let name = CString::new(server.display.as_str()).unwrap();
-    let deadline = Instant::now() + Duration::from_secs(10);
-    loop {
-        if server.child.try_wait().ok().flatten().is_some() {
-            return None;
-        }
-        let dpy = unsafe { (x.XOpenDisplay)(name.as_ptr()) };
-        if !dpy.is_null() {
-            return Some(dpy);
-        }
-        assert!(Instant::now() < deadline, "Xvfb did not start");
-        std::thread::sleep(Duration::from_millis(50));
-    }
-}
 
 static LAST_ERROR: AtomicU8 = AtomicU8::new(0);
 
@@ -108,8 +54,8 @@ fn fb_attrib(dpy: *mut types::Display, config: types::GLXFBConfig, attribute: c_
 }
 
 /// The server's visuals usable for RGBA rendering (TrueColor/DirectColor, depth 24 or 32),
-/// with their depths.
-fn server_visuals(x: &Xlib, dpy: *mut xlib::Display) -> HashMap<c_ulong, c_int> {
+/// with their depths and classes.
+fn server_visuals(x: &Xlib, dpy: *mut xlib::Display) -> HashMap<c_ulong, (c_int, c_int)> {
     unsafe {
         let mut template: xlib::XVisualInfo = std::mem::zeroed();
         let mut n = 0;
@@ -118,7 +64,7 @@ fn server_visuals(x: &Xlib, dpy: *mut xlib::Display) -> HashMap<c_ulong, c_int> 
         let set = all
             .iter()
             .filter(|v| matches!(v.class, xlib::TrueColor | xlib::DirectColor) && matches!(v.depth, 24 | 32))
-            .map(|v| (v.visualid, v.depth))
+            .map(|v| (v.visualid, (v.depth, v.class)))
             .collect();
         (x.XFree)(list.cast());
         set
@@ -138,7 +84,8 @@ fn create_window(x: &Xlib, dpy: *mut xlib::Display, vis: &xlib::XVisualInfo, w: 
 #[test]
 fn glx_on_xvfb() {
     let x = Xlib::open().expect("libX11");
-    let (mut server, xdpy) = start_xvfb(&x);
+    let server = x11::Xvfb::start(24);
+    let xdpy = server.open(&x);
     let dpy = xdpy.cast::<types::Display>();
     unsafe { (x.XSetErrorHandler)(Some(record_error)) };
     let usable = server_visuals(&x, xdpy);
@@ -158,18 +105,24 @@ fn glx_on_xvfb() {
     assert_eq!(vendor.to_bytes(), b"glrt");
     assert!(glXQueryServerString(dpy, 0, 99).is_null());
 
-    // Configurations: four RGBA ones per usable server visual and sample count (single-sampled,
-    // then each count the Vulkan device renders multisampled), and four RGB ones more for
-    // visuals of depth 24, each naming one of them.
+    // Configurations: per group of usable server visuals of one depth and class, four RGBA kinds
+    // per sample count (single-sampled, then each count the Vulkan device renders
+    // multisampled) and four RGB ones more at depth 24, dealt out over the group's visuals:
+    // as many configurations as the larger of the two counts.
     let counts = glrt::render::multisample_counts();
     let mut n = 0;
     let configs = unsafe { glXGetFBConfigs(dpy, 0, &mut n) };
-    let per_visual: usize = usable.values().map(|&depth| if depth == 24 { 8 } else { 4 }).sum();
-    assert_eq!(n as usize, per_visual * (1 + counts.len()));
+    let mut groups: HashMap<(c_int, c_int), usize> = HashMap::new();
+    for &group in usable.values() {
+        *groups.entry(group).or_default() += 1;
+    }
+    let kinds = |depth| if depth == 24 { 8 } else { 4 } * (1 + counts.len());
+    let expected: usize = groups.iter().map(|(&(depth, _), &visuals)| visuals.max(kinds(depth))).sum();
+    assert_eq!(n as usize, expected);
     let all = unsafe { std::slice::from_raw_parts(configs, n as usize) }.to_vec();
     unsafe { (x.XFree)(configs.cast()) };
     for &c in &all {
-        let depth = usable[&(fb_attrib(dpy, c, GLX_VISUAL_ID) as c_ulong)];
+        let (depth, _) = usable[&(fb_attrib(dpy, c, GLX_VISUAL_ID) as c_ulong)];
         let alpha = fb_attrib(dpy, c, GLX_ALPHA_SIZE);
         assert!(alpha == 8 || (alpha == 0 && depth == 24), "alpha {alpha} on a visual of depth {depth}");
         assert_eq!(fb_attrib(dpy, c, GLX_BUFFER_SIZE), 24 + alpha);
@@ -180,6 +133,12 @@ fn glx_on_xvfb() {
         assert_eq!(fb_attrib(dpy, c, GLX_SAMPLE_BUFFERS), c_int::from(samples > 0));
     }
     assert_eq!(fb_attrib(dpy, all[0], GLX_SAMPLES), 0, "single-sampled configurations first");
+    // Xvfb's GLX extension gives it a visual for every kind: no two configurations share one.
+    assert!(groups.iter().all(|(&(depth, _), &visuals)| visuals >= kinds(depth)), "Xvfb has few visuals: {groups:?}");
+    let mut named: Vec<c_int> = all.iter().map(|&c| fb_attrib(dpy, c, GLX_VISUAL_ID)).collect();
+    named.sort_unstable();
+    named.dedup();
+    assert_eq!(named.len(), all.len(), "a visual names one configuration");
     assert!(unsafe { glXGetFBConfigs(dpy, 7, &mut n) }.is_null());
     assert_eq!(n, 0);
 
@@ -439,7 +398,7 @@ fn glx_on_xvfb() {
         (x.XFree)(vis.cast());
         (x.XCloseDisplay)(xdpy);
     }
-    let dpy = open_display(&x, &mut server).expect("reconnecting").cast::<types::Display>();
+    let dpy = server.open(&x).cast::<types::Display>();
     let mut width = u32::MAX;
     unsafe { glXQueryDrawable(dpy, pbuffer, GLX_WIDTH, &mut width) };
     assert_eq!(width, u32::MAX);

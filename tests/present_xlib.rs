@@ -2,7 +2,10 @@
 //! window and a pixmap, read back with `XGetImage` and compared pixel by pixel, through MIT-SHM
 //! and through `XPutImage`, on a 24-bit and a 16-bit (RGB565) screen; over TCP the server
 //! refuses MIT-SHM segments and the presenter falls back to `XPutImage`; a closed display is
-//! not touched. Skipped when Xvfb is not installed.
+//! not touched. The library's X error trap: nested traps, traps on several threads at once,
+//! the application's handler restored and its errors passed on. The tests run in parallel:
+//! the application's handler is installed once, before any trap, and counts errors per
+//! display. They fail when Xvfb is not installed.
 
 #[path = "x11/mod.rs"]
 mod x11;
@@ -45,8 +48,8 @@ fn assert_shows(x: &Xlib, dpy: *mut xlib::Display, drawable: u64, [w, h]: [u32; 
 /// Window, resize, pixmap and both transports on a screen of `depth` bits whose channels
 /// have `bits` bits.
 fn check_server(depth: u32, bits: [u32; 3]) {
-    let _one = ONE_X_ERROR_HANDLER.lock().unwrap_or_else(|e| e.into_inner());
-    let Some(server) = x11::Xvfb::start(depth) else { return };
+    install_app_handler();
+    let server = x11::Xvfb::start(depth);
     let x = Xlib::open().expect("libX11");
     let dpy = server.open(&x);
     let win = x11::mapped_window(&x, dpy, 64, 48);
@@ -106,8 +109,8 @@ fn presents_on_a_16_bit_screen() {
 
 #[test]
 fn falls_back_to_put_image_when_the_server_refuses_shared_memory() {
-    let _one = ONE_X_ERROR_HANDLER.lock().unwrap_or_else(|e| e.into_inner());
-    let Some(server) = x11::Xvfb::start_with(24, true) else { return };
+    install_app_handler();
+    let server = x11::Xvfb::start_with(24, true);
     let x = Xlib::open().expect("libX11");
     let dpy = server.open_tcp(&x);
     let win = x11::mapped_window(&x, dpy, 40, 30);
@@ -118,41 +121,133 @@ fn falls_back_to_put_image_when_the_server_refuses_shared_memory() {
     assert_shows(&x, dpy, win, [40, 30], &image, [8, 8, 8], "window over TCP");
 }
 
-static APP_ERRORS: std::sync::Mutex<Vec<u8>> = std::sync::Mutex::new(Vec::new());
+/// The errors the application's handler received: display address and error code.
+static APP_ERRORS: std::sync::Mutex<Vec<(usize, u8)>> = std::sync::Mutex::new(Vec::new());
 
-/// Xlib's error handler is one per process and the presenter traps errors by swapping it: the
-/// tests of this file run one at a time, so that none sees another's handler (the swap-size
-/// test failed when a presenter's trap replaced its handler under load).
-static ONE_X_ERROR_HANDLER: std::sync::Mutex<()> = std::sync::Mutex::new(());
-
-unsafe extern "C" fn app_handler(_: *mut xlib::Display, e: *mut xlib::XErrorEvent) -> std::ffi::c_int {
-    APP_ERRORS.lock().unwrap().push(unsafe { (*e).error_code });
+unsafe extern "C" fn app_handler(dpy: *mut xlib::Display, e: *mut xlib::XErrorEvent) -> std::ffi::c_int {
+    APP_ERRORS.lock().unwrap().push((dpy as usize, unsafe { (*e).error_code }));
     0
+}
+
+/// The error codes the application's handler received for `dpy`.
+fn app_errors(dpy: *mut xlib::Display) -> Vec<u8> {
+    APP_ERRORS.lock().unwrap().iter().filter(|e| e.0 == dpy as usize).map(|e| e.1).collect()
+}
+
+/// Whether `handler` is [`app_handler`].
+fn is_app_handler(handler: Option<glrt::render::present::x_errors::Handler>) -> bool {
+    handler.is_some_and(|h| std::ptr::fn_addr_eq(h, app_handler as glrt::render::present::x_errors::Handler))
+}
+
+/// Installs [`app_handler`] as the application's error handler, once, before any test of this
+/// file traps an error (each calls this first): Xlib has one handler per process.
+fn install_app_handler() {
+    static ONCE: std::sync::Once = std::sync::Once::new();
+    let x = Xlib::open().expect("libX11");
+    ONCE.call_once(|| unsafe {
+        (x.XSetErrorHandler)(Some(app_handler));
+    });
+}
+
+/// A window id no server has given out.
+const NO_WINDOW: u64 = 0x7ff_fff0;
+
+/// A trap inside a trap keeps its own errors, the outer one its first, and the application's
+/// handler is back afterwards.
+#[test]
+fn nested_traps_keep_their_own_errors_and_restore_the_application_handler() {
+    use glrt::render::present::x_errors::{application_handler, trapped, trapped_reply};
+    install_app_handler();
+    let server = x11::Xvfb::start(24);
+    let x = Xlib::open().expect("libX11");
+    let dpy = server.open(&x);
+    let outer = unsafe {
+        trapped(&x, dpy, || {
+            (x.XMapWindow)(dpy, NO_WINDOW);
+            let inner = trapped(&x, dpy, || (x.XFreePixmap)(dpy, NO_WINDOW));
+            assert_eq!(inner.err(), Some(xlib::BadPixmap), "the inner trap's own error");
+            let (mut root, mut at, mut size, mut depth) = (0, [0; 2], [0u32; 2], [0u32; 2]);
+            let reply = trapped_reply(&x, dpy, || {
+                (x.XGetGeometry)(dpy, NO_WINDOW, &mut root, &mut at[0], &mut at[1], &mut size[0], &mut size[1], &mut depth[0], &mut depth[1])
+            });
+            assert_eq!(reply.err(), Some(xlib::BadDrawable), "the one-request trap's own error");
+            assert!(is_app_handler(application_handler(&x)), "seen through the traps");
+            let fine = trapped(&x, dpy, || (x.XNoOp)(dpy));
+            assert!(fine.is_ok(), "a trap without errors");
+        })
+    };
+    assert_eq!(outer.err(), Some(xlib::BadWindow), "the outer trap's first error");
+    assert_eq!(app_errors(dpy), [], "no trapped error reached the application");
+    unsafe {
+        (x.XMapWindow)(dpy, NO_WINDOW);
+        (x.XSync)(dpy, xlib::False);
+    }
+    assert_eq!(app_errors(dpy), [xlib::BadWindow], "the application's handler is back");
+    assert!(is_app_handler(application_handler(&x)));
+}
+
+/// Four threads trap errors on their own connections at once while the application makes
+/// bad requests on another: every trap gets exactly its own errors, the application all of its.
+#[test]
+fn traps_on_several_threads_at_once() {
+    use glrt::render::present::x_errors::trapped;
+    install_app_handler();
+    let server = x11::Xvfb::start(24);
+    let x = Xlib::open().expect("libX11");
+    let app = server.open(&x);
+    let displays: Vec<usize> = (0..4).map(|_| server.open(&x) as usize).collect();
+    let threads: Vec<_> = displays
+        .iter()
+        .map(|&dpy| {
+            std::thread::spawn(move || {
+                let x = Xlib::open().expect("libX11");
+                let dpy = dpy as *mut xlib::Display;
+                let win = x11::mapped_window(&x, dpy, 8, 8);
+                for i in 0..200 {
+                    let bad = unsafe { trapped(&x, dpy, || (x.XMapWindow)(dpy, NO_WINDOW)) };
+                    assert_eq!(bad.err(), Some(xlib::BadWindow), "iteration {i}");
+                    let good = unsafe { trapped(&x, dpy, || (x.XMapWindow)(dpy, win)) };
+                    assert!(good.is_ok(), "iteration {i}: {good:?}");
+                }
+            })
+        })
+        .collect();
+    for _ in 0..50 {
+        unsafe {
+            (x.XMapWindow)(app, NO_WINDOW);
+            (x.XSync)(app, xlib::False);
+        }
+    }
+    for t in threads {
+        t.join().expect("trapping thread");
+    }
+    assert_eq!(app_errors(app), vec![xlib::BadWindow; 50], "each of the application's errors reached its handler once");
+    for &dpy in &displays {
+        assert_eq!(app_errors(dpy as *mut xlib::Display), [], "no trapped error reached the application");
+    }
 }
 
 /// The drawable size check run at every swap (one round trip): its own error is kept from the
 /// application, an earlier error of the application's still reaches the application's handler.
 #[test]
 fn swap_size_check_traps_only_its_own_error() {
-    let _one = ONE_X_ERROR_HANDLER.lock().unwrap_or_else(|e| e.into_inner());
-    let Some(server) = x11::Xvfb::start(24) else { return };
+    install_app_handler();
+    let server = x11::Xvfb::start(24);
     let x = Xlib::open().expect("libX11");
     let dpy = server.open(&x);
     let win = x11::mapped_window(&x, dpy, 40, 30);
     let (gx, gdpy) = unsafe { glrt::gl_entry::glx::connection(dpy.cast()) }.expect("connection");
-    unsafe { (x.XSetErrorHandler)(Some(app_handler)) };
     // The application's bad request, not yet synced.
     unsafe { (x.XMapWindow)(dpy, 0x7ff_fff0) };
     let size = unsafe { glrt::gl_entry::glx::drawable::x_geometry(gx, gdpy, win) };
     assert_eq!(size, Some((40, 30, 24)));
-    assert_eq!(*APP_ERRORS.lock().unwrap(), [xlib::BadWindow], "the application's error reached its handler");
+    assert_eq!(app_errors(dpy), [xlib::BadWindow], "the application's error reached its handler");
     assert_eq!(unsafe { glrt::gl_entry::glx::drawable::x_geometry(gx, gdpy, 0x7ff_fff0) }, None);
     unsafe { (x.XSync)(dpy, xlib::False) };
-    assert_eq!(APP_ERRORS.lock().unwrap().len(), 1, "glrt's own error was trapped");
+    assert_eq!(app_errors(dpy).len(), 1, "glrt's own error was trapped");
     let start = std::time::Instant::now();
     for _ in 0..500 {
         unsafe { glrt::gl_entry::glx::drawable::x_geometry(gx, gdpy, win) };
     }
     eprintln!("size check: {:?} per swap", start.elapsed() / 500);
-    unsafe { (x.XSetErrorHandler)(None) };
 }

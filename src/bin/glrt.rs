@@ -4,12 +4,14 @@
 //!   the hash of each texture draws used, by which `glrt.toml` tags textures);
 //! - `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH]`: replays a capture headless
 //!   (frames before `A` are replayed too: they build the state; the replay stops after `B - 1`);
-//!   `--out` writes frames `A` and later as `DIR/frame-NNNNN.png` (by frame number) through the
-//!   Vulkan raster renderer; `--bench` prints the frame times of frames `A` and later (one
+//!   `--out` draws and writes frames `A` and later as `DIR/frame-NNNNN.png` (by frame number)
+//!   through the Vulkan raster renderer, which does not draw the frames before `A`
+//!   (`glrt::render::frames_from`); `--bench` prints the frame times of frames `A` and later (one
 //!   frame's end to the next's);
 //!   `--stats` prints hash tracking's statistics of each frame as one JSON line (keys in
 //!   README.md; frames are not rendered unless `--out` is given);
-//! - `glrt dump FILE`: the call log of a capture (the `GLRT_TRACE` format) on standard output.
+//! - `glrt dump FILE`: the call log of a capture (the `GLRT_TRACE` format, with the captured
+//!   program's addresses: the same text on every run) on standard output.
 
 use std::process::ExitCode;
 

@@ -10,6 +10,7 @@ pub mod frame;
 #[macro_use]
 pub mod shader_abi;
 pub mod frame_log;
+pub mod frames_from;
 pub mod present;
 pub mod raster;
 pub mod texenv;
@@ -28,13 +29,14 @@ pub fn default_sink() -> Box<dyn FrameSink> {
 
 /// The sink of a replay that writes frames as PNG (`glrt replay --out`): the Vulkan renderer
 /// (of the mode `GLRT_MODE` chooses; a mode without a renderer still gets pixels, rasterized),
-/// writing frames `first` and later to `dir/frame-NNNNN.png` (see [`raster::dump`]), behind
-/// the frame log as in [`default_sink`]. The error says why no frames could be written (no
-/// Vulkan device, directory not writable).
+/// drawing and writing frames `first` and later to `dir/frame-NNNNN.png` (see [`raster::dump`];
+/// the earlier ones run for their state only, [`frames_from`]), behind the frame log as in
+/// [`default_sink`]. The error says why no frames could be written (no Vulkan device,
+/// directory not writable).
 pub fn dumping_sink(dir: &std::path::Path, first: u64) -> Result<Box<dyn FrameSink>, String> {
     let dump = raster::dump::Dump::new(dir.to_path_buf(), first)?;
     let renderer = renderer_for_mode(Some(dump)).map_err(|e| e.to_string())?;
-    Ok(frame_log::wrap_from_env(Box::new(renderer)))
+    Ok(frame_log::wrap_from_env(Box::new(frames_from::FramesFrom::new(first, Box::new(renderer)))))
 }
 
 /// How frames are rendered, from `GLRT_MODE`.

@@ -89,16 +89,3 @@ pub fn is_enabled(cap: GLenum) -> bool {
 pub fn assert_none(what: &str, failures: &[String]) {
     assert!(failures.is_empty(), "{what}: {} mismatch(es):\n  {}", failures.len(), failures.join("\n  "));
 }
-
-/// `target/<profile>/`, holding glrt-demo and libglrt.so, with the `libGL.so.1` symlink to
-/// `libglrt.so` that programs load (made here when missing): the directory to put first in
-/// `LD_LIBRARY_PATH` to run a program on glrt.
-pub fn lib_dir() -> std::path::PathBuf {
-    let dir = std::path::Path::new(env!("CARGO_BIN_EXE_glrt-demo")).parent().expect("target dir").to_path_buf();
-    let link = dir.join("libGL.so.1");
-    if std::fs::symlink_metadata(&link).is_err() {
-        // Another test may create it at the same time; either link is fine.
-        let _ = std::os::unix::fs::symlink("libglrt.so", &link);
-    }
-    dir
-}

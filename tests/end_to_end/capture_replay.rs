@@ -304,6 +304,37 @@ fn dump_prints_the_call_log_of_a_capture() {
     assert_eq!(out.lines().filter(|l| l.starts_with("2 glCallList(")).count(), 3, "and called each frame");
 }
 
+/// Two dumps of one capture print the same text: pointers as the captured program's
+/// addresses (each a read the capture holds), `glGetString`'s results as their text.
+#[test]
+fn dump_prints_captured_addresses_and_the_same_text_every_time() {
+    for name in ["demo", "q3"] {
+        let file = fixture(&format!("{name}.glrtcap"));
+        let (ok, first, err) = glrt(&["dump", file.to_str().unwrap()]);
+        assert!(ok, "{err}");
+        let (_, second, _) = glrt(&["dump", file.to_str().unwrap()]);
+        assert!(first == second, "{name}: two dumps differ");
+        let capture = Capture::open(&file).unwrap();
+        let mut read_at = std::collections::BTreeSet::new();
+        for record in capture.records() {
+            if let Ok((_, Record::Call { reads, .. })) = record {
+                read_at.extend(reads.iter().map(|(address, _)| *address));
+            }
+        }
+        // `params=0x7ffd5c0e1a3c(16 bytes, ...`: the address of bytes the call read.
+        let printed: Vec<u64> = first
+            .split("=0x")
+            .skip(1)
+            .filter_map(|rest| rest.split_once("(").filter(|(_, tail)| tail.contains(" bytes, xxh3 ")).map(|(hex, _)| hex))
+            .map(|hex| u64::from_str_radix(hex, 16).unwrap())
+            .collect();
+        assert!(printed.len() > 10, "{name}: {} pointers with their bytes", printed.len());
+        let foreign: Vec<String> = printed.iter().filter(|a| !read_at.contains(a)).map(|a| format!("{a:#x}")).collect();
+        assert!(foreign.is_empty(), "{name}: addresses the capture never read: {foreign:?}");
+        assert!(first.lines().any(|l| l.starts_with("0 glGetString(name=GL_VENDOR) = \"")), "{name}: glGetString's text");
+    }
+}
+
 #[test]
 fn replay_takes_a_frame_range_and_refuses_bad_files_and_options() {
     let file = fixture("glxgears.glrtcap");
@@ -359,6 +390,31 @@ fn replay_out_writes_the_demo_frames_as_png() {
         assert!(sky > 600, "{name}: the window: {sky} sky blue pixels");
         assert!(brick > 1200, "{name}: walls: {brick} brick red pixels");
     }
+}
+
+/// `--frames 3..4 --out`: the frames before 3 run for their state only (the renderer draws
+/// none of them), and frame 3 is the image of a replay that draws every frame, pixel for pixel.
+#[test]
+fn replay_out_draws_only_the_frames_asked_for() {
+    let file = fixture("demo.glrtcap");
+    let run = |tag: &str, frames: &str| {
+        let dir = scratch(tag);
+        let _ = std::fs::remove_dir_all(&dir);
+        let out = Command::new(env!("CARGO_BIN_EXE_glrt"))
+            .args(["replay", file.to_str().unwrap(), "--frames", frames, "--out", dir.to_str().unwrap()])
+            .env("GLRT_LOG", "info")
+            .output()
+            .expect("run glrt");
+        let err = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert!(out.status.success(), "{err}");
+        (Image::load_png(&dir.join("frame-00003.png")), err)
+    };
+    let (every, err) = run("every-frame.out", "0..4");
+    assert!(err.contains("replay: 0 frames before frame 0 ran for their state only"), "{err}");
+    let (last, err) = run("frame-3.out", "3..4");
+    assert!(err.contains("replay: 3 frames before frame 3 ran for their state only (0 drawn for a read-back)"), "{err}");
+    assert!(last == every, "frame 3 alone differs from frame 3 of the whole replay");
+    assert!(!std::fs::exists(scratch("frame-3.out").join("frame-00002.png")).unwrap());
 }
 
 /// glxgears' frames 1 and 2 (`--frames 1..3`: frame 0 is replayed, not written): the red,

@@ -12,10 +12,11 @@ use std::process::Command;
 use std::time::Duration;
 
 use images::{Image, compare};
-use programs::{Xvfb, lib_dir, run_for};
+use programs::{lib_dir, run_for};
 
 use crate::images;
 use crate::programs;
+use crate::x11::Xvfb;
 
 /// Frames of one turn of the camera (`demo/rebatch.rs`, `TURN_FRAMES`).
 const TURN: u64 = 120;
@@ -145,7 +146,7 @@ fn the_rebatch_demo_draws_the_same_frame_through_glrt_and_on_mesa() {
     glrt.args(args(&glrt_shot)).arg("--headless").env("LD_LIBRARY_PATH", lib_dir());
     let (out, stopped) = run_for(glrt, Duration::from_secs(120));
     assert!(!stopped && out.status.success(), "through glrt: {}", String::from_utf8_lossy(&out.stderr));
-    let x = Xvfb::start();
+    let x = Xvfb::with_screen("1024x768x24");
     let mut mesa = Command::new(env!("CARGO_BIN_EXE_glrt-demo"));
     mesa.args(args(&mesa_shot)).env_remove("LD_LIBRARY_PATH").env("DISPLAY", &x.display);
     let (out, stopped) = run_for(mesa, Duration::from_secs(120));

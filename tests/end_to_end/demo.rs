@@ -15,13 +15,14 @@
 
 use crate::images;
 use crate::programs;
+use crate::x11::Xvfb;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 use images::Image;
-use programs::{Xvfb, lib_dir, run_for};
+use programs::{lib_dir, run_for};
 
 /// Frames the demo runs in each test.
 const DEMO_FRAMES: usize = 300;
@@ -162,7 +163,7 @@ fn headless_demo_draws_the_scene_every_frame() {
 
 #[test]
 fn x11_demo_draws_the_scene_every_frame() {
-    let x = Xvfb::start();
+    let x = Xvfb::with_screen("1024x768x24");
     let log = temp_log("demo-x11");
     let mut cmd = demo_command(&log, &[]);
     cmd.env("DISPLAY", &x.display);
@@ -177,7 +178,7 @@ fn glxgears_draws_three_gears_every_frame() {
         Path::new("/usr/bin/glxgears").exists(),
         "glxgears missing: run `bash scripts/setup.sh` (mesa-utils)"
     );
-    let x = Xvfb::start();
+    let x = Xvfb::with_screen("1024x768x24");
     let log = temp_log("glxgears");
     let mut child = through_glrt("/usr/bin/glxgears", &log)
         .env("DISPLAY", &x.display)
@@ -276,7 +277,7 @@ fn with_system_libgl(extra: &[&str]) -> Command {
 /// the scene's colours are all there.
 #[test]
 fn demo_runs_on_the_system_libgl_under_xvfb() {
-    let x = Xvfb::start();
+    let x = Xvfb::with_screen("1024x768x24");
     let shot = std::env::temp_dir().join(format!("glrt-demo-mesa-{}.png", std::process::id()));
     let shot_arg = shot.to_string_lossy().into_owned();
     let args =

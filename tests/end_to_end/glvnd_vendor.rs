@@ -8,56 +8,16 @@
 //! dispatchers).
 
 use std::ffi::{CStr, c_int, c_uint, c_void};
-use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Command, Output};
+
+use crate::x11;
 
 use x11_dl::glx::*;
 use x11_dl::xlib::{self, Xlib};
 
 /// Set in the environment of the child run of [`glvnd_child`].
 const CHILD_VAR: &str = "GLRT_GLVND_CHILD";
-
-/// An `Xvfb` server on the display number it picked itself, killed when dropped.
-struct Server {
-    child: Child,
-    display: String,
-}
-
-impl Server {
-    /// Starts `Xvfb -displayfd 1`: the server writes its display number to our pipe once it
-    /// accepts connections.
-    fn start() -> Server {
-        let mut child = Command::new("Xvfb")
-            .args(["-displayfd", "1", "-screen", "0", "640x480x24", "-nolisten", "tcp"])
-            .stdout(Stdio::piped())
-            .stderr(Stdio::null())
-            .spawn()
-            .unwrap_or_else(|e| panic!("cannot start Xvfb ({e}): install it (apt-get install xvfb)"));
-        let mut line = String::new();
-        let stdout = child.stdout.take().expect("piped stdout");
-        let read = BufReader::new(stdout).read_line(&mut line);
-        let number = line.trim().to_owned();
-        let server = Server {
-            child,
-            display: format!(":{number}"),
-        };
-        assert!(
-            read.is_ok() && !number.is_empty(),
-            "Xvfb did not report a display number"
-        );
-        server
-    }
-}
-
-impl Drop for Server {
-    fn drop(&mut self) {
-        // SIGTERM, not SIGKILL: Xvfb then removes its /tmp/.X<n>-lock and socket, which
-        // would otherwise pile up and use every display number.
-        let _ = std::process::Command::new("kill").arg(self.child.id().to_string()).status();
-        let _ = self.child.wait();
-    }
-}
 
 /// A directory holding `libGLX_glrt.so.0` → the `libglrt.so` built with this test.
 struct VendorDir(PathBuf);
@@ -82,7 +42,7 @@ impl VendorDir {
 
     /// `command` run on `server` with glrt as the GLX vendor (`with_vendor_dir`: whether the
     /// vendor library can be found at all).
-    fn run(&self, server: &Server, mut command: Command, with_vendor_dir: bool) -> Output {
+    fn run(&self, server: &x11::Xvfb, mut command: Command, with_vendor_dir: bool) -> Output {
         command
             .env("DISPLAY", &server.display)
             .env("__GLX_VENDOR_LIBRARY_NAME", "glrt")
@@ -124,7 +84,7 @@ fn glxinfo_reports_glrt_through_glvnd() {
         glxinfo.exists(),
         "/usr/bin/glxinfo is missing: install mesa-utils (apt-get install mesa-utils)"
     );
-    let server = Server::start();
+    let server = x11::Xvfb::start(24);
     let vendor = VendorDir::new("glxinfo");
 
     let out = vendor.run(&server, Command::new(glxinfo), true);
@@ -159,7 +119,7 @@ fn glxinfo_reports_glrt_through_glvnd() {
 
 #[test]
 fn gl_and_glx_calls_reach_glrt_through_glvnd() {
-    let server = Server::start();
+    let server = x11::Xvfb::start(24);
     let vendor = VendorDir::new("child");
     let exe = std::env::current_exe().expect("test executable path");
     let frame_log = vendor.0.join("frames.jsonl");

@@ -3,11 +3,10 @@
 //! own Xvfb; one test binary: the demo's frames ([`demo`]), presentation on X windows
 //! ([`present`]), captures and replays ([`capture_replay`], [`pathtrace_replay`]), hash
 //! tracking of a re-batching program ([`classify_rebatch`]), pass-through ([`passthrough`]),
-//! glrt as a glvnd vendor ([`glvnd_vendor`]), and images against Mesa ([`raster_vs_mesa`])
-//! and an NVIDIA driver ([`raster_vs_nvidia`]).
+//! glrt as a glvnd vendor ([`glvnd_vendor`]), an SFML-style program's window changing frame
+//! after frame ([`sfml_style`]), and images against Mesa ([`raster_vs_mesa`]) and an NVIDIA
+//! driver ([`raster_vs_nvidia`]).
 
-#[path = "../common/mod.rs"]
-mod common;
 #[path = "../images/mod.rs"]
 mod images;
 #[path = "../programs/mod.rs"]
@@ -24,3 +23,4 @@ mod pathtrace_replay;
 mod present;
 mod raster_vs_mesa;
 mod raster_vs_nvidia;
+mod sfml_style;

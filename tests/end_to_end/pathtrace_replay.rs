@@ -14,17 +14,16 @@
 //! `target/<profile>/pathtrace-replay/{demo,glxgears}-3.png` to `tests/reference/pathtrace/`;
 //! on the GPU machine, `GLRT_MODE=pathtrace GLRT_RESOLUTION_SCALE=0.25 GLRT_SPP=1
 //! GLRT_BOUNCES=1 GLRT_TONEMAP=aces GLRT_LIGHTMAPS=ignore glrt replay
-//! tests/fixtures/NAME.glrtcap --frames 3..4 --out DIR` makes `DIR/frame-00003.png`, the
+//! tests/fixtures/NAME.glrtcap --frames 0..4 --out DIR` makes `DIR/frame-00003.png`, the
 //! `NAME-3-nvidia-h200.png` reference. The demo's lightmaps (unit 1) are light only where hash
 //! tracking says so (`Instance::light_units`); otherwise the tracer takes them as colour.
 
-use crate::common;
 use crate::images;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use common::lib_dir;
+use crate::programs::lib_dir;
 use images::{Image, compare, difference_image};
 
 /// Largest fraction of pixels without a match within `TOLERANCE`.
@@ -33,13 +32,15 @@ const TOLERANCE: u8 = 24;
 /// Largest mean absolute difference per channel.
 const MAX_MEAN_ABS: f64 = 2.0;
 
-/// Replays frames 0..4 of fixture `name` with `mode`, writing frame 3; returns its path.
+/// Replays frames 0..4 of fixture `name` with `mode`, drawing all four (the references were
+/// traced after frames 0 to 2, which are their temporal history; `--frames 3..4` would trace
+/// frame 3 alone), and returns the path of frame 3.
 fn replay_frame_3(name: &str, mode: &str) -> PathBuf {
     let dir = lib_dir().join("pathtrace-replay").join(format!("{name}-{mode}"));
     let _ = std::fs::remove_dir_all(&dir);
     let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures").join(format!("{name}.glrtcap"));
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_glrt"));
-    cmd.arg("replay").arg(&fixture).args(["--frames", "3..4", "--out"]).arg(&dir);
+    cmd.arg("replay").arg(&fixture).args(["--frames", "0..4", "--out"]).arg(&dir);
     for key in ["GLRT_CAPTURE", "GLRT_FRAME_LOG", "GLRT_DUMP", "GLRT_CONFIG"] {
         cmd.env_remove(key);
     }

@@ -12,13 +12,14 @@
 
 use crate::images;
 use crate::programs;
+use crate::x11::Xvfb;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
 use images::{Image, compare, difference_image};
-use programs::{Xvfb, lib_dir, run_for};
+use programs::{lib_dir, run_for};
 
 /// Largest per-channel difference of matching pixels (0..=255).
 const TOLERANCE: u8 = 24;
@@ -78,7 +79,7 @@ fn run_demo(mut cmd: Command, shot: &Path) -> Image {
 #[test]
 fn demo_frame_matches_mesa() {
     let dir = out_dir();
-    let x = Xvfb::start();
+    let x = Xvfb::with_screen("1024x768x24");
     let mut mesa = Command::new(env!("CARGO_BIN_EXE_glrt-demo"));
     mesa.env_remove("LD_LIBRARY_PATH").env("DISPLAY", &x.display).args(["--lib", MESA_LIBGL]);
     let mesa = run_demo(mesa, &dir.join("demo-mesa-shot.png"));

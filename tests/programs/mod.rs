@@ -1,11 +1,10 @@
 //! Running programs in integration tests: glrt's `libGL.so.1` next to the built binaries, a
-//! private Xvfb server, and a child process with a time limit.
+//! scratch path, and a child process with a time limit (the X server: `tests/x11/mod.rs`).
 
 #![allow(dead_code)] // each test binary uses part of this module
 
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
-use std::sync::Mutex;
+use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
 /// A fresh path for file `name` of test binary `test` under Cargo's temporary directory for
@@ -44,63 +43,4 @@ pub fn run_for(mut cmd: Command, limit: Duration) -> (Output, bool) {
         std::thread::sleep(Duration::from_millis(50));
     }
     (child.wait_with_output().expect("output"), stopped)
-}
-
-/// A private Xvfb server, stopped on drop.
-pub struct Xvfb {
-    child: Child,
-    /// `:N`, for `DISPLAY`.
-    pub display: String,
-}
-
-/// Serialises display-number picking between the tests of this process.
-static XVFB_START: Mutex<()> = Mutex::new(());
-
-impl Xvfb {
-    /// Starts Xvfb with a 1024×768×24 screen.
-    pub fn start() -> Self {
-        Xvfb::with_screen("1024x768x24")
-    }
-
-    /// Starts Xvfb with screen 0 of `geometry` (`WxHxDEPTH`) on a free display number.
-    pub fn with_screen(geometry: &str) -> Self {
-        let _guard = XVFB_START.lock().unwrap_or_else(|e| e.into_inner());
-        for n in 90 + std::process::id() % 50..400 {
-            if Path::new(&format!("/tmp/.X{n}-lock")).exists() {
-                continue;
-            }
-            let spawned = Command::new("Xvfb")
-                .args([format!(":{n}").as_str(), "-screen", "0", geometry, "-nolisten", "tcp"])
-                .stdout(Stdio::null())
-                .stderr(Stdio::null())
-                .spawn();
-            let mut child = match spawned {
-                Ok(c) => c,
-                Err(e) => panic!("cannot start Xvfb ({e}): install it with `bash scripts/setup.sh`"),
-            };
-            let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
-            let start = Instant::now();
-            while start.elapsed() < Duration::from_secs(10) {
-                if child.try_wait().ok().flatten().is_some() {
-                    break; // display taken: try the next one
-                }
-                if socket.exists() {
-                    return Xvfb { child, display: format!(":{n}") };
-                }
-                std::thread::sleep(Duration::from_millis(50));
-            }
-            let _ = child.kill();
-            let _ = child.wait();
-        }
-        panic!("no free X display for Xvfb");
-    }
-}
-
-impl Drop for Xvfb {
-    fn drop(&mut self) {
-        // SIGTERM, not SIGKILL: Xvfb then removes its /tmp/.X<n>-lock and socket, which
-        // would otherwise pile up and use every display number.
-        let _ = std::process::Command::new("kill").arg(self.child.id().to_string()).status();
-        let _ = self.child.wait();
-    }
 }

@@ -1,12 +1,12 @@
-//! X11 helpers of the presentation tests: a private `Xvfb` server of a chosen depth, windows,
-//! and reading pixels back with `XGetImage`. Included with `#[path]` by the tests that need it.
+//! X11 helpers of the tests: the one way they start a private `Xvfb` server (of a chosen
+//! screen; a test fails, saying how to install it, when Xvfb is missing), windows, and reading
+//! pixels back with `XGetImage`. Included with `#[path]` by the tests that need it.
 
 #![allow(dead_code)]
 
 use std::ffi::CString;
-use std::path::Path;
+use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Stdio};
-use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
 use x11_dl::xlib::{self, Xlib};
@@ -14,57 +14,51 @@ use x11_dl::xlib::{self, Xlib};
 /// A private Xvfb server, stopped on drop.
 pub struct Xvfb {
     child: Child,
-    /// `:N`.
+    /// `:N`, for `DISPLAY`.
     pub display: String,
 }
 
-static START: Mutex<()> = Mutex::new(());
-
 impl Xvfb {
-    /// Starts Xvfb with one `width`×`height` screen of `depth` bits; `None` (after saying so on
-    /// stderr) when Xvfb is not installed, so that machines without it skip these tests.
-    pub fn start(depth: u32) -> Option<Xvfb> {
-        Xvfb::start_with(depth, false)
+    /// Starts Xvfb with one 640×480 screen of `depth` bits.
+    pub fn start(depth: u32) -> Xvfb {
+        Xvfb::launch(&format!("640x480x{depth}"), false)
     }
 
     /// [`Xvfb::start`], also listening on TCP (port 6000 + N) when `tcp`: clients connected
     /// through it are remote to the server (no MIT-SHM).
-    pub fn start_with(depth: u32, tcp: bool) -> Option<Xvfb> {
-        let _one = START.lock().unwrap_or_else(|e| e.into_inner());
-        for n in 100 + std::process::id() % 100..600 {
-            if Path::new(&format!("/tmp/.X{n}-lock")).exists() {
-                continue;
+    pub fn start_with(depth: u32, tcp: bool) -> Xvfb {
+        Xvfb::launch(&format!("640x480x{depth}"), tcp)
+    }
+
+    /// Starts Xvfb with screen 0 of `geometry` (`WxHxDEPTH`).
+    pub fn with_screen(geometry: &str) -> Xvfb {
+        Xvfb::launch(geometry, false)
+    }
+
+    /// Starts `Xvfb -displayfd`: the server picks a free display number itself and writes it
+    /// to our pipe once it accepts connections, so parallel tests (of this process or others)
+    /// never meet on one number. Panics, saying how to install it, when Xvfb is missing: a test
+    /// that needs a server must not pass without one.
+    fn launch(geometry: &str, tcp: bool) -> Xvfb {
+        let spawned = Command::new("Xvfb")
+            .args(["-displayfd", "1", "-screen", "0", geometry])
+            .args(if tcp { ["-listen", "tcp"] } else { ["-nolisten", "tcp"] })
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn();
+        let mut child = match spawned {
+            Ok(child) => child,
+            Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+                panic!("this test needs Xvfb, which is not installed: `bash scripts/setup.sh` (or `apt-get install xvfb`) installs it")
             }
-            let screen = format!("640x480x{depth}");
-            let spawned = Command::new("Xvfb")
-                .args([format!(":{n}").as_str(), "-screen", "0", screen.as_str()])
-                .args(if tcp { ["-listen", "tcp"] } else { ["-nolisten", "tcp"] })
-                .stdout(Stdio::null())
-                .stderr(Stdio::null())
-                .spawn();
-            let mut child = match spawned {
-                Ok(c) => c,
-                Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-                    eprintln!("skipped: Xvfb is not installed (bash scripts/setup.sh installs it)");
-                    return None;
-                }
-                Err(e) => panic!("cannot start Xvfb: {e}"),
-            };
-            let socket = format!("/tmp/.X11-unix/X{n}");
-            let start = Instant::now();
-            while start.elapsed() < Duration::from_secs(10) {
-                if child.try_wait().ok().flatten().is_some() {
-                    break;
-                }
-                if Path::new(&socket).exists() {
-                    return Some(Xvfb { child, display: format!(":{n}") });
-                }
-                std::thread::sleep(Duration::from_millis(20));
-            }
-            let _ = child.kill();
-            let _ = child.wait();
-        }
-        panic!("no free X display for Xvfb");
+            Err(e) => panic!("cannot start Xvfb: {e}"),
+        };
+        let mut line = String::new();
+        let read = BufReader::new(child.stdout.take().expect("piped stdout")).read_line(&mut line);
+        let number = line.trim().to_owned();
+        let server = Xvfb { child, display: format!(":{number}") };
+        assert!(read.is_ok() && !number.is_empty() && number.bytes().all(|b| b.is_ascii_digit()), "Xvfb did not report a display number");
+        server
     }
 
     /// Opens a connection to the server (retrying while it starts).

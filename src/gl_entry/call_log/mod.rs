@@ -13,11 +13,12 @@
 //!   table in [`params`];
 //! - bitfields of a gl.xml group as an OR of its names (`GL_COLOR_BUFFER_BIT|GL_DEPTH_BUFFER_BIT`),
 //!   with any bits no name covers in hex;
-//! - pointers: `NULL`, or the address; where gl.xml gives a fixed length (`glVertex3fv`: 3,
+//! - pointers: `NULL`, or the address (in a replay, the captured program's address, so that
+//!   `glrt dump` prints the same text on every run); where gl.xml gives a fixed length (`glVertex3fv`: 3,
 //!   `glLoadMatrixf`: 16) also the bytes read, their xxh3 hash and the values,
 //!   `0x7ffc…(12 bytes, xxh3 …)[1.0, 0.0, 0.0]`. Pointers whose size depends on other
 //!   arguments or on GL state print the address only;
-//! - ` = value` for a command's result, ` -> GL_INVALID_ENUM` when the call raised an error
+//! - ` = value` for a command's result (`glGetString`'s: the quoted text), ` -> GL_INVALID_ENUM` when the call raised an error
 //!   (the latched error was `GL_NO_ERROR` before the call and is set after: an error raised
 //!   while an earlier one is still latched is dropped by GL, and not shown), ` (no current
 //!   context)` when the call had no context to run on;
@@ -52,7 +53,7 @@ use sizes::Typed;
 use super::current::with_slot;
 use super::mode::{self, Mode};
 use crate::translate::classify::texture_hash;
-use crate::translate::gl::{self, GLbitfield, GLchar, GLenum, GLint, GLsizei};
+use crate::translate::gl::{self, GLbitfield, GLchar, GLenum, GLint, GLsizei, GLubyte};
 
 /// The gl.xml enum groups the log prints parameters by: `(name, value)` per member.
 #[allow(non_upper_case_globals)]
@@ -203,12 +204,15 @@ macro_rules! float_arg {
 }
 float_arg!(f32, f64);
 
+/// Pointers print as the captured program's address during a replay (the shadow's addresses
+/// mapped back, `translate::capture::captured_address`), so that `glrt dump` prints the same
+/// text on every run; elsewhere as they are.
 impl<T> Arg for *const T {
     fn print(self, out: &mut String) {
         if self.is_null() {
             out.push_str("NULL");
         } else {
-            let _ = write!(out, "{self:p}");
+            let _ = write!(out, "{:#x}", crate::translate::capture::captured_address(self as u64));
         }
     }
 }
@@ -483,6 +487,19 @@ impl Entry {
     pub fn returned<T: Arg>(&mut self, value: T) {
         self.line.push_str(" = ");
         value.print(&mut self.line);
+    }
+
+    /// The call's string result (`glGetString`): the text, quoted (`NULL` for none), not the
+    /// address, which is the library's own and changes from run to run.
+    pub fn returned_string(&mut self, value: *const GLubyte) {
+        self.line.push_str(" = ");
+        if value.is_null() {
+            self.line.push_str("NULL");
+        } else {
+            // Safety: glGetString returns a NUL-terminated string that lives as long as glrt.
+            let text = unsafe { std::ffi::CStr::from_ptr(value.cast()) }.to_string_lossy();
+            let _ = write!(self.line, "{text:?}");
+        }
     }
 
     /// The call's `GLenum` result (`glGetError`), by name; 0 is `GL_NO_ERROR`.

@@ -1,27 +1,37 @@
 //! Framebuffer configurations (GLX 1.4 sections 3.3.2 and 3.3.3) and the GLX attributes of X
 //! visuals (section 3.4).
 //!
-//! Every TrueColor and DirectColor visual of depth 24 or 32 that the X server offers gets four
-//! RGBA8 configurations: double- and single-buffered, each with (depth 24, stencil 8,
-//! accumulation 16 per channel) or without ancillary buffers. A visual of depth 24 also gets
-//! the same four as RGB8 configurations without destination alpha (`GLX_ALPHA_SIZE` 0,
-//! `GLX_BUFFER_SIZE` 24), after its RGBA ones, as Mesa offers them: a request that leaves
-//! `GLX_ALPHA_SIZE` at 0 gets an RGB configuration first (table 3.4: alpha bits count only
-//! when asked for, then the smaller buffer wins), one asking for alpha gets only RGBA ones.
-//! The renderer keeps alpha at 1 in the colour buffers of an RGB drawable
+//! The TrueColor and DirectColor visuals of depth 24 or 32 that the X server offers carry
+//! RGBA8 configurations of four kinds: double- and single-buffered, each with (depth 24,
+//! stencil 8, accumulation 16 per channel) or without ancillary buffers. Visuals of depth 24
+//! also carry the same four as RGB8 configurations without destination alpha
+//! (`GLX_ALPHA_SIZE` 0, `GLX_BUFFER_SIZE` 24), after the RGBA ones, as Mesa offers them: a
+//! request that leaves `GLX_ALPHA_SIZE` at 0 gets an RGB configuration first (table 3.4: alpha
+//! bits count only when asked for, then the smaller buffer wins), one asking for alpha gets only
+//! RGBA ones. The renderer keeps alpha at 1 in the colour buffers of an RGB drawable
 //! ([`crate::frame::Target::alpha`]). glrt renders into its own buffers, so every
 //! configuration supports windows, pixmaps and pbuffers.
 //!
-//! The same four follow per sample count the Vulkan device renders multisampled
+//! The same kinds follow per sample count the Vulkan device renders multisampled
 //! (`GLX_ARB_multisample`: `GLX_SAMPLE_BUFFERS` 1, `GLX_SAMPLES` n; the counts come from
 //! [`crate::render::multisample_counts`], probed once per process), after every
-//! single-sampled configuration, so table order and a visual's default configuration stay
-//! single-sampled.
+//! single-sampled configuration in table order.
 //!
-//! A GLX 1.2 program sees only visuals, and the server has far fewer visuals than
-//! configurations; a visual takes the attributes of the configuration `glXChooseVisual` last
-//! selected it for (by default its first one: double-buffered with every ancillary buffer), so
-//! `glXGetConfig` and `glXCreateContext` agree with what the program asked for.
+//! As on a server with GLX, where each configuration has a visual of its own, the kinds of a
+//! group of visuals (one class and depth) are dealt out over its visuals in turn: kind `i` of
+//! `k` goes to visual `i mod n` of `n` and visual `j` gets kind `j mod k`, so the group has
+//! `max(n, k)` configurations. A server with GLX (Xvfb, Xorg) has a visual for every kind,
+//! and a visual then names exactly one configuration: programs that find the configuration of
+//! their window by its visual (SFML: the first of `glXChooseFBConfig`'s list whose
+//! `glXGetVisualFromFBConfig` is the window's visual, while that list puts single-buffered
+//! configurations first) get the one whose attributes `glXGetConfig` reported for the visual.
+//! The first visual of a group carries its first kind, double-buffered with every ancillary
+//! buffer.
+//!
+//! A server with fewer visuals (no GLX extension) has several configurations per visual, and a
+//! GLX 1.2 program sees only visuals: a visual takes the attributes of the configuration
+//! `glXChooseVisual` last selected it for (by default its first one), so `glXGetConfig` and
+//! `glXCreateContext` agree with what the program asked for.
 //!
 //! Tables are built per display and screen on first use and live for the program, so
 //! `GLXFBConfig` handles (pointers to their entries) stay valid after `XCloseDisplay`.
@@ -123,34 +133,51 @@ pub struct ScreenConfigs {
 
 impl ScreenConfigs {
     /// Builds the configurations of the given visuals (`XGetVisualInfo` results), with
-    /// multisampled ones for each of `sample_counts`.
+    /// multisampled ones for each of `sample_counts`: per group of usable visuals of one class
+    /// and depth, its kinds of configuration ([`kinds`]) dealt out over its visuals in turn, as
+    /// many configurations as the larger of the two counts (see the module documentation).
     fn build(display: usize, screen: c_int, visuals: &[xlib::XVisualInfo], sample_counts: &[u32]) -> ScreenConfigs {
-        let mut configs = Vec::new();
-        let usable = visuals.iter().filter(|v| {
-            matches!(v.class, xlib::TrueColor | xlib::DirectColor) && matches!(v.depth, 24 | 32)
-        });
-        let samples = std::iter::once(0).chain(sample_counts.iter().filter_map(|&n| c_int::try_from(n).ok()));
-        for (samples, v) in samples.flat_map(|n| usable.clone().map(move |v| (n, v))) {
-            let visual_type = if v.class == xlib::TrueColor { GLX_TRUE_COLOR } else { GLX_DIRECT_COLOR };
-            let bits = |mask: c_ulong| mask.count_ones() as c_int;
-            let alphas: &[c_int] = if v.depth == 24 { &[8, 0] } else { &[8] };
-            let buffers = [(true, true), (true, false), (false, true), (false, false)];
-            for (alpha, (ancillary, double_buffer)) in alphas.iter().flat_map(|&a| buffers.map(|b| (a, b))) {
-                let rgba = [bits(v.red_mask), bits(v.green_mask), bits(v.blue_mask), alpha];
-                configs.push(FbConfig {
-                    id: (screen << 16) | (configs.len() as c_int + 1),
-                    screen,
-                    visual_id: v.visualid,
-                    visual_type,
-                    visual_depth: v.depth,
-                    rgba,
-                    double_buffer,
-                    depth: if ancillary { 24 } else { 0 },
-                    stencil: if ancillary { 8 } else { 0 },
-                    accum: if ancillary { 16 } else { 0 },
-                    samples,
-                });
+        let usable: Vec<&xlib::XVisualInfo> = visuals
+            .iter()
+            .filter(|v| matches!(v.class, xlib::TrueColor | xlib::DirectColor) && matches!(v.depth, 24 | 32))
+            .collect();
+        let samples: Vec<c_int> =
+            std::iter::once(0).chain(sample_counts.iter().filter_map(|&n| c_int::try_from(n).ok())).collect();
+        // (kind index, visual index in `usable`, kind) of every configuration.
+        let mut dealt = Vec::new();
+        let mut groups: Vec<(c_int, c_int)> = Vec::new();
+        for v in &usable {
+            if !groups.contains(&(v.class, v.depth)) {
+                groups.push((v.class, v.depth));
             }
+        }
+        for (class, depth) in groups {
+            let members: Vec<usize> = (0..usable.len()).filter(|&i| (usable[i].class, usable[i].depth) == (class, depth)).collect();
+            let kinds = kinds(depth, &samples);
+            for i in 0..members.len().max(kinds.len()) {
+                dealt.push((i % kinds.len(), members[i % members.len()], kinds[i % kinds.len()]));
+            }
+        }
+        // Single-sampled first, then by visual, then by kind: a visual's first configuration is
+        // its first kind (double-buffered with every ancillary buffer) where it has that kind.
+        dealt.sort_by_key(|&(k, v, kind)| (kind.samples, v, k));
+        let mut configs = Vec::with_capacity(dealt.len());
+        for (_, v, kind) in dealt {
+            let v = usable[v];
+            let bits = |mask: c_ulong| mask.count_ones() as c_int;
+            configs.push(FbConfig {
+                id: (screen << 16) | (configs.len() as c_int + 1),
+                screen,
+                visual_id: v.visualid,
+                visual_type: if v.class == xlib::TrueColor { GLX_TRUE_COLOR } else { GLX_DIRECT_COLOR },
+                visual_depth: v.depth,
+                rgba: [bits(v.red_mask), bits(v.green_mask), bits(v.blue_mask), kind.alpha],
+                double_buffer: kind.double_buffer,
+                depth: if kind.ancillary { 24 } else { 0 },
+                stencil: if kind.ancillary { 8 } else { 0 },
+                accum: if kind.ancillary { 16 } else { 0 },
+                samples: kind.samples,
+            });
         }
         ScreenConfigs { display: AtomicUsize::new(display), screen, configs, chosen: Mutex::new(HashMap::new()) }
     }
@@ -169,6 +196,32 @@ impl ScreenConfigs {
             self.chosen.lock().insert(config.visual_id, i);
         }
     }
+}
+
+/// What tells configurations of one visual group apart.
+#[derive(Clone, Copy)]
+struct Kind {
+    samples: c_int,
+    alpha: c_int,
+    ancillary: bool,
+    double_buffer: bool,
+}
+
+/// The kinds of configuration of visuals of `depth`, in table order: per sample count, RGBA
+/// then (depth 24 only) RGB, each double- and single-buffered with and without ancillary
+/// buffers, double-buffered with every ancillary buffer first.
+fn kinds(depth: c_int, samples: &[c_int]) -> Vec<Kind> {
+    let alphas: &[c_int] = if depth == 24 { &[8, 0] } else { &[8] };
+    let buffers = [(true, true), (true, false), (false, true), (false, false)];
+    let mut out = Vec::new();
+    for &samples in samples {
+        for &alpha in alphas {
+            for (ancillary, double_buffer) in buffers {
+                out.push(Kind { samples, alpha, ancillary, double_buffer });
+            }
+        }
+    }
+    out
 }
 
 static SCREENS: Mutex<Vec<&'static ScreenConfigs>> = Mutex::new(Vec::new());
@@ -508,6 +561,27 @@ mod tests {
         let list = [GLX_RGBA, GLX_DOUBLEBUFFER, GLX_ALPHA_SIZE, 1, 0];
         let got = unsafe { Request::visual(list.as_ptr()) }.unwrap().choose(&t.configs);
         assert!(!got.is_empty() && got.iter().all(|c| c.rgba[3] == 8));
+    }
+
+    #[test]
+    fn kinds_are_dealt_over_the_visuals_of_a_group() {
+        let visual = |id| xlib::XVisualInfo { visualid: id, depth: 32, class: xlib::TrueColor, ..unsafe { std::mem::zeroed() } };
+        // Six visuals, four kinds: one configuration per visual, the kinds in turn.
+        let visuals: Vec<_> = (0x40..0x46).map(visual).collect();
+        let t = ScreenConfigs::build(1, 0, &visuals, &[]);
+        let dealt: Vec<_> = t.configs.iter().map(|c| (c.visual_id, c.double_buffer, c.depth)).collect();
+        let expected = [(0x40, true, 24), (0x41, false, 24), (0x42, true, 0), (0x43, false, 0), (0x44, true, 24), (0x45, false, 24)];
+        assert_eq!(dealt, expected);
+        // SFML finds its window's configuration as the first of glXChooseFBConfig's list (single-
+        // buffered first) with the window's visual: the one glXGetConfig described.
+        let window = t.configs.iter().find(|c| c.double_buffer && c.depth == 0).unwrap().visual_id;
+        let all = unsafe { Request::fbconfig(std::ptr::null()) }.choose(&t.configs);
+        let found = all.iter().find(|c| c.visual_id == window).unwrap();
+        assert!(found.double_buffer && std::ptr::eq(*found, t.of_visual(window).unwrap()));
+        // Two visuals, four kinds: each visual carries two, its first kind first.
+        let t = ScreenConfigs::build(1, 0, &visuals[..2], &[]);
+        let dealt: Vec<_> = t.configs.iter().map(|c| (c.visual_id, c.double_buffer, c.depth)).collect();
+        assert_eq!(dealt, [(0x40, true, 24), (0x40, true, 0), (0x41, false, 24), (0x41, false, 0)]);
     }
 
     #[test]

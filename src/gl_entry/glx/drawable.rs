@@ -13,6 +13,7 @@ use x11_dl::xlib::{self, Xlib};
 
 use super::XDisplay;
 use crate::frame::{Surface, Target, XDrawable};
+use crate::render::present::x_errors;
 
 /// What a drawable is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -104,7 +105,7 @@ pub unsafe fn destroy(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID, accept: impl
     });
     if removed.is_some() {
         // Safety: the name is a pixmap glrt created on this display.
-        let _ = unsafe { super::trapped(x, dpy, || (x.XFreePixmap)(dpy, xid)) };
+        let _ = unsafe { x_errors::trapped(x, dpy, || (x.XFreePixmap)(dpy, xid)) };
     }
     removed.is_some()
 }
@@ -118,7 +119,7 @@ pub unsafe fn new_name(x: &Xlib, dpy: *mut XDisplay, screen: c_int) -> Option<xl
     // Safety: as documented; errors are trapped.
     unsafe {
         let root = (x.XRootWindow)(dpy, screen);
-        super::trapped(x, dpy, || (x.XCreatePixmap)(dpy, root, 1, 1, 1)).ok().filter(|&p| p != 0)
+        x_errors::trapped(x, dpy, || (x.XCreatePixmap)(dpy, root, 1, 1, 1)).ok().filter(|&p| p != 0)
     }
 }
 
@@ -130,7 +131,7 @@ pub unsafe fn x_geometry(x: &Xlib, dpy: *mut XDisplay, xid: xlib::XID) -> Option
     let (mut root, mut px, mut py, mut w, mut h, mut border, mut depth) = (0, 0, 0, 0, 0, 0, 0);
     // Safety: the out-pointers are valid; a bad drawable is an error that is trapped.
     let status = unsafe {
-        super::trapped_reply(x, dpy, || {
+        x_errors::trapped_reply(x, dpy, || {
             (x.XGetGeometry)(dpy, xid, &mut root, &mut px, &mut py, &mut w, &mut h, &mut border, &mut depth)
         })
     };
@@ -145,7 +146,7 @@ pub unsafe fn window_visual(x: &Xlib, dpy: *mut XDisplay, window: xlib::Window) 
     // Safety: a zeroed XWindowAttributes is a valid out-parameter; errors are trapped.
     unsafe {
         let mut attrs: xlib::XWindowAttributes = std::mem::zeroed();
-        let status = super::trapped(x, dpy, || (x.XGetWindowAttributes)(dpy, window, &mut attrs));
+        let status = x_errors::trapped(x, dpy, || (x.XGetWindowAttributes)(dpy, window, &mut attrs));
         match status {
             Ok(s) if s != 0 && !attrs.visual.is_null() => Some((x.XVisualIDFromVisual)(attrs.visual)),
             _ => None,

@@ -4,8 +4,9 @@
 //! [`context`], `exports/drawable.rs` and [`drawable`], `exports/xfont.rs` and [`xfont`]; and
 //! `exports/query.rs` and `exports/swap.rs`, whose state is elsewhere (the exports table, the
 //! current context). Here: what every export shares, Xlib loaded once, panic guards
-//! ([`entry`]), trapping the X errors of glrt's own requests and reporting GLX errors to the
-//! application's error handler; and the GLX C types ([`types`]).
+//! ([`entry`]), reporting GLX errors to the application's error handler (the X errors of glrt's
+//! own requests are trapped by [`crate::render::present::x_errors`]); and the GLX C types
+//! ([`types`]).
 //!
 //! glrt does not use the server's GLX extension: it renders into its own buffers, so GLX
 //! objects are client-side state keyed by the application's `Display` pointer.
@@ -22,11 +23,11 @@ use std::collections::HashSet;
 use std::ffi::{c_int, c_uchar, c_ulong, c_void};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::OnceLock;
-use std::sync::atomic::{AtomicU8, AtomicU64, AtomicUsize, Ordering};
 
 use parking_lot::Mutex;
 use x11_dl::xlib::{self, Xlib};
 
+use crate::render::present::x_errors;
 use crate::translate::convert::ReturnDefault;
 
 /// The Xlib `Display` of the application.
@@ -107,87 +108,6 @@ pub fn malloc_array<T: Copy>(items: &[T]) -> *mut T {
     ptr
 }
 
-static TRAPPED: AtomicU8 = AtomicU8::new(0);
-static TRAP_LOCK: Mutex<()> = Mutex::new(());
-
-unsafe extern "C" fn record_error(_dpy: *mut XDisplay, event: *mut xlib::XErrorEvent) -> c_int {
-    // Safety: Xlib passes a valid event.
-    TRAPPED.store(unsafe { (*event).error_code }.max(1), Ordering::Relaxed);
-    0
-}
-
-/// Runs Xlib requests that may fail (a drawable the application already destroyed...) with a
-/// temporary error handler, so their X errors do not reach the application's handler (whose
-/// default exits). Returns the X error code of the first error, if any.
-///
-/// # Safety
-/// `dpy` is a live display.
-pub unsafe fn trapped<R>(x: &Xlib, dpy: *mut XDisplay, f: impl FnOnce() -> R) -> Result<R, u8> {
-    let _one_at_a_time = TRAP_LOCK.lock();
-    // Safety (all calls): `dpy` is live; the handler is restored before returning.
-    unsafe {
-        (x.XSync)(dpy, xlib::False);
-        TRAPPED.store(0, Ordering::Relaxed);
-        let previous = (x.XSetErrorHandler)(Some(record_error));
-        let result = f();
-        (x.XSync)(dpy, xlib::False);
-        (x.XSetErrorHandler)(previous);
-        match TRAPPED.load(Ordering::Relaxed) {
-            0 => Ok(result),
-            code => Err(code),
-        }
-    }
-}
-
-/// The display and first request serial of the running [`trapped_reply`], and the handler it
-/// replaced.
-static REPLY_DISPLAY: AtomicUsize = AtomicUsize::new(0);
-static REPLY_SERIAL: AtomicU64 = AtomicU64::new(0);
-static REPLY_PREVIOUS: AtomicUsize = AtomicUsize::new(0);
-
-unsafe extern "C" fn record_reply_error(dpy: *mut XDisplay, event: *mut xlib::XErrorEvent) -> c_int {
-    // Safety: Xlib passes a valid event.
-    let (serial, code) = unsafe { ((*event).serial, (*event).error_code) };
-    if dpy as usize == REPLY_DISPLAY.load(Ordering::Relaxed) && serial >= REPLY_SERIAL.load(Ordering::Relaxed) {
-        TRAPPED.store(code.max(1), Ordering::Relaxed);
-        return 0;
-    }
-    // An error of an earlier request (the application's) or another display: its handler's.
-    let previous = REPLY_PREVIOUS.load(Ordering::Relaxed);
-    if previous == 0 {
-        return 0;
-    }
-    // Safety: the value is the handler `XSetErrorHandler` returned, stored as an address.
-    let handler: unsafe extern "C" fn(*mut XDisplay, *mut xlib::XErrorEvent) -> c_int = unsafe { std::mem::transmute(previous) };
-    // Safety: forwarding Xlib's own arguments.
-    unsafe { handler(dpy, event) }
-}
-
-/// [`trapped`] for one request that waits for its reply (`XGetGeometry`...) in one round
-/// trip instead of three: no `XSync` before or after, since the reply (or the error) ends the
-/// wait; errors of earlier requests that arrive meanwhile go on to the application's handler.
-/// Used at every `glXSwapBuffers` (40 µs → 14 µs per swap on a local Xvfb).
-///
-/// # Safety
-/// `dpy` is a live display; `f` makes exactly one request that has a reply, on `dpy`.
-pub unsafe fn trapped_reply<R>(x: &Xlib, dpy: *mut XDisplay, f: impl FnOnce() -> R) -> Result<R, u8> {
-    let _one_at_a_time = TRAP_LOCK.lock();
-    // Safety (all calls): `dpy` is live; the handler is restored before returning.
-    unsafe {
-        REPLY_DISPLAY.store(dpy as usize, Ordering::Relaxed);
-        REPLY_SERIAL.store((x.XNextRequest)(dpy), Ordering::Relaxed);
-        TRAPPED.store(0, Ordering::Relaxed);
-        let previous = (x.XSetErrorHandler)(Some(record_reply_error));
-        REPLY_PREVIOUS.store(previous.map_or(0, |h| h as usize), Ordering::Relaxed);
-        let result = f();
-        (x.XSetErrorHandler)(previous);
-        match TRAPPED.load(Ordering::Relaxed) {
-            0 => Ok(result),
-            code => Err(code),
-        }
-    }
-}
-
 /// GLX protocol errors (GLX 1.4 section 3.2.1; `GLXBadProfileARB` from
 /// GLX_ARB_create_context_profile), numbered from the extension's first error.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -245,13 +165,7 @@ pub unsafe fn report(dpy: *mut XDisplay, name: &'static str, error: XError, reso
         XError::Glx(_) if opcode == 0 => return,
         XError::Glx(glx) => (error_base + glx as c_int) as c_uchar,
     };
-    // Safety: swapping handlers is how Xlib exposes the current one; it is restored at once.
-    let (app, default) = unsafe {
-        let app = (x.XSetErrorHandler)(None);
-        let default = (x.XSetErrorHandler)(app);
-        (app, default)
-    };
-    let Some(handler) = app.filter(|h| !default.is_some_and(|d| std::ptr::fn_addr_eq(d, *h))) else { return };
+    let Some(handler) = x_errors::application_handler(x) else { return };
     let mut event = xlib::XErrorEvent {
         type_: 0,
         display: dpy,

@@ -14,6 +14,7 @@ use x11_dl::xlib::{self, Xlib};
 
 use super::XDisplay;
 use crate::gl_entry::exports as gl_api;
+use crate::render::present::x_errors;
 use crate::translate::gl;
 
 /// Packs a `width` × `height` glyph (`lit(x, y)`, y from the top) into `glBitmap` rows.
@@ -81,7 +82,7 @@ pub unsafe fn use_x_font(x: &Xlib, dpy: *mut XDisplay, font: xlib::Font, first: 
     // Safety (block): `dpy` is live, every X resource is created and freed here; a bad font
     // is an error that is trapped.
     unsafe {
-        let info = super::trapped(x, dpy, || (x.XQueryFont)(dpy, font)).ok().filter(|f| !f.is_null());
+        let info = x_errors::trapped(x, dpy, || (x.XQueryFont)(dpy, font)).ok().filter(|f| !f.is_null());
         let Some(info) = info else {
             return super::report(dpy, "glXUseXFont", super::XError::Core(7), font); // BadFont
         };

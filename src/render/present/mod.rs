@@ -6,6 +6,7 @@
 //! - [`swapchain`]: a Vulkan swapchain on the window (the normal path).
 //! - [`window_output`]: the raster renderer's output that presents its frames.
 //! - [`xlib`]: the fallback presenter, `XShmPutImage` (MIT-SHM) or `XPutImage` of a read-back.
+//! - [`x_errors`]: the X error trap of the whole library (the GLX layer's requests too).
 //!
 //! What a context draws to ([`crate::frame::Target`]) reaches the renderer through
 //! [`crate::frame::FrameSink::set_target`].
@@ -18,6 +19,7 @@ pub mod pixel_format;
 pub mod presenter;
 pub mod swapchain;
 pub mod window_output;
+pub mod x_errors;
 pub mod xlib;
 
 use std::collections::HashMap;

@@ -12,13 +12,12 @@
 
 use std::ffi::{c_int, c_uint, c_void};
 use std::sync::OnceLock;
-use std::sync::atomic::{AtomicU8, Ordering};
 
-use parking_lot::Mutex;
 use x11_dl::xlib::{self, Xlib};
 use x11_dl::xshm::{XShmSegmentInfo, Xext};
 
 use super::display_epoch;
+use super::x_errors::trapped;
 use super::pixel_format::PixelFormat;
 use crate::frame::{Surface, XDrawable};
 
@@ -43,38 +42,6 @@ unsafe extern "C" {
 const IPC_PRIVATE: c_int = 0;
 const IPC_CREAT: c_int = 0o1000;
 const IPC_RMID: c_int = 0;
-
-static TRAPPED: AtomicU8 = AtomicU8::new(0);
-static TRAP_LOCK: Mutex<()> = Mutex::new(());
-
-unsafe extern "C" fn record_error(_dpy: *mut xlib::Display, event: *mut xlib::XErrorEvent) -> c_int {
-    // Safety: Xlib passes a valid event.
-    TRAPPED.store(unsafe { (*event).error_code }.max(1), Ordering::Relaxed);
-    0
-}
-
-/// Runs requests that may fail (a drawable already destroyed, a shared segment the server
-/// cannot attach) so that their errors do not reach the application's handler (whose default
-/// exits); `Err` with the first error code.
-///
-/// # Safety
-/// `dpy` is a live display.
-unsafe fn trap<R>(x: &Xlib, dpy: *mut xlib::Display, f: impl FnOnce() -> R) -> Result<R, u8> {
-    let _one_at_a_time = TRAP_LOCK.lock();
-    // Safety: `dpy` is live; the previous handler is restored before returning.
-    unsafe {
-        (x.XSync)(dpy, xlib::False);
-        TRAPPED.store(0, Ordering::Relaxed);
-        let previous = (x.XSetErrorHandler)(Some(record_error));
-        let result = f();
-        (x.XSync)(dpy, xlib::False);
-        (x.XSetErrorHandler)(previous);
-        match TRAPPED.load(Ordering::Relaxed) {
-            0 => Ok(result),
-            code => Err(code),
-        }
-    }
-}
 
 /// Where an image's pixels live.
 enum Pixels {
@@ -126,7 +93,7 @@ impl XlibPresenter {
         // Safety: as documented.
         let (visual, depth) = unsafe { visual_of(x, dpy, surface)? };
         // Safety: `dpy` is live; a bad drawable is trapped.
-        let gc = unsafe { trap(x, dpy, || (x.XCreateGC)(dpy, target.drawable, 0, std::ptr::null_mut())) }.ok()?;
+        let gc = unsafe { trapped(x, dpy, || (x.XCreateGC)(dpy, target.drawable, 0, std::ptr::null_mut())) }.ok()?;
         // Safety: `dpy` is live.
         let shm = xext_fns().filter(|e| unsafe { (e.XShmQueryExtension)(dpy) } != 0);
         let epoch = display_epoch(target.display as usize);
@@ -257,7 +224,7 @@ impl XlibPresenter {
             info.readOnly = xlib::False;
             (*ximage).data = info.shmaddr;
             (*ximage).obdata = (&mut *info as *mut XShmSegmentInfo).cast();
-            let attached = matches!(trap(x, dpy, || (ext.XShmAttach)(dpy, &mut *info)), Ok(ok) if ok != 0);
+            let attached = matches!(trapped(x, dpy, || (ext.XShmAttach)(dpy, &mut *info)), Ok(ok) if ok != 0);
             // Marked for removal now: the kernel frees it once both sides detached (also
             // when the program exits without cleaning up).
             shmctl(info.shmid, IPC_RMID, std::ptr::null_mut());
@@ -352,12 +319,12 @@ unsafe fn visual_of(x: &Xlib, dpy: *mut xlib::Display, surface: Surface) -> Opti
             Surface::Offscreen => None,
             Surface::Window(d) => {
                 let mut attrs: xlib::XWindowAttributes = std::mem::zeroed();
-                let ok = trap(x, dpy, || (x.XGetWindowAttributes)(dpy, d.drawable, &mut attrs));
+                let ok = trapped(x, dpy, || (x.XGetWindowAttributes)(dpy, d.drawable, &mut attrs));
                 (matches!(ok, Ok(s) if s != 0) && !attrs.visual.is_null()).then_some((attrs.visual, attrs.depth as c_uint))
             }
             Surface::Pixmap(d) => {
                 let (mut root, mut px, mut py, mut w, mut h, mut border, mut depth) = (0, 0, 0, 0, 0, 0, 0);
-                let ok = trap(x, dpy, || {
+                let ok = trapped(x, dpy, || {
                     (x.XGetGeometry)(dpy, d.drawable, &mut root, &mut px, &mut py, &mut w, &mut h, &mut border, &mut depth)
                 });
                 if !matches!(ok, Ok(s) if s != 0) {
