@@ -8,11 +8,13 @@
 //! discrete GPU; lavapipe here): the renderer that hung on NVIDIA with several test threads.
 //!
 //! A hang fails the test instead of stopping the run: a watchdog prints where every thread
-//! is when a round takes longer than its limit, and ends the process.
+//! is when the run takes longer than its limit (and every thread's stack, with gdb when it
+//! is installed and may attach), and ends the process.
 //!
 //! `GLRT_STRESS_THREADS` (default 4), `GLRT_STRESS_ROUNDS` (contexts made and destroyed per
 //! thread, default 3), `GLRT_STRESS_FRAMES` (frames per context, default 20),
-//! `GLRT_STRESS_LIMIT` (seconds a round may take, default 120). On the GPU machine, 20 runs:
+//! `GLRT_STRESS_LIMIT` (seconds per round, default 120: the run may take rounds times that).
+//! On the GPU machine, 20 runs:
 //!
 //! ```sh
 //! cargo test --release --test renderers_in_threads --no-run && \
@@ -195,6 +197,25 @@ fn work(thread: u64, rounds: u64, frames: u64, progress: &Progress, start: &Barr
     progress.set(rounds, 0, 7);
 }
 
+/// Prints every thread's stack with gdb, when it is installed and may attach to this process
+/// (where the driver or glrt waits, for the report of a hang). At most five minutes: reading
+/// the symbols of a debug build takes gdb minutes on a busy machine (a release build, seconds).
+fn print_stacks() {
+    let pid = std::process::id().to_string();
+    let gdb = std::process::Command::new("timeout")
+        .args(["-k", "5", "300", "gdb", "-batch", "-p", &pid, "-ex", "thread apply all bt"])
+        .output();
+    match gdb {
+        Ok(out) => {
+            let _ = std::io::stderr().write_all(&out.stdout);
+            let _ = std::io::stderr().write_all(&out.stderr);
+        }
+        Err(e) => {
+            let _ = writeln!(std::io::stderr(), "(no stacks: gdb: {e})");
+        }
+    }
+}
+
 #[test]
 fn contexts_on_several_threads_render_at_once() {
     // Safety: set before any thread starts and before glrt reads it (this binary's only test).
@@ -221,6 +242,7 @@ fn contexts_on_several_threads_render_at_once() {
             // Straight to stderr: the test harness would keep `eprintln!` output, and the
             // process ends here.
             let _ = writeln!(std::io::stderr(), "renderers_in_threads: no end after {limit:?} (a hang):\n{}", report.join("\n"));
+            print_stacks();
             std::process::exit(2);
         }
         std::thread::sleep(Duration::from_millis(50));
@@ -231,5 +253,6 @@ fn contexts_on_several_threads_render_at_once() {
         .filter_map(|(t, w)| w.join().err().map(|e| format!("thread {t}: {}", e.downcast_ref::<String>().cloned().unwrap_or_default())))
         .collect();
     assert!(failed.is_empty(), "{}", failed.join("\n"));
-    eprintln!("{threads} threads × {rounds} contexts × {frames} frames in {:.1} s", began.elapsed().as_secs_f64());
+    let device = glrt::render::raster::device::probe_properties().map(|p| p.device_name_as_c_str().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default());
+    eprintln!("{threads} threads × {rounds} contexts × {frames} frames on {device:?} in {:.1} s", began.elapsed().as_secs_f64());
 }

@@ -171,13 +171,15 @@ fn device_lost_mid_frame() {
 
 /// A GPU allocation fails: the texture a frame uploads first. That texture samples as white
 /// (said once), the rest of the frame and later frames draw as asked, and a texture made later
-/// is on the GPU.
+/// is on the GPU. Then the framebuffer of a larger drawable cannot be allocated: the renderer
+/// stops (said once) and reads back black.
 #[test]
 fn gpu_allocation_failure() {
     if !is_child() {
         let out = child("gpu_allocation_failure", &[("GLRT_MODE", "raster")]);
         let err = ran_and_said_once(&out, "cannot be used");
-        assert!(err.contains("vkAllocateMemory failed: A device memory allocation has failed"), "{err}");
+        assert_eq!(err.matches("vkAllocateMemory failed: A device memory allocation has failed").count(), 2, "{err}");
+        ran_and_said_once(&out, "the Vulkan renderer stopped");
         return;
     }
     let ctx = make_current();
@@ -218,6 +220,16 @@ fn gpu_allocation_failure() {
     assert_eq!(pixel(16, 32), [0, 0, 255, 255]);
     glrt::gl_entry::headless::glrtSwapBuffers();
     gl_still_answers();
+    // A larger drawable: the framebuffer's new images cannot be allocated, the renderer stops.
+    arm(Fault::Allocation, 1);
+    assert_eq!(glrt::gl_entry::headless::glrtMakeCurrent(ctx, 2 * SIZE, 2 * SIZE), 1);
+    for _ in 0..2 {
+        clear(RED);
+        assert_eq!(pixel(100, 100), [0, 0, 0, 255], "black once the renderer stopped");
+        glrt::gl_entry::headless::glrtSwapBuffers();
+    }
+    assert_eq!(error(), GL_NO_ERROR);
+    assert_eq!(get_i(GL_VIEWPORT)[..4], [0, 0, SIZE, SIZE], "the viewport is the program's");
     glrt::gl_entry::headless::glrtDestroyContext(ctx);
 }
 
