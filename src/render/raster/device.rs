@@ -215,10 +215,15 @@ impl Device {
         if custom_border_color {
             info = info.push_next(&mut border);
         }
-        let raw = {
-            let _serialised = super::instance::lock_devices();
-            // Safety: valid create info; the features were checked above.
-            unsafe { instance.create_device(physical, &info, None) }.check("vkCreateDevice")?
+        // Every device glrt makes on `physical` is made with this same `info` (it depends on
+        // the physical device and the instance alone), so an idle one can be taken instead.
+        let raw = match super::instance::take_device(physical) {
+            Some(raw) => raw,
+            None => {
+                let _serialised = super::instance::lock_devices();
+                // Safety: valid create info; the features were checked above.
+                unsafe { instance.create_device(physical, &info, None) }.check("vkCreateDevice")?
+            }
         };
         // Safety: family and index 0 were requested above.
         let queue = unsafe { raw.get_device_queue(queue_family, 0) };
@@ -234,9 +239,7 @@ impl Device {
         let allocator = match allocator {
             Ok(a) => a,
             Err(e) => {
-                let _serialised = super::instance::lock_devices();
-                // Safety: nothing was created from the device.
-                unsafe { raw.destroy_device(None) };
+                super::instance::give_back_device(super::instance::IdleDevice { physical, raw });
                 return Err(e);
             }
         };
@@ -385,13 +388,18 @@ impl Device {
 impl Drop for Device {
     fn drop(&mut self) {
         // Safety: every object created from the device was destroyed by its owner (they hold
-        // the `Arc<Device>`), so the allocator goes first, then the device. The instance is
-        // the process's and stays.
+        // the `Arc<Device>`), so the allocator goes (freeing all memory), then the device is
+        // idle and empty: kept for the next renderer (see `super::instance`), or destroyed when
+        // it was lost. The instance is the process's and stays.
         unsafe {
-            let _ = self.raw.device_wait_idle();
+            let idle = self.raw.device_wait_idle();
             ManuallyDrop::drop(&mut self.allocator);
-            let _serialised = super::instance::lock_devices();
-            self.raw.destroy_device(None);
+            if idle.is_ok() {
+                super::instance::give_back_device(super::instance::IdleDevice { physical: self.physical, raw: self.raw.clone() });
+            } else {
+                let _serialised = super::instance::lock_devices();
+                self.raw.destroy_device(None);
+            }
         }
     }
 }

@@ -10,9 +10,16 @@
 //! `vkDestroyInstance`, so renderers made and dropped one after another (test threads, a
 //! program opening and closing windows) loaded and unloaded the whole driver each time, while
 //! other threads used it (issue 18: intermittent hangs with several renderers on NVIDIA). For
-//! the same reason the creation and destruction of devices are serialised ([`lock_devices`]);
-//! nothing else is shared between renderers (each has its own device, queue, allocator and
-//! caches).
+//! the same reason the creation of devices is serialised ([`lock_devices`]).
+//!
+//! Devices are not destroyed either while the process runs: a renderer that ends gives its idle
+//! `VkDevice` back ([`give_back_device`]) and the next renderer on the same physical device takes
+//! it ([`take_device`]). Measured on an NVIDIA H200 (driver of the GPU machine, issue 18):
+//! `vkDestroyDevice` on one thread deadlocked inside the driver with `vkDestroyImage` and
+//! `vkBindImageMemory` of other devices on other threads (all waiting on one driver lock,
+//! stacks taken with `eu-stack`), in 3 of 5 runs of the raster tests with 4 test threads. The
+//! pool holds at most as many devices as renderers ever lived at once. Nothing else is shared
+//! between renderers (each has its own device while it lives, queue, allocator and caches).
 
 use std::ffi::CStr;
 use std::sync::OnceLock;
@@ -48,6 +55,30 @@ pub fn get() -> Result<&'static Instance> {
 /// Held while a device is created or destroyed.
 pub fn lock_devices() -> MutexGuard<'static, ()> {
     DEVICES.lock()
+}
+
+/// An idle logical device no renderer uses: every object made from it was destroyed and its
+/// memory freed.
+pub struct IdleDevice {
+    /// The physical device it was made on.
+    pub physical: vk::PhysicalDevice,
+    /// The logical device.
+    pub raw: ash::Device,
+}
+
+/// Devices given back by renderers that ended, for the next ones.
+static IDLE_DEVICES: Mutex<Vec<IdleDevice>> = Mutex::new(Vec::new());
+
+/// An idle device made on `physical`, if a renderer gave one back.
+pub fn take_device(physical: vk::PhysicalDevice) -> Option<ash::Device> {
+    let mut idle = IDLE_DEVICES.lock();
+    let at = idle.iter().position(|d| d.physical == physical)?;
+    Some(idle.swap_remove(at).raw)
+}
+
+/// Keeps an idle device for [`take_device`] instead of destroying it (see the module doc).
+pub fn give_back_device(device: IdleDevice) {
+    IDLE_DEVICES.lock().push(device);
 }
 
 /// Opens the loader and creates the instance.
