@@ -120,6 +120,28 @@ fn split_summary(t: &replay::Timing, classify: std::time::Duration, frames: usiz
     )
 }
 
+/// `--bench`: how fast the reader decodes the records (all of them, their memory reads
+/// included, nothing replayed), in MB of the decompressed body per second.
+fn decode_summary(capture: &Capture) -> String {
+    let start = std::time::Instant::now();
+    let (mut records, mut read_bytes) = (0u64, 0usize);
+    for record in capture.records() {
+        let Ok((_, record)) = record else { break };
+        if let replay::reader::Record::Call { reads, .. } = record {
+            read_bytes += reads.iter().map(|(_, bytes)| bytes.len()).sum::<usize>();
+        }
+        records += 1;
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    let mb = capture.body_len() as f64 / 1e6;
+    format!(
+        "reader: {records} records ({mb:.1} MB, {:.1} MB of memory reads) decoded in {:.1} ms: {:.0} MB/s",
+        read_bytes as f64 / 1e6,
+        seconds * 1e3,
+        mb / seconds
+    )
+}
+
 /// Restores the default action of `SIGPIPE`, so that `glrt dump FILE | head` ends quietly as
 /// Unix tools do (Rust programs ignore it, which turns a closed pipe into a panic of `println!`).
 #[cfg(target_os = "linux")]
@@ -201,6 +223,7 @@ fn replay_command(args: &[String]) -> Result<(), String> {
         println!("{}", frame_time_summary(times));
         let classify = std::time::Duration::from_nanos(classify_ns.load(Ordering::Relaxed));
         println!("{}", split_summary(&outcome.timing, classify, times.len()));
+        println!("{}", decode_summary(&capture));
     }
     if let Some(dir) = &options.out {
         // The renderers are gone (the replay destroyed its contexts): every PNG is complete.
