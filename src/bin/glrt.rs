@@ -105,19 +105,23 @@ fn frame_time_summary(times: &[std::time::Duration]) -> String {
 
 /// `--bench`: where the time of the measured frames went, in ms per frame: decoding the
 /// capture, writing recorded memory, glrt's front end, hash tracking, and the rest of the frame
-/// ends (the renderer's recording and submission).
+/// ends (the renderer's recording and submission); wall clock, then the replaying thread's CPU
+/// time split in the same proportions (steadier on a loaded machine).
 fn split_summary(t: &replay::Timing, classify: std::time::Duration, frames: usize) -> String {
     let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3 / frames.max(1) as f64;
     let rest = t.swaps.saturating_sub(classify);
-    format!(
-        "ms per frame: reader {:.3}  memory {:.3}  translate {:.3}  classify {:.3}  renderer {:.3}  (glrt {:.3})",
-        ms(t.reader),
-        ms(t.memory),
-        ms(t.calls),
-        ms(classify),
-        ms(rest),
-        ms(t.calls + t.swaps),
-    )
+    let parts = [t.reader, t.memory, t.calls, classify, rest].map(ms);
+    let line = |parts: [f64; 5]| {
+        let [reader, memory, translate, classify, renderer] = parts;
+        format!(
+            "reader {reader:.3}  memory {memory:.3}  translate {translate:.3}  classify {classify:.3}  renderer {renderer:.3}  (glrt {:.3})",
+            translate + classify + renderer
+        )
+    };
+    let wall = format!("ms per frame: {}", line(parts));
+    let Some(cpu) = t.cpu else { return wall };
+    let scale = ms(cpu) / parts.iter().sum::<f64>().max(f64::MIN_POSITIVE);
+    format!("{wall}\ncpu ms per frame: {}", line(parts.map(|p| p * scale)))
 }
 
 /// `--bench`: how fast the reader decodes the records (all of them, their memory reads

@@ -112,6 +112,17 @@ pub struct Timing {
     /// Frame ends (classification and the renderer's work on the frame) and the other
     /// window-system events.
     pub swaps: Duration,
+    /// CPU time of the replaying thread over the same frames (`None` where
+    /// `/proc/thread-self/schedstat` cannot be read): unlike the parts above, it excludes the
+    /// time the thread waited for a CPU on a loaded machine.
+    pub cpu: Option<Duration>,
+}
+
+/// CPU time this thread has run (Linux: the first field of `/proc/thread-self/schedstat`, in
+/// nanoseconds).
+fn thread_cpu_time() -> Option<Duration> {
+    let stat = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    Some(Duration::from_nanos(stat.split_whitespace().next()?.parse().ok()?))
 }
 
 /// Adds the time since its last lap to one part of a [`Timing`], while on.
@@ -195,6 +206,7 @@ fn replay_records(
     let translate = |a: u64| shadow.translate(a);
     let timed = |frames: u64| options.timing && frames >= options.start_frame;
     let mut clock = Stopwatch { last: timed(0).then(Instant::now) };
+    let mut cpu_start = timed(0).then(thread_cpu_time).flatten();
     let mut records = capture.records();
     loop {
         let Some(record) = records.next() else { break };
@@ -259,6 +271,7 @@ fn replay_records(
                 clock.lap(&mut outcome.timing.swaps);
                 if clock.last.is_none() && timed(outcome.frames) {
                     clock.last = Some(now);
+                    cpu_start = thread_cpu_time();
                 }
                 if options.end_frame.is_some_and(|end| outcome.frames >= end) {
                     break;
@@ -266,5 +279,6 @@ fn replay_records(
             }
         }
     }
+    outcome.timing.cpu = cpu_start.zip(thread_cpu_time()).map(|(start, end)| end.saturating_sub(start));
     Ok(outcome)
 }
