@@ -11,7 +11,8 @@
 # /work/captures/openarena-1280x720-f340-440.glrtcap.xz (frames 340..440; decompressed to
 # $TMPDIR and deleted after). Environment: MODES (default "none raster": GLRT_MODE of the timed
 # runs), CALLGRIND=0 to skip the instruction counts (a replay under callgrind takes minutes),
-# RUNS (default 3: timed runs per mode, the fastest kept).
+# RUNS (default 3: timed runs per mode, the fastest kept), GLRT_BIN (a built `glrt` to measure
+# instead of building target/release/glrt).
 #
 # Times are from `glrt replay --bench`: wall clock split by per-record timers (they add about
 # 0.1 us per GL call), as noisy as the machine's load, and the replaying thread's CPU time
@@ -29,8 +30,12 @@ if (($# == 0)); then
     [[ -f $oa ]] && set -- "$@" "$oa" 340..440
 fi
 
-cargo build --release --bin glrt
-glrt=$PWD/target/release/glrt
+if [[ -n ${GLRT_BIN:-} ]]; then
+    glrt=$(realpath "$GLRT_BIN")
+else
+    cargo build --release --bin glrt
+    glrt=$PWD/target/release/glrt
+fi
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 

@@ -160,7 +160,7 @@ enum BadVarint {
 }
 
 /// The LEB128 varint at `bytes[*pos..]`, advancing `pos` past it.
-#[inline]
+#[inline(always)]
 fn varint(bytes: &[u8], pos: &mut usize) -> Result<u64, BadVarint> {
     match bytes.get(*pos) {
         Some(&b) if b < 0x80 => {
@@ -172,6 +172,7 @@ fn varint(bytes: &[u8], pos: &mut usize) -> Result<u64, BadVarint> {
 }
 
 /// [`varint`] of more than one byte.
+#[inline(never)]
 fn varint_long(bytes: &[u8], pos: &mut usize) -> Result<u64, BadVarint> {
     let mut v = 0u64;
     for shift in (0..64).step_by(7) {
@@ -370,13 +371,18 @@ impl<'a> Records<'a> {
         Ok(b)
     }
 
-    #[inline]
+    #[inline(always)]
     fn varint(&mut self, what: &str) -> Result<u64, Error> {
         let start = self.pos;
-        varint(&self.capture.body, &mut self.pos).map_err(|bad| match bad {
+        varint(&self.capture.body, &mut self.pos).map_err(|bad| self.varint_error(bad, start, what))
+    }
+
+    #[cold]
+    fn varint_error(&self, bad: BadVarint, start: usize, what: &str) -> Error {
+        match bad {
             BadVarint::Truncated => self.error(self.capture.body.len(), format!("truncated record: {what} missing")),
             BadVarint::TooLong => self.error(start, format!("{what}: varint longer than 64 bits")),
-        })
+        }
     }
 
     fn int(&mut self, what: &str) -> Result<i32, Error> {
