@@ -119,7 +119,8 @@ fn split_summary(t: &replay::Timing, classify: std::time::Duration, frames: usiz
         )
     };
     let wall = format!("ms per frame: {}", line(parts));
-    let Some(cpu) = t.cpu else { return wall };
+    // The kernel counts a thread's CPU time at scheduler ticks: none over a few short frames.
+    let Some(cpu) = t.cpu.filter(|cpu| !cpu.is_zero()) else { return wall };
     let scale = ms(cpu) / parts.iter().sum::<f64>().max(f64::MIN_POSITIVE);
     format!("{wall}\ncpu ms per frame: {}", line(parts.map(|p| p * scale)))
 }
