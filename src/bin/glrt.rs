@@ -7,7 +7,8 @@
 //!   `--out` draws and writes frames `A` and later as `DIR/frame-NNNNN.png` (by frame number)
 //!   through the Vulkan raster renderer, which does not draw the frames before `A`
 //!   (`glrt::render::frames_from`); `--bench` prints the frame times of frames `A` and later (one
-//!   frame's end to the next's);
+//!   frame's end to the next's) and where their time went, in ms per frame: decoding records,
+//!   writing recorded memory, glrt's front end, hash tracking and the renderer;
 //!   `--stats` prints hash tracking's statistics of each frame as one JSON line (keys in
 //!   README.md; frames are not rendered unless `--out` is given);
 //! - `glrt dump FILE`: the call log of a capture (the `GLRT_TRACE` format, with the captured
@@ -16,10 +17,12 @@
 use std::process::ExitCode;
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 use glrt::replay::{self, reader::Capture, summary::Summary};
 use glrt::translate::capture;
-use glrt::translate::classify::report::{StatsPrinter, TextureCatalog};
+use glrt::frame::{FrameSink, NullSink};
+use glrt::translate::classify::report::{FrameTap, TextureCatalog, print_stats};
 
 const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] [--stats] | glrt dump FILE";
 
@@ -102,6 +105,50 @@ fn frame_time_summary(times: &[std::time::Duration]) -> String {
     format!("frames: {}  frame time ms: avg {avg:.3}  min {min:.3}  max {max:.3}  frames/s {:.1}", ms.len(), 1e3 / avg)
 }
 
+/// `--bench`: where the time of the measured frames went, in ms per frame: decoding the
+/// capture, writing recorded memory, glrt's front end, hash tracking, and the rest of the frame
+/// ends (the renderer's recording and submission); wall clock, then the replaying thread's CPU
+/// time split in the same proportions (steadier on a loaded machine).
+fn split_summary(t: &replay::Timing, classify: std::time::Duration, frames: usize) -> String {
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3 / frames.max(1) as f64;
+    let rest = t.swaps.saturating_sub(classify);
+    let parts = [t.reader, t.memory, t.calls, classify, rest].map(ms);
+    let line = |parts: [f64; 5]| {
+        let [reader, memory, translate, classify, renderer] = parts;
+        format!(
+            "reader {reader:.3}  memory {memory:.3}  translate {translate:.3}  classify {classify:.3}  renderer {renderer:.3}  (glrt {:.3})",
+            translate + classify + renderer
+        )
+    };
+    let wall = format!("ms per frame: {}", line(parts));
+    // The kernel counts a thread's CPU time at scheduler ticks: none over a few short frames.
+    let Some(cpu) = t.cpu.filter(|cpu| !cpu.is_zero()) else { return wall };
+    let scale = ms(cpu) / parts.iter().sum::<f64>().max(f64::MIN_POSITIVE);
+    format!("{wall}\ncpu ms per frame: {}", line(parts.map(|p| p * scale)))
+}
+
+/// `--bench`: how fast the reader decodes the records (all of them, their memory reads
+/// included, nothing replayed), in MB of the decompressed body per second.
+fn decode_summary(capture: &Capture) -> String {
+    let start = std::time::Instant::now();
+    let (mut records, mut read_bytes) = (0u64, 0usize);
+    for record in capture.records() {
+        let Ok((_, record)) = record else { break };
+        if let replay::reader::Record::Call { reads, .. } = record {
+            read_bytes += reads.iter().map(|(_, bytes)| bytes.len()).sum::<usize>();
+        }
+        records += 1;
+    }
+    let seconds = start.elapsed().as_secs_f64();
+    let mb = capture.body_len() as f64 / 1e6;
+    format!(
+        "reader: {records} records ({mb:.1} MB, {:.1} MB of memory reads) decoded in {:.1} ms: {:.0} MB/s",
+        read_bytes as f64 / 1e6,
+        seconds * 1e3,
+        mb / seconds
+    )
+}
+
 /// Restores the default action of `SIGPIPE`, so that `glrt dump FILE | head` ends quietly as
 /// Unix tools do (Rust programs ignore it, which turns a closed pipe into a panic of `println!`).
 #[cfg(target_os = "linux")]
@@ -129,15 +176,14 @@ fn replay_command(args: &[String]) -> Result<(), String> {
     let (capture, mut rest) = file_and_options(args)?;
     let mut options = replay::Options::default();
     let mut frames = (0, u64::MAX);
-    let mut bench = false;
+    let (mut bench, mut stats) = (false, false);
     while let [flag, tail @ ..] = rest {
         if flag == "--bench" {
             (bench, rest) = (true, tail);
             continue;
         }
         if flag == "--stats" {
-            options.sink = Some(replay::SinkWrapper(Arc::new(|inner| Box::new(StatsPrinter::new(inner)))));
-            rest = tail;
+            (stats, rest) = (true, tail);
             continue;
         }
         let [value, tail @ ..] = tail else { return Err(format!("replay: option {flag} needs a value\n{USAGE}")) };
@@ -150,10 +196,41 @@ fn replay_command(args: &[String]) -> Result<(), String> {
         rest = tail;
     }
     (options.start_frame, options.end_frame) = (frames.0, (frames.1 != u64::MAX).then_some(frames.1));
+    options.timing = bench;
+    let classify_ns = Arc::new(AtomicU64::new(0));
+    let total = classify_ns.clone();
+    let start = frames.0;
+    options.sink = (stats || bench).then(|| {
+        replay::SinkWrapper(Arc::new(move |inner: Option<Box<dyn FrameSink>>| {
+            // --stats alone renders nothing but with --out; --bench measures the renderer too.
+            let mut sink: Box<dyn FrameSink> = match inner {
+                Some(sink) => sink,
+                None if stats => Box::new(NullSink::default()),
+                None => glrt::render::default_sink(),
+            };
+            if stats {
+                sink = Box::new(FrameTap::new(sink, print_stats));
+            }
+            if bench {
+                let total = total.clone();
+                let add = move |frame: &glrt::frame::Frame| {
+                    if frame.number >= start {
+                        total.fetch_add(frame.stats.classify_ns, Ordering::Relaxed);
+                    }
+                };
+                sink = Box::new(FrameTap::new(sink, add));
+            }
+            sink
+        }))
+    });
     let outcome = replay::run(&capture, &options)?;
     println!("replayed {} calls, {} frames", outcome.calls, outcome.frames);
     if bench {
-        println!("{}", frame_time_summary(times_from(&outcome.frame_times, frames.0)));
+        let times = times_from(&outcome.frame_times, frames.0);
+        println!("{}", frame_time_summary(times));
+        let classify = std::time::Duration::from_nanos(classify_ns.load(Ordering::Relaxed));
+        println!("{}", split_summary(&outcome.timing, classify, times.len()));
+        println!("{}", decode_summary(&capture));
     }
     if let Some(dir) = &options.out {
         // The renderers are gone (the replay destroyed its contexts): every PNG is complete.

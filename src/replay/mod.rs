@@ -35,6 +35,7 @@ use std::collections::{BTreeSet, HashMap};
 use std::ffi::c_void;
 use std::path::PathBuf;
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use reader::{Capture, Record};
 use shadow::Shadow;
@@ -67,6 +68,8 @@ pub struct Options {
     /// Wraps the sink of each context the replay creates (the `out` sink, or `None` for a
     /// replay that does not render), for `--stats` and `glrt info`.
     pub sink: Option<SinkWrapper>,
+    /// Measure where the time of frames `start_frame` and later goes ([`Outcome::timing`]).
+    pub timing: bool,
 }
 
 /// Makes the sink of a replayed context from the sink it would have had (`None`: no renderer
@@ -93,6 +96,50 @@ pub struct Outcome {
     /// Time from each frame's end to the next one's (frames 1 and later): the frame times
     /// of `glrt replay --bench`.
     pub frame_times: Vec<std::time::Duration>,
+    /// Where the time of frames `start_frame` and later went, when [`Options::timing`] asked.
+    pub timing: Timing,
+}
+
+/// The wall-clock time of a replay's frames split by what ran (`glrt replay --bench`).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Timing {
+    /// Decoding records ([`reader`]).
+    pub reader: Duration,
+    /// Writing the memory calls read into the shadow ([`shadow`]).
+    pub memory: Duration,
+    /// The GL calls: glrt's front end (`translate`).
+    pub calls: Duration,
+    /// Frame ends (classification and the renderer's work on the frame) and the other
+    /// window-system events.
+    pub swaps: Duration,
+    /// CPU time of the replaying thread over the same frames (`None` where
+    /// `/proc/thread-self/schedstat` cannot be read): unlike the parts above, it excludes the
+    /// time the thread waited for a CPU on a loaded machine.
+    pub cpu: Option<Duration>,
+}
+
+/// CPU time this thread has run (Linux: the first field of `/proc/thread-self/schedstat`, in
+/// nanoseconds).
+fn thread_cpu_time() -> Option<Duration> {
+    let stat = std::fs::read_to_string("/proc/thread-self/schedstat").ok()?;
+    Some(Duration::from_nanos(stat.split_whitespace().next()?.parse().ok()?))
+}
+
+/// Adds the time since its last lap to one part of a [`Timing`], while on.
+struct Stopwatch {
+    last: Option<Instant>,
+}
+
+impl Stopwatch {
+    /// Ends a lap: its time goes to `part`.
+    #[inline]
+    fn lap(&mut self, part: &mut Duration) {
+        if let Some(last) = &mut self.last {
+            let now = Instant::now();
+            *part += now - *last;
+            *last = now;
+        }
+    }
 }
 
 /// The address space a capture uses: the 4 GiB windows its reads touch and its pointer
@@ -157,7 +204,13 @@ fn replay_records(
     let mut outcome = Outcome::default();
     let mut last_swap = None;
     let translate = |a: u64| shadow.translate(a);
-    for record in capture.records() {
+    let timed = |frames: u64| options.timing && frames >= options.start_frame;
+    let mut clock = Stopwatch { last: timed(0).then(Instant::now) };
+    let mut cpu_start = timed(0).then(thread_cpu_time).flatten();
+    let mut records = capture.records();
+    loop {
+        let Some(record) = records.next() else { break };
+        clock.lap(&mut outcome.timing.reader);
         let (at, record) = record.map_err(|e| e.to_string())?;
         let fail = |cause: String| format!("record at byte {at} of the decompressed body: {cause}");
         match record {
@@ -165,11 +218,13 @@ fn replay_records(
                 for (address, bytes) in reads {
                     shadow.write(address, bytes).map_err(fail)?;
                 }
+                clock.lap(&mut outcome.timing.memory);
                 // Safety: every pointer argument is translated into the shadow, which holds
                 // the bytes the call read and is writable wherever the program's memory was.
                 if !unsafe { calls::call(id, &args, &translate) } {
                     return Err(fail(format!("{} cannot be replayed", COMMANDS[id].0)));
                 }
+                clock.lap(&mut outcome.timing.calls);
                 outcome.calls += 1;
             }
             Record::Event(Event::Context { id, share }) => {
@@ -193,6 +248,7 @@ fn replay_records(
                 if let Some(old) = contexts.insert(id, handle) {
                     headless::glrtDestroyContext(old);
                 }
+                clock.lap(&mut outcome.timing.swaps);
             }
             Record::Event(Event::MakeCurrent { id, width, height, double }) => {
                 let handle = if id == 0 {
@@ -202,6 +258,7 @@ fn replay_records(
                 };
                 let (width, height) = options.size.unwrap_or((width, height));
                 headless::make_current(handle, width, height, double);
+                clock.lap(&mut outcome.timing.swaps);
             }
             Record::Event(Event::Swap(kind)) => {
                 headless::swap(match (kind, options.size) {
@@ -209,13 +266,19 @@ fn replay_records(
                     _ => kind,
                 });
                 outcome.frames += 1;
-                let now = std::time::Instant::now();
+                let now = Instant::now();
                 outcome.frame_times.extend(last_swap.replace(now).map(|t| now - t));
+                clock.lap(&mut outcome.timing.swaps);
+                if clock.last.is_none() && timed(outcome.frames) {
+                    clock.last = Some(now);
+                    cpu_start = thread_cpu_time();
+                }
                 if options.end_frame.is_some_and(|end| outcome.frames >= end) {
                     break;
                 }
             }
         }
     }
+    outcome.timing.cpu = cpu_start.zip(thread_cpu_time()).map(|(start, end)| end.saturating_sub(start));
     Ok(outcome)
 }

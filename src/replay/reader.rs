@@ -1,6 +1,10 @@
 //! Reading a capture file, never trusting it: every length is checked against the bytes that
 //! are actually there before anything is sliced or allocated, and every failure is an
 //! [`Error`] naming the byte offset and the cause.
+//!
+//! Records are decoded without allocation: a call's arguments are held in place
+//! ([`Args`]) and its memory reads are slices of the body, decoded as they are iterated
+//! ([`Reads`]) after the record was checked whole.
 
 use std::collections::HashMap;
 use std::fmt;
@@ -52,11 +56,144 @@ pub struct Capture {
     pub file_len: usize,
 }
 
+/// Most arguments a command of the table has.
+pub const MAX_ARGS: usize = 20;
+
+/// The raw arguments of a call (integer bits, float bits, addresses), as a slice.
+#[derive(Clone, Copy)]
+pub struct Args {
+    values: [u64; MAX_ARGS],
+    len: usize,
+}
+
+impl std::ops::Deref for Args {
+    type Target = [u64];
+
+    fn deref(&self) -> &[u64] {
+        &self.values[..self.len]
+    }
+}
+
+impl fmt::Debug for Args {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+impl PartialEq for Args {
+    fn eq(&self, other: &Args) -> bool {
+        **self == **other
+    }
+}
+
+/// The client memory a call read: `(address, bytes)` ranges, decoded from the record (checked
+/// when it was read) as they are iterated.
+#[derive(Clone, Copy)]
+pub struct Reads<'a> {
+    /// The encoded ranges.
+    bytes: &'a [u8],
+    count: usize,
+}
+
+impl<'a> Reads<'a> {
+    /// The ranges, in recorded order.
+    pub fn iter(&self) -> ReadsIter<'a> {
+        ReadsIter { bytes: self.bytes, pos: 0, left: self.count }
+    }
+
+    /// How many ranges.
+    pub fn len(&self) -> usize {
+        self.count
+    }
+
+    /// Whether the call read no client memory.
+    pub fn is_empty(&self) -> bool {
+        self.count == 0
+    }
+}
+
+impl fmt::Debug for Reads<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+impl PartialEq for Reads<'_> {
+    fn eq(&self, other: &Reads<'_>) -> bool {
+        self.iter().eq(other.iter())
+    }
+}
+
+impl<'a> IntoIterator for Reads<'a> {
+    type Item = (u64, &'a [u8]);
+    type IntoIter = ReadsIter<'a>;
+
+    fn into_iter(self) -> ReadsIter<'a> {
+        self.iter()
+    }
+}
+
+/// Iterator over [`Reads`].
+pub struct ReadsIter<'a> {
+    bytes: &'a [u8],
+    pos: usize,
+    left: usize,
+}
+
+impl<'a> Iterator for ReadsIter<'a> {
+    type Item = (u64, &'a [u8]);
+
+    fn next(&mut self) -> Option<(u64, &'a [u8])> {
+        self.left = self.left.checked_sub(1)?;
+        let address = varint(self.bytes, &mut self.pos).ok()?;
+        let len = usize::try_from(varint(self.bytes, &mut self.pos).ok()?).ok()?;
+        let data = self.bytes.get(self.pos..self.pos.checked_add(len)?)?;
+        self.pos += len;
+        Some((address, data))
+    }
+}
+
+/// Why a varint could not be decoded.
+enum BadVarint {
+    Truncated,
+    TooLong,
+}
+
+/// The LEB128 varint at `bytes[*pos..]`, advancing `pos` past it.
+#[inline(always)]
+fn varint(bytes: &[u8], pos: &mut usize) -> Result<u64, BadVarint> {
+    match bytes.get(*pos) {
+        Some(&b) if b < 0x80 => {
+            *pos += 1;
+            Ok(u64::from(b))
+        }
+        _ => varint_long(bytes, pos),
+    }
+}
+
+/// [`varint`] of more than one byte.
+#[inline(never)]
+fn varint_long(bytes: &[u8], pos: &mut usize) -> Result<u64, BadVarint> {
+    let mut v = 0u64;
+    for shift in (0..64).step_by(7) {
+        let &b = bytes.get(*pos).ok_or(BadVarint::Truncated)?;
+        *pos += 1;
+        if shift == 63 && b > 1 {
+            break;
+        }
+        v |= u64::from(b & 0x7f) << shift;
+        if b & 0x80 == 0 {
+            return Ok(v);
+        }
+    }
+    Err(BadVarint::TooLong)
+}
+
 /// One record of the body.
 #[derive(Debug, PartialEq)]
 pub enum Record<'a> {
     /// A GL call: this build's command id, the raw arguments, the client memory it read.
-    Call { id: usize, args: Vec<u64>, reads: Vec<(u64, &'a [u8])> },
+    Call { id: usize, args: Args, reads: Reads<'a> },
     /// A window-system event.
     Event(Event),
 }
@@ -234,20 +371,18 @@ impl<'a> Records<'a> {
         Ok(b)
     }
 
+    #[inline(always)]
     fn varint(&mut self, what: &str) -> Result<u64, Error> {
         let start = self.pos;
-        let mut v = 0u64;
-        for shift in (0..64).step_by(7) {
-            let b = self.byte(what)?;
-            if shift == 63 && b > 1 {
-                break;
-            }
-            v |= u64::from(b & 0x7f) << shift;
-            if b & 0x80 == 0 {
-                return Ok(v);
-            }
+        varint(&self.capture.body, &mut self.pos).map_err(|bad| self.varint_error(bad, start, what))
+    }
+
+    #[cold]
+    fn varint_error(&self, bad: BadVarint, start: usize, what: &str) -> Error {
+        match bad {
+            BadVarint::Truncated => self.error(self.capture.body.len(), format!("truncated record: {what} missing")),
+            BadVarint::TooLong => self.error(start, format!("{what}: varint longer than 64 bits")),
         }
-        Err(self.error(start, format!("{what}: varint longer than 64 bits")))
     }
 
     fn int(&mut self, what: &str) -> Result<i32, Error> {
@@ -276,9 +411,12 @@ impl<'a> Records<'a> {
             .and_then(|i| self.capture.ids.get(i).copied())
             .ok_or_else(|| self.error(at, format!("command id {file_id} is not in the description")))?;
         let (name, signature) = COMMANDS[id];
-        let mut args = Vec::with_capacity(signature.len());
-        for _ in 0..signature.len() {
-            args.push(self.varint(name)?);
+        if signature.len() > MAX_ARGS {
+            return Err(self.error(at, format!("{name} has {} arguments, more than {MAX_ARGS}", signature.len())));
+        }
+        let mut args = Args { values: [0; MAX_ARGS], len: signature.len() };
+        for slot in &mut args.values[..signature.len()] {
+            *slot = self.varint(name)?;
         }
         let count_at = self.pos;
         let count = self.varint("read count")?;
@@ -287,7 +425,7 @@ impl<'a> Records<'a> {
         if count > (left / 2) as u64 {
             return Err(self.error(count_at, format!("{name}: {count} memory reads, only {left} bytes left")));
         }
-        let mut reads = Vec::with_capacity(count as usize);
+        let reads_at = self.pos;
         for _ in 0..count {
             let address = self.varint("read address")?;
             let len_at = self.pos;
@@ -299,10 +437,9 @@ impl<'a> Records<'a> {
             if address.checked_add(len).is_none() {
                 return Err(self.error(len_at, format!("{name}: read of {len} bytes at {address:#x} wraps around")));
             }
-            let bytes = &self.capture.body[self.pos..self.pos + len as usize];
             self.pos += len as usize;
-            reads.push((address, bytes));
         }
+        let reads = Reads { bytes: &self.capture.body[reads_at..self.pos], count: count as usize };
         Ok(Record::Call { id, args, reads })
     }
 
@@ -341,5 +478,26 @@ impl<'a> Iterator for Records<'a> {
             self.pos = self.capture.body.len();
         }
         Some(record.map(|r| (at, r)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{COMMANDS, MAX_ARGS, Reads};
+
+    #[test]
+    fn every_command_fits_the_argument_storage() {
+        let longest = COMMANDS.iter().map(|(_, signature)| signature.len()).max();
+        assert!(longest.is_some_and(|n| (10..=MAX_ARGS).contains(&n)), "{longest:?}");
+    }
+
+    #[test]
+    fn reads_decode_as_iterated() {
+        // Address 0x1234 (two-byte varint), 3 bytes; address 5, no bytes.
+        let bytes = [0xb4, 0x24, 3, 7, 8, 9, 5, 0];
+        let reads = Reads { bytes: &bytes, count: 2 };
+        let ranges: Vec<_> = reads.iter().collect();
+        assert_eq!(ranges, [(0x1234, &[7u8, 8, 9][..]), (5, &[][..])]);
+        assert_eq!(Reads { bytes: &bytes[..4], count: 1 }.iter().count(), 0, "a cut range is not read");
     }
 }

@@ -1,16 +1,20 @@
 //! Reading vertex arrays (OpenGL 1.5 section 2.8): each enabled array resolved to where its
 //! elements are (client memory, or a buffer object's store read under the share-group lock
 //! and bounds-checked: elements past its end read as zero) and converted to floats as table
-//! 2.9 says; `glArrayElement`'s effect on the current values; index decoding.
+//! 2.9 says ([`super::array_convert`]); a draw's elements filled into a batch, each array
+//! converted over them at once; `glArrayElement`'s effect on the current values; index
+//! decoding.
 
 use super::Context;
+use super::array_convert::Span;
 use super::arrays::{ArrayPointer, ArrayState};
 use super::buffer_objects::BufferTable;
-use super::convert::{norm_i8, norm_i16, norm_i32, norm_u8, norm_u16, norm_u32};
 use super::dispatch::Call;
 use super::gl::{self, GLenum};
-use super::immediate::CurrentAttribs;
+use super::immediate::{Batch, CurrentAttribs};
 use super::limits::{MAX_TEXTURE_UNITS, MAX_VERTEX_ATTRIBS};
+use super::locked_arrays::LockedPositions;
+use crate::frame::Attrib;
 
 /// Bytes of one component of `type_`.
 fn type_size(type_: GLenum) -> usize {
@@ -22,73 +26,45 @@ fn type_size(type_: GLenum) -> usize {
     }
 }
 
-/// Reads one component; integer types map to [-1, 1] / [0, 1] when `normalized` (table 2.9).
-///
-/// # Safety
-/// `p` must point to a readable component of `type_`.
-#[inline]
-unsafe fn component(p: *const u8, type_: GLenum, normalized: bool) -> f32 {
-    macro_rules! int {
-        ($t:ty, $norm:ident) => {{
-            let c = unsafe { p.cast::<$t>().read_unaligned() };
-            if normalized { $norm(c) } else { c as f32 }
-        }};
-    }
-    match type_ {
-        gl::GL_BYTE => int!(i8, norm_i8),
-        gl::GL_UNSIGNED_BYTE => int!(u8, norm_u8),
-        gl::GL_SHORT => int!(i16, norm_i16),
-        gl::GL_UNSIGNED_SHORT => int!(u16, norm_u16),
-        gl::GL_INT => int!(i32, norm_i32),
-        gl::GL_UNSIGNED_INT => int!(u32, norm_u32),
-        gl::GL_DOUBLE => unsafe { p.cast::<f64>().read_unaligned() as f32 },
-        _ => unsafe { p.cast::<f32>().read_unaligned() },
-    }
-}
-
-/// An enabled array resolved for reading: where its elements are and how to convert them.
-#[derive(Clone, Copy)]
+/// An enabled array resolved for reading: where its elements are and how to convert them
+/// ([`super::array_convert`] reads them).
+#[derive(Clone, Copy, PartialEq)]
 pub(crate) struct Source {
-    base: *const u8,
+    pub(super) base: *const u8,
     /// Bytes readable from `base` (unbounded for client memory).
     available: usize,
-    stride: usize,
-    size: usize,
-    type_: GLenum,
-    normalized: bool,
+    pub(super) stride: usize,
+    pub(super) size: usize,
+    pub(super) type_: GLenum,
+    pub(super) normalized: bool,
 }
 
 impl Source {
+    /// An array in client memory.
+    #[cfg(test)]
+    pub(crate) fn client(base: *const u8, stride: usize, size: usize, type_: GLenum, normalized: bool) -> Source {
+        Source { base, available: usize::MAX, stride, size, type_, normalized }
+    }
+
+    /// Whether the elements are in client memory (not a buffer object's store).
+    pub(crate) fn is_client(&self) -> bool {
+        self.available == usize::MAX
+    }
+
+    /// Bytes of one element.
+    pub(super) fn element_bytes(&self) -> usize {
+        self.size * type_size(self.type_)
+    }
+
     /// How many elements the array has: those that fit in a buffer store, unbounded for
     /// client memory.
     pub(crate) fn len(&self) -> usize {
-        let elem = self.size * type_size(self.type_);
+        let elem = self.element_bytes();
         match self.available {
             usize::MAX => usize::MAX,
             n if n < elem => 0,
             n => (n - elem) / self.stride.max(1) + 1,
         }
-    }
-
-    /// Element `i`, missing components from `(0, 0, 0, 1)`; zero past the end of a buffer.
-    #[inline]
-    fn read(&self, i: usize) -> [f32; 4] {
-        let mut out = [0.0, 0.0, 0.0, 1.0];
-        let width = type_size(self.type_);
-        let start = i.checked_mul(self.stride);
-        let in_range = start.and_then(|s| s.checked_add(self.size * width)).is_some_and(|end| end <= self.available);
-        if !in_range {
-            return [0.0; 4];
-        }
-        let start = start.unwrap_or(0);
-        if self.available == usize::MAX {
-            super::capture::reads::note(self.base.wrapping_add(start), self.size * width);
-        }
-        for (k, slot) in out.iter_mut().enumerate().take(self.size) {
-            // Safety: in range of a buffer store, or client memory the program vouches for.
-            *slot = unsafe { component(self.base.wrapping_add(start + k * width), self.type_, self.normalized) };
-        }
-        out
     }
 }
 
@@ -210,6 +186,78 @@ impl Sources {
         self.position().map(|s| s.read(i))
     }
 
+    /// Fills the cleared `batch` with the elements of `span`: positions and the attributes
+    /// of enabled arrays converted at once (an attribute whose elements are all equal is
+    /// stored once, as `glArrayElement` per vertex would leave it), the others given the one
+    /// value of `current`. While arrays are locked (`locked`: the conversion and the locked
+    /// range), positions come from the locked vertex array's conversion. `scratch` holds
+    /// conversions of attributes narrower than 4 components.
+    pub(crate) fn fill(
+        &self,
+        span: Span<'_>,
+        locked: Option<(&mut LockedPositions, (usize, usize))>,
+        current: &CurrentAttribs,
+        batch: &mut Batch,
+        scratch: &mut Vec<[f32; 4]>,
+    ) {
+        let n = span.len();
+        if n == 0 {
+            return;
+        }
+        let v = &mut batch.vertices;
+        let from_lock = match (locked, self.position()) {
+            (Some((l, range)), Some(s)) => l.positions(s, range, span, &mut v.position),
+            _ => false,
+        };
+        if !from_lock {
+            match self.position() {
+                Some(s) => s.convert_into(span, &mut v.position),
+                None => v.position.resize(n, [0.0, 0.0, 0.0, 1.0]),
+            }
+        }
+        /// An attribute from its array (narrowed by `f`), else from its current value.
+        fn narrow<T: Copy + PartialEq>(
+            a: &mut Attrib<T>,
+            s: &Option<Source>,
+            span: Span<'_>,
+            scratch: &mut Vec<[f32; 4]>,
+            current: T,
+            f: impl Fn([f32; 4]) -> T,
+        ) {
+            match s {
+                Some(s) => {
+                    scratch.clear();
+                    s.convert_into(span, scratch);
+                    a.values.extend(scratch.iter().map(|&e| f(e)));
+                    share_if_uniform(a);
+                }
+                None => a.set_constant(current),
+            }
+        }
+        /// A four-component attribute: converted straight into its storage.
+        fn wide(a: &mut Attrib<[f32; 4]>, s: &Option<Source>, span: Span<'_>, current: [f32; 4]) {
+            match s {
+                Some(s) => {
+                    s.convert_into(span, &mut a.values);
+                    share_if_uniform(a);
+                }
+                None => a.set_constant(current),
+            }
+        }
+        narrow(&mut v.normal, &self.normal, span, scratch, current.normal, |[x, y, z, _]| [x, y, z]);
+        wide(&mut v.color, &self.color, span, current.color);
+        narrow(&mut v.secondary_color, &self.secondary_color, span, scratch, current.secondary_color, |[r, g, b, _]| [r, g, b]);
+        narrow(&mut v.fog_coord, &self.fog_coord, span, scratch, current.fog_coord, |e| e[0]);
+        narrow(&mut v.color_index, &self.index, span, scratch, current.color_index, |e| e[0]);
+        narrow(&mut batch.edge_flags, &self.edge_flag, span, scratch, current.edge_flag, |e| e[0] != 0.0);
+        for ((t, s), &value) in v.texcoords.iter_mut().zip(&self.texcoord).zip(&current.texcoords) {
+            wide(t, s, span, value);
+        }
+        for ((g, s), &value) in v.generic.iter_mut().zip(&self.generic).zip(&current.generic).skip(1) {
+            wide(g, s, span, value);
+        }
+    }
+
     /// The display-list commands `glArrayElement(i)` stands for, in the order of section 2.8.
     pub(crate) fn element_calls(&self, i: usize, current: &CurrentAttribs) -> Vec<Call> {
         let mut c = *current;
@@ -278,16 +326,37 @@ pub(crate) fn index_size(type_: GLenum) -> Option<usize> {
     }
 }
 
-pub(crate) fn decode_indices(bytes: &[u8], width: usize) -> Vec<u32> {
-    bytes
-        .chunks_exact(width)
-        .map(|b| match *b {
-            [x] => u32::from(x),
-            [x, y] => u32::from(u16::from_ne_bytes([x, y])),
-            [x, y, z, w] => u32::from_ne_bytes([x, y, z, w]),
-            _ => 0,
-        })
-        .collect()
+/// Appends the indices in `bytes` (each `width` bytes, native order) to `out`.
+pub(crate) fn decode_indices(bytes: &[u8], width: usize, out: &mut Vec<u32>) {
+    match width {
+        1 => out.extend(bytes.iter().map(|&b| u32::from(b))),
+        2 => out.extend(bytes.chunks_exact(2).map(|b| u32::from(u16::from_ne_bytes([b[0], b[1]])))),
+        _ => out.extend(bytes.chunks_exact(4).map(|b| u32::from_ne_bytes([b[0], b[1], b[2], b[3]]))),
+    }
+}
+
+/// Stores an attribute once when all its per-vertex values are equal.
+fn share_if_uniform<T: Copy + PartialEq>(a: &mut Attrib<T>) {
+    if let Some((&first, rest)) = a.values.split_first()
+        && rest.iter().all(|&x| x == first)
+    {
+        a.values.truncate(1);
+    }
+}
+
+/// Storage the draws from arrays reuse, so that a draw allocates nothing once it has grown:
+/// the decoded indices, the batch vertex of each drawn element, converted narrow attributes
+/// and the locked vertex array.
+#[derive(Default)]
+pub(crate) struct FetchStorage {
+    /// Indices of the draw, decoded.
+    pub(crate) indices: Vec<u32>,
+    /// The batch vertex of each element, when the draw has indices.
+    pub(crate) order: Vec<u32>,
+    /// Conversions of attributes of fewer than 4 components.
+    pub(crate) scratch: Vec<[f32; 4]>,
+    /// The vertex array converted over the `glLockArraysEXT` range.
+    pub(crate) locked: LockedPositions,
 }
 
 impl Context {

@@ -3,8 +3,8 @@
 //! `EXT_compiled_vertex_array`, `glGetPointerv` and the array `glGet` parameters. Reading the
 //! arrays is [`super::array_fetch`]; drawing from them is [`super::draw_arrays`].
 //!
-//! `glLockArraysEXT` only records the locked range: glrt reads the arrays at each draw, which
-//! the extension allows, so a program that locks more than it draws (Quake III) costs nothing.
+//! `glLockArraysEXT` records the locked range; the draws of the lock convert the vertex array
+//! once ([`super::locked_arrays`]) and read the others at each draw.
 
 use std::ffi::c_void;
 
@@ -498,6 +498,7 @@ impl Context {
             return self.set_error_in(gl::GL_INVALID_OPERATION, "glLockArraysEXT");
         }
         self.arrays.lock = Some((first, count));
+        self.fetch.locked.forget();
     }
 
     /// `glUnlockArraysEXT`: `GL_INVALID_OPERATION` when not locked.
@@ -505,6 +506,7 @@ impl Context {
         if self.arrays.lock.take().is_none() {
             self.set_error_in(gl::GL_INVALID_OPERATION, "glUnlockArraysEXT");
         }
+        self.fetch.locked.forget();
     }
 
     /// The array a `glGet` name is about, and which of its six names it is.

@@ -70,6 +70,8 @@ pub struct Context {
     pub(crate) arrays: super::arrays::ArrayState,
     /// `EXT_vertex_array` element counts.
     pub(crate) arrays_ext: super::arrays_ext::ArrayCounts,
+    /// Storage the draws from arrays reuse.
+    pub(crate) fetch: super::array_fetch::FetchStorage,
     /// `glPushClientAttrib` stack.
     pub(crate) client_attrib: super::client_attrib::ClientAttribStack,
     /// The program in use.
@@ -108,6 +110,7 @@ impl Context {
             immediate: Default::default(),
             arrays: Default::default(),
             arrays_ext: Default::default(),
+            fetch: Default::default(),
             client_attrib: Default::default(),
             programs: Default::default(),
             frame: Frame::default(),

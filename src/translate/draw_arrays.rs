@@ -2,19 +2,22 @@
 //! `glDrawElements`, `glDrawRangeElements`, `glMultiDrawArrays`, `glMultiDrawElements`, and
 //! their display-list forms, which read the arrays when compiled (section 5.4).
 //!
-//! A draw fetches the array elements it uses into a batch, decomposes it with
-//! [`super::assemble`] and hands it to `Context::emit_batch`. `glDrawElements` fetches the
-//! index range `min..=max` once and keeps the program's indices (shared vertices stay shared),
-//! unless that range is much wider than the index count; then it fetches one vertex per index.
+//! A draw fetches the array elements it uses into a batch, each array converted over them at
+//! once ([`super::array_fetch`]), decomposes it with [`super::assemble`] and hands it to
+//! `Context::emit_batch`. `glDrawElements` fetches the index range `min..=max` once and keeps
+//! the program's indices (shared vertices stay shared), unless that range is much wider than
+//! the index count; then it fetches one vertex per index. Indices, the batch and the other
+//! storage a draw needs are reused from draw to draw.
 
 use std::ffi::c_void;
 
 use super::Context;
+use super::array_convert::Span;
 use super::array_fetch::{FromArrays, decode_indices, index_size};
 use super::assemble::{Primitive, assemble};
 use super::convert::read_slice;
 use super::gl::{self, GLenum, GLint, GLsizei, GLuint};
-use super::immediate::{Batch, CurrentAttribs, bits};
+use super::immediate::{Batch, CurrentAttribs};
 use super::limits::MAX_VERTEX_ATTRIBS;
 use super::lists::ListOp;
 use crate::frame::Attrib;
@@ -113,46 +116,46 @@ impl Context {
         }
     }
 
-    /// Fetches the vertices of a draw into `batch`, with `generic` generic attributes; returns
-    /// the batch vertex of each element (`None`: in order) and which attributes came from
-    /// arrays, or `None` (after raising any error) when nothing is drawn.
+    /// Fetches the vertices of a draw into `batch`, with `generic` generic attributes, and
+    /// the batch vertex of each element into `order`; returns whether `order` is used (else
+    /// the elements are the batch's vertices in order) and which attributes came from arrays,
+    /// or `None` (after raising any error) when nothing is drawn.
     fn fetch(
         &mut self,
         elements: Elements<'_>,
         command: &'static str,
         generic: usize,
         batch: &mut Batch,
-    ) -> Option<(Option<Vec<u32>>, FromArrays)> {
+        order: &mut Vec<u32>,
+    ) -> Option<(bool, FromArrays)> {
         let current = *self.immediate.current();
-        let fetched = self.with_sources(command, |s, _| {
+        let lock = self.arrays.lock.map(|(first, count)| (first as usize, count as usize));
+        let fetched = self.with_sources(command, |s, ctx| {
             // Elements past the end of a vertex buffer would all be zero: not fetched, so a
             // wrong count cannot allocate without bound.
-            let vertex_count = s.position()?.len();
+            let position = s.position()?;
+            let vertex_count = position.len();
             batch.clear_for(generic);
-            let mut cur = current;
-            let mut push = |i: usize| {
-                let position = s.element(i, &mut cur).unwrap_or([0.0, 0.0, 0.0, 1.0]);
-                batch.push(position, &cur, bits::ALL);
-            };
-            let order = match elements {
+            order.clear();
+            let span = match elements {
                 Elements::Range(first, count) => {
-                    (first..first.saturating_add(count).min(vertex_count.max(first))).for_each(&mut push);
-                    None
+                    Span::Range(first, first.saturating_add(count).min(vertex_count.max(first)) - first)
                 }
                 Elements::Indices(indices) => {
                     let min = indices.iter().copied().min().unwrap_or(0);
                     let max = indices.iter().copied().max().unwrap_or(0);
                     let span = (max - min) as usize + 1;
                     if span <= indices.len().saturating_mul(SPARSE_FACTOR).max(64) {
-                        (min as usize..=max as usize).for_each(&mut push);
-                        Some(indices.iter().map(|&i| i - min).collect())
+                        order.extend(indices.iter().map(|&i| i - min));
+                        Span::Range(min as usize, span)
                     } else {
-                        indices.iter().for_each(|&i| push(i as usize));
-                        None
+                        Span::Gather(indices)
                     }
                 }
             };
-            Some((order, s.provided()))
+            let storage = &mut ctx.fetch;
+            s.fill(span, lock.map(|range| (&mut storage.locked, range)), &current, batch, &mut storage.scratch);
+            Some((matches!(span, Span::Range(..)) && matches!(elements, Elements::Indices(_)), s.provided()))
         });
         fetched.flatten()
     }
@@ -181,13 +184,15 @@ impl Context {
         self.immediate.assembled = assembled;
     }
 
-    /// Draws `elements` now, reusing the immediate-mode batch storage.
+    /// Draws `elements` now, reusing the immediate-mode batch and the fetch storage.
     fn draw_now(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str) {
         let mut batch = self.immediate.take_batch();
+        let mut order = std::mem::take(&mut self.fetch.order);
         let generic = self.generic_attributes();
-        if let Some((order, from_arrays)) = self.fetch(elements, command, generic, &mut batch) {
-            self.submit(primitive, &batch, order.as_deref(), from_arrays.color);
+        if let Some((ordered, from_arrays)) = self.fetch(elements, command, generic, &mut batch, &mut order) {
+            self.submit(primitive, &batch, ordered.then_some(order.as_slice()), from_arrays.color);
         }
+        self.fetch.order = order;
         self.immediate.batch = batch;
     }
 
@@ -195,11 +200,13 @@ impl Context {
     /// taken from arrays use the then-current values.
     fn draw_compiled(&mut self, primitive: Primitive, elements: Elements<'_>, command: &'static str) {
         let mut batch = Batch::default();
+        let mut order = Vec::new();
         // Generic arrays are kept whether or not a program is in use now: one may be when the
         // list runs.
         let generic_arrays = self.arrays.generic[1..].iter().any(|a| a.enabled);
         let generic = if generic_arrays { MAX_VERTEX_ATTRIBS } else { self.generic_attributes() };
-        let Some((order, from_arrays)) = self.fetch(elements, command, generic, &mut batch) else { return };
+        let Some((ordered, from_arrays)) = self.fetch(elements, command, generic, &mut batch, &mut order) else { return };
+        let order = ordered.then_some(order);
         let fetched = Fetched { batch, order, from_arrays };
         // The generated dispatch applies the glBegin/glEnd rule to this deferred draw.
         self.lists.record(ListOp::Deferred(Box::new(move |ctx| {
@@ -244,8 +251,8 @@ impl Context {
         }
     }
 
-    /// Checks `glDrawElements` arguments and reads the indices (from the client or the
-    /// element array buffer).
+    /// Checks `glDrawElements` arguments, decodes the indices (from the client or the
+    /// element array buffer) into the fetch storage and runs `draw` on them.
     unsafe fn read_elements(
         &mut self,
         mode: GLenum,
@@ -253,7 +260,27 @@ impl Context {
         type_: GLenum,
         indices: *const c_void,
         command: &'static str,
-    ) -> Option<(Primitive, Vec<u32>)> {
+        draw: fn(&mut Context, Primitive, Elements<'_>, &'static str),
+    ) {
+        let mut decoded = std::mem::take(&mut self.fetch.indices);
+        decoded.clear();
+        if let Some(primitive) = unsafe { self.decode_elements(mode, count, type_, indices, command, &mut decoded) } {
+            draw(self, primitive, Elements::Indices(&decoded), command);
+        }
+        self.fetch.indices = decoded;
+    }
+
+    /// The checks and decoding of [`Context::read_elements`]: the primitive, with the indices
+    /// appended to `out`.
+    unsafe fn decode_elements(
+        &mut self,
+        mode: GLenum,
+        count: GLsizei,
+        type_: GLenum,
+        indices: *const c_void,
+        command: &'static str,
+        out: &mut Vec<u32>,
+    ) -> Option<Primitive> {
         let Some(primitive) = Primitive::from_gl(mode) else {
             self.set_error_in(gl::GL_INVALID_ENUM, command);
             return None;
@@ -268,11 +295,15 @@ impl Context {
         };
         let bytes_len = count.checked_mul(width)?;
         if self.arrays.element_buffer == 0 {
-            let Some(bytes) = (unsafe { read_slice(indices.cast::<u8>(), bytes_len) }) else {
+            if indices.is_null() {
                 self.null_pointer(command);
                 return None;
-            };
-            return Some((primitive, decode_indices(&bytes, width)));
+            }
+            super::capture::reads::note(indices, bytes_len);
+            // Safety: the caller guarantees `count` readable indices at `indices`.
+            let bytes = unsafe { std::slice::from_raw_parts(indices.cast::<u8>(), bytes_len) };
+            decode_indices(bytes, width, out);
+            return Some(primitive);
         }
         let shared = self.shared.clone();
         let guard = shared.lock();
@@ -284,7 +315,8 @@ impl Context {
         }
         let start = indices as usize;
         let bytes = buffer.data.get(start..start.checked_add(bytes_len)?)?;
-        Some((primitive, decode_indices(bytes, width)))
+        decode_indices(bytes, width, out);
+        Some(primitive)
     }
 
     /// `glDrawElements`.
@@ -293,9 +325,7 @@ impl Context {
     /// Without an element array buffer, `indices` must point to `count` indices of `type_`;
     /// the enabled client arrays must hold the elements they name.
     pub unsafe fn glDrawElements(&mut self, mode: GLenum, count: GLsizei, type_: GLenum, indices: *const c_void) {
-        if let Some((p, idx)) = unsafe { self.read_elements(mode, count, type_, indices, "glDrawElements") } {
-            self.draw_now(p, Elements::Indices(&idx), "glDrawElements");
-        }
+        unsafe { self.read_elements(mode, count, type_, indices, "glDrawElements", Context::draw_now) }
     }
 
     /// `glDrawElements` in a display list.
@@ -309,9 +339,7 @@ impl Context {
         type_: GLenum,
         indices: *const c_void,
     ) {
-        if let Some((p, idx)) = unsafe { self.read_elements(mode, count, type_, indices, "glDrawElements") } {
-            self.draw_compiled(p, Elements::Indices(&idx), "glDrawElements");
-        }
+        unsafe { self.read_elements(mode, count, type_, indices, "glDrawElements", Context::draw_compiled) }
     }
 
     /// `glDrawRangeElements`: `GL_INVALID_VALUE` when `end < start`.
@@ -361,9 +389,7 @@ impl Context {
         if end < start {
             return self.set_error_in(gl::GL_INVALID_VALUE, "glDrawRangeElements");
         }
-        if let Some((p, idx)) = unsafe { self.read_elements(mode, count, type_, indices, "glDrawRangeElements") } {
-            draw(self, p, Elements::Indices(&idx), "glDrawRangeElements");
-        }
+        unsafe { self.read_elements(mode, count, type_, indices, "glDrawRangeElements", draw) }
     }
 
     /// The `(first, count)` pairs of `glMultiDrawArrays`; `GL_INVALID_VALUE` for a negative
@@ -620,6 +646,66 @@ mod tests {
         ctx.glDrawArrays(gl::GL_POINTS, 0, 1);
         assert_eq!(ctx.glGetError(), gl::GL_INVALID_OPERATION);
         assert_eq!(ctx.frame.draws.len(), before);
+    }
+
+    #[test]
+    fn arrays_shorter_than_the_draw_read_zero_past_their_buffer() {
+        let (mut ctx, _) = Context::with_recording();
+        // Two colours in a buffer; four vertices in client memory.
+        let colors: [u8; 8] = [255, 0, 0, 255, 0, 255, 0, 255];
+        ctx.glBindBuffer(gl::GL_ARRAY_BUFFER, 1);
+        unsafe { ctx.glBufferData(gl::GL_ARRAY_BUFFER, 8, colors.as_ptr().cast(), gl::GL_STATIC_DRAW) };
+        ctx.glColorPointer(4, gl::GL_UNSIGNED_BYTE, 0, std::ptr::null());
+        ctx.glBindBuffer(gl::GL_ARRAY_BUFFER, 0);
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, SQUARE.as_ptr().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        ctx.glEnableClientState(gl::GL_COLOR_ARRAY);
+        for draw in 0..2 {
+            if draw == 0 {
+                ctx.glDrawArrays(gl::GL_POINTS, 0, 4);
+            } else {
+                ctx.glTranslatef(1.0, 0.0, 0.0);
+                let idx: [u16; 4] = [0, 1, 2, 3];
+                unsafe { ctx.glDrawElements(gl::GL_POINTS, 4, gl::GL_UNSIGNED_SHORT, idx.as_ptr().cast()) };
+            }
+            let d = ctx.frame.draws.last().unwrap();
+            assert_eq!(d.vertices.position[3], [0.0, 1.0, 0.0, 1.0]);
+            let colors: Vec<_> = (0..4).map(|k| d.vertices.color.get(k)).collect();
+            assert_eq!(colors, [Some([1.0, 0.0, 0.0, 1.0]), Some([0.0, 1.0, 0.0, 1.0]), Some([0.0; 4]), Some([0.0; 4])]);
+        }
+        assert_eq!(ctx.frame.draws.len(), 2);
+    }
+
+    #[test]
+    fn locked_positions_are_converted_once_per_lock() {
+        let (mut ctx, _) = Context::with_recording();
+        let mut xyz = SQUARE;
+        let mut colors: [u8; 16] = [255; 16];
+        let (xyz_ptr, colors_ptr) = (xyz.as_mut_ptr(), colors.as_mut_ptr());
+        ctx.glVertexPointer(2, gl::GL_FLOAT, 0, xyz_ptr.cast_const().cast());
+        ctx.glColorPointer(4, gl::GL_UNSIGNED_BYTE, 0, colors_ptr.cast_const().cast());
+        ctx.glEnableClientState(gl::GL_VERTEX_ARRAY);
+        ctx.glEnableClientState(gl::GL_COLOR_ARRAY);
+        let idx: [u8; 6] = [0, 1, 2, 2, 3, 0];
+        ctx.glLockArraysEXT(0, 4);
+        unsafe { ctx.glDrawElements(gl::GL_TRIANGLES, 6, gl::GL_UNSIGNED_BYTE, idx.as_ptr().cast()) };
+        // Within the lock, positions are what the first draw converted; colours are read again.
+        unsafe {
+            xyz_ptr.write(-7.0);
+            colors_ptr.write(0);
+        }
+        ctx.glTranslatef(1.0, 0.0, 0.0);
+        unsafe { ctx.glDrawElements(gl::GL_TRIANGLES, 6, gl::GL_UNSIGNED_BYTE, idx.as_ptr().cast()) };
+        ctx.glUnlockArraysEXT();
+        let d = &ctx.frame.draws[1];
+        assert_eq!(d.vertices.position[0], [0.0, 0.0, 0.0, 1.0]);
+        assert_eq!(d.vertices.color.get(0), Some([0.0, 1.0, 1.0, 1.0]));
+        assert!(d.vertices.color.get(1) == Some([1.0; 4]) && !d.vertices.color.is_constant());
+        assert!(ctx.frame.draws[0].vertices.color.is_constant(), "equal colours from an array are stored once");
+        ctx.glTranslatef(1.0, 0.0, 0.0);
+        unsafe { ctx.glDrawElements(gl::GL_TRIANGLES, 6, gl::GL_UNSIGNED_BYTE, idx.as_ptr().cast()) };
+        assert_eq!(ctx.frame.draws[2].vertices.position[0], [-7.0, 0.0, 0.0, 1.0], "unlocked: read again");
+        assert_eq!(ctx.glGetError(), gl::GL_NO_ERROR);
     }
 
     #[test]

@@ -113,7 +113,7 @@ impl Context {
             projection: transform.projection(),
             texture_matrices: std::array::from_fn(|u| units[u].then(|| transform.texture_matrix(u))),
             state: self.raster_snapshot(),
-            textures: self.texture_snapshot(),
+            textures: self.texture_snapshot_of(units),
             texture_units: self.texture_units_snapshot(units),
             program: self.program_draw(),
         }
@@ -121,12 +121,9 @@ impl Context {
 
     /// The environment and coordinate generation of the units in `units` (those with a
     /// texture target enabled; the others do not texture).
+    /// Only those units' state is converted.
     pub(crate) fn texture_units_snapshot(&self, units: [bool; MAX_TEXTURE_UNITS]) -> [Option<TextureUnit>; MAX_TEXTURE_UNITS] {
-        if !units.contains(&true) {
-            return [None; MAX_TEXTURE_UNITS];
-        }
-        let (env, texgen) = (self.texenv_snapshot(), self.texgen_snapshot());
-        std::array::from_fn(|u| units[u].then(|| TextureUnit { env: env[u], texgen: texgen[u] }))
+        std::array::from_fn(|u| units[u].then(|| TextureUnit { env: self.texture.env[u].to_frame(), texgen: self.texgen_of(u) }))
     }
 }
 

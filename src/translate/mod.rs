@@ -11,6 +11,7 @@
 // finds them by that name, and the names match the specification and the reference pages.
 #![allow(non_snake_case)]
 
+pub mod array_convert;
 pub mod array_fetch;
 pub mod arrays;
 pub mod arrays_ext;
@@ -50,6 +51,7 @@ pub mod implementation;
 pub mod lighting;
 pub mod limits;
 pub mod lists;
+pub mod locked_arrays;
 pub mod params;
 pub mod pixel_buffers;
 #[cfg(test)]

@@ -270,7 +270,9 @@ mod tests {
         let records: Vec<Record> = capture.records().map(|r| r.unwrap().1).collect();
         assert_eq!(records.len(), 20_004, "nothing is recorded after finish");
         assert_eq!(records[..2], [Record::Event(events[0]), Record::Event(events[1])]);
-        assert_eq!(records[2], Record::Call { id, args: vec![0x4000, 0x1203, 0x7ffc_0000_1000], reads: vec![(0x7ffc_0000_1000, &params[..])] });
+        let Record::Call { id: call_id, args, reads } = &records[2] else { panic!("record 2 is a call: {:?}", records[2]) };
+        assert_eq!((*call_id, &args[..]), (id, &[0x4000, 0x1203, 0x7ffc_0000_1000][..]));
+        assert_eq!(reads.iter().collect::<Vec<_>>(), [(0x7ffc_0000_1000, &params[..])]);
         assert_eq!(records[20_002..], [Record::Event(events[2]), Record::Event(events[3])]);
         assert_eq!(capture.writer, format!("glrt {}", env!("CARGO_PKG_VERSION")));
     }

@@ -1,5 +1,5 @@
 //! Sinks that report what hash tracking found, for the `glrt` command: per-frame statistics
-//! as JSON lines (`glrt replay --stats`) and the hashes of the textures draws used
+//! as JSON lines (`glrt replay --stats`) or classification times (`--bench`), and the hashes of the textures draws used
 //! (`glrt info FILE`, the names `glrt.toml` tags textures by).
 
 use std::collections::BTreeMap;
@@ -10,24 +10,30 @@ use parking_lot::Mutex;
 
 use crate::frame::Frame;
 use crate::frame::pixels::PixelBuffer;
-use crate::frame::{FrameSink, NullSink, Target};
+use crate::frame::{FrameSink, Target};
 
-/// Prints each frame's [`crate::frame::class::FrameStats`] as one JSON line on standard
-/// output, then hands the frame to `inner`.
-pub struct StatsPrinter {
+/// Calls a function on each frame (classified), then hands the frame to `inner`: `glrt replay
+/// --stats` prints its statistics ([`print_stats`]), `--bench` adds up its classification time.
+pub struct FrameTap {
     inner: Box<dyn FrameSink>,
+    tap: Box<dyn FnMut(&Frame) + Send>,
 }
 
-impl StatsPrinter {
-    /// Prints, then presents to `inner` (`None`: frames are dropped).
-    pub fn new(inner: Option<Box<dyn FrameSink>>) -> StatsPrinter {
-        StatsPrinter { inner: inner.unwrap_or_else(|| Box::new(NullSink::default())) }
+impl FrameTap {
+    /// Calls `tap`, then presents to `inner`.
+    pub fn new(inner: Box<dyn FrameSink>, tap: impl FnMut(&Frame) + Send + 'static) -> FrameTap {
+        FrameTap { inner, tap: Box::new(tap) }
     }
 }
 
-impl FrameSink for StatsPrinter {
+/// Prints a frame's [`crate::frame::class::FrameStats`] as one JSON line on standard output.
+pub fn print_stats(frame: &Frame) {
+    let _ = writeln!(std::io::stdout().lock(), "{}", frame.stats.json_line(frame.number));
+}
+
+impl FrameSink for FrameTap {
     fn present(&mut self, frame: Frame) {
-        let _ = writeln!(std::io::stdout().lock(), "{}", frame.stats.json_line(frame.number));
+        (self.tap)(&frame);
         self.inner.present(frame);
     }
     fn set_target(&mut self, target: Target) {

@@ -383,13 +383,6 @@ mod convert {
     }
 }
 
-impl Context {
-    /// The texture environment of every unit for the next draw, in the renderer's types.
-    pub fn texenv_snapshot(&self) -> [crate::frame::texture::TextureEnv; MAX_TEXTURE_UNITS] {
-        self.texture.env.map(|e| e.to_frame())
-    }
-}
-
 #[cfg(test)]
 mod snapshot_tests {
     use crate::frame::texture::{CombineFn, CombineOperand, CombineSource, EnvMode};
@@ -404,7 +397,7 @@ mod snapshot_tests {
         ctx.glTexEnvi(gl::GL_TEXTURE_ENV, gl::GL_SOURCE2_RGB, gl::GL_TEXTURE3 as i32);
         ctx.glTexEnvi(gl::GL_TEXTURE_ENV, gl::GL_OPERAND0_ALPHA, gl::GL_ONE_MINUS_SRC_ALPHA as i32);
         ctx.glTexEnvf(gl::GL_TEXTURE_ENV, gl::GL_ALPHA_SCALE, 2.0);
-        let s = ctx.texenv_snapshot();
+        let s = ctx.texture.env.map(|e| e.to_frame());
         assert_eq!(s[0].mode, EnvMode::Modulate);
         assert_eq!((s[1].mode, s[1].combine_alpha, s[1].combine_rgb), (EnvMode::Combine, CombineFn::Interpolate, CombineFn::Modulate));
         assert_eq!(s[1].source_rgb, [CombineSource::Texture, CombineSource::Previous, CombineSource::TextureUnit(3)]);

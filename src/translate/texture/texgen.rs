@@ -237,22 +237,20 @@ mod tests {
 }
 
 impl Context {
-    /// How each of s, t, r, q of every unit is generated for the next draw (`None` where
+    /// How each of s, t, r, q of `unit` is generated for the next draw (`None` where
     /// generation is off, `GL_TEXTURE_GEN_*` of the enable module).
-    pub fn texgen_snapshot(&self) -> [[Option<crate::frame::texture::TexGenMode>; 4]; super::super::limits::MAX_TEXTURE_UNITS] {
+    pub fn texgen_of(&self, unit: usize) -> [Option<crate::frame::texture::TexGenMode>; 4] {
         use crate::frame::texture::TexGenMode;
         let caps = [gl::GL_TEXTURE_GEN_S, gl::GL_TEXTURE_GEN_T, gl::GL_TEXTURE_GEN_R, gl::GL_TEXTURE_GEN_Q];
-        std::array::from_fn(|unit| {
-            std::array::from_fn(|c| {
-                let g = self.texture.texgen[unit].coords[c];
-                let f = |p: [f64; 4]| p.map(|v| v as f32);
-                self.enables.unit_on(unit, caps[c]).then(|| match g.mode {
-                    gl::GL_OBJECT_LINEAR => TexGenMode::ObjectLinear(f(g.object_plane)),
-                    gl::GL_SPHERE_MAP => TexGenMode::SphereMap,
-                    gl::GL_NORMAL_MAP => TexGenMode::NormalMap,
-                    gl::GL_REFLECTION_MAP => TexGenMode::ReflectionMap,
-                    _ => TexGenMode::EyeLinear(f(g.eye_plane)),
-                })
+        std::array::from_fn(|c| {
+            let g = self.texture.texgen[unit].coords[c];
+            let f = |p: [f64; 4]| p.map(|v| v as f32);
+            self.enables.unit_on(unit, caps[c]).then(|| match g.mode {
+                gl::GL_OBJECT_LINEAR => TexGenMode::ObjectLinear(f(g.object_plane)),
+                gl::GL_SPHERE_MAP => TexGenMode::SphereMap,
+                gl::GL_NORMAL_MAP => TexGenMode::NormalMap,
+                gl::GL_REFLECTION_MAP => TexGenMode::ReflectionMap,
+                _ => TexGenMode::EyeLinear(f(g.eye_plane)),
             })
         })
     }
@@ -269,7 +267,7 @@ mod snapshot_tests {
         ctx.glTexGeni(gl::GL_T, gl::GL_TEXTURE_GEN_MODE, gl::GL_OBJECT_LINEAR as i32);
         ctx.glEnable(gl::GL_TEXTURE_GEN_T);
         ctx.glEnable(gl::GL_TEXTURE_GEN_S);
-        let s = ctx.texgen_snapshot();
+        let s = [ctx.texgen_of(0), ctx.texgen_of(1)];
         assert_eq!(s[0][0], Some(TexGenMode::EyeLinear([1.0, 0.0, 0.0, 0.0])));
         assert_eq!(s[0][1], Some(TexGenMode::ObjectLinear([0.0, 1.0, 0.0, 0.0])));
         assert_eq!((s[0][2], s[1][0]), (None, None));

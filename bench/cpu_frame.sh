@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# CPU cost of real frames (issue 17): captures of Quake-3-class frames replayed headless, the
+# time of each frame split into the replay's reader (decoding records), its memory writes,
+# glrt's front end (translate: the GL calls), hash tracking (classify) and the rest of the frame
+# end (the renderer's recording and submission; 0 with GLRT_MODE=none), and callgrind's
+# instruction counts per frame, per vertex and per draw.
+#
+#   bash bench/cpu_frame.sh [CAPTURE A..B]...
+#
+# Default captures: the q3 fixture (tests/fixtures/q3.glrtcap, frames 1..4) and, when present,
+# /work/captures/openarena-1280x720-f340-440.glrtcap.xz (frames 340..440; decompressed to
+# $TMPDIR and deleted after). Environment: MODES (default "none raster": GLRT_MODE of the timed
+# runs), CALLGRIND=0 to skip the instruction counts (a replay under callgrind takes minutes),
+# RUNS (default 3: timed runs per mode, the fastest kept), GLRT_BIN (a built `glrt` to measure
+# instead of building target/release/glrt).
+#
+# Times are from `glrt replay --bench`: wall clock split by per-record timers (they add about
+# 0.1 us per GL call), as noisy as the machine's load, and the replaying thread's CPU time
+# (/proc/thread-self/schedstat) split in the same proportions. Instruction counts are exact:
+# callgrind runs the replay to frame A and to frame B, and frames A..B cost the difference;
+# per vertex and per draw divide it by the vertices and draws `glrt replay --stats` counts.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+modes=${MODES:-none raster}
+runs=${RUNS:-3}
+if (($# == 0)); then
+    set -- tests/fixtures/q3.glrtcap 1..4
+    oa=/work/captures/openarena-1280x720-f340-440.glrtcap.xz
+    [[ -f $oa ]] && set -- "$@" "$oa" 340..440
+fi
+
+if [[ -n ${GLRT_BIN:-} ]]; then
+    glrt=$(realpath "$GLRT_BIN")
+else
+    cargo build --release --bin glrt
+    glrt=$PWD/target/release/glrt
+fi
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+
+# Callgrind of a replay to frame $3 of capture $1 (frames from $2), in $scratch/cg-$3.out.
+callgrind() {
+    GLRT_MODE=none valgrind --tool=callgrind --callgrind-out-file="$scratch/cg-$3.out" \
+        "$glrt" replay "$1" --frames "$2..$3" >/dev/null 2>&1
+}
+
+# Inclusive instructions of function $2 (its name as callgrind_annotate prints it, or the
+# program's total for "PROGRAM TOTALS") in callgrind output $1.
+inclusive() {
+    callgrind_annotate --inclusive=yes "$1" 2>/dev/null | grep -F -m1 "$2" | awk '{ gsub(",", "", $1); print $1 }'
+}
+
+# Instructions per frame of function $1 over frames $a..$b.
+per_frame() {
+    awk -v x="$(inclusive "$scratch/cg-$a.out" "$1")" -v y="$(inclusive "$scratch/cg-$b.out" "$1")" -v n="$((b - a))" \
+        'BEGIN { printf "%.2f", (y - x) / n / 1e6 }'
+}
+
+echo "# glrt replay CPU per frame ($(date -u +%Y-%m-%d), $(nproc) CPUs, load $(cut -d' ' -f1 /proc/loadavg), commit $(git rev-parse --short HEAD))"
+while (($# >= 2)); do
+    capture=$1 range=$2
+    shift 2
+    if [[ $capture == *.xz ]]; then
+        xz -dc "$capture" >"$scratch/capture.glrtcap"
+        file=$scratch/capture.glrtcap
+    else
+        file=$capture
+    fi
+    a=${range%..*} b=${range#*..}
+    echo
+    echo "## $(basename "$capture"), frames $range"
+    # Draws and vertices per frame of the measured frames, from the frame log.
+    rm -f "$scratch/frames.jsonl"
+    GLRT_MODE=none GLRT_FRAME_LOG=$scratch/frames.jsonl "$glrt" replay "$file" --frames "$range" >/dev/null 2>&1
+    read -r draws vertices < <(awk -v a="$a" -F'[:,]' '$2 >= a { n++; d += $4; v += $6 } END { printf "%.1f %.1f\n", d / n, v / n }' "$scratch/frames.jsonl")
+    echo "per frame: $draws draws, $vertices vertices"
+    for mode in $modes; do
+        best= best_total=
+        for _ in $(seq "$runs"); do
+            out=$(GLRT_MODE=$mode "$glrt" replay "$file" --frames "$range" --bench 2>/dev/null || true)
+            total=$(grep -E '^(cpu )?ms per frame' <<<"$out" | tail -1 | grep -o 'glrt [0-9.]*' | cut -d' ' -f2)
+            if [[ -z $best ]] || awk -v t="$total" -v b="$best_total" 'BEGIN { exit !(t < b) }'; then
+                best=$out best_total=$total
+            fi
+        done
+        echo "GLRT_MODE=$mode, fastest of $runs runs by glrt's CPU time:"
+        grep -E '^(frames:|ms per frame|cpu ms per frame|reader:)' <<<"$best" | sed 's/^/    /'
+    done
+    if [[ ${CALLGRIND:-1} != 0 ]]; then
+        callgrind "$file" "$a" "$a"
+        callgrind "$file" "$a" "$b"
+        total=$(per_frame "PROGRAM TOTALS")
+        echo "callgrind (GLRT_MODE=none), M instructions per frame: total $total" \
+            " reader $(per_frame "reader::Records as core::iter::traits::iterator::Iterator>::next [")" \
+            " memory $(per_frame "shadow::Shadow::write [")" \
+            " translate $(per_frame "glrt::replay::calls::call [")" \
+            " classify $(per_frame "Classifier::classify [")"
+        awk -v f="$total" -v d="$draws" -v v="$vertices" \
+            'BEGIN { printf "  total per draw %.0f, per vertex %.0f instructions\n", f * 1e6 / d, f * 1e6 / v }'
+    fi
+    rm -f "$scratch/capture.glrtcap"
+done
