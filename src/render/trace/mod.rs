@@ -77,6 +77,7 @@ pub mod stats;
 pub mod surfaces;
 pub mod texels;
 pub mod tracks;
+pub mod vertex_light;
 
 use ash::vk;
 
