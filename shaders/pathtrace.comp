@@ -3,7 +3,8 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
 // The compute path tracer's tracing pass: per traced pixel, one path of a primary ray,
-// next-event estimation at every vertex (one shadow ray per light, one towards a point of an
+// next-event estimation at every vertex (one shadow ray per light that lights it: GL lights
+// and the light of its own vertex colours, render::trace::vertex_light; one towards a point of an
 // emissive triangle, trace/emitters.glsl, weighted against continuation rays that hit
 // emitters by multiple importance sampling), `bounces` indirect bounces and the environment
 // (trace/environment.glsl: the sky cube map or the clear colour) through every continuation
@@ -125,7 +126,7 @@ void main() {
                 break;
             }
             for (uint i = 0u; i < light_count; i++) {
-                radiance += throughput * direct_light(s, v, i, rng, shadow);
+                radiance += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
             }
             if (emitter_count > 0u) {
                 radiance += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces, rng, shadow);

@@ -26,16 +26,20 @@ vec3 offset_ray(vec3 p, vec3 n) {
         abs(p.z) < origin ? p.z + float_scale * n.z : p_i.z);
 }
 
-// The reflected radiance towards v due to light i, shadow ray included; `shadow_rays` counts
-// the rays traced.
-vec3 direct_light(Surface s, vec3 v, uint i, inout Rng rng, inout uint shadow_rays) {
+// The reflected radiance towards v at a point of instance `instance` due to light i, shadow
+// ray included; `shadow_rays` counts the rays traced. A light of one instance (params.w,
+// render::trace::vertex_light) lights no other.
+vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout uint shadow_rays) {
     Light light = lights[i];
+    if (light.params.w != 0.0 && uint(light.params.w) != instance + 1u) {
+        return vec3(0.0);
+    }
     vec3 l;
     float distance;
     vec3 incident;
     if (light.position.w == 0.0) {
         l = light.params.y < 1.0 ? sample_cone(light.position.xyz, light.params.y, rng_next2(rng)) : light.position.xyz;
-        distance = 1e30;
+        distance = light.params.z > 0.0 ? light.params.z : 1e30;
         incident = light.radiance.rgb;
     } else {
         vec3 to_center = light.position.xyz - s.position;

@@ -103,7 +103,8 @@ struct Light {
     vec4 position;  // eye space; w = 0: directional, xyz = unit direction towards the light
     vec4 radiance;  // directional: irradiance at normal incidence; point: intensity (rgb); a: sphere radius (0: a point)
     vec4 spot;      // unit direction the spot points at; w: cos(cutoff), or -2 without a spot
-    vec4 params;    // x: spot exponent; y: cos of a directional light's angular radius
+    vec4 params;    // x: spot exponent; y: cos of a directional light's angular radius;
+                    // z: shadow ray length (0: to the light); w: 0, or 1 + the only instance lit
 };
 
 layout(set = TRACE_SET, binding = BINDING_LIGHTS, std430) readonly buffer Lights {

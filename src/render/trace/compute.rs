@@ -30,7 +30,9 @@ use super::sky::Sky;
 use super::stats::{RayCounts, SceneCounts, Statistics};
 use super::texels::TexelPool;
 use super::tracks::Tracks;
+use super::vertex_light;
 use super::{GpuScene, Radiance, RayTracer, TracedImage, bindings};
+use crate::frame::class::SurfaceLighting;
 use crate::frame::{Draw, Frame};
 use crate::render::raster::device::{Buffer, Check, Device, Result};
 use crate::render::raster::renderer::Recorder;
@@ -342,6 +344,7 @@ impl RayTracer for ComputeTracer {
         let mut materials = Vec::with_capacity(items.len());
         let mut bounds = Vec::with_capacity(items.len());
         let mut emitter_list = EmitterList::default();
+        let mut recovered: Vec<GpuLight> = Vec::new();
         let mut signature = Xxh3::new();
         // New texture contents (an updated lightmap, an animated texture) restart accumulation.
         for t in &refs {
@@ -365,6 +368,13 @@ impl RayTracer for ComputeTracer {
                 }
             }
             material.key = material::key(&material);
+            // The direct light a vertex-lit model's colours hold, for that model alone.
+            if let Source::Surface(surface) = &item.source
+                && surface.base.instance.is_some_and(|i| i.lighting == SurfaceLighting::VertexLit)
+                && let Some(light) = vertex_light::recover(surface.base, &item.object_to_eye, instances.len() as u32)
+            {
+                recovered.push(light);
+            }
             let flags = if material.alpha_func != 7 { INSTANCE_ALPHA_TESTED } else { 0 };
             instances.push(GpuInstance {
                 object_to_eye: gpu_types::rows(&item.object_to_eye),
@@ -398,7 +408,8 @@ impl RayTracer for ComputeTracer {
         let light_settings =
             LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction, radius: self.settings.light_radius };
         let gl_lights = draws.iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));
-        let lights: Vec<GpuLight> = lights::gather(gl_lights, frame.view.as_ref().map(|v| &v.view), &light_settings);
+        let mut lights: Vec<GpuLight> = lights::gather(gl_lights, frame.view.as_ref().map(|v| &v.view), &light_settings);
+        lights.extend(recovered);
         signature.update(bytemuck::cast_slice(&lights));
 
         // Camera and sizes.

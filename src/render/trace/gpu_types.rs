@@ -160,7 +160,9 @@ pub struct GpuLight {
     pub radiance: [f32; 4],
     /// Unit spot direction; w: cos(cutoff), or −2 without a spot.
     pub spot: [f32; 4],
-    /// x: spot exponent; y: cosine of a directional light's angular radius.
+    /// x: spot exponent; y: cosine of a directional light's angular radius; z: length of its
+    /// shadow rays (0: to the light); w: 0, or 1 + the only instance it lights (a light
+    /// recovered from a model's vertex colours, [`super::vertex_light`]).
     pub params: [f32; 4],
 }
 

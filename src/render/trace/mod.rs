@@ -39,6 +39,7 @@
 //!   as geometries; [`material`]: their materials; [`chunks`]: the static world's chunks as
 //!   geometries; [`instances`]: a frame's instances, surfaces and chunks; [`emitters`]: the
 //!   emissive triangles and their alias table; [`lights`]: GL lights as physical lights;
+//!   [`vertex_light`]: the direct light a vertex-lit model's colours hold, a light of its own;
 //!   [`sky`]: the sky draws as the environment cube map; [`gpu_types`]: the structures the
 //!   shaders read, checked against the compiled SPIR-V;
 //!   [`shader_constants`]: flags and special values shared with the shaders as generated headers
@@ -77,6 +78,7 @@ pub mod stats;
 pub mod surfaces;
 pub mod texels;
 pub mod tracks;
+pub mod vertex_light;
 
 use ash::vk;
 

@@ -108,6 +108,13 @@ impl Matcher {
         self.lost = self.taken.iter().zip(&self.previous).filter(|(t, r)| !**t && r.age == 0).count();
     }
 
+    /// An id no instance has had, for a draw that is not matched (routed before its frame
+    /// ends).
+    pub fn new_id(&mut self) -> u64 {
+        self.last_id += 1;
+        self.last_id
+    }
+
     fn take(&mut self, i: usize, f: &mut Found, matched: Match) {
         self.taken[i] = true;
         let previous = self.previous[i];

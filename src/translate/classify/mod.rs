@@ -291,8 +291,9 @@ impl Classifier {
     /// so that the renderer traces what it will trace when the frame ends: a raster class by
     /// the rules of [`routing`], a `Layer` by those of [`layers`], or `Dynamic` for a traced
     /// draw (its exact class needs the whole frame's matching; [`Classifier::classify`]
-    /// replaces every class when the frame ends).
-    /// Draws routed by an earlier read-back keep their class.
+    /// replaces every class and instance when the frame ends), with an instance of a new id
+    /// that says how it is lit ([`Classifier::partial_instance`]).
+    /// Draws routed by an earlier read-back keep their class and instance.
     pub fn route_partial(&mut self, frame: &mut Frame) {
         self.layers.begin_frame();
         let mut before = Before::default();
@@ -302,16 +303,48 @@ impl Classifier {
                 let (tags, hashes) = self.tags_of(&frame.draws[i]);
                 let raster = routing::raster_class(&frame.draws[i], &before, tags);
                 let found = if matches!(raster, None | Some(DrawClass::Translucent)) { self.layer_of(&frame.draws, i, &hashes) } else { None };
-                let draw = &mut frame.draws[i];
-                (draw.class, draw.layer) = match found {
-                    Some(found) => (DrawClass::Layer, Some(found.layer)),
-                    None => (raster.unwrap_or(DrawClass::Dynamic), None),
-                };
+                match found {
+                    Some(found) => {
+                        let base = &mut frame.draws[found.layer.base];
+                        if let Some(mut instance) = base.instance {
+                            // The light the layer reveals on its base, as `route` adds it.
+                            instance.light_units |= found.base_units;
+                            let baked_layer = found.layer.role == LayerRole::BakedLight;
+                            if baked_layer || found.base_units != 0 {
+                                instance.lighting = lighting::surface_lighting(base, base.class, instance.light_units, baked_layer, || false);
+                            }
+                            base.instance = Some(instance);
+                        }
+                        (frame.draws[i].class, frame.draws[i].layer) = (DrawClass::Layer, Some(found.layer));
+                    }
+                    None => {
+                        let class = raster.unwrap_or(DrawClass::Dynamic);
+                        let instance = class.is_traced().then(|| self.partial_instance(&frame.draws[i], tags, &hashes));
+                        let draw = &mut frame.draws[i];
+                        (draw.class, draw.layer, draw.instance) = (class, None, instance);
+                    }
+                }
             }
             if frame.draws[i].class.is_traced() {
                 before.traced(&frame.draws[i]);
                 self.layers.add_base(i);
             }
+        }
+    }
+
+    /// The instance of a draw that a read-back before the frame's end routes `Dynamic`: a new
+    /// id, its geometry key, `glrt.toml` material, light units, and its lighting as
+    /// [`lighting::surface_lighting`] decides for a dynamic draw (the light its later layers
+    /// reveal is added as they are found).
+    fn partial_instance(&mut self, draw: &Draw, tags: Tags, hashes: &UnitHashes) -> Instance {
+        let light_units = lighting::light_units(draw, |u| hashes[u].is_some_and(|h| self.config.is_lightmap(h)));
+        Instance {
+            id: self.matcher.new_id(),
+            geometry_key: keys::geometry_key(draw),
+            material: self.config.material(hashes[0], tags),
+            lighting: lighting::surface_lighting(draw, DrawClass::Dynamic, light_units, false, || false),
+            light_units,
+            ..Instance::default()
         }
     }
 }
@@ -608,6 +641,11 @@ mod tests {
         c.route_partial(&mut partial);
         assert_eq!(partial.draws.iter().filter_map(layer).map(|l| (l.0, l.1)).collect::<Vec<_>>(), [(0, Albedo), (0, Emission), (0, Decal), (4, BakedLight), (6, Albedo)]);
         assert_eq!([0, 4, 8].map(|i| partial.draws[i].class), [DrawClass::Dynamic, DrawClass::Dynamic, DrawClass::Translucent]);
+        // And lit as its end will light it: the lightmap unit, the lightmap pass and the
+        // lightmap base pass under a texture pass make baked surfaces.
+        let bases = [0, 4, 6, 10, 11].map(|i| lit(&partial.draws[i]));
+        use SurfaceLighting::{Baked, Traced};
+        assert_eq!(bases, [(Baked, 0b10), (Baked, 0), (Baked, 0b01), (Traced, 0), (Traced, 0b10)], "read back");
     }
 
     #[test]

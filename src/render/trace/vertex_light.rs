@@ -1,0 +1,246 @@
+//! The direct light a vertex-lit model's colours hold (issue 16). Quake-3-class engines light
+//! a model on the CPU, per vertex, as `ambient + max(0, n · l) · directed` (a light grid
+//! sampled at the model's origin, `RB_CalcDiffuseColor`), and hash tracking marks such a draw
+//! [`SurfaceLighting::VertexLit`]: it is traced with its texture as albedo, lit by traced
+//! light. Its ambient part is what traced light brings anyway (light bounced off the baked
+//! world, which emits its raster colour, and the sky); its directed part is the game's direct
+//! light (the sun, lamps), which no traced source holds: those lights are baked into the
+//! lightmaps, not drawn. Left out, a model is darker than the game shows it.
+//!
+//! [`recover`] fits that lighting model to the draw's vertex colours and normals (the draw's
+//! own, else the smoothed normals of its triangles), and makes its directed part a directional
+//! light of that instance alone ([`GpuLight`] `params.w`), sampled by next-event estimation
+//! like a GL light, with shadow rays as long as the model is wide (its own parts shadow it;
+//! the level's occlusion is already in the game's grid). Draws whose colours do not follow
+//! their normals (painted colours, a constant colour, lighting the fit cannot explain) get no
+//! light.
+
+use glam::{DMat3, DMat4, DVec3, DVec4, Mat3, Mat4, Vec3};
+
+use super::gpu_types::GpuLight;
+use super::scene::srgb_to_linear;
+use crate::frame::{Draw, Topology};
+
+/// The fit must explain at least this fraction of the variance of the vertices' brightness.
+const MIN_EXPLAINED: f64 = 0.8;
+
+/// Vertices a fit needs at least.
+const MIN_VERTICES: usize = 8;
+
+/// Refinements of the light's direction after the first, linear fit.
+const REFINEMENTS: usize = 3;
+
+/// The lighting `ambient + max(0, n · towards) · directed` (colours display-encoded, 0..1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VertexLighting {
+    /// Unit direction towards the light, eye space.
+    pub towards: Vec3,
+    /// Ambient colour.
+    pub ambient: Vec3,
+    /// Directed colour.
+    pub directed: Vec3,
+}
+
+/// The per-vertex unit normals of `draw` in eye space (`object_to_eye`): its own normals when
+/// it has one per vertex, else the area-weighted normals of the triangles around each vertex,
+/// turned away from its centre.
+fn eye_normals(draw: &Draw, object_to_eye: &Mat4) -> Option<Vec<DVec3>> {
+    let n = draw.vertices.len();
+    let object: Vec<Vec3> = if draw.vertices.normal.values.len() == n && n > 1 {
+        draw.vertices.normal.values.iter().map(|&v| Vec3::from(v)).collect()
+    } else if draw.topology == Topology::Triangles {
+        let position = |i: u32| Vec3::from_slice(&draw.vertices.position[i as usize][..3]);
+        let mut sum = vec![Vec3::ZERO; n];
+        for t in draw.indices.chunks_exact(3) {
+            if t.iter().any(|&i| i as usize >= n) {
+                return None;
+            }
+            let face = (position(t[1]) - position(t[0])).cross(position(t[2]) - position(t[0]));
+            t.iter().for_each(|&i| sum[i as usize] += face);
+        }
+        // Windings differ between programs (Quake 3's front faces are clockwise): the normals
+        // point away from the model's centre.
+        let centre = (0..n as u32).map(position).sum::<Vec3>() / n.max(1) as f32;
+        let outwards: f32 = sum.iter().enumerate().map(|(i, s)| s.dot(position(i as u32) - centre)).sum();
+        if outwards < 0.0 {
+            sum.iter_mut().for_each(|s| *s = -*s);
+        }
+        sum
+    } else {
+        return None;
+    };
+    let to_eye = Mat3::from_mat4(*object_to_eye).inverse().transpose();
+    Some(object.iter().map(|&v| (to_eye * v).as_dvec3().normalize_or_zero()).collect())
+}
+
+/// Least-squares `a + g · n` of `y` over `(n, y)`: `(a, g)`; with `ambient` given, only `g`.
+fn linear_fit(samples: impl Iterator<Item = (DVec3, f64)> + Clone, ambient: Option<f64>) -> Option<(f64, DVec3)> {
+    match ambient {
+        None => {
+            let (mut m, mut b) = (DMat4::ZERO, DVec4::ZERO);
+            for (n, y) in samples {
+                let x = DVec4::new(1.0, n.x, n.y, n.z);
+                m += DMat4::from_cols(x * x.x, x * x.y, x * x.z, x * x.w);
+                b += x * y;
+            }
+            (m.determinant().abs() > 1e-9).then(|| m.inverse() * b).map(|s| (s.x, DVec3::new(s.y, s.z, s.w)))
+        }
+        Some(a) => {
+            let (mut m, mut b) = (DMat3::ZERO, DVec3::ZERO);
+            for (n, y) in samples {
+                m += DMat3::from_cols(n * n.x, n * n.y, n * n.z);
+                b += n * (y - a);
+            }
+            (m.determinant().abs() > 1e-9).then(|| (a, m.inverse() * b))
+        }
+    }
+}
+
+/// Fits `ambient + max(0, n · l) · directed` to `colours` (display-encoded RGB) at unit
+/// `normals`: a linear fit of the brightness gives a first direction, then, a few times, the
+/// colours are regressed on `max(0, n · l)` (ambient and directed per channel) and the
+/// direction refitted on the lit vertices. `None` when the fit explains less than
+/// [`MIN_EXPLAINED`] of the brightness's variance or finds no directed light.
+pub fn fit(normals: &[DVec3], colours: &[DVec3]) -> Option<VertexLighting> {
+    let brightness = |c: &DVec3| c.x + c.y + c.z;
+    let samples = normals.iter().zip(colours).filter(|(n, _)| n.length_squared() > 0.5).map(|(&n, c)| (n, c));
+    let count = samples.clone().count() as f64;
+    if count < MIN_VERTICES as f64 {
+        return None;
+    }
+    let mean = samples.clone().map(|(_, c)| brightness(c)).sum::<f64>() / count;
+    let total: f64 = samples.clone().map(|(_, c)| (brightness(c) - mean).powi(2)).sum();
+    if total <= 1e-6 * count {
+        return None;
+    }
+    let (_, g) = linear_fit(samples.clone().map(|(n, c)| (n, brightness(c))), None)?;
+    let mut towards = g.try_normalize()?;
+    let mut lighting = None;
+    for _ in 0..=REFINEMENTS {
+        let x = |n: DVec3| n.dot(towards).max(0.0);
+        let mean_x = samples.clone().map(|(n, _)| x(n)).sum::<f64>() / count;
+        let mean_c = samples.clone().map(|(_, &c)| c).sum::<DVec3>() / count;
+        let var_x: f64 = samples.clone().map(|(n, _)| (x(n) - mean_x).powi(2)).sum();
+        if var_x <= 1e-9 {
+            return None;
+        }
+        let cov: DVec3 = samples.clone().map(|(n, &c)| (c - mean_c) * (x(n) - mean_x)).sum();
+        let directed = cov / var_x;
+        let ambient = mean_c - directed * mean_x;
+        lighting = Some((ambient, directed));
+        // The direction again, from the vertices the light reaches.
+        let lit = samples.clone().filter(|(n, _)| x(*n) > 0.05).map(|(n, c)| (n, brightness(c)));
+        match linear_fit(lit, Some(brightness(&ambient))).and_then(|(_, g)| g.try_normalize()) {
+            Some(t) => towards = t,
+            None => break,
+        }
+    }
+    let (ambient, directed) = lighting?;
+    let predicted = |n: DVec3| brightness(&(ambient + directed * n.dot(towards).max(0.0)));
+    let residual: f64 = samples.clone().map(|(n, c)| (brightness(c) - predicted(n)).powi(2)).sum();
+    let directed = directed.max(DVec3::ZERO);
+    (1.0 - residual / total >= MIN_EXPLAINED && brightness(&directed) > 1e-3).then(|| VertexLighting {
+        towards: towards.as_vec3(),
+        ambient: ambient.clamp(DVec3::ZERO, DVec3::ONE).as_vec3(),
+        directed: directed.min(DVec3::ONE).as_vec3(),
+    })
+}
+
+/// The directional light of instance `instance` (its index in the frame's instances) that
+/// `draw`'s vertex colours hold, seen through `object_to_eye` (see the module doc): its
+/// irradiance makes a white Lambertian surface facing it as much brighter, in linear light, as
+/// the game's directed colour makes it (`π (linear(ambient + directed) − linear(ambient))`).
+pub fn recover(draw: &Draw, object_to_eye: &Mat4, instance: u32) -> Option<GpuLight> {
+    let colours = &draw.vertices.color.values;
+    if colours.len() != draw.vertices.len() {
+        return None;
+    }
+    let normals = eye_normals(draw, object_to_eye)?;
+    let colours: Vec<DVec3> = colours.iter().map(|c| DVec3::new(f64::from(c[0]), f64::from(c[1]), f64::from(c[2]))).collect();
+    let lighting = fit(&normals, &colours)?;
+    let linear = |v: Vec3| Vec3::new(srgb_to_linear(v.x), srgb_to_linear(v.y), srgb_to_linear(v.z));
+    let full = (lighting.ambient + lighting.directed).min(Vec3::ONE);
+    let irradiance = (linear(full) - linear(lighting.ambient)).max(Vec3::ZERO) * std::f32::consts::PI;
+    // Shadow rays as long as the model is wide, in eye space.
+    let points: Vec<Vec3> = draw.vertices.position.iter().map(|p| object_to_eye.project_point3(Vec3::from_slice(&p[..3]))).collect();
+    let centre = points.iter().copied().sum::<Vec3>() / points.len().max(1) as f32;
+    let width = 2.0 * points.iter().map(|p| p.distance(centre)).fold(0.0, f32::max);
+    Some(GpuLight {
+        position: [lighting.towards.x, lighting.towards.y, lighting.towards.z, 0.0],
+        radiance: [irradiance.x, irradiance.y, irradiance.z, 0.0],
+        spot: [0.0, 0.0, 0.0, -2.0],
+        params: [0.0, 1.0, width, (instance + 1) as f32],
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Unit normals spread over the sphere (a Fibonacci lattice).
+    fn sphere(n: usize) -> Vec<DVec3> {
+        (0..n)
+            .map(|i| {
+                let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+                let phi = i as f64 * 2.399963;
+                let r = (1.0 - z * z).sqrt();
+                DVec3::new(r * phi.cos(), r * phi.sin(), z)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_game_s_lighting_is_recovered_from_colours_and_normals() {
+        let normals = sphere(200);
+        let towards = DVec3::new(0.3, 0.8, -0.5).normalize();
+        let (ambient, directed) = (DVec3::new(0.2, 0.18, 0.15), DVec3::new(0.5, 0.45, 0.3));
+        let colours: Vec<DVec3> = normals.iter().map(|n| ambient + directed * n.dot(towards).max(0.0)).collect();
+        let l = fit(&normals, &colours).expect("a light");
+        assert!(l.towards.as_dvec3().dot(towards) > 0.999, "{l:?}");
+        assert!((l.ambient.as_dvec3() - ambient).abs().max_element() < 0.01, "{l:?}");
+        assert!((l.directed.as_dvec3() - directed).abs().max_element() < 0.01, "{l:?}");
+    }
+
+    #[test]
+    fn colours_that_do_not_follow_the_normals_hold_no_light() {
+        let normals = sphere(200);
+        let constant = vec![DVec3::splat(0.6); 200];
+        assert_eq!(fit(&normals, &constant), None, "one colour");
+        // Painted: a colour per vertex from a hash, unrelated to the normal.
+        let painted: Vec<DVec3> = (0..200u64).map(|i| DVec3::splat(((i * 2654435761) % 1000) as f64 / 1000.0)).collect();
+        assert_eq!(fit(&normals, &painted), None, "painted colours");
+    }
+
+    #[test]
+    fn a_lit_octahedron_gives_a_light_of_its_instance_with_the_linear_difference_as_irradiance() {
+        // An octahedron, its vertices' normals smoothed from its faces: the six axes.
+        let mut draw = Draw::default();
+        let corners = [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [0.0, 0.0, -1.0]];
+        // Four copies of each corner, slightly apart, so that there are enough vertices.
+        for k in 0..4 {
+            for c in corners {
+                draw.vertices.position.push([c[0] * (1.0 + 0.01 * k as f32), c[1], c[2], 1.0]);
+            }
+        }
+        for k in 0..4u32 {
+            let o = 6 * k;
+            for (a, b, c) in [(0, 2, 4), (2, 1, 4), (1, 3, 4), (3, 0, 4), (2, 0, 5), (1, 2, 5), (3, 1, 5), (0, 3, 5)] {
+                draw.indices.extend([o + a, o + b, o + c]);
+            }
+        }
+        draw.vertex_count = draw.vertices.len();
+        // Lit from +x: the +x corners get ambient + directed, the others ambient.
+        let colour = |p: [f32; 4]| if p[0] > 0.5 { [0.25 + 0.5, 0.25 + 0.5, 0.25 + 0.5, 1.0] } else { [0.25, 0.25, 0.25, 1.0] };
+        draw.vertices.color.values = draw.vertices.position.iter().map(|&p| colour(p)).collect();
+        let light = recover(&draw, &Mat4::from_translation(Vec3::new(0.0, 0.0, -5.0)), 7).expect("a light");
+        assert!(light.position[0] > 0.95 && light.position[3] == 0.0, "{light:?}");
+        // Wound the other way, the same light.
+        let mut clockwise = draw.clone();
+        clockwise.indices.chunks_exact_mut(3).for_each(|t| t.swap(0, 1));
+        assert_eq!(recover(&clockwise, &Mat4::from_translation(Vec3::new(0.0, 0.0, -5.0)), 7), Some(light));
+        assert_eq!(light.params[3], 8.0, "instance 7 alone");
+        assert!((light.params[2] - 2.0).abs() < 0.1, "shadow rays as long as the model is wide: {light:?}");
+        let expected = std::f32::consts::PI * (srgb_to_linear(0.75) - srgb_to_linear(0.25));
+        assert!((light.radiance[0] - expected).abs() < 0.02 * expected, "{light:?}, expected {expected}");
+    }
+}
