@@ -22,9 +22,12 @@
 //! A frame read back before its end (`glReadPixels`, pixel copies) is recorded in parts: each
 //! call of `Renderer::record` goes on where the last one stopped ([`Raster::recorded_draws`]),
 //! so the traced stages run once per frame, when the recording first passes the traced place.
+//! A long frame that `translate` submits in parts ([`FrameEnd::Part`]) arrives as several
+//! frames, each drawn over what the one before left in the framebuffers (the traced stages
+//! run in each part that has traced draws).
 
 use crate::frame::pixels::PixelBuffer;
-use crate::frame::{Draw, Frame};
+use crate::frame::{Draw, Frame, FrameEnd};
 use crate::frame::FrameSink;
 use crate::render::raster::device::{Device, Error, Result};
 use crate::render::raster::dump::Dump;
@@ -182,11 +185,19 @@ impl FrameSink for Renderer {
         self.raster.set_target(target);
     }
 
+    /// After a part of a frame ([`FrameEnd::Part`]), once the part is dropped, frees the
+    /// texture versions that no frame references any more.
     fn present(&mut self, frame: Frame) {
         if self.failed {
             return;
         }
-        if let Err(e) = self.finish(&frame) {
+        let part = frame.end == FrameEnd::Part;
+        let mut result = self.finish(&frame);
+        drop(frame);
+        if part && result.is_ok() {
+            result = self.raster.release_unreferenced_textures();
+        }
+        if let Err(e) = result {
             self.fail(e);
         }
     }
