@@ -6,6 +6,11 @@
 //! submission gives; texture versions that only the dropped draws referenced are freed with
 //! them (here, and in the renderer once the part is drawn).
 //!
+//! A frame read back (`glReadPixels` and the like) is drawn up to that point anyway, so past
+//! an eighth of the budget it becomes a part right after the read-back ([`READ_BACK_SHARE`]):
+//! a program that draws and reads back for a long time without swapping (piglit's
+//! `gl-1.0-blend-func`: 27,500 blend states, each drawn and read back) holds little.
+//!
 //! The budget is `frame_budget_mb` of the `[memory]` table of `glrt.toml`, or
 //! `GLRT_FRAME_BUDGET_MB` ([`MemorySettings`], 256 MB by default). A frame is not split while
 //! an occlusion query is active: its count would span two parts.
@@ -19,6 +24,9 @@ use crate::config::{Config, Key, Table, integer_in};
 use crate::frame::pixels::{PixelData, PixelKind, PixelOp};
 use crate::frame::texture::{TexImage, TextureRef};
 use crate::frame::{Clear, Draw, Frame, FrameEnd, RasterState, Vertices};
+
+/// After a read-back, a frame holding more than the budget divided by this becomes a part.
+pub const READ_BACK_SHARE: u64 = 8;
 
 /// The `[memory]` settings.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -124,6 +132,12 @@ impl FrameMemory {
         self.bytes > self.budget
     }
 
+    /// Whether a frame just read back holds more than its share of the budget
+    /// ([`READ_BACK_SHARE`]).
+    pub fn over_after_read_back(&self) -> bool {
+        self.bytes > self.budget / READ_BACK_SHARE
+    }
+
     /// Forgets what was counted: the frame was handed to the renderer.
     pub fn reset(&mut self) {
         *self = FrameMemory::new(self.budget);
@@ -186,6 +200,15 @@ impl Context {
     pub(crate) fn keep_frame_in_budget(&mut self) {
         self.frame_memory.count(&self.frame);
         if self.frame_memory.over() && !self.queries.is_active() {
+            self.end_frame_as(FrameEnd::Part);
+        }
+    }
+
+    /// Called after the frame so far was read back: past [`READ_BACK_SHARE`] of the budget,
+    /// submits it as a part (it is drawn already).
+    pub(crate) fn part_after_read_back(&mut self) {
+        self.frame_memory.count(&self.frame);
+        if self.frame_memory.over_after_read_back() && !self.queries.is_active() {
             self.end_frame_as(FrameEnd::Part);
         }
     }
@@ -263,6 +286,28 @@ mod tests {
         let frames = sink.frames.lock();
         assert_eq!(frames.len(), 1, "the next draw after the query submits a part");
         assert_eq!(frames[0].occlusion_queries, vec![(1, 0..1)]);
+    }
+
+    #[test]
+    fn a_frame_read_back_past_an_eighth_of_the_budget_becomes_a_part() {
+        let (mut ctx, sink) = Context::with_recording();
+        ctx.set_frame_budget(8 * 4096);
+        let mut pixel = [0u8; 4];
+        let read = |ctx: &mut Context, pixel: &mut [u8; 4]| unsafe {
+            dispatch::glReadPixels(ctx, 0, 0, 1, 1, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, pixel.as_mut_ptr().cast());
+        };
+        quad(&mut ctx, 0.0);
+        read(&mut ctx, &mut pixel);
+        assert!(sink.frames.lock().is_empty(), "a small frame stays whole: {} bytes", ctx.frame_bytes());
+        for i in 1..200 {
+            quad(&mut ctx, i as f32);
+        }
+        assert!(ctx.frame_bytes() > 4096 && ctx.frame_bytes() < 8 * 4096);
+        read(&mut ctx, &mut pixel);
+        let frames = sink.frames.lock();
+        assert_eq!(frames.iter().map(|f| f.end).collect::<Vec<_>>(), [FrameEnd::Part]);
+        assert_eq!(frames[0].draws[0].vertex_count, 800);
+        assert_eq!(ctx.frame_bytes(), 0);
     }
 
     #[test]

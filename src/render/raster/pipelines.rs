@@ -48,7 +48,7 @@ use crate::frame::program::{GENERIC_ATTRIBUTE_LOCATION, ShaderProgram};
 use crate::frame::state::{Face, RasterState, Stencil, StencilFaces, Winding};
 
 /// Pipelines the cache keeps before it evicts idle ones.
-pub const CACHED_PIPELINES: usize = 32;
+pub const CACHED_PIPELINES: usize = 16;
 
 /// Submissions without use after which a pipeline is idle: more than the submissions in flight
 /// ([`super::renderer::FRAMES_IN_FLIGHT`]), so the GPU is done with an idle pipeline.
