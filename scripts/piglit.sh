@@ -1,14 +1,18 @@
 #!/usr/bin/env bash
 # Runs piglit's OpenGL 1.x tests (`spec@!opengl 1.0` ... `1.5` of the `opengl` profile, about
-# 370 tests) through glrt's libGL.so.1 under Xvfb, and prints pass/fail/skip/crash counts
-# (of subtests, as `piglit summary console -s` does, and of whole tests). Tests whose X
-# connection Xvfb refused are run once more and their second result counts.
+# 370 tests) through glrt's libGL.so.1 under Xvfb, prints pass/fail/skip/crash counts
+# (of subtests, as `piglit summary console -s` does, and of whole tests), and compares each
+# test's result with tests/piglit/expected.txt (scripts/piglit_compare.py: a diff of the tests
+# whose result changed; exit status 1 when one did). Tests whose X connection Xvfb refused are
+# run once more and their second result counts.
 #   bash scripts/piglit.sh            run the tests
+#   bash scripts/piglit.sh --fast     run only the fast subset, tests/piglit/fast.txt (a few
+#                                     minutes on 2 cores with lavapipe; scripts/test.sh runs it)
 #   bash scripts/piglit.sh --list     only list the selected tests (dry run)
 # Environment: PIGLIT_FILTER (regex, default 'spec@!opengl 1\.'), PIGLIT_TIMEOUT (seconds per
 # test, default 60), PIGLIT_TOTAL_TIMEOUT (seconds for the run, default 7200),
 # PIGLIT_BUILD=debug|release (default debug), PIGLIT_LIBGL (a libGL.so.1 to test instead of
-# glrt's, e.g. Mesa's, to compare).
+# glrt's, e.g. Mesa's, to compare; nothing is compared then).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -33,8 +37,18 @@ else
 fi
 
 filter=${PIGLIT_FILTER:-'spec@!opengl 1\.'}
-results="$PWD/target/piglit/$name"
 options=(-o -p glx --timeout "${PIGLIT_TIMEOUT:-60}")
+expected="$PWD/tests/piglit/expected.txt"
+compare=()
+selected="'$filter'"
+if [[ ${1:-} == --fast ]]; then
+    name="$name-fast"
+    filter=.
+    selected=tests/piglit/fast.txt
+    options+=(--test-list "$PWD/tests/piglit/fast.txt")
+    compare=(--ran-only)
+fi
+results="$PWD/target/piglit/$name"
 
 if [[ ${1:-} == --list ]]; then
     piglit run opengl "$PWD/target/piglit/list" "${options[@]}" -t "$filter" -d -l verbose \
@@ -43,7 +57,7 @@ if [[ ${1:-} == --list ]]; then
     exit 0
 fi
 
-echo "piglit.sh: running '$filter' against $libdir/libGL.so.1; results in $results"
+echo "piglit.sh: running $selected against $libdir/libGL.so.1; results in $results"
 # Runs piglit on the tests matching $2 into directory $1.
 run_piglit() {
     LD_LIBRARY_PATH="$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
@@ -68,16 +82,14 @@ if [[ -n $refused ]]; then
     echo "piglit.sh: Xvfb refused some tests' connections; running them again: $refused"
     PIGLIT_TOTAL_TIMEOUT=1800 run_piglit "$results-refused" "$refused" || true
 fi
-# Subtests count separately in the summary; also count whole tests.
-piglit summary console -s "$results"
-python3 - "$results/results.json.bz2" "$results-refused/results.json.bz2" "$refused" <<'PY'
-import bz2, collections, json, os, sys
-tests = json.load(bz2.open(sys.argv[1]))["tests"]
-if sys.argv[3] and os.path.exists(sys.argv[2]):
-    again = json.load(bz2.open(sys.argv[2]))["tests"]
-    for name, t in sorted(again.items()):
-        print(f"re-run after an Xvfb refusal: {name}: {t['result']}")
-    tests.update(again)
-counts = collections.Counter(t["result"] for t in tests.values())
-print("tests:", len(tests), " ".join(f"{k}: {v}" for k, v in sorted(counts.items())))
-PY
+# Subtests count separately in the summary; the comparison counts whole tests.
+piglit summary console -s "$results" | tail -n 12
+runs=("$results/results.json.bz2")
+if [[ -n $refused && -f $results-refused/results.json.bz2 ]]; then
+    runs+=("$results-refused/results.json.bz2")
+fi
+if [[ -n ${PIGLIT_LIBGL:-} ]]; then
+    python3 scripts/piglit_compare.py --counts "${runs[@]}"
+else
+    python3 scripts/piglit_compare.py "$expected" "${runs[@]}" "${compare[@]}"
+fi

@@ -34,7 +34,7 @@ pub use vertex::{Attrib, Vertices};
 /// One frame of the program's rendering.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Frame {
-    /// Frame number, from 0.
+    /// Frame number, from 0 (each part of a frame submitted in parts counts as a frame).
     pub number: u64,
     /// Draws in program order.
     pub draws: Vec<Draw>,
@@ -80,6 +80,10 @@ pub enum FrameEnd {
     /// `glFlush`/`glFinish` after drawing to the front buffer, or a swap of a single-buffered
     /// drawable: the front buffer is shown as it is.
     Flush,
+    /// Not an end: the frame grew past its memory budget (`translate::frame_memory`), so what
+    /// it holds so far is drawn now and dropped, and the frame goes on in the next one, drawn
+    /// over what this one left in the framebuffers. Nothing is shown.
+    Part,
 }
 
 /// One draw: indexed primitives of one topology, one state, one set of matrices. Consecutive

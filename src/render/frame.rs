@@ -30,9 +30,12 @@
 //! A frame read back before its end (`glReadPixels`, pixel copies) is recorded in parts: each
 //! call of `Renderer::record` goes on where the last one stopped ([`Raster::recorded_draws`]),
 //! so the traced stages run once per frame, when the recording first passes the traced place.
+//! A long frame that `translate` submits in parts ([`FrameEnd::Part`]) arrives as several
+//! frames, each drawn over what the one before left in the framebuffers (the traced stages
+//! run in each part that has traced draws).
 
 use crate::frame::pixels::PixelBuffer;
-use crate::frame::{Draw, Frame};
+use crate::frame::{Draw, Frame, FrameEnd};
 use crate::frame::FrameSink;
 use crate::render::raster::device::{Device, Error, Result};
 use crate::render::raster::dump::Dump;
@@ -259,8 +262,15 @@ impl FrameSink for Renderer {
         self.raster.set_target(target);
     }
 
+    /// After a part of a frame ([`FrameEnd::Part`]), once the part is dropped, frees the
+    /// texture versions that no frame references any more.
     fn present(&mut self, frame: Frame) {
-        self.attempt(|r| r.finish(&frame));
+        let part = frame.end == FrameEnd::Part;
+        let finished = self.attempt(|r| r.finish(&frame)).is_some();
+        drop(frame);
+        if part && finished {
+            self.attempt(|r| r.raster.release_unreferenced_textures());
+        }
     }
 
     fn occlusion_counter_bits(&self) -> u32 {

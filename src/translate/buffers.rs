@@ -85,7 +85,9 @@ impl Context {
         self.frame.read_buffer = self.read_color_buffer();
         self.frame.read_framebuffer = framebuffer;
         self.classify.route_partial(&mut self.frame);
-        self.sink.read_pixels(&self.frame, buffer, rect)
+        let pixels = self.sink.read_pixels(&self.frame, buffer, rect);
+        self.part_after_read_back();
+        pixels
     }
 
     /// How a `glXSwapBuffers` ends the frame: a swap for double-buffered drawables, nothing

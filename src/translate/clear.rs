@@ -114,6 +114,7 @@ impl Context {
             self.enter_framebuffer(&clear.framebuffer);
             let clear = Clear { before_draw: self.frame.draws.len(), ..clear };
             self.frame.clears.push(clear);
+            self.keep_frame_in_budget();
         }
     }
 

@@ -7,7 +7,7 @@ use parking_lot::Mutex;
 
 use super::error::ErrorState;
 use super::lists::{ListState, ListTable};
-use crate::frame::Frame;
+use crate::frame::{Frame, FrameEnd};
 use crate::frame::{FrameSink, RecordingSink};
 
 /// Objects shared by the contexts of one share group (`glXCreateContext`'s `shareList`):
@@ -78,6 +78,8 @@ pub struct Context {
     pub(crate) programs: super::programs::ProgramState,
     /// The frame being assembled since the last swap.
     pub(crate) frame: Frame,
+    /// What the frame holds against its budget.
+    pub(crate) frame_memory: super::frame_memory::FrameMemory,
     pub(crate) sink: Box<dyn FrameSink>,
     /// Whether the drawables are single-buffered (see [`Context::set_double_buffered`]).
     pub(crate) single_buffered: bool,
@@ -114,6 +116,7 @@ impl Context {
             client_attrib: Default::default(),
             programs: Default::default(),
             frame: Frame::default(),
+            frame_memory: super::frame_memory::FrameMemory::new(super::frame_memory::configured_budget()),
             sink: config.sink,
             single_buffered: false,
             drawable_size: None,
@@ -159,7 +162,7 @@ impl Context {
         let front = self.draw_buffers().front;
         let drew = !self.frame.draws.is_empty() || !self.frame.clears.is_empty();
         if (self.single_buffered || front) && drew {
-            self.end_frame_as(crate::frame::FrameEnd::Flush);
+            self.end_frame_as(FrameEnd::Flush);
         }
     }
 
@@ -169,15 +172,22 @@ impl Context {
         self.end_frame_as(self.swap_end());
     }
 
-    /// Ends the frame as `end` says.
-    pub(crate) fn end_frame_as(&mut self, end: crate::frame::FrameEnd) {
+    /// Ends the frame as `end` says. A part ([`FrameEnd::Part`], see
+    /// [`super::frame_memory`]) is routed as a read-back routes the frame so far; hash
+    /// tracking sees the whole frame's last part at its end.
+    pub(crate) fn end_frame_as(&mut self, end: FrameEnd) {
         let number = self.frame.number + 1;
         let draws = Vec::with_capacity(self.frame.draws.len());
         let size = self.frame.size;
         let next = Frame { number, draws, size, ..Frame::default() };
         let mut frame = Frame { end, ..std::mem::replace(&mut self.frame, next) };
-        let versions = super::classify::keys::list_versions(&frame, &self.shared.lock().lists);
-        self.classify.classify(&mut frame, |list| versions.iter().find(|v| v.0 == list).and_then(|v| v.1));
+        self.frame_memory.reset();
+        if end == FrameEnd::Part {
+            self.classify.route_partial(&mut frame);
+        } else {
+            let versions = super::classify::keys::list_versions(&frame, &self.shared.lock().lists);
+            self.classify.classify(&mut frame, |list| versions.iter().find(|v| v.0 == list).and_then(|v| v.1));
+        }
         self.sink.present(frame);
     }
 }

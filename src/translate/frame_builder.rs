@@ -90,6 +90,7 @@ impl Context {
         let key = self.batch_key(primitive.topology(), source);
         self.enter_framebuffer(&key.state.framebuffer);
         push_batch(&mut self.frame, key, &batch.vertices, assembled);
+        self.keep_frame_in_budget();
     }
 
     /// The source of immediate-mode geometry: the display list being executed, if any.

@@ -41,6 +41,7 @@ pub mod fixed_vertex;
 pub mod fog;
 pub mod fragment;
 pub mod frame_builder;
+pub mod frame_memory;
 pub mod framebuffers;
 pub mod glsl;
 pub mod get;

@@ -50,6 +50,13 @@ pub struct QueryState {
     warned_no_counter: bool,
 }
 
+impl QueryState {
+    /// Whether a query is active (between `glBeginQuery` and `glEndQuery`).
+    pub fn is_active(&self) -> bool {
+        self.active.is_some()
+    }
+}
+
 impl Context {
     /// `glGenQueries`: `GL_INVALID_VALUE` for a negative count.
     ///

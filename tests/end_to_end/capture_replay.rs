@@ -318,7 +318,7 @@ fn dump_prints_captured_addresses_and_the_same_text_every_time() {
         let mut read_at = std::collections::BTreeSet::new();
         for record in capture.records() {
             if let Ok((_, Record::Call { reads, .. })) = record {
-                read_at.extend(reads.iter().map(|(address, _)| *address));
+                read_at.extend(reads.iter().map(|(address, _)| address));
             }
         }
         // `params=0x7ffd5c0e1a3c(16 bytes, ...`: the address of bytes the call read.

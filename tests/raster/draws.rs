@@ -330,6 +330,42 @@ fn pipelines_and_textures_are_created_once_and_unused_textures_dropped() {
 }
 
 #[test]
+fn idle_pipelines_past_the_cache_size_are_evicted() {
+    use glrt::frame::FrameSink;
+    use glrt::render::raster::pipelines::{CACHED_PIPELINES, IDLE_SUBMISSIONS};
+    // Frames with a blend function of their own (as piglit's `gl-1.0-blend-func` draws them)
+    // and a triangle drawn alike in every frame.
+    let (mut ctx, sink) = Context::with_recording();
+    ctx.bind_drawable(SIZE, SIZE);
+    let src = [gl::GL_ZERO, gl::GL_ONE, gl::GL_DST_COLOR, gl::GL_ONE_MINUS_DST_COLOR, gl::GL_SRC_ALPHA, gl::GL_ONE_MINUS_SRC_ALPHA, gl::GL_DST_ALPHA, gl::GL_ONE_MINUS_DST_ALPHA];
+    let dst = [gl::GL_ZERO, gl::GL_ONE, gl::GL_SRC_COLOR, gl::GL_ONE_MINUS_SRC_COLOR, gl::GL_SRC_ALPHA, gl::GL_ONE_MINUS_SRC_ALPHA, gl::GL_DST_ALPHA, gl::GL_ONE_MINUS_DST_ALPHA];
+    for (s, d) in src.iter().flat_map(|&s| dst.iter().map(move |&d| (s, d))) {
+        unsafe {
+            dispatch::glDisable(&mut ctx, gl::GL_BLEND);
+            lower_left_triangle(&mut ctx, true, [1.0, 0.0, 0.0]);
+            dispatch::glEnable(&mut ctx, gl::GL_BLEND);
+            dispatch::glBlendFunc(&mut ctx, s, d);
+            lower_left_triangle(&mut ctx, false, [0.0, 1.0, 0.0]);
+        }
+        ctx.end_frame();
+    }
+    let frames = std::mem::take(&mut *sink.frames.lock());
+    assert_eq!(frames.len(), 64);
+    let mut renderer = lavapipe::renderer_with(Renderer::without_outputs);
+    let mut counts = Vec::new();
+    for frame in frames {
+        renderer.present(frame);
+        counts.push(renderer.raster().pipeline_count());
+    }
+    // All kept up to CACHED_PIPELINES; past it, only those used in the last IDLE_SUBMISSIONS
+    // submissions (one per frame here), the triangle's among them.
+    assert_eq!(counts[CACHED_PIPELINES - 2], CACHED_PIPELINES);
+    assert!(counts.iter().all(|&n| n <= CACHED_PIPELINES), "{counts:?}");
+    assert_eq!(counts[CACHED_PIPELINES - 1], IDLE_SUBMISSIONS as usize, "{counts:?}");
+    assert!(counts[63] < CACHED_PIPELINES, "{counts:?}");
+}
+
+#[test]
 fn occlusion_queries_count_samples_that_pass() {
     let mut ctx = context();
     let mut bits = 0;

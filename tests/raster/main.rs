@@ -3,7 +3,8 @@
 //! draws and read-back ([`draws`]), the fixed-function shaders ([`fixed_function`]), the pixel
 //! path ([`pixels`]), colour buffers ([`buffers`]), framebuffer objects ([`fbo`]),
 //! multisampling ([`msaa`]), RGB drawables ([`rgb`]), OpenGL 2.0 fixed-function features
-//! ([`gl20`]) and programs ([`program`]), and texture formats ([`texture_formats`]). Each test
+//! ([`gl20`]) and programs ([`program`]), texture formats ([`texture_formats`]) and frames
+//! submitted in parts ([`parts`]). Each test
 //! owns its renderer and context.
 
 #[path = "../lavapipe/mod.rs"]
@@ -15,6 +16,7 @@ mod fbo;
 mod fixed_function;
 mod gl20;
 mod msaa;
+mod parts;
 mod pixels;
 mod program;
 mod rgb;

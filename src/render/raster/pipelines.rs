@@ -25,6 +25,12 @@
 //!   vertex binding 1, the generic attributes it reads ([`ff::vertex::pack_generic`]) at the
 //!   locations of the `translate::glsl` contract; its pipelines draw points and lines with
 //!   Vulkan's topologies and polygon modes (`fillModeNonSolid`, see [`ff::native`]).
+//!
+//! The cache is bounded: past [`CACHED_PIPELINES`] pipelines, those no draw used in the last
+//! [`IDLE_SUBMISSIONS`] submissions are destroyed at the next submission (a pipeline costs
+//! megabytes on lavapipe, and a program that changes its blend state for every draw, such as
+//! piglit's `gl-1.0-blend-func`, would otherwise keep one per state it ever used). Pipelines
+//! in use every frame are never evicted, whatever their number.
 
 use std::collections::{HashMap, HashSet};
 
@@ -40,6 +46,13 @@ use super::programs::{self, Programs};
 use super::target::COLOR_FORMAT;
 use crate::frame::program::{GENERIC_ATTRIBUTE_LOCATION, ShaderProgram};
 use crate::frame::state::{Face, RasterState, Stencil, StencilFaces, Winding};
+
+/// Pipelines the cache keeps before it evicts idle ones.
+pub const CACHED_PIPELINES: usize = 16;
+
+/// Submissions without use after which a pipeline is idle: more than the submissions in flight
+/// ([`super::renderer::FRAMES_IN_FLIGHT`]), so the GPU is done with an idle pipeline.
+pub const IDLE_SUBMISSIONS: u64 = 8;
 
 // Set 0 (see the `ff` module doc): the uniform block, then the 2D, 3D and cube samplers of
 // each unit, [`BINDING_COUNT`] in all; the descriptor code relies on that order.
@@ -184,7 +197,10 @@ pub struct Pipelines {
     fragment: vk::ShaderModule,
     programs: Programs,
     depth_format: vk::Format,
-    cache: HashMap<PipelineKey, vk::Pipeline>,
+    /// Each pipeline with the submission that last used it.
+    cache: HashMap<PipelineKey, (vk::Pipeline, u64)>,
+    /// Submissions so far ([`Pipelines::end_submission`]).
+    submissions: u64,
     /// Keys whose pipeline the driver could not create: their draws are skipped.
     failed: HashSet<PipelineKey>,
 }
@@ -227,6 +243,7 @@ impl Pipelines {
                 programs: Programs::default(),
                 depth_format: device.depth_format,
                 cache: HashMap::new(),
+                submissions: 0,
                 failed: HashSet::new(),
             })
         }
@@ -245,7 +262,7 @@ impl Pipelines {
         if dead.is_empty() {
             return;
         }
-        self.cache.retain(|key, &mut p| {
+        self.cache.retain(|key, &mut (p, _)| {
             let keep = key.program.is_none_or(|id| !dead.contains(&id));
             if !keep {
                 // Safety: the GPU is done with it (unused for more frames than are in flight).
@@ -265,15 +282,16 @@ impl Pipelines {
     /// fails to compile, no memory for it): the draws of that key are skipped, which is said
     /// once, and the key is not tried again. A lost device is an error.
     pub fn get(&mut self, device: &Device, key: &PipelineKey) -> Result<Option<vk::Pipeline>> {
-        if let Some(&p) = self.cache.get(key) {
-            return Ok(Some(p));
+        if let Some((p, used)) = self.cache.get_mut(key) {
+            *used = self.submissions;
+            return Ok(Some(*p));
         }
         if self.failed.contains(key) {
             return Ok(None);
         }
         match self.create(device, key) {
             Ok(pipeline) => {
-                self.cache.insert(*key, pipeline);
+                self.cache.insert(*key, (pipeline, self.submissions));
                 log::debug!("raster pipeline {} created: {key:?}", self.cache.len());
                 Ok(Some(pipeline))
             }
@@ -287,6 +305,25 @@ impl Pipelines {
                 Ok(None)
             }
         }
+    }
+
+    /// Counts a submission of the commands recorded so far; past [`CACHED_PIPELINES`]
+    /// pipelines, destroys those idle for [`IDLE_SUBMISSIONS`] submissions (see the module
+    /// doc).
+    pub fn end_submission(&mut self, device: &Device) {
+        self.submissions += 1;
+        if self.cache.len() <= CACHED_PIPELINES {
+            return;
+        }
+        let now = self.submissions;
+        self.cache.retain(|_, &mut (p, used)| {
+            let keep = used + IDLE_SUBMISSIONS > now;
+            if !keep {
+                // Safety: no submission the GPU may still run used it (see IDLE_SUBMISSIONS).
+                unsafe { device.raw.destroy_pipeline(p, None) };
+            }
+            keep
+        });
     }
 
     /// Pipelines created so far.
@@ -423,7 +460,7 @@ impl Pipelines {
     pub fn destroy(&mut self, device: &Device) {
         // Safety: the GPU is done with them; each is destroyed once.
         unsafe {
-            for (_, p) in self.cache.drain() {
+            for (_, (p, _)) in self.cache.drain() {
                 device.raw.destroy_pipeline(p, None);
             }
             self.programs.destroy(device);

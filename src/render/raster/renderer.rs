@@ -12,6 +12,12 @@
 //! this one). It also owns the framebuffers (the window's, framebuffer objects'), occlusion
 //! queries and the accumulation buffer.
 //!
+//! Memory stays bounded however long a frame is: past [`SUBMISSION_UPLOADS`] bytes uploaded,
+//! what is recorded is submitted and waited for and recording goes on in the same slot (as a
+//! read-back does); a frame that `translate` submits in parts ([`FrameEnd::Part`]) is
+//! presented part by part, and after each part the texture versions no frame references any
+//! more are freed ([`Raster::release_unreferenced_textures`]).
+//!
 //! Extension points for the other stages, the pixel path and presentation: [`Recorder`]
 //! gives the device, the current command buffer, the [`Target`] images, the upload ring and
 //! the frame's descriptor sets, and starts or ends the dynamic-rendering pass on demand
@@ -41,6 +47,11 @@ use crate::frame::{Clear, ColorBuffer, Draw, DrawBuffers, Frame, FrameEnd, Frame
 
 /// Frames in flight.
 pub const FRAMES_IN_FLIGHT: usize = 2;
+
+/// Bytes of vertices, indices, uniforms and texels one submission uploads at most before
+/// [`Raster::record`] submits what it recorded and goes on in a new one (the upload memory of
+/// a frame in flight stays about this size, however long the frame).
+pub const SUBMISSION_UPLOADS: u64 = 64 << 20;
 
 /// How much of which frame is already recorded.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -658,6 +669,10 @@ impl Raster {
                 }
                 progress.draws = index + 1;
                 progress.last_indices = draw.indices.len();
+                if rec.ring.bytes_used() > SUBMISSION_UPLOADS {
+                    self.flush()?;
+                    rec = self.recorder(frame.size)?;
+                }
             }
         }
         self.progress = Some(progress);
@@ -670,6 +685,7 @@ impl Raster {
         if self.recording {
             self.end_pass();
             self.slots[self.current].submit(&self.parts.device, &SubmitSync::default())?;
+            self.parts.pipelines.end_submission(&self.parts.device);
             self.recording = false;
             self.wait_slot(self.current)?;
         }
@@ -714,25 +730,28 @@ impl Raster {
 
     /// Finishes the recorded `frame` (the back buffer copied to the front at a swap, the
     /// outputs' copies) and submits it without waiting; the next frame starts on the next slot.
+    /// A part of a frame ([`FrameEnd::Part`]) is only submitted: the outputs do not see it.
     pub fn present(&mut self, frame: &Frame) -> Result<()> {
         self.end_pass();
         self.switch_to(None);
         let slot = self.current;
         let mut sync = SubmitSync::default();
         let mut outputs = std::mem::take(&mut self.outputs);
+        let shown = frame.end != FrameEnd::Part;
         let recorded = (|| {
             let mut rec = self.recorder(frame.size)?;
             rec.end_rendering();
             if frame.end == FrameEnd::Swap {
                 rec.target.copy_back_to_front(rec.device, rec.cmd);
             }
-            for output in &mut outputs {
+            for output in outputs.iter_mut().filter(|_| shown) {
                 sync.extend(output.record(&mut rec, slot, frame.number)?);
             }
             let queries = frame.occlusion_queries.iter().map(|(q, _)| *q).collect();
             self.parts.occlusion.finish_frame(slot, frame.number, queries);
             self.slots[slot].submit(&self.parts.device, &sync)?;
-            outputs.iter_mut().try_for_each(|o| o.submitted(&self.parts.device, slot))
+            self.parts.pipelines.end_submission(&self.parts.device);
+            outputs.iter_mut().filter(|_| shown).try_for_each(|o| o.submitted(&self.parts.device, slot))
         })();
         self.outputs = outputs;
         recorded?;
@@ -763,6 +782,16 @@ impl Raster {
             if let Some(target) = self.parts.offscreen.remove(&key) {
                 target.destroy(&self.parts.device);
             }
+        }
+        Ok(())
+    }
+
+    /// Waits for every frame in flight and frees the texture versions no frame references
+    /// any more (called after a part of a frame, whose texture versions may all be dead).
+    pub fn release_unreferenced_textures(&mut self) -> Result<()> {
+        if self.parts.textures.has_unreferenced() {
+            self.wait_all()?;
+            self.parts.textures.release_unreferenced(&self.parts.device);
         }
         Ok(())
     }

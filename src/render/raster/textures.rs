@@ -1,5 +1,6 @@
 //! Textures on the GPU: the image of each [`TextureRef`] content version, uploaded once and
-//! kept while draws use it (dropped after [`KEEP_FRAMES`] presented frames without use),
+//! kept while draws use it (dropped after [`KEEP_FRAMES`] presented frames without use, or at
+//! once when asked and `translate` holds the version no more: [`Textures::release_unreferenced`]),
 //! samplers cached by their state, the 1×1 white textures that fill unused fixed-function
 //! bindings (see the `ff` module doc) and the 1×1 black opaque ones that fill a program's
 //! sampler slots without a complete texture (which sample as (0, 0, 0, 1) in a shader,
@@ -32,6 +33,7 @@
 //! LOD range and the unit's LOD bias; mipmapping off = `maxLod` 0.
 
 use std::collections::HashMap;
+use std::sync::{Arc, Weak};
 
 use ash::vk;
 
@@ -41,7 +43,7 @@ use super::ff::shader_interface::BINDING_COUNT;
 use super::pipelines::{SamplerKind, sampler_binding};
 use super::upload::Ring;
 use crate::frame::program::{self, MAX_SAMPLERS};
-use crate::frame::texture::{DepthMode, Filter, Precision, Sampler, TexImage, TexelFormat, TextureKind, TextureRef, Wrap};
+use crate::frame::texture::{DepthMode, Filter, Precision, Sampler, TexImage, TexelFormat, TextureContent, TextureKind, TextureRef, Wrap};
 
 /// Presented frames a texture version stays on the GPU without being used (more than the
 /// frames in flight, so the GPU is done with it when it goes).
@@ -61,6 +63,9 @@ struct Entry {
     kind: SamplerKind,
     /// Frame counter of the last use.
     used: u64,
+    /// The version's content, held by `translate` while the texture object has this version
+    /// or a frame draws with it: once dead, no draw can use the version again.
+    content: Weak<TextureContent>,
 }
 
 /// Everything a sampler is created from.
@@ -133,7 +138,8 @@ impl Textures {
             if !self.known(t) {
                 match self.create(device, cmd, ring, t) {
                     Ok((image, red_view, kind)) => {
-                        self.entries.insert((t.id, t.version), Entry { image, red_view, kind, used: self.frame });
+                        let content = Arc::downgrade(&t.content);
+                        self.entries.insert((t.id, t.version), Entry { image, red_view, kind, used: self.frame, content });
                     }
                     Err(e) => {
                         eprintln!("glrt: texture {} (version {}) cannot be used: {e}; it samples as white", t.id, t.version);
@@ -199,6 +205,21 @@ impl Textures {
         let frame = self.frame;
         let old: Vec<_> = self.entries.iter().filter(|(_, e)| e.used + KEEP_FRAMES < frame).map(|(k, _)| *k).collect();
         for key in old {
+            if let Some(e) = self.entries.remove(&key) {
+                destroy_entry(device, e);
+            }
+        }
+    }
+
+    /// Whether a version on the GPU is referenced by `translate` no more.
+    pub fn has_unreferenced(&self) -> bool {
+        self.entries.values().any(|e| e.content.strong_count() == 0)
+    }
+
+    /// Frees the versions `translate` references no more (the GPU must be done with them).
+    pub fn release_unreferenced(&mut self, device: &Device) {
+        let dead: Vec<_> = self.entries.iter().filter(|(_, e)| e.content.strong_count() == 0).map(|(k, _)| *k).collect();
+        for key in dead {
             if let Some(e) = self.entries.remove(&key) {
                 destroy_entry(device, e);
             }

@@ -44,6 +44,11 @@ impl Ring {
         self.used = 0;
     }
 
+    /// Bytes taken since the last [`Ring::reset`] (with the unused tails of filled chunks).
+    pub fn bytes_used(&self) -> u64 {
+        self.chunks.iter().take(self.current).map(|c| c.size).sum::<u64>() + self.used
+    }
+
     /// Copies `bytes` into the ring at a multiple of `align` (a power of two).
     pub fn push(&mut self, device: &Device, bytes: &[u8], align: u64) -> Result<Slice> {
         let size = bytes.len() as u64;

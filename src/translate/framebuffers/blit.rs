@@ -193,5 +193,6 @@ impl Context {
             let (before_draw, after_clears) = (self.frame.draws.len(), self.frame.clears.len());
             self.frame.pixels.push(PixelOp { before_draw, after_clears, kind, state: Arc::new(state), raster: Arc::default() });
         }
+        self.keep_frame_in_budget();
     }
 }

@@ -47,6 +47,7 @@ impl Context {
             _ => Arc::new(fragment),
         };
         self.frame.pixels.push(PixelOp { before_draw, after_clears, kind, state, raster });
+        self.keep_frame_in_budget();
     }
 
     /// `glBitmap`: `GL_INVALID_VALUE` for a negative size; nothing happens while the raster
