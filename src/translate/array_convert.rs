@@ -87,10 +87,7 @@ unsafe fn convert<T: Component, const S: usize>(src: &Source, span: Span<'_>, ou
     match span {
         Span::Range(first, count) => {
             let readable = count.min(valid.saturating_sub(first));
-            if readable > 0 && src.is_client() {
-                let bytes = (readable - 1).wrapping_mul(stride).wrapping_add(src.element_bytes());
-                super::capture::reads::note(base.wrapping_add(first.wrapping_mul(stride)), bytes);
-            }
+            src.note_reads(Span::Range(first, readable));
             let start = base.wrapping_add(first.wrapping_mul(stride));
             // Safety: within a buffer store (checked by `valid`), or client memory.
             out.extend((0..readable).map(|j| unsafe { load::<T, S>(start.wrapping_add(j * stride), normalized) }));
@@ -140,6 +137,20 @@ macro_rules! specialised {
 }
 
 impl Source {
+    /// Reports the bytes of each element of `span` as read (client memory only: a capture
+    /// holds exactly what the draw read, element by element).
+    pub(crate) fn note_reads(&self, span: Span<'_>) {
+        if !self.is_client() {
+            return;
+        }
+        let (base, stride, elem) = (self.base, self.stride, self.element_bytes());
+        let note = |i: usize| super::capture::reads::note(base.wrapping_add(i.wrapping_mul(stride)), elem);
+        match span {
+            Span::Range(first, count) => (first..first + count).for_each(note),
+            Span::Gather(indices) => indices.iter().for_each(|&i| note(i as usize)),
+        }
+    }
+
     /// Appends the elements of `span`, converted, to `out` (missing components from
     /// `(0, 0, 0, 1)`, elements past the end of a buffer store zero).
     pub(crate) fn convert_into(&self, span: Span<'_>, out: &mut Vec<[f32; 4]>) {

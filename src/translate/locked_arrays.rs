@@ -68,6 +68,8 @@ impl LockedPositions {
             }
         };
         self.from = Some((*source, start, end));
+        // A capture records the elements each draw uses, converted now or not.
+        source.note_reads(span);
         match span {
             Span::Range(a, n) => out.extend_from_slice(&self.values[a - start..a - start + n]),
             Span::Gather(indices) => out.extend(indices.iter().map(|&i| self.values[i as usize - start])),
