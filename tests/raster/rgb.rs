@@ -72,9 +72,11 @@ fn destination_alpha_blend_factors_see_one() {
         // Destination alpha 1: the source passes whole; with alpha bitplanes it is 0.
         assert_eq!(blend(&mut ctx, gl::GL_DST_ALPHA, gl::GL_ZERO, [1.0, 0.0, 0.0, 1.0]), [a, 0, 0, a], "GL_DST_ALPHA, alpha {alpha}");
         assert_eq!(blend(&mut ctx, gl::GL_ONE, gl::GL_ONE_MINUS_DST_ALPHA, [1.0, 0.0, 0.0, 1.0]), [255, 0, 255 - a, 255], "GL_ONE_MINUS_DST_ALPHA, alpha {alpha}");
-        // min(As, 1 − Ad) is 0 when Ad is 1.
+        // min(As, 1 − Ad) is 0 when Ad is 1; 0.5 × 255 may round either way (lavapipe 128,
+        // NVIDIA 127).
         let saturate = blend(&mut ctx, gl::GL_SRC_ALPHA_SATURATE, gl::GL_ONE, [1.0, 0.0, 0.0, 0.5]);
-        assert_eq!(saturate[0], if alpha { 128 } else { 0 }, "GL_SRC_ALPHA_SATURATE, alpha {alpha}");
+        let expected: &[u8] = if alpha { &[127, 128] } else { &[0] };
+        assert!(expected.contains(&saturate[0]), "GL_SRC_ALPHA_SATURATE, alpha {alpha}: {} not in {expected:?}", saturate[0]);
     }
 }
 
