@@ -56,23 +56,6 @@ impl Progress {
 const VERTEX: &str = "void main() { gl_Position = gl_Vertex; gl_TexCoord[0] = gl_MultiTexCoord0; }\0";
 const FRAGMENT: &str = "uniform vec4 tint; void main() { gl_FragColor = tint; }\0";
 
-/// Draws the rectangle `[x0, x1] × [y0, y1]` (normalized device coordinates) with texture
-/// coordinates from 0 to 1.
-fn rect([x0, y0, x1, y1]: [f32; 4]) {
-    // Safety: plain calls on the current context.
-    unsafe {
-        gl::glBegin(GL_QUADS);
-        gl::glTexCoord2f(0.0, 0.0);
-        gl::glVertex2f(x0, y0);
-        gl::glTexCoord2f(1.0, 0.0);
-        gl::glVertex2f(x1, y0);
-        gl::glTexCoord2f(1.0, 1.0);
-        gl::glVertex2f(x1, y1);
-        gl::glTexCoord2f(0.0, 1.0);
-        gl::glVertex2f(x0, y1);
-        gl::glEnd();
-    }
-}
 
 /// The RGBA8 pixel at (x, y) of the read buffer.
 fn pixel(x: i32, y: i32) -> [u8; 4] {
@@ -160,7 +143,7 @@ fn work(thread: u64, rounds: u64, frames: u64, progress: &Progress, start: &Barr
                 gl::glClearColor(f(fbo_color[0]), f(fbo_color[1]), f(fbo_color[2]), 1.0);
                 gl::glClear(GL_COLOR_BUFFER_BIT);
                 gl::glEnable(GL_TEXTURE_2D);
-                rect([-1.0, -1.0, 0.0, 1.0]);
+                textured_rect([-1.0, -1.0, 0.0, 1.0]);
                 gl::glBindFramebufferEXT(GL_FRAMEBUFFER_EXT, 0);
             }
             progress.set(round, frame, 3);
@@ -171,11 +154,11 @@ fn work(thread: u64, rounds: u64, frames: u64, progress: &Progress, start: &Barr
                 gl::glClearColor(0.0, 0.0, 0.0, 1.0);
                 gl::glClear(GL_COLOR_BUFFER_BIT);
                 gl::glBindTexture(GL_TEXTURE_2D, target);
-                rect([-1.0, -1.0, 0.0, 1.0]);
+                textured_rect([-1.0, -1.0, 0.0, 1.0]);
                 gl::glDisable(GL_TEXTURE_2D);
                 gl::glUseProgram(program);
                 gl::glUniform4f(tint, f(tint_color[0]), f(tint_color[1]), f(tint_color[2]), 1.0);
-                rect([0.0, -1.0, 1.0, 1.0]);
+                textured_rect([0.0, -1.0, 1.0, 1.0]);
                 gl::glUseProgram(0);
             }
             progress.set(round, frame, 4);

@@ -188,17 +188,7 @@ mod tests {
         // Three elements of up to 4 doubles, at a stride of 8 bytes per component.
         let bytes: Vec<u8> = (0..96u8).map(|b| b.wrapping_mul(37)).collect();
         let bits = |v: &[[f32; 4]]| v.iter().map(|e| e.map(f32::to_bits)).collect::<Vec<_>>();
-        let types = [
-            gl::GL_BYTE,
-            gl::GL_UNSIGNED_BYTE,
-            gl::GL_SHORT,
-            gl::GL_UNSIGNED_SHORT,
-            gl::GL_INT,
-            gl::GL_UNSIGNED_INT,
-            gl::GL_FLOAT,
-            gl::GL_DOUBLE,
-        ];
-        for type_ in types {
+        for &type_ in crate::translate::arrays::COLOR_TYPES {
             for size in 1..=4 {
                 for normalized in [false, true] {
                     let src = Source::client(bytes.as_ptr(), 8 * size, size, type_, normalized);

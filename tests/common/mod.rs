@@ -89,3 +89,21 @@ pub fn is_enabled(cap: GLenum) -> bool {
 pub fn assert_none(what: &str, failures: &[String]) {
     assert!(failures.is_empty(), "{what}: {} mismatch(es):\n  {}", failures.len(), failures.join("\n  "));
 }
+
+/// Draws the rectangle `[x0, x1] × [y0, y1]` (normalized device coordinates) as one quad with
+/// texture coordinates from 0 to 1, in the current colour.
+pub fn textured_rect([x0, y0, x1, y1]: [f32; 4]) {
+    // Safety: plain calls on the current context.
+    unsafe {
+        gl::glBegin(GL_QUADS);
+        gl::glTexCoord2f(0.0, 0.0);
+        gl::glVertex2f(x0, y0);
+        gl::glTexCoord2f(1.0, 0.0);
+        gl::glVertex2f(x1, y0);
+        gl::glTexCoord2f(1.0, 1.0);
+        gl::glVertex2f(x1, y1);
+        gl::glTexCoord2f(0.0, 1.0);
+        gl::glVertex2f(x0, y1);
+        gl::glEnd();
+    }
+}

@@ -80,21 +80,10 @@ fn clear(rgb: [f32; 3]) {
 }
 
 /// Draws the rectangle `[x0, x1] × [y0, y1]` (normalized device coordinates) in `rgb`.
-fn rect(rgb: [f32; 3], [x0, y0, x1, y1]: [f32; 4]) {
-    // Safety: plain calls on the current context.
-    unsafe {
-        gl::glColor3f(rgb[0], rgb[1], rgb[2]);
-        gl::glBegin(GL_QUADS);
-        gl::glTexCoord2f(0.0, 0.0);
-        gl::glVertex2f(x0, y0);
-        gl::glTexCoord2f(1.0, 0.0);
-        gl::glVertex2f(x1, y0);
-        gl::glTexCoord2f(1.0, 1.0);
-        gl::glVertex2f(x1, y1);
-        gl::glTexCoord2f(0.0, 1.0);
-        gl::glVertex2f(x0, y1);
-        gl::glEnd();
-    }
+fn rect(rgb: [f32; 3], corners: [f32; 4]) {
+    // Safety: a plain call on the current context.
+    unsafe { gl::glColor3f(rgb[0], rgb[1], rgb[2]) };
+    textured_rect(corners);
 }
 
 /// What shows the host program still works after a fault: state queries answer, objects are
