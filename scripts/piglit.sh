@@ -40,54 +40,62 @@ filter=${PIGLIT_FILTER:-'spec@!opengl 1\.'}
 options=(-o -p glx --timeout "${PIGLIT_TIMEOUT:-60}")
 expected="$PWD/tests/piglit/expected.txt"
 compare=()
+selection=()
 selected="'$filter'"
 if [[ ${1:-} == --fast ]]; then
     name="$name-fast"
     filter=.
     selected=tests/piglit/fast.txt
-    options+=(--test-list "$PWD/tests/piglit/fast.txt")
+    selection=(--test-list "$PWD/tests/piglit/fast.txt")
     compare=(--ran-only)
 fi
 results="$PWD/target/piglit/$name"
 
 if [[ ${1:-} == --list ]]; then
-    piglit run opengl "$PWD/target/piglit/list" "${options[@]}" -t "$filter" -d -l verbose \
+    piglit run opengl "$PWD/target/piglit/list" "${options[@]}" "${selection[@]}" -t "$filter" -d -l verbose \
         | sed -n 's/^dry-run: \(spec\/.*\)/\1/p' | sort -u | tee /dev/stderr | wc -l \
         | xargs -I{} echo "piglit.sh: {} tests match '$filter'"
     exit 0
 fi
 
 echo "piglit.sh: running $selected against $libdir/libGL.so.1; results in $results"
-# Runs piglit on the tests matching $2 into directory $1.
+# Runs piglit into directory $1 on the tests matching regex $2, and, after it, further piglit
+# options (a --test-list).
 run_piglit() {
+    local dir=$1 regex=$2
+    shift 2
     LD_LIBRARY_PATH="$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" \
         timeout "${PIGLIT_TOTAL_TIMEOUT:-7200}" \
-        xvfb-run -a -s "-screen 0 1024x768x24" piglit run opengl "$1" "${options[@]}" -t "$2" -l quiet
+        xvfb-run -a -s "-screen 0 1024x768x24" piglit run opengl "$dir" "${options[@]}" -t "$regex" -l quiet "$@"
 }
 status=0
-run_piglit "$results" "$filter" || status=$?
+run_piglit "$results" "$filter" "${selection[@]}" || status=$?
 if ((status == 124)); then
     echo "piglit.sh: stopped after PIGLIT_TOTAL_TIMEOUT; resuming only summarises what ran"
 fi
 # Under load Xvfb sometimes refuses a test's connection (`XOpenDisplay failed`): those tests
-# did not run, so they are run once more (alone) and their second result counts.
-refused=$(python3 - "$results/results.json.bz2" <<'PY'
+# did not run, so they are run again (up to three rounds, each only the tests refused in the
+# round before) and the last result counts.
+# Prints a regex matching the tests of results file $1 whose X connection was refused.
+refused_tests() {
+    python3 - "$1" <<'PY'
 import bz2, json, re, sys
 tests = json.load(bz2.open(sys.argv[1]))["tests"]
 names = [n for n, t in tests.items() if "XOpenDisplay failed" in t.get("out", "") + t.get("err", "")]
 print("^(" + "|".join(re.escape(n) for n in names) + ")$" if names else "")
 PY
-)
-if [[ -n $refused ]]; then
-    echo "piglit.sh: Xvfb refused some tests' connections; running them again: $refused"
-    PIGLIT_TOTAL_TIMEOUT=1800 run_piglit "$results-refused" "$refused" || true
-fi
+}
+runs=("$results/results.json.bz2")
+for round in 1 2 3; do
+    refused=$(refused_tests "${runs[-1]}")
+    [[ -n $refused ]] || break
+    echo "piglit.sh: Xvfb refused some tests' connections; running them again (round $round): $refused"
+    PIGLIT_TOTAL_TIMEOUT=1800 run_piglit "$results-refused-$round" "$refused" || true
+    [[ -f $results-refused-$round/results.json.bz2 ]] || break
+    runs+=("$results-refused-$round/results.json.bz2")
+done
 # Subtests count separately in the summary; the comparison counts whole tests.
 piglit summary console -s "$results" | tail -n 12
-runs=("$results/results.json.bz2")
-if [[ -n $refused && -f $results-refused/results.json.bz2 ]]; then
-    runs+=("$results-refused/results.json.bz2")
-fi
 if [[ -n ${PIGLIT_LIBGL:-} ]]; then
     python3 scripts/piglit_compare.py --counts "${runs[@]}"
 else
