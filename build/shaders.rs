@@ -1,5 +1,5 @@
-//! Compiles every GLSL shader in `shaders/` (`*.vert`, `*.frag`, `*.comp`, `*.geom`) to SPIR-V
-//! with `glslangValidator` (Debian's `glslang-tools`, installed by `scripts/setup.sh`), into
+//! Compiles every GLSL shader in `shaders/` (`*.vert`, `*.frag`, `*.comp`, `*.geom`, and the
+//! ray-tracing stages `*.rgen`, `*.rchit`, `*.rahit`, `*.rmiss`) to SPIR-V with `glslangValidator` (Debian's `glslang-tools`, installed by `scripts/setup.sh`), into
 //! `OUT_DIR/shaders/<file name>.spv`; the renderer embeds them with
 //! `include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ff.vert.spv"))`. Files included by others
 //! end in `.glsl` and are not compiled on their own; the generated headers of
@@ -15,7 +15,10 @@ use std::process::Command;
 use crate::spirv_layout::{self, Mirror, Rust};
 
 /// Stages compiled, by file extension.
-const STAGES: &[&str] = &["vert", "frag", "comp", "geom"];
+const STAGES: &[&str] = &["vert", "frag", "comp", "geom", "rgen", "rchit", "rahit", "rmiss"];
+/// The ray-tracing stages, compiled for Vulkan 1.2 (SPIR-V 1.4, which `GL_EXT_ray_tracing`
+/// needs); the others for Vulkan 1.1.
+const RAY_TRACING_STAGES: &[&str] = &["rgen", "rchit", "rahit", "rmiss"];
 
 /// A generated file of layout assertions: its name and, per shader, the mirrors checked
 /// against that shader's SPIR-V.
@@ -97,8 +100,9 @@ pub fn compile_all(out: &Path, include: &Path) {
     for src in sources {
         let name = src.file_name().and_then(|n| n.to_str()).expect("shader file name");
         let spv = dest.join(format!("{name}.spv"));
+        let ray_tracing = src.extension().and_then(|e| e.to_str()).is_some_and(|e| RAY_TRACING_STAGES.contains(&e));
         let output = Command::new("glslangValidator")
-            .args(["-V", "--target-env", "vulkan1.1", "-Ishaders"])
+            .args(["-V", "--target-env", if ray_tracing { "vulkan1.2" } else { "vulkan1.1" }, "-Ishaders"])
             .arg(format!("-I{}", include.display()))
             .arg("-o")
             .arg(&spv)

@@ -6,6 +6,10 @@ interlaced: what glrt's GLRT_DUMP and `glrt replay --out` write), with the stand
                                                 weights on the stored sRGB values), size, name
     png_luma.py --shrink N IN.png OUT.png       also writes IN downscaled N times (box filter,
                                                 RGB) as OUT
+    png_luma.py --diff A.png B.png              how B differs from A (same size): mean luma of
+                                                each, mean signed and absolute luma difference,
+                                                and the share of pixels whose largest channel
+                                                difference exceeds 4, 16 and 64
 """
 import struct
 import sys
@@ -100,7 +104,32 @@ def shrink(width, height, bpp, rows, n):
     return w, h, out
 
 
+def diff(a, b):
+    """The --diff line of images a and b, each (width, height, bpp, rows)."""
+    (w, h, abpp, arows), (bw, bh, bbpp, brows) = a, b
+    if (w, h) != (bw, bh):
+        raise SystemExit(f"sizes differ: {w}x{h} and {bw}x{bh}")
+    signed = absolute = 0.0
+    beyond = {4: 0, 16: 0, 64: 0}
+    for y in range(h):
+        for x in range(w):
+            pa, pb = rgb(abpp, arows[y], x), rgb(bbpp, brows[y], x)
+            d = sum(k * (q - p) for k, p, q in zip((0.2126, 0.7152, 0.0722), pa, pb))
+            signed += d
+            absolute += abs(d)
+            largest = max(abs(q - p) for p, q in zip(pa, pb))
+            for t in beyond:
+                beyond[t] += largest > t
+    n = w * h
+    shares = ", ".join(f">{t}: {100 * c / n:.2f}%" for t, c in beyond.items())
+    return (f"luma {mean_luma(*a):.2f} -> {mean_luma(*b):.2f}; mean difference {signed / n:+.3f}, "
+            f"mean |difference| {absolute / n:.3f}; pixels beyond {shares}")
+
+
 def main(args):
+    if args[:1] == ["--diff"] and len(args) == 3:
+        print(f"{args[2]} vs {args[1]}: {diff(read_png(args[1]), read_png(args[2]))}")
+        return
     if args[:1] == ["--shrink"] and len(args) == 4:
         n, src, dst = int(args[1]), args[2], args[3]
         w, h, bpp, rows = read_png(src)

@@ -24,7 +24,7 @@
 // bytes). meta == 0: inner child, index = node (BLAS: relative to the instance's blas_root).
 // meta & BVH_LEAF: leaf of (meta & ~BVH_LEAF) primitives from index (BLAS: triangles relative
 // to first_triangle; TLAS: one instance, index = the instance); 0 primitives = empty child.
-// BvhTriangle = v0, e1 = v1 - v0, e2 = v2 - v0, each padded to 16 bytes.
+// Triangles: trace/triangles.glsl.
 
 #ifndef TRACE_BVH_GLSL
 #define TRACE_BVH_GLSL
@@ -32,6 +32,7 @@
 #include "generated/trace_constants.glsl"
 #include "trace/bindings.glsl"
 #include "trace/instance.glsl"
+#include "trace/triangles.glsl"
 
 #define BVH_STACK_SIZE (2 * BVH_MAX_DEPTH)
 #define BVH_NONE 0xffffffffu
@@ -53,14 +54,6 @@ struct BvhNode {
     BvhChild children[2];
 };
 
-struct BvhTriangle {
-    vec3 v0;
-    uint pad0;
-    vec3 e1;
-    uint pad1;
-    vec3 e2;
-    uint pad2;
-};
 
 layout(set = TRACE_SET, binding = BINDING_BLAS_NODES, std430) readonly buffer BlasNodes {
     BvhNode blas_nodes[];
@@ -70,17 +63,6 @@ layout(set = TRACE_SET, binding = BINDING_TLAS_NODES, std430) readonly buffer Tl
     BvhNode tlas_nodes[];
 };
 
-layout(set = TRACE_SET, binding = BINDING_TRIANGLES, std430) readonly buffer Triangles {
-    BvhTriangle triangles[];
-};
-
-// A ray's closest accepted hit.
-struct TraceHit {
-    float t;        // distance along the ray, in units of its direction's length
-    uint instance;  // the instance hit
-    uint triangle;  // global triangle index: the instance's first_triangle + index in its BLAS
-    vec2 bary;      // (u, v): weights of the triangle's v1 and v2 at the hit
-};
 
 // 1 / d with components of magnitude below BVH_TINY replaced by ±BVH_TINY.
 vec3 bvh_inverse(vec3 d) {

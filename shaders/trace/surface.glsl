@@ -2,7 +2,8 @@
 // and whether it is baked from the material's layer stack, stack.glsl; material), and the
 // alpha test that traversal asks for. render::trace::material's module doc describes the
 // layers and what the surface makes of them.
-// Include after bvh.glsl's prerequisites: defines trace_alpha_accept(), then includes bvh.glsl.
+// Include after bvh.glsl's prerequisites: defines trace_alpha_accept(), then includes bvh.glsl
+// (or, with TRACE_HARDWARE defined, hardware.glsl).
 
 #ifndef TRACE_SURFACE_GLSL
 #define TRACE_SURFACE_GLSL
@@ -25,7 +26,15 @@ bool trace_alpha_accept(uint instance, uint triangle, vec2 bary) {
     return compare(m.alpha_func, alpha, m.alpha_ref);
 }
 
+// The traversal: the compute tracer's BVHs, or with TRACE_HARDWARE the ray-tracing pipeline;
+// none in the hardware tracer's any-hit shader (TRACE_HARDWARE_ANY_HIT), which only shades.
+#if defined(TRACE_HARDWARE_ANY_HIT)
+#include "trace/triangles.glsl"
+#elif defined(TRACE_HARDWARE)
+#include "trace/hardware.glsl"
+#else
 #include "trace/bvh.glsl"
+#endif
 
 // The object-space corners of global triangle `triangle`.
 void trace_triangle_vertices(uint triangle, out vec3 v0, out vec3 v1, out vec3 v2) {

@@ -104,6 +104,10 @@ pub struct Device {
     /// `VK_KHR_xlib_surface`: the device can present to X11 windows (when a queue family
     /// supports the surface).
     pub swapchain: bool,
+    /// `VK_KHR_acceleration_structure` and `VK_KHR_ray_tracing_pipeline` are enabled with
+    /// their features and `bufferDeviceAddress`: the hardware tracer can run
+    /// ([`crate::render::trace::hardware`]).
+    pub ray_tracing: bool,
     /// Device memory.
     allocator: ManuallyDrop<Mutex<Allocator>>,
 }
@@ -183,14 +187,20 @@ impl Device {
             .occlusion_query_precise(features.occlusion_query_precise)
             .alpha_to_one(features.alpha_to_one)
             .shader_clip_distance(true);
-        let mut v12 = vk::PhysicalDeviceVulkan12Features::default().host_query_reset(true);
-        let mut v13 = vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true).synchronization2(true);
-        let priorities = [1.0];
-        let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
         let mut extensions = device_extensions(&instance, physical);
         if !surfaces {
             extensions.retain(|e| e.as_c_str() != ash::khr::swapchain::NAME);
         }
+        let ray_tracing = ray_tracing_supported(&instance, physical, &extensions);
+        if !ray_tracing {
+            extensions.retain(|e| !RAY_TRACING_EXTENSIONS.contains(&e.as_c_str()));
+        }
+        let mut v12 = vk::PhysicalDeviceVulkan12Features::default().host_query_reset(true).buffer_device_address(ray_tracing);
+        let mut acceleration = vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default().acceleration_structure(true);
+        let mut pipeline = vk::PhysicalDeviceRayTracingPipelineFeaturesKHR::default().ray_tracing_pipeline(true);
+        let mut v13 = vk::PhysicalDeviceVulkan13Features::default().dynamic_rendering(true).synchronization2(true);
+        let priorities = [1.0];
+        let queues = [vk::DeviceQueueCreateInfo::default().queue_family_index(queue_family).queue_priorities(&priorities)];
         let swapchain = extensions.iter().any(|e| e.as_c_str() == ash::khr::swapchain::NAME);
         let custom_border_color = extensions.iter().any(|e| e.as_c_str() == ash::ext::custom_border_color::NAME) && {
             let mut border = vk::PhysicalDeviceCustomBorderColorFeaturesEXT::default();
@@ -215,6 +225,9 @@ impl Device {
         if custom_border_color {
             info = info.push_next(&mut border);
         }
+        if ray_tracing {
+            info = info.push_next(&mut acceleration).push_next(&mut pipeline);
+        }
         // Every device glrt makes on `physical` is made with this same `info` (it depends on
         // the physical device and the instance alone), so an idle one can be taken instead.
         let raw = match super::instance::take_device(physical) {
@@ -232,7 +245,7 @@ impl Device {
             device: raw.clone(),
             physical_device: physical,
             debug_settings: Default::default(),
-            buffer_device_address: false,
+            buffer_device_address: ray_tracing,
             allocation_sizes: Default::default(),
         })
         .map_err(|e| Error::Memory(e.to_string()));
@@ -257,6 +270,7 @@ impl Device {
             depth_format,
             custom_border_color,
             swapchain,
+            ray_tracing,
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
         })
     }
@@ -425,9 +439,29 @@ fn device_extensions(instance: &ash::Instance, physical: vk::PhysicalDevice) -> 
     let available = unsafe { instance.enumerate_device_extension_properties(physical) }.unwrap_or_default();
     [ash::khr::swapchain::NAME, ash::ext::custom_border_color::NAME]
         .into_iter()
+        .chain(RAY_TRACING_EXTENSIONS)
         .filter(|want| available.iter().any(|e| e.extension_name_as_c_str() == Ok(want)))
         .map(CString::from)
         .collect()
+}
+
+/// The extensions of the hardware tracer.
+const RAY_TRACING_EXTENSIONS: [&std::ffi::CStr; 3] =
+    [ash::khr::acceleration_structure::NAME, ash::khr::ray_tracing_pipeline::NAME, ash::khr::deferred_host_operations::NAME];
+
+/// Whether `physical` has the hardware tracer's extensions (among `extensions`, the available
+/// ones glrt enables) and features.
+fn ray_tracing_supported(instance: &ash::Instance, physical: vk::PhysicalDevice, extensions: &[CString]) -> bool {
+    if !RAY_TRACING_EXTENSIONS.iter().all(|want| extensions.iter().any(|e| e.as_c_str() == *want)) {
+        return false;
+    }
+    let mut v12 = vk::PhysicalDeviceVulkan12Features::default();
+    let mut acceleration = vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default();
+    let mut pipeline = vk::PhysicalDeviceRayTracingPipelineFeaturesKHR::default();
+    let mut features2 = vk::PhysicalDeviceFeatures2::default().push_next(&mut v12).push_next(&mut acceleration).push_next(&mut pipeline);
+    // Safety: the extensions are supported by this physical device.
+    unsafe { instance.get_physical_device_features2(physical, &mut features2) };
+    v12.buffer_device_address == vk::TRUE && acceleration.acceleration_structure == vk::TRUE && pipeline.ray_tracing_pipeline == vk::TRUE
 }
 
 fn device_name(properties: &vk::PhysicalDeviceProperties) -> String {

@@ -1,5 +1,6 @@
 //! Descriptor bindings of the tracing pipelines (set 0): storage buffers `0..COUNT`, then the
-//! sky's cube map ([`SKY`]). Shared with the shaders as `generated/trace_bindings.glsl`, each
+//! sky's cube map ([`SKY`]), then (hardware tracer only) the top-level acceleration structure
+//! ([`ACCELERATION`]). Shared with the shaders as `generated/trace_bindings.glsl`, each
 //! named `BINDING_<NAME>` there (see [`crate::render::shader_abi`]).
 
 glsl_constants! {
@@ -43,4 +44,7 @@ glsl_constants! {
     /// The environment cube map of the sky draws ([`super::sky`]), a combined image sampler
     /// (`environment.glsl`).
     const SKY: u32 = COUNT;
+    /// The frame's top-level acceleration structure (`hardware.glsl`; the hardware tracer's
+    /// set layout alone has it).
+    const ACCELERATION: u32 = COUNT + 1;
 }

@@ -6,6 +6,11 @@
 //! [`RayTracer::trace`] runs `pathtrace.comp`, one dispatch per sample; [`RayTracer::resolve`]
 //! runs the temporal pass and tone mapping (`trace_resolve.comp`) into the image that
 //! [`super::composite`] draws.
+//!
+//! With `hardware` ([`super::hardware`]) the same tracer builds the driver's acceleration
+//! structures over the same geometry instead of the top-level BVH and traces with the
+//! ray-tracing pipeline (`pathtrace.rgen`) instead of `pathtrace.comp`; everything else is
+//! shared.
 
 use ash::vk;
 use glam::{Affine3A, Mat4};
@@ -14,6 +19,7 @@ use xxhash_rust::xxh3::Xxh3;
 
 use super::bvh::Tlas;
 use super::emitters::{self, EmitterList, Estimate};
+use super::hardware::accel::{Accelerations, TopInstance};
 use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight};
 use super::instances::{self, Source};
 use super::lights::{self, LightSettings};
@@ -82,15 +88,21 @@ pub struct ComputeTracer {
     frame_index: u32,
     parity: usize,
     previous: Option<Previous>,
-    /// The top-level BVH of the frame being traced ([`RayTracer::build`] makes it).
+    /// The top-level BVH of the frame being traced ([`RayTracer::build`] makes it; empty for
+    /// the hardware tracer).
     tlas: Tlas,
+    /// The hardware tracer's acceleration structures (`None`: the compute tracer).
+    accelerations: Option<Accelerations>,
+    /// The top-level acceleration structure of the frame being traced (hardware tracer).
+    top_level: vk::AccelerationStructureKHR,
     statistics: Statistics,
 }
 
 impl ComputeTracer {
-    /// Creates the tracer's pipelines and buffers for `slots` frames in flight.
-    pub fn new(device: &Device, settings: Settings, slots: usize) -> Result<ComputeTracer> {
-        let pipelines = TracePipelines::new(device)?;
+    /// Creates the tracer's pipelines and buffers for `slots` frames in flight; with
+    /// `hardware` (the device has [`Device::ray_tracing`]) the hardware tracer.
+    pub fn new(device: &Device, settings: Settings, slots: usize, hardware: bool) -> Result<ComputeTracer> {
+        let pipelines = TracePipelines::new(device, hardware)?;
         let mut counters = Vec::new();
         let mut pools = Vec::new();
         for _ in 0..slots {
@@ -99,8 +111,9 @@ impl ComputeTracer {
             let sizes = [
                 vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: bindings::COUNT },
                 vk::DescriptorPoolSize { ty: vk::DescriptorType::COMBINED_IMAGE_SAMPLER, descriptor_count: 1 },
+                vk::DescriptorPoolSize { ty: vk::DescriptorType::ACCELERATION_STRUCTURE_KHR, descriptor_count: 1 },
             ];
-            let info = vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes);
+            let info = vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes[..if hardware { 3 } else { 2 }]);
             // Safety: valid create info; destroyed in `destroy`.
             pools.push(unsafe { device.raw.create_descriptor_pool(&info, None) }.check("vkCreateDescriptorPool")?);
         }
@@ -130,6 +143,8 @@ impl ComputeTracer {
             parity: 0,
             previous: None,
             tlas: Tlas::build(&[]),
+            accelerations: hardware.then(|| Accelerations::new(device, slots)),
+            top_level: vk::AccelerationStructureKHR::null(),
             statistics: Statistics::default(),
         })
     }
@@ -262,17 +277,33 @@ impl ComputeTracer {
                 .map(|(b, info)| vk::WriteDescriptorSet::default().dst_set(set).dst_binding(b as u32).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info))
                 .collect();
             writes.push(vk::WriteDescriptorSet::default().dst_set(set).dst_binding(bindings::SKY).descriptor_type(vk::DescriptorType::COMBINED_IMAGE_SAMPLER).image_info(&sky_info));
+            let structures = [self.top_level];
+            let mut structure_info = vk::WriteDescriptorSetAccelerationStructureKHR::default().acceleration_structures(&structures);
+            if self.accelerations.is_some() {
+                let mut write = vk::WriteDescriptorSet::default()
+                    .dst_set(set)
+                    .dst_binding(bindings::ACCELERATION)
+                    .descriptor_type(vk::DescriptorType::ACCELERATION_STRUCTURE_KHR)
+                    .push_next(&mut structure_info);
+                write.descriptor_count = 1;
+                writes.push(write);
+            }
             device.raw.update_descriptor_sets(&writes, &[]);
 
             let d = &device.raw;
+            let (stage, push_stages) = match &self.pipelines.table {
+                Some(_) => (vk::PipelineStageFlags2::RAY_TRACING_SHADER_KHR, vk::ShaderStageFlags::COMPUTE | vk::ShaderStageFlags::RAYGEN_KHR),
+                None => (vk::PipelineStageFlags2::COMPUTE_SHADER, vk::ShaderStageFlags::COMPUTE),
+            };
             d.cmd_fill_buffer(cmd, counters.raw, 0, vk::WHOLE_SIZE, 0);
-            barrier(d, cmd, vk::PipelineStageFlags2::TRANSFER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+            barrier(d, cmd, vk::PipelineStageFlags2::TRANSFER, stage);
             let groups = [gpu_frame.size[0].div_ceil(TRACE_GROUP), gpu_frame.size[1].div_ceil(TRACE_GROUP)];
-            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.layout, 0, &[set], &[]);
-            d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.pipelines.pathtrace);
+            let bind_point = self.pipelines.trace_bind_point();
+            d.cmd_bind_descriptor_sets(cmd, bind_point, self.pipelines.layout, 0, &[set], &[]);
+            d.cmd_bind_pipeline(cmd, bind_point, self.pipelines.pathtrace);
             if let Some(pool) = self.timestamps {
                 d.cmd_reset_query_pool(cmd, pool, 2 * slot as u32, 2);
-                d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, 2 * slot as u32);
+                d.cmd_write_timestamp2(cmd, stage, pool, 2 * slot as u32);
             }
             // One dispatch per sample, each adding its share to the G-buffer's radiance. Lavapipe
             // (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS) stops every loop of a shader after the
@@ -280,13 +311,17 @@ impl ComputeTracer {
             // in all; one invocation tracing every sample of its pixel (a traversal loop per
             // ray) silently lost the light of the later samples: beyond about 48 samples of 3
             // bounces in tests/pathtrace/cornell.rs's Cornell box.
+            // The hardware tracer launches per sample too (the same shader body).
             for sample in 0..gpu_frame.counts[1] {
-                d.cmd_push_constants(cmd, self.pipelines.layout, vk::ShaderStageFlags::COMPUTE, 0, &sample.to_ne_bytes());
-                d.cmd_dispatch(cmd, groups[0], groups[1], 1);
-                barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+                d.cmd_push_constants(cmd, self.pipelines.layout, push_stages, 0, &sample.to_ne_bytes());
+                match &self.pipelines.table {
+                    Some(table) => table.trace(cmd, gpu_frame.size[0], gpu_frame.size[1]),
+                    None => d.cmd_dispatch(cmd, groups[0], groups[1], 1),
+                }
+                barrier(d, cmd, stage, stage | vk::PipelineStageFlags2::COMPUTE_SHADER);
             }
             if let Some(pool) = self.timestamps {
-                d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, 2 * slot as u32 + 1);
+                d.cmd_write_timestamp2(cmd, stage, pool, 2 * slot as u32 + 1);
             }
             self.unread[slot] = true;
             set
@@ -323,7 +358,13 @@ impl RayTracer for ComputeTracer {
                 new.push(NewGeometry { key: item.key, geometry: item.geometry(), refit_from });
             }
         }
+        let rebuilt: Vec<u64> = new.iter().filter(|n| n.refit_from.is_some()).map(|n| n.key).collect();
         self.resident.insert_all(device, cmd, rec.ring, new, frame.number)?;
+        if let Some(accelerations) = &mut self.accelerations {
+            accelerations.begin_frame(device, &self.resident);
+            let keys: Vec<u64> = items.iter().map(|item| item.key).collect();
+            accelerations.build_bottom(device, cmd, &self.resident, &keys, &|key| rebuilt.contains(&key))?;
+        }
         for item in &items {
             if let Source::Surface(surface) = &item.source {
                 self.tracks.record(surface.base, item.key, frame.number);
@@ -343,6 +384,7 @@ impl RayTracer for ComputeTracer {
         let mut instances = Vec::with_capacity(items.len());
         let mut materials = Vec::with_capacity(items.len());
         let mut bounds = Vec::with_capacity(items.len());
+        let mut top_instances = Vec::new();
         let mut emitter_list = EmitterList::default();
         let mut recovered: Vec<GpuLight> = Vec::new();
         let mut signature = Xxh3::new();
@@ -376,6 +418,9 @@ impl RayTracer for ComputeTracer {
                 recovered.push(light);
             }
             let flags = if material.alpha_func != 7 { INSTANCE_ALPHA_TESTED } else { 0 };
+            if self.accelerations.is_some() {
+                top_instances.push(TopInstance { key: item.key, rows: gpu_types::rows(&item.object_to_eye), index: instances.len() as u32, opaque: flags == 0 });
+            }
             instances.push(GpuInstance {
                 object_to_eye: gpu_types::rows(&item.object_to_eye),
                 eye_to_object: gpu_types::rows(&item.object_to_eye.inverse()),
@@ -404,7 +449,10 @@ impl RayTracer for ComputeTracer {
         counts.emitters = emitter_list.len() as u32;
         self.statistics.scene = counts;
         self.statistics.totals.add_scene(&counts);
-        self.tlas = Tlas::build(&bounds);
+        match &mut self.accelerations {
+            Some(accelerations) => self.top_level = accelerations.build_top(device, cmd, slot, &top_instances)?,
+            None => self.tlas = Tlas::build(&bounds),
+        }
         let light_settings =
             LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction, radius: self.settings.light_radius };
         let gl_lights = draws.iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));
@@ -506,6 +554,9 @@ impl RayTracer for ComputeTracer {
             unsafe { device.raw.destroy_query_pool(pool, None) };
         }
         self.resident.destroy(device);
+        if let Some(mut accelerations) = self.accelerations.take() {
+            accelerations.destroy(device);
+        }
         if let Some((b, _)) = self.texel_buffer.take() {
             device.destroy_buffer(b);
         }

@@ -65,6 +65,7 @@ pub mod composite;
 pub mod compute;
 pub mod emitters;
 pub mod gpu_types;
+pub mod hardware;
 pub mod instances;
 pub mod lights;
 pub mod material;
@@ -157,8 +158,27 @@ pub struct TracedImage {
 }
 
 /// The ray-tracing back end for `device`, with `settings`, for `frames_in_flight` frames in
-/// flight: the compute tracer (the hardware one of issue 21 is to be chosen here where the
-/// device has `VK_KHR_ray_tracing_pipeline` and measures faster).
+/// flight: the hardware tracer ([`hardware`]) where the device has
+/// [`Device::ray_tracing`] and `settings.tracer` allows it, else the compute tracer; a hardware
+/// tracer that cannot be made (a driver refusing the pipeline) falls back to the compute one
+/// with a message.
 pub fn backend(device: &Device, settings: Settings, frames_in_flight: usize) -> Result<Box<dyn RayTracer>> {
-    Ok(Box::new(compute::ComputeTracer::new(device, settings, frames_in_flight)?))
+    let hardware = match settings.tracer {
+        settings::Tracer::Compute => false,
+        settings::Tracer::Auto => device.ray_tracing,
+        settings::Tracer::Hardware => {
+            if !device.ray_tracing {
+                crate::render::raster::renderer::log_once("tracer = \"hardware\": the device has no VK_KHR_ray_tracing_pipeline; tracing with compute shaders");
+            }
+            device.ray_tracing
+        }
+    };
+    match compute::ComputeTracer::new(device, settings, frames_in_flight, hardware) {
+        Ok(tracer) => Ok(Box::new(tracer)),
+        Err(e) if hardware => {
+            log::warn!("glrt: the hardware ray tracer could not be made ({e}); tracing with compute shaders");
+            Ok(Box::new(compute::ComputeTracer::new(device, settings, frames_in_flight, false)?))
+        }
+        Err(e) => Err(e),
+    }
 }

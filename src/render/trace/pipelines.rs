@@ -1,37 +1,49 @@
-//! The compute tracer's Vulkan objects that do not change with the scene: the descriptor set
-//! layout of [`super::bindings`] (storage buffers and the sky's cube map) and the two compute
-//! pipelines (`pathtrace.comp`, `trace_resolve.comp`).
+//! The tracers' Vulkan objects that do not change with the scene: the descriptor set layout of
+//! [`super::bindings`] (storage buffers and the sky's cube map, and for the hardware tracer
+//! the top-level acceleration structure), the tracing pipeline (`pathtrace.comp`, or the
+//! hardware tracer's ray-tracing pipeline, [`super::hardware::pipeline`]) and the resolve pass
+//! (`trace_resolve.comp`).
 
 use ash::vk;
 
 use super::bindings;
 use crate::render::raster::device::{Check, Device, Error, Result};
 use crate::render::raster::pipelines::shader_module;
+use super::hardware::pipeline::ShaderTable;
 
 /// Push constants of the compute pipelines: the sample a tracing dispatch traces (`pathtrace.comp`'s `Pass`).
 pub const TRACE_PUSH_BYTES: u32 = 4;
 
 include!(concat!(env!("OUT_DIR"), "/layouts/trace_push_constants.rs"));
 
-/// The layouts and the compute pipelines.
+/// The layouts and the pipelines.
 pub struct TracePipelines {
-    /// Set 0 of the compute pipelines.
+    /// Set 0 of the pipelines.
     pub set_layout: vk::DescriptorSetLayout,
-    /// Layout of the compute pipelines.
+    /// Layout of the pipelines.
     pub layout: vk::PipelineLayout,
-    /// The tracing pass.
+    /// The tracing pass: a compute pipeline, or with [`TracePipelines::table`] a ray-tracing one.
     pub pathtrace: vk::Pipeline,
+    /// The hardware tracer's shader binding table.
+    pub table: Option<ShaderTable>,
     /// The temporal pass and tone mapping.
     pub resolve: vk::Pipeline,
 }
 
+/// The ray-tracing stages.
+const RAY_TRACING_STAGES: vk::ShaderStageFlags = vk::ShaderStageFlags::from_raw(
+    vk::ShaderStageFlags::RAYGEN_KHR.as_raw() | vk::ShaderStageFlags::CLOSEST_HIT_KHR.as_raw() | vk::ShaderStageFlags::ANY_HIT_KHR.as_raw() | vk::ShaderStageFlags::MISS_KHR.as_raw(),
+);
+
 /// A descriptor set layout of `count` storage buffers visible to `stages`, then combined
-/// image samplers at the bindings `samplers`.
-fn descriptor_set_layout(device: &Device, count: u32, samplers: &[u32], stages: vk::ShaderStageFlags) -> Result<vk::DescriptorSetLayout> {
+/// image samplers at the bindings `samplers`, then acceleration structures at the bindings
+/// `structures`.
+fn descriptor_set_layout(device: &Device, count: u32, samplers: &[u32], structures: &[u32], stages: vk::ShaderStageFlags) -> Result<vk::DescriptorSetLayout> {
     let binding = |b, ty| vk::DescriptorSetLayoutBinding::default().binding(b).descriptor_type(ty).descriptor_count(1).stage_flags(stages);
     let bindings: Vec<_> = (0..count)
         .map(|b| binding(b, vk::DescriptorType::STORAGE_BUFFER))
         .chain(samplers.iter().map(|&b| binding(b, vk::DescriptorType::COMBINED_IMAGE_SAMPLER)))
+        .chain(structures.iter().map(|&b| binding(b, vk::DescriptorType::ACCELERATION_STRUCTURE_KHR)))
         .collect();
     // Safety: valid create info.
     unsafe { device.raw.create_descriptor_set_layout(&vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings), None) }
@@ -56,24 +68,52 @@ fn compute_pipeline(device: &Device, layout: vk::PipelineLayout, spirv: &[u8]) -
 }
 
 impl TracePipelines {
-    /// Creates the layouts and the compute pipelines.
-    pub fn new(device: &Device) -> Result<TracePipelines> {
-        let set_layout = descriptor_set_layout(device, bindings::COUNT, &[bindings::SKY], vk::ShaderStageFlags::COMPUTE)?;
+    /// Creates the layouts and the pipelines: with `hardware`, the ray-tracing pipeline
+    /// (the device has [`Device::ray_tracing`]) and its acceleration-structure binding.
+    pub fn new(device: &Device, hardware: bool) -> Result<TracePipelines> {
+        let (stages, structures): (_, &[u32]) =
+            if hardware { (vk::ShaderStageFlags::COMPUTE | RAY_TRACING_STAGES, &[bindings::ACCELERATION]) } else { (vk::ShaderStageFlags::COMPUTE, &[]) };
+        let set_layout = descriptor_set_layout(device, bindings::COUNT, &[bindings::SKY], structures, stages)?;
         let set_layouts = [set_layout];
-        let trace_push = [vk::PushConstantRange { stage_flags: vk::ShaderStageFlags::COMPUTE, offset: 0, size: TRACE_PUSH_BYTES }];
+        let push_stages = if hardware { vk::ShaderStageFlags::COMPUTE | vk::ShaderStageFlags::RAYGEN_KHR } else { vk::ShaderStageFlags::COMPUTE };
+        let trace_push = [vk::PushConstantRange { stage_flags: push_stages, offset: 0, size: TRACE_PUSH_BYTES }];
         // Safety (this block): valid create infos; objects are destroyed in `destroy`.
         let layout = unsafe {
             device.raw.create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts).push_constant_ranges(&trace_push), None)
         }
         .check("vkCreatePipelineLayout")?;
-        let pathtrace = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/pathtrace.comp.spv")))?;
-        let resolve = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/trace_resolve.comp.spv")))?;
-        Ok(TracePipelines { set_layout, layout, pathtrace, resolve })
+        let mut pipelines = TracePipelines { set_layout, layout, pathtrace: vk::Pipeline::null(), table: None, resolve: vk::Pipeline::null() };
+        let made = (|| {
+            if hardware {
+                let (pipeline, table) = super::hardware::pipeline::create(device, layout)?;
+                pipelines.pathtrace = pipeline;
+                pipelines.table = Some(table);
+            } else {
+                pipelines.pathtrace = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/pathtrace.comp.spv")))?;
+            }
+            pipelines.resolve = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/trace_resolve.comp.spv")))?;
+            Ok(())
+        })();
+        match made {
+            Ok(()) => Ok(pipelines),
+            Err(e) => {
+                pipelines.destroy(device);
+                Err(e)
+            }
+        }
+    }
+
+    /// The bind point of [`TracePipelines::pathtrace`].
+    pub fn trace_bind_point(&self) -> vk::PipelineBindPoint {
+        if self.table.is_some() { vk::PipelineBindPoint::RAY_TRACING_KHR } else { vk::PipelineBindPoint::COMPUTE }
     }
 
     /// Destroys everything (the GPU must be idle).
     pub fn destroy(&mut self, device: &Device) {
-        // Safety: the GPU is done with them; each is destroyed once.
+        if let Some(table) = self.table.take() {
+            table.destroy(device);
+        }
+        // Safety: the GPU is done with them; each is destroyed once (null handles are ignored).
         unsafe {
             device.raw.destroy_pipeline(self.pathtrace, None);
             device.raw.destroy_pipeline(self.resolve, None);

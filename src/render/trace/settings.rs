@@ -19,6 +19,7 @@
 //! sample_emitters = true    # next-event estimation of emissive surfaces
 //! temporal = true           # temporal filter with reprojection while moving
 //! sky_size = 128            # faces of the sky's environment cube map, pixels, 16..=2048
+//! tracer = "auto"           # "auto", "hardware" (VK_KHR_ray_tracing_pipeline), "compute"
 //! ```
 
 use glam::Vec3;
@@ -62,6 +63,19 @@ pub enum Lightmaps {
     Ignore,
 }
 
+/// Which ray-tracing back end traces ([`super::backend`] decides for `Auto`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Tracer {
+    /// The hardware back end where the device has it, else the compute one (`"auto"`).
+    #[default]
+    Auto,
+    /// The ray-tracing pipeline ([`super::hardware`]); the compute one, with a message, on a
+    /// device without it (`"hardware"`).
+    Hardware,
+    /// BVH traversal in compute shaders ([`super::compute`]), on every device (`"compute"`).
+    Compute,
+}
+
 /// The `[pathtrace]` settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
@@ -99,6 +113,8 @@ pub struct Settings {
     /// Width and height of each face of the environment cube map the sky draws are rendered
     /// into ([`super::sky`]), 16..=2048.
     pub sky_size: u32,
+    /// The ray-tracing back end.
+    pub tracer: Tracer,
 }
 
 impl Default for Settings {
@@ -118,6 +134,7 @@ impl Default for Settings {
             sample_emitters: true,
             temporal: true,
             sky_size: 128,
+            tracer: Tracer::Auto,
         }
     }
 }
@@ -158,6 +175,7 @@ impl Table for Settings {
         Key { name: "sample_emitters", set: |s, v| boolean(v).map(|b| s.sample_emitters = b) },
         Key { name: "temporal", set: |s, v| boolean(v).map(|b| s.temporal = b) },
         Key { name: "sky_size", set: |s, v| integer_in(v, 16..=2048).map(|x| s.sky_size = x as u32) },
+        Key { name: "tracer", set: |s, v| one_of(v, &["auto", "hardware", "compute"]).map(|i| s.tracer = [Tracer::Auto, Tracer::Hardware, Tracer::Compute][i]) },
     ];
 }
 
@@ -190,7 +208,7 @@ mod tests {
     #[test]
     fn every_key_is_read() {
         let body = "spp = 8\nbounces = 0\nresolution_scale = 0.5\nlight_scale = 2\nsun_direction = [0, 2, 0]\nsun_angle = 0\nlight_radius = 0.25\n\
-                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"ignore\"\nsample_emitters = false\ntemporal = false\nsky_size = 64\n";
+                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"ignore\"\nsample_emitters = false\ntemporal = false\nsky_size = 64\ntracer = \"compute\"\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
         let expected = Settings {
@@ -208,6 +226,7 @@ mod tests {
             sample_emitters: false,
             temporal: false,
             sky_size: 64,
+            tracer: Tracer::Compute,
         };
         assert_eq!(s, expected);
         assert_eq!(read("tonemap = \"none\"\n", &[]).0.tonemap, Tonemap::Clamp);
@@ -215,7 +234,8 @@ mod tests {
         assert_eq!(read("tonemap = \"knee\"\nlightmaps = \"keep\"\n", &[]).0, Settings::default());
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
         assert_eq!((Settings::default().tonemap, Settings::default().lightmaps), (Tonemap::Knee, Lightmaps::Keep));
-        assert_eq!(Settings::KEYS.len(), 14);
+        assert_eq!(read("tracer = \"hardware\"\n", &[]).0.tracer, Tracer::Hardware);
+        assert_eq!(Settings::KEYS.len(), 15);
     }
 
     #[test]

@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# The two ray-tracing back ends side by side on a GPU with VK_KHR_ray_tracing_pipeline
+# (bench/pathtrace.md keeps the results): for each of GLRT_TRACER=compute and hardware, the
+# demo and the Quake-3-like demo at SIZE, and the re-batched world at ~1M triangles
+# (`--rebatch --detail 11`), each path traced for FRAMES frames: frame times and the tracer's
+# summary (`GLRT_LOG=info`: rays per frame by kind, GPU time of the tracing pass, rays/s);
+# then parity images, 64 samples per pixel of one frame from each back end (both draw the
+# same random numbers per pixel and sample), compared afterwards with `python3 scripts/png_luma.py --diff A B`.
+#   bash bench/tracers.sh BIN_DIR OUT_DIR [FRAMES] [SIZE]
+# BIN_DIR holds a release build's libglrt.so and glrt-demo.
+set -uo pipefail
+bin=$(cd "$1" && pwd)
+out=$2
+frames=${3:-300}
+size=${4:-1280x720}
+mkdir -p "$out"
+ln -sf libglrt.so "$bin/libGL.so.1"
+clean=(env -u GLRT_TRACE -u GLRT_CAPTURE -u GLRT_DUMP -u GLRT_PASSTHROUGH -u GLRT_MODE LD_LIBRARY_PATH="$bin" GLRT_LOG=info GLRT_MODE=pathtrace)
+
+# run NAME "VAR=VALUE ..." [demo args...]: one run; its frame-time and tracer lines.
+run() {
+    local name=$1 settings=$2
+    shift 2
+    echo "== $name ($settings; $size)"
+    # shellcheck disable=SC2086 # the settings are words on purpose
+    "${clean[@]}" $settings "$bin/glrt-demo" --headless --size "$size" "$@" 2>&1 \
+        | grep -E "frame time|path tracer|tracer|rebatch:|Vulkan device|error|panick|WARN" || echo "(no output: exit $?)"
+}
+
+for tracer in compute hardware; do
+    run "demo-$tracer" "GLRT_TRACER=$tracer" --frames "$frames"
+    run "q3-$tracer" "GLRT_TRACER=$tracer" --q3 --frames "$frames"
+    run "rebatch-$tracer" "GLRT_TRACER=$tracer" --rebatch --detail 11 --frames "$frames"
+done
+for tracer in compute hardware; do
+    run "parity-demo-$tracer" "GLRT_TRACER=$tracer GLRT_SPP=64" --first-frame 120 --frames 2 --screenshot "$out/demo-120-$tracer.png"
+    run "parity-q3-$tracer" "GLRT_TRACER=$tracer GLRT_SPP=64" --q3 --first-frame 300 --frames 2 --screenshot "$out/q3-300-$tracer.png"
+done
+ls -la "$out"

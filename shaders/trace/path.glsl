@@ -1,0 +1,192 @@
+// The path integrator of both tracers (render::trace::compute and render::trace::hardware):
+// per traced pixel, one path of a primary ray,
+// next-event estimation at every vertex (one shadow ray per light that lights it: GL lights
+// and the light of its own vertex colours, render::trace::vertex_light; one towards a point of an
+// emissive triangle, trace/emitters.glsl, weighted against continuation rays that hit
+// emitters by multiple importance sampling), `bounces` indirect bounces and the environment
+// (trace/environment.glsl: the sky cube map or the clear colour) through every continuation
+// ray that misses (cosine-weighted diffuse or GGX visible-normal specular), and through
+// primary rays that miss; a baked surface (render::trace::material) ends the path with its
+// emission; adds its share of the noisy radiance
+// (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
+// (trace/gbuffer.glsl). The tracer runs it once per sample of the frame (see `dispatch` in
+// src/render/trace/compute.rs for why). src/render/trace/mod.rs describes
+// the scene it reads. Ray counts and traversal work are summed per subgroup (subgroup
+// arithmetic, which lavapipe and the desktop drivers have) and added to the counters once per
+// subgroup.
+//
+// The including shader enables GL_KHR_shader_subgroup_arithmetic and _basic, and for the
+// hardware tracer defines TRACE_HARDWARE (trace/surface.glsl then traverses with
+// trace/hardware.glsl).
+
+#ifndef TRACE_PATH_GLSL
+#define TRACE_PATH_GLSL
+
+// The sample of the frame this dispatch traces, 0 to samples - 1.
+layout(push_constant) uniform Pass {
+    uint sample_index;
+} pass;
+
+#include "trace/emitters.glsl"
+#include "trace/gbuffer.glsl"
+#include "trace/environment.glsl"
+
+// The eye-space ray through window position `window` (GL window coordinates, y up).
+void camera_ray(vec2 window, out vec3 origin, out vec3 dir) {
+    vec2 ndc = 2.0 * (window - frame.viewport.xy) / frame.viewport.zw - 1.0;
+    vec4 near = frame.inverse_projection * vec4(ndc, -1.0, 1.0);
+    vec4 far = frame.inverse_projection * vec4(ndc, 1.0, 1.0);
+    origin = near.xyz / near.w;
+    dir = normalize(far.xyz / far.w - origin);
+}
+
+// Window depth of eye-space point p (glDepthRange applied).
+float window_depth(mat4 projection, vec3 p) {
+    vec4 clip = projection * vec4(p, 1.0);
+    float ndc = clip.z / clip.w;
+    return mix(frame.depth_range.x, frame.depth_range.y, ndc * 0.5 + 0.5);
+}
+
+vec2 window_xy(mat4 projection, vec3 p) {
+    vec4 clip = projection * vec4(p, 1.0);
+    return frame.viewport.xy + (clip.xy / clip.w * 0.5 + 0.5) * frame.viewport.zw;
+}
+
+// Traces traced pixel `pixel` (may lie outside the image: only counts then; every invocation
+// of a subgroup must call it, for the counters' subgroup sums).
+void trace_pixel(uvec2 pixel) {
+    uvec2 size = frame.size.xy;
+    bool inside = all(lessThan(pixel, size));
+    uint samples = max(frame.counts.y, 1u);
+    uint bounces = frame.counts.z;
+    uint light_count = frame.counts.w;
+    uint emitter_count = frame.flags.z;
+    // Window pixels per traced pixel.
+    vec2 scale = vec2(frame.size.zw) / vec2(size);
+
+    uint sample_index = pass.sample_index;
+    GSample g;
+    g.radiance = vec4(0.0);
+    g.albedo = 0u;
+    g.normal = 0u;
+    g.depth = 1.0;
+    g.view_z = 0.0;
+    g.motion = vec2(0.0);
+    g.material = 0u;
+    g.instance = 0xffffffffu;
+    uint primary = 0u, shadow = 0u, diffuse = 0u, specular = 0u;
+
+    vec3 radiance = vec3(0.0);
+    if (inside) {
+        Rng rng = rng_seed(pixel, frame.counts.x, sample_index);
+        // The first sample of a frame goes through the pixel centre, so the G-buffer is stable.
+        vec2 jitter = sample_index == 0u ? vec2(0.5) : rng_next2(rng);
+        vec2 window = (vec2(pixel) + jitter) * scale;
+        vec3 origin, dir;
+        camera_ray(window, origin, dir);
+        bool in_viewport = all(greaterThanEqual(window, frame.viewport.xy)) && all(lessThan(window, frame.viewport.xy + frame.viewport.zw));
+        vec3 throughput = vec3(1.0);
+        float cone_width = 0.0;
+        float cone_spread = frame.params.w * max(scale.x, scale.y);
+        primary += 1u;
+        TraceHit hit;
+        bool hit_found = in_viewport && trace_closest(origin, dir, 0.0, 1e30, hit);
+        if (!hit_found) {
+            radiance = environment(dir);
+        }
+        // Vertex `depth` of the path: emission, next-event estimation towards every light and
+        // one emitter, then a continuation ray; the environment is found by continuation rays
+        // that miss (also after the last vertex, so bounces = 0 is direct light with the sky
+        // included), and a continuation ray past the last vertex that hits adds nothing (so
+        // the emitter sample of the last vertex counts whole). `bsdf_density` is the density
+        // with which the previous vertex chose the ray that reached this one, when it also
+        // sampled emitters (the MIS weight of the emission found here).
+        float bsdf_density = 0.0;
+        for (uint depth = 0u; hit_found; depth++) {
+            cone_width += cone_spread * hit.t;
+            Surface s = surface_at(hit, origin, dir, cone_width);
+            vec3 v = -dir;
+            if (depth == 0u && sample_index == 0u) {
+                Instance inst = instances[hit.instance];
+                g.albedo = packUnorm4x8(vec4(s.albedo, s.alpha));
+                g.normal = pack_normal(s.normal);
+                g.depth = window_depth(frame.projection, s.position);
+                g.view_z = -s.position.z;
+                vec3 object = instance_transform(inst.eye_to_object, vec4(s.position, 1.0));
+                vec3 previous = instance_transform(inst.previous_object_to_eye, vec4(object, 1.0));
+                g.motion = (window_xy(frame.projection, s.position) - window_xy(frame.previous_projection, previous)) / scale;
+                g.material = packUnorm4x8(vec4(s.roughness, s.metalness, 0.0, 0.0));
+                g.instance = hit.instance;
+            }
+            vec3 emitted = s.emission;
+            if (bsdf_density > 0.0 && s.emitter_density > 0.0) {
+                float w = mis_weight(bsdf_density, emitter_solid_angle_density(s, hit.t, abs(dot(s.geometric, dir))));
+                emitted -= (1.0 - w) * s.sampled_emission;
+            }
+            radiance += throughput * emitted;
+            // A baked surface (render::trace::material) only emits: the path ends.
+            if (s.baked) {
+                break;
+            }
+            for (uint i = 0u; i < light_count; i++) {
+                radiance += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
+            }
+            if (emitter_count > 0u) {
+                radiance += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces, rng, shadow);
+            }
+            vec3 l;
+            bool chose_specular;
+            vec3 u = vec3(rng_next2(rng), rng_next(rng));
+            if (!brdf_sample(s, v, u, l, chose_specular)) {
+                break;
+            }
+            float pdf = brdf_pdf(s, v, l);
+            if (pdf <= 0.0) {
+                break;
+            }
+            throughput *= brdf_eval_cos(s, v, l) / pdf;
+            bsdf_density = emitter_count > 0u ? pdf : 0.0;
+            if (chose_specular) {
+                specular += 1u;
+            } else {
+                diffuse += 1u;
+            }
+            if (all(equal(throughput, vec3(0.0)))) {
+                break;
+            }
+            origin = offset_ray(s.position, s.geometric);
+            dir = l;
+            // After a bounce the cone spreads as wide as the lobe sampled (textures seen by
+            // diffuse rays are read from small levels).
+            cone_spread = max(cone_spread, chose_specular ? ggx_alpha(s) : 1.0);
+            if (!trace_closest(origin, dir, 0.0, 1e30, hit)) {
+                radiance += throughput * environment(dir);
+                break;
+            }
+            if (depth == bounces) {
+                break;
+            }
+        }
+    }
+
+    uint index = pixel.y * size.x + pixel.x;
+    if (inside && sample_index == 0u) {
+        g.radiance = vec4(radiance / float(samples), 1.0);
+        gbuffer[index] = g;
+    } else if (inside) {
+        gbuffer[index].radiance.rgb += radiance / float(samples);
+    }
+    // One atomic per subgroup and counter.
+    uvec4 rays = subgroupAdd(uvec4(primary, shadow, diffuse, specular));
+    uvec2 work = subgroupAdd(uvec2(bvh_nodes_visited, bvh_triangles_tested));
+    if (subgroupElect()) {
+        atomicAdd(counters.primary_rays, rays.x);
+        atomicAdd(counters.shadow_rays, rays.y);
+        atomicAdd(counters.diffuse_rays, rays.z);
+        atomicAdd(counters.specular_rays, rays.w);
+        atomicAdd(counters.nodes_visited, work.x);
+        atomicAdd(counters.triangles_tested, work.y);
+    }
+}
+
+#endif
