@@ -33,7 +33,7 @@ use super::shader_constants::{
 };
 use super::surfaces::Surfaces;
 use super::sky::Sky;
-use super::stats::{RayCounts, SceneCounts, Statistics};
+use super::stats::{PassSeconds, RayCounts, SceneCounts, Statistics};
 use super::texels::TexelPool;
 use super::tracks::Tracks;
 use super::vertex_light;
@@ -45,6 +45,9 @@ use crate::render::raster::renderer::Recorder;
 
 /// Frames a moving camera's history keeps (the temporal filter's weight is 1 / (n + 1)).
 const MOVING_HISTORY: f32 = 8.0;
+
+/// Timestamps per frame in flight: tracing pass start and end, builds start and end.
+const TIMESTAMPS: u32 = 4;
 
 /// Per-pixel buffers of one traced size.
 struct PixelBuffers {
@@ -80,7 +83,8 @@ pub struct ComputeTracer {
     counters: Vec<Buffer>,
     /// Descriptor pools per frame in flight.
     pools: Vec<vk::DescriptorPool>,
-    /// Two timestamps per frame in flight around the tracing pass (`None`: the device has no
+    /// Per frame in flight, [`TIMESTAMPS`] timestamps: around the tracing pass, then around
+    /// the geometry uploads and acceleration-structure builds (`None`: the device has no
     /// timestamps on compute queues, or is a CPU).
     timestamps: Option<vk::QueryPool>,
     /// Per frame in flight: whether it traced a frame whose counters were not read yet.
@@ -120,7 +124,7 @@ impl ComputeTracer {
         // lavapipe's timestamps do not bracket its compute work (they read ~0): CPU devices get none.
         let timed = device.properties.limits.timestamp_compute_and_graphics == vk::TRUE && device.properties.device_type != vk::PhysicalDeviceType::CPU;
         let timestamps = if timed {
-            let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(2 * slots as u32);
+            let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(TIMESTAMPS * slots as u32);
             // Safety: valid create info; destroyed in `destroy`.
             Some(unsafe { device.raw.create_query_pool(&info, None) }.check("vkCreateQueryPool")?)
         } else {
@@ -157,10 +161,11 @@ impl ComputeTracer {
         }
         let Some(rays) = self.counters.get_mut(slot).and_then(|b| RayCounts::from_counters(b.mapped())) else { return };
         let seconds = self.timestamps.and_then(|pool| {
-            let mut ticks = [0u64; 2];
-            // Safety: both queries were written by the slot's finished frame.
-            unsafe { device.raw.get_query_pool_results(pool, 2 * slot as u32, &mut ticks, vk::QueryResultFlags::TYPE_64) }.ok()?;
-            Some(ticks[1].wrapping_sub(ticks[0]) as f64 * device.properties.limits.timestamp_period as f64 * 1e-9)
+            let mut ticks = [0u64; TIMESTAMPS as usize];
+            // Safety: the queries were written by the slot's finished frame.
+            unsafe { device.raw.get_query_pool_results(pool, TIMESTAMPS * slot as u32, &mut ticks, vk::QueryResultFlags::TYPE_64) }.ok()?;
+            let seconds = |start: usize| ticks[start + 1].wrapping_sub(ticks[start]) as f64 * device.properties.limits.timestamp_period as f64 * 1e-9;
+            Some(PassSeconds { trace: seconds(0), build: seconds(2) })
         });
         self.statistics.rays = rays;
         self.statistics.totals.add(rays, seconds);
@@ -302,8 +307,7 @@ impl ComputeTracer {
             d.cmd_bind_descriptor_sets(cmd, bind_point, self.pipelines.layout, 0, &[set], &[]);
             d.cmd_bind_pipeline(cmd, bind_point, self.pipelines.pathtrace);
             if let Some(pool) = self.timestamps {
-                d.cmd_reset_query_pool(cmd, pool, 2 * slot as u32, 2);
-                d.cmd_write_timestamp2(cmd, stage, pool, 2 * slot as u32);
+                d.cmd_write_timestamp2(cmd, stage, pool, TIMESTAMPS * slot as u32);
             }
             // One dispatch per sample, each adding its share to the G-buffer's radiance. Lavapipe
             // (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS) stops every loop of a shader after the
@@ -321,7 +325,7 @@ impl ComputeTracer {
                 barrier(d, cmd, stage, stage | vk::PipelineStageFlags2::COMPUTE_SHADER);
             }
             if let Some(pool) = self.timestamps {
-                d.cmd_write_timestamp2(cmd, stage, pool, 2 * slot as u32 + 1);
+                d.cmd_write_timestamp2(cmd, stage, pool, TIMESTAMPS * slot as u32 + 1);
             }
             self.unread[slot] = true;
             set
@@ -347,6 +351,16 @@ impl RayTracer for ComputeTracer {
         let previous_view = self.previous.and_then(|p| p.view).filter(|_| !frame.stats.camera_cut);
         let (items, covered_draws) = instances::gather(frame, traced, previous_view);
 
+        let build_started = std::time::Instant::now();
+        if let Some(pool) = self.timestamps {
+            // Safety: `cmd` is recording outside a rendering pass; the slot's last frame,
+            // which wrote these queries, has finished and was read.
+            unsafe {
+                device.raw.cmd_reset_query_pool(cmd, pool, TIMESTAMPS * slot as u32, TIMESTAMPS);
+                device.raw.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::ALL_COMMANDS, pool, TIMESTAMPS * slot as u32 + 2);
+            }
+        }
+        let mut build_micros = 0u64;
         // Geometry: build (or refit) and upload what is new.
         let mut new: Vec<NewGeometry> = Vec::new();
         for item in &items {
@@ -365,6 +379,7 @@ impl RayTracer for ComputeTracer {
             let keys: Vec<u64> = items.iter().map(|item| item.key).collect();
             accelerations.build_bottom(device, cmd, &self.resident, &keys, &|key| rebuilt.contains(&key))?;
         }
+        build_micros += build_started.elapsed().as_micros() as u64;
         for item in &items {
             if let Source::Surface(surface) = &item.source {
                 self.tracks.record(surface.base, item.key, frame.number);
@@ -447,12 +462,18 @@ impl RayTracer for ComputeTracer {
             counts.triangles += item.triangles() as u64;
         }
         counts.emitters = emitter_list.len() as u32;
-        self.statistics.scene = counts;
-        self.statistics.totals.add_scene(&counts);
+        let top_started = std::time::Instant::now();
         match &mut self.accelerations {
             Some(accelerations) => self.top_level = accelerations.build_top(device, cmd, slot, &top_instances)?,
             None => self.tlas = Tlas::build(&bounds),
         }
+        if let Some(pool) = self.timestamps {
+            // Safety: as above.
+            unsafe { device.raw.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::ALL_COMMANDS, pool, TIMESTAMPS * slot as u32 + 3) };
+        }
+        counts.build_micros = build_micros + top_started.elapsed().as_micros() as u64;
+        self.statistics.scene = counts;
+        self.statistics.totals.add_scene(&counts);
         let light_settings =
             LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction, radius: self.settings.light_radius };
         let gl_lights = draws.iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));

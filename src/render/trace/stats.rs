@@ -75,6 +75,18 @@ pub struct SceneCounts {
     pub built: u32,
     /// Geometries whose BVH was refitted in this frame.
     pub refitted: u32,
+    /// CPU time of the frame's acceleration-structure work, in microseconds: BVH builds and
+    /// refits of new geometry, the top level, and the hardware tracer's build recording.
+    pub build_micros: u64,
+}
+
+/// GPU seconds of one frame's passes, from timestamps.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PassSeconds {
+    /// The tracing pass.
+    pub trace: f64,
+    /// Geometry uploads and acceleration-structure builds.
+    pub build: f64,
 }
 
 /// The sums over the frames of a run whose counters and pass times were read.
@@ -88,6 +100,9 @@ pub struct Totals {
     pub trace_seconds: f64,
     /// Frames whose pass time is in `trace_seconds`.
     pub timed_frames: u64,
+    /// GPU seconds of the frames' uploads and acceleration-structure builds, summed over the
+    /// frames in `timed_frames`.
+    pub build_seconds: f64,
     /// Frames recorded.
     pub scenes: u64,
     /// Their scenes' counts, summed.
@@ -109,11 +124,13 @@ pub struct SceneTotals {
     pub built: u64,
     /// BVHs refitted.
     pub refitted: u64,
+    /// CPU microseconds of acceleration-structure work.
+    pub build_micros: u64,
 }
 
 impl Totals {
     /// Adds one frame: its counts and, when the device timed it, its tracing pass's seconds.
-    pub fn add(&mut self, rays: RayCounts, trace_seconds: Option<f64>) {
+    pub fn add(&mut self, rays: RayCounts, seconds: Option<PassSeconds>) {
         self.frames += 1;
         let r = &mut self.rays;
         r.primary += rays.primary;
@@ -122,8 +139,9 @@ impl Totals {
         r.specular += rays.specular;
         r.nodes_visited += rays.nodes_visited;
         r.triangles_tested += rays.triangles_tested;
-        if let Some(s) = trace_seconds {
-            self.trace_seconds += s;
+        if let Some(s) = seconds {
+            self.trace_seconds += s.trace;
+            self.build_seconds += s.build;
             self.timed_frames += 1;
         }
     }
@@ -138,6 +156,7 @@ impl Totals {
         t.emitters += u64::from(counts.emitters);
         t.built += u64::from(counts.built);
         t.refitted += u64::from(counts.refitted);
+        t.build_micros += counts.build_micros;
     }
 
     /// One line: per-frame averages and, when every frame was timed, rays per second of the
@@ -178,6 +197,10 @@ impl Totals {
                 rate(r.total()),
             );
         }
+        line += &format!("; acceleration structures per frame: {:.3} ms CPU", self.scene.build_micros as f64 / 1e3 / scenes);
+        if self.timed_frames == self.frames {
+            line += &format!(", {:.3} ms GPU (uploads and builds)", self.build_seconds * 1e3 / n);
+        }
         line
     }
 }
@@ -198,15 +221,18 @@ mod tests {
     fn the_summary_gives_rates_of_the_timed_pass() {
         let mut t = Totals::default();
         let frame = RayCounts { primary: 1_000_000, shadow: 2_000_000, diffuse: 500_000, specular: 0, nodes_visited: 35_000_000, triangles_tested: 7_000_000 };
-        t.add(frame, Some(0.001));
-        t.add(frame, Some(0.001));
-        t.add_scene(&SceneCounts { draw_instances: 1, chunk_instances: 2, triangles: 1000, built: 3, passes: 2, ..SceneCounts::default() });
-        t.add_scene(&SceneCounts { draw_instances: 5, triangles: 3000, refitted: 1, emitters: 10, ..SceneCounts::default() });
+        let timed = Some(PassSeconds { trace: 0.001, build: 0.0005 });
+        t.add(frame, timed);
+        t.add(frame, timed);
+        t.add_scene(&SceneCounts { draw_instances: 1, chunk_instances: 2, triangles: 1000, built: 3, passes: 2, build_micros: 3000, ..SceneCounts::default() });
+        t.add_scene(&SceneCounts { draw_instances: 5, triangles: 3000, refitted: 1, emitters: 10, build_micros: 1000, ..SceneCounts::default() });
         let s = t.summary();
         assert!(s.contains("2 frames; scene: 2000 triangles in 4 instances with 1 passes, 5 emitter triangles, 1.5 BVHs built and 0.5 refitted per frame"), "{s}");
         assert!(s.contains("per ray: 10.0 nodes, 2.0 triangle tests"), "{s}");
         assert!(s.contains("tracing pass 1.000 ms per frame; Mrays/s: 1000.0 primary, 2000.0 shadow, 500.0 diffuse, 0.0 specular, 3500.0 all"), "{s}");
+        assert!(s.contains("acceleration structures per frame: 2.000 ms CPU, 0.500 ms GPU"), "{s}");
         t.add(frame, None);
-        assert!(!t.summary().contains("Mrays/s"), "an untimed frame leaves the rates out");
+        let s = t.summary();
+        assert!(!s.contains("Mrays/s") && !s.contains("ms GPU"), "an untimed frame leaves the rates out: {s}");
     }
 }
