@@ -133,7 +133,7 @@ impl ComputeTracer {
         Ok(ComputeTracer {
             settings,
             pipelines,
-            resident: Resident::default(),
+            resident: Resident::new(!hardware),
             tracks: Tracks::default(),
             texels: TexelPool::new(super::texels::MAX_WORDS, slots),
             texel_buffer: None,

@@ -74,9 +74,10 @@ struct Built {
 }
 
 impl Built {
-    /// Builds the BVH of `geometry`.
-    fn new(geometry: &Geometry) -> Built {
-        let blas = Blas::build(&geometry.triangles);
+    /// Builds the BVH of `geometry`, or with `bvh` false only stores its triangles
+    /// ([`Blas::unordered`]).
+    fn new(geometry: &Geometry, bvh: bool) -> Built {
+        let blas = if bvh { Blas::build(&geometry.triangles) } else { Blas::unordered(&geometry.triangles) };
         let (attributes, layer_corners) = ordered(&blas, geometry);
         Built { built_cost: sah_cost(&blas.nodes), blas, attributes, layer_corners, passes: geometry.passes }
     }
@@ -149,6 +150,9 @@ pub struct Resident {
     pub built: u32,
     /// Geometries whose BVH the last [`Resident::insert_all`] refitted.
     pub refitted: u32,
+    /// Whether geometries get BVHs (the compute tracer's); without, their triangles stay in
+    /// input order under an empty root (the hardware tracer builds its own structures).
+    bvh: bool,
 }
 
 /// Copies `bytes` through the ring into `dst` at byte `offset` (recorded into `cmd`).
@@ -163,8 +167,9 @@ pub fn upload(device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, dst: vk:
     Ok(())
 }
 
-impl Default for Resident {
-    fn default() -> Resident {
+impl Resident {
+    /// An empty cache; `bvh`: whether geometries get the compute tracer's BVHs.
+    pub fn new(bvh: bool) -> Resident {
         Resident {
             entries: HashMap::new(),
             nodes: Shared::new(std::mem::size_of::<GpuNode>() as u64),
@@ -174,11 +179,10 @@ impl Default for Resident {
             uploaded: 0,
             built: 0,
             refitted: 0,
+            bvh,
         }
     }
-}
 
-impl Resident {
     /// The placement of geometry `key` if it is on the GPU (marking it used in `frame`).
     pub fn lookup(&mut self, key: u64, frame: u64) -> Option<Placement> {
         let entry = self.entries.get_mut(&key)?;
@@ -199,7 +203,7 @@ impl Resident {
                 Some(Refit::InPlace) => in_place.push(new.key),
                 Some(Refit::Elsewhere(built)) => to_place.push((new.key, Arc::new(built))),
                 None => {
-                    to_place.push((new.key, Arc::new(Built::new(&new.geometry))));
+                    to_place.push((new.key, Arc::new(Built::new(&new.geometry, self.bvh))));
                     self.built += 1;
                     continue;
                 }
@@ -377,7 +381,7 @@ mod tests {
 
     #[test]
     fn a_refit_keeps_the_layout_until_the_tree_degrades() {
-        let built = Built::new(&grid(32, Vec3::ZERO, |i| i));
+        let built = Built::new(&grid(32, Vec3::ZERO, |i| i), true);
         let moved = grid(32, Vec3::new(3.0, -2.0, 1.0), |i| i);
         let refitted = built.clone().refitted(&moved).expect("a rigid move keeps the tree as good");
         assert_eq!((refitted.blas.nodes.len(), refitted.blas.order.clone()), (built.blas.nodes.len(), built.blas.order.clone()));
@@ -398,5 +402,17 @@ mod tests {
         let mut one_pass = moved.clone();
         one_pass.passes = 1;
         assert!(built.refitted(&one_pass).is_none(), "another number of passes");
+    }
+
+    #[test]
+    fn without_bvhs_triangles_keep_their_order_and_refit_in_place() {
+        let built = Built::new(&grid(32, Vec3::ZERO, |i| i), false);
+        assert_eq!(built.blas.order, (0..1024).collect::<Vec<u32>>());
+        assert_eq!(built.blas.nodes.len(), 1, "one root of two empty leaves");
+        assert_eq!(built.attributes[7].corner[0].uv[0][0], 7.0);
+        assert_eq!(built.blas.bounds.max, Vec3::new(31.9, 31.9, 0.0));
+        let moved = grid(32, Vec3::new(3.0, -2.0, 1.0), |i| i * 397 % 1024);
+        let refitted = built.refitted(&moved).expect("no tree to degrade");
+        assert_eq!(refitted.blas.triangles[5].v0, [3.0 + (5 * 397 % 1024 % 32) as f32, -2.0 + (5 * 397 % 1024 / 32) as f32, 1.0]);
     }
 }

@@ -73,6 +73,16 @@ impl Blas {
         Blas { nodes, triangles, order, bounds }
     }
 
+    /// `triangles` in their input order under a root of two empty leaves: no tree, for the
+    /// hardware tracer, whose driver builds its own structure over the same triangles (the
+    /// stored triangles, order and bounds are those a built BVH would have, in input order).
+    pub fn unordered(triangles: &[[Vec3; 3]]) -> Blas {
+        let clean: Vec<[Vec3; 3]> = triangles.iter().map(sanitize).collect();
+        let bounds = clean.iter().fold(Aabb::EMPTY, |b, t| b.union(&Aabb::of_points(t)));
+        let triangles = clean.iter().map(GpuTriangle::new).collect();
+        Blas { nodes: Blas::build(&[]).nodes, triangles, order: (0..clean.len() as u32).collect(), bounds }
+    }
+
     /// Moves the vertices of a built BVH: `triangles` is the same set in the same input order
     /// with new positions. Stores them and updates every box bottom-up, keeping the tree (its
     /// quality drops as the geometry drifts from the built shape; rebuild then). Returns false
