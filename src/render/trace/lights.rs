@@ -28,9 +28,10 @@
 //! A **dynamic light** recovered from a game's dynamic-light passes
 //! ([`crate::frame::class::DynamicLight`]: a colour `c` added as `c · falloff / d²` around its
 //! centre) is a GL light of diffuse `c` and quadratic attenuation `1 / falloff`: a point light
-//! of intensity `π · linear(c) · falloff` (or a sphere of it, as positional lights). Baked
-//! surfaces reflect it too (`params.w = -1`): their bake holds the level's lights, never a
-//! rocket's.
+//! of intensity `π · linear(c) · falloff`, a sphere of [`DYNAMIC_SOURCE`] of its radius (at
+//! least the settings' `light_radius`): its centre lies inside the model that carries it (a
+//! rocket, a gun), which must not shadow it, and shadow rays end on the sphere. Baked surfaces
+//! reflect it too (`params.w = -1`): their bake holds the level's lights, never a rocket's.
 
 use glam::{Mat4, Vec3};
 
@@ -91,6 +92,10 @@ pub fn convert(light: &Light, settings: &LightSettings) -> GpuLight {
     }
 }
 
+/// The radius of a dynamic light's sphere, as a fraction of the light's radius (25 units for
+/// Quake 3's rocket light of radius 200; its rocket is 32 long).
+pub const DYNAMIC_SOURCE: f32 = 0.125;
+
 /// The physical light of dynamic light `light` (see the module doc).
 pub fn dynamic(light: &DynamicLight, settings: &LightSettings) -> GpuLight {
     let [r, g, b] = light.color.map(srgb_to_linear);
@@ -98,7 +103,7 @@ pub fn dynamic(light: &DynamicLight, settings: &LightSettings) -> GpuLight {
     let [x, y, z] = light.position;
     GpuLight {
         position: [x, y, z, 1.0],
-        radiance: [intensity.x, intensity.y, intensity.z, settings.radius.max(0.0)],
+        radiance: [intensity.x, intensity.y, intensity.z, settings.radius.max(DYNAMIC_SOURCE * light.radius)],
         spot: [0.0, 0.0, -1.0, -2.0],
         params: [0.0, 1.0, 0.0, -1.0],
     }
@@ -170,6 +175,7 @@ mod tests {
         let pi = std::f32::consts::PI;
         assert!((l.radiance[0] - pi * 2451.0).abs() < 0.1 && (l.radiance[1] - pi * 2451.0 * srgb_to_linear(0.5)).abs() < 0.1 && l.radiance[2] == 0.0, "{l:?}");
         assert_eq!((l.spot[3], l.params[3]), (-2.0, -1.0), "no spot; reflected by baked surfaces");
+        assert_eq!(l.radiance[3], 25.0, "a sphere of an eighth of its radius");
     }
 
     #[test]

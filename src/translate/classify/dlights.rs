@@ -19,9 +19,9 @@
 //! on the lit side. [`falloff`] reads the falloff texture (bright at its centre, black at its
 //! corners) for the strength of its inverse-square falloff.
 //!
-//! [`DynamicLights`] collects the lights of one frame's passes in eye space, one per light: a
-//! light drawn over several batches (a floor and a wall) is kept once, with the height of its
-//! best-constrained pass.
+//! [`DynamicLights`] collects the lights of one frame's passes in eye space, one per light: the
+//! passes of a light drawn over several batches (a floor and a wall) are pooled, and its
+//! height and colour fitted to all of their colours.
 
 use glam::{Mat4, Vec3};
 
@@ -247,22 +247,49 @@ fn pass_vertices(draw: &Draw) -> Option<Vec<PassVertex>> {
     Some(out)
 }
 
+/// The passes of one light in one object space: the same modelview, centre and radius.
+#[derive(Debug)]
+struct Group {
+    modelview: Mat4,
+    /// The light as the best single pass placed it (colours checked pass by pass).
+    fit: Fit,
+    /// Falloff strength of its texture, a multiple of the radius squared.
+    strength: f32,
+    /// The viewer's height in the object space.
+    eye_height: f32,
+    /// Every pass's vertices.
+    vertices: Vec<PassVertex>,
+}
+
+impl Group {
+    /// The light in eye space and the height spread it is placed with: the height and colour
+    /// fitted to every pass's colours together (one pass over a floor 30 units lower than
+    /// another's pins the height that neither does alone), else the best single pass's.
+    fn light(&self) -> (DynamicLight, f32) {
+        let f = &self.fit;
+        let (z, color, spread) = height_and_color(&self.vertices, f.radius, self.eye_height).unwrap_or((f.origin.z, f.color, f.height_spread));
+        let scale = self.modelview.x_axis.truncate().length();
+        let position = self.modelview.transform_point3(f.origin.with_z(z));
+        let radius = f.radius * scale;
+        (DynamicLight { position: position.to_array(), color: color.to_array(), radius, falloff: self.strength * radius * radius }, spread * scale)
+    }
+}
+
 /// The dynamic lights of one frame, in eye space (module doc); kept between frames and
 /// cleared.
 #[derive(Debug, Default)]
 pub struct DynamicLights {
-    /// Each light and the height spread of the pass that placed it.
-    lights: Vec<(DynamicLight, f32)>,
+    groups: Vec<Group>,
 }
 
 impl DynamicLights {
     /// Starts a frame: no lights.
     pub fn begin_frame(&mut self) {
-        self.lights.clear();
+        self.groups.clear();
     }
 
-    /// Whether `draw` is a dynamic-light pass; if so its light is added (or merged with the
-    /// same light from an earlier pass).
+    /// Whether `draw` is a dynamic-light pass; if so its light is added, or joins the passes
+    /// of the same light (the same modelview, centre and radius within a thousandth of it).
     pub fn take(&mut self, draw: &Draw) -> bool {
         if !is_candidate(draw) {
             return false;
@@ -270,34 +297,47 @@ impl DynamicLights {
         let Some(strength) = draw.textures.first().and_then(Option::as_ref).and_then(falloff) else { return false };
         let Some(vertices) = pass_vertices(draw) else { return false };
         let eye = draw.modelview.inverse().w_axis;
-        let Ok(f) = fit(&vertices, eye.z / eye.w) else { return false };
-        let scale = draw.modelview.x_axis.truncate().length();
-        let position = draw.modelview.transform_point3(f.origin);
-        let radius = f.radius * scale;
-        let light = DynamicLight { position: position.to_array(), color: f.color.to_array(), radius, falloff: strength * radius * radius };
-        self.add(light, f.height_spread * scale);
+        let eye_height = eye.z / eye.w;
+        let Ok(fit) = fit(&vertices, eye_height) else { return false };
+        let same = |g: &Group| {
+            let r = fit.radius;
+            g.modelview == draw.modelview && g.fit.origin.truncate().distance(fit.origin.truncate()) < 1e-3 * r && (g.fit.radius - r).abs() < 1e-3 * r
+        };
+        match self.groups.iter_mut().find(|g| same(g)) {
+            Some(g) => {
+                if fit.height_spread < g.fit.height_spread {
+                    g.fit = fit;
+                }
+                g.vertices.extend(vertices);
+            }
+            None => self.groups.push(Group { modelview: draw.modelview, fit, strength, eye_height, vertices }),
+        }
         true
     }
 
-    /// Adds `light` placed with height spread `spread`: the same light as one already listed
-    /// (the same radius and colour, within half its radius) replaces it when it is placed
-    /// more precisely.
-    fn add(&mut self, light: DynamicLight, spread: f32) {
-        let same = |l: &DynamicLight| {
-            let close = Vec3::from_array(l.position).distance(Vec3::from_array(light.position)) < 0.5 * light.radius;
-            let colour = Vec3::from_array(l.color).abs_diff_eq(Vec3::from_array(light.color), 0.05);
-            close && colour && (l.radius - light.radius).abs() <= 0.01 * light.radius
-        };
-        match self.lights.iter_mut().find(|(l, _)| same(l)) {
-            Some(kept) if spread < kept.1 => *kept = (light, spread),
-            Some(_) => {}
-            None => self.lights.push((light, spread)),
-        }
-    }
-
-    /// The frame's lights.
+    /// The frame's lights: one per group, and one for groups of different object spaces
+    /// whose lights meet (the same radius and hue, within half the radius), placed as the
+    /// best-placed of them and as bright as the brightest.
     pub fn lights(&self) -> Vec<DynamicLight> {
-        self.lights.iter().map(|(l, _)| *l).collect()
+        let mut out: Vec<(DynamicLight, f32)> = Vec::new();
+        for (light, spread) in self.groups.iter().map(Group::light) {
+            let hue = |c: [f32; 3]| Vec3::from_array(c).normalize_or_zero();
+            let same = |l: &DynamicLight| {
+                let close = Vec3::from_array(l.position).distance(Vec3::from_array(light.position)) < 0.5 * light.radius;
+                close && hue(l.color).abs_diff_eq(hue(light.color), 0.05) && (l.radius - light.radius).abs() <= 0.01 * light.radius
+            };
+            match out.iter_mut().find(|(l, _)| same(l)) {
+                Some((kept, kept_spread)) => {
+                    let color = Vec3::from_array(kept.color).max(Vec3::from_array(light.color)).to_array();
+                    if spread < *kept_spread {
+                        (*kept, *kept_spread) = (light, spread);
+                    }
+                    kept.color = color;
+                }
+                None => out.push((light, spread)),
+            }
+        }
+        out.into_iter().map(|(l, _)| l).collect()
     }
 }
 
@@ -382,6 +422,24 @@ mod tests {
         assert_eq!(fit(&good[..2], 0.0), Err(Reject::Degenerate));
         let line: Vec<PassVertex> = good.iter().map(|v| PassVertex { position: Vec3::new(5.0, 5.0, v.position.z), ..*v }).collect();
         assert_eq!(fit(&line, 0.0), Err(Reject::Degenerate));
+    }
+
+    #[test]
+    fn passes_over_floors_at_two_heights_pin_the_height_together() {
+        // 78.5 above one floor and 110.5 above the other: neither floor alone fixes the height
+        // (every height within 100 of the first gives it full colour), both do.
+        let origin = Vec3::new(832.7, 212.7, 78.5);
+        let (r, color) = (200.0, Vec3::new(1.0, 0.75, 0.0));
+        let high = ioquake3(&floor(700.0, 200.0, 0.0, 5), origin, r, color);
+        let low = ioquake3(&floor(760.0, 150.0, -32.0, 5), origin, r, color);
+        let alone = fit(&high, 60.0).expect("a fit");
+        assert!(alone.height_spread > 150.0, "{alone:?}");
+        let fit = fit(&low, 60.0).expect("a fit");
+        let group = Group { modelview: Mat4::IDENTITY, fit, strength: 0.06, eye_height: 60.0, vertices: [high, low].concat() };
+        let (light, spread) = group.light();
+        eprintln!("two floors: height {:.2} (spread {spread:.2}), colour {:?}", light.position[2], light.color);
+        assert!((light.position[2] - 78.5).abs() < 1.5 && spread < 3.0, "{light:?}");
+        assert!(Vec3::from_array(light.color).abs_diff_eq(color, 0.01) && (light.falloff - 0.06 * r * r).abs() < 1.0, "{light:?}");
     }
 
     /// Quake 3's dynamic light image (`R_CreateDlightImage`): 16 × 16, 4000 / d² of the
