@@ -69,6 +69,13 @@ vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout
             distance = d;
             incident = light.radiance.rgb / d2;
         }
+        // A light of limited reach (params.z > 0: a dynamic light's radius) fades to nothing
+        // there, smoothly: (1 - (d / reach)^4)^2 (Karis 2013, "Real Shading in Unreal Engine 4").
+        if (light.params.z > 0.0) {
+            float x = d / light.params.z;
+            float fade = clamp(1.0 - x * x * x * x, 0.0, 1.0);
+            incident *= fade * fade;
+        }
         if (light.spot.w > -1.5) {
             float c = dot(-axis, light.spot.xyz);
             if (c < light.spot.w) {

@@ -30,8 +30,10 @@
 //! centre) is a GL light of diffuse `c` and quadratic attenuation `1 / falloff`: a point light
 //! of intensity `π · linear(c) · falloff`, a sphere of [`DYNAMIC_SOURCE`] of its radius (at
 //! least the settings' `light_radius`): its centre lies inside the model that carries it (a
-//! rocket, a gun), which must not shadow it, and shadow rays end on the sphere. Baked surfaces
-//! reflect it too (`params.w = -1`): their bake holds the level's lights, never a rocket's.
+//! rocket, a gun), which must not shadow it, and shadow rays end on the sphere. It reaches as
+//! far as its radius, as the program's pass does (`params.z`: the light fades smoothly to
+//! nothing there, `shaders/trace/lights.glsl`). Baked surfaces reflect it too
+//! (`params.w = -1`): their bake holds the level's lights, never a rocket's.
 
 use glam::{Mat4, Vec3};
 
@@ -105,7 +107,7 @@ pub fn dynamic(light: &DynamicLight, settings: &LightSettings) -> GpuLight {
         position: [x, y, z, 1.0],
         radiance: [intensity.x, intensity.y, intensity.z, settings.radius.max(DYNAMIC_SOURCE * light.radius)],
         spot: [0.0, 0.0, -1.0, -2.0],
-        params: [0.0, 1.0, 0.0, -1.0],
+        params: [0.0, 1.0, light.radius, -1.0],
     }
 }
 
@@ -174,7 +176,7 @@ mod tests {
         // I / d² = π · linear(c) · falloff / d²: GL's diffuse c with attenuation 1 / (d² / falloff).
         let pi = std::f32::consts::PI;
         assert!((l.radiance[0] - pi * 2451.0).abs() < 0.1 && (l.radiance[1] - pi * 2451.0 * srgb_to_linear(0.5)).abs() < 0.1 && l.radiance[2] == 0.0, "{l:?}");
-        assert_eq!((l.spot[3], l.params[3]), (-2.0, -1.0), "no spot; reflected by baked surfaces");
+        assert_eq!((l.spot[3], l.params[2], l.params[3]), (-2.0, 200.0, -1.0), "no spot; reaches its radius; reflected by baked surfaces");
         assert_eq!(l.radiance[3], 25.0, "a sphere of an eighth of its radius");
     }
 
