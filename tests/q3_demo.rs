@@ -34,7 +34,7 @@ use glrt::replay;
 use images::{Image, compare};
 use parking_lot::Mutex;
 use BlendFactor::{DstColor, One, OneMinusSrcAlpha, SrcAlpha, SrcColor, Zero};
-use DrawClass::{Dynamic, Layer, Movable, Overlay, Sky, Static, Translucent};
+use DrawClass::{Dynamic, Layer, Light, Movable, Overlay, Sky, Static, Translucent};
 use LayerRole::{Albedo, BakedLight, Emission};
 use SurfaceLighting::{Baked, VertexLit};
 
@@ -217,12 +217,12 @@ const FRAME_3: [DrawSummary; 30] = [
     draw(Sky, 384, Some((One, One))),
     // Floor tiles, base × lightmap on two units (unit 1 holds baked light); every visible
     // floor surface is near the rocket, so the batch is followed by its dynamic light pass
-    // over some of its triangles: emission.
+    // over some of its triangles: the rocket's light, traced as a point light.
     traced(Static, 118, Baked, 0b10),
-    layer(18, (One, One), 6, Emission),
+    draw(Light, 18, Some((One, One))),
     // Concrete, base × lightmap, and its dynamic light pass.
     traced(Static, 240, Baked, 0b10),
-    layer(14, (One, One), 8, Emission),
+    draw(Light, 14, Some((One, One))),
     // Brick, base × lightmap, then the detail pass over the same triangles (2 × modulate).
     traced(Static, 404, Baked, 0b10),
     layer(404, (DstColor, SrcColor), 10, Albedo),
@@ -261,8 +261,8 @@ const FRAME_3: [DrawSummary; 30] = [
 /// Each draw of the last frame gets the class written down in [`FRAME_3`], and the per-class
 /// counts of `Frame.stats` follow: 5 static (the world's first stages), 2 movable (armour,
 /// rocket), 2 dynamic (the players), 4 translucent (the blended shaders), 6 overlay (the view
-/// weapon, two HUD icons, 2D), 6 sky, 5 layers (detail, lightmap pass, glow, 2 dynamic light
-/// passes). In frame 0 nothing has moved yet: the 9 traced draws are all static (and the
+/// weapon, two HUD icons, 2D), 6 sky, 3 layers (detail, lightmap pass, glow), 2 lights (the
+/// dynamic light passes), which make one light. In frame 0 nothing has moved yet: the 9 traced draws are all static (and the
 /// models, whose colours vary, baked).
 #[test]
 fn each_draw_of_the_fixture_gets_the_class_written_down() {
@@ -273,16 +273,17 @@ fn each_draw_of_the_fixture_gets_the_class_written_down() {
     }
     assert_eq!(actual.len(), FRAME_3.len(), "{actual:?}");
     let counts = |f: &FrameSummary| DrawClass::COUNTED.map(|c| f.stats.classes.get(c));
-    // Order: static, movable, dynamic, translucent, overlay, sky, layer.
-    assert_eq!(counts(&frames[0]), [9, 0, 0, 4, 6, 6, 5], "frame 0");
+    // Order: static, movable, dynamic, translucent, overlay, sky, layer, light.
+    assert_eq!(counts(&frames[0]), [9, 0, 0, 4, 6, 6, 3, 2], "frame 0");
     let lit = |f: &FrameSummary| f.draws.iter().filter_map(|d| if let Surface::Lit(l, _) = d.surface { Some(l) } else { None }).collect::<Vec<_>>();
     assert_eq!(lit(&frames[0]), [vec![Baked; 5], vec![Baked; 4]].concat(), "frame 0: the models before they moved");
     for (n, f) in frames.iter().enumerate().skip(1) {
-        assert_eq!(counts(f), [5, 2, 2, 4, 6, 6, 5], "frame {n}");
+        assert_eq!(counts(f), [5, 2, 2, 4, 6, 6, 3, 2], "frame {n}");
+        assert_eq!(f.frame.lights.len(), 1, "frame {n}: one rocket, one light");
         assert_eq!(f.stats.matches_found, 9, "frame {n}: every traced draw found again");
     }
     let triangles = DrawClass::COUNTED.map(|c| frames[3].stats.triangles.get(c));
-    assert_eq!(triangles, [790, 156, 144, 170, 416, 768, 464]);
+    assert_eq!(triangles, [790, 156, 144, 170, 416, 768, 432, 32]);
 }
 
 /// The corners of triangle `t` of `draw`, bit for bit.
@@ -317,7 +318,7 @@ fn no_translucent_draw_is_a_pass_over_a_traced_surface() {
             }
             layers += 1;
         }
-        assert_eq!(layers, 5, "frame {n}");
+        assert_eq!(layers, 3, "frame {n}");
     }
 }
 
@@ -438,7 +439,11 @@ const REGION: usize = 40;
 /// The acceptance test of issue 16: the fixture's last frame (demo frame 412), path traced
 /// with the default settings and converged (4 samples per pixel in each of 2 still frames),
 /// against its raster frame (tone curve "knee", the identity up to display 231, so a surface
-/// that shows its raster colour is traced as that colour):
+/// that shows its raster colour is traced as that colour), both without the rocket's light
+/// (its two dynamic-light passes and `Frame::lights`: rasterized, the light is an additive
+/// texture over the surfaces; traced, a light that they reflect by their albedo, out to its
+/// radius: the two differ by design, and `the_rockets_light_lights_the_surfaces_near_it`
+/// checks it):
 ///
 /// - **the static world** (every draw of class `Static` with its layers: the lightmapped,
 ///   detailed, glowing and dynamically lit surfaces of the level, traced `Baked`, so that they
@@ -452,9 +457,9 @@ const REGION: usize = 40;
 ///   (`render::trace::vertex_light`), never black;
 /// - **the HUD's 3D icons** (the head and the armour, `Overlay`, rasterized as drawn over the
 ///   traced image): their pixels are raster's, bit for bit;
-/// - **no pass of a traced surface is left translucent**: the frame has 5 layers and 4
-///   translucent draws (water, the armour's shell, smoke, the flame), none over a traced
-///   surface's triangles (`no_translucent_draw_is_a_pass_over_a_traced_surface` checks the
+/// - **no pass of a traced surface is left translucent**: the frame has 3 layers, 2
+///   dynamic-light passes (traced as the rocket's light, `Light`) and 4 translucent draws
+///   (water, the armour's shell, smoke, the flame), none over a traced surface's triangles (`no_translucent_draw_is_a_pass_over_a_traced_surface` checks the
 ///   triangles; the renderer does not rasterize layers when it traces).
 ///
 /// The images are written to `target/tmp/q3_demo/` (`raster.png`, `traced.png`).
@@ -463,7 +468,8 @@ fn the_converged_traced_frame_matches_the_raster_frame() {
     let frames = classified_frames();
     let frame = &frames[3].frame;
     let stats = &frames[3].stats;
-    assert_eq!((stats.classes.get(Layer), stats.classes.get(Translucent)), (5, 4), "{stats:?}");
+    assert_eq!((stats.classes.get(Layer), stats.classes.get(Translucent), stats.classes.get(Light)), (3, 4, 2), "{stats:?}");
+    let frame = &Frame { lights: Vec::new(), ..without(&frames[3].frame, |d| d.class == Light) };
 
     let raster = render(frame, None, 1);
     keep(&raster, "raster");
@@ -504,8 +510,7 @@ fn the_converged_traced_frame_matches_the_raster_frame() {
     assert_eq!(differ, 0, "of {} icon pixels", icons.len());
 }
 
-/// Whether `d` is the light panel's glow: an emission pass over every triangle of its base (the
-/// dynamic light passes cover the triangles near the rocket only).
+/// Whether `d` is the light panel's glow: an emission pass over every triangle of its base.
 fn glow(frame: &Frame) -> impl Fn(&Draw) -> bool + '_ {
     |d: &Draw| d.layer.as_ref().is_some_and(|l| l.role == Emission && l.triangles.len() == frame.draws[l.base].indices.len() / 3)
 }
@@ -546,4 +551,49 @@ fn a_glow_lights_the_surfaces_beside_it() {
     eprintln!("the hall beside the panel ({} pixels): {with:.2} with its glow, {without_glow:.2} without", beside.len());
     // Measured: 6.40 with, 5.16 without (+24 %).
     assert!(with >= 1.1 * without_glow && with - without_glow >= 0.5, "the hall: {with:.2} with the glow, {without_glow:.2} without");
+}
+
+/// The rocket's light: the fixture's last frame (demo frame 412, 12 frames into the rocket's
+/// flight: `rocket_at` of demo/q3/script.rs puts it at (832.7, 212.7, 78.5), its light of
+/// radius 200 and colour (1, 0.75, 0), demo/q3/mod.rs) has two dynamic-light passes, over the
+/// floor and the concrete near the rocket; hash tracking makes them one point light
+/// (`Frame::lights`) at the rocket, and the tracer samples it: the pixels those passes cover
+/// in the raster frame are measurably brighter traced with the light than traced without it
+/// (`Frame::lights` emptied; the passes are not rasterized over the traced image either way).
+/// Direct light only (`bounces = 0`), 4 samples per traced pixel at a quarter of the
+/// window's width and height, default settings otherwise (the lit surfaces are baked, and reflect dynamic
+/// lights). Images: `target/tmp/q3_demo/rocket-light.png`, `no-rocket-light.png`.
+#[test]
+fn the_rockets_light_lights_the_surfaces_near_it() {
+    let frames = classified_frames();
+    let frame = &frames[3].frame;
+    let passes: Vec<usize> = frame.draws.iter().enumerate().filter(|(_, d)| d.class == Light).map(|(i, _)| i).collect();
+    assert_eq!(passes, [7, 9]);
+    let [light] = frame.lights[..] else { panic!("one light: {:?}", frame.lights) };
+    let view = frame.view.expect("a view").view;
+    let world = view.inverse().transform_point3(glam::Vec3::from_array(light.position));
+    let rocket = glam::Vec3::new(1000.0 - 976.0 * 12.0 / 70.0, 205.0 + 45.0 * 12.0 / 70.0, 84.0 - 32.0 * 12.0 / 70.0);
+    eprintln!("the rocket's light: {world:?} (the rocket at {rocket:?}), radius {:.3}, colour {:?}, falloff {:.1}", light.radius, light.color, light.falloff);
+    assert!(world.truncate().distance(rocket.truncate()) < 0.5, "{world:?} against {rocket:?}");
+    assert!((world.z - rocket.z).abs() < 100.0, "within half the radius of the rocket's height: {world:?}");
+    assert!((light.radius - 200.0).abs() < 0.1, "{light:?}");
+    assert!(glam::Vec3::from_array(light.color).abs_diff_eq(glam::Vec3::new(1.0, 0.75, 0.0), 0.01), "{light:?}");
+
+    let raster = render(frame, None, 1);
+    let lit = shown(&raster, &render(&without(frame, |d| d.class == Light), None, 1));
+    assert!(lit.len() > 500, "pixels the passes cover: {}", lit.len());
+    let settings = Settings { spp: 4, bounces: 0, resolution_scale: 0.25, ..Settings::default() };
+    let dark = Frame { lights: Vec::new(), ..frame.clone() };
+    let (with, without_light) = (render(frame, Some(settings), 1), render(&dark, Some(settings), 1));
+    keep(&with, "rocket-light");
+    keep(&without_light, "no-rocket-light");
+    let (r, w, wo) = (mean_of(&raster, &lit), mean_of(&with, &lit), mean_of(&without_light, &lit));
+    eprintln!("near the rocket ({} pixels): raster {r:.2}, traced {w:.2} with its light, {wo:.2} without", lit.len());
+    assert!(w >= 1.15 * wo && w - wo >= 5.0, "near the rocket: {w:.2} with its light, {wo:.2} without");
+    // The light reaches as far as its radius: the rest of the frame (the sky, the HUD and the
+    // models aside: pixels the two traced frames differ in by less than noise) is as dark.
+    let far: Vec<(usize, usize)> = (0..240).flat_map(|y| (0..320).map(move |x| (x, y))).filter(|p| !lit.contains(p)).collect();
+    let (wf, wof) = (mean_of(&with, &far), mean_of(&without_light, &far));
+    eprintln!("elsewhere ({} pixels): {wf:.2} with the light, {wof:.2} without", far.len());
+    assert!((wf - wof).abs() <= 0.05 * wof, "elsewhere: {wf:.2} with the light, {wof:.2} without");
 }

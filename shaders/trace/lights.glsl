@@ -27,11 +27,11 @@ vec3 offset_ray(vec3 p, vec3 n) {
 }
 
 // The reflected radiance towards v at a point of instance `instance` due to light i, shadow
-// ray included; `shadow_rays` counts the rays traced. A light of one instance (params.w,
+// ray included; `shadow_rays` counts the rays traced. A light of one instance (params.w > 0,
 // render::trace::vertex_light) lights no other.
 vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout uint shadow_rays) {
     Light light = lights[i];
-    if (light.params.w != 0.0 && uint(light.params.w) != instance + 1u) {
+    if (light.params.w > 0.0 && uint(light.params.w) != instance + 1u) {
         return vec3(0.0);
     }
     vec3 l;
@@ -68,6 +68,13 @@ vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout
             l = axis;
             distance = d;
             incident = light.radiance.rgb / d2;
+        }
+        // A light of limited reach (params.z > 0: a dynamic light's radius) fades to nothing
+        // there, smoothly: (1 - (d / reach)^4)^2 (Karis 2013, "Real Shading in Unreal Engine 4").
+        if (light.params.z > 0.0) {
+            float x = d / light.params.z;
+            float fade = clamp(1.0 - x * x * x * x, 0.0, 1.0);
+            incident *= fade * fade;
         }
         if (light.spot.w > -1.5) {
             float c = dot(-axis, light.spot.xyz);

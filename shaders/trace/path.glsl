@@ -7,8 +7,8 @@
 // (trace/environment.glsl: the sky cube map or the clear colour) through every continuation
 // ray that misses (cosine-weighted diffuse or GGX visible-normal specular), and through
 // primary rays that miss; a baked surface (render::trace::material) ends the path with its
-// emission; adds its share of the noisy radiance
-// (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
+// emission and the light of the dynamic lights (render::trace::lights); adds its share of the
+// noisy radiance (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
 // (trace/gbuffer.glsl). The tracer runs it once per sample of the frame (see `dispatch` in
 // src/render/trace/compute.rs for why). src/render/trace/mod.rs describes
 // the scene it reads. Ray counts and traversal work are summed per subgroup (subgroup
@@ -124,8 +124,14 @@ void trace_pixel(uvec2 pixel) {
                 emitted -= (1.0 - w) * s.sampled_emission;
             }
             radiance += throughput * emitted;
-            // A baked surface (render::trace::material) only emits: the path ends.
+            // A baked surface (render::trace::material) only emits, and reflects the dynamic
+            // lights its bake cannot hold (render::trace::lights): the path ends.
             if (s.baked) {
+                for (uint i = 0u; i < light_count; i++) {
+                    if (lights[i].params.w < 0.0) {
+                        radiance += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
+                    }
+                }
                 break;
             }
             for (uint i = 0u; i < light_count; i++) {

@@ -104,7 +104,9 @@ struct Light {
     vec4 radiance;  // directional: irradiance at normal incidence; point: intensity (rgb); a: sphere radius (0: a point)
     vec4 spot;      // unit direction the spot points at; w: cos(cutoff), or -2 without a spot
     vec4 params;    // x: spot exponent; y: cos of a directional light's angular radius;
-                    // z: shadow ray length (0: to the light); w: 0, or 1 + the only instance lit
+                    // z: directional: shadow ray length (0: to the light); point: reach, beyond which
+                    // it fades to nothing (0: unlimited); w: 0, or 1 + the only instance lit,
+                    // or -1: a dynamic light, which baked surfaces reflect too
 };
 
 layout(set = TRACE_SET, binding = BINDING_LIGHTS, std430) readonly buffer Lights {

@@ -27,13 +27,18 @@ pub enum DrawClass {
     /// draw's triangles (a lightmap, detail, glow or decal pass; [`crate::frame::Draw::layer`]
     /// says which draw and what the pass does). Rasterized like any draw when nothing traces.
     Layer,
+    /// Traced as light: a dynamic-light pass (an additive radial falloff projected over the
+    /// surfaces around a point, as Quake 3 draws rockets' and muzzle flashes' light) whose
+    /// light is one of [`crate::frame::Frame::lights`]. Rasterized like any draw when nothing
+    /// traces; not drawn over a traced image.
+    Light,
     /// Not drawn by the renderer (a texture listed under `ignore`, or no colour written).
     Ignored,
 }
 
 impl DrawClass {
-    /// The seven counted classes, in the order of [`ClassCounts`] and of the JSON keys.
-    pub const COUNTED: [DrawClass; 7] = [
+    /// The eight counted classes, in the order of [`ClassCounts`] and of the JSON keys.
+    pub const COUNTED: [DrawClass; 8] = [
         DrawClass::Static,
         DrawClass::Movable,
         DrawClass::Dynamic,
@@ -41,6 +46,7 @@ impl DrawClass {
         DrawClass::Overlay,
         DrawClass::Sky,
         DrawClass::Layer,
+        DrawClass::Light,
     ];
 
     /// Whether the class is traced (in the acceleration structures).
@@ -58,6 +64,7 @@ impl DrawClass {
             DrawClass::Overlay => "overlay",
             DrawClass::Sky => "sky",
             DrawClass::Layer => "layer",
+            DrawClass::Light => "light",
             DrawClass::Unclassified => "unclassified",
             DrawClass::Ignored => "ignored",
         }
@@ -153,6 +160,23 @@ pub struct Layer {
     pub role: LayerRole,
 }
 
+/// A point light recovered from dynamic-light passes ([`DrawClass::Light`]): where the
+/// program centred its radial falloff, how far it reaches and how bright it is.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DynamicLight {
+    /// Eye-space position.
+    pub position: [f32; 3],
+    /// Display-encoded colour (0..=1) of the light at full strength: what the pass adds (or
+    /// multiplies the colour under it by) at its centre.
+    pub color: [f32; 3],
+    /// Eye-space radius of the pass's square of falloff texture (its texture coordinates run
+    /// over `[-radius/2, radius/2]` around the centre, as in Quake 3).
+    pub radius: f32,
+    /// The falloff's inverse-square strength, eye-space units squared: at distance `d` from
+    /// the centre in the plane of a surface the pass brings `color · falloff / d²`.
+    pub falloff: f32,
+}
+
 /// Most passes a traced surface keeps as layers (the base's texture units not counted); passes
 /// past it stay rasterized over the traced image.
 pub const MAX_LAYERS: usize = 4;
@@ -222,7 +246,7 @@ pub fn orthographic(projection: &Mat4) -> bool {
 
 /// A count per counted class ([`DrawClass::COUNTED`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct ClassCounts(pub [u64; 7]);
+pub struct ClassCounts(pub [u64; 8]);
 
 impl ClassCounts {
     /// Adds `n` to `class` (classes that are not counted are left out).
@@ -308,7 +332,7 @@ mod tests {
         s.classes.add(DrawClass::Ignored, 5);
         s.triangles.add(DrawClass::Static, 12);
         let line = s.json_line(7);
-        assert!(line.starts_with("{\"frame\":7,\"static_upload_bytes\":96,\"classes\":{\"static\":0,\"movable\":0,\"dynamic\":0,\"translucent\":0,\"overlay\":0,\"sky\":1,\"layer\":0},\"triangles\":{\"static\":12,"), "{line}");
+        assert!(line.starts_with("{\"frame\":7,\"static_upload_bytes\":96,\"classes\":{\"static\":0,\"movable\":0,\"dynamic\":0,\"translucent\":0,\"overlay\":0,\"sky\":1,\"layer\":0,\"light\":0},\"triangles\":{\"static\":12,"), "{line}");
         assert!(line.ends_with("\"camera_cut\":true,\"vertex_bytes\":0,\"classify_ms\":0.000}") && !line.contains('\n'), "{line}");
         assert_eq!((s.classes.get(DrawClass::Sky), s.classes.get(DrawClass::Ignored)), (1, 0));
     }

@@ -65,6 +65,9 @@ pub struct Frame {
     /// The persistent static world: world-space chunks that change rarely (kept by `Arc`, so
     /// a renderer recognises a chunk it already uploaded).
     pub static_world: Arc<[Arc<world::StaticChunk>]>,
+    /// Point lights recovered from the frame's dynamic-light passes (draws of class
+    /// [`class::DrawClass::Light`]), one per light however many passes drew it.
+    pub lights: Vec<class::DynamicLight>,
     /// Statistics of hash tracking.
     pub stats: class::FrameStats,
 }

@@ -64,7 +64,7 @@ pub fn content_hash(frame: &Frame) -> u64 {
     }
     let mut h = Hashing(xxhash_rust::xxh3::Xxh3::new());
     // Destructured without `..`: a new field must be placed on one side or the other here.
-    let Frame { number, draws, clears, occlusion_queries, pixels, size, read_buffer, read_framebuffer, released, end, view: _, static_world: _, stats: _ } =
+    let Frame { number, draws, clears, occlusion_queries, pixels, size, read_buffer, read_framebuffer, released, end, view: _, static_world: _, lights: _, stats: _ } =
         frame;
     let _ = write!(h, "{number:?}{clears:?}{occlusion_queries:?}{pixels:?}{size:?}{read_buffer:?}{read_framebuffer:?}{released:?}{end:?}");
     for draw in draws {

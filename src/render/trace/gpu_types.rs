@@ -160,9 +160,11 @@ pub struct GpuLight {
     pub radiance: [f32; 4],
     /// Unit spot direction; w: cos(cutoff), or −2 without a spot.
     pub spot: [f32; 4],
-    /// x: spot exponent; y: cosine of a directional light's angular radius; z: length of its
-    /// shadow rays (0: to the light); w: 0, or 1 + the only instance it lights (a light
-    /// recovered from a model's vertex colours, [`super::vertex_light`]).
+    /// x: spot exponent; y: cosine of a directional light's angular radius; z: directional:
+    /// length of its shadow rays (0: to the light); point: its reach, where it has faded to
+    /// nothing (0: unlimited); w: 0, or 1 + the only instance it lights (a light
+    /// recovered from a model's vertex colours, [`super::vertex_light`]), or −1: a dynamic
+    /// light, which baked surfaces reflect too ([`super::lights::dynamic`]).
     pub params: [f32; 4],
 }
 

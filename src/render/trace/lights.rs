@@ -24,11 +24,22 @@
 //!   bounce rays do not see them.
 //!
 //! GL's ambient terms are left out: indirect light and the environment replace them.
+//!
+//! A **dynamic light** recovered from a game's dynamic-light passes
+//! ([`crate::frame::class::DynamicLight`]: a colour `c` added as `c · falloff / d²` around its
+//! centre) is a GL light of diffuse `c` and quadratic attenuation `1 / falloff`: a point light
+//! of intensity `π · linear(c) · falloff`, a sphere of [`DYNAMIC_SOURCE`] of its radius (at
+//! least the settings' `light_radius`): its centre lies inside the model that carries it (a
+//! rocket, a gun), which must not shadow it, and shadow rays end on the sphere. It reaches as
+//! far as its radius, as the program's pass does (`params.z`: the light fades smoothly to
+//! nothing there, `shaders/trace/lights.glsl`). Baked surfaces reflect it too
+//! (`params.w = -1`): their bake holds the level's lights, never a rocket's.
 
 use glam::{Mat4, Vec3};
 
 use super::gpu_types::GpuLight;
 use super::scene::srgb_to_linear;
+use crate::frame::class::DynamicLight;
 use crate::frame::state::Light;
 
 /// How GL lights are converted.
@@ -80,6 +91,23 @@ pub fn convert(light: &Light, settings: &LightSettings) -> GpuLight {
         radiance: [intensity.x, intensity.y, intensity.z, settings.radius.max(0.0)],
         spot: [spot.x, spot.y, spot.z, cutoff],
         params: [light.spot_exponent, 1.0, 0.0, 0.0],
+    }
+}
+
+/// The radius of a dynamic light's sphere, as a fraction of the light's radius (25 units for
+/// Quake 3's rocket light of radius 200; its rocket is 32 long).
+pub const DYNAMIC_SOURCE: f32 = 0.125;
+
+/// The physical light of dynamic light `light` (see the module doc).
+pub fn dynamic(light: &DynamicLight, settings: &LightSettings) -> GpuLight {
+    let [r, g, b] = light.color.map(srgb_to_linear);
+    let intensity = Vec3::new(r, g, b) * std::f32::consts::PI * light.falloff.max(0.0) * settings.scale.max(0.0);
+    let [x, y, z] = light.position;
+    GpuLight {
+        position: [x, y, z, 1.0],
+        radiance: [intensity.x, intensity.y, intensity.z, settings.radius.max(DYNAMIC_SOURCE * light.radius)],
+        spot: [0.0, 0.0, -1.0, -2.0],
+        params: [0.0, 1.0, light.radius, -1.0],
     }
 }
 
@@ -138,6 +166,18 @@ mod tests {
         assert_eq!(l.radiance[3], 0.0, "a point by default");
         let sphere = convert(&light, &LightSettings { radius: 0.25, ..LightSettings::default() });
         assert_eq!(sphere.radiance, [l.radiance[0], l.radiance[1], l.radiance[2], 0.25], "the same intensity, a radius");
+    }
+
+    #[test]
+    fn a_dynamic_light_is_a_point_light_of_its_falloff_that_baked_surfaces_reflect() {
+        let light = DynamicLight { position: [1.0, 2.0, -30.0], color: [1.0, 0.5, 0.0], radius: 200.0, falloff: 2451.0 };
+        let l = dynamic(&light, &LightSettings::default());
+        assert_eq!(l.position, [1.0, 2.0, -30.0, 1.0]);
+        // I / d² = π · linear(c) · falloff / d²: GL's diffuse c with attenuation 1 / (d² / falloff).
+        let pi = std::f32::consts::PI;
+        assert!((l.radiance[0] - pi * 2451.0).abs() < 0.1 && (l.radiance[1] - pi * 2451.0 * srgb_to_linear(0.5)).abs() < 0.1 && l.radiance[2] == 0.0, "{l:?}");
+        assert_eq!((l.spot[3], l.params[2], l.params[3]), (-2.0, 200.0, -1.0), "no spot; reaches its radius; reflected by baked surfaces");
+        assert_eq!(l.radiance[3], 25.0, "a sphere of an eighth of its radius");
     }
 
     #[test]

@@ -12,6 +12,10 @@
 //! (a pass's own colour is what unit 0 makes of its primary colour, then its blend function),
 //! and among the first [`MAX_LAYERS`] passes of that base. Any other layer draw is rasterized
 //! over the traced image, as translucent draws are.
+//!
+//! A dynamic-light pass ([`DrawClass::Light`]) is not rasterized over a traced image either:
+//! its light is one of the frame's lights ([`crate::frame::Frame::lights`]), which the tracer
+//! samples.
 
 use crate::frame::class::{DrawClass, Layer, MAX_LAYERS};
 use crate::frame::{Draw, Frame, Framebuffer, Topology};
@@ -27,6 +31,8 @@ enum Part {
     Base,
     /// A pass of the traced surface of the base draw at this index.
     Pass(usize),
+    /// A dynamic-light pass, traced as a light.
+    Light,
 }
 
 /// The traced surfaces of one frame (see the module doc).
@@ -58,10 +64,17 @@ impl Surfaces {
                 passes[base] += 1;
             }
         }
+        if parts.contains(&Part::Base) {
+            for (part, draw) in parts.iter_mut().zip(&frame.draws) {
+                if draw.class == DrawClass::Light {
+                    *part = Part::Light;
+                }
+            }
+        }
         Surfaces { parts }
     }
 
-    /// Whether draw `index` is traced, as a base or as a pass (the renderer does not
+    /// Whether draw `index` is traced, as a base, a pass or a light (the renderer does not
     /// rasterize it).
     pub fn is_traced(&self, index: usize) -> bool {
         self.parts.get(index).is_some_and(|p| *p != Part::Rasterized)
@@ -84,7 +97,7 @@ impl Surfaces {
                     surfaces.push(Surface { base: draw, passes: Vec::new() });
                 }
                 Part::Pass(base) => surfaces[index_of[base]].passes.push(draw),
-                Part::Rasterized => {}
+                Part::Rasterized | Part::Light => {}
             }
         }
         surfaces
@@ -166,5 +179,17 @@ mod tests {
         assert_eq!((0..frame.draws.len()).filter(|&i| s.is_traced(i)).collect::<Vec<_>>(), [1]);
         assert!(s.surfaces(&frame)[0].passes.is_empty());
         assert_eq!(Surfaces::of(&Frame::default()).first(), None);
+    }
+
+    #[test]
+    fn dynamic_light_passes_are_not_rasterized_over_a_traced_image() {
+        let draws = vec![quad(DrawClass::Static), quad(DrawClass::Light), quad(DrawClass::Translucent)];
+        let frame = Frame { draws, ..Frame::default() };
+        let s = Surfaces::of(&frame);
+        assert_eq!((0..3).map(|i| s.is_traced(i)).collect::<Vec<_>>(), [true, true, false]);
+        assert!(s.surfaces(&frame)[0].passes.is_empty(), "a light is no pass");
+        // Nothing traced: the pass is drawn as it is.
+        let alone = Frame { draws: vec![quad(DrawClass::Light)], ..Frame::default() };
+        assert!(!Surfaces::of(&alone).is_traced(0));
     }
 }

@@ -7,7 +7,9 @@
 //! 1. routing ([`routing`]): raster classes (`Translucent`, `Overlay`, `Sky`, `Ignored`) by
 //!    state, by what came before in the frame, and by `glrt.toml` texture tags ([`config`],
 //!    texture hashes from [`texture_hash`]); a draw routed `Translucent` or traced that is a
-//!    later pass over triangles of an earlier traced draw is a `Layer` of it ([`layers`]),
+//!    dynamic-light pass is a `Light`, its light recovered into [`Frame::lights`]
+//!    ([`dlights`]); one that is a later pass over triangles of an earlier traced draw is a
+//!    `Layer` of it ([`layers`]),
 //!    its role from its blend function and, for a multiplying pass, from texel densities
 //!    ([`lighting`]); the other draws are traced;
 //! 2. keys ([`keys`]) and matching ([`matching`]) of the traced draws with the previous
@@ -36,6 +38,7 @@
 //! 6. statistics ([`crate::frame::class::FrameStats`]).
 
 pub mod config;
+pub mod dlights;
 pub mod keys;
 pub mod layers;
 pub mod lighting;
@@ -97,6 +100,7 @@ pub struct Classifier {
     world: StaticWorld,
     feed: world_feed::WorldFeed,
     layers: LayerFinder,
+    lights: dlights::DynamicLights,
     colours: lighting::ColourHistory,
     traced: Vec<Traced>,
     probes: Vec<Probe>,
@@ -135,6 +139,7 @@ impl Classifier {
             world: StaticWorld::new(),
             feed: Default::default(),
             layers: Default::default(),
+            lights: Default::default(),
             colours: Default::default(),
             traced: Vec::new(),
             probes: Vec::new(),
@@ -202,6 +207,7 @@ impl Classifier {
         self.count(frame, &mut stats);
         stats.classify_ns = start.elapsed().as_nanos() as u64;
         frame.view = recovered.view;
+        frame.lights = self.lights.lights();
         frame.static_world = update.chunks;
         frame.stats = stats;
     }
@@ -219,6 +225,7 @@ impl Classifier {
     fn route(&mut self, frame: &mut Frame, list_version: &impl Fn(u32) -> Option<u64>) {
         self.lists.begin_frame(frame.number);
         self.layers.begin_frame();
+        self.lights.begin_frame();
         self.traced.clear();
         self.probes.clear();
         let mut before = Before::default();
@@ -226,7 +233,13 @@ impl Classifier {
             before.clears_before(&frame.clears, i);
             let (tags, hashes) = self.tags_of(&frame.draws[i]);
             let raster = routing::raster_class(&frame.draws[i], &before, tags);
-            let found = if matches!(raster, None | Some(DrawClass::Translucent)) { self.layer_of(&frame.draws, i, &hashes) } else { None };
+            let blended = matches!(raster, None | Some(DrawClass::Translucent));
+            if blended && self.lights.take(&frame.draws[i]) {
+                let draw = &mut frame.draws[i];
+                (draw.class, draw.instance, draw.layer) = (DrawClass::Light, None, None);
+                continue;
+            }
+            let found = if blended { self.layer_of(&frame.draws, i, &hashes) } else { None };
             let draw = &mut frame.draws[i];
             (draw.instance, draw.layer) = (None, None);
             if let Some(found) = found {
@@ -289,20 +302,30 @@ impl Classifier {
 
     /// Routes the draws of a frame read back before it ends (`glReadPixels` before the swap),
     /// so that the renderer traces what it will trace when the frame ends: a raster class by
-    /// the rules of [`routing`], a `Layer` by those of [`layers`], or `Dynamic` for a traced
+    /// the rules of [`routing`], a `Light` by those of [`dlights`] (the frame's lights so far
+    /// listed), a `Layer` by those of [`layers`], or `Dynamic` for a traced
     /// draw (its exact class needs the whole frame's matching; [`Classifier::classify`]
     /// replaces every class and instance when the frame ends), with an instance of a new id
     /// that says how it is lit ([`Classifier::partial_instance`]).
     /// Draws routed by an earlier read-back keep their class and instance.
     pub fn route_partial(&mut self, frame: &mut Frame) {
         self.layers.begin_frame();
+        self.lights.begin_frame();
         let mut before = Before::default();
         for i in 0..frame.draws.len() {
             before.clears_before(&frame.clears, i);
+            if frame.draws[i].class == DrawClass::Light {
+                self.lights.take(&frame.draws[i]);
+            }
             if frame.draws[i].class == DrawClass::Unclassified {
                 let (tags, hashes) = self.tags_of(&frame.draws[i]);
                 let raster = routing::raster_class(&frame.draws[i], &before, tags);
-                let found = if matches!(raster, None | Some(DrawClass::Translucent)) { self.layer_of(&frame.draws, i, &hashes) } else { None };
+                let blended = matches!(raster, None | Some(DrawClass::Translucent));
+                if blended && self.lights.take(&frame.draws[i]) {
+                    frame.draws[i].class = DrawClass::Light;
+                    continue;
+                }
+                let found = if blended { self.layer_of(&frame.draws, i, &hashes) } else { None };
                 match found {
                     Some(found) => {
                         let base = &mut frame.draws[found.layer.base];
@@ -330,6 +353,7 @@ impl Classifier {
                 self.layers.add_base(i);
             }
         }
+        frame.lights = self.lights.lights();
     }
 
     /// The instance of a draw that a read-back before the frame's end routes `Dynamic`: a new
