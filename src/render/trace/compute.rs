@@ -372,12 +372,12 @@ impl RayTracer for ComputeTracer {
                 new.push(NewGeometry { key: item.key, geometry: item.geometry(), refit_from });
             }
         }
-        let rebuilt: Vec<u64> = new.iter().filter(|n| n.refit_from.is_some()).map(|n| n.key).collect();
+        let replaced: Vec<(u64, u64)> = new.iter().filter_map(|n| Some((n.key, n.refit_from?))).collect();
         self.resident.insert_all(device, cmd, rec.ring, new, frame.number)?;
         if let Some(accelerations) = &mut self.accelerations {
-            accelerations.begin_frame(device, &self.resident);
+            accelerations.begin_frame(device);
             let keys: Vec<u64> = items.iter().map(|item| item.key).collect();
-            accelerations.build_bottom(device, cmd, &self.resident, &keys, &|key| rebuilt.contains(&key))?;
+            accelerations.build_bottom(device, cmd, &self.resident, &keys, &|key| replaced.iter().find(|r| r.0 == key).map(|r| r.1))?;
         }
         build_micros += build_started.elapsed().as_micros() as u64;
         for item in &items {

@@ -6,8 +6,12 @@
 //! A bottom-level structure lives as long as its geometry is resident
 //! ([`super::super::resident`]); one whose geometry left, and the build inputs and scratch
 //! memory of each build, are freed once every frame in flight that could read them has
-//! finished (`slots` frames later). Geometry that replaces last frame's shape of a dynamic draw
-//! is built with `PREFER_FAST_BUILD`, everything else with `PREFER_FAST_TRACE`.
+//! finished (`slots` frames later).
+//!
+//! Geometry that replaces last frame's shape of a dynamic draw (same triangles, moved) is an
+//! update (`ALLOW_UPDATE`, `MODE_UPDATE`) of that shape's structure into a new one when it has
+//! one, else built with `PREFER_FAST_BUILD | ALLOW_UPDATE`; everything else is built with
+//! `PREFER_FAST_TRACE`. Updates are out of place: frames in flight may still trace the old one.
 
 use std::collections::HashMap;
 
@@ -23,6 +27,8 @@ struct Structure {
     buffer: Buffer,
     /// Its device address (what instances reference).
     address: u64,
+    /// Triangles of a bottom level built with `ALLOW_UPDATE` (0: not updatable).
+    updatable: u32,
 }
 
 /// A frame slot's top-level structure, its scratch memory and its instance records, each
@@ -53,6 +59,18 @@ pub struct TopInstance {
     pub opaque: bool,
 }
 
+/// A bottom level being built or updated.
+struct Pending {
+    key: u64,
+    triangles: u32,
+    flags: vk::BuildAccelerationStructureFlagsKHR,
+    /// The structure updated (null: built).
+    source: vk::AccelerationStructureKHR,
+    vertices: Buffer,
+    scratch_offset: u64,
+    structure: Structure,
+}
+
 /// Bottom-level structures by geometry key and the top levels of the frames in flight.
 pub struct Accelerations {
     ext: ash::khr::acceleration_structure::Device,
@@ -63,8 +81,6 @@ pub struct Accelerations {
     /// Frames begun ([`Accelerations::begin_frame`]).
     frames: u64,
     scratch_alignment: u64,
-    /// Bottom-level structures built, in all.
-    pub built: u64,
 }
 
 /// Rounds `n` up to a multiple of `alignment` (a power of two).
@@ -93,20 +109,12 @@ impl Accelerations {
             retired: Vec::new(),
             frames: 0,
             scratch_alignment: u64::from(properties.min_acceleration_structure_scratch_offset_alignment).max(1),
-            built: 0,
         }
     }
 
-    /// Starts a frame: frees what the finished frames no longer read, and the bottom levels of
-    /// geometry no longer resident.
-    pub fn begin_frame(&mut self, device: &Device, resident: &Resident) {
+    /// Starts a frame: frees what the finished frames no longer read.
+    pub fn begin_frame(&mut self, device: &Device) {
         self.frames += 1;
-        let gone: Vec<u64> = self.bottom.keys().copied().filter(|&k| resident.contents(k).is_none()).collect();
-        for key in gone {
-            if let Some(s) = self.bottom.remove(&key) {
-                self.retired.push((self.frames, Retired::Structure(s)));
-            }
-        }
         let slots = self.top.len() as u64;
         let frames = self.frames;
         let (done, waiting): (Vec<_>, Vec<_>) = std::mem::take(&mut self.retired).into_iter().partition(|(f, _)| frames >= f + slots + 1);
@@ -144,7 +152,7 @@ impl Accelerations {
         };
         // Safety: `raw` is a structure of this device.
         let address = unsafe { self.ext.get_acceleration_structure_device_address(&vk::AccelerationStructureDeviceAddressInfoKHR::default().acceleration_structure(raw)) };
-        Ok(Structure { raw, buffer, address })
+        Ok(Structure { raw, buffer, address, updatable: 0 })
     }
 
     /// A build-input or scratch buffer of `size` bytes.
@@ -161,17 +169,22 @@ impl Accelerations {
     }
 
     /// Records the builds of the bottom levels of the resident geometries `keys` that have none
-    /// yet (`fast_build`: the keys to build for speed rather than tracing), then a barrier
-    /// before the top level's build reads them.
-    pub fn build_bottom(&mut self, device: &Device, cmd: vk::CommandBuffer, resident: &Resident, keys: &[u64], fast_build: &dyn Fn(u64) -> bool) -> Result<()> {
-        struct Pending {
-            key: u64,
-            triangles: u32,
-            flags: vk::BuildAccelerationStructureFlagsKHR,
-            vertices: Buffer,
-            scratch_offset: u64,
-            structure: Structure,
+    /// yet (`replaces`: the geometry a key replaces, the same dynamic draw's last shape, whose
+    /// structure it updates), then a barrier before the top level's build reads them; then
+    /// retires the bottom levels of geometry no longer resident.
+    pub fn build_bottom(&mut self, device: &Device, cmd: vk::CommandBuffer, resident: &Resident, keys: &[u64], replaces: &dyn Fn(u64) -> Option<u64>) -> Result<()> {
+        let pending = self.record_bottom(device, cmd, resident, keys, replaces);
+        let gone: Vec<u64> = self.bottom.keys().copied().filter(|&k| resident.contents(k).is_none()).collect();
+        for key in gone {
+            if let Some(s) = self.bottom.remove(&key) {
+                self.retired.push((self.frames, Retired::Structure(s)));
+            }
         }
+        pending
+    }
+
+    /// [`Accelerations::build_bottom`]'s builds.
+    fn record_bottom(&mut self, device: &Device, cmd: vk::CommandBuffer, resident: &Resident, keys: &[u64], replaces: &dyn Fn(u64) -> Option<u64>) -> Result<()> {
         let mut pending: Vec<Pending> = Vec::new();
         let mut scratch_size = 0u64;
         for &key in keys {
@@ -193,12 +206,14 @@ impl Accelerations {
             let bytes: &[u8] = bytemuck::cast_slice(&positions);
             let mut vertices = Self::input_buffer(device, "glrt BLAS vertices", bytes.len() as u64, MemoryLocation::CpuToGpu)?;
             vertices.mapped()[..bytes.len()].copy_from_slice(bytes);
-            let flags = if fast_build(key) {
-                vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_BUILD
+            let count = triangles.len() as u32;
+            let replaced = replaces(key);
+            let flags = if replaced.is_some() {
+                vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_BUILD | vk::BuildAccelerationStructureFlagsKHR::ALLOW_UPDATE
             } else {
                 vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_TRACE
             };
-            let count = triangles.len() as u32;
+            let source = replaced.and_then(|r| self.bottom.get(&r)).filter(|s| s.updatable == count).map_or(vk::AccelerationStructureKHR::null(), |s| s.raw);
             let geometry = [triangle_geometry(address(device, &vertices), count)];
             let info = vk::AccelerationStructureBuildGeometryInfoKHR::default()
                 .ty(vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL)
@@ -209,6 +224,7 @@ impl Accelerations {
             // Safety: valid build info.
             unsafe { self.ext.get_acceleration_structure_build_sizes(vk::AccelerationStructureBuildTypeKHR::DEVICE, &info, &[count], &mut sizes) };
             let structure = match self.create_structure(device, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, sizes.acceleration_structure_size) {
+                Ok(s) if replaced.is_some() => Structure { updatable: count, ..s },
                 Ok(s) => s,
                 Err(e) => {
                     device.destroy_buffer(vertices);
@@ -216,8 +232,8 @@ impl Accelerations {
                 }
             };
             let scratch_offset = align_up(scratch_size, self.scratch_alignment);
-            scratch_size = scratch_offset + sizes.build_scratch_size;
-            pending.push(Pending { key, triangles: count, flags, vertices, scratch_offset, structure });
+            scratch_size = scratch_offset + if source == vk::AccelerationStructureKHR::null() { sizes.build_scratch_size } else { sizes.update_scratch_size };
+            pending.push(Pending { key, triangles: count, flags, source, vertices, scratch_offset, structure });
         }
         if pending.is_empty() {
             return Ok(());
@@ -230,10 +246,12 @@ impl Accelerations {
             .iter()
             .zip(&geometries)
             .map(|(p, g)| {
+                let mode = if p.source == vk::AccelerationStructureKHR::null() { vk::BuildAccelerationStructureModeKHR::BUILD } else { vk::BuildAccelerationStructureModeKHR::UPDATE };
                 vk::AccelerationStructureBuildGeometryInfoKHR::default()
                     .ty(vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL)
                     .flags(p.flags)
-                    .mode(vk::BuildAccelerationStructureModeKHR::BUILD)
+                    .mode(mode)
+                    .src_acceleration_structure(p.source)
                     .dst_acceleration_structure(p.structure.raw)
                     .geometries(g)
                     .scratch_data(vk::DeviceOrHostAddressKHR { device_address: scratch_base + p.scratch_offset })
@@ -253,7 +271,6 @@ impl Accelerations {
         for p in pending {
             self.retired.push((frames, Retired::Buffer(p.vertices)));
             self.bottom.insert(p.key, p.structure);
-            self.built += 1;
         }
         Ok(())
     }
