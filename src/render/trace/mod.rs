@@ -156,9 +156,12 @@ pub struct TracedImage {
     pub output: vk::Buffer,
 }
 
+/// The name of the back end [`backend`] makes (the compute tracer, on every device today).
+pub const BACKEND: &str = "compute";
+
 /// The ray-tracing back end for `device`, with `settings`, for `frames_in_flight` frames in
 /// flight: the compute tracer (the hardware one of issue 21 is to be chosen here where the
-/// device has `VK_KHR_ray_tracing_pipeline` and measures faster).
+/// device has `VK_KHR_ray_tracing_pipeline` and measures faster; [`BACKEND`] names it).
 pub fn backend(device: &Device, settings: Settings, frames_in_flight: usize) -> Result<Box<dyn RayTracer>> {
     Ok(Box::new(compute::ComputeTracer::new(device, settings, frames_in_flight)?))
 }
