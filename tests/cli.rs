@@ -100,3 +100,26 @@ fn info_lists_lavapipe_with_its_features_and_mode() {
     let none = text(&glrt(&["info"], &[("GLRT_DEVICE", "no-such-device")]).stdout);
     assert!(!none.lines().any(|l| l.starts_with("> ")), "GLRT_DEVICE matching nothing marks none:\n{none}");
 }
+
+/// `glrt replay --out` on a terminal draws a bar of the frames written with the time left; with
+/// stderr not a terminal (here, a pipe) it writes nothing there. `script` (util-linux) gives
+/// the command a pseudo-terminal.
+#[test]
+fn replay_out_shows_progress_on_a_terminal_only() {
+    let capture = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/demo.glrtcap");
+    let dir = std::env::temp_dir().join(format!("glrt-cli-progress-{}", std::process::id()));
+    let out = glrt(&["replay", capture, "--out", dir.to_str().unwrap(), "--frames", "1.."], &[("GLRT_MODE", "raster")]);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(!err.contains("frames,") && !err.contains('\r'), "no bar when stderr is a pipe:\n{err}");
+
+    let line = format!("{} replay {capture} --out {} --frames 1..", env!("CARGO_BIN_EXE_glrt"), dir.display());
+    let out = Command::new("script").args(["-qec", &line, "/dev/null"]).env("GLRT_MODE", "raster").output().expect("run script (util-linux)");
+    let _ = std::fs::remove_dir_all(&dir);
+    let terminal = text(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{terminal}");
+    // The last state of the bar: frames 1 to 3 of the 4-frame capture, none left.
+    let last = terminal.split(['\r', '\n']).filter(|l| l.contains("frames,")).last().unwrap_or_default();
+    assert!(last.contains("replay [") && last.contains("] 3/3 frames, ") && last.contains(" 0s left"), "{terminal:?}");
+    assert!(terminal.contains("wrote frames 1..4 to "), "{terminal}");
+}

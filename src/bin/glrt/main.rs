@@ -4,12 +4,15 @@
 //!   tracer each would get; `glrt info FILE`: what a capture holds;
 //! - `glrt replay FILE` ([`replay`]): replays a capture headless, optionally writing its frames
 //!   as PNG, timing them or printing hash tracking's statistics;
-//! - `glrt dump FILE`: the call log of a capture on standard output.
+//! - `glrt dump FILE`: the call log of a capture on standard output;
+//!
+//! and [`progress`], the progress bars of long work.
 //!
 //! Exit status: 0 when the command did what it was asked, 1 when it failed (the message on
 //! stderr says why), 2 for a usage error (clap's message names the argument).
 
 mod info;
+mod progress;
 mod replay;
 
 use std::path::PathBuf;

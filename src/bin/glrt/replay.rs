@@ -6,12 +6,14 @@
 //! frame's end to the next's) and where their time went, in ms per frame: decoding records,
 //! writing recorded memory, glrt's front end, hash tracking and the renderer; `--stats` prints
 //! hash tracking's statistics of each frame as one JSON line (keys in README.md; frames are not
-//! rendered unless `--out` is given).
+//! rendered unless `--out` is given). With `--out`, a progress bar on stderr (when it is a
+//! terminal) counts the frames written and the time left.
 
 use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
+use crate::progress::FrameProgress;
 use glrt::frame::{FrameSink, NullSink};
 use glrt::replay::{self, reader::Capture};
 use glrt::translate::capture;
@@ -126,7 +128,10 @@ pub fn run(args: &Args) -> Result<(), String> {
     let classify_ns = Arc::new(AtomicU64::new(0));
     let total = classify_ns.clone();
     let start = frames.0;
-    options.sink = (stats || bench).then(|| {
+    // --out: frames `start` to the range's end or the capture's.
+    let progress = args.out.as_ref().map(|_| FrameProgress::new("replay", start, || capture.frames().min(frames.1)));
+    let tap_progress = progress.clone();
+    options.sink = (stats || bench || progress.is_some()).then(|| {
         replay::SinkWrapper(Arc::new(move |inner: Option<Box<dyn FrameSink>>| {
             // --stats alone renders nothing but with --out; --bench measures the renderer too.
             let mut sink: Box<dyn FrameSink> = match inner {
@@ -146,10 +151,17 @@ pub fn run(args: &Args) -> Result<(), String> {
                 };
                 sink = Box::new(FrameTap::new(sink, add));
             }
+            if let Some(progress) = tap_progress.clone() {
+                sink = Box::new(FrameTap::new(sink, move |frame: &glrt::frame::Frame| progress.frame_done(frame.number)));
+            }
             sink
         }))
     });
-    let outcome = replay::run(&capture, &options)?;
+    let outcome = replay::run(&capture, &options);
+    if let Some(progress) = &progress {
+        progress.finish();
+    }
+    let outcome = outcome?;
     println!("replayed {} calls, {} frames", outcome.calls, outcome.frames);
     if bench {
         let times = times_from(&outcome.frame_times, frames.0);
