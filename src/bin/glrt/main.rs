@@ -5,15 +5,18 @@
 //! - `glrt replay FILE` ([`replay`]): replays a capture headless, optionally writing its frames
 //!   as PNG, timing them or printing hash tracking's statistics;
 //! - `glrt dump FILE`: the call log of a capture on standard output;
+//! - `glrt run -- PROGRAM ARGS...` ([`run`]): runs a program on glrt;
 //!
 //! and [`progress`], the progress bars of long work.
 //!
 //! Exit status: 0 when the command did what it was asked, 1 when it failed (the message on
-//! stderr says why), 2 for a usage error (clap's message names the argument).
+//! stderr says why), 2 for a usage error (clap's message names the argument); `glrt run`
+//! becomes the program, whose status is then the command's.
 
 mod info;
 mod progress;
 mod replay;
+mod run;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -22,7 +25,8 @@ use clap::{Parser, Subcommand};
 use glrt::replay::reader::Capture;
 
 /// glrt: a drop-in libGL.so.1 for OpenGL 1.x programs, rendered with Vulkan (rasterized or path
-/// traced). This command inspects the machine and replays captures (GLRT_CAPTURE=FILE).
+/// traced). This command runs programs on glrt, inspects the machine and replays captures
+/// (GLRT_CAPTURE=FILE).
 #[derive(Parser)]
 #[command(name = "glrt", version, arg_required_else_help = true)]
 struct Cli {
@@ -53,6 +57,12 @@ enum Command {
         /// The capture file.
         file: PathBuf,
     },
+    /// Runs a program on glrt: glrt run [OPTIONS] -- PROGRAM ARGS...
+    ///
+    /// The program loads glrt's libGL.so.1 whatever it would have loaded (LD_LIBRARY_PATH, and
+    /// glrt as the glvnd GLX vendor); the options become glrt's GLRT_* variables. As a Steam
+    /// launch option: glrt run -- %command%
+    Run(run::Args),
 }
 
 fn main() -> ExitCode {
@@ -67,6 +77,7 @@ fn main() -> ExitCode {
         Command::Info { file: Some(file) } => Capture::open(&file).and_then(|capture| info::capture(&capture)),
         Command::Replay(args) => replay::run(&args),
         Command::Dump { file } => Capture::open(&file).and_then(|capture| dump(&capture)),
+        Command::Run(args) => run::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
