@@ -28,11 +28,12 @@ fn help_of_the_command_and_each_subcommand() {
         .take_while(|l| !l.is_empty())
         .filter_map(|l| l.split_whitespace().next())
         .collect();
-    assert_eq!(listed, ["info", "replay", "dump", "help"], "{help}");
+    assert_eq!(listed, ["info", "replay", "dump", "run", "help"], "{help}");
     for (command, usage, option) in [
         ("info", "Usage: glrt info [FILE]", "Lists the Vulkan devices"),
         ("replay", "Usage: glrt replay [OPTIONS] <FILE>", "--frames <A..B>"),
         ("dump", "Usage: glrt dump <FILE>", "GLRT_TRACE format"),
+        ("run", "Usage: glrt run [OPTIONS] <PROGRAM ARGS>...", "glrt run -- %command%"),
     ] {
         let out = glrt(&[command, "--help"], &[]);
         let help = text(&out.stdout);
@@ -46,13 +47,15 @@ fn help_of_the_command_and_each_subcommand() {
 #[test]
 fn usage_errors_name_the_argument_and_exit_2() {
     let gears = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/glxgears.glrtcap");
-    let cases: [(&[&str], &str); 6] = [
+    let cases: [(&[&str], &str); 8] = [
         (&[], "Usage: glrt <COMMAND>"),
         (&["frob"], "unrecognized subcommand 'frob'"),
         (&["replay", gears, "--frames", "5..2"], "invalid value '5..2' for '--frames <A..B>'"),
         (&["replay", gears, "--size", "640"], "invalid value '640' for '--size <WxH>': expected WxH"),
         (&["replay", gears, "--fast"], "unexpected argument '--fast'"),
         (&["dump"], "the following required arguments were not provided:\n  <FILE>"),
+        (&["run", "--mode", "fast", "--", "true"], "invalid value 'fast' for '--mode <MODE>'"),
+        (&["run", "--hud"], "the following required arguments were not provided:\n  <PROGRAM ARGS>..."),
     ];
     for (args, message) in cases {
         let out = glrt(args, &[]);

@@ -3,7 +3,8 @@
 //! layers): a frame's stages in order, read top to bottom there; [`raster`] provides the command
 //! recording and the raster stages (clears, pixel operations, draws in program order,
 //! read-back, present), [`trace`] the path-tracing stages behind one back-end trait
-//! ([`trace::RayTracer`]), and [`present`] the window. [`default_sink`] chooses the renderer of
+//! ([`trace::RayTracer`]), [`present`] the window, and [`hud`] the panel of frame times drawn
+//! over the image. [`default_sink`] chooses the renderer of
 //! the mode (`GLRT_MODE`); [`devices`] lists the machine's Vulkan devices with the mode each would
 //! get ([`rendering_on`]).
 
@@ -13,6 +14,7 @@ pub mod frame;
 pub mod shader_abi;
 pub mod frame_log;
 pub mod frames_from;
+pub mod hud;
 pub mod present;
 pub mod raster;
 pub mod texenv;

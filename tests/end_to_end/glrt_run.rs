@@ -2,7 +2,7 @@
 //! `libGL.so.1`) and `glrt-demo` (which `dlopen`s `libGL.so.1`) are run through the command
 //! with no `LD_LIBRARY_PATH` of their own, and must be drawn by glrt: its frame log has their
 //! frames (draw and vertex counts of their scenes), its dumped frames show their pixels, and the
-//! command says once which device and mode it chose. Fails, saying so, when Xvfb or glxgears is
+//! command says once which device and mode it chose; `--hud` turns the HUD on. Fails, saying so, when Xvfb or glxgears is
 //! missing.
 
 use std::path::{Path, PathBuf};
@@ -98,7 +98,7 @@ fn the_demo_runs_on_glrt_through_glrt_run() {
     let server = x11::Xvfb::start(24);
     let files = Files::new("demo");
     let demo = env!("CARGO_BIN_EXE_glrt-demo");
-    let cmd = files.command(&server, &["--", demo, "--frames", "4", "--size", "320x240"]);
+    let cmd = files.command(&server, &["--hud", "--", demo, "--frames", "4", "--size", "320x240"]);
     let (out, stopped) = run_for(cmd, Duration::from_secs(300));
     let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     assert!(!stopped && out.status.success(), "{:?}\n{stdout}\n{stderr}", out.status);
@@ -114,6 +114,9 @@ fn the_demo_runs_on_glrt_through_glrt_run() {
     assert_eq!((image.width, image.height), (320, 240));
     let colours: std::collections::HashSet<[u8; 3]> = (0..image.height).flat_map(|y| (0..image.width).map(move |x| (x, y))).map(|(x, y)| image.pixel(x, y)).collect();
     assert!(colours.len() > 500, "{} colours in the demo's frame", colours.len());
+    // --hud: the panel's background in the top-left corner (tests/hud.rs reads its text).
+    let [r, g, b, _] = glrt::render::hud::BACKGROUND;
+    assert_eq!(image.pixel(0, 0), [r, g, b], "the HUD panel");
 }
 
 #[test]

@@ -16,7 +16,7 @@
 //! `glrt` command (where `cargo build` puts both).
 //!
 //! The options become glrt's variables (`GLRT_MODE`, `GLRT_CONFIG`, `GLRT_CAPTURE`,
-//! `GLRT_TRACE`, `GLRT_DEVICE`); the command says once on stderr which device and
+//! `GLRT_TRACE`, `GLRT_DEVICE`, `GLRT_HUD`); the command says once on stderr which device and
 //! mode the program's frames will get ([`glrt::render::devices`]).
 
 use std::ffi::OsString;
@@ -44,6 +44,10 @@ pub struct Args {
     /// (GLRT_DEVICE).
     #[arg(long, value_name = "DEVICE")]
     device: Option<String>,
+    /// Draws frame times, a frame-time graph, frames per second, mode, device, draws per class
+    /// and rays per second over the image (GLRT_HUD=1).
+    #[arg(long)]
+    hud: bool,
     /// The program and its arguments (after `--`, so that its options are not taken for
     /// glrt's).
     #[arg(required = true, trailing_var_arg = true, value_name = "PROGRAM ARGS")]
@@ -83,6 +87,9 @@ pub fn run(args: &Args) -> Result<(), String> {
     }
     if let Some(device) = &args.device {
         variables.push(("GLRT_DEVICE", device.into()));
+    }
+    if args.hud {
+        variables.push(("GLRT_HUD", "1".into()));
     }
     for (name, value) in &variables {
         // Safety: single-threaded; the survey below and the program read them.
