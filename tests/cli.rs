@@ -126,3 +126,16 @@ fn replay_out_shows_progress_on_a_terminal_only() {
     assert!(last.contains("replay [") && last.contains("] 3/3 frames, ") && last.contains(" 0s left"), "{terminal:?}");
     assert!(terminal.contains("wrote frames 1..4 to "), "{terminal}");
 }
+
+/// `glrt replay --size` says on stderr what it changes when the capture was made at another
+/// size (the glxgears fixture: a 300x300 window), and nothing when the size is the same.
+#[test]
+fn replay_size_says_what_it_changes() {
+    let gears = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/fixtures/glxgears.glrtcap");
+    let out = glrt(&["replay", gears, "--frames", "0..1", "--size", "100x80"], &[("GLRT_MODE", "raster")]);
+    let err = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(err.contains("glrt: --size 100x80: the capture was made at 300x300; its glViewport calls are replayed as recorded"), "{err}");
+    let out = glrt(&["replay", gears, "--frames", "0..1", "--size", "300x300"], &[("GLRT_MODE", "raster")]);
+    assert!(!text(&out.stderr).contains("--size"), "{}", text(&out.stderr));
+}

@@ -6,7 +6,8 @@
 //! frame's end to the next's) and where their time went, in ms per frame: decoding records,
 //! writing recorded memory, glrt's front end, hash tracking and the renderer; `--stats` prints
 //! hash tracking's statistics of each frame as one JSON line (keys in README.md; frames are not
-//! rendered unless `--out` is given). With `--out`, a progress bar on stderr (when it is a
+//! rendered unless `--out` is given). `--size` says on stderr what it changes when the capture
+//! was made at another size. With `--out`, a progress bar on stderr (when it is a
 //! terminal) counts the frames written and the time left.
 
 use std::path::PathBuf;
@@ -15,7 +16,8 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::progress::FrameProgress;
 use glrt::frame::{FrameSink, NullSink};
-use glrt::replay::{self, reader::Capture};
+use glrt::replay::{self, reader::{Capture, Record}};
+use glrt::translate::capture::format::Event;
 use glrt::translate::capture;
 use glrt::translate::classify::report::{FrameTap, print_stats};
 
@@ -117,9 +119,27 @@ fn parse_size(s: &str) -> Result<(i32, i32), String> {
     size.filter(|&(w, h)| w > 0 && h > 0).ok_or_else(|| "expected WxH, two positive sizes such as 640x480".to_owned())
 }
 
+/// What `--size` changes, when the capture was made at another size: its drawables take the
+/// new size, its `glViewport` calls stay as recorded.
+fn size_note(capture: &Capture, (width, height): (i32, i32)) -> Option<String> {
+    let made_at = capture.records().map_while(Result::ok).find_map(|(_, record)| match record {
+        Record::Event(Event::MakeCurrent { id, width, height, .. }) if id != 0 => Some((width, height)),
+        _ => None,
+    })?;
+    (made_at != (width, height)).then(|| {
+        format!(
+            "--size {width}x{height}: the capture was made at {}x{}; its glViewport calls are replayed as recorded, so its picture keeps that size at the lower left unless the program set its viewport again",
+            made_at.0, made_at.1
+        )
+    })
+}
+
 /// Runs `glrt replay` with `args`.
 pub fn run(args: &Args) -> Result<(), String> {
     let capture = Capture::open(&args.file)?;
+    if let Some(note) = args.size.and_then(|size| size_note(&capture, size)) {
+        eprintln!("glrt: {note}");
+    }
     let mut options = replay::Options { size: args.size, out: args.out.clone(), ..Default::default() };
     let frames = args.frames.unwrap_or((0, u64::MAX));
     let (bench, stats) = (args.bench, args.stats);
