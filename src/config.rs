@@ -1,7 +1,7 @@
 //! `glrt.toml` and its `GLRT_<KEY>` variables, read once per process by one reader and handed
 //! out in typed parts: the per-texture routing lists and `[materials]` to hash tracking
 //! (`translate::classify::config`), the tables of settings such as `[pathtrace]` to the
-//! renderer (`render::trace::settings`, through [`Table`]) and `[memory]` to the frame budget
+//! renderer (`render::trace::settings` and `render::hud`, through [`Table`]) and `[memory]` to the frame budget
 //! (`translate::frame_memory`). The file is `GLRT_CONFIG`, or
 //! `glrt.toml` next to the program's binary:
 //!
@@ -20,6 +20,9 @@
 //!
 //! [memory]                          # keys: translate::frame_memory
 //! frame_budget_mb = 256
+//!
+//! [display]                         # keys: render::hud::Display
+//! hud = true
 //!
 //! [materials]                       # per texture hash, every field optional
 //! "0x8f3a2c1d00aa11bb" = { roughness = 0.3, metalness = 1.0, emissive = 2.0 }
@@ -45,7 +48,7 @@ use std::path::{Path, PathBuf};
 pub const LIST_KEYS: [&str; 8] = ["ui", "sky", "ignore", "translucent", "emissive", "static", "dynamic", "lightmap"];
 
 /// The top-level tables: `[materials]` and the settings tables read through [`Table`].
-pub const TABLES: [&str; 3] = ["pathtrace", "memory", "materials"];
+pub const TABLES: [&str; 4] = ["pathtrace", "memory", "display", "materials"];
 
 /// The keys of a `[materials]` entry.
 const MATERIAL_KEYS: [&str; 3] = ["roughness", "metalness", "emissive"];
@@ -363,7 +366,7 @@ mod tests {
         assert_eq!(c.lists[0], HashSet::from([16, 32]));
         assert_eq!(c.lists[1], HashSet::from([255]));
         assert_eq!(warnings.len(), 1);
-        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, lightmap, pathtrace, memory, materials)"), "{}", warnings[0]);
+        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, lightmap, pathtrace, memory, display, materials)"), "{}", warnings[0]);
     }
 
     #[test]

@@ -13,8 +13,8 @@
 //! 6. raster composite, the rest: the draws after it (translucent, overlay) over the traced
 //!    image, depth-tested against its depth; the passes of traced surfaces (draws of class
 //!    `Layer` the tracer evaluates, [`Surfaces`]) are not rasterized;
-//! 7. present ([`Raster::present`]: back to front at a swap, the outputs, submission) or read
-//!    back ([`Raster::read`]).
+//! 7. present ([`Raster::present`]: back to front at a swap, the HUD over it when on
+//!    ([`crate::render::hud`]), the outputs, submission) or read back ([`Raster::read`]).
 //!
 //! Without a [`RayTracer`] (raster mode) steps 2 to 5 are left out and every draw is
 //! rasterized. Denoising (issue 20) and radiosity (issue 19) are stages between 3 and 4.
@@ -37,6 +37,8 @@
 use crate::frame::pixels::PixelBuffer;
 use crate::frame::{Draw, Frame, FrameEnd};
 use crate::frame::FrameSink;
+use crate::render::hud::canvas::Canvas;
+use crate::render::hud::{Display, FrameInfo, Hud};
 use crate::render::raster::device::{Device, Error, Result};
 use crate::render::raster::dump::Dump;
 use crate::render::raster::output::FrameOutput;
@@ -61,6 +63,8 @@ pub struct Renderer {
     replaced: bool,
     /// The drawable of the last [`FrameSink::set_target`], for a replacement device.
     target: Option<crate::frame::Target>,
+    /// The HUD, when `GLRT_HUD` asks for it.
+    hud: Option<Hud>,
 }
 
 /// The path-tracing stages: a ray-tracing back end and the composite of its image.
@@ -89,7 +93,8 @@ impl Renderer {
 
     /// Creates the renderer with no [`FrameOutput`]: frames stay in the framebuffer.
     pub fn without_outputs() -> Result<Renderer> {
-        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None })
+        let hud = Display::of_process().hud.then(Hud::default);
+        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud })
     }
 
     /// Path traces the traced draws of the next frames with `settings`, with the back end
@@ -163,7 +168,22 @@ impl Renderer {
     /// Renders the rest of `frame` and submits it for presentation.
     fn finish(&mut self, frame: &Frame) -> Result<()> {
         self.record(frame)?;
-        self.raster.present(frame)
+        let hud = self.hud_panel(frame);
+        self.raster.present(frame, hud.as_ref())
+    }
+
+    /// The HUD's panel of `frame`, at a swap when the HUD is on.
+    fn hud_panel(&mut self, frame: &Frame) -> Option<Canvas> {
+        let hud = self.hud.as_mut().filter(|_| frame.end == FrameEnd::Swap)?;
+        let tracer = self.tracing.as_ref().map(|t| &*t.backend);
+        let mode = tracer.map_or_else(|| "raster".to_owned(), |t| format!("pathtrace ({})", t.name()));
+        let info = FrameInfo {
+            mode: &mode,
+            device: &self.raster.device().name(),
+            classes: &frame.stats.classes,
+            rays: tracer.map(|t| t.statistics().rays.total()),
+        };
+        Some(hud.frame(&info))
     }
 
     /// Renders `frame` so far and reads `rect` of `buffer` back.

@@ -3,14 +3,18 @@
 //! layers): a frame's stages in order, read top to bottom there; [`raster`] provides the command
 //! recording and the raster stages (clears, pixel operations, draws in program order,
 //! read-back, present), [`trace`] the path-tracing stages behind one back-end trait
-//! ([`trace::RayTracer`]), and [`present`] the window. [`default_sink`] chooses the renderer of
-//! the mode (`GLRT_MODE`).
+//! ([`trace::RayTracer`]), [`present`] the window, and [`hud`] the panel of frame times drawn
+//! over the image. [`default_sink`] chooses the renderer of
+//! the mode (`GLRT_MODE`); [`devices`] lists the machine's Vulkan devices with the mode each would
+//! get ([`rendering_on`]).
 
+pub mod devices;
 pub mod frame;
 #[macro_use]
 pub mod shader_abi;
 pub mod frame_log;
 pub mod frames_from;
+pub mod hud;
 pub mod present;
 pub mod raster;
 pub mod texenv;
@@ -63,20 +67,30 @@ impl Mode {
     }
 }
 
+/// How frames are rendered on a device of `device_type`, with or without ray-tracing
+/// pipelines (`ray_tracing`), under `GLRT_MODE` (unset: path traced on a GPU, rasterized on a
+/// CPU) and the tracer setting.
+pub fn rendering_on(device_type: ash::vk::PhysicalDeviceType, ray_tracing: bool) -> devices::Rendering {
+    let cpu = device_type == ash::vk::PhysicalDeviceType::CPU;
+    let tracer = trace::backend_name(ray_tracing, trace::settings::Settings::of_process().tracer);
+    match Mode::of_process() {
+        Ok(Mode::PathTrace) => devices::Rendering::PathTrace { tracer },
+        Ok(Mode::Default) if cpu => devices::Rendering::Raster { by_default: true },
+        Ok(Mode::Default) => devices::Rendering::PathTrace { tracer },
+        Ok(Mode::Raster) => devices::Rendering::Raster { by_default: false },
+        Err(_) => devices::Rendering::NotDrawn,
+    }
+}
+
 /// The Vulkan renderer, path tracing when the mode says so on its device (rasterizing, with a
 /// message, when the tracing stages cannot be made).
 fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result<frame::Renderer> {
     let mut renderer = frame::Renderer::with_dump(dump)?;
-    let cpu = renderer.device().properties.device_type == ash::vk::PhysicalDeviceType::CPU;
-    let traced = match Mode::of_process() {
-        Ok(Mode::PathTrace) => true,
-        Ok(Mode::Default) if cpu => {
-            log::info!("glrt: the Vulkan device is a CPU: rasterizing (GLRT_MODE=pathtrace traces anyway, at seconds per frame)");
-            false
-        }
-        Ok(Mode::Default) => true,
-        Ok(Mode::Raster) | Err(_) => false,
-    };
+    let rendering = rendering_on(renderer.device().properties.device_type, renderer.device().ray_tracing);
+    if rendering == (devices::Rendering::Raster { by_default: true }) {
+        log::info!("glrt: the Vulkan device is a CPU: rasterizing (GLRT_MODE=pathtrace traces anyway, at seconds per frame)");
+    }
+    let traced = matches!(rendering, devices::Rendering::PathTrace { .. });
     if traced && let Err(e) = renderer.enable_tracing(trace::settings::Settings::of_process()) {
         eprintln!("glrt: path tracing is not available: {e}; frames are rasterized");
     }

@@ -303,6 +303,13 @@ impl Capture {
     pub fn records(&self) -> Records<'_> {
         Records { capture: self, pos: self.records_at }
     }
+
+    /// The frames the capture holds (its swaps, up to the first record that cannot be read):
+    /// what a replay of all of it ends.
+    pub fn frames(&self) -> u64 {
+        let swaps = self.records().map_while(Result::ok).filter(|(_, record)| matches!(record, Record::Event(Event::Swap(_))));
+        swaps.count() as u64
+    }
 }
 
 /// Reads the description at the start of the body: the writer's version line, the command

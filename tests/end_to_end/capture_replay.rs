@@ -345,8 +345,10 @@ fn replay_takes_a_frame_range_and_refuses_bad_files_and_options() {
     std::fs::write(&not_a_dir, b"").unwrap();
     let (ok, _, err) = glrt(&["replay", file.to_str().unwrap(), "--out", not_a_dir.to_str().unwrap()]);
     assert!(!ok && err.contains(&format!("--out: {}: ", not_a_dir.display())), "{err}");
-    let (ok, _, err) = glrt(&["replay", file.to_str().unwrap(), "--size", "big"]);
-    assert!(!ok && err.contains("--size big: expected WxH"), "{err}");
+    let out = Command::new(env!("CARGO_BIN_EXE_glrt")).args(["replay", file.to_str().unwrap(), "--size", "big"]).output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "a usage error: {err}");
+    assert!(err.contains("invalid value 'big' for '--size <WxH>': expected WxH"), "{err}");
     let cut = scratch("cut.glrtcap");
     let bytes = std::fs::read(&file).unwrap();
     std::fs::write(&cut, &bytes[..bytes.len() / 2]).unwrap();

@@ -37,7 +37,7 @@ const GEARS_FRAMES: usize = 30;
 /// batches. glrt merges consecutive batches whose state, matrices, textures and source are
 /// equal: the ceiling with the walls (same brick texture) and the four pillars, giving 8.
 /// The HUD's `glBitmap` text is a pixel operation, not a draw.
-const DEMO_DRAWS: (u64, u64) = (8, 12);
+pub(crate) const DEMO_DRAWS: (u64, u64) = (8, 12);
 
 /// Vertices per frame of glrt-demo. Quads submitted: room 982 (floor 16×20, ceiling 16×20,
 /// back wall 16×5 less an 18-cell window and doorway, front 16×5, sides 20×5 each), sky 10,
@@ -52,7 +52,7 @@ const DEMO_VERTICES: (u64, u64) = (4525, 8454);
 /// glrt merges consecutive blocks of one state (the five flat-shaded blocks of a gear, then
 /// its smooth-shaded cylinder: 6 draws), never across gears (each has its own modelview and
 /// material): 3 ..= 18.
-const GEARS_DRAWS: (u64, u64) = (3, 18);
+pub(crate) const GEARS_DRAWS: (u64, u64) = (3, 18);
 
 /// glxgears' vertices per frame: a gear of t teeth submits 26t + 8 vertices (quad strips of
 /// 4t+2, 4t+2, 8t+2, 2t+2 and quads of 4t, 4t), and the gears have 20, 10 and 10 teeth: 1064.
@@ -61,11 +61,11 @@ const GEARS_VERTICES: (u64, u64) = (1064, 2640);
 
 /// One line of the frame log.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct FrameRecord {
-    frame: u64,
-    draws: u64,
-    vertices: u64,
-    clears: u64,
+pub(crate) struct FrameRecord {
+    pub(crate) frame: u64,
+    pub(crate) draws: u64,
+    pub(crate) vertices: u64,
+    pub(crate) clears: u64,
 }
 
 /// The unsigned integer value of `"key":` in a flat JSON object.
@@ -77,7 +77,7 @@ fn json_u64(line: &str, key: &str) -> Option<u64> {
     digits.parse().ok()
 }
 
-fn read_frame_log(path: &Path) -> Vec<FrameRecord> {
+pub(crate) fn read_frame_log(path: &Path) -> Vec<FrameRecord> {
     let text = std::fs::read_to_string(path)
         .unwrap_or_else(|e| panic!("frame log {} not written: {e}", path.display()));
     text.lines()

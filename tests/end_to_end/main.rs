@@ -3,7 +3,7 @@
 //! own Xvfb; one test binary: the demo's frames ([`demo`]), presentation on X windows
 //! ([`present`]), captures and replays ([`capture_replay`], [`pathtrace_replay`]), hash
 //! tracking of a re-batching program ([`classify_rebatch`]), pass-through ([`passthrough`]),
-//! glrt as a glvnd vendor ([`glvnd_vendor`]), an SFML-style program's window changing frame
+//! glrt as a glvnd vendor ([`glvnd_vendor`]), programs run by `glrt run` ([`glrt_run`]), an SFML-style program's window changing frame
 //! after frame ([`sfml_style`]), and images against Mesa ([`raster_vs_mesa`]) and an NVIDIA
 //! driver ([`raster_vs_nvidia`]).
 
@@ -17,6 +17,7 @@ mod x11;
 mod capture_replay;
 mod classify_rebatch;
 mod demo;
+mod glrt_run;
 mod glvnd_vendor;
 mod passthrough;
 mod pathtrace_replay;

@@ -153,15 +153,7 @@ impl Device {
         let physical = choose_physical(&instance, &physicals, choice.as_deref())?;
         // Safety: physical comes from this instance.
         let properties = unsafe { instance.get_physical_device_properties(physical) };
-        if properties.api_version < vk::API_VERSION_1_3 {
-            return Err(Error::NoDevice(format!("{} lacks Vulkan 1.3", device_name(&properties))));
-        }
-        // Safety: as above.
-        let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
-        let queue_family = families
-            .iter()
-            .position(|f| f.queue_flags.contains(vk::QueueFlags::GRAPHICS))
-            .ok_or_else(|| Error::NoDevice("no graphics queue".into()))? as u32;
+        let queue_family = graphics_queue_family(&instance, physical)?;
         // Safety: as above.
         let supported = unsafe { instance.get_physical_device_features(physical) };
         let features = Features {
@@ -175,9 +167,6 @@ impl Device {
             alpha_to_one: supported.alpha_to_one == vk::TRUE,
             sample_counts: super::multisample::supported_counts(&properties.limits),
         };
-        if supported.shader_clip_distance != vk::TRUE {
-            return Err(Error::NoDevice("no shaderClipDistance (user clip planes)".into()));
-        }
         let enabled = vk::PhysicalDeviceFeatures::default()
             .logic_op(features.logic_op)
             .wide_lines(features.wide_lines)
@@ -433,6 +422,30 @@ pub fn probe_properties() -> Option<vk::PhysicalDeviceProperties> {
     }
 }
 
+/// The queue family glrt draws with on `physical`, or why the device cannot be used: it lacks
+/// Vulkan 1.3, a graphics queue or `shaderClipDistance` (user clip planes).
+pub(crate) fn graphics_queue_family(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Result<u32> {
+    // Safety: physical comes from this instance.
+    let (properties, families, supported) = unsafe {
+        (
+            instance.get_physical_device_properties(physical),
+            instance.get_physical_device_queue_family_properties(physical),
+            instance.get_physical_device_features(physical),
+        )
+    };
+    if properties.api_version < vk::API_VERSION_1_3 {
+        return Err(Error::NoDevice(format!("{} lacks Vulkan 1.3", device_name(&properties))));
+    }
+    let family = families
+        .iter()
+        .position(|f| f.queue_flags.contains(vk::QueueFlags::GRAPHICS))
+        .ok_or_else(|| Error::NoDevice("no graphics queue".into()))?;
+    if supported.shader_clip_distance != vk::TRUE {
+        return Err(Error::NoDevice("no shaderClipDistance (user clip planes)".into()));
+    }
+    Ok(family as u32)
+}
+
 /// Device extensions enabled when present.
 fn device_extensions(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Vec<CString> {
     // Safety: valid physical device.
@@ -464,13 +477,14 @@ fn ray_tracing_supported(instance: &ash::Instance, physical: vk::PhysicalDevice,
     v12.buffer_device_address == vk::TRUE && acceleration.acceleration_structure == vk::TRUE && pipeline.ray_tracing_pipeline == vk::TRUE
 }
 
-fn device_name(properties: &vk::PhysicalDeviceProperties) -> String {
+/// The device name `properties` report.
+pub(crate) fn device_name(properties: &vk::PhysicalDeviceProperties) -> String {
     properties.device_name_as_c_str().map(|c| c.to_string_lossy().into_owned()).unwrap_or_default()
 }
 
 /// Picks the physical device: `choice` is an index or a name substring (case-insensitive);
 /// without it, the best type (discrete, integrated, virtual, CPU).
-fn choose_physical(instance: &ash::Instance, physicals: &[vk::PhysicalDevice], choice: Option<&str>) -> Result<vk::PhysicalDevice> {
+pub(crate) fn choose_physical(instance: &ash::Instance, physicals: &[vk::PhysicalDevice], choice: Option<&str>) -> Result<vk::PhysicalDevice> {
     // Safety: each handle comes from this instance.
     let props: Vec<_> = physicals.iter().map(|&p| unsafe { instance.get_physical_device_properties(p) }).collect();
     let names: Vec<String> = props.iter().map(device_name).collect();

@@ -41,6 +41,7 @@ use super::target::{Plane, Target};
 use super::textures::Textures;
 use super::{conv, multisample, pixel_ops, readback};
 use crate::frame::pixels::{PixelBuffer, PixelOp};
+use crate::render::hud::canvas::Canvas;
 use crate::frame::state::{Stencil, StencilFaces};
 use crate::frame::framebuffer::FramebufferKey;
 use crate::frame::{Clear, ColorBuffer, Draw, DrawBuffers, Frame, FrameEnd, Framebuffer, RasterState};
@@ -728,10 +729,11 @@ impl Raster {
         Ok(Some(copy.finish(&self.parts.device)))
     }
 
-    /// Finishes the recorded `frame` (the back buffer copied to the front at a swap, the
-    /// outputs' copies) and submits it without waiting; the next frame starts on the next slot.
-    /// A part of a frame ([`FrameEnd::Part`]) is only submitted: the outputs do not see it.
-    pub fn present(&mut self, frame: &Frame) -> Result<()> {
+    /// Finishes the recorded `frame` (the back buffer copied to the front at a swap, with
+    /// `overlay` over its top-left corner, then the outputs' copies) and submits it without
+    /// waiting; the next frame starts on the next slot. A part of a frame ([`FrameEnd::Part`])
+    /// is only submitted: the outputs do not see it.
+    pub fn present(&mut self, frame: &Frame, overlay: Option<&Canvas>) -> Result<()> {
         self.end_pass();
         self.switch_to(None);
         let slot = self.current;
@@ -743,6 +745,10 @@ impl Raster {
             rec.end_rendering();
             if frame.end == FrameEnd::Swap {
                 rec.target.copy_back_to_front(rec.device, rec.cmd);
+                if let Some(canvas) = overlay {
+                    let slice = rec.ring.push(rec.device, &canvas.rgba, 16)?;
+                    rec.target.copy_to_front(rec.device, rec.cmd, slice.buffer, slice.offset, canvas.size);
+                }
             }
             for output in outputs.iter_mut().filter(|_| shown) {
                 sync.extend(output.record(&mut rec, slot, frame.number)?);

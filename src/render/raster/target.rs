@@ -242,6 +242,28 @@ impl Target {
         };
     }
 
+    /// Records copying an RGBA8 picture of `size` (rows top to bottom, at `offset` in
+    /// `buffer`) over the top-left corner of the front image, clipped to it; after
+    /// [`Target::copy_back_to_front`] (the HUD, [`crate::render::hud`]). A multisampled front
+    /// image cannot be written by a copy: nothing is recorded for it.
+    pub fn copy_to_front(&mut self, device: &Device, cmd: vk::CommandBuffer, buffer: vk::Buffer, offset: u64, size: [u32; 2]) {
+        if self.samples > 1 {
+            return;
+        }
+        self.transition(device, cmd, Plane::Front, vk::ImageLayout::TRANSFER_DST_OPTIMAL);
+        let copy = vk::BufferImageCopy {
+            buffer_offset: offset,
+            buffer_row_length: size[0],
+            buffer_image_height: size[1],
+            image_subresource: vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: 0, base_array_layer: 0, layer_count: 1 },
+            image_offset: vk::Offset3D::default(),
+            image_extent: vk::Extent3D { width: size[0].min(self.size[0]), height: size[1].min(self.size[1]), depth: 1 },
+        };
+        // Safety: the front image is single-sampled and in TRANSFER_DST_OPTIMAL; the buffer
+        // holds `size` RGBA8 texels from `offset`; the region lies inside both; outside a pass.
+        unsafe { device.raw.cmd_copy_buffer_to_image(cmd, buffer, self.front.raw, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &[copy]) };
+    }
+
     /// Records clearing the images (colour to transparent black, or opaque black without
     /// destination alpha; depth to 1, stencil to 0): a new target's contents are defined.
     pub fn clear_initial(&mut self, device: &Device, cmd: vk::CommandBuffer) {

@@ -566,6 +566,10 @@ impl RayTracer for ComputeTracer {
         &self.statistics
     }
 
+    fn name(&self) -> &'static str {
+        if self.accelerations.is_some() { "hardware" } else { "compute" }
+    }
+
     /// Reads the counters of the frames in flight first (the GPU must be idle).
     fn destroy(&mut self, device: &Device) {
         for slot in 0..self.unread.len() {

@@ -116,6 +116,9 @@ pub trait RayTracer: Send {
     /// Rays, traversal work, scenes and frames traced so far.
     fn statistics(&self) -> &Statistics;
 
+    /// The back end's name: `hardware` or `compute`.
+    fn name(&self) -> &'static str;
+
     /// Frees the back end's GPU objects (the GPU must be idle); its statistics are final then.
     fn destroy(&mut self, device: &Device);
 }
@@ -157,22 +160,32 @@ pub struct TracedImage {
     pub output: vk::Buffer,
 }
 
+/// Whether [`backend`] makes the hardware tracer for a device with (`true`) or without
+/// [`Device::ray_tracing`] under `tracer`.
+pub fn uses_hardware(ray_tracing: bool, tracer: settings::Tracer) -> bool {
+    ray_tracing && tracer != settings::Tracer::Compute
+}
+
+/// The name of the back end [`backend`] makes for a device with or without
+/// [`Device::ray_tracing`] (`glrt info`, the HUD), and why.
+pub fn backend_name(ray_tracing: bool, tracer: settings::Tracer) -> &'static str {
+    match (uses_hardware(ray_tracing, tracer), tracer) {
+        (true, _) => "hardware tracer: the device has VK_KHR_ray_tracing_pipeline",
+        (false, settings::Tracer::Compute) => "compute tracer: tracer = \"compute\"",
+        (false, _) => "compute tracer: the device has no VK_KHR_ray_tracing_pipeline",
+    }
+}
+
 /// The ray-tracing back end for `device`, with `settings`, for `frames_in_flight` frames in
 /// flight: the hardware tracer ([`hardware`]) where the device has
 /// [`Device::ray_tracing`] and `settings.tracer` allows it, else the compute tracer; a hardware
 /// tracer that cannot be made (a driver refusing the pipeline) falls back to the compute one
 /// with a message.
 pub fn backend(device: &Device, settings: Settings, frames_in_flight: usize) -> Result<Box<dyn RayTracer>> {
-    let hardware = match settings.tracer {
-        settings::Tracer::Compute => false,
-        settings::Tracer::Auto => device.ray_tracing,
-        settings::Tracer::Hardware => {
-            if !device.ray_tracing {
-                crate::render::raster::renderer::log_once("tracer = \"hardware\": the device has no VK_KHR_ray_tracing_pipeline; tracing with compute shaders");
-            }
-            device.ray_tracing
-        }
-    };
+    let hardware = uses_hardware(device.ray_tracing, settings.tracer);
+    if settings.tracer == settings::Tracer::Hardware && !hardware {
+        crate::render::raster::renderer::log_once("tracer = \"hardware\": the device has no VK_KHR_ray_tracing_pipeline; tracing with compute shaders");
+    }
     match compute::ComputeTracer::new(device, settings, frames_in_flight, hardware) {
         Ok(tracer) => Ok(Box::new(tracer)),
         Err(e) if hardware => {

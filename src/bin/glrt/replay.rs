@@ -1,89 +1,48 @@
-//! The `glrt` command:
-//! - `glrt info`: the build and how many functions it exports;
-//! - `glrt info FILE`: what a capture holds (frames, calls per function, bytes, textures, and
-//!   the hash of each texture draws used, by which `glrt.toml` tags textures);
-//! - `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH]`: replays a capture headless
-//!   (frames before `A` are replayed too: they build the state; the replay stops after `B - 1`);
-//!   `--out` draws and writes frames `A` and later as `DIR/frame-NNNNN.png` (by frame number)
-//!   through the Vulkan raster renderer, which does not draw the frames before `A`
-//!   (`glrt::render::frames_from`); `--bench` prints the frame times of frames `A` and later (one
-//!   frame's end to the next's) and where their time went, in ms per frame: decoding records,
-//!   writing recorded memory, glrt's front end, hash tracking and the renderer;
-//!   `--stats` prints hash tracking's statistics of each frame as one JSON line (keys in
-//!   README.md; frames are not rendered unless `--out` is given);
-//! - `glrt dump FILE`: the call log of a capture (the `GLRT_TRACE` format, with the captured
-//!   program's addresses: the same text on every run) on standard output.
+//! `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] [--stats]`: replays a
+//! capture headless (frames before `A` are replayed too: they build the state; the replay stops
+//! after `B - 1`). `--out` draws and writes frames `A` and later as `DIR/frame-NNNNN.png` (by
+//! frame number) through the Vulkan renderer, which does not draw the frames before `A`
+//! (`glrt::render::frames_from`); `--bench` prints the frame times of frames `A` and later (one
+//! frame's end to the next's) and where their time went, in ms per frame: decoding records,
+//! writing recorded memory, glrt's front end, hash tracking and the renderer; `--stats` prints
+//! hash tracking's statistics of each frame as one JSON line (keys in README.md; frames are not
+//! rendered unless `--out` is given). `--size` says on stderr what it changes when the capture
+//! was made at another size. With `--out`, a progress bar on stderr (when it is a
+//! terminal) counts the frames written and the time left.
 
-use std::process::ExitCode;
-
+use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use glrt::replay::{self, reader::Capture, summary::Summary};
-use glrt::translate::capture;
+use crate::progress::FrameProgress;
 use glrt::frame::{FrameSink, NullSink};
-use glrt::translate::classify::report::{FrameTap, TextureCatalog, print_stats};
+use glrt::replay::{self, reader::{Capture, Record}};
+use glrt::translate::capture::format::Event;
+use glrt::translate::capture;
+use glrt::translate::classify::report::{FrameTap, print_stats};
 
-const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] [--stats] | glrt dump FILE";
-
-fn main() -> ExitCode {
-    default_sigpipe();
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let result = match args.first().map(String::as_str) {
-        Some("info") | None if args.len() <= 1 => {
-            println!("glrt {}", env!("CARGO_PKG_VERSION"));
-            println!("exports: {} functions", glrt::gl_entry::exports::PROCS.len());
-            Ok(())
-        }
-        Some("info") => info(&args[1..]),
-        Some("replay") => replay_command(&args[1..]),
-        Some("dump") => dump(&args[1..]),
-        Some(other) => Err(format!("unknown command '{other}'\n{USAGE}")),
-        None => Err(USAGE.to_owned()),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("glrt: {e}");
-            ExitCode::FAILURE
-        }
-    }
-}
-
-/// The one positional argument `FILE` of `args`, and the options after it.
-fn file_and_options(args: &[String]) -> Result<(Capture, &[String]), String> {
-    let (file, rest) = args.split_first().ok_or(USAGE)?;
-    Ok((Capture::open(std::path::Path::new(file))?, rest))
-}
-
-fn info(args: &[String]) -> Result<(), String> {
-    let (capture, rest) = file_and_options(args)?;
-    if !rest.is_empty() {
-        return Err(format!("info: unexpected arguments {rest:?}"));
-    }
-    print!("{}", Summary::of(&capture)?.report(&capture));
-    let catalog = TextureCatalog::default();
-    let sink = catalog.clone();
-    let options = replay::Options { sink: Some(replay::SinkWrapper(Arc::new(move |_| Box::new(sink.clone())))), ..Default::default() };
-    // What draws used needs a replay; a capture that cannot be replayed still gets its summary.
-    match replay::run(&capture, &options) {
-        Ok(_) => print!("{}", catalog.report()),
-        Err(e) => println!("textures drawn with: unknown (the replay failed: {e})"),
-    }
-    Ok(())
-}
-
-fn dump(args: &[String]) -> Result<(), String> {
-    let (capture, rest) = file_and_options(args)?;
-    if !rest.is_empty() {
-        return Err(format!("dump: unexpected arguments {rest:?}"));
-    }
-    // The call log is read from the environment at the first GL call, which the replay makes.
-    // Safety: single-threaded so far; nothing else reads the environment concurrently.
-    unsafe { std::env::set_var("GLRT_TRACE", "/dev/stdout") };
-    replay::run(&capture, &replay::Options::default())?;
-    glrt::gl_entry::call_log::flush();
-    Ok(())
+/// The arguments of `glrt replay`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// The capture file (written by a program run with GLRT_CAPTURE=FILE).
+    file: PathBuf,
+    /// Frames to draw, time or report: A..B, A.. or ..B (the frames before A are replayed for
+    /// their state only; the replay stops after B - 1).
+    #[arg(long, value_name = "A..B", value_parser = parse_frame_range)]
+    frames: Option<(u64, u64)>,
+    /// Draws frames A and later and writes them as DIR/frame-NNNNN.png.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
+    /// The window size the replay draws into (the capture's own glViewport calls stay as they
+    /// were: a 320x240 capture drawn at 1280x720 fills its lower-left 320x240).
+    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    size: Option<(i32, i32)>,
+    /// Prints the frame times of the frames asked for and where their time went.
+    #[arg(long)]
+    bench: bool,
+    /// Prints hash tracking's statistics of each frame as one JSON line.
+    #[arg(long)]
+    stats: bool,
 }
 
 /// `--bench`: the frame times (from one frame's end to the next's) as the demo prints them.
@@ -149,58 +108,50 @@ fn decode_summary(capture: &Capture) -> String {
     )
 }
 
-/// Restores the default action of `SIGPIPE`, so that `glrt dump FILE | head` ends quietly as
-/// Unix tools do (Rust programs ignore it, which turns a closed pipe into a panic of `println!`).
-#[cfg(target_os = "linux")]
-fn default_sigpipe() {
-    const SIGPIPE: i32 = 13;
-    const SIG_DFL: usize = 0;
-    unsafe extern "C" {
-        fn signal(signum: i32, handler: usize) -> usize;
-    }
-    // Safety: libc's `signal` with a valid signal number and the default disposition.
-    unsafe { signal(SIGPIPE, SIG_DFL) };
+/// `--frames`: `A..B` (either bound may be left out).
+fn parse_frame_range(s: &str) -> Result<(u64, u64), String> {
+    capture::parse_frames(s).ok_or_else(|| "expected A..B, A.. or ..B with A <= B".to_owned())
 }
 
-#[cfg(not(target_os = "linux"))]
-fn default_sigpipe() {}
-
-/// `WxH` as two positive sizes.
-fn parse_size(s: &str) -> Option<(i32, i32)> {
-    let (w, h) = s.split_once('x')?;
-    let (w, h) = (w.parse().ok()?, h.parse().ok()?);
-    (w > 0 && h > 0).then_some((w, h))
+/// `--size`: `WxH`, two positive sizes.
+fn parse_size(s: &str) -> Result<(i32, i32), String> {
+    let size = s.split_once('x').and_then(|(w, h)| Some((w.parse().ok()?, h.parse().ok()?)));
+    size.filter(|&(w, h)| w > 0 && h > 0).ok_or_else(|| "expected WxH, two positive sizes such as 640x480".to_owned())
 }
 
-fn replay_command(args: &[String]) -> Result<(), String> {
-    let (capture, mut rest) = file_and_options(args)?;
-    let mut options = replay::Options::default();
-    let mut frames = (0, u64::MAX);
-    let (mut bench, mut stats) = (false, false);
-    while let [flag, tail @ ..] = rest {
-        if flag == "--bench" {
-            (bench, rest) = (true, tail);
-            continue;
-        }
-        if flag == "--stats" {
-            (stats, rest) = (true, tail);
-            continue;
-        }
-        let [value, tail @ ..] = tail else { return Err(format!("replay: option {flag} needs a value\n{USAGE}")) };
-        match flag.as_str() {
-            "--frames" => frames = capture::parse_frames(value).ok_or(format!("--frames {value}: expected A..B"))?,
-            "--size" => options.size = Some(parse_size(value).ok_or(format!("--size {value}: expected WxH"))?),
-            "--out" => options.out = Some(value.into()),
-            _ => return Err(format!("replay: unknown option {flag}\n{USAGE}")),
-        }
-        rest = tail;
+/// What `--size` changes, when the capture was made at another size: its drawables take the
+/// new size, its `glViewport` calls stay as recorded.
+fn size_note(capture: &Capture, (width, height): (i32, i32)) -> Option<String> {
+    let made_at = capture.records().map_while(Result::ok).find_map(|(_, record)| match record {
+        Record::Event(Event::MakeCurrent { id, width, height, .. }) if id != 0 => Some((width, height)),
+        _ => None,
+    })?;
+    (made_at != (width, height)).then(|| {
+        format!(
+            "--size {width}x{height}: the capture was made at {}x{}; its glViewport calls are replayed as recorded, so its picture keeps that size at the lower left unless the program set its viewport again",
+            made_at.0, made_at.1
+        )
+    })
+}
+
+/// Runs `glrt replay` with `args`.
+pub fn run(args: &Args) -> Result<(), String> {
+    let capture = Capture::open(&args.file)?;
+    if let Some(note) = args.size.and_then(|size| size_note(&capture, size)) {
+        eprintln!("glrt: {note}");
     }
+    let mut options = replay::Options { size: args.size, out: args.out.clone(), ..Default::default() };
+    let frames = args.frames.unwrap_or((0, u64::MAX));
+    let (bench, stats) = (args.bench, args.stats);
     (options.start_frame, options.end_frame) = (frames.0, (frames.1 != u64::MAX).then_some(frames.1));
     options.timing = bench;
     let classify_ns = Arc::new(AtomicU64::new(0));
     let total = classify_ns.clone();
     let start = frames.0;
-    options.sink = (stats || bench).then(|| {
+    // --out: frames `start` to the range's end or the capture's.
+    let progress = args.out.as_ref().map(|_| FrameProgress::new("replay", start, || capture.frames().min(frames.1)));
+    let tap_progress = progress.clone();
+    options.sink = (stats || bench || progress.is_some()).then(|| {
         replay::SinkWrapper(Arc::new(move |inner: Option<Box<dyn FrameSink>>| {
             // --stats alone renders nothing but with --out; --bench measures the renderer too.
             let mut sink: Box<dyn FrameSink> = match inner {
@@ -220,10 +171,17 @@ fn replay_command(args: &[String]) -> Result<(), String> {
                 };
                 sink = Box::new(FrameTap::new(sink, add));
             }
+            if let Some(progress) = tap_progress.clone() {
+                sink = Box::new(FrameTap::new(sink, move |frame: &glrt::frame::Frame| progress.frame_done(frame.number)));
+            }
             sink
         }))
     });
-    let outcome = replay::run(&capture, &options)?;
+    let outcome = replay::run(&capture, &options);
+    if let Some(progress) = &progress {
+        progress.finish();
+    }
+    let outcome = outcome?;
     println!("replayed {} calls, {} frames", outcome.calls, outcome.frames);
     if bench {
         let times = times_from(&outcome.frame_times, frames.0);
@@ -245,7 +203,7 @@ fn replay_command(args: &[String]) -> Result<(), String> {
 
 #[cfg(test)]
 mod tests {
-    use super::times_from;
+    use super::{parse_size, times_from};
     use std::time::Duration;
 
     #[test]
@@ -257,5 +215,13 @@ mod tests {
         assert_eq!(times_from(&times, 3), &times[2..]);
         assert_eq!(times_from(&times, 3)[0], Duration::from_millis(3));
         assert!(times_from(&times, 9).is_empty());
+    }
+
+    #[test]
+    fn sizes_are_two_positive_numbers() {
+        assert_eq!(parse_size("640x480"), Ok((640, 480)));
+        assert!(parse_size("big").is_err());
+        assert!(parse_size("0x480").is_err());
+        assert!(parse_size("640x").is_err());
     }
 }

@@ -1,0 +1,114 @@
+//! The `glrt` command: its arguments (parsed by clap, which writes `--help` of the command and
+//! of each subcommand and the usage errors) and the subcommands:
+//! - `glrt info` ([`info`]): the build and the Vulkan devices, their features and the mode and
+//!   tracer each would get; `glrt info FILE`: what a capture holds;
+//! - `glrt replay FILE` ([`replay`]): replays a capture headless, optionally writing its frames
+//!   as PNG, timing them or printing hash tracking's statistics;
+//! - `glrt dump FILE`: the call log of a capture on standard output;
+//! - `glrt run -- PROGRAM ARGS...` ([`run`]): runs a program on glrt;
+//!
+//! and [`progress`], the progress bars of long work.
+//!
+//! Exit status: 0 when the command did what it was asked, 1 when it failed (the message on
+//! stderr says why), 2 for a usage error (clap's message names the argument); `glrt run`
+//! becomes the program, whose status is then the command's.
+
+mod info;
+mod progress;
+mod replay;
+mod run;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use glrt::replay::reader::Capture;
+
+/// glrt: a drop-in libGL.so.1 for OpenGL 1.x programs, rendered with Vulkan (rasterized or path
+/// traced). This command runs programs on glrt, inspects the machine and replays captures
+/// (GLRT_CAPTURE=FILE).
+#[derive(Parser)]
+#[command(name = "glrt", version, arg_required_else_help = true)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Lists the Vulkan devices glrt can use, or summarises a capture
+    ///
+    /// Without FILE: the build and the Vulkan devices (features, which one glrt uses, and the
+    /// mode and tracer each would get). With FILE: what a capture holds (frames, calls, bytes,
+    /// textures and the hashes draws used, by which glrt.toml tags textures).
+    Info {
+        /// A capture file (written by a program run with GLRT_CAPTURE=FILE).
+        file: Option<PathBuf>,
+    },
+    /// Replays a capture headless, optionally writing its frames as PNG
+    ///
+    /// The environment's GLRT_* settings (GLRT_MODE, GLRT_DEVICE, ...) and glrt.toml apply as
+    /// they would to the captured program.
+    Replay(replay::Args),
+    /// Prints the call log of a capture
+    ///
+    /// The GLRT_TRACE format, with the captured program's addresses: the same text on every run.
+    Dump {
+        /// The capture file.
+        file: PathBuf,
+    },
+    /// Runs a program on glrt: glrt run [OPTIONS] -- PROGRAM ARGS...
+    ///
+    /// The program loads glrt's libGL.so.1 whatever it would have loaded (LD_LIBRARY_PATH, and
+    /// glrt as the glvnd GLX vendor); the options become glrt's GLRT_* variables. As a Steam
+    /// launch option: glrt run -- %command%
+    Run(run::Args),
+}
+
+fn main() -> ExitCode {
+    default_sigpipe();
+    // Usage errors exit here with status 2, `--help` and `--version` with 0.
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Info { file: None } => {
+            info::build_and_devices();
+            Ok(())
+        }
+        Command::Info { file: Some(file) } => Capture::open(&file).and_then(|capture| info::capture(&capture)),
+        Command::Replay(args) => replay::run(&args),
+        Command::Dump { file } => Capture::open(&file).and_then(|capture| dump(&capture)),
+        Command::Run(args) => run::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("glrt: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn dump(capture: &Capture) -> Result<(), String> {
+    // The call log is read from the environment at the first GL call, which the replay makes.
+    // Safety: single-threaded so far; nothing else reads the environment concurrently.
+    unsafe { std::env::set_var("GLRT_TRACE", "/dev/stdout") };
+    glrt::replay::run(capture, &glrt::replay::Options::default())?;
+    glrt::gl_entry::call_log::flush();
+    Ok(())
+}
+
+/// Restores the default action of `SIGPIPE`, so that `glrt dump FILE | head` ends quietly as
+/// Unix tools do (Rust programs ignore it, which turns a closed pipe into a panic of `println!`).
+#[cfg(target_os = "linux")]
+fn default_sigpipe() {
+    const SIGPIPE: i32 = 13;
+    const SIG_DFL: usize = 0;
+    unsafe extern "C" {
+        fn signal(signum: i32, handler: usize) -> usize;
+    }
+    // Safety: libc's `signal` with a valid signal number and the default disposition.
+    unsafe { signal(SIGPIPE, SIG_DFL) };
+}
+
+#[cfg(not(target_os = "linux"))]
+fn default_sigpipe() {}
