@@ -12,6 +12,7 @@ pub mod shader_abi;
 pub mod frame_log;
 pub mod frames_from;
 pub mod present;
+pub mod radiosity;
 pub mod raster;
 pub mod texenv;
 pub mod trace;
