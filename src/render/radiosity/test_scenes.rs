@@ -1,9 +1,10 @@
 //! Scenes for the radiosity tests: quads as static-world chunks and the patches of a closed box.
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use glam::Vec3;
 
+use super::form_factors::{self, FormFactors};
 use super::patches::{self, Patches};
 use crate::frame::class::MaterialOverride;
 use crate::frame::world::{ChunkShading, StaticChunk};
@@ -36,4 +37,15 @@ pub fn closed_box(side: f32, patch_size: f32) -> Patches {
         quad(6, y, x, z),
     ];
     patches::build(&faces, patch_size)
+}
+
+/// The patches of the unit box at patch size 0.25 (96 patches) and their form factors,
+/// computed once for the tests that share them.
+pub fn unit_box() -> &'static (Patches, FormFactors) {
+    static UNIT_BOX: OnceLock<(Patches, FormFactors)> = OnceLock::new();
+    UNIT_BOX.get_or_init(|| {
+        let p = closed_box(1.0, 0.25);
+        let f = form_factors::compute(&p);
+        (p, f)
+    })
 }

@@ -8,7 +8,7 @@ use super::bounces::{colour_matrix, gather, k_bounce, neumann};
 use super::compress::{self, compress};
 use super::form_factors::{self, FormFactors};
 use super::patches::{self, Patches};
-use super::test_scenes::{closed_box, quad};
+use super::test_scenes::{closed_box, quad, unit_box};
 
 /// The form factor from the patches `receivers` (as one surface: area-weighted) to the
 /// patches `sources`.
@@ -33,14 +33,13 @@ fn form_factors_match_the_analytic_values_of_unit_squares() {
     let parallel = surface_form_factor(&p, &f, |n| n.z > 0.5, |n| n.z < -0.5);
     assert!((parallel - 0.19982).abs() < 1.0e-3, "parallel {parallel}");
 
-    // Perpendicular unit squares sharing an edge: 0.20004 (C-14). The point receivers next to
-    // the shared edge see the wall at its steepest: the midpoint rule is coarser there.
+    // Perpendicular unit squares sharing an edge: 0.20004 (C-14). (Measured: 0.20002 and
+    // 0.19999 at these sizes.)
     let wall = quad(3, Vec3::ZERO, Vec3::Y, Vec3::Z);
     let p = patches::build(&[floor, wall], 0.125);
     let f = form_factors::compute(&p);
     let perpendicular = surface_form_factor(&p, &f, |n| n.z > 0.5, |n| n.x > 0.5);
-    eprintln!("parallel {parallel}, perpendicular {perpendicular}");
-    assert!((perpendicular - 0.20004).abs() < 5.0e-3, "perpendicular {perpendicular}");
+    assert!((perpendicular - 0.20004).abs() < 1.0e-3, "perpendicular {perpendicular}");
 }
 
 #[test]
@@ -72,9 +71,8 @@ fn occluders_cast_shadows_on_form_factors() {
 
 #[test]
 fn white_furnace_conserves_energy() {
-    let p = closed_box(1.0, 0.25);
+    let (p, f) = unit_box();
     assert_eq!(p.patches.len(), 96);
-    let f = form_factors::compute(&p);
     // Every row of a closed box sums to 1: all the light leaving a patch lands somewhere.
     for i in 0..f.n {
         let sum: f32 = f.row(i).iter().sum();
@@ -83,7 +81,7 @@ fn white_furnace_conserves_energy() {
     // Uniform emission E and albedo ρ everywhere: B = E / (1 − ρ) on every patch.
     let (e, rho) = (Vec3::new(1.0, 2.0, 0.5), Vec3::new(0.5, 0.8, 0.9));
     let albedo = vec![rho; f.n];
-    let c = neumann(&f, &albedo, &vec![e; f.n], 1.0e-7, 1000);
+    let c = neumann(f, &albedo, &vec![e; f.n], 1.0e-7, 1000);
     for s in &c.secondary {
         let b = e + *s;
         let exact = e / (Vec3::ONE - rho);
@@ -91,7 +89,7 @@ fn white_furnace_conserves_energy() {
     }
     // Albedo 1 keeps every bounce: the series grows by E per bounce (within the row error).
     let white = vec![Vec3::ONE; f.n];
-    let first = gather(&f, &white, &vec![e; f.n]);
+    let first = gather(f, &white, &vec![e; f.n]);
     assert!(first.iter().all(|x| ((*x - e) / e).abs().max_element() < 1.0e-3));
 }
 
@@ -125,17 +123,16 @@ fn solve(f: &FormFactors, albedo: &[Vec3], emission: &[Vec3]) -> Vec<Vec3> {
 
 #[test]
 fn a_closed_box_with_one_emitter_matches_the_exact_solution() {
-    let p = closed_box(1.0, 0.25);
-    let f = form_factors::compute(&p);
+    let (p, f) = unit_box();
     let n = f.n;
     let albedo: Vec<Vec3> = p.patches.iter().map(|x| if x.normal.z > 0.5 { Vec3::new(0.8, 0.6, 0.4) } else { Vec3::splat(0.7) }).collect();
     let lamp = p.patches.iter().position(|x| x.normal.z < -0.5).expect("a ceiling patch");
     let mut emission = vec![Vec3::ZERO; n];
     emission[lamp] = Vec3::splat(10.0);
-    let exact = solve(&f, &albedo, &emission);
+    let exact = solve(f, &albedo, &emission);
 
     // The Neumann series to convergence equals the exact solution.
-    let c = neumann(&f, &albedo, &emission, 1.0e-7, 1000);
+    let c = neumann(f, &albedo, &emission, 1.0e-7, 1000);
     for i in 0..n {
         let b = emission[i] + c.secondary[i];
         assert!(((b - exact[i]).abs() / exact[i].max_element()).max_element() < 1.0e-5, "{i}: {b} vs {}", exact[i]);
@@ -144,7 +141,7 @@ fn a_closed_box_with_one_emitter_matches_the_exact_solution() {
 
     // The k-bounce matrix falls short of it by the bounces after k, bounded by
     // ρmax^(k+1) / (1 − ρmax) of the emission (rows sum to 1), and converges to it.
-    let colour = colour_matrix(&f, &albedo);
+    let colour = colour_matrix(f, &albedo);
     let mut previous = f32::INFINITY;
     for k in [1, 3, 8, 40] {
         let secondary = k_bounce(&colour, k).apply(&emission);
@@ -196,10 +193,9 @@ fn the_k_bounce_matrix_equals_k_explicit_bounces() {
 
 #[test]
 fn compression_keeps_the_top_share_exact_and_the_rest_close() {
-    let p = closed_box(1.0, 0.25);
-    let f = form_factors::compute(&p);
+    let (p, f) = unit_box();
     let albedo: Vec<Vec3> = p.patches.iter().map(|x| if x.normal.x.abs() > 0.5 { Vec3::new(0.8, 0.2, 0.2) } else { Vec3::splat(0.6) }).collect();
-    let m = k_bounce(&colour_matrix(&f, &albedo), 3);
+    let m = k_bounce(&colour_matrix(f, &albedo), 3);
     let n = m.n;
     let total: f64 = m.channels.iter().flatten().map(|&x| f64::from(x)).sum();
     let mut sums = Vec::new();
