@@ -11,6 +11,10 @@
 //!   writing recorded memory, glrt's front end, hash tracking and the renderer;
 //!   `--stats` prints hash tracking's statistics of each frame as one JSON line (keys in
 //!   README.md; frames are not rendered unless `--out` is given);
+//! - `glrt radiosity FILE`: replays a capture without drawing, and runs the radiosity
+//!   precompute on the static world of its last frame with the `[radiosity]` settings
+//!   (`glrt.toml`, `GLRT_*`): times, sizes and errors as Markdown
+//!   (`glrt::render::radiosity::precompute`);
 //! - `glrt dump FILE`: the call log of a capture (the `GLRT_TRACE` format, with the captured
 //!   program's addresses: the same text on every run) on standard output.
 
@@ -24,7 +28,7 @@ use glrt::translate::capture;
 use glrt::frame::{FrameSink, NullSink};
 use glrt::translate::classify::report::{FrameTap, TextureCatalog, print_stats};
 
-const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] [--stats] | glrt dump FILE";
+const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] [--stats] | glrt radiosity FILE | glrt dump FILE";
 
 fn main() -> ExitCode {
     default_sigpipe();
@@ -38,6 +42,7 @@ fn main() -> ExitCode {
         Some("info") => info(&args[1..]),
         Some("replay") => replay_command(&args[1..]),
         Some("dump") => dump(&args[1..]),
+        Some("radiosity") => radiosity(&args[1..]),
         Some(other) => Err(format!("unknown command '{other}'\n{USAGE}")),
         None => Err(USAGE.to_owned()),
     };
@@ -83,6 +88,34 @@ fn dump(args: &[String]) -> Result<(), String> {
     unsafe { std::env::set_var("GLRT_TRACE", "/dev/stdout") };
     replay::run(&capture, &replay::Options::default())?;
     glrt::gl_entry::call_log::flush();
+    Ok(())
+}
+
+/// Keeps the static world of the last frame presented.
+#[derive(Clone, Default)]
+struct LastWorld(Arc<parking_lot::Mutex<Vec<Arc<glrt::frame::world::StaticChunk>>>>);
+
+impl FrameSink for LastWorld {
+    fn present(&mut self, frame: glrt::frame::Frame) {
+        *self.0.lock() = frame.static_world.to_vec();
+    }
+}
+
+fn radiosity(args: &[String]) -> Result<(), String> {
+    let (capture, rest) = file_and_options(args)?;
+    if !rest.is_empty() {
+        return Err(format!("radiosity: unexpected arguments {rest:?}"));
+    }
+    let world = LastWorld::default();
+    let sink = world.clone();
+    let options = replay::Options { sink: Some(replay::SinkWrapper(Arc::new(move |_| Box::new(sink.clone())))), ..Default::default() };
+    replay::run(&capture, &options)?;
+    let chunks = world.0.lock().clone();
+    if chunks.is_empty() {
+        return Err("radiosity: the capture's last frame has no static world".to_owned());
+    }
+    let report = glrt::render::radiosity::precompute::run(&chunks, &glrt::render::radiosity::settings::Settings::of_process())?;
+    print!("{}", report.markdown());
     Ok(())
 }
 

@@ -10,9 +10,11 @@
 //! 4. [`compress`]: the seed's compression: [`sparse`] top share, [`quantise`]d rest,
 //!    [`reorder`]ed, [`bc1`] blocks, and the round trip's errors.
 //!
+//! [`precompute`] runs these steps within the memory budget of the [`settings`] and reports
+//! times, sizes and errors (`glrt radiosity`).
+//!
 //! Not yet here: the GPU form factors, the per-frame update (direct light on the patches, the
-//! product from the BC1 texture), the transfer to surfaces and the tracer, the disk cache and
-//! the `glrt.toml` settings.
+//! product from the BC1 texture), the transfer to surfaces and the tracer, and the disk cache.
 
 pub mod bc1;
 pub mod bounces;
@@ -20,8 +22,10 @@ pub mod compress;
 pub mod form_factors;
 pub mod matrix;
 pub mod patches;
+pub mod precompute;
 pub mod quantise;
 pub mod reorder;
+pub mod settings;
 pub mod sparse;
 #[cfg(test)]
 mod test_scenes;
