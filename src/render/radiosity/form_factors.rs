@@ -14,9 +14,8 @@
 //!   for every size and distance (no disc approximation), so in a closed room the row sums are
 //!   1 up to rounding and visibility: the white furnace holds by construction of the geometry,
 //!   and what the test checks is the code.
-//! - **Visibility, sampled.** The fraction of points of the clipped triangle (its centroid,
-//!   then the points halfway from it to each vertex; [`VISIBILITY_SAMPLES`] per source patch,
-//!   shared among its triangles, at least one each) that a shadow ray
+//! - **Visibility, sampled.** The fraction of [`VISIBILITY_SAMPLES`] points of the source
+//!   patch's clipped triangles (see [`visible_fraction`]) that a shadow ray
 //!   from `p` reaches ([`cpu::any`] on one BLAS of every patch triangle, the traversal the GPU
 //!   runs). Partly hidden sources get a coarse fraction; finer patches refine it.
 //!
@@ -33,8 +32,7 @@ use super::patches::{Patches, area, face_normal};
 use crate::render::trace::bvh::cpu::{self, Instance, Scene};
 use crate::render::trace::bvh::{Blas, Tlas};
 
-/// Visibility rays per source patch and receiver point: shared among the source's triangles,
-/// at least one each.
+/// Visibility rays per source patch and receiver point.
 pub const VISIBILITY_SAMPLES: usize = 4;
 /// Most receiver points of a patch: the centroids of its first triangles.
 pub const RECEIVER_POINTS: usize = 8;
@@ -110,11 +108,11 @@ fn fill_row(patches: &Patches, scene: &Scene, i: usize, row: &mut [f32]) {
             continue;
         }
         let margin = offset(source.position, source.area);
-        let triangles = &patches.triangles[source.triangles.clone()];
-        let rays = (VISIBILITY_SAMPLES / triangles.len()).max(1);
         let mut sum = 0.0;
         for &(p, weight) in &points {
-            for t in triangles {
+            let mut unoccluded = 0.0;
+            let mut visible: Vec<Vec<Vec3>> = Vec::new();
+            for t in &patches.triangles[source.triangles.clone()] {
                 // Only the front of the source emits: p must be in front of its plane.
                 if face_normal(t).dot(p - t[0]) <= 0.0 {
                     continue;
@@ -122,8 +120,12 @@ fn fill_row(patches: &Patches, scene: &Scene, i: usize, row: &mut [f32]) {
                 let polygon = clip(t, p, receiver.normal);
                 let f = point_to_polygon(p, receiver.normal, &polygon);
                 if f > 0.0 {
-                    sum += weight * f * visible_fraction(scene, p, &polygon, margin, rays);
+                    unoccluded += f;
+                    visible.push(polygon);
                 }
+            }
+            if unoccluded > 0.0 {
+                sum += weight * unoccluded * visible_fraction(scene, p, &visible, margin);
             }
         }
         row[j] = sum / total;
@@ -168,11 +170,16 @@ pub fn point_to_polygon(p: Vec3, n: Vec3, polygon: &[Vec3]) -> f32 {
     (sum.abs() / (2.0 * std::f64::consts::PI)) as f32
 }
 
-/// The share of the first `rays` sample points of `polygon` that a ray from `p` reaches
-/// unoccluded (stopping `margin` short of the point).
-fn visible_fraction(scene: &Scene, p: Vec3, polygon: &[Vec3], margin: f32, rays: usize) -> f32 {
-    let centroid = polygon.iter().copied().sum::<Vec3>() / polygon.len() as f32;
-    let samples = std::iter::once(centroid).chain(polygon.iter().map(|v| (*v + centroid) * 0.5)).take(rays);
+/// The share of sample points of the `polygons` (the parts of a source patch in front of the
+/// receiver) that a ray from `p` reaches unoccluded, stopping `margin` short of the point:
+/// [`VISIBILITY_SAMPLES`] points, the polygons' centroids (evenly spaced among them when there
+/// are more), then points halfway from the first polygon's centroid to its vertices.
+fn visible_fraction(scene: &Scene, p: Vec3, polygons: &[Vec<Vec3>], margin: f32) -> f32 {
+    let centroid = |poly: &[Vec3]| poly.iter().copied().sum::<Vec3>() / poly.len() as f32;
+    let count = polygons.len().min(VISIBILITY_SAMPLES);
+    let mut samples: Vec<Vec3> = (0..count).map(|k| centroid(&polygons[k * polygons.len() / count])).collect();
+    let first = centroid(&polygons[0]);
+    samples.extend(polygons[0].iter().map(|v| (*v + first) * 0.5).take(VISIBILITY_SAMPLES - count));
     let (mut seen, mut total) = (0u32, 0u32);
     for q in samples {
         let d = q - p;
