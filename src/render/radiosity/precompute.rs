@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 
 use super::bounces::{colour_matrix, gather, k_bounce, neumann};
-use super::compress::{self, Errors, compress};
+use super::compress::{self, Errors, LogRange, compress};
 use super::form_factors;
 use super::patches::{self, Patches, area};
 use super::settings::Settings;
@@ -49,6 +49,21 @@ pub fn patches_within_budget(chunks: &[Arc<StaticChunk>], settings: &Settings) -
     }
 }
 
+/// One compression of the k-bounce matrix.
+#[derive(Clone, Debug)]
+pub struct Compressed {
+    /// Its log range.
+    pub range: LogRange,
+    /// Its reordering passes.
+    pub passes: u32,
+    /// Time to compress.
+    pub time: Duration,
+    /// Bytes.
+    pub bytes: usize,
+    /// Errors of the round trip.
+    pub errors: Errors,
+}
+
 /// What the precompute measured.
 #[derive(Clone, Debug)]
 pub struct Report {
@@ -64,8 +79,9 @@ pub struct Report {
     pub bounces: u32,
     /// Bytes: dense form factors, dense k-bounce colour matrix.
     pub dense_bytes: [usize; 2],
-    /// Per reordering pass count 0, 1, 2: time to compress, bytes, errors.
-    pub compressed: Vec<(Duration, usize, Errors)>,
+    /// The compressions: the seed's log range, then the fitted one, each after 0, 1 and 2
+    /// reordering passes.
+    pub compressed: Vec<Compressed>,
     /// Sum of the k-bounce matrix's entries (the scale of the summed errors).
     pub total: f64,
     /// Relative error (largest over patches and channels, against the largest value) of
@@ -92,12 +108,14 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings) -> Result<Report, S
     let k = k_bounce(&colour, settings.bounces);
     let t_k = start.elapsed();
     let total: f64 = k.channels.iter().flatten().map(|&x| f64::from(x)).sum();
-    let compressed = (0..=compress::REORDER_PASSES)
-        .map(|passes| {
+    let compressed = [LogRange::Seed, LogRange::Fitted]
+        .into_iter()
+        .flat_map(|range| (0..=compress::REORDER_PASSES).map(move |passes| (range, passes)))
+        .map(|(range, passes)| {
             let start = Instant::now();
-            let c = compress(&k, settings.top_share, passes);
+            let c = compress(&k, settings.top_share, passes, range);
             let t = start.elapsed();
-            (t, c.bytes(), compress::errors(&k, &c.decompress()))
+            Compressed { range, passes, time: t, bytes: c.bytes(), errors: compress::errors(&k, &c.decompress()) }
         })
         .collect();
     let ones = vec![Vec3::ONE; f.n];
@@ -152,12 +170,17 @@ impl Report {
         let _ = writeln!(s, "\n| matrix | bytes | MiB |\n| --- | ---: | ---: |");
         let _ = writeln!(s, "| form factors, dense f32 | {} | {:.3} |", self.dense_bytes[0], mib(self.dense_bytes[0]));
         let _ = writeln!(s, "| k-bounce colour matrix, dense f32 x 3 | {} | {:.3} |", self.dense_bytes[1], mib(self.dense_bytes[1]));
-        if let Some((_, bytes, _)) = self.compressed.last() {
-            let _ = writeln!(s, "| compressed (BC1 + exact top share + order) | {bytes} | {:.3} |", mib(*bytes));
+        if let Some(c) = self.compressed.last() {
+            let _ = writeln!(s, "| compressed (BC1 + exact top share + order) | {} | {:.3} |", c.bytes, mib(c.bytes));
         }
-        let _ = writeln!(s, "\n| reordering passes | mean error | max error | summed error | summed / sum of entries | compress ms |\n| ---: | ---: | ---: | ---: | ---: | ---: |");
-        for (passes, (t, _, e)) in self.compressed.iter().enumerate() {
-            let _ = writeln!(s, "| {passes} | {:.3e} | {:.4} | {:.4} | {:.4} | {:.1} |", e.mean, e.max, e.sum, e.sum / self.total.max(f64::MIN_POSITIVE), ms(*t));
+        let _ = writeln!(s, "\n| log range | reordering passes | mean error | max error | summed error | summed / sum of entries | compress ms |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |");
+        for c in &self.compressed {
+            let e = &c.errors;
+            let range = match c.range {
+                LogRange::Seed => "seed (shift 25)",
+                LogRange::Fitted => "fitted",
+            };
+            let _ = writeln!(s, "| {range} | {} | {:.3e} | {:.4} | {:.4} | {:.4} | {:.1} |", c.passes, e.mean, e.max, e.sum, e.sum / self.total.max(f64::MIN_POSITIVE), ms(c.time));
         }
         let _ = writeln!(s, "\nk bounces against the Neumann series ({} bounces to converge to {TOLERANCE:e}), primary light 1 on every patch; largest error / largest converged value:\n", self.neumann_bounces);
         let _ = writeln!(s, "| k | error |\n| ---: | ---: |");
@@ -192,7 +215,7 @@ mod tests {
         let report = run(&chunks, &Settings { patch_size: 1.0, ..settings }).expect("fits");
         assert_eq!((report.patches, report.triangles, report.bounces), (24, 12, 3));
         assert_eq!(report.dense_bytes, [24 * 24 * 4, 24 * 24 * 12]);
-        assert_eq!(report.compressed.len(), 3);
+        assert_eq!(report.compressed.len(), 6);
         // In a closed box each bounce is ρ = 0.216 of the one before: ~9 bounces to 1e-6; k
         // bounces fall short by ρ^(k+1) / (1 - ρ) against ρ / (1 - ρ) converged: ρ^k of it.
         assert!((8..=12).contains(&report.neumann_bounces), "{}", report.neumann_bounces);

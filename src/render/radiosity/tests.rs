@@ -5,7 +5,7 @@
 use glam::Vec3;
 
 use super::bounces::{colour_matrix, gather, k_bounce, neumann};
-use super::compress::{self, compress};
+use super::compress::{self, LogRange, compress};
 use super::form_factors::{self, FormFactors};
 use super::patches::{self, Patches};
 use super::test_scenes::{closed_box, quad, unit_box};
@@ -199,31 +199,35 @@ fn compression_keeps_the_top_share_exact_and_the_rest_close() {
     let n = m.n;
     let total: f64 = m.channels.iter().flatten().map(|&x| f64::from(x)).sum();
     let mut sums = Vec::new();
-    for passes in 0..=2 {
-        let c = compress(&m, compress::TOP_SHARE, passes);
+    for (range, passes) in [LogRange::Seed, LogRange::Fitted].into_iter().flat_map(|r| (0..=2).map(move |p| (r, p))) {
+        let c = compress(&m, compress::TOP_SHARE, passes, range);
         assert_eq!(c.sparse.len(), (0.04 * (n * n) as f32).round() as usize);
         let mut order = c.order.clone();
         order.sort_unstable();
         assert_eq!(order, (0..n as u32).collect::<Vec<_>>());
         let back = c.decompress();
-        // The kept entries are exact (their texels decode to at most a few e^-25 of max).
+        // The kept entries come back exact (to rounding of the texel's value plus the rest).
         for i in 0..n {
             for k in c.sparse.offsets[i] as usize..c.sparse.offsets[i + 1] as usize {
                 let j = c.sparse.columns[k] as usize;
-                assert!((back.get(i, j) - m.get(i, j)).abs().max_element() <= 1.0e-9 + 1.0e-6 * m.get(i, j).max_element());
+                assert!((back.get(i, j) - m.get(i, j)).abs().max_element() <= 1.0e-6 * (c.max + m.get(i, j).max_element()), "{range:?}");
             }
         }
         let e = compress::errors(&m, &back);
-        // Log codes keep ~5 %, BC1 adds its palette error: a few per cent of the whole.
-        eprintln!("{passes} passes: {e:?}, total {total}, max {}", c.max);
-        assert!(e.sum < 0.2 * total && e.max < f64::from(c.max), "{passes} passes: {e:?}, total {total}, max {}", c.max);
+        eprintln!("{range:?}, {passes} passes: {e:?}, total {total}, max {}, shift {}", c.max, c.shift);
+        assert!(e.sum < 0.2 * total && e.max < f64::from(c.max), "{range:?}, {passes} passes: {e:?}, total {total}, max {}", c.max);
         sums.push(e.sum);
         // BC1 (half a byte a texel) + 4 % exact entries + the order: far below 12 bytes.
         assert_eq!(c.bytes(), (n.div_ceil(4) * 4).pow(2) / 2 + c.sparse.bytes() + 4 * n);
         assert!(c.bytes() * 5 < m.bytes(), "{} vs {}", c.bytes(), m.bytes());
     }
+    // Fitting the log range to the values present (a few decades, not 25 e-folds) cuts the
+    // summed error by 1.5x or more at every pass count (measured: 40.9/39.0/44.0 with the
+    // seed's range, 19.3/20.7/25.6 fitted, of 283).
+    for passes in 0..3 {
+        assert!(sums[3 + passes] * 1.5 < sums[passes], "{sums:?}");
+    }
     // Everything kept exactly: the round trip is exact.
-    let all = compress(&m, 1.0, 0).decompress();
+    let all = compress(&m, 1.0, 0, LogRange::Seed).decompress();
     assert_eq!(compress::errors(&m, &all).max, 0.0);
-    eprintln!("summed errors after 0/1/2 passes: {sums:?} of {total}");
 }
