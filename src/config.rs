@@ -22,7 +22,7 @@
 //! frame_budget_mb = 256
 //!
 //! [radiosity]                       # keys: render::radiosity::settings
-//! radiosity_enabled = true
+//! radiosity_bounces = 3
 //!
 //! [materials]                       # per texture hash, every field optional
 //! "0x8f3a2c1d00aa11bb" = { roughness = 0.3, metalness = 1.0, emissive = 2.0 }

@@ -1,11 +1,11 @@
 //! Radiosity's settings: `glrt.toml` `[radiosity]`, each key overridable by `GLRT_<KEY>` (read
 //! by [`crate::config`], which reports unknown keys and bad values once and keeps the
-//! default). Keys carry a `radiosity_` prefix where the bare name would make an unclear
+//! default). There is no on/off key yet: nothing in a frame uses radiosity (it comes with the
+//! per-frame update). Keys carry a `radiosity_` prefix where the bare name would make an unclear
 //! variable (`GLRT_RADIOSITY_BOUNCES`, not `GLRT_BOUNCES`, which would read as the tracer's).
 //!
 //! ```toml
 //! [radiosity]
-//! radiosity_enabled = false   # radiosity on or off
 //! patch_size = 0.0            # side of a patch, world units; 0: chosen to fit the budget
 //! radiosity_bounces = 3       # k of the k-bounce matrix, 1..=16
 //! top_share = 0.04            # share of the matrix kept exactly, 0..=1
@@ -21,8 +21,6 @@ pub const DENSE_BYTES_PER_ENTRY: usize = 2 * 3 * 4;
 /// The `[radiosity]` table.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
-    /// Whether radiosity runs (`radiosity_enabled`).
-    pub enabled: bool,
     /// Side of a patch in world units; 0: the smallest that fits the budget (`patch_size`).
     pub patch_size: f32,
     /// Bounces of the k-bounce matrix (`radiosity_bounces`).
@@ -35,14 +33,13 @@ pub struct Settings {
 
 impl Default for Settings {
     fn default() -> Settings {
-        Settings { enabled: false, patch_size: 0.0, bounces: 3, top_share: 0.04, budget_mb: 256 }
+        Settings { patch_size: 0.0, bounces: 3, top_share: 0.04, budget_mb: 256 }
     }
 }
 
 impl Table for Settings {
     const NAME: &'static str = "radiosity";
     const KEYS: &'static [Key<Settings>] = &[
-        Key { name: "radiosity_enabled", set: |s, v| v.as_bool().map(|b| s.enabled = b).ok_or_else(|| format!("expected true or false, found {}", crate::config::shown(v))) },
         Key { name: "patch_size", set: |s, v| number(v, |x| x >= 0.0 && x.is_finite(), "a number >= 0").map(|x| s.patch_size = x as f32) },
         Key { name: "radiosity_bounces", set: |s, v| integer_in(v, 1..=16).map(|x| s.bounces = x as u32) },
         Key { name: "top_share", set: |s, v| number_in(v, 0.0..=1.0).map(|x| s.top_share = x as f32) },
@@ -82,14 +79,14 @@ mod tests {
 
     #[test]
     fn every_key_is_read_from_the_file_and_the_environment() {
-        let body = "radiosity_enabled = true\npatch_size = 0.5\nradiosity_bounces = 5\ntop_share = 0.1\nradiosity_budget_mb = 64\n";
+        let body = "patch_size = 0.5\nradiosity_bounces = 5\ntop_share = 0.1\nradiosity_budget_mb = 64\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
-        assert_eq!(s, Settings { enabled: true, patch_size: 0.5, bounces: 5, top_share: 0.1, budget_mb: 64 });
-        let env = [("GLRT_RADIOSITY_ENABLED", "false"), ("GLRT_PATCH_SIZE", "2"), ("GLRT_RADIOSITY_BOUNCES", "1"), ("GLRT_TOP_SHARE", "0"), ("GLRT_RADIOSITY_BUDGET_MB", "1")];
+        assert_eq!(s, Settings { patch_size: 0.5, bounces: 5, top_share: 0.1, budget_mb: 64 });
+        let env = [("GLRT_PATCH_SIZE", "2"), ("GLRT_RADIOSITY_BOUNCES", "1"), ("GLRT_TOP_SHARE", "0"), ("GLRT_RADIOSITY_BUDGET_MB", "1")];
         let (s, problems) = read(body, &env);
         assert!(problems.is_empty(), "{problems:?}");
-        assert_eq!(s, Settings { enabled: false, patch_size: 2.0, bounces: 1, top_share: 0.0, budget_mb: 1 });
+        assert_eq!(s, Settings { patch_size: 2.0, bounces: 1, top_share: 0.0, budget_mb: 1 });
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
         // 1 MiB of two dense colour matrices: 209 patches (209² · 24 bytes < 2^20).
         assert_eq!(s.max_patches(), 209);
@@ -101,7 +98,6 @@ mod tests {
             ("radiosity_bounces = 0", "radiosity_bounces: expected an integer in 1..=16, found 0"),
             ("top_share = 1.5", "top_share: expected a number in 0..=1, found 1.5"),
             ("patch_size = -1", "patch_size: expected a number >= 0, found -1"),
-            ("radiosity_enabled = 1", "radiosity_enabled: expected true or false, found 1"),
             ("radiosity_budget_mb = 0", "radiosity_budget_mb: expected an integer in 1..=65536, found 0"),
         ] {
             let (s, problems) = read(line, &[]);
