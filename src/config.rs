@@ -24,6 +24,9 @@
 //! [display]                         # keys: render::hud::Display
 //! hud = true
 //!
+//! [radiosity]                       # keys: render::radiosity::settings
+//! radiosity_bounces = 3
+//!
 //! [materials]                       # per texture hash, every field optional
 //! "0x8f3a2c1d00aa11bb" = { roughness = 0.3, metalness = 1.0, emissive = 2.0 }
 //! ```
@@ -48,7 +51,7 @@ use std::path::{Path, PathBuf};
 pub const LIST_KEYS: [&str; 8] = ["ui", "sky", "ignore", "translucent", "emissive", "static", "dynamic", "lightmap"];
 
 /// The top-level tables: `[materials]` and the settings tables read through [`Table`].
-pub const TABLES: [&str; 4] = ["pathtrace", "memory", "display", "materials"];
+pub const TABLES: [&str; 5] = ["pathtrace", "memory", "display", "radiosity", "materials"];
 
 /// The keys of a `[materials]` entry.
 const MATERIAL_KEYS: [&str; 3] = ["roughness", "metalness", "emissive"];
@@ -366,7 +369,7 @@ mod tests {
         assert_eq!(c.lists[0], HashSet::from([16, 32]));
         assert_eq!(c.lists[1], HashSet::from([255]));
         assert_eq!(warnings.len(), 1);
-        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, lightmap, pathtrace, memory, display, materials)"), "{}", warnings[0]);
+        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, lightmap, pathtrace, memory, display, radiosity, materials)"), "{}", warnings[0]);
     }
 
     #[test]

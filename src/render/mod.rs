@@ -16,6 +16,7 @@ pub mod frame_log;
 pub mod frames_from;
 pub mod hud;
 pub mod present;
+pub mod radiosity;
 pub mod raster;
 pub mod texenv;
 pub mod trace;

@@ -5,6 +5,8 @@
 //! - `glrt replay FILE` ([`replay`]): replays a capture headless, optionally writing its frames
 //!   as PNG, timing them or printing hash tracking's statistics;
 //! - `glrt dump FILE`: the call log of a capture on standard output;
+//! - `glrt radiosity FILE` ([`radiosity`]): the radiosity precompute on a capture's static
+//!   world, its times, sizes and errors;
 //! - `glrt run -- PROGRAM ARGS...` ([`run`]): runs a program on glrt;
 //!
 //! and [`progress`], the progress bars of long work.
@@ -15,6 +17,7 @@
 
 mod info;
 mod progress;
+mod radiosity;
 mod replay;
 mod run;
 
@@ -63,6 +66,15 @@ enum Command {
     /// glrt as the glvnd GLX vendor); the options become glrt's GLRT_* variables. As a Steam
     /// launch option: glrt run -- %command%
     Run(run::Args),
+    /// Runs the radiosity precompute on a capture's static world
+    ///
+    /// Replays FILE without drawing, then computes form factors, the k-bounce matrix and its
+    /// compression for the static world of the last frame with the [radiosity] settings
+    /// (glrt.toml, GLRT_*), and prints times, sizes and errors as Markdown.
+    Radiosity {
+        /// The capture file.
+        file: PathBuf,
+    },
 }
 
 fn main() -> ExitCode {
@@ -78,6 +90,7 @@ fn main() -> ExitCode {
         Command::Replay(args) => replay::run(&args),
         Command::Dump { file } => Capture::open(&file).and_then(|capture| dump(&capture)),
         Command::Run(args) => run::run(&args),
+        Command::Radiosity { file } => Capture::open(&file).and_then(|capture| radiosity::run(&capture)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -468,6 +468,13 @@ impl Plan {
     }
 }
 
+/// The average colour of `content`'s base level as the tracer samples it (face 0 or slice 0),
+/// packed like a texel (sRGB-encoded when its texels are); `None` without a base level. The
+/// radiosity patches take their albedo from it.
+pub fn average_color(content: &TextureContent) -> Option<u32> {
+    Plan::new(content).map(|plan| plan.average())
+}
+
 /// The RGBA8 texels of the first slice of `img`'s interior (`width` × `height`).
 fn base_texels(img: &TexImage, width: u32, height: u32) -> Vec<u8> {
     let mut bytes = texel_bytes(img, Upload::Rgba8);

@@ -1,0 +1,86 @@
+//! Light bounced between patches (seed 004, eqs. 1–7): the colour matrix
+//! `F^C_ij = F_ij · colour_i`, the k-bounce matrix `F^k = Σ_{h=1..k} (F^C)^h` that gives the
+//! secondary light of `k` bounces in one product, the classic gathering step it replaces, and
+//! the Neumann series summed to convergence (every bounce), the reference for both.
+//!
+//! Notation as in the seed: `incident⁽⁰⁾` is the primary light leaving each patch (emission,
+//! and per frame the direct light it reflects), `incident⁽ʰ⁺¹⁾ = colours ∘ (F · incident⁽ʰ⁾)`,
+//! and the secondary light after `k` bounces is `Σ_{h=1..k} incident⁽ʰ⁾ = F^k · incident⁽⁰⁾`.
+//! The radiosity of a patch is its primary light plus its secondary light.
+
+use glam::Vec3;
+
+use super::form_factors::FormFactors;
+use super::matrix::ColourMatrix;
+
+/// The colour matrix: `F_ij` times receiver `i`'s albedo, per channel (eq. 4).
+pub fn colour_matrix(f: &FormFactors, albedo: &[Vec3]) -> ColourMatrix {
+    let n = f.n;
+    let mut m = ColourMatrix::zeros(n);
+    for c in 0..3 {
+        for (i, row) in m.channels[c].chunks_mut(n.max(1)).enumerate().take(n) {
+            for (x, &fij) in row.iter_mut().zip(f.row(i)) {
+                *x = fij * albedo[i][c];
+            }
+        }
+    }
+    m
+}
+
+/// The k-bounce matrix `Σ_{h=1..k} (F^C)^h` (eq. 7), by Horner's rule:
+/// `S_1 = F^C`, `S_{h+1} = F^C + F^C · S_h` (`k − 1` products). `k = 0` gives the zero matrix.
+pub fn k_bounce(colour: &ColourMatrix, k: u32) -> ColourMatrix {
+    if k == 0 {
+        return ColourMatrix::zeros(colour.n);
+    }
+    let mut sum = colour.clone();
+    for _ in 1..k {
+        sum = colour.multiply(&sum);
+        sum.add(colour);
+    }
+    sum
+}
+
+/// One bounce of classic gathering radiosity (eqs. 2–3): `colours ∘ (F · incident)`.
+pub fn gather(f: &FormFactors, albedo: &[Vec3], incident: &[Vec3]) -> Vec<Vec3> {
+    (0..f.n)
+        .map(|i| {
+            let mut sum = [0.0f64; 3];
+            for (&fij, x) in f.row(i).iter().zip(incident) {
+                for (c, s) in sum.iter_mut().enumerate() {
+                    *s += f64::from(fij) * f64::from(x[c]);
+                }
+            }
+            Vec3::new(sum[0] as f32, sum[1] as f32, sum[2] as f32) * albedo[i]
+        })
+        .collect()
+}
+
+/// The secondary light of every bounce: the Neumann series `Σ_{h≥1} incident⁽ʰ⁾`, summed by
+/// [`gather`] until a bounce adds less than `tolerance` times the sum on every patch and
+/// channel (or `max_bounces` were summed).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Converged {
+    /// The secondary light per patch.
+    pub secondary: Vec<Vec3>,
+    /// Bounces summed.
+    pub bounces: u32,
+}
+
+/// See [`Converged`].
+pub fn neumann(f: &FormFactors, albedo: &[Vec3], primary: &[Vec3], tolerance: f32, max_bounces: u32) -> Converged {
+    let mut incident = primary.to_vec();
+    let mut secondary = vec![Vec3::ZERO; f.n];
+    for bounce in 1..=max_bounces {
+        incident = gather(f, albedo, &incident);
+        let mut settled = true;
+        for (s, x) in secondary.iter_mut().zip(&incident) {
+            *s += *x;
+            settled &= x.cmple(s.abs() * tolerance).all();
+        }
+        if settled {
+            return Converged { secondary, bounces: bounce };
+        }
+    }
+    Converged { secondary, bounces: max_bounces }
+}

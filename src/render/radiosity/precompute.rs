@@ -1,0 +1,231 @@
+//! The precompute on the CPU, step by step with its times, sizes and errors: patches within
+//! the memory budget, form factors, the colour and k-bounce matrices, the compressed matrix
+//! after 0, 1 and 2 reordering passes, the k-bounce light against the Neumann series, and the
+//! per-frame cost of the dense product against classic gathering. `glrt radiosity` prints
+//! [`Report`]; `bench/radiosity.md` keeps its numbers.
+
+use std::fmt::Write;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use glam::Vec3;
+
+use super::bounces::{colour_matrix, gather, k_bounce, neumann};
+use super::compress::{self, Errors, LogRange, compress};
+use super::form_factors;
+use super::patches::{self, Patches, area};
+use super::settings::Settings;
+use crate::frame::world::StaticChunk;
+
+/// Factor the automatic patch size grows by while the patches exceed the budget.
+const GROWTH: f32 = 1.25;
+/// Relative size of the last bounce at which the Neumann series counts as converged.
+const TOLERANCE: f32 = 1.0e-6;
+
+/// The patches of `chunks` at the settings' patch size, or, when it is 0, at the smallest
+/// size (from `sqrt(area / max patches)` up, by [`GROWTH`]) whose patches fit the budget.
+/// Fails with a message when a given size makes more patches than the budget holds.
+pub fn patches_within_budget(chunks: &[Arc<StaticChunk>], settings: &Settings) -> Result<Patches, String> {
+    let max = settings.max_patches();
+    if settings.patch_size > 0.0 {
+        let p = patches::build(chunks, settings.patch_size);
+        return if p.patches.len() <= max {
+            Ok(p)
+        } else {
+            Err(format!("{} patches of size {} exceed the budget of {} MiB ({max} patches): raise radiosity_budget_mb or patch_size", p.patches.len(), settings.patch_size, settings.budget_mb))
+        };
+    }
+    let total: f32 = chunks.iter().flat_map(|c| c.positions.chunks_exact(3)).map(|t| area(&[t[0].into(), t[1].into(), t[2].into()])).filter(|a| a.is_finite()).sum();
+    if !(total > 0.0) {
+        return Ok(patches::build(&[], 1.0));
+    }
+    let mut size = (total / max as f32).sqrt();
+    loop {
+        let p = patches::build(chunks, size);
+        if p.patches.len() <= max {
+            return Ok(p);
+        }
+        size *= GROWTH;
+    }
+}
+
+/// One compression of the k-bounce matrix.
+#[derive(Clone, Debug)]
+pub struct Compressed {
+    /// Its log range.
+    pub range: LogRange,
+    /// Its reordering passes.
+    pub passes: u32,
+    /// Time to compress.
+    pub time: Duration,
+    /// Bytes.
+    pub bytes: usize,
+    /// Errors of the round trip.
+    pub errors: Errors,
+}
+
+/// What the precompute measured.
+#[derive(Clone, Debug)]
+pub struct Report {
+    /// Triangles of the static world.
+    pub triangles: usize,
+    /// Patch size used.
+    pub patch_size: f32,
+    /// Patches.
+    pub patches: usize,
+    /// Times: patches, form factors, k-bounce matrix.
+    pub times: [Duration; 3],
+    /// Bounces of the k-bounce matrix.
+    pub bounces: u32,
+    /// Bytes: dense form factors, dense k-bounce colour matrix.
+    pub dense_bytes: [usize; 2],
+    /// The compressions: the seed's log range, then the fitted one, each after 0, 1 and 2
+    /// reordering passes.
+    pub compressed: Vec<Compressed>,
+    /// Sum of the k-bounce matrix's entries (the scale of the summed errors).
+    pub total: f64,
+    /// Relative error (largest over patches and channels, against the largest value) of
+    /// `F^k · 1` against the Neumann series summed to convergence, for `h = 1..=k`.
+    pub truncation: Vec<f32>,
+    /// Bounces the Neumann series took to converge.
+    pub neumann_bounces: u32,
+    /// Per frame on one core: the dense k-bounce product, and classic gathering to
+    /// convergence.
+    pub frame_times: [Duration; 2],
+}
+
+/// Runs the precompute on `chunks` (the primary light of the comparisons: 1 on every patch).
+pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings) -> Result<Report, String> {
+    let start = Instant::now();
+    let p = patches_within_budget(chunks, settings)?;
+    let t_patches = start.elapsed();
+    let start = Instant::now();
+    let f = form_factors::compute(&p);
+    let t_form = start.elapsed();
+    let albedo: Vec<Vec3> = p.patches.iter().map(|x| x.albedo).collect();
+    let start = Instant::now();
+    let colour = colour_matrix(&f, &albedo);
+    let k = k_bounce(&colour, settings.bounces);
+    let t_k = start.elapsed();
+    let total: f64 = k.channels.iter().flatten().map(|&x| f64::from(x)).sum();
+    let compressed = [LogRange::Seed, LogRange::Fitted]
+        .into_iter()
+        .flat_map(|range| (0..=compress::REORDER_PASSES).map(move |passes| (range, passes)))
+        .map(|(range, passes)| {
+            let start = Instant::now();
+            let c = compress(&k, settings.top_share, passes, range);
+            let t = start.elapsed();
+            Compressed { range, passes, time: t, bytes: c.bytes(), errors: compress::errors(&k, &c.decompress()) }
+        })
+        .collect();
+    let ones = vec![Vec3::ONE; f.n];
+    let start = Instant::now();
+    let converged = neumann(&f, &albedo, &ones, TOLERANCE, 10_000);
+    let t_classic = start.elapsed();
+    let largest = converged.secondary.iter().map(|v| v.max_element()).fold(0.0f32, f32::max).max(f32::MIN_POSITIVE);
+    let mut truncation = Vec::new();
+    let (mut incident, mut sum) = (ones.clone(), vec![Vec3::ZERO; f.n]);
+    for _ in 0..settings.bounces {
+        incident = gather(&f, &albedo, &incident);
+        for (s, x) in sum.iter_mut().zip(&incident) {
+            *s += *x;
+        }
+        truncation.push(sum.iter().zip(&converged.secondary).map(|(a, b)| (*b - *a).abs().max_element()).fold(0.0f32, f32::max) / largest);
+    }
+    let start = Instant::now();
+    std::hint::black_box(k.apply(&ones));
+    let t_dense = start.elapsed();
+    Ok(Report {
+        triangles: chunks.iter().map(|c| c.triangles()).sum(),
+        patch_size: patch_size_of(&p, settings),
+        patches: f.n,
+        times: [t_patches, t_form, t_k],
+        bounces: settings.bounces,
+        dense_bytes: [f.bytes(), k.bytes()],
+        compressed,
+        total,
+        truncation,
+        neumann_bounces: converged.bounces,
+        frame_times: [t_dense, t_classic],
+    })
+}
+
+/// The patch size `p` was built at: the setting, or the automatic size (the square root of
+/// the largest patch's area bounds it from below).
+fn patch_size_of(p: &Patches, settings: &Settings) -> f32 {
+    if settings.patch_size > 0.0 { settings.patch_size } else { p.patches.iter().map(|x| x.area).fold(0.0f32, f32::max).sqrt() }
+}
+
+impl Report {
+    /// The report as Markdown tables.
+    pub fn markdown(&self) -> String {
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        let mib = |b: usize| b as f64 / f64::from(1 << 20);
+        let mut s = String::new();
+        let _ = writeln!(s, "static world: {} triangles, patch size {:.4}, {} patches\n", self.triangles, self.patch_size, self.patches);
+        let _ = writeln!(s, "| step | ms |\n| --- | ---: |");
+        for (name, t) in ["patches", "form factors", &format!("k-bounce matrix (k = {})", self.bounces)].iter().zip(self.times) {
+            let _ = writeln!(s, "| {name} | {:.1} |", ms(t));
+        }
+        let _ = writeln!(s, "\n| matrix | bytes | MiB |\n| --- | ---: | ---: |");
+        let _ = writeln!(s, "| form factors, dense f32 | {} | {:.3} |", self.dense_bytes[0], mib(self.dense_bytes[0]));
+        let _ = writeln!(s, "| k-bounce colour matrix, dense f32 x 3 | {} | {:.3} |", self.dense_bytes[1], mib(self.dense_bytes[1]));
+        if let Some(c) = self.compressed.last() {
+            let _ = writeln!(s, "| compressed (BC1 + exact top share + order) | {} | {:.3} |", c.bytes, mib(c.bytes));
+        }
+        let _ = writeln!(s, "\n| log range | reordering passes | mean error | max error | summed error | summed / sum of entries | compress ms |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |");
+        for c in &self.compressed {
+            let e = &c.errors;
+            let range = match c.range {
+                LogRange::Seed => "seed (shift 25)",
+                LogRange::Fitted => "fitted",
+            };
+            let _ = writeln!(s, "| {range} | {} | {:.3e} | {:.4} | {:.4} | {:.4} | {:.1} |", c.passes, e.mean, e.max, e.sum, e.sum / self.total.max(f64::MIN_POSITIVE), ms(c.time));
+        }
+        let _ = writeln!(s, "\nk bounces against the Neumann series ({} bounces to converge to {TOLERANCE:e}), primary light 1 on every patch; largest error / largest converged value:\n", self.neumann_bounces);
+        let _ = writeln!(s, "| k | error |\n| ---: | ---: |");
+        for (h, e) in self.truncation.iter().enumerate() {
+            let _ = writeln!(s, "| {} | {e:.4} |", h + 1);
+        }
+        let _ = writeln!(s, "\nper frame (CPU, f64 sums): dense k-bounce product {:.2} ms; classic gathering to convergence {:.2} ms", ms(self.frame_times[0]), ms(self.frame_times[1]));
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::radiosity::test_scenes::quad;
+
+    #[test]
+    fn the_budget_sets_the_patch_size_and_the_report_has_every_number() {
+        let x = Vec3::X * 2.0;
+        let y = Vec3::Y * 2.0;
+        let z = Vec3::Z * 2.0;
+        // Grey walls: display 128 of 255, albedo 0.216 (linear).
+        let grey = |c: Arc<StaticChunk>| Arc::new(StaticChunk { colors: vec![[128, 128, 128, 255]; 6], ..(*c).clone() });
+        let chunks = [quad(1, Vec3::ZERO, x, y), quad(2, z, y, x), quad(3, Vec3::ZERO, y, z), quad(4, x, z, y), quad(5, Vec3::ZERO, z, x), quad(6, y, x, z)].map(grey);
+        // 1 MiB holds 209 patches: 24 square metres over 209 patches, grown until they fit.
+        let settings = Settings { budget_mb: 1, ..Settings::default() };
+        let p = patches_within_budget(&chunks, &settings).expect("fits");
+        assert!(p.patches.len() <= 209 && p.patches.len() >= 50, "{}", p.patches.len());
+        let too_fine = Settings { patch_size: 0.05, ..settings };
+        assert!(patches_within_budget(&chunks, &too_fine).unwrap_err().contains("exceed the budget of 1 MiB"));
+
+        let report = run(&chunks, &Settings { patch_size: 1.0, ..settings }).expect("fits");
+        assert_eq!((report.patches, report.triangles, report.bounces), (24, 12, 3));
+        assert_eq!(report.dense_bytes, [24 * 24 * 4, 24 * 24 * 12]);
+        assert_eq!(report.compressed.len(), 6);
+        // In a closed box each bounce is ρ = 0.216 of the one before: ~9 bounces to 1e-6; k
+        // bounces fall short by ρ^(k+1) / (1 - ρ) against ρ / (1 - ρ) converged: ρ^k of it.
+        assert!((8..=12).contains(&report.neumann_bounces), "{}", report.neumann_bounces);
+        let rho = crate::render::trace::scene::srgb_to_linear(128.0 / 255.0);
+        for (h, e) in report.truncation.iter().enumerate() {
+            let expected = rho.powi(h as i32 + 1);
+            assert!((e - expected).abs() < 0.02 * expected + 1e-4, "k = {}: {e} vs {expected}", h + 1);
+        }
+        let md = report.markdown();
+        assert!(md.contains("static world: 12 triangles, patch size 1.0000, 24 patches"), "{md}");
+        assert!(md.contains("| form factors, dense f32 | 2304 |"), "{md}");
+    }
+}

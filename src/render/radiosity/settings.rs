@@ -1,0 +1,108 @@
+//! Radiosity's settings: `glrt.toml` `[radiosity]`, each key overridable by `GLRT_<KEY>` (read
+//! by [`crate::config`], which reports unknown keys and bad values once and keeps the
+//! default). There is no on/off key yet: nothing in a frame uses radiosity (it comes with the
+//! per-frame update). Keys carry a `radiosity_` prefix where the bare name would make an unclear
+//! variable (`GLRT_RADIOSITY_BOUNCES`, not `GLRT_BOUNCES`, which would read as the tracer's).
+//!
+//! ```toml
+//! [radiosity]
+//! patch_size = 0.0            # side of a patch, world units; 0: chosen to fit the budget
+//! radiosity_bounces = 3       # k of the k-bounce matrix, 1..=16
+//! top_share = 0.04            # share of the matrix kept exactly, 0..=1
+//! radiosity_budget_mb = 256   # memory of the precompute's dense matrices, MiB, 1..=65536
+//! ```
+
+use crate::config::{Key, Table, integer_in, number, number_in};
+
+/// Bytes per entry of the precompute's dense matrices: the colour matrix and the k-bounce sum,
+/// three `f32` channels each.
+pub const DENSE_BYTES_PER_ENTRY: usize = 2 * 3 * 4;
+
+/// The `[radiosity]` table.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// Side of a patch in world units; 0: the smallest that fits the budget (`patch_size`).
+    pub patch_size: f32,
+    /// Bounces of the k-bounce matrix (`radiosity_bounces`).
+    pub bounces: u32,
+    /// Share of the matrix's entries kept exactly (`top_share`).
+    pub top_share: f32,
+    /// MiB the precompute's dense matrices may take (`radiosity_budget_mb`).
+    pub budget_mb: u32,
+}
+
+impl Default for Settings {
+    fn default() -> Settings {
+        Settings { patch_size: 0.0, bounces: 3, top_share: 0.04, budget_mb: 256 }
+    }
+}
+
+impl Table for Settings {
+    const NAME: &'static str = "radiosity";
+    const KEYS: &'static [Key<Settings>] = &[
+        Key { name: "patch_size", set: |s, v| number(v, |x| x >= 0.0 && x.is_finite(), "a number >= 0").map(|x| s.patch_size = x as f32) },
+        Key { name: "radiosity_bounces", set: |s, v| integer_in(v, 1..=16).map(|x| s.bounces = x as u32) },
+        Key { name: "top_share", set: |s, v| number_in(v, 0.0..=1.0).map(|x| s.top_share = x as f32) },
+        Key { name: "radiosity_budget_mb", set: |s, v| integer_in(v, 1..=65536).map(|x| s.budget_mb = x as u32) },
+    ];
+}
+
+impl Settings {
+    /// The process's settings (`glrt.toml` and the environment), read once; problems are
+    /// reported once.
+    pub fn of_process() -> Settings {
+        static SETTINGS: std::sync::OnceLock<Settings> = std::sync::OnceLock::new();
+        *SETTINGS.get_or_init(|| {
+            let (settings, problems) = crate::config::Config::of_process().table::<Settings>();
+            crate::config::warn(&problems);
+            settings
+        })
+    }
+
+    /// The most patches whose dense matrices fit the budget.
+    pub fn max_patches(&self) -> usize {
+        ((self.budget_mb as f64 * (1 << 20) as f64 / DENSE_BYTES_PER_ENTRY as f64).sqrt()) as usize
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Config;
+
+    fn read(body: &str, env: &[(&str, &str)]) -> (Settings, Vec<String>) {
+        let (mut c, warnings) = Config::parse(&format!("[radiosity]\n{body}"), "r.toml").unwrap();
+        assert!(warnings.is_empty(), "{warnings:?}");
+        c.apply_env(env.iter().map(|(k, v)| (k.to_string(), v.to_string()))).unwrap();
+        c.table::<Settings>()
+    }
+
+    #[test]
+    fn every_key_is_read_from_the_file_and_the_environment() {
+        let body = "patch_size = 0.5\nradiosity_bounces = 5\ntop_share = 0.1\nradiosity_budget_mb = 64\n";
+        let (s, problems) = read(body, &[]);
+        assert!(problems.is_empty(), "{problems:?}");
+        assert_eq!(s, Settings { patch_size: 0.5, bounces: 5, top_share: 0.1, budget_mb: 64 });
+        let env = [("GLRT_PATCH_SIZE", "2"), ("GLRT_RADIOSITY_BOUNCES", "1"), ("GLRT_TOP_SHARE", "0"), ("GLRT_RADIOSITY_BUDGET_MB", "1")];
+        let (s, problems) = read(body, &env);
+        assert!(problems.is_empty(), "{problems:?}");
+        assert_eq!(s, Settings { patch_size: 2.0, bounces: 1, top_share: 0.0, budget_mb: 1 });
+        assert_eq!(read("", &[]), (Settings::default(), vec![]));
+        // 1 MiB of two dense colour matrices: 209 patches (209² · 24 bytes < 2^20).
+        assert_eq!(s.max_patches(), 209);
+    }
+
+    #[test]
+    fn bad_values_are_reported_and_the_default_kept() {
+        for (line, message) in [
+            ("radiosity_bounces = 0", "radiosity_bounces: expected an integer in 1..=16, found 0"),
+            ("top_share = 1.5", "top_share: expected a number in 0..=1, found 1.5"),
+            ("patch_size = -1", "patch_size: expected a number >= 0, found -1"),
+            ("radiosity_budget_mb = 0", "radiosity_budget_mb: expected an integer in 1..=65536, found 0"),
+        ] {
+            let (s, problems) = read(line, &[]);
+            assert_eq!(s, Settings::default(), "{line}");
+            assert_eq!(problems, [format!("r.toml:2: radiosity.{message}; the default is used")], "{line}");
+        }
+    }
+}
