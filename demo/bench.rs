@@ -1,7 +1,9 @@
-//! `--bench-immediate`: immediate-mode submission throughput. Submits `vertices` vertices as
-//! `glColor3f` + `glTexCoord2f` + `glVertex3f` each, in `GL_TRIANGLES` batches of
-//! [`BATCH`] vertices per `glBegin`/`glEnd`, then `glFinish` and a swap, and reports
-//! vertices per second. Triangles are a few pixels big so rasterisation does not dominate.
+//! `--bench-immediate`: immediate-mode submission throughput. Each frame submits `vertices`
+//! vertices as `glColor3f` + `glTexCoord2f` + `glVertex3f` each, in `GL_TRIANGLES` batches of
+//! [`BATCH`] vertices per `glBegin`/`glEnd`, then `glFinish` and a swap; one line per frame and
+//! the best frame's vertices per second. Triangles are a pixel or so big so rasterisation does
+//! not dominate. They wind clockwise: with `cull`, `GL_CULL_FACE` (back faces) is on and
+//! every triangle is culled.
 
 use std::time::Instant;
 
@@ -11,49 +13,84 @@ use crate::window::Surface;
 /// Vertices per `glBegin`/`glEnd`.
 pub const BATCH: u64 = 3000;
 
-/// Runs the benchmark and prints the result line.
-pub fn run(api: &GlApi, surface: &Surface, vertices: u64, width: i32, height: i32) {
-    let gl = &api.gl;
-    // Safety: a context is current.
-    unsafe {
-        gl.glViewport(0, 0, width, height);
-        gl.glMatrixMode(GL_PROJECTION);
-        gl.glLoadIdentity();
-        gl.glMatrixMode(GL_MODELVIEW);
-        gl.glLoadIdentity();
-        gl.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    }
-    let start = Instant::now();
-    let mut sent = 0u64;
-    while sent < vertices {
-        let batch = BATCH.min(vertices - sent) / 3 * 3;
-        if batch == 0 {
-            break;
-        }
-        // Safety: a context is current; only scalar calls inside glBegin/glEnd.
+/// What the benchmark draws.
+pub struct Bench {
+    /// Vertices per frame (rounded down to whole triangles).
+    pub vertices: u64,
+    /// Frames drawn.
+    pub frames: u64,
+    /// Whether every triangle is culled.
+    pub cull: bool,
+    /// Viewport size.
+    pub width: i32,
+    /// Viewport size.
+    pub height: i32,
+}
+
+impl Bench {
+    /// Runs the benchmark and prints one line per frame and the best frame.
+    pub fn run(&self, api: &GlApi, surface: &Surface) {
+        let gl = &api.gl;
+        // Safety: a context is current.
         unsafe {
-            gl.glBegin(GL_TRIANGLES);
-            for i in 0..batch {
-                let v = sent + i;
-                // Triangles on a 64 × 64 lattice in clip space, 3 pixels or so each.
-                let cell = (v / 3) % 4096;
-                let (cx, cy) = ((cell % 64) as f32 / 32.0 - 1.0, (cell / 64) as f32 / 32.0 - 1.0);
-                let corner = (v % 3) as f32;
-                let f = (v % 251) as f32 / 251.0;
-                gl.glColor3f(f, 1.0 - f, 0.5);
-                gl.glTexCoord2f(corner * 0.5, f);
-                gl.glVertex3f(cx + corner * 0.004, cy + (corner % 2.0) * 0.006, 0.0);
+            gl.glViewport(0, 0, self.width, self.height);
+            gl.glMatrixMode(GL_PROJECTION);
+            gl.glLoadIdentity();
+            gl.glMatrixMode(GL_MODELVIEW);
+            gl.glLoadIdentity();
+            if self.cull {
+                gl.glCullFace(GL_BACK);
+                gl.glEnable(GL_CULL_FACE);
             }
-            gl.glEnd();
         }
-        sent += batch;
+        let culled = if self.cull { ", culled" } else { "" };
+        let mut best = f64::INFINITY;
+        let mut sent = 0;
+        for frame in 1..=self.frames {
+            let start = Instant::now();
+            sent = self.frame(gl);
+            surface.swap();
+            let seconds = start.elapsed().as_secs_f64();
+            best = best.min(seconds);
+            println!("immediate: frame {frame}: {sent} vertices{culled} in {seconds:.3} s");
+        }
+        println!(
+            "immediate: best of {} frames: {sent} vertices{culled} in {best:.3} s: {:.0} vertices/s",
+            self.frames,
+            sent as f64 / best.max(1e-9)
+        );
     }
-    // Safety: a context is current.
-    unsafe { gl.glFinish() };
-    surface.swap();
-    let seconds = start.elapsed().as_secs_f64();
-    println!(
-        "immediate: {sent} vertices in {seconds:.3} s: {:.0} vertices/s",
-        sent as f64 / seconds.max(1e-9)
-    );
+
+    /// Draws one frame up to `glFinish`; returns the vertices sent.
+    fn frame(&self, gl: &Gl) -> u64 {
+        // Safety: a context is current.
+        unsafe { gl.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT) };
+        let mut sent = 0u64;
+        while sent < self.vertices {
+            let batch = BATCH.min(self.vertices - sent) / 3 * 3;
+            if batch == 0 {
+                break;
+            }
+            // Safety: a context is current; only scalar calls inside glBegin/glEnd.
+            unsafe {
+                gl.glBegin(GL_TRIANGLES);
+                for i in 0..batch {
+                    let v = sent + i;
+                    // Clockwise triangles on a 64 × 64 lattice in clip space.
+                    let cell = (v / 3) % 4096;
+                    let (cx, cy) = ((cell % 64) as f32 / 32.0 - 1.0, (cell / 64) as f32 / 32.0 - 1.0);
+                    let corner = (v % 3) as f32;
+                    let f = (v % 251) as f32 / 251.0;
+                    gl.glColor3f(f, 1.0 - f, 0.5);
+                    gl.glTexCoord2f(corner * 0.5, f);
+                    gl.glVertex3f(cx + corner * 0.004, cy + (corner % 2.0) * 0.006, 0.0);
+                }
+                gl.glEnd();
+            }
+            sent += batch;
+        }
+        // Safety: a context is current.
+        unsafe { gl.glFinish() };
+        sent
+    }
 }

@@ -8,7 +8,7 @@
 //! shaders, vertex-lit models, dynamic lights, sky, 3D HUD icons).
 //!
 //! Usage: `glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH]
-//! [--screenshot PNG] [--bench-immediate [VERTICES]] [--rebatch [--detail N] [--verbose]]
+//! [--screenshot PNG] [--bench-immediate [VERTICES] [--cull]] [--rebatch [--detail N] [--verbose]]
 //! [--q3 [--verbose]]`. At the end it prints the frame count and frame times.
 
 mod bench;
@@ -40,6 +40,8 @@ struct Options {
     screenshot: Option<String>,
     /// `--bench-immediate`: vertex count of the throughput benchmark instead of the scene.
     bench_vertices: Option<u64>,
+    /// `--cull`: the benchmark's triangles are all culled (back-facing, `GL_CULL_FACE` on).
+    cull: bool,
     /// `--rebatch`: the Quake-3-like world instead of the scene.
     rebatch: bool,
     /// `--q3`: the level drawn as ioquake3's renderer draws one, instead of the scene.
@@ -50,7 +52,11 @@ struct Options {
     verbose: bool,
 }
 
-const USAGE: &str = "usage: glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH] [--screenshot PNG] [--bench-immediate [VERTICES]] [--rebatch [--detail N] [--verbose]] [--q3 [--verbose]]
+const USAGE: &str = "usage: glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH] [--screenshot PNG] [--bench-immediate [VERTICES] [--cull]] [--rebatch [--detail N] [--verbose]] [--q3 [--verbose]]
+
+  --bench-immediate  immediate-mode throughput: VERTICES vertices per frame (default 10
+        million), 3 frames unless --frames says otherwise; --cull makes every triangle
+        back-facing with GL_CULL_FACE on
 
   --q3  a Quake-3-like level drawn as ioquake3's OpenGL 1 renderer draws one: lightmaps baked
         at start-up on texture unit 1 or as a GL_DST_COLOR, GL_ZERO pass, detail and additive
@@ -67,6 +73,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
         lib: "libGL.so.1".into(),
         screenshot: None,
         bench_vertices: None,
+        cull: false,
         rebatch: false,
         q3: false,
         detail: 1,
@@ -105,6 +112,7 @@ fn parse_args(args: &[String]) -> Result<Options, String> {
                 };
                 o.bench_vertices = Some(n);
             }
+            "--cull" => o.cull = true,
             "--rebatch" => o.rebatch = true,
             "--q3" => o.q3 = true,
             "--detail" => {
@@ -173,7 +181,9 @@ fn run(o: &Options) -> Result<(), Failure> {
         gl::gl_string(&api.gl, gl::GL_VERSION)
     );
     if let Some(vertices) = o.bench_vertices {
-        bench::run(&api, &surface, vertices, o.width, o.height);
+        let frames = if o.frames == u64::MAX { 3 } else { o.frames };
+        let bench = bench::Bench { vertices, frames, cull: o.cull, width: o.width, height: o.height };
+        bench.run(&api, &surface);
         return Ok(());
     }
     let mut program = if o.q3 {
@@ -288,6 +298,8 @@ mod tests {
             parse_args(&args("--bench-immediate 300 --headless")).unwrap().bench_vertices,
             Some(300)
         );
+        let culled = parse_args(&args("--bench-immediate 300 --cull")).unwrap();
+        assert!(culled.cull && !parse_args(&args("--bench-immediate")).unwrap().cull);
     }
 
     #[test]

@@ -34,6 +34,14 @@ pub trait FrameSink: Send {
     fn occlusion_counter_bits(&self) -> u32 {
         0
     }
+
+    /// Whether frames must keep the triangles that face culling removes (the default, for
+    /// sinks that record or inspect frames). A rasterizer draws nothing of them and says no:
+    /// `translate` then drops batches it would cull entirely ([`crate::translate::cull`]); a
+    /// path tracer keeps them (a culled face still casts shadows and bounces light).
+    fn keeps_culled_triangles(&self) -> bool {
+        true
+    }
     /// Renders `frame` so far (it is not ended) and reads the rectangle `rect` (x, y, width,
     /// height, window coordinates) of `buffer`: RGBA for colour, the value in the first
     /// component for depth and stencil; rows bottom to top. `None` when the sink cannot
@@ -53,6 +61,11 @@ pub struct NullSink {
 impl FrameSink for NullSink {
     fn present(&mut self, _frame: Frame) {
         self.presented += 1;
+    }
+
+    /// Nothing is drawn, so nothing needs culled triangles.
+    fn keeps_culled_triangles(&self) -> bool {
+        false
     }
 }
 

@@ -297,6 +297,11 @@ impl FrameSink for Renderer {
         self.raster.occlusion_counter_bits()
     }
 
+    /// Only the path tracer needs them (rasterized, they are culled).
+    fn keeps_culled_triangles(&self) -> bool {
+        self.tracing.is_some()
+    }
+
     /// Waits for the frame in flight that ended `frame` when the result is not known yet.
     fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
         self.attempt(|r| r.raster.occlusion_result(frame, query)).flatten()

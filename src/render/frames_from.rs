@@ -60,6 +60,10 @@ impl FrameSink for FramesFrom {
         self.inner.occlusion_counter_bits()
     }
 
+    fn keeps_culled_triangles(&self) -> bool {
+        self.inner.keeps_culled_triangles()
+    }
+
     fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
         if frame.number < self.first {
             self.begun = Some(frame.number);

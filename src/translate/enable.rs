@@ -95,18 +95,31 @@ enum Slot {
 }
 
 fn slot(cap: GLenum) -> Option<Slot> {
-    if let Some(i) = GLOBAL_CAPS.iter().position(|&c| c == cap) {
-        return Some(Slot::Global(i));
+    match global_slot(cap) {
+        Some(i) => Some(Slot::Global(i)),
+        None => UNIT_CAPS.iter().position(|&c| c == cap).map(Slot::Unit),
+    }
+}
+
+/// The index of a global capability in [`EnableState`]; a `const fn`, so that
+/// [`EnableState::is_on_const`] finds it at compile time.
+const fn global_slot(cap: GLenum) -> Option<usize> {
+    let mut i = 0;
+    while i < GLOBAL_CAPS.len() {
+        if GLOBAL_CAPS[i] == cap {
+            return Some(i);
+        }
+        i += 1;
     }
     let light = cap.wrapping_sub(gl::GL_LIGHT0) as usize;
     if light < MAX_LIGHTS {
-        return Some(Slot::Global(GLOBAL_CAPS.len() + light));
+        return Some(GLOBAL_CAPS.len() + light);
     }
     let plane = cap.wrapping_sub(gl::GL_CLIP_PLANE0) as usize;
     if plane < MAX_CLIP_PLANES {
-        return Some(Slot::Global(GLOBAL_CAPS.len() + MAX_LIGHTS + plane));
+        return Some(GLOBAL_CAPS.len() + MAX_LIGHTS + plane);
     }
-    UNIT_CAPS.iter().position(|&c| c == cap).map(Slot::Unit)
+    None
 }
 
 const GLOBAL_COUNT: usize = GLOBAL_CAPS.len() + MAX_LIGHTS + MAX_CLIP_PLANES;
@@ -133,12 +146,25 @@ impl Default for EnableState {
 impl EnableState {
     /// Whether a global capability (`GL_FOG`, `GL_LIGHT3`...) is on; false for others.
     pub fn is_on(&self, cap: GLenum) -> bool {
-        matches!(slot(cap), Some(Slot::Global(i)) if self.global[i])
+        global_slot(cap).is_some_and(|i| self.global[i])
+    }
+
+    /// [`EnableState::is_on`] of a capability named at compile time (a load instead of a
+    /// search, for the per-vertex and per-draw paths); not compiling for a per-unit one.
+    #[inline(always)]
+    pub fn is_on_const<const CAP: GLenum>(&self) -> bool {
+        let slot = const {
+            match global_slot(CAP) {
+                Some(i) => i,
+                None => panic!("not a global capability"),
+            }
+        };
+        self.global[slot]
     }
 
     /// Whether a per-unit capability (`GL_TEXTURE_2D`, `GL_TEXTURE_GEN_S`...) is on for `unit`.
     pub fn unit_on(&self, unit: usize, cap: GLenum) -> bool {
-        matches!(slot(cap), Some(Slot::Unit(i)) if self.units[unit][i])
+        UNIT_CAPS.iter().position(|&c| c == cap).is_some_and(|i| self.units[unit][i])
     }
 
     /// Sets a capability (per-unit ones on `unit`); false if `cap` is not one.

@@ -40,7 +40,7 @@ pub struct BatchKey {
     /// Raster state snapshot.
     pub state: Arc<RasterState>,
     /// Texture snapshot.
-    pub textures: Vec<Option<TextureRef>>,
+    pub textures: [Option<TextureRef>; MAX_TEXTURE_UNITS],
     /// Environment and coordinate generation of each unit with a texture target enabled.
     pub texture_units: [Option<TextureUnit>; MAX_TEXTURE_UNITS],
     /// The program in use, with its values.
@@ -87,10 +87,25 @@ impl Context {
         if self.framebuffer_incomplete("draw") {
             return;
         }
-        let key = self.batch_key(primitive.topology(), source);
-        self.enter_framebuffer(&key.state.framebuffer);
+        let state = self.raster_snapshot();
+        self.enter_framebuffer(&state.framebuffer);
+        if self.culled_entirely(&state, primitive.topology(), batch, assembled) {
+            return;
+        }
+        let key = self.batch_key(primitive.topology(), source, state);
         push_batch(&mut self.frame, key, &batch.vertices, assembled);
         self.keep_frame_in_budget();
+    }
+
+    /// Whether the renderer would cull every triangle of the batch and nothing else needs
+    /// them ([`super::cull`]).
+    fn culled_entirely(&self, state: &RasterState, topology: Topology, batch: &Batch, assembled: &Assembled) -> bool {
+        let Some(cull) = state.cull else { return false };
+        if topology != Topology::Triangles || self.programs.current != 0 || self.sink.keeps_culled_triangles() {
+            return false;
+        }
+        let mvp = self.transform.projection() * self.transform.modelview();
+        super::cull::all_culled(cull, state.front_face, &mvp, &batch.vertices.position, &assembled.indices)
     }
 
     /// The source of immediate-mode geometry: the display list being executed, if any.
@@ -103,8 +118,8 @@ impl Context {
         self.lists.executing_list().map_or(DrawSource::Arrays, DrawSource::List)
     }
 
-    /// The key of a batch emitted now.
-    fn batch_key(&mut self, topology: Topology, source: DrawSource) -> BatchKey {
+    /// The key of a batch emitted now with raster state `state`.
+    fn batch_key(&mut self, topology: Topology, source: DrawSource, state: Arc<RasterState>) -> BatchKey {
         let units = self.immediate.texturing.units(&self.enables);
         let transform = &self.transform;
         BatchKey {
@@ -113,7 +128,7 @@ impl Context {
             modelview: transform.modelview(),
             projection: transform.projection(),
             texture_matrices: std::array::from_fn(|u| units[u].then(|| transform.texture_matrix(u))),
-            state: self.raster_snapshot(),
+            state,
             textures: self.texture_snapshot_of(units),
             texture_units: self.texture_units_snapshot(units),
             program: self.program_draw(),
@@ -158,7 +173,7 @@ fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
         && last.projection == key.projection
         && last.texture_matrices == key.texture_matrices
         && same_state(&last.state, &key.state)
-        && last.textures == key.textures
+        && last.textures[..] == key.textures[..]
         && last.texture_units == key.texture_units
         && same_program(&last.program, &key.program)
         && last.vertices.len() + extra <= MAX_MERGED_VERTICES
@@ -179,7 +194,7 @@ pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembl
             projection: key.projection,
             texture_matrices: key.texture_matrices.to_vec(),
             state: key.state,
-            textures: key.textures,
+            textures: key.textures.to_vec(),
             texture_units: key.texture_units.to_vec(),
             program: key.program,
             ..Draw::default()

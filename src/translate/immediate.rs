@@ -139,37 +139,65 @@ impl Batch {
 
     /// Appends a vertex with the values of `current`; `changed` names the attributes that may
     /// differ from the previous vertex ([`bits`]). Attributes that never change cost nothing
-    /// per vertex: only the set bits of `changed` and of the per-vertex mask are visited.
+    /// per vertex: the colour, unit 0's texture coordinates and the normal are tested directly,
+    /// the other attributes only when one of them is changed or stored per vertex.
     #[inline]
     pub fn push(&mut self, position: [f32; 4], c: &CurrentAttribs, changed: u32) {
         let v = &mut self.vertices;
         let n = v.position.len();
         v.position.push(position);
         if n == 0 {
-            v.normal.set_constant(c.normal);
-            v.color.set_constant(c.color);
-            v.secondary_color.set_constant(c.secondary_color);
-            v.fog_coord.set_constant(c.fog_coord);
-            v.color_index.set_constant(c.color_index);
-            for (t, &value) in v.texcoords.iter_mut().zip(&c.texcoords) {
-                t.set_constant(value);
-            }
-            for (g, &value) in v.generic.iter_mut().zip(&c.generic).skip(1) {
-                g.set_constant(value);
-            }
-            self.edge_flags.set_constant(c.edge_flag);
-            self.per_vertex = 0;
-            return;
+            return self.start(c);
         }
-        // Only the attributes stored per vertex or changed are visited, lowest bit first.
-        let mut todo = changed | self.per_vertex;
-        while todo != 0 {
-            let bit = todo & todo.wrapping_neg();
-            todo &= todo - 1;
+        let todo = changed | self.per_vertex;
+        let pv = &mut self.per_vertex;
+        if todo & bits::COLOR != 0 {
+            update(&mut v.color, c.color, n, bits::COLOR, changed, pv);
+        }
+        if todo & bits::TEXCOORD0 != 0
+            && let Some(t) = v.texcoords.first_mut()
+        {
+            update(t, c.texcoords[0], n, bits::TEXCOORD0, changed, pv);
+        }
+        if todo & bits::NORMAL != 0 {
+            update(&mut v.normal, c.normal, n, bits::NORMAL, changed, pv);
+        }
+        let rest = todo & !(bits::COLOR | bits::TEXCOORD0 | bits::NORMAL);
+        if rest != 0 {
+            self.push_rest(c, changed, rest, n);
+        }
+    }
+
+    /// The first vertex's attributes, each stored once.
+    #[cold]
+    #[inline(never)]
+    fn start(&mut self, c: &CurrentAttribs) {
+        let v = &mut self.vertices;
+        v.normal.set_constant(c.normal);
+        v.color.set_constant(c.color);
+        v.secondary_color.set_constant(c.secondary_color);
+        v.fog_coord.set_constant(c.fog_coord);
+        v.color_index.set_constant(c.color_index);
+        for (t, &value) in v.texcoords.iter_mut().zip(&c.texcoords) {
+            t.set_constant(value);
+        }
+        for (g, &value) in v.generic.iter_mut().zip(&c.generic).skip(1) {
+            g.set_constant(value);
+        }
+        self.edge_flags.set_constant(c.edge_flag);
+        self.per_vertex = 0;
+    }
+
+    /// [`Batch::push`] of the attributes in `rest` (changed or per vertex, but for the three
+    /// tested directly) of vertex `n`: only their set bits are visited, lowest first.
+    #[inline(never)]
+    fn push_rest(&mut self, c: &CurrentAttribs, changed: u32, mut rest: u32, n: usize) {
+        let v = &mut self.vertices;
+        while rest != 0 {
+            let bit = rest & rest.wrapping_neg();
+            rest &= rest - 1;
             let pv = &mut self.per_vertex;
             match bit {
-                bits::NORMAL => update(&mut v.normal, c.normal, n, bit, changed, pv),
-                bits::COLOR => update(&mut v.color, c.color, n, bit, changed, pv),
                 bits::SECONDARY_COLOR => update(&mut v.secondary_color, c.secondary_color, n, bit, changed, pv),
                 bits::FOG_COORD => update(&mut v.fog_coord, c.fog_coord, n, bit, changed, pv),
                 bits::COLOR_INDEX => update(&mut v.color_index, c.color_index, n, bit, changed, pv),
@@ -182,7 +210,8 @@ impl Batch {
                     }
                 }
                 _ => {
-                    // A texture unit's bit; bits past the last unit name nothing.
+                    // A texture unit's bit (unit 0's is never in `rest`); bits past the last
+                    // unit name nothing.
                     let unit = (bit / bits::TEXCOORD0).trailing_zeros() as usize;
                     if let (Some(t), Some(&value)) = (v.texcoords.get_mut(unit), c.texcoords.get(unit)) {
                         update(t, value, n, bit, changed, pv);

@@ -483,10 +483,16 @@ impl Context {
     /// current colour changes (`glColor*`, colour arrays), and when `GL_COLOR_MATERIAL` is
     /// enabled or `glColorMaterial` is called while it is on. An unchanged material leaves the
     /// state version alone, so repeating a colour keeps draws mergeable.
+    #[inline]
     pub fn apply_color_material(&mut self, color: [f32; 4]) {
-        if !self.enables.is_on(gl::GL_COLOR_MATERIAL) {
-            return;
+        if self.enables.is_on_const::<{ gl::GL_COLOR_MATERIAL }>() {
+            self.track_color_material(color);
         }
+    }
+
+    /// [`Context::apply_color_material`] while `GL_COLOR_MATERIAL` is on.
+    #[inline(never)]
+    fn track_color_material(&mut self, color: [f32; 4]) {
         let lighting = &self.fixed.lighting;
         let ColorMaterial { face, mode } = lighting.color_material;
         let mut materials = lighting.materials;

@@ -29,6 +29,7 @@ pub mod clip_planes;
 pub mod clip_test;
 pub mod context;
 pub mod convert;
+pub mod cull;
 pub mod dispatch;
 pub mod draw_arrays;
 pub mod draw_buffers;

@@ -122,23 +122,22 @@ impl Context {
     /// texture is incomplete). Content versions are unique: the renderer uploads a
     /// `(id, version)` once and reuses it.
     pub fn texture_snapshot(&mut self) -> Vec<Option<TextureRef>> {
-        self.texture_snapshot_of([true; MAX_TEXTURE_UNITS])
+        self.texture_snapshot_of([true; MAX_TEXTURE_UNITS]).to_vec()
     }
 
     /// [`Context::texture_snapshot`] where only the units in `units` may have a texture target
-    /// enabled (the others are not looked at).
-    pub(crate) fn texture_snapshot_of(&mut self, units: [bool; MAX_TEXTURE_UNITS]) -> Vec<Option<TextureRef>> {
-        let use_shared = self.enables.is_on(gl::GL_SHARED_TEXTURE_PALETTE_EXT) && !self.texture.shared_palette.entries.is_empty();
+    /// enabled (the others are not looked at); no allocation (a batch merged into the previous
+    /// draw drops it).
+    pub(crate) fn texture_snapshot_of(&mut self, units: [bool; MAX_TEXTURE_UNITS]) -> [Option<TextureRef>; MAX_TEXTURE_UNITS] {
+        let use_shared = self.enables.is_on_const::<{ gl::GL_SHARED_TEXTURE_PALETTE_EXT }>() && !self.texture.shared_palette.entries.is_empty();
         let shared = use_shared.then(|| (self.texture.shared_palette.clone(), self.texture.shared_palette_version));
-        (0..MAX_TEXTURE_UNITS)
-            .map(|unit| {
-                let target = units[unit].then(|| self.enabled_target(unit)).flatten()?;
-                let name = self.texture.bindings[unit][target.index()];
-                self.with_object(target, name, |obj| {
-                    (is_complete(obj, target) && !is_integer(obj)).then(|| texture_ref(name, obj, target, shared.as_ref().map(|(p, v)| (p, *v))))
-                })
+        std::array::from_fn(|unit| {
+            let target = units[unit].then(|| self.enabled_target(unit)).flatten()?;
+            let name = self.texture.bindings[unit][target.index()];
+            self.with_object(target, name, |obj| {
+                (is_complete(obj, target) && !is_integer(obj)).then(|| texture_ref(name, obj, target, shared.as_ref().map(|(p, v)| (p, *v))))
             })
-            .collect()
+        })
     }
 }
 
