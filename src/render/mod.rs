@@ -3,12 +3,14 @@
 //! layers): a frame's stages in order, read top to bottom there; [`raster`] provides the command
 //! recording and the raster stages (clears, pixel operations, draws in program order,
 //! read-back, present), [`trace`] the path-tracing stages behind one back-end trait
-//! ([`trace::RayTracer`]), and [`present`] the window. [`default_sink`] chooses the renderer of
+//! ([`trace::RayTracer`]), [`denoise`] the A-SVGF stage after tracing, and [`present`] the
+//! window. [`default_sink`] chooses the renderer of
 //! the mode (`GLRT_MODE`).
 
 pub mod frame;
 #[macro_use]
 pub mod shader_abi;
+pub mod denoise;
 pub mod frame_log;
 pub mod frames_from;
 pub mod present;
@@ -77,8 +79,18 @@ fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result
         Ok(Mode::Default) => true,
         Ok(Mode::Raster) | Err(_) => false,
     };
-    if traced && let Err(e) = renderer.enable_tracing(trace::settings::Settings::of_process()) {
-        eprintln!("glrt: path tracing is not available: {e}; frames are rasterized");
+    if traced {
+        match renderer.enable_tracing(trace::settings::Settings::of_process()) {
+            Err(e) => eprintln!("glrt: path tracing is not available: {e}; frames are rasterized"),
+            Ok(()) => {
+                let denoise = denoise::settings::DenoiseSettings::of_process();
+                if denoise.enabled
+                    && let Err(e) = renderer.enable_denoising(denoise)
+                {
+                    eprintln!("glrt: denoising is not available: {e}; the tracer's temporal filter resolves its frames");
+                }
+            }
+        }
     }
     Ok(renderer)
 }
