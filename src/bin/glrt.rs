@@ -22,9 +22,10 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use glrt::replay::{self, reader::Capture, summary::Summary};
 use glrt::translate::capture;
 use glrt::frame::{FrameSink, NullSink};
+use glrt::render::frames_repeated::FramesRepeated;
 use glrt::translate::classify::report::{FrameTap, TextureCatalog, print_stats};
 
-const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] [--stats] | glrt dump FILE";
+const USAGE: &str = "usage: glrt info [FILE] | glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--repeat N] [--bench] [--stats] | glrt dump FILE";
 
 fn main() -> ExitCode {
     default_sigpipe();
@@ -177,6 +178,8 @@ fn replay_command(args: &[String]) -> Result<(), String> {
     let mut options = replay::Options::default();
     let mut frames = (0, u64::MAX);
     let (mut bench, mut stats) = (false, false);
+    // Each frame drawn this many times (animation frozen: converged path-traced references).
+    let mut repeat = 1u32;
     while let [flag, tail @ ..] = rest {
         if flag == "--bench" {
             (bench, rest) = (true, tail);
@@ -191,6 +194,7 @@ fn replay_command(args: &[String]) -> Result<(), String> {
             "--frames" => frames = capture::parse_frames(value).ok_or(format!("--frames {value}: expected A..B"))?,
             "--size" => options.size = Some(parse_size(value).ok_or(format!("--size {value}: expected WxH"))?),
             "--out" => options.out = Some(value.into()),
+            "--repeat" => repeat = value.parse().ok().filter(|&n| n > 0).ok_or(format!("--repeat {value}: expected a positive count"))?,
             _ => return Err(format!("replay: unknown option {flag}\n{USAGE}")),
         }
         rest = tail;
@@ -200,7 +204,7 @@ fn replay_command(args: &[String]) -> Result<(), String> {
     let classify_ns = Arc::new(AtomicU64::new(0));
     let total = classify_ns.clone();
     let start = frames.0;
-    options.sink = (stats || bench).then(|| {
+    options.sink = (stats || bench || repeat > 1).then(|| {
         replay::SinkWrapper(Arc::new(move |inner: Option<Box<dyn FrameSink>>| {
             // --stats alone renders nothing but with --out; --bench measures the renderer too.
             let mut sink: Box<dyn FrameSink> = match inner {
@@ -208,6 +212,9 @@ fn replay_command(args: &[String]) -> Result<(), String> {
                 None if stats => Box::new(NullSink::default()),
                 None => glrt::render::default_sink(),
             };
+            if repeat > 1 {
+                sink = Box::new(FramesRepeated::new(repeat, sink));
+            }
             if stats {
                 sink = Box::new(FrameTap::new(sink, print_stats));
             }

@@ -13,6 +13,7 @@ pub mod shader_abi;
 pub mod denoise;
 pub mod frame_log;
 pub mod frames_from;
+pub mod frames_repeated;
 pub mod present;
 pub mod raster;
 pub mod texenv;

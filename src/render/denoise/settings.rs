@@ -109,11 +109,11 @@ mod tests {
 
     #[test]
     fn bad_values_are_reported_and_the_default_kept() {
-        let (s, problems) = read("iterations = 9\nenabled = 2\n", &[("GLRT_DENOISE_VIEW", "depth")]);
+        let (s, problems) = read("enabled = 2\niterations = 9\n", &[("GLRT_DENOISE_VIEW", "depth")]);
         assert_eq!(s, DenoiseSettings::default());
         assert_eq!(problems, [
-            "d.toml:2: denoise.iterations: expected an integer in 1..=8, found 9; the default is used",
-            "d.toml:3: denoise.enabled: expected true, false, 1 or 0, found 2; the default is used",
+            "d.toml:2: denoise.enabled: expected true, false, 1 or 0, found 2; the default is used",
+            "d.toml:3: denoise.iterations: expected an integer in 1..=8, found 9; the default is used",
             "GLRT_DENOISE_VIEW: expected one of \"color\", \"history\", found \"depth\"; the variable is ignored",
         ]);
     }
