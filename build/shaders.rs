@@ -1,6 +1,8 @@
-//! Compiles every GLSL shader in `shaders/` (`*.vert`, `*.frag`, `*.comp`, `*.geom`, and the
-//! ray-tracing stages `*.rgen`, `*.rchit`, `*.rahit`, `*.rmiss`) to SPIR-V with `glslangValidator` (Debian's `glslang-tools`, installed by `scripts/setup.sh`), into
-//! `OUT_DIR/shaders/<file name>.spv`; the renderer embeds them with
+//! Compiles every GLSL shader in `shaders/` and its folders (`*.vert`, `*.frag`, `*.comp`,
+//! `*.geom`, and the ray-tracing stages `*.rgen`, `*.rchit`, `*.rahit`, `*.rmiss`) to SPIR-V
+//! with `glslangValidator` (Debian's `glslang-tools`, installed by `scripts/setup.sh`), into
+//! `OUT_DIR/shaders/<path under shaders/>.spv` (`OUT_DIR/shaders/denoise/atrous.comp.spv`);
+//! the renderer embeds them with
 //! `include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ff.vert.spv"))`. Files included by others
 //! end in `.glsl` and are not compiled on their own; the generated headers of
 //! `glsl_constants.rs` are on the include path.
@@ -77,13 +79,32 @@ const LAYOUTS: &[LayoutFile] = &[
             ("pathtrace.comp", &[mirror("Pass", Rust::SizeConstant("TRACE_PUSH_BYTES"))]),
         ],
     },
+    // render::denoise::pipelines and render::denoise
+    LayoutFile {
+        name: "denoise_gpu_types",
+        shaders: &[
+            ("denoise/temporal.comp", &[mirror("DenoisePass", Rust::Struct("DenoisePass")), mirror("History", Rust::SizeConstant("HISTORY_BYTES"))]),
+            ("denoise/atrous.comp", &[mirror("Signal", Rust::SizeConstant("SIGNAL_BYTES"))]),
+        ],
+    },
     // render::trace::composite
     LayoutFile { name: "trace_composite", shaders: &[("trace_composite.frag", &[mirror("Sizes", Rust::SizeConstant("PUSH_BYTES"))])] },
     // render::raster::ff::uniforms
     LayoutFile { name: "ff_uniforms", shaders: &[("ff.vert", FF_UNIFORMS), ("ff.frag", FF_UNIFORMS)] },
 ];
 
-/// Compiles `shaders/*` into `out/shaders/` with `include` (the generated headers) on the
+/// The shaders under `dir` and its folders (`shaders/denoise/*.comp`), by extension.
+fn collect_sources(dir: &Path, sources: &mut Vec<std::path::PathBuf>) {
+    for path in std::fs::read_dir(dir).unwrap_or_else(|e| panic!("reading {}: {e}", dir.display())).filter_map(|e| e.ok().map(|e| e.path())) {
+        if path.is_dir() {
+            collect_sources(&path, sources);
+        } else if path.extension().and_then(|e| e.to_str()).is_some_and(|e| STAGES.contains(&e)) {
+            sources.push(path);
+        }
+    }
+}
+
+/// Compiles `shaders/*` (and its folders) into `out/shaders/` with `include` (the generated headers) on the
 /// include path, then writes the layout assertions into `out/layouts/`; panics with the
 /// compiler's or the checker's message (the build fails) when a shader does not compile, the
 /// compiler is missing or a mirrored struct cannot be found or mirrored.
@@ -91,16 +112,16 @@ pub fn compile_all(out: &Path, include: &Path) {
     println!("cargo:rerun-if-changed=shaders");
     let dest = out.join("shaders");
     std::fs::create_dir_all(&dest).expect("creating OUT_DIR/shaders");
-    let mut sources: Vec<_> = std::fs::read_dir("shaders")
-        .expect("reading shaders/")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().and_then(|e| e.to_str()).is_some_and(|e| STAGES.contains(&e)))
-        .collect();
+    let mut sources = Vec::new();
+    collect_sources(Path::new("shaders"), &mut sources);
     sources.sort();
     for src in sources {
-        let name = src.file_name().and_then(|n| n.to_str()).expect("shader file name");
+        let name = src.strip_prefix("shaders").expect("a shader under shaders/").to_str().expect("shader file name");
         let spv = dest.join(format!("{name}.spv"));
         let ray_tracing = src.extension().and_then(|e| e.to_str()).is_some_and(|e| RAY_TRACING_STAGES.contains(&e));
+        if let Some(dir) = spv.parent() {
+            std::fs::create_dir_all(dir).expect("creating a folder of OUT_DIR/shaders");
+        }
         let output = Command::new("glslangValidator")
             .args(["-V", "--target-env", if ray_tracing { "vulkan1.2" } else { "vulkan1.1" }, "-Ishaders"])
             .arg(format!("-I{}", include.display()))

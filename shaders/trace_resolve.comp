@@ -4,33 +4,15 @@
 // of the pixel it came from last frame (reprojected with the G-buffer's motion vector,
 // rejected when depth, normal or material disagree), capped at frame.params.y frames (the setting
 // `accumulate` while nothing moves, a few frames while the camera moves, 0 after a cut);
-// then exposure, tone mapping and sRGB encoding for the composite. The A-SVGF denoiser of a
-// later issue replaces this pass, reading the same G-buffer.
+// then exposure, tone mapping and sRGB encoding for the composite. The A-SVGF denoiser
+// (shaders/denoise/, `[denoise] enabled`) replaces this pass, reading the same G-buffer.
 
 #include "trace/scene.glsl"
 #include "trace/pack.glsl"
 #include "trace/gbuffer.glsl"
+#include "trace/tonemap.glsl"
 
 layout(local_size_x = TRACE_GROUP, local_size_y = TRACE_GROUP) in;
-
-// Tone mapping of linear radiance x by operator `op` (TONEMAP_*; render::trace::settings::Tonemap).
-vec3 tonemap(vec3 x, uint op) {
-    if (op == TONEMAP_KNEE) {
-        // The identity up to the knee k (frame.params.z), then a Reinhard shoulder that keeps
-        // the value and slope at k and approaches 1: k + (1 - k) t / (1 + t), t = (x - k) / (1 - k).
-        float k = frame.params.z;
-        vec3 t = max(x - k, 0.0) / (1.0 - k);
-        return min(max(x, 0.0), vec3(k)) + (1.0 - k) * t / (1.0 + t);
-    }
-    if (op == TONEMAP_REINHARD) {
-        return x / (1.0 + x);
-    }
-    if (op == TONEMAP_ACES) {
-        // ACES filmic curve fitted by Narkowicz (2015).
-        return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
-    }
-    return clamp(x, 0.0, 1.0);
-}
 
 void main() {
     uvec2 pixel = gl_GlobalInvocationID.xy;
@@ -64,6 +46,6 @@ void main() {
         frames = 0.0;
     }
     accumulation[index] = AccumSample(vec4(mean, frames), g.view_z, g.normal, material, 0u);
-    vec3 display = linear_to_srgb(tonemap(mean * frame.params.x, frame.flags.x & FRAME_TONEMAP_MASK));
+    vec3 display = display_color(mean * frame.params.x, frame.flags.x & FRAME_TONEMAP_MASK, frame.params.z);
     outputs[index] = OutputSample(packUnorm4x8(vec4(display, 1.0)), g.depth);
 }

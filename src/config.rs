@@ -18,6 +18,9 @@
 //! [pathtrace]                       # keys: render::trace::settings
 //! spp = 4
 //!
+//! [denoise]                         # keys: render::denoise::settings (GLRT_DENOISE=0|1)
+//! enabled = true
+//!
 //! [memory]                          # keys: translate::frame_memory
 //! frame_budget_mb = 256
 //!
@@ -51,7 +54,7 @@ use std::path::{Path, PathBuf};
 pub const LIST_KEYS: [&str; 8] = ["ui", "sky", "ignore", "translucent", "emissive", "static", "dynamic", "lightmap"];
 
 /// The top-level tables: `[materials]` and the settings tables read through [`Table`].
-pub const TABLES: [&str; 5] = ["pathtrace", "memory", "display", "radiosity", "materials"];
+pub const TABLES: [&str; 6] = ["pathtrace", "denoise", "memory", "display", "radiosity", "materials"];
 
 /// The keys of a `[materials]` entry.
 const MATERIAL_KEYS: [&str; 3] = ["roughness", "metalness", "emissive"];
@@ -82,6 +85,11 @@ pub trait Table: Default + 'static {
     const NAME: &'static str;
     /// Its keys.
     const KEYS: &'static [Key<Self>];
+
+    /// The variable that overrides key `name`: `GLRT_<NAME>` unless the table says otherwise.
+    fn variable(name: &str) -> String {
+        format!("GLRT_{}", name.to_uppercase())
+    }
 }
 
 /// The file as read: its name for messages, its text for lines, its parsed table.
@@ -288,7 +296,7 @@ impl Config {
             }
         }
         for key in T::KEYS {
-            let name = format!("GLRT_{}", key.name.to_uppercase());
+            let name = T::variable(key.name);
             let Some(text) = self.env.get(&name) else { continue };
             let value = text.parse::<toml::Value>().unwrap_or_else(|_| toml::Value::String(text.clone()));
             if let Err(e) = (key.set)(&mut t, &value) {
@@ -369,7 +377,7 @@ mod tests {
         assert_eq!(c.lists[0], HashSet::from([16, 32]));
         assert_eq!(c.lists[1], HashSet::from([255]));
         assert_eq!(warnings.len(), 1);
-        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, lightmap, pathtrace, memory, display, radiosity, materials)"), "{}", warnings[0]);
+        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, lightmap, pathtrace, denoise, memory, display, radiosity, materials)"), "{}", warnings[0]);
     }
 
     #[test]

@@ -9,7 +9,8 @@
 // primary rays that miss; a baked surface (render::trace::material) ends the path with its
 // emission and the light of the dynamic lights (render::trace::lights); adds its share of the
 // noisy radiance (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
-// (trace/gbuffer.glsl). The tracer runs it once per sample of the frame (see `dispatch` in
+// (trace/gbuffer.glsl), whole and split into the denoiser's channels: direct light at the
+// primary hit and indirect light, demodulated (trace/channels.glsl). The tracer runs it once per sample of the frame (see `dispatch` in
 // src/render/trace/compute.rs for why). src/render/trace/mod.rs describes
 // the scene it reads. Ray counts and traversal work are summed per subgroup (subgroup
 // arithmetic, which lavapipe and the desktop drivers have) and added to the counters once per
@@ -30,6 +31,7 @@ layout(push_constant) uniform Pass {
 #include "trace/emitters.glsl"
 #include "trace/gbuffer.glsl"
 #include "trace/environment.glsl"
+#include "trace/channels.glsl"
 
 // The eye-space ray through window position `window` (GL window coordinates, y up).
 void camera_ray(vec2 window, out vec3 origin, out vec3 dir) {
@@ -74,9 +76,15 @@ void trace_pixel(uvec2 pixel) {
     g.motion = vec2(0.0);
     g.material = 0u;
     g.instance = 0xffffffffu;
+    g.surface = 0u;
     uint primary = 0u, shadow = 0u, diffuse = 0u, specular = 0u;
 
     vec3 radiance = vec3(0.0);
+    // The channels (trace/gbuffer.glsl): the primary hit's next-event estimation, and the
+    // radiance before its continuation ray (what comes after is indirect light).
+    vec3 direct = vec3(0.0);
+    vec3 before_continuation = vec3(0.0);
+    bool continued = false;
     if (inside) {
         Rng rng = rng_seed(pixel, frame.counts.x, sample_index);
         // The first sample of a frame goes through the pixel centre, so the G-buffer is stable.
@@ -117,6 +125,7 @@ void trace_pixel(uvec2 pixel) {
                 g.motion = (window_xy(frame.projection, s.position) - window_xy(frame.previous_projection, previous)) / scale;
                 g.material = packUnorm4x8(vec4(s.roughness, s.metalness, 0.0, 0.0));
                 g.instance = hit.instance;
+                g.surface = materials[inst.material].key;
             }
             vec3 emitted = s.emission;
             if (bsdf_density > 0.0 && s.emitter_density > 0.0) {
@@ -126,19 +135,28 @@ void trace_pixel(uvec2 pixel) {
             radiance += throughput * emitted;
             // A baked surface (render::trace::material) only emits, and reflects the dynamic
             // lights its bake cannot hold (render::trace::lights): the path ends.
+            vec3 lit = vec3(0.0);
             if (s.baked) {
                 for (uint i = 0u; i < light_count; i++) {
                     if (lights[i].params.w < 0.0) {
-                        radiance += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
+                        lit += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
                     }
+                }
+                radiance += lit;
+                if (depth == 0u) {
+                    direct = lit;
                 }
                 break;
             }
             for (uint i = 0u; i < light_count; i++) {
-                radiance += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
+                lit += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
             }
             if (emitter_count > 0u) {
-                radiance += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces, rng, shadow);
+                lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces, rng, shadow);
+            }
+            radiance += lit;
+            if (depth == 0u) {
+                direct = lit;
             }
             vec3 l;
             bool chose_specular;
@@ -160,6 +178,10 @@ void trace_pixel(uvec2 pixel) {
             if (all(equal(throughput, vec3(0.0)))) {
                 break;
             }
+            if (depth == 0u) {
+                before_continuation = radiance;
+                continued = true;
+            }
             origin = offset_ray(s.position, s.geometric);
             dir = l;
             // After a bounce the cone spreads as wide as the lobe sampled (textures seen by
@@ -176,11 +198,18 @@ void trace_pixel(uvec2 pixel) {
     }
 
     uint index = pixel.y * size.x + pixel.x;
+    vec3 indirect = continued ? radiance - before_continuation : vec3(0.0);
     if (inside && sample_index == 0u) {
+        vec3 demodulate = 1.0 / (demodulating_albedo(g.albedo) * float(samples));
         g.radiance = vec4(radiance / float(samples), 1.0);
+        g.direct = vec4(direct * demodulate, 0.0);
+        g.indirect = vec4(indirect * demodulate, 0.0);
         gbuffer[index] = g;
     } else if (inside) {
+        vec3 demodulate = 1.0 / (demodulating_albedo(gbuffer[index].albedo) * float(samples));
         gbuffer[index].radiance.rgb += radiance / float(samples);
+        gbuffer[index].direct.rgb += direct * demodulate;
+        gbuffer[index].indirect.rgb += indirect * demodulate;
     }
     // One atomic per subgroup and counter.
     uvec4 rays = subgroupAdd(uvec4(primary, shadow, diffuse, specular));

@@ -7,7 +7,8 @@
 //! 2. upload and acceleration structures ([`RayTracer::build`]) of the traced draws and the
 //!    static world;
 //! 3. trace ([`RayTracer::trace`]): the G-buffer and radiance;
-//! 4. resolve ([`RayTracer::resolve`]): temporal filter and tone mapping;
+//! 4. denoise ([`Denoiser::record`], A-SVGF, when enabled) or else resolve
+//!    ([`RayTracer::resolve`]: the tracer's temporal filter), then tone mapping;
 //! 5. composite ([`Composite::record`]): the traced colour and depth into the framebuffer, at
 //!    the place of the first traced draw;
 //! 6. raster composite, the rest: the draws after it (translucent, overlay) over the traced
@@ -17,7 +18,7 @@
 //!    ([`crate::render::hud`]), the outputs, submission) or read back ([`Raster::read`]).
 //!
 //! Without a [`RayTracer`] (raster mode) steps 2 to 5 are left out and every draw is
-//! rasterized. Denoising (issue 20) and radiosity (issue 19) are stages between 3 and 4.
+//! rasterized. Radiosity (issue 19) is a stage between 3 and 4.
 //!
 //! Failures degrade (DESIGN.md, "Files, variables, conventions"), each said once on stderr:
 //! tracing stages that cannot be created or fail in a frame (a shader the driver cannot
@@ -37,6 +38,8 @@
 use crate::frame::pixels::PixelBuffer;
 use crate::frame::{Draw, Frame, FrameEnd};
 use crate::frame::FrameSink;
+use crate::render::denoise::Denoiser;
+use crate::render::denoise::settings::DenoiseSettings;
 use crate::render::hud::canvas::Canvas;
 use crate::render::hud::{Display, FrameInfo, Hud};
 use crate::render::raster::device::{Device, Error, Result};
@@ -67,9 +70,11 @@ pub struct Renderer {
     hud: Option<Hud>,
 }
 
-/// The path-tracing stages: a ray-tracing back end and the composite of its image.
+/// The path-tracing stages: a ray-tracing back end, the denoiser (when enabled) and the
+/// composite of its image.
 struct Tracing {
     backend: Box<dyn RayTracer>,
+    denoiser: Option<Denoiser>,
     composite: Composite,
 }
 
@@ -104,12 +109,23 @@ impl Renderer {
             let device = self.raster.device();
             let mut backend = trace::backend(device, settings, FRAMES_IN_FLIGHT)?;
             match Composite::new(device) {
-                Ok(composite) => self.tracing = Some(Tracing { backend, composite }),
+                Ok(composite) => self.tracing = Some(Tracing { backend, denoiser: None, composite }),
                 Err(e) => {
                     backend.destroy(device);
                     return Err(e);
                 }
             }
+        }
+        Ok(())
+    }
+
+    /// Denoises the traced frames with `settings` ([`Denoiser`]) in place of the back end's
+    /// temporal filter; nothing without tracing.
+    pub fn enable_denoising(&mut self, settings: DenoiseSettings) -> Result<()> {
+        if let Some(tracing) = &mut self.tracing
+            && tracing.denoiser.is_none()
+        {
+            tracing.denoiser = Some(Denoiser::new(self.raster.device(), settings)?);
         }
         Ok(())
     }
@@ -256,9 +272,12 @@ impl Tracing {
         let scene = self.backend.build(rec, frame, surfaces, camera)?;
         // Trace: the G-buffer and radiance (nothing when no geometry is on the GPU yet).
         let Some(radiance) = self.backend.trace(rec, &scene)? else { return Ok(()) };
-        // Denoising (issue 20) and radiosity (issue 19) come here, as stages on `radiance`.
-        // Resolve: temporal filter, tone mapping.
-        let image = self.backend.resolve(rec, radiance)?;
+        // Radiosity (issue 19) comes here, as a stage on `radiance`.
+        // Denoise (A-SVGF), or resolve (the tracer's temporal filter); tone mapping.
+        let image = match &mut self.denoiser {
+            Some(denoiser) => denoiser.record(rec, &scene.frame, &radiance)?,
+            None => self.backend.resolve(rec, radiance)?,
+        };
         // Composite: the traced colour and depth into the framebuffer.
         self.composite.record(rec, &image)
     }
@@ -266,6 +285,9 @@ impl Tracing {
     /// Frees the stages' GPU objects (the GPU must be idle) and logs the back end's totals.
     fn destroy(&mut self, device: &Device) {
         self.backend.destroy(device);
+        if let Some(denoiser) = &mut self.denoiser {
+            denoiser.destroy(device);
+        }
         self.composite.destroy(device);
         let totals = &self.backend.statistics().totals;
         if totals.frames > 0 {

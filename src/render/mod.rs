@@ -3,17 +3,19 @@
 //! layers): a frame's stages in order, read top to bottom there; [`raster`] provides the command
 //! recording and the raster stages (clears, pixel operations, draws in program order,
 //! read-back, present), [`trace`] the path-tracing stages behind one back-end trait
-//! ([`trace::RayTracer`]), [`present`] the window, and [`hud`] the panel of frame times drawn
-//! over the image. [`default_sink`] chooses the renderer of
-//! the mode (`GLRT_MODE`); [`devices`] lists the machine's Vulkan devices with the mode each would
-//! get ([`rendering_on`]).
+//! ([`trace::RayTracer`]), [`denoise`] the A-SVGF stage after tracing, [`present`] the window,
+//! and [`hud`] the panel of frame times drawn over the image. [`default_sink`] chooses the
+//! renderer of the mode (`GLRT_MODE`); [`devices`] lists the machine's Vulkan devices with the
+//! mode each would get ([`rendering_on`]).
 
 pub mod devices;
 pub mod frame;
 #[macro_use]
 pub mod shader_abi;
+pub mod denoise;
 pub mod frame_log;
 pub mod frames_from;
+pub mod frames_repeated;
 pub mod hud;
 pub mod present;
 pub mod radiosity;
@@ -91,9 +93,18 @@ fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result
     if rendering == (devices::Rendering::Raster { by_default: true }) {
         log::info!("glrt: the Vulkan device is a CPU: rasterizing (GLRT_MODE=pathtrace traces anyway, at seconds per frame)");
     }
-    let traced = matches!(rendering, devices::Rendering::PathTrace { .. });
-    if traced && let Err(e) = renderer.enable_tracing(trace::settings::Settings::of_process()) {
-        eprintln!("glrt: path tracing is not available: {e}; frames are rasterized");
+    if matches!(rendering, devices::Rendering::PathTrace { .. }) {
+        match renderer.enable_tracing(trace::settings::Settings::of_process()) {
+            Err(e) => eprintln!("glrt: path tracing is not available: {e}; frames are rasterized"),
+            Ok(()) => {
+                let denoise = denoise::settings::DenoiseSettings::of_process();
+                if denoise.enabled
+                    && let Err(e) = renderer.enable_denoising(denoise)
+                {
+                    eprintln!("glrt: denoising is not available: {e}; the tracer's temporal filter resolves its frames");
+                }
+            }
+        }
     }
     Ok(renderer)
 }

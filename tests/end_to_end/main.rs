@@ -1,7 +1,8 @@
 //! Programs run end to end through glrt as child processes (`glrt-demo`, Mesa's `glxgears`,
 //! `glxinfo`, the `glrt` command), each with its own environment and, where it needs one, its
 //! own Xvfb; one test binary: the demo's frames ([`demo`]), presentation on X windows
-//! ([`present`]), captures and replays ([`capture_replay`], [`pathtrace_replay`]), hash
+//! ([`present`]), captures and replays ([`capture_replay`], [`pathtrace_replay`]), the
+//! denoiser's quality on the demo's replay ([`denoise`]), hash
 //! tracking of a re-batching program ([`classify_rebatch`]), pass-through ([`passthrough`]),
 //! glrt as a glvnd vendor ([`glvnd_vendor`]), programs run by `glrt run` ([`glrt_run`]), an SFML-style program's window changing frame
 //! after frame ([`sfml_style`]), and images against Mesa ([`raster_vs_mesa`]) and an NVIDIA
@@ -17,6 +18,7 @@ mod x11;
 mod capture_replay;
 mod classify_rebatch;
 mod demo;
+mod denoise;
 mod glrt_run;
 mod glvnd_vendor;
 mod passthrough;

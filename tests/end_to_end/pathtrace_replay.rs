@@ -5,15 +5,16 @@
 //! exactly as the rasterized one.
 //!
 //! Settings: traced at a quarter of the resolution (`GLRT_RESOLUTION_SCALE=0.25`, so a frame
-//! costs about a second on lavapipe), 1 sample per pixel, 1 bounce, ACES tone mapping and
-//! lightmaps ignored (the settings the references were made with, on both machines).
+//! costs about a second on lavapipe), 1 sample per pixel, 1 bounce, ACES tone mapping,
+//! lightmaps ignored and the tracer's temporal filter (`GLRT_DENOISE=0`: the settings the
+//! references were made with, on both machines; the denoiser's own test is `denoise.rs`).
 //! The tracer's random numbers depend only on the pixel, the frame and the sample, so lavapipe
 //! makes the same image again; the tolerance (`images::compare`, 24 per channel, 1% of the
 //! pixels, mean difference below 2) leaves room for another processor's floating point.
 //! To remake the references after a deliberate change, run this test and copy
 //! `target/<profile>/pathtrace-replay/{demo,glxgears}-3.png` to `tests/reference/pathtrace/`;
 //! on the GPU machine, `GLRT_MODE=pathtrace GLRT_RESOLUTION_SCALE=0.25 GLRT_SPP=1
-//! GLRT_BOUNCES=1 GLRT_TONEMAP=aces GLRT_LIGHTMAPS=ignore glrt replay
+//! GLRT_BOUNCES=1 GLRT_TONEMAP=aces GLRT_LIGHTMAPS=ignore GLRT_DENOISE=0 glrt replay
 //! tests/fixtures/NAME.glrtcap --frames 0..4 --out DIR` makes `DIR/frame-00003.png`, the
 //! `NAME-3-nvidia-h200.png` reference. The demo's lightmaps (unit 1) are light only where hash
 //! tracking says so (`Instance::light_units`); otherwise the tracer takes them as colour.
@@ -36,7 +37,14 @@ const MAX_MEAN_ABS: f64 = 2.0;
 /// traced after frames 0 to 2, which are their temporal history; `--frames 3..4` would trace
 /// frame 3 alone), and returns the path of frame 3.
 fn replay_frame_3(name: &str, mode: &str) -> PathBuf {
-    let dir = lib_dir().join("pathtrace-replay").join(format!("{name}-{mode}"));
+    replay_frame_3_with(name, mode, &[("GLRT_MODE", mode), ("GLRT_DENOISE", "0")])
+}
+
+/// Replays frames 0..4 of fixture `name` with the settings of the module doc and the
+/// variables `env` (which override them) into a folder named by `tag`; returns the path of
+/// frame 3.
+pub fn replay_frame_3_with(name: &str, tag: &str, env: &[(&str, &str)]) -> PathBuf {
+    let dir = lib_dir().join("pathtrace-replay").join(format!("{name}-{tag}"));
     let _ = std::fs::remove_dir_all(&dir);
     let fixture = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures").join(format!("{name}.glrtcap"));
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_glrt"));
@@ -44,7 +52,8 @@ fn replay_frame_3(name: &str, mode: &str) -> PathBuf {
     for key in ["GLRT_CAPTURE", "GLRT_FRAME_LOG", "GLRT_DUMP", "GLRT_CONFIG"] {
         cmd.env_remove(key);
     }
-    cmd.env("GLRT_MODE", mode).env("GLRT_RESOLUTION_SCALE", "0.25").env("GLRT_SPP", "1").env("GLRT_BOUNCES", "1").env("GLRT_TONEMAP", "aces").env("GLRT_LIGHTMAPS", "ignore");
+    cmd.env("GLRT_RESOLUTION_SCALE", "0.25").env("GLRT_SPP", "1").env("GLRT_BOUNCES", "1").env("GLRT_TONEMAP", "aces").env("GLRT_LIGHTMAPS", "ignore");
+    cmd.envs(env.iter().copied());
     let lavapipe = "/usr/share/vulkan/icd.d/lvp_icd.x86_64.json";
     if Path::new(lavapipe).exists() {
         cmd.env("VK_DRIVER_FILES", lavapipe);

@@ -130,6 +130,14 @@ pub fn difference_image(a: &Image, b: &Image) -> Image {
     Image { width: a.width, height: a.height, rgb }
 }
 
+/// The root-mean-square difference of `a` and `b` (same size) over every channel of every
+/// pixel, in 0..=255.
+pub fn rmse(a: &Image, b: &Image) -> f64 {
+    assert_eq!((a.width, a.height), (b.width, b.height), "images of different sizes");
+    let sum: f64 = a.rgb.iter().zip(&b.rgb).map(|(&x, &y)| (f64::from(x) - f64::from(y)).powi(2)).sum();
+    (sum / a.rgb.len().max(1) as f64).sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -138,6 +146,14 @@ mod tests {
         let f = &f;
         let rgb = (0..height).flat_map(|y| (0..width).flat_map(move |x| f(x, y))).collect();
         Image { width, height, rgb }
+    }
+
+    #[test]
+    fn rmse_is_the_root_mean_square_of_the_channel_differences() {
+        let a = image(2, 1, |_, _| [10, 10, 10]);
+        let b = image(2, 1, |x, _| if x == 0 { [10, 10, 10] } else { [16, 4, 10] });
+        assert_eq!(rmse(&a, &a), 0.0);
+        assert!((rmse(&a, &b) - (72.0f64 / 6.0).sqrt()).abs() < 1e-12);
     }
 
     #[test]

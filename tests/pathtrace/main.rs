@@ -4,7 +4,8 @@
 //! physics ([`physics`]) and against the independent CPU tracer of [`reference_tracer`]
 //! ([`cornell`], which [`reference`] checks first), composition with the raster path
 //! ([`composite`]), and surfaces of several passes, baked light and emitters ([`surfaces`],
-//! on frames [`classified`] as hash tracking will classify them).
+//! on frames [`classified`] as hash tracking will classify them); the denoiser's
+//! reprojection and disocclusion tests ([`denoise`]).
 
 #[path = "../lavapipe/mod.rs"]
 mod lavapipe;
@@ -14,6 +15,7 @@ mod bvh;
 mod classified;
 mod composite;
 mod cornell;
+mod denoise;
 mod geometry;
 mod physics;
 mod reference;

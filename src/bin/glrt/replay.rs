@@ -1,4 +1,4 @@
-//! `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--bench] [--stats]`: replays a
+//! `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--repeat N] [--bench] [--stats]`: replays a
 //! capture headless (frames before `A` are replayed too: they build the state; the replay stops
 //! after `B - 1`). `--out` draws and writes frames `A` and later as `DIR/frame-NNNNN.png` (by
 //! frame number) through the Vulkan renderer, which does not draw the frames before `A`
@@ -16,6 +16,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 use crate::progress::FrameProgress;
 use glrt::frame::{FrameSink, NullSink};
+use glrt::render::frames_repeated::FramesRepeated;
 use glrt::replay::{self, reader::{Capture, Record}};
 use glrt::translate::capture::format::Event;
 use glrt::translate::capture;
@@ -37,6 +38,9 @@ pub struct Args {
     /// were: a 320x240 capture drawn at 1280x720 fills its lower-left 320x240).
     #[arg(long, value_name = "WxH", value_parser = parse_size)]
     size: Option<(i32, i32)>,
+    /// Draws each frame N times, its animation frozen (converged path-traced references).
+    #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    repeat: u32,
     /// Prints the frame times of the frames asked for and where their time went.
     #[arg(long)]
     bench: bool,
@@ -151,7 +155,8 @@ pub fn run(args: &Args) -> Result<(), String> {
     // --out: frames `start` to the range's end or the capture's.
     let progress = args.out.as_ref().map(|_| FrameProgress::new("replay", start, || capture.frames().min(frames.1)));
     let tap_progress = progress.clone();
-    options.sink = (stats || bench || progress.is_some()).then(|| {
+    let repeat = args.repeat;
+    options.sink = (stats || bench || repeat > 1 || progress.is_some()).then(|| {
         replay::SinkWrapper(Arc::new(move |inner: Option<Box<dyn FrameSink>>| {
             // --stats alone renders nothing but with --out; --bench measures the renderer too.
             let mut sink: Box<dyn FrameSink> = match inner {
@@ -159,6 +164,9 @@ pub fn run(args: &Args) -> Result<(), String> {
                 None if stats => Box::new(NullSink::default()),
                 None => glrt::render::default_sink(),
             };
+            if repeat > 1 {
+                sink = Box::new(FramesRepeated::new(repeat, sink));
+            }
             if stats {
                 sink = Box::new(FrameTap::new(sink, print_stats));
             }

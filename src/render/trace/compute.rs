@@ -29,7 +29,7 @@ use super::resident::{NewGeometry, Resident};
 use super::scene;
 use super::settings::{KNEE, Settings, Tonemap};
 use super::shader_constants::{
-    FRAME_PERSPECTIVE, FRAME_SKY, INSTANCE_ALPHA_TESTED, MATERIAL_LAYERS, TONEMAP_ACES, TONEMAP_CLAMP, TONEMAP_KNEE, TONEMAP_REINHARD, TRACE_GROUP,
+    FRAME_PERSPECTIVE, FRAME_SKY, FRAME_STILL, INSTANCE_ALPHA_TESTED, MATERIAL_LAYERS, TONEMAP_ACES, TONEMAP_CLAMP, TONEMAP_KNEE, TONEMAP_REINHARD, TRACE_GROUP,
 };
 use super::surfaces::Surfaces;
 use super::sky::Sky;
@@ -43,8 +43,9 @@ use crate::frame::{Draw, Frame};
 use crate::render::raster::device::{Buffer, Check, Device, Result};
 use crate::render::raster::renderer::Recorder;
 
-/// Frames a moving camera's history keeps (the temporal filter's weight is 1 / (n + 1)).
-const MOVING_HISTORY: f32 = 8.0;
+/// Frames a moving camera's history keeps (the temporal filter's weight is 1 / (n + 1); the
+/// denoiser's temporal pass keeps as many).
+pub const MOVING_HISTORY: f32 = 8.0;
 
 /// Timestamps per frame in flight: tracing pass start and end, builds start and end.
 const TIMESTAMPS: u32 = 4;
@@ -330,7 +331,7 @@ impl ComputeTracer {
             self.unread[slot] = true;
             set
         };
-        Ok(Some(Radiance { size: [gpu_frame.size[0], gpu_frame.size[1]], set, output: pixels.output.raw }))
+        Ok(Some(Radiance { size: [gpu_frame.size[0], gpu_frame.size[1]], set, gbuffer: pixels.gbuffer.raw, output: pixels.output.raw }))
     }
 }
 
@@ -530,7 +531,12 @@ impl RayTracer for ComputeTracer {
             params: [2f32.powf(self.settings.exposure), history, KNEE, spread],
             size: [traced[0], traced[1], window[0], window[1]],
             counts: [self.frame_index, self.settings.spp.max(1), self.settings.bounces, lights.len() as u32],
-            flags: [tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 } | if sky.is_some() { FRAME_SKY } else { 0 }, instances.len() as u32, emitters.len() as u32, 0],
+            flags: [
+                tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 } | if sky.is_some() { FRAME_SKY } else { 0 } | if still { FRAME_STILL } else { 0 },
+                instances.len() as u32,
+                emitters.len() as u32,
+                0,
+            ],
         };
         self.previous = Some(Previous { signature, projection, view: frame.view.map(|v| v.view) });
         self.frame_index = self.frame_index.wrapping_add(1);
@@ -614,7 +620,7 @@ fn destroy_pixels(device: &Device, p: PixelBuffers) {
 ///
 /// # Safety
 /// `cmd` is recording outside a rendering pass.
-pub(super) unsafe fn barrier(d: &ash::Device, cmd: vk::CommandBuffer, src: vk::PipelineStageFlags2, dst: vk::PipelineStageFlags2) {
+pub(crate) unsafe fn barrier(d: &ash::Device, cmd: vk::CommandBuffer, src: vk::PipelineStageFlags2, dst: vk::PipelineStageFlags2) {
     let barrier = [vk::MemoryBarrier2::default()
         .src_stage_mask(src)
         .src_access_mask(vk::AccessFlags2::MEMORY_WRITE)

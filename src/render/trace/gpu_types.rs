@@ -189,7 +189,7 @@ pub struct GpuInstance {
 }
 
 /// Per-pixel bytes of the G-buffer (`GSample` of `gbuffer.glsl`).
-pub const GSAMPLE_BYTES: u64 = 48;
+pub const GSAMPLE_BYTES: u64 = 96;
 /// Per-pixel bytes of the accumulation buffers (`AccumSample`).
 pub const ACCUM_SAMPLE_BYTES: u64 = 32;
 /// Per-pixel bytes of the composite's input (`OutputSample`).

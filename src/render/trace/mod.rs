@@ -95,7 +95,8 @@ use stats::Statistics;
 /// recording into the frame's command buffer at the place of its first traced draw
 /// ([`surfaces::Surfaces::first`]). The renderer calls [`RayTracer::build`], [`RayTracer::trace`]
 /// and [`RayTracer::resolve`] in that order, once per frame; stages of other modules
-/// (denoising, radiosity) go between `trace` and `resolve`, reading and writing the radiance.
+/// (radiosity) go between `trace` and `resolve`, reading and writing the radiance; the
+/// denoiser ([`crate::render::denoise`]) takes the place of `resolve`.
 pub trait RayTracer: Send {
     /// Upload and acceleration structures: gathers the frame's traced surfaces, `surfaces`
     /// (`camera`, the first base, gives the projection and viewport), and the static world's
@@ -146,8 +147,11 @@ pub struct Radiance {
     pub size: [u32; 2],
     /// The back end's descriptor set of the frame (its buffers and the frame's records).
     set: vk::DescriptorSet,
-    /// The buffer the resolve writes the image into.
-    output: vk::Buffer,
+    /// The G-buffer and lighting channels (`GSample` of `shaders/trace/samples.glsl`), one
+    /// per traced pixel, for the denoiser.
+    pub gbuffer: vk::Buffer,
+    /// The buffer the resolve (or the denoiser) writes the image into (`OutputSample`).
+    pub output: vk::Buffer,
 }
 
 /// The image a back end traced and resolved: per pixel of `size` (row 0 the bottom, as GL

@@ -38,7 +38,7 @@ const RAY_TRACING_STAGES: vk::ShaderStageFlags = vk::ShaderStageFlags::from_raw(
 /// A descriptor set layout of `count` storage buffers visible to `stages`, then combined
 /// image samplers at the bindings `samplers`, then acceleration structures at the bindings
 /// `structures`.
-fn descriptor_set_layout(device: &Device, count: u32, samplers: &[u32], structures: &[u32], stages: vk::ShaderStageFlags) -> Result<vk::DescriptorSetLayout> {
+pub(crate) fn descriptor_set_layout(device: &Device, count: u32, samplers: &[u32], structures: &[u32], stages: vk::ShaderStageFlags) -> Result<vk::DescriptorSetLayout> {
     let binding = |b, ty| vk::DescriptorSetLayoutBinding::default().binding(b).descriptor_type(ty).descriptor_count(1).stage_flags(stages);
     let bindings: Vec<_> = (0..count)
         .map(|b| binding(b, vk::DescriptorType::STORAGE_BUFFER))
@@ -50,7 +50,8 @@ fn descriptor_set_layout(device: &Device, count: u32, samplers: &[u32], structur
         .check("vkCreateDescriptorSetLayout")
 }
 
-fn compute_pipeline(device: &Device, layout: vk::PipelineLayout, spirv: &[u8]) -> Result<vk::Pipeline> {
+/// A compute pipeline of `layout` from the SPIR-V `spirv` (its entry point `main`).
+pub(crate) fn compute_pipeline(device: &Device, layout: vk::PipelineLayout, spirv: &[u8]) -> Result<vk::Pipeline> {
     if crate::faults::fires(crate::faults::Fault::ShaderCompile) {
         return Err(Error::Vulkan("vkCreateComputePipelines", vk::Result::ERROR_INVALID_SHADER_NV));
     }

@@ -92,6 +92,9 @@ glsl_constants! {
     /// `GpuFrame::flags[0]`: missed rays sample the sky's cube map (`super::sky`), not
     /// `GpuFrame::environment`.
     const FRAME_SKY: u32 = 8;
+    /// `GpuFrame::flags[0]`: the scene and camera are as they were last frame (the history
+    /// cap is `accumulate`: accumulation while still).
+    const FRAME_STILL: u32 = 16;
     /// Tone mapping: clamp to [0, 1].
     const TONEMAP_CLAMP: u32 = 0;
     /// Tone mapping: Reinhard, x / (1 + x).
@@ -99,7 +102,7 @@ glsl_constants! {
     /// Tone mapping: the ACES filmic curve fitted by Narkowicz (2015).
     const TONEMAP_ACES: u32 = 2;
     /// Tone mapping: the identity up to the knee, a Reinhard shoulder above it
-    /// (`trace_resolve.comp`, [`super::settings::Tonemap::Knee`]).
+    /// (`trace/tonemap.glsl`, [`super::settings::Tonemap::Knee`]).
     const TONEMAP_KNEE: u32 = 3;
 
     /// `GpuTexture::flags`: wrap mode `GL_REPEAT` (s in bits 0-1, t in bits 2-3).

@@ -1,0 +1,32 @@
+// The per-pixel records every back end writes and the denoiser reads: the G-buffer's
+// GSample and the composite's OutputSample (bound by trace/gbuffer.glsl and denoise/common.glsl).
+
+#ifndef TRACE_SAMPLES_GLSL
+#define TRACE_SAMPLES_GLSL
+
+// What the primary ray of a pixel saw this frame. The lighting channels are demodulated (trace/channels.glsl): direct is the light of the
+// next-event estimation at the primary hit (lights and emitters), indirect all light that
+// reached the primary hit through its continuation ray; radiance minus both, remodulated, is
+// the primary hit's own emission (baked light, emissive surfaces) or the environment of a miss.
+struct GSample {
+    vec4 radiance;      // noisy linear radiance, averaged over this frame's samples (all channels)
+    vec4 direct;        // rgb: direct light at the primary hit / the demodulating albedo; a unused
+    vec4 indirect;      // rgb: indirect light at the primary hit / the demodulating albedo; a unused
+    uint albedo;        // linear albedo, unorm8 RGB (a: coverage)
+    uint normal;        // shading normal, octahedral (pack.glsl)
+    float depth;        // window depth as glDepthRange maps it; >= 1 for rays that missed
+    float view_z;       // eye-space distance along -z (0: missed)
+    vec2 motion;        // window position now minus window position last frame, in traced pixels
+    uint material;      // roughness, metalness as unorm8 in bytes 0 and 1
+    uint instance;      // index of the instance hit, 0xffffffff on a miss
+    uint surface;       // the key of the material hit (Material.key; 0 on a miss): history follows it
+    uint pad[3];
+};
+
+// What the composite draws: tone-mapped colour and depth.
+struct OutputSample {
+    uint color;         // display-encoded unorm8 RGBA
+    float depth;        // window depth; >= 1 where the primary ray missed (the composite keeps the framebuffer)
+};
+
+#endif

@@ -1,0 +1,190 @@
+//! Denoising of the traced image: A-SVGF's spatiotemporal variance-guided filter (Schied et
+//! al., HPG 2017; seed 003 section 4.3.5; Quake II RTX's `asvgf_*` shaders are the open model),
+//! the stage between the tracer's [`crate::render::trace::RayTracer::trace`] and the
+//! composite, in place of the tracer's own temporal filter
+//! ([`crate::render::trace::RayTracer::resolve`]).
+//!
+//! It reads the G-buffer every back end writes (`shaders/trace/samples.glsl`): depth, normal,
+//! albedo, material key, motion vectors (from the instances' transforms of this and the last
+//! frame: rigid motion; dynamic meshes' previous vertex positions are not kept, so a mesh
+//! that deforms in place reprojects as if it stood still and its history is dropped only
+//! where the disocclusion tests fail), and two lighting channels demodulated by albedo,
+//! direct light at the primary hit and indirect light (the tracer does not separate specular:
+//! it is part of both). Each channel is filtered apart, in four compute passes per frame
+//! (`shaders/denoise/`):
+//!
+//! 1. `temporal.comp`: reprojection with disocclusion tests (material, eye distance, normal),
+//!    running means of light and of the first two moments of luminance, history length;
+//! 2. `variance.comp`: the variance from the moments, estimated spatially where the history
+//!    is young;
+//! 3. `atrous.comp`, `[denoise] iterations` times (default 5): the edge-avoiding à-trous
+//!    wavelet filter guided by depth, normals and the variance; while the camera moves the
+//!    first iteration's output is the next frame's history (SVGF's feedback);
+//! 4. `modulate.comp`: light times albedo plus the unfiltered emission, exposure and tone
+//!    mapping into the [`TracedImage`] the composite draws.
+//!
+//! Accumulation while everything stands still stays: the tracer's history cap grows to
+//! `[pathtrace] accumulate` frames, the history then keeps the unfiltered mean, and the
+//! filter's luminance edge-stop narrows as the mean's variance falls, so a still frame
+//! converges to the traced mean. Temporal gradients (A-SVGF's history dropped where lighting
+//! changed) are not built yet: a light switched on reaches the image through the history cap.
+//!
+//! Modules: [`settings`] (`[denoise]`, `GLRT_DENOISE=0|1`), [`pipelines`] (layouts, push
+//! constants, pipelines), [`shader_constants`] (bindings and flags shared with the shaders).
+
+pub mod pipelines;
+pub mod settings;
+pub mod shader_constants;
+
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+
+use crate::render::raster::device::{Buffer, Check, Device, Result};
+use crate::render::raster::renderer::Recorder;
+use crate::render::trace::compute::{MOVING_HISTORY, barrier};
+use crate::render::trace::gpu_types::{GSAMPLE_BYTES, GpuFrame, OUTPUT_SAMPLE_BYTES};
+use crate::render::trace::shader_constants::{FRAME_STILL, FRAME_TONEMAP_MASK, TRACE_GROUP};
+use crate::render::trace::{Radiance, TracedImage};
+use pipelines::{DenoisePass, DenoisePipelines, HISTORY_BYTES, SIGNAL_BYTES};
+use settings::{DenoiseSettings, View};
+use shader_constants::{BINDING_COUNT, FLAG_FEEDBACK, FLAG_VIEW_HISTORY};
+
+/// The denoiser's per-pixel buffers for one traced size and the descriptor set over them and
+/// the tracer's G-buffer and output.
+struct PixelBuffers {
+    size: [u32; 2],
+    /// The tracer's buffers the set holds.
+    gbuffer: vk::Buffer,
+    output: vk::Buffer,
+    /// Two frames of history (the one read, the one written), one after the other.
+    history: Buffer,
+    /// The spatial passes' two signals, one after the other.
+    signal: Buffer,
+    pool: vk::DescriptorPool,
+    set: vk::DescriptorSet,
+}
+
+/// The A-SVGF stage.
+pub struct Denoiser {
+    settings: DenoiseSettings,
+    pipelines: DenoisePipelines,
+    pixels: Option<PixelBuffers>,
+    /// Which half of the history this frame reads (the other is written).
+    parity: u32,
+}
+
+impl Denoiser {
+    /// Creates the pipelines; the buffers come with the first frame.
+    pub fn new(device: &Device, settings: DenoiseSettings) -> Result<Denoiser> {
+        Ok(Denoiser { settings, pipelines: DenoisePipelines::new(device)?, pixels: None, parity: 0 })
+    }
+
+    /// (Re)creates the buffers and the set for `radiance`'s size and buffers; a new history
+    /// is zeroed (no pixel has one).
+    fn ensure_pixels(&mut self, device: &Device, cmd: vk::CommandBuffer, radiance: &Radiance) -> Result<()> {
+        if self.pixels.as_ref().is_some_and(|p| p.size == radiance.size && p.gbuffer == radiance.gbuffer && p.output == radiance.output) {
+            return Ok(());
+        }
+        device.wait_idle()?;
+        if let Some(old) = self.pixels.take() {
+            destroy_pixels(device, old);
+        }
+        let n = radiance.size[0] as u64 * radiance.size[1] as u64;
+        let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
+        let history = device.create_buffer("glrt denoiser history", 2 * n * HISTORY_BYTES, usage, MemoryLocation::GpuOnly)?;
+        let signal = match device.create_buffer("glrt denoiser signal", 2 * n * SIGNAL_BYTES, usage, MemoryLocation::GpuOnly) {
+            Ok(b) => b,
+            Err(e) => {
+                device.destroy_buffer(history);
+                return Err(e);
+            }
+        };
+        let sizes = [vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: BINDING_COUNT }];
+        // Safety (this block): valid create and allocate infos; the pool is destroyed with the
+        // buffers; the set's buffers live as long as it.
+        let (pool, set) = unsafe {
+            let pool = device.raw.create_descriptor_pool(&vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes), None).check("vkCreateDescriptorPool")?;
+            let layouts = [self.pipelines.set_layout];
+            let set = device.raw.allocate_descriptor_sets(&vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&layouts)).check("vkAllocateDescriptorSets")?[0];
+            let table = [
+                (radiance.gbuffer, n * GSAMPLE_BYTES),
+                (radiance.output, n * OUTPUT_SAMPLE_BYTES),
+                (history.raw, 2 * n * HISTORY_BYTES),
+                (signal.raw, 2 * n * SIGNAL_BYTES),
+            ];
+            let infos: Vec<[vk::DescriptorBufferInfo; 1]> = table.iter().map(|&(buffer, range)| [vk::DescriptorBufferInfo { buffer, offset: 0, range }]).collect();
+            let writes: Vec<vk::WriteDescriptorSet> = infos
+                .iter()
+                .enumerate()
+                .map(|(b, info)| vk::WriteDescriptorSet::default().dst_set(set).dst_binding(b as u32).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info))
+                .collect();
+            device.raw.update_descriptor_sets(&writes, &[]);
+            device.raw.cmd_fill_buffer(cmd, history.raw, 0, vk::WHOLE_SIZE, 0);
+            barrier(&device.raw, cmd, vk::PipelineStageFlags2::TRANSFER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+            (pool, set)
+        };
+        self.pixels = Some(PixelBuffers { size: radiance.size, gbuffer: radiance.gbuffer, output: radiance.output, history, signal, pool, set });
+        Ok(())
+    }
+
+    /// Records the passes of the module doc over `radiance`, traced with `frame`'s camera and
+    /// settings (exposure, history cap, tone mapping), into the image the composite draws.
+    pub fn record(&mut self, rec: &mut Recorder<'_>, frame: &GpuFrame, radiance: &Radiance) -> Result<TracedImage> {
+        let (device, cmd) = (rec.device, rec.cmd);
+        self.ensure_pixels(device, cmd, radiance)?;
+        let Some(pixels) = &self.pixels else { return Ok(TracedImage { size: radiance.size, output: radiance.output }) };
+        let [w, h] = radiance.size;
+        let n = w * h;
+        let (read, write) = (self.parity * n, (self.parity ^ 1) * n);
+        self.parity ^= 1;
+        let still = frame.flags[0] & FRAME_STILL != 0;
+        let flags = (frame.flags[0] & FRAME_TONEMAP_MASK)
+            | if still { 0 } else { FLAG_FEEDBACK }
+            | if self.settings.view == View::History { FLAG_VIEW_HISTORY } else { 0 };
+        let params = [frame.params[0], frame.params[1], frame.params[2], MOVING_HISTORY];
+        let groups = [w.div_ceil(TRACE_GROUP), h.div_ceil(TRACE_GROUP)];
+        let d = &device.raw;
+        let layout = self.pipelines.layout;
+        let run = |pipeline: vk::Pipeline, step: u32, source: u32, destination: u32| {
+            let pass = DenoisePass { size: [w, h, flags, step], offsets: [read, write, source, destination], params };
+            // Safety: `cmd` records outside a rendering pass (the tracer ended it); the set's
+            // buffers live until the frame finishes.
+            unsafe {
+                d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline);
+                d.cmd_push_constants(cmd, layout, vk::ShaderStageFlags::COMPUTE, 0, bytemuck::bytes_of(&pass));
+                d.cmd_dispatch(cmd, groups[0], groups[1], 1);
+                barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+            }
+        };
+        // Safety: as above.
+        unsafe { d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, layout, 0, &[pixels.set], &[]) };
+        // The signal ping-pongs between its halves, starting at 0 and n.
+        run(self.pipelines.temporal, 1, 0, 0);
+        run(self.pipelines.variance, 1, 0, n);
+        let mut current = n;
+        for iteration in 0..self.settings.iterations {
+            let other = n - current;
+            run(self.pipelines.atrous, 1 << iteration, current, other);
+            current = other;
+        }
+        run(self.pipelines.modulate, 1, current, 0);
+        // Safety: as above.
+        unsafe { barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::HOST) };
+        Ok(TracedImage { size: radiance.size, output: radiance.output })
+    }
+
+    /// Frees the GPU objects (the GPU must be idle).
+    pub fn destroy(&mut self, device: &Device) {
+        if let Some(p) = self.pixels.take() {
+            destroy_pixels(device, p);
+        }
+        self.pipelines.destroy(device);
+    }
+}
+
+fn destroy_pixels(device: &Device, p: PixelBuffers) {
+    // Safety: the GPU is idle; the set goes with its pool.
+    unsafe { device.raw.destroy_descriptor_pool(p.pool, None) };
+    device.destroy_buffer(p.history);
+    device.destroy_buffer(p.signal);
+}

@@ -1,0 +1,95 @@
+//! The denoiser's Vulkan objects that do not change with the frame: the layout of its one
+//! descriptor set ([`super::shader_constants`]'s bindings, all storage buffers), the push
+//! constants of a pass ([`DenoisePass`]) and the four compute pipelines.
+
+use ash::vk;
+use bytemuck::{Pod, Zeroable};
+
+use super::shader_constants::BINDING_COUNT;
+use crate::render::raster::device::{Check, Device, Result};
+use crate::render::trace::pipelines::{compute_pipeline, descriptor_set_layout};
+
+/// Push constants of every pass (`DenoisePass` of `shaders/denoise/common.glsl`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct DenoisePass {
+    /// Traced width and height, `FLAG_*` bits, the à-trous step in pixels.
+    pub size: [u32; 4],
+    /// Record offsets (in pixels): history read, history written, signal read, signal written.
+    pub offsets: [u32; 4],
+    /// Exposure multiplier, history cap (frames), tone-mapping knee, frames of a moving
+    /// camera's history.
+    pub params: [f32; 4],
+}
+
+/// Bytes of [`DenoisePass`].
+pub const PASS_BYTES: u32 = size_of::<DenoisePass>() as u32;
+
+include!(concat!(env!("OUT_DIR"), "/layouts/denoise_gpu_types.rs"));
+
+/// The layouts and pipelines.
+pub struct DenoisePipelines {
+    /// The one descriptor set's layout.
+    pub set_layout: vk::DescriptorSetLayout,
+    /// Layout of every pass.
+    pub layout: vk::PipelineLayout,
+    /// Temporal accumulation with reprojection (`temporal.comp`).
+    pub temporal: vk::Pipeline,
+    /// Spatial variance of young histories (`variance.comp`).
+    pub variance: vk::Pipeline,
+    /// One à-trous iteration (`atrous.comp`).
+    pub atrous: vk::Pipeline,
+    /// Remodulation and tone mapping (`modulate.comp`).
+    pub modulate: vk::Pipeline,
+}
+
+impl DenoisePipelines {
+    /// Creates the layouts and pipelines.
+    pub fn new(device: &Device) -> Result<DenoisePipelines> {
+        let set_layout = descriptor_set_layout(device, BINDING_COUNT, &[], &[], vk::ShaderStageFlags::COMPUTE)?;
+        let set_layouts = [set_layout];
+        let push = [vk::PushConstantRange { stage_flags: vk::ShaderStageFlags::COMPUTE, offset: 0, size: PASS_BYTES }];
+        // Safety: valid create info; destroyed in `destroy`.
+        let layout = unsafe { device.raw.create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts).push_constant_ranges(&push), None) }
+            .check("vkCreatePipelineLayout")?;
+        let mut pipelines = DenoisePipelines {
+            set_layout,
+            layout,
+            temporal: vk::Pipeline::null(),
+            variance: vk::Pipeline::null(),
+            atrous: vk::Pipeline::null(),
+            modulate: vk::Pipeline::null(),
+        };
+        let made = (|| {
+            pipelines.temporal = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/temporal.comp.spv")))?;
+            pipelines.variance = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/variance.comp.spv")))?;
+            pipelines.atrous = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/atrous.comp.spv")))?;
+            pipelines.modulate = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/modulate.comp.spv")))?;
+            Ok(())
+        })();
+        match made {
+            Ok(()) => Ok(pipelines),
+            Err(e) => {
+                pipelines.destroy(device);
+                Err(e)
+            }
+        }
+    }
+
+    /// Destroys everything (the GPU must be idle); null handles are skipped by Vulkan.
+    pub fn destroy(&mut self, device: &Device) {
+        // Safety: the GPU is done with them; each is destroyed once (null handles are ignored).
+        unsafe {
+            for p in [self.temporal, self.variance, self.atrous, self.modulate] {
+                device.raw.destroy_pipeline(p, None);
+            }
+            device.raw.destroy_pipeline_layout(self.layout, None);
+            device.raw.destroy_descriptor_set_layout(self.set_layout, None);
+        }
+    }
+}
+
+/// Per-pixel bytes of one frame's temporal history (`History` of `denoise/common.glsl`).
+pub const HISTORY_BYTES: u64 = 64;
+/// Per-pixel bytes of the spatial passes' signal (`Signal`).
+pub const SIGNAL_BYTES: u64 = 32;

@@ -1,0 +1,120 @@
+//! The denoiser's settings: `glrt.toml` `[denoise]`, read like the tracer's
+//! ([`crate::config`]); the variables are `GLRT_DENOISE` for `enabled` and
+//! `GLRT_DENOISE_<KEY>` for the others.
+//!
+//! ```toml
+//! [denoise]
+//! enabled = true            # A-SVGF in place of the tracer's temporal filter (also 1 or 0)
+//! iterations = 5            # à-trous iterations, 1..=8
+//! view = "color"            # "color", or "history": each pixel's history length in frames as grey
+//! ```
+//!
+//! With `enabled = false` the tracer's own temporal filter runs (`[pathtrace] temporal`), and
+//! with `temporal = false` too the raw traced samples are shown, for comparison.
+
+use crate::config::{Key, Table, integer_in, one_of, shown};
+
+/// What the denoiser's output shows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum View {
+    /// The denoised colour (`"color"`).
+    #[default]
+    Color,
+    /// Each pixel's history length in frames, as the grey level 0..=255 (`"history"`): where
+    /// reprojection kept the history and where a disocclusion dropped it.
+    History,
+}
+
+/// The `[denoise]` settings.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DenoiseSettings {
+    /// Whether traced frames are denoised (else the tracer's temporal filter resolves them).
+    pub enabled: bool,
+    /// Iterations of the à-trous filter, 1..=8 (the kernel reaches 2^(iterations + 1) pixels).
+    pub iterations: u32,
+    /// What the output shows.
+    pub view: View,
+}
+
+impl Default for DenoiseSettings {
+    fn default() -> DenoiseSettings {
+        DenoiseSettings { enabled: true, iterations: 5, view: View::Color }
+    }
+}
+
+/// A switch: `true`, `false`, `1` or `0`.
+fn switch(value: &toml::Value) -> Result<bool, String> {
+    match value {
+        toml::Value::Boolean(b) => Ok(*b),
+        toml::Value::Integer(0) => Ok(false),
+        toml::Value::Integer(1) => Ok(true),
+        _ => Err(format!("expected true, false, 1 or 0, found {}", shown(value))),
+    }
+}
+
+impl Table for DenoiseSettings {
+    const NAME: &'static str = "denoise";
+    const KEYS: &'static [Key<DenoiseSettings>] = &[
+        Key { name: "enabled", set: |s, v| switch(v).map(|b| s.enabled = b) },
+        Key { name: "iterations", set: |s, v| integer_in(v, 1..=8).map(|x| s.iterations = x as u32) },
+        Key { name: "view", set: |s, v| one_of(v, &["color", "history"]).map(|i| s.view = [View::Color, View::History][i]) },
+    ];
+
+    /// `GLRT_DENOISE` switches the denoiser; `GLRT_DENOISE_ITERATIONS`, `GLRT_DENOISE_VIEW`.
+    fn variable(name: &str) -> String {
+        match name {
+            "enabled" => "GLRT_DENOISE".to_owned(),
+            other => format!("GLRT_DENOISE_{}", other.to_uppercase()),
+        }
+    }
+}
+
+impl DenoiseSettings {
+    /// The settings of this process, read at the first call from the process's
+    /// configuration ([`crate::config::Config::of_process`]); problems are reported then.
+    pub fn of_process() -> DenoiseSettings {
+        static SETTINGS: std::sync::OnceLock<DenoiseSettings> = std::sync::OnceLock::new();
+        *SETTINGS.get_or_init(|| {
+            let (settings, problems) = crate::config::Config::of_process().table::<DenoiseSettings>();
+            crate::config::warn(&problems);
+            settings
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::config::Config;
+
+    fn read(body: &str, env: &[(&str, &str)]) -> (DenoiseSettings, Vec<String>) {
+        let (mut c, warnings) = Config::parse(&format!("[denoise]\n{body}"), "d.toml").unwrap();
+        assert!(warnings.is_empty(), "{warnings:?}");
+        c.apply_env(env.iter().map(|(k, v)| (k.to_string(), v.to_string()))).unwrap();
+        c.table::<DenoiseSettings>()
+    }
+
+    #[test]
+    fn keys_and_variables_are_read() {
+        assert_eq!(read("", &[]), (DenoiseSettings::default(), vec![]));
+        let (s, problems) = read("enabled = false\niterations = 3\nview = \"history\"\n", &[]);
+        assert!(problems.is_empty(), "{problems:?}");
+        assert_eq!(s, DenoiseSettings { enabled: false, iterations: 3, view: View::History });
+        let (s, problems) = read("enabled = false\niterations = 3\n", &[("GLRT_DENOISE", "1"), ("GLRT_DENOISE_ITERATIONS", "7"), ("GLRT_ENABLED", "0")]);
+        assert!(problems.is_empty(), "{problems:?}");
+        assert_eq!((s.enabled, s.iterations), (true, 7));
+        assert!(!read("", &[("GLRT_DENOISE", "0")]).0.enabled);
+        assert!(!read("enabled = 0", &[]).0.enabled);
+    }
+
+    #[test]
+    fn bad_values_are_reported_and_the_default_kept() {
+        let (s, problems) = read("enabled = 2\niterations = 9\n", &[("GLRT_DENOISE_VIEW", "depth")]);
+        assert_eq!(s, DenoiseSettings::default());
+        assert_eq!(problems, [
+            "d.toml:2: denoise.enabled: expected true, false, 1 or 0, found 2; the default is used",
+            "d.toml:3: denoise.iterations: expected an integer in 1..=8, found 9; the default is used",
+            "GLRT_DENOISE_VIEW: expected one of \"color\", \"history\", found \"depth\"; the variable is ignored",
+        ]);
+    }
+}
