@@ -219,7 +219,7 @@ fn replay_stats_prints_one_json_line_per_frame() {
     }
     let last = lines[3];
     let classes = &last[last.find("\"classes\":").unwrap()..];
-    assert!(classes.starts_with("\"classes\":{\"static\":3,\"movable\":1,\"dynamic\":1,\"translucent\":1,\"overlay\":1,\"sky\":1,\"layer\":0}"), "{last}");
+    assert!(classes.starts_with("\"classes\":{\"static\":3,\"movable\":1,\"dynamic\":1,\"translucent\":1,\"overlay\":1,\"sky\":1,\"layer\":0,\"light\":0}"), "{last}");
     assert_eq!((field(last, "static_upload_bytes"), field(last, "camera_cut"), field(last, "matches_found")), ("0", "false", "5"));
 }
 
@@ -271,5 +271,5 @@ fn glrt_toml_tags_textures_and_reports_problems_with_file_and_line() {
     std::fs::write(&config, "ui = [\"0x10\"]\ndynamic = [\"0xnothex\"]\n").unwrap();
     let (out, err) = glrt_with_stderr(&args, &[("GLRT_CONFIG", path)]);
     assert!(err.contains(&format!("{path}:2: dynamic: ")), "{err}");
-    assert_eq!(last_classes(&out), "\"classes\":{\"static\":3,\"movable\":1,\"dynamic\":1,\"translucent\":1,\"overlay\":1,\"sky\":1,\"layer\":0}");
+    assert_eq!(last_classes(&out), "\"classes\":{\"static\":3,\"movable\":1,\"dynamic\":1,\"translucent\":1,\"overlay\":1,\"sky\":1,\"layer\":0,\"light\":0}");
 }

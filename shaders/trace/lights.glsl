@@ -50,6 +50,11 @@ vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout
         float d = sqrt(d2);
         vec3 axis = to_center / d;
         float r = light.radiance.a;
+        // A dynamic light (params.w < 0) does not light what lies inside its sphere: the model
+        // that carries it, whose own colours hold its light already.
+        if (light.params.w < 0.0 && d2 <= r * r) {
+            return vec3(0.0);
+        }
         if (r > 0.0) {
             // A sphere of radiance I / (pi r^2) (lights.rs): a direction uniform in the cone it
             // fills, of solid angle 2 pi (1 - cos_max) (all directions from inside it), so

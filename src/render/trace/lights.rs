@@ -30,9 +30,10 @@
 //! centre) is a GL light of diffuse `c` and quadratic attenuation `1 / falloff`: a point light
 //! of intensity `π · linear(c) · falloff`, a sphere of [`DYNAMIC_SOURCE`] of its radius (at
 //! least the settings' `light_radius`): its centre lies inside the model that carries it (a
-//! rocket, a gun), which must not shadow it, and shadow rays end on the sphere. It reaches as
-//! far as its radius, as the program's pass does (`params.z`: the light fades smoothly to
-//! nothing there, `shaders/trace/lights.glsl`). Baked surfaces reflect it too
+//! rocket, a gun), which must not shadow it, and shadow rays end on the sphere; what lies
+//! inside the sphere (that model: its colours hold the light already) it does not light. It
+//! reaches as far as its radius, as the program's pass does (`params.z`: the light fades
+//! smoothly to nothing there, `shaders/trace/lights.glsl`). Baked surfaces reflect it too
 //! (`params.w = -1`): their bake holds the level's lights, never a rocket's.
 
 use glam::{Mat4, Vec3};
