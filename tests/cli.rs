@@ -28,12 +28,13 @@ fn help_of_the_command_and_each_subcommand() {
         .take_while(|l| !l.is_empty())
         .filter_map(|l| l.split_whitespace().next())
         .collect();
-    assert_eq!(listed, ["info", "replay", "dump", "run", "help"], "{help}");
+    assert_eq!(listed, ["info", "replay", "dump", "run", "radiosity", "help"], "{help}");
     for (command, usage, option) in [
         ("info", "Usage: glrt info [FILE]", "Lists the Vulkan devices"),
         ("replay", "Usage: glrt replay [OPTIONS] <FILE>", "--frames <A..B>"),
         ("dump", "Usage: glrt dump <FILE>", "GLRT_TRACE format"),
         ("run", "Usage: glrt run [OPTIONS] <PROGRAM ARGS>...", "glrt run -- %command%"),
+        ("radiosity", "Usage: glrt radiosity <FILE>", "k-bounce matrix"),
     ] {
         let out = glrt(&[command, "--help"], &[]);
         let help = text(&out.stdout);
