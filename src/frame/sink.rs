@@ -37,11 +37,12 @@ pub trait FrameSink: Send {
 
     /// Whether frames must keep the triangles that face culling removes (the default, for
     /// sinks that record or inspect frames). A rasterizer draws nothing of them and says no:
-    /// `translate` then drops batches it would cull entirely ([`crate::translate::cull`]); a
-    /// path tracer keeps them (a culled face still casts shadows and bounces light).
+    /// the front end then drops batches it would cull entirely; a path tracer keeps them (a
+    /// culled face still casts shadows and bounces light).
     fn keeps_culled_triangles(&self) -> bool {
         true
     }
+
     /// Renders `frame` so far (it is not ended) and reads the rectangle `rect` (x, y, width,
     /// height, window coordinates) of `buffer`: RGBA for colour, the value in the first
     /// component for depth and stencil; rows bottom to top. `None` when the sink cannot
