@@ -5,7 +5,8 @@
 # (`--rebatch --detail 11`), each path traced for FRAMES frames: frame times and the tracer's
 # summary (`GLRT_LOG=info`: rays per frame by kind, GPU time of the tracing pass, rays/s);
 # then parity images, 64 samples per pixel of one frame from each back end (both draw the
-# same random numbers per pixel and sample), compared afterwards with `python3 scripts/png_luma.py --diff A B`.
+# same random numbers per pixel and sample; glxgears too when BIN_DIR has the glrt command),
+# compared afterwards with `python3 scripts/png_luma.py --diff A B`.
 #   bash bench/tracers.sh BIN_DIR OUT_DIR [FRAMES] [SIZE]
 # BIN_DIR holds a release build's libglrt.so and glrt-demo.
 set -uo pipefail
@@ -36,4 +37,13 @@ for tracer in compute hardware; do
     run "parity-demo-$tracer" "GLRT_TRACER=$tracer GLRT_SPP=64" --first-frame 120 --frames 2 --screenshot "$out/demo-120-$tracer.png"
     run "parity-q3-$tracer" "GLRT_TRACER=$tracer GLRT_SPP=64" --q3 --first-frame 300 --frames 2 --screenshot "$out/q3-300-$tracer.png"
 done
+# glxgears (the captured fixture, replayed by the glrt command when BIN_DIR has it), frame 2.
+if [[ -x $bin/glrt ]]; then
+    for tracer in compute hardware; do
+        echo "== parity-glxgears-$tracer"
+        "${clean[@]}" GLRT_TRACER=$tracer GLRT_SPP=64 "$bin/glrt" replay tests/fixtures/glxgears.glrtcap --frames 2..3 --out "$out/glxgears-$tracer" 2>&1 \
+            | grep -E "path tracer|error|WARN" || echo "(no output: exit $?)"
+        mv "$out/glxgears-$tracer/frame-00002.png" "$out/glxgears-2-$tracer.png" && rmdir "$out/glxgears-$tracer"
+    done
+fi
 ls -la "$out"
