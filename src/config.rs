@@ -362,6 +362,16 @@ pub fn warn(warnings: &[String]) {
     warnings.iter().for_each(|w| eprintln!("glrt: warning: {w}"));
 }
 
+/// Tests of settings tables: table `T` of a file holding `[T::NAME]` with `body`, with the
+/// variables `env`, and the problems reported (the file itself must parse without warnings).
+#[cfg(test)]
+pub(crate) fn read_table<T: Table>(body: &str, env: &[(&str, &str)]) -> (T, Vec<String>) {
+    let (mut c, warnings) = Config::parse(&format!("[{}]\n{body}", T::NAME), "t.toml").unwrap();
+    assert!(warnings.is_empty(), "{warnings:?}");
+    c.apply_env(env.iter().map(|(k, v)| (k.to_string(), v.to_string()))).unwrap();
+    c.table::<T>()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

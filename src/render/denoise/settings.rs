@@ -85,13 +85,10 @@ impl DenoiseSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::Config;
 
+    /// The settings and problems of `[denoise]` holding `body`, with the variables `env`.
     fn read(body: &str, env: &[(&str, &str)]) -> (DenoiseSettings, Vec<String>) {
-        let (mut c, warnings) = Config::parse(&format!("[denoise]\n{body}"), "d.toml").unwrap();
-        assert!(warnings.is_empty(), "{warnings:?}");
-        c.apply_env(env.iter().map(|(k, v)| (k.to_string(), v.to_string()))).unwrap();
-        c.table::<DenoiseSettings>()
+        crate::config::read_table(body, env)
     }
 
     #[test]
@@ -112,8 +109,8 @@ mod tests {
         let (s, problems) = read("enabled = 2\niterations = 9\n", &[("GLRT_DENOISE_VIEW", "depth")]);
         assert_eq!(s, DenoiseSettings::default());
         assert_eq!(problems, [
-            "d.toml:2: denoise.enabled: expected true, false, 1 or 0, found 2; the default is used",
-            "d.toml:3: denoise.iterations: expected an integer in 1..=8, found 9; the default is used",
+            "t.toml:2: denoise.enabled: expected true, false, 1 or 0, found 2; the default is used",
+            "t.toml:3: denoise.iterations: expected an integer in 1..=8, found 9; the default is used",
             "GLRT_DENOISE_VIEW: expected one of \"color\", \"history\", found \"depth\"; the variable is ignored",
         ]);
     }

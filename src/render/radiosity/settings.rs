@@ -68,13 +68,10 @@ impl Settings {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::Config;
 
+    /// The settings and problems of `[radiosity]` holding `body`, with the variables `env`.
     fn read(body: &str, env: &[(&str, &str)]) -> (Settings, Vec<String>) {
-        let (mut c, warnings) = Config::parse(&format!("[radiosity]\n{body}"), "r.toml").unwrap();
-        assert!(warnings.is_empty(), "{warnings:?}");
-        c.apply_env(env.iter().map(|(k, v)| (k.to_string(), v.to_string()))).unwrap();
-        c.table::<Settings>()
+        crate::config::read_table(body, env)
     }
 
     #[test]
@@ -102,7 +99,7 @@ mod tests {
         ] {
             let (s, problems) = read(line, &[]);
             assert_eq!(s, Settings::default(), "{line}");
-            assert_eq!(problems, [format!("r.toml:2: radiosity.{message}; the default is used")], "{line}");
+            assert_eq!(problems, [format!("t.toml:2: radiosity.{message}; the default is used")], "{line}");
         }
     }
 }

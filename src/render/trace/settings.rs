@@ -195,14 +195,10 @@ impl Settings {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::config::Config;
 
     /// The settings and problems of `[pathtrace]` holding `body`, with the variables `env`.
     fn read(body: &str, env: &[(&str, &str)]) -> (Settings, Vec<String>) {
-        let (mut c, warnings) = Config::parse(&format!("[pathtrace]\n{body}"), "p.toml").unwrap();
-        assert!(warnings.is_empty(), "{warnings:?}");
-        c.apply_env(env.iter().map(|(k, v)| (k.to_string(), v.to_string()))).unwrap();
-        c.table::<Settings>()
+        crate::config::read_table(body, env)
     }
 
     #[test]
@@ -264,12 +260,12 @@ mod tests {
         for (line, message) in cases {
             let (s, problems) = read(&format!("\n{line}\n"), &[]);
             assert_eq!(s, Settings::default(), "{line}");
-            assert_eq!(problems, [format!("p.toml:3: pathtrace.{message}; the default is used")], "{line}");
+            assert_eq!(problems, [format!("t.toml:3: pathtrace.{message}; the default is used")], "{line}");
         }
         let (s, problems) = read("spp = 4\nsamples = 3\n", &[]);
         assert_eq!(s.spp, 4);
         assert_eq!(problems.len(), 1);
-        assert!(problems[0].starts_with("p.toml:3: pathtrace.samples: unknown key (known: spp, bounces, resolution_scale,"), "{}", problems[0]);
+        assert!(problems[0].starts_with("t.toml:3: pathtrace.samples: unknown key (known: spp, bounces, resolution_scale,"), "{}", problems[0]);
     }
 
     #[test]
