@@ -29,6 +29,9 @@
 //! converges to the traced mean. Temporal gradients (A-SVGF's history dropped where lighting
 //! changed) are not built yet: a light switched on reaches the image through the history cap.
 //!
+//! The passes are timed on GPUs (timestamps; CPU devices have none that bracket compute work):
+//! [`Denoiser::destroy`] logs their average times per frame at `GLRT_LOG=info`.
+//!
 //! Modules: [`settings`] (`[denoise]`, `GLRT_DENOISE=0|1`), [`pipelines`] (layouts, push
 //! constants, pipelines), [`shader_constants`] (bindings and flags shared with the shaders).
 
@@ -64,6 +67,61 @@ struct PixelBuffers {
     set: vk::DescriptorSet,
 }
 
+/// Frame slots whose passes are timed (frames in flight are fewer).
+const TIMED_SLOTS: u32 = 4;
+/// Timestamps per frame: before the temporal pass and after each of the four steps.
+const STAMPS: u32 = 5;
+/// The steps timed, in order.
+const STEPS: [&str; 4] = ["temporal", "variance", "a-trous", "modulate"];
+
+/// GPU time of the passes, from timestamps, summed over the frames read.
+struct PassTimes {
+    pool: vk::QueryPool,
+    /// Per slot: whether it recorded a frame whose timestamps were not read yet.
+    unread: [bool; TIMED_SLOTS as usize],
+    /// Seconds per step, summed.
+    seconds: [f64; 4],
+    frames: u64,
+}
+
+impl PassTimes {
+    /// Timestamps for GPUs that time compute work; `None` for CPU devices.
+    fn new(device: &Device) -> Result<Option<PassTimes>> {
+        let timed = device.properties.limits.timestamp_compute_and_graphics == vk::TRUE && device.properties.device_type != vk::PhysicalDeviceType::CPU;
+        if !timed {
+            return Ok(None);
+        }
+        let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(STAMPS * TIMED_SLOTS);
+        // Safety: valid create info; destroyed in `Denoiser::destroy`.
+        let pool = unsafe { device.raw.create_query_pool(&info, None) }.check("vkCreateQueryPool")?;
+        Ok(Some(PassTimes { pool, unread: [false; TIMED_SLOTS as usize], seconds: [0.0; 4], frames: 0 }))
+    }
+
+    /// Adds the times of the frame slot `slot` recorded last, once its fence has signalled.
+    fn read(&mut self, device: &Device, slot: usize) {
+        if !self.unread.get_mut(slot).is_some_and(std::mem::take) {
+            return;
+        }
+        let mut ticks = [0u64; STAMPS as usize];
+        // Safety: the queries were written by the slot's finished frame.
+        if unsafe { device.raw.get_query_pool_results(self.pool, STAMPS * slot as u32, &mut ticks, vk::QueryResultFlags::TYPE_64) }.is_err() {
+            return;
+        }
+        let period = f64::from(device.properties.limits.timestamp_period) * 1e-9;
+        for (step, seconds) in self.seconds.iter_mut().enumerate() {
+            *seconds += ticks[step + 1].wrapping_sub(ticks[step]) as f64 * period;
+        }
+        self.frames += 1;
+    }
+
+    /// One line: the average GPU time per frame of each step and of all.
+    fn summary(&self) -> String {
+        let n = self.frames.max(1) as f64;
+        let steps: Vec<String> = STEPS.iter().zip(&self.seconds).map(|(name, s)| format!("{name} {:.3}", s * 1e3 / n)).collect();
+        format!("denoiser: {} frames timed; GPU ms per frame: {}, all {:.3}", self.frames, steps.join(", "), self.seconds.iter().sum::<f64>() * 1e3 / n)
+    }
+}
+
 /// The A-SVGF stage.
 pub struct Denoiser {
     settings: DenoiseSettings,
@@ -71,12 +129,14 @@ pub struct Denoiser {
     pixels: Option<PixelBuffers>,
     /// Which half of the history this frame reads (the other is written).
     parity: u32,
+    /// The passes' GPU times (`None`: not timed).
+    times: Option<PassTimes>,
 }
 
 impl Denoiser {
     /// Creates the pipelines; the buffers come with the first frame.
     pub fn new(device: &Device, settings: DenoiseSettings) -> Result<Denoiser> {
-        Ok(Denoiser { settings, pipelines: DenoisePipelines::new(device)?, pixels: None, parity: 0 })
+        Ok(Denoiser { settings, pipelines: DenoisePipelines::new(device)?, pixels: None, parity: 0, times: PassTimes::new(device)? })
     }
 
     /// (Re)creates the buffers and the set for `radiance`'s size and buffers; a new history
@@ -131,6 +191,7 @@ impl Denoiser {
     /// settings (exposure, history cap, tone mapping), into the image the composite draws.
     pub fn record(&mut self, rec: &mut Recorder<'_>, frame: &GpuFrame, radiance: &Radiance) -> Result<TracedImage> {
         let (device, cmd) = (rec.device, rec.cmd);
+        let slot = rec.slot();
         self.ensure_pixels(device, cmd, radiance)?;
         let Some(pixels) = &self.pixels else { return Ok(TracedImage { size: radiance.size, output: radiance.output }) };
         let [w, h] = radiance.size;
@@ -156,25 +217,60 @@ impl Denoiser {
                 barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
             }
         };
+        let timed = match &mut self.times {
+            Some(times) if (slot as u32) < TIMED_SLOTS => {
+                times.read(device, slot);
+                times.unread[slot] = true;
+                Some(times.pool)
+            }
+            _ => None,
+        };
+        // Timestamp `k` of this frame (after step k, 0 before the first).
+        let stamp = |k: u32| {
+            if let Some(pool) = timed {
+                // Safety: as above; the slot's queries were read (or never written).
+                unsafe {
+                    if k == 0 {
+                        d.cmd_reset_query_pool(cmd, pool, STAMPS * slot as u32, STAMPS);
+                    }
+                    d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, STAMPS * slot as u32 + k);
+                }
+            }
+        };
         // Safety: as above.
         unsafe { d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, layout, 0, &[pixels.set], &[]) };
+        stamp(0);
         // The signal ping-pongs between its halves, starting at 0 and n.
         run(self.pipelines.temporal, 1, 0, 0);
+        stamp(1);
         run(self.pipelines.variance, 1, 0, n);
+        stamp(2);
         let mut current = n;
         for iteration in 0..self.settings.iterations {
             let other = n - current;
             run(self.pipelines.atrous, 1 << iteration, current, other);
             current = other;
         }
+        stamp(3);
         run(self.pipelines.modulate, 1, current, 0);
+        stamp(4);
         // Safety: as above.
         unsafe { barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::HOST) };
         Ok(TracedImage { size: radiance.size, output: radiance.output })
     }
 
-    /// Frees the GPU objects (the GPU must be idle).
+    /// Frees the GPU objects (the GPU must be idle), after logging the passes' times.
     pub fn destroy(&mut self, device: &Device) {
+        if let Some(mut times) = self.times.take() {
+            for slot in 0..TIMED_SLOTS as usize {
+                times.read(device, slot);
+            }
+            if times.frames > 0 {
+                log::info!("{}", times.summary());
+            }
+            // Safety: the GPU is idle.
+            unsafe { device.raw.destroy_query_pool(times.pool, None) };
+        }
         if let Some(p) = self.pixels.take() {
             destroy_pixels(device, p);
         }
@@ -187,4 +283,15 @@ fn destroy_pixels(device: &Device, p: PixelBuffers) {
     unsafe { device.raw.destroy_descriptor_pool(p.pool, None) };
     device.destroy_buffer(p.history);
     device.destroy_buffer(p.signal);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_pass_summary_averages_each_step_over_the_frames() {
+        let times = PassTimes { pool: vk::QueryPool::null(), unread: [false; 4], seconds: [0.002, 0.001, 0.004, 0.001], frames: 2 };
+        assert_eq!(times.summary(), "denoiser: 2 frames timed; GPU ms per frame: temporal 1.000, variance 0.500, a-trous 2.000, modulate 0.500, all 4.000");
+    }
 }
