@@ -11,6 +11,26 @@ use super::Frame;
 use super::pixels::PixelBuffer;
 use super::target::Target;
 
+/// Inside `impl FrameSink for W`, where `W` wraps another sink in its field `inner`: forwards
+/// `set_target` and the occlusion queries to it, so a wrapper (a tap, a repeater, a frame
+/// filter) answers them as the sink it wraps; `present`, `read_pixels` and
+/// `keeps_culled_triangles` stay the wrapper's own (a tap that inspects frames keeps culled
+/// triangles whatever it wraps).
+#[macro_export]
+macro_rules! forward_to_inner_sink {
+    () => {
+        fn set_target(&mut self, target: $crate::frame::target::Target) {
+            self.inner.set_target(target);
+        }
+        fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
+            self.inner.occlusion_result(frame, query)
+        }
+        fn occlusion_counter_bits(&self) -> u32 {
+            self.inner.occlusion_counter_bits()
+        }
+    };
+}
+
 /// Receives each finished frame.
 pub trait FrameSink: Send {
     /// Takes the frame that `glXSwapBuffers` (or a read-back) ended.

@@ -14,7 +14,7 @@
 //! frame, not those of the frames before it.
 
 use crate::frame::pixels::PixelBuffer;
-use crate::frame::{Frame, FrameSink, Target};
+use crate::frame::{Frame, FrameSink};
 
 /// A sink that hands frames `first` and later to `inner` whole, and the earlier ones empty.
 pub struct FramesFrom {
@@ -48,17 +48,7 @@ impl FrameSink for FramesFrom {
         self.inner.present(Frame { number, size, released, end, ..Frame::default() });
     }
 
-    fn set_target(&mut self, target: Target) {
-        self.inner.set_target(target);
-    }
-
-    fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
-        self.inner.occlusion_result(frame, query)
-    }
-
-    fn occlusion_counter_bits(&self) -> u32 {
-        self.inner.occlusion_counter_bits()
-    }
+    crate::forward_to_inner_sink!();
 
     fn keeps_culled_triangles(&self) -> bool {
         self.inner.keeps_culled_triangles()

@@ -5,7 +5,7 @@
 //! repetition, through the pixel centres like the frames they are compared with.
 
 use crate::frame::pixels::PixelBuffer;
-use crate::frame::{Frame, FrameSink, Target};
+use crate::frame::{Frame, FrameSink};
 
 /// A sink that presents each frame `times` times to `inner`.
 pub struct FramesRepeated {
@@ -27,14 +27,9 @@ impl FrameSink for FramesRepeated {
         }
         self.inner.present(frame);
     }
-    fn set_target(&mut self, target: Target) {
-        self.inner.set_target(target);
-    }
-    fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
-        self.inner.occlusion_result(frame, query)
-    }
-    fn occlusion_counter_bits(&self) -> u32 {
-        self.inner.occlusion_counter_bits()
+    crate::forward_to_inner_sink!();
+    fn keeps_culled_triangles(&self) -> bool {
+        self.inner.keeps_culled_triangles()
     }
     fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
         self.inner.read_pixels(frame, buffer, rect)

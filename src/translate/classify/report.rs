@@ -10,7 +10,7 @@ use parking_lot::Mutex;
 
 use crate::frame::Frame;
 use crate::frame::pixels::PixelBuffer;
-use crate::frame::{FrameSink, Target};
+use crate::frame::FrameSink;
 
 /// Calls a function on each frame (classified), then hands the frame to `inner`: `glrt replay
 /// --stats` prints its statistics ([`print_stats`]), `--bench` adds up its classification time.
@@ -36,15 +36,7 @@ impl FrameSink for FrameTap {
         (self.tap)(&frame);
         self.inner.present(frame);
     }
-    fn set_target(&mut self, target: Target) {
-        self.inner.set_target(target);
-    }
-    fn occlusion_result(&mut self, frame: u64, query: u32) -> Option<u64> {
-        self.inner.occlusion_result(frame, query)
-    }
-    fn occlusion_counter_bits(&self) -> u32 {
-        self.inner.occlusion_counter_bits()
-    }
+    crate::forward_to_inner_sink!();
     fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
         self.inner.read_pixels(frame, buffer, rect)
     }
