@@ -74,6 +74,8 @@ mod texenv_codes;
 mod denoise_constants;
 #[path = "../src/render/raster/ff/shader_interface.rs"]
 mod ff_interface;
+#[path = "../src/render/radiosity/shader_constants.rs"]
+mod radiosity_constants;
 
 /// One header: its name, the Rust file it comes from, its constants and fields.
 struct Source {
@@ -88,6 +90,7 @@ const SOURCES: &[Source] = &[
     Source { name: "trace_bindings", rust: "src/render/trace/bindings.rs", constants: trace_bindings::CONSTANTS, fields: &[] },
     Source { name: "trace_constants", rust: "src/render/trace/shader_constants.rs", constants: trace_constants::CONSTANTS, fields: trace_constants::FIELDS },
     Source { name: "denoise_constants", rust: "src/render/denoise/shader_constants.rs", constants: denoise_constants::CONSTANTS, fields: &[] },
+    Source { name: "radiosity_constants", rust: "src/render/radiosity/shader_constants.rs", constants: radiosity_constants::CONSTANTS, fields: &[] },
     Source { name: "texenv_codes", rust: "src/render/texenv/codes.rs", constants: texenv_codes::CONSTANTS, fields: texenv_codes::FIELDS },
     Source { name: "ff_interface", rust: "src/render/raster/ff/shader_interface.rs", constants: ff_interface::CONSTANTS, fields: ff_interface::FIELDS },
 ];

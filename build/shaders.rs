@@ -87,6 +87,14 @@ const LAYOUTS: &[LayoutFile] = &[
             ("denoise/atrous.comp", &[mirror("Signal", Rust::SizeConstant("SIGNAL_BYTES"))]),
         ],
     },
+    // render::radiosity::gpu::form_factors
+    LayoutFile {
+        name: "radiosity_gpu_types",
+        shaders: &[(
+            "radiosity/form_factors.comp",
+            &[mirror("Patch", Rust::Struct("GpuPatch")), mirror("PatchTriangle", Rust::Struct("GpuPatchTriangle")), mirror("FormFactorPass", Rust::Struct("GpuPass"))],
+        )],
+    },
     // render::trace::composite
     LayoutFile { name: "trace_composite", shaders: &[("trace_composite.frag", &[mirror("Sizes", Rust::SizeConstant("PUSH_BYTES"))])] },
     // render::raster::ff::uniforms

@@ -1,4 +1,5 @@
-//! Form factors on the CPU, the reference a GPU version is checked against: point-to-patch
+//! Form factors on the CPU, the reference the GPU version ([`super::gpu::form_factors`], the
+//! same method in `shaders/radiosity/form_factors.comp`) is checked against: point-to-patch
 //! with visibility by ray casting against the tracer's BVH.
 //!
 //! `F_ij` is the form factor from receiver `i` to source `j` as the gathering equation
@@ -29,13 +30,14 @@
 use glam::{Affine3A, DVec3, Vec3};
 
 use super::patches::{Patches, area, face_normal};
+use super::shader_constants;
 use crate::render::trace::bvh::cpu::{self, Instance, Scene};
 use crate::render::trace::bvh::{Blas, Tlas};
 
 /// Visibility rays per source patch and receiver point.
-pub const VISIBILITY_SAMPLES: usize = 4;
+const VISIBILITY_SAMPLES: usize = shader_constants::VISIBILITY_SAMPLES as usize;
 /// Most receiver points of a patch: the centroids of its first triangles.
-pub const RECEIVER_POINTS: usize = 8;
+const RECEIVER_POINTS: usize = shader_constants::RECEIVER_POINTS as usize;
 
 /// A dense form-factor matrix: `values[i * n + j]` = `F_ij`, receiver `i`, source `j`.
 #[derive(Clone, Debug, PartialEq)]

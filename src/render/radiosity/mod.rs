@@ -4,7 +4,8 @@
 //! 1. [`patches`]: the static world's chunks fitted to patches of a target size, in a stable
 //!    order, with the world's hash.
 //! 2. [`form_factors`]: the form-factor matrix (CPU reference: point-to-patch contour integral
-//!    with visibility rays through the tracer's BVH).
+//!    with visibility rays through the tracer's BVH); [`gpu::form_factors`] computes the same
+//!    on the GPU, with the numbers they share in [`shader_constants`].
 //! 3. [`bounces`]: the colour matrix and the k-bounce matrix, and the Neumann series they are
 //!    checked against, over the dense [`matrix`] type.
 //! 4. [`compress`]: the seed's compression: [`sparse`] top share, [`quantise`]d rest,
@@ -13,21 +14,22 @@
 //! [`precompute`] runs these steps within the memory budget of the [`settings`] and reports
 //! times, sizes and errors (`glrt radiosity`).
 //!
-//! Not yet here: the GPU form factors, the per-frame update (direct light on the patches, the
+//! Not yet here: the per-frame update (direct light on the patches, the
 //! product from the BC1 texture), the transfer to surfaces and the tracer, and the disk cache.
 
 pub mod bc1;
 pub mod bounces;
 pub mod compress;
 pub mod form_factors;
+pub mod gpu;
 pub mod matrix;
 pub mod patches;
 pub mod precompute;
 pub mod quantise;
 pub mod reorder;
 pub mod settings;
+pub mod shader_constants;
 pub mod sparse;
-#[cfg(test)]
-mod test_scenes;
+pub mod test_scenes;
 #[cfg(test)]
 mod tests;

@@ -1,4 +1,5 @@
-//! Scenes for the radiosity tests: quads as static-world chunks and the patches of a closed box.
+//! Scenes for the radiosity tests (the crate's and `tests/radiosity`'s): quads as static-world
+//! chunks and the patches of a closed box.
 
 use std::sync::{Arc, OnceLock};
 
