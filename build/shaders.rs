@@ -95,6 +95,11 @@ const LAYOUTS: &[LayoutFile] = &[
             &[mirror("Patch", Rust::Struct("GpuPatch")), mirror("PatchTriangle", Rust::Struct("GpuPatchTriangle")), mirror("FormFactorPass", Rust::Struct("GpuPass"))],
         )],
     },
+    // render::radiosity::gpu::gather
+    LayoutFile {
+        name: "radiosity_gather_types",
+        shaders: &[("radiosity/gather.comp", &[mirror("SparseEntry", Rust::Struct("GpuSparseEntry")), mirror("GatherPass", Rust::Struct("GpuGatherPass"))])],
+    },
     // render::trace::composite
     LayoutFile { name: "trace_composite", shaders: &[("trace_composite.frag", &[mirror("Sizes", Rust::SizeConstant("PUSH_BYTES"))])] },
     // render::raster::ff::uniforms

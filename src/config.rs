@@ -362,6 +362,16 @@ pub fn warn(warnings: &[String]) {
     warnings.iter().for_each(|w| eprintln!("glrt: warning: {w}"));
 }
 
+/// The user's cache directory: `$XDG_CACHE_HOME`, else `~/.cache`, else the temporary
+/// directory (glrt keeps its files under `glrt/` there).
+pub fn cache_dir() -> PathBuf {
+    std::env::var_os("XDG_CACHE_HOME")
+        .filter(|d| !d.is_empty())
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").filter(|d| !d.is_empty()).map(|home| Path::new(&home).join(".cache")))
+        .unwrap_or_else(std::env::temp_dir)
+}
+
 /// Tests of settings tables: table `T` of a file holding `[T::NAME]` with `body`, with the
 /// variables `env`, and the problems reported (the file itself must parse without warnings).
 #[cfg(test)]
@@ -464,3 +474,4 @@ mod tests {
         assert_eq!(Config::default().table::<Knobs>(), (Knobs::default(), vec![]), "no file, no variables: defaults");
     }
 }
+

@@ -70,8 +70,14 @@ enum Command {
     ///
     /// Replays FILE without drawing, then computes form factors, the k-bounce matrix and its
     /// compression for the static world of the last frame with the [radiosity] settings
-    /// (glrt.toml, GLRT_*), and prints times, sizes and errors as Markdown.
+    /// (glrt.toml, GLRT_*), and prints times, sizes and errors as Markdown. The form factors
+    /// are computed on the Vulkan device (GLRT_DEVICE), on the CPU without one.
     Radiosity {
+        /// Only the compressed matrix the renderer uses: read from the cache
+        /// ($XDG_CACHE_HOME/glrt/radiosity/) when it holds this world's, else computed and
+        /// written there
+        #[arg(long)]
+        matrix: bool,
         /// The capture file.
         file: PathBuf,
     },
@@ -90,7 +96,7 @@ fn main() -> ExitCode {
         Command::Replay(args) => replay::run(&args),
         Command::Dump { file } => Capture::open(&file).and_then(|capture| dump(&capture)),
         Command::Run(args) => run::run(&args),
-        Command::Radiosity { file } => Capture::open(&file).and_then(|capture| radiosity::run(&capture)),
+        Command::Radiosity { matrix, file } => Capture::open(&file).and_then(|capture| radiosity::run(&capture, matrix)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

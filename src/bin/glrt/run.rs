@@ -126,11 +126,7 @@ fn library() -> Result<PathBuf, String> {
 /// missing or pointing elsewhere; each link is made under a temporary name and renamed over,
 /// so programs started at the same time never see a missing or half-made one).
 fn link_dir(library: &Path) -> Result<PathBuf, String> {
-    let cache = std::env::var_os("XDG_CACHE_HOME")
-        .filter(|d| !d.is_empty())
-        .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").filter(|d| !d.is_empty()).map(|home| Path::new(&home).join(".cache")))
-        .unwrap_or_else(std::env::temp_dir);
+    let cache = glrt::config::cache_dir();
     let hash = xxhash_rust::xxh3::xxh3_64(library.as_os_str().as_encoded_bytes());
     let dir = cache.join("glrt").join(format!("lib-{hash:016x}"));
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;

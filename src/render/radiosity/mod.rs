@@ -12,13 +12,15 @@
 //!    [`reorder`]ed, [`bc1`] blocks, and the round trip's errors.
 //!
 //! [`precompute`] runs these steps within the memory budget of the [`settings`] and reports
-//! times, sizes and errors (`glrt radiosity`).
+//! times, sizes and errors (`glrt radiosity`), or builds the matrix the renderer uses, kept
+//! on disk by [`cache`] (`glrt radiosity --matrix`).
 //!
 //! Not yet here: the per-frame update (direct light on the patches, the
-//! product from the BC1 texture), the transfer to surfaces and the tracer, and the disk cache.
+//! product from the BC1 texture), and the transfer to surfaces and the tracer.
 
 pub mod bc1;
 pub mod bounces;
+pub mod cache;
 pub mod compress;
 pub mod form_factors;
 pub mod gpu;

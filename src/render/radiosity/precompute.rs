@@ -5,14 +5,16 @@
 //! [`Report`]; `bench/radiosity.md` keeps its numbers.
 
 use std::fmt::Write;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use glam::Vec3;
 
 use super::bounces::{colour_matrix, gather, k_bounce, neumann};
-use super::compress::{self, Errors, LogRange, compress};
-use super::form_factors;
+use super::cache;
+use super::compress::{self, CompressedMatrix, Errors, LogRange, compress};
+use super::form_factors::FormFactors;
 use super::patches::{self, Patches, area};
 use super::settings::Settings;
 use crate::frame::world::StaticChunk;
@@ -24,29 +26,84 @@ const TOLERANCE: f32 = 1.0e-6;
 
 /// The patches of `chunks` at the settings' patch size, or, when it is 0, at the smallest
 /// size (from `sqrt(area / max patches)` up, by [`GROWTH`]) whose patches fit the budget.
-/// Fails with a message when a given size makes more patches than the budget holds.
-pub fn patches_within_budget(chunks: &[Arc<StaticChunk>], settings: &Settings) -> Result<Patches, String> {
+/// When a given size makes more patches than the budget holds, the automatic size is used
+/// instead and the note says so.
+pub fn patches_within_budget(chunks: &[Arc<StaticChunk>], settings: &Settings) -> (Patches, Option<String>) {
     let max = settings.max_patches();
+    let mut note = None;
     if settings.patch_size > 0.0 {
         let p = patches::build(chunks, settings.patch_size);
-        return if p.patches.len() <= max {
-            Ok(p)
-        } else {
-            Err(format!("{} patches of size {} exceed the budget of {} MiB ({max} patches): raise radiosity_budget_mb or patch_size", p.patches.len(), settings.patch_size, settings.budget_mb))
-        };
+        if p.patches.len() <= max {
+            return (p, None);
+        }
+        note = Some(format!(
+            "{} patches of size {} exceed the memory budget of {} MiB ({max} patches): using larger patches (raise radiosity_budget_mb or patch_size)",
+            p.patches.len(),
+            settings.patch_size,
+            settings.budget_mb
+        ));
     }
     let total: f32 = chunks.iter().flat_map(|c| c.positions.chunks_exact(3)).map(|t| area(&[t[0].into(), t[1].into(), t[2].into()])).filter(|a| a.is_finite()).sum();
     if !(total > 0.0) {
-        return Ok(patches::build(&[], 1.0));
+        return (patches::build(&[], 1.0), note);
     }
     let mut size = (total / max as f32).sqrt();
     loop {
         let p = patches::build(chunks, size);
         if p.patches.len() <= max {
-            return Ok(p);
+            if let Some(n) = &mut note {
+                *n = format!("{n}; size {size:.4}, {} patches", p.patches.len());
+            }
+            return (p, note);
         }
         size *= GROWTH;
     }
+}
+
+/// The log range of the matrix the renderer uses (it halves the summed error of the seed's
+/// on the test box, `bench/radiosity.md`).
+pub const RANGE: LogRange = LogRange::Fitted;
+
+/// A static world's radiosity as the renderer uses it.
+pub struct StaticRadiosity {
+    /// The patches.
+    pub patches: Patches,
+    /// The compressed k-bounce matrix ([`RANGE`], [`compress::REORDER_PASSES`] passes).
+    pub matrix: CompressedMatrix,
+    /// Whether the matrix came from the cache.
+    pub loaded: bool,
+    /// The cache file (read or written), when there is a cache directory.
+    pub cache_file: Option<PathBuf>,
+    /// What the user should know: the budget's fallback, an unusable or unwritable cache file.
+    pub notes: Vec<String>,
+}
+
+/// The patches of `chunks` and their compressed matrix: read from the cache under the
+/// directory `cache` when it holds this world's under these settings, else computed (the
+/// form factors by `form_factors`) and written there. A cache file that cannot be used is
+/// recomputed, with a note saying why.
+pub fn load_or_build(chunks: &[Arc<StaticChunk>], settings: &Settings, cache: Option<&Path>, form_factors: &mut dyn FnMut(&Patches) -> FormFactors) -> StaticRadiosity {
+    let (patches, note) = patches_within_budget(chunks, settings);
+    let mut notes: Vec<String> = note.into_iter().collect();
+    let key = cache::key(patches.world_hash, settings, RANGE, compress::REORDER_PASSES);
+    let cache_file = cache.map(|dir| cache::path(dir, key));
+    if let Some(file) = &cache_file {
+        match cache::load(file, key) {
+            Ok(Some(matrix)) if matrix.order.len() == patches.patches.len() => return StaticRadiosity { patches, matrix, loaded: true, cache_file, notes },
+            Ok(Some(_)) => notes.push(format!("radiosity cache {}: its size differs from the patches': recomputing", file.display())),
+            Ok(None) => {}
+            Err(e) => notes.push(format!("{e}: recomputing")),
+        }
+    }
+    let f = form_factors(&patches);
+    let albedo: Vec<Vec3> = patches.patches.iter().map(|x| x.albedo).collect();
+    let matrix = compress(&k_bounce(&colour_matrix(&f, &albedo), settings.bounces), settings.top_share, compress::REORDER_PASSES, RANGE);
+    if let Some(file) = &cache_file {
+        if let Err(e) = cache::save(file, key, &matrix) {
+            notes.push(e);
+        }
+    }
+    StaticRadiosity { patches, matrix, loaded: false, cache_file, notes }
 }
 
 /// One compression of the k-bounce matrix.
@@ -67,6 +124,8 @@ pub struct Compressed {
 /// What the precompute measured.
 #[derive(Clone, Debug)]
 pub struct Report {
+    /// What the user should know (the budget's fallback).
+    pub notes: Vec<String>,
     /// Triangles of the static world.
     pub triangles: usize,
     /// Patch size used.
@@ -94,13 +153,14 @@ pub struct Report {
     pub frame_times: [Duration; 2],
 }
 
-/// Runs the precompute on `chunks` (the primary light of the comparisons: 1 on every patch).
-pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings) -> Result<Report, String> {
+/// Runs the precompute on `chunks`, the form factors by `form_factors` (the primary light of
+/// the comparisons: 1 on every patch).
+pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, form_factors: &mut dyn FnMut(&Patches) -> FormFactors) -> Report {
     let start = Instant::now();
-    let p = patches_within_budget(chunks, settings)?;
+    let (p, note) = patches_within_budget(chunks, settings);
     let t_patches = start.elapsed();
     let start = Instant::now();
-    let f = form_factors::compute(&p);
+    let f = form_factors(&p);
     let t_form = start.elapsed();
     let albedo: Vec<Vec3> = p.patches.iter().map(|x| x.albedo).collect();
     let start = Instant::now();
@@ -135,7 +195,8 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings) -> Result<Report, S
     let start = Instant::now();
     std::hint::black_box(k.apply(&ones));
     let t_dense = start.elapsed();
-    Ok(Report {
+    Report {
+        notes: note.into_iter().collect(),
         triangles: chunks.iter().map(|c| c.triangles()).sum(),
         patch_size: patch_size_of(&p, settings),
         patches: f.n,
@@ -147,7 +208,7 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings) -> Result<Report, S
         truncation,
         neumann_bounces: converged.bounces,
         frame_times: [t_dense, t_classic],
-    })
+    }
 }
 
 /// The patch size `p` was built at: the setting, or the automatic size (the square root of
@@ -162,6 +223,9 @@ impl Report {
         let ms = |d: Duration| d.as_secs_f64() * 1e3;
         let mib = |b: usize| b as f64 / f64::from(1 << 20);
         let mut s = String::new();
+        for note in &self.notes {
+            let _ = writeln!(s, "note: {note}\n");
+        }
         let _ = writeln!(s, "static world: {} triangles, patch size {:.4}, {} patches\n", self.triangles, self.patch_size, self.patches);
         let _ = writeln!(s, "| step | ms |\n| --- | ---: |");
         for (name, t) in ["patches", "form factors", &format!("k-bounce matrix (k = {})", self.bounces)].iter().zip(self.times) {
@@ -195,6 +259,7 @@ impl Report {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::render::radiosity::form_factors;
     use crate::render::radiosity::test_scenes::quad;
 
     #[test]
@@ -207,12 +272,17 @@ mod tests {
         let chunks = [quad(1, Vec3::ZERO, x, y), quad(2, z, y, x), quad(3, Vec3::ZERO, y, z), quad(4, x, z, y), quad(5, Vec3::ZERO, z, x), quad(6, y, x, z)].map(grey);
         // 1 MiB holds 209 patches: 24 square metres over 209 patches, grown until they fit.
         let settings = Settings { budget_mb: 1, ..Settings::default() };
-        let p = patches_within_budget(&chunks, &settings).expect("fits");
-        assert!(p.patches.len() <= 209 && p.patches.len() >= 50, "{}", p.patches.len());
+        let (p, note) = patches_within_budget(&chunks, &settings);
+        assert!(p.patches.len() <= 209 && p.patches.len() >= 50 && note.is_none(), "{} {note:?}", p.patches.len());
+        // Too fine for the budget: the automatic size instead, and a note.
         let too_fine = Settings { patch_size: 0.05, ..settings };
-        assert!(patches_within_budget(&chunks, &too_fine).unwrap_err().contains("exceed the budget of 1 MiB"));
+        let (fallback, note) = patches_within_budget(&chunks, &too_fine);
+        assert_eq!(fallback, p);
+        let note = note.expect("a note");
+        assert!(note.starts_with("9600 patches of size 0.05 exceed the memory budget of 1 MiB (209 patches): using larger patches"), "{note}");
+        assert!(note.ends_with(&format!("{} patches", p.patches.len())), "{note}");
 
-        let report = run(&chunks, &Settings { patch_size: 1.0, ..settings }).expect("fits");
+        let report = run(&chunks, &Settings { patch_size: 1.0, ..settings }, &mut form_factors::compute);
         assert_eq!((report.patches, report.triangles, report.bounces), (24, 12, 3));
         assert_eq!(report.dense_bytes, [24 * 24 * 4, 24 * 24 * 12]);
         assert_eq!(report.compressed.len(), 6);
@@ -227,5 +297,41 @@ mod tests {
         let md = report.markdown();
         assert!(md.contains("static world: 12 triangles, patch size 1.0000, 24 patches"), "{md}");
         assert!(md.contains("| form factors, dense f32 | 2304 |"), "{md}");
+    }
+
+    #[test]
+    fn the_matrix_is_cached_reloaded_and_recomputed_when_its_file_is_damaged() {
+        let (x, y, z) = (Vec3::X * 2.0, Vec3::Y * 2.0, Vec3::Z * 2.0);
+        let chunks = [quad(1, Vec3::ZERO, x, y), quad(2, z, y, x), quad(3, Vec3::ZERO, y, z), quad(4, x, z, y), quad(5, Vec3::ZERO, z, x), quad(6, y, x, z)];
+        let settings = Settings { patch_size: 1.0, ..Settings::default() };
+        let dir = std::env::temp_dir().join(format!("glrt-radiosity-precompute-{}", std::process::id()));
+        let mut computed = 0;
+        let mut ff = |p: &Patches| {
+            computed += 1;
+            form_factors::compute(p)
+        };
+        let first = load_or_build(&chunks, &settings, Some(&dir), &mut ff);
+        assert!(!first.loaded && first.notes.is_empty(), "{:?}", first.notes);
+        assert_eq!(first.patches.patches.len(), 24);
+        let file = first.cache_file.clone().expect("a cache file");
+        assert!(file.starts_with(dir.join("glrt/radiosity")) && file.exists());
+        let second = load_or_build(&chunks, &settings, Some(&dir), &mut ff);
+        assert!(second.loaded && second.notes.is_empty());
+        assert_eq!((second.matrix, second.patches, second.cache_file.as_ref()), (first.matrix.clone(), first.patches.clone(), Some(&file)));
+        // Other settings, another file.
+        let two = load_or_build(&chunks, &Settings { bounces: 2, ..settings }, Some(&dir), &mut ff);
+        assert!(!two.loaded && two.cache_file.as_ref() != Some(&file));
+        // A damaged file: recomputed with a note, and written again.
+        let mut bytes = std::fs::read(&file).unwrap();
+        let last = bytes.len() - 1;
+        bytes[last] ^= 0xff;
+        std::fs::write(&file, &bytes).unwrap();
+        let again = load_or_build(&chunks, &settings, Some(&dir), &mut ff);
+        assert!(!again.loaded);
+        assert_eq!(again.notes, [format!("radiosity cache {}: its content does not match its hash (damaged or cut short): recomputing", file.display())]);
+        assert_eq!(again.matrix, first.matrix);
+        assert!(load_or_build(&chunks, &settings, Some(&dir), &mut ff).loaded);
+        assert_eq!(computed, 3);
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

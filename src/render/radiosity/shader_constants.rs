@@ -1,6 +1,6 @@
 //! Numbers the radiosity form factors share between the CPU reference
 //! ([`super::form_factors`]) and the GPU version (`shaders/radiosity/form_factors.comp`), and
-//! the GPU pass's descriptor bindings, as `generated/radiosity_constants.glsl` (see
+//! the descriptor bindings of the GPU passes (form factors, `gather.comp`), as `generated/radiosity_constants.glsl` (see
 //! [`crate::render::shader_abi`]), each named `RADIOSITY_<NAME>` there. The pass also binds
 //! the tracer's BVH buffers at their own numbers (`trace/bvh.glsl`, [`crate::render::trace::bindings`]).
 
@@ -18,6 +18,21 @@ glsl_constants! {
     /// The rows of the matrix a dispatch computes, row-major.
     const BINDING_ROWS: u32 = 22;
 
-    /// Invocations per workgroup of the form-factor pass (one per source patch).
+    /// The compressed matrix's BC1 image (`radiosity/gather.comp`, a combined image sampler).
+    const BINDING_MATRIX: u32 = 0;
+    /// `order[a]`: the patch at row and column `a` of the image.
+    const BINDING_ORDER: u32 = 1;
+    /// The exact part's row offsets (`n + 1`), in patch order.
+    const BINDING_SPARSE_OFFSETS: u32 = 2;
+    /// The exact part's entries (`SparseEntry`: column and value).
+    const BINDING_SPARSE_ENTRIES: u32 = 3;
+    /// Each patch's primary radiosity (emitted plus reflected direct light), written by the
+    /// CPU per frame.
+    const BINDING_PRIMARY: u32 = 4;
+    /// Each patch's radiosity: primary plus k bounces.
+    const BINDING_RADIOSITY: u32 = 5;
+
+    /// Invocations per workgroup of the form-factor pass (one per source patch) and of the
+    /// gathering pass (one row, these invocations across its columns).
     const GROUP: u32 = 64;
 }

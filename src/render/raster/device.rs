@@ -74,6 +74,9 @@ pub struct Features {
     pub occlusion_query_precise: bool,
     /// `alphaToOne`: `GL_SAMPLE_ALPHA_TO_ONE`.
     pub alpha_to_one: bool,
+    /// `textureCompressionBC` is enabled: BC1–BC7 images can be sampled (the radiosity
+    /// matrix).
+    pub bc_textures: bool,
     /// Multisampled framebuffer sample counts ([`super::multisample::supported_counts`]).
     pub sample_counts: Vec<u32>,
 }
@@ -165,6 +168,7 @@ impl Device {
             sampler_anisotropy: supported.sampler_anisotropy == vk::TRUE,
             occlusion_query_precise: supported.occlusion_query_precise == vk::TRUE,
             alpha_to_one: supported.alpha_to_one == vk::TRUE,
+            bc_textures: supported.texture_compression_bc == vk::TRUE,
             sample_counts: super::multisample::supported_counts(&properties.limits),
         };
         let enabled = vk::PhysicalDeviceFeatures::default()
@@ -175,6 +179,7 @@ impl Device {
             .sampler_anisotropy(features.sampler_anisotropy)
             .occlusion_query_precise(features.occlusion_query_precise)
             .alpha_to_one(features.alpha_to_one)
+            .texture_compression_bc(features.bc_textures)
             .shader_clip_distance(true);
         let mut extensions = device_extensions(&instance, physical);
         if !surfaces {

@@ -107,6 +107,8 @@ pub fn compute(device: &Device, patches: &Patches, progress: &mut dyn FnMut(usiz
             (BINDING_PATCHES, bytemuck::cast_slice(&gpu_patches)),
             (BINDING_PATCH_TRIANGLES, bytemuck::cast_slice(&triangles)),
         ],
+        host: Vec::new(),
+        image: None,
         output: (BINDING_ROWS, (rows_per_dispatch * n * size_of::<f32>()) as u64),
         push_bytes: size_of::<GpuPass>() as u32,
     };

@@ -1,19 +1,39 @@
 //! A compute pass run outside the frame loop, dispatch after dispatch with the CPU waiting
-//! for each (the precompute's form factors): read-only storage buffers uploaded once into
-//! device memory through staging buffers, one host-visible storage buffer the dispatches
-//! write and the caller reads after each, push constants, and one descriptor set (set 0, the
-//! tracer's set number, so that `trace/bvh.glsl` binds as in the tracer).
+//! for each (the precompute's form factors, the per-patch product): read-only storage buffers
+//! and at most one 2D image (a BC1 matrix) uploaded once into device memory through staging
+//! buffers, host-visible storage buffers the caller writes before a dispatch, one
+//! host-visible storage buffer the dispatches write and the caller reads after each, push
+//! constants, and one descriptor set (set 0, the tracer's set number, so that
+//! `trace/bvh.glsl` binds as in the tracer). On devices whose timestamps time compute work
+//! (GPUs; not CPU devices, as the denoiser's), each dispatch is timed.
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 
-use crate::render::raster::device::{Buffer, Check, Device, Result};
+use crate::render::raster::device::{Buffer, Check, Device, Image, Result};
 use crate::render::trace::pipelines::compute_pipeline;
+
+/// A 2D image a pass samples: one level of `format` (block-compressed formats allowed).
+pub struct ImageInput<'a> {
+    /// Its binding (a combined image sampler, nearest filtering).
+    pub binding: u32,
+    /// Its format.
+    pub format: vk::Format,
+    /// Width and height in texels.
+    pub size: [u32; 2],
+    /// Its bytes, rows of texels (or blocks) tightly packed.
+    pub bytes: &'a [u8],
+}
 
 /// What a pass reads and writes.
 pub struct Inputs<'a> {
     /// Read-only storage buffers: binding and bytes.
     pub storage: Vec<(u32, &'a [u8])>,
+    /// Storage buffers the caller writes before each dispatch ([`ComputePass::host_input`]):
+    /// binding and bytes.
+    pub host: Vec<(u32, u64)>,
+    /// The image, if any.
+    pub image: Option<ImageInput<'a>>,
     /// The output storage buffer: binding and bytes.
     pub output: (u32, u64),
     /// Bytes of the push constants.
@@ -23,7 +43,12 @@ pub struct Inputs<'a> {
 /// The pass's Vulkan objects.
 pub struct ComputePass {
     buffers: Vec<Buffer>,
+    host: Vec<Buffer>,
+    image: Option<Image>,
+    sampler: vk::Sampler,
     output: Buffer,
+    /// Two timestamps around each dispatch, on devices that time compute work.
+    timestamps: vk::QueryPool,
     set_layout: vk::DescriptorSetLayout,
     layout: vk::PipelineLayout,
     pipeline: vk::Pipeline,
@@ -40,7 +65,11 @@ impl ComputePass {
         let output = device.create_buffer("radiosity output", inputs.output.1, vk::BufferUsageFlags::STORAGE_BUFFER, MemoryLocation::GpuToCpu)?;
         let mut pass = ComputePass {
             buffers: Vec::new(),
+            host: Vec::new(),
+            image: None,
+            sampler: vk::Sampler::null(),
             output,
+            timestamps: vk::QueryPool::null(),
             set_layout: vk::DescriptorSetLayout::null(),
             layout: vk::PipelineLayout::null(),
             pipeline: vk::Pipeline::null(),
@@ -62,16 +91,12 @@ impl ComputePass {
     /// Creates the objects and uploads the inputs (on failure, `destroy` frees what was made).
     fn create(&mut self, device: &Device, spirv: &[u8], inputs: &Inputs) -> Result<()> {
         let raw = &device.raw;
-        let bindings: Vec<u32> = inputs.storage.iter().map(|(b, _)| *b).chain([inputs.output.0]).collect();
+        let bindings: Vec<u32> = inputs.storage.iter().map(|(b, _)| *b).chain(inputs.host.iter().map(|(b, _)| *b)).chain([inputs.output.0]).collect();
+        let binding = |b, ty| vk::DescriptorSetLayoutBinding::default().binding(b).descriptor_type(ty).descriptor_count(1).stage_flags(vk::ShaderStageFlags::COMPUTE);
         let layout_bindings: Vec<_> = bindings
             .iter()
-            .map(|&b| {
-                vk::DescriptorSetLayoutBinding::default()
-                    .binding(b)
-                    .descriptor_type(vk::DescriptorType::STORAGE_BUFFER)
-                    .descriptor_count(1)
-                    .stage_flags(vk::ShaderStageFlags::COMPUTE)
-            })
+            .map(|&b| binding(b, vk::DescriptorType::STORAGE_BUFFER))
+            .chain(inputs.image.as_ref().map(|i| binding(i.binding, vk::DescriptorType::COMBINED_IMAGE_SAMPLER)))
             .collect();
         // Safety (this function): valid create infos of live objects; everything made is
         // recorded in `self`, whose `destroy` frees it after the GPU is done.
@@ -83,7 +108,10 @@ impl ComputePass {
                 .create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts).push_constant_ranges(&push), None)
                 .check("vkCreatePipelineLayout")?;
             self.pipeline = compute_pipeline(device, self.layout, spirv)?;
-            let sizes = [vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: bindings.len() as u32 }];
+            let sizes = [
+                vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: bindings.len() as u32 },
+                vk::DescriptorPoolSize { ty: vk::DescriptorType::COMBINED_IMAGE_SAMPLER, descriptor_count: 1 },
+            ];
             self.descriptor_pool = raw.create_descriptor_pool(&vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes), None).check("vkCreateDescriptorPool")?;
             self.set = raw
                 .allocate_descriptor_sets(&vk::DescriptorSetAllocateInfo::default().descriptor_pool(self.descriptor_pool).set_layouts(&set_layouts))
@@ -95,15 +123,35 @@ impl ComputePass {
                 .allocate_command_buffers(&vk::CommandBufferAllocateInfo::default().command_pool(self.command_pool).level(vk::CommandBufferLevel::PRIMARY).command_buffer_count(1))
                 .check("vkAllocateCommandBuffers")?[0];
             self.fence = raw.create_fence(&vk::FenceCreateInfo::default(), None).check("vkCreateFence")?;
+            let timed = device.properties.limits.timestamp_compute_and_graphics == vk::TRUE && device.properties.device_type != vk::PhysicalDeviceType::CPU;
+            if timed {
+                self.timestamps = raw.create_query_pool(&vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(2), None).check("vkCreateQueryPool")?;
+            }
+            if inputs.image.is_some() {
+                let info = vk::SamplerCreateInfo::default()
+                    .mag_filter(vk::Filter::NEAREST)
+                    .min_filter(vk::Filter::NEAREST)
+                    .address_mode_u(vk::SamplerAddressMode::CLAMP_TO_EDGE)
+                    .address_mode_v(vk::SamplerAddressMode::CLAMP_TO_EDGE)
+                    .unnormalized_coordinates(false);
+                self.sampler = raw.create_sampler(&info, None).check("vkCreateSampler")?;
+            }
+        }
+        for (_, bytes) in &inputs.host {
+            self.host.push(device.create_buffer("radiosity host input", *bytes, vk::BufferUsageFlags::STORAGE_BUFFER, MemoryLocation::CpuToGpu)?);
         }
         self.upload(device, inputs)?;
         let infos: Vec<[vk::DescriptorBufferInfo; 1]> =
-            self.buffers.iter().chain([&self.output]).map(|b| [vk::DescriptorBufferInfo::default().buffer(b.raw).range(vk::WHOLE_SIZE)]).collect();
-        let writes: Vec<_> = bindings
+            self.buffers.iter().chain(&self.host).chain([&self.output]).map(|b| [vk::DescriptorBufferInfo::default().buffer(b.raw).range(vk::WHOLE_SIZE)]).collect();
+        let image_info = self.image.as_ref().map(|i| [vk::DescriptorImageInfo { sampler: self.sampler, image_view: i.view, image_layout: vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL }]);
+        let mut writes: Vec<_> = bindings
             .iter()
             .zip(&infos)
             .map(|(&binding, info)| vk::WriteDescriptorSet::default().dst_set(self.set).dst_binding(binding).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info))
             .collect();
+        if let (Some(input), Some(info)) = (&inputs.image, &image_info) {
+            writes.push(vk::WriteDescriptorSet::default().dst_set(self.set).dst_binding(input.binding).descriptor_type(vk::DescriptorType::COMBINED_IMAGE_SAMPLER).image_info(info));
+        }
         // Safety: the set and buffers are alive and no command uses the set yet.
         unsafe { raw.update_descriptor_sets(&writes, &[]) };
         Ok(())
@@ -120,7 +168,27 @@ impl ComputePass {
                 s.mapped()[..bytes.len()].copy_from_slice(bytes);
                 staging.push(s);
             }
+            if let Some(input) = &inputs.image {
+                let info = vk::ImageCreateInfo::default()
+                    .image_type(vk::ImageType::TYPE_2D)
+                    .format(input.format)
+                    .extent(vk::Extent3D { width: input.size[0], height: input.size[1], depth: 1 })
+                    .mip_levels(1)
+                    .array_layers(1)
+                    .samples(vk::SampleCountFlags::TYPE_1)
+                    .tiling(vk::ImageTiling::OPTIMAL)
+                    .usage(vk::ImageUsageFlags::SAMPLED | vk::ImageUsageFlags::TRANSFER_DST)
+                    .initial_layout(vk::ImageLayout::UNDEFINED);
+                self.image = Some(device.create_image("radiosity matrix", &info, vk::ImageViewType::TYPE_2D, vk::ImageAspectFlags::COLOR)?);
+                let mut s = device.create_buffer("radiosity staging", input.bytes.len() as u64, vk::BufferUsageFlags::TRANSFER_SRC, MemoryLocation::CpuToGpu)?;
+                s.mapped()[..input.bytes.len()].copy_from_slice(input.bytes);
+                staging.push(s);
+            }
+            let image = self.image.as_ref().zip(inputs.image.as_ref()).map(|(i, input)| (i.raw, input.size));
             self.submit(device, |raw, cmd| {
+                if let (Some((image, size)), Some(s)) = (image, staging.last()) {
+                    record_image_upload(raw, cmd, s.raw, image, size);
+                }
                 for ((s, b), (_, bytes)) in staging.iter().zip(&self.buffers).zip(&inputs.storage) {
                     let region = [vk::BufferCopy { src_offset: 0, dst_offset: 0, size: bytes.len().max(4) as u64 }];
                     // Safety: both buffers are alive and large enough.
@@ -135,6 +203,23 @@ impl ComputePass {
             device.destroy_buffer(s);
         }
         result
+    }
+
+    /// The bytes of the `k`-th host input, for the next dispatch.
+    pub fn host_input(&mut self, k: usize) -> &mut [u8] {
+        self.host[k].mapped()
+    }
+
+    /// The GPU time of the last dispatch, on devices that time compute work.
+    pub fn last_dispatch_time(&self, device: &Device) -> Option<std::time::Duration> {
+        if self.timestamps == vk::QueryPool::null() {
+            return None;
+        }
+        let mut ticks = [0u64; 2];
+        // Safety: both queries were written by the last dispatch, which was waited for.
+        unsafe { device.raw.get_query_pool_results(self.timestamps, 0, &mut ticks, vk::QueryResultFlags::TYPE_64) }.ok()?;
+        let nanoseconds = ticks[1].wrapping_sub(ticks[0]) as f64 * f64::from(device.properties.limits.timestamp_period);
+        Some(std::time::Duration::from_nanos(nanoseconds as u64))
     }
 
     /// Records `record` into the command buffer, submits it and waits for it.
@@ -155,15 +240,23 @@ impl ComputePass {
 
     /// One dispatch of `groups` with the push constants `push`; waits for it.
     pub fn run(&mut self, device: &Device, push: &[u8], groups: [u32; 3]) -> Result<()> {
-        let (pipeline, layout, set) = (self.pipeline, self.layout, self.set);
+        let (pipeline, layout, set, timestamps) = (self.pipeline, self.layout, self.set, self.timestamps);
         self.submit(device, |raw, cmd| {
             let barrier = [vk::MemoryBarrier::default().src_access_mask(vk::AccessFlags::SHADER_WRITE).dst_access_mask(vk::AccessFlags::HOST_READ)];
+            let timed = timestamps != vk::QueryPool::null();
             // Safety: recording with live objects.
             unsafe {
                 raw.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline);
                 raw.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, layout, 0, &[set], &[]);
                 raw.cmd_push_constants(cmd, layout, vk::ShaderStageFlags::COMPUTE, 0, push);
+                if timed {
+                    raw.cmd_reset_query_pool(cmd, timestamps, 0, 2);
+                    raw.cmd_write_timestamp(cmd, vk::PipelineStageFlags::TOP_OF_PIPE, timestamps, 0);
+                }
                 raw.cmd_dispatch(cmd, groups[0], groups[1], groups[2]);
+                if timed {
+                    raw.cmd_write_timestamp(cmd, vk::PipelineStageFlags::BOTTOM_OF_PIPE, timestamps, 1);
+                }
                 raw.cmd_pipeline_barrier(cmd, vk::PipelineStageFlags::COMPUTE_SHADER, vk::PipelineStageFlags::HOST, vk::DependencyFlags::empty(), &barrier, &[], &[]);
             }
         })
@@ -179,15 +272,48 @@ impl ComputePass {
         // Safety: the GPU is done with every object; null handles are ignored.
         unsafe {
             device.raw.destroy_fence(self.fence, None);
+            device.raw.destroy_query_pool(self.timestamps, None);
+            device.raw.destroy_sampler(self.sampler, None);
             device.raw.destroy_command_pool(self.command_pool, None);
             device.raw.destroy_descriptor_pool(self.descriptor_pool, None);
             device.raw.destroy_pipeline(self.pipeline, None);
             device.raw.destroy_pipeline_layout(self.layout, None);
             device.raw.destroy_descriptor_set_layout(self.set_layout, None);
         }
-        for b in self.buffers {
+        for b in self.buffers.into_iter().chain(self.host) {
             device.destroy_buffer(b);
         }
+        if let Some(image) = self.image {
+            device.destroy_image(image);
+        }
         device.destroy_buffer(self.output);
+    }
+}
+
+/// Records the copy of `staging` into the whole of `image` (one level of `size`), with the
+/// layout transitions around it: undefined, transfer destination, read by compute shaders.
+fn record_image_upload(raw: &ash::Device, cmd: vk::CommandBuffer, staging: vk::Buffer, image: vk::Image, size: [u32; 2]) {
+    let range = vk::ImageSubresourceRange { aspect_mask: vk::ImageAspectFlags::COLOR, base_mip_level: 0, level_count: 1, base_array_layer: 0, layer_count: 1 };
+    let to_transfer = vk::ImageMemoryBarrier::default()
+        .image(image)
+        .subresource_range(range)
+        .old_layout(vk::ImageLayout::UNDEFINED)
+        .new_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
+        .dst_access_mask(vk::AccessFlags::TRANSFER_WRITE);
+    let to_read = vk::ImageMemoryBarrier::default()
+        .image(image)
+        .subresource_range(range)
+        .old_layout(vk::ImageLayout::TRANSFER_DST_OPTIMAL)
+        .new_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)
+        .src_access_mask(vk::AccessFlags::TRANSFER_WRITE)
+        .dst_access_mask(vk::AccessFlags::SHADER_READ);
+    let region = vk::BufferImageCopy::default()
+        .image_subresource(vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: 0, base_array_layer: 0, layer_count: 1 })
+        .image_extent(vk::Extent3D { width: size[0], height: size[1], depth: 1 });
+    // Safety: recording; the buffer holds the whole level and the image is alive.
+    unsafe {
+        raw.cmd_pipeline_barrier(cmd, vk::PipelineStageFlags::TOP_OF_PIPE, vk::PipelineStageFlags::TRANSFER, vk::DependencyFlags::empty(), &[], &[], &[to_transfer]);
+        raw.cmd_copy_buffer_to_image(cmd, staging, image, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &[region]);
+        raw.cmd_pipeline_barrier(cmd, vk::PipelineStageFlags::TRANSFER, vk::PipelineStageFlags::COMPUTE_SHADER, vk::DependencyFlags::empty(), &[], &[], &[to_read]);
     }
 }

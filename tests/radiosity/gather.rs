@@ -1,0 +1,92 @@
+//! `shaders/radiosity/gather.comp` against the CPU: the product of the compressed k-bounce
+//! matrix (its BC1 image decoded by the device) with the patches' primary radiosity equals
+//! `P + decompress() · P`; and its time per product for a synthetic matrix of
+//! `GLRT_RADIOSITY_GATHER_PATCHES` patches (default 1024; the GPU target is 16,384).
+
+use glam::Vec3;
+
+use glrt::render::radiosity::bc1::Bc1Matrix;
+use glrt::render::radiosity::bounces::{colour_matrix, k_bounce};
+use glrt::render::radiosity::compress::{CompressedMatrix, LogRange, REORDER_PASSES, compress};
+use glrt::render::radiosity::gpu::gather::Gather;
+use glrt::render::radiosity::sparse::SparseRows;
+use glrt::render::radiosity::test_scenes::unit_box;
+use glrt::render::raster::device::Device;
+
+use crate::lavapipe;
+
+#[test]
+fn the_product_from_the_bc1_image_equals_the_cpu_product() {
+    let device = lavapipe::select(Device::new);
+    let (p, f) = unit_box();
+    // A grey box, redder on the floor; one emitting ceiling patch and a little light on all.
+    let albedo: Vec<Vec3> = p.patches.iter().map(|x| if x.normal.z > 0.5 { Vec3::new(0.8, 0.3, 0.2) } else { Vec3::splat(0.5) }).collect();
+    let m = compress(&k_bounce(&colour_matrix(f, &albedo), 3), 0.04, REORDER_PASSES, LogRange::Fitted);
+    let lamp = p.patches.iter().position(|x| x.normal.z < -0.5).expect("a ceiling patch");
+    let primary: Vec<Vec3> = (0..p.patches.len()).map(|i| if i == lamp { Vec3::splat(10.0) } else { Vec3::new(0.01, 0.02, 0.03) * (i % 7) as f32 }).collect();
+
+    let expected: Vec<Vec3> = m.decompress().apply(&primary).iter().zip(&primary).map(|(b, p)| *b + *p).collect();
+    let mut gather = Gather::new(&device, &m).expect("the gathering pass");
+    let (got, time) = gather.run(&device, &primary).expect("a product");
+    // The same pass again with other light: the host input is rewritten.
+    let doubled: Vec<Vec3> = primary.iter().map(|x| *x * 2.0).collect();
+    let (twice, _) = gather.run(&device, &doubled).expect("a product");
+    gather.destroy(&device);
+
+    let largest = expected.iter().map(|v| v.max_element()).fold(0.0f32, f32::max);
+    let worst = got.iter().zip(&expected).map(|(g, e)| ((*g - *e).abs() / e.abs().max(Vec3::splat(1e-3))).max_element()).fold(0.0f32, f32::max);
+    let worst_twice = twice.iter().zip(&got).map(|(t, g)| (*t - *g * 2.0).abs().max_element()).fold(0.0f32, f32::max);
+    println!("96 patches: largest radiosity {largest}, largest relative difference GPU vs CPU {worst:e}, doubled light off by {worst_twice:e}; {time:?}");
+    assert!(largest > 10.0);
+    // The device decodes BC1's interpolated colours in floating point, texpresso in integers:
+    // a code may differ by one step (e^(shift/254)) on a few texels.
+    assert!(worst < 2.0e-3, "{worst}");
+    assert!(worst_twice < 1.0e-4 * largest, "{worst_twice}");
+}
+
+/// A deterministic xorshift generator.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+}
+
+#[test]
+fn the_product_of_a_large_matrix_is_timed() {
+    let n: usize = std::env::var("GLRT_RADIOSITY_GATHER_PATCHES").ok().and_then(|v| v.parse().ok()).unwrap_or(1024);
+    let device = lavapipe::select(Device::new);
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let side = n.div_ceil(4) * 4;
+    let blocks: Vec<u8> = (0..(side / 4) * (side / 4) * 8).map(|_| rng.next() as u8).collect();
+    // 4 % of the entries exact, spread over the rows.
+    let per_row = (n / 25).max(1);
+    let mut sparse = SparseRows { offsets: vec![0], ..SparseRows::default() };
+    for _ in 0..n {
+        for _ in 0..per_row {
+            sparse.columns.push((rng.next() % n as u64) as u32);
+            sparse.values.push([1.0e-3; 3]);
+        }
+        sparse.offsets.push(sparse.columns.len() as u32);
+    }
+    let m = CompressedMatrix { order: (0..n as u32).rev().collect(), max: 1.0e-2, shift: 12.0, texture: Bc1Matrix { n, side, blocks }, sparse };
+    let primary = vec![Vec3::ONE; n];
+    let mut gather = Gather::new(&device, &m).expect("the gathering pass");
+    let mut times = Vec::new();
+    let mut out = Vec::new();
+    for _ in 0..5 {
+        let (b, t) = gather.run(&device, &primary).expect("a product");
+        times.push(t);
+        out = b;
+    }
+    gather.destroy(&device);
+    let wall = times.iter().map(|t| t.wall.as_secs_f64() * 1e3).fold(f64::INFINITY, f64::min);
+    let gpu = times.iter().filter_map(|t| t.gpu).map(|d| d.as_secs_f64() * 1e3).fold(f64::INFINITY, f64::min);
+    println!("{n} patches ({} MiB of BC1, {} exact entries): best of 5 products, wall {wall:.3} ms, GPU {gpu:.3} ms ({})", m.texture.bytes() >> 20, m.sparse.len(), device.name());
+    // Every row gathers something: the primary light itself plus its exact entries.
+    assert!(out.iter().all(|b| b.min_element() >= 1.0 + per_row as f32 * 1.0e-3 * 0.999), "{:?}", &out[..4]);
+}
