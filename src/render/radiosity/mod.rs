@@ -15,8 +15,10 @@
 //! times, sizes and errors (`glrt radiosity`), or builds the matrix the renderer uses, kept
 //! on disk by [`cache`] (`glrt radiosity --matrix`).
 //!
-//! Not yet here: the per-frame update (direct light on the patches, the
-//! product from the BC1 texture), and the transfer to surfaces and the tracer.
+//! Per frame, [`gpu::gather`] multiplies the compressed matrix (its BC1 image sampled by the
+//! device) with the patches' primary radiosity. Not yet here: the direct light on the
+//! patches (shadow rays to the frame's lights) that gives the primary radiosity, and the
+//! transfer to surfaces and the tracer.
 
 pub mod bc1;
 pub mod bounces;
