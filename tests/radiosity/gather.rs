@@ -5,11 +5,9 @@
 
 use glam::Vec3;
 
-use glrt::render::radiosity::bc1::Bc1Matrix;
 use glrt::render::radiosity::bounces::{colour_matrix, k_bounce};
-use glrt::render::radiosity::compress::{CompressedMatrix, LogRange, REORDER_PASSES, compress};
-use glrt::render::radiosity::gpu::gather::Gather;
-use glrt::render::radiosity::sparse::SparseRows;
+use glrt::render::radiosity::compress::{LogRange, REORDER_PASSES, compress};
+use glrt::render::radiosity::gpu::gather::{Gather, synthetic};
 use glrt::render::radiosity::test_scenes::unit_box;
 use glrt::render::raster::device::Device;
 
@@ -46,36 +44,13 @@ fn the_product_from_the_bc1_image_equals_the_cpu_product() {
     assert!(worst_twice < 1.0e-4 * largest, "{worst_twice}");
 }
 
-/// A deterministic xorshift generator.
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-}
-
 #[test]
 fn the_product_of_a_large_matrix_is_timed() {
     let n: usize = std::env::var("GLRT_RADIOSITY_GATHER_PATCHES").ok().and_then(|v| v.parse().ok()).unwrap_or(1024);
     let device = lavapipe::select(Device::new);
-    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
-    let side = n.div_ceil(4) * 4;
-    let blocks: Vec<u8> = (0..(side / 4) * (side / 4) * 8).map(|_| rng.next() as u8).collect();
-    // 4 % of the entries exact, spread over the rows.
-    let per_row = (n / 25).max(1);
-    let mut sparse = SparseRows { offsets: vec![0], ..SparseRows::default() };
-    for _ in 0..n {
-        for _ in 0..per_row {
-            sparse.columns.push((rng.next() % n as u64) as u32);
-            sparse.values.push([1.0e-3; 3]);
-        }
-        sparse.offsets.push(sparse.columns.len() as u32);
-    }
-    let m = CompressedMatrix { order: (0..n as u32).rev().collect(), max: 1.0e-2, shift: 12.0, texture: Bc1Matrix { n, side, blocks }, sparse };
+    let m = synthetic(n, 0x9e37_79b9_7f4a_7c15);
+    let per_row = n / 25;
+    assert_eq!((m.sparse.len(), m.texture.bytes()), (n * per_row, n.div_ceil(4).pow(2) * 8));
     let primary = vec![Vec3::ONE; n];
     let mut gather = Gather::new(&device, &m).expect("the gathering pass");
     let mut times = Vec::new();

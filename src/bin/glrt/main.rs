@@ -78,8 +78,13 @@ enum Command {
         /// written there
         #[arg(long)]
         matrix: bool,
+        /// Instead of a capture's matrix, time the per-frame product of a synthetic compressed
+        /// matrix of N patches on the device (GLRT_DEVICE)
+        #[arg(long, value_name = "N", conflicts_with_all = ["matrix", "file"])]
+        synthetic: Option<usize>,
         /// The capture file.
-        file: PathBuf,
+        #[arg(required_unless_present = "synthetic")]
+        file: Option<PathBuf>,
     },
 }
 
@@ -96,7 +101,11 @@ fn main() -> ExitCode {
         Command::Replay(args) => replay::run(&args),
         Command::Dump { file } => Capture::open(&file).and_then(|capture| dump(&capture)),
         Command::Run(args) => run::run(&args),
-        Command::Radiosity { matrix, file } => Capture::open(&file).and_then(|capture| radiosity::run(&capture, matrix)),
+        Command::Radiosity { synthetic: Some(n), .. } => radiosity::time_synthetic(n),
+        Command::Radiosity { matrix, file, .. } => file
+            .ok_or_else(|| "radiosity: a capture file or --synthetic N".to_owned())
+            .and_then(|file| Capture::open(&file))
+            .and_then(|capture| radiosity::run(&capture, matrix)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -15,7 +15,8 @@ use glam::Vec3;
 
 use glrt::frame::FrameSink;
 use glrt::render::radiosity::form_factors::{self, FormFactors};
-use glrt::render::radiosity::gpu::gather::{Gather, GatherTime};
+use glrt::render::radiosity::compress::CompressedMatrix;
+use glrt::render::radiosity::gpu::gather::{Gather, GatherTime, synthetic};
 use glrt::render::radiosity::patches::Patches;
 use glrt::render::radiosity::precompute;
 use glrt::render::radiosity::settings::Settings;
@@ -82,17 +83,27 @@ pub fn run(capture: &Capture, matrix_only: bool) -> Result<(), String> {
     let how = if r.loaded { format!("loaded from {file}") } else { format!("computed, written to {file}") };
     println!("{} patches, compressed matrix {} bytes: {how} in {:.3} s", r.patches.patches.len(), r.matrix.bytes(), start.elapsed().as_secs_f64());
     if let Some(device) = &device {
-        time_products(device, &r);
+        let primary: Vec<Vec3> = r.patches.patches.iter().map(|p| p.emission + Vec3::ONE).collect();
+        time_products(device, &r.matrix, &primary);
     }
     Ok(())
 }
 
-/// Products the renderer's per-frame update timed: [`PRODUCTS`] of the matrix with the
-/// patches' emission plus 1 on every patch, on `device`; prints the best times.
-fn time_products(device: &Device, r: &precompute::StaticRadiosity) {
-    let primary: Vec<Vec3> = r.patches.patches.iter().map(|p| p.emission + Vec3::ONE).collect();
-    let times = Gather::new(device, &r.matrix).and_then(|mut gather| {
-        let times: Result<Vec<GatherTime>, _> = (0..PRODUCTS).map(|_| gather.run(device, &primary).map(|(_, t)| t)).collect();
+/// `glrt radiosity --synthetic N`: the per-frame product of [`synthetic`]'s matrix of `n`
+/// patches timed on the device.
+pub fn time_synthetic(n: usize) -> Result<(), String> {
+    let device = Device::new().map_err(|e| format!("radiosity: no Vulkan device: {e}"))?;
+    let m = synthetic(n, 0x9e37_79b9_7f4a_7c15);
+    println!("synthetic matrix: {n} patches, {} bytes of BC1, {} exact entries", m.texture.bytes(), m.sparse.len());
+    time_products(&device, &m, &vec![Vec3::ONE; n]);
+    Ok(())
+}
+
+/// Products the renderer's per-frame update timed: [`PRODUCTS`] of `m` with `primary` on
+/// `device`; prints the best times.
+fn time_products(device: &Device, m: &CompressedMatrix, primary: &[Vec3]) {
+    let times = Gather::new(device, m).and_then(|mut gather| {
+        let times: Result<Vec<GatherTime>, _> = (0..PRODUCTS).map(|_| gather.run(device, primary).map(|(_, t)| t)).collect();
         gather.destroy(device);
         times
     });

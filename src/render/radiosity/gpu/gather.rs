@@ -12,7 +12,9 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
 use super::pass::{ComputePass, ImageInput, Inputs};
+use crate::render::radiosity::bc1::Bc1Matrix;
 use crate::render::radiosity::compress::CompressedMatrix;
+use crate::render::radiosity::sparse::SparseRows;
 use crate::render::radiosity::shader_constants::{
     BINDING_MATRIX, BINDING_ORDER, BINDING_PRIMARY, BINDING_RADIOSITY, BINDING_SPARSE_ENTRIES, BINDING_SPARSE_OFFSETS,
 };
@@ -108,4 +110,29 @@ impl Gather {
     pub fn destroy(self, device: &Device) {
         self.pass.destroy(device);
     }
+}
+
+/// A compressed matrix of `n` patches for timing the product (its cost does not depend on the
+/// values): BC1 blocks of xorshift bytes from `seed`, the order reversed, and 4 % of the
+/// entries exact (`n / 25` per row, value 1e-3, columns from the same generator).
+pub fn synthetic(n: usize, seed: u64) -> CompressedMatrix {
+    let mut state = seed | 1;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    let side = n.div_ceil(4) * 4;
+    let blocks: Vec<u8> = (0..(side / 4) * (side / 4) * 8).map(|_| next() as u8).collect();
+    let per_row = (n / 25).max(1);
+    let mut sparse = SparseRows { offsets: vec![0], ..SparseRows::default() };
+    for _ in 0..n {
+        for _ in 0..per_row {
+            sparse.columns.push((next() % n.max(1) as u64) as u32);
+            sparse.values.push([1.0e-3; 3]);
+        }
+        sparse.offsets.push(sparse.columns.len() as u32);
+    }
+    CompressedMatrix { order: (0..n as u32).rev().collect(), max: 1.0e-2, shift: 12.0, texture: Bc1Matrix { n, side, blocks }, sparse }
 }
