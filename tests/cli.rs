@@ -34,7 +34,7 @@ fn help_of_the_command_and_each_subcommand() {
         ("replay", "Usage: glrt replay [OPTIONS] <FILE>", "--frames <A..B>"),
         ("dump", "Usage: glrt dump <FILE>", "GLRT_TRACE format"),
         ("run", "Usage: glrt run [OPTIONS] <PROGRAM ARGS>...", "glrt run -- %command%"),
-        ("radiosity", "Usage: glrt radiosity <FILE>", "k-bounce matrix"),
+        ("radiosity", "Usage: glrt radiosity [OPTIONS] [FILE]", "--synthetic <N>"),
     ] {
         let out = glrt(&[command, "--help"], &[]);
         let help = text(&out.stdout);
