@@ -5,7 +5,7 @@
 //! (`glrt::render::frames_from`); `--bench` prints the frame times of frames `A` and later (one
 //! frame's end to the next's) and where their time went, in ms per frame: decoding records,
 //! writing recorded memory, glrt's front end, hash tracking and the renderer; `--stats` prints
-//! hash tracking's statistics of each frame as one JSON line (keys in README.md; frames are not
+//! hash tracking's statistics of each frame as one JSON line (keys in docs/hash-tracking.md; frames are not
 //! rendered unless `--out` is given). `--size` says on stderr what it changes when the capture
 //! was made at another size; `--scale N` replays the capture N times larger
 //! ([`glrt::replay::scale`]). With `--out`, a progress bar on stderr (when it is a
