@@ -268,7 +268,7 @@ impl ClassCounts {
     }
 }
 
-/// Per-frame statistics of hash tracking (the keys are documented in README.md).
+/// Per-frame statistics of hash tracking (the keys are documented in docs/hash-tracking.md).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct FrameStats {
     /// Bytes of static geometry to upload this frame: the vertex data of new static instances

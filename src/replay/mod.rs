@@ -8,6 +8,7 @@
 //! - [`reader`]: reads a capture file, never trusting it;
 //! - [`summary`]: what a capture holds (`glrt info FILE`);
 //! - [`shadow`]: the replay's copy of the captured program's address space;
+//! - [`scale`]: a replay N times larger (`glrt replay --scale N`);
 //! - [`calls`]: the generated thunks that call a command's export with recorded arguments;
 //! - [`run`] (here): replays a capture on this thread.
 //!
@@ -28,6 +29,7 @@
 //! hash refuse accidental damage first).
 
 pub mod reader;
+pub mod scale;
 pub mod shadow;
 pub mod summary;
 
@@ -59,6 +61,9 @@ pub struct Options {
     /// Drawable size to use instead of the captured sizes (at make-current and at each
     /// `glXSwapBuffers`, which refreshes the size).
     pub size: Option<(i32, i32)>,
+    /// Replay N times larger: drawable sizes and the window-pixel arguments of commands
+    /// multiplied ([`scale::Scale`], made for the capture replayed).
+    pub scale: Option<scale::Scale>,
     /// Where to write frames `start_frame` and later as PNG (`frame-NNNNN.png`, by frame
     /// number), through the Vulkan raster renderer ([`crate::render::dumping_sink`]); `None`:
     /// frames go to the default sink.
@@ -214,7 +219,10 @@ fn replay_records(
         let (at, record) = record.map_err(|e| e.to_string())?;
         let fail = |cause: String| format!("record at byte {at} of the decompressed body: {cause}");
         match record {
-            Record::Call { id, args, reads } => {
+            Record::Call { id, mut args, reads } => {
+                if let Some(scale) = &options.scale {
+                    scale.rewrite(id, &mut args);
+                }
                 for (address, bytes) in reads {
                     shadow.write(address, bytes).map_err(fail)?;
                 }
@@ -257,12 +265,17 @@ fn replay_records(
                     *contexts.get(&id).ok_or_else(|| fail(format!("unknown context {id} made current")))?
                 };
                 let (width, height) = options.size.unwrap_or((width, height));
+                let (width, height) = options.scale.as_ref().map_or((width, height), |s| s.size((width, height)));
                 headless::make_current(handle, width, height, double);
                 clock.lap(&mut outcome.timing.swaps);
             }
             Record::Event(Event::Swap(kind)) => {
-                headless::swap(match (kind, options.size) {
-                    (SwapKind::Glx { .. }, Some((width, height))) => SwapKind::Glx { width, height },
+                headless::swap(match (kind, options.size, &options.scale) {
+                    (SwapKind::Glx { .. }, Some((width, height)), _) => SwapKind::Glx { width, height },
+                    (SwapKind::Glx { width, height }, None, Some(scale)) => {
+                        let (width, height) = scale.size((width, height));
+                        SwapKind::Glx { width, height }
+                    }
                     _ => kind,
                 });
                 outcome.frames += 1;

@@ -74,6 +74,12 @@ impl std::ops::Deref for Args {
     }
 }
 
+impl std::ops::DerefMut for Args {
+    fn deref_mut(&mut self) -> &mut [u64] {
+        &mut self.values[..self.len]
+    }
+}
+
 impl fmt::Debug for Args {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.debug_list().entries(self.iter()).finish()

@@ -5,7 +5,7 @@
 //! denoiser's quality on the demo's replay ([`denoise`]), hash
 //! tracking of a re-batching program ([`classify_rebatch`]), pass-through ([`passthrough`]),
 //! glrt as a glvnd vendor ([`glvnd_vendor`]), programs run by `glrt run` ([`glrt_run`]), an SFML-style program's window changing frame
-//! after frame ([`sfml_style`]), and images against Mesa ([`raster_vs_mesa`]) and an NVIDIA
+//! after frame ([`sfml_style`]), a Windows OpenGL program under Wine ([`wine`]), and images against Mesa ([`raster_vs_mesa`]) and an NVIDIA
 //! driver ([`raster_vs_nvidia`]).
 
 #[path = "../images/mod.rs"]
@@ -27,3 +27,4 @@ mod present;
 mod raster_vs_mesa;
 mod raster_vs_nvidia;
 mod sfml_style;
+mod wine;

@@ -7,7 +7,8 @@
 //! - `glrt dump FILE`: the call log of a capture on standard output;
 //! - `glrt radiosity FILE` ([`radiosity`]): the radiosity precompute on a capture's static
 //!   world, its times, sizes and errors;
-//! - `glrt run -- PROGRAM ARGS...` ([`run`]): runs a program on glrt;
+//! - `glrt run -- PROGRAM ARGS...` ([`run`]): runs a program on glrt ([`wine`]: what Wine
+//!   needs);
 //!
 //! and [`progress`], the progress bars of long work.
 //!
@@ -20,6 +21,7 @@ mod progress;
 mod radiosity;
 mod replay;
 mod run;
+mod wine;
 
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -1,13 +1,14 @@
-//! `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH] [--repeat N] [--bench] [--stats]`: replays a
+//! `glrt replay FILE [--frames A..B] [--out DIR] [--size WxH | --scale N] [--repeat N] [--bench] [--stats]`: replays a
 //! capture headless (frames before `A` are replayed too: they build the state; the replay stops
 //! after `B - 1`). `--out` draws and writes frames `A` and later as `DIR/frame-NNNNN.png` (by
 //! frame number) through the Vulkan renderer, which does not draw the frames before `A`
 //! (`glrt::render::frames_from`); `--bench` prints the frame times of frames `A` and later (one
 //! frame's end to the next's) and where their time went, in ms per frame: decoding records,
 //! writing recorded memory, glrt's front end, hash tracking and the renderer; `--stats` prints
-//! hash tracking's statistics of each frame as one JSON line (keys in README.md; frames are not
+//! hash tracking's statistics of each frame as one JSON line (keys in docs/hash-tracking.md; frames are not
 //! rendered unless `--out` is given). `--size` says on stderr what it changes when the capture
-//! was made at another size. With `--out`, a progress bar on stderr (when it is a
+//! was made at another size; `--scale N` replays the capture N times larger
+//! ([`glrt::replay::scale`]). With `--out`, a progress bar on stderr (when it is a
 //! terminal) counts the frames written and the time left.
 
 use std::path::PathBuf;
@@ -17,7 +18,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use crate::progress::FrameProgress;
 use glrt::frame::{FrameSink, NullSink};
 use glrt::render::frames_repeated::FramesRepeated;
-use glrt::replay::{self, reader::{Capture, Record}};
+use glrt::replay::{self, reader::{Capture, Record}, scale::Scale};
 use glrt::translate::capture::format::Event;
 use glrt::translate::capture;
 use glrt::translate::classify::report::{FrameTap, print_stats};
@@ -36,8 +37,13 @@ pub struct Args {
     out: Option<PathBuf>,
     /// The window size the replay draws into (the capture's own glViewport calls stay as they
     /// were: a 320x240 capture drawn at 1280x720 fills its lower-left 320x240).
-    #[arg(long, value_name = "WxH", value_parser = parse_size)]
+    #[arg(long, value_name = "WxH", value_parser = parse_size, conflicts_with = "scale")]
     size: Option<(i32, i32)>,
+    /// Replays N times larger in each direction: window sizes, viewports, scissors, line widths
+    /// and point sizes multiplied by N (a capture that draws or reads images in window pixels
+    /// is refused, naming the call).
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=i64::from(glrt::replay::scale::MAX_FACTOR)))]
+    scale: Option<u32>,
     /// Draws each frame N times, its animation frozen (converged path-traced references).
     #[arg(long, value_name = "N", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
     repeat: u32,
@@ -144,7 +150,8 @@ pub fn run(args: &Args) -> Result<(), String> {
     if let Some(note) = args.size.and_then(|size| size_note(&capture, size)) {
         eprintln!("glrt: {note}");
     }
-    let mut options = replay::Options { size: args.size, out: args.out.clone(), ..Default::default() };
+    let scale = args.scale.map(|factor| Scale::new(&capture, factor)).transpose()?;
+    let mut options = replay::Options { size: args.size, scale, out: args.out.clone(), ..Default::default() };
     let frames = args.frames.unwrap_or((0, u64::MAX));
     let (bench, stats) = (args.bench, args.stats);
     (options.start_frame, options.end_frame) = (frames.0, (frames.1 != u64::MAX).then_some(frames.1));

@@ -17,12 +17,14 @@
 //!
 //! The options become glrt's variables (`GLRT_MODE`, `GLRT_CONFIG`, `GLRT_CAPTURE`,
 //! `GLRT_TRACE`, `GLRT_DEVICE`, `GLRT_HUD`); the command says once on stderr which device and
-//! mode the program's frames will get ([`glrt::render::devices`]).
+//! mode the program's frames will get ([`glrt::render::devices`]). When the program is Wine,
+//! its prefix gets the registry value that keeps Wine on GLX ([`crate::wine`]).
 
 use std::ffi::OsString;
 use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
 
+use crate::wine;
 use glrt::render::devices;
 
 /// The arguments of `glrt run`.
@@ -91,11 +93,14 @@ pub fn run(args: &Args) -> Result<(), String> {
     if args.hud {
         variables.push(("GLRT_HUD", "1".into()));
     }
+    let (program, program_args) = args.command.split_first().ok_or("no program given")?;
+    if wine::is_wine(program) {
+        wine::use_glx(program)?;
+    }
     for (name, value) in &variables {
         // Safety: single-threaded; the survey below and the program read them.
         unsafe { std::env::set_var(name, value) };
     }
-    let (program, program_args) = args.command.split_first().ok_or("no program given")?;
     eprintln!("glrt: {} {}", Path::new(program).display(), rendering());
     let error = std::process::Command::new(program).args(program_args).exec();
     Err(format!("cannot run {}: {error}", Path::new(program).display()))
