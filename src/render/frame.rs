@@ -10,7 +10,8 @@
 //! 4. denoise ([`Denoiser::record`], A-SVGF, when enabled) or else resolve
 //!    ([`RayTracer::resolve`]: the tracer's temporal filter), then tone mapping;
 //! 5. composite ([`Composite::record`]): the traced colour and depth into the framebuffer, at
-//!    the place of the first traced draw;
+//!    the place of the first traced draw, fogged by the height fog ([`crate::render::fog`],
+//!    which the raster draws apply per fragment);
 //! 6. raster composite, the rest: the draws after it (translucent, overlay) over the traced
 //!    image, depth-tested against its depth; the passes of traced surfaces (draws of class
 //!    `Layer` the tracer evaluates, [`Surfaces`]) are not rasterized;
@@ -40,6 +41,7 @@ use crate::frame::{Draw, Frame, FrameEnd};
 use crate::frame::FrameSink;
 use crate::render::denoise::Denoiser;
 use crate::render::denoise::settings::DenoiseSettings;
+use crate::render::fog::settings::FogSettings;
 use crate::render::hud::canvas::Canvas;
 use crate::render::hud::{Display, FrameInfo, Hud};
 use crate::render::raster::device::{Device, Error, Result};
@@ -128,6 +130,12 @@ impl Renderer {
             tracing.denoiser = Some(Denoiser::new(self.raster.device(), settings)?);
         }
         Ok(())
+    }
+
+    /// Fogs the next frames with the height fog of `settings` ([`crate::render::fog`]), in
+    /// both modes.
+    pub fn set_fog(&mut self, settings: FogSettings) {
+        self.raster.set_fog(settings);
     }
 
     /// The ray-tracing back end, when tracing is enabled (statistics: rays, scenes, frames).
@@ -278,8 +286,8 @@ impl Tracing {
             Some(denoiser) => denoiser.record(rec, &scene.frame, &radiance)?,
             None => self.backend.resolve(rec, radiance)?,
         };
-        // Composite: the traced colour and depth into the framebuffer.
-        self.composite.record(rec, &image)
+        // Composite: the traced colour and depth into the framebuffer, fogged.
+        self.composite.record(rec, &image, camera)
     }
 
     /// Frees the stages' GPU objects (the GPU must be idle) and logs the back end's totals.
