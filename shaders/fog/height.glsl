@@ -10,8 +10,9 @@ struct HeightFog {
     mat4 window_to_world;   // (gl_FragCoord.xyz, 1) -> world position, homogeneous
     vec4 eye;               // the eye O in the world; w: 1 where the fog applies, 0 elsewhere
     vec4 up;                // unit world up; w: the height of the origin of the density
-    vec4 density;           // rho0, falloff b, target (0 fog colour, 1 black, 2 white), unused
-    vec4 color;             // fog colour (rgb, framebuffer values)
+    vec4 density;           // rho0, falloff b, unused, unused
+    vec4 color;             // what the fragment fades to (rgb, framebuffer values): the fog colour,
+                            // or the neutral colour of a pass that adds to or multiplies the framebuffer
 };
 
 // (1 - e^-x) / x for x >= 0, without the cancellation of 1 - e^-x near 0: its Taylor series
@@ -39,7 +40,7 @@ float height_fog_amount(float rho0, float b, float h0, float h1, float s) {
 }
 
 // `color` of the fragment at window position `frag` (gl_FragCoord.xyz) after the fog on the
-// segment from the eye to it: mix(color, target, clamp(F, 0, 1)).
+// segment from the eye to it: mix(color, fog.color, clamp(F, 0, 1)).
 vec3 height_fog_apply(HeightFog fog, vec3 frag, vec3 color) {
     if (fog.eye.w == 0.0) {
         return color;
@@ -49,8 +50,7 @@ vec3 height_fog_apply(HeightFog fog, vec3 frag, vec3 color) {
     float h0 = dot(fog.eye.xyz, fog.up.xyz) - fog.up.w;
     float h1 = dot(p, fog.up.xyz) - fog.up.w;
     float f = height_fog_amount(fog.density.x, fog.density.y, h0, h1, length(p - fog.eye.xyz));
-    vec3 target = fog.density.z == 1.0 ? vec3(0.0) : fog.density.z == 2.0 ? vec3(1.0) : fog.color.rgb;
-    return mix(color, target, clamp(f, 0.0, 1.0));
+    return mix(color, fog.color.rgb, clamp(f, 0.0, 1.0));
 }
 
 #endif

@@ -23,9 +23,11 @@
 //! the glass; a clear glass (a = 0) leaves the fogged wall exactly as without it. Fogging the
 //! wall with `F_f` alone, as the seed writes, would drop the segment O→P_n from everything seen
 //! through glass. What would count fog twice is a pass that adds to or multiplies what is
-//! under it: an additive pass (destination factor one) is fogged towards black (it adds only
-//! its own light, attenuated), a modulating pass (lightmaps: `DST_COLOR, ZERO`) towards white
-//! (it fades to multiplying by one), as Quake 3 fogs its multi-pass shaders.
+//! under it: such a pass fades to its neutral colour, the one that leaves the framebuffer as
+//! it is, as Quake 3 fogs its multi-pass shaders: an additive pass (destination factor one)
+//! towards black (it adds only its own light, attenuated), a modulating pass (lightmaps:
+//! `DST_COLOR, ZERO`) towards white, a doubling one (`DST_COLOR, SRC_COLOR`, overbright
+//! lightmaps) towards grey 0.5; a fully fogged multi-pass surface is then the fog colour.
 //!
 //! World space: the recovered view's world ([`crate::frame::class::View`]) when the frame has
 //! one, else the eye space of the draw; its up direction and the height origin come from the
@@ -52,9 +54,10 @@ pub struct GpuHeightFog {
     pub eye: [f32; 4],
     /// Unit world up; w: the height of the density's origin.
     pub up: [f32; 4],
-    /// rho0, falloff b, target (0: the fog colour, 1: black, 2: white), unused.
+    /// rho0, falloff b, unused, unused.
     pub density: [f32; 4],
-    /// The fog colour (rgb).
+    /// What the fragments fade to (rgb): the fog colour, or the neutral colour of the draw's
+    /// blending ([`neutral`]).
     pub color: [f32; 4],
 }
 
@@ -65,17 +68,6 @@ pub struct FrameFog {
     world_from_eye: Mat4,
     settings: FogSettings,
     color: [f32; 3],
-}
-
-/// What a pass fogs towards.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Target {
-    /// The fog colour: opaque and alpha-blended draws.
-    Fog = 0,
-    /// Black: passes that add to what is under them.
-    Black = 1,
-    /// White: passes that multiply what is under them.
-    White = 2,
 }
 
 impl FrameFog {
@@ -109,12 +101,12 @@ impl FrameFog {
         let s = &self.settings;
         let window_to_world = self.world_from_eye * draw.projection.inverse() * ndc_from_window(draw, height);
         let eye = self.world_from_eye.w_axis.truncate();
-        let [r, g, b] = self.color;
+        let [r, g, b] = neutral(draw).unwrap_or(self.color);
         GpuHeightFog {
             window_to_world: window_to_world.to_cols_array_2d(),
             eye: [eye.x, eye.y, eye.z, 1.0],
             up: [s.up.x, s.up.y, s.up.z, s.height],
-            density: [s.density, s.falloff, target(draw) as u32 as f32, 0.0],
+            density: [s.density, s.falloff, 0.0, 0.0],
             color: [r, g, b, 1.0],
         }
     }
@@ -135,13 +127,16 @@ fn ndc_from_window(draw: &Draw, height: u32) -> Mat4 {
     )
 }
 
-/// What `draw`'s blending makes its fragments fog towards.
-fn target(draw: &Draw) -> Target {
+/// The neutral colour of `draw`'s blending, the source colour that leaves the framebuffer as
+/// it is, for passes that add to or multiply it; `None` for opaque and alpha-blended draws
+/// (they fade to the fog colour).
+fn neutral(draw: &Draw) -> Option<[f32; 3]> {
     use BlendFactor::{DstColor, One, SrcColor, Zero};
-    match draw.state.blend {
-        Some(b) if b.dst_rgb == One => Target::Black,
-        Some(b) if (b.src_rgb, b.dst_rgb) == (DstColor, Zero) || (b.src_rgb, b.dst_rgb) == (Zero, SrcColor) => Target::White,
-        _ => Target::Fog,
+    match draw.state.blend.map(|b| (b.src_rgb, b.dst_rgb)) {
+        Some((_, One)) => Some([0.0; 3]),
+        Some((DstColor, Zero) | (Zero, SrcColor)) => Some([1.0; 3]),
+        Some((DstColor, SrcColor) | (SrcColor, DstColor)) => Some([0.5; 3]),
+        _ => None,
     }
 }
 
@@ -199,11 +194,13 @@ mod tests {
     fn blending_chooses_the_target_and_classes_the_fogged_draws() {
         let fog = fog();
         let blend = |src, dst| Some(Blend { src_rgb: src, dst_rgb: dst, ..Blend::default() });
-        let target_of = |b| fog.for_draw(&draw(b, DrawClass::Translucent), 60).density[2];
-        assert_eq!(target_of(None), 0.0);
-        assert_eq!(target_of(blend(BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha)), 0.0);
-        assert_eq!(target_of(blend(BlendFactor::SrcAlpha, BlendFactor::One)), 1.0);
-        assert_eq!(target_of(blend(BlendFactor::DstColor, BlendFactor::Zero)), 2.0);
+        let target_of = |b| fog.for_draw(&draw(b, DrawClass::Translucent), 60).color;
+        let fog_color = [DEFAULT_COLOR[0], DEFAULT_COLOR[1], DEFAULT_COLOR[2], 1.0];
+        assert_eq!(target_of(None), fog_color);
+        assert_eq!(target_of(blend(BlendFactor::SrcAlpha, BlendFactor::OneMinusSrcAlpha)), fog_color);
+        assert_eq!(target_of(blend(BlendFactor::SrcAlpha, BlendFactor::One)), [0.0, 0.0, 0.0, 1.0]);
+        assert_eq!(target_of(blend(BlendFactor::DstColor, BlendFactor::Zero)), [1.0, 1.0, 1.0, 1.0]);
+        assert_eq!(target_of(blend(BlendFactor::DstColor, BlendFactor::SrcColor)), [0.5, 0.5, 0.5, 1.0]);
         assert_eq!(fog.for_draw(&draw(None, DrawClass::Overlay), 60), GpuHeightFog::zeroed());
         assert_eq!(fog.for_draw(&draw(None, DrawClass::Sky), 60), GpuHeightFog::zeroed());
         assert_eq!(fog.for_draw(&draw(None, DrawClass::Static), 60).eye[3], 1.0);

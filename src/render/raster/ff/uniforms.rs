@@ -236,7 +236,7 @@ mod tests {
         let mut u = pack(&draw);
         assert_eq!(u.len(), super::super::UNIFORM_SIZE);
         set_framebuffer_height(&mut u, 480);
-        let fog = GpuHeightFog { eye: [1.0, 2.0, 3.0, 1.0], density: [0.5, 0.1, 2.0, 0.0], ..GpuHeightFog::default() };
+        let fog = GpuHeightFog { eye: [1.0, 2.0, 3.0, 1.0], density: [0.5, 0.1, 0.0, 0.0], ..GpuHeightFog::default() };
         set_height_fog(&mut u, &fog);
         let read = bytemuck::pod_read_unaligned::<FfBlock>(&u);
         assert_eq!((read.stipple[1], read.height_fog), (480, fog));
