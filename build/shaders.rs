@@ -96,6 +96,8 @@ const LAYOUTS: &[LayoutFile] = &[
         name: "trace_composite",
         shaders: &[("trace_composite.frag", &[mirror("Sizes", Rust::SizeConstant("PUSH_BYTES")), mirror("HeightFog", Rust::Struct("GpuHeightFog"))])],
     },
+    // render::ao
+    LayoutFile { name: "ao_gpu_types", shaders: &[("ao/ssao.comp", &[mirror("AoParams", Rust::Struct("GpuAoParams"))])] },
     // render::raster::ff::uniforms
     LayoutFile { name: "ff_uniforms", shaders: &[("ff.vert", FF_UNIFORMS), ("ff.frag", FF_UNIFORMS)] },
 ];

@@ -33,6 +33,9 @@
 //! [fog]                             # keys: render::fog::settings (GLRT_FOG=0|1)
 //! enabled = true
 //!
+//! [ao]                              # keys: render::ao::settings (GLRT_AO=0|1)
+//! enabled = true
+//!
 //! [materials]                       # per texture hash, every field optional
 //! "0x8f3a2c1d00aa11bb" = { roughness = 0.3, metalness = 1.0, emissive = 2.0 }
 //! ```
@@ -57,7 +60,7 @@ use std::path::{Path, PathBuf};
 pub const LIST_KEYS: [&str; 8] = ["ui", "sky", "ignore", "translucent", "emissive", "static", "dynamic", "lightmap"];
 
 /// The top-level tables: `[materials]` and the settings tables read through [`Table`].
-pub const TABLES: [&str; 7] = ["pathtrace", "denoise", "memory", "display", "radiosity", "fog", "materials"];
+pub const TABLES: [&str; 8] = ["pathtrace", "denoise", "memory", "display", "radiosity", "fog", "ao", "materials"];
 
 /// The keys of a `[materials]` entry.
 const MATERIAL_KEYS: [&str; 3] = ["roughness", "metalness", "emissive"];
@@ -410,7 +413,7 @@ mod tests {
         assert_eq!(c.lists[0], HashSet::from([16, 32]));
         assert_eq!(c.lists[1], HashSet::from([255]));
         assert_eq!(warnings.len(), 1);
-        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, lightmap, pathtrace, denoise, memory, display, radiosity, fog, materials)"), "{}", warnings[0]);
+        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, lightmap, pathtrace, denoise, memory, display, radiosity, fog, ao, materials)"), "{}", warnings[0]);
     }
 
     #[test]

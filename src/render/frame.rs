@@ -19,7 +19,8 @@
 //!    ([`crate::render::hud`]), the outputs, submission) or read back ([`Raster::read`]).
 //!
 //! Without a [`RayTracer`] (raster mode) steps 2 to 5 are left out and every draw is
-//! rasterized. Radiosity (issue 19) is a stage between 3 and 4.
+//! rasterized; ambient occlusion ([`AmbientOcclusion`], when enabled) then runs once, after
+//! the last opaque 3D draw ([`crate::render::ao::place`]). Radiosity (issue 19) is a stage between 3 and 4.
 //!
 //! Failures degrade (DESIGN.md, "Files, variables, conventions"), each said once on stderr:
 //! tracing stages that cannot be created or fail in a frame (a shader the driver cannot
@@ -39,6 +40,8 @@
 use crate::frame::pixels::PixelBuffer;
 use crate::frame::{Draw, Frame, FrameEnd};
 use crate::frame::FrameSink;
+use crate::render::ao::AmbientOcclusion;
+use crate::render::ao::settings::AoSettings;
 use crate::render::denoise::Denoiser;
 use crate::render::denoise::settings::DenoiseSettings;
 use crate::render::fog::settings::FogSettings;
@@ -70,6 +73,10 @@ pub struct Renderer {
     target: Option<crate::frame::Target>,
     /// The HUD, when `GLRT_HUD` asks for it.
     hud: Option<Hud>,
+    /// Ambient occlusion of raster frames, when enabled.
+    ao: Option<AmbientOcclusion>,
+    /// The number of the last frame that got ambient occlusion (it runs once per frame).
+    occluded_frame: Option<u64>,
 }
 
 /// The path-tracing stages: a ray-tracing back end, the denoiser (when enabled) and the
@@ -101,7 +108,7 @@ impl Renderer {
     /// Creates the renderer with no [`FrameOutput`]: frames stay in the framebuffer.
     pub fn without_outputs() -> Result<Renderer> {
         let hud = Display::of_process().hud.then(Hud::default);
-        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud })
+        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud, ao: None, occluded_frame: None })
     }
 
     /// Path traces the traced draws of the next frames with `settings`, with the back end
@@ -136,6 +143,15 @@ impl Renderer {
     /// both modes.
     pub fn set_fog(&mut self, settings: FogSettings) {
         self.raster.set_fog(settings);
+    }
+
+    /// Gives the next raster frames ambient occlusion with `settings` ([`AmbientOcclusion`]);
+    /// frames that are path traced get none.
+    pub fn enable_ambient_occlusion(&mut self, settings: AoSettings) -> Result<()> {
+        if self.ao.is_none() {
+            self.ao = Some(AmbientOcclusion::new(self.raster.device(), settings)?);
+        }
+        Ok(())
     }
 
     /// The ray-tracing back end, when tracing is enabled (statistics: rays, scenes, frames).
@@ -183,6 +199,18 @@ impl Renderer {
                 }
                 Ok(()) => {}
             }
+        }
+        // Ambient occlusion of a raster frame, once, after its last opaque 3D draw.
+        if self.tracing.is_none()
+            && let Some(ao) = &mut self.ao
+            && let Some((at, camera)) = crate::render::ao::place(frame)
+            && self.raster.recorded_draws(frame) <= at
+            && self.occluded_frame != Some(frame.number)
+        {
+            self.raster.record(frame, Some(at), &rasterized)?;
+            self.occluded_frame = Some(frame.number);
+            let mut rec = self.raster.recorder_into(None, frame.size)?;
+            ao.record(&mut rec, camera)?;
         }
         // Raster composite, the rest: the draws after it (glass, HUD), over the traced image
         // and depth-tested against its depth.
@@ -252,6 +280,9 @@ impl Renderer {
         let outputs = old.take_outputs();
         for mut tracing in [self.tracing.take(), self.retired.take()].into_iter().flatten() {
             tracing.destroy(old.device());
+        }
+        if let Some(mut ao) = self.ao.take() {
+            ao.destroy(old.device());
         }
         drop(old);
         for output in outputs {
@@ -364,6 +395,9 @@ impl Drop for Renderer {
         let _ = device.wait_idle();
         for mut tracing in [self.tracing.take(), self.retired.take()].into_iter().flatten() {
             tracing.destroy(device);
+        }
+        if let Some(ao) = &mut self.ao {
+            ao.destroy(device);
         }
     }
 }

@@ -4,11 +4,12 @@
 //! recording and the raster stages (clears, pixel operations, draws in program order,
 //! read-back, present), [`trace`] the path-tracing stages behind one back-end trait
 //! ([`trace::RayTracer`]), [`denoise`] the A-SVGF stage after tracing, [`fog`] the height fog
-//! of both modes, [`present`] the window,
+//! of both modes, [`ao`] the ambient occlusion of raster mode, [`present`] the window,
 //! and [`hud`] the panel of frame times drawn over the image. [`default_sink`] chooses the
 //! renderer of the mode (`GLRT_MODE`); [`devices`] lists the machine's Vulkan devices with the
 //! mode each would get ([`rendering_on`]).
 
+pub mod ao;
 pub mod devices;
 pub mod frame;
 #[macro_use]
@@ -95,6 +96,13 @@ fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result
     let rendering = rendering_on(renderer.device().properties.device_type, renderer.device().ray_tracing);
     if rendering == (devices::Rendering::Raster { by_default: true }) {
         log::info!("glrt: the Vulkan device is a CPU: rasterizing (GLRT_MODE=pathtrace traces anyway, at seconds per frame)");
+    }
+    let ao = ao::settings::AoSettings::of_process();
+    if ao.enabled
+        && !matches!(rendering, devices::Rendering::PathTrace { .. })
+        && let Err(e) = renderer.enable_ambient_occlusion(ao)
+    {
+        eprintln!("glrt: ambient occlusion is not available: {e}");
     }
     if matches!(rendering, devices::Rendering::PathTrace { .. }) {
         match renderer.enable_tracing(trace::settings::Settings::of_process()) {
