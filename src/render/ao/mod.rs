@@ -29,7 +29,9 @@
 //! the usual compromise of forward renderers that apply SSAO after shading.
 //!
 //! Where: after the last draw of an opaque 3D class (static, movable, dynamic, layer, light
-//! passes) in program order, once per frame; the camera is the first such draw's projection,
+//! passes; in a frame read back before its end, which is not classified yet, the unblended
+//! perspective draws) in program order, once per frame (a frame read back past that place
+//! before its end keeps what the read-back drew); the camera is the first such draw's projection,
 //! viewport and depth range. Path-traced frames get none (their occlusion comes from the
 //! traced rays).
 
@@ -42,7 +44,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 use gpu_allocator::MemoryLocation;
 
-use crate::frame::class::DrawClass;
+use crate::frame::class::{DrawClass, orthographic};
 use crate::frame::{Draw, Frame};
 use crate::render::raster::commands::SetKey;
 use crate::render::raster::device::{Buffer, Check, Device, Result};
@@ -115,16 +117,22 @@ fn noise() -> [[f32; 4]; 16] {
     std::array::from_fn(|_| [rng.next() * 2.0 - 1.0, rng.next() * 2.0 - 1.0, 0.0, 0.0])
 }
 
-/// Whether draws of `class` are opaque 3D surfaces, the ones occlusion applies to.
-fn occluded(class: DrawClass) -> bool {
-    matches!(class, DrawClass::Static | DrawClass::Movable | DrawClass::Dynamic | DrawClass::Layer | DrawClass::Light)
+/// Whether `draw` is an opaque 3D surface, the kind occlusion applies to: of a traced class,
+/// or in a frame read back before its end (not classified yet), unblended with a perspective
+/// projection.
+fn occluded(draw: &Draw) -> bool {
+    match draw.class {
+        DrawClass::Static | DrawClass::Movable | DrawClass::Dynamic | DrawClass::Layer | DrawClass::Light => true,
+        DrawClass::Unclassified => draw.state.blend.is_none() && !orthographic(&draw.projection),
+        _ => false,
+    }
 }
 
 /// Where in `frame` the occlusion goes: after its last opaque 3D draw (a draw index, possibly
 /// the end), and the camera (its first opaque 3D draw); `None` without such draws.
 pub fn place(frame: &Frame) -> Option<(usize, &Draw)> {
-    let last = frame.draws.iter().rposition(|d| occluded(d.class))?;
-    let camera = frame.draws.iter().find(|d| occluded(d.class))?;
+    let last = frame.draws.iter().rposition(occluded)?;
+    let camera = frame.draws.iter().find(|d| occluded(d))?;
     Some((last + 1, camera))
 }
 
@@ -376,6 +384,8 @@ fn barrier(device: &Device, cmd: vk::CommandBuffer, src: vk::PipelineStageFlags2
 
 #[cfg(test)]
 mod tests {
+    use glam::Mat4;
+
     use super::*;
 
     #[test]
@@ -397,5 +407,9 @@ mod tests {
         assert_eq!(place(&frame).map(|(at, _)| at), Some(3));
         frame.draws.truncate(1);
         assert!(place(&frame).is_none());
+        let perspective = Mat4::from_cols_array(&[1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, -1.0, -1.0, 0.0, 0.0, -0.2, 0.0]);
+        frame.draws.push(Draw { projection: perspective, ..draw(DrawClass::Unclassified) });
+        frame.draws.push(draw(DrawClass::Unclassified));
+        assert_eq!(place(&frame).map(|(at, _)| at), Some(2), "a frame read before its end: perspective draws count");
     }
 }
