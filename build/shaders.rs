@@ -34,8 +34,12 @@ const fn mirror(glsl: &'static str, rust: Rust) -> Mirror {
 }
 
 /// The fixed-function uniform block and its structs (both stages declare them).
-const FF_UNIFORMS: &[Mirror] =
-    &[mirror("FF", Rust::Struct("FfBlock")), mirror("Material", Rust::Struct("FfMaterial")), mirror("Light", Rust::Struct("FfLight"))];
+const FF_UNIFORMS: &[Mirror] = &[
+    mirror("FF", Rust::Struct("FfBlock")),
+    mirror("Material", Rust::Struct("FfMaterial")),
+    mirror("Light", Rust::Struct("FfLight")),
+    mirror("HeightFog", Rust::Struct("GpuHeightFog")),
+];
 
 /// Every struct Rust shares with the shaders, by the module that includes its assertions.
 const LAYOUTS: &[LayoutFile] = &[
@@ -101,7 +105,12 @@ const LAYOUTS: &[LayoutFile] = &[
         shaders: &[("radiosity/gather.comp", &[mirror("SparseEntry", Rust::Struct("GpuSparseEntry")), mirror("GatherPass", Rust::Struct("GpuGatherPass"))])],
     },
     // render::trace::composite
-    LayoutFile { name: "trace_composite", shaders: &[("trace_composite.frag", &[mirror("Sizes", Rust::SizeConstant("PUSH_BYTES"))])] },
+    LayoutFile {
+        name: "trace_composite",
+        shaders: &[("trace_composite.frag", &[mirror("Sizes", Rust::SizeConstant("PUSH_BYTES")), mirror("HeightFog", Rust::Struct("GpuHeightFog"))])],
+    },
+    // render::ao
+    LayoutFile { name: "ao_gpu_types", shaders: &[("ao/ssao.comp", &[mirror("AoParams", Rust::Struct("GpuAoParams"))])] },
     // render::raster::ff::uniforms
     LayoutFile { name: "ff_uniforms", shaders: &[("ff.vert", FF_UNIFORMS), ("ff.frag", FF_UNIFORMS)] },
 ];

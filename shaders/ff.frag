@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Fixed-function fragment stage (OpenGL 1.5 sections 3.3 to 3.5 for antialiasing coverage and
-// stipples, 3.8 texturing, 3.9 colour sum, 3.10 fog, 3.12 coverage, 4.1.4 alpha test): see
+// stipples, 3.8 texturing, 3.9 colour sum, 3.10 fog (then the renderer's height fog), 3.12 coverage, 4.1.4 alpha test): see
 // src/render/raster/ff/mod.rs for the interface. The texture environment is texenv.glsl's,
 // shared with the path tracer.
 
@@ -10,6 +10,7 @@
 #include "generated/ff_interface.glsl"
 #include "bit_field.glsl"
 #include "ff_key.glsl"
+#include "fog/height.glsl"
 #include "ff_uniforms.glsl"
 #include "ff_varyings.glsl"
 #include "gl_compare.glsl"
@@ -138,6 +139,8 @@ void main() {
         float f = fog == 1u ? (p.y - c) * p.w : fog == 2u ? exp(-p.z * c) : exp(-(p.z * c) * (p.z * c));
         color.rgb = mix(u.fog_color.rgb, color.rgb, clamp(f, 0.0, 1.0));
     }
+    // The renderer's height fog (src/render/fog), after the program's own.
+    color.rgb = height_fog_apply(u.height_fog, gl_FragCoord.xyz, color.rgb);
 
     color.a *= smooth_coverage();
     if (alpha_tested_out(color.a)) {

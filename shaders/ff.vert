@@ -8,6 +8,7 @@
 #include "generated/ff_interface.glsl"
 #include "bit_field.glsl"
 #include "ff_key.glsl"
+#include "fog/height.glsl"
 #include "ff_uniforms.glsl"
 #include "ff_varyings.glsl"
 

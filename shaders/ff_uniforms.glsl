@@ -1,6 +1,7 @@
 // The per-draw block of the fixed-function shaders (std140). Mirrored by
 // src/render/raster/ff/uniforms.rs (FfBlock), whose layout the build checks against the
-// compiled SPIR-V; MAX_UNITS, MAX_LIGHTS and MAX_CLIP_PLANES come from the generated headers.
+// compiled SPIR-V; MAX_UNITS, MAX_LIGHTS and MAX_CLIP_PLANES come from the generated headers,
+// HeightFog from fog/height.glsl (included before this file).
 //
 // It is a read-only storage buffer, not a uniform buffer: Mesa's lavapipe inlines uniform
 // buffer values that feed branches or locals used five times or more (lvp_inline_uniforms.c)
@@ -45,4 +46,5 @@ layout(set = 0, binding = BINDING_UNIFORMS, std140) readonly buffer FF {
     vec4 viewport;                    // x, y, width, height (window pixels, y up)
     uvec4 stipple;                    // line stipple pattern, framebuffer height
     uvec4 polygon_stipple[8];         // row r (bottom first) at [r / 4][r % 4]
+    HeightFog height_fog;             // the renderer's height fog (render::fog), written per batch
 } u;

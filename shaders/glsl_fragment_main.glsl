@@ -28,6 +28,8 @@ void main() {
     u_main();
 
     vec4 color = GLRT_FRAGMENT_OUTPUT;
+    // The renderer's height fog (src/render/fog), after the program's own.
+    color.rgb = height_fog_apply(u.height_fog, gl_FragCoord.xyz, color.rgb);
     color.a *= smooth_coverage();
     if (alpha_tested_out(color.a)) {
         discard;

@@ -3,10 +3,18 @@
 // whose primary ray hit get the tone-mapped colour and the hit's window depth (depth test
 // LEQUAL, so raster draws made earlier and nearer stay); pixels whose ray missed keep what the
 // framebuffer holds (the clear colour, the sky). Translucent and overlay draws that follow are
-// depth-tested against the traced depth.
+// depth-tested against the traced depth. The height fog (fog/height.glsl) fogs each hit on the
+// segment from the eye to it, with the camera draw's mapping from window to world.
+#extension GL_GOOGLE_include_directive : require
+
+#include "fog/height.glsl"
 
 layout(std430, set = 0, binding = 0) readonly buffer Output {
     uvec2 outputs[];    // trace/gbuffer.glsl OutputSample: colour, depth bits
+};
+
+layout(std430, set = 0, binding = 1) readonly buffer Fog {
+    HeightFog fog;      // zero: no fog
 };
 
 layout(push_constant) uniform Sizes {
@@ -26,5 +34,6 @@ void main() {
         discard;
     }
     color = unpackUnorm4x8(o.x);
+    color.rgb = height_fog_apply(fog, vec3(gl_FragCoord.xy, depth), color.rgb);
     gl_FragDepth = depth;
 }

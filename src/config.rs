@@ -30,6 +30,12 @@
 //! [radiosity]                       # keys: render::radiosity::settings
 //! radiosity_bounces = 3
 //!
+//! [fog]                             # keys: render::fog::settings (GLRT_FOG=0|1)
+//! enabled = true
+//!
+//! [ao]                              # keys: render::ao::settings (GLRT_AO=0|1)
+//! enabled = true
+//!
 //! [materials]                       # per texture hash, every field optional
 //! "0x8f3a2c1d00aa11bb" = { roughness = 0.3, metalness = 1.0, emissive = 2.0 }
 //! ```
@@ -54,7 +60,7 @@ use std::path::{Path, PathBuf};
 pub const LIST_KEYS: [&str; 8] = ["ui", "sky", "ignore", "translucent", "emissive", "static", "dynamic", "lightmap"];
 
 /// The top-level tables: `[materials]` and the settings tables read through [`Table`].
-pub const TABLES: [&str; 6] = ["pathtrace", "denoise", "memory", "display", "radiosity", "materials"];
+pub const TABLES: [&str; 8] = ["pathtrace", "denoise", "memory", "display", "radiosity", "fog", "ao", "materials"];
 
 /// The keys of a `[materials]` entry.
 const MATERIAL_KEYS: [&str; 3] = ["roughness", "metalness", "emissive"];
@@ -178,6 +184,26 @@ pub fn integer_in(value: &toml::Value, range: RangeInclusive<i64>) -> Result<i64
         toml::Value::Integer(i) if range.contains(i) => Ok(*i),
         _ => Err(format!("expected an integer in {}..={}, found {}", range.start(), range.end(), shown(value))),
     }
+}
+
+/// A switch: `true`/`false`, or `1`/`0` (what `GLRT_HUD=1` reads as).
+pub fn switch(value: &toml::Value) -> Result<bool, String> {
+    match value {
+        toml::Value::Boolean(b) => Ok(*b),
+        toml::Value::Integer(i @ (0 | 1)) => Ok(*i == 1),
+        _ => Err(format!("expected true, false, 1 or 0, found {}", shown(value))),
+    }
+}
+
+/// A direction `[x, y, z]`, not zero, normalized.
+pub fn direction(value: &toml::Value) -> Result<glam::Vec3, String> {
+    let expected = || format!("expected a direction [x, y, z], not zero, found {}", shown(value));
+    let items = value.as_array().filter(|a| a.len() == 3).ok_or_else(expected)?;
+    let mut v = [0.0; 3];
+    for (c, item) in v.iter_mut().zip(items) {
+        *c = number(item, |_| true, "a number").map_err(|_| expected())? as f32;
+    }
+    glam::Vec3::from(v).try_normalize().ok_or_else(expected)
 }
 
 /// One of `names` (a string), as its index.
@@ -397,7 +423,7 @@ mod tests {
         assert_eq!(c.lists[0], HashSet::from([16, 32]));
         assert_eq!(c.lists[1], HashSet::from([255]));
         assert_eq!(warnings.len(), 1);
-        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, lightmap, pathtrace, denoise, memory, display, radiosity, materials)"), "{}", warnings[0]);
+        assert!(warnings[0].starts_with("g.toml:4: unknown key 'shadows' (known: ui, sky, ignore, translucent, emissive, static, dynamic, lightmap, pathtrace, denoise, memory, display, radiosity, fog, ao, materials)"), "{}", warnings[0]);
     }
 
     #[test]

@@ -10,7 +10,8 @@
 //! 4. denoise ([`Denoiser::record`], A-SVGF, when enabled) or else resolve
 //!    ([`RayTracer::resolve`]: the tracer's temporal filter), then tone mapping;
 //! 5. composite ([`Composite::record`]): the traced colour and depth into the framebuffer, at
-//!    the place of the first traced draw;
+//!    the place of the first traced draw, fogged by the height fog ([`crate::render::fog`],
+//!    which the raster draws apply per fragment);
 //! 6. raster composite, the rest: the draws after it (translucent, overlay) over the traced
 //!    image, depth-tested against its depth; the passes of traced surfaces (draws of class
 //!    `Layer` the tracer evaluates, [`Surfaces`]) are not rasterized;
@@ -18,7 +19,8 @@
 //!    ([`crate::render::hud`]), the outputs, submission) or read back ([`Raster::read`]).
 //!
 //! Without a [`RayTracer`] (raster mode) steps 2 to 5 are left out and every draw is
-//! rasterized. Radiosity (issue 19) is a stage between 3 and 4.
+//! rasterized; ambient occlusion ([`AmbientOcclusion`], when enabled) then runs once, after
+//! the last opaque 3D draw ([`crate::render::ao::place`]). Radiosity (issue 19) is a stage between 3 and 4.
 //!
 //! Failures degrade (DESIGN.md, "Files, variables, conventions"), each said once on stderr:
 //! tracing stages that cannot be created or fail in a frame (a shader the driver cannot
@@ -38,8 +40,11 @@
 use crate::frame::pixels::PixelBuffer;
 use crate::frame::{Draw, Frame, FrameEnd};
 use crate::frame::FrameSink;
+use crate::render::ao::AmbientOcclusion;
+use crate::render::ao::settings::AoSettings;
 use crate::render::denoise::Denoiser;
 use crate::render::denoise::settings::DenoiseSettings;
+use crate::render::fog::settings::FogSettings;
 use crate::render::hud::canvas::Canvas;
 use crate::render::hud::{Display, FrameInfo, Hud};
 use crate::render::raster::device::{Device, Error, Result};
@@ -68,6 +73,10 @@ pub struct Renderer {
     target: Option<crate::frame::Target>,
     /// The HUD, when `GLRT_HUD` asks for it.
     hud: Option<Hud>,
+    /// Ambient occlusion of raster frames, when enabled.
+    ao: Option<AmbientOcclusion>,
+    /// The number of the last frame that got ambient occlusion (it runs once per frame).
+    occluded_frame: Option<u64>,
 }
 
 /// The path-tracing stages: a ray-tracing back end, the denoiser (when enabled) and the
@@ -99,7 +108,7 @@ impl Renderer {
     /// Creates the renderer with no [`FrameOutput`]: frames stay in the framebuffer.
     pub fn without_outputs() -> Result<Renderer> {
         let hud = Display::of_process().hud.then(Hud::default);
-        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud })
+        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud, ao: None, occluded_frame: None })
     }
 
     /// Path traces the traced draws of the next frames with `settings`, with the back end
@@ -126,6 +135,21 @@ impl Renderer {
             && tracing.denoiser.is_none()
         {
             tracing.denoiser = Some(Denoiser::new(self.raster.device(), settings)?);
+        }
+        Ok(())
+    }
+
+    /// Fogs the next frames with the height fog of `settings` ([`crate::render::fog`]), in
+    /// both modes.
+    pub fn set_fog(&mut self, settings: FogSettings) {
+        self.raster.set_fog(settings);
+    }
+
+    /// Gives the next raster frames ambient occlusion with `settings` ([`AmbientOcclusion`]);
+    /// frames that are path traced get none.
+    pub fn enable_ambient_occlusion(&mut self, settings: AoSettings) -> Result<()> {
+        if self.ao.is_none() {
+            self.ao = Some(AmbientOcclusion::new(self.raster.device(), settings)?);
         }
         Ok(())
     }
@@ -175,6 +199,18 @@ impl Renderer {
                 }
                 Ok(()) => {}
             }
+        }
+        // Ambient occlusion of a raster frame, once, after its last opaque 3D draw.
+        if self.tracing.is_none()
+            && let Some(ao) = &mut self.ao
+            && let Some((at, camera)) = crate::render::ao::place(frame)
+            && self.raster.recorded_draws(frame) <= at
+            && self.occluded_frame != Some(frame.number)
+        {
+            self.raster.record(frame, Some(at), &rasterized)?;
+            self.occluded_frame = Some(frame.number);
+            let mut rec = self.raster.recorder_into(None, frame.size)?;
+            ao.record(&mut rec, camera)?;
         }
         // Raster composite, the rest: the draws after it (glass, HUD), over the traced image
         // and depth-tested against its depth.
@@ -245,6 +281,9 @@ impl Renderer {
         for mut tracing in [self.tracing.take(), self.retired.take()].into_iter().flatten() {
             tracing.destroy(old.device());
         }
+        if let Some(mut ao) = self.ao.take() {
+            ao.destroy(old.device());
+        }
         drop(old);
         for output in outputs {
             self.raster.add_output(output);
@@ -278,8 +317,8 @@ impl Tracing {
             Some(denoiser) => denoiser.record(rec, &scene.frame, &radiance)?,
             None => self.backend.resolve(rec, radiance)?,
         };
-        // Composite: the traced colour and depth into the framebuffer.
-        self.composite.record(rec, &image)
+        // Composite: the traced colour and depth into the framebuffer, fogged.
+        self.composite.record(rec, &image, camera)
     }
 
     /// Frees the stages' GPU objects (the GPU must be idle) and logs the back end's totals.
@@ -356,6 +395,9 @@ impl Drop for Renderer {
         let _ = device.wait_idle();
         for mut tracing in [self.tracing.take(), self.retired.take()].into_iter().flatten() {
             tracing.destroy(device);
+        }
+        if let Some(ao) = &mut self.ao {
+            ao.destroy(device);
         }
     }
 }

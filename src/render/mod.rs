@@ -3,16 +3,19 @@
 //! layers): a frame's stages in order, read top to bottom there; [`raster`] provides the command
 //! recording and the raster stages (clears, pixel operations, draws in program order,
 //! read-back, present), [`trace`] the path-tracing stages behind one back-end trait
-//! ([`trace::RayTracer`]), [`denoise`] the A-SVGF stage after tracing, [`present`] the window,
+//! ([`trace::RayTracer`]), [`denoise`] the A-SVGF stage after tracing, [`fog`] the height fog
+//! of both modes, [`ao`] the ambient occlusion of raster mode, [`present`] the window,
 //! and [`hud`] the panel of frame times drawn over the image. [`default_sink`] chooses the
 //! renderer of the mode (`GLRT_MODE`); [`devices`] lists the machine's Vulkan devices with the
 //! mode each would get ([`rendering_on`]).
 
+pub mod ao;
 pub mod devices;
 pub mod frame;
 #[macro_use]
 pub mod shader_abi;
 pub mod denoise;
+pub mod fog;
 pub mod frame_log;
 pub mod frames_from;
 pub mod frames_repeated;
@@ -89,9 +92,17 @@ pub fn rendering_on(device_type: ash::vk::PhysicalDeviceType, ray_tracing: bool)
 /// message, when the tracing stages cannot be made).
 fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result<frame::Renderer> {
     let mut renderer = frame::Renderer::with_dump(dump)?;
+    renderer.set_fog(fog::settings::FogSettings::of_process());
     let rendering = rendering_on(renderer.device().properties.device_type, renderer.device().ray_tracing);
     if rendering == (devices::Rendering::Raster { by_default: true }) {
         log::info!("glrt: the Vulkan device is a CPU: rasterizing (GLRT_MODE=pathtrace traces anyway, at seconds per frame)");
+    }
+    let ao = ao::settings::AoSettings::of_process();
+    if ao.enabled
+        && !matches!(rendering, devices::Rendering::PathTrace { .. })
+        && let Err(e) = renderer.enable_ambient_occlusion(ao)
+    {
+        eprintln!("glrt: ambient occlusion is not available: {e}");
     }
     if matches!(rendering, devices::Rendering::PathTrace { .. }) {
         match renderer.enable_tracing(trace::settings::Settings::of_process()) {

@@ -5,6 +5,8 @@
 
 #![allow(dead_code)]
 
+pub mod probe;
+
 use std::sync::{Arc, Mutex};
 
 use glrt::frame::Frame;

@@ -1,41 +1,19 @@
-//! The texel pool on the GPU: `tests/shaders/texels_probe.comp` (compiled here with
-//! `glslangValidator`) calls `texel_sample` and `texel_size` of `shaders/trace/texels.glsl`
+//! The texel pool on the GPU: `tests/shaders/texels_probe.comp` (run by
+//! [`lavapipe::probe`]) calls `texel_sample` and `texel_size` of `shaders/trace/texels.glsl`
 //! at a list of (texture, uv, lod) queries on lavapipe (the machine's Vulkan driver when its
 //! ICD file is missing), and every result must match the CPU mirror
 //! (`glrt::render::trace::texels::sample`) within 1.5/255.
 
-use std::path::Path;
-use std::process::Command;
 use std::sync::Arc;
 
-use ash::vk;
 use gpu_allocator::MemoryLocation;
 
 use crate::lavapipe;
 use glrt::frame::texture::{Filter, MinFilter, Precision, Sampler, TexImage, TextureContent, TextureKind, TextureRef, Wrap};
-use glrt::render::raster::device::{Buffer, Device};
+use glrt::render::raster::device::Device;
 use glrt::render::trace::bindings;
 use glrt::render::trace::shader_constants::NO_TEXTURE;
 use glrt::render::trace::texels::{TexelPool, sample, texel_size};
-
-/// Compiles the probe shader to SPIR-V words.
-fn probe_spirv() -> Vec<u32> {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let out = std::env::temp_dir().join(format!("glrt-texels-probe-{}.spv", std::process::id()));
-    let status = Command::new("glslangValidator")
-        .args(["-V", "--target-env", "vulkan1.1"])
-        .arg(format!("-I{}", root.join("shaders").display()))
-        .arg(concat!("-I", env!("OUT_DIR"), "/glsl"))
-        .arg(root.join("tests/shaders/texels_probe.comp"))
-        .arg("-o")
-        .arg(&out)
-        .output()
-        .expect("glslangValidator runs");
-    assert!(status.status.success(), "texels_probe.comp: {}", String::from_utf8_lossy(&status.stdout));
-    let bytes = std::fs::read(&out).expect("the SPIR-V file");
-    let _ = std::fs::remove_file(&out);
-    ash::util::read_spv(&mut std::io::Cursor::new(bytes)).expect("SPIR-V words")
-}
 
 /// A deterministic pseudo-random sequence in [0, 1).
 struct Lcg(u64);
@@ -88,75 +66,9 @@ fn textures(rng: &mut Lcg) -> Vec<TextureRef> {
     ]
 }
 
-/// Storage buffers and the probe pipeline; everything created is destroyed by `finish`.
-struct Probe {
-    device: Device,
-    buffers: Vec<Buffer>,
-}
-
-impl Probe {
-    /// A host-visible storage buffer holding `bytes` (at least 16 bytes).
-    fn buffer(&mut self, bytes: &[u8], location: MemoryLocation) -> usize {
-        let size = bytes.len().max(16) as u64;
-        let mut b = self.device.create_buffer("texels probe", size, vk::BufferUsageFlags::STORAGE_BUFFER, location).expect("a buffer");
-        b.mapped()[..bytes.len()].copy_from_slice(bytes);
-        self.buffers.push(b);
-        self.buffers.len() - 1
-    }
-
-    /// Runs the probe over `queries` with `bound` buffers at (binding, buffer index); returns
-    /// the results buffer's bytes.
-    fn run(&mut self, spirv: &[u32], bound: &[(u32, usize)], queries: usize) -> Vec<u8> {
-        let d = &self.device.raw;
-        let stage = vk::ShaderStageFlags::COMPUTE;
-        let layout_bindings: Vec<_> = bound.iter().map(|&(b, _)| vk::DescriptorSetLayoutBinding::default().binding(b).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).descriptor_count(1).stage_flags(stage)).collect();
-        // Safety: valid create infos; every object is destroyed below after the queue is idle.
-        unsafe {
-            let set_layout = d.create_descriptor_set_layout(&vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings), None).unwrap();
-            let sizes = [vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: bound.len() as u32 }];
-            let pool = d.create_descriptor_pool(&vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes), None).unwrap();
-            let set = d.allocate_descriptor_sets(&vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&[set_layout])).unwrap()[0];
-            let infos: Vec<_> = bound.iter().map(|&(_, i)| [vk::DescriptorBufferInfo { buffer: self.buffers[i].raw, offset: 0, range: vk::WHOLE_SIZE }]).collect();
-            let writes: Vec<_> = bound.iter().zip(&infos).map(|(&(b, _), info)| vk::WriteDescriptorSet::default().dst_set(set).dst_binding(b).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info)).collect();
-            d.update_descriptor_sets(&writes, &[]);
-            let pipeline_layout = d.create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&[set_layout]), None).unwrap();
-            let module = d.create_shader_module(&vk::ShaderModuleCreateInfo::default().code(spirv), None).unwrap();
-            let stage_info = vk::PipelineShaderStageCreateInfo::default().stage(stage).module(module).name(c"main");
-            let pipeline = d.create_compute_pipelines(vk::PipelineCache::null(), &[vk::ComputePipelineCreateInfo::default().stage(stage_info).layout(pipeline_layout)], None).map_err(|(_, e)| e).unwrap()[0];
-            let command_pool = d.create_command_pool(&vk::CommandPoolCreateInfo::default().queue_family_index(self.device.queue_family), None).unwrap();
-            let cmd = d.allocate_command_buffers(&vk::CommandBufferAllocateInfo::default().command_pool(command_pool).command_buffer_count(1)).unwrap()[0];
-            d.begin_command_buffer(cmd, &vk::CommandBufferBeginInfo::default()).unwrap();
-            d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline);
-            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, pipeline_layout, 0, &[set], &[]);
-            d.cmd_dispatch(cmd, queries.div_ceil(64) as u32, 1, 1);
-            let barrier = [vk::MemoryBarrier::default().src_access_mask(vk::AccessFlags::SHADER_WRITE).dst_access_mask(vk::AccessFlags::HOST_READ)];
-            d.cmd_pipeline_barrier(cmd, vk::PipelineStageFlags::COMPUTE_SHADER, vk::PipelineStageFlags::HOST, vk::DependencyFlags::empty(), &barrier, &[], &[]);
-            d.end_command_buffer(cmd).unwrap();
-            let fence = d.create_fence(&vk::FenceCreateInfo::default(), None).unwrap();
-            d.queue_submit(self.device.queue, &[vk::SubmitInfo::default().command_buffers(&[cmd])], fence).unwrap();
-            d.wait_for_fences(&[fence], true, u64::MAX).unwrap();
-            d.destroy_fence(fence, None);
-            d.destroy_command_pool(command_pool, None);
-            d.destroy_pipeline(pipeline, None);
-            d.destroy_shader_module(module, None);
-            d.destroy_pipeline_layout(pipeline_layout, None);
-            d.destroy_descriptor_pool(pool, None);
-            d.destroy_descriptor_set_layout(set_layout, None);
-        }
-        let results = bound.last().map(|&(_, i)| i).expect("a results buffer");
-        self.buffers[results].mapped().to_vec()
-    }
-
-    fn finish(self) {
-        for b in self.buffers {
-            self.device.destroy_buffer(b);
-        }
-    }
-}
-
 #[test]
 fn gpu_sampling_matches_the_cpu_mirror() {
-    let spirv = probe_spirv();
+    let spirv = lavapipe::probe::compile("tests/shaders/texels_probe.comp");
     let mut rng = Lcg(0x7e7e15);
     let textures = textures(&mut rng);
     // Budget: everything but the 32×32 texture (1365 words with its chain) fits.
@@ -185,7 +97,7 @@ fn gpu_sampling_matches_the_cpu_mirror() {
     queries.push([NO_TEXTURE, 0.5f32.to_bits(), 0.5f32.to_bits(), 0.0f32.to_bits()]);
 
     let device = lavapipe::select(Device::new);
-    let mut probe = Probe { device, buffers: Vec::new() };
+    let mut probe = lavapipe::probe::Probe::new(device);
     let texels = probe.buffer(bytemuck::cast_slice(pool.words()), MemoryLocation::CpuToGpu);
     let table = probe.buffer(bytemuck::cast_slice(pool.textures()), MemoryLocation::CpuToGpu);
     let query_buffer = probe.buffer(bytemuck::cast_slice(&queries), MemoryLocation::CpuToGpu);

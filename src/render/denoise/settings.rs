@@ -12,7 +12,7 @@
 //! With `enabled = false` the tracer's own temporal filter runs (`[pathtrace] temporal`), and
 //! with `temporal = false` too the raw traced samples are shown, for comparison.
 
-use crate::config::{Key, Table, integer_in, one_of, shown};
+use crate::config::{Key, Table, integer_in, one_of, switch};
 
 /// What the denoiser's output shows.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -39,16 +39,6 @@ pub struct DenoiseSettings {
 impl Default for DenoiseSettings {
     fn default() -> DenoiseSettings {
         DenoiseSettings { enabled: true, iterations: 5, view: View::Color }
-    }
-}
-
-/// A switch: `true`, `false`, `1` or `0`.
-fn switch(value: &toml::Value) -> Result<bool, String> {
-    match value {
-        toml::Value::Boolean(b) => Ok(*b),
-        toml::Value::Integer(0) => Ok(false),
-        toml::Value::Integer(1) => Ok(true),
-        _ => Err(format!("expected true, false, 1 or 0, found {}", shown(value))),
     }
 }
 

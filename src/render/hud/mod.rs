@@ -21,7 +21,7 @@ pub mod canvas;
 use std::collections::VecDeque;
 use std::time::Instant;
 
-use crate::config::{Key, Table};
+use crate::config::{Key, Table, switch};
 use crate::frame::class::{ClassCounts, DrawClass};
 use canvas::{Canvas, GLYPH};
 
@@ -54,15 +54,6 @@ pub struct Display {
 impl Table for Display {
     const NAME: &'static str = "display";
     const KEYS: &'static [Key<Display>] = &[Key { name: "hud", set: |d, v| switch(v).map(|on| d.hud = on) }];
-}
-
-/// A switch: `true`/`false`, or `1`/`0` (what `GLRT_HUD=1` reads as).
-fn switch(value: &toml::Value) -> Result<bool, String> {
-    match value {
-        toml::Value::Boolean(b) => Ok(*b),
-        toml::Value::Integer(i @ (0 | 1)) => Ok(*i == 1),
-        _ => Err(format!("expected true, false, 1 or 0, found {}", crate::config::shown(value))),
-    }
 }
 
 impl Display {

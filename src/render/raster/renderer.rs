@@ -41,6 +41,8 @@ use super::target::{Plane, Target};
 use super::textures::Textures;
 use super::{conv, multisample, pixel_ops, readback};
 use crate::frame::pixels::{PixelBuffer, PixelOp};
+use crate::render::fog::FrameFog;
+use crate::render::fog::settings::FogSettings;
 use crate::render::hud::canvas::Canvas;
 use crate::frame::state::{Stencil, StencilFaces};
 use crate::frame::framebuffer::FramebufferKey;
@@ -104,6 +106,10 @@ struct Parts {
     samples: u32,
     /// Whether the target has destination alpha ([`Raster::set_target`]).
     alpha: bool,
+    /// The height fog's settings ([`Raster::set_fog`]).
+    fog: FogSettings,
+    /// The height fog of the frame being recorded (`None`: off).
+    frame_fog: Option<FrameFog>,
 }
 
 /// Access to the frame being recorded, for the parts that record into it (draws, clears,
@@ -132,6 +138,8 @@ pub struct Recorder<'a> {
     query: (u64, Option<u32>),
     /// The framebuffer recorded into (`None`: the window's).
     framebuffer: Option<FramebufferKey>,
+    /// The frame's height fog, for draws into the window's framebuffer (`None`: off).
+    pub fog: Option<FrameFog>,
 }
 
 impl Recorder<'_> {
@@ -200,6 +208,7 @@ impl Recorder<'_> {
             slot: self.slot,
             query: (self.query.0, None),
             framebuffer: self.framebuffer,
+            fog: None,
         };
         let result = record(&mut rec);
         rec.end_rendering();
@@ -375,6 +384,9 @@ impl Recorder<'_> {
             let mut uniforms = batch.uniforms.clone();
             uniforms.resize(ff::UNIFORM_SIZE, 0);
             ff::uniforms::set_framebuffer_height(&mut uniforms, h);
+            if let Some(fog) = self.fog.as_ref().filter(|_| self.framebuffer.is_none()) {
+                ff::uniforms::set_height_fog(&mut uniforms, &fog.for_draw(draw, h));
+            }
             let uniform = self.ring.push(self.device, &uniforms, block_align)?;
             let set_key = SetKey { layout: self.pipelines.set_layout, buffers: vec![(uniform.buffer, ff::UNIFORM_SIZE as u64)], images: images.to_vec() };
             let set = self.descriptors.get(self.device, &set_key)?;
@@ -444,6 +456,8 @@ impl Raster {
                 color: Plane::Color,
                 samples: 1,
                 alpha: true,
+                fog: FogSettings::default(),
+                frame_fog: None,
             },
             slots,
             current: 0,
@@ -457,6 +471,11 @@ impl Raster {
     /// The device.
     pub fn device(&self) -> &Device {
         &self.parts.device
+    }
+
+    /// Fogs the next frames' 3D draws with the height fog of `settings` ([`crate::render::fog`]).
+    pub fn set_fog(&mut self, settings: FogSettings) {
+        self.parts.fog = settings;
     }
 
     /// Adds a consumer of presented frames (presentation, dumps), called in the order added.
@@ -550,6 +569,7 @@ impl Raster {
             slot: self.current,
             query: (0, None),
             framebuffer: parts.active,
+            fog: parts.frame_fog,
         })
     }
 
@@ -568,6 +588,7 @@ impl Raster {
     /// end; of the draws, those whose index `rasterized` accepts (the others are another
     /// stage's).
     pub fn record(&mut self, frame: &Frame, until: Option<usize>, rasterized: &dyn Fn(usize) -> bool) -> Result<()> {
+        self.parts.frame_fog = FrameFog::of(frame, &self.parts.fog);
         let mut accum = std::mem::take(&mut self.accum);
         let result = self.record_with(frame, until, rasterized, &mut accum);
         self.accum = accum;

@@ -24,7 +24,7 @@
 
 use glam::Vec3;
 
-use crate::config::{Key, Table, integer_in, number, number_in, one_of, shown};
+use crate::config::{Key, Table, direction, integer_in, number, number_in, one_of, shown};
 
 /// Where the knee tone curve ([`Tonemap::Knee`]) leaves the identity: linear radiance 0.8
 /// (display value 0.906, 231 of 255).
@@ -137,17 +137,6 @@ impl Default for Settings {
             tracer: Tracer::Auto,
         }
     }
-}
-
-/// A direction `[x, y, z]` (numbers, not all zero), normalised.
-fn direction(value: &toml::Value) -> Result<Vec3, String> {
-    let expected = || format!("expected a direction [x, y, z], not zero, found {}", shown(value));
-    let items = value.as_array().filter(|a| a.len() == 3).ok_or_else(expected)?;
-    let mut v = [0.0; 3];
-    for (c, item) in v.iter_mut().zip(items) {
-        *c = number(item, |_| true, "a number").map_err(|_| expected())? as f32;
-    }
-    Vec3::from(v).try_normalize().ok_or_else(expected)
 }
 
 /// A boolean.

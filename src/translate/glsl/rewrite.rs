@@ -83,6 +83,7 @@ pub fn rewrite(input: &StageInput) -> String {
         include_str!(concat!(env!("OUT_DIR"), "/glsl/generated/ff_interface.glsl")),
         include_str!("../../../shaders/bit_field.glsl"),
         include_str!("../../../shaders/ff_key.glsl"),
+        include_str!("../../../shaders/fog/height.glsl"),
         include_str!("../../../shaders/ff_uniforms.glsl"),
         include_str!("../../../shaders/ff_varyings.glsl"),
         include_str!("../../../shaders/gl_compare.glsl"),

@@ -14,6 +14,7 @@ use super::shader_interface::{MAX_CLIP_PLANES, MAX_LIGHTS};
 use crate::frame::Draw;
 use crate::frame::state::{Light, Material, RasterState, MAX_POINT_SIZE};
 use crate::frame::texture::TexGenMode;
+use crate::render::fog::GpuHeightFog;
 use crate::render::texenv::codes::MAX_UNITS;
 
 /// `Material` of `ff_uniforms.glsl`.
@@ -93,6 +94,8 @@ pub struct FfBlock {
     pub stipple: [u32; 4],
     /// Polygon stipple row `r` (bottom first) is component `r % 4` of `r / 4`.
     pub polygon_stipple: [[u32; 4]; 8],
+    /// The renderer's height fog (see [`set_height_fog`]); zero (off) as packed.
+    pub height_fog: GpuHeightFog,
 }
 
 include!(concat!(env!("OUT_DIR"), "/layouts/ff_uniforms.rs"));
@@ -105,6 +108,16 @@ pub fn set_framebuffer_height(uniforms: &mut [u8], height: u32) {
     let at = std::mem::offset_of!(FfBlock, stipple) + 4;
     if let Some(bytes) = uniforms.get_mut(at..at + 4) {
         bytes.copy_from_slice(&height.to_le_bytes());
+    }
+}
+
+/// Writes the height fog of a batch's draw into its uniform block: the Vulkan side calls this
+/// per batch drawn into the window's framebuffer while the fog is on
+/// ([`crate::render::fog::FrameFog::for_draw`]).
+pub fn set_height_fog(uniforms: &mut [u8], fog: &GpuHeightFog) {
+    let at = std::mem::offset_of!(FfBlock, height_fog);
+    if let Some(bytes) = uniforms.get_mut(at..at + size_of::<GpuHeightFog>()) {
+        bytes.copy_from_slice(bytemuck::bytes_of(fog));
     }
 }
 
@@ -223,7 +236,10 @@ mod tests {
         let mut u = pack(&draw);
         assert_eq!(u.len(), super::super::UNIFORM_SIZE);
         set_framebuffer_height(&mut u, 480);
-        assert_eq!(bytemuck::pod_read_unaligned::<FfBlock>(&u).stipple[1], 480);
+        let fog = GpuHeightFog { eye: [1.0, 2.0, 3.0, 1.0], density: [0.5, 0.1, 0.0, 0.0], ..GpuHeightFog::default() };
+        set_height_fog(&mut u, &fog);
+        let read = bytemuck::pod_read_unaligned::<FfBlock>(&u);
+        assert_eq!((read.stipple[1], read.height_fog), (480, fog));
     }
 
     /// A draw recorded through the GL commands: its uniforms, with the normal transform
