@@ -18,8 +18,9 @@
 //! own, else the smoothed normals of its triangles), and makes its directed part a directional
 //! light of that instance alone ([`GpuLight`] `params.w`), sampled by next-event estimation
 //! like a GL light (it lights the diffuse lobe alone: the game's lighting is Lambertian, and
-//! the light is divided by the tint, which only the albedo holds), with shadow rays as long as the model is wide (its own parts shadow it;
-//! the level's occlusion is already in the game's grid). Draws whose colours do not follow
+//! the light is divided by the tint, which only the albedo holds), with shadow rays as long
+//! as the model is wide (its own parts shadow it; the level's occlusion is already in the
+//! game's grid). Draws whose colours do not follow
 //! their normals (painted colours, a constant colour, lighting the fit cannot explain) get no
 //! light.
 
