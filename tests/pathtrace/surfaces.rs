@@ -434,7 +434,8 @@ fn a_vertex_lit_model_is_lit_by_the_baked_ceiling_beside_it() {
 /// A dynamic light (white, 0.5 above the floor's middle, radius 2) over a grey floor of two
 /// halves: the left one a vertex-lit model (games add the dynamic lights near a model to its
 /// colours, as Quake 3's `R_SetupEntityLighting` does: lit again, it would be lit twice), the
-/// right one traced. With nothing else lighting them, the right half is lit and the left one
+/// right one traced. With nothing else lighting them, the right half is lit (its pixels' mean
+/// at least 20 levels above the frame without the light; 32 measured) and the left one
 /// stays as dark as without the light (its pixels' mean within 0.5 of a level of the frame
 /// without it, in which both are black).
 #[test]
@@ -465,7 +466,7 @@ fn a_dynamic_light_does_not_light_a_vertex_lit_model_again() {
     let (left, right) = ([FLOOR[0], 0.0, FLOOR[2], FLOOR[3]], [0.0, FLOOR[1], FLOOR[2], FLOOR[3]]);
     let (model_lit, model_dark, floor_lit, floor_dark) = (mean(&lit, left), mean(&dark, left), mean(&lit, right), mean(&dark, right));
     eprintln!("dynamic light: vertex-lit half {model_lit:.2} (without it {model_dark:.2}), traced half {floor_lit:.2} (without it {floor_dark:.2})");
-    assert!(floor_lit >= floor_dark + 30.0, "the light lights the traced half: {floor_lit:.2} against {floor_dark:.2}");
+    assert!(floor_lit >= floor_dark + 20.0, "the light lights the traced half: {floor_lit:.2} against {floor_dark:.2}");
     assert!((model_lit - model_dark).abs() <= 0.5, "the vertex-lit half is not lit again: {model_lit:.2} against {model_dark:.2}");
 }
 
