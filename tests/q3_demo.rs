@@ -510,6 +510,46 @@ fn the_converged_traced_frame_matches_the_raster_frame() {
     assert_eq!(differ, 0, "of {} icon pixels", icons.len());
 }
 
+/// The green share of `pixels` of `image`: the sum of their green over the sum of their
+/// red, green and blue (their hue towards green, whatever their brightness).
+fn green_share(image: &Image, pixels: &[(usize, usize)]) -> f64 {
+    let sum = |c: usize| pixels.iter().map(|&(x, y)| f64::from(image.pixel(x, y)[c])).sum::<f64>();
+    sum(1) / (sum(0) + sum(1) + sum(2)).max(1.0)
+}
+
+/// A vertex-lit model keeps the hue of its vertex colours when traced: games tint models
+/// through them (OpenArena's green player coats), on top of the light the colours hold
+/// (`render::trace::vertex_light`: the albedo keeps their common hue, the light recovered
+/// from them lights the model). The fixture's last frame as in
+/// `the_converged_traced_frame_matches_the_raster_frame`, with the vertex colours of its
+/// `VertexLit` draws made green (times 0.35, 1, 0.35): the green share of the models' pixels
+/// traced is within 0.06 of raster's (0.45; with white for the colours in the albedo it was
+/// 0.34), and their brightness stays at least 80 % of raster's. What remains is light the
+/// game's colours do not have: the blue sky's, and the untinted specular reflection of the
+/// sky and the walls (the light recovered from the colours lights the diffuse lobe alone).
+/// Images: `target/tmp/q3_demo/green-raster.png`, `green-traced.png`.
+#[test]
+fn a_tinted_model_keeps_its_hue_traced() {
+    let frames = classified_frames();
+    let mut frame = Frame { lights: Vec::new(), ..without(&frames[3].frame, |d| d.class == Light) };
+    for d in frame.draws.iter_mut().filter(|d| vertex_lit(d)) {
+        d.vertices.color.values.iter_mut().for_each(|c| *c = [c[0] * 0.35, c[1], c[2] * 0.35, c[3]]);
+    }
+    let raster = render(&frame, None, 1);
+    keep(&raster, "green-raster");
+    let traced = render(&frame, Some(Settings { spp: 4, ..Settings::default() }), 2);
+    keep(&traced, "green-traced");
+    let models = shown(&raster, &render(&without(&frame, vertex_lit), None, 1));
+    assert!(models.len() > 500, "model pixels: {}", models.len());
+    let (r, t) = (green_share(&raster, &models), green_share(&traced, &models));
+    let (lr, lt) = (mean_of(&raster, &models), mean_of(&traced, &models));
+    let rgb = |image: &Image| [0, 1, 2].map(|c| models.iter().map(|&(x, y)| f64::from(image.pixel(x, y)[c])).sum::<f64>() / models.len() as f64);
+    eprintln!("green models: {} pixels, green share raster {r:.3}, traced {t:.3}; luminance raster {lr:.1}, traced {lt:.1}; RGB raster {:.1?}, traced {:.1?}", models.len(), rgb(&raster), rgb(&traced));
+    assert!(r > 0.42, "the raster models are green: {r:.3}");
+    assert!((t - r).abs() <= 0.06, "green share: traced {t:.3} against raster {r:.3}");
+    assert!(lt >= 0.8 * lr, "models: traced {lt:.1} against raster {lr:.1}");
+}
+
 /// Whether `d` is the light panel's glow: an emission pass over every triangle of its base.
 fn glow(frame: &Frame) -> impl Fn(&Draw) -> bool + '_ {
     |d: &Draw| d.layer.as_ref().is_some_and(|l| l.role == Emission && l.triangles.len() == frame.draws[l.base].indices.len() / 3)

@@ -42,6 +42,15 @@ float ggx_alpha(Surface s) {
     return max(s.roughness * s.roughness, 1e-3);
 }
 
+// The Lambertian lobe of brdf_eval_cos alone.
+vec3 brdf_diffuse_cos(Surface s, vec3 v, vec3 l) {
+    float nl = dot(s.normal, l);
+    if (nl <= 0.0 || dot(s.normal, v) <= 0.0 || dot(s.geometric, l) <= 0.0) {
+        return vec3(0.0);
+    }
+    return s.albedo * (1.0 - s.metalness) * (1.0 - s.specular) / PI * nl;
+}
+
 // f(v, l) * cos(n, l): the reflected radiance per unit incident radiance from l.
 vec3 brdf_eval_cos(Surface s, vec3 v, vec3 l) {
     float nl = dot(s.normal, l);
@@ -50,8 +59,7 @@ vec3 brdf_eval_cos(Surface s, vec3 v, vec3 l) {
         return vec3(0.0);
     }
     vec3 f0 = brdf_f0(s);
-    vec3 diffuse = s.albedo * (1.0 - s.metalness) * (1.0 - s.specular) / PI;
-    vec3 result = diffuse * nl;
+    vec3 result = brdf_diffuse_cos(s, v, l);
     if (brdf_specular_probability(s) > 0.0) {
         vec3 h = normalize(v + l);
         float alpha = ggx_alpha(s);

@@ -28,10 +28,14 @@ vec3 offset_ray(vec3 p, vec3 n) {
 
 // The reflected radiance towards v at a point of instance `instance` due to light i, shadow
 // ray included; `shadow_rays` counts the rays traced. A light of one instance (params.w > 0,
-// render::trace::vertex_light) lights no other.
+// render::trace::vertex_light) lights no other; a dynamic light (params.w < 0) lights no
+// vertex-lit model (MATERIAL_VERTEX_LIT: its colours hold it already).
 vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout uint shadow_rays) {
     Light light = lights[i];
     if (light.params.w > 0.0 && uint(light.params.w) != instance + 1u) {
+        return vec3(0.0);
+    }
+    if (light.params.w < 0.0 && (materials[instances[instance].material].flags & MATERIAL_VERTEX_LIT) != 0u) {
         return vec3(0.0);
     }
     vec3 l;
@@ -89,7 +93,10 @@ vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout
             incident *= light.params.x > 0.0 ? pow(max(c, 0.0), light.params.x) : 1.0;
         }
     }
-    vec3 f = brdf_eval_cos(s, v, l);
+    // The light of a model's vertex colours is the game's Lambertian lighting (divided by
+    // the hue the model's albedo keeps, render::trace::vertex_light): it lights the diffuse
+    // lobe alone.
+    vec3 f = light.params.w > 0.0 ? brdf_diffuse_cos(s, v, l) : brdf_eval_cos(s, v, l);
     if (all(equal(f, vec3(0.0))) || all(equal(incident, vec3(0.0)))) {
         return vec3(0.0);
     }

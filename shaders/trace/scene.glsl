@@ -78,7 +78,8 @@ struct Material {
     uint passes;        // passes of the surface
     uint emitters;      // the instance's first Emitter (one per triangle, BVH order), or NO_EMITTER
     uint key;           // a hash of what the material shows (the temporal pass's history follows it)
-    uint pad[2];
+    uint tint;          // with MATERIAL_TINT_PRIMARY: the primary colours' RGB in the albedo (packUnorm4x8, display-encoded)
+    uint pad;
 };
 
 layout(set = TRACE_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials {

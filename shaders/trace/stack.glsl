@@ -17,7 +17,7 @@
 struct Stack {
     vec4 color;     // C: every unit and pass, as the rasterizer shows it
     vec4 base;      // C without the emission passes
-    vec4 albedo;    // A: without baked light and emission; white primary RGB when the vertex colours are light
+    vec4 albedo;    // A: without baked light and emission; the material's tint for the primary RGB when the vertex colours are light
     float alpha;    // the base's own alpha (its units' result): its coverage
 };
 
@@ -72,13 +72,13 @@ void unit_texels(Material m, TriangleAttributes a, vec2 bary, float area2, float
 
 // The base's units applied to `primary` as the rasterizer's texture units apply them. For
 // the albedo (`albedo`), the baked-light units are left out (white to the crossbar) and the
-// primary colour's RGB is white when the material's vertex colours are light.
+// primary colour's RGB is the material's tint when its vertex colours are light.
 vec4 units_color(Material m, vec4 primary, vec4 texel[MAX_UNITS], bool albedo) {
     vec4 p = primary;
     vec4 t[MAX_UNITS] = texel;
     if (albedo) {
-        if ((m.flags & MATERIAL_WHITE_PRIMARY) != 0u) {
-            p.rgb = vec3(1.0);
+        if ((m.flags & MATERIAL_TINT_PRIMARY) != 0u) {
+            p.rgb = unpackUnorm4x8(m.tint).rgb;
         }
         for (uint u = 0u; u < TRACED_UNITS; u++) {
             if (m.layer[u].role == LAYER_BAKED_LIGHT) {
@@ -138,8 +138,8 @@ Stack surface_stack(Material m, uint local, TriangleAttributes a, vec2 bary, vec
         }
         if (l.role == LAYER_COLOR) {
             vec4 pa = p;
-            if ((m.flags & MATERIAL_WHITE_PRIMARY) != 0u) {
-                pa.rgb = vec3(1.0);
+            if ((m.flags & MATERIAL_TINT_PRIMARY) != 0u) {
+                pa.rgb = unpackUnorm4x8(m.tint).rgb;
             }
             st.albedo = blend_over(l.blend, l.blend_color, pass_color(l, pa, t), st.albedo);
         }

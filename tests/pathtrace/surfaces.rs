@@ -11,6 +11,7 @@
 //! - an additive glow pass lights the floor under it by the same law, with next-event
 //!   estimation of emitters and without (continuation rays alone): the two estimators of one
 //!   integral agree, which is what multiple importance sampling promises;
+//! - a dynamic light lights a traced floor and not a vertex-lit one (whose colours hold it);
 //! - a texture environment changed between still frames restarts the accumulation of the
 //!   pixels it shows.
 
@@ -21,7 +22,7 @@ use std::sync::{Arc, Mutex};
 
 use glam::DVec3;
 use glrt::frame::Frame;
-use glrt::frame::class::SurfaceLighting;
+use glrt::frame::class::{DynamicLight, SurfaceLighting};
 use glrt::render::frame::Renderer;
 use glrt::render::trace::settings::{Lightmaps, Settings};
 use glrt::render::trace::stats::SceneCounts;
@@ -428,6 +429,45 @@ fn a_vertex_lit_model_is_lit_by_the_baked_ceiling_beside_it() {
         let p = image[(y * FLOOR_SIZE + x) as usize];
         assert!(p[..3].iter().all(|&c| c.abs_diff(128) <= 1), "the baked ceiling shows its raster colour: {p:?} at ({x}, {y})");
     }
+}
+
+/// A dynamic light (white, 0.5 above the floor's middle, radius 2) over a grey floor of two
+/// halves: the left one a vertex-lit model (games add the dynamic lights near a model to its
+/// colours, as Quake 3's `R_SetupEntityLighting` does: lit again, it would be lit twice), the
+/// right one traced. With nothing else lighting them, the right half is lit (its pixels' mean
+/// at least 20 levels above the frame without the light; 32 measured) and the left one
+/// stays as dark as without the light (its pixels' mean within 0.5 of a level of the frame
+/// without it, in which both are black).
+#[test]
+fn a_dynamic_light_does_not_light_a_vertex_lit_model_again() {
+    let image = |light: bool| {
+        let (mut ctx, _renderer) = floor_context(Settings { spp: 4, bounces: 1, ..Settings::default() }, move |frame| {
+            classified::lit(frame, |d| d.vertices.position[0][0] < 0.0, SurfaceLighting::VertexLit);
+            if light {
+                frame.lights.push(DynamicLight { position: [0.0, -0.5, -3.5], color: [1.0; 3], radius: 2.0, falloff: 0.25 });
+            }
+        });
+        for _ in 0..2 {
+            clear(&mut ctx);
+            unsafe { dispatch::glShadeModel(&mut ctx, gl::GL_FLAT) };
+            horizontal(&mut ctx, -1.0, [FLOOR[0], 0.0, FLOOR[2], FLOOR[3]], 0.5);
+            unsafe { dispatch::glShadeModel(&mut ctx, gl::GL_SMOOTH) };
+            horizontal(&mut ctx, -1.0, [0.0, FLOOR[1], FLOOR[2], FLOOR[3]], 0.5);
+            ctx.end_frame();
+        }
+        read(&mut ctx, FLOOR_SIZE)
+    };
+    let (lit, dark) = (image(true), image(false));
+    let mean = |image: &[[u8; 4]], rect: [f64; 4]| {
+        let pixels = pixels_on(rect, -1.0, 0.02);
+        assert!(pixels.len() >= 30, "{} pixels", pixels.len());
+        pixels.iter().map(|&((x, y), _)| f64::from(image[(y * FLOOR_SIZE + x) as usize][0])).sum::<f64>() / pixels.len() as f64
+    };
+    let (left, right) = ([FLOOR[0], 0.0, FLOOR[2], FLOOR[3]], [0.0, FLOOR[1], FLOOR[2], FLOOR[3]]);
+    let (model_lit, model_dark, floor_lit, floor_dark) = (mean(&lit, left), mean(&dark, left), mean(&lit, right), mean(&dark, right));
+    eprintln!("dynamic light: vertex-lit half {model_lit:.2} (without it {model_dark:.2}), traced half {floor_lit:.2} (without it {floor_dark:.2})");
+    assert!(floor_lit >= floor_dark + 20.0, "the light lights the traced half: {floor_lit:.2} against {floor_dark:.2}");
+    assert!((model_lit - model_dark).abs() <= 0.5, "the vertex-lit half is not lit again: {model_lit:.2} against {model_dark:.2}");
 }
 
 /// The image of a floor (unlit, white: albedo 1, its light traced) under a black patch of

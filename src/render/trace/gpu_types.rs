@@ -128,8 +128,11 @@ pub struct GpuMaterial {
     /// A hash of what the material shows ([`super::material::key`]): the temporal pass keeps
     /// a pixel's history only while its material's key stays.
     pub key: u32,
+    /// The RGB (display-encoded, packed as `packUnorm4x8`) that replaces the primary
+    /// colours' in the albedo with `MATERIAL_TINT_PRIMARY` ([`super::material`]).
+    pub tint: u32,
     /// Padding.
-    pub pad: [u32; 2],
+    pub pad: u32,
 }
 
 /// `Emitter` of `scene.glsl`: one emissive triangle of the frame, an entry of the alias table

@@ -31,7 +31,9 @@
 //! of intensity `π · linear(c) · falloff`, a sphere of [`DYNAMIC_SOURCE`] of its radius (at
 //! least the settings' `light_radius`): its centre lies inside the model that carries it (a
 //! rocket, a gun), which must not shadow it, and shadow rays end on the sphere; what lies
-//! inside the sphere (that model: its colours hold the light already) it does not light. It
+//! inside the sphere (that model: its colours hold the light already) it does not light, nor
+//! any vertex-lit model (their colours hold it too: [`super::material`]'s
+//! `MATERIAL_VERTEX_LIT`). It
 //! reaches as far as its radius, as the program's pass does (`params.z`: the light fades
 //! smoothly to nothing there, `shaders/trace/lights.glsl`). Baked surfaces reflect it too
 //! (`params.w = -1`): their bake holds the level's lights, never a rocket's.

@@ -25,12 +25,18 @@
 //! - the **raster colour** `C`: every layer, what the rasterizer shows;
 //! - the **albedo** `A`: the stack without its baked-light and emission layers (left out: as a
 //!   white lightmap under plain modulation would leave the colour), with white for the RGB of
-//!   the primary colours when the vertex colours are light ([`MATERIAL_WHITE_PRIMARY`]: a
-//!   [`SurfaceLighting::VertexLit`] surface, or a [`SurfaceLighting::Baked`] one that has no
-//!   lightmap, baked into its vertex colours);
+//!   the primary colours when the vertex colours are light ([`MATERIAL_TINT_PRIMARY`]: a
+//!   [`SurfaceLighting::Baked`] surface that has no lightmap, baked into its vertex colours),
+//!   or, for a [`SurfaceLighting::VertexLit`] model, their common hue
+//!   ([`super::vertex_light::tint`]: games tint models through their colours);
 //! - the **emission** `E`: what the emission passes add to the display, `linear(C) −
 //!   linear(C without them)`, plus the GL material's emission and the `glrt.toml` emissive
 //!   scale times `linear(C without them)`.
+//!
+//! A vertex-lit model's colours also hold the dynamic lights near it (games add them to the
+//! model's light, as Quake 3's `R_SetupEntityLighting` does): [`MATERIAL_VERTEX_LIT`] keeps
+//! the dynamic lights of [`super::lights`] from lighting it a second time (its light comes
+//! from its colours, [`super::vertex_light`]).
 //!
 //! A [`SurfaceLighting::Baked`] surface ([`MATERIAL_BAKED`]) holds light the game baked:
 //! direct and indirect, everything that arrives at it. Tracing computes that light itself, so
@@ -48,6 +54,7 @@
 //! ([`super::emitters`]); a baked surface's raster colour is not (it is everywhere: paths find
 //! it by their continuation rays).
 
+use glam::Vec3;
 use xxhash_rust::xxh3::xxh3_64;
 
 use super::gpu_types::{GpuLayer, GpuMaterial};
@@ -57,9 +64,10 @@ use super::shader_constants::{
     EQUATION_REVERSE_SUBTRACT, EQUATION_SUBTRACT, FACTOR_CONSTANT_ALPHA, FACTOR_CONSTANT_COLOR, FACTOR_DST_ALPHA, FACTOR_DST_COLOR, FACTOR_ONE,
     FACTOR_ONE_MINUS_CONSTANT_ALPHA, FACTOR_ONE_MINUS_CONSTANT_COLOR, FACTOR_ONE_MINUS_DST_ALPHA, FACTOR_ONE_MINUS_DST_COLOR, FACTOR_ONE_MINUS_SRC_ALPHA,
     FACTOR_ONE_MINUS_SRC_COLOR, FACTOR_SRC_ALPHA, FACTOR_SRC_ALPHA_SATURATE, FACTOR_SRC_COLOR, FACTOR_ZERO, LAYER_BAKED_LIGHT, LAYER_COLOR, LAYER_EMISSION,
-    LAYER_OFF, MATERIAL_BAKED, MATERIAL_LAYERS, MATERIAL_WHITE_PRIMARY, MAX_PASSES, NO_EMITTER, NO_TEXTURE, TRACED_UNITS,
+    LAYER_OFF, MATERIAL_BAKED, MATERIAL_LAYERS, MATERIAL_TINT_PRIMARY, MATERIAL_VERTEX_LIT, MAX_PASSES, NO_EMITTER, NO_TEXTURE, TRACED_UNITS,
 };
 use super::surfaces::Surface;
+use super::vertex_light;
 use super::scene::{enabled, srgb_to_linear};
 use crate::frame::class::{LayerRole, SurfaceLighting};
 use crate::frame::state::{Blend, BlendEquation, BlendFactor, CompareFunc};
@@ -202,8 +210,13 @@ pub fn material(surface: &Surface, textures: [Option<u32>; MATERIAL_LAYERS], def
     if instance.lighting == SurfaceLighting::Baked && lightmaps == Lightmaps::Keep {
         flags |= MATERIAL_BAKED;
     }
+    let mut tint = Vec3::ONE;
     if instance.lighting == SurfaceLighting::VertexLit || (instance.lighting == SurfaceLighting::Baked && !has_lightmap) {
-        flags |= MATERIAL_WHITE_PRIMARY;
+        flags |= MATERIAL_TINT_PRIMARY;
+    }
+    if instance.lighting == SurfaceLighting::VertexLit {
+        flags |= MATERIAL_VERTEX_LIT;
+        tint = vertex_light::tint(draw);
     }
     let over = instance.material;
     let (mut roughness, mut specular, mut emission) = (over.roughness, defaults.specular, [0.0; 4]);
@@ -234,14 +247,23 @@ pub fn material(surface: &Surface, textures: [Option<u32>; MATERIAL_LAYERS], def
         passes: surface.passes.len().min(MAX_PASSES) as u32,
         emitters: NO_EMITTER,
         key: 0,
-        pad: [0; 2],
+        tint: pack_unorm(tint),
+        pad: 0,
     }
 }
 
+/// `v` (0..1) as `packUnorm4x8` packs it, alpha 1.
+fn pack_unorm(v: Vec3) -> u32 {
+    let byte = |x: f32| (x.clamp(0.0, 1.0) * 255.0).round() as u32;
+    byte(v.x) | byte(v.y) << 8 | byte(v.z) << 16 | 255 << 24
+}
+
 /// A hash of what `m` shows: every field but those that say where its passes' corners and
-/// emitter entries are (they move when the buffers are repacked or the list changes).
+/// emitter entries are (they move when the buffers are repacked or the list changes) and the
+/// tint (a summary of the vertex colours, which change as a model moves and are not in the
+/// key either).
 pub fn key(m: &GpuMaterial) -> u32 {
-    let shown = GpuMaterial { layer_corners: 0, emitters: 0, key: 0, ..*m };
+    let shown = GpuMaterial { layer_corners: 0, emitters: 0, key: 0, tint: 0, ..*m };
     xxh3_64(bytemuck::bytes_of(&shown)) as u32
 }
 
@@ -320,7 +342,9 @@ mod tests {
     fn vertex_colours_that_are_light_leave_the_albedo() {
         let white = |lighting, light_units| {
             let draw = base(TextureEnv::default(), lighting, light_units);
-            material(&Surface { base: &draw, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep).flags & MATERIAL_WHITE_PRIMARY != 0
+            let m = material(&Surface { base: &draw, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);
+            assert_eq!(m.tint, u32::MAX, "no colours: white");
+            m.flags & MATERIAL_TINT_PRIMARY != 0
         };
         assert!(white(SurfaceLighting::VertexLit, 0));
         assert!(white(SurfaceLighting::Baked, 0), "baked without a lightmap: into its vertex colours");
@@ -331,6 +355,16 @@ mod tests {
         let lightmap = pass(LayerRole::BakedLight, Some(blend(BlendFactor::DstColor, BlendFactor::Zero)));
         let m = material(&Surface { base: &draw, passes: vec![&lightmap] }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);
         assert_eq!(m.flags, MATERIAL_BAKED);
+        // A vertex-lit model keeps its colours' hue; a surface baked into them does not.
+        let mut model = base(TextureEnv::default(), SurfaceLighting::VertexLit, 0);
+        model.vertices.position = vec![[0.0; 4]; 2];
+        model.vertices.color.values = vec![[0.1, 0.4, 0.2, 1.0], [0.1, 0.6, 0.0, 1.0]];
+        let m = material(&Surface { base: &model, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);
+        assert_eq!((m.flags, m.tint), (MATERIAL_TINT_PRIMARY | MATERIAL_VERTEX_LIT, 0xff_33_ff_33), "(0.2, 1, 0.2)");
+        model.instance = Some(Instance { lighting: SurfaceLighting::Baked, ..Instance::default() });
+        let m = material(&Surface { base: &model, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);
+        assert_eq!(m.tint, u32::MAX);
+        assert_eq!(key(&m), key(&GpuMaterial { tint: 0xff_33_ff_33, ..m }), "the tint is not in the key");
     }
 
     /// Each pass is a layer after the units: its unit 0, role, blend function and alpha test.

@@ -35,9 +35,14 @@ glsl_constants! {
     /// `GpuMaterial::flags`: baked: the surface emits its raster colour and reflects no traced
     /// light (the path ends on it).
     const MATERIAL_BAKED: u32 = 1;
-    /// `GpuMaterial::flags`: the vertex colours are light: the albedo takes white for their
-    /// RGB (a vertex-lit model, a surface baked into its vertex colours).
-    const MATERIAL_WHITE_PRIMARY: u32 = 2;
+    /// `GpuMaterial::flags`: the vertex colours are light: the albedo takes
+    /// `GpuMaterial::tint` for their RGB (a vertex-lit model: their hue; a surface baked
+    /// into its vertex colours: white).
+    const MATERIAL_TINT_PRIMARY: u32 = 2;
+    /// `GpuMaterial::flags`: a vertex-lit model ([`crate::frame::class::SurfaceLighting::VertexLit`]):
+    /// the game adds the dynamic lights to its colours (Quake 3's `R_SetupEntityLighting`),
+    /// so the dynamic lights (`render::trace::lights`) do not light it again.
+    const MATERIAL_VERTEX_LIT: u32 = 4;
     /// `GpuMaterial::emitters` of a surface that is not in the emitter list.
     const NO_EMITTER: u32 = u32::MAX;
 

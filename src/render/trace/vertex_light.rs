@@ -7,11 +7,20 @@
 //! light (the sun, lamps), which no traced source holds: those lights are baked into the
 //! lightmaps, not drawn. Left out, a model is darker than the game shows it.
 //!
+//! Games also tint models through the same colours (OpenArena's green player coats: the
+//! colours are the light times the coat's colour). Light alone would leave that hue out of a
+//! traced model, whose albedo is its texture, so the albedo keeps the colours' common hue,
+//! [`tint`] (their mean colour scaled to a brightest channel of 1: a chromaticity, the light's
+//! strength left out), and the light [`recover`] finds is divided by it, so that the model
+//! is lit as brightly as before and its hue comes from its colours.
+//!
 //! [`recover`] fits that lighting model to the draw's vertex colours and normals (the draw's
 //! own, else the smoothed normals of its triangles), and makes its directed part a directional
 //! light of that instance alone ([`GpuLight`] `params.w`), sampled by next-event estimation
-//! like a GL light, with shadow rays as long as the model is wide (its own parts shadow it;
-//! the level's occlusion is already in the game's grid). Draws whose colours do not follow
+//! like a GL light (it lights the diffuse lobe alone: the game's lighting is Lambertian, and
+//! the light is divided by the tint, which only the albedo holds), with shadow rays as long
+//! as the model is wide (its own parts shadow it; the level's occlusion is already in the
+//! game's grid). Draws whose colours do not follow
 //! their normals (painted colours, a constant colour, lighting the fit cannot explain) get no
 //! light.
 
@@ -146,10 +155,28 @@ pub fn fit(normals: &[DVec3], colours: &[DVec3]) -> Option<VertexLighting> {
     })
 }
 
+/// The common hue of `draw`'s vertex colours (display-encoded): their mean RGB over its
+/// brightest channel, white when they are black or the draw has no colour per vertex. The
+/// albedo of a vertex-lit model takes it for the colours' RGB
+/// ([`super::material::material`]).
+pub fn tint(draw: &Draw) -> Vec3 {
+    let colours = &draw.vertices.color.values;
+    if colours.len() != draw.vertices.len() || colours.is_empty() {
+        return Vec3::ONE;
+    }
+    let mean = colours.iter().map(|c| Vec3::new(c[0], c[1], c[2])).sum::<Vec3>() / colours.len() as f32;
+    let brightest = mean.max_element();
+    if brightest < 1.0 / 255.0 { Vec3::ONE } else { (mean / brightest).clamp(Vec3::ZERO, Vec3::ONE) }
+}
+
+/// The smallest linear tint a light is divided by (a channel the colours hardly have).
+const MIN_TINT: f32 = 1.0 / 256.0;
+
 /// The directional light of instance `instance` (its index in the frame's instances) that
 /// `draw`'s vertex colours hold, seen through `object_to_eye` (see the module doc): its
 /// irradiance makes a white Lambertian surface facing it as much brighter, in linear light, as
-/// the game's directed colour makes it (`π (linear(ambient + directed) − linear(ambient))`).
+/// the game's directed colour makes it (`π (linear(ambient + directed) − linear(ambient))`),
+/// divided by the linear [`tint`] the model's albedo holds.
 pub fn recover(draw: &Draw, object_to_eye: &Mat4, instance: u32) -> Option<GpuLight> {
     let colours = &draw.vertices.color.values;
     if colours.len() != draw.vertices.len() {
@@ -160,7 +187,7 @@ pub fn recover(draw: &Draw, object_to_eye: &Mat4, instance: u32) -> Option<GpuLi
     let lighting = fit(&normals, &colours)?;
     let linear = |v: Vec3| Vec3::new(srgb_to_linear(v.x), srgb_to_linear(v.y), srgb_to_linear(v.z));
     let full = (lighting.ambient + lighting.directed).min(Vec3::ONE);
-    let irradiance = (linear(full) - linear(lighting.ambient)).max(Vec3::ZERO) * std::f32::consts::PI;
+    let irradiance = (linear(full) - linear(lighting.ambient)).max(Vec3::ZERO) * std::f32::consts::PI / linear(tint(draw)).max(Vec3::splat(MIN_TINT));
     // Shadow rays as long as the model is wide, in eye space.
     let points: Vec<Vec3> = draw.vertices.position.iter().map(|p| object_to_eye.project_point3(Vec3::from_slice(&p[..3]))).collect();
     let centre = points.iter().copied().sum::<Vec3>() / points.len().max(1) as f32;
@@ -242,5 +269,17 @@ mod tests {
         assert!((light.params[2] - 2.0).abs() < 0.1, "shadow rays as long as the model is wide: {light:?}");
         let expected = std::f32::consts::PI * (srgb_to_linear(0.75) - srgb_to_linear(0.25));
         assert!((light.radiance[0] - expected).abs() < 0.02 * expected, "{light:?}, expected {expected}");
+        assert_eq!(tint(&draw), Vec3::ONE, "grey colours: no hue");
+
+        // The same light through a green coat: the colours times (0.35, 1, 0.35).
+        let green = Vec3::new(0.35, 1.0, 0.35);
+        let mut coated = draw.clone();
+        coated.vertices.color.values.iter_mut().for_each(|c| *c = [c[0] * green.x, c[1], c[2] * green.z, c[3]]);
+        assert!(tint(&coated).abs_diff_eq(green, 1e-5), "{}", tint(&coated));
+        let through = recover(&coated, &Mat4::from_translation(Vec3::new(0.0, 0.0, -5.0)), 7).expect("a light");
+        assert!((through.radiance[1] - expected).abs() < 0.02 * expected, "green as before: {through:?}");
+        // Red: what the coat's colours add, once the albedo multiplies the tint back.
+        let red = std::f32::consts::PI * (srgb_to_linear(0.75 * green.x) - srgb_to_linear(0.25 * green.x));
+        assert!((through.radiance[0] * srgb_to_linear(green.x) - red).abs() < 0.02 * red, "{through:?}, expected {red} / tint");
     }
 }
