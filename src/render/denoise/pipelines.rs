@@ -1,5 +1,5 @@
-//! The denoiser's Vulkan objects that do not change with the frame: the layout of its one
-//! descriptor set ([`super::shader_constants`]'s bindings, all storage buffers), the push
+//! The denoiser's Vulkan objects that do not change with the frame: the layout of its
+//! descriptor sets ([`super::shader_constants`]'s bindings, all storage buffers), the push
 //! constants of a pass ([`DenoisePass`]) and the four compute pipelines.
 
 use ash::vk;
@@ -13,13 +13,13 @@ use crate::render::trace::pipelines::{compute_pipeline, descriptor_set_layout};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct DenoisePass {
-    /// Traced width and height, `FLAG_*` bits, the à-trous step in pixels.
-    pub size: [u32; 4],
-    /// Record offsets (in pixels): history read, history written, signal read, signal written.
-    pub offsets: [u32; 4],
     /// Exposure multiplier, history cap (frames), tone-mapping knee, frames of a moving
     /// camera's history.
     pub params: [f32; 4],
+    /// Traced width and height, `FLAG_*` bits, the à-trous step in pixels.
+    pub size: [u32; 4],
+    /// Record offsets (in pixels) into the signal: read, written.
+    pub signal: [u32; 2],
 }
 
 /// Bytes of [`DenoisePass`].
@@ -29,7 +29,7 @@ include!(concat!(env!("OUT_DIR"), "/layouts/denoise_gpu_types.rs"));
 
 /// The layouts and pipelines.
 pub struct DenoisePipelines {
-    /// The one descriptor set's layout.
+    /// The layout of both descriptor sets (one per frame parity).
     pub set_layout: vk::DescriptorSetLayout,
     /// Layout of every pass.
     pub layout: vk::PipelineLayout,
@@ -89,7 +89,11 @@ impl DenoisePipelines {
     }
 }
 
-/// Per-pixel bytes of one frame's temporal history (`History` of `denoise/common.glsl`).
-pub const HISTORY_BYTES: u64 = 64;
+/// Per-pixel bytes of one frame's history light (`HistoryLight` of `denoise/common.glsl`).
+pub const HISTORY_LIGHT_BYTES: u64 = 16;
+/// Per-pixel bytes of one frame's luminance means and variances (`HistoryMoments`).
+pub const HISTORY_MOMENTS_BYTES: u64 = 8;
+/// Per-pixel bytes of one frame's surfaces (`Guide`).
+pub const GUIDE_BYTES: u64 = 8;
 /// Per-pixel bytes of the spatial passes' signal (`Signal`).
-pub const SIGNAL_BYTES: u64 = 32;
+pub const SIGNAL_BYTES: u64 = 16;
