@@ -5,7 +5,7 @@
 // Every record is packed for the filter's memory traffic: light in half floats, the surface
 // (normal and eye distance) in one 8-byte guide, each kind in its own tightly packed buffer.
 // A frame's history is the three records `HistoryLight`, `HistoryMoments` and `Guide`
-// (32 bytes a pixel); the last frame's are read (`*_previous`), this frame's written.
+// (36 bytes a pixel); the last frame's are read (`*_previous`), this frame's written.
 
 #ifndef DENOISE_COMMON_GLSL
 #define DENOISE_COMMON_GLSL
@@ -23,6 +23,7 @@ layout(push_constant) uniform DenoisePass {
                     // frames of a moving camera's history
     uvec4 size;     // traced width, height; DENOISE_FLAG_* bits; à-trous step (pixels)
     uvec2 signal;   // records (pixels) into `signal` read and written
+    uint frame_index; // the tracer's frame index (GpuFrame.counts.x): which pixels are gradient samples
 } pass;
 
 // The temporal light of one pixel: the demodulated direct and indirect light (half floats:
@@ -33,10 +34,13 @@ struct HistoryLight {
     uint frames_surface;
 };
 
-// The running mean and variance of each channel's luminance (half floats: mean, variance).
+// The running mean and variance of each channel's luminance (half floats: mean, variance),
+// and the luminance of this frame's traced sample of each (half floats: direct, indirect),
+// which next frame's gradient sample of the pixel is compared with.
 struct HistoryMoments {
     uint direct;
     uint indirect;
+    uint traced;
 };
 
 // The surface a pixel shows: its shading normal (octahedral, trace/pack.glsl) and eye-space
@@ -87,6 +91,13 @@ layout(set = 0, binding = DENOISE_BINDING_GUIDE, std430) buffer Guides {
 
 layout(set = 0, binding = DENOISE_BINDING_SIGNAL, std430) buffer Signals {
     Signal signal[];
+};
+
+// Per 3x3 stratum (trace/gradient.glsl): the temporal gradient of each channel's luminance
+// as |change| and the larger of the two luminances, to be summed apart (half floats:
+// direct, then indirect).
+layout(set = 0, binding = DENOISE_BINDING_GRADIENT, std430) buffer Gradients {
+    uvec2 gradient[];
 };
 
 const uint MISS = 0xffffffffu;

@@ -10,9 +10,14 @@
 // variance of each channel's luminance are kept alike (the running variance in its
 // incremental form, which half floats hold without the cancellation of raw second moments);
 // the variance goes with the light to the spatial passes (signal, written at signal.y) and
-// the records to this frame's history.
+// the records to this frame's history. With DENOISE_FLAG_GRADIENTS the temporal gradients
+// of the 3x3 strata around the pixel's (gradient.comp: changes and luminances summed apart,
+// as Quake II RTX's asvgf_gradient_atrous filters them) give how much the lighting changed,
+// lambda in 0..1, and the history kept is shortened to (1 - lambda) of its length: where a
+// light was switched the new light replaces the old at once, elsewhere nothing changes.
 
 #include "denoise/common.glsl"
+#include "trace/gradient.glsl"
 
 // Last frame's records blended: light, mean and second moment of luminance (direct xy,
 // indirect zw), history length.
@@ -77,6 +82,24 @@ float reproject(vec2 previous, GSample g, out Past blended) {
     return total;
 }
 
+// How much the lighting around `pixel` changed since last frame, 0..1 (the larger of the
+// channels'), from the gradients of the 3x3 strata around its own.
+float lighting_change(ivec2 pixel) {
+    ivec2 strata = ivec2((pass.size.xy + GRADIENT_STRATUM - 1u) / GRADIENT_STRATUM);
+    ivec2 centre = pixel / int(GRADIENT_STRATUM);
+    vec4 sum = vec4(0.0);
+    for (int dy = -1; dy <= 1; dy++) {
+        for (int dx = -1; dx <= 1; dx++) {
+            ivec2 s = centre + ivec2(dx, dy);
+            if (all(greaterThanEqual(s, ivec2(0))) && all(lessThan(s, strata))) {
+                sum += unpack_half4(gradient[s.y * strata.x + s.x]);
+            }
+        }
+    }
+    vec2 lambda = vec2(sum.y > 0.0 ? sum.x / sum.y : 0.0, sum.w > 0.0 ? sum.z / sum.w : 0.0);
+    return clamp(max(lambda.x, lambda.y), 0.0, 1.0);
+}
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     int at = pixel_index(pixel);
@@ -88,12 +111,16 @@ void main() {
     vec3 direct = g.direct.rgb;
     vec3 indirect = g.indirect.rgb;
     vec2 mean = vec2(luminance(direct), luminance(indirect));
+    uint traced = packHalf2x16(min(mean, HALF_MAX));
     vec2 variance = vec2(0.0);
     float cap = pass.params.y;
     float frames = 0.0;
     Past h;
     if (g.instance != MISS && cap > 0.0 && reproject(vec2(pixel) + 0.5 - g.motion, g, h) > 0.0) {
         frames = min(h.frames, cap);
+        if ((pass.size.z & DENOISE_FLAG_GRADIENTS) != 0u) {
+            frames *= 1.0 - lighting_change(pixel);
+        }
         float alpha = 1.0 / (frames + 1.0);
         direct = mix(h.direct, direct, alpha);
         indirect = mix(h.indirect, indirect, alpha);
@@ -110,7 +137,7 @@ void main() {
         frames = 0.0;
     }
     light[index] = HistoryLight(pack_light(direct, indirect), pack_frames_surface(frames, g.surface));
-    moments[index] = HistoryMoments(packHalf2x16(min(vec2(mean.x, variance.x), HALF_MAX)), packHalf2x16(min(vec2(mean.y, variance.y), HALF_MAX)));
+    moments[index] = HistoryMoments(packHalf2x16(min(vec2(mean.x, variance.x), HALF_MAX)), packHalf2x16(min(vec2(mean.y, variance.y), HALF_MAX)), traced);
     guide[index] = guide_of(g);
     signal[pass.signal.y + index] = Signal(pack_half4(vec4(direct, variance.x)), pack_half4(vec4(indirect, variance.y)));
 }

@@ -10,11 +10,20 @@
 //! that deforms in place reprojects as if it stood still and its history is dropped only
 //! where the disocclusion tests fail), and two lighting channels demodulated by albedo,
 //! direct light at the primary hit and indirect light (the tracer does not separate specular:
-//! it is part of both). Each channel is filtered apart, in four compute passes per frame
+//! it is part of both). Each channel is filtered apart, in five compute passes per frame
 //! (`shaders/denoise/`):
 //!
+//! 0. `gradient.comp` (with `[denoise] gradients`): temporal gradients (A-SVGF, Schied et al.
+//!    2018): the tracer traces one pixel of every 3x3 stratum with last frame's random
+//!    numbers (`shaders/trace/gradient.glsl`, `FRAME_GRADIENTS`); where its surface stayed
+//!    in place, the change of its luminance against last frame's sample there is the change
+//!    of the lighting, free of noise. Samples that moved are not compared (forward
+//!    projection of last frame's samples, which would give gradients while the camera moves,
+//!    is not built);
 //! 1. `temporal.comp`: reprojection with disocclusion tests (material, eye distance, normal),
-//!    running means of light and running mean and variance of luminance, history length;
+//!    running means of light and running mean and variance of luminance, history length,
+//!    shortened to (1 − λ) where the gradients of the strata around say the lighting changed
+//!    by λ;
 //!    it also packs each pixel's surface (normal and eye distance) into the 8-byte guide the
 //!    spatial passes read;
 //! 2. `variance.comp`: the variance from the moments, estimated spatially where the history
@@ -28,14 +37,14 @@
 //! Accumulation while everything stands still stays: the tracer's history cap grows to
 //! `[pathtrace] accumulate` frames, the history then keeps the unfiltered mean, and the
 //! filter's luminance edge-stop narrows as the mean's variance falls, so a still frame
-//! converges to the traced mean. Temporal gradients (A-SVGF's history dropped where lighting
-//! changed) are not built yet: a light switched on reaches the image through the history cap.
+//! converges to the traced mean; a light switched on meanwhile drops the history where it
+//! shines through the gradients (without them it would reach the image only as 1 / frames).
 //!
 //! The records are packed for the filter's memory traffic (`shaders/denoise/common.glsl`):
 //! light and variance in half floats (the signal between the spatial passes: 16 bytes a
 //! pixel for both channels, against 32 in single floats), surfaces in the 8-byte guide
 //! (an à-trous tap reads 24 bytes from two tightly packed buffers instead of fields spread
-//! over the 96-byte G-buffer sample and a 32-byte signal), and a frame's history in 32 bytes
+//! over the 96-byte G-buffer sample and a 32-byte signal), and a frame's history in 36 bytes
 //! a pixel in three buffers (against 64 in one). No binding exceeds a quarter of the
 //! G-buffer's size.
 //!
@@ -58,18 +67,18 @@ use crate::render::trace::compute::{MOVING_HISTORY, barrier};
 use crate::render::trace::gpu_types::{GSAMPLE_BYTES, GpuFrame, OUTPUT_SAMPLE_BYTES};
 use crate::render::trace::shader_constants::{FRAME_STILL, FRAME_TONEMAP_MASK, TRACE_GROUP};
 use crate::render::trace::{Radiance, TracedImage};
-use pipelines::{DenoisePass, DenoisePipelines, GUIDE_BYTES, HISTORY_LIGHT_BYTES, HISTORY_MOMENTS_BYTES, SIGNAL_BYTES};
+use pipelines::{DenoisePass, DenoisePipelines, GRADIENT_BYTES, GRADIENT_STRATUM, GUIDE_BYTES, HISTORY_LIGHT_BYTES, HISTORY_MOMENTS_BYTES, SIGNAL_BYTES};
 use settings::{DenoiseSettings, View};
 use shader_constants::{
-    BINDING_COUNT, BINDING_GBUFFER, BINDING_GUIDE, BINDING_GUIDE_PREVIOUS, BINDING_LIGHT, BINDING_LIGHT_PREVIOUS, BINDING_MOMENTS, BINDING_MOMENTS_PREVIOUS, BINDING_OUTPUT,
-    BINDING_SIGNAL, FLAG_FEEDBACK, FLAG_VIEW_HISTORY,
+    BINDING_COUNT, BINDING_GBUFFER, BINDING_GRADIENT, BINDING_GUIDE, BINDING_GUIDE_PREVIOUS, BINDING_LIGHT, BINDING_LIGHT_PREVIOUS, BINDING_MOMENTS, BINDING_MOMENTS_PREVIOUS, BINDING_OUTPUT,
+    BINDING_SIGNAL, FLAG_FEEDBACK, FLAG_GRADIENTS, FLAG_VIEW_HISTORY,
 };
 
-/// One frame's history: what the next frame reprojects (32 bytes a pixel in all).
+/// One frame's history: what the next frame reprojects (36 bytes a pixel in all).
 struct FrameHistory {
     /// `HistoryLight` records: light and history length.
     light: Buffer,
-    /// `HistoryMoments` records: luminance means and variances.
+    /// `HistoryMoments` records: luminance means and variances, the traced luminances.
     moments: Buffer,
     /// `Guide` records: the surfaces (normal and eye distance), also the spatial passes'.
     guide: Buffer,
@@ -123,16 +132,18 @@ struct PixelBuffers {
     history: [FrameHistory; 2],
     /// The spatial passes' two signals, one after the other.
     signal: Buffer,
+    /// The temporal gradients, one record per 3x3 stratum.
+    gradient: Buffer,
     pool: vk::DescriptorPool,
     sets: [vk::DescriptorSet; 2],
 }
 
 /// Frame slots whose passes are timed (frames in flight are fewer).
 const TIMED_SLOTS: u32 = 4;
-/// Timestamps per frame: before the temporal pass and after each of the four steps.
-const STAMPS: u32 = 5;
+/// Timestamps per frame: before the first pass and after each of the five steps.
+const STAMPS: u32 = 6;
 /// The steps timed, in order.
-const STEPS: [&str; 4] = ["temporal", "variance", "a-trous", "modulate"];
+const STEPS: [&str; 5] = ["gradient", "temporal", "variance", "a-trous", "modulate"];
 
 /// GPU time of the passes, from timestamps, summed over the frames read.
 struct PassTimes {
@@ -140,7 +151,7 @@ struct PassTimes {
     /// Per slot: whether it recorded a frame whose timestamps were not read yet.
     unread: [bool; TIMED_SLOTS as usize],
     /// Seconds per step, summed.
-    seconds: [f64; 4],
+    seconds: [f64; 5],
     frames: u64,
 }
 
@@ -154,7 +165,7 @@ impl PassTimes {
         let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(STAMPS * TIMED_SLOTS);
         // Safety: valid create info; destroyed in `Denoiser::destroy`.
         let pool = unsafe { device.raw.create_query_pool(&info, None) }.check("vkCreateQueryPool")?;
-        Ok(Some(PassTimes { pool, unread: [false; TIMED_SLOTS as usize], seconds: [0.0; 4], frames: 0 }))
+        Ok(Some(PassTimes { pool, unread: [false; TIMED_SLOTS as usize], seconds: [0.0; 5], frames: 0 }))
     }
 
     /// Adds the times of the frame slot `slot` recorded last, once its fence has signalled.
@@ -219,8 +230,9 @@ impl Denoiser {
             }
         };
         let history = [first, second];
-        let signal = match make_buffers(device, [("glrt denoiser signal", 2 * n * SIGNAL_BYTES)]) {
-            Ok([b]) => b,
+        let strata = u64::from(radiance.size[0].div_ceil(GRADIENT_STRATUM)) * u64::from(radiance.size[1].div_ceil(GRADIENT_STRATUM));
+        let [signal, gradient] = match make_buffers(device, [("glrt denoiser signal", 2 * n * SIGNAL_BYTES), ("glrt denoiser gradients", strata * GRADIENT_BYTES)]) {
+            Ok(b) => b,
             Err(e) => {
                 history.into_iter().for_each(|h| h.destroy(device));
                 return Err(e);
@@ -232,6 +244,7 @@ impl Denoiser {
             output: radiance.output,
             history,
             signal,
+            gradient,
             pool: vk::DescriptorPool::null(),
             sets: [vk::DescriptorSet::null(); 2],
         };
@@ -277,6 +290,7 @@ impl Denoiser {
                 table[BINDING_GUIDE_PREVIOUS as usize] = whole(&previous.guide);
                 table[BINDING_GUIDE as usize] = whole(&current.guide);
                 table[BINDING_SIGNAL as usize] = whole(&pixels.signal);
+                table[BINDING_GRADIENT as usize] = whole(&pixels.gradient);
                 let infos = table.map(|(buffer, range)| [vk::DescriptorBufferInfo { buffer, offset: 0, range }]);
                 let writes: Vec<vk::WriteDescriptorSet> = infos
                     .iter()
@@ -303,13 +317,16 @@ impl Denoiser {
         let still = frame.flags[0] & FRAME_STILL != 0;
         let flags = (frame.flags[0] & FRAME_TONEMAP_MASK)
             | if still { 0 } else { FLAG_FEEDBACK }
-            | if self.settings.view == View::History { FLAG_VIEW_HISTORY } else { 0 };
+            | if self.settings.view == View::History { FLAG_VIEW_HISTORY } else { 0 }
+            | if self.settings.gradients { FLAG_GRADIENTS } else { 0 };
         let params = [frame.params[0], frame.params[1], frame.params[2], MOVING_HISTORY];
-        let groups = [w.div_ceil(TRACE_GROUP), h.div_ceil(TRACE_GROUP)];
+        let frame_index = frame.counts[0];
+        let pixel_groups = [w.div_ceil(TRACE_GROUP), h.div_ceil(TRACE_GROUP)];
+        let stratum_groups = [w.div_ceil(GRADIENT_STRATUM).div_ceil(TRACE_GROUP), h.div_ceil(GRADIENT_STRATUM).div_ceil(TRACE_GROUP)];
         let d = &device.raw;
         let layout = self.pipelines.layout;
-        let run = |pipeline: vk::Pipeline, step: u32, source: u32, destination: u32| {
-            let pass = DenoisePass { params, size: [w, h, flags, step], signal: [source, destination] };
+        let dispatch = |pipeline: vk::Pipeline, groups: [u32; 2], step: u32, source: u32, destination: u32| {
+            let pass = DenoisePass { params, size: [w, h, flags, step], signal: [source, destination], frame_index };
             // Safety: `cmd` records outside a rendering pass (the tracer ended it); the sets'
             // buffers live until the frame finishes.
             unsafe {
@@ -339,26 +356,36 @@ impl Denoiser {
                 }
             }
         };
+        let run = |pipeline: vk::Pipeline, step: u32, source: u32, destination: u32| dispatch(pipeline, pixel_groups, step, source, destination);
         // Safety: as above.
         unsafe { d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, layout, 0, &[set], &[]) };
         stamp(0);
+        if self.settings.gradients {
+            dispatch(self.pipelines.gradient, stratum_groups, 1, 0, 0);
+        }
+        stamp(1);
         // The signal ping-pongs between its halves, starting at 0 and n.
         run(self.pipelines.temporal, 1, 0, 0);
-        stamp(1);
-        run(self.pipelines.variance, 1, 0, n);
         stamp(2);
+        run(self.pipelines.variance, 1, 0, n);
+        stamp(3);
         let mut current = n;
         for iteration in 0..self.settings.iterations {
             let other = n - current;
             run(self.pipelines.atrous, 1 << iteration, current, other);
             current = other;
         }
-        stamp(3);
-        run(self.pipelines.modulate, 1, current, 0);
         stamp(4);
+        run(self.pipelines.modulate, 1, current, 0);
+        stamp(5);
         // Safety: as above.
         unsafe { barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::HOST) };
         Ok(TracedImage { size: radiance.size, output: radiance.output })
+    }
+
+    /// Whether the tracer should trace gradient samples (`FRAME_GRADIENTS`) for this stage.
+    pub fn wants_gradient_samples(&self) -> bool {
+        self.settings.gradients
     }
 
     /// Frees the GPU objects (the GPU must be idle), after logging the passes' times.
@@ -385,6 +412,7 @@ fn destroy_pixels(device: &Device, p: PixelBuffers) {
     unsafe { device.raw.destroy_descriptor_pool(p.pool, None) };
     p.history.into_iter().for_each(|h| h.destroy(device));
     device.destroy_buffer(p.signal);
+    device.destroy_buffer(p.gradient);
 }
 
 #[cfg(test)]
@@ -393,7 +421,10 @@ mod tests {
 
     #[test]
     fn the_pass_summary_averages_each_step_over_the_frames() {
-        let times = PassTimes { pool: vk::QueryPool::null(), unread: [false; 4], seconds: [0.002, 0.001, 0.004, 0.001], frames: 2 };
-        assert_eq!(times.summary(), "denoiser: 2 frames timed; GPU ms per frame: temporal 1.000, variance 0.500, a-trous 2.000, modulate 0.500, all 4.000");
+        let times = PassTimes { pool: vk::QueryPool::null(), unread: [false; 4], seconds: [0.0002, 0.002, 0.001, 0.004, 0.001], frames: 2 };
+        assert_eq!(
+            times.summary(),
+            "denoiser: 2 frames timed; GPU ms per frame: gradient 0.100, temporal 1.000, variance 0.500, a-trous 2.000, modulate 0.500, all 4.100"
+        );
     }
 }

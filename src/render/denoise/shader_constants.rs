@@ -23,8 +23,10 @@ glsl_constants! {
     /// The signal the spatial passes ping-pong (`Signal`): light and variance per channel,
     /// two halves, at the pass's offsets.
     const BINDING_SIGNAL: u32 = 8;
+    /// The temporal gradients per 3x3 stratum (`gradient.comp`), read by the temporal pass.
+    const BINDING_GRADIENT: u32 = 9;
     /// Number of bindings (`0..BINDING_COUNT`, all storage buffers).
-    const BINDING_COUNT: u32 = 9;
+    const BINDING_COUNT: u32 = 10;
 
     /// Pass flags: the tone mapping operator (`TONEMAP_*` of the tracer), bits 0 and 1.
     const FLAG_TONEMAP_MASK: u32 = 3;
@@ -35,6 +37,9 @@ glsl_constants! {
     /// Pass flags: the output shows each pixel's history length (frames, as grey levels
     /// 0..=255) instead of its colour (`[denoise] view = "history"`).
     const FLAG_VIEW_HISTORY: u32 = 8;
+    /// Pass flags: temporal gradients shorten the history where the lighting changed
+    /// (`[denoise] gradients`).
+    const FLAG_GRADIENTS: u32 = 16;
 
     /// Frames of history below which the variance is estimated spatially (`variance.comp`).
     const YOUNG_HISTORY: u32 = 4;
