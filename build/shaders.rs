@@ -87,7 +87,15 @@ const LAYOUTS: &[LayoutFile] = &[
     LayoutFile {
         name: "denoise_gpu_types",
         shaders: &[
-            ("denoise/temporal.comp", &[mirror("DenoisePass", Rust::Struct("DenoisePass")), mirror("History", Rust::SizeConstant("HISTORY_BYTES"))]),
+            (
+                "denoise/temporal.comp",
+                &[
+                    mirror("DenoisePass", Rust::Struct("DenoisePass")),
+                    mirror("HistoryLight", Rust::SizeConstant("HISTORY_LIGHT_BYTES")),
+                    mirror("HistoryMoments", Rust::SizeConstant("HISTORY_MOMENTS_BYTES")),
+                    mirror("Guide", Rust::SizeConstant("GUIDE_BYTES")),
+                ],
+            ),
             ("denoise/atrous.comp", &[mirror("Signal", Rust::SizeConstant("SIGNAL_BYTES"))]),
         ],
     },

@@ -1,6 +1,11 @@
-// What the denoiser's passes share (src/render/denoise): the bindings of its one descriptor
-// set, the push constants of a pass, the per-pixel records, and the tests of whether two
-// samples show the same surface.
+// What the denoiser's passes share (src/render/denoise): the bindings of its descriptor sets,
+// the push constants of a pass, the packed per-pixel records, and the test of whether a
+// record of last frame shows the surface a pixel shows now.
+//
+// Every record is packed for the filter's memory traffic: light in half floats, the surface
+// (normal and eye distance) in one 8-byte guide, each kind in its own tightly packed buffer.
+// A frame's history is the three records `HistoryLight`, `HistoryMoments` and `Guide`
+// (36 bytes a pixel); the last frame's are read (`*_previous`), this frame's written.
 
 #ifndef DENOISE_COMMON_GLSL
 #define DENOISE_COMMON_GLSL
@@ -14,27 +19,42 @@ layout(local_size_x = TRACE_GROUP, local_size_y = TRACE_GROUP) in;
 
 // One pass: mirrored by render::denoise::pipelines::DenoisePass.
 layout(push_constant) uniform DenoisePass {
-    uvec4 size;     // traced width, height; DENOISE_FLAG_* bits; à-trous step (pixels)
-    uvec4 offsets;  // records (pixels) into `history` read and written, into `signal` read and written
     vec4 params;    // exposure multiplier; history cap (frames, 0: none); tone-mapping knee;
                     // frames of a moving camera's history
+    uvec4 size;     // traced width, height; DENOISE_FLAG_* bits; à-trous step (pixels)
+    uvec2 signal;   // records (pixels) into `signal` read and written
+    uint frame_index; // the tracer's frame index (GpuFrame.counts.x): which pixels are gradient samples
 } pass;
 
-// The temporal history of one pixel.
-struct History {
-    vec4 direct;    // rgb: demodulated direct light; a: history length (frames)
-    vec4 indirect;  // rgb: demodulated indirect light; a unused
-    vec4 moments;   // first and second moments of luminance: direct (xy), indirect (zw)
-    float view_z;   // what the history is of: eye-space distance, normal, material key
-    uint normal;
-    uint surface;
-    uint pad;
+// The temporal light of one pixel: the demodulated direct and indirect light (half floats:
+// direct rg, direct b and indirect r, indirect gb), the history length in frames (bits 0-15)
+// and the tag of the material it is of (bits 16-31, surface_tag).
+struct HistoryLight {
+    uvec3 light;
+    uint frames_surface;
 };
 
-// Light and the variance of its luminance per channel, between the spatial passes.
+// The running mean and variance of each channel's luminance (half floats: mean, variance),
+// and the luminance of this frame's traced sample of each (half floats: direct, indirect),
+// which next frame's gradient sample of the pixel is compared with.
+struct HistoryMoments {
+    uint direct;
+    uint indirect;
+    uint traced;
+};
+
+// The surface a pixel shows: its shading normal (octahedral, trace/pack.glsl) and eye-space
+// distance (0: the primary ray missed).
+struct Guide {
+    uint normal;
+    float view_z;
+};
+
+// Light and the variance of its luminance per channel, between the spatial passes (half
+// floats: rg, then b and variance).
 struct Signal {
-    vec4 direct;    // rgb: light; a: variance
-    vec4 indirect;
+    uvec2 direct;
+    uvec2 indirect;
 };
 
 layout(set = 0, binding = DENOISE_BINDING_GBUFFER, std430) readonly buffer GBuffer {
@@ -45,26 +65,103 @@ layout(set = 0, binding = DENOISE_BINDING_OUTPUT, std430) writeonly buffer Outpu
     OutputSample outputs[];
 };
 
-layout(set = 0, binding = DENOISE_BINDING_HISTORY, std430) buffer Histories {
-    History history[];
+layout(set = 0, binding = DENOISE_BINDING_LIGHT_PREVIOUS, std430) readonly buffer LightPrevious {
+    HistoryLight light_previous[];
+};
+
+layout(set = 0, binding = DENOISE_BINDING_LIGHT, std430) buffer Light {
+    HistoryLight light[];
+};
+
+layout(set = 0, binding = DENOISE_BINDING_MOMENTS_PREVIOUS, std430) readonly buffer MomentsPrevious {
+    HistoryMoments moments_previous[];
+};
+
+layout(set = 0, binding = DENOISE_BINDING_MOMENTS, std430) buffer Moments {
+    HistoryMoments moments[];
+};
+
+layout(set = 0, binding = DENOISE_BINDING_GUIDE_PREVIOUS, std430) readonly buffer GuidePrevious {
+    Guide guide_previous[];
+};
+
+layout(set = 0, binding = DENOISE_BINDING_GUIDE, std430) buffer Guides {
+    Guide guide[];
 };
 
 layout(set = 0, binding = DENOISE_BINDING_SIGNAL, std430) buffer Signals {
     Signal signal[];
 };
 
+// Per 3x3 stratum (trace/gradient.glsl): the temporal gradient of each channel's luminance
+// as |change| and the larger of the two luminances, to be summed apart (half floats:
+// direct, then indirect).
+layout(set = 0, binding = DENOISE_BINDING_GRADIENT, std430) buffer Gradients {
+    uvec2 gradient[];
+};
+
 const uint MISS = 0xffffffffu;
+
+// The largest finite half float: packed values are clamped to it.
+const float HALF_MAX = 65504.0;
 
 float luminance(vec3 c) {
     return dot(c, vec3(0.2126, 0.7152, 0.0722));
 }
 
-// Whether history `h` (of the last frame) shows the surface of G-buffer sample `g`: the same
-// material, where it was (eye distance within 5 %) and facing as it did (normals within
-// about 25 degrees). A failed test is a disocclusion: the history there is dropped.
-bool same_surface(History h, GSample g) {
-    return h.direct.a > 0.0 && h.surface == g.surface && abs(h.view_z - g.view_z) <= 0.05 * g.view_z
-        && dot(unpack_normal(h.normal), unpack_normal(g.normal)) > 0.9;
+uvec2 pack_half4(vec4 v) {
+    v = clamp(v, -HALF_MAX, HALF_MAX);
+    return uvec2(packHalf2x16(v.xy), packHalf2x16(v.zw));
+}
+
+vec4 unpack_half4(uvec2 p) {
+    return vec4(unpackHalf2x16(p.x), unpackHalf2x16(p.y));
+}
+
+uvec3 pack_light(vec3 direct, vec3 indirect) {
+    uvec2 a = pack_half4(vec4(direct, indirect.r));
+    return uvec3(a, packHalf2x16(clamp(indirect.gb, -HALF_MAX, HALF_MAX)));
+}
+
+void unpack_light(uvec3 p, out vec3 direct, out vec3 indirect) {
+    vec4 a = unpack_half4(p.xy);
+    direct = a.rgb;
+    indirect = vec3(a.a, unpackHalf2x16(p.z));
+}
+
+// The 16-bit tag of a material key (render::trace::material::key) that a history keeps.
+uint surface_tag(uint key) {
+    return (key ^ (key >> 16)) & 0xffffu;
+}
+
+uint pack_frames_surface(float frames, uint key) {
+    return uint(min(frames, 65535.0)) | (surface_tag(key) << 16);
+}
+
+float history_frames(HistoryLight h) {
+    return float(h.frames_surface & 0xffffu);
+}
+
+// A pixel's guide from its G-buffer sample.
+Guide guide_of(GSample g) {
+    return g.instance == MISS ? Guide(0u, 0.0) : Guide(g.normal, g.view_z);
+}
+
+// The mean and second moment (x, y) of a packed mean and variance.
+vec2 raw_moments(uint packed) {
+    vec2 m = unpackHalf2x16(packed);
+    return vec2(m.x, m.y + m.x * m.x);
+}
+
+// Whether the history of last frame at record `at` shows the surface of G-buffer sample `g`:
+// it has one, of the same material (tag), where it was (eye distance within 5 %) and facing
+// as it did (normals within about 25 degrees). A failed test is a disocclusion: the history
+// there is dropped.
+bool same_surface(uint at, GSample g) {
+    HistoryLight h = light_previous[at];
+    Guide s = guide_previous[at];
+    return history_frames(h) > 0.0 && (h.frames_surface >> 16) == surface_tag(g.surface) && abs(s.view_z - g.view_z) <= 0.05 * g.view_z
+        && dot(unpack_normal(s.normal), unpack_normal(g.normal)) > 0.9;
 }
 
 // The index of `pixel`, or -1 outside the traced image.

@@ -6,17 +6,42 @@
 // history records around that position that pass the disocclusion tests (same_surface), or,
 // when none does, the mean of those of the 3x3 around it that do. The mean keeps at most
 // `params.y` frames (the `accumulate` setting while nothing moves, a few frames while the
-// camera moves, none after a cut); with no history the pixel starts again. The first and
-// second moments of each channel's luminance are accumulated alike; their variance goes with
-// the light to the spatial passes (signal, written at offsets.w) and the record to the
-// history of this frame (offsets.y).
+// camera moves, none after a cut); with no history the pixel starts again. The mean and
+// variance of each channel's luminance are kept alike (the running variance in its
+// incremental form, which half floats hold without the cancellation of raw second moments);
+// the variance goes with the light to the spatial passes (signal, written at signal.y) and
+// the records to this frame's history. With DENOISE_FLAG_GRADIENTS the temporal gradients
+// of the 3x3 strata around the pixel's (gradient.comp: changes and luminances summed apart,
+// as Quake II RTX's asvgf_gradient_atrous filters them) give how much the lighting changed,
+// lambda in 0..1, and the history kept is shortened to (1 - lambda) of its length: where a
+// light was switched the new light replaces the old at once, elsewhere nothing changes.
 
 #include "denoise/common.glsl"
+#include "trace/gradient.glsl"
+
+// Last frame's records blended: light, mean and second moment of luminance (direct xy,
+// indirect zw), history length.
+struct Past {
+    vec3 direct;
+    vec3 indirect;
+    vec4 moments;
+    float frames;
+};
+
+void add_record(inout Past p, uint at, float w) {
+    vec3 direct, indirect;
+    unpack_light(light_previous[at].light, direct, indirect);
+    HistoryMoments m = moments_previous[at];
+    p.direct += w * direct;
+    p.indirect += w * indirect;
+    p.moments += w * vec4(raw_moments(m.direct), raw_moments(m.indirect));
+    p.frames += w * history_frames(light_previous[at]);
+}
 
 // The blended history at the previous position `previous` (traced pixels, centres at .5) of
 // the surface of `g`; weight 0 when no record there shows it.
-float reproject(vec2 previous, GSample g, out History blended) {
-    blended = History(vec4(0.0), vec4(0.0), vec4(0.0), 0.0, 0u, 0u, 0u);
+float reproject(vec2 previous, GSample g, out Past blended) {
+    blended = Past(vec3(0.0), vec3(0.0), vec4(0.0), 0.0);
     vec2 p = previous - 0.5;
     ivec2 base = ivec2(floor(p));
     vec2 f = p - vec2(base);
@@ -24,37 +49,25 @@ float reproject(vec2 previous, GSample g, out History blended) {
     for (int k = 0; k < 4; k++) {
         ivec2 offset = ivec2(k & 1, k >> 1);
         int at = pixel_index(base + offset);
-        if (at < 0) {
-            continue;
-        }
-        History h = history[pass.offsets.x + uint(at)];
-        if (!same_surface(h, g)) {
+        if (at < 0 || !same_surface(uint(at), g)) {
             continue;
         }
         vec2 w2 = mix(1.0 - f, f, vec2(offset));
         float w = w2.x * w2.y;
-        blended.direct += w * h.direct;
-        blended.indirect += w * h.indirect;
-        blended.moments += w * h.moments;
+        add_record(blended, uint(at), w);
         total += w;
     }
     if (total < 1e-3) {
         // An edge: the bilinear footprint straddles another surface; the matching records of
         // the 3x3 around the position, equally weighted.
         total = 0.0;
-        blended = History(vec4(0.0), vec4(0.0), vec4(0.0), 0.0, 0u, 0u, 0u);
+        blended = Past(vec3(0.0), vec3(0.0), vec4(0.0), 0.0);
         ivec2 centre = ivec2(floor(previous));
         for (int dy = -1; dy <= 1; dy++) {
             for (int dx = -1; dx <= 1; dx++) {
                 int at = pixel_index(centre + ivec2(dx, dy));
-                if (at < 0) {
-                    continue;
-                }
-                History h = history[pass.offsets.x + uint(at)];
-                if (same_surface(h, g)) {
-                    blended.direct += h.direct;
-                    blended.indirect += h.indirect;
-                    blended.moments += h.moments;
+                if (at >= 0 && same_surface(uint(at), g)) {
+                    add_record(blended, uint(at), 1.0);
                     total += 1.0;
                 }
             }
@@ -64,8 +77,27 @@ float reproject(vec2 previous, GSample g, out History blended) {
         blended.direct /= total;
         blended.indirect /= total;
         blended.moments /= total;
+        blended.frames /= total;
     }
     return total;
+}
+
+// How much the lighting around `pixel` changed since last frame, 0..1 (the larger of the
+// channels'), from the gradients of the 3x3 strata around its own.
+float lighting_change(ivec2 pixel) {
+    ivec2 strata = ivec2((pass.size.xy + GRADIENT_STRATUM - 1u) / GRADIENT_STRATUM);
+    ivec2 centre = pixel / int(GRADIENT_STRATUM);
+    vec4 sum = vec4(0.0);
+    for (int dy = -1; dy <= 1; dy++) {
+        for (int dx = -1; dx <= 1; dx++) {
+            ivec2 s = centre + ivec2(dx, dy);
+            if (all(greaterThanEqual(s, ivec2(0))) && all(lessThan(s, strata))) {
+                sum += unpack_half4(gradient[s.y * strata.x + s.x]);
+            }
+        }
+    }
+    vec2 lambda = vec2(sum.y > 0.0 ? sum.x / sum.y : 0.0, sum.w > 0.0 ? sum.z / sum.w : 0.0);
+    return clamp(max(lambda.x, lambda.y), 0.0, 1.0);
 }
 
 void main() {
@@ -78,24 +110,34 @@ void main() {
     GSample g = gbuffer[index];
     vec3 direct = g.direct.rgb;
     vec3 indirect = g.indirect.rgb;
-    float ld = luminance(direct);
-    float li = luminance(indirect);
-    vec4 moments = vec4(ld, ld * ld, li, li * li);
+    vec2 mean = vec2(luminance(direct), luminance(indirect));
+    uint traced = packHalf2x16(min(mean, HALF_MAX));
+    vec2 variance = vec2(0.0);
     float cap = pass.params.y;
     float frames = 0.0;
-    History h;
+    Past h;
     if (g.instance != MISS && cap > 0.0 && reproject(vec2(pixel) + 0.5 - g.motion, g, h) > 0.0) {
-        frames = min(h.direct.a, cap);
+        frames = min(h.frames, cap);
+        if ((pass.size.z & DENOISE_FLAG_GRADIENTS) != 0u) {
+            frames *= 1.0 - lighting_change(pixel);
+        }
         float alpha = 1.0 / (frames + 1.0);
-        direct = mix(h.direct.rgb, direct, alpha);
-        indirect = mix(h.indirect.rgb, indirect, alpha);
-        moments = mix(h.moments, moments, alpha);
+        direct = mix(h.direct, direct, alpha);
+        indirect = mix(h.indirect, indirect, alpha);
+        // The running mean m and variance v of x: m' = m + a (x - m), v' = (1 - a)(v + a (x - m)^2),
+        // the same as running means of the first two moments.
+        vec2 past_mean = h.moments.xz;
+        vec2 past_variance = max(h.moments.yw - past_mean * past_mean, vec2(0.0));
+        vec2 delta = mean - past_mean;
+        mean = past_mean + alpha * delta;
+        variance = (1.0 - alpha) * (past_variance + alpha * delta * delta);
     }
     frames += 1.0;
     if (g.instance == MISS) {
         frames = 0.0;
     }
-    history[pass.offsets.y + index] = History(vec4(direct, frames), vec4(indirect, 0.0), moments, g.view_z, g.normal, g.surface, 0u);
-    vec2 variance = max(moments.yw - moments.xz * moments.xz, vec2(0.0));
-    signal[pass.offsets.w + index] = Signal(vec4(direct, variance.x), vec4(indirect, variance.y));
+    light[index] = HistoryLight(pack_light(direct, indirect), pack_frames_surface(frames, g.surface));
+    moments[index] = HistoryMoments(packHalf2x16(min(vec2(mean.x, variance.x), HALF_MAX)), packHalf2x16(min(vec2(mean.y, variance.y), HALF_MAX)), traced);
+    guide[index] = guide_of(g);
+    signal[pass.signal.y + index] = Signal(pack_half4(vec4(direct, variance.x)), pack_half4(vec4(indirect, variance.y)));
 }

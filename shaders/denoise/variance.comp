@@ -4,8 +4,8 @@
 // younger than DENOISE_YOUNG_HISTORY frames its temporal variance says little, so it is
 // estimated from the moments of the 7x7 pixels around it on the same surface (depth and
 // normal weights as in the à-trous filter), and raised for the youngest histories so that
-// the filter blurs them more. Older pixels pass through. Reads the signal at offsets.z and
-// this frame's history (offsets.y), writes the signal at offsets.w.
+// the filter blurs them more. Older pixels pass through. Reads the signal at signal.x and
+// this frame's history, writes the signal at signal.y.
 
 #include "denoise/common.glsl"
 
@@ -16,15 +16,15 @@ void main() {
         return;
     }
     uint index = uint(at);
-    Signal s = signal[pass.offsets.z + index];
-    History centre = history[pass.offsets.y + index];
-    float frames = centre.direct.a;
+    Signal s = signal[pass.signal.x + index];
+    float frames = history_frames(light[index]);
     if (frames >= float(DENOISE_YOUNG_HISTORY) || frames == 0.0) {
-        signal[pass.offsets.w + index] = s;
+        signal[pass.signal.y + index] = s;
         return;
     }
+    Guide centre = guide[index];
     vec3 n = unpack_normal(centre.normal);
-    vec4 moments = vec4(0.0);
+    vec4 sum = vec4(0.0);
     float total = 0.0;
     for (int dy = -3; dy <= 3; dy++) {
         for (int dx = -3; dx <= 3; dx++) {
@@ -32,20 +32,21 @@ void main() {
             if (q < 0) {
                 continue;
             }
-            History h = history[pass.offsets.y + uint(q)];
-            if (h.direct.a == 0.0) {
+            Guide gq = guide[q];
+            if (gq.view_z == 0.0) {
                 continue;
             }
-            float wz = exp(-abs(h.view_z - centre.view_z) / (0.02 * centre.view_z * length(vec2(dx, dy)) + 1e-6));
-            float wn = pow(max(dot(n, unpack_normal(h.normal)), 0.0), 128.0);
+            float wz = exp(-abs(gq.view_z - centre.view_z) / (0.02 * centre.view_z * length(vec2(dx, dy)) + 1e-6));
+            float wn = pow(max(dot(n, unpack_normal(gq.normal)), 0.0), 128.0);
             float w = wz * wn;
-            moments += w * h.moments;
+            HistoryMoments m = moments[q];
+            sum += w * vec4(raw_moments(m.direct), raw_moments(m.indirect));
             total += w;
         }
     }
-    moments /= max(total, 1e-6);
-    vec2 variance = max(moments.yw - moments.xz * moments.xz, vec2(0.0)) * (float(DENOISE_YOUNG_HISTORY) / frames);
-    s.direct.a = variance.x;
-    s.indirect.a = variance.y;
-    signal[pass.offsets.w + index] = s;
+    sum /= max(total, 1e-6);
+    vec2 variance = max(sum.yw - sum.xz * sum.xz, vec2(0.0)) * (float(DENOISE_YOUNG_HISTORY) / frames);
+    vec4 direct = unpack_half4(s.direct);
+    vec4 indirect = unpack_half4(s.indirect);
+    signal[pass.signal.y + index] = Signal(pack_half4(vec4(direct.rgb, variance.x)), pack_half4(vec4(indirect.rgb, variance.y)));
 }

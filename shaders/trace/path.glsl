@@ -32,6 +32,7 @@ layout(push_constant) uniform Pass {
 #include "trace/gbuffer.glsl"
 #include "trace/environment.glsl"
 #include "trace/channels.glsl"
+#include "trace/gradient.glsl"
 
 // The eye-space ray through window position `window` (GL window coordinates, y up).
 void camera_ray(vec2 window, out vec3 origin, out vec3 dir) {
@@ -77,6 +78,7 @@ void trace_pixel(uvec2 pixel) {
     g.material = 0u;
     g.instance = 0xffffffffu;
     g.surface = 0u;
+    g.gradient = 0u;
     uint primary = 0u, shadow = 0u, diffuse = 0u, specular = 0u;
 
     vec3 radiance = vec3(0.0);
@@ -86,7 +88,10 @@ void trace_pixel(uvec2 pixel) {
     vec3 before_continuation = vec3(0.0);
     bool continued = false;
     if (inside) {
-        Rng rng = rng_seed(pixel, frame.counts.x, sample_index);
+        // A gradient sample (trace/gradient.glsl) draws last frame's random numbers.
+        bool gradient = (frame.flags.x & FRAME_GRADIENTS) != 0u && frame.counts.x > 0u
+            && all(equal(pixel, gradient_pixel(pixel / GRADIENT_STRATUM, frame.counts.x)));
+        Rng rng = rng_seed(pixel, gradient ? frame.counts.x - 1u : frame.counts.x, sample_index);
         // The first sample of a frame goes through the pixel centre, so the G-buffer is stable.
         vec2 jitter = sample_index == 0u ? vec2(0.5) : rng_next2(rng);
         vec2 window = (vec2(pixel) + jitter) * scale;
@@ -126,6 +131,7 @@ void trace_pixel(uvec2 pixel) {
                 g.material = packUnorm4x8(vec4(s.roughness, s.metalness, 0.0, 0.0));
                 g.instance = hit.instance;
                 g.surface = materials[inst.material].key;
+                g.gradient = gradient && all(lessThan(abs(g.motion), vec2(1e-4))) ? 1u : 0u;
             }
             vec3 emitted = s.emission;
             if (bsdf_density > 0.0 && s.emitter_density > 0.0) {

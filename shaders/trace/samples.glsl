@@ -20,7 +20,8 @@ struct GSample {
     uint material;      // roughness, metalness as unorm8 in bytes 0 and 1
     uint instance;      // index of the instance hit, 0xffffffff on a miss
     uint surface;       // the key of the material hit (Material.key; 0 on a miss): history follows it
-    uint pad[3];
+    uint gradient;      // 1: a gradient sample (trace/gradient.glsl) whose surface stayed in place
+    uint pad[2];
 };
 
 // What the composite draws: tone-mapped colour and depth.

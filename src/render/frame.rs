@@ -53,6 +53,7 @@ use crate::render::raster::output::FrameOutput;
 use crate::render::raster::renderer::{FRAMES_IN_FLIGHT, Raster, Recorder};
 use crate::render::trace::composite::Composite;
 use crate::render::trace::settings::Settings;
+use crate::render::trace::shader_constants::FRAME_GRADIENTS;
 use crate::render::trace::surfaces::Surfaces;
 use crate::render::trace::{self, RayTracer};
 
@@ -308,7 +309,10 @@ impl Tracing {
     /// (the window's framebuffer, at the place of `camera`, the first traced draw).
     fn record(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw) -> Result<()> {
         // Upload and acceleration structures.
-        let scene = self.backend.build(rec, frame, surfaces, camera)?;
+        let mut scene = self.backend.build(rec, frame, surfaces, camera)?;
+        if self.denoiser.as_ref().is_some_and(Denoiser::wants_gradient_samples) {
+            scene.frame.flags[0] |= FRAME_GRADIENTS;
+        }
         // Trace: the G-buffer and radiance (nothing when no geometry is on the GPU yet).
         let Some(radiance) = self.backend.trace(rec, &scene)? else { return Ok(()) };
         // Radiosity (issue 19) comes here, as a stage on `radiance`.

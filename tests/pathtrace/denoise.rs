@@ -1,8 +1,17 @@
-//! The denoiser's reprojection and disocclusion tests (`shaders/denoise/temporal.comp`), on
-//! lavapipe, seen through `[denoise] view = "history"` (each pixel's history length in frames
-//! as its grey level): a square in front of a wall creeps right for four frames, then jumps. Wall pixels the square uncovered start their history again (a disocclusion); wall
-//! pixels it never covered, and the square's own pixels at its new place (reprojected with
-//! the motion vector of its transform), keep theirs.
+//! The denoiser on lavapipe (`src/render/denoise`).
+//!
+//! Reprojection and disocclusion (`shaders/denoise/temporal.comp`), seen through
+//! `[denoise] view = "history"` (each pixel's history length in frames as its grey level): a
+//! square in front of a wall creeps right for four frames, then jumps. Wall pixels the
+//! square uncovered start their history again (a disocclusion); wall pixels it never
+//! covered, and the square's own pixels at its new place (reprojected with the motion vector
+//! of its transform), keep theirs.
+//!
+//! Temporal gradients (`shaders/denoise/gradient.comp`): a room corner (wall and floor) lit
+//! by a GL light switched on mid-sequence, with the camera still; the mean of the image
+//! reaches the converged one within a few frames with gradients, and slowly without. And the
+//! temporal stability of raw samples, the tracer's temporal filter and A-SVGF on the lit,
+//! still scene: the mean frame-to-frame change.
 
 use crate::lavapipe;
 
@@ -16,17 +25,25 @@ use glrt::translate::{Context, dispatch, gl};
 
 const SIZE: i32 = 32;
 
-/// A tracing and denoising context showing history lengths, on a `SIZE`² drawable with a 60°
-/// camera at the origin looking down −z.
-fn context() -> Context {
+/// A tracing context on a `SIZE`² drawable with a 60° camera at the origin looking down −z,
+/// tracing `bounces` bounces, temporal filter `temporal`, and denoising with `denoise` (none:
+/// the tracer's own temporal filter resolves).
+fn context_with(bounces: u32, temporal: bool, denoise: Option<DenoiseSettings>) -> Context {
     let mut renderer = lavapipe::renderer_with(Renderer::without_outputs);
-    let settings = Settings { spp: 1, bounces: 0, sun_angle: 0.0, tonemap: Tonemap::Clamp, ..Settings::default() };
+    let settings = Settings { spp: 1, bounces, sun_angle: 0.0, tonemap: Tonemap::Clamp, temporal, ..Settings::default() };
     renderer.enable_tracing(settings).expect("the tracer's pipelines");
-    renderer.enable_denoising(DenoiseSettings { view: View::History, ..DenoiseSettings::default() }).expect("the denoiser's pipelines");
+    if let Some(denoise) = denoise {
+        renderer.enable_denoising(denoise).expect("the denoiser's pipelines");
+    }
     let renderer = Arc::new(Mutex::new(renderer));
     let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(lavapipe::Shared(renderer)) });
     lavapipe::perspective_60(&mut ctx, SIZE);
     ctx
+}
+
+/// A tracing and denoising context showing history lengths.
+fn context() -> Context {
+    context_with(0, true, Some(DenoiseSettings { view: View::History, ..DenoiseSettings::default() }))
 }
 
 /// A quad facing the camera at depth `z` over `x0..x1` × `y0..y1`, moved by `dx` with
@@ -89,4 +106,109 @@ fn a_moved_square_keeps_its_history_and_the_wall_it_uncovered_starts_again() {
     assert_eq!(wall, 5, "a wall pixel never covered keeps its history");
     assert_eq!(moved, 5, "the square's pixels at its new place are reprojected to where it was");
     assert_eq!(uncovered, 1, "the wall the square uncovered has no history (disocclusion)");
+}
+
+/// One frame of the room corner: a wall at z = −6 and a floor at y = −2 (its light reaches
+/// the wall as noisy indirect light), lit by GL light 0 from the upper right front when `lit`.
+fn corner(ctx: &mut Context, lit: bool) {
+    // Safety: plain state and drawing calls on a current context.
+    unsafe {
+        dispatch::glClearColor(ctx, 0.0, 0.0, 0.0, 1.0);
+        dispatch::glClear(ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
+        dispatch::glEnable(ctx, gl::GL_DEPTH_TEST);
+        dispatch::glEnable(ctx, gl::GL_LIGHTING);
+        if lit {
+            dispatch::glEnable(ctx, gl::GL_LIGHT0);
+        } else {
+            dispatch::glDisable(ctx, gl::GL_LIGHT0);
+        }
+        let position = [0.5f32, 1.0, 1.0, 0.0];
+        dispatch::glLightfv(ctx, gl::GL_LIGHT0, gl::GL_POSITION, position.as_ptr());
+    }
+    square(ctx, -6.0, [-8.0, 8.0], [-8.0, 8.0], 0.0);
+    // Safety: as above.
+    unsafe {
+        dispatch::glBegin(ctx, gl::GL_QUADS);
+        dispatch::glNormal3f(ctx, 0.0, 1.0, 0.0);
+        for [x, z] in [[-8.0f32, -1.0], [8.0, -1.0], [8.0, -6.0], [-8.0, -6.0]] {
+            dispatch::glVertex3f(ctx, x, -2.0, z);
+        }
+        dispatch::glEnd(ctx);
+    }
+    ctx.end_frame();
+}
+
+/// The RGB values of the whole `SIZE`² image.
+fn image(ctx: &mut Context) -> Vec<f64> {
+    let mut rgba = vec![0u8; (SIZE * SIZE * 4) as usize];
+    // Safety: `rgba` holds SIZE² RGBA pixels.
+    unsafe { dispatch::glReadPixels(ctx, 0, 0, SIZE, SIZE, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, rgba.as_mut_ptr().cast()) };
+    rgba.chunks(4).flat_map(|p| p[..3].iter().map(|&v| f64::from(v))).collect()
+}
+
+fn mean(values: &[f64]) -> f64 {
+    values.iter().sum::<f64>() / values.len() as f64
+}
+
+/// Frames after the switch (1: the first lit frame) until the image's mean lies within 10 %
+/// of the converged lit mean `converged`, with gradients `gradients`: the light is switched
+/// on after 6 dark frames and 8 lit frames are looked at; `None` if none came within 10 %.
+/// Also the means of the lit frames.
+fn frames_to_converge(gradients: bool, converged: f64) -> (Option<usize>, Vec<f64>) {
+    let mut ctx = context_with(1, true, Some(DenoiseSettings { gradients, ..DenoiseSettings::default() }));
+    for _ in 0..6 {
+        corner(&mut ctx, false);
+    }
+    let means: Vec<f64> = (0..8)
+        .map(|_| {
+            corner(&mut ctx, true);
+            mean(&image(&mut ctx))
+        })
+        .collect();
+    (means.iter().position(|m| (m - converged).abs() <= 0.1 * converged).map(|k| k + 1), means)
+}
+
+#[test]
+fn a_light_switched_on_reaches_its_converged_image_within_four_frames_with_gradients_and_slower_without() {
+    // The converged lit image: the light on from the start, 16 still frames accumulated.
+    let mut ctx = context_with(1, true, Some(DenoiseSettings::default()));
+    for _ in 0..16 {
+        corner(&mut ctx, true);
+    }
+    let converged = mean(&image(&mut ctx));
+    let (with, with_means) = frames_to_converge(true, converged);
+    let (without, without_means) = frames_to_converge(false, converged);
+    let shown = |m: &[f64]| m.iter().map(|v| format!("{:.1}", v)).collect::<Vec<_>>().join(" ");
+    eprintln!("light switched on; converged mean {converged:.2}; means of the lit frames with gradients: {}; without: {}", shown(&with_means), shown(&without_means));
+    eprintln!("frames to within 10 %: with gradients {with:?}, without {without:?}");
+    assert!(converged > 20.0, "the lit corner is lit: mean {converged:.2}");
+    assert!(with.is_some_and(|k| k <= 4), "with gradients: {with:?} frames ({})", shown(&with_means));
+    assert!(without.is_none_or(|k| k > with.unwrap_or(0) + 2), "without gradients: {without:?} frames ({})", shown(&without_means));
+}
+
+/// The mean absolute change of the values from one frame to the next over frames 3 to 8 of
+/// the lit, still corner, in 0..255.
+fn frame_to_frame_change(mut ctx: Context) -> f64 {
+    let mut previous: Vec<f64> = Vec::new();
+    let mut changes = Vec::new();
+    for k in 0..8 {
+        corner(&mut ctx, true);
+        let now = image(&mut ctx);
+        if k >= 3 {
+            changes.push(mean(&now.iter().zip(&previous).map(|(a, b)| (a - b).abs()).collect::<Vec<_>>()));
+        }
+        previous = now;
+    }
+    mean(&changes)
+}
+
+#[test]
+fn denoised_frames_of_a_still_scene_change_less_from_frame_to_frame_than_raw_ones() {
+    let raw = frame_to_frame_change(context_with(1, false, None));
+    let temporal = frame_to_frame_change(context_with(1, true, None));
+    let denoised = frame_to_frame_change(context_with(1, true, Some(DenoiseSettings::default())));
+    eprintln!("mean frame-to-frame change of the still corner, frames 3..8, 0..255: raw {raw:.3}, temporal filter {temporal:.3}, A-SVGF {denoised:.3}");
+    assert!(raw > 0.5, "raw samples are noisy: {raw:.3}");
+    assert!(temporal < raw, "the temporal filter: raw {raw:.3}, temporal {temporal:.3}");
+    assert!(denoised < 0.25 * raw && denoised < 0.25 * temporal, "raw {raw:.3}, temporal {temporal:.3}, A-SVGF {denoised:.3}");
 }

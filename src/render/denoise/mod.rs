@@ -10,11 +10,22 @@
 //! that deforms in place reprojects as if it stood still and its history is dropped only
 //! where the disocclusion tests fail), and two lighting channels demodulated by albedo,
 //! direct light at the primary hit and indirect light (the tracer does not separate specular:
-//! it is part of both). Each channel is filtered apart, in four compute passes per frame
+//! it is part of both). Each channel is filtered apart, in five compute passes per frame
 //! (`shaders/denoise/`):
 //!
+//! 0. `gradient.comp` (with `[denoise] gradients`): temporal gradients (A-SVGF, Schied et al.
+//!    2018): the tracer traces one pixel of every 3x3 stratum with last frame's random
+//!    numbers (`shaders/trace/gradient.glsl`, `FRAME_GRADIENTS`); where its surface stayed
+//!    in place, the change of its luminance against last frame's sample there is the change
+//!    of the lighting, free of noise. Samples that moved are not compared (forward
+//!    projection of last frame's samples, which would give gradients while the camera moves,
+//!    is not built);
 //! 1. `temporal.comp`: reprojection with disocclusion tests (material, eye distance, normal),
-//!    running means of light and of the first two moments of luminance, history length;
+//!    running means of light and running mean and variance of luminance, history length,
+//!    shortened to (1 − λ) where the gradients of the strata around say the lighting changed
+//!    by λ;
+//!    it also packs each pixel's surface (normal and eye distance) into the 8-byte guide the
+//!    spatial passes read;
 //! 2. `variance.comp`: the variance from the moments, estimated spatially where the history
 //!    is young;
 //! 3. `atrous.comp`, `[denoise] iterations` times (default 5): the edge-avoiding à-trous
@@ -26,8 +37,16 @@
 //! Accumulation while everything stands still stays: the tracer's history cap grows to
 //! `[pathtrace] accumulate` frames, the history then keeps the unfiltered mean, and the
 //! filter's luminance edge-stop narrows as the mean's variance falls, so a still frame
-//! converges to the traced mean. Temporal gradients (A-SVGF's history dropped where lighting
-//! changed) are not built yet: a light switched on reaches the image through the history cap.
+//! converges to the traced mean; a light switched on meanwhile drops the history where it
+//! shines through the gradients (without them it would reach the image only as 1 / frames).
+//!
+//! The records are packed for the filter's memory traffic (`shaders/denoise/common.glsl`):
+//! light and variance in half floats (the signal between the spatial passes: 16 bytes a
+//! pixel for both channels, against 32 in single floats), surfaces in the 8-byte guide
+//! (an à-trous tap reads 24 bytes from two tightly packed buffers instead of fields spread
+//! over the 96-byte G-buffer sample and a 32-byte signal), and a frame's history in 36 bytes
+//! a pixel in three buffers (against 64 in one). No binding exceeds a quarter of the
+//! G-buffer's size.
 //!
 //! The passes are timed on GPUs (timestamps; CPU devices have none that bracket compute work):
 //! [`Denoiser::destroy`] logs their average times per frame at `GLRT_LOG=info`.
@@ -48,31 +67,83 @@ use crate::render::trace::compute::{MOVING_HISTORY, barrier};
 use crate::render::trace::gpu_types::{GSAMPLE_BYTES, GpuFrame, OUTPUT_SAMPLE_BYTES};
 use crate::render::trace::shader_constants::{FRAME_STILL, FRAME_TONEMAP_MASK, TRACE_GROUP};
 use crate::render::trace::{Radiance, TracedImage};
-use pipelines::{DenoisePass, DenoisePipelines, HISTORY_BYTES, SIGNAL_BYTES};
+use pipelines::{DenoisePass, DenoisePipelines, GRADIENT_BYTES, GRADIENT_STRATUM, GUIDE_BYTES, HISTORY_LIGHT_BYTES, HISTORY_MOMENTS_BYTES, SIGNAL_BYTES};
 use settings::{DenoiseSettings, View};
-use shader_constants::{BINDING_COUNT, FLAG_FEEDBACK, FLAG_VIEW_HISTORY};
+use shader_constants::{
+    BINDING_COUNT, BINDING_GBUFFER, BINDING_GRADIENT, BINDING_GUIDE, BINDING_GUIDE_PREVIOUS, BINDING_LIGHT, BINDING_LIGHT_PREVIOUS, BINDING_MOMENTS, BINDING_MOMENTS_PREVIOUS, BINDING_OUTPUT,
+    BINDING_SIGNAL, FLAG_FEEDBACK, FLAG_GRADIENTS, FLAG_VIEW_HISTORY,
+};
 
-/// The denoiser's per-pixel buffers for one traced size and the descriptor set over them and
-/// the tracer's G-buffer and output.
+/// One frame's history: what the next frame reprojects (36 bytes a pixel in all).
+struct FrameHistory {
+    /// `HistoryLight` records: light and history length.
+    light: Buffer,
+    /// `HistoryMoments` records: luminance means and variances, the traced luminances.
+    moments: Buffer,
+    /// `Guide` records: the surfaces (normal and eye distance), also the spatial passes'.
+    guide: Buffer,
+}
+
+impl FrameHistory {
+    /// The buffers of `n` pixels (none left behind on failure).
+    fn new(device: &Device, n: u64) -> Result<FrameHistory> {
+        let [light, moments, guide] = make_buffers(device, [("glrt denoiser history light", n * HISTORY_LIGHT_BYTES), ("glrt denoiser history moments", n * HISTORY_MOMENTS_BYTES), ("glrt denoiser guides", n * GUIDE_BYTES)])?;
+        Ok(FrameHistory { light, moments, guide })
+    }
+
+    fn buffers(&self) -> [&Buffer; 3] {
+        [&self.light, &self.moments, &self.guide]
+    }
+
+    /// Frees the buffers (the GPU must be done with them).
+    fn destroy(self, device: &Device) {
+        for b in [self.light, self.moments, self.guide] {
+            device.destroy_buffer(b);
+        }
+    }
+}
+
+/// Creates the storage buffers `specs` (name, bytes); on failure those already made are freed.
+fn make_buffers<const N: usize>(device: &Device, specs: [(&str, u64); N]) -> Result<[Buffer; N]> {
+    let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
+    let mut made = Vec::with_capacity(N);
+    for (name, bytes) in specs {
+        match device.create_buffer(name, bytes, usage, MemoryLocation::GpuOnly) {
+            Ok(b) => made.push(b),
+            Err(e) => {
+                made.into_iter().for_each(|b| device.destroy_buffer(b));
+                return Err(e);
+            }
+        }
+    }
+    Ok(made.try_into().unwrap_or_else(|_| unreachable!("one buffer per spec")))
+}
+
+/// The denoiser's per-pixel buffers for one traced size and the descriptor sets over them and
+/// the tracer's G-buffer and output. Each record kind has its own buffer, so the largest
+/// binding is a quarter of the G-buffer's (at 1920x1080: 66 MB for the signal, 33 MB for a
+/// frame's light, against lavapipe's 128 MiB storage-buffer range).
 struct PixelBuffers {
     size: [u32; 2],
-    /// The tracer's buffers the set holds.
+    /// The tracer's buffers the sets hold.
     gbuffer: vk::Buffer,
     output: vk::Buffer,
-    /// Two frames of history (the one read, the one written), one after the other.
-    history: Buffer,
+    /// Two frames of history: set `p` reads `history[p]` and writes `history[p ^ 1]`.
+    history: [FrameHistory; 2],
     /// The spatial passes' two signals, one after the other.
     signal: Buffer,
+    /// The temporal gradients, one record per 3x3 stratum.
+    gradient: Buffer,
     pool: vk::DescriptorPool,
-    set: vk::DescriptorSet,
+    sets: [vk::DescriptorSet; 2],
 }
 
 /// Frame slots whose passes are timed (frames in flight are fewer).
 const TIMED_SLOTS: u32 = 4;
-/// Timestamps per frame: before the temporal pass and after each of the four steps.
-const STAMPS: u32 = 5;
+/// Timestamps per frame: before the first pass and after each of the five steps.
+const STAMPS: u32 = 6;
 /// The steps timed, in order.
-const STEPS: [&str; 4] = ["temporal", "variance", "a-trous", "modulate"];
+const STEPS: [&str; 5] = ["gradient", "temporal", "variance", "a-trous", "modulate"];
 
 /// GPU time of the passes, from timestamps, summed over the frames read.
 struct PassTimes {
@@ -80,7 +151,7 @@ struct PassTimes {
     /// Per slot: whether it recorded a frame whose timestamps were not read yet.
     unread: [bool; TIMED_SLOTS as usize],
     /// Seconds per step, summed.
-    seconds: [f64; 4],
+    seconds: [f64; 5],
     frames: u64,
 }
 
@@ -94,7 +165,7 @@ impl PassTimes {
         let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(STAMPS * TIMED_SLOTS);
         // Safety: valid create info; destroyed in `Denoiser::destroy`.
         let pool = unsafe { device.raw.create_query_pool(&info, None) }.check("vkCreateQueryPool")?;
-        Ok(Some(PassTimes { pool, unread: [false; TIMED_SLOTS as usize], seconds: [0.0; 4], frames: 0 }))
+        Ok(Some(PassTimes { pool, unread: [false; TIMED_SLOTS as usize], seconds: [0.0; 5], frames: 0 }))
     }
 
     /// Adds the times of the frame slot `slot` recorded last, once its fence has signalled.
@@ -127,7 +198,7 @@ pub struct Denoiser {
     settings: DenoiseSettings,
     pipelines: DenoisePipelines,
     pixels: Option<PixelBuffers>,
-    /// Which half of the history this frame reads (the other is written).
+    /// Which frame of the history this frame reads (the other is written): the set bound.
     parity: u32,
     /// The passes' GPU times (`None`: not timed).
     times: Option<PassTimes>,
@@ -139,7 +210,7 @@ impl Denoiser {
         Ok(Denoiser { settings, pipelines: DenoisePipelines::new(device)?, pixels: None, parity: 0, times: PassTimes::new(device)? })
     }
 
-    /// (Re)creates the buffers and the set for `radiance`'s size and buffers; a new history
+    /// (Re)creates the buffers and the sets for `radiance`'s size and buffers; a new history
     /// is zeroed (no pixel has one).
     fn ensure_pixels(&mut self, device: &Device, cmd: vk::CommandBuffer, radiance: &Radiance) -> Result<()> {
         if self.pixels.as_ref().is_some_and(|p| p.size == radiance.size && p.gbuffer == radiance.gbuffer && p.output == radiance.output) {
@@ -150,40 +221,85 @@ impl Denoiser {
             destroy_pixels(device, old);
         }
         let n = radiance.size[0] as u64 * radiance.size[1] as u64;
-        let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
-        let history = device.create_buffer("glrt denoiser history", 2 * n * HISTORY_BYTES, usage, MemoryLocation::GpuOnly)?;
-        let signal = match device.create_buffer("glrt denoiser signal", 2 * n * SIGNAL_BYTES, usage, MemoryLocation::GpuOnly) {
-            Ok(b) => b,
+        let first = FrameHistory::new(device, n)?;
+        let second = match FrameHistory::new(device, n) {
+            Ok(h) => h,
             Err(e) => {
-                device.destroy_buffer(history);
+                first.destroy(device);
                 return Err(e);
             }
         };
-        let sizes = [vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: BINDING_COUNT }];
-        // Safety (this block): valid create and allocate infos; the pool is destroyed with the
-        // buffers; the set's buffers live as long as it.
-        let (pool, set) = unsafe {
-            let pool = device.raw.create_descriptor_pool(&vk::DescriptorPoolCreateInfo::default().max_sets(1).pool_sizes(&sizes), None).check("vkCreateDescriptorPool")?;
-            let layouts = [self.pipelines.set_layout];
-            let set = device.raw.allocate_descriptor_sets(&vk::DescriptorSetAllocateInfo::default().descriptor_pool(pool).set_layouts(&layouts)).check("vkAllocateDescriptorSets")?[0];
-            let table = [
-                (radiance.gbuffer, n * GSAMPLE_BYTES),
-                (radiance.output, n * OUTPUT_SAMPLE_BYTES),
-                (history.raw, 2 * n * HISTORY_BYTES),
-                (signal.raw, 2 * n * SIGNAL_BYTES),
-            ];
-            let infos: Vec<[vk::DescriptorBufferInfo; 1]> = table.iter().map(|&(buffer, range)| [vk::DescriptorBufferInfo { buffer, offset: 0, range }]).collect();
-            let writes: Vec<vk::WriteDescriptorSet> = infos
-                .iter()
-                .enumerate()
-                .map(|(b, info)| vk::WriteDescriptorSet::default().dst_set(set).dst_binding(b as u32).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info))
-                .collect();
-            device.raw.update_descriptor_sets(&writes, &[]);
-            device.raw.cmd_fill_buffer(cmd, history.raw, 0, vk::WHOLE_SIZE, 0);
-            barrier(&device.raw, cmd, vk::PipelineStageFlags2::TRANSFER, vk::PipelineStageFlags2::COMPUTE_SHADER);
-            (pool, set)
+        let history = [first, second];
+        let strata = u64::from(radiance.size[0].div_ceil(GRADIENT_STRATUM)) * u64::from(radiance.size[1].div_ceil(GRADIENT_STRATUM));
+        let [signal, gradient] = match make_buffers(device, [("glrt denoiser signal", 2 * n * SIGNAL_BYTES), ("glrt denoiser gradients", strata * GRADIENT_BYTES)]) {
+            Ok(b) => b,
+            Err(e) => {
+                history.into_iter().for_each(|h| h.destroy(device));
+                return Err(e);
+            }
         };
-        self.pixels = Some(PixelBuffers { size: radiance.size, gbuffer: radiance.gbuffer, output: radiance.output, history, signal, pool, set });
+        let mut pixels = PixelBuffers {
+            size: radiance.size,
+            gbuffer: radiance.gbuffer,
+            output: radiance.output,
+            history,
+            signal,
+            gradient,
+            pool: vk::DescriptorPool::null(),
+            sets: [vk::DescriptorSet::null(); 2],
+        };
+        if let Err(e) = self.write_sets(device, &mut pixels, n) {
+            destroy_pixels(device, pixels);
+            return Err(e);
+        }
+        // Safety: `cmd` records outside a rendering pass; the buffers live until destroyed
+        // with the GPU idle.
+        unsafe {
+            for h in &pixels.history {
+                for b in h.buffers() {
+                    device.raw.cmd_fill_buffer(cmd, b.raw, 0, vk::WHOLE_SIZE, 0);
+                }
+            }
+            barrier(&device.raw, cmd, vk::PipelineStageFlags2::TRANSFER, vk::PipelineStageFlags2::COMPUTE_SHADER);
+        }
+        self.pixels = Some(pixels);
+        Ok(())
+    }
+
+    /// Makes the descriptor pool of `pixels` and its two sets, set `p` reading `history[p]`
+    /// and writing `history[p ^ 1]`, over `n` pixels.
+    fn write_sets(&self, device: &Device, pixels: &mut PixelBuffers, n: u64) -> Result<()> {
+        let sizes = [vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: 2 * BINDING_COUNT }];
+        // Safety (this block): valid create and allocate infos; the pool is destroyed with the
+        // buffers; the sets' buffers live as long as they.
+        unsafe {
+            pixels.pool = device.raw.create_descriptor_pool(&vk::DescriptorPoolCreateInfo::default().max_sets(2).pool_sizes(&sizes), None).check("vkCreateDescriptorPool")?;
+            let layouts = [self.pipelines.set_layout; 2];
+            let allocated = device.raw.allocate_descriptor_sets(&vk::DescriptorSetAllocateInfo::default().descriptor_pool(pixels.pool).set_layouts(&layouts)).check("vkAllocateDescriptorSets")?;
+            pixels.sets = [allocated[0], allocated[1]];
+            for (parity, &set) in pixels.sets.iter().enumerate() {
+                let (previous, current) = (&pixels.history[parity], &pixels.history[parity ^ 1]);
+                let whole = |b: &Buffer| (b.raw, b.size);
+                let mut table = [(vk::Buffer::null(), 0); BINDING_COUNT as usize];
+                table[BINDING_GBUFFER as usize] = (pixels.gbuffer, n * GSAMPLE_BYTES);
+                table[BINDING_OUTPUT as usize] = (pixels.output, n * OUTPUT_SAMPLE_BYTES);
+                table[BINDING_LIGHT_PREVIOUS as usize] = whole(&previous.light);
+                table[BINDING_LIGHT as usize] = whole(&current.light);
+                table[BINDING_MOMENTS_PREVIOUS as usize] = whole(&previous.moments);
+                table[BINDING_MOMENTS as usize] = whole(&current.moments);
+                table[BINDING_GUIDE_PREVIOUS as usize] = whole(&previous.guide);
+                table[BINDING_GUIDE as usize] = whole(&current.guide);
+                table[BINDING_SIGNAL as usize] = whole(&pixels.signal);
+                table[BINDING_GRADIENT as usize] = whole(&pixels.gradient);
+                let infos = table.map(|(buffer, range)| [vk::DescriptorBufferInfo { buffer, offset: 0, range }]);
+                let writes: Vec<vk::WriteDescriptorSet> = infos
+                    .iter()
+                    .enumerate()
+                    .map(|(b, info)| vk::WriteDescriptorSet::default().dst_set(set).dst_binding(b as u32).descriptor_type(vk::DescriptorType::STORAGE_BUFFER).buffer_info(info))
+                    .collect();
+                device.raw.update_descriptor_sets(&writes, &[]);
+            }
+        }
         Ok(())
     }
 
@@ -196,19 +312,22 @@ impl Denoiser {
         let Some(pixels) = &self.pixels else { return Ok(TracedImage { size: radiance.size, output: radiance.output }) };
         let [w, h] = radiance.size;
         let n = w * h;
-        let (read, write) = (self.parity * n, (self.parity ^ 1) * n);
+        let set = pixels.sets[self.parity as usize];
         self.parity ^= 1;
         let still = frame.flags[0] & FRAME_STILL != 0;
         let flags = (frame.flags[0] & FRAME_TONEMAP_MASK)
             | if still { 0 } else { FLAG_FEEDBACK }
-            | if self.settings.view == View::History { FLAG_VIEW_HISTORY } else { 0 };
+            | if self.settings.view == View::History { FLAG_VIEW_HISTORY } else { 0 }
+            | if self.settings.gradients { FLAG_GRADIENTS } else { 0 };
         let params = [frame.params[0], frame.params[1], frame.params[2], MOVING_HISTORY];
-        let groups = [w.div_ceil(TRACE_GROUP), h.div_ceil(TRACE_GROUP)];
+        let frame_index = frame.counts[0];
+        let pixel_groups = [w.div_ceil(TRACE_GROUP), h.div_ceil(TRACE_GROUP)];
+        let stratum_groups = [w.div_ceil(GRADIENT_STRATUM).div_ceil(TRACE_GROUP), h.div_ceil(GRADIENT_STRATUM).div_ceil(TRACE_GROUP)];
         let d = &device.raw;
         let layout = self.pipelines.layout;
-        let run = |pipeline: vk::Pipeline, step: u32, source: u32, destination: u32| {
-            let pass = DenoisePass { size: [w, h, flags, step], offsets: [read, write, source, destination], params };
-            // Safety: `cmd` records outside a rendering pass (the tracer ended it); the set's
+        let dispatch = |pipeline: vk::Pipeline, groups: [u32; 2], step: u32, source: u32, destination: u32| {
+            let pass = DenoisePass { params, size: [w, h, flags, step], signal: [source, destination], frame_index };
+            // Safety: `cmd` records outside a rendering pass (the tracer ended it); the sets'
             // buffers live until the frame finishes.
             unsafe {
                 d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline);
@@ -237,26 +356,36 @@ impl Denoiser {
                 }
             }
         };
+        let run = |pipeline: vk::Pipeline, step: u32, source: u32, destination: u32| dispatch(pipeline, pixel_groups, step, source, destination);
         // Safety: as above.
-        unsafe { d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, layout, 0, &[pixels.set], &[]) };
+        unsafe { d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, layout, 0, &[set], &[]) };
         stamp(0);
+        if self.settings.gradients {
+            dispatch(self.pipelines.gradient, stratum_groups, 1, 0, 0);
+        }
+        stamp(1);
         // The signal ping-pongs between its halves, starting at 0 and n.
         run(self.pipelines.temporal, 1, 0, 0);
-        stamp(1);
-        run(self.pipelines.variance, 1, 0, n);
         stamp(2);
+        run(self.pipelines.variance, 1, 0, n);
+        stamp(3);
         let mut current = n;
         for iteration in 0..self.settings.iterations {
             let other = n - current;
             run(self.pipelines.atrous, 1 << iteration, current, other);
             current = other;
         }
-        stamp(3);
-        run(self.pipelines.modulate, 1, current, 0);
         stamp(4);
+        run(self.pipelines.modulate, 1, current, 0);
+        stamp(5);
         // Safety: as above.
         unsafe { barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::HOST) };
         Ok(TracedImage { size: radiance.size, output: radiance.output })
+    }
+
+    /// Whether the tracer should trace gradient samples (`FRAME_GRADIENTS`) for this stage.
+    pub fn wants_gradient_samples(&self) -> bool {
+        self.settings.gradients
     }
 
     /// Frees the GPU objects (the GPU must be idle), after logging the passes' times.
@@ -279,10 +408,11 @@ impl Denoiser {
 }
 
 fn destroy_pixels(device: &Device, p: PixelBuffers) {
-    // Safety: the GPU is idle; the set goes with its pool.
+    // Safety: the GPU is idle; the sets go with their pool (a null pool is ignored).
     unsafe { device.raw.destroy_descriptor_pool(p.pool, None) };
-    device.destroy_buffer(p.history);
+    p.history.into_iter().for_each(|h| h.destroy(device));
     device.destroy_buffer(p.signal);
+    device.destroy_buffer(p.gradient);
 }
 
 #[cfg(test)]
@@ -291,7 +421,10 @@ mod tests {
 
     #[test]
     fn the_pass_summary_averages_each_step_over_the_frames() {
-        let times = PassTimes { pool: vk::QueryPool::null(), unread: [false; 4], seconds: [0.002, 0.001, 0.004, 0.001], frames: 2 };
-        assert_eq!(times.summary(), "denoiser: 2 frames timed; GPU ms per frame: temporal 1.000, variance 0.500, a-trous 2.000, modulate 0.500, all 4.000");
+        let times = PassTimes { pool: vk::QueryPool::null(), unread: [false; 4], seconds: [0.0002, 0.002, 0.001, 0.004, 0.001], frames: 2 };
+        assert_eq!(
+            times.summary(),
+            "denoiser: 2 frames timed; GPU ms per frame: gradient 0.100, temporal 1.000, variance 0.500, a-trous 2.000, modulate 0.500, all 4.100"
+        );
     }
 }

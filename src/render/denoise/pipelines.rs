@@ -1,6 +1,6 @@
-//! The denoiser's Vulkan objects that do not change with the frame: the layout of its one
-//! descriptor set ([`super::shader_constants`]'s bindings, all storage buffers), the push
-//! constants of a pass ([`DenoisePass`]) and the four compute pipelines.
+//! The denoiser's Vulkan objects that do not change with the frame: the layout of its
+//! descriptor sets ([`super::shader_constants`]'s bindings, all storage buffers), the push
+//! constants of a pass ([`DenoisePass`]) and the five compute pipelines.
 
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
@@ -13,13 +13,15 @@ use crate::render::trace::pipelines::{compute_pipeline, descriptor_set_layout};
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct DenoisePass {
-    /// Traced width and height, `FLAG_*` bits, the à-trous step in pixels.
-    pub size: [u32; 4],
-    /// Record offsets (in pixels): history read, history written, signal read, signal written.
-    pub offsets: [u32; 4],
     /// Exposure multiplier, history cap (frames), tone-mapping knee, frames of a moving
     /// camera's history.
     pub params: [f32; 4],
+    /// Traced width and height, `FLAG_*` bits, the à-trous step in pixels.
+    pub size: [u32; 4],
+    /// Record offsets (in pixels) into the signal: read, written.
+    pub signal: [u32; 2],
+    /// The tracer's frame index (`GpuFrame::counts[0]`): which pixels are gradient samples.
+    pub frame_index: u32,
 }
 
 /// Bytes of [`DenoisePass`].
@@ -29,10 +31,12 @@ include!(concat!(env!("OUT_DIR"), "/layouts/denoise_gpu_types.rs"));
 
 /// The layouts and pipelines.
 pub struct DenoisePipelines {
-    /// The one descriptor set's layout.
+    /// The layout of both descriptor sets (one per frame parity).
     pub set_layout: vk::DescriptorSetLayout,
     /// Layout of every pass.
     pub layout: vk::PipelineLayout,
+    /// Temporal gradients per stratum (`gradient.comp`).
+    pub gradient: vk::Pipeline,
     /// Temporal accumulation with reprojection (`temporal.comp`).
     pub temporal: vk::Pipeline,
     /// Spatial variance of young histories (`variance.comp`).
@@ -55,12 +59,14 @@ impl DenoisePipelines {
         let mut pipelines = DenoisePipelines {
             set_layout,
             layout,
+            gradient: vk::Pipeline::null(),
             temporal: vk::Pipeline::null(),
             variance: vk::Pipeline::null(),
             atrous: vk::Pipeline::null(),
             modulate: vk::Pipeline::null(),
         };
         let made = (|| {
+            pipelines.gradient = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/gradient.comp.spv")))?;
             pipelines.temporal = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/temporal.comp.spv")))?;
             pipelines.variance = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/variance.comp.spv")))?;
             pipelines.atrous = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/atrous.comp.spv")))?;
@@ -80,7 +86,7 @@ impl DenoisePipelines {
     pub fn destroy(&mut self, device: &Device) {
         // Safety: the GPU is done with them; each is destroyed once (null handles are ignored).
         unsafe {
-            for p in [self.temporal, self.variance, self.atrous, self.modulate] {
+            for p in [self.gradient, self.temporal, self.variance, self.atrous, self.modulate] {
                 device.raw.destroy_pipeline(p, None);
             }
             device.raw.destroy_pipeline_layout(self.layout, None);
@@ -89,7 +95,16 @@ impl DenoisePipelines {
     }
 }
 
-/// Per-pixel bytes of one frame's temporal history (`History` of `denoise/common.glsl`).
-pub const HISTORY_BYTES: u64 = 64;
+/// Per-pixel bytes of one frame's history light (`HistoryLight` of `denoise/common.glsl`).
+pub const HISTORY_LIGHT_BYTES: u64 = 16;
+/// Per-pixel bytes of one frame's luminance means, variances and traced luminances
+/// (`HistoryMoments`).
+pub const HISTORY_MOMENTS_BYTES: u64 = 12;
+/// Per-pixel bytes of one frame's surfaces (`Guide`).
+pub const GUIDE_BYTES: u64 = 8;
+/// Bytes of one stratum's temporal gradients (`gradient` of `denoise/common.glsl`).
+pub const GRADIENT_BYTES: u64 = 8;
+/// Traced pixels per side of a gradient stratum (`GRADIENT_STRATUM` of `trace/gradient.glsl`).
+pub const GRADIENT_STRATUM: u32 = 3;
 /// Per-pixel bytes of the spatial passes' signal (`Signal`).
-pub const SIGNAL_BYTES: u64 = 32;
+pub const SIGNAL_BYTES: u64 = 16;

@@ -6,6 +6,7 @@
 //! [denoise]
 //! enabled = true            # A-SVGF in place of the tracer's temporal filter (also 1 or 0)
 //! iterations = 5            # à-trous iterations, 1..=8
+//! gradients = true          # temporal gradients shorten the history where lighting changed
 //! view = "color"            # "color", or "history": each pixel's history length in frames as grey
 //! ```
 //!
@@ -32,13 +33,16 @@ pub struct DenoiseSettings {
     pub enabled: bool,
     /// Iterations of the à-trous filter, 1..=8 (the kernel reaches 2^(iterations + 1) pixels).
     pub iterations: u32,
+    /// Whether temporal gradients (A-SVGF) shorten the history where the lighting changed;
+    /// without them a change reaches the image only as fast as the history cap allows.
+    pub gradients: bool,
     /// What the output shows.
     pub view: View,
 }
 
 impl Default for DenoiseSettings {
     fn default() -> DenoiseSettings {
-        DenoiseSettings { enabled: true, iterations: 5, view: View::Color }
+        DenoiseSettings { enabled: true, iterations: 5, gradients: true, view: View::Color }
     }
 }
 
@@ -47,10 +51,12 @@ impl Table for DenoiseSettings {
     const KEYS: &'static [Key<DenoiseSettings>] = &[
         Key { name: "enabled", set: |s, v| switch(v).map(|b| s.enabled = b) },
         Key { name: "iterations", set: |s, v| integer_in(v, 1..=8).map(|x| s.iterations = x as u32) },
+        Key { name: "gradients", set: |s, v| switch(v).map(|b| s.gradients = b) },
         Key { name: "view", set: |s, v| one_of(v, &["color", "history"]).map(|i| s.view = [View::Color, View::History][i]) },
     ];
 
-    /// `GLRT_DENOISE` switches the denoiser; `GLRT_DENOISE_ITERATIONS`, `GLRT_DENOISE_VIEW`.
+    /// `GLRT_DENOISE` switches the denoiser; `GLRT_DENOISE_ITERATIONS`, `GLRT_DENOISE_GRADIENTS`,
+    /// `GLRT_DENOISE_VIEW`.
     fn variable(name: &str) -> String {
         match name {
             "enabled" => "GLRT_DENOISE".to_owned(),
@@ -84,9 +90,10 @@ mod tests {
     #[test]
     fn keys_and_variables_are_read() {
         assert_eq!(read("", &[]), (DenoiseSettings::default(), vec![]));
-        let (s, problems) = read("enabled = false\niterations = 3\nview = \"history\"\n", &[]);
+        let (s, problems) = read("enabled = false\niterations = 3\ngradients = false\nview = \"history\"\n", &[]);
         assert!(problems.is_empty(), "{problems:?}");
-        assert_eq!(s, DenoiseSettings { enabled: false, iterations: 3, view: View::History });
+        assert_eq!(s, DenoiseSettings { enabled: false, iterations: 3, gradients: false, view: View::History });
+        assert!(!read("", &[("GLRT_DENOISE_GRADIENTS", "0")]).0.gradients);
         let (s, problems) = read("enabled = false\niterations = 3\n", &[("GLRT_DENOISE", "1"), ("GLRT_DENOISE_ITERATIONS", "7"), ("GLRT_ENABLED", "0")]);
         assert!(problems.is_empty(), "{problems:?}");
         assert_eq!((s.enabled, s.iterations), (true, 7));

@@ -100,6 +100,9 @@ glsl_constants! {
     /// `GpuFrame::flags[0]`: the scene and camera are as they were last frame (the history
     /// cap is `accumulate`: accumulation while still).
     const FRAME_STILL: u32 = 16;
+    /// `GpuFrame::flags[0]`: one pixel of every 3x3 is traced with last frame's random
+    /// numbers, a temporal gradient sample for the denoiser (`trace/gradient.glsl`).
+    const FRAME_GRADIENTS: u32 = 32;
     /// Tone mapping: clamp to [0, 1].
     const TONEMAP_CLAMP: u32 = 0;
     /// Tone mapping: Reinhard, x / (1 + x).
