@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The two ray-tracing back ends side by side on a GPU with VK_KHR_ray_tracing_pipeline
-# (bench/pathtrace.md keeps the results): for each of GLRT_TRACER=compute and hardware, the
+# (bench/pathtrace.md keeps the results): for each of GLRT_TRACER=compute (with GLRT_BVH=wide
+# and binary) and hardware, the
 # demo and the Quake-3-like demo at SIZE, and the re-batched world at ~1M triangles
 # (`--rebatch --detail 11`), each path traced for FRAMES frames: frame times and the tracer's
 # summary (`GLRT_LOG=info`: rays per frame by kind, GPU time of the tracing pass, rays/s);
@@ -28,20 +29,28 @@ run() {
         | grep -E "frame time|path tracer|tracer|rebatch:|Vulkan device|error|panick|WARN" || echo "(no output: exit $?)"
 }
 
-for tracer in compute hardware; do
-    run "demo-$tracer" "GLRT_TRACER=$tracer" --frames "$frames"
-    run "q3-$tracer" "GLRT_TRACER=$tracer" --q3 --frames "$frames"
-    run "rebatch-$tracer" "GLRT_TRACER=$tracer" --rebatch --detail 11 --frames "$frames"
+# The compute tracer over both BVH layouts (GLRT_BVH: wide nodes with quantised boxes, the
+# default, or binary nodes), then the hardware tracer.
+tracers=(compute-wide compute-binary hardware)
+# settings TRACER: its variables.
+settings() {
+    if [[ $1 == compute-* ]]; then echo "GLRT_TRACER=compute GLRT_BVH=${1#compute-}"; else echo "GLRT_TRACER=$1"; fi
+}
+for tracer in "${tracers[@]}"; do
+    run "demo-$tracer" "$(settings "$tracer")" --frames "$frames"
+    run "q3-$tracer" "$(settings "$tracer")" --q3 --frames "$frames"
+    run "rebatch-$tracer" "$(settings "$tracer")" --rebatch --detail 11 --frames "$frames"
 done
-for tracer in compute hardware; do
-    run "parity-demo-$tracer" "GLRT_TRACER=$tracer GLRT_SPP=64" --first-frame 120 --frames 2 --screenshot "$out/demo-120-$tracer.png"
-    run "parity-q3-$tracer" "GLRT_TRACER=$tracer GLRT_SPP=64" --q3 --first-frame 300 --frames 2 --screenshot "$out/q3-300-$tracer.png"
+for tracer in "${tracers[@]}"; do
+    run "parity-demo-$tracer" "$(settings "$tracer") GLRT_SPP=64" --first-frame 120 --frames 2 --screenshot "$out/demo-120-$tracer.png"
+    run "parity-q3-$tracer" "$(settings "$tracer") GLRT_SPP=64" --q3 --first-frame 300 --frames 2 --screenshot "$out/q3-300-$tracer.png"
 done
 # glxgears (the captured fixture, replayed by the glrt command when BIN_DIR has it), frame 2.
 if [[ -x $bin/glrt ]]; then
-    for tracer in compute hardware; do
+    for tracer in "${tracers[@]}"; do
         echo "== parity-glxgears-$tracer"
-        "${clean[@]}" GLRT_TRACER=$tracer GLRT_SPP=64 "$bin/glrt" replay tests/fixtures/glxgears.glrtcap --frames 2..3 --out "$out/glxgears-$tracer" 2>&1 \
+        # shellcheck disable=SC2046 # the settings are words on purpose
+        "${clean[@]}" $(settings "$tracer") GLRT_SPP=64 "$bin/glrt" replay tests/fixtures/glxgears.glrtcap --frames 2..3 --out "$out/glxgears-$tracer" 2>&1 \
             | grep -E "path tracer|error|WARN" || echo "(no output: exit $?)"
         mv "$out/glxgears-$tracer/frame-00002.png" "$out/glxgears-2-$tracer.png" && rmdir "$out/glxgears-$tracer"
     done

@@ -72,10 +72,12 @@ const LAYOUTS: &[LayoutFile] = &[
     LayoutFile {
         name: "trace_bvh",
         shaders: &[(
-            "pathtrace.comp",
+            "pathtrace_binary.comp",
             &[mirror("BvhNode", Rust::Struct("GpuNode")), mirror("BvhChild", Rust::Struct("GpuChild")), mirror("BvhTriangle", Rust::Struct("GpuTriangle"))],
         )],
     },
+    // render::trace::bvh::wide
+    LayoutFile { name: "trace_bvh_wide", shaders: &[("pathtrace.comp", &[mirror("BvhWideNode", Rust::Struct("GpuWideNode"))])] },
     // render::trace::pipelines
     LayoutFile {
         name: "trace_push_constants",

@@ -2,8 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
-// The compute path tracer's tracing pass: trace/path.glsl's integrator over trace/bvh.glsl's
-// traversal, one invocation per traced pixel.
+// The compute path tracer's tracing pass: trace/path.glsl's integrator over
+// trace/bvh_wide.glsl's traversal (pathtrace_binary.comp: bvh.glsl's), one invocation per
+// traced pixel.
 
 #include "trace/path.glsl"
 

@@ -2,8 +2,8 @@
 // and whether it is baked from the material's layer stack, stack.glsl; material), and the
 // alpha test that traversal asks for. render::trace::material's module doc describes the
 // layers and what the surface makes of them.
-// Include after bvh.glsl's prerequisites: defines trace_alpha_accept(), then includes bvh.glsl
-// (or, with TRACE_HARDWARE defined, hardware.glsl).
+// Include after bvh.glsl's prerequisites: defines trace_alpha_accept(), then includes the
+// traversal (below).
 
 #ifndef TRACE_SURFACE_GLSL
 #define TRACE_SURFACE_GLSL
@@ -26,14 +26,17 @@ bool trace_alpha_accept(uint instance, uint triangle, vec2 bary) {
     return compare(m.alpha_func, alpha, m.alpha_ref);
 }
 
-// The traversal: the compute tracer's BVHs, or with TRACE_HARDWARE the ray-tracing pipeline;
-// none in the hardware tracer's any-hit shader (TRACE_HARDWARE_ANY_HIT), which only shades.
+// The traversal: the compute tracer's wide BVHs (with TRACE_BVH_BINARY its binary ones), or
+// with TRACE_HARDWARE the ray-tracing pipeline; none in the hardware tracer's any-hit shader
+// (TRACE_HARDWARE_ANY_HIT), which only shades.
 #if defined(TRACE_HARDWARE_ANY_HIT)
 #include "trace/triangles.glsl"
 #elif defined(TRACE_HARDWARE)
 #include "trace/hardware.glsl"
-#else
+#elif defined(TRACE_BVH_BINARY)
 #include "trace/bvh.glsl"
+#else
+#include "trace/bvh_wide.glsl"
 #endif
 
 // The object-space corners of global triangle `triangle`.

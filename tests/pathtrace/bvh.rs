@@ -1,7 +1,8 @@
-//! `shaders/trace/bvh.glsl` on lavapipe equals `render::trace::bvh::cpu`: a compute shader
-//! (`tests/shaders/trace_bvh.comp`, compiled here with `glslangValidator`) traces a few
-//! thousand rays through a scene of transformed instances, one of them alpha-tested (odd
-//! triangles rejected), with both queries; every answer must match the CPU traversal.
+//! `shaders/trace/bvh_wide.glsl` and `shaders/trace/bvh.glsl` on lavapipe equal
+//! `render::trace::bvh::cpu`: a compute shader (`tests/shaders/trace_bvh.comp`, compiled here
+//! with `glslangValidator`, once per layout) traces a few thousand rays through a scene of
+//! transformed instances, one of them alpha-tested (odd triangles rejected), with both queries;
+//! every answer of both traversals must match the CPU traversal of the binary BVHs.
 
 use crate::lavapipe;
 
@@ -14,7 +15,7 @@ use gpu_allocator::MemoryLocation;
 use glrt::render::raster::device::{Buffer, Device};
 use glrt::render::trace::bindings;
 use glrt::render::trace::bvh::cpu::{self, Instance, Scene};
-use glrt::render::trace::bvh::{Blas, GpuNode, GpuTriangle, Tlas};
+use glrt::render::trace::bvh::{Blas, GpuNode, GpuTriangle, Layout, Tlas};
 use glrt::render::trace::shader_constants::INSTANCE_ALPHA_TESTED;
 
 /// Bindings of the test shader's rays and results.
@@ -68,26 +69,31 @@ struct World {
     nodes: Vec<GpuNode>,
     triangles: Vec<GpuTriangle>,
     instances: Vec<Instance>,
-    /// `Instance` records of `instance.glsl` (160 bytes each).
+    /// The GPU's BLAS nodes in the layout of `layout`.
+    gpu_nodes: Vec<u8>,
+    /// `Instance` records of `instance.glsl` (160 bytes each), with the BLAS roots of `layout`.
     instance_words: Vec<u32>,
+    layout: Layout,
 }
 
 impl World {
-    fn new(placed: &[(Vec<[Vec3; 3]>, Affine3A, bool)]) -> World {
-        let (mut nodes, mut triangles, mut instances, mut instance_words, mut bounds) = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    fn new(placed: &[(Vec<[Vec3; 3]>, Affine3A, bool)], layout: Layout) -> World {
+        let (mut nodes, mut wide, mut triangles, mut instances, mut instance_words, mut bounds) = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (tris, object_to_eye, alpha) in placed {
             let blas = Blas::build(tris);
-            let (root, first) = blas.append_to(&mut nodes, &mut triangles);
+            let (binary_root, wide_root, first) = blas.append_to(&mut nodes, &mut wide, &mut triangles);
             bounds.push(blas.bounds.transformed(object_to_eye));
-            let inst = Instance::new(object_to_eye, root, first, *alpha);
+            let inst = Instance::new(object_to_eye, binary_root, first, *alpha);
             let rows = cpu::affine_rows(object_to_eye);
             for row in rows.iter().chain(&inst.eye_to_object).chain(&rows) {
                 instance_words.extend(row.to_array().map(f32::to_bits));
             }
+            let root = if layout == Layout::Wide { wide_root } else { binary_root };
             instance_words.extend([root, first, if *alpha { INSTANCE_ALPHA_TESTED } else { 0 }, 0]);
             instances.push(inst);
         }
-        World { tlas: Tlas::build(&bounds), nodes, triangles, instances, instance_words }
+        let gpu_nodes = if layout == Layout::Wide { bytemuck::cast_slice(&wide).to_vec() } else { bytemuck::cast_slice(&nodes).to_vec() };
+        World { tlas: Tlas::build(&bounds), nodes, triangles, instances, gpu_nodes, instance_words, layout }
     }
 
     fn scene(&self) -> Scene<'_> {
@@ -115,11 +121,12 @@ struct GpuResult {
     bary: Vec2,
 }
 
-/// The test shader's SPIR-V words.
-fn compile_shader() -> Vec<u32> {
-    let out = std::env::temp_dir().join(format!("glrt-trace-bvh-{}.spv", std::process::id()));
+/// The test shader's SPIR-V words, traversing BVHs of `layout`.
+fn compile_shader(layout: Layout) -> Vec<u32> {
+    let out = std::env::temp_dir().join(format!("glrt-trace-bvh-{}-{}.spv", layout.name(), std::process::id()));
+    let define = if layout == Layout::Binary { "-DTRACE_BVH_BINARY" } else { "-DTRACE_BVH_WIDE" };
     let status = Command::new("glslangValidator")
-        .args(["-V", "--target-env", "vulkan1.1", "-Ishaders", concat!("-I", env!("OUT_DIR"), "/glsl"), "-o"])
+        .args(["-V", "--target-env", "vulkan1.1", define, "-Ishaders", concat!("-I", env!("OUT_DIR"), "/glsl"), "-o"])
         .arg(&out)
         .arg("tests/shaders/trace_bvh.comp")
         .output()
@@ -142,14 +149,14 @@ fn trace_on_gpu(device: &Device, world: &World, rays: &[Ray]) -> Vec<GpuResult> 
     let raw = &device.raw;
     let ray_words: Vec<f32> = rays.iter().flat_map(|r| [r.origin.x, r.origin.y, r.origin.z, r.tmin, r.dir.x, r.dir.y, r.dir.z, r.tmax]).collect();
     let buffers = [
-        (bindings::BLAS_NODES, upload(device, "blas", bytemuck::cast_slice(&world.nodes), MemoryLocation::CpuToGpu)),
-        (bindings::TLAS_NODES, upload(device, "tlas", bytemuck::cast_slice(&world.tlas.nodes), MemoryLocation::CpuToGpu)),
+        (bindings::BLAS_NODES, upload(device, "blas", &world.gpu_nodes, MemoryLocation::CpuToGpu)),
+        (bindings::TLAS_NODES, upload(device, "tlas", world.layout.tlas_bytes(&world.tlas), MemoryLocation::CpuToGpu)),
         (bindings::TRIANGLES, upload(device, "triangles", bytemuck::cast_slice(&world.triangles), MemoryLocation::CpuToGpu)),
         (bindings::INSTANCES, upload(device, "instances", bytemuck::cast_slice(&world.instance_words), MemoryLocation::CpuToGpu)),
         (RAYS, upload(device, "rays", bytemuck::cast_slice(&ray_words), MemoryLocation::CpuToGpu)),
         (RESULTS, upload(device, "results", &vec![0u8; rays.len() * 32], MemoryLocation::GpuToCpu)),
     ];
-    let spv = compile_shader();
+    let spv = compile_shader(world.layout);
     // Safety: every object is created from `raw`, used while alive, and destroyed after the
     // fence says the GPU is done.
     unsafe {
@@ -237,7 +244,17 @@ fn even(_: u32, triangle: u32, _: Vec2) -> bool {
 }
 
 #[test]
-fn gpu_traversal_equals_cpu_traversal() {
+fn wide_gpu_traversal_equals_cpu_traversal() {
+    traversal_equals_cpu_traversal(Layout::Wide);
+}
+
+#[test]
+fn binary_gpu_traversal_equals_cpu_traversal() {
+    traversal_equals_cpu_traversal(Layout::Binary);
+}
+
+/// Traces the rays of the test with the GPU traversal of `layout` and the CPU's.
+fn traversal_equals_cpu_traversal(layout: Layout) {
     let mut rng = Rng(0x5eed_f00d);
     let t = |s: f32, r: Quat, at: Vec3| Affine3A::from_scale_rotation_translation(Vec3::splat(s), r, at);
     let placed = vec![
@@ -248,7 +265,7 @@ fn gpu_traversal_equals_cpu_traversal() {
         (Vec::new(), Affine3A::IDENTITY, false),
         (grid(8), Affine3A::from_mat3_translation(glam::Mat3::from_diagonal(Vec3::new(0.3, 1.0, 0.5)), Vec3::new(0.6, -0.4, 0.5)), false),
     ];
-    let world = World::new(&placed);
+    let world = World::new(&placed, layout);
     let scene = world.scene();
 
     let mut rays: Vec<Ray> = (0..4000)

@@ -1,4 +1,4 @@
-// tests/pathtrace/bvh.rs: one ray per invocation through shaders/trace/bvh.glsl; writes the
+// tests/pathtrace/bvh.rs: one ray per invocation through shaders/trace/bvh_wide.glsl (or bvh.glsl); writes the
 // closest hit and the any-hit answer. The alpha test rejects odd triangles.
 #version 450
 #extension GL_GOOGLE_include_directive : require
@@ -10,7 +10,12 @@ bool trace_alpha_accept(uint instance, uint triangle, vec2 bary) {
     return (triangle & 1u) == 0u;
 }
 
+// The wide BVHs' traversal; with TRACE_BVH_BINARY defined, the binary one.
+#ifdef TRACE_BVH_BINARY
 #include "trace/bvh.glsl"
+#else
+#include "trace/bvh_wide.glsl"
+#endif
 
 struct Ray {
     vec4 origin_tmin;

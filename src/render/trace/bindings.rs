@@ -7,11 +7,11 @@ glsl_constants! {
     glsl_prefix = "BINDING_";
     /// `TraceFrameBlock`: camera, settings, counts (`scene.glsl`).
     const FRAME: u32 = 0;
-    /// Bottom-level BVH nodes of every geometry (`bvh.glsl`).
+    /// Bottom-level BVH nodes of every geometry (`bvh_wide.glsl`, or `bvh.glsl` for binary nodes).
     const BLAS_NODES: u32 = 1;
-    /// The top-level BVH over the instances, rebuilt per frame (`bvh.glsl`).
+    /// The top-level BVH over the instances, rebuilt per frame (`bvh_wide.glsl` or `bvh.glsl`).
     const TLAS_NODES: u32 = 2;
-    /// Triangle positions in BVH order (`bvh.glsl`).
+    /// Triangle positions in BVH order (`triangles.glsl`).
     const TRIANGLES: u32 = 3;
     /// Instance records (`instance.glsl`).
     const INSTANCES: u32 = 4;

@@ -107,7 +107,7 @@ impl ComputeTracer {
     /// Creates the tracer's pipelines and buffers for `slots` frames in flight; with
     /// `hardware` (the device has [`Device::ray_tracing`]) the hardware tracer.
     pub fn new(device: &Device, settings: Settings, slots: usize, hardware: bool) -> Result<ComputeTracer> {
-        let pipelines = TracePipelines::new(device, hardware)?;
+        let pipelines = TracePipelines::new(device, hardware, settings.bvh)?;
         let mut counters = Vec::new();
         let mut pools = Vec::new();
         for _ in 0..slots {
@@ -134,7 +134,7 @@ impl ComputeTracer {
         Ok(ComputeTracer {
             settings,
             pipelines,
-            resident: Resident::new(!hardware),
+            resident: Resident::new((!hardware).then_some(settings.bvh)),
             tracks: Tracks::default(),
             texels: TexelPool::new(super::texels::MAX_WORDS, slots),
             texel_buffer: None,
@@ -242,7 +242,7 @@ impl ComputeTracer {
         let material_slice = push(bytemuck::cast_slice(&scene.materials))?;
         let light_slice = push(bytemuck::cast_slice(&scene.lights))?;
         let emitter_slice = push(bytemuck::cast_slice(&scene.emitters))?;
-        let tlas_slice = push(bytemuck::cast_slice(&self.tlas.nodes))?;
+        let tlas_slice = push(self.settings.bvh.tlas_bytes(&self.tlas))?;
         let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
         let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(None) };
         let Some(sky) = &self.sky else { return Ok(None) };

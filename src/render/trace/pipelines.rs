@@ -1,12 +1,14 @@
 //! The tracers' Vulkan objects that do not change with the scene: the descriptor set layout of
 //! [`super::bindings`] (storage buffers and the sky's cube map, and for the hardware tracer
-//! the top-level acceleration structure), the tracing pipeline (`pathtrace.comp`, or the
-//! hardware tracer's ray-tracing pipeline, [`super::hardware::pipeline`]) and the resolve pass
+//! the top-level acceleration structure), the tracing pipeline (`pathtrace.comp` over wide
+//! BVHs or `pathtrace_binary.comp` over binary ones, or the hardware tracer's ray-tracing
+//! pipeline, [`super::hardware::pipeline`]) and the resolve pass
 //! (`trace_resolve.comp`).
 
 use ash::vk;
 
 use super::bindings;
+use super::bvh::Layout;
 use crate::render::raster::device::{Check, Device, Error, Result};
 use crate::render::raster::pipelines::shader_module;
 use super::hardware::pipeline::ShaderTable;
@@ -70,8 +72,9 @@ pub(crate) fn compute_pipeline(device: &Device, layout: vk::PipelineLayout, spir
 
 impl TracePipelines {
     /// Creates the layouts and the pipelines: with `hardware`, the ray-tracing pipeline
-    /// (the device has [`Device::ray_tracing`]) and its acceleration-structure binding.
-    pub fn new(device: &Device, hardware: bool) -> Result<TracePipelines> {
+    /// (the device has [`Device::ray_tracing`]) and its acceleration-structure binding;
+    /// without, the compute pipeline traversing BVHs of layout `bvh`.
+    pub fn new(device: &Device, hardware: bool, bvh: Layout) -> Result<TracePipelines> {
         let (stages, structures): (_, &[u32]) =
             if hardware { (vk::ShaderStageFlags::COMPUTE | RAY_TRACING_STAGES, &[bindings::ACCELERATION]) } else { (vk::ShaderStageFlags::COMPUTE, &[]) };
         let set_layout = descriptor_set_layout(device, bindings::COUNT, &[bindings::SKY], structures, stages)?;
@@ -90,7 +93,11 @@ impl TracePipelines {
                 pipelines.pathtrace = pipeline;
                 pipelines.table = Some(table);
             } else {
-                pipelines.pathtrace = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/pathtrace.comp.spv")))?;
+                let spirv: &[u8] = match bvh {
+                    Layout::Wide => include_bytes!(concat!(env!("OUT_DIR"), "/shaders/pathtrace.comp.spv")),
+                    Layout::Binary => include_bytes!(concat!(env!("OUT_DIR"), "/shaders/pathtrace_binary.comp.spv")),
+                };
+                pipelines.pathtrace = compute_pipeline(device, layout, spirv)?;
             }
             pipelines.resolve = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/trace_resolve.comp.spv")))?;
             Ok(())

@@ -24,7 +24,7 @@ use std::sync::Arc;
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 
-use super::bvh::{Aabb, Blas, GpuNode, GpuTriangle, sah_cost};
+use super::bvh::{Aabb, Blas, GpuTriangle, Layout, sah_cost};
 use super::gpu_types::{GpuLayerCorners, GpuTriangleAttributes};
 use super::scene::Geometry;
 use crate::render::raster::device::{Buffer, Device, Result};
@@ -150,9 +150,10 @@ pub struct Resident {
     pub built: u32,
     /// Geometries whose BVH the last [`Resident::insert_all`] refitted.
     pub refitted: u32,
-    /// Whether geometries get BVHs (the compute tracer's); without, their triangles stay in
-    /// input order under an empty root (the hardware tracer builds its own structures).
-    bvh: bool,
+    /// The layout of the compute tracer's BVHs, whose nodes the node buffer holds; `None`:
+    /// geometries get no BVH, their triangles stay in input order under an empty root (the
+    /// hardware tracer builds its own structures).
+    layout: Option<Layout>,
 }
 
 /// Copies `bytes` through the ring into `dst` at byte `offset` (recorded into `cmd`).
@@ -168,18 +169,18 @@ pub fn upload(device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, dst: vk:
 }
 
 impl Resident {
-    /// An empty cache; `bvh`: whether geometries get the compute tracer's BVHs.
-    pub fn new(bvh: bool) -> Resident {
+    /// An empty cache; `layout`: the layout of the compute tracer's BVHs, `None` for none.
+    pub fn new(layout: Option<Layout>) -> Resident {
         Resident {
             entries: HashMap::new(),
-            nodes: Shared::new(std::mem::size_of::<GpuNode>() as u64),
+            nodes: Shared::new(layout.unwrap_or_default().node_size()),
             triangles: Shared::new(std::mem::size_of::<GpuTriangle>() as u64),
             attributes: Shared::new(std::mem::size_of::<GpuTriangleAttributes>() as u64),
             layer_corners: Shared::new(std::mem::size_of::<GpuLayerCorners>() as u64),
             uploaded: 0,
             built: 0,
             refitted: 0,
-            bvh,
+            layout,
         }
     }
 
@@ -203,14 +204,14 @@ impl Resident {
                 Some(Refit::InPlace) => in_place.push(new.key),
                 Some(Refit::Elsewhere(built)) => to_place.push((new.key, Arc::new(built))),
                 None => {
-                    to_place.push((new.key, Arc::new(Built::new(&new.geometry, self.bvh))));
+                    to_place.push((new.key, Arc::new(Built::new(&new.geometry, self.layout.is_some()))));
                     self.built += 1;
                     continue;
                 }
             }
             self.refitted += 1;
         }
-        let n: u64 = to_place.iter().map(|(_, b)| b.blas.nodes.len() as u64).sum();
+        let n: u64 = to_place.iter().map(|(_, b)| self.node_count(b)).sum();
         let t: u64 = to_place.iter().map(|(_, b)| b.blas.triangles.len() as u64).sum();
         let c: u64 = to_place.iter().map(|(_, b)| b.layer_corners.len() as u64).sum();
         if !self.nodes.fits(n) || !self.triangles.fits(t) || !self.attributes.fits(t) || !self.layer_corners.fits(c) {
@@ -253,6 +254,11 @@ impl Resident {
         Some(Refit::InPlace)
     }
 
+    /// Nodes of `built` in the node buffer's layout.
+    fn node_count(&self, built: &Built) -> u64 {
+        self.layout.unwrap_or_default().blas_len(&built.blas) as u64
+    }
+
     /// Copies `built` to the free end of the buffers.
     fn place(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, built: &Built) -> Result<Placement> {
         let placement = Placement {
@@ -262,7 +268,7 @@ impl Resident {
             bounds: built.blas.bounds,
         };
         self.write(device, cmd, ring, built, &placement)?;
-        self.nodes.used += built.blas.nodes.len() as u64;
+        self.nodes.used += self.node_count(built);
         self.triangles.used += built.blas.triangles.len() as u64;
         self.attributes.used += built.attributes.len() as u64;
         self.layer_corners.used += built.layer_corners.len() as u64;
@@ -273,7 +279,7 @@ impl Resident {
     fn write(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, built: &Built, placement: &Placement) -> Result<()> {
         let (root, first, corners) = (u64::from(placement.blas_root), u64::from(placement.first_triangle), u64::from(placement.first_layer_corners));
         for (shared, at, bytes) in [
-            (&self.nodes, root, bytemuck::cast_slice::<_, u8>(&built.blas.nodes)),
+            (&self.nodes, root, self.layout.unwrap_or_default().blas_bytes(&built.blas)),
             (&self.triangles, first, bytemuck::cast_slice(&built.blas.triangles)),
             (&self.attributes, first, bytemuck::cast_slice(&built.attributes)),
             (&self.layer_corners, corners, bytemuck::cast_slice(&built.layer_corners)),
@@ -292,7 +298,7 @@ impl Resident {
         device.wait_idle()?;
         self.entries.retain(|_, e| frame.saturating_sub(e.last_used) < KEEP_FRAMES);
         let live = |size: fn(&Built) -> usize| self.entries.values().map(|e| size(&e.built) as u64).sum::<u64>();
-        let live_nodes = live(|b| b.blas.nodes.len()) + more[0];
+        let live_nodes = self.entries.values().map(|e| self.node_count(&e.built)).sum::<u64>() + more[0];
         let live_triangles = live(|b| b.blas.triangles.len()) + more[1];
         let live_corners = live(|b| b.layer_corners.len()) + more[2];
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;

@@ -20,10 +20,12 @@
 //! temporal = true           # temporal filter with reprojection while moving
 //! sky_size = 128            # faces of the sky's environment cube map, pixels, 16..=2048
 //! tracer = "auto"           # "auto", "hardware" (VK_KHR_ray_tracing_pipeline), "compute"
+//! bvh = "wide"              # the compute tracer's BVH nodes: "wide" (8 children, quantised) or "binary"
 //! ```
 
 use glam::Vec3;
 
+use super::bvh::Layout;
 use crate::config::{Key, Table, direction, integer_in, number, number_in, one_of, shown};
 
 /// Where the knee tone curve ([`Tonemap::Knee`]) leaves the identity: linear radiance 0.8
@@ -115,6 +117,8 @@ pub struct Settings {
     pub sky_size: u32,
     /// The ray-tracing back end.
     pub tracer: Tracer,
+    /// The node layout of the compute tracer's BVHs.
+    pub bvh: Layout,
 }
 
 impl Default for Settings {
@@ -135,6 +139,7 @@ impl Default for Settings {
             temporal: true,
             sky_size: 128,
             tracer: Tracer::Auto,
+            bvh: Layout::Wide,
         }
     }
 }
@@ -165,6 +170,7 @@ impl Table for Settings {
         Key { name: "temporal", set: |s, v| boolean(v).map(|b| s.temporal = b) },
         Key { name: "sky_size", set: |s, v| integer_in(v, 16..=2048).map(|x| s.sky_size = x as u32) },
         Key { name: "tracer", set: |s, v| one_of(v, &["auto", "hardware", "compute"]).map(|i| s.tracer = [Tracer::Auto, Tracer::Hardware, Tracer::Compute][i]) },
+        Key { name: "bvh", set: |s, v| one_of(v, &["wide", "binary"]).map(|i| s.bvh = [Layout::Wide, Layout::Binary][i]) },
     ];
 }
 
@@ -193,7 +199,7 @@ mod tests {
     #[test]
     fn every_key_is_read() {
         let body = "spp = 8\nbounces = 0\nresolution_scale = 0.5\nlight_scale = 2\nsun_direction = [0, 2, 0]\nsun_angle = 0\nlight_radius = 0.25\n\
-                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"ignore\"\nsample_emitters = false\ntemporal = false\nsky_size = 64\ntracer = \"compute\"\n";
+                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"ignore\"\nsample_emitters = false\ntemporal = false\nsky_size = 64\ntracer = \"compute\"\nbvh = \"binary\"\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
         let expected = Settings {
@@ -212,6 +218,7 @@ mod tests {
             temporal: false,
             sky_size: 64,
             tracer: Tracer::Compute,
+            bvh: Layout::Binary,
         };
         assert_eq!(s, expected);
         assert_eq!(read("tonemap = \"none\"\n", &[]).0.tonemap, Tonemap::Clamp);
@@ -220,7 +227,9 @@ mod tests {
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
         assert_eq!((Settings::default().tonemap, Settings::default().lightmaps), (Tonemap::Knee, Lightmaps::Keep));
         assert_eq!(read("tracer = \"hardware\"\n", &[]).0.tracer, Tracer::Hardware);
-        assert_eq!(Settings::KEYS.len(), 15);
+        assert_eq!(read("bvh = \"wide\"\n", &[("GLRT_BVH", "binary")]).0.bvh, Layout::Binary);
+        assert_eq!(Settings::default().bvh, Layout::Wide);
+        assert_eq!(Settings::KEYS.len(), 16);
     }
 
     #[test]
@@ -245,6 +254,7 @@ mod tests {
             ("sample_emitters = \"yes\"", "sample_emitters: expected true or false, found \"yes\""),
             ("temporal = 1", "temporal: expected true or false, found 1"),
             ("sky_size = 8", "sky_size: expected an integer in 16..=2048, found 8"),
+            ("bvh = \"quad\"", "bvh: expected one of \"wide\", \"binary\", found \"quad\""),
         ];
         for (line, message) in cases {
             let (s, problems) = read(&format!("\n{line}\n"), &[]);

@@ -143,6 +143,14 @@ glsl_constants! {
     /// pushes at most one entry per level, so its one stack of `2 * BVH_MAX_DEPTH` entries
     /// (`BVH_STACK_SIZE` in `bvh.glsl`) holds a TLAS path and a BLAS path.
     const BVH_MAX_DEPTH: usize = 32;
+    /// Children of a wide BVH node (`BvhWideNode` in `bvh_wide.glsl`, `GpuWideNode`).
+    const BVH_WIDTH: usize = 8;
+    /// A wide node's child slot holding no child.
+    const BVH_EMPTY: u32 = 0xffff_ffff;
+    /// Stack entries the wide traversal gives each level (the TLAS, then a BLAS): the wide
+    /// builder keeps what one level can push along any path within it, so the traversal's
+    /// stack of `2 * BVH_WIDE_BUDGET` entries never overflows.
+    const BVH_WIDE_BUDGET: usize = 40;
 }
 
 glsl_fields! {
@@ -158,4 +166,9 @@ glsl_fields! {
     BLEND_EQUATION_RGB = (16, 3);
     /// Equation of alpha.
     BLEND_EQUATION_ALPHA = (19, 3);
+    /// A wide node's child reference (`GpuWideNode::children`): an inner child's node, or a
+    /// leaf's first primitive (with [`BVH_LEAF`] set).
+    BVH_WIDE_INDEX = (0, 28);
+    /// A wide leaf's primitive count less one (1 to 8 primitives).
+    BVH_WIDE_COUNT = (28, 3);
 }

@@ -13,8 +13,9 @@ use glam::Vec3;
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::Bvh2;
 
+use super::wide::{GpuWideNode, widen};
 use super::{Aabb, GpuChild, GpuNode, GpuTriangle, MAX_COORD};
-use crate::render::trace::shader_constants::{BVH_LEAF, BVH_MAX_DEPTH};
+use crate::render::trace::shader_constants::{BVH_LEAF, BVH_MAX_DEPTH, BVH_WIDE_COUNT};
 
 /// The bottom-level BVH of one triangle set, in object space. Node and triangle indices are
 /// relative to it: node 0 is the root, triangle 0 its first (see the module doc).
@@ -22,6 +23,8 @@ use crate::render::trace::shader_constants::{BVH_LEAF, BVH_MAX_DEPTH};
 pub struct Blas {
     /// The nodes, root first; never empty (an empty set has one node of two empty leaves).
     pub nodes: Vec<GpuNode>,
+    /// `nodes` collapsed into wide nodes ([`widen`]), root first.
+    pub wide: Vec<GpuWideNode>,
     /// The triangles in BVH order: leaves reference ranges of it.
     pub triangles: Vec<GpuTriangle>,
     /// `order[k]`: the index in the input of stored triangle `k` (reorders per-triangle
@@ -37,6 +40,8 @@ pub struct Blas {
 pub struct Tlas {
     /// The nodes, root first; never empty.
     pub nodes: Vec<GpuNode>,
+    /// `nodes` collapsed into wide nodes ([`widen`]), root first.
+    pub wide: Vec<GpuWideNode>,
 }
 
 /// The triangle with non-finite positions collapsed onto its first finite vertex (or the
@@ -51,6 +56,8 @@ fn sanitize(t: &[Vec3; 3]) -> [Vec3; 3] {
 
 /// The most primitives a BLAS leaf holds.
 const BLAS_LEAF_SIZE: u32 = 8;
+// A wide node's leaf counts them in BVH_WIDE_COUNT.
+const _: () = assert!(BLAS_LEAF_SIZE <= 1 << BVH_WIDE_COUNT.bits);
 /// Leaf size of the median-split fallback for BLASes.
 const FALLBACK_LEAF_SIZE: usize = 4;
 
@@ -70,7 +77,7 @@ impl Blas {
         let (nodes, order) = build_nodes(&boxes, params, FALLBACK_LEAF_SIZE, max_depth);
         let triangles = order.iter().map(|&i| GpuTriangle::new(&clean[i as usize])).collect();
         let bounds = boxes.iter().fold(Aabb::EMPTY, |b, t| b.union(t));
-        Blas { nodes, triangles, order, bounds }
+        Blas { wide: widen(&nodes, false), nodes, triangles, order, bounds }
     }
 
     /// `triangles` in their input order under a root of two empty leaves: no tree, for the
@@ -80,7 +87,8 @@ impl Blas {
         let clean: Vec<[Vec3; 3]> = triangles.iter().map(sanitize).collect();
         let bounds = clean.iter().fold(Aabb::EMPTY, |b, t| b.union(&Aabb::of_points(t)));
         let triangles = clean.iter().map(GpuTriangle::new).collect();
-        Blas { nodes: Blas::build(&[]).nodes, triangles, order: (0..clean.len() as u32).collect(), bounds }
+        let Blas { nodes, wide, .. } = Blas::build(&[]);
+        Blas { nodes, wide, triangles, order: (0..clean.len() as u32).collect(), bounds }
     }
 
     /// Moves the vertices of a built BVH: `triangles` is the same set in the same input order
@@ -112,14 +120,17 @@ impl Blas {
             }
         }
         self.bounds = clean.iter().fold(Aabb::EMPTY, |b, t| b.union(&Aabb::of_points(t)));
+        self.wide = widen(&self.nodes, false);
         true
     }
 
-    /// Appends this BVH to a shared node and triangle buffer; returns the `blas_root` and
-    /// `first_triangle` an instance of it records.
-    pub fn append_to(&self, nodes: &mut Vec<GpuNode>, triangles: &mut Vec<GpuTriangle>) -> (u32, u32) {
-        let at = (nodes.len() as u32, triangles.len() as u32);
+    /// Appends this BVH to shared node buffers (binary and wide) and a triangle buffer;
+    /// returns the `blas_root` an instance of it records in each layout (binary, wide) and its
+    /// `first_triangle`.
+    pub fn append_to(&self, nodes: &mut Vec<GpuNode>, wide: &mut Vec<GpuWideNode>, triangles: &mut Vec<GpuTriangle>) -> (u32, u32, u32) {
+        let at = (nodes.len() as u32, wide.len() as u32, triangles.len() as u32);
         nodes.extend_from_slice(&self.nodes);
+        wide.extend_from_slice(&self.wide);
         triangles.extend_from_slice(&self.triangles);
         at
     }
@@ -142,7 +153,7 @@ impl Tlas {
         for child in nodes.iter_mut().flat_map(|n| n.children.iter_mut()).filter(|c| c.is_leaf() && c.meta != BVH_LEAF) {
             child.index = live[order[child.index as usize] as usize];
         }
-        Tlas { nodes }
+        Tlas { wide: widen(&nodes, true), nodes }
     }
 }
 

@@ -1,8 +1,9 @@
 //! The BVHs of the compute tracer: a bottom-level BVH ([`Blas`]) per triangle set, in object
 //! space and reused across frames, and a top-level BVH ([`Tlas`]) over the instances, in eye
 //! space and rebuilt every frame. Built on the CPU, uploaded as flat arrays of [`GpuNode`] and
-//! [`GpuTriangle`], traversed by `shaders/trace/bvh.glsl`; [`cpu`] is the same traversal in
-//! Rust (tests, reference).
+//! [`GpuTriangle`], traversed by `shaders/trace/bvh.glsl` (or, collapsed into [`wide`] nodes,
+//! by `shaders/trace/bvh_wide.glsl`); [`cpu`] is the binary traversal in Rust (tests,
+//! reference).
 //!
 //! Build: `obvhs`' PLOC (Morton-sorted nearest-neighbour clustering), then reinsertion
 //! optimisation and an SAH-driven leaf collapse (up to 8 triangles per BLAS leaf, one instance
@@ -26,6 +27,10 @@
 //! - children come after their parents (node 0 is the root): [`Blas::refit`] sweeps backwards.
 //! - a [`GpuTriangle`] is `v0, e1 = v1 - v0, e2 = v2 - v0` (Möller–Trumbore), 48 bytes.
 //!
+//! Every BVH is also kept collapsed into wide nodes ([`wide`]: up to 8 children with
+//! quantised boxes, the same leaves and triangle order); [`Layout`] picks which of the two the
+//! GPU traverses.
+//!
 //! Robustness: non-finite positions make their triangle degenerate (collapsed onto its first
 //! finite vertex, or the origin): it is kept in place, so `order` stays a permutation and refit
 //! keeps the topology, and it is never hit. Finite coordinates are clamped to ±[`MAX_COORD`] so
@@ -35,6 +40,7 @@ pub mod build;
 pub mod cpu;
 #[cfg(test)]
 mod tests;
+pub mod wide;
 
 use bytemuck::{Pod, Zeroable};
 use glam::{Affine3A, Vec3, Vec3A};
@@ -42,6 +48,59 @@ use glam::{Affine3A, Vec3, Vec3A};
 use super::shader_constants::BVH_LEAF;
 
 pub use build::{Blas, Tlas};
+pub use wide::GpuWideNode;
+
+/// The node layout the compute tracer uploads and traverses (`[pathtrace] bvh`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Layout {
+    /// [`GpuWideNode`]s, traversed by `bvh_wide.glsl` (`"wide"`).
+    #[default]
+    Wide,
+    /// [`GpuNode`]s, traversed by `bvh.glsl` (`"binary"`).
+    Binary,
+}
+
+impl Layout {
+    /// Bytes of one node.
+    pub fn node_size(self) -> u64 {
+        match self {
+            Layout::Wide => size_of::<GpuWideNode>() as u64,
+            Layout::Binary => size_of::<GpuNode>() as u64,
+        }
+    }
+
+    /// The nodes of `blas` in this layout, as bytes.
+    pub fn blas_bytes(self, blas: &Blas) -> &[u8] {
+        match self {
+            Layout::Wide => bytemuck::cast_slice(&blas.wide),
+            Layout::Binary => bytemuck::cast_slice(&blas.nodes),
+        }
+    }
+
+    /// The nodes of `tlas` in this layout, as bytes.
+    pub fn tlas_bytes(self, tlas: &Tlas) -> &[u8] {
+        match self {
+            Layout::Wide => bytemuck::cast_slice(&tlas.wide),
+            Layout::Binary => bytemuck::cast_slice(&tlas.nodes),
+        }
+    }
+
+    /// Nodes of `blas` in this layout.
+    pub fn blas_len(self, blas: &Blas) -> usize {
+        match self {
+            Layout::Wide => blas.wide.len(),
+            Layout::Binary => blas.nodes.len(),
+        }
+    }
+
+    /// The setting's name (`"wide"`, `"binary"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Layout::Wide => "wide",
+            Layout::Binary => "binary",
+        }
+    }
+}
 
 /// Largest magnitude of a coordinate in a BVH; larger finite ones are clamped to it. Its square
 /// still fits an `f32`, so products in the triangle and box tests stay finite.

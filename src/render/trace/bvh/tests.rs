@@ -75,7 +75,7 @@ impl Built {
         let mut instances = Vec::new();
         let mut bounds = Vec::new();
         for (p, b) in placed.iter().zip(&blas) {
-            let (root, first) = b.append_to(&mut nodes, &mut triangles);
+            let (root, _, first) = b.append_to(&mut nodes, &mut Vec::new(), &mut triangles);
             instances.push(Instance::new(&p.object_to_eye, root, first, p.alpha_tested));
             bounds.push(b.bounds.transformed(&p.object_to_eye));
         }

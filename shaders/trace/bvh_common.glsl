@@ -1,0 +1,119 @@
+// What both compute traversals (bvh.glsl: binary nodes; bvh_wide.glsl: wide nodes with
+// quantised boxes) share: the ray-box and ray-triangle tests, the instance transform, the
+// statistics and the two queries over the including file's bvh_trace(). Include from those
+// files only.
+
+#ifndef TRACE_BVH_COMMON_GLSL
+#define TRACE_BVH_COMMON_GLSL
+
+#include "generated/trace_constants.glsl"
+#include "trace/bindings.glsl"
+#include "trace/instance.glsl"
+#include "trace/triangles.glsl"
+
+#define BVH_NONE 0xffffffffu
+// Entry distance of a missed box.
+#define BVH_MISS uintBitsToFloat(0x7f800000u)
+// Smallest magnitude of a direction component before inversion.
+#define BVH_TINY 1.0e-20
+// Widens a box's exit distance to cover rounding (1 + 4 ulp).
+#define BVH_BOX_SLACK 1.0000005
+
+// 1 / d with components of magnitude below BVH_TINY replaced by ±BVH_TINY.
+vec3 bvh_inverse(vec3 d) {
+    vec3 tiny = mix(vec3(-BVH_TINY), vec3(BVH_TINY), greaterThanEqual(d, vec3(0.0)));
+    return vec3(1.0) / mix(d, tiny, lessThan(abs(d), vec3(BVH_TINY)));
+}
+
+// Entry distance into the box (lo, hi) clipped to [tmin, tmax], or BVH_MISS.
+float bvh_box(vec3 lo, vec3 hi, vec3 o, vec3 inv, float tmin, float tmax) {
+    vec3 t0 = (lo - o) * inv;
+    vec3 t1 = (hi - o) * inv;
+    vec3 near = min(t0, t1);
+    vec3 far = max(t0, t1);
+    float tn = max(max(near.x, near.y), max(near.z, tmin));
+    float tf = min(min(far.x, far.y), min(far.z, tmax)) * BVH_BOX_SLACK;
+    return tn <= tf ? tn : BVH_MISS;
+}
+
+// Möller–Trumbore: whether the ray hits tri with tmin < t < tmax; then t and (u, v).
+bool bvh_triangle(BvhTriangle tri, vec3 o, vec3 d, float tmin, float tmax, out float t, out vec2 bary) {
+    t = 0.0;
+    bary = vec2(0.0);
+    vec3 e1 = tri.e1;
+    vec3 e2 = tri.e2;
+    vec3 p = cross(d, e2);
+    float det = dot(e1, p);
+    if (!(abs(det) > 0.0)) {
+        return false;
+    }
+    float inv = 1.0 / det;
+    vec3 s = o - tri.v0;
+    float u = dot(s, p) * inv;
+    if (!(u >= 0.0 && u <= 1.0)) {
+        return false;
+    }
+    vec3 q = cross(s, e1);
+    float v = dot(d, q) * inv;
+    if (!(v >= 0.0 && u + v <= 1.0)) {
+        return false;
+    }
+    t = dot(e2, q) * inv;
+    bary = vec2(u, v);
+    return t > tmin && t < tmax;
+}
+
+// Applies the rows of an affine matrix to (v, w).
+vec3 bvh_transform(vec4 rows[3], vec3 v, float w) {
+    vec4 h = vec4(v, w);
+    return vec3(dot(rows[0], h), dot(rows[1], h), dot(rows[2], h));
+}
+
+// Work of this invocation's traversals so far (statistics: nodes visited, triangles tested).
+uint bvh_nodes_visited = 0u;
+uint bvh_triangles_tested = 0u;
+
+// Tests the count triangles from global triangle `first` of `instance` against the ray (o, d)
+// in the instance's space, keeping in `hit` the closest accepted one with tmin < t < hit.t
+// (alpha-tested instances ask trace_alpha_accept); with any_hit, stops at the first accepted.
+// Returns whether it accepted one.
+bool bvh_leaf(uint first, uint count, uint instance, bool alpha_tested, vec3 o, vec3 d, float tmin, bool any_hit, inout TraceHit hit) {
+    bool found = false;
+    for (uint triangle = first; triangle < first + count; triangle++) {
+        bvh_triangles_tested++;
+        float t;
+        vec2 bary;
+        if (!bvh_triangle(triangles[triangle], o, d, tmin, hit.t, t, bary)) {
+            continue;
+        }
+        if (alpha_tested && !trace_alpha_accept(instance, triangle, bary)) {
+            continue;
+        }
+        hit.t = t;
+        hit.instance = instance;
+        hit.triangle = triangle;
+        hit.bary = bary;
+        found = true;
+        if (any_hit) {
+            return true;
+        }
+    }
+    return found;
+}
+
+// The traversal of both queries, defined by the including file: with any_hit, returns at the
+// first accepted hit.
+bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out TraceHit hit);
+
+// The closest accepted hit with tmin < t < tmax; false (hit.t = tmax) when none.
+bool trace_closest(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit hit) {
+    return bvh_trace(origin, dir, tmin, tmax, false, hit);
+}
+
+// Whether any accepted hit has tmin < t < tmax (shadow rays); stops at the first.
+bool trace_any(vec3 origin, vec3 dir, float tmin, float tmax) {
+    TraceHit hit;
+    return bvh_trace(origin, dir, tmin, tmax, true, hit);
+}
+
+#endif
