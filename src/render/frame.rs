@@ -38,6 +38,7 @@
 use crate::frame::pixels::PixelBuffer;
 use crate::frame::{Draw, Frame, FrameEnd};
 use crate::frame::FrameSink;
+use crate::frame::storage::StoragePool;
 use crate::render::denoise::Denoiser;
 use crate::render::denoise::settings::DenoiseSettings;
 use crate::render::hud::canvas::Canvas;
@@ -68,6 +69,8 @@ pub struct Renderer {
     target: Option<crate::frame::Target>,
     /// The HUD, when `GLRT_HUD` asks for it.
     hud: Option<Hud>,
+    /// The storage of the draws of frames drawn, for the context to fill again.
+    spent: StoragePool,
 }
 
 /// The path-tracing stages: a ray-tracing back end, the denoiser (when enabled) and the
@@ -99,7 +102,7 @@ impl Renderer {
     /// Creates the renderer with no [`FrameOutput`]: frames stay in the framebuffer.
     pub fn without_outputs() -> Result<Renderer> {
         let hud = Display::of_process().hud.then(Hud::default);
-        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud })
+        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud, spent: StoragePool::default() })
     }
 
     /// Path traces the traced draws of the next frames with `settings`, with the back end
@@ -304,12 +307,13 @@ impl FrameSink for Renderer {
         self.raster.set_target(target);
     }
 
-    /// After a part of a frame ([`FrameEnd::Part`]), once the part is dropped, frees the
-    /// texture versions that no frame references any more.
+    /// After a part of a frame ([`FrameEnd::Part`]), once the part is dropped (but for its
+    /// draws' storage, kept for the context), frees the texture versions that no frame
+    /// references any more.
     fn present(&mut self, frame: Frame) {
         let part = frame.end == FrameEnd::Part;
         let finished = self.attempt(|r| r.finish(&frame)).is_some();
-        drop(frame);
+        self.spent.keep_frame(frame);
         if part && finished {
             self.attempt(|r| r.raster.release_unreferenced_textures());
         }
@@ -322,6 +326,16 @@ impl FrameSink for Renderer {
     /// Only the path tracer needs them (rasterized, they are culled).
     fn keeps_culled_triangles(&self) -> bool {
         self.tracing.is_some()
+    }
+
+    fn spent_storage(&mut self) -> Option<&mut StoragePool> {
+        Some(&mut self.spent)
+    }
+
+    /// The path tracer reads classes (what it traces, layers, lights, the static world), the
+    /// HUD its draws per class; rasterizing alone reads none.
+    fn reads_classes(&self) -> bool {
+        self.tracing.is_some() || self.hud.is_some()
     }
 
     /// Waits for the frame in flight that ended `frame` when the result is not known yet.
