@@ -84,7 +84,7 @@ impl Context {
         };
         self.frame.read_buffer = self.read_color_buffer();
         self.frame.read_framebuffer = framebuffer;
-        if self.sink.reads_classes() {
+        if self.reads_classes() {
             self.classify.route_partial(&mut self.frame);
         }
         let pixels = self.sink.read_pixels(&self.frame, buffer, rect);

@@ -169,6 +169,13 @@ impl Context {
         }
     }
 
+    /// Whether frames are classified: the sink reads classes
+    /// ([`crate::frame::FrameSink::reads_classes`]) or the call log announces the texture
+    /// hashes classification computes ([`super::classify::texture_hash::announced`]).
+    pub(crate) fn reads_classes(&self) -> bool {
+        self.sink.reads_classes() || super::classify::texture_hash::announced()
+    }
+
     /// Ends the frame (`glXSwapBuffers`): hands the assembled [`Frame`] to the renderer. The
     /// next frame's draw list starts with the capacity this one needed, its draws with the
     /// storage the sink gives back ([`crate::frame::FrameSink::spent_storage`]).
@@ -179,7 +186,7 @@ impl Context {
     /// Ends the frame as `end` says. A part ([`FrameEnd::Part`], see
     /// [`super::frame_memory`]) is routed as a read-back routes the frame so far; hash
     /// tracking sees the whole frame's last part at its end. Frames are classified only when
-    /// the sink reads classes ([`crate::frame::FrameSink::reads_classes`]).
+    /// something reads classes ([`Context::reads_classes`]).
     pub(crate) fn end_frame_as(&mut self, end: FrameEnd) {
         let number = self.frame.number + 1;
         let draws = Vec::with_capacity(self.frame.draws.len());
@@ -187,7 +194,7 @@ impl Context {
         let next = Frame { number, draws, size, ..Frame::default() };
         let mut frame = Frame { end, ..std::mem::replace(&mut self.frame, next) };
         self.frame_memory.reset();
-        if self.sink.reads_classes() {
+        if self.reads_classes() {
             if end == FrameEnd::Part {
                 self.classify.route_partial(&mut frame);
             } else {
