@@ -4,7 +4,8 @@
 //! types.
 //!
 //! This is the interface layer between the two sides, and names neither: where frames go
-//! ([`sink::FrameSink`], to a [`target::Target`]), and the few definitions both sides must
+//! ([`sink::FrameSink`], to a [`target::Target`]) and how their vertex storage comes back
+//! ([`storage`]), and the few definitions both sides must
 //! share (the mipmap box filter in [`mipmap`], [`class::orthographic`], the shader interface
 //! constants of [`program`]).
 
@@ -15,6 +16,7 @@ pub mod pixels;
 pub mod program;
 pub mod sink;
 pub mod state;
+pub mod storage;
 pub mod target;
 pub mod texture;
 pub mod vertex;

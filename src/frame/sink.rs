@@ -9,11 +9,12 @@ use parking_lot::Mutex;
 
 use super::Frame;
 use super::pixels::PixelBuffer;
+use super::storage::StoragePool;
 use super::target::Target;
 
 /// Inside `impl FrameSink for W`, where `W` wraps another sink in its field `inner`: forwards
-/// `set_target` and the occlusion queries to it, so a wrapper (a tap, a repeater, a frame
-/// filter) answers them as the sink it wraps; `present`, `read_pixels` and
+/// `set_target`, the occlusion queries and `spent_storage` to it, so a wrapper (a tap, a
+/// repeater, a frame filter) answers them as the sink it wraps; `present`, `read_pixels` and
 /// `keeps_culled_triangles` stay the wrapper's own (a tap that inspects frames keeps culled
 /// triangles whatever it wraps).
 #[macro_export]
@@ -27,6 +28,9 @@ macro_rules! forward_to_inner_sink {
         }
         fn occlusion_counter_bits(&self) -> u32 {
             self.inner.occlusion_counter_bits()
+        }
+        fn spent_storage(&mut self) -> Option<&mut $crate::frame::storage::StoragePool> {
+            self.inner.spent_storage()
         }
     };
 }
@@ -63,6 +67,23 @@ pub trait FrameSink: Send {
         true
     }
 
+    /// Whether anything reads what hash tracking (`translate::classify`) adds to frames: draw
+    /// classes, instances and layers, the view, the static world, lights and statistics. The
+    /// default says yes, for sinks that record or inspect frames; a rasterizer with nothing
+    /// tracing and no HUD counting classes says no, and the front end then leaves frames
+    /// unclassified (every draw [`crate::frame::class::DrawClass::Unclassified`], no static
+    /// world, statistics at zero).
+    fn reads_classes(&self) -> bool {
+        true
+    }
+
+    /// The storage of the draws of frames this sink is done with, which the context takes
+    /// after each [`FrameSink::present`] to fill again ([`StoragePool`]); `None` (the default)
+    /// for sinks that keep their frames.
+    fn spent_storage(&mut self) -> Option<&mut StoragePool> {
+        None
+    }
+
     /// Renders `frame` so far (it is not ended) and reads the rectangle `rect` (x, y, width,
     /// height, window coordinates) of `buffer`: RGBA for colour, the value in the first
     /// component for depth and stencil; rows bottom to top. `None` when the sink cannot
@@ -72,20 +93,32 @@ pub trait FrameSink: Send {
     }
 }
 
-/// Drops frames, keeping only how many were presented (used when no renderer is available).
+/// Drops frames, keeping only how many were presented and their draws' storage for the
+/// context to reuse (used when no renderer is available).
 #[derive(Default)]
 pub struct NullSink {
     /// Frames presented so far.
     pub presented: u64,
+    spent: StoragePool,
 }
 
 impl FrameSink for NullSink {
-    fn present(&mut self, _frame: Frame) {
+    fn present(&mut self, frame: Frame) {
         self.presented += 1;
+        self.spent.keep_frame(frame);
+    }
+
+    fn spent_storage(&mut self) -> Option<&mut StoragePool> {
+        Some(&mut self.spent)
     }
 
     /// Nothing is drawn, so nothing needs culled triangles.
     fn keeps_culled_triangles(&self) -> bool {
+        false
+    }
+
+    /// Nothing reads the frames.
+    fn reads_classes(&self) -> bool {
         false
     }
 }

@@ -147,9 +147,14 @@ impl Vertices {
         }
     }
 
-    /// Appends every vertex of `other`.
+    /// Appends every vertex of `other`. Into no vertex, the result equals `other` (the storage
+    /// of texture units and generic attributes `other` lacks is dropped, the rest reused).
     pub fn append(&mut self, other: &Vertices) {
         let (n, m) = (self.len(), other.len());
+        if n == 0 {
+            self.texcoords.truncate(other.texcoords.len());
+            self.generic.truncate(other.generic.len());
+        }
         self.position.extend_from_slice(&other.position);
         self.normal.append(n, &other.normal, m);
         self.color.append(n, &other.color, m);
@@ -208,5 +213,24 @@ mod tests {
         b.texcoords[0].push([5.0, 0.0, 0.0, 1.0], 0);
         a.append(&b);
         assert_eq!(a.texcoords[0].values, vec![[0.0, 0.0, 0.0, 1.0], [5.0, 0.0, 0.0, 1.0]]);
+    }
+
+    #[test]
+    fn appending_into_emptied_storage_equals_the_appended_vertices() {
+        let mut used = Vertices::with_units(4);
+        used.generic = vec![Attrib::default(); 3];
+        for i in 0..100 {
+            used.position.push([i as f32; 4]);
+            used.texcoords[3].push([i as f32; 4], i);
+            used.generic[2].push([1.0; 4], i);
+        }
+        let capacity = used.position.capacity();
+        used.clear();
+        let mut b = Vertices::with_units(2);
+        b.position.push([1.0; 4]);
+        b.color.push([0.5; 4], 0);
+        used.append(&b);
+        assert_eq!(used, b, "units and generic attributes b lacks are gone");
+        assert_eq!(used.position.capacity(), capacity, "the storage is reused");
     }
 }

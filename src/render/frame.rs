@@ -40,6 +40,7 @@
 use crate::frame::pixels::PixelBuffer;
 use crate::frame::{Draw, Frame, FrameEnd};
 use crate::frame::FrameSink;
+use crate::frame::storage::StoragePool;
 use crate::render::ao::AmbientOcclusion;
 use crate::render::ao::settings::AoSettings;
 use crate::render::denoise::Denoiser;
@@ -78,6 +79,8 @@ pub struct Renderer {
     ao: Option<AmbientOcclusion>,
     /// The number of the last frame that got ambient occlusion (it runs once per frame).
     occluded_frame: Option<u64>,
+    /// The storage of the draws of frames drawn, for the context to fill again.
+    spent: StoragePool,
 }
 
 /// The path-tracing stages: a ray-tracing back end, the denoiser (when enabled) and the
@@ -109,7 +112,7 @@ impl Renderer {
     /// Creates the renderer with no [`FrameOutput`]: frames stay in the framebuffer.
     pub fn without_outputs() -> Result<Renderer> {
         let hud = Display::of_process().hud.then(Hud::default);
-        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud, ao: None, occluded_frame: None })
+        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud, ao: None, occluded_frame: None, spent: StoragePool::default() })
     }
 
     /// Path traces the traced draws of the next frames with `settings`, with the back end
@@ -347,12 +350,13 @@ impl FrameSink for Renderer {
         self.raster.set_target(target);
     }
 
-    /// After a part of a frame ([`FrameEnd::Part`]), once the part is dropped, frees the
-    /// texture versions that no frame references any more.
+    /// After a part of a frame ([`FrameEnd::Part`]), once the part is dropped (but for its
+    /// draws' storage, kept for the context), frees the texture versions that no frame
+    /// references any more.
     fn present(&mut self, frame: Frame) {
         let part = frame.end == FrameEnd::Part;
         let finished = self.attempt(|r| r.finish(&frame)).is_some();
-        drop(frame);
+        self.spent.keep_frame(frame);
         if part && finished {
             self.attempt(|r| r.raster.release_unreferenced_textures());
         }
@@ -365,6 +369,16 @@ impl FrameSink for Renderer {
     /// Only the path tracer needs them (rasterized, they are culled).
     fn keeps_culled_triangles(&self) -> bool {
         self.tracing.is_some()
+    }
+
+    fn spent_storage(&mut self) -> Option<&mut StoragePool> {
+        Some(&mut self.spent)
+    }
+
+    /// The path tracer reads classes (what it traces, layers, lights, the static world), the
+    /// HUD its draws per class; rasterizing alone reads none.
+    fn reads_classes(&self) -> bool {
+        self.tracing.is_some() || self.hud.is_some()
     }
 
     /// Waits for the frame in flight that ended `frame` when the result is not known yet.

@@ -114,6 +114,15 @@ impl FrameSink for FrameLog {
         self.inner.occlusion_counter_bits()
     }
 
+    fn spent_storage(&mut self) -> Option<&mut crate::frame::storage::StoragePool> {
+        self.inner.spent_storage()
+    }
+
+    /// The log leaves hash tracking's results out ([`content_hash`]).
+    fn reads_classes(&self) -> bool {
+        self.inner.reads_classes()
+    }
+
     fn read_pixels(&mut self, frame: &Frame, buffer: crate::frame::pixels::PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
         self.inner.read_pixels(frame, buffer, rect)
     }

@@ -54,6 +54,10 @@ impl FrameSink for FramesFrom {
         self.inner.keeps_culled_triangles()
     }
 
+    fn reads_classes(&self) -> bool {
+        self.inner.reads_classes()
+    }
+
     fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
         if frame.number < self.first {
             self.begun = Some(frame.number);

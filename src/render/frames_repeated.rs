@@ -31,6 +31,9 @@ impl FrameSink for FramesRepeated {
     fn keeps_culled_triangles(&self) -> bool {
         self.inner.keeps_culled_triangles()
     }
+    fn reads_classes(&self) -> bool {
+        self.inner.reads_classes()
+    }
     fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
         self.inner.read_pixels(frame, buffer, rect)
     }

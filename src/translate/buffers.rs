@@ -84,7 +84,9 @@ impl Context {
         };
         self.frame.read_buffer = self.read_color_buffer();
         self.frame.read_framebuffer = framebuffer;
-        self.classify.route_partial(&mut self.frame);
+        if self.reads_classes() {
+            self.classify.route_partial(&mut self.frame);
+        }
         let pixels = self.sink.read_pixels(&self.frame, buffer, rect);
         self.part_after_read_back();
         pixels

@@ -80,6 +80,8 @@ pub struct Context {
     pub(crate) frame: Frame,
     /// What the frame holds against its budget.
     pub(crate) frame_memory: super::frame_memory::FrameMemory,
+    /// Storage of spent frames' draws that new draws fill again (a frame budget at most).
+    pub(crate) storage: crate::frame::storage::StoragePool,
     pub(crate) sink: Box<dyn FrameSink>,
     /// Whether the drawables are single-buffered (see [`Context::set_double_buffered`]).
     pub(crate) single_buffered: bool,
@@ -117,6 +119,7 @@ impl Context {
             programs: Default::default(),
             frame: Frame::default(),
             frame_memory: super::frame_memory::FrameMemory::new(super::frame_memory::configured_budget()),
+            storage: crate::frame::storage::StoragePool::new(usize::try_from(super::frame_memory::configured_budget()).unwrap_or(usize::MAX)),
             sink: config.sink,
             single_buffered: false,
             drawable_size: None,
@@ -166,15 +169,24 @@ impl Context {
         }
     }
 
+    /// Whether frames are classified: the sink reads classes
+    /// ([`crate::frame::FrameSink::reads_classes`]) or the call log announces the texture
+    /// hashes classification computes ([`super::classify::texture_hash::announced`]).
+    pub(crate) fn reads_classes(&self) -> bool {
+        self.sink.reads_classes() || super::classify::texture_hash::announced()
+    }
+
     /// Ends the frame (`glXSwapBuffers`): hands the assembled [`Frame`] to the renderer. The
-    /// next frame's draw list starts with the capacity this one needed.
+    /// next frame's draw list starts with the capacity this one needed, its draws with the
+    /// storage the sink gives back ([`crate::frame::FrameSink::spent_storage`]).
     pub fn end_frame(&mut self) {
         self.end_frame_as(self.swap_end());
     }
 
     /// Ends the frame as `end` says. A part ([`FrameEnd::Part`], see
     /// [`super::frame_memory`]) is routed as a read-back routes the frame so far; hash
-    /// tracking sees the whole frame's last part at its end.
+    /// tracking sees the whole frame's last part at its end. Frames are classified only when
+    /// something reads classes ([`Context::reads_classes`]).
     pub(crate) fn end_frame_as(&mut self, end: FrameEnd) {
         let number = self.frame.number + 1;
         let draws = Vec::with_capacity(self.frame.draws.len());
@@ -182,12 +194,17 @@ impl Context {
         let next = Frame { number, draws, size, ..Frame::default() };
         let mut frame = Frame { end, ..std::mem::replace(&mut self.frame, next) };
         self.frame_memory.reset();
-        if end == FrameEnd::Part {
-            self.classify.route_partial(&mut frame);
-        } else {
-            let versions = super::classify::keys::list_versions(&frame, &self.shared.lock().lists);
-            self.classify.classify(&mut frame, |list| versions.iter().find(|v| v.0 == list).and_then(|v| v.1));
+        if self.reads_classes() {
+            if end == FrameEnd::Part {
+                self.classify.route_partial(&mut frame);
+            } else {
+                let versions = super::classify::keys::list_versions(&frame, &self.shared.lock().lists);
+                self.classify.classify(&mut frame, |list| versions.iter().find(|v| v.0 == list).and_then(|v| v.1));
+            }
         }
         self.sink.present(frame);
+        if let Some(spent) = self.sink.spent_storage() {
+            self.storage.refill(spent);
+        }
     }
 }

@@ -16,6 +16,7 @@ use super::texture::Target;
 use super::lighting::without_tracked_material;
 use super::limits::MAX_TEXTURE_UNITS;
 use crate::frame::program::ProgramDraw;
+use crate::frame::storage::{DrawStorage, StoragePool};
 use crate::frame::{Draw, DrawSource, Frame, RasterState, TextureRef, TextureUnit, Topology, Vertices};
 
 /// A merged draw never grows past this many vertices, so its indices stay far from `u32`
@@ -93,7 +94,7 @@ impl Context {
             return;
         }
         let key = self.batch_key(primitive.topology(), source, state);
-        push_batch(&mut self.frame, key, &batch.vertices, assembled);
+        push_batch(&mut self.frame, &mut self.storage, key, &batch.vertices, assembled);
         self.keep_frame_in_budget();
     }
 
@@ -180,14 +181,18 @@ fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
 }
 
 /// Appends a batch to `frame`: into its last draw when `mergeable` and no clear or pixel
-/// operation came after that draw, else as a new draw.
-pub fn push_batch(frame: &mut Frame, key: BatchKey, vertices: &Vertices, assembled: &Assembled) {
+/// operation came after that draw, else as a new draw, in storage taken from `storage`.
+pub fn push_batch(frame: &mut Frame, storage: &mut StoragePool, key: BatchKey, vertices: &Vertices, assembled: &Assembled) {
     // A clear or pixel operation after the last draw must stay between it and this batch.
     let cleared_since = frame.clears.last().is_some_and(|c| c.before_draw >= frame.draws.len());
     let pixels_since = frame.pixels.last().is_some_and(|p| p.before_draw >= frame.draws.len());
     let merge = !cleared_since && !pixels_since && frame.draws.last().is_some_and(|last| mergeable(last, &key, vertices.len()));
     if !merge {
+        let spare: DrawStorage = storage.take();
         frame.draws.push(Draw {
+            vertices: spare.vertices,
+            indices: spare.indices,
+            edge_masks: spare.edge_masks,
             topology: key.topology,
             source: key.source,
             modelview: key.modelview,
@@ -340,13 +345,33 @@ mod tests {
         }
         let v = &batch.vertices;
         let a = Assembled { indices: vec![0, 1, 2], edge_masks: vec![0b101] };
-        push_batch(&mut frame, BatchKey::default(), v, &a);
-        push_batch(&mut frame, BatchKey::default(), v, &a);
+        let mut storage = StoragePool::default();
+        push_batch(&mut frame, &mut storage, BatchKey::default(), v, &a);
+        push_batch(&mut frame, &mut storage, BatchKey::default(), v, &a);
         assert_eq!(frame.draws.len(), 1);
         assert_eq!(frame.draws[0].indices, vec![0, 1, 2, 3, 4, 5]);
         assert_eq!(frame.draws[0].edge_masks, vec![0b101, 0b101]);
         let other = BatchKey { source: DrawSource::List(3), ..BatchKey::default() };
-        push_batch(&mut frame, other, v, &a);
+        push_batch(&mut frame, &mut storage, other, v, &a);
         assert_eq!(frame.draws.len(), 2, "another source starts another draw");
+    }
+
+    #[test]
+    fn new_draws_fill_the_storage_the_sink_gave_back() {
+        use crate::frame::NullSink;
+        use crate::translate::context::ContextConfig;
+        let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(NullSink::default()) });
+        for i in 0..1000 {
+            quad(&mut ctx, i as f32);
+        }
+        ctx.end_frame();
+        assert_eq!(ctx.storage.len(), 1, "the one draw's storage came back");
+        assert!(ctx.storage.bytes() >= 4000 * (16 + 16) + 6000 * 4 + 2000, "{} bytes", ctx.storage.bytes());
+        quad(&mut ctx, 0.0);
+        assert!(ctx.storage.is_empty());
+        let draw = &ctx.frame.draws[0];
+        assert!(draw.vertices.position.capacity() >= 4000 && draw.indices.capacity() >= 6000);
+        assert_eq!((draw.vertex_count, draw.indices.len(), draw.edge_masks.len()), (4, 6, 2));
+        assert_eq!(draw.vertices.texcoords[0].get(2), Some([1.0, 1.0, 0.0, 1.0]));
     }
 }

@@ -184,10 +184,10 @@ pub fn run(args: &Args) -> Result<(), String> {
                         total.fetch_add(frame.stats.classify_ns, Ordering::Relaxed);
                     }
                 };
-                sink = Box::new(FrameTap::new(sink, add));
+                sink = Box::new(FrameTap::passing(sink, add));
             }
             if let Some(progress) = tap_progress.clone() {
-                sink = Box::new(FrameTap::new(sink, move |frame: &glrt::frame::Frame| progress.frame_done(frame.number)));
+                sink = Box::new(FrameTap::passing(sink, move |frame: &glrt::frame::Frame| progress.frame_done(frame.number)));
             }
             sink
         }))

@@ -20,7 +20,7 @@
 //! temporal = true           # temporal filter with reprojection while moving
 //! sky_size = 128            # faces of the sky's environment cube map, pixels, 16..=2048
 //! tracer = "auto"           # "auto", "hardware" (VK_KHR_ray_tracing_pipeline), "compute"
-//! bvh = "wide"              # the compute tracer's BVH nodes: "wide" (8 children, quantised) or "binary"
+//! bvh = "binary"            # the compute tracer's BVH nodes: "binary" or "wide" (8 children, quantised)
 //! ```
 
 use glam::Vec3;
@@ -139,7 +139,7 @@ impl Default for Settings {
             temporal: true,
             sky_size: 128,
             tracer: Tracer::Auto,
-            bvh: Layout::Wide,
+            bvh: Layout::Binary,
         }
     }
 }
@@ -199,7 +199,7 @@ mod tests {
     #[test]
     fn every_key_is_read() {
         let body = "spp = 8\nbounces = 0\nresolution_scale = 0.5\nlight_scale = 2\nsun_direction = [0, 2, 0]\nsun_angle = 0\nlight_radius = 0.25\n\
-                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"ignore\"\nsample_emitters = false\ntemporal = false\nsky_size = 64\ntracer = \"compute\"\nbvh = \"binary\"\n";
+                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"ignore\"\nsample_emitters = false\ntemporal = false\nsky_size = 64\ntracer = \"compute\"\nbvh = \"wide\"\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
         let expected = Settings {
@@ -218,7 +218,7 @@ mod tests {
             temporal: false,
             sky_size: 64,
             tracer: Tracer::Compute,
-            bvh: Layout::Binary,
+            bvh: Layout::Wide,
         };
         assert_eq!(s, expected);
         assert_eq!(read("tonemap = \"none\"\n", &[]).0.tonemap, Tonemap::Clamp);
@@ -227,8 +227,8 @@ mod tests {
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
         assert_eq!((Settings::default().tonemap, Settings::default().lightmaps), (Tonemap::Knee, Lightmaps::Keep));
         assert_eq!(read("tracer = \"hardware\"\n", &[]).0.tracer, Tracer::Hardware);
-        assert_eq!(read("bvh = \"wide\"\n", &[("GLRT_BVH", "binary")]).0.bvh, Layout::Binary);
-        assert_eq!(Settings::default().bvh, Layout::Wide);
+        assert_eq!(read("bvh = \"binary\"\n", &[("GLRT_BVH", "wide")]).0.bvh, Layout::Wide);
+        assert_eq!(Settings::default().bvh, Layout::Binary);
         assert_eq!(Settings::KEYS.len(), 16);
     }
 

@@ -12,17 +12,28 @@ use crate::frame::Frame;
 use crate::frame::pixels::PixelBuffer;
 use crate::frame::FrameSink;
 
-/// Calls a function on each frame (classified), then hands the frame to `inner`: `glrt replay
-/// --stats` prints its statistics ([`print_stats`]), `--bench` adds up its classification time.
+/// Calls a function on each frame, then hands the frame to `inner`: `glrt replay --stats`
+/// prints its statistics ([`print_stats`]), `--bench` adds up its classification time.
 pub struct FrameTap {
     inner: Box<dyn FrameSink>,
     tap: Box<dyn FnMut(&Frame) + Send>,
+    /// Whether the tap reads hash tracking's results (else frames are classified only when
+    /// `inner` reads them).
+    reads_classes: bool,
 }
 
 impl FrameTap {
-    /// Calls `tap`, then presents to `inner`.
+    /// Calls `tap`, which reads hash tracking's results (frames are classified), then
+    /// presents to `inner`.
     pub fn new(inner: Box<dyn FrameSink>, tap: impl FnMut(&Frame) + Send + 'static) -> FrameTap {
-        FrameTap { inner, tap: Box::new(tap) }
+        FrameTap { inner, tap: Box::new(tap), reads_classes: true }
+    }
+
+    /// Calls `tap`, which reads no class (frames are classified only when `inner` reads
+    /// them: a classification time it adds up is then what the renderer's frames cost), then
+    /// presents to `inner`.
+    pub fn passing(inner: Box<dyn FrameSink>, tap: impl FnMut(&Frame) + Send + 'static) -> FrameTap {
+        FrameTap { inner, tap: Box::new(tap), reads_classes: false }
     }
 }
 
@@ -37,6 +48,9 @@ impl FrameSink for FrameTap {
         self.inner.present(frame);
     }
     crate::forward_to_inner_sink!();
+    fn reads_classes(&self) -> bool {
+        self.reads_classes || self.inner.reads_classes()
+    }
     fn read_pixels(&mut self, frame: &Frame, buffer: PixelBuffer, rect: [i32; 4]) -> Option<Vec<[f32; 4]>> {
         self.inner.read_pixels(frame, buffer, rect)
     }

@@ -32,6 +32,12 @@ pub fn announce_hashes_to(announce: fn(u32, u64)) {
     let _ = ANNOUNCE.set(announce);
 }
 
+/// Whether something receives new texture hashes (then frames are classified, which hashes
+/// their textures, even when no sink reads classes).
+pub fn announced() -> bool {
+    ANNOUNCE.get().is_some()
+}
+
 /// The hash of each texture's current content version.
 #[derive(Default)]
 pub struct TextureHashes {

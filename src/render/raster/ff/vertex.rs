@@ -58,21 +58,82 @@ pub const VERTEX_ATTRIBUTES: &[VertexAttribute] = &[
 /// Interleaves the draw's attributes; missing attributes take OpenGL's initial current values.
 pub fn pack(draw: &Draw) -> Vec<f32> {
     let v = &draw.vertices;
+    let columns = Columns::of(v);
     let mut out = Vec::with_capacity(v.len() * VERTEX_FLOATS);
-    for (i, position) in v.position.iter().enumerate() {
-        out.extend_from_slice(position);
-        out.extend_from_slice(&v.color.get(i).unwrap_or([1.0; 4]));
-        let [r, g, b] = v.secondary_color.get(i).unwrap_or([0.0; 3]);
-        out.extend_from_slice(&[r, g, b, 0.0]);
-        out.extend_from_slice(&v.normal.get(i).unwrap_or([0.0, 0.0, 1.0]));
-        out.push(v.fog_coord.get(i).unwrap_or(0.0));
-        for unit in 0..MAX_UNITS {
-            let coord = v.texcoords.get(unit).and_then(|t| t.get(i));
-            out.extend_from_slice(&coord.unwrap_or([0.0, 0.0, 0.0, 1.0]));
-        }
-        out.extend_from_slice(&[0.0; 4]);
+    for i in 0..v.len() {
+        out.extend_from_slice(&columns.vertex(i));
     }
     out
+}
+
+/// One attribute of every vertex: one value each, or one value for all.
+#[derive(Clone, Copy)]
+enum Column<'a, T> {
+    Each(&'a [T]),
+    One(T),
+}
+
+impl<'a, T: Copy> Column<'a, T> {
+    /// The column of `a`, `initial` where it has no value (as [`crate::frame::Attrib::get`]).
+    fn of(a: &'a crate::frame::Attrib<T>, initial: T) -> Column<'a, T> {
+        match a.values.len() {
+            0 => Column::One(initial),
+            1 => Column::One(a.values[0]),
+            _ => Column::Each(&a.values),
+        }
+    }
+
+    #[inline(always)]
+    fn get(&self, i: usize, initial: T) -> T {
+        match self {
+            Column::Each(values) => values.get(i).copied().unwrap_or(initial),
+            Column::One(value) => *value,
+        }
+    }
+}
+
+/// The attributes of a draw's vertices, each looked at once (not once per vertex).
+struct Columns<'a> {
+    position: &'a [[f32; 4]],
+    color: Column<'a, [f32; 4]>,
+    secondary: Column<'a, [f32; 3]>,
+    normal: Column<'a, [f32; 3]>,
+    fog: Column<'a, f32>,
+    texcoords: [Column<'a, [f32; 4]>; MAX_UNITS],
+}
+
+const WHITE: [f32; 4] = [1.0; 4];
+const BLACK: [f32; 3] = [0.0; 3];
+const UP: [f32; 3] = [0.0, 0.0, 1.0];
+const ORIGIN: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+
+impl<'a> Columns<'a> {
+    fn of(v: &'a crate::frame::Vertices) -> Columns<'a> {
+        Columns {
+            position: &v.position,
+            color: Column::of(&v.color, WHITE),
+            secondary: Column::of(&v.secondary_color, BLACK),
+            normal: Column::of(&v.normal, UP),
+            fog: Column::of(&v.fog_coord, 0.0),
+            texcoords: std::array::from_fn(|u| v.texcoords.get(u).map_or(Column::One(ORIGIN), |t| Column::of(t, ORIGIN))),
+        }
+    }
+
+    /// Packed vertex `i`.
+    #[inline(always)]
+    fn vertex(&self, i: usize) -> [f32; VERTEX_FLOATS] {
+        let mut out = [0.0; VERTEX_FLOATS];
+        out[POSITION..POSITION + 4].copy_from_slice(&self.position[i]);
+        out[COLOR..COLOR + 4].copy_from_slice(&self.color.get(i, WHITE));
+        out[SECONDARY..SECONDARY + 3].copy_from_slice(&self.secondary.get(i, BLACK));
+        out[NORMAL..NORMAL + 3].copy_from_slice(&self.normal.get(i, UP));
+        out[FOG_COORD] = self.fog.get(i, 0.0);
+        for (unit, column) in self.texcoords.iter().enumerate() {
+            let at = TEXCOORD + 4 * unit;
+            out[at..at + 4].copy_from_slice(&column.get(i, ORIGIN));
+        }
+        out
+    }
 }
 
 /// The generic attribute indices (1 to 15) a program's vertex stage reads, in the order of

@@ -53,10 +53,11 @@ pub use wide::GpuWideNode;
 /// The node layout the compute tracer uploads and traverses (`[pathtrace] bvh`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Layout {
-    /// [`GpuWideNode`]s, traversed by `bvh_wide.glsl` (`"wide"`).
-    #[default]
+    /// [`GpuWideNode`]s, traversed by `bvh_wide.glsl` (`"wide"`): a third of the node visits,
+    /// but slower on the H200 measured (bench/pathtrace.md), so not the default.
     Wide,
     /// [`GpuNode`]s, traversed by `bvh.glsl` (`"binary"`).
+    #[default]
     Binary,
 }
 
