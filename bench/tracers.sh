@@ -29,7 +29,7 @@ run() {
         | grep -E "frame time|path tracer|tracer|rebatch:|Vulkan device|error|panick|WARN" || echo "(no output: exit $?)"
 }
 
-# The compute tracer over both BVH layouts (GLRT_BVH: wide nodes with quantised boxes, the
+# The compute tracer over both BVH layouts (GLRT_BVH: wide nodes with quantised boxes, or
 # default, or binary nodes), then the hardware tracer.
 tracers=(compute-wide compute-binary hardware)
 # settings TRACER: its variables.

@@ -466,7 +466,6 @@ const REGION: usize = 40;
 #[test]
 fn the_converged_traced_frame_matches_the_raster_frame() {
     let frames = classified_frames();
-    let frame = &frames[3].frame;
     let stats = &frames[3].stats;
     assert_eq!((stats.classes.get(Layer), stats.classes.get(Translucent), stats.classes.get(Light)), (3, 4, 2), "{stats:?}");
     let frame = &Frame { lights: Vec::new(), ..without(&frames[3].frame, |d| d.class == Light) };

@@ -184,8 +184,13 @@ impl Renderer {
         let surfaces = self.tracing.as_ref().map(|_| Surfaces::of(frame));
         let traced_at = surfaces.as_ref().and_then(Surfaces::first);
         let rasterized = |index: usize| !surfaces.as_ref().is_some_and(|s| s.is_traced(index));
-        // Raster composite up to the traced image's place: clears, pixel operations, draws.
-        self.raster.record(frame, traced_at, &rasterized)?;
+        // Where ambient occlusion goes in a raster frame that has not had it yet.
+        let occlusion_at = (self.tracing.is_none() && self.ao.is_some() && self.occluded_frame != Some(frame.number))
+            .then(|| crate::render::ao::place(frame).map(|(at, _)| at))
+            .flatten();
+        // Raster composite up to the traced image's (or the occlusion's) place: clears, pixel
+        // operations, draws.
+        self.raster.record(frame, traced_at.or(occlusion_at), &rasterized)?;
         // The traced stages, once per frame, in place of the first traced draw.
         if let Some(tracing) = &mut self.tracing
             && let Some(surfaces) = &surfaces

@@ -24,6 +24,8 @@ const BACK: f32 = -5.0;
 const RIGHT: f32 = 3.0;
 /// The camera looks down by this many degrees.
 const PITCH: f32 = 25.0;
+/// The window pixels a white HUD square covers, from and to (both axes).
+const HUD: (i32, i32) = (2, 10);
 
 /// A context drawing into a `SIZE`² drawable with ambient occlusion `ao` (`None`: off).
 fn context(ao: Option<AoSettings>) -> Context {
@@ -74,6 +76,16 @@ fn render(ctx: &mut Context, walls: bool) -> Vec<u8> {
                 quad(ctx, [[-30.0, FLOOR, BACK], [RIGHT, FLOOR, BACK], [RIGHT, 20.0, BACK], [-30.0, 20.0, BACK]]);
                 quad(ctx, [[RIGHT, FLOOR, 0.0], [RIGHT, 20.0, 0.0], [RIGHT, 20.0, BACK], [RIGHT, FLOOR, BACK]]);
             }
+            // A HUD square after the 3D draws, as games draw theirs: the occlusion goes
+            // before it, and does not darken it.
+            dispatch::glDisable(ctx, gl::GL_DEPTH_TEST);
+            dispatch::glMatrixMode(ctx, gl::GL_PROJECTION);
+            dispatch::glLoadIdentity(ctx);
+            dispatch::glOrtho(ctx, 0.0, SIZE as f64, 0.0, SIZE as f64, -1.0, 1.0);
+            dispatch::glMatrixMode(ctx, gl::GL_MODELVIEW);
+            dispatch::glLoadIdentity(ctx);
+            let (lo, hi) = (HUD.0 as f32, HUD.1 as f32);
+            quad(ctx, [[lo, lo, 0.0], [hi, lo, 0.0], [hi, hi, 0.0], [lo, hi, 0.0]]);
         }
         ctx.end_frame();
     }
@@ -127,6 +139,8 @@ fn a_box_edge_is_half_and_its_corner_three_quarters_occluded() {
     let (edge, corner) = (occlusion(&image, edge_pixel, 3), occlusion(&image, corner_pixel, 3));
     let (want_edge, want_corner) = (expected(edge_pixel, 3), expected(corner_pixel, 3));
     eprintln!("box: occlusion open floor {open:.3}, floor-wall edge {edge:.3} (expected {want_edge:.3}), corner {corner:.3} (expected {want_corner:.3})");
+    let hud = (HUD.0..HUD.1).flat_map(|y| (HUD.0..HUD.1).map(move |x| (y * SIZE + x) as usize));
+    assert!(hud.clone().all(|i| image[i] == 255), "the HUD square drawn after the 3D draws is not occluded");
     assert!(open < 0.05, "open floor {open}");
     assert!((edge - want_edge).abs() < 0.08, "edge {edge} against {want_edge}");
     assert!((corner - want_corner).abs() < 0.08, "corner {corner} against {want_corner}");
