@@ -40,7 +40,9 @@
 //!   geometries; [`instances`]: a frame's instances, surfaces and chunks; [`emitters`]: the
 //!   emissive triangles and their alias table; [`lights`]: GL lights as physical lights;
 //!   [`vertex_light`]: the direct light a vertex-lit model's colours hold, a light of its own;
-//!   [`sky`]: the sky draws as the environment cube map; [`gpu_types`]: the structures the
+//!   [`sky`]: the sky draws as the environment cube map; [`sky_distribution`]: a
+//!   distribution of directions by the sky's luminance (its sampling, not yet used by the
+//!   shaders); [`gpu_types`]: the structures the
 //!   shaders read, checked against the compiled SPIR-V;
 //!   [`shader_constants`]: flags and special values shared with the shaders as generated headers
 //!   ([`crate::render::shader_abi`]).
@@ -75,6 +77,7 @@ pub mod scene;
 pub mod settings;
 pub mod shader_constants;
 pub mod sky;
+pub mod sky_distribution;
 pub mod stats;
 pub mod surfaces;
 pub mod texels;
