@@ -141,6 +141,10 @@ pub struct GpuScene {
     pub lights: Vec<GpuLight>,
     /// The emissive triangles that next-event estimation samples ([`emitters`]).
     pub emitters: Vec<GpuEmitter>,
+    /// The sky's distribution of directions, per cell its probability and cumulative
+    /// probability ([`sky_distribution::SkyDistribution::cells`]; empty: the sky is not
+    /// sampled).
+    pub sky_cells: Vec<[f32; 2]>,
 }
 
 /// A traced frame's G-buffer and radiance, in the back end's per-pixel buffers until

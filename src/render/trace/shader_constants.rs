@@ -100,6 +100,12 @@ glsl_constants! {
     /// `GpuFrame::flags[0]`: the scene and camera are as they were last frame (the history
     /// cap is `accumulate`: accumulation while still).
     const FRAME_STILL: u32 = 16;
+    /// `GpuFrame::flags[0]`: next-event estimation samples the sky (`super::sky_distribution`,
+    /// the `SKY_DISTRIBUTION` binding holds its cells).
+    const FRAME_SKY_SAMPLED: u32 = 32;
+    /// Cells per side of a cube face in the sky's distribution of directions
+    /// (`super::sky_distribution`, `trace/sky_sampling.glsl`).
+    const SKY_CELLS: usize = 16;
     /// Tone mapping: clamp to [0, 1].
     const TONEMAP_CLAMP: u32 = 0;
     /// Tone mapping: Reinhard, x / (1 + x).

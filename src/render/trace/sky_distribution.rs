@@ -24,9 +24,7 @@
 use glam::Vec3;
 
 use super::scene::srgb_to_linear;
-
-/// Cells per side of a face.
-pub const CELLS: usize = 16;
+use super::shader_constants::SKY_CELLS as CELLS;
 
 /// The share of the mean cell weight added to every cell.
 const UNIFORM_SHARE: f64 = 0.1;
@@ -131,6 +129,12 @@ impl SkyDistribution {
             *last = 1.0;
         }
         Some(SkyDistribution { probability, cumulative })
+    }
+
+    /// Per cell, its probability and cumulative probability: the `SKY_DISTRIBUTION` records
+    /// the shaders sample (`trace/sky_sampling.glsl`).
+    pub fn cells(&self) -> Vec<[f32; 2]> {
+        self.probability.iter().zip(&self.cumulative).map(|(&p, &c)| [p, c]).collect()
     }
 
     /// A direction (unit) drawn from the distribution by the uniform numbers `u` (each in
