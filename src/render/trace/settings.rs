@@ -227,7 +227,7 @@ mod tests {
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
         assert_eq!((Settings::default().tonemap, Settings::default().lightmaps), (Tonemap::Knee, Lightmaps::Keep));
         assert_eq!(read("tracer = \"hardware\"\n", &[]).0.tracer, Tracer::Hardware);
-        assert_eq!(Settings::KEYS.len(), 15);
+        assert_eq!(Settings::KEYS.len(), 16);
     }
 
     #[test]
