@@ -138,7 +138,7 @@ impl ComputeTracer {
             tracks: Tracks::default(),
             texels: TexelPool::new(super::texels::MAX_WORDS, slots),
             texel_buffer: None,
-            sky: Some(Sky::new(device, settings.sky_size, slots)?),
+            sky: Some(Sky::new(device, settings.sky_size, if settings.sky_sampling { slots } else { 0 })?),
             pixels: None,
             counters,
             pools,

@@ -41,8 +41,8 @@
 //!   emissive triangles and their alias table; [`lights`]: GL lights as physical lights;
 //!   [`vertex_light`]: the direct light a vertex-lit model's colours hold, a light of its own;
 //!   [`sky`]: the sky draws as the environment cube map; [`sky_distribution`]: a
-//!   distribution of directions by the sky's luminance (its sampling, not yet used by the
-//!   shaders); [`gpu_types`]: the structures the
+//!   distribution of directions by the sky's luminance, which next-event estimation samples
+//!   (`shaders/trace/sky_sampling.glsl`); [`gpu_types`]: the structures the
 //!   shaders read, checked against the compiled SPIR-V;
 //!   [`shader_constants`]: flags and special values shared with the shaders as generated headers
 //!   ([`crate::render::shader_abi`]).

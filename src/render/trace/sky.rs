@@ -128,7 +128,8 @@ pub struct Sky {
 
 impl Sky {
     /// Creates the cube with faces of `size` pixels, its sampler and the read-back buffers of
-    /// `slots` frames in flight.
+    /// `slots` frames in flight (none: the sky is not sampled, [`Sky::distribution`] is
+    /// `None`).
     pub fn new(device: &Device, size: u32, slots: usize) -> Result<Sky> {
         let size = size.clamp(1, device.properties.limits.max_image_dimension_cube);
         let info = vk::ImageCreateInfo::default()
@@ -222,12 +223,15 @@ impl Sky {
             self.draw(rec, &draws, clear, alpha)?;
             self.drawn = Some(Drawn { clear, draws: draws.into_iter().cloned().collect() });
             self.version += 1;
+            if let Some((_, pending)) = self.readback.get_mut(rec.slot()) {
+                *pending = Some(self.version);
+            }
         }
         Ok(Some(self.version))
     }
 
     /// Records drawing `draws` into the six faces, each cleared to `clear` first, and copying
-    /// them into the cube.
+    /// them into the cube and into the frame slot's read-back buffer.
     fn draw(&mut self, rec: &mut Recorder<'_>, draws: &[&Draw], clear: [f32; 4], alpha: bool) -> Result<()> {
         let size = self.size;
         let faces = match &mut self.faces {
@@ -248,11 +252,7 @@ impl Sky {
             })
             .collect();
         let cube = self.cube.raw;
-        let slot = rec.slot();
-        let readback = self.readback.get_mut(slot).map(|(b, pending)| {
-            *pending = Some(self.version + 1);
-            b.raw
-        });
+        let readback = self.readback.get(rec.slot()).map(|(b, _)| b.raw);
         transition(rec, cube, &mut self.layout, vk::ImageLayout::TRANSFER_DST_OPTIMAL);
         let layers = |layer| vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: 0, base_array_layer: layer, layer_count: 1 };
         for face in 0..6 {
