@@ -3,9 +3,10 @@
 // next-event estimation at every vertex (one shadow ray per light that lights it: GL lights
 // and the light of its own vertex colours, render::trace::vertex_light; one towards a point of an
 // emissive triangle, trace/emitters.glsl, weighted against continuation rays that hit
-// emitters by multiple importance sampling), `bounces` indirect bounces and the environment
-// (trace/environment.glsl: the sky cube map or the clear colour) through every continuation
-// ray that misses (cosine-weighted diffuse or GGX visible-normal specular), and through
+// emitters by multiple importance sampling; one towards the sky, trace/sky_sampling.glsl,
+// weighted likewise against continuation rays that miss), `bounces` indirect bounces and the
+// environment (trace/environment.glsl: the sky cube map or the clear colour) through every
+// continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular), and through
 // primary rays that miss; a baked surface (render::trace::material) ends the path with its
 // emission and the light of the dynamic lights (render::trace::lights); adds its share of the
 // noisy radiance (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
@@ -30,7 +31,7 @@ layout(push_constant) uniform Pass {
 
 #include "trace/emitters.glsl"
 #include "trace/gbuffer.glsl"
-#include "trace/environment.glsl"
+#include "trace/sky_sampling.glsl"
 #include "trace/channels.glsl"
 #include "trace/gradient.glsl"
 
@@ -160,6 +161,9 @@ void trace_pixel(uvec2 pixel) {
             if (emitter_count > 0u) {
                 lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces, rng, shadow);
             }
+            if (sky_sampled()) {
+                lit += throughput * sky_light(s, v, rng, shadow);
+            }
             radiance += lit;
             if (depth == 0u) {
                 direct = lit;
@@ -194,7 +198,9 @@ void trace_pixel(uvec2 pixel) {
             // diffuse rays are read from small levels).
             cone_spread = max(cone_spread, chose_specular ? ggx_alpha(s) : 1.0);
             if (!trace_closest(origin, dir, 0.0, 1e30, hit)) {
-                radiance += throughput * environment(dir);
+                // The sky sample of this vertex found this light too (trace/sky_sampling.glsl).
+                float w = sky_sampled() ? mis_weight(pdf, sky_density(dir)) : 1.0;
+                radiance += throughput * environment(dir) * w;
                 break;
             }
             if (depth == bounces) {

@@ -39,8 +39,11 @@ glsl_constants! {
     const LAYER_CORNERS: u32 = 15;
     /// The frame's emissive triangles and their alias table (`scene.glsl`, `emitters.glsl`).
     const EMITTERS: u32 = 16;
+    /// The sky's distribution of directions: per cell, its probability and the cumulative
+    /// probability (`super::sky_distribution`, `sky_sampling.glsl`).
+    const SKY_DISTRIBUTION: u32 = 17;
     /// Number of storage-buffer bindings (`0..COUNT`).
-    const COUNT: u32 = 17;
+    const COUNT: u32 = 18;
     /// The environment cube map of the sky draws ([`super::sky`]), a combined image sampler
     /// (`environment.glsl`).
     const SKY: u32 = COUNT;

@@ -29,7 +29,7 @@ use super::resident::{NewGeometry, Resident};
 use super::scene;
 use super::settings::{KNEE, Settings, Tonemap};
 use super::shader_constants::{
-    FRAME_PERSPECTIVE, FRAME_SKY, FRAME_STILL, INSTANCE_ALPHA_TESTED, MATERIAL_LAYERS, TONEMAP_ACES, TONEMAP_CLAMP, TONEMAP_KNEE, TONEMAP_REINHARD, TRACE_GROUP,
+    FRAME_PERSPECTIVE, FRAME_SKY, FRAME_SKY_SAMPLED, FRAME_STILL, INSTANCE_ALPHA_TESTED, MATERIAL_LAYERS, TONEMAP_ACES, TONEMAP_CLAMP, TONEMAP_KNEE, TONEMAP_REINHARD, TRACE_GROUP,
 };
 use super::surfaces::Surfaces;
 use super::sky::Sky;
@@ -138,7 +138,7 @@ impl ComputeTracer {
             tracks: Tracks::default(),
             texels: TexelPool::new(super::texels::MAX_WORDS, slots),
             texel_buffer: None,
-            sky: Some(Sky::new(device, settings.sky_size)?),
+            sky: Some(Sky::new(device, settings.sky_size, if settings.sky_sampling { slots } else { 0 })?),
             pixels: None,
             counters,
             pools,
@@ -242,6 +242,7 @@ impl ComputeTracer {
         let material_slice = push(bytemuck::cast_slice(&scene.materials))?;
         let light_slice = push(bytemuck::cast_slice(&scene.lights))?;
         let emitter_slice = push(bytemuck::cast_slice(&scene.emitters))?;
+        let sky_cells_slice = push(bytemuck::cast_slice(&scene.sky_cells))?;
         let tlas_slice = push(self.settings.bvh.tlas_bytes(&self.tlas))?;
         let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
         let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(None) };
@@ -266,6 +267,7 @@ impl ComputeTracer {
         table[bindings::HISTORY as usize] = whole(&pixels.accumulation[self.parity ^ 1]);
         table[bindings::LAYER_CORNERS as usize] = (layer_corners.0, 0, layer_corners.1);
         table[bindings::EMITTERS as usize] = emitter_slice;
+        table[bindings::SKY_DISTRIBUTION as usize] = sky_cells_slice;
 
         let pool = self.pools[slot];
         // Safety (this block): the pool's sets of this slot's previous frame are finished (the
@@ -493,6 +495,10 @@ impl RayTracer for ComputeTracer {
             Some(sky) => sky.update(rec, frame)?,
             None => None,
         };
+        let sky_cells = match (&self.sky, sky) {
+            (Some(s), Some(_)) if self.settings.sky_sampling => s.distribution().map(|d| d.cells()).unwrap_or_default(),
+            _ => Vec::new(),
+        };
         signature.update(bytemuck::cast_slice(&camera.projection.to_cols_array()));
         signature.update(bytemuck::cast_slice(&environment));
         signature.update(&sky.unwrap_or(0).to_le_bytes());
@@ -532,7 +538,9 @@ impl RayTracer for ComputeTracer {
             size: [traced[0], traced[1], window[0], window[1]],
             counts: [self.frame_index, self.settings.spp.max(1), self.settings.bounces, lights.len() as u32],
             flags: [
-                tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 } | if sky.is_some() { FRAME_SKY } else { 0 } | if still { FRAME_STILL } else { 0 },
+                tonemap | if perspective { FRAME_PERSPECTIVE } else { 0 } | if sky.is_some() { FRAME_SKY } else { 0 }
+                    | if sky_cells.is_empty() { 0 } else { FRAME_SKY_SAMPLED }
+                    | if still { FRAME_STILL } else { 0 },
                 instances.len() as u32,
                 emitters.len() as u32,
                 0,
@@ -541,7 +549,7 @@ impl RayTracer for ComputeTracer {
         self.previous = Some(Previous { signature, projection, view: frame.view.map(|v| v.view) });
         self.frame_index = self.frame_index.wrapping_add(1);
         self.statistics.frames += 1;
-        Ok(GpuScene { frame: gpu_frame, instances, materials, lights, emitters })
+        Ok(GpuScene { frame: gpu_frame, instances, materials, lights, emitters, sky_cells })
     }
 
     /// Dispatches `pathtrace.comp` once per sample into the G-buffer and the accumulation

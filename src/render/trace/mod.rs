@@ -40,7 +40,9 @@
 //!   geometries; [`instances`]: a frame's instances, surfaces and chunks; [`emitters`]: the
 //!   emissive triangles and their alias table; [`lights`]: GL lights as physical lights;
 //!   [`vertex_light`]: the direct light a vertex-lit model's colours hold, a light of its own;
-//!   [`sky`]: the sky draws as the environment cube map; [`gpu_types`]: the structures the
+//!   [`sky`]: the sky draws as the environment cube map; [`sky_distribution`]: a
+//!   distribution of directions by the sky's luminance, which next-event estimation samples
+//!   (`shaders/trace/sky_sampling.glsl`); [`gpu_types`]: the structures the
 //!   shaders read, checked against the compiled SPIR-V;
 //!   [`shader_constants`]: flags and special values shared with the shaders as generated headers
 //!   ([`crate::render::shader_abi`]).
@@ -75,6 +77,7 @@ pub mod scene;
 pub mod settings;
 pub mod shader_constants;
 pub mod sky;
+pub mod sky_distribution;
 pub mod stats;
 pub mod surfaces;
 pub mod texels;
@@ -138,6 +141,10 @@ pub struct GpuScene {
     pub lights: Vec<GpuLight>,
     /// The emissive triangles that next-event estimation samples ([`emitters`]).
     pub emitters: Vec<GpuEmitter>,
+    /// The sky's distribution of directions, per cell its probability and cumulative
+    /// probability ([`sky_distribution::SkyDistribution::cells`]; empty: the sky is not
+    /// sampled).
+    pub sky_cells: Vec<[f32; 2]>,
 }
 
 /// A traced frame's G-buffer and radiance, in the back end's per-pixel buffers until

@@ -18,6 +18,7 @@
 //! lightmaps = "keep"        # "keep" or "ignore" (baked surfaces traced as reflectors)
 //! sample_emitters = true    # next-event estimation of emissive surfaces
 //! temporal = true           # temporal filter with reprojection while moving
+//! sky_sampling = true       # next-event estimation of the sky (its cube map's luminance)
 //! sky_size = 128            # faces of the sky's environment cube map, pixels, 16..=2048
 //! tracer = "auto"           # "auto", "hardware" (VK_KHR_ray_tracing_pipeline), "compute"
 //! bvh = "binary"            # the compute tracer's BVH nodes: "binary" or "wide" (8 children, quantised)
@@ -112,6 +113,9 @@ pub struct Settings {
     pub sample_emitters: bool,
     /// The temporal filter (with reprojection while the camera moves).
     pub temporal: bool,
+    /// Next-event estimation of the sky (its cube map's luminance, [`super::sky_distribution`]);
+    /// off, only continuation rays find it.
+    pub sky_sampling: bool,
     /// Width and height of each face of the environment cube map the sky draws are rendered
     /// into ([`super::sky`]), 16..=2048.
     pub sky_size: u32,
@@ -137,6 +141,7 @@ impl Default for Settings {
             lightmaps: Lightmaps::Keep,
             sample_emitters: true,
             temporal: true,
+            sky_sampling: true,
             sky_size: 128,
             tracer: Tracer::Auto,
             bvh: Layout::Binary,
@@ -168,6 +173,7 @@ impl Table for Settings {
         Key { name: "lightmaps", set: |s, v| one_of(v, &["keep", "ignore"]).map(|i| s.lightmaps = [Lightmaps::Keep, Lightmaps::Ignore][i]) },
         Key { name: "sample_emitters", set: |s, v| boolean(v).map(|b| s.sample_emitters = b) },
         Key { name: "temporal", set: |s, v| boolean(v).map(|b| s.temporal = b) },
+        Key { name: "sky_sampling", set: |s, v| boolean(v).map(|b| s.sky_sampling = b) },
         Key { name: "sky_size", set: |s, v| integer_in(v, 16..=2048).map(|x| s.sky_size = x as u32) },
         Key { name: "tracer", set: |s, v| one_of(v, &["auto", "hardware", "compute"]).map(|i| s.tracer = [Tracer::Auto, Tracer::Hardware, Tracer::Compute][i]) },
         Key { name: "bvh", set: |s, v| one_of(v, &["wide", "binary"]).map(|i| s.bvh = [Layout::Wide, Layout::Binary][i]) },
@@ -199,7 +205,7 @@ mod tests {
     #[test]
     fn every_key_is_read() {
         let body = "spp = 8\nbounces = 0\nresolution_scale = 0.5\nlight_scale = 2\nsun_direction = [0, 2, 0]\nsun_angle = 0\nlight_radius = 0.25\n\
-                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"ignore\"\nsample_emitters = false\ntemporal = false\nsky_size = 64\ntracer = \"compute\"\nbvh = \"wide\"\n";
+                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"ignore\"\nsample_emitters = false\ntemporal = false\nsky_sampling = false\nsky_size = 64\ntracer = \"compute\"\nbvh = \"wide\"\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
         let expected = Settings {
@@ -216,6 +222,7 @@ mod tests {
             lightmaps: Lightmaps::Ignore,
             sample_emitters: false,
             temporal: false,
+            sky_sampling: false,
             sky_size: 64,
             tracer: Tracer::Compute,
             bvh: Layout::Wide,
@@ -229,7 +236,7 @@ mod tests {
         assert_eq!(read("tracer = \"hardware\"\n", &[]).0.tracer, Tracer::Hardware);
         assert_eq!(read("bvh = \"binary\"\n", &[("GLRT_BVH", "wide")]).0.bvh, Layout::Wide);
         assert_eq!(Settings::default().bvh, Layout::Binary);
-        assert_eq!(Settings::KEYS.len(), 16);
+        assert_eq!(Settings::KEYS.len(), 17);
     }
 
     #[test]

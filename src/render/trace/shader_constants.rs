@@ -103,6 +103,12 @@ glsl_constants! {
     /// `GpuFrame::flags[0]`: one pixel of every 3x3 is traced with last frame's random
     /// numbers, a temporal gradient sample for the denoiser (`trace/gradient.glsl`).
     const FRAME_GRADIENTS: u32 = 32;
+    /// `GpuFrame::flags[0]`: next-event estimation samples the sky (`super::sky_distribution`,
+    /// the `SKY_DISTRIBUTION` binding holds its cells).
+    const FRAME_SKY_SAMPLED: u32 = 64;
+    /// Cells per side of a cube face in the sky's distribution of directions
+    /// (`super::sky_distribution`, `trace/sky_sampling.glsl`).
+    const SKY_CELLS: usize = 16;
     /// Tone mapping: clamp to [0, 1].
     const TONEMAP_CLAMP: u32 = 0;
     /// Tone mapping: Reinhard, x / (1 + x).

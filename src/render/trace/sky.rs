@@ -25,6 +25,12 @@
 //! tracer puts into its frame signature (temporal accumulation restarts when the sky
 //! changes). The cube is what rays see; the visible sky stays the rasterized one (the
 //! composite keeps the framebuffer where the primary ray missed).
+//!
+//! Each time the cube is drawn its faces are also copied into a host-readable buffer of the
+//! frame slot; when that slot comes round again (its frame finished) and the cube still holds
+//! that content, the faces are read and become the sky's distribution of directions for
+//! next-event estimation ([`super::sky_distribution`], [`Sky::distribution`]): a frame slot
+//! late, which changes which directions are sampled, never the expected image.
 
 use std::sync::Arc;
 
@@ -34,7 +40,10 @@ use glam::{Mat3, Mat4};
 use crate::frame::class::{DrawClass, orthographic};
 use crate::frame::state::Winding;
 use crate::frame::{Clear, Draw, Frame, Framebuffer, RasterState};
-use crate::render::raster::device::{Check, Device, Image, Result};
+use gpu_allocator::MemoryLocation;
+
+use super::sky_distribution::SkyDistribution;
+use crate::render::raster::device::{Buffer, Check, Device, Image, Result};
 use crate::render::raster::renderer::Recorder;
 use crate::render::raster::target::{Plane, Target};
 use crate::render::raster::textures::image_barrier;
@@ -109,11 +118,19 @@ pub struct Sky {
     drawn: Option<Drawn>,
     /// Times the cube was drawn: the version [`Sky::update`] returns.
     version: u64,
+    /// Per frame slot, the faces copied when the slot last drew the cube (host-readable, six
+    /// faces of `size`² RGBA8 texels in layer order) and the version they hold, until read.
+    readback: Vec<(Buffer, Option<u64>)>,
+    /// The distribution of the faces read back last, and their version (`None`: none yet, or
+    /// a black sky).
+    distribution: Option<(u64, SkyDistribution)>,
 }
 
 impl Sky {
-    /// Creates the cube with faces of `size` pixels, and its sampler.
-    pub fn new(device: &Device, size: u32) -> Result<Sky> {
+    /// Creates the cube with faces of `size` pixels, its sampler and the read-back buffers of
+    /// `slots` frames in flight (none: the sky is not sampled, [`Sky::distribution`] is
+    /// `None`).
+    pub fn new(device: &Device, size: u32, slots: usize) -> Result<Sky> {
         let size = size.clamp(1, device.properties.limits.max_image_dimension_cube);
         let info = vk::ImageCreateInfo::default()
             .flags(vk::ImageCreateFlags::CUBE_COMPATIBLE)
@@ -141,7 +158,39 @@ impl Sky {
                 return Err(e);
             }
         };
-        Ok(Sky { size, cube, sampler, layout: vk::ImageLayout::UNDEFINED, faces: None, drawn: None, version: 0 })
+        let mut sky = Sky { size, cube, sampler, layout: vk::ImageLayout::UNDEFINED, faces: None, drawn: None, version: 0, readback: Vec::new(), distribution: None };
+        let bytes = u64::from(size) * u64::from(size) * 4 * 6;
+        for _ in 0..slots {
+            match device.create_buffer("glrt sky read-back", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu) {
+                Ok(b) => sky.readback.push((b, None)),
+                Err(e) => {
+                    sky.destroy(device);
+                    return Err(e);
+                }
+            }
+        }
+        Ok(sky)
+    }
+
+    /// The distribution of directions of the cube's current content, once its faces were read
+    /// back (`None` before, or for a black sky).
+    pub fn distribution(&self) -> Option<&SkyDistribution> {
+        self.distribution.as_ref().filter(|(version, _)| *version == self.version).map(|(_, d)| d)
+    }
+
+    /// Reads the faces frame slot `slot` copied (its frame has finished) into the
+    /// distribution, when the cube still holds them.
+    fn read_back(&mut self, slot: usize) {
+        let size = self.size as usize;
+        let Some((buffer, pending)) = self.readback.get_mut(slot) else { return };
+        let Some(version) = pending.take() else { return };
+        if version != self.version {
+            return;
+        }
+        let bytes = buffer.mapped();
+        let face = size * size * 4;
+        let faces: [&[u8]; 6] = std::array::from_fn(|f| &bytes[f * face..(f + 1) * face]);
+        self.distribution = SkyDistribution::build(&faces, size).map(|d| (version, d));
     }
 
     /// The descriptor of the cube, for the tracing pass (after [`Sky::update`]).
@@ -154,6 +203,7 @@ impl Sky {
     /// (from 1, changes whenever the cube is drawn again), or `None` when the frame has no sky
     /// draws: the environment is then the clear colour alone.
     pub fn update(&mut self, rec: &mut Recorder<'_>, frame: &Frame) -> Result<Option<u64>> {
+        self.read_back(rec.slot());
         if self.layout == vk::ImageLayout::UNDEFINED {
             transition(rec, self.cube.raw, &mut self.layout, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
         }
@@ -173,12 +223,15 @@ impl Sky {
             self.draw(rec, &draws, clear, alpha)?;
             self.drawn = Some(Drawn { clear, draws: draws.into_iter().cloned().collect() });
             self.version += 1;
+            if let Some((_, pending)) = self.readback.get_mut(rec.slot()) {
+                *pending = Some(self.version);
+            }
         }
         Ok(Some(self.version))
     }
 
     /// Records drawing `draws` into the six faces, each cleared to `clear` first, and copying
-    /// them into the cube.
+    /// them into the cube and into the frame slot's read-back buffer.
     fn draw(&mut self, rec: &mut Recorder<'_>, draws: &[&Draw], clear: [f32; 4], alpha: bool) -> Result<()> {
         let size = self.size;
         let faces = match &mut self.faces {
@@ -199,6 +252,7 @@ impl Sky {
             })
             .collect();
         let cube = self.cube.raw;
+        let readback = self.readback.get(rec.slot()).map(|(b, _)| b.raw);
         transition(rec, cube, &mut self.layout, vk::ImageLayout::TRANSFER_DST_OPTIMAL);
         let layers = |layer| vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::COLOR, mip_level: 0, base_array_layer: layer, layer_count: 1 };
         for face in 0..6 {
@@ -222,13 +276,31 @@ impl Sky {
             unsafe {
                 rec.device.raw.cmd_copy_image(rec.cmd, faces.color.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, cube, vk::ImageLayout::TRANSFER_DST_OPTIMAL, &[region])
             };
+            if let Some(buffer) = readback {
+                let copy = vk::BufferImageCopy {
+                    buffer_offset: face as u64 * u64::from(size) * u64::from(size) * 4,
+                    buffer_row_length: 0,
+                    buffer_image_height: 0,
+                    image_subresource: layers(0),
+                    image_offset: vk::Offset3D::default(),
+                    image_extent: vk::Extent3D { width: size, height: size, depth: 1 },
+                };
+                // Safety: the face is in the layout named, outside a rendering pass; the
+                // buffer holds six faces and lives until the slot's frame is read back.
+                unsafe { rec.device.raw.cmd_copy_image_to_buffer(rec.cmd, faces.color.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, buffer, &[copy]) };
+            }
         }
+        // Safety: outside a rendering pass.
+        unsafe { super::compute::barrier(&rec.device.raw, rec.cmd, vk::PipelineStageFlags2::TRANSFER, vk::PipelineStageFlags2::HOST) };
         transition(rec, cube, &mut self.layout, vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL);
         Ok(())
     }
 
-    /// Frees the images and the sampler (the GPU must be idle).
+    /// Frees the images, the sampler and the read-back buffers (the GPU must be idle).
     pub fn destroy(self, device: &Device) {
+        for (buffer, _) in self.readback {
+            device.destroy_buffer(buffer);
+        }
         device.destroy_image(self.cube);
         if let Some(t) = self.faces {
             t.destroy(device);

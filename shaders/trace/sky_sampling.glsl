@@ -1,0 +1,110 @@
+// Next-event estimation of the sky (render::trace::sky_distribution, whose formulas these
+// are): a direction drawn in proportion to the sky cube map's luminance times solid angle over
+// SKY_CELLS² cells a face (a cell by the cumulative distribution, then a point uniform in the
+// cell's face coordinates), one shadow ray to infinity. Continuation rays that miss find the
+// sky too, so both strategies are weighted by the power heuristic (trace/emitters.glsl).
+// Only with FRAME_SKY_SAMPLED: the SKY_DISTRIBUTION binding then holds the cells.
+
+#ifndef TRACE_SKY_SAMPLING_GLSL
+#define TRACE_SKY_SAMPLING_GLSL
+
+#include "trace/emitters.glsl"
+#include "trace/environment.glsl"
+
+// Per cell (face · SKY_CELLS² + row · SKY_CELLS + column): its probability, and the
+// cumulative probability up to and including it.
+layout(set = TRACE_SET, binding = BINDING_SKY_DISTRIBUTION, std430) readonly buffer SkyDistribution {
+    vec2 sky_cells[];
+};
+
+const uint SKY_CELL_COUNT = 6u * uint(SKY_CELLS) * uint(SKY_CELLS);
+
+// Whether the frame samples the sky.
+bool sky_sampled() {
+    return (frame.flags.x & FRAME_SKY_SAMPLED) != 0u;
+}
+
+// The direction (not normalised) of face coordinates (s, t) of cube face `face` (Vulkan's
+// layer order, t from the top row).
+vec3 sky_face_direction(uint face, float s, float t) {
+    switch (face) {
+    case 0u: return vec3(1.0, -t, -s);
+    case 1u: return vec3(-1.0, -t, s);
+    case 2u: return vec3(s, 1.0, t);
+    case 3u: return vec3(s, -1.0, -t);
+    case 4u: return vec3(s, -t, 1.0);
+    default: return vec3(-s, -t, -1.0);
+    }
+}
+
+// The density in solid angle at face coordinates (s, t) of cell `cell`.
+float sky_cell_density(uint cell, float s, float t) {
+    float area = (2.0 / float(SKY_CELLS)) * (2.0 / float(SKY_CELLS));
+    float r2 = 1.0 + s * s + t * t;
+    return sky_cells[cell].x / area * r2 * sqrt(r2);
+}
+
+// The density in solid angle with which sky_sample draws direction d (Vulkan's cube map face
+// selection).
+float sky_density(vec3 d) {
+    vec3 a = abs(d);
+    uint face;
+    float sc, tc, ma;
+    if (a.x >= a.y && a.x >= a.z) {
+        face = d.x > 0.0 ? 0u : 1u;
+        sc = d.x > 0.0 ? -d.z : d.z;
+        tc = -d.y;
+        ma = a.x;
+    } else if (a.y >= a.z) {
+        face = d.y > 0.0 ? 2u : 3u;
+        sc = d.x;
+        tc = d.y > 0.0 ? d.z : -d.z;
+        ma = a.y;
+    } else {
+        face = d.z > 0.0 ? 4u : 5u;
+        sc = d.z > 0.0 ? d.x : -d.x;
+        tc = -d.y;
+        ma = a.z;
+    }
+    float s = sc / ma, t = tc / ma;
+    uvec2 index = uvec2(clamp(floor((vec2(s, t) + 1.0) * 0.5 * float(SKY_CELLS)), 0.0, float(SKY_CELLS) - 1.0));
+    return sky_cell_density(face * uint(SKY_CELLS) * uint(SKY_CELLS) + index.y * uint(SKY_CELLS) + index.x, s, t);
+}
+
+// A direction (unit) drawn by the uniform numbers u; returns its density in solid angle.
+float sky_sample(vec3 u, out vec3 dir) {
+    // The first cell whose cumulative probability exceeds u.x.
+    uint low = 0u, high = SKY_CELL_COUNT - 1u;
+    while (low < high) {
+        uint mid = (low + high) / 2u;
+        if (sky_cells[mid].y <= u.x) {
+            low = mid + 1u;
+        } else {
+            high = mid;
+        }
+    }
+    uint cells = uint(SKY_CELLS);
+    uint face = low / (cells * cells), row = low / cells % cells, column = low % cells;
+    float s = 2.0 * (float(column) + u.y) / float(SKY_CELLS) - 1.0;
+    float t = 2.0 * (float(row) + u.z) / float(SKY_CELLS) - 1.0;
+    dir = normalize(sky_face_direction(face, s, t));
+    return sky_cell_density(low, s, t);
+}
+
+// The sky's light reflected towards v at s from one sky sample (its shadow ray counted in
+// `shadow_rays`), weighted against the continuation ray, which finds the sky where it misses.
+vec3 sky_light(Surface s, vec3 v, inout Rng rng, inout uint shadow_rays) {
+    vec3 l;
+    float density = sky_sample(vec3(rng_next2(rng), rng_next(rng)), l);
+    vec3 f = brdf_eval_cos(s, v, l);
+    if (density <= 0.0 || all(equal(f, vec3(0.0)))) {
+        return vec3(0.0);
+    }
+    shadow_rays += 1u;
+    if (trace_any(offset_ray(s.position, s.geometric), l, 0.0, 1e30)) {
+        return vec3(0.0);
+    }
+    return f * environment(l) * (mis_weight(density, brdf_pdf(s, v, l)) / density);
+}
+
+#endif
