@@ -326,17 +326,8 @@ mod tests {
     /// Selection" and "Cube Map Face Coordinates"): the layer and (s, t) in 0..=1 that
     /// direction `d` samples.
     fn vulkan_cube_lookup(d: Vec3) -> (usize, f32, f32) {
-        let a = d.abs();
-        let (face, sc, tc, ma) = if a.x >= a.y && a.x >= a.z {
-            if d.x > 0.0 { (0, -d.z, -d.y, a.x) } else { (1, d.z, -d.y, a.x) }
-        } else if a.y >= a.z {
-            if d.y > 0.0 { (2, d.x, d.z, a.y) } else { (3, d.x, -d.z, a.y) }
-        } else if d.z > 0.0 {
-            (4, d.x, -d.y, a.z)
-        } else {
-            (5, -d.x, -d.y, a.z)
-        };
-        (face, 0.5 * (sc / ma + 1.0), 0.5 * (tc / ma + 1.0))
+        let (face, s, t) = crate::render::trace::sky_distribution::face_coordinates(d);
+        (face, 0.5 * (s + 1.0), 0.5 * (t + 1.0))
     }
 
     /// Where direction `d` lands in the image of face `face` drawn with [`face_projection`]:
