@@ -27,7 +27,7 @@
 use glam::Vec3;
 
 use super::bvh::Layout;
-use crate::config::{Key, Table, direction, integer_in, number, number_in, one_of, shown};
+use crate::config::{Key, Table, direction, integer_in, number, number_in, one_of, switch};
 
 /// Where the knee tone curve ([`Tonemap::Knee`]) leaves the identity: linear radiance 0.8
 /// (display value 0.906, 231 of 255).
@@ -150,10 +150,6 @@ impl Default for Settings {
 }
 
 /// A boolean.
-fn boolean(value: &toml::Value) -> Result<bool, String> {
-    value.as_bool().ok_or_else(|| format!("expected true or false, found {}", shown(value)))
-}
-
 impl Table for Settings {
     const NAME: &'static str = "pathtrace";
     const KEYS: &'static [Key<Settings>] = &[
@@ -171,9 +167,9 @@ impl Table for Settings {
         Key { name: "exposure", set: |s, v| number_in(v, -10.0..=10.0).map(|x| s.exposure = x as f32) },
         Key { name: "accumulate", set: |s, v| integer_in(v, 1..=65536).map(|x| s.accumulate = x as u32) },
         Key { name: "lightmaps", set: |s, v| one_of(v, &["keep", "ignore"]).map(|i| s.lightmaps = [Lightmaps::Keep, Lightmaps::Ignore][i]) },
-        Key { name: "sample_emitters", set: |s, v| boolean(v).map(|b| s.sample_emitters = b) },
-        Key { name: "temporal", set: |s, v| boolean(v).map(|b| s.temporal = b) },
-        Key { name: "sky_sampling", set: |s, v| boolean(v).map(|b| s.sky_sampling = b) },
+        Key { name: "sample_emitters", set: |s, v| switch(v).map(|b| s.sample_emitters = b) },
+        Key { name: "temporal", set: |s, v| switch(v).map(|b| s.temporal = b) },
+        Key { name: "sky_sampling", set: |s, v| switch(v).map(|b| s.sky_sampling = b) },
         Key { name: "sky_size", set: |s, v| integer_in(v, 16..=2048).map(|x| s.sky_size = x as u32) },
         Key { name: "tracer", set: |s, v| one_of(v, &["auto", "hardware", "compute"]).map(|i| s.tracer = [Tracer::Auto, Tracer::Hardware, Tracer::Compute][i]) },
         Key { name: "bvh", set: |s, v| one_of(v, &["wide", "binary"]).map(|i| s.bvh = [Layout::Wide, Layout::Binary][i]) },
@@ -258,8 +254,8 @@ mod tests {
             ("exposure = -10.5", "exposure: expected a number in -10..=10, found -10.5"),
             ("accumulate = 0", "accumulate: expected an integer in 1..=65536, found 0"),
             ("lightmaps = true", "lightmaps: expected one of \"keep\", \"ignore\", found true"),
-            ("sample_emitters = \"yes\"", "sample_emitters: expected true or false, found \"yes\""),
-            ("temporal = 1", "temporal: expected true or false, found 1"),
+            ("sample_emitters = \"yes\"", "sample_emitters: expected true, false, 1 or 0, found \"yes\""),
+            ("temporal = 2", "temporal: expected true, false, 1 or 0, found 2"),
             ("sky_size = 8", "sky_size: expected an integer in 16..=2048, found 8"),
             ("bvh = \"quad\"", "bvh: expected one of \"wide\", \"binary\", found \"quad\""),
         ];

@@ -27,10 +27,13 @@
 //! composite keeps the framebuffer where the primary ray missed).
 //!
 //! Each time the cube is drawn its faces are also copied into a host-readable buffer of the
-//! frame slot; when that slot comes round again (its frame finished) and the cube still holds
-//! that content, the faces are read and become the sky's distribution of directions for
-//! next-event estimation ([`super::sky_distribution`], [`Sky::distribution`]): a frame slot
-//! late, which changes which directions are sampled, never the expected image.
+//! frame slot; when that slot comes round again (its frame finished) the faces are read and
+//! become the sky's distribution of directions for next-event estimation
+//! ([`super::sky_distribution`], [`Sky::distribution`]). That distribution may describe an
+//! earlier content of the cube (a frame slot late; the cube is redrawn every frame while the
+//! camera turns, since it is in eye space): that changes which directions are sampled, never
+//! the expected image, because the shaders weigh each sample by the density of the same
+//! distribution it was drawn from and every cell keeps a share of uniform sampling.
 
 use std::sync::Arc;
 
@@ -119,11 +122,10 @@ pub struct Sky {
     /// Times the cube was drawn: the version [`Sky::update`] returns.
     version: u64,
     /// Per frame slot, the faces copied when the slot last drew the cube (host-readable, six
-    /// faces of `size`² RGBA8 texels in layer order) and the version they hold, until read.
-    readback: Vec<(Buffer, Option<u64>)>,
-    /// The distribution of the faces read back last, and their version (`None`: none yet, or
-    /// a black sky).
-    distribution: Option<(u64, SkyDistribution)>,
+    /// faces of `size`² RGBA8 texels in layer order), and whether they are waiting to be read.
+    readback: Vec<(Buffer, bool)>,
+    /// The distribution of the faces read back last (`None`: none yet, or a black sky).
+    distribution: Option<SkyDistribution>,
 }
 
 impl Sky {
@@ -162,7 +164,7 @@ impl Sky {
         let bytes = u64::from(size) * u64::from(size) * 4 * 6;
         for _ in 0..slots {
             match device.create_buffer("glrt sky read-back", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu) {
-                Ok(b) => sky.readback.push((b, None)),
+                Ok(b) => sky.readback.push((b, false)),
                 Err(e) => {
                     sky.destroy(device);
                     return Err(e);
@@ -172,25 +174,24 @@ impl Sky {
         Ok(sky)
     }
 
-    /// The distribution of directions of the cube's current content, once its faces were read
-    /// back (`None` before, or for a black sky).
+    /// The distribution of directions of the cube's content as last read back (the current
+    /// content or an earlier one; `None` before the first read-back, or for a black sky).
     pub fn distribution(&self) -> Option<&SkyDistribution> {
-        self.distribution.as_ref().filter(|(version, _)| *version == self.version).map(|(_, d)| d)
+        self.distribution.as_ref()
     }
 
     /// Reads the faces frame slot `slot` copied (its frame has finished) into the
-    /// distribution, when the cube still holds them.
+    /// distribution.
     fn read_back(&mut self, slot: usize) {
         let size = self.size as usize;
         let Some((buffer, pending)) = self.readback.get_mut(slot) else { return };
-        let Some(version) = pending.take() else { return };
-        if version != self.version {
+        if !std::mem::take(pending) {
             return;
         }
         let bytes = buffer.mapped();
         let face = size * size * 4;
         let faces: [&[u8]; 6] = std::array::from_fn(|f| &bytes[f * face..(f + 1) * face]);
-        self.distribution = SkyDistribution::build(&faces, size).map(|d| (version, d));
+        self.distribution = SkyDistribution::build(&faces, size);
     }
 
     /// The descriptor of the cube, for the tracing pass (after [`Sky::update`]).
@@ -224,7 +225,7 @@ impl Sky {
             self.drawn = Some(Drawn { clear, draws: draws.into_iter().cloned().collect() });
             self.version += 1;
             if let Some((_, pending)) = self.readback.get_mut(rec.slot()) {
-                *pending = Some(self.version);
+                *pending = true;
             }
         }
         Ok(Some(self.version))
