@@ -5,5 +5,6 @@
 #[path = "../lavapipe/mod.rs"]
 mod lavapipe;
 
+mod direct;
 mod form_factors;
 mod gather;

@@ -16,7 +16,8 @@ use glam::Vec3;
 use glrt::frame::FrameSink;
 use glrt::render::radiosity::form_factors::{self, FormFactors};
 use glrt::render::radiosity::compress::CompressedMatrix;
-use glrt::render::radiosity::gpu::gather::{Gather, GatherTime, synthetic};
+use glrt::render::radiosity::gpu::gather::{Gather, synthetic};
+use glrt::render::radiosity::gpu::pass::DispatchTime;
 use glrt::render::radiosity::patches::Patches;
 use glrt::render::radiosity::precompute;
 use glrt::render::radiosity::settings::Settings;
@@ -103,13 +104,13 @@ pub fn time_synthetic(n: usize) -> Result<(), String> {
 /// `device`; prints the best times.
 fn time_products(device: &Device, m: &CompressedMatrix, primary: &[Vec3]) {
     let times = Gather::new(device, m).and_then(|mut gather| {
-        let times: Result<Vec<GatherTime>, _> = (0..PRODUCTS).map(|_| gather.run(device, primary).map(|(_, t)| t)).collect();
+        let times: Result<Vec<DispatchTime>, _> = (0..PRODUCTS).map(|_| gather.run(device, primary).map(|(_, t)| t)).collect();
         gather.destroy(device);
         times
     });
     match times {
         Ok(times) => {
-            let best = |f: &dyn Fn(&GatherTime) -> Option<f64>| times.iter().filter_map(f).fold(f64::INFINITY, f64::min);
+            let best = |f: &dyn Fn(&DispatchTime) -> Option<f64>| times.iter().filter_map(f).fold(f64::INFINITY, f64::min);
             let gpu = best(&|t| t.gpu.map(|d| d.as_secs_f64() * 1e3));
             let gpu = if gpu.is_finite() { format!("{gpu:.3} ms on the GPU") } else { "no GPU timestamps on this device".to_owned() };
             println!("per-frame product on {}: best of {PRODUCTS}: {:.3} ms wall, {gpu}", device.name(), best(&|t| Some(t.wall.as_secs_f64() * 1e3)));
