@@ -17,7 +17,8 @@
 //!
 //! Per frame, [`gpu::direct`] lights the patches (shadow rays to the frame's [`lights`], in
 //! the world frame) and adds their emission, and [`gpu::gather`] multiplies the compressed
-//! matrix (its BC1 image sampled by the device) with that primary radiosity. Not yet here:
+//! matrix (its BC1 image sampled by the device) with that primary radiosity, the two run in
+//! turn by [`gpu::update`]. Not yet here:
 //! the transfer to surfaces and the tracer.
 
 pub mod bc1;

@@ -42,6 +42,7 @@ use glam::{Mat4, Vec3};
 
 use super::gpu_types::GpuLight;
 use super::scene::srgb_to_linear;
+use super::settings::Settings;
 use crate::frame::class::DynamicLight;
 use crate::frame::{Draw, Frame};
 use crate::frame::state::Light;
@@ -62,6 +63,13 @@ pub struct LightSettings {
 impl Default for LightSettings {
     fn default() -> LightSettings {
         LightSettings { scale: 1.0, sun_angle: 0.53, sun_direction: None, radius: 0.0 }
+    }
+}
+
+impl LightSettings {
+    /// The conversion the tracer's `settings` ask for.
+    pub fn of(settings: &Settings) -> LightSettings {
+        LightSettings { scale: settings.light_scale, sun_angle: settings.sun_angle, sun_direction: settings.sun_direction, radius: settings.light_radius }
     }
 }
 
