@@ -101,12 +101,27 @@ const LAYOUTS: &[LayoutFile] = &[
             ("denoise/atrous.comp", &[mirror("Signal", Rust::SizeConstant("SIGNAL_BYTES"))]),
         ],
     },
-    // render::radiosity::gpu::form_factors
+    // render::radiosity::gpu::scene
     LayoutFile {
-        name: "radiosity_gpu_types",
+        name: "radiosity_scene_types",
+        shaders: &[
+            ("radiosity/form_factors.comp", &[mirror("Patch", Rust::Struct("GpuPatch")), mirror("PatchTriangle", Rust::Struct("GpuPatchTriangle"))]),
+            ("radiosity/direct.comp", &[mirror("Patch", Rust::Struct("GpuPatch")), mirror("PatchTriangle", Rust::Struct("GpuPatchTriangle"))]),
+        ],
+    },
+    // render::radiosity::gpu::form_factors
+    LayoutFile { name: "radiosity_gpu_types", shaders: &[("radiosity/form_factors.comp", &[mirror("FormFactorPass", Rust::Struct("GpuPass"))])] },
+    // render::radiosity::gpu::direct
+    LayoutFile {
+        name: "radiosity_direct_types",
         shaders: &[(
-            "radiosity/form_factors.comp",
-            &[mirror("Patch", Rust::Struct("GpuPatch")), mirror("PatchTriangle", Rust::Struct("GpuPatchTriangle")), mirror("FormFactorPass", Rust::Struct("GpuPass"))],
+            "radiosity/direct.comp",
+            &[
+                mirror("Light", Rust::Struct("GpuLight")),
+                mirror("PatchSurface", Rust::Struct("GpuPatchSurface")),
+                mirror("PatchLight", Rust::Struct("GpuPatchLight")),
+                mirror("DirectPass", Rust::Struct("GpuDirectPass")),
+            ],
         )],
     },
     // render::radiosity::gpu::gather

@@ -15,34 +15,11 @@ bool trace_alpha_accept(uint instance, uint triangle, vec2 bary) {
 }
 
 #include "trace/bvh.glsl"
-#include "generated/radiosity_constants.glsl"
+#include "radiosity/patch.glsl"
 
 layout(local_size_x = RADIOSITY_GROUP) in;
 
 #define PI 3.14159265358979
-
-struct Patch {
-    vec3 position;   // area-weighted centroid
-    float area;
-    vec3 normal;     // unit normal of the front side (zero: degenerate, an empty row)
-    uint first;      // first triangle in patch_triangles
-    uint count;      // its triangles
-    uint pad0;
-    uint pad1;
-    uint pad2;
-};
-
-struct PatchTriangle {
-    vec4 v[3];       // corners (xyz), front side counter-clockwise
-};
-
-layout(set = TRACE_SET, binding = RADIOSITY_BINDING_PATCHES, std430) readonly buffer Patches {
-    Patch patches[];
-};
-
-layout(set = TRACE_SET, binding = RADIOSITY_BINDING_PATCH_TRIANGLES, std430) readonly buffer PatchTriangles {
-    PatchTriangle patch_triangles[];
-};
 
 layout(set = TRACE_SET, binding = RADIOSITY_BINDING_ROWS, std430) writeonly buffer Rows {
     float rows[];
@@ -55,24 +32,10 @@ layout(push_constant) uniform FormFactorPass {
     uint pad;
 } pass;
 
-// How far a point is moved off its surface (form_factors::offset).
-float lift_of(vec3 position, float area) {
-    vec3 a = abs(position);
-    return 1.0e-3 * sqrt(area) + 1.0e-6 * max(a.x, max(a.y, a.z));
-}
-
-vec3 corner(uint t, uint k) {
-    return patch_triangles[t].v[k].xyz;
-}
-
 vec3 face_normal(uint t) {
     vec3 c = cross(corner(t, 1u) - corner(t, 0u), corner(t, 2u) - corner(t, 0u));
     float len = length(c);
     return len > 0.0 ? c / len : vec3(0.0);
-}
-
-float triangle_area(uint t) {
-    return 0.5 * length(cross(corner(t, 1u) - corner(t, 0u), corner(t, 2u) - corner(t, 0u)));
 }
 
 // Triangle t clipped to the half-space in front of the plane through p with normal n
@@ -183,15 +146,13 @@ float visible_fraction(Patch source, vec3 p, vec3 n, uint visible, float margin)
 
 // F_ij: the form factor from receiver i to source j, averaged over i's points.
 float form_factor(Patch receiver, Patch source) {
-    vec3 lift = receiver.normal * lift_of(receiver.position, receiver.area);
     float margin = lift_of(source.position, source.area);
-    uint points = min(receiver.count, RADIOSITY_RECEIVER_POINTS);
+    uint points = receiver_points(receiver);
     float sum = 0.0;
     float total = 0.0;
     for (uint k = 0u; k < points; k++) {
-        uint r = receiver.first + k;
-        vec3 p = (corner(r, 0u) + corner(r, 1u) + corner(r, 2u)) / 3.0 + lift;
-        float weight = triangle_area(r);
+        vec3 p = receiver_point(receiver, k);
+        float weight = triangle_area(receiver.first + k);
         total += weight;
         float unoccluded = 0.0;
         uint visible = 0u;

@@ -78,20 +78,11 @@ vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout
             distance = d;
             incident = light.radiance.rgb / d2;
         }
-        // A light of limited reach (params.z > 0: a dynamic light's radius) fades to nothing
-        // there, smoothly: (1 - (d / reach)^4)^2 (Karis 2013, "Real Shading in Unreal Engine 4").
-        if (light.params.z > 0.0) {
-            float x = d / light.params.z;
-            float fade = clamp(1.0 - x * x * x * x, 0.0, 1.0);
-            incident *= fade * fade;
+        float falloff = light_falloff(light, d, axis);
+        if (falloff == 0.0) {
+            return vec3(0.0);
         }
-        if (light.spot.w > -1.5) {
-            float c = dot(-axis, light.spot.xyz);
-            if (c < light.spot.w) {
-                return vec3(0.0);
-            }
-            incident *= light.params.x > 0.0 ? pow(max(c, 0.0), light.params.x) : 1.0;
-        }
+        incident *= falloff;
     }
     // The light of a model's vertex colours is the game's Lambertian lighting (divided by
     // the hue the model's albedo keeps, render::trace::vertex_light): it lights the diffuse

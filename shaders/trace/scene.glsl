@@ -9,6 +9,7 @@
 #include "generated/trace_constants.glsl"
 #include "trace/bindings.glsl"
 #include "trace/instance.glsl"
+#include "trace/light.glsl"
 
 layout(set = TRACE_SET, binding = BINDING_FRAME, std430) readonly buffer TraceFrameBlock {
     mat4 projection;            // eye to clip, this frame
@@ -98,16 +99,6 @@ struct Emitter {
 
 layout(set = TRACE_SET, binding = BINDING_EMITTERS, std430) readonly buffer Emitters {
     Emitter emitters[];
-};
-
-struct Light {
-    vec4 position;  // eye space; w = 0: directional, xyz = unit direction towards the light
-    vec4 radiance;  // directional: irradiance at normal incidence; point: intensity (rgb); a: sphere radius (0: a point)
-    vec4 spot;      // unit direction the spot points at; w: cos(cutoff), or -2 without a spot
-    vec4 params;    // x: spot exponent; y: cos of a directional light's angular radius;
-                    // z: directional: shadow ray length (0: to the light); point: reach, beyond which
-                    // it fades to nothing (0: unlimited); w: 0, or 1 + the only instance lit,
-                    // or -1: a dynamic light, which baked surfaces reflect too
 };
 
 layout(set = TRACE_SET, binding = BINDING_LIGHTS, std430) readonly buffer Lights {

@@ -77,11 +77,13 @@ enum Command {
     Radiosity {
         /// Only the compressed matrix the renderer uses: read from the cache
         /// ($XDG_CACHE_HOME/glrt/radiosity/) when it holds this world's, else computed and
-        /// written there
+        /// written there; then the per-frame update (direct light and product) under the last
+        /// frame's lights, timed on the device
         #[arg(long)]
         matrix: bool,
-        /// Instead of a capture's matrix, time the per-frame product of a synthetic compressed
-        /// matrix of N patches on the device (GLRT_DEVICE)
+        /// Instead of a capture's matrix, time the per-frame update (direct light and product)
+        /// of about N patches (a closed box lit by four point lights, a synthetic compressed
+        /// matrix) on the device (GLRT_DEVICE)
         #[arg(long, value_name = "N", conflicts_with_all = ["matrix", "file"])]
         synthetic: Option<usize>,
         /// The capture file.

@@ -3,7 +3,8 @@
 //! `GLRT_*`): times, sizes and errors as Markdown (`glrt::render::radiosity::precompute`).
 //! With `--matrix`, only the compressed matrix the renderer uses, read from the disk cache
 //! when it holds it, else computed and written there; it says which and how long it took,
-//! then times the per-frame product on the device (`radiosity::gpu::gather`).
+//! then times the per-frame update on the device (`radiosity::gpu::update`: the patches' direct
+//! light under the last frame's lights, then the product with the matrix).
 //!
 //! The form factors are computed on the Vulkan device (`GLRT_DEVICE`) with a progress bar;
 //! without one, or when it fails, on the CPU, with a message saying why.
@@ -14,24 +15,30 @@ use std::time::Instant;
 use glam::Vec3;
 
 use glrt::frame::FrameSink;
-use glrt::render::radiosity::form_factors::{self, FormFactors};
+use glrt::render::radiosity;
 use glrt::render::radiosity::compress::CompressedMatrix;
-use glrt::render::radiosity::gpu::gather::{Gather, GatherTime, synthetic};
+use glrt::render::radiosity::form_factors::{self, FormFactors};
+use glrt::render::radiosity::gpu::gather::synthetic;
+use glrt::render::radiosity::gpu::update::{Update, UpdateTime};
 use glrt::render::radiosity::patches::Patches;
 use glrt::render::radiosity::precompute;
 use glrt::render::radiosity::settings::Settings;
+use glrt::render::radiosity::test_scenes::closed_box;
 use glrt::render::raster::device::Device;
+use glrt::render::trace::gpu_types::GpuLight;
+use glrt::render::trace::lights::LightSettings;
 use glrt::replay::{self, reader::Capture};
 
 use crate::progress::counted;
 
-/// Keeps the static world of the last frame presented.
+/// The static world of the last frame presented, and that frame's lights in the world frame.
 #[derive(Clone, Default)]
-struct LastWorld(Arc<parking_lot::Mutex<Vec<Arc<glrt::frame::world::StaticChunk>>>>);
+struct LastWorld(Arc<parking_lot::Mutex<(Vec<Arc<glrt::frame::world::StaticChunk>>, Vec<GpuLight>)>>);
 
 impl FrameSink for LastWorld {
     fn present(&mut self, frame: glrt::frame::Frame) {
-        *self.0.lock() = frame.static_world.to_vec();
+        let lights = radiosity::lights::of_frame(&frame, &LightSettings::of(&glrt::render::trace::settings::Settings::of_process()));
+        *self.0.lock() = (frame.static_world.to_vec(), lights);
     }
 }
 
@@ -64,7 +71,7 @@ pub fn run(capture: &Capture, matrix_only: bool) -> Result<(), String> {
     let sink = world.clone();
     let options = replay::Options { sink: Some(replay::SinkWrapper(Arc::new(move |_| Box::new(sink.clone())))), ..Default::default() };
     replay::run(capture, &options)?;
-    let chunks = world.0.lock().clone();
+    let (chunks, lights) = world.0.lock().clone();
     if chunks.is_empty() {
         return Err("radiosity: the capture's last frame has no static world".to_owned());
     }
@@ -83,40 +90,66 @@ pub fn run(capture: &Capture, matrix_only: bool) -> Result<(), String> {
     let how = if r.loaded { format!("loaded from {file}") } else { format!("computed, written to {file}") };
     println!("{} patches, compressed matrix {} bytes: {how} in {:.3} s", r.patches.patches.len(), r.matrix.bytes(), start.elapsed().as_secs_f64());
     if let Some(device) = &device {
-        let primary: Vec<Vec3> = r.patches.patches.iter().map(|p| p.emission + Vec3::ONE).collect();
-        time_products(device, &r.matrix, &primary);
+        println!("{} lights in the last frame", lights.len());
+        time_updates(device, &r.patches, &r.matrix, &lights);
     }
     Ok(())
 }
 
-/// `glrt radiosity --synthetic N`: the per-frame product of [`synthetic`]'s matrix of `n`
-/// patches timed on the device.
+/// `glrt radiosity --synthetic N`: the per-frame update timed on the device, for the inside
+/// of a closed box of about `n` patches of size 1 lit by four point lights, with
+/// [`synthetic`]'s matrix of that many patches.
 pub fn time_synthetic(n: usize) -> Result<(), String> {
     let device = Device::new().map_err(|e| format!("radiosity: no Vulkan device: {e}"))?;
+    let side = ((n as f64 / 6.0).sqrt().round() as usize).max(1) as f32;
+    let p = closed_box(side, 1.0);
+    let n = p.patches.len();
     let m = synthetic(n, 0x9e37_79b9_7f4a_7c15);
-    println!("synthetic matrix: {n} patches, {} bytes of BC1, {} exact entries", m.texture.bytes(), m.sparse.len());
-    time_products(&device, &m, &vec![Vec3::ONE; n]);
+    println!("synthetic: the inside of a box of side {side}, {n} patches; matrix of {} bytes of BC1, {} exact entries", m.texture.bytes(), m.sparse.len());
+    let light = |x: f32, y: f32| GpuLight {
+        position: [x * side, y * side, 0.5 * side, 1.0],
+        radiance: [side * side; 4],
+        spot: [0.0, 0.0, -1.0, -2.0],
+        params: [0.0, 1.0, 0.0, 0.0],
+    };
+    time_updates(&device, &p, &m, &[light(0.25, 0.25), light(0.75, 0.25), light(0.25, 0.75), light(0.75, 0.75)]);
     Ok(())
 }
 
-/// Products the renderer's per-frame update timed: [`PRODUCTS`] of `m` with `primary` on
-/// `device`; prints the best times.
-fn time_products(device: &Device, m: &CompressedMatrix, primary: &[Vec3]) {
-    let times = Gather::new(device, m).and_then(|mut gather| {
-        let times: Result<Vec<GatherTime>, _> = (0..PRODUCTS).map(|_| gather.run(device, primary).map(|(_, t)| t)).collect();
-        gather.destroy(device);
-        times
+/// [`UPDATES`] per-frame updates of `patches` with matrix `m` under `lights` on `device`;
+/// prints the best times of each pass and what the last one gave.
+fn time_updates(device: &Device, patches: &Patches, m: &CompressedMatrix, lights: &[GpuLight]) {
+    let result = Update::new(device, patches, m).and_then(|mut update| {
+        let runs: Result<Vec<_>, _> = (0..UPDATES).map(|_| update.run(device, lights)).collect();
+        update.destroy(device);
+        runs
     });
-    match times {
-        Ok(times) => {
-            let best = |f: &dyn Fn(&GatherTime) -> Option<f64>| times.iter().filter_map(f).fold(f64::INFINITY, f64::min);
-            let gpu = best(&|t| t.gpu.map(|d| d.as_secs_f64() * 1e3));
-            let gpu = if gpu.is_finite() { format!("{gpu:.3} ms on the GPU") } else { "no GPU timestamps on this device".to_owned() };
-            println!("per-frame product on {}: best of {PRODUCTS}: {:.3} ms wall, {gpu}", device.name(), best(&|t| Some(t.wall.as_secs_f64() * 1e3)));
-        }
-        Err(e) => eprintln!("glrt: the per-frame product on {} failed: {e}", device.name()),
+    let runs = match result {
+        Ok(runs) => runs,
+        Err(e) => return eprintln!("glrt: the per-frame update on {} failed: {e}", device.name()),
+    };
+    let times: Vec<UpdateTime> = runs.iter().map(|(_, t)| *t).collect();
+    let best = |f: &dyn Fn(&UpdateTime) -> Option<std::time::Duration>| times.iter().filter_map(f).map(|d| d.as_secs_f64() * 1e3).fold(f64::INFINITY, f64::min);
+    let gpu = |f: &dyn Fn(&UpdateTime) -> Option<std::time::Duration>| {
+        let t = best(f);
+        if t.is_finite() { format!("{t:.3} ms on the GPU") } else { "no GPU timestamps".to_owned() }
+    };
+    println!(
+        "per-frame update on {}, best of {UPDATES}: direct light {:.3} ms wall ({}), product {:.3} ms wall ({})",
+        device.name(),
+        best(&|t| Some(t.direct.wall)),
+        gpu(&|t| t.direct.gpu),
+        best(&|t| Some(t.gather.wall)),
+        gpu(&|t| t.gather.gpu),
+    );
+    if let Some((r, _)) = runs.last() {
+        let mean = |v: &mut dyn Iterator<Item = Vec3>| v.fold(Vec3::ZERO, |a, b| a + b) / r.radiosity.len().max(1) as f32;
+        let irradiance = mean(&mut r.direct.iter().map(|l| l.irradiance));
+        let primary = mean(&mut r.direct.iter().map(|l| l.primary));
+        let radiosity = mean(&mut r.radiosity.iter().copied());
+        println!("mean over the patches: direct irradiance {irradiance:.4}, primary radiosity {primary:.4}, radiosity {radiosity:.4}");
     }
 }
 
-/// Products [`time_products`] times.
-const PRODUCTS: usize = 10;
+/// Updates [`time_updates`] times.
+const UPDATES: usize = 10;

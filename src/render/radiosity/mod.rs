@@ -15,10 +15,11 @@
 //! times, sizes and errors (`glrt radiosity`), or builds the matrix the renderer uses, kept
 //! on disk by [`cache`] (`glrt radiosity --matrix`).
 //!
-//! Per frame, [`gpu::gather`] multiplies the compressed matrix (its BC1 image sampled by the
-//! device) with the patches' primary radiosity. Not yet here: the direct light on the
-//! patches (shadow rays to the frame's lights) that gives the primary radiosity, and the
-//! transfer to surfaces and the tracer.
+//! Per frame, [`gpu::direct`] lights the patches (shadow rays to the frame's [`lights`], in
+//! the world frame) and adds their emission, and [`gpu::gather`] multiplies the compressed
+//! matrix (its BC1 image sampled by the device) with that primary radiosity, the two run in
+//! turn by [`gpu::update`]. Not yet here:
+//! the transfer to surfaces and the tracer.
 
 pub mod bc1;
 pub mod bounces;
@@ -26,6 +27,7 @@ pub mod cache;
 pub mod compress;
 pub mod form_factors;
 pub mod gpu;
+pub mod lights;
 pub mod matrix;
 pub mod patches;
 pub mod precompute;

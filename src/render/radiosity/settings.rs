@@ -1,7 +1,7 @@
 //! Radiosity's settings: `glrt.toml` `[radiosity]`, each key overridable by `GLRT_<KEY>` (read
 //! by [`crate::config`], which reports unknown keys and bad values once and keeps the
-//! default). There is no on/off key yet: nothing in a frame uses radiosity (it comes with the
-//! per-frame update). Keys carry a `radiosity_` prefix where the bare name would make an unclear
+//! default). There is no on/off key yet: the per-frame update exists (`gpu::update`) but no
+//! frame uses its result (the transfer to surfaces comes with the key). Keys carry a `radiosity_` prefix where the bare name would make an unclear
 //! variable (`GLRT_RADIOSITY_BOUNCES`, not `GLRT_BOUNCES`, which would read as the tracer's).
 //!
 //! ```toml

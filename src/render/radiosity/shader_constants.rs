@@ -1,6 +1,6 @@
 //! Numbers the radiosity form factors share between the CPU reference
 //! ([`super::form_factors`]) and the GPU version (`shaders/radiosity/form_factors.comp`), and
-//! the descriptor bindings of the GPU passes (form factors, `gather.comp`), as `generated/radiosity_constants.glsl` (see
+//! the descriptor bindings of the GPU passes (form factors, `direct.comp`, `gather.comp`), as `generated/radiosity_constants.glsl` (see
 //! [`crate::render::shader_abi`]), each named `RADIOSITY_<NAME>` there. The pass also binds
 //! the tracer's BVH buffers at their own numbers (`trace/bvh.glsl`, [`crate::render::trace::bindings`]).
 
@@ -32,7 +32,17 @@ glsl_constants! {
     /// Each patch's radiosity: primary plus k bounces.
     const BINDING_RADIOSITY: u32 = 5;
 
-    /// Invocations per workgroup of the form-factor pass (one per source patch) and of the
-    /// gathering pass (one row, these invocations across its columns).
+    /// The frame's lights in the static world's frame (`Light` of `trace/light.glsl`), for
+    /// the direct-light pass (`radiosity/direct.comp`).
+    const BINDING_LIGHTS: u32 = 23;
+    /// Each patch's albedo and emission (`PatchSurface`).
+    const BINDING_PATCH_SURFACES: u32 = 24;
+    /// Each patch's direct irradiance and primary radiosity (`PatchLight`), written by the
+    /// direct-light pass.
+    const BINDING_DIRECT: u32 = 25;
+
+    /// Invocations per workgroup of the form-factor pass (one per source patch), of the
+    /// direct-light pass (one per patch) and of the gathering pass (one row, these invocations
+    /// across its columns).
     const GROUP: u32 = 64;
 }

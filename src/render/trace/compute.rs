@@ -477,11 +477,8 @@ impl RayTracer for ComputeTracer {
         counts.build_micros = build_micros + top_started.elapsed().as_micros() as u64;
         self.statistics.scene = counts;
         self.statistics.totals.add_scene(&counts);
-        let light_settings =
-            LightSettings { scale: self.settings.light_scale, sun_angle: self.settings.sun_angle, sun_direction: self.settings.sun_direction, radius: self.settings.light_radius };
-        let gl_lights = draws.iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));
-        let mut lights: Vec<GpuLight> = lights::gather(gl_lights, frame.view.as_ref().map(|v| &v.view), &light_settings);
-        lights.extend(frame.lights.iter().map(|l| lights::dynamic(l, &light_settings)));
+        let light_settings = LightSettings::of(&self.settings);
+        let mut lights: Vec<GpuLight> = lights::of_frame(frame, draws.iter().copied(), &light_settings);
         lights.extend(recovered);
         signature.update(bytemuck::cast_slice(&lights));
 

@@ -153,7 +153,7 @@ pub struct GpuEmitter {
     pub probability: f32,
 }
 
-/// `Light` of `scene.glsl`.
+/// `Light` of `trace/light.glsl`.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuLight {

@@ -42,7 +42,9 @@ use glam::{Mat4, Vec3};
 
 use super::gpu_types::GpuLight;
 use super::scene::srgb_to_linear;
+use super::settings::Settings;
 use crate::frame::class::DynamicLight;
+use crate::frame::{Draw, Frame};
 use crate::frame::state::Light;
 
 /// How GL lights are converted.
@@ -61,6 +63,13 @@ pub struct LightSettings {
 impl Default for LightSettings {
     fn default() -> LightSettings {
         LightSettings { scale: 1.0, sun_angle: 0.53, sun_direction: None, radius: 0.0 }
+    }
+}
+
+impl LightSettings {
+    /// The conversion the tracer's `settings` ask for.
+    pub fn of(settings: &Settings) -> LightSettings {
+        LightSettings { scale: settings.light_scale, sun_angle: settings.sun_angle, sun_direction: settings.sun_direction, radius: settings.light_radius }
     }
 }
 
@@ -135,6 +144,15 @@ pub fn gather<'a>(lights: impl IntoIterator<Item = &'a Light>, view: Option<&Mat
         }
     }
     out
+}
+
+/// The lights of `frame` in its eye space: the distinct enabled GL lights of `draws` (the
+/// draws whose lighting counts) by [`gather`], then the frame's dynamic lights.
+pub fn of_frame<'a>(frame: &Frame, draws: impl IntoIterator<Item = &'a Draw>, settings: &LightSettings) -> Vec<GpuLight> {
+    let gl_lights = draws.into_iter().filter_map(|d| d.state.lighting.as_ref()).flat_map(|l| l.lights.iter().map(|(_, light)| light));
+    let mut lights = gather(gl_lights, frame.view.as_ref().map(|v| &v.view), settings);
+    lights.extend(frame.lights.iter().map(|l| dynamic(l, settings)));
+    lights
 }
 
 #[cfg(test)]

@@ -5,13 +5,11 @@
 //! does too), its exact part as sparse rows. Each product is one dispatch of one workgroup
 //! per row, timed with timestamps on GPUs.
 
-use std::time::{Duration, Instant};
-
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
 
-use super::pass::{ComputePass, ImageInput, Inputs};
+use super::pass::{ComputePass, DispatchTime, ImageInput, Inputs};
 use crate::render::radiosity::bc1::Bc1Matrix;
 use crate::render::radiosity::compress::CompressedMatrix;
 use crate::render::radiosity::sparse::SparseRows;
@@ -50,15 +48,6 @@ pub struct GpuGatherPass {
 
 include!(concat!(env!("OUT_DIR"), "/layouts/radiosity_gather_types.rs"));
 
-/// How long one product took.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct GatherTime {
-    /// On the GPU (timestamps), where the device times compute work.
-    pub gpu: Option<Duration>,
-    /// On the CPU's clock: submission to the fence, read-back included.
-    pub wall: Duration,
-}
-
 /// The compressed matrix on the device and the pass that multiplies with it.
 pub struct Gather {
     pass: ComputePass,
@@ -92,18 +81,16 @@ impl Gather {
     }
 
     /// Every patch's radiosity from its `primary` radiosity (one per patch), and the time it took.
-    pub fn run(&mut self, device: &Device, primary: &[Vec3]) -> Result<(Vec<Vec3>, GatherTime)> {
+    pub fn run(&mut self, device: &Device, primary: &[Vec3]) -> Result<(Vec<Vec3>, DispatchTime)> {
         assert_eq!(primary.len(), self.n, "one primary radiosity per patch");
         let words: Vec<[f32; 4]> = primary.iter().map(|p| p.extend(0.0).to_array()).collect();
         self.pass.host_input(0)[..self.n * 16].copy_from_slice(bytemuck::cast_slice(&words));
         let rows = self.n as u32;
         let groups = [rows.clamp(1, MAX_GROUPS), rows.div_ceil(MAX_GROUPS).max(1), 1];
-        let start = Instant::now();
-        self.pass.run(device, bytemuck::bytes_of(&self.push), groups)?;
-        let wall = start.elapsed();
+        let time = self.pass.run_timed(device, bytemuck::bytes_of(&self.push), groups)?;
         let out: &[[f32; 4]] = bytemuck::cast_slice(&self.pass.output()[..self.n * 16]);
         let radiosity = out.iter().map(|v| Vec3::new(v[0], v[1], v[2])).collect();
-        Ok((radiosity, GatherTime { gpu: self.pass.last_dispatch_time(device), wall }))
+        Ok((radiosity, time))
     }
 
     /// Frees the device's objects.

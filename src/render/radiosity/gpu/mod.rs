@@ -1,9 +1,14 @@
-//! Radiosity on the GPU: [`form_factors`] computes the form-factor matrix with the tracer's
-//! BVH traversal (the CPU version, [`super::form_factors`], is the reference the tests compare
-//! it with and the fallback without a device); [`gather`] is the per-frame product of the
-//! compressed matrix, read as a BC1 image, with the patches' primary radiosity. Both run as
-//! dispatches of the one-shot compute [`pass`].
+//! Radiosity on the GPU, over the patches' [`scene`] (their BVH, walked by the tracer's
+//! traversal): [`form_factors`] computes the form-factor matrix (the CPU version,
+//! [`super::form_factors`], is the reference the tests compare it with and the fallback
+//! without a device); per frame, [`direct`] lights the patches (shadow rays to the frame's
+//! lights) and [`gather`] multiplies the compressed matrix, read as a BC1 image, with their
+//! primary radiosity; [`update`] runs the two in turn. All run as dispatches of the one-shot
+//! compute [`pass`].
 
+pub mod direct;
 pub mod form_factors;
 pub mod gather;
 pub mod pass;
+pub mod scene;
+pub mod update;

@@ -7,11 +7,22 @@
 //! `trace/bvh.glsl` binds as in the tracer). On devices whose timestamps time compute work
 //! (GPUs; not CPU devices, as the denoiser's), each dispatch is timed.
 
+use std::time::{Duration, Instant};
+
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 
 use crate::render::raster::device::{Buffer, Check, Device, Image, Result};
 use crate::render::trace::pipelines::compute_pipeline;
+
+/// How long one dispatch took.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DispatchTime {
+    /// On the GPU (timestamps), where the device times compute work.
+    pub gpu: Option<Duration>,
+    /// On the CPU's clock: submission to the fence.
+    pub wall: Duration,
+}
 
 /// A 2D image a pass samples: one level of `format` (block-compressed formats allowed).
 pub struct ImageInput<'a> {
@@ -211,7 +222,7 @@ impl ComputePass {
     }
 
     /// The GPU time of the last dispatch, on devices that time compute work.
-    pub fn last_dispatch_time(&self, device: &Device) -> Option<std::time::Duration> {
+    pub fn last_dispatch_time(&self, device: &Device) -> Option<Duration> {
         if self.timestamps == vk::QueryPool::null() {
             return None;
         }
@@ -219,7 +230,7 @@ impl ComputePass {
         // Safety: both queries were written by the last dispatch, which was waited for.
         unsafe { device.raw.get_query_pool_results(self.timestamps, 0, &mut ticks, vk::QueryResultFlags::TYPE_64) }.ok()?;
         let nanoseconds = ticks[1].wrapping_sub(ticks[0]) as f64 * f64::from(device.properties.limits.timestamp_period);
-        Some(std::time::Duration::from_nanos(nanoseconds as u64))
+        Some(Duration::from_nanos(nanoseconds as u64))
     }
 
     /// Records `record` into the command buffer, submits it and waits for it.
@@ -260,6 +271,14 @@ impl ComputePass {
                 raw.cmd_pipeline_barrier(cmd, vk::PipelineStageFlags::COMPUTE_SHADER, vk::PipelineStageFlags::HOST, vk::DependencyFlags::empty(), &barrier, &[], &[]);
             }
         })
+    }
+
+    /// One dispatch as [`ComputePass::run`] does, and how long it took.
+    pub fn run_timed(&mut self, device: &Device, push: &[u8], groups: [u32; 3]) -> Result<DispatchTime> {
+        let start = Instant::now();
+        self.run(device, push, groups)?;
+        let wall = start.elapsed();
+        Ok(DispatchTime { gpu: self.last_dispatch_time(device), wall })
     }
 
     /// The output buffer's bytes as the last dispatch left them.
