@@ -128,7 +128,7 @@ fn noise() -> [[f32; 4]; 16] {
 /// Whether `draw` is an opaque 3D surface, the kind occlusion applies to: of a traced class,
 /// or in a frame read back before its end (not classified yet), unblended with a perspective
 /// projection.
-fn occluded(draw: &Draw) -> bool {
+pub fn occluded(draw: &Draw) -> bool {
     match draw.class {
         DrawClass::Static | DrawClass::Movable | DrawClass::Dynamic | DrawClass::Layer | DrawClass::Light => true,
         DrawClass::Unclassified => draw.state.blend.is_none() && !orthographic(&draw.projection),
