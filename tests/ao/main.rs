@@ -7,6 +7,9 @@
 //! for the rotations θ about the normal where `ρR cos θ > d1 + δ` or `ρR sin θ > d2 + δ`
 //! (at the edge line half the rotations, at the corner three quarters, as `δ → 0`), averaged
 //! over the kernel, the rotations, the pixels read and the blur.
+//!
+//! [`reference`] compares the occlusion per pixel with ray-traced ambient occlusion of the same
+//! surfaces (the box, the plane and a replayed frame of the demo).
 
 #[path = "../images/mod.rs"]
 mod images;

@@ -20,13 +20,14 @@
 //! - **cosine**: cosine-weighted hemisphere visibility within R (the occlusion an ambient
 //!   occlusion ray of a path tracer gives): the share of directions whose ray hits within R.
 //!
-//! The scenes: the box and the open plane of `main.rs`, and the last frame of the demo's
-//! capture (`tests/fixtures/demo.glrtcap`) replayed, its occlusion the ratio of the frame
-//! drawn with and without it, its reference traced over the triangles of its opaque 3D draws.
-//!
-//! Neither has the depth bias δ nor the blur: they are the occlusion itself, so the error
+//! Neither reference has the depth bias δ nor the blur: they are the occlusion itself, so the error
 //! states everything the screen-space estimate changes (depth-buffer visibility instead of
 //! rays, the range check, the bias, the finite kernel and noise tile, the blur across edges).
+//!
+//! The scenes: the box and the open plane of `main.rs` (both references), and the last frame
+//! of the demo's capture (`tests/fixtures/demo.glrtcap`) replayed (the kernel reference, every
+//! second pixel), its occlusion the ratio of the frame drawn with and without it, its
+//! reference traced over the triangles of its opaque 3D draws.
 
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
