@@ -8,7 +8,10 @@
 #   bash bench/aofog.sh BIN_DIR OUT_DIR [FRAMES]
 # BIN_DIR holds a release build's libglrt.so and glrt-demo. On the GPU machine (run tool, from
 # the repo root, carrying .gl as bench/games_gpu.sh does) the NVIDIA Vulkan driver is set up
-# first. SIZES="WxH ..." and MODES="raster pathtrace" override what is timed.
+# first. SIZES="WxH ..." and MODES="raster pathtrace" override what is timed. Each run logs at
+# GLRT_LOG=info, so the occlusion's per-pass GPU times (timestamps, render::pass_times) print
+# as "ambient occlusion: N frames timed; GPU ms per frame: depth copy …, kernel …, blur …,
+# apply …, all …" (the fog has no pass of its own: it is evaluated in the draws' shaders).
 set -uo pipefail
 bin=$(cd "$1" && pwd)
 out=$2
@@ -22,7 +25,7 @@ if compgen -G ".gl/*.deb" > /dev/null; then
     ldconfig
     export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
 fi
-clean=(env -u GLRT_TRACE -u GLRT_CAPTURE -u GLRT_DUMP -u GLRT_PASSTHROUGH -u GLRT_CONFIG LD_LIBRARY_PATH="$bin")
+clean=(env -u GLRT_TRACE -u GLRT_CAPTURE -u GLRT_DUMP -u GLRT_PASSTHROUGH -u GLRT_CONFIG GLRT_LOG=info LD_LIBRARY_PATH="$bin")
 # The fog of each scene: the demo's room is y-up in metres-like units (the eye 2.2 above the
 # floor), the Quake-3-like level z-up in Quake units (64 a metre); densities chosen by eye on
 # lavapipe renders of the two image frames.
@@ -39,7 +42,7 @@ run() {
     echo "== $name"
     # shellcheck disable=SC2086 # the settings are words on purpose
     "${clean[@]}" $settings "$bin/glrt-demo" --headless "$@" 2>&1 \
-        | grep -E "frame time|Vulkan device|error|panick|WARN" || echo "(no output: exit $?)"
+        | grep -E "frame time|frames timed|Vulkan device|error|panick|WARN" || echo "(no output: exit $?)"
 }
 
 # effects MODE: the effects timed in MODE (occlusion is raster mode's only).

@@ -388,6 +388,26 @@ pub fn warn(warnings: &[String]) {
     warnings.iter().for_each(|w| eprintln!("glrt: warning: {w}"));
 }
 
+/// The variable of key `name` of a table that one variable switches on and off: `GLRT_<TABLE>`
+/// for `enabled`, `GLRT_<TABLE>_<NAME>` for the others (`[fog]`: `GLRT_FOG`,
+/// `GLRT_FOG_DENSITY`).
+pub fn switched_variable(table: &str, name: &str) -> String {
+    match name {
+        "enabled" => format!("GLRT_{}", table.to_uppercase()),
+        other => format!("GLRT_{}_{}", table.to_uppercase(), other.to_uppercase()),
+    }
+}
+
+/// Table `T` of this process's configuration ([`Config::of_process`]), read into `cell` (the
+/// caller's, one per table) at the first call; problems are reported then ([`warn`]).
+pub fn process_table<T: Table + Copy + Sync + Send>(cell: &'static std::sync::OnceLock<T>) -> T {
+    *cell.get_or_init(|| {
+        let (table, problems) = Config::of_process().table::<T>();
+        warn(&problems);
+        table
+    })
+}
+
 /// The user's cache directory: `$XDG_CACHE_HOME`, else `~/.cache`, else the temporary
 /// directory (glrt keeps its files under `glrt/` there).
 pub fn cache_dir() -> PathBuf {

@@ -5,9 +5,10 @@
 //! read-back, present), [`trace`] the path-tracing stages behind one back-end trait
 //! ([`trace::RayTracer`]), [`denoise`] the A-SVGF stage after tracing, [`fog`] the height fog
 //! of both modes, [`ao`] the ambient occlusion of raster mode, [`present`] the window,
-//! and [`hud`] the panel of frame times drawn over the image. [`default_sink`] chooses the
-//! renderer of the mode (`GLRT_MODE`); [`devices`] lists the machine's Vulkan devices with the
-//! mode each would get ([`rendering_on`]).
+//! and [`hud`] the panel of frame times drawn over the image; [`pass_layout`] and
+//! [`pass_times`] are the layouts and GPU timing of those stages' passes. [`default_sink`]
+//! chooses the renderer of the mode (`GLRT_MODE`); [`devices`] lists the machine's Vulkan
+//! devices with the mode each would get ([`rendering_on`]).
 
 pub mod ao;
 pub mod devices;
@@ -20,6 +21,8 @@ pub mod frame_log;
 pub mod frames_from;
 pub mod frames_repeated;
 pub mod hud;
+pub mod pass_layout;
+pub mod pass_times;
 pub mod present;
 pub mod radiosity;
 pub mod raster;

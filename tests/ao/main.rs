@@ -7,9 +7,15 @@
 //! for the rotations θ about the normal where `ρR cos θ > d1 + δ` or `ρR sin θ > d2 + δ`
 //! (at the edge line half the rotations, at the corner three quarters, as `δ → 0`), averaged
 //! over the kernel, the rotations, the pixels read and the blur.
+//!
+//! [`reference`] compares the occlusion per pixel with ray-traced ambient occlusion of the same
+//! surfaces (the box, the plane and a replayed frame of the demo).
 
+#[path = "../images/mod.rs"]
+mod images;
 #[path = "../lavapipe/mod.rs"]
 mod lavapipe;
+mod reference;
 
 use glam::{Mat4, Vec3, Vec4};
 use glrt::render::ao::settings::AoSettings;
@@ -54,44 +60,40 @@ fn modelview() -> Mat4 {
     Mat4::from_rotation_x(PITCH.to_radians())
 }
 
+/// The scene's quads (eye space before the pitch): the floor, and with `walls` the back and
+/// right walls of the box; without, the floor alone reaches far beyond the radius.
+fn quads(walls: bool) -> Vec<[[f32; 3]; 4]> {
+    let far = if walls { BACK } else { -60.0 };
+    let right = if walls { RIGHT } else { 30.0 };
+    let mut quads = vec![[[-30.0, FLOOR, 0.0], [right, FLOOR, 0.0], [right, FLOOR, far], [-30.0, FLOOR, far]]];
+    if walls {
+        quads.push([[-30.0, FLOOR, BACK], [RIGHT, FLOOR, BACK], [RIGHT, 20.0, BACK], [-30.0, 20.0, BACK]]);
+        quads.push([[RIGHT, FLOOR, 0.0], [RIGHT, 20.0, 0.0], [RIGHT, 20.0, BACK], [RIGHT, FLOOR, BACK]]);
+    }
+    quads
+}
+
 /// Draws two frames of the floor, and with `walls` the back and right walls, white and unlit;
 /// returns the red channel, rows bottom up.
 fn render(ctx: &mut Context, walls: bool) -> Vec<u8> {
     for _ in 0..2 {
+        lavapipe::begin_frame_90(ctx, SIZE);
         unsafe {
-            dispatch::glViewport(ctx, 0, 0, SIZE, SIZE);
-            dispatch::glClearColor(ctx, 0.0, 0.0, 0.0, 1.0);
-            dispatch::glClear(ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
-            dispatch::glMatrixMode(ctx, gl::GL_PROJECTION);
-            dispatch::glLoadIdentity(ctx);
-            dispatch::glFrustum(ctx, -0.1, 0.1, -0.1, 0.1, 0.1, 100.0);
-            dispatch::glMatrixMode(ctx, gl::GL_MODELVIEW);
             dispatch::glLoadMatrixf(ctx, modelview().to_cols_array().as_ptr());
             dispatch::glEnable(ctx, gl::GL_DEPTH_TEST);
             dispatch::glColor3f(ctx, 1.0, 1.0, 1.0);
-            let far = if walls { BACK } else { -60.0 };
-            let right = if walls { RIGHT } else { 30.0 };
-            quad(ctx, [[-30.0, FLOOR, 0.0], [right, FLOOR, 0.0], [right, FLOOR, far], [-30.0, FLOOR, far]]);
-            if walls {
-                quad(ctx, [[-30.0, FLOOR, BACK], [RIGHT, FLOOR, BACK], [RIGHT, 20.0, BACK], [-30.0, 20.0, BACK]]);
-                quad(ctx, [[RIGHT, FLOOR, 0.0], [RIGHT, 20.0, 0.0], [RIGHT, 20.0, BACK], [RIGHT, FLOOR, BACK]]);
+            for corners in quads(walls) {
+                quad(ctx, corners);
             }
-            // A HUD square after the 3D draws, as games draw theirs: the occlusion goes
-            // before it, and does not darken it.
-            dispatch::glDisable(ctx, gl::GL_DEPTH_TEST);
-            dispatch::glMatrixMode(ctx, gl::GL_PROJECTION);
-            dispatch::glLoadIdentity(ctx);
-            dispatch::glOrtho(ctx, 0.0, SIZE as f64, 0.0, SIZE as f64, -1.0, 1.0);
-            dispatch::glMatrixMode(ctx, gl::GL_MODELVIEW);
-            dispatch::glLoadIdentity(ctx);
-            let (lo, hi) = (HUD.0 as f32, HUD.1 as f32);
-            quad(ctx, [[lo, lo, 0.0], [hi, lo, 0.0], [hi, hi, 0.0], [lo, hi, 0.0]]);
         }
+        // A HUD square after the 3D draws, as games draw theirs: the occlusion goes before it,
+        // and does not darken it.
+        lavapipe::window_ortho(ctx, SIZE);
+        let (lo, hi) = (HUD.0 as f32, HUD.1 as f32);
+        quad(ctx, [[lo, lo, 0.0], [hi, lo, 0.0], [hi, hi, 0.0], [lo, hi, 0.0]]);
         ctx.end_frame();
     }
-    let mut out = vec![[0u8; 4]; (SIZE * SIZE) as usize];
-    unsafe { dispatch::glReadPixels(ctx, 0, 0, SIZE, SIZE, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
-    out.iter().map(|p| p[0]).collect()
+    lavapipe::read_rgba(ctx, SIZE).iter().map(|p| p[0]).collect()
 }
 
 /// The window pixel (x, y) of eye-space point `p` (before the pitch).

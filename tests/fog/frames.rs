@@ -5,14 +5,9 @@
 //! the fogged wall (alpha blended, and an additive clear pass) counts the fog behind it once;
 //! and the two modes give the same fogged wall.
 
-use std::sync::{Arc, Mutex};
-
 use crate::lavapipe;
 use glam::{DVec3, Vec3};
 use glrt::render::fog::settings::{FogColor, FogSettings};
-use glrt::render::frame::Renderer;
-use glrt::render::trace::settings::{Settings, Tonemap};
-use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
 
 const SIZE: i32 = 24;
@@ -28,32 +23,16 @@ const FOG: FogSettings = FogSettings {
     color: FogColor::Fixed([0.8, 0.5, 0.2]),
 };
 
-/// A context drawing into a `SIZE`² drawable, path traced when `traced`, fogged by `fog`.
+/// A context drawing into a `SIZE`² drawable, path traced when `traced` (noise-free:
+/// [`lavapipe::exact_renderer`]), fogged by `fog`.
 fn context(traced: bool, fog: Option<FogSettings>) -> Context {
-    let mut renderer = lavapipe::renderer_with(Renderer::without_outputs);
-    if traced {
-        let settings = Settings { spp: 1, bounces: 0, sun_angle: 0.0, tonemap: Tonemap::Clamp, exposure: 0.0, ..Settings::default() };
-        renderer.enable_tracing(settings).expect("the tracer's pipelines");
-    }
+    let mut renderer = lavapipe::exact_renderer(traced);
     if let Some(fog) = fog {
         renderer.set_fog(fog);
     }
-    let renderer = Arc::new(Mutex::new(renderer));
-    let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(lavapipe::Shared(renderer)) });
+    let mut ctx = lavapipe::context_on(renderer);
     ctx.bind_drawable(SIZE, SIZE);
     ctx
-}
-
-/// A quad at eye depth `z` spanning x in `xs`, y in [−10, 10].
-fn quad(ctx: &mut Context, xs: [f32; 2], z: f32) {
-    unsafe {
-        dispatch::glBegin(ctx, gl::GL_QUADS);
-        dispatch::glNormal3f(ctx, 0.0, 0.0, 1.0);
-        for [x, y] in [[xs[0], -10.0], [xs[1], -10.0], [xs[1], 10.0], [xs[0], 10.0]] {
-            dispatch::glVertex3f(ctx, x, y, z);
-        }
-        dispatch::glEnd(ctx);
-    }
 }
 
 /// Draws two frames of the lit wall at z = −3 (diffuse 0.6 under a white light at normal
@@ -61,44 +40,25 @@ fn quad(ctx: &mut Context, xs: [f32; 2], z: f32) {
 /// (clear) pass over its right half, both at z = −2. Returns the RGBA8 image, rows bottom up.
 fn render(ctx: &mut Context, glass: bool) -> Vec<[u8; 4]> {
     for _ in 0..2 {
+        lavapipe::begin_frame_90(ctx, SIZE);
+        lavapipe::lit_wall(ctx);
         unsafe {
-            dispatch::glViewport(ctx, 0, 0, SIZE, SIZE);
-            dispatch::glClearColor(ctx, 0.0, 0.0, 0.0, 1.0);
-            dispatch::glClear(ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
-            dispatch::glMatrixMode(ctx, gl::GL_PROJECTION);
-            dispatch::glLoadIdentity(ctx);
-            dispatch::glFrustum(ctx, -0.1, 0.1, -0.1, 0.1, 0.1, 100.0);
-            dispatch::glMatrixMode(ctx, gl::GL_MODELVIEW);
-            dispatch::glLoadIdentity(ctx);
-            dispatch::glEnable(ctx, gl::GL_DEPTH_TEST);
-            dispatch::glDepthMask(ctx, gl::GL_TRUE);
-            dispatch::glEnable(ctx, gl::GL_LIGHTING);
-            dispatch::glEnable(ctx, gl::GL_LIGHT0);
-            dispatch::glLightfv(ctx, gl::GL_LIGHT0, gl::GL_POSITION, [0.0f32, 0.0, 1.0, 0.0].as_ptr());
-            dispatch::glMaterialfv(ctx, gl::GL_FRONT_AND_BACK, gl::GL_DIFFUSE, [0.6f32, 0.6, 0.6, 1.0].as_ptr());
-            let black = [0.0f32, 0.0, 0.0, 1.0];
-            dispatch::glLightModelfv(ctx, gl::GL_LIGHT_MODEL_AMBIENT, black.as_ptr());
-            dispatch::glMaterialfv(ctx, gl::GL_FRONT_AND_BACK, gl::GL_AMBIENT, black.as_ptr());
-            quad(ctx, [-10.0, 10.0], -3.0);
-            dispatch::glDisable(ctx, gl::GL_LIGHTING);
             if glass {
                 dispatch::glEnable(ctx, gl::GL_BLEND);
                 dispatch::glDepthMask(ctx, gl::GL_FALSE);
                 dispatch::glBlendFunc(ctx, gl::GL_SRC_ALPHA, gl::GL_ONE_MINUS_SRC_ALPHA);
                 dispatch::glColor4f(ctx, GLASS[0], GLASS[1], GLASS[2], GLASS[3]);
-                quad(ctx, [-10.0, 0.0], -2.0);
+                lavapipe::wall(ctx, [-10.0, 0.0], -2.0);
                 dispatch::glBlendFunc(ctx, gl::GL_ONE, gl::GL_ONE);
                 dispatch::glColor4f(ctx, 0.0, 0.0, 0.0, 1.0);
-                quad(ctx, [0.0, 10.0], -2.0);
+                lavapipe::wall(ctx, [0.0, 10.0], -2.0);
                 dispatch::glDisable(ctx, gl::GL_BLEND);
                 dispatch::glDepthMask(ctx, gl::GL_TRUE);
             }
         }
         ctx.end_frame();
     }
-    let mut out = vec![[0u8; 4]; (SIZE * SIZE) as usize];
-    unsafe { dispatch::glReadPixels(ctx, 0, 0, SIZE, SIZE, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
-    out
+    lavapipe::read_rgba(ctx, SIZE)
 }
 
 /// The fog amount on the segment from the eye to the point of eye depth `depth` seen through

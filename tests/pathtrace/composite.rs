@@ -14,7 +14,6 @@ use crate::lavapipe;
 use std::sync::{Arc, Mutex};
 
 use glrt::render::frame::Renderer;
-use glrt::render::trace::settings::{Settings, Tonemap};
 use glrt::translate::context::ContextConfig;
 use glrt::translate::{Context, dispatch, gl};
 
@@ -28,12 +27,7 @@ const HUD_RECT: [i32; 4] = [1, 1, 7, 5];
 /// A context drawing into a `SIZE`² drawable, path traced when `traced`, with a perspective
 /// camera at the origin looking down −z, and its renderer.
 fn shared_context(traced: bool) -> (Context, Arc<Mutex<Renderer>>) {
-    let mut renderer = lavapipe::renderer_with(Renderer::without_outputs);
-    if traced {
-        let settings = Settings { spp: 1, bounces: 0, sun_angle: 0.0, tonemap: Tonemap::Clamp, exposure: 0.0, ..Settings::default() };
-        renderer.enable_tracing(settings).expect("the tracer's pipelines");
-    }
-    let renderer = Arc::new(Mutex::new(renderer));
+    let renderer = Arc::new(Mutex::new(lavapipe::exact_renderer(traced)));
     let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(lavapipe::Shared(renderer.clone())) });
     ctx.bind_drawable(SIZE, SIZE);
     (ctx, renderer)
@@ -44,77 +38,31 @@ fn context(traced: bool) -> Context {
     shared_context(traced).0
 }
 
-/// A quad at depth `z` (eye space) spanning x in `xs`, y in [-10, 10].
-fn quad(ctx: &mut Context, xs: [f32; 2], z: f32) {
-    unsafe {
-        dispatch::glBegin(ctx, gl::GL_QUADS);
-        dispatch::glNormal3f(ctx, 0.0, 0.0, 1.0);
-        for [x, y] in [[xs[0], -10.0], [xs[1], -10.0], [xs[1], 10.0], [xs[0], 10.0]] {
-            dispatch::glVertex3f(ctx, x, y, z);
-        }
-        dispatch::glEnd(ctx);
-    }
-}
-
-/// The drawable's RGBA8 image (rows bottom to top), read from the read buffer.
-fn read(ctx: &mut Context) -> Vec<[u8; 4]> {
-    let mut out = vec![[0u8; 4]; (SIZE * SIZE) as usize];
-    unsafe { dispatch::glReadPixels(ctx, 0, 0, SIZE, SIZE, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
-    out
-}
-
 /// Draws two frames: a lit wall at z = −3 filling the view; with `extras`, then glass over
 /// its left half (z = −2), glass behind it on the right (z = −5) and the HUD square. Returns
 /// the RGBA8 image (rows bottom to top). With `read_before_hud` (and `extras`), the second
 /// frame is also read back before its HUD, into it.
 fn render(ctx: &mut Context, extras: bool, mut read_before_hud: Option<&mut Vec<[u8; 4]>>) -> Vec<[u8; 4]> {
     for frame in 0..2 {
+        lavapipe::begin_frame_90(ctx, SIZE);
+        lavapipe::lit_wall(ctx);
         unsafe {
-            dispatch::glViewport(ctx, 0, 0, SIZE, SIZE);
-            dispatch::glClearColor(ctx, 0.0, 0.0, 0.0, 1.0);
-            dispatch::glClear(ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
-            dispatch::glMatrixMode(ctx, gl::GL_PROJECTION);
-            dispatch::glLoadIdentity(ctx);
-            dispatch::glFrustum(ctx, -0.1, 0.1, -0.1, 0.1, 0.1, 100.0);
-            dispatch::glMatrixMode(ctx, gl::GL_MODELVIEW);
-            dispatch::glLoadIdentity(ctx);
-            dispatch::glEnable(ctx, gl::GL_DEPTH_TEST);
-            dispatch::glDepthMask(ctx, gl::GL_TRUE);
-
-            // The wall: white light at normal incidence on a diffuse 0.6 material.
-            dispatch::glEnable(ctx, gl::GL_LIGHTING);
-            dispatch::glEnable(ctx, gl::GL_LIGHT0);
-            let position = [0.0f32, 0.0, 1.0, 0.0];
-            dispatch::glLightfv(ctx, gl::GL_LIGHT0, gl::GL_POSITION, position.as_ptr());
-            let diffuse = [0.6f32, 0.6, 0.6, 1.0];
-            dispatch::glMaterialfv(ctx, gl::GL_FRONT_AND_BACK, gl::GL_DIFFUSE, diffuse.as_ptr());
-            let ambient = [0.0f32, 0.0, 0.0, 1.0];
-            dispatch::glLightModelfv(ctx, gl::GL_LIGHT_MODEL_AMBIENT, ambient.as_ptr());
-            dispatch::glMaterialfv(ctx, gl::GL_FRONT_AND_BACK, gl::GL_AMBIENT, ambient.as_ptr());
-            quad(ctx, [-10.0, 10.0], -3.0);
-            dispatch::glDisable(ctx, gl::GL_LIGHTING);
-
             if extras {
                 dispatch::glEnable(ctx, gl::GL_BLEND);
                 dispatch::glBlendFunc(ctx, gl::GL_SRC_ALPHA, gl::GL_ONE_MINUS_SRC_ALPHA);
                 dispatch::glDepthMask(ctx, gl::GL_FALSE);
                 dispatch::glColor4f(ctx, GLASS[0], GLASS[1], GLASS[2], GLASS[3]);
-                quad(ctx, [-10.0, 0.0], -2.0);
-                quad(ctx, [0.0, 10.0], -5.0);
+                lavapipe::wall(ctx, [-10.0, 0.0], -2.0);
+                lavapipe::wall(ctx, [0.0, 10.0], -5.0);
                 dispatch::glDisable(ctx, gl::GL_BLEND);
                 dispatch::glDepthMask(ctx, gl::GL_TRUE);
                 if frame == 1
                     && let Some(image) = read_before_hud.as_deref_mut()
                 {
-                    *image = read(ctx);
+                    *image = lavapipe::read_rgba(ctx, SIZE);
                 }
 
-                dispatch::glDisable(ctx, gl::GL_DEPTH_TEST);
-                dispatch::glMatrixMode(ctx, gl::GL_PROJECTION);
-                dispatch::glLoadIdentity(ctx);
-                dispatch::glOrtho(ctx, 0.0, SIZE as f64, 0.0, SIZE as f64, -1.0, 1.0);
-                dispatch::glMatrixMode(ctx, gl::GL_MODELVIEW);
-                dispatch::glLoadIdentity(ctx);
+                lavapipe::window_ortho(ctx, SIZE);
                 dispatch::glColor3f(ctx, HUD[0], HUD[1], HUD[2]);
                 let [x0, y0, x1, y1] = HUD_RECT.map(|v| v as f32);
                 dispatch::glRectf(ctx, x0, y0, x1, y1);
@@ -122,7 +70,7 @@ fn render(ctx: &mut Context, extras: bool, mut read_before_hud: Option<&mut Vec<
         }
         ctx.end_frame();
     }
-    read(ctx)
+    lavapipe::read_rgba(ctx, SIZE)
 }
 
 /// Whether window pixel (x, y) lies in the HUD square.

@@ -28,6 +28,10 @@
 //! effects, the HUD. For `glLight`-lit surfaces this also darkens the direct light in creases,
 //! the usual compromise of forward renderers that apply SSAO after shading.
 //!
+//! On GPUs the four passes are timed ([`crate::render::pass_times`]: depth copy (with the
+//! resolve of a multisampled depth buffer), kernel, blur, apply); [`AmbientOcclusion::destroy`] logs their average GPU time per frame at
+//! `GLRT_LOG=info`.
+//!
 //! Where: after the last draw of an opaque 3D class (static, movable, dynamic, layer, light
 //! passes; in a frame read back before its end, which is not classified yet, the unblended
 //! perspective draws) in program order, once per frame (a frame read back past that place
@@ -42,12 +46,13 @@ use std::collections::HashMap;
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
-use gpu_allocator::MemoryLocation;
 
 use crate::frame::class::{DrawClass, orthographic};
 use crate::frame::{Draw, Frame};
+use crate::render::pass_layout::PassLayout;
+use crate::render::pass_times::PassTimes;
 use crate::render::raster::commands::SetKey;
-use crate::render::raster::device::{Buffer, Check, Device, Result};
+use crate::render::raster::device::{Buffer, Device, Result};
 use crate::render::raster::pipelines::shader_module;
 use crate::render::raster::renderer::Recorder;
 use crate::render::raster::target::Plane;
@@ -85,6 +90,9 @@ include!(concat!(env!("OUT_DIR"), "/layouts/ao_gpu_types.rs"));
 /// Push constants of `apply.frag`: the framebuffer size.
 const APPLY_PUSH_BYTES: u32 = 8;
 
+/// The passes timed, in order.
+const STEPS: [&str; 4] = ["depth copy", "kernel", "blur", "apply"];
+
 /// A deterministic pseudo-random sequence in [0, 1) (the kernel and noise are the same in
 /// every run, so images are reproducible).
 struct Lcg(u64);
@@ -120,7 +128,7 @@ fn noise() -> [[f32; 4]; 16] {
 /// Whether `draw` is an opaque 3D surface, the kind occlusion applies to: of a traced class,
 /// or in a frame read back before its end (not classified yet), unblended with a perspective
 /// projection.
-fn occluded(draw: &Draw) -> bool {
+pub fn occluded(draw: &Draw) -> bool {
     match draw.class {
         DrawClass::Static | DrawClass::Movable | DrawClass::Dynamic | DrawClass::Layer | DrawClass::Light => true,
         DrawClass::Unclassified => draw.state.blend.is_none() && !orthographic(&draw.projection),
@@ -151,67 +159,51 @@ pub struct AmbientOcclusion {
     noise: [[f32; 4]; 16],
     /// Compute passes: binding 0 the parameters, 1 the input, 2 the output (dynamic storage
     /// buffers, so the frame's descriptor sets hold them).
-    compute_set_layout: vk::DescriptorSetLayout,
-    compute_layout: vk::PipelineLayout,
+    compute_layout: PassLayout,
     ssao: vk::Pipeline,
     blur: vk::Pipeline,
     /// The apply pass: binding 0 the blurred fraction.
-    apply_set_layout: vk::DescriptorSetLayout,
-    apply_layout: vk::PipelineLayout,
+    apply_layout: PassLayout,
     vertex: vk::ShaderModule,
     fragment: vk::ShaderModule,
     /// One apply pipeline per sample count of the framebuffer.
     apply: HashMap<u32, vk::Pipeline>,
     buffers: Option<Buffers>,
-}
-
-/// A set layout of `count` dynamic storage buffers visible to `stage`.
-fn set_layout(device: &Device, count: u32, stage: vk::ShaderStageFlags) -> Result<vk::DescriptorSetLayout> {
-    let bindings: Vec<_> = (0..count)
-        .map(|b| vk::DescriptorSetLayoutBinding::default().binding(b).descriptor_type(vk::DescriptorType::STORAGE_BUFFER_DYNAMIC).descriptor_count(1).stage_flags(stage))
-        .collect();
-    // Safety: valid create info; destroyed in `destroy`.
-    unsafe { device.raw.create_descriptor_set_layout(&vk::DescriptorSetLayoutCreateInfo::default().bindings(&bindings), None) }.check("vkCreateDescriptorSetLayout")
-}
-
-/// A pipeline layout of `set` and `push` bytes of push constants for `stage`.
-fn pipeline_layout(device: &Device, set: vk::DescriptorSetLayout, push: u32, stage: vk::ShaderStageFlags) -> Result<vk::PipelineLayout> {
-    let sets = [set];
-    let ranges = [vk::PushConstantRange { stage_flags: stage, offset: 0, size: push }];
-    let info = vk::PipelineLayoutCreateInfo::default().set_layouts(&sets).push_constant_ranges(if push > 0 { &ranges[..] } else { &[] });
-    // Safety: valid create info; destroyed in `destroy`.
-    unsafe { device.raw.create_pipeline_layout(&info, None) }.check("vkCreatePipelineLayout")
+    /// The passes' GPU times (`None`: not timed).
+    times: Option<PassTimes>,
 }
 
 impl AmbientOcclusion {
     /// Creates the stage's layouts and pipelines for `settings`.
     pub fn new(device: &Device, settings: AoSettings) -> Result<AmbientOcclusion> {
-        let compute = vk::ShaderStageFlags::COMPUTE;
-        let fragment = vk::ShaderStageFlags::FRAGMENT;
-        let compute_set_layout = set_layout(device, 3, compute)?;
-        let compute_layout = pipeline_layout(device, compute_set_layout, 0, compute)?;
-        let apply_set_layout = set_layout(device, 1, fragment)?;
-        let apply_layout = pipeline_layout(device, apply_set_layout, APPLY_PUSH_BYTES, fragment)?;
+        let compute_layout = PassLayout::new(device, &PassLayout::dynamic_storage(3), vk::ShaderStageFlags::COMPUTE, 0)?;
+        let apply_layout = match PassLayout::new(device, &PassLayout::dynamic_storage(1), vk::ShaderStageFlags::FRAGMENT, APPLY_PUSH_BYTES) {
+            Ok(l) => l,
+            Err(e) => {
+                compute_layout.destroy(device);
+                return Err(e);
+            }
+        };
         let mut stage = AmbientOcclusion {
             settings,
             kernel: kernel(settings.samples as usize),
             noise: noise(),
-            compute_set_layout,
             compute_layout,
             ssao: vk::Pipeline::null(),
             blur: vk::Pipeline::null(),
-            apply_set_layout,
             apply_layout,
             vertex: vk::ShaderModule::null(),
             fragment: vk::ShaderModule::null(),
             apply: HashMap::new(),
             buffers: None,
+            times: None,
         };
         let made = (|| {
-            stage.ssao = compute_pipeline(device, compute_layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ao/ssao.comp.spv")))?;
-            stage.blur = compute_pipeline(device, compute_layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ao/blur.comp.spv")))?;
+            stage.ssao = compute_pipeline(device, compute_layout.pipeline, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ao/ssao.comp.spv")))?;
+            stage.blur = compute_pipeline(device, compute_layout.pipeline, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ao/blur.comp.spv")))?;
             stage.vertex = shader_module(device, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/trace_composite.vert.spv")))?;
             stage.fragment = shader_module(device, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ao/apply.frag.spv")))?;
+            stage.times = PassTimes::new(device, "ambient occlusion", &STEPS)?;
             Ok(())
         })();
         match made {
@@ -252,24 +244,7 @@ impl AmbientOcclusion {
         }
         if self.buffers.is_none() {
             let bytes = size[0] as u64 * size[1] as u64 * 4;
-            let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
-            let depth = device.create_buffer("glrt ao depth", bytes, usage, MemoryLocation::GpuOnly)?;
-            let make = |name| device.create_buffer(name, bytes, usage, MemoryLocation::GpuOnly);
-            let raw = match make("glrt ao raw") {
-                Ok(b) => b,
-                Err(e) => {
-                    device.destroy_buffer(depth);
-                    return Err(e);
-                }
-            };
-            let blurred = match make("glrt ao blurred") {
-                Ok(b) => b,
-                Err(e) => {
-                    device.destroy_buffer(depth);
-                    device.destroy_buffer(raw);
-                    return Err(e);
-                }
-            };
+            let [depth, raw, blurred] = device.create_storage_buffers([("glrt ao depth", bytes), ("glrt ao raw", bytes), ("glrt ao blurred", bytes)])?;
             self.buffers = Some(Buffers { size, depth, raw, blurred });
         }
         Ok(self.buffers.as_ref().expect("made above"))
@@ -289,31 +264,40 @@ impl AmbientOcclusion {
         let align = device.properties.limits.min_storage_buffer_offset_alignment.max(16);
         let params = rec.ring.push(device, bytemuck::bytes_of(&params), align)?;
         let params_bytes = size_of::<GpuAoParams>() as u64;
-        let ssao_set = rec.descriptors.get(device, &SetKey { layout: self.compute_set_layout, buffers: vec![(params.buffer, params_bytes), (depth, bytes), (raw, bytes)], images: Vec::new() })?;
-        let blur_set = rec.descriptors.get(device, &SetKey { layout: self.compute_set_layout, buffers: vec![(params.buffer, params_bytes), (raw, bytes), (blurred, bytes)], images: Vec::new() })?;
-        let apply_set = rec.descriptors.get(device, &SetKey { layout: self.apply_set_layout, buffers: vec![(blurred, bytes)], images: Vec::new() })?;
+        let ssao_set = rec.descriptors.get(device, &SetKey { layout: self.compute_layout.set, buffers: vec![(params.buffer, params_bytes), (depth, bytes), (raw, bytes)], images: Vec::new() })?;
+        let blur_set = rec.descriptors.get(device, &SetKey { layout: self.compute_layout.set, buffers: vec![(params.buffer, params_bytes), (raw, bytes), (blurred, bytes)], images: Vec::new() })?;
+        let apply_set = rec.descriptors.get(device, &SetKey { layout: self.apply_layout.set, buffers: vec![(blurred, bytes)], images: Vec::new() })?;
         let pipeline = self.apply_pipeline(device, rec.target.samples)?;
+        let (d, cmd) = (&device.raw, rec.cmd);
+        let stamps = self.times.as_mut().and_then(|t| t.frame(device, rec.slot()));
+        let stamp = |k: u32, stage: vk::PipelineStageFlags2| {
+            if let Some(stamps) = stamps {
+                stamps.write(device, cmd, k, stage);
+            }
+        };
 
         rec.end_rendering();
-        let image = rec.target.readable(device, rec.cmd, Plane::DepthStencil);
-        let (d, cmd) = (&device.raw, rec.cmd);
+        stamp(0, vk::PipelineStageFlags2::ALL_COMMANDS);
+        let image = rec.target.readable(device, cmd, Plane::DepthStencil);
         let layers = vk::ImageSubresourceLayers { aspect_mask: vk::ImageAspectFlags::DEPTH, mip_level: 0, base_array_layer: 0, layer_count: 1 };
         let copy = vk::BufferImageCopy { image_subresource: layers, image_extent: vk::Extent3D { width: size[0], height: size[1], depth: 1 }, ..Default::default() };
         let groups = [size[0].div_ceil(8), size[1].div_ceil(8)];
         let offsets = [params.offset as u32, 0, 0];
+        let compute = vk::PipelineStageFlags2::COMPUTE_SHADER;
         // Safety: outside a rendering pass; the image is in TRANSFER_SRC_OPTIMAL and as large
         // as the buffers; every handle lives until the frame finishes.
-        unsafe {
-            d.cmd_copy_image_to_buffer(cmd, image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, depth, &[copy]);
-            barrier(device, cmd, vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_WRITE, vk::PipelineStageFlags2::COMPUTE_SHADER);
-            d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.ssao);
-            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, self.compute_layout, 0, &[ssao_set], &offsets);
-            d.cmd_dispatch(cmd, groups[0], groups[1], 1);
-            barrier(device, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE, vk::PipelineStageFlags2::COMPUTE_SHADER);
-            d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, self.blur);
-            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, self.compute_layout, 0, &[blur_set], &offsets);
-            d.cmd_dispatch(cmd, groups[0], groups[1], 1);
-            barrier(device, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::AccessFlags2::SHADER_STORAGE_WRITE, vk::PipelineStageFlags2::FRAGMENT_SHADER);
+        unsafe { d.cmd_copy_image_to_buffer(cmd, image, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, depth, &[copy]) };
+        stamp(1, vk::PipelineStageFlags2::ALL_TRANSFER);
+        barrier(device, cmd, vk::PipelineStageFlags2::ALL_TRANSFER, vk::AccessFlags2::TRANSFER_WRITE, compute);
+        for (k, (pipeline, set)) in [(self.ssao, ssao_set), (self.blur, blur_set)].into_iter().enumerate() {
+            // Safety: as above.
+            unsafe {
+                d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline);
+                d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, self.compute_layout.pipeline, 0, &[set], &offsets);
+                d.cmd_dispatch(cmd, groups[0], groups[1], 1);
+            }
+            stamp(k as u32 + 2, compute);
+            barrier(device, cmd, compute, vk::AccessFlags2::SHADER_STORAGE_WRITE, if k == 0 { compute } else { vk::PipelineStageFlags2::FRAGMENT_SHADER });
         }
         rec.begin_rendering();
         let [w, h] = size;
@@ -323,10 +307,11 @@ impl AmbientOcclusion {
             d.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::GRAPHICS, pipeline);
             d.cmd_set_viewport(cmd, 0, &[vk::Viewport { x: 0.0, y: 0.0, width: w as f32, height: h as f32, min_depth: 0.0, max_depth: 1.0 }]);
             d.cmd_set_scissor(cmd, 0, &[vk::Rect2D { offset: vk::Offset2D::default(), extent: vk::Extent2D { width: w, height: h } }]);
-            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, self.apply_layout, 0, &[apply_set], &[0]);
-            d.cmd_push_constants(cmd, self.apply_layout, vk::ShaderStageFlags::FRAGMENT, 0, bytemuck::cast_slice(&size));
+            d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::GRAPHICS, self.apply_layout.pipeline, 0, &[apply_set], &[0]);
+            d.cmd_push_constants(cmd, self.apply_layout.pipeline, vk::ShaderStageFlags::FRAGMENT, 0, bytemuck::cast_slice(&size));
             d.cmd_draw(cmd, 3, 1, 0, 0);
         }
+        stamp(4, vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT);
         Ok(())
     }
 
@@ -346,13 +331,16 @@ impl AmbientOcclusion {
             .dst_alpha_blend_factor(vk::BlendFactor::ONE)
             .alpha_blend_op(vk::BlendOp::ADD)
             .color_write_mask(vk::ColorComponentFlags::R | vk::ColorComponentFlags::G | vk::ColorComponentFlags::B);
-        let pipeline = full_screen_pipeline(device, self.apply_layout, [self.vertex, self.fragment], samples, depth, attachment)?;
+        let pipeline = full_screen_pipeline(device, self.apply_layout.pipeline, [self.vertex, self.fragment], samples, depth, attachment)?;
         self.apply.insert(samples, pipeline);
         Ok(pipeline)
     }
 
-    /// Destroys everything (the GPU must be idle).
+    /// Destroys everything (the GPU must be idle), after logging the passes' times.
     pub fn destroy(&mut self, device: &Device) {
+        if let Some(times) = self.times.take() {
+            times.destroy(device);
+        }
         if let Some(b) = self.buffers.take() {
             for b in [b.depth, b.raw, b.blurred] {
                 device.destroy_buffer(b);
@@ -367,11 +355,9 @@ impl AmbientOcclusion {
             device.raw.destroy_pipeline(self.blur, None);
             device.raw.destroy_shader_module(self.vertex, None);
             device.raw.destroy_shader_module(self.fragment, None);
-            device.raw.destroy_pipeline_layout(self.compute_layout, None);
-            device.raw.destroy_pipeline_layout(self.apply_layout, None);
-            device.raw.destroy_descriptor_set_layout(self.compute_set_layout, None);
-            device.raw.destroy_descriptor_set_layout(self.apply_set_layout, None);
         }
+        self.compute_layout.destroy(device);
+        self.apply_layout.destroy(device);
     }
 }
 

@@ -46,23 +46,16 @@ impl Table for AoSettings {
 
     /// `GLRT_AO` switches the occlusion; `GLRT_AO_SAMPLES`, `GLRT_AO_RADIUS`, ...
     fn variable(name: &str) -> String {
-        match name {
-            "enabled" => "GLRT_AO".to_owned(),
-            other => format!("GLRT_AO_{}", other.to_uppercase()),
-        }
+        crate::config::switched_variable(Self::NAME, name)
     }
 }
 
 impl AoSettings {
     /// The settings of this process, read at the first call from the process's
-    /// configuration ([`crate::config::Config::of_process`]); problems are reported then.
+    /// configuration ([`crate::config::process_table`]); problems are reported then.
     pub fn of_process() -> AoSettings {
         static SETTINGS: std::sync::OnceLock<AoSettings> = std::sync::OnceLock::new();
-        *SETTINGS.get_or_init(|| {
-            let (settings, problems) = crate::config::Config::of_process().table::<AoSettings>();
-            crate::config::warn(&problems);
-            settings
-        })
+        crate::config::process_table(&SETTINGS)
     }
 }
 

@@ -48,8 +48,9 @@
 //! a pixel in three buffers (against 64 in one). No binding exceeds a quarter of the
 //! G-buffer's size.
 //!
-//! The passes are timed on GPUs (timestamps; CPU devices have none that bracket compute work):
-//! [`Denoiser::destroy`] logs their average times per frame at `GLRT_LOG=info`.
+//! The passes are timed on GPUs ([`crate::render::pass_times`]; CPU devices have no
+//! timestamps that bracket compute work): [`Denoiser::destroy`] logs their average times per
+//! frame at `GLRT_LOG=info`.
 //!
 //! Modules: [`settings`] (`[denoise]`, `GLRT_DENOISE=0|1`), [`pipelines`] (layouts, push
 //! constants, pipelines), [`shader_constants`] (bindings and flags shared with the shaders).
@@ -59,9 +60,9 @@ pub mod settings;
 pub mod shader_constants;
 
 use ash::vk;
-use gpu_allocator::MemoryLocation;
 
 use crate::render::raster::device::{Buffer, Check, Device, Result};
+use crate::render::pass_times::PassTimes;
 use crate::render::raster::renderer::Recorder;
 use crate::render::trace::compute::{MOVING_HISTORY, barrier};
 use crate::render::trace::gpu_types::{GSAMPLE_BYTES, GpuFrame, OUTPUT_SAMPLE_BYTES};
@@ -87,7 +88,7 @@ struct FrameHistory {
 impl FrameHistory {
     /// The buffers of `n` pixels (none left behind on failure).
     fn new(device: &Device, n: u64) -> Result<FrameHistory> {
-        let [light, moments, guide] = make_buffers(device, [("glrt denoiser history light", n * HISTORY_LIGHT_BYTES), ("glrt denoiser history moments", n * HISTORY_MOMENTS_BYTES), ("glrt denoiser guides", n * GUIDE_BYTES)])?;
+        let [light, moments, guide] = device.create_storage_buffers([("glrt denoiser history light", n * HISTORY_LIGHT_BYTES), ("glrt denoiser history moments", n * HISTORY_MOMENTS_BYTES), ("glrt denoiser guides", n * GUIDE_BYTES)])?;
         Ok(FrameHistory { light, moments, guide })
     }
 
@@ -101,22 +102,6 @@ impl FrameHistory {
             device.destroy_buffer(b);
         }
     }
-}
-
-/// Creates the storage buffers `specs` (name, bytes); on failure those already made are freed.
-fn make_buffers<const N: usize>(device: &Device, specs: [(&str, u64); N]) -> Result<[Buffer; N]> {
-    let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
-    let mut made = Vec::with_capacity(N);
-    for (name, bytes) in specs {
-        match device.create_buffer(name, bytes, usage, MemoryLocation::GpuOnly) {
-            Ok(b) => made.push(b),
-            Err(e) => {
-                made.into_iter().for_each(|b| device.destroy_buffer(b));
-                return Err(e);
-            }
-        }
-    }
-    Ok(made.try_into().unwrap_or_else(|_| unreachable!("one buffer per spec")))
 }
 
 /// The denoiser's per-pixel buffers for one traced size and the descriptor sets over them and
@@ -138,60 +123,8 @@ struct PixelBuffers {
     sets: [vk::DescriptorSet; 2],
 }
 
-/// Frame slots whose passes are timed (frames in flight are fewer).
-const TIMED_SLOTS: u32 = 4;
-/// Timestamps per frame: before the first pass and after each of the five steps.
-const STAMPS: u32 = 6;
 /// The steps timed, in order.
 const STEPS: [&str; 5] = ["gradient", "temporal", "variance", "a-trous", "modulate"];
-
-/// GPU time of the passes, from timestamps, summed over the frames read.
-struct PassTimes {
-    pool: vk::QueryPool,
-    /// Per slot: whether it recorded a frame whose timestamps were not read yet.
-    unread: [bool; TIMED_SLOTS as usize],
-    /// Seconds per step, summed.
-    seconds: [f64; 5],
-    frames: u64,
-}
-
-impl PassTimes {
-    /// Timestamps for GPUs that time compute work; `None` for CPU devices.
-    fn new(device: &Device) -> Result<Option<PassTimes>> {
-        let timed = device.properties.limits.timestamp_compute_and_graphics == vk::TRUE && device.properties.device_type != vk::PhysicalDeviceType::CPU;
-        if !timed {
-            return Ok(None);
-        }
-        let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(STAMPS * TIMED_SLOTS);
-        // Safety: valid create info; destroyed in `Denoiser::destroy`.
-        let pool = unsafe { device.raw.create_query_pool(&info, None) }.check("vkCreateQueryPool")?;
-        Ok(Some(PassTimes { pool, unread: [false; TIMED_SLOTS as usize], seconds: [0.0; 5], frames: 0 }))
-    }
-
-    /// Adds the times of the frame slot `slot` recorded last, once its fence has signalled.
-    fn read(&mut self, device: &Device, slot: usize) {
-        if !self.unread.get_mut(slot).is_some_and(std::mem::take) {
-            return;
-        }
-        let mut ticks = [0u64; STAMPS as usize];
-        // Safety: the queries were written by the slot's finished frame.
-        if unsafe { device.raw.get_query_pool_results(self.pool, STAMPS * slot as u32, &mut ticks, vk::QueryResultFlags::TYPE_64) }.is_err() {
-            return;
-        }
-        let period = f64::from(device.properties.limits.timestamp_period) * 1e-9;
-        for (step, seconds) in self.seconds.iter_mut().enumerate() {
-            *seconds += ticks[step + 1].wrapping_sub(ticks[step]) as f64 * period;
-        }
-        self.frames += 1;
-    }
-
-    /// One line: the average GPU time per frame of each step and of all.
-    fn summary(&self) -> String {
-        let n = self.frames.max(1) as f64;
-        let steps: Vec<String> = STEPS.iter().zip(&self.seconds).map(|(name, s)| format!("{name} {:.3}", s * 1e3 / n)).collect();
-        format!("denoiser: {} frames timed; GPU ms per frame: {}, all {:.3}", self.frames, steps.join(", "), self.seconds.iter().sum::<f64>() * 1e3 / n)
-    }
-}
 
 /// The A-SVGF stage.
 pub struct Denoiser {
@@ -207,7 +140,15 @@ pub struct Denoiser {
 impl Denoiser {
     /// Creates the pipelines; the buffers come with the first frame.
     pub fn new(device: &Device, settings: DenoiseSettings) -> Result<Denoiser> {
-        Ok(Denoiser { settings, pipelines: DenoisePipelines::new(device)?, pixels: None, parity: 0, times: PassTimes::new(device)? })
+        let mut pipelines = DenoisePipelines::new(device)?;
+        let times = match PassTimes::new(device, "denoiser", &STEPS) {
+            Ok(t) => t,
+            Err(e) => {
+                pipelines.destroy(device);
+                return Err(e);
+            }
+        };
+        Ok(Denoiser { settings, pipelines, pixels: None, parity: 0, times })
     }
 
     /// (Re)creates the buffers and the sets for `radiance`'s size and buffers; a new history
@@ -231,7 +172,7 @@ impl Denoiser {
         };
         let history = [first, second];
         let strata = u64::from(radiance.size[0].div_ceil(GRADIENT_STRATUM)) * u64::from(radiance.size[1].div_ceil(GRADIENT_STRATUM));
-        let [signal, gradient] = match make_buffers(device, [("glrt denoiser signal", 2 * n * SIGNAL_BYTES), ("glrt denoiser gradients", strata * GRADIENT_BYTES)]) {
+        let [signal, gradient] = match device.create_storage_buffers([("glrt denoiser signal", 2 * n * SIGNAL_BYTES), ("glrt denoiser gradients", strata * GRADIENT_BYTES)]) {
             Ok(b) => b,
             Err(e) => {
                 history.into_iter().for_each(|h| h.destroy(device));
@@ -336,24 +277,11 @@ impl Denoiser {
                 barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::COMPUTE_SHADER);
             }
         };
-        let timed = match &mut self.times {
-            Some(times) if (slot as u32) < TIMED_SLOTS => {
-                times.read(device, slot);
-                times.unread[slot] = true;
-                Some(times.pool)
-            }
-            _ => None,
-        };
+        let stamps = self.times.as_mut().and_then(|t| t.frame(device, slot));
         // Timestamp `k` of this frame (after step k, 0 before the first).
         let stamp = |k: u32| {
-            if let Some(pool) = timed {
-                // Safety: as above; the slot's queries were read (or never written).
-                unsafe {
-                    if k == 0 {
-                        d.cmd_reset_query_pool(cmd, pool, STAMPS * slot as u32, STAMPS);
-                    }
-                    d.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, pool, STAMPS * slot as u32 + k);
-                }
+            if let Some(stamps) = stamps {
+                stamps.write(device, cmd, k, vk::PipelineStageFlags2::COMPUTE_SHADER);
             }
         };
         let run = |pipeline: vk::Pipeline, step: u32, source: u32, destination: u32| dispatch(pipeline, pixel_groups, step, source, destination);
@@ -390,15 +318,8 @@ impl Denoiser {
 
     /// Frees the GPU objects (the GPU must be idle), after logging the passes' times.
     pub fn destroy(&mut self, device: &Device) {
-        if let Some(mut times) = self.times.take() {
-            for slot in 0..TIMED_SLOTS as usize {
-                times.read(device, slot);
-            }
-            if times.frames > 0 {
-                log::info!("{}", times.summary());
-            }
-            // Safety: the GPU is idle.
-            unsafe { device.raw.destroy_query_pool(times.pool, None) };
+        if let Some(times) = self.times.take() {
+            times.destroy(device);
         }
         if let Some(p) = self.pixels.take() {
             destroy_pixels(device, p);
@@ -413,18 +334,4 @@ fn destroy_pixels(device: &Device, p: PixelBuffers) {
     p.history.into_iter().for_each(|h| h.destroy(device));
     device.destroy_buffer(p.signal);
     device.destroy_buffer(p.gradient);
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_pass_summary_averages_each_step_over_the_frames() {
-        let times = PassTimes { pool: vk::QueryPool::null(), unread: [false; 4], seconds: [0.0002, 0.002, 0.001, 0.004, 0.001], frames: 2 };
-        assert_eq!(
-            times.summary(),
-            "denoiser: 2 frames timed; GPU ms per frame: gradient 0.100, temporal 1.000, variance 0.500, a-trous 2.000, modulate 0.500, all 4.100"
-        );
-    }
 }

@@ -58,23 +58,16 @@ impl Table for DenoiseSettings {
     /// `GLRT_DENOISE` switches the denoiser; `GLRT_DENOISE_ITERATIONS`, `GLRT_DENOISE_GRADIENTS`,
     /// `GLRT_DENOISE_VIEW`.
     fn variable(name: &str) -> String {
-        match name {
-            "enabled" => "GLRT_DENOISE".to_owned(),
-            other => format!("GLRT_DENOISE_{}", other.to_uppercase()),
-        }
+        crate::config::switched_variable(Self::NAME, name)
     }
 }
 
 impl DenoiseSettings {
     /// The settings of this process, read at the first call from the process's
-    /// configuration ([`crate::config::Config::of_process`]); problems are reported then.
+    /// configuration ([`crate::config::process_table`]); problems are reported then.
     pub fn of_process() -> DenoiseSettings {
         static SETTINGS: std::sync::OnceLock<DenoiseSettings> = std::sync::OnceLock::new();
-        *SETTINGS.get_or_init(|| {
-            let (settings, problems) = crate::config::Config::of_process().table::<DenoiseSettings>();
-            crate::config::warn(&problems);
-            settings
-        })
+        crate::config::process_table(&SETTINGS)
     }
 }
 

@@ -87,23 +87,16 @@ impl Table for FogSettings {
 
     /// `GLRT_FOG` switches the fog; `GLRT_FOG_DENSITY`, `GLRT_FOG_FALLOFF`, ...
     fn variable(name: &str) -> String {
-        match name {
-            "enabled" => "GLRT_FOG".to_owned(),
-            other => format!("GLRT_FOG_{}", other.to_uppercase()),
-        }
+        crate::config::switched_variable(Self::NAME, name)
     }
 }
 
 impl FogSettings {
     /// The settings of this process, read at the first call from the process's
-    /// configuration ([`crate::config::Config::of_process`]); problems are reported then.
+    /// configuration ([`crate::config::process_table`]); problems are reported then.
     pub fn of_process() -> FogSettings {
         static SETTINGS: std::sync::OnceLock<FogSettings> = std::sync::OnceLock::new();
-        *SETTINGS.get_or_init(|| {
-            let (settings, problems) = crate::config::Config::of_process().table::<FogSettings>();
-            crate::config::warn(&problems);
-            settings
-        })
+        crate::config::process_table(&SETTINGS)
     }
 }
 

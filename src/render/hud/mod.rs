@@ -61,11 +61,7 @@ impl Display {
     /// problems are reported then.
     pub fn of_process() -> Display {
         static DISPLAY: std::sync::OnceLock<Display> = std::sync::OnceLock::new();
-        *DISPLAY.get_or_init(|| {
-            let (display, problems) = crate::config::Config::of_process().table::<Display>();
-            crate::config::warn(&problems);
-            display
-        })
+        crate::config::process_table(&DISPLAY)
     }
 }
 

@@ -304,6 +304,23 @@ impl Device {
         self.free(buffer.allocation);
     }
 
+    /// Creates the device-local storage buffers `specs` (name, bytes), which copies may also
+    /// write; on failure those already made are freed.
+    pub fn create_storage_buffers<const N: usize>(&self, specs: [(&str, u64); N]) -> Result<[Buffer; N]> {
+        let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
+        let mut made = Vec::with_capacity(N);
+        for (name, bytes) in specs {
+            match self.create_buffer(name, bytes, usage, MemoryLocation::GpuOnly) {
+                Ok(b) => made.push(b),
+                Err(e) => {
+                    made.into_iter().for_each(|b| self.destroy_buffer(b));
+                    return Err(e);
+                }
+            }
+        }
+        Ok(made.try_into().unwrap_or_else(|_| unreachable!("one buffer per spec")))
+    }
+
     /// Creates an optimal-tiling image in device memory with a view of all of it.
     pub fn create_image(&self, name: &str, info: &vk::ImageCreateInfo, view_type: vk::ImageViewType, aspect: vk::ImageAspectFlags) -> Result<Image> {
         self.create_image_swizzled(name, info, view_type, aspect, vk::ComponentMapping::default())

@@ -178,14 +178,10 @@ impl Table for Settings {
 
 impl Settings {
     /// The settings of this process, read at the first call from the process's
-    /// configuration ([`crate::config::Config::of_process`]); problems are reported then.
+    /// configuration ([`crate::config::process_table`]); problems are reported then.
     pub fn of_process() -> Settings {
         static SETTINGS: std::sync::OnceLock<Settings> = std::sync::OnceLock::new();
-        *SETTINGS.get_or_init(|| {
-            let (settings, problems) = crate::config::Config::of_process().table::<Settings>();
-            crate::config::warn(&problems);
-            settings
-        })
+        crate::config::process_table(&SETTINGS)
     }
 }
 
