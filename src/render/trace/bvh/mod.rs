@@ -73,7 +73,7 @@ impl Layout {
     /// The nodes of `blas` in this layout, as bytes.
     pub fn blas_bytes(self, blas: &Blas) -> &[u8] {
         match self {
-            Layout::Wide => bytemuck::cast_slice(&blas.wide),
+            Layout::Wide => bytemuck::cast_slice(&blas.wide.nodes),
             Layout::Binary => bytemuck::cast_slice(&blas.nodes),
         }
     }
@@ -89,7 +89,7 @@ impl Layout {
     /// Nodes of `blas` in this layout.
     pub fn blas_len(self, blas: &Blas) -> usize {
         match self {
-            Layout::Wide => blas.wide.len(),
+            Layout::Wide => blas.wide.nodes.len(),
             Layout::Binary => blas.nodes.len(),
         }
     }
