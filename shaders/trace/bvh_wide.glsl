@@ -72,23 +72,21 @@ uint bvh_wide_octant(vec3 inv) {
 // The eight bytes of `q` (two words) as floats, slot order.
 #define BVH_WIDE_BYTE(q, slot) float(bitfieldExtract(q[(slot) >> 2], 8 * ((slot) & 3), 8))
 
-// Tests the children of `n` against the ray (o, inv) within [tmin, tmax]: `inner` gets the
-// hit inner children at bit 24 + (slot ^ oct_inv) and the node's imask, `leaves` a bit per
-// primitive of the hit leaves.
-void bvh_wide_test(BvhWideNode n, vec3 o, vec3 inv, uint oct_inv, float tmin, float tmax, out uint inner, out uint leaves) {
-    vec3 scale = uintBitsToFloat(uvec3(bitfieldExtract(n.frame, 0, 8), bitfieldExtract(n.frame, 8, 8), bitfieldExtract(n.frame, 16, 8)) << 23u);
+// Tests the children of a node (its fields: origin, frame, meta, bounds q0, q1, q2) against
+// the ray (o, inv) within [tmin, tmax]: `inner` gets the hit inner children at bit
+// 24 + (slot ^ oct_inv) and the node's imask, `leaves` a bit per primitive of the hit leaves.
+// Branch-free: selects only.
+void bvh_wide_test(vec3 origin, uint frame, uvec2 meta, uvec4 q0, uvec4 q1, uvec4 q2, vec3 o, vec3 inv, uint oct_inv, float tmin, float tmax, out uint inner, out uint leaves) {
+    vec3 scale = uintBitsToFloat(uvec3(bitfieldExtract(frame, 0, 8), bitfieldExtract(frame, 8, 8), bitfieldExtract(frame, 16, 8)) << 23u);
     // The plane at q is hit at q * a + b.
     vec3 a = scale * inv;
-    vec3 b = (n.origin - o) * inv;
-    uvec4 q0 = n.bounds[0];
-    uvec4 q1 = n.bounds[1];
-    uvec4 q2 = n.bounds[2];
+    vec3 b = (origin - o) * inv;
     // Lowest bounds are the near planes where the direction is positive.
     uvec2 lo_x = q0.xy, lo_y = q0.zw, lo_z = q1.xy, hi_x = q1.zw, hi_y = q2.xy, hi_z = q2.zw;
     uvec2 near_x = inv.x < 0.0 ? hi_x : lo_x, far_x = inv.x < 0.0 ? lo_x : hi_x;
     uvec2 near_y = inv.y < 0.0 ? hi_y : lo_y, far_y = inv.y < 0.0 ? lo_y : hi_y;
     uvec2 near_z = inv.z < 0.0 ? hi_z : lo_z, far_z = inv.z < 0.0 ? lo_z : hi_z;
-    uint imask = bitfieldExtract(n.frame, int(BVH_WIDE_IMASK_SHIFT), int(BVH_WIDE_IMASK_BITS));
+    uint imask = bitfieldExtract(frame, int(BVH_WIDE_IMASK_SHIFT), int(BVH_WIDE_IMASK_BITS));
     inner = imask;
     leaves = 0u;
     for (int slot = 0; slot < BVH_WIDTH; slot++) {
@@ -96,20 +94,18 @@ void bvh_wide_test(BvhWideNode n, vec3 o, vec3 inv, uint oct_inv, float tmin, fl
         vec3 tf3 = vec3(BVH_WIDE_BYTE(far_x, slot), BVH_WIDE_BYTE(far_y, slot), BVH_WIDE_BYTE(far_z, slot)) * a + b;
         float tn = max(max(tn3.x, tn3.y), max(tn3.z, tmin));
         float tf = min(min(tf3.x, tf3.y), min(tf3.z, tmax)) * BVH_BOX_SLACK;
-        if (tn <= tf) {
-            if ((imask & (1u << slot)) != 0u) {
-                inner |= BVH_WIDE_INNER << (uint(slot) ^ oct_inv);
-            } else {
-                uint meta = bitfieldExtract(n.meta[slot >> 2], 8 * (slot & 3), 8);
-                uint offset = bitfieldExtract(meta, int(BVH_WIDE_OFFSET_SHIFT), int(BVH_WIDE_OFFSET_BITS));
-                uint count = bitfieldExtract(meta, int(BVH_WIDE_COUNT_SHIFT), int(BVH_WIDE_COUNT_BITS)) + 1u;
-                // An empty slot's offset is beyond the leaves.
-                if (offset < BVH_WIDE_LEAVES) {
-                    leaves |= ((1u << count) - 1u) << offset;
-                }
-            }
-        }
+        bool hit = tn <= tf;
+        bool is_inner = (imask & (1u << slot)) != 0u;
+        uint m = bitfieldExtract(meta[slot >> 2], 8 * (slot & 3), 8);
+        uint offset = bitfieldExtract(m, int(BVH_WIDE_OFFSET_SHIFT), int(BVH_WIDE_OFFSET_BITS));
+        uint count = bitfieldExtract(m, int(BVH_WIDE_COUNT_SHIFT), int(BVH_WIDE_COUNT_BITS)) + 1u;
+        // An empty slot's offset is beyond the leaves.
+        uint leaf_bits = offset < BVH_WIDE_LEAVES ? ((1u << count) - 1u) << offset : 0u;
+        inner |= hit && is_inner ? BVH_WIDE_INNER << (uint(slot) ^ oct_inv) : 0u;
+        leaves |= hit && !is_inner ? leaf_bits : 0u;
     }
+    // No inner child hit: no group (not to be read as a leaf group).
+    inner = inner >= BVH_WIDE_INNER ? inner : 0u;
 }
 
 bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out TraceHit hit) {
@@ -132,7 +128,39 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
     // The root: the one inner child (slot 0) of a node group at node 0.
     uvec2 group = uvec2(0u, (BVH_WIDE_INNER << oct_inv) | 1u);
     uvec2 leaves = uvec2(0u);
+    // One loop, one step per pass: a leaf primitive, or a node, or a pop.
     while (true) {
+        if (leaves.y != 0u) {
+            uint bit = uint(findLSB(leaves.y));
+            leaves.y &= leaves.y - 1u;
+            if (instance != BVH_NONE) {
+                if (bvh_leaf_triangle(first_triangle + leaves.x + bit, instance, alpha_tested, o, d, tmin, hit)) {
+                    found = true;
+                    if (any_hit) {
+                        return true;
+                    }
+                }
+                continue;
+            }
+            // Enter the instance; the TLAS node's children wait on the stack (pushed when the
+            // node was visited), its instances left too.
+            if (leaves.y != 0u && sp < BVH_WIDE_STACK) {
+                stack[sp] = leaves;
+                sp++;
+            }
+            instance = tlas_wide_words[leaves.x + bit];
+            o = bvh_transform(instances[instance].eye_to_object, origin, 1.0);
+            d = bvh_transform(instances[instance].eye_to_object, dir, 0.0);
+            inv = bvh_inverse(d);
+            oct_inv = bvh_wide_octant(inv);
+            blas_root = instances[instance].blas_root;
+            first_triangle = instances[instance].first_triangle;
+            alpha_tested = (instances[instance].flags & INSTANCE_ALPHA_TESTED) != 0u;
+            base = sp;
+            group = uvec2(0u, (BVH_WIDE_INNER << oct_inv) | 1u);
+            leaves.y = 0u;
+            continue;
+        }
         if (group.y >= BVH_WIDE_INNER) {
             // The next child of the node group: its node is child_base plus the inner slots
             // before it.
@@ -145,62 +173,66 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
                 sp++;
             }
             bvh_nodes_visited++;
-            BvhWideNode n = instance == BVH_NONE ? tlas_wide_nodes[at] : blas_wide_nodes[blas_root + at];
+            // The node's fields, read one by one (no struct copy).
+            vec3 node_origin;
+            uint frame;
+            uint child_base;
+            uint leaf_base;
+            uvec2 meta;
+            uvec4 q0;
+            uvec4 q1;
+            uvec4 q2;
+            if (instance == BVH_NONE) {
+                node_origin = tlas_wide_nodes[at].origin;
+                frame = tlas_wide_nodes[at].frame;
+                child_base = tlas_wide_nodes[at].child_base;
+                leaf_base = tlas_wide_nodes[at].leaf_base;
+                meta = tlas_wide_nodes[at].meta;
+                q0 = tlas_wide_nodes[at].bounds[0];
+                q1 = tlas_wide_nodes[at].bounds[1];
+                q2 = tlas_wide_nodes[at].bounds[2];
+            } else {
+                at += blas_root;
+                node_origin = blas_wide_nodes[at].origin;
+                frame = blas_wide_nodes[at].frame;
+                child_base = blas_wide_nodes[at].child_base;
+                leaf_base = blas_wide_nodes[at].leaf_base;
+                meta = blas_wide_nodes[at].meta;
+                q0 = blas_wide_nodes[at].bounds[0];
+                q1 = blas_wide_nodes[at].bounds[1];
+                q2 = blas_wide_nodes[at].bounds[2];
+            }
             uint inner;
             uint hits;
-            bvh_wide_test(n, o, inv, oct_inv, tmin, hit.t, inner, hits);
-            group = uvec2(n.child_base, inner);
-            leaves = uvec2(n.leaf_base, hits);
-        } else {
-            // A popped leaf group (TLAS instances left to enter).
+            bvh_wide_test(node_origin, frame, meta, q0, q1, q2, o, inv, oct_inv, tmin, hit.t, inner, hits);
+            group = uvec2(child_base, inner);
+            leaves = uvec2(leaf_base, hits);
+            // TLAS: the children wait while the instances are entered.
+            if (instance == BVH_NONE && hits != 0u && group.y >= BVH_WIDE_INNER && sp < BVH_WIDE_STACK) {
+                stack[sp] = group;
+                sp++;
+                group = uvec2(0u);
+            }
+            continue;
+        }
+        if (group.y != 0u && instance == BVH_NONE) {
+            // A popped leaf group: TLAS instances left to enter.
             leaves = group;
             group = uvec2(0u);
+            continue;
         }
-        while (leaves.y != 0u) {
-            uint bit = uint(findLSB(leaves.y));
-            leaves.y &= leaves.y - 1u;
-            if (instance == BVH_NONE) {
-                // Enter the instance; what is left of this TLAS node waits on the stack.
-                if (group.y >= BVH_WIDE_INNER && sp < BVH_WIDE_STACK) {
-                    stack[sp] = group;
-                    sp++;
-                }
-                if (leaves.y != 0u && sp < BVH_WIDE_STACK) {
-                    stack[sp] = leaves;
-                    sp++;
-                }
-                instance = tlas_wide_words[leaves.x + bit];
-                o = bvh_transform(instances[instance].eye_to_object, origin, 1.0);
-                d = bvh_transform(instances[instance].eye_to_object, dir, 0.0);
-                inv = bvh_inverse(d);
-                oct_inv = bvh_wide_octant(inv);
-                blas_root = instances[instance].blas_root;
-                first_triangle = instances[instance].first_triangle;
-                alpha_tested = (instances[instance].flags & INSTANCE_ALPHA_TESTED) != 0u;
-                base = sp;
-                group = uvec2(0u, (BVH_WIDE_INNER << oct_inv) | 1u);
-                leaves.y = 0u;
-            } else if (bvh_leaf_triangle(first_triangle + leaves.x + bit, instance, alpha_tested, o, d, tmin, hit)) {
-                found = true;
-                if (any_hit) {
-                    return true;
-                }
-            }
+        if (instance != BVH_NONE && sp == base) {
+            instance = BVH_NONE;
+            o = origin;
+            d = dir;
+            inv = bvh_inverse(dir);
+            oct_inv = bvh_wide_octant(inv);
         }
-        if (group.y < BVH_WIDE_INNER) {
-            if (instance != BVH_NONE && sp == base) {
-                instance = BVH_NONE;
-                o = origin;
-                d = dir;
-                inv = bvh_inverse(dir);
-                oct_inv = bvh_wide_octant(inv);
-            }
-            if (sp == 0u) {
-                return found;
-            }
-            sp--;
-            group = stack[sp];
+        if (sp == 0u) {
+            return found;
         }
+        sp--;
+        group = stack[sp];
     }
     return found;
 }
