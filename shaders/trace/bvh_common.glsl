@@ -73,29 +73,37 @@ vec3 bvh_transform(vec4 rows[3], vec3 v, float w) {
 uint bvh_nodes_visited = 0u;
 uint bvh_triangles_tested = 0u;
 
-// Tests the count triangles from global triangle `first` of `instance` against the ray (o, d)
-// in the instance's space, keeping in `hit` the closest accepted one with tmin < t < hit.t
-// (alpha-tested instances ask trace_alpha_accept); with any_hit, stops at the first accepted.
-// Returns whether it accepted one.
+// Tests global triangle `triangle` of `instance` against the ray (o, d) in the instance's
+// space: whether it is hit with tmin < t < hit.t and accepted (alpha-tested instances ask
+// trace_alpha_accept); then `hit` holds it.
+bool bvh_leaf_triangle(uint triangle, uint instance, bool alpha_tested, vec3 o, vec3 d, float tmin, inout TraceHit hit) {
+    bvh_triangles_tested++;
+    float t;
+    vec2 bary;
+    if (!bvh_triangle(triangles[triangle], o, d, tmin, hit.t, t, bary)) {
+        return false;
+    }
+    if (alpha_tested && !trace_alpha_accept(instance, triangle, bary)) {
+        return false;
+    }
+    hit.t = t;
+    hit.instance = instance;
+    hit.triangle = triangle;
+    hit.bary = bary;
+    return true;
+}
+
+// Tests the count triangles from global triangle `first` (bvh_leaf_triangle), keeping in `hit`
+// the closest accepted one; with any_hit, stops at the first accepted. Returns whether it
+// accepted one.
 bool bvh_leaf(uint first, uint count, uint instance, bool alpha_tested, vec3 o, vec3 d, float tmin, bool any_hit, inout TraceHit hit) {
     bool found = false;
     for (uint triangle = first; triangle < first + count; triangle++) {
-        bvh_triangles_tested++;
-        float t;
-        vec2 bary;
-        if (!bvh_triangle(triangles[triangle], o, d, tmin, hit.t, t, bary)) {
-            continue;
-        }
-        if (alpha_tested && !trace_alpha_accept(instance, triangle, bary)) {
-            continue;
-        }
-        hit.t = t;
-        hit.instance = instance;
-        hit.triangle = triangle;
-        hit.bary = bary;
-        found = true;
-        if (any_hit) {
-            return true;
+        if (bvh_leaf_triangle(triangle, instance, alpha_tested, o, d, tmin, hit)) {
+            found = true;
+            if (any_hit) {
+                return true;
+            }
         }
     }
     return found;

@@ -1,44 +1,54 @@
-// Ray traversal of the compute tracer's wide BVHs (render::trace::bvh::wide): the same
-// queries, over the same instances and triangles, as bvh.glsl's binary traversal, with nodes of
-// up to BVH_WIDTH children whose boxes are quantised to bytes. A quantised box holds the
-// binary box it stands for and the box test is bvh.glsl's, so both find the same closest hit
-// (tests/pathtrace/bvh.rs checks it on lavapipe).
+// Ray traversal of the compute tracer's compressed wide BVHs (render::trace::bvh::wide, after
+// Ylitie, Karras and Laine 2017, CWBVH): the same queries, over the same instances and
+// triangles, as bvh.glsl's binary traversal, with 80-byte nodes of up to BVH_WIDTH children
+// whose boxes are quantised to bytes. A quantised box holds the binary box it stands for, so
+// both find the same closest hit (tests/pathtrace/bvh.rs checks it on lavapipe).
 //
 // Rays are in eye space; the TLAS and, on reaching an instance, its BLAS (the ray in object
-// space) are walked in one loop sharing one stack, as in bvh.glsl. At each node every child
-// box is tested and the hit children sorted near to far (a sorting network on registers);
-// BLAS leaves are intersected at once, near first, and the inner children (or TLAS instances,
-// BVH_LEAF set) that are still nearer than the closest hit are pushed far first, each with its
-// entry distance; the traversal continues with the top of the stack, and a popped entry
-// farther than the closest hit found since is dropped.
+// space) are walked in one loop sharing one stack, as in bvh.glsl. The box test moves the ray
+// into the node's quantisation grid (one fused multiply-add per plane) and takes the near and
+// far planes by the direction's signs. Its result is two hit masks:
+// - a node group (the node's child_base; the hit inner children at bit 24 + (slot ^ oct_inv),
+//   the node's imask in bits 0-7), walked highest bit first: the builder puts in slot s the
+//   child a ray with the direction signs s meets first, so this visits the children roughly
+//   near to far without sorting (oct_inv: the complement of the ray's sign bits);
+// - a leaf group (the node's leaf_base; bit k for its primitive leaf_base + k, k < 24): BLAS
+//   triangles, tested at once, or TLAS instances, each entered in turn.
+// The stack holds groups with children left to visit (node groups) and, in the TLAS, instances
+// left to enter (leaf groups, bits 24-31 clear).
 //
-// Stack: 2 * BVH_WIDE_BUDGET + 1 entries. The builder keeps the entries one level (the TLAS, or
-// one BLAS) leaves on the stack within BVH_WIDE_BUDGET along any path; the + 1 is the nearest
-// child, pushed last and popped at once. A push that would not fit is dropped (as bvh.glsl).
+// Stack: each visited node leaves at most one group on the stack (its siblings') and entering
+// an instance two (the TLAS node's children and instances left), so a TLAS path and a BLAS path
+// of at most BVH_MAX_DEPTH nodes each fit BVH_WIDE_STACK. A push that would not fit is dropped
+// (as bvh.glsl).
 //
 // Alpha testing: as bvh.glsl (trace_alpha_accept, defined by the including shader).
 //
 // Layout (std430, mirrored by render::trace::bvh::wide::GpuWideNode, checked by the build):
-// origin (the node box's lowest corner), exponents (byte a: the biased exponent of axis a's
-// scale), lo[6] and hi[6] (byte slot % 4 of word 2 * axis + slot / 4: a child's bounds are
-// origin + q * scale), children[BVH_WIDTH]: BVH_EMPTY (its quantised x bounds are then lo 255,
-// hi 0), an inner child's node (BLAS: relative to the instance's blas_root), or BVH_LEAF with
-// the fields BVH_WIDE_COUNT (primitives less one) and BVH_WIDE_INDEX (the first primitive:
-// BLAS triangles relative to first_triangle; TLAS: the instance).
+// origin (the node box's lowest corner); frame (byte a: the biased exponent of axis a's scale,
+// BVH_WIDE_IMASK: the slots holding inner children); child_base (the first inner child's node,
+// BLAS: relative to the instance's blas_root; the others follow in slot order); leaf_base (the
+// leaves' first primitive, BLAS: triangles relative to first_triangle; TLAS: the word of the
+// TLAS buffer holding the instance); meta (byte per slot: BVH_WIDE_OFFSET and BVH_WIDE_COUNT of
+// a leaf, BVH_WIDE_EMPTY); bounds (bytes: lowest x, y, z, highest x, y, z, eight slots each; a
+// child's bounds are origin + q * scale).
 
 #ifndef TRACE_BVH_WIDE_GLSL
 #define TRACE_BVH_WIDE_GLSL
 
 #include "trace/bvh_common.glsl"
 
-#define BVH_WIDE_STACK (2 * BVH_WIDE_BUDGET + 1)
+#define BVH_WIDE_STACK (2 * BVH_MAX_DEPTH + 2)
+// The lowest bit of a node group's inner children.
+#define BVH_WIDE_INNER 0x1000000u
 
 struct BvhWideNode {
     vec3 origin;
-    uint exponents;
-    uint lo[6];
-    uint hi[6];
-    uint children[BVH_WIDTH];
+    uint frame;
+    uint child_base;
+    uint leaf_base;
+    uvec2 meta;
+    uvec4 bounds[3];
 };
 
 layout(set = TRACE_SET, binding = BINDING_BLAS_NODES, std430) readonly buffer BlasWideNodes {
@@ -49,16 +59,53 @@ layout(set = TRACE_SET, binding = BINDING_TLAS_NODES, std430) readonly buffer Tl
     BvhWideNode tlas_wide_nodes[];
 };
 
-// Sorts the pairs (t[a], s[a]) and (t[b], s[b]) by t.
-#define BVH_ORDER(a, b) { bool swap_ = t[b] < t[a]; float ta_ = t[a]; uint sa_ = s[a]; \
-    t[a] = swap_ ? t[b] : t[a]; s[a] = swap_ ? s[b] : s[a]; t[b] = swap_ ? ta_ : t[b]; s[b] = swap_ ? sa_ : s[b]; }
+// The same buffer as words: the instances of the TLAS's leaves follow its nodes.
+layout(set = TRACE_SET, binding = BINDING_TLAS_NODES, std430) readonly buffer TlasWideWords {
+    uint tlas_wide_words[];
+};
 
-// Child `slot`'s quantised bound on each axis from the words `q` (lo or hi) of a node.
-vec3 bvh_wide_bound(uint q[6], uint slot, vec3 origin, vec3 scale) {
-    uint word = slot >> 2u;
-    int shift = int(8u * (slot & 3u));
-    uvec3 b = uvec3(bitfieldExtract(q[word], shift, 8), bitfieldExtract(q[2u + word], shift, 8), bitfieldExtract(q[4u + word], shift, 8));
-    return origin + vec3(b) * scale;
+// oct_inv of a ray with inverse direction inv: bit 2 - a set where axis a is not negative.
+uint bvh_wide_octant(vec3 inv) {
+    return (inv.x < 0.0 ? 0u : 4u) | (inv.y < 0.0 ? 0u : 2u) | (inv.z < 0.0 ? 0u : 1u);
+}
+
+// The eight bytes of `q` (two words) as floats, slot order.
+#define BVH_WIDE_BYTE(q, slot) float(bitfieldExtract(q[(slot) >> 2], 8 * ((slot) & 3), 8))
+
+// Tests the children of a node (its fields: origin, frame, meta, bounds q0, q1, q2) against
+// the ray (o, inv) within [tmin, tmax]: `inner` gets the hit inner children at bit
+// 24 + (slot ^ oct_inv) and the node's imask, `leaves` a bit per primitive of the hit leaves.
+// Branch-free: selects only.
+void bvh_wide_test(vec3 origin, uint frame, uvec2 meta, uvec4 q0, uvec4 q1, uvec4 q2, vec3 o, vec3 inv, uint oct_inv, float tmin, float tmax, out uint inner, out uint leaves) {
+    vec3 scale = uintBitsToFloat(uvec3(bitfieldExtract(frame, 0, 8), bitfieldExtract(frame, 8, 8), bitfieldExtract(frame, 16, 8)) << 23u);
+    // The plane at q is hit at q * a + b.
+    vec3 a = scale * inv;
+    vec3 b = (origin - o) * inv;
+    // Lowest bounds are the near planes where the direction is positive.
+    uvec2 lo_x = q0.xy, lo_y = q0.zw, lo_z = q1.xy, hi_x = q1.zw, hi_y = q2.xy, hi_z = q2.zw;
+    uvec2 near_x = inv.x < 0.0 ? hi_x : lo_x, far_x = inv.x < 0.0 ? lo_x : hi_x;
+    uvec2 near_y = inv.y < 0.0 ? hi_y : lo_y, far_y = inv.y < 0.0 ? lo_y : hi_y;
+    uvec2 near_z = inv.z < 0.0 ? hi_z : lo_z, far_z = inv.z < 0.0 ? lo_z : hi_z;
+    uint imask = bitfieldExtract(frame, int(BVH_WIDE_IMASK_SHIFT), int(BVH_WIDE_IMASK_BITS));
+    inner = imask;
+    leaves = 0u;
+    for (int slot = 0; slot < BVH_WIDTH; slot++) {
+        vec3 tn3 = vec3(BVH_WIDE_BYTE(near_x, slot), BVH_WIDE_BYTE(near_y, slot), BVH_WIDE_BYTE(near_z, slot)) * a + b;
+        vec3 tf3 = vec3(BVH_WIDE_BYTE(far_x, slot), BVH_WIDE_BYTE(far_y, slot), BVH_WIDE_BYTE(far_z, slot)) * a + b;
+        float tn = max(max(tn3.x, tn3.y), max(tn3.z, tmin));
+        float tf = min(min(tf3.x, tf3.y), min(tf3.z, tmax)) * BVH_BOX_SLACK;
+        bool hit = tn <= tf;
+        bool is_inner = (imask & (1u << slot)) != 0u;
+        uint m = bitfieldExtract(meta[slot >> 2], 8 * (slot & 3), 8);
+        uint offset = bitfieldExtract(m, int(BVH_WIDE_OFFSET_SHIFT), int(BVH_WIDE_OFFSET_BITS));
+        uint count = bitfieldExtract(m, int(BVH_WIDE_COUNT_SHIFT), int(BVH_WIDE_COUNT_BITS)) + 1u;
+        // An empty slot's offset is beyond the leaves.
+        uint leaf_bits = offset < BVH_WIDE_LEAVES ? ((1u << count) - 1u) << offset : 0u;
+        inner |= hit && is_inner ? BVH_WIDE_INNER << (uint(slot) ^ oct_inv) : 0u;
+        leaves |= hit && !is_inner ? leaf_bits : 0u;
+    }
+    // No inner child hit: no group (not to be read as a leaf group).
+    inner = inner >= BVH_WIDE_INNER ? inner : 0u;
 }
 
 bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out TraceHit hit) {
@@ -70,112 +117,122 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
     vec3 o = origin;
     vec3 d = dir;
     vec3 inv = bvh_inverse(dir);
+    uint oct_inv = bvh_wide_octant(inv);
     uint instance = BVH_NONE;  // BVH_NONE: in the TLAS
     uint blas_root = 0u;
     uint first_triangle = 0u;
     bool alpha_tested = false;
     uint base = 0u;            // stack entries below this belong to the TLAS
-    uint stack[BVH_WIDE_STACK];
-    float stack_t[BVH_WIDE_STACK];
+    uvec2 stack[BVH_WIDE_STACK];
     uint sp = 0u;
-    uint next = 0u;
+    // The root: the one inner child (slot 0) of a node group at node 0.
+    uvec2 group = uvec2(0u, (BVH_WIDE_INNER << oct_inv) | 1u);
+    uvec2 leaves = uvec2(0u);
+    // One loop, one step per pass: a leaf primitive, or a node, or a pop.
     while (true) {
-        bvh_nodes_visited++;
-        if ((next & BVH_LEAF) != 0u) {
-            instance = bitfieldExtract(next, int(BVH_WIDE_INDEX_SHIFT), int(BVH_WIDE_INDEX_BITS));
-            o = bvh_transform(instances[instance].eye_to_object, origin, 1.0);
-            d = bvh_transform(instances[instance].eye_to_object, dir, 0.0);
-            inv = bvh_inverse(d);
-            blas_root = instances[instance].blas_root;
-            first_triangle = instances[instance].first_triangle;
-            alpha_tested = (instances[instance].flags & INSTANCE_ALPHA_TESTED) != 0u;
-            base = sp;
-            next = 0u;
-        }
-        uint at = instance == BVH_NONE ? next : blas_root + next;
-        vec3 node_origin;
-        uint exponents;
-        uint lo[6];
-        uint hi[6];
-        if (instance == BVH_NONE) {
-            node_origin = tlas_wide_nodes[at].origin;
-            exponents = tlas_wide_nodes[at].exponents;
-            lo = tlas_wide_nodes[at].lo;
-            hi = tlas_wide_nodes[at].hi;
-        } else {
-            node_origin = blas_wide_nodes[at].origin;
-            exponents = blas_wide_nodes[at].exponents;
-            lo = blas_wide_nodes[at].lo;
-            hi = blas_wide_nodes[at].hi;
-        }
-        vec3 scale = uintBitsToFloat(uvec3(bitfieldExtract(exponents, 0, 8), bitfieldExtract(exponents, 8, 8), bitfieldExtract(exponents, 16, 8)) << 23u);
-        // Entry distances of the children, sorted near to far with their slots (misses last).
-        float t[BVH_WIDTH];
-        uint s[BVH_WIDTH];
-        for (uint slot = 0u; slot < BVH_WIDTH; slot++) {
-            vec3 box_lo = bvh_wide_bound(lo, slot, node_origin, scale);
-            vec3 box_hi = bvh_wide_bound(hi, slot, node_origin, scale);
-            int shift = int(8u * (slot & 3u));
-            bool filled = bitfieldExtract(lo[slot >> 2u], shift, 8) <= bitfieldExtract(hi[slot >> 2u], shift, 8);
-            t[slot] = filled ? bvh_box(box_lo, box_hi, o, inv, tmin, hit.t) : BVH_MISS;
-            s[slot] = slot;
-        }
-        BVH_ORDER(0, 2) BVH_ORDER(1, 3) BVH_ORDER(4, 6) BVH_ORDER(5, 7)
-        BVH_ORDER(0, 4) BVH_ORDER(1, 5) BVH_ORDER(2, 6) BVH_ORDER(3, 7)
-        BVH_ORDER(0, 1) BVH_ORDER(2, 3) BVH_ORDER(4, 5) BVH_ORDER(6, 7)
-        BVH_ORDER(2, 4) BVH_ORDER(3, 5)
-        BVH_ORDER(1, 4) BVH_ORDER(3, 6)
-        BVH_ORDER(1, 2) BVH_ORDER(3, 4) BVH_ORDER(5, 6)
-        if (instance != BVH_NONE) {
-            for (uint i = 0u; i < BVH_WIDTH; i++) {
-                if (!(t[i] < BVH_MISS)) {
-                    continue;
-                }
-                uint child = blas_wide_nodes[at].children[s[i]];
-                if ((child & BVH_LEAF) == 0u) {
-                    continue;
-                }
-                uint first = bitfieldExtract(child, int(BVH_WIDE_INDEX_SHIFT), int(BVH_WIDE_INDEX_BITS));
-                uint count = bitfieldExtract(child, int(BVH_WIDE_COUNT_SHIFT), int(BVH_WIDE_COUNT_BITS)) + 1u;
-                if (bvh_leaf(first_triangle + first, count, instance, alpha_tested, o, d, tmin, any_hit, hit)) {
+        if (leaves.y != 0u) {
+            uint bit = uint(findLSB(leaves.y));
+            leaves.y &= leaves.y - 1u;
+            if (instance != BVH_NONE) {
+                if (bvh_leaf_triangle(first_triangle + leaves.x + bit, instance, alpha_tested, o, d, tmin, hit)) {
                     found = true;
                     if (any_hit) {
                         return true;
                     }
                 }
-            }
-        }
-        // Far first, so that the nearest is on top; only what is still nearer than the hit.
-        for (int i = BVH_WIDTH - 1; i >= 0; i--) {
-            if (!(t[i] < BVH_MISS && t[i] <= hit.t)) {
                 continue;
             }
-            uint child = instance == BVH_NONE ? tlas_wide_nodes[at].children[s[i]] : blas_wide_nodes[at].children[s[i]];
-            if (instance != BVH_NONE && (child & BVH_LEAF) != 0u) {
-                continue;
-            }
-            if (sp < BVH_WIDE_STACK) {
-                stack[sp] = child;
-                stack_t[sp] = t[i];
+            // Enter the instance; the TLAS node's children wait on the stack (pushed when the
+            // node was visited), its instances left too.
+            if (leaves.y != 0u && sp < BVH_WIDE_STACK) {
+                stack[sp] = leaves;
                 sp++;
             }
+            instance = tlas_wide_words[leaves.x + bit];
+            o = bvh_transform(instances[instance].eye_to_object, origin, 1.0);
+            d = bvh_transform(instances[instance].eye_to_object, dir, 0.0);
+            inv = bvh_inverse(d);
+            oct_inv = bvh_wide_octant(inv);
+            blas_root = instances[instance].blas_root;
+            first_triangle = instances[instance].first_triangle;
+            alpha_tested = (instances[instance].flags & INSTANCE_ALPHA_TESTED) != 0u;
+            base = sp;
+            group = uvec2(0u, (BVH_WIDE_INNER << oct_inv) | 1u);
+            leaves.y = 0u;
+            continue;
         }
-        next = BVH_NONE;
-        while (next == BVH_NONE) {
-            if (instance != BVH_NONE && sp == base) {
-                instance = BVH_NONE;
-                o = origin;
-                d = dir;
-                inv = bvh_inverse(dir);
+        if (group.y >= BVH_WIDE_INNER) {
+            // The next child of the node group: its node is child_base plus the inner slots
+            // before it.
+            uint bit = uint(findMSB(group.y));
+            group.y &= ~(1u << bit);
+            uint slot = (bit - 24u) ^ oct_inv;
+            uint at = group.x + bitCount(group.y & ((1u << slot) - 1u));
+            if (group.y >= BVH_WIDE_INNER && sp < BVH_WIDE_STACK) {
+                stack[sp] = group;
+                sp++;
             }
-            if (sp == 0u) {
-                return found;
+            bvh_nodes_visited++;
+            // The node's fields, read one by one (no struct copy).
+            vec3 node_origin;
+            uint frame;
+            uint child_base;
+            uint leaf_base;
+            uvec2 meta;
+            uvec4 q0;
+            uvec4 q1;
+            uvec4 q2;
+            if (instance == BVH_NONE) {
+                node_origin = tlas_wide_nodes[at].origin;
+                frame = tlas_wide_nodes[at].frame;
+                child_base = tlas_wide_nodes[at].child_base;
+                leaf_base = tlas_wide_nodes[at].leaf_base;
+                meta = tlas_wide_nodes[at].meta;
+                q0 = tlas_wide_nodes[at].bounds[0];
+                q1 = tlas_wide_nodes[at].bounds[1];
+                q2 = tlas_wide_nodes[at].bounds[2];
+            } else {
+                at += blas_root;
+                node_origin = blas_wide_nodes[at].origin;
+                frame = blas_wide_nodes[at].frame;
+                child_base = blas_wide_nodes[at].child_base;
+                leaf_base = blas_wide_nodes[at].leaf_base;
+                meta = blas_wide_nodes[at].meta;
+                q0 = blas_wide_nodes[at].bounds[0];
+                q1 = blas_wide_nodes[at].bounds[1];
+                q2 = blas_wide_nodes[at].bounds[2];
             }
-            sp--;
-            if (stack_t[sp] <= hit.t) {
-                next = stack[sp];
+            uint inner;
+            uint hits;
+            bvh_wide_test(node_origin, frame, meta, q0, q1, q2, o, inv, oct_inv, tmin, hit.t, inner, hits);
+            group = uvec2(child_base, inner);
+            leaves = uvec2(leaf_base, hits);
+            // TLAS: the children wait while the instances are entered.
+            if (instance == BVH_NONE && hits != 0u && group.y >= BVH_WIDE_INNER && sp < BVH_WIDE_STACK) {
+                stack[sp] = group;
+                sp++;
+                group = uvec2(0u);
             }
+            continue;
         }
+        if (group.y != 0u && instance == BVH_NONE) {
+            // A popped leaf group: TLAS instances left to enter.
+            leaves = group;
+            group = uvec2(0u);
+            continue;
+        }
+        if (instance != BVH_NONE && sp == base) {
+            instance = BVH_NONE;
+            o = origin;
+            d = dir;
+            inv = bvh_inverse(dir);
+            oct_inv = bvh_wide_octant(inv);
+        }
+        if (sp == 0u) {
+            return found;
+        }
+        sp--;
+        group = stack[sp];
     }
     return found;
 }

@@ -253,6 +253,43 @@ fn binary_gpu_traversal_equals_cpu_traversal() {
     traversal_equals_cpu_traversal(Layout::Binary);
 }
 
+#[test]
+fn wide_gpu_traversal_of_many_instances_equals_cpu_traversal() {
+    many_instances_equal_cpu_traversal(Layout::Wide);
+}
+
+#[test]
+fn binary_gpu_traversal_of_many_instances_equals_cpu_traversal() {
+    many_instances_equal_cpu_traversal(Layout::Binary);
+}
+
+/// Traces `rays` through `world` on lavapipe and on the CPU; asserts that both queries agree
+/// for every ray and returns the CPU's closest hits and the GPU's answers.
+fn gpu_equals_cpu(world: &World, rays: &[Ray]) -> (Vec<Option<cpu::Hit>>, Vec<GpuResult>) {
+    let scene = world.scene();
+    let device = lavapipe::select(Device::new);
+    let got = trace_on_gpu(&device, world, rays);
+    let mut wants = Vec::with_capacity(rays.len());
+    for (i, (ray, g)) in rays.iter().zip(&got).enumerate() {
+        let want = cpu::closest(&scene, ray.origin, ray.dir, ray.tmin, ray.tmax, even);
+        let any = cpu::any(&scene, ray.origin, ray.dir, ray.tmin, ray.tmax, even);
+        assert_eq!(g.any, any, "{:?} ray {i}: trace_any", world.layout);
+        match want {
+            Some(w) => {
+                assert!(g.closest, "{:?} ray {i}: GPU missed {w:?}", world.layout);
+                assert_eq!((g.instance, g.triangle), (w.instance, w.triangle), "{:?} ray {i}: t {} vs {}", world.layout, g.t, w.t);
+                // Relative, and absolute for hits just off the origin (the GPU's fused
+                // multiply-adds round differently).
+                assert!((g.t - w.t).abs() <= 1e-4 * w.t.abs() + 1e-7 * ray.dir.length().recip(), "ray {i}: t {} vs {}", g.t, w.t);
+                assert!(g.bary.abs_diff_eq(w.bary, 1e-3), "ray {i}: bary {} vs {}", g.bary, w.bary);
+            }
+            None => assert!(!g.closest, "{:?} ray {i}: GPU hit {g:?}, CPU missed", world.layout),
+        }
+        wants.push(want);
+    }
+    (wants, got)
+}
+
 /// Traces the rays of the test with the GPU traversal of `layout` and the CPU's.
 fn traversal_equals_cpu_traversal(layout: Layout) {
     let mut rng = Rng(0x5eed_f00d);
@@ -266,7 +303,6 @@ fn traversal_equals_cpu_traversal(layout: Layout) {
         (grid(8), Affine3A::from_mat3_translation(glam::Mat3::from_diagonal(Vec3::new(0.3, 1.0, 0.5)), Vec3::new(0.6, -0.4, 0.5)), false),
     ];
     let world = World::new(&placed, layout);
-    let scene = world.scene();
 
     let mut rays: Vec<Ray> = (0..4000)
         .map(|_| {
@@ -289,23 +325,12 @@ fn traversal_equals_cpu_traversal(layout: Layout) {
         rays.push(Ray { origin, dir, tmin: 0.0, tmax: 1.001 });
     }
 
-    let device = lavapipe::select(Device::new);
-    let got = trace_on_gpu(&device, &world, &rays);
+    let (wants, got) = gpu_equals_cpu(&world, &rays);
     let mut hits = [0usize; 6];
     let mut passed_through = 0;
-    for (i, (ray, g)) in rays.iter().zip(&got).enumerate() {
-        let want = cpu::closest(&scene, ray.origin, ray.dir, ray.tmin, ray.tmax, even);
-        let any = cpu::any(&scene, ray.origin, ray.dir, ray.tmin, ray.tmax, even);
-        assert_eq!(g.any, any, "ray {i}: trace_any");
-        match want {
-            Some(w) => {
-                assert!(g.closest, "ray {i}: GPU missed {w:?}");
-                assert_eq!((g.instance, g.triangle), (w.instance, w.triangle), "ray {i}: t {} vs {}", g.t, w.t);
-                assert!((g.t - w.t).abs() <= 1e-4 * w.t.abs(), "ray {i}: t {} vs {}", g.t, w.t);
-                assert!(g.bary.abs_diff_eq(w.bary, 1e-3), "ray {i}: bary {} vs {}", g.bary, w.bary);
-                hits[w.instance as usize] += 1;
-            }
-            None => assert!(!g.closest, "ray {i}: GPU hit {g:?}, CPU missed"),
+    for (i, (want, g)) in wants.iter().zip(&got).enumerate() {
+        if let Some(w) = want {
+            hits[w.instance as usize] += 1;
         }
         if i >= targeted {
             let aimed = first + 1 + 2 * (i - targeted) as u32;
@@ -318,4 +343,33 @@ fn traversal_equals_cpu_traversal(layout: Layout) {
     assert!(hits[0] > 100 && hits[1] > 100 && hits[2] > 50 && hits[3] > 10 && hits[5] > 10, "{hits:?}");
     assert_eq!(hits[4], 0);
     assert!(passed_through > 50, "{passed_through}");
+}
+
+/// A top level of 512 instances (8 x 8 x 8, every fourth alpha-tested, rotated and scaled,
+/// some overlapping) of a few shared shapes, so that the wide top level has inner nodes, leaf
+/// groups of several instances and a deep stack, traced with the GPU traversal of `layout`
+/// and the CPU's: 3,000 rays from inside and outside the crowd.
+fn many_instances_equal_cpu_traversal(layout: Layout) {
+    let mut rng = Rng(0xc0ff_ee11);
+    let shapes = [grid(6), soup(&mut rng, 120, 0.3), soup(&mut rng, 40, 0.6)];
+    let placed: Vec<(Vec<[Vec3; 3]>, Affine3A, bool)> = (0..512)
+        .map(|i| {
+            let at = Vec3::new((i % 8) as f32, (i / 8 % 8) as f32, (i / 64) as f32) * 0.5 - 1.75 + rng.vec(0.1);
+            let object_to_eye = Affine3A::from_scale_rotation_translation(Vec3::splat(0.1 + 0.2 * rng.f32()), Quat::from_rotation_y(rng.f32() * 6.0) * Quat::from_rotation_x(rng.f32() * 6.0), at);
+            (shapes[i % 3].clone(), object_to_eye, i % 4 == 1)
+        })
+        .collect();
+    let world = World::new(&placed, layout);
+    let rays: Vec<Ray> = (0..3000)
+        .map(|k| {
+            let origin = if k % 2 == 0 { rng.vec(2.0) } else { rng.vec(6.0) };
+            let dir = rng.vec(1.0);
+            Ray { origin, dir, tmin: 0.0, tmax: if k % 3 == 0 { 2.0 } else { f32::INFINITY } }
+        })
+        .collect();
+    let (wants, _) = gpu_equals_cpu(&world, &rays);
+    let instances_hit: std::collections::HashSet<u32> = wants.iter().flatten().map(|w| w.instance).collect();
+    let hit = wants.iter().flatten().count();
+    println!("{hit} of {} rays hit, {} instances hit", rays.len(), instances_hit.len());
+    assert!(hit > 1000 && instances_hit.len() > 200, "{hit} rays hit {} instances", instances_hit.len());
 }

@@ -21,7 +21,7 @@
 //! sky_sampling = true       # next-event estimation of the sky (its cube map's luminance)
 //! sky_size = 128            # faces of the sky's environment cube map, pixels, 16..=2048
 //! tracer = "auto"           # "auto", "hardware" (VK_KHR_ray_tracing_pipeline), "compute"
-//! bvh = "binary"            # the compute tracer's BVH nodes: "binary" or "wide" (8 children, quantised)
+//! bvh = "binary"            # the compute tracer's BVH nodes: "binary" or "wide" (8 children, compressed)
 //! ```
 
 use glam::Vec3;

@@ -151,12 +151,12 @@ glsl_constants! {
     const BVH_MAX_DEPTH: usize = 32;
     /// Children of a wide BVH node (`BvhWideNode` in `bvh_wide.glsl`, `GpuWideNode`).
     const BVH_WIDTH: usize = 8;
-    /// A wide node's child slot holding no child.
-    const BVH_EMPTY: u32 = 0xffff_ffff;
-    /// Stack entries the wide traversal gives each level (the TLAS, then a BLAS): the wide
-    /// builder keeps what one level can push along any path within it, so the traversal's
-    /// stack of `2 * BVH_WIDE_BUDGET` entries never overflows.
-    const BVH_WIDE_BUDGET: usize = 40;
+    /// The most primitives the leaves of one wide node hold: the traversal's hit mask has a
+    /// bit for each (and one for each inner child above them).
+    const BVH_WIDE_LEAVES: u32 = 24;
+    /// A wide node's meta byte of a slot holding no child (its offset, 31, is beyond
+    /// [`BVH_WIDE_LEAVES`]).
+    const BVH_WIDE_EMPTY: u32 = 0xff;
 }
 
 glsl_fields! {
@@ -172,9 +172,11 @@ glsl_fields! {
     BLEND_EQUATION_RGB = (16, 3);
     /// Equation of alpha.
     BLEND_EQUATION_ALPHA = (19, 3);
-    /// A wide node's child reference (`GpuWideNode::children`): an inner child's node, or a
-    /// leaf's first primitive (with [`BVH_LEAF`] set).
-    BVH_WIDE_INDEX = (0, 28);
-    /// A wide leaf's primitive count less one (1 to 8 primitives).
-    BVH_WIDE_COUNT = (28, 3);
+    /// A wide leaf's meta byte (`GpuWideNode::meta`): its first primitive relative to the
+    /// node's `leaf_base`.
+    BVH_WIDE_OFFSET = (0, 5);
+    /// A wide leaf's meta byte: its primitives less one (1 to 8 primitives).
+    BVH_WIDE_COUNT = (5, 3);
+    /// `GpuWideNode::frame`: which slots hold inner children.
+    BVH_WIDE_IMASK = (24, 8);
 }

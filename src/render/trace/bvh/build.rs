@@ -13,9 +13,9 @@ use glam::Vec3;
 use obvhs::BvhBuildParams;
 use obvhs::bvh2::Bvh2;
 
-use super::wide::{GpuWideNode, widen};
+use super::wide::{self, GpuWideNode, Widened, widen};
 use super::{Aabb, GpuChild, GpuNode, GpuTriangle, MAX_COORD};
-use crate::render::trace::shader_constants::{BVH_LEAF, BVH_MAX_DEPTH, BVH_WIDE_COUNT};
+use crate::render::trace::shader_constants::{BVH_LEAF, BVH_MAX_DEPTH, BVH_WIDE_COUNT, BVH_WIDE_LEAVES};
 
 /// The bottom-level BVH of one triangle set, in object space. Node and triangle indices are
 /// relative to it: node 0 is the root, triangle 0 its first (see the module doc).
@@ -24,8 +24,9 @@ pub struct Blas {
     /// The nodes, root first; never empty (an empty set has one node of two empty leaves).
     pub nodes: Vec<GpuNode>,
     /// `nodes` collapsed into wide nodes ([`widen`]), root first.
-    pub wide: Vec<GpuWideNode>,
-    /// The triangles in BVH order: leaves reference ranges of it.
+    pub wide: Widened,
+    /// The triangles in BVH order (the leaves of a wide node consecutive): leaves of both
+    /// layouts reference ranges of it.
     pub triangles: Vec<GpuTriangle>,
     /// `order[k]`: the index in the input of stored triangle `k` (reorders per-triangle
     /// shading attributes the same way).
@@ -40,8 +41,12 @@ pub struct Blas {
 pub struct Tlas {
     /// The nodes, root first; never empty.
     pub nodes: Vec<GpuNode>,
-    /// `nodes` collapsed into wide nodes ([`widen`]), root first.
-    pub wide: Vec<GpuWideNode>,
+    /// `nodes` collapsed into wide nodes ([`widen`]), root first, as words; then, from word
+    /// `20 *` [`Tlas::wide_count`] on, the instance of each wide leaf (the nodes' `leaf_base`
+    /// counts in words of this buffer).
+    pub wide: Vec<u32>,
+    /// Wide nodes at the start of `wide`.
+    pub wide_count: usize,
 }
 
 /// The triangle with non-finite positions collapsed onto its first finite vertex (or the
@@ -56,8 +61,8 @@ fn sanitize(t: &[Vec3; 3]) -> [Vec3; 3] {
 
 /// The most primitives a BLAS leaf holds.
 const BLAS_LEAF_SIZE: u32 = 8;
-// A wide node's leaf counts them in BVH_WIDE_COUNT.
-const _: () = assert!(BLAS_LEAF_SIZE <= 1 << BVH_WIDE_COUNT.bits);
+// A wide node's leaf counts them in BVH_WIDE_COUNT; two leaves fit a wide node's hit mask.
+const _: () = assert!(BLAS_LEAF_SIZE <= 1 << BVH_WIDE_COUNT.bits && 2 * BLAS_LEAF_SIZE <= BVH_WIDE_LEAVES);
 /// Leaf size of the median-split fallback for BLASes.
 const FALLBACK_LEAF_SIZE: usize = 4;
 
@@ -74,10 +79,12 @@ impl Blas {
     pub(super) fn build_limited(triangles: &[[Vec3; 3]], params: BvhBuildParams, max_depth: usize) -> Blas {
         let clean: Vec<[Vec3; 3]> = triangles.iter().map(sanitize).collect();
         let boxes: Vec<Aabb> = clean.iter().map(|t| Aabb::of_points(t)).collect();
-        let (nodes, order) = build_nodes(&boxes, params, FALLBACK_LEAF_SIZE, max_depth);
+        let (mut nodes, order) = build_nodes(&boxes, params, FALLBACK_LEAF_SIZE, max_depth);
+        let wide = widen(&nodes);
+        let order = renumber_leaves(&mut nodes, &order, &wide.leaves);
         let triangles = order.iter().map(|&i| GpuTriangle::new(&clean[i as usize])).collect();
         let bounds = boxes.iter().fold(Aabb::EMPTY, |b, t| b.union(t));
-        Blas { wide: widen(&nodes, false), nodes, triangles, order, bounds }
+        Blas { wide, nodes, triangles, order, bounds }
     }
 
     /// `triangles` in their input order under a root of two empty leaves: no tree, for the
@@ -120,7 +127,7 @@ impl Blas {
             }
         }
         self.bounds = clean.iter().fold(Aabb::EMPTY, |b, t| b.union(&Aabb::of_points(t)));
-        self.wide = widen(&self.nodes, false);
+        wide::refit(&self.nodes, &mut self.wide);
         true
     }
 
@@ -130,7 +137,7 @@ impl Blas {
     pub fn append_to(&self, nodes: &mut Vec<GpuNode>, wide: &mut Vec<GpuWideNode>, triangles: &mut Vec<GpuTriangle>) -> (u32, u32, u32) {
         let at = (nodes.len() as u32, wide.len() as u32, triangles.len() as u32);
         nodes.extend_from_slice(&self.nodes);
-        wide.extend_from_slice(&self.wide);
+        wide.extend_from_slice(&self.wide.nodes);
         triangles.extend_from_slice(&self.triangles);
         at
     }
@@ -153,8 +160,38 @@ impl Tlas {
         for child in nodes.iter_mut().flat_map(|n| n.children.iter_mut()).filter(|c| c.is_leaf() && c.meta != BVH_LEAF) {
             child.index = live[order[child.index as usize] as usize];
         }
-        Tlas { wide: widen(&nodes, true), nodes }
+        let Widened { nodes: mut wide_nodes, leaves, .. } = widen(&nodes);
+        let wide_count = wide_nodes.len();
+        let first_instance = (wide_count * size_of::<GpuWideNode>() / 4) as u32;
+        for n in &mut wide_nodes {
+            n.leaf_base += first_instance;
+        }
+        let mut wide: Vec<u32> = bytemuck::cast_slice(&wide_nodes).to_vec();
+        wide.extend(leaves.iter().map(|&(instance, _)| instance));
+        Tlas { wide, wide_count, nodes }
     }
+
+    /// The wide nodes at the start of [`Tlas::wide`].
+    pub fn wide_nodes(&self) -> &[GpuWideNode] {
+        bytemuck::cast_slice(&self.wide[..self.wide_count * size_of::<GpuWideNode>() / 4])
+    }
+}
+
+/// The primitive order with the wide tree's leaves (`leaves`, binary `(first, count)` in the
+/// wide numbering's order) consecutive, from the binary build's `order`; points the binary
+/// leaves of `nodes` at their new places.
+fn renumber_leaves(nodes: &mut [GpuNode], order: &[u32], leaves: &[(u32, u32)]) -> Vec<u32> {
+    let mut renumbered = Vec::with_capacity(order.len());
+    // The new first primitive of the binary leaf starting at each old one.
+    let mut moved = vec![0u32; order.len()];
+    for &(first, count) in leaves {
+        moved[first as usize] = renumbered.len() as u32;
+        renumbered.extend_from_slice(&order[first as usize..(first + count) as usize]);
+    }
+    for child in nodes.iter_mut().flat_map(|n| n.children.iter_mut()).filter(|c| c.is_leaf() && c.meta != BVH_LEAF) {
+        child.index = moved[child.index as usize];
+    }
+    renumbered
 }
 
 /// The flattened BVH over `boxes` and the primitive order its leaves index: obvhs with

@@ -27,9 +27,10 @@
 //! - children come after their parents (node 0 is the root): [`Blas::refit`] sweeps backwards.
 //! - a [`GpuTriangle`] is `v0, e1 = v1 - v0, e2 = v2 - v0` (Möller–Trumbore), 48 bytes.
 //!
-//! Every BVH is also kept collapsed into wide nodes ([`wide`]: up to 8 children with
-//! quantised boxes, the same leaves and triangle order); [`Layout`] picks which of the two the
-//! GPU traverses.
+//! Every BVH is also kept collapsed into compressed wide nodes ([`wide`]: 80 bytes, up to 8
+//! children with byte-quantised boxes in slots ordered by ray octant, the same leaves and
+//! triangle order: the triangles are ordered so that each wide node's leaves are consecutive);
+//! [`Layout`] picks which of the two the GPU traverses.
 //!
 //! Robustness: non-finite positions make their triangle degenerate (collapsed onto its first
 //! finite vertex, or the origin): it is kept in place, so `order` stays a permutation and refit
@@ -53,8 +54,9 @@ pub use wide::GpuWideNode;
 /// The node layout the compute tracer uploads and traverses (`[pathtrace] bvh`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Layout {
-    /// [`GpuWideNode`]s, traversed by `bvh_wide.glsl` (`"wide"`): a third of the node visits,
-    /// but slower on the H200 measured (bench/pathtrace.md), so not the default.
+    /// [`GpuWideNode`]s, traversed by `bvh_wide.glsl` (`"wide"`): about a third of the node
+    /// visits. Not the default until the GPU measures it faster (bench/pathtrace.md: the first,
+    /// uncompressed wide layout was slower on the H200).
     Wide,
     /// [`GpuNode`]s, traversed by `bvh.glsl` (`"binary"`).
     #[default]
@@ -73,7 +75,7 @@ impl Layout {
     /// The nodes of `blas` in this layout, as bytes.
     pub fn blas_bytes(self, blas: &Blas) -> &[u8] {
         match self {
-            Layout::Wide => bytemuck::cast_slice(&blas.wide),
+            Layout::Wide => bytemuck::cast_slice(&blas.wide.nodes),
             Layout::Binary => bytemuck::cast_slice(&blas.nodes),
         }
     }
@@ -89,7 +91,7 @@ impl Layout {
     /// Nodes of `blas` in this layout.
     pub fn blas_len(self, blas: &Blas) -> usize {
         match self {
-            Layout::Wide => blas.wide.len(),
+            Layout::Wide => blas.wide.nodes.len(),
             Layout::Binary => blas.nodes.len(),
         }
     }
