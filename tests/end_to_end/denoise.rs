@@ -1,5 +1,6 @@
-//! The denoiser's quality (issue 20) on two replays with a moving camera, the demo's and the
-//! Quake-3-like demo's (`glrt-demo --q3`) captures: frame 3, traced at one sample per pixel
+//! The denoiser's quality (issue 20) on a replay with a moving camera, the demo's capture
+//! (the Quake-3-like demo's reference is made, its test not yet: `bench/denoise.md`): frame 3,
+//! traced at one sample per pixel
 //! after frames 0 to 2 (its history), raw (no temporal reuse), with the tracer's temporal
 //! filter and with A-SVGF (`src/render/denoise`), against the converged reference of the same
 //! frame, `tests/reference/denoise/NAME-3-converged.png` (frame 3 alone, its animation frozen,
