@@ -18,6 +18,8 @@ declare -A PROBES=(
     [libgl1-mesa-dri]=/usr/lib/x86_64-linux-gnu/dri/swrast_dri.so
     [libgl1]=/usr/lib/x86_64-linux-gnu/libGL.so.1
     [xauth]=/usr/bin/xauth
+    # the C++ compiler nv-flip-sys builds NVIDIA's FLIP with (a test dependency)
+    [g++]=/usr/bin/g++
 )
 
 missing=()
