@@ -10,7 +10,10 @@
 # Default captures: the q3 fixture (tests/fixtures/q3.glrtcap, frames 1..4) and, when present,
 # /work/captures/openarena-1280x720-f340-440.glrtcap.xz (frames 340..440; decompressed to
 # $TMPDIR and deleted after). Environment: MODES (default "none raster": GLRT_MODE of the timed
-# runs), CALLGRIND=0 to skip the instruction counts (a replay under callgrind takes minutes),
+# runs and of the callgrind pairs), CALLGRIND=0 to skip the instruction counts (a replay under
+# callgrind takes minutes; raster pairs take tens of minutes at the capture's size, so
+# CALLGRIND_SIZE, e.g. 64x64, replays them at another drawable size: the recording is the
+# same, lavapipe shades fewer pixels),
 # RUNS (default 3: timed runs per mode, the fastest kept), GLRT_BIN (a built `glrt` to measure
 # instead of building target/release/glrt).
 #
@@ -19,6 +22,9 @@
 # (/proc/thread-self/schedstat) split in the same proportions. Instruction counts are exact:
 # callgrind runs the replay to frame A and to frame B, and frames A..B cost the difference;
 # per vertex and per draw divide it by the vertices and draws `glrt replay --stats` counts.
+# The renderer's column (raster mode) is `Renderer::present`, less the pipelines it created
+# (`Pipelines::get`: lavapipe compiles each new pipeline, a one-off cost of the first frames
+# that use it); Mesa's shader cache is warmed by the timed runs first.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -39,16 +45,21 @@ fi
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 
-# Callgrind of a replay to frame $3 of capture $1 (frames from $2), in $scratch/cg-$3.out.
+# Callgrind of a replay in mode $4 to frame $3 of capture $1 (frames from $2), in
+# $scratch/cg-$3.out.
 callgrind() {
-    GLRT_MODE=none valgrind --tool=callgrind --callgrind-out-file="$scratch/cg-$3.out" \
-        "$glrt" replay "$1" --frames "$2..$3" >/dev/null 2>&1
+    local size=()
+    [[ $4 != none && -n ${CALLGRIND_SIZE:-} ]] && size=(--size "$CALLGRIND_SIZE")
+    GLRT_MODE=$4 valgrind --tool=callgrind --callgrind-out-file="$scratch/cg-$3.out" \
+        "$glrt" replay "$1" --frames "$2..$3" "${size[@]}" >/dev/null 2>&1
 }
 
 # Inclusive instructions of function $2 (its name as callgrind_annotate prints it, or the
-# program's total for "PROGRAM TOTALS") in callgrind output $1.
+# program's total for "PROGRAM TOTALS") in callgrind output $1 (every function listed: by
+# default callgrind_annotate leaves out the last 1 %, which in raster mode, where lavapipe's
+# compiler dominates, is all of glrt's front end).
 inclusive() {
-    callgrind_annotate --inclusive=yes "$1" 2>/dev/null | grep -F -m1 "$2" | awk '{ gsub(",", "", $1); print $1 }'
+    callgrind_annotate --inclusive=yes --threshold=100 "$1" 2>/dev/null | grep -F -m1 "$2" | awk '{ gsub(",", "", $1); print $1 }'
 }
 
 # Instructions per frame of function $1 over frames $a..$b.
@@ -87,17 +98,21 @@ while (($# >= 2)); do
         echo "GLRT_MODE=$mode, fastest of $runs runs by glrt's CPU time:"
         grep -E '^(frames:|ms per frame|cpu ms per frame|reader:)' <<<"$best" | sed 's/^/    /'
     done
-    if [[ ${CALLGRIND:-1} != 0 ]]; then
-        callgrind "$file" "$a" "$a"
-        callgrind "$file" "$a" "$b"
-        total=$(per_frame "PROGRAM TOTALS")
-        echo "callgrind (GLRT_MODE=none), M instructions per frame: total $total" \
+    for mode in $modes; do
+        [[ ${CALLGRIND:-1} != 0 ]] || break
+        callgrind "$file" "$a" "$a" "$mode"
+        callgrind "$file" "$a" "$b" "$mode"
+        translate=$(per_frame "glrt::replay::calls::call [")
+        classify=$(per_frame "Classifier::classify [")
+        pipelines=$(per_frame "pipelines::Pipelines::get [")
+        renderer=$(awk -v r="$(per_frame "<glrt::render::frame::Renderer as glrt::frame::sink::FrameSink>::present [")" \
+            -v p="$pipelines" 'BEGIN { printf "%.2f", r - p }')
+        echo "callgrind (GLRT_MODE=$mode), M instructions per frame:" \
             " reader $(per_frame "reader::Records as core::iter::traits::iterator::Iterator>::next [")" \
             " memory $(per_frame "shadow::Shadow::write [")" \
-            " translate $(per_frame "glrt::replay::calls::call [")" \
-            " classify $(per_frame "Classifier::classify [")"
-        awk -v f="$total" -v d="$draws" -v v="$vertices" \
-            'BEGIN { printf "  total per draw %.0f, per vertex %.0f instructions\n", f * 1e6 / d, f * 1e6 / v }'
-    fi
+            " translate $translate  classify $classify  renderer $renderer (+ $pipelines creating pipelines)"
+        awk -v t="$translate" -v c="$classify" -v r="$renderer" -v d="$draws" -v v="$vertices" \
+            'BEGIN { f = t + c + r; printf "  glrt (translate + classify + renderer) %.2f M: per draw %.0f, per vertex %.0f instructions\n", f, f * 1e6 / d, f * 1e6 / v }'
+    done
     rm -f "$scratch/capture.glrtcap"
 done

@@ -2,8 +2,8 @@
 //! vertices as `glColor3f` + `glTexCoord2f` + `glVertex3f` each, in `GL_TRIANGLES` batches of
 //! [`BATCH`] vertices per `glBegin`/`glEnd`, then `glFinish` and a swap; one line per frame and
 //! the best frame's vertices per second. Triangles are a pixel or so big so rasterisation does
-//! not dominate. They wind clockwise: with `cull`, `GL_CULL_FACE` (back faces) is on and
-//! every triangle is culled.
+//! not dominate. With `cull`, `GL_CULL_FACE` is on with `glCullFace(GL_FRONT_AND_BACK)`:
+//! every triangle is culled, whatever its winding.
 
 use std::time::Instant;
 
@@ -39,7 +39,7 @@ impl Bench {
             gl.glMatrixMode(GL_MODELVIEW);
             gl.glLoadIdentity();
             if self.cull {
-                gl.glCullFace(GL_BACK);
+                gl.glCullFace(GL_FRONT_AND_BACK);
                 gl.glEnable(GL_CULL_FACE);
             }
         }

@@ -40,7 +40,8 @@ struct Options {
     screenshot: Option<String>,
     /// `--bench-immediate`: vertex count of the throughput benchmark instead of the scene.
     bench_vertices: Option<u64>,
-    /// `--cull`: the benchmark's triangles are all culled (back-facing, `GL_CULL_FACE` on).
+    /// `--cull`: the benchmark's triangles are all culled (`GL_CULL_FACE` on,
+    /// `glCullFace(GL_FRONT_AND_BACK)`).
     cull: bool,
     /// `--rebatch`: the Quake-3-like world instead of the scene.
     rebatch: bool,
@@ -55,8 +56,8 @@ struct Options {
 const USAGE: &str = "usage: glrt-demo [--frames N] [--first-frame N] [--size WxH] [--headless] [--lib PATH] [--screenshot PNG] [--bench-immediate [VERTICES] [--cull]] [--rebatch [--detail N] [--verbose]] [--q3 [--verbose]]
 
   --bench-immediate  immediate-mode throughput: VERTICES vertices per frame (default 10
-        million), 3 frames unless --frames says otherwise; --cull makes every triangle
-        back-facing with GL_CULL_FACE on
+        million), 3 frames unless --frames says otherwise; --cull culls every triangle
+        (GL_CULL_FACE on, glCullFace(GL_FRONT_AND_BACK))
 
   --q3  a Quake-3-like level drawn as ioquake3's OpenGL 1 renderer draws one: lightmaps baked
         at start-up on texture unit 1 or as a GL_DST_COLOR, GL_ZERO pass, detail and additive

@@ -7,12 +7,14 @@
 //! which draws to leave out and where to stop).
 //!
 //! - [`ff`]: the fixed-function pipeline as shaders: turns a [`crate::frame::Draw`] into
-//!   [`ff::Batch`]es (packed vertices, indices, a shader key and the uniform block).
+//!   [`ff::Batch`]es (where their vertices and indices come from, a shader key and the uniform
+//!   block); the draw's own vertices are packed straight into the upload ring.
 //! - [`instance`]: the loader and the process's one Vulkan instance, shared by renderers.
 //! - [`device`]: physical-device choice (`GLRT_DEVICE`), device, queue, memory.
 //! - [`target`]: the colour and depth/stencil images (row 0 = top of the window).
 //! - [`commands`]: a frame in flight (command buffer, fence, upload ring, descriptor sets).
-//! - [`upload`]: the per-frame ring of vertices, indices and uniforms.
+//! - [`upload`]: the per-frame ring of vertices, indices and uniforms, copied in or written in
+//!   place.
 //! - [`pipelines`]: pipelines per (shader key, fixed state), cached; [`conv`]: state → Vulkan.
 //! - [`programs`]: OpenGL 2.0 programs on the device (shader modules, descriptor set 1).
 //! - [`textures`]: texture images and samplers.

@@ -368,8 +368,11 @@ impl Recorder<'_> {
             1.0
         };
         note_missing_features(features, &batches, draw);
+        // The draw's own vertices, packed into upload memory once for the batches that use them.
+        let mut own_vertices = None;
         for batch in &batches {
-            if batch.indices.is_empty() {
+            let index_count = batch.indices.len(draw);
+            if index_count == 0 {
                 continue;
             }
             let stencil = batch.stencil(state.stencil);
@@ -378,9 +381,17 @@ impl Recorder<'_> {
             if state.logic_op.is_some() && !features.logic_op {
                 log_once("the device has no logicOp feature: glLogicOp is ignored");
             }
-            let vertices = self.ring.push_slice(self.device, &batch.vertices, 16)?;
+            let vertices = match (&batch.vertices, own_vertices) {
+                (ff::BatchVertices::Draw, Some(packed)) => packed,
+                (ff::BatchVertices::Draw, None) => {
+                    let floats = draw.vertices.len() * ff::VERTEX_FLOATS;
+                    let packed = self.ring.push_with(self.device, floats, 16, |out: &mut [f32]| ff::vertex::pack_into(draw, out))?;
+                    *own_vertices.insert(packed)
+                }
+                (ff::BatchVertices::Expanded(expanded), _) => self.ring.push_slice(self.device, expanded, 16)?,
+            };
             let generic = if batch.generic.is_empty() { None } else { Some(self.ring.push_slice(self.device, &batch.generic, 16)?) };
-            let indices = self.ring.push_slice(self.device, &batch.indices, 4)?;
+            let indices = self.ring.push_with(self.device, index_count, 4, |out: &mut [u32]| batch.indices.write(draw, out))?;
             let mut uniforms = batch.uniforms.clone();
             uniforms.resize(ff::UNIFORM_SIZE, 0);
             ff::uniforms::set_framebuffer_height(&mut uniforms, h);
@@ -426,7 +437,7 @@ impl Recorder<'_> {
                         d.cmd_bind_vertex_buffers(self.cmd, 1, &[generic.buffer], &[generic.offset]);
                     }
                     d.cmd_bind_index_buffer(self.cmd, indices.buffer, indices.offset, vk::IndexType::UINT32);
-                    d.cmd_draw_indexed(self.cmd, batch.indices.len() as u32, 1, 0, 0, 0);
+                    d.cmd_draw_indexed(self.cmd, index_count as u32, 1, 0, 0, 0);
                 }
             }
         }

@@ -51,17 +51,36 @@ impl Ring {
 
     /// Copies `bytes` into the ring at a multiple of `align` (a power of two).
     pub fn push(&mut self, device: &Device, bytes: &[u8], align: u64) -> Result<Slice> {
-        let size = bytes.len() as u64;
+        let (slice, dst) = self.reserve(device, bytes.len() as u64, align)?;
+        if let Some(dst) = dst {
+            dst.copy_from_slice(bytes);
+        }
+        Ok(slice)
+    }
+
+    /// Takes `count` values of `T` in the ring at a multiple of `align` (a power of two, at
+    /// least `T`'s alignment) and has `fill` write them where the GPU reads them: no copy
+    /// through a vector first.
+    pub fn push_with<T: bytemuck_free::Plain>(&mut self, device: &Device, count: usize, align: u64, fill: impl FnOnce(&mut [T])) -> Result<Slice> {
+        let (slice, dst) = self.reserve(device, (count * std::mem::size_of::<T>()) as u64, align)?;
+        if let Some(values) = dst.and_then(bytemuck_free::values_mut) {
+            fill(values);
+        }
+        Ok(slice)
+    }
+
+    /// Takes `size` bytes at a multiple of `align`: where they are and their mapped memory
+    /// (`None` when the chunk is not mapped).
+    fn reserve(&mut self, device: &Device, size: u64, align: u64) -> Result<(Slice, Option<&mut [u8]>)> {
         loop {
-            if let Some(chunk) = self.chunks.get_mut(self.current) {
+            if let Some(chunk) = self.chunks.get(self.current) {
                 let offset = (self.used + align - 1) & !(align - 1);
                 if offset + size <= chunk.size {
-                    let start = offset as usize;
-                    if let Some(dst) = chunk.mapped().get_mut(start..start + bytes.len()) {
-                        dst.copy_from_slice(bytes);
-                    }
                     self.used = offset + size;
-                    return Ok(Slice { buffer: chunk.raw, offset });
+                    let chunk = &mut self.chunks[self.current];
+                    let slice = Slice { buffer: chunk.raw, offset };
+                    let start = offset as usize;
+                    return Ok((slice, chunk.mapped().get_mut(start..start + size as usize)));
                 }
                 if self.current + 1 < self.chunks.len() {
                     self.current += 1;
@@ -103,5 +122,33 @@ pub mod bytemuck_free {
     pub fn bytes<T: Plain>(values: &[T]) -> &[u8] {
         // Safety: `Plain` types have no padding; u8 has alignment 1; the length is in bytes.
         unsafe { std::slice::from_raw_parts(values.as_ptr().cast::<u8>(), std::mem::size_of_val(values)) }
+    }
+
+    /// `bytes` as values of `T`, when they are aligned for `T` and a whole number of them.
+    pub fn values_mut<T: Plain>(bytes: &mut [u8]) -> Option<&mut [T]> {
+        let size = std::mem::size_of::<T>();
+        if !(bytes.as_ptr() as usize).is_multiple_of(std::mem::align_of::<T>()) || !bytes.len().is_multiple_of(size) {
+            return None;
+        }
+        // Safety: aligned and in bounds (checked above); every bit pattern is a valid `Plain`
+        // value; the borrow of `bytes` moves to the result.
+        Some(unsafe { std::slice::from_raw_parts_mut(bytes.as_mut_ptr().cast::<T>(), bytes.len() / size) })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::bytemuck_free::values_mut;
+
+    #[test]
+    fn bytes_become_values_only_when_aligned_and_whole() {
+        let mut words = [0u32; 4];
+        // Safety: the 16 bytes of `words`, borrowed mutably through this slice only.
+        let bytes: &mut [u8] = unsafe { std::slice::from_raw_parts_mut(words.as_mut_ptr().cast::<u8>(), 16) };
+        let values = values_mut::<u32>(&mut bytes[4..12]).expect("aligned, two words");
+        values.copy_from_slice(&[7, 9]);
+        assert!(values_mut::<u32>(&mut bytes[1..9]).is_none(), "misaligned");
+        assert!(values_mut::<u32>(&mut bytes[4..10]).is_none(), "not whole words");
+        assert_eq!(words, [0, 7, 9, 0]);
     }
 }

@@ -34,6 +34,7 @@
 
 use glam::{Mat3, Mat4, Vec2, Vec3, Vec4};
 
+use super::indices::BatchIndices;
 use super::key::{Facing, Primitive};
 use super::vertex::{self, VERTEX_FLOATS};
 use crate::frame::state::{Face, PolygonMode, ShadeModel, Winding, MAX_POINT_SIZE};
@@ -49,7 +50,7 @@ pub struct Part {
     /// Expanded vertices, or `None` for the draw's own packed vertices.
     pub vertices: Option<Vec<f32>>,
     /// Triangle list indices (points) or as the topology says, provoking vertex first.
-    pub indices: Vec<u32>,
+    pub indices: BatchIndices,
     /// The face culling the rasterizer still applies.
     pub cull: Option<Face>,
     /// Whether the polygon offset applies.
@@ -67,25 +68,22 @@ pub struct Segment {
     pub provoking: u32,
 }
 
-/// The parts that draw `draw` with its packed vertices `packed`.
-pub fn convert(draw: &Draw, packed: &[f32]) -> Vec<Part> {
-    let count = (packed.len() / VERTEX_FLOATS) as u32;
+/// The parts that draw `draw`. Filled triangles keep the draw's vertices and indices (packed
+/// and rotated where they are uploaded); what is expanded is packed here.
+pub fn convert(draw: &Draw) -> Vec<Part> {
+    let count = draw.vertices.len() as u32;
     let valid = |p: &[u32]| p.iter().all(|&i| i < count);
     let s = &draw.state;
     match draw.topology {
-        Topology::Triangles if s.polygon_mode == [PolygonMode::Fill; 2] => {
-            let indices: Vec<u32> =
-                draw.indices.chunks_exact(3).filter(|t| valid(t)).flat_map(|t| [t[2], t[0], t[1]]).collect();
-            vec![Part {
-                primitive: Primitive::Triangle,
-                facing: Facing::Rasterizer,
-                vertices: None,
-                indices,
-                cull: s.cull,
-                polygon_offset: s.polygon_offset.fill,
-            }]
-        }
-        Topology::Triangles => polygon_modes(draw, packed, count),
+        Topology::Triangles if s.polygon_mode == [PolygonMode::Fill; 2] => vec![Part {
+            primitive: Primitive::Triangle,
+            facing: Facing::Rasterizer,
+            vertices: None,
+            indices: BatchIndices::rotated(draw, 3),
+            cull: s.cull,
+            polygon_offset: s.polygon_offset.fill,
+        }],
+        Topology::Triangles => polygon_modes(draw, count),
         Topology::Lines => {
             let segments: Vec<Segment> = draw
                 .indices
@@ -93,19 +91,19 @@ pub fn convert(draw: &Draw, packed: &[f32]) -> Vec<Part> {
                 .filter(|l| valid(l))
                 .map(|l| Segment { a: l[0], b: l[1], provoking: l[1] })
                 .collect();
-            let (vertices, indices) = expand_lines(draw, packed, &segments);
+            let (vertices, indices) = expand_lines(draw, &vertex::pack(draw), &segments);
             vec![expanded(Primitive::Line, Facing::Front, vertices, indices, false)]
         }
         Topology::Points => {
             let points: Vec<(u32, u32)> = draw.indices.iter().filter(|&&i| i < count).map(|&i| (i, i)).collect();
-            let (vertices, indices) = expand_points(draw, packed, &points);
+            let (vertices, indices) = expand_points(draw, &vertex::pack(draw), &points);
             vec![expanded(Primitive::Point, Facing::Front, vertices, indices, false)]
         }
     }
 }
 
 fn expanded(primitive: Primitive, facing: Facing, vertices: Vec<f32>, indices: Vec<u32>, offset: bool) -> Part {
-    Part { primitive, facing, vertices: Some(vertices), indices, cull: None, polygon_offset: offset }
+    Part { primitive, facing, vertices: Some(vertices), indices: BatchIndices::List(indices), cull: None, polygon_offset: offset }
 }
 
 /// Clip-space and window positions of packed vertices.
@@ -120,6 +118,7 @@ impl Window {
         Window { mvp: draw.projection * draw.modelview, viewport: Vec4::from(draw.state.viewport.map(|v| v as f32)) }
     }
 
+    /// The clip position of packed vertex `v`.
     fn clip(&self, v: &[f32]) -> Vec4 {
         self.mvp * Vec4::from_slice(&v[vertex::POSITION..vertex::POSITION + 4])
     }
@@ -140,7 +139,7 @@ pub fn is_front(c: [Vec4; 3], winding: Winding) -> bool {
 }
 
 /// Triangles of a draw with a non-`FILL` polygon mode, by face.
-fn polygon_modes(draw: &Draw, packed: &[f32], count: u32) -> Vec<Part> {
+fn polygon_modes(draw: &Draw, count: u32) -> Vec<Part> {
     let s = &draw.state;
     let window = Window::new(draw);
     let mut fill = Vec::new();
@@ -150,7 +149,7 @@ fn polygon_modes(draw: &Draw, packed: &[f32], count: u32) -> Vec<Part> {
         if tri.iter().any(|&i| i >= count) {
             continue;
         }
-        let clip = [0, 1, 2].map(|k| window.clip(vertex::get(packed, tri[k])));
+        let clip = [0, 1, 2].map(|k| window.mvp * Vec4::from(draw.vertices.position[tri[k] as usize]));
         let face = if is_front(clip, s.front_face) { 0 } else { 1 };
         let culled = match s.cull {
             None => false,
@@ -181,18 +180,21 @@ fn polygon_modes(draw: &Draw, packed: &[f32], count: u32) -> Vec<Part> {
             primitive: Primitive::Triangle,
             facing: Facing::Rasterizer,
             vertices: None,
-            indices: fill,
+            indices: BatchIndices::List(fill),
             cull: None,
             polygon_offset: s.polygon_offset.fill,
         });
     }
+    // Edges and points are copies of packed vertices.
+    let expanded_any = edges.iter().any(|e| !e.is_empty()) || points.iter().any(|p| !p.is_empty());
+    let packed = if expanded_any { vertex::pack(draw) } else { Vec::new() };
     for (face, facing) in [Facing::Front, Facing::Back].into_iter().enumerate() {
         if !edges[face].is_empty() {
-            let (v, i) = expand_lines(draw, packed, &edges[face]);
+            let (v, i) = expand_lines(draw, &packed, &edges[face]);
             parts.push(expanded(Primitive::Line, facing, v, i, s.polygon_offset.line));
         }
         if !points[face].is_empty() {
-            let (v, i) = expand_points(draw, packed, &points[face]);
+            let (v, i) = expand_points(draw, &packed, &points[face]);
             parts.push(expanded(Primitive::Point, facing, v, i, s.polygon_offset.point));
         }
     }
@@ -383,8 +385,12 @@ mod tests {
         part.vertices.as_ref().expect("expanded")[corner * VERTEX_FLOATS + vertex::COLOR]
     }
 
-    fn run(d: &Draw) -> Vec<Part> {
-        convert(d, &vertex::pack(d))
+    /// The indices of a part that lists them.
+    fn list(part: &Part) -> &[u32] {
+        match &part.indices {
+            BatchIndices::List(list) => list,
+            BatchIndices::Draw { .. } => panic!("the draw's own indices"),
+        }
     }
 
     const CCW: [[f32; 2]; 3] = [[-0.5, -0.5], [0.5, -0.5], [0.0, 0.5]];
@@ -392,11 +398,13 @@ mod tests {
     #[test]
     fn fill_keeps_the_vertices_and_puts_the_provoking_vertex_first() {
         let d = draw(Topology::Triangles, &CCW, &[0, 1, 2, 0, 1, 9], RasterState { cull: Some(Face::Back), ..Default::default() });
-        let parts = run(&d);
+        let parts = convert(&d);
         assert_eq!(parts.len(), 1);
         assert_eq!(parts[0].vertices, None);
-        assert_eq!(parts[0].indices, vec![2, 0, 1], "the triangle with an out-of-range index is dropped");
+        assert_eq!(parts[0].indices, BatchIndices::List(vec![2, 0, 1]), "the triangle with an out-of-range index is dropped");
         assert_eq!(parts[0].cull, Some(Face::Back), "the rasterizer culls");
+        let d = Draw { indices: vec![0, 1, 2, 0, 2, 1], ..d };
+        assert_eq!(convert(&d)[0].indices, BatchIndices::Draw { per: 3 }, "in range: rotated where they are uploaded");
     }
 
     #[test]
@@ -417,11 +425,11 @@ mod tests {
         let state = RasterState { polygon_mode: [PolygonMode::Line, PolygonMode::Fill], ..Default::default() };
         let mut d = draw(Topology::Triangles, &quad, &[0, 1, 2, 0, 2, 3], state);
         d.edge_masks = vec![0b011, 0b110];
-        let parts = run(&d);
+        let parts = convert(&d);
         assert_eq!(parts.len(), 1);
         let lines = &parts[0];
         assert_eq!((lines.primitive, lines.facing, lines.cull), (Primitive::Line, Facing::Front, None));
-        assert_eq!(lines.indices.len(), 4 * 6, "four edges, two triangles each");
+        assert_eq!(list(lines).len(), 4 * 6, "four edges, two triangles each");
         // The edges run 0→1→2→3→0 without a break: stipple distances keep counting, each
         // edge 50 pixels long (the quads start half a pixel back, less a sliver).
         let starts: Vec<f32> = (0..4).map(|e| raster(lines, 4 * e + 2)[2]).collect();
@@ -429,7 +437,7 @@ mod tests {
         // Reversed winding: the same triangles are back faces and fill.
         let mut back = d.clone();
         back.indices = vec![0, 2, 1, 0, 3, 2];
-        let parts = run(&back);
+        let parts = convert(&back);
         assert_eq!(parts.len(), 1);
         assert_eq!((parts[0].primitive, parts[0].facing, parts[0].vertices.is_none()), (Primitive::Triangle, Facing::Rasterizer, true));
     }
@@ -443,10 +451,10 @@ mod tests {
             ..Default::default()
         };
         let d = draw(Topology::Triangles, &CCW, &[0, 1, 2, 0, 2, 1], state);
-        let parts = run(&d);
+        let parts = convert(&d);
         assert_eq!(parts.len(), 1);
         assert_eq!((parts[0].primitive, parts[0].facing, parts[0].polygon_offset), (Primitive::Point, Facing::Back, true));
-        assert_eq!(parts[0].indices.len(), 3 * 6, "three vertices as points");
+        assert_eq!(list(&parts[0]).len(), 3 * 6, "three vertices as points");
     }
 
     #[test]
@@ -454,8 +462,8 @@ mod tests {
         let state = RasterState { line: Line { width: 2.6, ..Line::default() }, ..Default::default() };
         // x-major: from (25, 50) to (75, 60) in window pixels.
         let d = draw(Topology::Lines, &[[-0.5, 0.0], [0.5, 0.2]], &[0, 1], state);
-        let part = &run(&d)[0];
-        assert_eq!(part.indices, vec![0, 1, 2, 0, 2, 3]);
+        let part = &convert(&d)[0];
+        assert_eq!(list(part), [0, 1, 2, 0, 2, 3]);
         let r: Vec<[f32; 4]> = (0..4).map(|c| raster(part, c)).collect();
         // Width 3 across; moved back along x by half a pixel less a sliver (diamond exit).
         assert_eq!(r[0][..2], [ALIASED_SHIFT, -1.5], "width 3, vertical offset");
@@ -470,7 +478,7 @@ mod tests {
         let state = RasterState { line: Line { width: 1.0, smooth: true, ..Line::default() }, ..Default::default() };
         // A 45° line.
         let d = draw(Topology::Lines, &[[0.0, 0.0], [0.5, 0.5]], &[0, 1], state);
-        let part = &run(&d)[0];
+        let part = &convert(&d)[0];
         let r = raster(part, 1);
         let h = 1.0 / 2f32.sqrt();
         assert!((r[0] + h).abs() < 1e-5 && (r[1] - h).abs() < 1e-5, "{r:?}");
@@ -484,7 +492,7 @@ mod tests {
         // A strip 0→1→2 then a separate segment 2→3... which starts where the strip ended,
         // so it continues; then 0→1 again restarts.
         let d = draw(Topology::Lines, &p, &[0, 1, 1, 2, 2, 3, 0, 1], state);
-        let part = &run(&d)[0];
+        let part = &convert(&d)[0];
         let start = |s: usize| raster(part, 4 * s + 2)[2];
         assert_eq!([start(0), start(1), start(2), start(3)], [0.0, 25.0, 50.0, 0.0].map(|d| d + ALIASED_SHIFT));
         // Major-axis distance of the 45° segment: 25 pixels.
@@ -495,7 +503,7 @@ mod tests {
     fn flat_lines_take_the_provoking_colour() {
         let state = RasterState { shade_model: ShadeModel::Flat, ..Default::default() };
         let d = draw(Topology::Lines, &[[0.0, 0.0], [0.5, 0.0]], &[0, 1], state);
-        let part = &run(&d)[0];
+        let part = &convert(&d)[0];
         assert!((0..4).all(|c| color(part, c) == 1.0));
     }
 
@@ -506,19 +514,19 @@ mod tests {
         // z = −1 (t = 0.5) on remains, so its start is halfway.
         d.vertices.position[0][2] = -3.0;
         d.vertices.position[1][2] = 1.0;
-        let part = &run(&d)[0];
+        let part = &convert(&d)[0];
         let v = part.vertices.as_ref().unwrap();
         let start_x = v[2 * VERTEX_FLOATS + vertex::POSITION];
         assert!((start_x - 0.25).abs() < 1e-6, "{start_x}");
         d.vertices.position[1][2] = -2.0;
-        assert!(run(&d)[0].indices.is_empty(), "wholly behind");
+        assert!(list(&convert(&d)[0]).is_empty(), "wholly behind");
     }
 
     #[test]
     fn points_outside_the_clip_volume_are_dropped() {
         let d = draw(Topology::Points, &[[0.0, 0.0], [1.5, 0.0], [-0.99, 0.99]], &[0, 1, 2], RasterState::default());
-        let part = &run(&d)[0];
-        assert_eq!(part.indices.len(), 2 * 6);
+        let part = &convert(&d)[0];
+        assert_eq!(list(part).len(), 2 * 6);
         assert_eq!(raster(part, 2), [1.0, 1.0, 0.0, 0.0]);
         assert_eq!((part.primitive, part.facing), (Primitive::Point, Facing::Front));
     }

@@ -2,11 +2,13 @@
 //! (the gl4es approach: a compact key of the state selects the code, here through SPIR-V
 //! specialisation constants instead of generated source).
 //!
-//! [`prepare`] turns a [`Draw`] into [`Batch`]es: packed vertices ([`vertex`]), the uniform
-//! block ([`uniforms`]), the shader key ([`key`]), and the primitives Vulkan cannot rasterize
-//! as OpenGL does converted to triangles ([`convert`]: polygon modes, wide and stippled
-//! lines, points). A draw whose vertex stage is an OpenGL 2.0 program's is not converted:
-//! [`native`] makes its batches.
+//! [`prepare`] turns a [`Draw`] into [`Batch`]es: the uniform block ([`uniforms`]), the
+//! shader key ([`key`]), and the primitives Vulkan cannot rasterize as OpenGL does converted
+//! to triangles ([`convert`]: polygon modes, wide and stippled lines, points). A draw whose
+//! vertex stage is an OpenGL 2.0 program's is not converted: [`native`] makes its batches.
+//! The draw's own vertices and indices are not copied here: the renderer packs them
+//! ([`vertex::pack_into`]) and rotates them ([`BatchIndices::write`]) straight into upload
+//! memory.
 //!
 //! The contract with the Vulkan side (`render::raster` device code):
 //! - vertices are interleaved `f32`s, [`VERTEX_FLOATS`] per vertex, with the attributes of
@@ -37,12 +39,14 @@
 //!   batches (the state's line width, `gl_PointSize`, [`Batch::polygon_mode`]).
 
 pub mod convert;
+pub mod indices;
 pub mod key;
 pub mod native;
 pub mod shader_interface;
 pub mod uniforms;
 pub mod vertex;
 
+pub use indices::BatchIndices;
 pub use key::ShaderKey;
 pub use vertex::{VERTEX_ATTRIBUTES, VERTEX_FLOATS, VertexAttribute};
 
@@ -71,13 +75,13 @@ pub struct Batch {
     pub topology: Topology,
     /// How triangles are rasterized: [`PolygonMode::Fill`] but for [`native`] batches.
     pub polygon_mode: PolygonMode,
-    /// Packed vertices, [`VERTEX_FLOATS`] per vertex.
-    pub vertices: Vec<f32>,
+    /// Its vertices.
+    pub vertices: BatchVertices,
     /// The generic attributes of a program's vertex stage ([`vertex::pack_generic`]; empty
     /// without one).
     pub generic: Vec<f32>,
     /// Indices into `vertices`, the provoking vertex first in each primitive.
-    pub indices: Vec<u32>,
+    pub indices: BatchIndices,
     /// The shader specialisation.
     pub shader: ShaderKey,
     /// The std140 uniform block, [`UNIFORM_SIZE`] bytes.
@@ -94,30 +98,32 @@ pub struct Batch {
     pub polygon_offset: bool,
 }
 
+/// Where the vertices of a [`Batch`] come from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BatchVertices {
+    /// The draw's own vertices, packed ([`vertex::pack_into`]) where they are uploaded, once
+    /// for all the batches of the draw that use them.
+    Draw,
+    /// Vertices made for the batch ([`convert`]), packed, [`VERTEX_FLOATS`] per vertex.
+    Expanded(Vec<f32>),
+}
+
 /// The batches that draw `draw`, in drawing order.
 pub fn prepare(draw: &Draw) -> Vec<Batch> {
     if draw.indices.is_empty() || draw.vertices.is_empty() {
         return Vec::new();
     }
-    let packed = vertex::pack(draw);
     let uniforms = uniforms::pack(draw);
     if let Some(program) = draw.program.as_ref().filter(|p| p.program.vertex.is_some()) {
-        return native::prepare(draw, program, packed, uniforms);
+        return native::prepare(draw, program, uniforms);
     }
-    let parts: Vec<_> = convert::convert(draw, &packed).into_iter().filter(|part| !part.indices.is_empty()).collect();
-    // The draw's own vertices go to the parts that keep them: moved into the last of them.
-    let mut sharing = parts.iter().filter(|part| part.vertices.is_none()).count();
-    let mut packed = Some(packed);
-    let mut own_vertices = move || {
-        sharing = sharing.saturating_sub(1);
-        if sharing == 0 { packed.take() } else { packed.clone() }.unwrap_or_default()
-    };
-    parts
+    convert::convert(draw)
         .into_iter()
+        .filter(|part| part.indices.len(draw) > 0)
         .map(|part| Batch {
             topology: Topology::Triangles,
             polygon_mode: PolygonMode::Fill,
-            vertices: part.vertices.unwrap_or_else(&mut own_vertices),
+            vertices: part.vertices.map_or(BatchVertices::Draw, BatchVertices::Expanded),
             generic: Vec::new(),
             indices: part.indices,
             shader: key::shader_key(draw, part.primitive, part.facing),
@@ -159,7 +165,8 @@ mod tests {
         let batches = prepare(&draw);
         assert_eq!(batches.len(), 1);
         let b = &batches[0];
-        assert_eq!((b.topology, b.indices.len(), b.vertices.len()), (Topology::Triangles, 6, 4 * VERTEX_FLOATS));
+        let BatchVertices::Expanded(vertices) = &b.vertices else { panic!("lines are expanded") };
+        assert_eq!((b.topology, b.indices.len(&draw), vertices.len()), (Topology::Triangles, 6, 4 * VERTEX_FLOATS));
         assert_eq!(b.uniforms.len(), UNIFORM_SIZE);
         assert_eq!(shader_interface::PRIMITIVE.get(b.shader.words[key::GENERAL]), Primitive::Line as u32);
     }
@@ -170,8 +177,12 @@ mod tests {
         draw.vertices.position = vec![[0.0; 4], [1.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, 1.0]];
         draw.indices = vec![0, 1, 2];
         let b = &prepare(&draw)[0];
-        assert_eq!(b.vertices, vertex::pack(&draw));
-        assert_eq!(b.indices, vec![2, 0, 1]);
+        assert_eq!((&b.vertices, &b.indices), (&BatchVertices::Draw, &BatchIndices::Draw { per: 3 }));
+        let mut indices = [0; 3];
+        b.indices.write(&draw, &mut indices);
+        assert_eq!(indices, [2, 0, 1]);
         assert!(prepare(&Draw::default()).is_empty());
+        draw.indices.truncate(2);
+        assert!(prepare(&draw).is_empty(), "no whole triangle");
     }
 }

@@ -16,27 +16,25 @@
 //! and [`shader_interface::TWO_SIDE`] from `GL_VERTEX_PROGRAM_TWO_SIDE`.
 
 use super::key::{self, Facing, Primitive};
-use super::{Batch, shader_interface, vertex};
+use super::{Batch, BatchIndices, BatchVertices, shader_interface, vertex};
 use crate::render::shader_abi::Field;
 use crate::frame::program::ProgramDraw;
 use crate::frame::state::{Face, PolygonMode};
 use crate::frame::{Draw, Topology};
 
-/// The batches of `draw` run with `program`'s vertex stage, from its packed vertices and
-/// uniform block.
-pub fn prepare(draw: &Draw, program: &ProgramDraw, packed: Vec<f32>, uniforms: Vec<u8>) -> Vec<Batch> {
-    let count = (packed.len() / vertex::VERTEX_FLOATS) as u32;
-    let valid = |p: &[u32]| p.iter().all(|&i| i < count);
+/// The batches of `draw` run with `program`'s vertex stage, with its uniform block; they
+/// draw the draw's own vertices.
+pub fn prepare(draw: &Draw, program: &ProgramDraw, uniforms: Vec<u8>) -> Vec<Batch> {
     let per = match draw.topology {
         Topology::Triangles => 3,
         Topology::Lines => 2,
         Topology::Points => 1,
     };
     // The provoking vertex (last in a Draw) goes first, as Vulkan's default says.
-    let indices: Vec<u32> = draw.indices.chunks_exact(per).filter(|p| valid(p)).flat_map(|p| p.iter().cycle().skip(per - 1).take(per).copied().collect::<Vec<_>>()).collect();
+    let indices = BatchIndices::rotated(draw, per);
     let generic = vertex::pack_generic(draw, &vertex::generic_indices(&program.program));
     let s = &draw.state;
-    let batch = |topology: Topology, indices: Vec<u32>, mode: PolygonMode, cull: Option<Face>, polygon_offset: bool| {
+    let batch = |topology: Topology, indices: BatchIndices, mode: PolygonMode, cull: Option<Face>, polygon_offset: bool| {
         let facing = if topology == Topology::Triangles { Facing::Rasterizer } else { Facing::Front };
         let mut shader = key::shader_key(draw, Primitive::Triangle, facing);
         let general = &mut shader.words[key::GENERAL];
@@ -48,7 +46,7 @@ pub fn prepare(draw: &Draw, program: &ProgramDraw, packed: Vec<f32>, uniforms: V
         Batch {
             topology,
             polygon_mode: mode,
-            vertices: packed.clone(),
+            vertices: BatchVertices::Draw,
             generic: generic.clone(),
             indices,
             shader,
@@ -63,7 +61,7 @@ pub fn prepare(draw: &Draw, program: &ProgramDraw, packed: Vec<f32>, uniforms: V
     }
     let hidden_edges = draw.edge_masks.iter().any(|&m| m & 7 != 7);
     if hidden_edges && s.polygon_mode == [PolygonMode::Line; 2] && s.cull.is_none() && !s.polygon_offset.line && !program.two_side {
-        return vec![batch(Topology::Lines, boundary_edges(draw, count), PolygonMode::Fill, None, false)];
+        return vec![batch(Topology::Lines, BatchIndices::List(boundary_edges(draw)), PolygonMode::Fill, None, false)];
     }
     let triangles = |mode, cull, offset| batch(Topology::Triangles, indices.clone(), mode, cull, offset);
     let offset = |mode| match mode {
@@ -83,9 +81,10 @@ pub fn prepare(draw: &Draw, program: &ProgramDraw, packed: Vec<f32>, uniforms: V
 }
 
 /// Line-list indices of the boundary edges of the draw's triangles (bit `k` of a triangle's
-/// edge mask: the edge from its index `k` to `k + 1`), skipping triangles with an index of
-/// `count` or more.
-fn boundary_edges(draw: &Draw, count: u32) -> Vec<u32> {
+/// edge mask: the edge from its index `k` to `k + 1`), skipping triangles with an index out
+/// of range.
+fn boundary_edges(draw: &Draw) -> Vec<u32> {
+    let count = draw.vertices.len() as u32;
     let mut out = Vec::new();
     for (t, &mask) in draw.indices.chunks_exact(3).zip(&draw.edge_masks) {
         if t.iter().any(|&i| i >= count) {
@@ -118,6 +117,13 @@ mod tests {
         ProgramDraw { program: Arc::new(program), builtins: Arc::from(vec![]), uniforms: Arc::from(vec![]), textures: Vec::new(), point_size_from_shader: false, two_side }
     }
 
+    /// The indices `b` uploads.
+    fn written(b: &Batch, d: &Draw) -> Vec<u32> {
+        let mut out = vec![0; b.indices.len(d)];
+        b.indices.write(d, &mut out);
+        out
+    }
+
     fn draw(topology: Topology, indices: Vec<u32>, state: RasterState) -> Draw {
         let mut d = Draw { topology, indices, state: Arc::new(state), ..Draw::default() };
         d.vertices.position = vec![[0.0; 4]; 4];
@@ -129,11 +135,11 @@ mod tests {
         let state = RasterState { line: Line { smooth: true, stipple: Some((1, 0xf0f0)), ..Line::default() }, ..RasterState::default() };
         let d = draw(Topology::Lines, vec![0, 1, 2, 3], state);
         let p = program_draw(true);
-        let batches = prepare(&d, &p, vertex::pack(&d), vec![0; 4]);
+        let batches = prepare(&d, &p, vec![0; 4]);
         assert_eq!(batches.len(), 1);
         let b = &batches[0];
         assert_eq!((b.topology, b.polygon_mode, b.cull), (Topology::Lines, PolygonMode::Fill, None));
-        assert_eq!(b.indices, vec![1, 0, 3, 2], "provoking vertex first");
+        assert_eq!(written(b, &d), vec![1, 0, 3, 2], "provoking vertex first");
         assert_eq!(b.generic.len(), 4 * 4);
         let general = b.shader.words[key::GENERAL];
         assert_eq!(shader_interface::PRIMITIVE.get(general), Primitive::Triangle as u32);
@@ -147,24 +153,24 @@ mod tests {
         state.polygon_offset.point = true;
         state.polygon_stipple = Some([0; 32]);
         let d = draw(Topology::Triangles, vec![0, 1, 2], state.clone());
-        let batches = prepare(&d, &program_draw(false), vertex::pack(&d), Vec::new());
+        let batches = prepare(&d, &program_draw(false), Vec::new());
         let summary: Vec<_> = batches.iter().map(|b| (b.polygon_mode, b.cull, b.polygon_offset)).collect();
         assert_eq!(summary, vec![(PolygonMode::Line, Some(Face::Back), false), (PolygonMode::Point, Some(Face::Front), true)]);
-        assert_eq!(batches[0].indices, vec![2, 0, 1]);
+        assert_eq!(written(&batches[0], &d), vec![2, 0, 1]);
         assert!(batches.iter().all(|b| shader_interface::POLYGON_STIPPLE.get(b.shader.words[key::GENERAL]) == 0));
         let mut quad = draw(Topology::Triangles, vec![0, 1, 2, 0, 2, 3], RasterState { polygon_mode: [PolygonMode::Line; 2], ..RasterState::default() });
         quad.edge_masks = vec![0b011, 0b110];
-        let edges = prepare(&quad, &program_draw(false), vertex::pack(&quad), Vec::new());
+        let edges = prepare(&quad, &program_draw(false), Vec::new());
         assert_eq!((edges.len(), edges[0].topology), (1, Topology::Lines));
-        assert_eq!(edges[0].indices, vec![0, 1, 1, 2, 2, 3, 3, 0], "the quad's outline, no diagonal");
-        let lined = prepare(&quad, &program_draw(true), vertex::pack(&quad), Vec::new());
+        assert_eq!(edges[0].indices, BatchIndices::List(vec![0, 1, 1, 2, 2, 3, 3, 0]), "the quad's outline, no diagonal");
+        let lined = prepare(&quad, &program_draw(true), Vec::new());
         assert_eq!((lined[0].topology, lined[0].polygon_mode), (Topology::Triangles, PolygonMode::Line), "two-sided colours need the facing");
         state.cull = Some(Face::Back);
         let d = draw(Topology::Triangles, vec![0, 1, 2], state.clone());
-        let summary: Vec<_> = prepare(&d, &program_draw(false), vertex::pack(&d), Vec::new()).iter().map(|b| (b.polygon_mode, b.cull)).collect();
+        let summary: Vec<_> = prepare(&d, &program_draw(false), Vec::new()).iter().map(|b| (b.polygon_mode, b.cull)).collect();
         assert_eq!(summary, vec![(PolygonMode::Line, Some(Face::Back))]);
         state.cull = Some(Face::FrontAndBack);
         let d = draw(Topology::Triangles, vec![0, 1, 2], state);
-        assert!(prepare(&d, &program_draw(false), vertex::pack(&d), Vec::new()).is_empty());
+        assert!(prepare(&d, &program_draw(false), Vec::new()).is_empty());
     }
 }

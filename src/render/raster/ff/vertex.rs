@@ -57,13 +57,18 @@ pub const VERTEX_ATTRIBUTES: &[VertexAttribute] = &[
 
 /// Interleaves the draw's attributes; missing attributes take OpenGL's initial current values.
 pub fn pack(draw: &Draw) -> Vec<f32> {
-    let v = &draw.vertices;
-    let columns = Columns::of(v);
-    let mut out = Vec::with_capacity(v.len() * VERTEX_FLOATS);
-    for i in 0..v.len() {
-        out.extend_from_slice(&columns.vertex(i));
-    }
+    let mut out = vec![0.0; draw.vertices.len() * VERTEX_FLOATS];
+    pack_into(draw, &mut out);
     out
+}
+
+/// [`pack`] into `out` (upload memory), [`VERTEX_FLOATS`] per vertex: as many vertices as
+/// both hold.
+pub fn pack_into(draw: &Draw, out: &mut [f32]) {
+    let columns = Columns::of(&draw.vertices);
+    for (i, vertex) in out.chunks_exact_mut(VERTEX_FLOATS).take(draw.vertices.len()).enumerate() {
+        vertex.copy_from_slice(&columns.vertex(i));
+    }
 }
 
 /// One attribute of every vertex: one value each, or one value for all.
