@@ -55,31 +55,43 @@ pub struct VertexLighting {
     pub directed: Vec3,
 }
 
+/// Vertices at one place whose own normals (smoothed over their own triangles) are at most
+/// this far apart (cosine: 60°) share their normal: apart is a hard edge (a box's corner).
+const SMOOTHING_COSINE: f32 = 0.5;
+
 /// The per-vertex unit normals of `draw` in eye space (`object_to_eye`): its own normals when
 /// it has one per vertex, else the area-weighted normals of the triangles around each
-/// position, turned away from its centre. Vertices at one position share their normal: models
-/// repeat the vertices of their texture seams, whose normals the game keeps continuous (on
-/// OpenArena's player models, normals smoothed on each side of a seam alone explain 0.43–0.75
-/// of the colours' variance, smoothed across it 0.61–0.84).
+/// position, turned away from its centre. Vertices at one place share their normal unless
+/// they meet at a hard edge ([`SMOOTHING_COSINE`]): models repeat the vertices of their
+/// texture seams, whose normals the game keeps continuous (on OpenArena's player models,
+/// normals smoothed on each side of a seam alone explain 0.43–0.75 of the colours' variance,
+/// smoothed across it 0.61–0.84).
 fn eye_normals(draw: &Draw, object_to_eye: &Mat4) -> Option<Vec<DVec3>> {
     let n = draw.vertices.len();
     let object: Vec<Vec3> = if draw.vertices.normal.values.len() == n && n > 1 {
         draw.vertices.normal.values.iter().map(|&v| Vec3::from(v)).collect()
     } else if draw.topology == Topology::Triangles {
         let position = |i: u32| Vec3::from_slice(&draw.vertices.position[i as usize][..3]);
-        // The first vertex at each vertex's position (-0 and 0 one place): its normal's sum.
-        let place = |i: u32| position(i).to_array().map(|c| (c + 0.0).to_bits());
-        let mut first_at = HashMap::with_capacity(n);
-        let welded: Vec<usize> = (0..n as u32).map(|i| *first_at.entry(place(i)).or_insert(i as usize)).collect();
-        let mut sum = vec![Vec3::ZERO; n];
+        let mut own = vec![Vec3::ZERO; n];
         for t in draw.indices.chunks_exact(3) {
             if t.iter().any(|&i| i as usize >= n) {
                 return None;
             }
             let face = (position(t[1]) - position(t[0])).cross(position(t[2]) - position(t[0]));
-            t.iter().for_each(|&i| sum[welded[i as usize]] += face);
+            t.iter().for_each(|&i| own[i as usize] += face);
         }
-        let mut sum: Vec<Vec3> = welded.iter().map(|&w| sum[w]).collect();
+        // The vertices at each place (-0 and 0 one place).
+        let place = |i: u32| position(i).to_array().map(|c| (c + 0.0).to_bits());
+        let mut at: HashMap<[u32; 3], Vec<usize>> = HashMap::with_capacity(n);
+        (0..n as u32).for_each(|i| at.entry(place(i)).or_default().push(i as usize));
+        let mut sum: Vec<Vec3> = (0..n as u32)
+            .map(|i| {
+                // A vertex of degenerate triangles alone takes the normal of its place.
+                let d = own[i as usize].normalize_or_zero();
+                let shared = |o: &Vec3| d == Vec3::ZERO || o.normalize_or_zero().dot(d) >= SMOOTHING_COSINE;
+                at[&place(i)].iter().map(|&j| own[j]).filter(shared).sum()
+            })
+            .collect();
         // Windings differ between programs (Quake 3's front faces are clockwise): the normals
         // point away from the model's centre.
         let centre = (0..n as u32).map(position).sum::<Vec3>() / n.max(1) as f32;
@@ -242,6 +254,28 @@ mod tests {
     }
 
     #[test]
+    fn a_box_whose_faces_have_their_own_vertices_keeps_its_hard_edges() {
+        // A cube, each face its own four corners (as the q3 demo's players are built).
+        let mut draw = Draw::default();
+        for axis in [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z] {
+            let t1 = if axis.x.abs() > 0.5 { Vec3::Y } else { Vec3::X };
+            let t2 = axis.cross(t1);
+            let base = draw.vertices.len() as u32;
+            for (a, b) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                let p = axis + t1 * a + t2 * b;
+                draw.vertices.position.push([p.x, p.y, p.z, 1.0]);
+            }
+            draw.indices.extend([0, 1, 2, 0, 2, 3].map(|k| base + k));
+        }
+        let normals = eye_normals(&draw, &Mat4::IDENTITY).expect("normals");
+        for (face, axis) in [Vec3::X, -Vec3::X, Vec3::Y, -Vec3::Y, Vec3::Z, -Vec3::Z].into_iter().enumerate() {
+            for n in &normals[face * 4..face * 4 + 4] {
+                assert!(n.dot(axis.as_dvec3()) > 1.0 - 1e-9, "face {face}: {n}");
+            }
+        }
+    }
+
+    #[test]
     fn lighting_through_normals_other_than_the_game_s_is_still_recovered() {
         // The game lit its own normals (here each turned by up to ~30°, as a model's stored
         // normals differ from those smoothed from its triangles); the fit sees the others.
@@ -322,9 +356,14 @@ mod tests {
     /// model that repeats the vertices of its texture seams, here everywhere.
     fn lit_sphere(rows: usize, columns: usize, split: bool) -> Draw {
         let towards = Vec3::new(0.6, 0.7, 0.4).normalize();
-        let point = |r: usize, c: usize| {
-            let (theta, phi) = (std::f32::consts::PI * r as f32 / rows as f32, std::f32::consts::TAU * c as f32 / columns as f32);
-            Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin())
+        // The poles exactly at the poles (their triangles of zero area).
+        let point = |r: usize, c: usize| match r {
+            0 => Vec3::Y,
+            r if r == rows => -Vec3::Y,
+            r => {
+                let (theta, phi) = (std::f32::consts::PI * r as f32 / rows as f32, std::f32::consts::TAU * c as f32 / columns as f32);
+                Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin())
+            }
         };
         let mut corners = Vec::new();
         for r in 0..rows {
