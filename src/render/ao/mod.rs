@@ -11,7 +11,10 @@
 //!    centre), rotated per pixel by a 4 × 4 tile of random vectors (Gram–Schmidt), scaled by
 //!    the radius R; a sample counts as occluded where the depth buffer's surface lies in front
 //!    of it by more than the bias δ, with a range check so that far surfaces do not darken
-//!    edges; the result is the unoccluded fraction `1 − occlusion / m`;
+//!    edges; the result is the unoccluded fraction `1 − occlusion / m`. The depth a sample
+//!    meets is its pixel's carried to the sample's own window point along the centre pixel's
+//!    depth gradient (exact on a plane), not the pixel centre's: far away at a grazing angle
+//!    one pixel spans more depth than δ, and that darkened open floors;
 //! 3. `blur.comp`: the N × N box blur of the seed, which removes the noise tile's pattern;
 //! 4. `apply.frag`: the colour multiplied by the blurred fraction (blending `ZERO, SRC_COLOR`).
 //!
