@@ -60,7 +60,7 @@ use crate::render::raster::pipelines::shader_module;
 use crate::render::raster::renderer::Recorder;
 use crate::render::raster::target::Plane;
 use crate::render::trace::composite::full_screen_pipeline;
-use crate::render::trace::pipelines::compute_pipeline;
+use crate::render::trace::pipelines::{completed, compute_pipeline};
 use settings::AoSettings;
 
 /// Kernel samples the block holds at most (`AO_MAX_SAMPLES` of `shaders/ao/params.glsl`).
@@ -187,7 +187,7 @@ impl AmbientOcclusion {
                 return Err(e);
             }
         };
-        let mut stage = AmbientOcclusion {
+        let stage = AmbientOcclusion {
             settings,
             kernel: kernel(settings.samples as usize),
             noise: noise(),
@@ -201,21 +201,15 @@ impl AmbientOcclusion {
             buffers: None,
             times: None,
         };
-        let made = (|| {
+        let make = |stage: &mut AmbientOcclusion| {
             stage.ssao = compute_pipeline(device, compute_layout.pipeline, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ao/ssao.comp.spv")))?;
             stage.blur = compute_pipeline(device, compute_layout.pipeline, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ao/blur.comp.spv")))?;
             stage.vertex = shader_module(device, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/trace_composite.vert.spv")))?;
             stage.fragment = shader_module(device, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ao/apply.frag.spv")))?;
             stage.times = PassTimes::new(device, "ambient occlusion", &STEPS)?;
             Ok(())
-        })();
-        match made {
-            Ok(()) => Ok(stage),
-            Err(e) => {
-                stage.destroy(device);
-                Err(e)
-            }
-        }
+        };
+        completed(device, stage, make, AmbientOcclusion::destroy)
     }
 
     /// The parameters of a frame whose camera is `camera`, in a framebuffer of `size`.
