@@ -1,5 +1,7 @@
-//! GPU time of a stage's passes from timestamps, summed over the frames and logged when the
-//! stage is destroyed (`GLRT_LOG=info`): the denoiser's and the ambient occlusion's passes.
+//! GPU time of a stage's passes from timestamps: [`SlotStamps`], a query pool of timestamps
+//! per frame slot (the path tracer's pass and build times); [`PassTimes`], a stage's steps
+//! summed over the frames and logged when the stage is destroyed (`GLRT_LOG=info`): the
+//! denoiser's and the ambient occlusion's passes.
 //!
 //! Each frame-in-flight slot (the first [`TIMED_SLOTS`]) has its own queries: timestamp 0
 //! before the first step and timestamp `k` after step `k`. A slot's queries are read when the
@@ -19,13 +21,58 @@ pub fn supported(device: &Device) -> bool {
     device.properties.limits.timestamp_compute_and_graphics == vk::TRUE && device.properties.device_type != vk::PhysicalDeviceType::CPU
 }
 
+/// `per_slot` timestamps for each frame slot, in one query pool.
+pub struct SlotStamps {
+    pool: vk::QueryPool,
+    per_slot: u32,
+}
+
+impl SlotStamps {
+    /// `per_slot` timestamps for each of `slots` frame slots on devices that time their work
+    /// ([`supported`]); `None` elsewhere.
+    pub fn new(device: &Device, per_slot: u32, slots: usize) -> Result<Option<SlotStamps>> {
+        if !supported(device) {
+            return Ok(None);
+        }
+        let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(per_slot * slots as u32);
+        // Safety: valid create info; destroyed in `destroy`.
+        let pool = unsafe { device.raw.create_query_pool(&info, None) }.check("vkCreateQueryPool")?;
+        Ok(Some(SlotStamps { pool, per_slot }))
+    }
+
+    /// The timestamps of the frame slot `slot`, to record.
+    pub fn frame(&self, slot: usize) -> FrameStamps {
+        FrameStamps { pool: self.pool, first: self.per_slot * slot as u32, count: self.per_slot }
+    }
+
+    /// The ticks of the frame slot `slot`'s timestamps, written by its frame, which has
+    /// finished; `None` where they cannot be read.
+    pub fn read(&self, device: &Device, slot: usize) -> Option<Vec<u64>> {
+        let mut ticks = vec![0u64; self.per_slot as usize];
+        // Safety: the queries were written by the slot's finished frame.
+        unsafe { device.raw.get_query_pool_results(self.pool, self.per_slot * slot as u32, &mut ticks, vk::QueryResultFlags::TYPE_64) }.ok()?;
+        Some(ticks)
+    }
+
+    /// Destroys the queries (the GPU must be idle).
+    pub fn destroy(self, device: &Device) {
+        // Safety: the GPU is idle.
+        unsafe { device.raw.destroy_query_pool(self.pool, None) };
+    }
+}
+
+/// Seconds from timestamp ticks `start` to `end` on `device`.
+pub fn seconds(device: &Device, start: u64, end: u64) -> f64 {
+    end.wrapping_sub(start) as f64 * f64::from(device.properties.limits.timestamp_period) * 1e-9
+}
+
 /// The GPU times of one stage's steps, summed over the frames read.
 pub struct PassTimes {
     /// The stage's name in the summary.
     stage: &'static str,
     /// The steps, in order.
     steps: &'static [&'static str],
-    pool: vk::QueryPool,
+    stamps: SlotStamps,
     /// Per slot: whether it recorded a frame whose timestamps were not read yet.
     unread: [bool; TIMED_SLOTS],
     /// Seconds per step, summed.
@@ -44,13 +91,8 @@ pub struct FrameStamps {
 impl PassTimes {
     /// Timestamps for the `steps` of `stage` on GPUs that time their work; `None` elsewhere.
     pub fn new(device: &Device, stage: &'static str, steps: &'static [&'static str]) -> Result<Option<PassTimes>> {
-        if !supported(device) {
-            return Ok(None);
-        }
-        let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(Self::stamps(steps) * TIMED_SLOTS as u32);
-        // Safety: valid create info; destroyed in `destroy`.
-        let pool = unsafe { device.raw.create_query_pool(&info, None) }.check("vkCreateQueryPool")?;
-        Ok(Some(PassTimes { stage, steps, pool, unread: [false; TIMED_SLOTS], seconds: vec![0.0; steps.len()], frames: 0 }))
+        let Some(stamps) = SlotStamps::new(device, Self::stamps(steps), TIMED_SLOTS)? else { return Ok(None) };
+        Ok(Some(PassTimes { stage, steps, stamps, unread: [false; TIMED_SLOTS], seconds: vec![0.0; steps.len()], frames: 0 }))
     }
 
     /// Timestamps per frame: one before the first step and one after each.
@@ -66,8 +108,7 @@ impl PassTimes {
         }
         self.read(device, slot);
         self.unread[slot] = true;
-        let count = Self::stamps(self.steps);
-        Some(FrameStamps { pool: self.pool, first: count * slot as u32, count })
+        Some(self.stamps.frame(slot))
     }
 
     /// Adds the times of the frame slot `slot` recorded last, once its fence has signalled.
@@ -75,15 +116,9 @@ impl PassTimes {
         if !self.unread.get_mut(slot).is_some_and(std::mem::take) {
             return;
         }
-        let mut ticks = vec![0u64; Self::stamps(self.steps) as usize];
-        let first = Self::stamps(self.steps) * slot as u32;
-        // Safety: the queries were written by the slot's finished frame.
-        if unsafe { device.raw.get_query_pool_results(self.pool, first, &mut ticks, vk::QueryResultFlags::TYPE_64) }.is_err() {
-            return;
-        }
-        let period = f64::from(device.properties.limits.timestamp_period) * 1e-9;
-        for (step, seconds) in self.seconds.iter_mut().enumerate() {
-            *seconds += ticks[step + 1].wrapping_sub(ticks[step]) as f64 * period;
+        let Some(ticks) = self.stamps.read(device, slot) else { return };
+        for (step, total) in self.seconds.iter_mut().enumerate() {
+            *total += seconds(device, ticks[step], ticks[step + 1]);
         }
         self.frames += 1;
     }
@@ -104,8 +139,7 @@ impl PassTimes {
         if self.frames > 0 {
             log::info!("{}", self.summary());
         }
-        // Safety: the GPU is idle.
-        unsafe { device.raw.destroy_query_pool(self.pool, None) };
+        self.stamps.destroy(device);
     }
 }
 
@@ -134,7 +168,7 @@ mod tests {
         let times = PassTimes {
             stage: "denoiser",
             steps: &["gradient", "temporal", "variance", "a-trous", "modulate"],
-            pool: vk::QueryPool::null(),
+            stamps: SlotStamps { pool: vk::QueryPool::null(), per_slot: 6 },
             unread: [false; TIMED_SLOTS],
             seconds: vec![0.0002, 0.002, 0.001, 0.004, 0.001],
             frames: 2,

@@ -230,8 +230,9 @@ fn the_open_plane_matches_the_traced_occlusion() {
     let [kernel, cosine] = compare("plane", false);
     assert!(kernel.pixels > (SIZE * SIZE / 3) as usize, "the floor fills the lower half: {}", kernel.pixels);
     assert!(kernel.means[1] < 1e-6 && cosine.means[1] < 1e-6, "nothing occludes an open plane: {:?} {:?}", kernel.means, cosine.means);
-    // The floor far away, seen at grazing angles, is darkened a little (up to 0.18).
-    assert!(kernel.mean < 0.025 && kernel.largest < 0.25, "mean {} largest {}", kernel.mean, kernel.largest);
+    // Also far away at grazing angles, where one pixel spans more depth than the bias (0.018
+    // on average and up to 0.18 when samples met the depth of the pixel's centre; 0 now).
+    assert!(kernel.mean < 0.001 && kernel.largest < 0.02, "mean {} largest {}", kernel.mean, kernel.largest);
 }
 
 #[test]
@@ -239,7 +240,8 @@ fn the_box_matches_the_traced_occlusion() {
     let [kernel, cosine] = compare("box", true);
     assert!(kernel.pixels > (SIZE * SIZE * 9 / 10) as usize, "the box fills the view: {}", kernel.pixels);
     assert!(kernel.means[1] > 0.02, "the box is occluded: {:?}", kernel.means);
-    assert!(kernel.mean < 0.02, "mean absolute error against the kernel reference {}", kernel.mean);
+    // 0.0104 measured (largest 0.22, along the walls' edges and the image border).
+    assert!(kernel.mean < 0.012 && kernel.largest < 0.3, "against the kernel reference: mean {} largest {}", kernel.mean, kernel.largest);
     // The cosine-weighted occlusion within R is a larger quantity (full-length rays), which
     // the kernel's short samples see only in part.
     assert!(cosine.mean < 0.16 && cosine.means[1] > kernel.means[1], "against the cosine reference: {} {:?}", cosine.mean, cosine.means);
@@ -332,5 +334,8 @@ fn a_replayed_demo_frame_matches_the_traced_occlusion() {
     eprintln!("demo: frame {} of {w}x{h}, every second pixel, {} triangles", frame.number, triangles.len());
     assert!(kernel.pixels > (cw * ch / 2) as usize, "most pixels compared: {}", kernel.pixels);
     assert!(kernel.means[1] > 0.002, "the room is occluded somewhere: {:?}", kernel.means);
-    assert!(kernel.mean < 0.05, "mean absolute error against the kernel reference {}", kernel.mean);
+    // 0.004 measured, 0.8 % of pixels off by > 0.1 (0.033 and 6.8 % when walls and floor
+    // seen at grazing angles were darkened), and as much occlusion as traced.
+    assert!(kernel.mean < 0.008 && kernel.above_tenth < 0.02, "against the kernel reference: mean {} above 0.1 {}", kernel.mean, kernel.above_tenth);
+    assert!((kernel.means[0] - kernel.means[1]).abs() < 0.002, "mean occlusion raster / traced {:?}", kernel.means);
 }

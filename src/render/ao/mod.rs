@@ -11,7 +11,10 @@
 //!    centre), rotated per pixel by a 4 × 4 tile of random vectors (Gram–Schmidt), scaled by
 //!    the radius R; a sample counts as occluded where the depth buffer's surface lies in front
 //!    of it by more than the bias δ, with a range check so that far surfaces do not darken
-//!    edges; the result is the unoccluded fraction `1 − occlusion / m`;
+//!    edges; the result is the unoccluded fraction `1 − occlusion / m`. The depth a sample
+//!    meets is its pixel's carried to the sample's own window point along the centre pixel's
+//!    depth gradient (exact on a plane), not the pixel centre's: far away at a grazing angle
+//!    one pixel spans more depth than δ, and that darkened open floors;
 //! 3. `blur.comp`: the N × N box blur of the seed, which removes the noise tile's pattern;
 //! 4. `apply.frag`: the colour multiplied by the blurred fraction (blending `ZERO, SRC_COLOR`).
 //!
@@ -57,7 +60,7 @@ use crate::render::raster::pipelines::shader_module;
 use crate::render::raster::renderer::Recorder;
 use crate::render::raster::target::Plane;
 use crate::render::trace::composite::full_screen_pipeline;
-use crate::render::trace::pipelines::compute_pipeline;
+use crate::render::trace::pipelines::{completed, compute_pipeline};
 use settings::AoSettings;
 
 /// Kernel samples the block holds at most (`AO_MAX_SAMPLES` of `shaders/ao/params.glsl`).
@@ -184,7 +187,7 @@ impl AmbientOcclusion {
                 return Err(e);
             }
         };
-        let mut stage = AmbientOcclusion {
+        let stage = AmbientOcclusion {
             settings,
             kernel: kernel(settings.samples as usize),
             noise: noise(),
@@ -198,21 +201,15 @@ impl AmbientOcclusion {
             buffers: None,
             times: None,
         };
-        let made = (|| {
+        let make = |stage: &mut AmbientOcclusion| {
             stage.ssao = compute_pipeline(device, compute_layout.pipeline, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ao/ssao.comp.spv")))?;
             stage.blur = compute_pipeline(device, compute_layout.pipeline, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ao/blur.comp.spv")))?;
             stage.vertex = shader_module(device, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/trace_composite.vert.spv")))?;
             stage.fragment = shader_module(device, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ao/apply.frag.spv")))?;
             stage.times = PassTimes::new(device, "ambient occlusion", &STEPS)?;
             Ok(())
-        })();
-        match made {
-            Ok(()) => Ok(stage),
-            Err(e) => {
-                stage.destroy(device);
-                Err(e)
-            }
-        }
+        };
+        completed(device, stage, make, AmbientOcclusion::destroy)
     }
 
     /// The parameters of a frame whose camera is `camera`, in a framebuffer of `size`.

@@ -7,7 +7,7 @@ use bytemuck::{Pod, Zeroable};
 
 use super::shader_constants::BINDING_COUNT;
 use crate::render::raster::device::{Check, Device, Result};
-use crate::render::trace::pipelines::{compute_pipeline, descriptor_set_layout};
+use crate::render::trace::pipelines::{completed, compute_pipeline, descriptor_set_layout};
 
 /// Push constants of every pass (`DenoisePass` of `shaders/denoise/common.glsl`).
 #[repr(C)]
@@ -56,7 +56,7 @@ impl DenoisePipelines {
         // Safety: valid create info; destroyed in `destroy`.
         let layout = unsafe { device.raw.create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts).push_constant_ranges(&push), None) }
             .check("vkCreatePipelineLayout")?;
-        let mut pipelines = DenoisePipelines {
+        let pipelines = DenoisePipelines {
             set_layout,
             layout,
             gradient: vk::Pipeline::null(),
@@ -65,21 +65,15 @@ impl DenoisePipelines {
             atrous: vk::Pipeline::null(),
             modulate: vk::Pipeline::null(),
         };
-        let made = (|| {
+        let make = |pipelines: &mut DenoisePipelines| {
             pipelines.gradient = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/gradient.comp.spv")))?;
             pipelines.temporal = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/temporal.comp.spv")))?;
             pipelines.variance = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/variance.comp.spv")))?;
             pipelines.atrous = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/atrous.comp.spv")))?;
             pipelines.modulate = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/modulate.comp.spv")))?;
             Ok(())
-        })();
-        match made {
-            Ok(()) => Ok(pipelines),
-            Err(e) => {
-                pipelines.destroy(device);
-                Err(e)
-            }
-        }
+        };
+        completed(device, pipelines, make, DenoisePipelines::destroy)
     }
 
     /// Destroys everything (the GPU must be idle); null handles are skipped by Vulkan.

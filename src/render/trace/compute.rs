@@ -40,6 +40,7 @@ use super::vertex_light;
 use super::{GpuScene, Radiance, RayTracer, TracedImage, bindings};
 use crate::frame::class::SurfaceLighting;
 use crate::frame::{Draw, Frame};
+use crate::render::pass_times::{self, SlotStamps};
 use crate::render::raster::device::{Buffer, Check, Device, Result};
 use crate::render::raster::renderer::Recorder;
 
@@ -47,7 +48,8 @@ use crate::render::raster::renderer::Recorder;
 /// denoiser's temporal pass keeps as many).
 pub const MOVING_HISTORY: f32 = 8.0;
 
-/// Timestamps per frame in flight: tracing pass start and end, builds start and end.
+/// Timestamps per frame in flight: builds start and end, tracing pass start and end (in the
+/// order they are recorded: the first resets the frame's queries).
 const TIMESTAMPS: u32 = 4;
 
 /// Per-pixel buffers of one traced size.
@@ -84,10 +86,10 @@ pub struct ComputeTracer {
     counters: Vec<Buffer>,
     /// Descriptor pools per frame in flight.
     pools: Vec<vk::DescriptorPool>,
-    /// Per frame in flight, [`TIMESTAMPS`] timestamps: around the tracing pass, then around
-    /// the geometry uploads and acceleration-structure builds (`None`: the device has no
+    /// Per frame in flight, [`TIMESTAMPS`] timestamps: around the geometry uploads and
+    /// acceleration-structure builds, then around the tracing pass (`None`: the device has no
     /// timestamps on compute queues, or is a CPU).
-    timestamps: Option<vk::QueryPool>,
+    timestamps: Option<SlotStamps>,
     /// Per frame in flight: whether it traced a frame whose counters were not read yet.
     unread: Vec<bool>,
     frame_index: u32,
@@ -122,15 +124,7 @@ impl ComputeTracer {
             // Safety: valid create info; destroyed in `destroy`.
             pools.push(unsafe { device.raw.create_descriptor_pool(&info, None) }.check("vkCreateDescriptorPool")?);
         }
-        // lavapipe's timestamps do not bracket its compute work (they read ~0): CPU devices get none.
-        let timed = device.properties.limits.timestamp_compute_and_graphics == vk::TRUE && device.properties.device_type != vk::PhysicalDeviceType::CPU;
-        let timestamps = if timed {
-            let info = vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(TIMESTAMPS * slots as u32);
-            // Safety: valid create info; destroyed in `destroy`.
-            Some(unsafe { device.raw.create_query_pool(&info, None) }.check("vkCreateQueryPool")?)
-        } else {
-            None
-        };
+        let timestamps = SlotStamps::new(device, TIMESTAMPS, slots)?;
         Ok(ComputeTracer {
             settings,
             pipelines,
@@ -161,12 +155,9 @@ impl ComputeTracer {
             return;
         }
         let Some(rays) = self.counters.get_mut(slot).and_then(|b| RayCounts::from_counters(b.mapped())) else { return };
-        let seconds = self.timestamps.and_then(|pool| {
-            let mut ticks = [0u64; TIMESTAMPS as usize];
-            // Safety: the queries were written by the slot's finished frame.
-            unsafe { device.raw.get_query_pool_results(pool, TIMESTAMPS * slot as u32, &mut ticks, vk::QueryResultFlags::TYPE_64) }.ok()?;
-            let seconds = |start: usize| ticks[start + 1].wrapping_sub(ticks[start]) as f64 * device.properties.limits.timestamp_period as f64 * 1e-9;
-            Some(PassSeconds { trace: seconds(0), build: seconds(2) })
+        let seconds = self.timestamps.as_ref().and_then(|stamps| {
+            let ticks = stamps.read(device, slot)?;
+            Some(PassSeconds { trace: pass_times::seconds(device, ticks[2], ticks[3]), build: pass_times::seconds(device, ticks[0], ticks[1]) })
         });
         self.statistics.rays = rays;
         self.statistics.totals.add(rays, seconds);
@@ -309,8 +300,8 @@ impl ComputeTracer {
             let bind_point = self.pipelines.trace_bind_point();
             d.cmd_bind_descriptor_sets(cmd, bind_point, self.pipelines.layout, 0, &[set], &[]);
             d.cmd_bind_pipeline(cmd, bind_point, self.pipelines.pathtrace);
-            if let Some(pool) = self.timestamps {
-                d.cmd_write_timestamp2(cmd, stage, pool, TIMESTAMPS * slot as u32);
+            if let Some(stamps) = &self.timestamps {
+                stamps.frame(slot).write(device, cmd, 2, stage);
             }
             // One dispatch per sample, each adding its share to the G-buffer's radiance. Lavapipe
             // (gallivm's LP_MAX_TGSI_LOOP_ITERATIONS) stops every loop of a shader after the
@@ -327,8 +318,8 @@ impl ComputeTracer {
                 }
                 barrier(d, cmd, stage, stage | vk::PipelineStageFlags2::COMPUTE_SHADER);
             }
-            if let Some(pool) = self.timestamps {
-                d.cmd_write_timestamp2(cmd, stage, pool, TIMESTAMPS * slot as u32 + 1);
+            if let Some(stamps) = &self.timestamps {
+                stamps.frame(slot).write(device, cmd, 3, stage);
             }
             self.unread[slot] = true;
             set
@@ -355,13 +346,10 @@ impl RayTracer for ComputeTracer {
         let (items, covered_draws) = instances::gather(frame, traced, previous_view);
 
         let build_started = std::time::Instant::now();
-        if let Some(pool) = self.timestamps {
-            // Safety: `cmd` is recording outside a rendering pass; the slot's last frame,
-            // which wrote these queries, has finished and was read.
-            unsafe {
-                device.raw.cmd_reset_query_pool(cmd, pool, TIMESTAMPS * slot as u32, TIMESTAMPS);
-                device.raw.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::ALL_COMMANDS, pool, TIMESTAMPS * slot as u32 + 2);
-            }
+        if let Some(stamps) = &self.timestamps {
+            // `cmd` is recording outside a rendering pass; the slot's last frame, which wrote
+            // these queries, has finished and was read.
+            stamps.frame(slot).write(device, cmd, 0, vk::PipelineStageFlags2::ALL_COMMANDS);
         }
         let mut build_micros = 0u64;
         // Geometry: build (or refit) and upload what is new.
@@ -470,9 +458,8 @@ impl RayTracer for ComputeTracer {
             Some(accelerations) => self.top_level = accelerations.build_top(device, cmd, slot, &top_instances)?,
             None => self.tlas = Tlas::build(&bounds),
         }
-        if let Some(pool) = self.timestamps {
-            // Safety: as above.
-            unsafe { device.raw.cmd_write_timestamp2(cmd, vk::PipelineStageFlags2::ALL_COMMANDS, pool, TIMESTAMPS * slot as u32 + 3) };
+        if let Some(stamps) = &self.timestamps {
+            stamps.frame(slot).write(device, cmd, 1, vk::PipelineStageFlags2::ALL_COMMANDS);
         }
         counts.build_micros = build_micros + top_started.elapsed().as_micros() as u64;
         self.statistics.scene = counts;
@@ -586,9 +573,8 @@ impl RayTracer for ComputeTracer {
         for slot in 0..self.unread.len() {
             self.read_counters(device, slot);
         }
-        if let Some(pool) = self.timestamps.take() {
-            // Safety: the GPU is idle.
-            unsafe { device.raw.destroy_query_pool(pool, None) };
+        if let Some(stamps) = self.timestamps.take() {
+            stamps.destroy(device);
         }
         self.resident.destroy(device);
         if let Some(mut accelerations) = self.accelerations.take() {

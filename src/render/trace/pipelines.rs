@@ -52,6 +52,18 @@ pub(crate) fn descriptor_set_layout(device: &Device, count: u32, samplers: &[u32
         .check("vkCreateDescriptorSetLayout")
 }
 
+/// `objects` once `make` has created the rest of their handles; where it fails, `destroy`
+/// destroys what it made (the others are null, which Vulkan skips) and its error is returned.
+pub(crate) fn completed<T>(device: &Device, mut objects: T, make: impl FnOnce(&mut T) -> Result<()>, destroy: impl FnOnce(&mut T, &Device)) -> Result<T> {
+    match make(&mut objects) {
+        Ok(()) => Ok(objects),
+        Err(e) => {
+            destroy(&mut objects, device);
+            Err(e)
+        }
+    }
+}
+
 /// A compute pipeline of `layout` from the SPIR-V `spirv` (its entry point `main`).
 pub(crate) fn compute_pipeline(device: &Device, layout: vk::PipelineLayout, spirv: &[u8]) -> Result<vk::Pipeline> {
     if crate::faults::fires(crate::faults::Fault::ShaderCompile) {
@@ -86,8 +98,8 @@ impl TracePipelines {
             device.raw.create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts).push_constant_ranges(&trace_push), None)
         }
         .check("vkCreatePipelineLayout")?;
-        let mut pipelines = TracePipelines { set_layout, layout, pathtrace: vk::Pipeline::null(), table: None, resolve: vk::Pipeline::null() };
-        let made = (|| {
+        let pipelines = TracePipelines { set_layout, layout, pathtrace: vk::Pipeline::null(), table: None, resolve: vk::Pipeline::null() };
+        let make = |pipelines: &mut TracePipelines| {
             if hardware {
                 let (pipeline, table) = super::hardware::pipeline::create(device, layout)?;
                 pipelines.pathtrace = pipeline;
@@ -101,14 +113,8 @@ impl TracePipelines {
             }
             pipelines.resolve = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/trace_resolve.comp.spv")))?;
             Ok(())
-        })();
-        match made {
-            Ok(()) => Ok(pipelines),
-            Err(e) => {
-                pipelines.destroy(device);
-                Err(e)
-            }
-        }
+        };
+        completed(device, pipelines, make, TracePipelines::destroy)
     }
 
     /// The bind point of [`TracePipelines::pathtrace`].
