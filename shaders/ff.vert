@@ -19,6 +19,7 @@ layout(location = LOCATION_NORMAL) in vec3 in_normal;
 layout(location = LOCATION_FOG_COORD) in float in_fog_coord;
 layout(location = LOCATION_TEXCOORD) in vec4 in_texcoord[MAX_UNITS];
 layout(location = LOCATION_RASTER) in vec4 in_raster;
+layout(location = LOCATION_INDIRECT) in vec4 in_indirect;
 
 out float gl_ClipDistance[MAX_CLIP_PLANES];
 
@@ -72,7 +73,10 @@ Material material_of(int face) {
 // The lighting equation of section 2.14.1 for one face: primary and secondary colour.
 void shade(Material m, vec3 n, vec4 pos, out vec4 primary, out vec4 secondary) {
     vec3 eye_dir = GENERAL(LOCAL_VIEWER) != 0u ? unit_between(pos, vec4(0.0, 0.0, 0.0, 1.0)) : vec3(0.0, 0.0, 1.0);
-    vec3 sum = m.emission.rgb + m.ambient.rgb * u.scene_ambient.rgb;
+    // The scene's ambient light, or radiosity's indirect light on this vertex in its place.
+    bool radiosity = field(KEY_CLIP, RADIOSITY_SHIFT, RADIOSITY_BITS) != 0u;
+    vec3 ambient = radiosity ? m.diffuse.rgb * in_indirect.rgb : m.ambient.rgb * u.scene_ambient.rgb;
+    vec3 sum = m.emission.rgb + ambient;
     vec3 spec = vec3(0.0);
     for (int i = 0; i < int(GENERAL(LIGHT_COUNT)); i++) {
         Light l = u.light[i];

@@ -104,6 +104,10 @@ fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result
     {
         eprintln!("glrt: ambient occlusion is not available: {e}");
     }
+    let radiosity = radiosity::settings::Settings::of_process();
+    if radiosity.enabled && !matches!(rendering, devices::Rendering::PathTrace { .. }) {
+        renderer.enable_radiosity(radiosity, trace::lights::LightSettings::of(&trace::settings::Settings::of_process()));
+    }
     if matches!(rendering, devices::Rendering::PathTrace { .. }) {
         match renderer.enable_tracing(trace::settings::Settings::of_process()) {
             Err(e) => eprintln!("glrt: path tracing is not available: {e}; frames are rasterized"),

@@ -94,15 +94,20 @@ pub struct Batch {
     pub polygon_offset: bool,
 }
 
-/// The batches that draw `draw`, in drawing order.
-pub fn prepare(draw: &Draw) -> Vec<Batch> {
+/// The batches that draw `draw`, in drawing order; `indirect`, one value per vertex, is
+/// radiosity's indirect light on a lit draw's vertices, which replaces its ambient term
+/// ([`shader_interface::RADIOSITY`]; not for a program's vertex stage).
+pub fn prepare(draw: &Draw, indirect: Option<&[[f32; 3]]>) -> Vec<Batch> {
     if draw.indices.is_empty() || draw.vertices.is_empty() {
         return Vec::new();
     }
-    let packed = vertex::pack(draw);
+    let mut packed = vertex::pack(draw);
     let uniforms = uniforms::pack(draw);
     if let Some(program) = draw.program.as_ref().filter(|p| p.program.vertex.is_some()) {
         return native::prepare(draw, program, packed, uniforms);
+    }
+    if let Some(indirect) = indirect {
+        vertex::set_indirect(&mut packed, indirect);
     }
     let parts: Vec<_> = convert::convert(draw, &packed).into_iter().filter(|part| !part.indices.is_empty()).collect();
     // The draw's own vertices go to the parts that keep them: moved into the last of them.
@@ -120,7 +125,7 @@ pub fn prepare(draw: &Draw) -> Vec<Batch> {
             vertices: part.vertices.unwrap_or_else(&mut own_vertices),
             generic: Vec::new(),
             indices: part.indices,
-            shader: key::shader_key(draw, part.primitive, part.facing),
+            shader: key::shader_key(draw, part.primitive, part.facing).with_radiosity(indirect.is_some()),
             uniforms: uniforms.clone(),
             cull: part.cull,
             facing: part.facing,
@@ -156,7 +161,7 @@ mod tests {
         draw.topology = Topology::Lines;
         let state = crate::frame::RasterState { viewport: [0, 0, 64, 64], ..Default::default() };
         draw.state = std::sync::Arc::new(state);
-        let batches = prepare(&draw);
+        let batches = prepare(&draw, None);
         assert_eq!(batches.len(), 1);
         let b = &batches[0];
         assert_eq!((b.topology, b.indices.len(), b.vertices.len()), (Topology::Triangles, 6, 4 * VERTEX_FLOATS));
@@ -169,9 +174,14 @@ mod tests {
         let mut draw = Draw::default();
         draw.vertices.position = vec![[0.0; 4], [1.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, 1.0]];
         draw.indices = vec![0, 1, 2];
-        let b = &prepare(&draw)[0];
+        let b = &prepare(&draw, None)[0];
         assert_eq!(b.vertices, vertex::pack(&draw));
         assert_eq!(b.indices, vec![2, 0, 1]);
-        assert!(prepare(&Draw::default()).is_empty());
+        assert!(prepare(&Draw::default(), None).is_empty());
+        // With radiosity's indirect light: in the vertices and the key.
+        let lit = &prepare(&draw, Some(&[[0.5; 3], [0.25; 3], [0.0; 3]]))[0];
+        assert_eq!(&vertex::get(&lit.vertices, 1)[vertex::INDIRECT..vertex::INDIRECT + 3], &[0.25; 3]);
+        assert_eq!(shader_interface::RADIOSITY.get(lit.shader.words[key::CLIP]), 1);
+        assert_eq!(shader_interface::RADIOSITY.get(b.shader.words[key::CLIP]), 0);
     }
 }
