@@ -408,9 +408,10 @@ impl FrameSink for Renderer {
     }
 
     /// The path tracer reads classes (what it traces, layers, lights, the static world), the
-    /// HUD its draws per class; rasterizing alone reads none.
+    /// HUD its draws per class, radiosity the static world, its draws and the view;
+    /// rasterizing alone reads none.
     fn reads_classes(&self) -> bool {
-        self.tracing.is_some() || self.hud.is_some()
+        self.tracing.is_some() || self.hud.is_some() || self.radiosity.is_some()
     }
 
     /// Waits for the frame in flight that ended `frame` when the result is not known yet.

@@ -1,7 +1,11 @@
 //! The transfer of the patches' radiosity to the raster draws of the static world: per
-//! vertex, the indirect light that replaces the GL lighting's ambient term (`ff.vert` under
-//! the shader key's `RADIOSITY`: material diffuse × indirect irradiance / π, GL's vertex
-//! lighting carrying it across the triangle like the rest of its light).
+//! vertex, the indirect light that replaces the GL lighting's scene ambient term (`ff.vert`
+//! under the shader key's `RADIOSITY`: material diffuse × indirect irradiance / π, GL's
+//! vertex lighting carrying it across the triangle like the rest of its light). The
+//! radiosity is in the tracer's linear units (a GL light of diffuse colour `d` lights as
+//! `π · linear(d)`, [`crate::render::trace::lights`]), so the shader adds the reflected
+//! indirect light to GL's light in linear units and encodes the sum for display again, as
+//! the tracer's image is encoded.
 //!
 //! - **Per patch.** The indirect irradiance is what the bounces added: `(B − P) / albedo`
 //!   per channel (the radiosity less the primary radiosity is the reflected bounced light;
@@ -11,9 +15,11 @@
 //!   surface (normals within 60°), weighted by `cos⁴ · (1 − d / R)²` over the reach `R`
 //!   ([`REACH`] typical patch sides); where none is that near, the nearest such patch.
 //!   Patches are found through a grid of cells of side `R`.
-//! - **Which draws.** Static draws lit by GL lighting without a second texture unit
-//!   ([`receives`]): lightmapped surfaces (Quake 3's, unlit with the lightmap in unit 1 or as
-//!   a layer pass) keep their baked light, unlit draws have no ambient term to replace.
+//! - **Which draws.** Static draws lit by GL lighting, without a program ([`receives`]).
+//!   Lightmapped surfaces (Quake 3's) are unlit, their light baked in the lightmap (unit 1 or
+//!   a layer pass): they keep it, as every unlit draw, which has no ambient term to replace. A
+//!   lit draw whose unit 1 modulates its light (the demo's room darkens its corners so)
+//!   modulates the indirect light as it does the rest.
 
 use std::collections::HashMap;
 
@@ -118,13 +124,9 @@ impl IndirectLight {
     }
 }
 
-/// Whether `draw` gets radiosity's indirect light: static, lit by GL lighting, no program,
-/// nothing in texture unit 1 (a lightmap).
+/// Whether `draw` gets radiosity's indirect light: static, lit by GL lighting, no program.
 pub fn receives(draw: &Draw) -> bool {
-    draw.class == DrawClass::Static
-        && draw.state.lighting.is_some()
-        && draw.program.is_none()
-        && draw.texture_units.get(1).copied().flatten().is_none()
+    draw.class == DrawClass::Static && draw.state.lighting.is_some() && draw.program.is_none()
 }
 
 #[cfg(test)]
@@ -163,7 +165,7 @@ mod tests {
     }
 
     #[test]
-    fn only_lit_static_draws_without_a_second_unit_receive_it() {
+    fn only_lit_static_draws_receive_it() {
         use crate::frame::state::{Lighting, RasterState};
         let lit = std::sync::Arc::new(RasterState { lighting: Some(Lighting::default()), ..RasterState::default() });
         let mut draw = Draw { class: DrawClass::Static, state: lit, ..Draw::default() };
@@ -182,8 +184,6 @@ mod tests {
         assert!(expected[1].y > expected[0].y, "the wall's lower green albedo gives more irradiance");
         assert!(receives(&draw));
         assert!(!receives(&Draw { class: DrawClass::Dynamic, ..draw.clone() }));
-        assert!(!receives(&Draw { state: std::sync::Arc::new(RasterState::default()), ..draw.clone() }), "unlit");
-        let lightmapped = Draw { texture_units: vec![None, Some(crate::frame::TextureUnit::default())], ..draw };
-        assert!(!receives(&lightmapped));
+        assert!(!receives(&Draw { state: std::sync::Arc::new(RasterState::default()), ..draw.clone() }), "unlit (lightmapped)");
     }
 }

@@ -100,9 +100,10 @@ glsl_fields! {
 
     /// Clip word: bit `i` set when the `i`-th packed clip plane is enabled.
     CLIP_MASK = (0, 6);
-    /// Clip word: the lighting's ambient term is radiosity's indirect light, the vertex input
-    /// at `LOCATION_INDIRECT` times the material's diffuse colour, in place of the scene
-    /// ambient times the material's ambient colour (`crate::render::radiosity::transfer`).
+    /// Clip word: radiosity's indirect light replaces the lighting's scene ambient term: the
+    /// vertex input at `LOCATION_INDIRECT` (irradiance / π, linear) times the material's
+    /// diffuse colour, added to the rest of the light in linear units
+    /// (`crate::render::radiosity::transfer`).
     RADIOSITY = (6, 1);
 
     /// Unit word: 0 no texturing, 1 1D, 2 2D, 3 3D, 4 cube map, 5 rectangle (coordinates in
