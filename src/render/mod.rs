@@ -4,7 +4,8 @@
 //! recording and the raster stages (clears, pixel operations, draws in program order,
 //! read-back, present), [`trace`] the path-tracing stages behind one back-end trait
 //! ([`trace::RayTracer`]), [`denoise`] the A-SVGF stage after tracing, [`fog`] the height fog
-//! of both modes, [`ao`] the ambient occlusion of raster mode, [`present`] the window,
+//! of both modes, [`ao`] the ambient occlusion of raster mode, [`radiosity`] the static
+//! world's global illumination (raster mode's indirect light so far), [`present`] the window,
 //! and [`hud`] the panel of frame times drawn over the image. [`default_sink`] chooses the
 //! renderer of the mode (`GLRT_MODE`); [`devices`] lists the machine's Vulkan devices with the
 //! mode each would get ([`rendering_on`]).
