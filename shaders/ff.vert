@@ -19,6 +19,7 @@ layout(location = LOCATION_NORMAL) in vec3 in_normal;
 layout(location = LOCATION_FOG_COORD) in float in_fog_coord;
 layout(location = LOCATION_TEXCOORD) in vec4 in_texcoord[MAX_UNITS];
 layout(location = LOCATION_RASTER) in vec4 in_raster;
+layout(location = LOCATION_INDIRECT) in vec4 in_indirect;
 
 out float gl_ClipDistance[MAX_CLIP_PLANES];
 
@@ -69,10 +70,25 @@ Material material_of(int face) {
     return m;
 }
 
-// The lighting equation of section 2.14.1 for one face: primary and secondary colour.
+// A display-encoded colour (sRGB) in linear units, negative values as 0.
+vec3 linear_of(vec3 c) {
+    c = max(c, vec3(0.0));
+    return mix(c / 12.92, pow((c + 0.055) / 1.055, vec3(2.4)), greaterThan(c, vec3(0.04045)));
+}
+
+// A linear colour display-encoded (sRGB).
+vec3 display_encoded(vec3 c) {
+    c = max(c, vec3(0.0));
+    return mix(c * 12.92, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, greaterThan(c, vec3(0.0031308)));
+}
+
+// The lighting equation of section 2.14.1 for one face: primary and secondary colour; with
+// the key's RADIOSITY, radiosity's indirect light in place of the scene's ambient light.
 void shade(Material m, vec3 n, vec4 pos, out vec4 primary, out vec4 secondary) {
     vec3 eye_dir = GENERAL(LOCAL_VIEWER) != 0u ? unit_between(pos, vec4(0.0, 0.0, 0.0, 1.0)) : vec3(0.0, 0.0, 1.0);
-    vec3 sum = m.emission.rgb + m.ambient.rgb * u.scene_ambient.rgb;
+    // Radiosity's indirect light replaces the scene's ambient light (added below).
+    bool radiosity = field(KEY_CLIP, RADIOSITY_SHIFT, RADIOSITY_BITS) != 0u;
+    vec3 sum = m.emission.rgb + (radiosity ? vec3(0.0) : m.ambient.rgb * u.scene_ambient.rgb);
     vec3 spec = vec3(0.0);
     for (int i = 0; i < int(GENERAL(LIGHT_COUNT)); i++) {
         Light l = u.light[i];
@@ -99,6 +115,11 @@ void shade(Material m, vec3 n, vec4 pos, out vec4 primary, out vec4 secondary) {
             vec3 h = normalize_or_zero(to_light + eye_dir);
             spec += factor * pow_gl(max(dot(n, h), 0.0), m.shininess.x) * m.specular.rgb * l.specular.rgb;
         }
+    }
+    if (radiosity) {
+        // The indirect irradiance / pi (linear, as the tracer's light) reflected by the diffuse
+        // colour, added to GL's light in linear units (GL's colours are display-encoded).
+        sum = display_encoded(linear_of(sum) + linear_of(m.diffuse.rgb) * in_indirect.rgb);
     }
     if (GENERAL(SEPARATE_SPECULAR) != 0u) {
         primary = clamp(vec4(sum, m.diffuse.a), 0.0, 1.0);

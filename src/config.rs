@@ -27,7 +27,8 @@
 //! [display]                         # keys: render::hud::Display
 //! hud = true
 //!
-//! [radiosity]                       # keys: render::radiosity::settings
+//! [radiosity]                       # keys: render::radiosity::settings (GLRT_RADIOSITY=0|1)
+//! enabled = true
 //! radiosity_bounces = 3
 //!
 //! [fog]                             # keys: render::fog::settings (GLRT_FOG=0|1)

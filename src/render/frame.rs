@@ -48,11 +48,14 @@ use crate::render::denoise::settings::DenoiseSettings;
 use crate::render::fog::settings::FogSettings;
 use crate::render::hud::canvas::Canvas;
 use crate::render::hud::{Display, FrameInfo, Hud};
+use crate::render::radiosity::settings::Settings as RadiositySettings;
+use crate::render::radiosity::stage::RadiosityStage;
 use crate::render::raster::device::{Device, Error, Result};
 use crate::render::raster::dump::Dump;
 use crate::render::raster::output::FrameOutput;
 use crate::render::raster::renderer::{FRAMES_IN_FLIGHT, Raster, Recorder};
 use crate::render::trace::composite::Composite;
+use crate::render::trace::lights::LightSettings;
 use crate::render::trace::settings::Settings;
 use crate::render::trace::shader_constants::FRAME_GRADIENTS;
 use crate::render::trace::surfaces::Surfaces;
@@ -79,6 +82,10 @@ pub struct Renderer {
     ao: Option<AmbientOcclusion>,
     /// The number of the last frame that got ambient occlusion (it runs once per frame).
     occluded_frame: Option<u64>,
+    /// Radiosity of raster frames, when enabled.
+    radiosity: Option<RadiosityStage>,
+    /// The number of the last frame whose indirect light was set (once per frame).
+    radiosity_frame: Option<u64>,
     /// The storage of the draws of frames drawn, for the context to fill again.
     spent: StoragePool,
 }
@@ -112,7 +119,7 @@ impl Renderer {
     /// Creates the renderer with no [`FrameOutput`]: frames stay in the framebuffer.
     pub fn without_outputs() -> Result<Renderer> {
         let hud = Display::of_process().hud.then(Hud::default);
-        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud, ao: None, occluded_frame: None, spent: StoragePool::default() })
+        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud, ao: None, occluded_frame: None, radiosity: None, radiosity_frame: None, spent: StoragePool::default() })
     }
 
     /// Path traces the traced draws of the next frames with `settings`, with the back end
@@ -158,6 +165,14 @@ impl Renderer {
         Ok(())
     }
 
+    /// Lights the static world of the next raster frames with radiosity ([`RadiosityStage`]
+    /// with `settings`, the frame's lights read as the tracer's `lights` settings say).
+    pub fn enable_radiosity(&mut self, settings: RadiositySettings, lights: LightSettings) {
+        if self.radiosity.is_none() {
+            self.radiosity = Some(RadiosityStage::new(settings, lights));
+        }
+    }
+
     /// The ray-tracing back end, when tracing is enabled (statistics: rays, scenes, frames).
     pub fn tracer(&self) -> Option<&dyn RayTracer> {
         self.tracing.as_ref().map(|t| &*t.backend)
@@ -188,6 +203,15 @@ impl Renderer {
         let occlusion_at = (self.tracing.is_none() && self.ao.is_some() && self.occluded_frame != Some(frame.number))
             .then(|| crate::render::ao::place(frame).map(|(at, _)| at))
             .flatten();
+        // Radiosity's indirect light of a raster frame, once, before its draws.
+        if self.radiosity_frame != Some(frame.number) {
+            self.radiosity_frame = Some(frame.number);
+            let indirect = match &mut self.radiosity {
+                Some(stage) if self.tracing.is_none() => stage.update(self.raster.device(), frame),
+                _ => None,
+            };
+            self.raster.set_indirect(indirect);
+        }
         // Raster composite up to the traced image's (or the occlusion's) place: clears, pixel
         // operations, draws.
         self.raster.record(frame, traced_at.or(occlusion_at), &rasterized)?;
@@ -293,6 +317,9 @@ impl Renderer {
         if let Some(mut ao) = self.ao.take() {
             ao.destroy(old.device());
         }
+        if let Some(mut radiosity) = self.radiosity.take() {
+            radiosity.destroy(old.device());
+        }
         drop(old);
         for output in outputs {
             self.raster.add_output(output);
@@ -381,9 +408,10 @@ impl FrameSink for Renderer {
     }
 
     /// The path tracer reads classes (what it traces, layers, lights, the static world), the
-    /// HUD its draws per class; rasterizing alone reads none.
+    /// HUD its draws per class, radiosity the static world, its draws and the view;
+    /// rasterizing alone reads none.
     fn reads_classes(&self) -> bool {
-        self.tracing.is_some() || self.hud.is_some()
+        self.tracing.is_some() || self.hud.is_some() || self.radiosity.is_some()
     }
 
     /// Waits for the frame in flight that ended `frame` when the result is not known yet.
@@ -421,6 +449,9 @@ impl Drop for Renderer {
         }
         if let Some(ao) = &mut self.ao {
             ao.destroy(device);
+        }
+        if let Some(radiosity) = &mut self.radiosity {
+            radiosity.destroy(device);
         }
     }
 }

@@ -4,7 +4,8 @@
 //! recording and the raster stages (clears, pixel operations, draws in program order,
 //! read-back, present), [`trace`] the path-tracing stages behind one back-end trait
 //! ([`trace::RayTracer`]), [`denoise`] the A-SVGF stage after tracing, [`fog`] the height fog
-//! of both modes, [`ao`] the ambient occlusion of raster mode, [`present`] the window,
+//! of both modes, [`ao`] the ambient occlusion of raster mode, [`radiosity`] the static
+//! world's global illumination (raster mode's indirect light so far), [`present`] the window,
 //! and [`hud`] the panel of frame times drawn over the image; [`pass_layout`] and
 //! [`pass_times`] are the layouts and GPU timing of those stages' passes. [`default_sink`]
 //! chooses the renderer of the mode (`GLRT_MODE`); [`devices`] lists the machine's Vulkan
@@ -106,6 +107,10 @@ fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result
         && let Err(e) = renderer.enable_ambient_occlusion(ao)
     {
         eprintln!("glrt: ambient occlusion is not available: {e}");
+    }
+    let radiosity = radiosity::settings::Settings::of_process();
+    if radiosity.enabled && !matches!(rendering, devices::Rendering::PathTrace { .. }) {
+        renderer.enable_radiosity(radiosity, trace::lights::LightSettings::of(&trace::settings::Settings::of_process()));
     }
     if matches!(rendering, devices::Rendering::PathTrace { .. }) {
         match renderer.enable_tracing(trace::settings::Settings::of_process()) {

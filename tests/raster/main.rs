@@ -3,8 +3,9 @@
 //! draws and read-back ([`draws`]), the fixed-function shaders ([`fixed_function`]), the pixel
 //! path ([`pixels`]), colour buffers ([`buffers`]), framebuffer objects ([`fbo`]),
 //! multisampling ([`msaa`]), RGB drawables ([`rgb`]), OpenGL 2.0 fixed-function features
-//! ([`gl20`]) and programs ([`program`]), texture formats ([`texture_formats`]) and frames
-//! submitted in parts ([`parts`]). Each test
+//! ([`gl20`]) and programs ([`program`]), texture formats ([`texture_formats`]), frames
+//! submitted in parts ([`parts`]) and radiosity's indirect light in the lighting
+//! ([`radiosity`]). Each test
 //! owns its renderer and context.
 
 #[path = "../lavapipe/mod.rs"]
@@ -19,5 +20,6 @@ mod msaa;
 mod parts;
 mod pixels;
 mod program;
+mod radiosity;
 mod rgb;
 mod texture_formats;

@@ -18,8 +18,9 @@
 //! Per frame, [`gpu::direct`] lights the patches (shadow rays to the frame's [`lights`], in
 //! the world frame) and adds their emission, and [`gpu::gather`] multiplies the compressed
 //! matrix (its BC1 image sampled by the device) with that primary radiosity, the two run in
-//! turn by [`gpu::update`]. Not yet here:
-//! the transfer to surfaces and the tracer.
+//! turn by [`gpu::update`]; [`transfer`] turns the result into the indirect light on the
+//! raster draws of the static world, and [`stage`] runs it all for the renderer's raster
+//! frames. Not yet here: the tracer's use of the radiosity.
 
 pub mod bc1;
 pub mod bounces;
@@ -36,6 +37,8 @@ pub mod reorder;
 pub mod settings;
 pub mod shader_constants;
 pub mod sparse;
+pub mod stage;
 pub mod test_scenes;
+pub mod transfer;
 #[cfg(test)]
 mod tests;

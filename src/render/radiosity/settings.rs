@@ -1,18 +1,18 @@
 //! Radiosity's settings: `glrt.toml` `[radiosity]`, each key overridable by `GLRT_<KEY>` (read
 //! by [`crate::config`], which reports unknown keys and bad values once and keeps the
-//! default). There is no on/off key yet: the per-frame update exists (`gpu::update`) but no
-//! frame uses its result (the transfer to surfaces comes with the key). Keys carry a `radiosity_` prefix where the bare name would make an unclear
+//! default); `enabled` is `GLRT_RADIOSITY`. Keys carry a `radiosity_` prefix where the bare name would make an unclear
 //! variable (`GLRT_RADIOSITY_BOUNCES`, not `GLRT_BOUNCES`, which would read as the tracer's).
 //!
 //! ```toml
 //! [radiosity]
+//! enabled = false             # raster frames: radiosity's indirect light on the static world
 //! patch_size = 0.0            # side of a patch, world units; 0: chosen to fit the budget
 //! radiosity_bounces = 3       # k of the k-bounce matrix, 1..=16
 //! top_share = 0.04            # share of the matrix kept exactly, 0..=1
 //! radiosity_budget_mb = 256   # memory of the precompute's dense matrices, MiB, 1..=65536
 //! ```
 
-use crate::config::{Key, Table, integer_in, number, number_in};
+use crate::config::{Key, Table, integer_in, number, number_in, switch};
 
 /// Bytes per entry of the precompute's dense matrices: the colour matrix and the k-bounce sum,
 /// three `f32` channels each.
@@ -21,6 +21,9 @@ pub const DENSE_BYTES_PER_ENTRY: usize = 2 * 3 * 4;
 /// The `[radiosity]` table.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
+    /// Whether raster frames light the static world with radiosity (`enabled`,
+    /// [`super::stage`]).
+    pub enabled: bool,
     /// Side of a patch in world units; 0: the smallest that fits the budget (`patch_size`).
     pub patch_size: f32,
     /// Bounces of the k-bounce matrix (`radiosity_bounces`).
@@ -33,18 +36,26 @@ pub struct Settings {
 
 impl Default for Settings {
     fn default() -> Settings {
-        Settings { patch_size: 0.0, bounces: 3, top_share: 0.04, budget_mb: 256 }
+        Settings { enabled: false, patch_size: 0.0, bounces: 3, top_share: 0.04, budget_mb: 256 }
     }
 }
 
 impl Table for Settings {
     const NAME: &'static str = "radiosity";
     const KEYS: &'static [Key<Settings>] = &[
+        Key { name: "enabled", set: |s, v| switch(v).map(|b| s.enabled = b) },
         Key { name: "patch_size", set: |s, v| number(v, |x| x >= 0.0 && x.is_finite(), "a number >= 0").map(|x| s.patch_size = x as f32) },
         Key { name: "radiosity_bounces", set: |s, v| integer_in(v, 1..=16).map(|x| s.bounces = x as u32) },
         Key { name: "top_share", set: |s, v| number_in(v, 0.0..=1.0).map(|x| s.top_share = x as f32) },
         Key { name: "radiosity_budget_mb", set: |s, v| integer_in(v, 1..=65536).map(|x| s.budget_mb = x as u32) },
     ];
+
+    fn variable(name: &str) -> String {
+        match name {
+            "enabled" => "GLRT_RADIOSITY".to_owned(),
+            other => format!("GLRT_{}", other.to_uppercase()),
+        }
+    }
 }
 
 impl Settings {
@@ -76,14 +87,14 @@ mod tests {
 
     #[test]
     fn every_key_is_read_from_the_file_and_the_environment() {
-        let body = "patch_size = 0.5\nradiosity_bounces = 5\ntop_share = 0.1\nradiosity_budget_mb = 64\n";
+        let body = "enabled = true\npatch_size = 0.5\nradiosity_bounces = 5\ntop_share = 0.1\nradiosity_budget_mb = 64\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
-        assert_eq!(s, Settings { patch_size: 0.5, bounces: 5, top_share: 0.1, budget_mb: 64 });
-        let env = [("GLRT_PATCH_SIZE", "2"), ("GLRT_RADIOSITY_BOUNCES", "1"), ("GLRT_TOP_SHARE", "0"), ("GLRT_RADIOSITY_BUDGET_MB", "1")];
+        assert_eq!(s, Settings { enabled: true, patch_size: 0.5, bounces: 5, top_share: 0.1, budget_mb: 64 });
+        let env = [("GLRT_RADIOSITY", "0"), ("GLRT_PATCH_SIZE", "2"), ("GLRT_RADIOSITY_BOUNCES", "1"), ("GLRT_TOP_SHARE", "0"), ("GLRT_RADIOSITY_BUDGET_MB", "1")];
         let (s, problems) = read(body, &env);
         assert!(problems.is_empty(), "{problems:?}");
-        assert_eq!(s, Settings { patch_size: 2.0, bounces: 1, top_share: 0.0, budget_mb: 1 });
+        assert_eq!(s, Settings { enabled: false, patch_size: 2.0, bounces: 1, top_share: 0.0, budget_mb: 1 });
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
         // 1 MiB of two dense colour matrices: 209 patches (209² · 24 bytes < 2^20).
         assert_eq!(s.max_patches(), 209);

@@ -44,6 +44,7 @@ use crate::frame::pixels::{PixelBuffer, PixelOp};
 use crate::render::fog::FrameFog;
 use crate::render::fog::settings::FogSettings;
 use crate::render::hud::canvas::Canvas;
+use crate::render::radiosity::stage::FrameIndirect;
 use crate::frame::state::{Stencil, StencilFaces};
 use crate::frame::framebuffer::FramebufferKey;
 use crate::frame::{Clear, ColorBuffer, Draw, DrawBuffers, Frame, FrameEnd, Framebuffer, RasterState};
@@ -110,6 +111,9 @@ struct Parts {
     fog: FogSettings,
     /// The height fog of the frame being recorded (`None`: off).
     frame_fog: Option<FrameFog>,
+    /// Radiosity's indirect light for the static draws of the frame being recorded
+    /// ([`Raster::set_indirect`]).
+    frame_indirect: Option<FrameIndirect>,
 }
 
 /// Access to the frame being recorded, for the parts that record into it (draws, clears,
@@ -140,6 +144,9 @@ pub struct Recorder<'a> {
     framebuffer: Option<FramebufferKey>,
     /// The frame's height fog, for draws into the window's framebuffer (`None`: off).
     pub fog: Option<FrameFog>,
+    /// Radiosity's indirect light, for the static world's draws into the window's
+    /// framebuffer (`None`: off).
+    pub indirect: Option<FrameIndirect>,
 }
 
 impl Recorder<'_> {
@@ -209,6 +216,7 @@ impl Recorder<'_> {
             query: (self.query.0, None),
             framebuffer: self.framebuffer,
             fog: None,
+            indirect: None,
         };
         let result = record(&mut rec);
         rec.end_rendering();
@@ -327,7 +335,8 @@ impl Recorder<'_> {
             },
             None => full,
         };
-        let batches = ff::prepare(draw);
+        let indirect = self.indirect.as_ref().filter(|_| self.framebuffer.is_none()).and_then(|i| i.light.of_draw(draw, &i.eye_to_world));
+        let batches = ff::prepare(draw, indirect.as_deref());
         if batches.is_empty() {
             return Ok(());
         }
@@ -385,7 +394,12 @@ impl Recorder<'_> {
                 (ff::BatchVertices::Draw, Some(packed)) => packed,
                 (ff::BatchVertices::Draw, None) => {
                     let floats = draw.vertices.len() * ff::VERTEX_FLOATS;
-                    let packed = self.ring.push_with(self.device, floats, 16, |out: &mut [f32]| ff::vertex::pack_into(draw, out))?;
+                    let packed = self.ring.push_with(self.device, floats, 16, |out: &mut [f32]| {
+                        ff::vertex::pack_into(draw, out);
+                        if let Some(indirect) = indirect.as_deref() {
+                            ff::vertex::set_indirect(out, indirect);
+                        }
+                    })?;
                     *own_vertices.insert(packed)
                 }
                 (ff::BatchVertices::Expanded(expanded), _) => self.ring.push_slice(self.device, expanded, 16)?,
@@ -469,6 +483,7 @@ impl Raster {
                 alpha: true,
                 fog: FogSettings::default(),
                 frame_fog: None,
+                frame_indirect: None,
             },
             slots,
             current: 0,
@@ -487,6 +502,12 @@ impl Raster {
     /// Fogs the next frames' 3D draws with the height fog of `settings` ([`crate::render::fog`]).
     pub fn set_fog(&mut self, settings: FogSettings) {
         self.parts.fog = settings;
+    }
+
+    /// Lights the static world's lit draws of the frame being recorded with radiosity's
+    /// `indirect` light in place of GL's ambient term (`None`: GL's).
+    pub fn set_indirect(&mut self, indirect: Option<FrameIndirect>) {
+        self.parts.frame_indirect = indirect;
     }
 
     /// Adds a consumer of presented frames (presentation, dumps), called in the order added.
@@ -581,6 +602,7 @@ impl Raster {
             query: (0, None),
             framebuffer: parts.active,
             fog: parts.frame_fog,
+            indirect: parts.frame_indirect.clone(),
         })
     }
 

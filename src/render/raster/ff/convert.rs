@@ -69,8 +69,9 @@ pub struct Segment {
 }
 
 /// The parts that draw `draw`. Filled triangles keep the draw's vertices and indices (packed
-/// and rotated where they are uploaded); what is expanded is packed here.
-pub fn convert(draw: &Draw) -> Vec<Part> {
+/// and rotated where they are uploaded); what is expanded is packed here, with radiosity's
+/// `indirect` light per vertex where there is one ([`super::prepare`]).
+pub fn convert(draw: &Draw, indirect: Option<&[[f32; 3]]>) -> Vec<Part> {
     let count = draw.vertices.len() as u32;
     let valid = |p: &[u32]| p.iter().all(|&i| i < count);
     let s = &draw.state;
@@ -83,7 +84,7 @@ pub fn convert(draw: &Draw) -> Vec<Part> {
             cull: s.cull,
             polygon_offset: s.polygon_offset.fill,
         }],
-        Topology::Triangles => polygon_modes(draw, count),
+        Topology::Triangles => polygon_modes(draw, count, indirect),
         Topology::Lines => {
             let segments: Vec<Segment> = draw
                 .indices
@@ -91,17 +92,27 @@ pub fn convert(draw: &Draw) -> Vec<Part> {
                 .filter(|l| valid(l))
                 .map(|l| Segment { a: l[0], b: l[1], provoking: l[1] })
                 .collect();
-            let (vertices, indices) = expand_lines(draw, &vertex::pack(draw), &segments);
+            let (vertices, indices) = expand_lines(draw, &packed(draw, indirect), &segments);
             vec![expanded(Primitive::Line, Facing::Front, vertices, indices, false)]
         }
         Topology::Points => {
             let points: Vec<(u32, u32)> = draw.indices.iter().filter(|&&i| i < count).map(|&i| (i, i)).collect();
-            let (vertices, indices) = expand_points(draw, &vertex::pack(draw), &points);
+            let (vertices, indices) = expand_points(draw, &packed(draw, indirect), &points);
             vec![expanded(Primitive::Point, Facing::Front, vertices, indices, false)]
         }
     }
 }
 
+/// The draw's vertices packed, with radiosity's `indirect` light where there is one.
+fn packed(draw: &Draw, indirect: Option<&[[f32; 3]]>) -> Vec<f32> {
+    let mut packed = vertex::pack(draw);
+    if let Some(indirect) = indirect {
+        vertex::set_indirect(&mut packed, indirect);
+    }
+    packed
+}
+
+/// A part of expanded vertices and their list of indices.
 fn expanded(primitive: Primitive, facing: Facing, vertices: Vec<f32>, indices: Vec<u32>, offset: bool) -> Part {
     Part { primitive, facing, vertices: Some(vertices), indices: BatchIndices::List(indices), cull: None, polygon_offset: offset }
 }
@@ -139,7 +150,7 @@ pub fn is_front(c: [Vec4; 3], winding: Winding) -> bool {
 }
 
 /// Triangles of a draw with a non-`FILL` polygon mode, by face.
-fn polygon_modes(draw: &Draw, count: u32) -> Vec<Part> {
+fn polygon_modes(draw: &Draw, count: u32, indirect: Option<&[[f32; 3]]>) -> Vec<Part> {
     let s = &draw.state;
     let window = Window::new(draw);
     let mut fill = Vec::new();
@@ -187,7 +198,7 @@ fn polygon_modes(draw: &Draw, count: u32) -> Vec<Part> {
     }
     // Edges and points are copies of packed vertices.
     let expanded_any = edges.iter().any(|e| !e.is_empty()) || points.iter().any(|p| !p.is_empty());
-    let packed = if expanded_any { vertex::pack(draw) } else { Vec::new() };
+    let packed = if expanded_any { packed(draw, indirect) } else { Vec::new() };
     for (face, facing) in [Facing::Front, Facing::Back].into_iter().enumerate() {
         if !edges[face].is_empty() {
             let (v, i) = expand_lines(draw, &packed, &edges[face]);
@@ -398,13 +409,13 @@ mod tests {
     #[test]
     fn fill_keeps_the_vertices_and_puts_the_provoking_vertex_first() {
         let d = draw(Topology::Triangles, &CCW, &[0, 1, 2, 0, 1, 9], RasterState { cull: Some(Face::Back), ..Default::default() });
-        let parts = convert(&d);
+        let parts = convert(&d, None);
         assert_eq!(parts.len(), 1);
         assert_eq!(parts[0].vertices, None);
         assert_eq!(parts[0].indices, BatchIndices::List(vec![2, 0, 1]), "the triangle with an out-of-range index is dropped");
         assert_eq!(parts[0].cull, Some(Face::Back), "the rasterizer culls");
         let d = Draw { indices: vec![0, 1, 2, 0, 2, 1], ..d };
-        assert_eq!(convert(&d)[0].indices, BatchIndices::Draw { per: 3 }, "in range: rotated where they are uploaded");
+        assert_eq!(convert(&d, None)[0].indices, BatchIndices::Draw { per: 3 }, "in range: rotated where they are uploaded");
     }
 
     #[test]
@@ -425,7 +436,7 @@ mod tests {
         let state = RasterState { polygon_mode: [PolygonMode::Line, PolygonMode::Fill], ..Default::default() };
         let mut d = draw(Topology::Triangles, &quad, &[0, 1, 2, 0, 2, 3], state);
         d.edge_masks = vec![0b011, 0b110];
-        let parts = convert(&d);
+        let parts = convert(&d, None);
         assert_eq!(parts.len(), 1);
         let lines = &parts[0];
         assert_eq!((lines.primitive, lines.facing, lines.cull), (Primitive::Line, Facing::Front, None));
@@ -437,7 +448,7 @@ mod tests {
         // Reversed winding: the same triangles are back faces and fill.
         let mut back = d.clone();
         back.indices = vec![0, 2, 1, 0, 3, 2];
-        let parts = convert(&back);
+        let parts = convert(&back, None);
         assert_eq!(parts.len(), 1);
         assert_eq!((parts[0].primitive, parts[0].facing, parts[0].vertices.is_none()), (Primitive::Triangle, Facing::Rasterizer, true));
     }
@@ -451,7 +462,7 @@ mod tests {
             ..Default::default()
         };
         let d = draw(Topology::Triangles, &CCW, &[0, 1, 2, 0, 2, 1], state);
-        let parts = convert(&d);
+        let parts = convert(&d, None);
         assert_eq!(parts.len(), 1);
         assert_eq!((parts[0].primitive, parts[0].facing, parts[0].polygon_offset), (Primitive::Point, Facing::Back, true));
         assert_eq!(list(&parts[0]).len(), 3 * 6, "three vertices as points");
@@ -462,7 +473,7 @@ mod tests {
         let state = RasterState { line: Line { width: 2.6, ..Line::default() }, ..Default::default() };
         // x-major: from (25, 50) to (75, 60) in window pixels.
         let d = draw(Topology::Lines, &[[-0.5, 0.0], [0.5, 0.2]], &[0, 1], state);
-        let part = &convert(&d)[0];
+        let part = &convert(&d, None)[0];
         assert_eq!(list(part), [0, 1, 2, 0, 2, 3]);
         let r: Vec<[f32; 4]> = (0..4).map(|c| raster(part, c)).collect();
         // Width 3 across; moved back along x by half a pixel less a sliver (diamond exit).
@@ -478,7 +489,7 @@ mod tests {
         let state = RasterState { line: Line { width: 1.0, smooth: true, ..Line::default() }, ..Default::default() };
         // A 45° line.
         let d = draw(Topology::Lines, &[[0.0, 0.0], [0.5, 0.5]], &[0, 1], state);
-        let part = &convert(&d)[0];
+        let part = &convert(&d, None)[0];
         let r = raster(part, 1);
         let h = 1.0 / 2f32.sqrt();
         assert!((r[0] + h).abs() < 1e-5 && (r[1] - h).abs() < 1e-5, "{r:?}");
@@ -492,7 +503,7 @@ mod tests {
         // A strip 0→1→2 then a separate segment 2→3... which starts where the strip ended,
         // so it continues; then 0→1 again restarts.
         let d = draw(Topology::Lines, &p, &[0, 1, 1, 2, 2, 3, 0, 1], state);
-        let part = &convert(&d)[0];
+        let part = &convert(&d, None)[0];
         let start = |s: usize| raster(part, 4 * s + 2)[2];
         assert_eq!([start(0), start(1), start(2), start(3)], [0.0, 25.0, 50.0, 0.0].map(|d| d + ALIASED_SHIFT));
         // Major-axis distance of the 45° segment: 25 pixels.
@@ -503,7 +514,7 @@ mod tests {
     fn flat_lines_take_the_provoking_colour() {
         let state = RasterState { shade_model: ShadeModel::Flat, ..Default::default() };
         let d = draw(Topology::Lines, &[[0.0, 0.0], [0.5, 0.0]], &[0, 1], state);
-        let part = &convert(&d)[0];
+        let part = &convert(&d, None)[0];
         assert!((0..4).all(|c| color(part, c) == 1.0));
     }
 
@@ -514,18 +525,18 @@ mod tests {
         // z = −1 (t = 0.5) on remains, so its start is halfway.
         d.vertices.position[0][2] = -3.0;
         d.vertices.position[1][2] = 1.0;
-        let part = &convert(&d)[0];
+        let part = &convert(&d, None)[0];
         let v = part.vertices.as_ref().unwrap();
         let start_x = v[2 * VERTEX_FLOATS + vertex::POSITION];
         assert!((start_x - 0.25).abs() < 1e-6, "{start_x}");
         d.vertices.position[1][2] = -2.0;
-        assert!(list(&convert(&d)[0]).is_empty(), "wholly behind");
+        assert!(list(&convert(&d, None)[0]).is_empty(), "wholly behind");
     }
 
     #[test]
     fn points_outside_the_clip_volume_are_dropped() {
         let d = draw(Topology::Points, &[[0.0, 0.0], [1.5, 0.0], [-0.99, 0.99]], &[0, 1, 2], RasterState::default());
-        let part = &convert(&d)[0];
+        let part = &convert(&d, None)[0];
         assert_eq!(list(part).len(), 2 * 6);
         assert_eq!(raster(part, 2), [1.0, 1.0, 0.0, 0.0]);
         assert_eq!((part.primitive, part.facing), (Primitive::Point, Facing::Front));

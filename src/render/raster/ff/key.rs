@@ -6,7 +6,7 @@
 //! generated from those modules.
 //!
 //! Words: [`GENERAL`] (primitive, shading, lighting model, fog, alpha test, stipples),
-//! [`CLIP`] (user clip planes), `UNIT + u` (texture unit `u`: target, base format, function,
+//! [`CLIP`] (user clip planes, radiosity's ambient term), `UNIT + u` (texture unit `u`: target, base format, function,
 //! coordinate generation, depth texture comparison, point sprite coordinates), `COMBINE_RGB + u` and `COMBINE_ALPHA + u` (the
 //! combiner of unit `u`, section 3.8.13).
 
@@ -58,6 +58,14 @@ pub enum Facing {
 pub struct ShaderKey {
     /// Specialisation constant `i` is `words[i]`.
     pub words: [u32; WORDS],
+}
+
+impl ShaderKey {
+    /// The key with [`RADIOSITY`] set to `on`.
+    pub fn with_radiosity(mut self, on: bool) -> ShaderKey {
+        RADIOSITY.set(&mut self.words[CLIP], on as u32);
+        self
+    }
 }
 
 /// `1 +` the index of `func` in the order of the GL enums (`GL_NEVER` + i).

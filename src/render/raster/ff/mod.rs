@@ -108,8 +108,12 @@ pub enum BatchVertices {
     Expanded(Vec<f32>),
 }
 
-/// The batches that draw `draw`, in drawing order.
-pub fn prepare(draw: &Draw) -> Vec<Batch> {
+/// The batches that draw `draw`, in drawing order; `indirect`, one value per vertex, is
+/// radiosity's indirect light on a lit draw's vertices, which replaces its ambient term
+/// ([`shader_interface::RADIOSITY`]; not for a program's vertex stage). The renderer writes it
+/// into the draw's own vertices where it packs them ([`vertex::set_indirect`]); expanded
+/// vertices carry it from [`convert`].
+pub fn prepare(draw: &Draw, indirect: Option<&[[f32; 3]]>) -> Vec<Batch> {
     if draw.indices.is_empty() || draw.vertices.is_empty() {
         return Vec::new();
     }
@@ -117,7 +121,7 @@ pub fn prepare(draw: &Draw) -> Vec<Batch> {
     if let Some(program) = draw.program.as_ref().filter(|p| p.program.vertex.is_some()) {
         return native::prepare(draw, program, uniforms);
     }
-    convert::convert(draw)
+    convert::convert(draw, indirect)
         .into_iter()
         .filter(|part| part.indices.len(draw) > 0)
         .map(|part| Batch {
@@ -126,7 +130,7 @@ pub fn prepare(draw: &Draw) -> Vec<Batch> {
             vertices: part.vertices.map_or(BatchVertices::Draw, BatchVertices::Expanded),
             generic: Vec::new(),
             indices: part.indices,
-            shader: key::shader_key(draw, part.primitive, part.facing),
+            shader: key::shader_key(draw, part.primitive, part.facing).with_radiosity(indirect.is_some()),
             uniforms: uniforms.clone(),
             cull: part.cull,
             facing: part.facing,
@@ -162,7 +166,7 @@ mod tests {
         draw.topology = Topology::Lines;
         let state = crate::frame::RasterState { viewport: [0, 0, 64, 64], ..Default::default() };
         draw.state = std::sync::Arc::new(state);
-        let batches = prepare(&draw);
+        let batches = prepare(&draw, None);
         assert_eq!(batches.len(), 1);
         let b = &batches[0];
         let BatchVertices::Expanded(vertices) = &b.vertices else { panic!("lines are expanded") };
@@ -176,13 +180,17 @@ mod tests {
         let mut draw = Draw::default();
         draw.vertices.position = vec![[0.0; 4], [1.0, 0.0, 0.0, 1.0], [0.0, 1.0, 0.0, 1.0]];
         draw.indices = vec![0, 1, 2];
-        let b = &prepare(&draw)[0];
+        let b = &prepare(&draw, None)[0];
         assert_eq!((&b.vertices, &b.indices), (&BatchVertices::Draw, &BatchIndices::Draw { per: 3 }));
         let mut indices = [0; 3];
         b.indices.write(&draw, &mut indices);
         assert_eq!(indices, [2, 0, 1]);
-        assert!(prepare(&Draw::default()).is_empty());
+        assert!(prepare(&Draw::default(), None).is_empty());
+        // With radiosity's indirect light: in the key (the renderer writes the vertices).
+        let lit = &prepare(&draw, Some(&[[0.5; 3], [0.25; 3], [0.0; 3]]))[0];
+        assert_eq!(shader_interface::RADIOSITY.get(lit.shader.words[key::CLIP]), 1);
+        assert_eq!(shader_interface::RADIOSITY.get(b.shader.words[key::CLIP]), 0);
         draw.indices.truncate(2);
-        assert!(prepare(&draw).is_empty(), "no whole triangle");
+        assert!(prepare(&draw, None).is_empty(), "no whole triangle");
     }
 }

@@ -31,6 +31,9 @@ glsl_constants! {
     const LOCATION_TEXCOORD: u32 = 5;
     /// Vertex input: the rasterization attribute of expanded lines and points.
     const LOCATION_RASTER: u32 = 9;
+    /// Vertex input: radiosity's indirect light on the vertex (read under [`RADIOSITY`]);
+    /// after the locations a program's generic attributes take (10 to 24).
+    const LOCATION_INDIRECT: u32 = 25;
 
     /// Lights the uniform block holds (`GL_MAX_LIGHTS`).
     const MAX_LIGHTS: usize = 8;
@@ -97,6 +100,11 @@ glsl_fields! {
 
     /// Clip word: bit `i` set when the `i`-th packed clip plane is enabled.
     CLIP_MASK = (0, 6);
+    /// Clip word: radiosity's indirect light replaces the lighting's scene ambient term: the
+    /// vertex input at `LOCATION_INDIRECT` (irradiance / π, linear) times the material's
+    /// diffuse colour, added to the rest of the light in linear units
+    /// (`crate::render::radiosity::transfer`).
+    RADIOSITY = (6, 1);
 
     /// Unit word: 0 no texturing, 1 1D, 2 2D, 3 3D, 4 cube map, 5 rectangle (coordinates in
     /// texels). The base format and texture function sit beside it (`texenv::codes`).

@@ -2,14 +2,14 @@
 //! [`VERTEX_FLOATS`] `f32`s per vertex, laid out as [`VERTEX_ATTRIBUTES`] says.
 
 use super::shader_interface::{
-    LOCATION_COLOR, LOCATION_FOG_COORD, LOCATION_NORMAL, LOCATION_POSITION, LOCATION_RASTER, LOCATION_SECONDARY, LOCATION_TEXCOORD,
+    LOCATION_COLOR, LOCATION_FOG_COORD, LOCATION_INDIRECT, LOCATION_NORMAL, LOCATION_POSITION, LOCATION_RASTER, LOCATION_SECONDARY, LOCATION_TEXCOORD,
 };
 use crate::render::texenv::codes::MAX_UNITS;
 use crate::frame::Draw;
 use crate::frame::program::ShaderProgram;
 
 /// Floats per packed vertex.
-pub const VERTEX_FLOATS: usize = 36;
+pub const VERTEX_FLOATS: usize = 40;
 
 /// One vertex input: shader location, component count (of `f32`s) and offset in floats.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,9 +39,13 @@ pub const TEXCOORD: usize = 16;
 /// across the line (smooth lines); for expanded points the corner (±1, ±1); zero for
 /// triangles. See [`super::convert`].
 pub const RASTER: usize = TEXCOORD + 4 * MAX_UNITS;
+/// Offset of radiosity's indirect light (4, alpha 0): zero but in draws that the radiosity
+/// lights ([`set_indirect`]).
+pub const INDIRECT: usize = RASTER + 4;
 
 /// Position (4), colour (4), secondary colour (4), normal (3), fog coordinate (1), the
-/// texture coordinates of each unit (4 each), and the rasterization attribute (4).
+/// texture coordinates of each unit (4 each), the rasterization attribute (4) and the
+/// indirect light (4).
 pub const VERTEX_ATTRIBUTES: &[VertexAttribute] = &[
     VertexAttribute { location: LOCATION_POSITION, components: 4, offset: POSITION as u32 },
     VertexAttribute { location: LOCATION_COLOR, components: 4, offset: COLOR as u32 },
@@ -53,7 +57,19 @@ pub const VERTEX_ATTRIBUTES: &[VertexAttribute] = &[
     VertexAttribute { location: LOCATION_TEXCOORD + 2, components: 4, offset: TEXCOORD as u32 + 8 },
     VertexAttribute { location: LOCATION_TEXCOORD + 3, components: 4, offset: TEXCOORD as u32 + 12 },
     VertexAttribute { location: LOCATION_RASTER, components: 4, offset: RASTER as u32 },
+    VertexAttribute { location: LOCATION_INDIRECT, components: 4, offset: INDIRECT as u32 },
 ];
+
+// The indirect light's location follows every generic attribute's (a program's pipeline binds
+// both).
+const _: () = assert!(LOCATION_INDIRECT >= crate::frame::program::GENERIC_ATTRIBUTE_LOCATION + 15);
+
+/// Writes `indirect[i]` as the indirect light of packed vertex `i` (one value per vertex).
+pub fn set_indirect(packed: &mut [f32], indirect: &[[f32; 3]]) {
+    for (vertex, light) in packed.chunks_exact_mut(VERTEX_FLOATS).zip(indirect) {
+        vertex[INDIRECT..INDIRECT + 3].copy_from_slice(light);
+    }
+}
 
 /// Interleaves the draw's attributes; missing attributes take OpenGL's initial current values.
 pub fn pack(draw: &Draw) -> Vec<f32> {
@@ -194,6 +210,11 @@ mod tests {
         assert_eq!(second[FOG_COORD], 9.0);
         assert_eq!(&second[TEXCOORD..TEXCOORD + 4], &[0.0, 0.0, 0.0, 1.0], "unit 0 had none");
         assert_eq!(&second[TEXCOORD + 4..TEXCOORD + 8], &[7.0, 8.0, 0.0, 1.0]);
+        assert_eq!(&second[INDIRECT..INDIRECT + 4], &[0.0; 4], "no indirect light");
+        let mut lit = packed.clone();
+        set_indirect(&mut lit, &[[0.1, 0.2, 0.3], [0.4, 0.5, 0.6]]);
+        assert_eq!(&get(&lit, 1)[INDIRECT..INDIRECT + 4], &[0.4, 0.5, 0.6, 0.0]);
+        assert_eq!(&get(&lit, 1)[..INDIRECT], &second[..INDIRECT], "the rest untouched");
     }
 
     #[test]
