@@ -17,7 +17,7 @@ use glam::Vec3;
 use super::pass::{ComputePass, DispatchTime, Inputs};
 use super::scene::PatchScene;
 use crate::render::radiosity::patches::Patches;
-use crate::render::radiosity::shader_constants::{BINDING_DIRECT, BINDING_LIGHTS, BINDING_PATCH_SURFACES, GROUP};
+use crate::render::radiosity::shader_constants::{BINDING_DIRECT, BINDING_LIGHTS, BINDING_PATCH_SURFACES, DIRECT_POINTS, GROUP};
 use crate::render::raster::device::{Device, Result};
 use crate::render::trace::gpu_types::GpuLight;
 
@@ -52,10 +52,10 @@ pub struct GpuDirectPass {
     pub patch_count: u32,
     /// Lights.
     pub light_count: u32,
+    /// Patches one workgroup lights ([`patches_per_group`]).
+    pub patches_per_group: u32,
     /// Padding.
     pub pad0: u32,
-    /// Padding.
-    pub pad1: u32,
 }
 
 include!(concat!(env!("OUT_DIR"), "/layouts/radiosity_direct_types.rs"));
@@ -100,8 +100,9 @@ impl Direct {
         let lights = strongest(lights, MAX_LIGHTS);
         let bytes: &[u8] = bytemuck::cast_slice(&lights);
         self.pass.host_input(0)[..bytes.len()].copy_from_slice(bytes);
-        let push = GpuDirectPass { patch_count: self.n as u32, light_count: lights.len() as u32, pad0: 0, pad1: 0 };
-        let time = self.pass.run_timed(device, bytemuck::bytes_of(&push), [(self.n as u32).div_ceil(GROUP).max(1), 1, 1])?;
+        let per_group = patches_per_group(lights.len());
+        let push = GpuDirectPass { patch_count: self.n as u32, light_count: lights.len() as u32, patches_per_group: per_group, pad0: 0 };
+        let time = self.pass.run_timed(device, bytemuck::bytes_of(&push), [(self.n as u32).div_ceil(per_group).max(1), 1, 1])?;
         let out: &[GpuPatchLight] = bytemuck::cast_slice(&self.pass.output()[..self.n * size_of::<GpuPatchLight>()]);
         let light = out.iter().map(|p| PatchLight { irradiance: Vec3::from_slice(&p.irradiance[..3]), primary: Vec3::from_slice(&p.primary[..3]) }).collect();
         Ok((light, time))
@@ -111,6 +112,13 @@ impl Direct {
     pub fn destroy(self, device: &Device) {
         self.pass.destroy(device);
     }
+}
+
+/// How many patches one workgroup of [`GROUP`] invocations lights when there are `lights`
+/// lights: as many as leave each patch at least one invocation per (point, light) pair, and one
+/// patch per workgroup (its invocations looping over the pairs) when it has more pairs than that.
+fn patches_per_group(lights: usize) -> u32 {
+    (GROUP / (DIRECT_POINTS * lights as u32).max(1)).max(1)
 }
 
 /// `lights`, or the `most` of them with the largest intensity (or irradiance) when there are
