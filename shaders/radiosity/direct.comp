@@ -1,13 +1,14 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Direct light on the patches (render::radiosity::gpu::direct), once per frame: one invocation
-// per patch averages, over the patch's receiver points (radiosity/patch.glsl, as the form
-// factors use them), the irradiance of every light of the frame (trace/light.glsl, taken to
-// the static world's frame by render::radiosity::lights) that a shadow ray through the
-// patches' BVH (trace/bvh.glsl) reaches: I · falloff · cos / d² of a positional light (a
-// sphere light counts as a point at its centre: its irradiance where all of it is above the
-// horizon; the shadow ray ends on its surface), E · cos of a directional one (its centre
-// direction). The patch's primary radiosity, which the gathering pass (radiosity/gather.comp)
+// per (patch, point, light) pair (RADIOSITY_DIRECT_POINTS points a patch, the centroids of the
+// quarters of its area, lifted off it), each the irradiance of one light of the frame
+// (trace/light.glsl, taken to the static world's frame by render::radiosity::lights) that a
+// shadow ray through the patches' BVH (trace/bvh.glsl, stopping at the first hit) reaches;
+// a patch's pairs are summed in shared memory and averaged over its points. I · falloff ·
+// cos / d² of a positional light (a sphere light counts as a point at its centre: its
+// irradiance where all of it is above the horizon; the shadow ray ends on its surface), E · cos
+// of a directional one (its centre direction). The patch's primary radiosity, which the gathering pass (radiosity/gather.comp)
 // bounces, is its emission plus its albedo times that irradiance.
 
 // No alpha-tested geometry in the patches' BVH: every hit counts (bvh.glsl needs this first).
@@ -27,7 +28,7 @@ struct PatchSurface {
 };
 
 struct PatchLight {
-    vec4 irradiance; // direct irradiance (rgb), averaged over the receiver points
+    vec4 irradiance; // direct irradiance (rgb), averaged over the patch's points
     vec4 primary;    // emission + albedo * irradiance (rgb)
 };
 

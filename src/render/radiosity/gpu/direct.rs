@@ -1,10 +1,11 @@
 //! Direct light on the patches, per frame (`shaders/radiosity/direct.comp`): each patch's
 //! irradiance from the frame's lights (in the static world's frame:
-//! [`crate::render::radiosity::lights`]), averaged over the receiver points the form factors
-//! use, with one shadow ray per point and light through the tracer's BVH traversal over the
-//! patches' [`PatchScene`]; and its primary radiosity, emission plus albedo times that
-//! irradiance, which [`super::gather::Gather`] bounces. One dispatch of one invocation per
-//! patch.
+//! [`crate::render::radiosity::lights`]), averaged over [`DIRECT_POINTS`] points (the
+//! centroids of the quarters of its area), with one shadow ray per point and light through the
+//! tracer's BVH traversal over the patches' [`PatchScene`]; and its primary radiosity, emission
+//! plus albedo times that irradiance, which [`super::gather::Gather`] bounces. One dispatch of
+//! one invocation per (patch, point, light), summed per patch in shared memory
+//! (`patches_per_group` patches a workgroup).
 //!
 //! The shader takes a sphere light as a point at its centre (exact where the whole sphere is
 //! above a patch's horizon, as `trace::lights` explains) and a directional light of an
