@@ -152,9 +152,9 @@ void main() {
     uint slot = lid / lanes;
     uint lane = lid - slot * lanes;
     uint i = gl_WorkGroupID.x * per_group + slot;
-    bool lit = slot < per_group && i < pass.patch_count;
+    bool in_range = slot < per_group && i < pass.patch_count;
     vec3 sum = vec3(0.0);
-    if (lit) {
+    if (in_range) {
         Patch receiver = patches[i];
         if (receiver.normal != vec3(0.0) && receiver.count > 0u) {
             uint pairs = RADIOSITY_DIRECT_POINTS * pass.light_count;
@@ -166,7 +166,7 @@ void main() {
     }
     partial[lid] = sum;
     barrier();
-    if (!lit || lane != 0u) {
+    if (!in_range || lane != 0u) {
         return;
     }
     vec3 irradiance = vec3(0.0);
