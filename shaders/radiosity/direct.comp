@@ -1,13 +1,14 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Direct light on the patches (render::radiosity::gpu::direct), once per frame: one invocation
-// per patch averages, over the patch's receiver points (radiosity/patch.glsl, as the form
-// factors use them), the irradiance of every light of the frame (trace/light.glsl, taken to
-// the static world's frame by render::radiosity::lights) that a shadow ray through the
-// patches' BVH (trace/bvh.glsl) reaches: I · falloff · cos / d² of a positional light (a
-// sphere light counts as a point at its centre: its irradiance where all of it is above the
-// horizon; the shadow ray ends on its surface), E · cos of a directional one (its centre
-// direction). The patch's primary radiosity, which the gathering pass (radiosity/gather.comp)
+// per (patch, point, light) pair (RADIOSITY_DIRECT_POINTS points a patch, the centroids of the
+// quarters of its area, lifted off it), each the irradiance of one light of the frame
+// (trace/light.glsl, taken to the static world's frame by render::radiosity::lights) that a
+// shadow ray through the patches' BVH (trace/bvh.glsl, stopping at the first hit) reaches;
+// a patch's pairs are summed in shared memory and averaged over its points. I · falloff ·
+// cos / d² of a positional light (a sphere light counts as a point at its centre: its
+// irradiance where all of it is above the horizon; the shadow ray ends on its surface), E · cos
+// of a directional one (its centre direction). The patch's primary radiosity, which the gathering pass (radiosity/gather.comp)
 // bounces, is its emission plus its albedo times that irradiance.
 
 // No alpha-tested geometry in the patches' BVH: every hit counts (bvh.glsl needs this first).
@@ -27,7 +28,7 @@ struct PatchSurface {
 };
 
 struct PatchLight {
-    vec4 irradiance; // direct irradiance (rgb), averaged over the receiver points
+    vec4 irradiance; // direct irradiance (rgb), averaged over the patch's points
     vec4 primary;    // emission + albedo * irradiance (rgb)
 };
 
@@ -46,8 +47,8 @@ layout(set = TRACE_SET, binding = RADIOSITY_BINDING_DIRECT, std430) writeonly bu
 layout(push_constant) uniform DirectPass {
     uint patch_count;
     uint light_count;
+    uint patches_per_group;  // max(1, RADIOSITY_GROUP / (RADIOSITY_DIRECT_POINTS * light_count))
     uint pad0;
-    uint pad1;
 } pass;
 
 // The irradiance light i brings to point p of normal n, shadow ray included.
@@ -87,27 +88,92 @@ vec3 irradiance_of(uint i, vec3 p, vec3 n) {
     return incident * c;
 }
 
+// Patch `receiver`'s k-th point of direct light (k < RADIOSITY_DIRECT_POINTS), lifted off the surface
+// as the form factors' receiver points are: the patch's area is cut in RADIOSITY_DIRECT_POINTS cells of
+// equal area, in triangle order, and the point is its cell's centroid. The cell of the area
+// fraction (k + 1/2) / RADIOSITY_DIRECT_POINTS is found in its triangle by halving the triangle across
+// its longest edge until the half is no larger than a cell (a cell never straddles two
+// triangles where they are as large or larger than a cell, as a quad's two triangles are).
+vec3 direct_point(Patch receiver, uint k) {
+    float total = 0.0;
+    for (uint t = 0u; t < receiver.count; t++) {
+        total += triangle_area(receiver.first + t);
+    }
+    float target = (float(k) + 0.5) / float(RADIOSITY_DIRECT_POINTS) * total;
+    uint t = receiver.first;
+    float area = 0.0;
+    for (uint j = 0u; j < receiver.count; j++) {
+        t = receiver.first + j;
+        area = triangle_area(t);
+        if (target < area || j + 1u == receiver.count) {
+            break;
+        }
+        target -= area;
+    }
+    vec3 a = corner(t, 0u);
+    vec3 b = corner(t, 1u);
+    vec3 c = corner(t, 2u);
+    float f = clamp(area > 0.0 ? target / area : 0.5, 0.0, 1.0);
+    float cell = total / float(RADIOSITY_DIRECT_POINTS);
+    // Halves across the longest edge (b, c after the rotation): (a, b, m) and (a, m, c).
+    for (uint level = 0u; level < 8u && area > cell * 1.0001; level++) {
+        float ab = dot(b - a, b - a);
+        float bc = dot(c - b, c - b);
+        float ca = dot(a - c, a - c);
+        if (ab >= bc && ab >= ca) {
+            vec3 x = a; a = c; c = b; b = x;      // longest edge a-b becomes b-c
+        } else if (ca >= bc) {
+            vec3 x = a; a = b; b = c; c = x;      // longest edge c-a becomes b-c
+        }
+        vec3 m = 0.5 * (b + c);
+        if (f < 0.5) {
+            c = m;
+            f = 2.0 * f;
+        } else {
+            b = m;
+            f = 2.0 * f - 1.0;
+        }
+        area *= 0.5;
+    }
+    vec3 lift = receiver.normal * lift_of(receiver.position, receiver.area);
+    return (a + b + c) / 3.0 + lift;
+}
+
+shared vec3 partial[RADIOSITY_GROUP];
+
+// One workgroup lights pass.patches_per_group patches; each patch's
+// RADIOSITY_GROUP / patches_per_group invocations share its RADIOSITY_DIRECT_POINTS × light_count
+// (point, light) pairs, one shadow ray each, and the first of them sums their irradiance in a
+// fixed order (the same result in every run).
 void main() {
-    uint i = gl_GlobalInvocationID.x;
-    if (i >= pass.patch_count) {
+    uint per_group = pass.patches_per_group;
+    uint lanes = RADIOSITY_GROUP / per_group;
+    uint lid = gl_LocalInvocationID.x;
+    uint slot = lid / lanes;
+    uint lane = lid - slot * lanes;
+    uint i = gl_WorkGroupID.x * per_group + slot;
+    bool in_range = slot < per_group && i < pass.patch_count;
+    vec3 sum = vec3(0.0);
+    if (in_range) {
+        Patch receiver = patches[i];
+        if (receiver.normal != vec3(0.0) && receiver.count > 0u) {
+            uint pairs = RADIOSITY_DIRECT_POINTS * pass.light_count;
+            for (uint j = lane; j < pairs; j += lanes) {
+                vec3 p = direct_point(receiver, j % RADIOSITY_DIRECT_POINTS);
+                sum += irradiance_of(j / RADIOSITY_DIRECT_POINTS, p, receiver.normal);
+            }
+        }
+    }
+    partial[lid] = sum;
+    barrier();
+    if (!in_range || lane != 0u) {
         return;
     }
-    Patch receiver = patches[i];
     vec3 irradiance = vec3(0.0);
-    if (receiver.normal != vec3(0.0)) {
-        float total = 0.0;
-        for (uint k = 0u; k < receiver_points(receiver); k++) {
-            vec3 p = receiver_point(receiver, k);
-            float weight = triangle_area(receiver.first + k);
-            vec3 sum = vec3(0.0);
-            for (uint j = 0u; j < pass.light_count; j++) {
-                sum += irradiance_of(j, p, receiver.normal);
-            }
-            irradiance += weight * sum;
-            total += weight;
-        }
-        irradiance = total > 0.0 ? irradiance / total : vec3(0.0);
+    for (uint k = 0u; k < lanes; k++) {
+        irradiance += partial[lid + k];
     }
+    irradiance /= float(RADIOSITY_DIRECT_POINTS);
     PatchSurface s = surfaces[i];
     patch_lights[i] = PatchLight(vec4(irradiance, 0.0), vec4(s.emission.rgb + s.albedo.rgb * irradiance, 0.0));
 }

@@ -10,6 +10,9 @@ glsl_constants! {
     const VISIBILITY_SAMPLES: u32 = 4;
     /// Most receiver points of a patch: the centroids of its first triangles.
     const RECEIVER_POINTS: u32 = 8;
+    /// Points a patch receives direct light at (`radiosity/direct.comp`): the centroids of the
+    /// four quarters of its area.
+    const DIRECT_POINTS: u32 = 4;
 
     /// The patches (`Patch` of `radiosity/form_factors.comp`).
     const BINDING_PATCHES: u32 = 20;

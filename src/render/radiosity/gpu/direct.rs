@@ -1,10 +1,11 @@
 //! Direct light on the patches, per frame (`shaders/radiosity/direct.comp`): each patch's
 //! irradiance from the frame's lights (in the static world's frame:
-//! [`crate::render::radiosity::lights`]), averaged over the receiver points the form factors
-//! use, with one shadow ray per point and light through the tracer's BVH traversal over the
-//! patches' [`PatchScene`]; and its primary radiosity, emission plus albedo times that
-//! irradiance, which [`super::gather::Gather`] bounces. One dispatch of one invocation per
-//! patch.
+//! [`crate::render::radiosity::lights`]), averaged over [`DIRECT_POINTS`] points (the
+//! centroids of the quarters of its area), with one shadow ray per point and light through the
+//! tracer's BVH traversal over the patches' [`PatchScene`]; and its primary radiosity, emission
+//! plus albedo times that irradiance, which [`super::gather::Gather`] bounces. One dispatch of
+//! one invocation per (patch, point, light), summed per patch in shared memory
+//! (`patches_per_group` patches a workgroup).
 //!
 //! The shader takes a sphere light as a point at its centre (exact where the whole sphere is
 //! above a patch's horizon, as `trace::lights` explains) and a directional light of an
@@ -17,7 +18,7 @@ use glam::Vec3;
 use super::pass::{ComputePass, DispatchTime, Inputs};
 use super::scene::PatchScene;
 use crate::render::radiosity::patches::Patches;
-use crate::render::radiosity::shader_constants::{BINDING_DIRECT, BINDING_LIGHTS, BINDING_PATCH_SURFACES, GROUP};
+use crate::render::radiosity::shader_constants::{BINDING_DIRECT, BINDING_LIGHTS, BINDING_PATCH_SURFACES, DIRECT_POINTS, GROUP};
 use crate::render::raster::device::{Device, Result};
 use crate::render::trace::gpu_types::GpuLight;
 
@@ -52,10 +53,10 @@ pub struct GpuDirectPass {
     pub patch_count: u32,
     /// Lights.
     pub light_count: u32,
+    /// Patches one workgroup lights ([`patches_per_group`]).
+    pub patches_per_group: u32,
     /// Padding.
     pub pad0: u32,
-    /// Padding.
-    pub pad1: u32,
 }
 
 include!(concat!(env!("OUT_DIR"), "/layouts/radiosity_direct_types.rs"));
@@ -100,8 +101,9 @@ impl Direct {
         let lights = strongest(lights, MAX_LIGHTS);
         let bytes: &[u8] = bytemuck::cast_slice(&lights);
         self.pass.host_input(0)[..bytes.len()].copy_from_slice(bytes);
-        let push = GpuDirectPass { patch_count: self.n as u32, light_count: lights.len() as u32, pad0: 0, pad1: 0 };
-        let time = self.pass.run_timed(device, bytemuck::bytes_of(&push), [(self.n as u32).div_ceil(GROUP).max(1), 1, 1])?;
+        let per_group = patches_per_group(lights.len());
+        let push = GpuDirectPass { patch_count: self.n as u32, light_count: lights.len() as u32, patches_per_group: per_group, pad0: 0 };
+        let time = self.pass.run_timed(device, bytemuck::bytes_of(&push), [(self.n as u32).div_ceil(per_group).max(1), 1, 1])?;
         let out: &[GpuPatchLight] = bytemuck::cast_slice(&self.pass.output()[..self.n * size_of::<GpuPatchLight>()]);
         let light = out.iter().map(|p| PatchLight { irradiance: Vec3::from_slice(&p.irradiance[..3]), primary: Vec3::from_slice(&p.primary[..3]) }).collect();
         Ok((light, time))
@@ -111,6 +113,13 @@ impl Direct {
     pub fn destroy(self, device: &Device) {
         self.pass.destroy(device);
     }
+}
+
+/// How many patches one workgroup of [`GROUP`] invocations lights when there are `lights`
+/// lights: as many as leave each patch at least one invocation per (point, light) pair, and one
+/// patch per workgroup (its invocations looping over the pairs) when it has more pairs than that.
+fn patches_per_group(lights: usize) -> u32 {
+    (GROUP / (DIRECT_POINTS * lights as u32).max(1)).max(1)
 }
 
 /// `lights`, or the `most` of them with the largest intensity (or irradiance) when there are
