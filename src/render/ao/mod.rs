@@ -261,9 +261,9 @@ impl AmbientOcclusion {
         let align = device.properties.limits.min_storage_buffer_offset_alignment.max(16);
         let params = rec.ring.push(device, bytemuck::bytes_of(&params), align)?;
         let params_bytes = size_of::<GpuAoParams>() as u64;
-        let ssao_set = rec.descriptors.get(device, &SetKey { layout: self.compute_layout.set, buffers: vec![(params.buffer, params_bytes), (depth, bytes), (raw, bytes)], images: Vec::new() })?;
-        let blur_set = rec.descriptors.get(device, &SetKey { layout: self.compute_layout.set, buffers: vec![(params.buffer, params_bytes), (raw, bytes), (blurred, bytes)], images: Vec::new() })?;
-        let apply_set = rec.descriptors.get(device, &SetKey { layout: self.apply_layout.set, buffers: vec![(blurred, bytes)], images: Vec::new() })?;
+        let ssao_set = rec.descriptors.get(device, &SetKey { layout: self.compute_layout.set, buffers: &[(params.buffer, params_bytes), (depth, bytes), (raw, bytes)], images: &[] })?;
+        let blur_set = rec.descriptors.get(device, &SetKey { layout: self.compute_layout.set, buffers: &[(params.buffer, params_bytes), (raw, bytes), (blurred, bytes)], images: &[] })?;
+        let apply_set = rec.descriptors.get(device, &SetKey { layout: self.apply_layout.set, buffers: &[(blurred, bytes)], images: &[] })?;
         let pipeline = self.apply_pipeline(device, rec.target.samples)?;
         let (d, cmd) = (&device.raw, rec.cmd);
         let stamps = self.times.as_mut().and_then(|t| t.frame(device, rec.slot()));
@@ -308,6 +308,7 @@ impl AmbientOcclusion {
             d.cmd_push_constants(cmd, self.apply_layout.pipeline, vk::ShaderStageFlags::FRAGMENT, 0, bytemuck::cast_slice(&size));
             d.cmd_draw(cmd, 3, 1, 0, 0);
         }
+        rec.forget_state();
         stamp(4, vk::PipelineStageFlags2::COLOR_ATTACHMENT_OUTPUT);
         Ok(())
     }

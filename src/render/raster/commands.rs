@@ -2,9 +2,10 @@
 //! submission, its upload [`Ring`] and descriptor pools. [`Slot::begin`] waits for the
 //! slot's previous submission, so memory of a slot is reused only once the GPU is done.
 
-use std::collections::HashMap;
+use std::hash::{BuildHasher, Hash, Hasher};
 
 use ash::vk;
+use rustc_hash::{FxBuildHasher, FxHashMap};
 
 use super::device::{Check, Device, Result};
 use super::output::SubmitSync;
@@ -17,14 +18,31 @@ const SETS_PER_POOL: u32 = 256;
 /// What a descriptor set holds: dynamic storage buffers at bindings `0..` (the buffer and the
 /// range the shaders read; the offsets are dynamic), then combined image samplers at the
 /// bindings after them.
-#[derive(Clone, Debug, PartialEq, Eq, Hash)]
-pub struct SetKey {
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct SetKey<'a> {
     /// The set's layout.
     pub layout: vk::DescriptorSetLayout,
     /// Buffer and range of each storage buffer binding.
-    pub buffers: Vec<(vk::Buffer, u64)>,
+    pub buffers: &'a [(vk::Buffer, u64)],
     /// Image view and sampler of each sampler binding.
-    pub images: Vec<(vk::ImageView, vk::Sampler)>,
+    pub images: &'a [(vk::ImageView, vk::Sampler)],
+}
+
+/// A [`SetKey`] kept by [`Descriptors`].
+struct OwnedSetKey {
+    layout: vk::DescriptorSetLayout,
+    buffers: Vec<(vk::Buffer, u64)>,
+    images: Vec<(vk::ImageView, vk::Sampler)>,
+}
+
+impl OwnedSetKey {
+    fn of(key: &SetKey<'_>) -> OwnedSetKey {
+        OwnedSetKey { layout: key.layout, buffers: key.buffers.to_vec(), images: key.images.to_vec() }
+    }
+
+    fn is(&self, key: &SetKey<'_>) -> bool {
+        self.layout == key.layout && self.buffers == key.buffers && self.images == key.images
+    }
 }
 
 /// Descriptor pools of one frame in flight, reset together when the frame is reused; sets
@@ -33,12 +51,16 @@ pub struct Descriptors {
     pools: Vec<vk::DescriptorPool>,
     /// Pool being allocated from.
     current: usize,
-    sets: HashMap<SetKey, vk::DescriptorSet>,
+    /// The frame's sets by the FxHash of their key (keys of equal hashes side by side), so a
+    /// lookup hashes and compares borrowed slices and allocates nothing.
+    sets: FxHashMap<u64, Vec<(OwnedSetKey, vk::DescriptorSet)>>,
+    /// The set `get` returned last, which consecutive draws often share.
+    last: Option<(OwnedSetKey, vk::DescriptorSet)>,
 }
 
 impl Descriptors {
     fn new() -> Descriptors {
-        Descriptors { pools: Vec::new(), current: 0, sets: HashMap::new() }
+        Descriptors { pools: Vec::new(), current: 0, sets: FxHashMap::default(), last: None }
     }
 
     fn reset(&mut self, device: &Device) -> Result<()> {
@@ -48,12 +70,22 @@ impl Descriptors {
         }
         self.current = 0;
         self.sets.clear();
+        self.last = None;
         Ok(())
     }
 
     /// The set holding `key`.
-    pub fn get(&mut self, device: &Device, key: &SetKey) -> Result<vk::DescriptorSet> {
-        if let Some(&set) = self.sets.get(key) {
+    pub fn get(&mut self, device: &Device, key: &SetKey<'_>) -> Result<vk::DescriptorSet> {
+        if let Some((last, set)) = &self.last
+            && last.is(key)
+        {
+            return Ok(*set);
+        }
+        let mut hasher = FxBuildHasher.build_hasher();
+        key.hash(&mut hasher);
+        let hash = hasher.finish();
+        if let Some(&(_, set)) = self.sets.get(&hash).and_then(|same| same.iter().find(|(k, _)| k.is(key))) {
+            self.remember(key, set);
             return Ok(set);
         }
         let set = self.allocate(device, key.layout)?;
@@ -84,8 +116,24 @@ impl Descriptors {
         }
         // Safety: every handle in the writes is alive for the frame.
         unsafe { device.raw.update_descriptor_sets(&writes, &[]) };
-        self.sets.insert(key.clone(), set);
+        self.sets.entry(hash).or_default().push((OwnedSetKey::of(key), set));
+        self.remember(key, set);
         Ok(set)
+    }
+
+    /// Makes `set` (holding `key`) the last one returned, reusing the vectors of the previous.
+    fn remember(&mut self, key: &SetKey<'_>, set: vk::DescriptorSet) {
+        match &mut self.last {
+            Some((last, last_set)) => {
+                last.layout = key.layout;
+                last.buffers.clear();
+                last.buffers.extend_from_slice(key.buffers);
+                last.images.clear();
+                last.images.extend_from_slice(key.images);
+                *last_set = set;
+            }
+            None => self.last = Some((OwnedSetKey::of(key), set)),
+        }
     }
 
     fn allocate(&mut self, device: &Device, layout: vk::DescriptorSetLayout) -> Result<vk::DescriptorSet> {

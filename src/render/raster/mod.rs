@@ -16,6 +16,7 @@
 //! - [`upload`]: the per-frame ring of vertices, indices and uniforms, copied in or written in
 //!   place.
 //! - [`pipelines`]: pipelines per (shader key, fixed state), cached; [`conv`]: state → Vulkan.
+//! - [`dynamic`]: the pipeline and dynamic state a draw sets, recorded only when changed.
 //! - [`programs`]: OpenGL 2.0 programs on the device (shader modules, descriptor set 1).
 //! - [`textures`]: texture images and samplers.
 //! - [`renderer`]: [`renderer::Raster`] (frame order, read-back, present) and the
@@ -29,6 +30,7 @@ pub mod commands;
 pub mod conv;
 pub mod device;
 pub mod dump;
+pub mod dynamic;
 pub mod ff;
 pub mod instance;
 pub mod multisample;

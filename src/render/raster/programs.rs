@@ -121,8 +121,8 @@ pub fn bind_set(rec: &mut Recorder<'_>, program: &ProgramDraw) -> Result<(vk::De
     let images = rec.textures.slot_bindings(rec.device, &program.program.samplers, &program.textures)?;
     let key = SetKey {
         layout: rec.pipelines.program_set_layout,
-        buffers: vec![(builtins.buffer, builtins_size), (uniforms.buffer, uniforms_size)],
-        images: images.to_vec(),
+        buffers: &[(builtins.buffer, builtins_size), (uniforms.buffer, uniforms_size)],
+        images: &images,
     };
     let set = rec.descriptors.get(rec.device, &key)?;
     Ok((set, [builtins.offset as u32, uniforms.offset as u32]))

@@ -35,6 +35,7 @@ use super::commands::{SetKey, Slot};
 use super::occlusion::Occlusion;
 use super::output::{FrameOutput, SubmitSync};
 use super::device::{Device, Result};
+use super::dynamic::{DynamicValues, Tracked};
 use super::ff;
 use super::pipelines::{FixedState, PipelineKey, Pipelines};
 use super::target::{Plane, Target};
@@ -147,6 +148,8 @@ pub struct Recorder<'a> {
     /// Radiosity's indirect light, for the static world's draws into the window's
     /// framebuffer (`None`: off).
     pub indirect: Option<FrameIndirect>,
+    /// The pipeline and dynamic state set in the rendering pass.
+    tracked: Tracked,
 }
 
 impl Recorder<'_> {
@@ -182,6 +185,13 @@ impl Recorder<'_> {
         // Safety: the attachments are in the layouts named; cmd is recording outside a pass.
         unsafe { self.device.raw.cmd_begin_rendering(self.cmd, &info) };
         *self.rendering = true;
+        self.tracked.forget();
+    }
+
+    /// Forgets the pipeline and dynamic state the recorder's draws set: for parts that bind
+    /// their own graphics pipeline or set dynamic state in the pass (the next draw sets all).
+    pub fn forget_state(&mut self) {
+        self.tracked.forget();
     }
 
     /// Ends the rendering pass (no-op outside one), before transfers or barriers.
@@ -217,6 +227,7 @@ impl Recorder<'_> {
             framebuffer: self.framebuffer,
             fog: None,
             indirect: None,
+            tracked: Tracked::default(),
         };
         let result = record(&mut rec);
         rec.end_rendering();
@@ -359,14 +370,14 @@ impl Recorder<'_> {
         // The per-draw block is a storage buffer (shaders/ff_uniforms.glsl says why).
         let block_align = limits.min_storage_buffer_offset_alignment.max(16);
         let passes = multisample::passes(self.target.samples, &state.multisample, self.device.features.alpha_to_one);
-        let viewport = vk::Viewport {
-            x: vx as f32,
-            y: (h as i64 - vy as i64) as f32,
-            width: vw as f32,
-            height: -(vh as f32),
-            min_depth: state.depth_range[0].clamp(0.0, 1.0) as f32,
-            max_depth: state.depth_range[1].clamp(0.0, 1.0) as f32,
-        };
+        let viewport = [
+            vx as f32,
+            (h as i64 - vy as i64) as f32,
+            vw as f32,
+            -(vh as f32),
+            state.depth_range[0].clamp(0.0, 1.0) as f32,
+            state.depth_range[1].clamp(0.0, 1.0) as f32,
+        ];
         let features = &self.device.features;
         // Lines a program's vertex stage places (the only ones Vulkan draws as lines): aliased
         // widths round to whole pixels (section 3.4.2).
@@ -406,18 +417,30 @@ impl Recorder<'_> {
             };
             let generic = if batch.generic.is_empty() { None } else { Some(self.ring.push_slice(self.device, &batch.generic, 16)?) };
             let indices = self.ring.push_with(self.device, index_count, 4, |out: &mut [u32]| batch.indices.write(draw, out))?;
-            let mut uniforms = batch.uniforms.clone();
-            uniforms.resize(ff::UNIFORM_SIZE, 0);
-            ff::uniforms::set_framebuffer_height(&mut uniforms, h);
-            if let Some(fog) = self.fog.as_ref().filter(|_| self.framebuffer.is_none()) {
-                ff::uniforms::set_height_fog(&mut uniforms, &fog.for_draw(draw, h));
-            }
-            let uniform = self.ring.push(self.device, &uniforms, block_align)?;
-            let set_key = SetKey { layout: self.pipelines.set_layout, buffers: vec![(uniform.buffer, ff::UNIFORM_SIZE as u64)], images: images.to_vec() };
+            let fog = self.fog.as_ref().filter(|_| self.framebuffer.is_none()).map(|fog| fog.for_draw(draw, h));
+            // The batch's block, zero-padded to the block size, written where the GPU reads it.
+            let uniform = self.ring.push_with(self.device, ff::UNIFORM_SIZE, block_align, |out: &mut [u8]| {
+                let (block, padding) = out.split_at_mut(batch.uniforms.len().min(ff::UNIFORM_SIZE));
+                block.copy_from_slice(&batch.uniforms[..block.len()]);
+                padding.fill(0);
+                ff::uniforms::set_framebuffer_height(out, h);
+                if let Some(fog) = &fog {
+                    ff::uniforms::set_height_fog(out, fog);
+                }
+            })?;
+            let set_key = SetKey { layout: self.pipelines.set_layout, buffers: &[(uniform.buffer, ff::UNIFORM_SIZE as u64)], images: &images };
             let set = self.descriptors.get(self.device, &set_key)?;
             let polygon_mode = if features.fill_mode_non_solid { conv::polygon_mode(batch.polygon_mode) } else { vk::PolygonMode::FILL };
             let stencil = stencil.unwrap_or(StencilFaces::both(Stencil::default()));
-            let blend_color = state.blend.map_or([0.0; 4], |b| b.color);
+            let face = |s: Stencil| [s.reference.clamp(0, 255) as u32, s.value_mask, s.write_mask];
+            let dynamic = DynamicValues {
+                viewport,
+                scissor,
+                line_width,
+                depth_bias: [state.polygon_offset.units, state.polygon_offset.factor],
+                blend_constants: state.blend.map_or([0.0; 4], |b| b.color),
+                stencil: [face(stencil.front), face(stencil.back)],
+            };
             for &(samples, [dx, dy]) in &passes {
                 let key = PipelineKey {
                     shader: batch.shader,
@@ -427,21 +450,12 @@ impl Recorder<'_> {
                     fixed: FixedState { samples, ..fixed },
                 };
                 let Some(pipeline) = self.pipelines.get(self.device, &key)? else { continue };
-                let viewport = vk::Viewport { x: viewport.x + dx, y: viewport.y + dy, ..viewport };
-                // Safety: inside the pass; every handle is alive for the frame; the dynamic
-                // offset is aligned and within the ring chunk.
+                let [x, y, width, height, near, far] = viewport;
+                let dynamic = DynamicValues { viewport: [x + dx, y + dy, width, height, near, far], ..dynamic };
+                // Safety: inside the pass (begun above, so `tracked` is of it); every handle is
+                // alive for the frame; the dynamic offset is aligned and within the ring chunk.
                 unsafe {
-                    d.cmd_bind_pipeline(self.cmd, vk::PipelineBindPoint::GRAPHICS, pipeline);
-                    d.cmd_set_viewport(self.cmd, 0, &[viewport]);
-                    d.cmd_set_scissor(self.cmd, 0, &[scissor]);
-                    d.cmd_set_line_width(self.cmd, line_width);
-                    d.cmd_set_depth_bias(self.cmd, state.polygon_offset.units, 0.0, state.polygon_offset.factor);
-                    d.cmd_set_blend_constants(self.cmd, &blend_color);
-                    for (face, s) in [(vk::StencilFaceFlags::FRONT, stencil.front), (vk::StencilFaceFlags::BACK, stencil.back)] {
-                        d.cmd_set_stencil_reference(self.cmd, face, s.reference.clamp(0, 255) as u32);
-                        d.cmd_set_stencil_compare_mask(self.cmd, face, s.value_mask);
-                        d.cmd_set_stencil_write_mask(self.cmd, face, s.write_mask);
-                    }
+                    self.tracked.set(self.device, self.cmd, pipeline, &dynamic);
                     d.cmd_bind_descriptor_sets(self.cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.layout, 0, &[set], &[uniform.offset as u32]);
                     if let Some((_, (program_set, offsets))) = program {
                         d.cmd_bind_descriptor_sets(self.cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.layout, 1, &[program_set], &offsets);
@@ -603,6 +617,7 @@ impl Raster {
             framebuffer: parts.active,
             fog: parts.frame_fog,
             indirect: parts.frame_indirect.clone(),
+            tracked: Tracked::default(),
         })
     }
 

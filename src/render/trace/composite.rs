@@ -79,7 +79,7 @@ impl Composite {
         let align = rec.device.properties.limits.min_storage_buffer_offset_alignment.max(16);
         let fog = rec.ring.push(rec.device, bytemuck::bytes_of(&fog), align)?;
         let fog_bytes = size_of::<GpuHeightFog>() as u64;
-        let key = SetKey { layout: self.set_layout, buffers: vec![(image.output, bytes), (fog.buffer, fog_bytes)], images: Vec::new() };
+        let key = SetKey { layout: self.set_layout, buffers: &[(image.output, bytes), (fog.buffer, fog_bytes)], images: &[] };
         let set = rec.descriptors.get(rec.device, &key)?;
         rec.begin_rendering();
         let [w, h] = rec.target.size;
@@ -95,6 +95,7 @@ impl Composite {
             d.cmd_push_constants(cmd, self.layout, vk::ShaderStageFlags::FRAGMENT, 0, bytemuck::cast_slice(&sizes));
             d.cmd_draw(cmd, 3, 1, 0, 0);
         }
+        rec.forget_state();
         Ok(())
     }
 
