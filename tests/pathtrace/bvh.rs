@@ -121,9 +121,12 @@ struct GpuResult {
     bary: Vec2,
 }
 
-/// The test shader's SPIR-V words, traversing BVHs of `layout`.
+/// The test shader's SPIR-V words, traversing BVHs of `layout` (each call compiles into a file
+/// of its own: tests of one layout run in parallel).
 fn compile_shader(layout: Layout) -> Vec<u32> {
-    let out = std::env::temp_dir().join(format!("glrt-trace-bvh-{}-{}.spv", layout.name(), std::process::id()));
+    static CALLS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let out = std::env::temp_dir().join(format!("glrt-trace-bvh-{}-{}-{call}.spv", layout.name(), std::process::id()));
     let define = if layout == Layout::Binary { "-DTRACE_BVH_BINARY" } else { "-DTRACE_BVH_WIDE" };
     let status = Command::new("glslangValidator")
         .args(["-V", "--target-env", "vulkan1.1", define, "-Ishaders", concat!("-I", env!("OUT_DIR"), "/glsl"), "-o"])
