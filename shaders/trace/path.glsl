@@ -81,6 +81,7 @@ void trace_pixel(uvec2 pixel) {
     g.surface = 0u;
     g.gradient = 0u;
     uint primary = 0u, shadow = 0u, diffuse = 0u, specular = 0u;
+    SkyRays sky_rays = SkyRays(0u, 0u);
 
     vec3 radiance = vec3(0.0);
     // The channels (trace/gbuffer.glsl): the primary hit's next-event estimation, and the
@@ -161,8 +162,11 @@ void trace_pixel(uvec2 pixel) {
             if (emitter_count > 0u) {
                 lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces, rng, shadow);
             }
-            if (sky_sampled()) {
-                lit += throughput * sky_light(s, v, rng, shadow);
+            // The sky sample is taken with the frame's probability; at 1 no number is drawn
+            // for the choice.
+            float sky_chance = sky_selection();
+            if (sky_chance > 0.0 && (sky_chance >= 1.0 || rng_next(rng) < sky_chance)) {
+                lit += throughput * sky_light(s, v, sky_chance, rng, shadow, sky_rays);
             }
             radiance += lit;
             if (depth == 0u) {
@@ -198,8 +202,9 @@ void trace_pixel(uvec2 pixel) {
             // diffuse rays are read from small levels).
             cone_spread = max(cone_spread, chose_specular ? ggx_alpha(s) : 1.0);
             if (!trace_closest(origin, dir, 0.0, 1e30, hit)) {
-                // The sky sample of this vertex found this light too (trace/sky_sampling.glsl).
-                float w = sky_sampled() ? mis_weight(pdf, sky_density(dir)) : 1.0;
+                // The sky sample of this vertex, taken with probability `sky_chance`, found
+                // this light too (trace/sky_sampling.glsl).
+                float w = sky_chance > 0.0 ? mis_weight(pdf, sky_chance * sky_density(dir)) : 1.0;
                 radiance += throughput * environment(dir) * w;
                 break;
             }
@@ -226,6 +231,7 @@ void trace_pixel(uvec2 pixel) {
     // One atomic per subgroup and counter.
     uvec4 rays = subgroupAdd(uvec4(primary, shadow, diffuse, specular));
     uvec2 work = subgroupAdd(uvec2(bvh_nodes_visited, bvh_triangles_tested));
+    uvec2 sky = subgroupAdd(uvec2(sky_rays.traced, sky_rays.unoccluded));
     if (subgroupElect()) {
         atomicAdd(counters.primary_rays, rays.x);
         atomicAdd(counters.shadow_rays, rays.y);
@@ -233,6 +239,8 @@ void trace_pixel(uvec2 pixel) {
         atomicAdd(counters.specular_rays, rays.w);
         atomicAdd(counters.nodes_visited, work.x);
         atomicAdd(counters.triangles_tested, work.y);
+        atomicAdd(counters.sky_rays, sky.x);
+        atomicAdd(counters.sky_unoccluded, sky.y);
     }
 }
 

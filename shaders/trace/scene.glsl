@@ -23,6 +23,8 @@ layout(set = TRACE_SET, binding = BINDING_FRAME, std430) readonly buffer TraceFr
     uvec4 size;                 // traced width, height; window width, height
     uvec4 counts;               // frame index (random seed), samples per pixel, bounces, lights
     uvec4 flags;                // x: FRAME_* bits; y: instance count; z: emitter count; w unused
+    vec4 sampling;              // x: probability that a path vertex samples the sky
+                                // (trace/sky_sampling.glsl); y, z, w unused
 } frame;
 
 // The shading attributes of one triangle corner.

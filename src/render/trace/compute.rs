@@ -33,6 +33,7 @@ use super::shader_constants::{
 };
 use super::surfaces::Surfaces;
 use super::sky::Sky;
+use super::sky_selection::SkySelection;
 use super::stats::{PassSeconds, RayCounts, SceneCounts, Statistics};
 use super::texels::TexelPool;
 use super::tracks::Tracks;
@@ -103,6 +104,8 @@ pub struct ComputeTracer {
     /// The top-level acceleration structure of the frame being traced (hardware tracer).
     top_level: vk::AccelerationStructureKHR,
     statistics: Statistics,
+    /// How often path vertices sample the sky, from the counters read last.
+    sky_selection: SkySelection,
 }
 
 impl ComputeTracer {
@@ -145,6 +148,7 @@ impl ComputeTracer {
             accelerations: hardware.then(|| Accelerations::new(device, slots)),
             top_level: vk::AccelerationStructureKHR::null(),
             statistics: Statistics::default(),
+            sky_selection: SkySelection::default(),
         })
     }
 
@@ -159,6 +163,7 @@ impl ComputeTracer {
             let ticks = stamps.read(device, slot)?;
             Some(PassSeconds { trace: pass_times::seconds(device, ticks[2], ticks[3]), build: pass_times::seconds(device, ticks[0], ticks[1]) })
         });
+        self.sky_selection.observe(rays.sky, rays.sky_unoccluded);
         self.statistics.rays = rays;
         self.statistics.totals.add(rays, seconds);
     }
@@ -529,6 +534,7 @@ impl RayTracer for ComputeTracer {
                 emitters.len() as u32,
                 0,
             ],
+            sampling: [self.sky_selection.probability(), 0.0, 0.0, 0.0],
         };
         self.previous = Some(Previous { signature, projection, view: frame.view.map(|v| v.view) });
         self.frame_index = self.frame_index.wrapping_add(1);

@@ -33,6 +33,9 @@ pub struct GpuFrame {
     pub counts: [u32; 4],
     /// `FRAME_*` bits, instance count, emitter count ([`GpuEmitter`]), unused.
     pub flags: [u32; 4],
+    /// The probability that a path vertex samples the sky ([`super::sky_selection`]); three
+    /// unused.
+    pub sampling: [f32; 4],
 }
 
 /// `Corner` of `scene.glsl`: the shading attributes of one triangle corner.
@@ -214,6 +217,10 @@ pub struct GpuCounters {
     pub nodes_visited: u32,
     /// Ray-triangle tests of all rays.
     pub triangles_tested: u32,
+    /// Shadow rays towards the sky (counted in `shadow_rays` too).
+    pub sky_rays: u32,
+    /// Those of them that found the sky unoccluded.
+    pub sky_unoccluded: u32,
 }
 
 /// Bytes of the ray counters.

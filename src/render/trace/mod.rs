@@ -78,6 +78,7 @@ pub mod settings;
 pub mod shader_constants;
 pub mod sky;
 pub mod sky_distribution;
+pub mod sky_selection;
 pub mod stats;
 pub mod surfaces;
 pub mod texels;
