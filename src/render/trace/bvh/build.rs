@@ -139,12 +139,8 @@ impl Blas {
         true
     }
 
-    /// The layout it was built for: [`Layout::Wide`] when it has a wide tree.
-    pub fn layout(&self) -> Layout {
-        if self.wide.is_some() { Layout::Wide } else { Layout::Binary }
-    }
-
-    /// The nodes of its [`Blas::layout`], as the GPU reads them.
+    /// The nodes of the layout it was built for (wide when it has a wide tree), as the GPU
+    /// reads them.
     pub fn node_bytes(&self) -> &[u8] {
         match &self.wide {
             Some(wide) => bytemuck::cast_slice(&wide.nodes),
@@ -152,7 +148,7 @@ impl Blas {
         }
     }
 
-    /// Nodes of its [`Blas::layout`].
+    /// Nodes of the layout it was built for.
     pub fn node_count(&self) -> usize {
         self.wide.as_ref().map_or(self.nodes.len(), |wide| wide.nodes.len())
     }

@@ -31,7 +31,7 @@
 //! bytes, up to 8 children with byte-quantised boxes in slots ordered by ray octant, the same
 //! leaves and triangle order: the triangles are ordered so that each wide node's leaves are
 //! consecutive), which the GPU then traverses; one built for [`Layout::Binary`] has no wide
-//! tree (the collapse is a third of a BLAS build's CPU time, bench/pathtrace.md).
+//! tree (the collapse took about 40 % of a BLAS build's CPU time, bench/pathtrace.md).
 //!
 //! Robustness: non-finite positions make their triangle degenerate (collapsed onto its first
 //! finite vertex, or the origin): it is kept in place, so `order` stays a permutation and refit
