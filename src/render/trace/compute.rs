@@ -144,7 +144,7 @@ impl ComputeTracer {
             frame_index: 0,
             parity: 0,
             previous: None,
-            tlas: Tlas::build(&[]),
+            tlas: Tlas::build(&[], settings.bvh),
             accelerations: hardware.then(|| Accelerations::new(device, slots)),
             top_level: vk::AccelerationStructureKHR::null(),
             statistics: Statistics::default(),
@@ -239,7 +239,7 @@ impl ComputeTracer {
         let light_slice = push(bytemuck::cast_slice(&scene.lights))?;
         let emitter_slice = push(bytemuck::cast_slice(&scene.emitters))?;
         let sky_cells_slice = push(bytemuck::cast_slice(&scene.sky_cells))?;
-        let tlas_slice = push(self.settings.bvh.tlas_bytes(&self.tlas))?;
+        let tlas_slice = push(self.tlas.node_bytes())?;
         let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
         let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(None) };
         let Some(sky) = &self.sky else { return Ok(None) };
@@ -461,7 +461,7 @@ impl RayTracer for ComputeTracer {
         let top_started = std::time::Instant::now();
         match &mut self.accelerations {
             Some(accelerations) => self.top_level = accelerations.build_top(device, cmd, slot, &top_instances)?,
-            None => self.tlas = Tlas::build(&bounds),
+            None => self.tlas = Tlas::build(&bounds, self.settings.bvh),
         }
         if let Some(stamps) = &self.timestamps {
             stamps.frame(slot).write(device, cmd, 1, vk::PipelineStageFlags2::ALL_COMMANDS);
