@@ -433,7 +433,7 @@ mod tests {
     fn the_key_follows_what_the_material_shows() {
         let draw = base(TextureEnv::default(), SurfaceLighting::Traced, 0);
         let m = material(&Surface { base: &draw, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);
-        let placed = GpuMaterial { layer_corners: 40, emitters: 3, ..m };
+        let placed = GpuMaterial { layer_corners: 40, emitters: 3, radiosity: 7, ..m };
         assert_eq!(key(&m), key(&placed), "where its records are is not what it shows");
         let replaced = base(TextureEnv { mode: EnvMode::Replace, ..TextureEnv::default() }, SurfaceLighting::Traced, 0);
         let other = material(&Surface { base: &replaced, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);
