@@ -162,23 +162,26 @@ void trace_pixel(uvec2 pixel) {
                 }
                 break;
             }
+            // The first diffuse bounce on the static world ends the path with radiosity's
+            // light (below): no continuation ray weighs the emitter and sky samples there.
+            vec3 bounced;
+            bool radiosity_vertex = diffuse_arrival && radiosity_at(hit, bounced);
             for (uint i = 0u; i < light_count; i++) {
                 lit += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
             }
             if (emitter_count > 0u) {
-                lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces, rng, shadow);
+                lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces && !radiosity_vertex, rng, shadow);
             }
             if (sky_sampled()) {
-                lit += throughput * sky_light(s, v, rng, shadow);
+                lit += throughput * sky_light(s, v, !radiosity_vertex, rng, shadow);
             }
             radiance += lit;
             if (depth == 0u) {
                 direct = lit;
             }
-            // The first diffuse bounce on the static world: radiosity's indirect light (the
-            // bounced light only: the direct light was sampled above), and the path ends.
-            vec3 bounced;
-            if (diffuse_arrival && radiosity_at(hit, bounced)) {
+            // Radiosity's indirect light (the bounced light only: the direct light was sampled
+            // above), and the path ends.
+            if (radiosity_vertex) {
                 radiance += throughput * brdf_diffuse_albedo(s) * bounced;
                 break;
             }

@@ -92,8 +92,10 @@ float sky_sample(vec3 u, out vec3 dir) {
 }
 
 // The sky's light reflected towards v at s from one sky sample (its shadow ray counted in
-// `shadow_rays`), weighted against the continuation ray, which finds the sky where it misses.
-vec3 sky_light(Surface s, vec3 v, inout Rng rng, inout uint shadow_rays) {
+// `shadow_rays`); `weighted`: a continuation ray leaves s and finds the sky where it misses,
+// so the sample takes its MIS weight (where the path ends at s, at radiosity's vertex, it
+// counts whole).
+vec3 sky_light(Surface s, vec3 v, bool weighted, inout Rng rng, inout uint shadow_rays) {
     vec3 l;
     float density = sky_sample(vec3(rng_next2(rng), rng_next(rng)), l);
     vec3 f = brdf_eval_cos(s, v, l);
@@ -104,7 +106,7 @@ vec3 sky_light(Surface s, vec3 v, inout Rng rng, inout uint shadow_rays) {
     if (trace_any(offset_ray(s.position, s.geometric), l, 0.0, 1e30)) {
         return vec3(0.0);
     }
-    return f * environment(l) * (mis_weight(density, brdf_pdf(s, v, l)) / density);
+    return f * environment(l) * ((weighted ? mis_weight(density, brdf_pdf(s, v, l)) : 1.0) / density);
 }
 
 #endif
