@@ -11,7 +11,11 @@
 // emission and the light of the dynamic lights (render::trace::lights); adds its share of the
 // noisy radiance (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
 // (trace/gbuffer.glsl), whole and split into the denoiser's channels: direct light at the
-// primary hit and indirect light, demodulated (trace/channels.glsl). The tracer runs it once per sample of the frame (see `dispatch` in
+// primary hit and indirect light, demodulated (trace/channels.glsl). With radiosity
+// (render::trace::radiosity), the first vertex that a diffuse continuation ray reaches on the
+// static world adds radiosity's indirect light there (the light of every later bounce,
+// reflected by the surface's diffuse albedo) after its next-event estimation, and the path
+// ends. The tracer runs it once per sample of the frame (see `dispatch` in
 // src/render/trace/compute.rs for why). src/render/trace/mod.rs describes
 // the scene it reads. Ray counts and traversal work are summed per subgroup (subgroup
 // arithmetic, which lavapipe and the desktop drivers have) and added to the counters once per
@@ -34,6 +38,7 @@ layout(push_constant) uniform Pass {
 #include "trace/sky_sampling.glsl"
 #include "trace/channels.glsl"
 #include "trace/gradient.glsl"
+#include "trace/radiosity.glsl"
 
 // The eye-space ray through window position `window` (GL window coordinates, y up).
 void camera_ray(vec2 window, out vec3 origin, out vec3 dir) {
@@ -117,6 +122,8 @@ void trace_pixel(uvec2 pixel) {
         // with which the previous vertex chose the ray that reached this one, when it also
         // sampled emitters (the MIS weight of the emission found here).
         float bsdf_density = 0.0;
+        // Whether the ray that reached this vertex was a diffuse continuation ray.
+        bool diffuse_arrival = false;
         for (uint depth = 0u; hit_found; depth++) {
             cone_width += cone_spread * hit.t;
             Surface s = surface_at(hit, origin, dir, cone_width);
@@ -156,21 +163,31 @@ void trace_pixel(uvec2 pixel) {
                 }
                 break;
             }
+            // The first diffuse bounce on the static world ends the path with radiosity's
+            // light (below): no continuation ray weighs the emitter and sky samples there.
+            vec3 bounced;
+            bool radiosity_vertex = diffuse_arrival && radiosity_at(hit, bounced);
             for (uint i = 0u; i < light_count; i++) {
                 lit += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
             }
             if (emitter_count > 0u) {
-                lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces, rng, shadow);
+                lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces && !radiosity_vertex, rng, shadow);
             }
             // The sky sample is taken with the frame's probability; at 1 no number is drawn
             // for the choice.
             float sky_chance = sky_selection();
             if (sky_chance > 0.0 && (sky_chance >= 1.0 || rng_next(rng) < sky_chance)) {
-                lit += throughput * sky_light(s, v, sky_chance, rng, shadow, sky_rays);
+                lit += throughput * sky_light(s, v, sky_chance, !radiosity_vertex, rng, shadow, sky_rays);
             }
             radiance += lit;
             if (depth == 0u) {
                 direct = lit;
+            }
+            // Radiosity's indirect light (the bounced light only: the direct light was sampled
+            // above), and the path ends.
+            if (radiosity_vertex) {
+                radiance += throughput * brdf_diffuse_albedo(s) * bounced;
+                break;
             }
             vec3 l;
             bool chose_specular;
@@ -189,6 +206,7 @@ void trace_pixel(uvec2 pixel) {
             } else {
                 diffuse += 1u;
             }
+            diffuse_arrival = !chose_specular;
             if (all(equal(throughput, vec3(0.0)))) {
                 break;
             }

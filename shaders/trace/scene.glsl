@@ -82,7 +82,7 @@ struct Material {
     uint emitters;      // the instance's first Emitter (one per triangle, BVH order), or NO_EMITTER
     uint key;           // a hash of what the material shows (the temporal pass's history follows it)
     uint tint;          // with MATERIAL_TINT_PRIMARY: the primary colours' RGB in the albedo (packUnorm4x8, display-encoded)
-    uint pad;
+    uint radiosity;     // the instance's first RadiosityTriangle (one per triangle, BVH order), or NO_RADIOSITY
 };
 
 layout(set = TRACE_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials {
@@ -101,6 +101,16 @@ struct Emitter {
 
 layout(set = TRACE_SET, binding = BINDING_EMITTERS, std430) readonly buffer Emitters {
     Emitter emitters[];
+};
+
+// Radiosity's indirect light at the corners of a static-world triangle (render::trace::radiosity):
+// irradiance / pi, linear RGB per corner, read by trace/radiosity.glsl.
+struct RadiosityTriangle {
+    float corner[9];    // corner k's red, green, blue at 3k .. 3k + 2
+};
+
+layout(set = TRACE_SET, binding = BINDING_RADIOSITY, std430) readonly buffer Radiosity {
+    RadiosityTriangle radiosity_triangles[];
 };
 
 layout(set = TRACE_SET, binding = BINDING_LIGHTS, std430) readonly buffer Lights {

@@ -102,9 +102,10 @@ struct SkyRays {
 };
 
 // The sky's light reflected towards v at s from one sky sample taken with probability
-// `selection` (its shadow ray counted in `shadow_rays` and `sky_rays`), weighted against the
-// continuation ray, which finds the sky where it misses.
-vec3 sky_light(Surface s, vec3 v, float selection, inout Rng rng, inout uint shadow_rays, inout SkyRays sky_rays) {
+// `selection` (its shadow ray counted in `shadow_rays` and `sky_rays`); `weighted`: a
+// continuation ray leaves s and finds the sky where it misses, so the sample takes its MIS
+// weight (where the path ends at s, at radiosity's vertex, it counts whole).
+vec3 sky_light(Surface s, vec3 v, float selection, bool weighted, inout Rng rng, inout uint shadow_rays, inout SkyRays sky_rays) {
     vec3 l;
     float density = selection * sky_sample(vec3(rng_next2(rng), rng_next(rng)), l);
     vec3 f = brdf_eval_cos(s, v, l);
@@ -117,7 +118,7 @@ vec3 sky_light(Surface s, vec3 v, float selection, inout Rng rng, inout uint sha
         return vec3(0.0);
     }
     sky_rays.unoccluded += 1u;
-    return f * environment(l) * (mis_weight(density, brdf_pdf(s, v, l)) / density);
+    return f * environment(l) * ((weighted ? mis_weight(density, brdf_pdf(s, v, l)) : 1.0) / density);
 }
 
 #endif

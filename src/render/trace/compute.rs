@@ -25,6 +25,7 @@ use super::instances::{self, Source};
 use super::lights::{self, LightSettings};
 use super::material::{self, MaterialDefaults};
 use super::pipelines::TracePipelines;
+use super::radiosity::TracedRadiosity;
 use super::resident::{NewGeometry, Resident};
 use super::scene;
 use super::settings::{KNEE, Settings, Tonemap};
@@ -42,6 +43,7 @@ use super::{GpuScene, Radiance, RayTracer, TracedImage, bindings};
 use crate::frame::class::SurfaceLighting;
 use crate::frame::{Draw, Frame};
 use crate::render::pass_times::{self, SlotStamps};
+use crate::render::radiosity::stage::FrameIndirect;
 use crate::render::raster::device::{Buffer, Check, Device, Result};
 use crate::render::raster::renderer::Recorder;
 
@@ -103,6 +105,8 @@ pub struct ComputeTracer {
     accelerations: Option<Accelerations>,
     /// The top-level acceleration structure of the frame being traced (hardware tracer).
     top_level: vk::AccelerationStructureKHR,
+    /// Radiosity's values on the static world's geometries.
+    radiosity: TracedRadiosity,
     statistics: Statistics,
     /// How often path vertices sample the sky, from the counters read last.
     sky_selection: SkySelection,
@@ -147,6 +151,7 @@ impl ComputeTracer {
             tlas: Tlas::build(&[], settings.bvh),
             accelerations: hardware.then(|| Accelerations::new(device, slots)),
             top_level: vk::AccelerationStructureKHR::null(),
+            radiosity: TracedRadiosity::default(),
             statistics: Statistics::default(),
             sky_selection: SkySelection::default(),
         })
@@ -239,6 +244,7 @@ impl ComputeTracer {
         let light_slice = push(bytemuck::cast_slice(&scene.lights))?;
         let emitter_slice = push(bytemuck::cast_slice(&scene.emitters))?;
         let sky_cells_slice = push(bytemuck::cast_slice(&scene.sky_cells))?;
+        let radiosity_slice = push(bytemuck::cast_slice(&scene.radiosity))?;
         let tlas_slice = push(self.tlas.node_bytes())?;
         let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
         let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(None) };
@@ -264,6 +270,7 @@ impl ComputeTracer {
         table[bindings::LAYER_CORNERS as usize] = (layer_corners.0, 0, layer_corners.1);
         table[bindings::EMITTERS as usize] = emitter_slice;
         table[bindings::SKY_DISTRIBUTION as usize] = sky_cells_slice;
+        table[bindings::RADIOSITY as usize] = radiosity_slice;
 
         let pool = self.pools[slot];
         // Safety (this block): the pool's sets of this slot's previous frame are finished (the
@@ -337,8 +344,8 @@ impl RayTracer for ComputeTracer {
     /// Gathers the instances, builds the BVHs of new geometry (or refits the last BVH of a
     /// moved dynamic draw) on the CPU and uploads them with the texels, draws the sky cube
     /// when it changed, builds the top-level BVH over the instances on the CPU and lists the
-    /// emissive triangles.
-    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw) -> Result<GpuScene> {
+    /// emissive triangles and, with radiosity, its values on the static world's triangles.
+    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw, indirect: Option<&FrameIndirect>) -> Result<GpuScene> {
         let slot = rec.slot();
         let device = rec.device;
         self.read_counters(device, slot);
@@ -398,6 +405,8 @@ impl RayTracer for ComputeTracer {
         let mut top_instances = Vec::new();
         let mut emitter_list = EmitterList::default();
         let mut recovered: Vec<GpuLight> = Vec::new();
+        let mut radiosity = Vec::new();
+        self.radiosity.begin_frame(indirect.map(|i| &i.light));
         let mut signature = Xxh3::new();
         // New texture contents (an updated lightmap, an animated texture) restart accumulation.
         for t in &refs {
@@ -421,6 +430,15 @@ impl RayTracer for ComputeTracer {
                 }
             }
             material.key = material::key(&material);
+            // Radiosity's indirect light on the static world's triangles.
+            if let Some(indirect) = indirect
+                && let Some(front) = item.static_world_front()
+                && let Some((triangles, _, _)) = self.resident.contents(item.key)
+                && let Some(values) = self.radiosity.values(item.key, triangles, &(indirect.eye_to_world * item.object_to_eye), front)
+            {
+                material.radiosity = radiosity.len() as u32;
+                radiosity.extend_from_slice(values);
+            }
             // The direct light a vertex-lit model's colours hold, for that model alone.
             if let Source::Surface(surface) = &item.source
                 && surface.base.instance.is_some_and(|i| i.lighting == SurfaceLighting::VertexLit)
@@ -473,6 +491,7 @@ impl RayTracer for ComputeTracer {
         let mut lights: Vec<GpuLight> = lights::of_frame(frame, draws.iter().copied(), &light_settings);
         lights.extend(recovered);
         signature.update(bytemuck::cast_slice(&lights));
+        signature.update(bytemuck::cast_slice(&radiosity));
 
         // Camera and sizes.
         let state = &camera.state;
@@ -539,7 +558,7 @@ impl RayTracer for ComputeTracer {
         self.previous = Some(Previous { signature, projection, view: frame.view.map(|v| v.view) });
         self.frame_index = self.frame_index.wrapping_add(1);
         self.statistics.frames += 1;
-        Ok(GpuScene { frame: gpu_frame, instances, materials, lights, emitters, sky_cells })
+        Ok(GpuScene { frame: gpu_frame, instances, materials, lights, emitters, sky_cells, radiosity })
     }
 
     /// Dispatches `pathtrace.comp` once per sample into the G-buffer and the accumulation

@@ -134,8 +134,20 @@ pub struct GpuMaterial {
     /// The RGB (display-encoded, packed as `packUnorm4x8`) that replaces the primary
     /// colours' in the albedo with `MATERIAL_TINT_PRIMARY` ([`super::material`]).
     pub tint: u32,
-    /// Padding.
-    pub pad: u32,
+    /// The instance's first record in the radiosity buffer ([`GpuRadiosityTriangle`], one
+    /// per triangle in BVH order), or `NO_RADIOSITY`: the path's first diffuse bounce on it
+    /// reads radiosity's indirect light and ends ([`super::radiosity`]).
+    pub radiosity: u32,
+}
+
+/// `RadiosityTriangle` of `scene.glsl`: radiosity's indirect light at the three corners of a
+/// static-world triangle ([`super::radiosity`]), irradiance / π (linear RGB per corner, the
+/// corners in the triangle's order).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuRadiosityTriangle {
+    /// Corner `k`'s red, green and blue at `3k..3k + 3`.
+    pub corner: [f32; 9],
 }
 
 /// `Emitter` of `scene.glsl`: one emissive triangle of the frame, an entry of the alias table

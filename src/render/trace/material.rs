@@ -63,7 +63,7 @@ use super::shader_constants::{
     BLEND_DST_ALPHA, BLEND_DST_RGB, BLEND_EQUATION_ALPHA, BLEND_EQUATION_RGB, BLEND_SRC_ALPHA, BLEND_SRC_RGB, EQUATION_ADD, EQUATION_MAX, EQUATION_MIN,
     EQUATION_REVERSE_SUBTRACT, EQUATION_SUBTRACT, FACTOR_CONSTANT_ALPHA, FACTOR_CONSTANT_COLOR, FACTOR_DST_ALPHA, FACTOR_DST_COLOR, FACTOR_ONE,
     FACTOR_ONE_MINUS_CONSTANT_ALPHA, FACTOR_ONE_MINUS_CONSTANT_COLOR, FACTOR_ONE_MINUS_DST_ALPHA, FACTOR_ONE_MINUS_DST_COLOR, FACTOR_ONE_MINUS_SRC_ALPHA,
-    FACTOR_ONE_MINUS_SRC_COLOR, FACTOR_SRC_ALPHA, FACTOR_SRC_ALPHA_SATURATE, FACTOR_SRC_COLOR, FACTOR_ZERO, LAYER_BAKED_LIGHT, LAYER_COLOR, LAYER_EMISSION,
+    FACTOR_ONE_MINUS_SRC_COLOR, FACTOR_SRC_ALPHA, FACTOR_SRC_ALPHA_SATURATE, FACTOR_SRC_COLOR, FACTOR_ZERO, LAYER_BAKED_LIGHT, LAYER_COLOR, LAYER_EMISSION, NO_RADIOSITY,
     LAYER_OFF, MATERIAL_BAKED, MATERIAL_LAYERS, MATERIAL_TINT_PRIMARY, MATERIAL_VERTEX_LIT, MAX_PASSES, NO_EMITTER, NO_TEXTURE, TRACED_UNITS,
 };
 use super::surfaces::Surface;
@@ -248,7 +248,7 @@ pub fn material(surface: &Surface, textures: [Option<u32>; MATERIAL_LAYERS], def
         emitters: NO_EMITTER,
         key: 0,
         tint: pack_unorm(tint),
-        pad: 0,
+        radiosity: NO_RADIOSITY,
     }
 }
 
@@ -258,12 +258,13 @@ fn pack_unorm(v: Vec3) -> u32 {
     byte(v.x) | byte(v.y) << 8 | byte(v.z) << 16 | 255 << 24
 }
 
-/// A hash of what `m` shows: every field but those that say where its passes' corners and
-/// emitter entries are (they move when the buffers are repacked or the list changes) and the
+/// A hash of what `m` shows: every field but those that say where its passes' corners,
+/// emitter entries and radiosity records are (they move when the buffers are repacked or the
+/// lists change) and the
 /// tint (a summary of the vertex colours, which change as a model moves and are not in the
 /// key either).
 pub fn key(m: &GpuMaterial) -> u32 {
-    let shown = GpuMaterial { layer_corners: 0, emitters: 0, key: 0, tint: 0, ..*m };
+    let shown = GpuMaterial { layer_corners: 0, emitters: 0, key: 0, tint: 0, radiosity: 0, ..*m };
     xxh3_64(bytemuck::bytes_of(&shown)) as u32
 }
 
@@ -432,7 +433,7 @@ mod tests {
     fn the_key_follows_what_the_material_shows() {
         let draw = base(TextureEnv::default(), SurfaceLighting::Traced, 0);
         let m = material(&Surface { base: &draw, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);
-        let placed = GpuMaterial { layer_corners: 40, emitters: 3, ..m };
+        let placed = GpuMaterial { layer_corners: 40, emitters: 3, radiosity: 7, ..m };
         assert_eq!(key(&m), key(&placed), "where its records are is not what it shows");
         let replaced = base(TextureEnv { mode: EnvMode::Replace, ..TextureEnv::default() }, SurfaceLighting::Traced, 0);
         let other = material(&Surface { base: &replaced, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);
