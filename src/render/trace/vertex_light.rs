@@ -6,9 +6,8 @@
 //! traced source holds as the game shows it: the directed part is its direct light (the sun,
 //! lamps: baked into the lightmaps, not drawn), the ambient part the light from everywhere
 //! else (the grid's share of the world's bounced light, the sky, the level's lamps seen from
-//! afar). Traced light from the baked world is a weak stand-in for the latter in a dark level
-//! (OpenArena's frame 400: the top of a player's hat, away from the directed light, near
-//! black), and both together would count that light twice.
+//! afar). Traced light from the baked world is a weak stand-in for the latter in a dark level,
+//! and both together would count that light twice.
 //!
 //! So the model keeps both parts: the directed part as a directional light of that instance
 //! alone ([`GpuLight`] `params.w`), sampled by next-event estimation like a GL light (it
