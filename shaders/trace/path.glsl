@@ -7,7 +7,9 @@
 // weighted likewise against continuation rays that miss), `bounces` indirect bounces and the
 // environment (trace/environment.glsl: the sky cube map or the clear colour) through every
 // continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular), and through
-// primary rays that miss; a baked surface (render::trace::material) ends the path with its
+// primary rays that miss; a vertex-lit model with an ambient light (render::trace::vertex_light)
+// samples neither emitters nor the sky, and its continuation rays that meet nothing within the
+// model's width bring that light instead of the level's; a baked surface (render::trace::material) ends the path with its
 // emission and the light of the dynamic lights (render::trace::lights); adds its share of the
 // noisy radiance (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
 // (trace/gbuffer.glsl), whole and split into the denoiser's channels: direct light at the
@@ -148,6 +150,11 @@ void trace_pixel(uvec2 pixel) {
                 emitted -= (1.0 - w) * s.sampled_emission;
             }
             radiance += throughput * emitted;
+            // A vertex-lit model's light from every direction (render::trace::vertex_light):
+            // the level's light at the model, which the light of emitters and the sky would
+            // count a second time.
+            vec4 ambient = materials[instances[hit.instance].material].ambient;
+            bool ambient_lit = ambient.a > 0.0;
             // A baked surface (render::trace::material) only emits, and reflects the dynamic
             // lights its bake cannot hold (render::trace::lights): the path ends.
             vec3 lit = vec3(0.0);
@@ -170,12 +177,12 @@ void trace_pixel(uvec2 pixel) {
             for (uint i = 0u; i < light_count; i++) {
                 lit += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
             }
-            if (emitter_count > 0u) {
+            if (emitter_count > 0u && !ambient_lit) {
                 lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces && !radiosity_vertex, rng, shadow);
             }
             // The sky sample is taken with the frame's probability; at 1 no number is drawn
             // for the choice.
-            float sky_chance = sky_selection();
+            float sky_chance = ambient_lit ? 0.0 : sky_selection();
             if (sky_chance > 0.0 && (sky_chance >= 1.0 || rng_next(rng) < sky_chance)) {
                 lit += throughput * sky_light(s, v, sky_chance, !radiosity_vertex, rng, shadow, sky_rays);
             }
@@ -200,7 +207,7 @@ void trace_pixel(uvec2 pixel) {
                 break;
             }
             throughput *= brdf_eval_cos(s, v, l) / pdf;
-            bsdf_density = emitter_count > 0u ? pdf : 0.0;
+            bsdf_density = emitter_count > 0u && !ambient_lit ? pdf : 0.0;
             if (chose_specular) {
                 specular += 1u;
             } else {
@@ -219,11 +226,15 @@ void trace_pixel(uvec2 pixel) {
             // After a bounce the cone spreads as wide as the lobe sampled (textures seen by
             // diffuse rays are read from small levels).
             cone_spread = max(cone_spread, chose_specular ? ggx_alpha(s) : 1.0);
-            if (!trace_closest(origin, dir, 0.0, 1e30, hit)) {
-                // The sky sample of this vertex, taken with probability `sky_chance`, found
-                // this light too (trace/sky_sampling.glsl).
-                float w = sky_chance > 0.0 ? mis_weight(pdf, sky_chance * sky_density(dir)) : 1.0;
-                radiance += throughput * environment(dir) * w;
+            if (!trace_closest(origin, dir, 0.0, ambient_lit ? ambient.a : 1e30, hit)) {
+                if (ambient_lit) {
+                    radiance += throughput * ambient.rgb;
+                } else {
+                    // The sky sample of this vertex, taken with probability `sky_chance`, found
+                    // this light too (trace/sky_sampling.glsl).
+                    float w = sky_chance > 0.0 ? mis_weight(pdf, sky_chance * sky_density(dir)) : 1.0;
+                    radiance += throughput * environment(dir) * w;
+                }
                 break;
             }
             if (depth == bounces) {

@@ -70,6 +70,8 @@ layout(set = TRACE_SET, binding = BINDING_LAYER_CORNERS, std430) readonly buffer
 
 struct Material {
     vec4 emission;      // linear emitted radiance (rgb); a: emissive scale applied to the raster colour
+    vec4 ambient;       // a vertex-lit model's light from every direction (rgb, linear radiance), taken by its
+                        // continuation rays that meet nothing within a (the model's width); a = 0: none
     Layer layer[MATERIAL_LAYERS]; // layer u < TRACED_UNITS: texture unit u (corner coordinates uv[u]); then the passes
     float roughness;    // GGX alpha = roughness^2
     float metalness;

@@ -439,12 +439,13 @@ impl RayTracer for ComputeTracer {
                 material.radiosity = radiosity.len() as u32;
                 radiosity.extend_from_slice(values);
             }
-            // The direct light a vertex-lit model's colours hold, for that model alone.
+            // The light a vertex-lit model's colours hold, for that model alone.
             if let Source::Surface(surface) = &item.source
                 && surface.base.instance.is_some_and(|i| i.lighting == SurfaceLighting::VertexLit)
                 && let Some(light) = vertex_light::recover(surface.base, &item.object_to_eye, instances.len() as u32)
             {
-                recovered.push(light);
+                recovered.push(light.directed);
+                material.ambient = light.ambient;
             }
             let flags = if material.alpha_func != 7 { INSTANCE_ALPHA_TESTED } else { 0 };
             if self.accelerations.is_some() {

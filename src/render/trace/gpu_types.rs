@@ -100,12 +100,16 @@ pub struct GpuLayerCorners {
     pub covered: u32,
 }
 
-/// `Material` of `scene.glsl`: one per instance, 448 bytes (six layers of 64).
+/// `Material` of `scene.glsl`: one per instance, 464 bytes (six layers of 64).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuMaterial {
     /// Linear emitted radiance (rgb); a: emissive scale applied to the raster colour.
     pub emission: [f32; 4],
+    /// A vertex-lit model's ambient light ([`super::vertex_light::ModelLight::ambient`]):
+    /// linear radiance from every direction (rgb), which its continuation rays take when they
+    /// meet nothing within `a`, the model's width; a = 0: none (traced light lights it).
+    pub ambient: [f32; 4],
     /// Layer `u < TRACED_UNITS`: texture unit `u`; then pass `k` at `TRACED_UNITS + k`.
     pub layer: [GpuLayer; MATERIAL_LAYERS],
     /// Roughness (GGX alpha = roughness²).
@@ -240,7 +244,7 @@ pub const COUNTER_BYTES: u64 = size_of::<GpuCounters>() as u64;
 
 include!(concat!(env!("OUT_DIR"), "/layouts/trace_gpu_types.rs"));
 
-const _: () = assert!(size_of::<GpuMaterial>() == 448 && size_of::<GpuLayerCorners>() == 40, "the sizes the docs give");
+const _: () = assert!(size_of::<GpuMaterial>() == 464 && size_of::<GpuLayerCorners>() == 40, "the sizes the docs give");
 
 const _: () = assert!(MAX_PASSES == crate::frame::class::MAX_LAYERS, "a material traces every layer a surface may have");
 

@@ -36,7 +36,7 @@
 //! A vertex-lit model's colours also hold the dynamic lights near it (games add them to the
 //! model's light, as Quake 3's `R_SetupEntityLighting` does): [`MATERIAL_VERTEX_LIT`] keeps
 //! the dynamic lights of [`super::lights`] from lighting it a second time (its light comes
-//! from its colours, [`super::vertex_light`]).
+//! from its colours, [`super::vertex_light`], which also sets the material's `ambient`).
 //!
 //! A [`SurfaceLighting::Baked`] surface ([`MATERIAL_BAKED`]) holds light the game baked:
 //! direct and indirect, everything that arrives at it. Tracing computes that light itself, so
@@ -236,6 +236,7 @@ pub fn material(surface: &Surface, textures: [Option<u32>; MATERIAL_LAYERS], def
     };
     GpuMaterial {
         emission,
+        ambient: [0.0; 4],
         layer: layers,
         roughness,
         metalness: over.metalness.clamp(0.0, 1.0),
@@ -260,11 +261,11 @@ fn pack_unorm(v: Vec3) -> u32 {
 
 /// A hash of what `m` shows: every field but those that say where its passes' corners,
 /// emitter entries and radiosity records are (they move when the buffers are repacked or the
-/// lists change) and the
+/// lists change), the
 /// tint (a summary of the vertex colours, which change as a model moves and are not in the
-/// key either).
+/// key either) and the ambient light (light, not what the surface is).
 pub fn key(m: &GpuMaterial) -> u32 {
-    let shown = GpuMaterial { layer_corners: 0, emitters: 0, key: 0, tint: 0, radiosity: 0, ..*m };
+    let shown = GpuMaterial { layer_corners: 0, emitters: 0, key: 0, tint: 0, radiosity: 0, ambient: [0.0; 4], ..*m };
     xxh3_64(bytemuck::bytes_of(&shown)) as u32
 }
 
@@ -366,6 +367,7 @@ mod tests {
         let m = material(&Surface { base: &model, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);
         assert_eq!(m.tint, u32::MAX);
         assert_eq!(key(&m), key(&GpuMaterial { tint: 0xff_33_ff_33, ..m }), "the tint is not in the key");
+        assert_eq!(key(&m), key(&GpuMaterial { ambient: [0.1, 0.2, 0.3, 2.0], ..m }), "nor the ambient light");
     }
 
     /// Each pass is a layer after the units: its unit 0, role, blend function and alpha test.
