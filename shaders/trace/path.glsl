@@ -140,15 +140,19 @@ void trace_pixel(uvec2 pixel) {
                 emitted -= (1.0 - w) * s.sampled_emission;
             }
             radiance += throughput * emitted;
-            // A baked surface (render::trace::material) only emits, and reflects the dynamic
-            // lights its bake cannot hold (render::trace::lights): the path ends.
+            // A baked surface (render::trace::material) only emits, and shows the dynamic
+            // lights its bake cannot hold as the game's passes bring them, added to what it
+            // shows in display units (render::trace::lights): the path ends.
             vec3 lit = vec3(0.0);
             if (s.baked) {
+                vec3 shown = linear_to_srgb(s.emission);
+                vec3 brought = vec3(0.0);
                 for (uint i = 0u; i < light_count; i++) {
                     if (lights[i].params.w < 0.0) {
-                        lit += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
+                        brought += dynamic_pass_light(s, shown, i, rng, shadow);
                     }
                 }
+                lit = throughput * max(srgb_to_linear(shown + brought) - srgb_to_linear(shown), vec3(0.0));
                 radiance += lit;
                 if (depth == 0u) {
                     direct = lit;
