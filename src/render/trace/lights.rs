@@ -200,7 +200,7 @@ mod tests {
     }
 
     #[test]
-    fn a_dynamic_light_is_a_point_light_of_its_falloff_that_baked_surfaces_reflect() {
+    fn a_dynamic_light_is_a_point_light_of_its_falloff_and_its_pass_on_baked_surfaces() {
         let light = DynamicLight { position: [1.0, 2.0, -30.0], color: [1.0, 0.5, 0.0], radius: 200.0, falloff: 2451.0, axis: [0.0, 1.0, 0.0], floor: 0.3, modulates: false };
         let l = dynamic(&light, &LightSettings::default());
         assert_eq!(l.position, [1.0, 2.0, -30.0, 1.0]);
@@ -208,7 +208,7 @@ mod tests {
         let pi = std::f32::consts::PI;
         assert!((l.radiance[0] - pi * 2451.0).abs() < 0.1 && (l.radiance[1] - pi * 2451.0 * srgb_to_linear(0.5)).abs() < 0.1 && l.radiance[2] == 0.0, "{l:?}");
         assert_eq!((l.spot[3], l.params[2], l.params[3]), (-2.0, 200.0, -1.0), "no spot; reaches its radius; a pass that adds");
-        assert_eq!((l.spot[..3], l.params[0], l.params[1]), ([0.0, 1.0, 0.0][..], 0.3, 2451.0), "the pass on baked surfaces: axis, floor, falloff");
+        assert_eq!((l.spot, l.params[0], l.params[1]), ([0.0, 1.0, 0.0, -2.0], 0.3, 2451.0), "the pass on baked surfaces: axis, floor, falloff");
         let modulates = dynamic(&DynamicLight { modulates: true, ..light }, &LightSettings::default());
         assert_eq!(modulates.params[3], -2.0);
         assert_eq!(l.radiance[3], 25.0, "a sphere of an eighth of its radius");
