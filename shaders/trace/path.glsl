@@ -152,11 +152,11 @@ void trace_pixel(uvec2 pixel) {
                         brought += dynamic_pass_light(s, shown, i, rng, shadow);
                     }
                 }
+                // Not the surface's albedo times light (a pass that adds brings its colour over
+                // any albedo): it stays out of the demodulated channels, unfiltered, as the
+                // emission it is added to (denoise/modulate.comp).
                 lit = throughput * max(srgb_to_linear(shown + brought) - srgb_to_linear(shown), vec3(0.0));
                 radiance += lit;
-                if (depth == 0u) {
-                    direct = lit;
-                }
                 break;
             }
             for (uint i = 0u; i < light_count; i++) {
