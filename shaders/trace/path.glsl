@@ -155,19 +155,23 @@ void trace_pixel(uvec2 pixel) {
             // count a second time.
             vec4 ambient = materials[instances[hit.instance].material].ambient;
             bool ambient_lit = ambient.a > 0.0;
-            // A baked surface (render::trace::material) only emits, and reflects the dynamic
-            // lights its bake cannot hold (render::trace::lights): the path ends.
+            // A baked surface (render::trace::material) only emits, and shows the dynamic
+            // lights its bake cannot hold as the game's passes bring them, added to what it
+            // shows in display units (render::trace::lights): the path ends.
             vec3 lit = vec3(0.0);
             if (s.baked) {
+                vec3 shown = linear_to_srgb(s.emission);
+                vec3 brought = vec3(0.0);
                 for (uint i = 0u; i < light_count; i++) {
                     if (lights[i].params.w < 0.0) {
-                        lit += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
+                        brought += dynamic_pass_light(s, shown, i, rng, shadow);
                     }
                 }
+                // Not the surface's albedo times light (a pass that adds brings its colour over
+                // any albedo): it stays out of the demodulated channels, unfiltered, as the
+                // emission it is added to (denoise/modulate.comp).
+                lit = throughput * max(srgb_to_linear(shown + brought) - srgb_to_linear(shown), vec3(0.0));
                 radiance += lit;
-                if (depth == 0u) {
-                    direct = lit;
-                }
                 break;
             }
             // The first diffuse bounce on the static world ends the path with radiosity's

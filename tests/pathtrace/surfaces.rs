@@ -446,7 +446,7 @@ fn a_dynamic_light_does_not_light_a_vertex_lit_model_again() {
         let (mut ctx, _renderer) = floor_context(Settings { spp: 4, bounces: 1, ..Settings::default() }, move |frame| {
             classified::lit(frame, |d| d.vertices.position[0][0] < 0.0, SurfaceLighting::VertexLit);
             if light {
-                frame.lights.push(DynamicLight { position: [0.0, -0.5, -3.5], color: [1.0; 3], radius: 2.0, falloff: 0.25 });
+                frame.lights.push(DynamicLight { position: [0.0, -0.5, -3.5], color: [1.0; 3], radius: 2.0, falloff: 0.25, axis: [0.0, 1.0, 0.0], floor: 0.3, modulates: false });
             }
         });
         for _ in 0..2 {
