@@ -100,7 +100,8 @@ void trace_pixel(uvec2 pixel) {
         // A gradient sample (trace/gradient.glsl) draws last frame's random numbers.
         bool gradient = (frame.flags.x & FRAME_GRADIENTS) != 0u && frame.counts.x > 0u
             && all(equal(pixel, gradient_pixel(pixel / GRADIENT_STRATUM, frame.counts.x)));
-        Rng rng = rng_seed(pixel, gradient ? frame.counts.x - 1u : frame.counts.x, sample_index);
+        uint seed_frame = gradient ? frame.counts.x - 1u : frame.counts.x;
+        Rng rng = rng_seed(pixel, seed_frame, sample_index);
         // The first sample of a frame goes through the pixel centre, so the G-buffer is stable.
         vec2 jitter = sample_index == 0u ? vec2(0.5) : rng_next2(rng);
         vec2 window = (vec2(pixel) + jitter) * scale;
@@ -184,10 +185,10 @@ void trace_pixel(uvec2 pixel) {
             if (emitter_count > 0u && !ambient_lit) {
                 lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces && !radiosity_vertex, rng, shadow);
             }
-            // The sky sample is taken with the frame's probability; at 1 no number is drawn
-            // for the choice.
+            // The sky sample is taken with the frame's probability, chosen for a tile of pixels
+            // together.
             float sky_chance = ambient_lit ? 0.0 : sky_selection();
-            if (sky_chance > 0.0 && (sky_chance >= 1.0 || rng_next(rng) < sky_chance)) {
+            if (sky_chance > 0.0 && sky_chosen(pixel, seed_frame, sample_index, depth, sky_chance)) {
                 lit += throughput * sky_light(s, v, sky_chance, !radiosity_vertex, rng, shadow, sky_rays);
             }
             radiance += lit;
