@@ -25,12 +25,12 @@ float emitter_solid_angle_density(Surface s, float t, float cos_hit) {
     return s.emitter_density * t * t / max(cos_hit, 1e-6);
 }
 
-// The light reflected towards v at s from one emitter sample (its shadow ray included, counted
-// in `shadow_rays`); `weighted`: the continuation ray leaving s also counts emitters it hits,
+// The light reflected towards v at s from one emitter sample where its shadow ray is not
+// occluded; `weighted`: the continuation ray leaving s also counts emitters it hits,
 // so the sample takes its MIS weight (at the last vertex of a path it does not, and the
 // sample counts whole). The emitter's texels are read at the width of a ray cone of
 // `cone_width` at s spreading by `spread` (radians).
-vec3 emitter_light(Surface s, vec3 v, float cone_width, float spread, bool weighted, inout Rng rng, inout uint shadow_rays) {
+ShadowSample emitter_light(Surface s, vec3 v, float cone_width, float spread, bool weighted, inout Rng rng) {
     uint count = frame.flags.z;
     uint i = min(uint(rng_next(rng) * float(count)), count - 1u);
     Emitter e = emitters[i];
@@ -51,18 +51,18 @@ vec3 emitter_light(Surface s, vec3 v, float cone_width, float spread, bool weigh
     vec3 to = p0 * (1.0 - bary.x - bary.y) + p1 * bary.x + p2 * bary.y - s.position;
     float d2 = dot(to, to);
     if (area2 <= 0.0 || d2 <= 0.0 || e.probability <= 0.0) {
-        return vec3(0.0);
+        return unshadowed(vec3(0.0));
     }
     float d = sqrt(d2);
     vec3 l = to / d;
     float cos_light = abs(dot(n, l)) / area2;
     vec3 f = brdf_eval_cos(s, v, l);
     if (cos_light <= 1e-6 || all(equal(f, vec3(0.0)))) {
-        return vec3(0.0);
+        return unshadowed(vec3(0.0));
     }
     // A point the alpha test cuts out is not there (continuation rays pass through it).
     if ((inst.flags & INSTANCE_ALPHA_TESTED) != 0u && !trace_alpha_accept(e.instance, e.triangle, bary)) {
-        return vec3(0.0);
+        return unshadowed(vec3(0.0));
     }
     TraceHit hit;
     hit.t = d;
@@ -71,15 +71,11 @@ vec3 emitter_light(Surface s, vec3 v, float cone_width, float spread, bool weigh
     hit.bary = bary;
     vec3 emitted = surface_at(hit, s.position, l, cone_width + spread * d).sampled_emission;
     if (all(equal(emitted, vec3(0.0)))) {
-        return vec3(0.0);
-    }
-    shadow_rays += 1u;
-    if (trace_any(offset_ray(s.position, s.geometric), l, 0.0, d * 0.999)) {
-        return vec3(0.0);
+        return unshadowed(vec3(0.0));
     }
     float density = e.probability * 2.0 / area2 * d2 / cos_light;
     float w = weighted ? mis_weight(density, brdf_pdf(s, v, l)) : 1.0;
-    return f * emitted * (w / density);
+    return ShadowSample(f * emitted * (w / density), l, d * 0.999);
 }
 
 #endif

@@ -2,6 +2,9 @@
 // next-event estimation with one shadow ray per light; directional lights of an angular size
 // and sphere lights are sampled uniformly in the cone of directions they fill. On baked
 // surfaces a dynamic light brings what the game's dynamic-light pass brings (lights.rs).
+// Every next-event sample (these, trace/emitters.glsl's and trace/sky_sampling.glsl's) is a
+// ShadowSample: the path traces the shadow rays of a vertex at one call site
+// (trace/path.glsl), since a megakernel inlines every call of the traversal.
 
 #ifndef TRACE_LIGHTS_GLSL
 #define TRACE_LIGHTS_GLSL
@@ -25,6 +28,20 @@ vec3 offset_ray(vec3 p, vec3 n) {
         abs(p.x) < origin ? p.x + float_scale * n.x : p_i.x,
         abs(p.y) < origin ? p.y + float_scale * n.y : p_i.y,
         abs(p.z) < origin ? p.z + float_scale * n.z : p_i.z);
+}
+
+// A next-event sample of a path vertex: the light it brings where its shadow ray, leaving the
+// vertex along `dir` up to `distance`, is not occluded; `distance` 0: no ray, `light` counts
+// as it is.
+struct ShadowSample {
+    vec3 light;
+    vec3 dir;
+    float distance;
+};
+
+// A sample that brings `light` without a shadow ray (nothing, for vec3(0.0)).
+ShadowSample unshadowed(vec3 light) {
+    return ShadowSample(light, vec3(0.0, 0.0, 1.0), 0.0);
 }
 
 // A direction l from p towards positional light `light` at distance d2 > 0 squared, and the
@@ -55,7 +72,7 @@ float sample_sphere(Light light, vec3 p, float d2, vec2 u, out vec3 l, out float
 // display-encoded) x the height fade x min(1, falloff / d^2), 0 below the texture's floor,
 // times `shown` for a pass that modulates; 0 where s faces away from the light or a shadow
 // ray to its sphere is occluded (none from inside the sphere).
-vec3 dynamic_pass_light(Surface s, vec3 shown, uint i, inout Rng rng, inout uint shadow_rays) {
+ShadowSample dynamic_pass_light(Surface s, vec3 shown, uint i, inout Rng rng) {
     Light light = lights[i];
     vec3 to_center = light.position.xyz - s.position;
     float d2 = dot(to_center, to_center);
@@ -65,7 +82,7 @@ vec3 dynamic_pass_light(Surface s, vec3 shown, uint i, inout Rng rng, inout uint
     float fade = h < 0.5 * reach ? 1.0 : max(2.0 * (reach - h) / reach, 0.0);
     float falloff = light.params.y;
     if (fade == 0.0 || falloff <= 0.0 || falloff < light.params.x * across2 || d2 <= 0.0) {
-        return vec3(0.0);
+        return unshadowed(vec3(0.0));
     }
     vec3 color = linear_to_srgb(light.radiance.rgb / (3.14159265 * falloff));
     vec3 brought = color * (fade * min(1.0, falloff / max(across2, 1e-30)));
@@ -74,29 +91,28 @@ vec3 dynamic_pass_light(Surface s, vec3 shown, uint i, inout Rng rng, inout uint
     }
     float r = light.radiance.a;
     if (d2 <= r * r || all(equal(brought, vec3(0.0)))) {
-        return brought;
+        return unshadowed(brought);
     }
     vec3 l;
     float distance;
     sample_sphere(light, s.position, d2, rng_next2(rng), l, distance);
     if (dot(l, s.geometric) <= 0.0) {
-        return vec3(0.0);
+        return unshadowed(vec3(0.0));
     }
-    shadow_rays += 1u;
-    return trace_any(offset_ray(s.position, s.geometric), l, 0.0, distance * 0.9999) ? vec3(0.0) : brought;
+    return ShadowSample(brought, l, distance * 0.9999);
 }
 
-// The reflected radiance towards v at a point of instance `instance` due to light i, shadow
-// ray included; `shadow_rays` counts the rays traced. A light of one instance (params.w > 0,
+// The reflected radiance towards v at a point of instance `instance` due to light i where its
+// shadow ray is not occluded. A light of one instance (params.w > 0,
 // render::trace::vertex_light) lights no other; a dynamic light (params.w < 0) lights no
 // vertex-lit model (MATERIAL_VERTEX_LIT: its colours hold it already).
-vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout uint shadow_rays) {
+ShadowSample direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng) {
     Light light = lights[i];
     if (light.params.w > 0.0 && uint(light.params.w) != instance + 1u) {
-        return vec3(0.0);
+        return unshadowed(vec3(0.0));
     }
     if (light.params.w < 0.0 && (materials[instances[instance].material].flags & MATERIAL_VERTEX_LIT) != 0u) {
-        return vec3(0.0);
+        return unshadowed(vec3(0.0));
     }
     vec3 l;
     float distance;
@@ -109,7 +125,7 @@ vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout
         vec3 to_center = light.position.xyz - s.position;
         float d2 = dot(to_center, to_center);
         if (d2 <= 0.0) {
-            return vec3(0.0);
+            return unshadowed(vec3(0.0));
         }
         float d = sqrt(d2);
         vec3 axis = to_center / d;
@@ -117,14 +133,14 @@ vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout
         // A dynamic light (params.w < 0) does not light what lies inside its sphere: the model
         // that carries it, whose own colours hold its light already.
         if (light.params.w < 0.0 && d2 <= r * r) {
-            return vec3(0.0);
+            return unshadowed(vec3(0.0));
         }
         // A sphere of radiance I / (pi r^2) (lights.rs): incident = radiance * solid angle.
         float one_minus_cos = sample_sphere(light, s.position, d2, rng_next2(rng), l, distance);
         incident = r > 0.0 ? light.radiance.rgb * (2.0 * one_minus_cos / (r * r)) : light.radiance.rgb / d2;
         float falloff = light_falloff(light, d, axis);
         if (falloff == 0.0) {
-            return vec3(0.0);
+            return unshadowed(vec3(0.0));
         }
         incident *= falloff;
     }
@@ -133,13 +149,9 @@ vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout
     // lobe alone.
     vec3 f = light.params.w > 0.0 ? brdf_diffuse_cos(s, v, l) : brdf_eval_cos(s, v, l);
     if (all(equal(f, vec3(0.0))) || all(equal(incident, vec3(0.0)))) {
-        return vec3(0.0);
+        return unshadowed(vec3(0.0));
     }
-    shadow_rays += 1u;
-    if (trace_any(offset_ray(s.position, s.geometric), l, 0.0, distance * 0.9999)) {
-        return vec3(0.0);
-    }
-    return f * incident;
+    return ShadowSample(f * incident, l, distance * 0.9999);
 }
 
 #endif

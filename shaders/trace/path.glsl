@@ -63,6 +63,69 @@ vec2 window_xy(mat4 projection, vec3 p) {
     return frame.viewport.xy + (clip.xy / clip.w * 0.5 + 0.5) * frame.viewport.zw;
 }
 
+// What a path vertex's next-event samples need to know of it besides its surface and view
+// direction.
+struct NextEvent {
+    uint instance;
+    // A baked surface's shown colour (display units; trace/lights.glsl dynamic_pass_light).
+    vec3 shown;
+    float cone_width;
+    float spread;
+    // Whether a continuation ray leaving the vertex also finds emitters (then the emitter
+    // sample takes its MIS weight), and whether one finds the sky (the sky sample's).
+    bool emitter_weighted;
+    bool sky_weighted;
+    // Whether the vertex samples emitters (there are some, and no vertex-lit model's ambient
+    // holds their light).
+    bool samples_emitters;
+    uint light_count;
+    float sky_chance;
+    uvec2 pixel;
+    uint seed_frame;
+    uint sample_index;
+    uint depth;
+};
+
+// The next-event sample of light k (on a baked surface what a dynamic light's pass brings).
+ShadowSample light_sample(Surface s, vec3 v, NextEvent ne, uint k, inout Rng rng) {
+    if (!s.baked) {
+        return direct_light(s, v, ne.instance, k, rng);
+    }
+    return lights[k].params.w < 0.0 ? dynamic_pass_light(s, ne.shown, k, rng) : unshadowed(vec3(0.0));
+}
+
+// The next-event sample of one emitter.
+ShadowSample emitter_sample(Surface s, vec3 v, NextEvent ne, inout Rng rng) {
+    return !s.baked && ne.samples_emitters
+        ? emitter_light(s, v, ne.cone_width, ne.spread, ne.emitter_weighted, rng) : unshadowed(vec3(0.0));
+}
+
+// The next-event sample of the sky, taken with the frame's probability (chosen for a tile of
+// pixels together).
+ShadowSample sky_sample_at(Surface s, vec3 v, NextEvent ne, inout Rng rng) {
+    return ne.sky_chance > 0.0 && sky_chosen(ne.pixel, ne.seed_frame, ne.sample_index, ne.depth, ne.sky_chance)
+        ? sky_light(s, v, ne.sky_chance, ne.sky_weighted, rng) : unshadowed(vec3(0.0));
+}
+
+// Traces sample n's shadow ray from `origin` (counted in `shadow_rays`, and in `sky_rays` for
+// the sky's) and adds its light where it is not occluded: to `lit` through the path's
+// `throughput`, or on a baked surface to `brought` (display units).
+void next_event_add(ShadowSample n, vec3 origin, bool baked, vec3 throughput, bool sky, inout vec3 lit, inout vec3 brought, inout uint shadow_rays, inout SkyRays sky_rays) {
+    if (n.distance > 0.0) {
+        shadow_rays += 1u;
+        sky_rays.traced += sky ? 1u : 0u;
+        if (trace_any(origin, n.dir, 0.0, n.distance)) {
+            return;
+        }
+        sky_rays.unoccluded += sky ? 1u : 0u;
+    }
+    if (baked) {
+        brought += n.light;
+    } else {
+        lit += throughput * n.light;
+    }
+}
+
 // Traces traced pixel `pixel` (may lie outside the image: only counts then; every invocation
 // of a subgroup must call it, for the counters' subgroup sums).
 void trace_pixel(uvec2 pixel) {
@@ -156,40 +219,37 @@ void trace_pixel(uvec2 pixel) {
             // count a second time.
             vec4 ambient = materials[instances[hit.instance].material].ambient;
             bool ambient_lit = ambient.a > 0.0;
-            // A baked surface (render::trace::material) only emits, and shows the dynamic
+            // Next-event estimation: a sample of every light, of one emitter and of the sky (the
+            // sky's taken with the frame's probability, chosen for a tile of pixels together);
+            // a baked surface (render::trace::material) only emits, and samples the dynamic
             // lights its bake cannot hold as the game's passes bring them, added to what it
-            // shows in display units (render::trace::lights): the path ends.
+            // shows in display units (render::trace::lights). next_event_add traces the samples'
+            // shadow rays.
+            vec3 shown = s.baked ? linear_to_srgb(s.emission) : vec3(0.0);
+            vec3 brought = vec3(0.0);
             vec3 lit = vec3(0.0);
-            if (s.baked) {
-                vec3 shown = linear_to_srgb(s.emission);
-                vec3 brought = vec3(0.0);
-                for (uint i = 0u; i < light_count; i++) {
-                    if (lights[i].params.w < 0.0) {
-                        brought += dynamic_pass_light(s, shown, i, rng, shadow);
-                    }
-                }
-                // Not the surface's albedo times light (a pass that adds brings its colour over
-                // any albedo): it stays out of the demodulated channels, unfiltered, as the
-                // emission it is added to (denoise/modulate.comp).
-                lit = throughput * max(srgb_to_linear(shown + brought) - srgb_to_linear(shown), vec3(0.0));
-                radiance += lit;
-                break;
-            }
             // The first diffuse bounce on the static world ends the path with radiosity's
             // light (below): no continuation ray weighs the emitter and sky samples there.
             vec3 bounced;
-            bool radiosity_vertex = diffuse_arrival && radiosity_at(hit, bounced);
-            for (uint i = 0u; i < light_count; i++) {
-                lit += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
+            bool radiosity_vertex = !s.baked && diffuse_arrival && radiosity_at(hit, bounced);
+            float sky_chance = ambient_lit || s.baked ? 0.0 : sky_selection();
+            vec3 shadow_origin = offset_ray(s.position, s.geometric);
+            NextEvent ne = NextEvent(hit.instance, shown, cone_width, max(cone_spread, 1.0),
+                depth < bounces && !radiosity_vertex, !radiosity_vertex, emitter_count > 0u && !ambient_lit, light_count, sky_chance, pixel, seed_frame, sample_index, depth);
+            // One call site of the traversal for every sample (lights 0..light_count - 1, one
+            // emitter, the sky): a megakernel inlines each call (bench/pathtrace.md).
+            for (uint k = 0u; k < light_count + 2u; k++) {
+                ShadowSample n = k < light_count ? light_sample(s, v, ne, k, rng)
+                    : k == light_count ? emitter_sample(s, v, ne, rng) : sky_sample_at(s, v, ne, rng);
+                next_event_add(n, shadow_origin, s.baked, throughput, k == light_count + 1u, lit, brought, shadow, sky_rays);
             }
-            if (emitter_count > 0u && !ambient_lit) {
-                lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces && !radiosity_vertex, rng, shadow);
-            }
-            // The sky sample is taken with the frame's probability, chosen for a tile of pixels
-            // together.
-            float sky_chance = ambient_lit ? 0.0 : sky_selection();
-            if (sky_chance > 0.0 && sky_chosen(pixel, seed_frame, sample_index, depth, sky_chance)) {
-                lit += throughput * sky_light(s, v, sky_chance, !radiosity_vertex, rng, shadow, sky_rays);
+            if (s.baked) {
+                // Not the surface's albedo times light (a pass that adds brings its colour over
+                // any albedo): it stays out of the demodulated channels, unfiltered, as the
+                // emission it is added to (denoise/modulate.comp). The path ends.
+                lit = throughput * max(srgb_to_linear(shown + brought) - srgb_to_linear(shown), vec3(0.0));
+                radiance += lit;
+                break;
             }
             radiance += lit;
             if (depth == 0u) {

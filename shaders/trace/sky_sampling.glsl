@@ -121,23 +121,18 @@ struct SkyRays {
 };
 
 // The sky's light reflected towards v at s from one sky sample taken with probability
-// `selection` (its shadow ray counted in `shadow_rays` and `sky_rays`); `weighted`: a
-// continuation ray leaves s and finds the sky where it misses, so the sample takes its MIS
-// weight (where the path ends at s, at radiosity's vertex, it counts whole).
-vec3 sky_light(Surface s, vec3 v, float selection, bool weighted, inout Rng rng, inout uint shadow_rays, inout SkyRays sky_rays) {
+// `selection`, where its shadow ray to infinity is not occluded; `weighted`: a continuation
+// ray leaves s and finds the sky where it misses, so the sample takes its MIS weight (where
+// the path ends at s, at radiosity's vertex, it counts whole). Its ray is traced whenever
+// the sample has a direction (the counts of SkyRays then follow the sky's visibility alone).
+ShadowSample sky_light(Surface s, vec3 v, float selection, bool weighted, inout Rng rng) {
     vec3 l;
     float density = selection * sky_sample(vec3(rng_next2(rng), rng_next(rng)), l);
     vec3 f = brdf_eval_cos(s, v, l);
     if (density <= 0.0 || all(equal(f, vec3(0.0)))) {
-        return vec3(0.0);
+        return unshadowed(vec3(0.0));
     }
-    shadow_rays += 1u;
-    sky_rays.traced += 1u;
-    if (trace_any(offset_ray(s.position, s.geometric), l, 0.0, 1e30)) {
-        return vec3(0.0);
-    }
-    sky_rays.unoccluded += 1u;
-    return f * environment(l) * ((weighted ? mis_weight(density, brdf_pdf(s, v, l)) : 1.0) / density);
+    return ShadowSample(f * environment(l) * ((weighted ? mis_weight(density, brdf_pdf(s, v, l)) : 1.0) / density), l, 1e30);
 }
 
 #endif
