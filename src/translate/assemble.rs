@@ -14,6 +14,7 @@
 //! triangle or quad, and strips, loops, fans and polygons with too few vertices.
 
 use super::gl::{self, GLenum};
+use super::immediate::Batch;
 use crate::frame::Topology;
 
 /// A `glBegin` mode.
@@ -178,6 +179,31 @@ pub fn assemble(
     }
 }
 
+/// [`assemble`] of `batch`'s vertices, the `k`-th being batch vertex `order[k]` (or `k`), with
+/// their edge flags. Separate triangles whose vertices share one edge flag (no edge flag
+/// array, no `glEdgeFlag` change inside the batch) are copied whole, the indices as given and
+/// one mask for all, instead of vertex by vertex.
+pub fn assemble_batch(mode: Primitive, batch: &Batch, order: Option<&[u32]>, out: &mut Assembled) {
+    let n = order.map_or(batch.vertices.len(), <[u32]>::len);
+    let shared_edge = match batch.edge_flags.values.as_slice() {
+        [] => Some(true),
+        [flag] => Some(*flag),
+        _ => None,
+    };
+    match (mode, shared_edge, order) {
+        (Primitive::Triangles, Some(edge), order) => {
+            let whole = n / 3 * 3;
+            match order {
+                Some(order) => out.indices.extend_from_slice(&order[..whole]),
+                None => out.indices.extend(0..whole as u32),
+            }
+            out.edge_masks.resize(out.edge_masks.len() + whole / 3, if edge { ALL_EDGES } else { 0 });
+        }
+        (_, _, None) => assemble(mode, n, |k| k as u32, |k| batch.edge_flag(k as u32), out),
+        (_, _, Some(order)) => assemble(mode, n, |k| order[k], |k| batch.edge_flag(order[k]), out),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -288,5 +314,29 @@ mod tests {
             assert_eq!(Primitive::from_gl(mode).map(Primitive::to_gl), Some(mode));
         }
         assert_eq!(Primitive::from_gl(gl::GL_POLYGON + 1), None);
+    }
+
+    #[test]
+    fn a_batch_assembles_as_its_vertices_one_by_one() {
+        use crate::translate::immediate::CurrentAttribs;
+        let order: Vec<u32> = vec![4, 0, 3, 1, 1, 2, 0, 4];
+        for flags in [vec![], vec![true], vec![false], vec![true, false, true, true, false]] {
+            let mut batch = Batch::default();
+            for i in 0..5 {
+                batch.push([i as f32, 0.0, 0.0, 1.0], &CurrentAttribs::default(), 0);
+            }
+            batch.edge_flags.values = flags.clone();
+            for mode in [Primitive::Points, Primitive::Lines, Primitive::Triangles, Primitive::Quads, Primitive::Polygon] {
+                for order in [None, Some(&order[..]), Some(&order[..6])] {
+                    let n = order.map_or(5, <[u32]>::len);
+                    let vertex = |k: usize| order.map_or(k as u32, |o| o[k]);
+                    let mut one_by_one = Assembled { indices: vec![9], edge_masks: vec![1] };
+                    assemble(mode, n, vertex, |k| batch.edge_flag(vertex(k)), &mut one_by_one);
+                    let mut whole = Assembled { indices: vec![9], edge_masks: vec![1] };
+                    assemble_batch(mode, &batch, order, &mut whole);
+                    assert_eq!(whole, one_by_one, "{mode:?}, flags {flags:?}, order {order:?}");
+                }
+            }
+        }
     }
 }

@@ -14,7 +14,7 @@ use std::ffi::c_void;
 use super::Context;
 use super::array_convert::Span;
 use super::array_fetch::{FromArrays, decode_indices, index_size};
-use super::assemble::{Primitive, assemble};
+use super::assemble::{Primitive, assemble_batch};
 use super::convert::read_slice;
 use super::gl::{self, GLenum, GLint, GLsizei, GLuint};
 use super::immediate::{Batch, CurrentAttribs};
@@ -171,14 +171,7 @@ impl Context {
         }
         let mut assembled = std::mem::take(&mut self.immediate.assembled);
         assembled.clear();
-        match order {
-            None => {
-                assemble(primitive, batch.vertices.len(), |k| k as u32, |k| batch.edge_flag(k as u32), &mut assembled)
-            }
-            Some(order) => {
-                assemble(primitive, order.len(), |k| order[k], |k| batch.edge_flag(order[k]), &mut assembled)
-            }
-        }
+        assemble_batch(primitive, batch, order, &mut assembled);
         let source = self.arrays_source();
         self.emit_batch(primitive, batch, order, &assembled, source);
         self.immediate.assembled = assembled;

@@ -202,7 +202,11 @@ pub fn push_batch(frame: &mut Frame, storage: &mut StoragePool, key: BatchKey, v
             textures: key.textures.to_vec(),
             texture_units: key.texture_units.to_vec(),
             program: key.program,
-            ..Draw::default()
+            // Not `..Draw::default()`, which would allocate a default raster state per draw.
+            vertex_count: 0,
+            class: Default::default(),
+            instance: None,
+            layer: None,
         });
     }
     let draw = frame.draws.last_mut().expect("a draw was just pushed or merged into");

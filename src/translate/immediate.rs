@@ -12,7 +12,7 @@
 //! with [`ImmediateState::current_mut`] (which marks them all changed), never directly.
 
 use super::Context;
-use super::assemble::{Assembled, Primitive, assemble};
+use super::assemble::{Assembled, Primitive, assemble_batch};
 use super::get::Value;
 use super::gl::{self, GLboolean, GLenum, GLfloat};
 use super::limits::{MAX_TEXTURE_UNITS, MAX_VERTEX_ATTRIBS};
@@ -299,7 +299,7 @@ impl Context {
         let mut assembled = std::mem::take(&mut self.immediate.assembled);
         let batch = self.immediate.take_batch();
         assembled.clear();
-        assemble(primitive, batch.vertices.len(), |k| k as u32, |k| batch.edge_flag(k as u32), &mut assembled);
+        assemble_batch(primitive, &batch, None, &mut assembled);
         let source = self.immediate_source();
         self.emit_with_begin_material(|ctx| ctx.emit_batch(primitive, &batch, None, &assembled, source));
         self.immediate.assembled = assembled;

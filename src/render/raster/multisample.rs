@@ -102,17 +102,49 @@ impl SampleState {
     pub const SINGLE: SampleState = SampleState { samples: 1, mask: u32::MAX, alpha_to_coverage: false, alpha_to_one: false };
 }
 
+/// Most passes of a draw: one per sample of the largest count [`locations`] lists.
+const MAX_PASSES: usize = 8;
+
+/// The passes of a draw ([`passes`]), in order: per pass, the pipeline's multisample state and
+/// the viewport offset in pixels. A slice of at most [`MAX_PASSES`], kept without allocation.
+#[derive(Clone, Copy, Debug)]
+pub struct Passes {
+    list: [(SampleState, [f32; 2]); MAX_PASSES],
+    len: usize,
+}
+
+impl Passes {
+    /// The one pass `pass`, without offset.
+    fn one(pass: SampleState) -> Passes {
+        let mut list = [(SampleState::SINGLE, [0.0; 2]); MAX_PASSES];
+        list[0].0 = pass;
+        Passes { list, len: 1 }
+    }
+}
+
+impl std::ops::Deref for Passes {
+    type Target = [(SampleState, [f32; 2])];
+
+    fn deref(&self) -> &Self::Target {
+        &self.list[..self.len]
+    }
+}
+
 /// The passes a draw with `state` takes on a framebuffer of `samples` samples: per pass, the
 /// pipeline's multisample state and the viewport offset in pixels (framebuffer coordinates, y
 /// down). One pass, except with `GL_MULTISAMPLE` disabled (see the module doc).
 /// `alpha_to_one_supported` says whether the device has `alphaToOne`.
-pub fn passes(samples: u32, state: &Multisample, alpha_to_one_supported: bool) -> Vec<(SampleState, [f32; 2])> {
+pub fn passes(samples: u32, state: &Multisample, alpha_to_one_supported: bool) -> Passes {
     if samples <= 1 {
-        return vec![(SampleState::SINGLE, [0.0; 2])];
+        return Passes::one(SampleState::SINGLE);
     }
     if !state.enabled
         && let Some(at) = locations(samples) {
-            return at.iter().enumerate().map(|(i, l)| (SampleState { samples, mask: 1 << i, ..SampleState::SINGLE }, [l[0] - 0.5, l[1] - 0.5])).collect();
+            let mut passes = Passes { list: [(SampleState::SINGLE, [0.0; 2]); MAX_PASSES], len: at.len() };
+            for (i, (pass, l)) in passes.list.iter_mut().zip(at).enumerate() {
+                *pass = (SampleState { samples, mask: 1 << i, ..SampleState::SINGLE }, [l[0] - 0.5, l[1] - 0.5]);
+            }
+            return passes;
         }
     let mask = match state.coverage {
         Some((value, invert)) if state.enabled => coverage_mask(samples, value, invert),
@@ -121,13 +153,12 @@ pub fn passes(samples: u32, state: &Multisample, alpha_to_one_supported: bool) -
     if state.enabled && state.alpha_to_one && !alpha_to_one_supported {
         super::renderer::log_once("the device has no alphaToOne feature: GL_SAMPLE_ALPHA_TO_ONE is ignored");
     }
-    let pass = SampleState {
+    Passes::one(SampleState {
         samples,
         mask,
         alpha_to_coverage: state.enabled && state.alpha_to_coverage,
         alpha_to_one: state.enabled && state.alpha_to_one && alpha_to_one_supported,
-    };
-    vec![(pass, [0.0; 2])]
+    })
 }
 
 #[cfg(test)]
@@ -166,7 +197,7 @@ mod tests {
         assert_eq!(p[0].1, [-0.125, -0.375], "sample 0 at (0.375, 0.125) moves onto the centre");
         assert!(p.iter().all(|(s, _)| s.samples == 4 && !s.alpha_to_coverage));
         let on = Multisample { alpha_to_coverage: true, coverage: Some((0.5, true)), ..Multisample::default() };
-        assert_eq!(passes(4, &on, true), [(SampleState { samples: 4, mask: 0b1100, alpha_to_coverage: true, alpha_to_one: false }, [0.0; 2])]);
-        assert_eq!(passes(1, &on, true), [(SampleState::SINGLE, [0.0; 2])], "single-sampled: no multisample operation");
+        assert_eq!(*passes(4, &on, true), [(SampleState { samples: 4, mask: 0b1100, alpha_to_coverage: true, alpha_to_one: false }, [0.0; 2])]);
+        assert_eq!(*passes(1, &on, true), [(SampleState::SINGLE, [0.0; 2])], "single-sampled: no multisample operation");
     }
 }

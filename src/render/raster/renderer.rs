@@ -250,27 +250,30 @@ impl Recorder<'_> {
     /// updates them once); with no colour buffer (`GL_NONE`, whose colour mask translate
     /// clears) it runs once on the back image for depth and stencil.
     pub fn for_each_buffer(&mut self, buffers: DrawBuffers, state: &Arc<RasterState>, mut write: impl FnMut(&mut Self, &Arc<RasterState>) -> Result<()>) -> Result<()> {
-        let chosen: Vec<ColorBuffer> = buffers.buffers().collect();
-        let Some((&last, before)) = chosen.split_last() else {
+        let mut buffers = buffers.buffers();
+        let Some(mut last) = buffers.next() else {
             self.set_color_buffer(ColorBuffer::Back);
             return write(self, state);
         };
-        if !before.is_empty() {
-            let color_only = Arc::new(RasterState {
-                depth_write: false,
-                stencil: state.stencil.map(|s| StencilFaces {
-                    front: Stencil { write_mask: 0, ..s.front },
-                    back: Stencil { write_mask: 0, ..s.back },
-                }),
-                ..(**state).clone()
+        let mut color_only = None;
+        for next in buffers {
+            let color_only = color_only.get_or_insert_with(|| {
+                Arc::new(RasterState {
+                    depth_write: false,
+                    stencil: state.stencil.map(|s| StencilFaces {
+                        front: Stencil { write_mask: 0, ..s.front },
+                        back: Stencil { write_mask: 0, ..s.back },
+                    }),
+                    ..(**state).clone()
+                })
             });
             let query = self.query;
             self.query.1 = None;
-            for &buffer in before {
-                self.set_color_buffer(buffer);
-                write(self, &color_only)?;
-            }
+            self.set_color_buffer(last);
+            let written = write(self, color_only);
             self.query = query;
+            written?;
+            last = next;
         }
         self.set_color_buffer(last);
         write(self, state)
@@ -388,6 +391,19 @@ impl Recorder<'_> {
             1.0
         };
         note_missing_features(features, &batches, draw);
+        // The draw's uniform block, the same for all its batches, written once where the GPU
+        // reads it, and the descriptor set that holds it.
+        let block = ff::uniforms::block(draw);
+        let fog = self.fog.as_ref().filter(|_| self.framebuffer.is_none()).map(|fog| fog.for_draw(draw, h));
+        let uniform = self.ring.push_with(self.device, ff::UNIFORM_SIZE, block_align, |out: &mut [u8]| {
+            out.copy_from_slice(bytemuck::bytes_of(&block));
+            ff::uniforms::set_framebuffer_height(out, h);
+            if let Some(fog) = &fog {
+                ff::uniforms::set_height_fog(out, fog);
+            }
+        })?;
+        let set_key = SetKey { layout: self.pipelines.set_layout, buffers: &[(uniform.buffer, ff::UNIFORM_SIZE as u64)], images: &images };
+        let set = self.descriptors.get(self.device, &set_key)?;
         // The draw's own vertices, packed into upload memory once for the batches that use them.
         let mut own_vertices = None;
         for batch in &batches {
@@ -417,19 +433,6 @@ impl Recorder<'_> {
             };
             let generic = if batch.generic.is_empty() { None } else { Some(self.ring.push_slice(self.device, &batch.generic, 16)?) };
             let indices = self.ring.push_with(self.device, index_count, 4, |out: &mut [u32]| batch.indices.write(draw, out))?;
-            let fog = self.fog.as_ref().filter(|_| self.framebuffer.is_none()).map(|fog| fog.for_draw(draw, h));
-            // The batch's block, zero-padded to the block size, written where the GPU reads it.
-            let uniform = self.ring.push_with(self.device, ff::UNIFORM_SIZE, block_align, |out: &mut [u8]| {
-                let (block, padding) = out.split_at_mut(batch.uniforms.len().min(ff::UNIFORM_SIZE));
-                block.copy_from_slice(&batch.uniforms[..block.len()]);
-                padding.fill(0);
-                ff::uniforms::set_framebuffer_height(out, h);
-                if let Some(fog) = &fog {
-                    ff::uniforms::set_height_fog(out, fog);
-                }
-            })?;
-            let set_key = SetKey { layout: self.pipelines.set_layout, buffers: &[(uniform.buffer, ff::UNIFORM_SIZE as u64)], images: &images };
-            let set = self.descriptors.get(self.device, &set_key)?;
             let polygon_mode = if features.fill_mode_non_solid { conv::polygon_mode(batch.polygon_mode) } else { vk::PolygonMode::FILL };
             let stencil = stencil.unwrap_or(StencilFaces::both(Stencil::default()));
             let face = |s: Stencil| [s.reference.clamp(0, 255) as u32, s.value_mask, s.write_mask];
@@ -441,7 +444,7 @@ impl Recorder<'_> {
                 blend_constants: state.blend.map_or([0.0; 4], |b| b.color),
                 stencil: [face(stencil.front), face(stencil.back)],
             };
-            for &(samples, [dx, dy]) in &passes {
+            for &(samples, [dx, dy]) in passes.iter() {
                 let key = PipelineKey {
                     shader: batch.shader,
                     topology: conv::topology(batch.topology),

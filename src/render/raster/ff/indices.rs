@@ -24,7 +24,9 @@ impl BatchIndices {
     /// indices all are.
     pub fn rotated(draw: &Draw, per: usize) -> BatchIndices {
         let count = draw.vertices.len();
-        if draw.indices.iter().max().is_none_or(|&max| (max as usize) < count) {
+        // A fold without early exit, so the test of every index is vectorised.
+        let in_range = u32::try_from(count).map_or(true, |count| draw.indices.iter().fold(0u32, |out, &i| out | u32::from(i >= count)) == 0);
+        if in_range {
             return BatchIndices::Draw { per };
         }
         let valid: Vec<u32> = draw.indices.chunks_exact(per).filter(|p| p.iter().all(|&i| (i as usize) < count)).flatten().copied().collect();

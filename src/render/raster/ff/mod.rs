@@ -2,9 +2,10 @@
 //! (the gl4es approach: a compact key of the state selects the code, here through SPIR-V
 //! specialisation constants instead of generated source).
 //!
-//! [`prepare`] turns a [`Draw`] into [`Batch`]es: the uniform block ([`uniforms`]), the
-//! shader key ([`key`]), and the primitives Vulkan cannot rasterize as OpenGL does converted
-//! to triangles ([`convert`]: polygon modes, wide and stippled lines, points). A draw whose
+//! [`prepare`] turns a [`Draw`] into [`Batch`]es: the shader key ([`key`]), and the
+//! primitives Vulkan cannot rasterize as OpenGL does converted to triangles ([`convert`]:
+//! polygon modes, wide and stippled lines, points). The uniform block ([`uniforms::block`])
+//! is the draw's, the same for all its batches: the renderer writes it once per draw. A draw whose
 //! vertex stage is an OpenGL 2.0 program's is not converted: [`native`] makes its batches.
 //! The draw's own vertices and indices are not copied here: the renderer packs them
 //! ([`vertex::pack_into`]) and rotates them ([`BatchIndices::write`]) straight into upload
@@ -13,8 +14,8 @@
 //! The contract with the Vulkan side (`render::raster` device code):
 //! - vertices are interleaved `f32`s, [`VERTEX_FLOATS`] per vertex, with the attributes of
 //!   [`VERTEX_ATTRIBUTES`];
-//! - descriptor set 0: binding 0 is a dynamic uniform buffer holding the [`Batch::uniforms`]
-//!   bytes (std140, exactly [`UNIFORM_SIZE`] bytes), visible to both stages, after
+//! - descriptor set 0: binding 0 is a dynamic uniform buffer holding the draw's
+//!   [`uniforms::block`] (std140, exactly [`UNIFORM_SIZE`] bytes), visible to both stages, after
 //!   [`uniforms::set_framebuffer_height`] wrote the height of the render target into them;
 //!   texture unit `u` (0..[`MAX_UNITS`](crate::render::texenv::codes::MAX_UNITS)) is a `sampler2D` at binding `1 + u` (1D textures are
 //!   2D textures one texel high), a `sampler3D` at `5 + u` and a `samplerCube` at `9 + u`;
@@ -27,8 +28,8 @@
 //! - [`Batch::topology`] is a list topology (`*_LIST`; points and lines arrive expanded to
 //!   triangles, except from [`native`]); the provoking vertex is already placed first
 //!   (Vulkan's default), so no extension is needed for flat shading;
-//! - per batch, the renderer writes the render target's height with
-//!   [`uniforms::set_framebuffer_height`] (the polygon stipple needs it), culls with
+//! - per draw, the renderer writes the render target's height with
+//!   [`uniforms::set_framebuffer_height`] (the polygon stipple needs it); per batch, it culls with
 //!   [`Batch::cull`] (not `RasterState::cull`: lines and points arrive as triangles of either
 //!   winding) and enables depth bias by [`Batch::polygon_offset`];
 //! - the viewport has a negative height (window y up as in GL, no flip in the shader), the
@@ -84,8 +85,6 @@ pub struct Batch {
     pub indices: BatchIndices,
     /// The shader specialisation.
     pub shader: ShaderKey,
-    /// The std140 uniform block, [`UNIFORM_SIZE`] bytes.
-    pub uniforms: Vec<u8>,
     /// Faces the rasterizer culls: the draw's culling for triangles it still faces itself,
     /// `None` for geometry the CPU already culled or expanded.
     pub cull: Option<Face>,
@@ -117,9 +116,8 @@ pub fn prepare(draw: &Draw, indirect: Option<&[[f32; 3]]>) -> Vec<Batch> {
     if draw.indices.is_empty() || draw.vertices.is_empty() {
         return Vec::new();
     }
-    let uniforms = uniforms::pack(draw);
     if let Some(program) = draw.program.as_ref().filter(|p| p.program.vertex.is_some()) {
-        return native::prepare(draw, program, uniforms);
+        return native::prepare(draw, program);
     }
     convert::convert(draw, indirect)
         .into_iter()
@@ -131,7 +129,6 @@ pub fn prepare(draw: &Draw, indirect: Option<&[[f32; 3]]>) -> Vec<Batch> {
             generic: Vec::new(),
             indices: part.indices,
             shader: key::shader_key(draw, part.primitive, part.facing).with_radiosity(indirect.is_some()),
-            uniforms: uniforms.clone(),
             cull: part.cull,
             facing: part.facing,
             polygon_offset: part.polygon_offset,
@@ -159,7 +156,7 @@ mod tests {
     use key::Primitive;
 
     #[test]
-    fn lines_become_triangles_with_a_full_uniform_block() {
+    fn lines_become_triangles() {
         let mut draw = Draw::default();
         draw.vertices.position = vec![[0.0, 0.0, 0.0, 1.0], [0.5, 0.0, 0.0, 1.0]];
         draw.indices = vec![0, 1];
@@ -171,7 +168,6 @@ mod tests {
         let b = &batches[0];
         let BatchVertices::Expanded(vertices) = &b.vertices else { panic!("lines are expanded") };
         assert_eq!((b.topology, b.indices.len(&draw), vertices.len()), (Topology::Triangles, 6, 4 * VERTEX_FLOATS));
-        assert_eq!(b.uniforms.len(), UNIFORM_SIZE);
         assert_eq!(shader_interface::PRIMITIVE.get(b.shader.words[key::GENERAL]), Primitive::Line as u32);
     }
 

@@ -22,9 +22,9 @@ use crate::frame::program::ProgramDraw;
 use crate::frame::state::{Face, PolygonMode};
 use crate::frame::{Draw, Topology};
 
-/// The batches of `draw` run with `program`'s vertex stage, with its uniform block; they
-/// draw the draw's own vertices.
-pub fn prepare(draw: &Draw, program: &ProgramDraw, uniforms: Vec<u8>) -> Vec<Batch> {
+/// The batches of `draw` run with `program`'s vertex stage; they draw the draw's own
+/// vertices.
+pub fn prepare(draw: &Draw, program: &ProgramDraw) -> Vec<Batch> {
     let per = match draw.topology {
         Topology::Triangles => 3,
         Topology::Lines => 2,
@@ -50,7 +50,6 @@ pub fn prepare(draw: &Draw, program: &ProgramDraw, uniforms: Vec<u8>) -> Vec<Bat
             generic: generic.clone(),
             indices,
             shader,
-            uniforms: uniforms.clone(),
             cull,
             facing,
             polygon_offset,
@@ -135,7 +134,7 @@ mod tests {
         let state = RasterState { line: Line { smooth: true, stipple: Some((1, 0xf0f0)), ..Line::default() }, ..RasterState::default() };
         let d = draw(Topology::Lines, vec![0, 1, 2, 3], state);
         let p = program_draw(true);
-        let batches = prepare(&d, &p, vec![0; 4]);
+        let batches = prepare(&d, &p);
         assert_eq!(batches.len(), 1);
         let b = &batches[0];
         assert_eq!((b.topology, b.polygon_mode, b.cull), (Topology::Lines, PolygonMode::Fill, None));
@@ -153,24 +152,24 @@ mod tests {
         state.polygon_offset.point = true;
         state.polygon_stipple = Some([0; 32]);
         let d = draw(Topology::Triangles, vec![0, 1, 2], state.clone());
-        let batches = prepare(&d, &program_draw(false), Vec::new());
+        let batches = prepare(&d, &program_draw(false));
         let summary: Vec<_> = batches.iter().map(|b| (b.polygon_mode, b.cull, b.polygon_offset)).collect();
         assert_eq!(summary, vec![(PolygonMode::Line, Some(Face::Back), false), (PolygonMode::Point, Some(Face::Front), true)]);
         assert_eq!(written(&batches[0], &d), vec![2, 0, 1]);
         assert!(batches.iter().all(|b| shader_interface::POLYGON_STIPPLE.get(b.shader.words[key::GENERAL]) == 0));
         let mut quad = draw(Topology::Triangles, vec![0, 1, 2, 0, 2, 3], RasterState { polygon_mode: [PolygonMode::Line; 2], ..RasterState::default() });
         quad.edge_masks = vec![0b011, 0b110];
-        let edges = prepare(&quad, &program_draw(false), Vec::new());
+        let edges = prepare(&quad, &program_draw(false));
         assert_eq!((edges.len(), edges[0].topology), (1, Topology::Lines));
         assert_eq!(edges[0].indices, BatchIndices::List(vec![0, 1, 1, 2, 2, 3, 3, 0]), "the quad's outline, no diagonal");
-        let lined = prepare(&quad, &program_draw(true), Vec::new());
+        let lined = prepare(&quad, &program_draw(true));
         assert_eq!((lined[0].topology, lined[0].polygon_mode), (Topology::Triangles, PolygonMode::Line), "two-sided colours need the facing");
         state.cull = Some(Face::Back);
         let d = draw(Topology::Triangles, vec![0, 1, 2], state.clone());
-        let summary: Vec<_> = prepare(&d, &program_draw(false), Vec::new()).iter().map(|b| (b.polygon_mode, b.cull)).collect();
+        let summary: Vec<_> = prepare(&d, &program_draw(false)).iter().map(|b| (b.polygon_mode, b.cull)).collect();
         assert_eq!(summary, vec![(PolygonMode::Line, Some(Face::Back))]);
         state.cull = Some(Face::FrontAndBack);
         let d = draw(Topology::Triangles, vec![0, 1, 2], state);
-        assert!(prepare(&d, &program_draw(false), Vec::new()).is_empty());
+        assert!(prepare(&d, &program_draw(false)).is_empty());
     }
 }

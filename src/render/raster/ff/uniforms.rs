@@ -100,10 +100,10 @@ pub struct FfBlock {
 
 include!(concat!(env!("OUT_DIR"), "/layouts/ff_uniforms.rs"));
 
-/// Writes the framebuffer height (pixels) into a batch's uniform block: the fragment stage
+/// Writes the framebuffer height (pixels) into a draw's uniform block: the fragment stage
 /// needs it for the polygon stipple, whose rows count from the bottom of the window while
-/// Vulkan's `gl_FragCoord.y` counts from the top. The Vulkan side calls this once per batch
-/// (or per render target) before uploading [`super::Batch::uniforms`].
+/// Vulkan's `gl_FragCoord.y` counts from the top. The Vulkan side calls this once per draw
+/// where it uploads the block ([`block`]).
 pub fn set_framebuffer_height(uniforms: &mut [u8], height: u32) {
     let at = std::mem::offset_of!(FfBlock, stipple) + 4;
     if let Some(bytes) = uniforms.get_mut(at..at + 4) {
@@ -111,19 +111,14 @@ pub fn set_framebuffer_height(uniforms: &mut [u8], height: u32) {
     }
 }
 
-/// Writes the height fog of a batch's draw into its uniform block: the Vulkan side calls this
-/// per batch drawn into the window's framebuffer while the fog is on
+/// Writes the height fog of a draw into its uniform block: the Vulkan side calls this per
+/// draw drawn into the window's framebuffer while the fog is on
 /// ([`crate::render::fog::FrameFog::for_draw`]).
 pub fn set_height_fog(uniforms: &mut [u8], fog: &GpuHeightFog) {
     let at = std::mem::offset_of!(FfBlock, height_fog);
     if let Some(bytes) = uniforms.get_mut(at..at + size_of::<GpuHeightFog>()) {
         bytes.copy_from_slice(bytemuck::bytes_of(fog));
     }
-}
-
-/// The uniform block of `draw` as bytes (the framebuffer height left 0).
-pub fn pack(draw: &Draw) -> Vec<u8> {
-    bytemuck::bytes_of(&block(draw)).to_vec()
 }
 
 /// The uniform block of `draw` (the framebuffer height left 0).
@@ -233,7 +228,7 @@ mod tests {
         assert_eq!(b.raster[2], 3.0);
         assert_eq!(b.stipple[0], 0xf0f0);
         assert_eq!(b.polygon_stipple[7][3], 93, "row 31");
-        let mut u = pack(&draw);
+        let mut u = bytemuck::bytes_of(&b).to_vec();
         assert_eq!(u.len(), super::super::UNIFORM_SIZE);
         set_framebuffer_height(&mut u, 480);
         let fog = GpuHeightFog { eye: [1.0, 2.0, 3.0, 1.0], density: [0.5, 0.1, 0.0, 0.0], ..GpuHeightFog::default() };
