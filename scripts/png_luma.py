@@ -6,6 +6,10 @@ interlaced: what glrt's GLRT_DUMP and `glrt replay --out` write), with the stand
                                                 weights on the stored sRGB values), size, name
     png_luma.py --shrink N IN.png OUT.png       also writes IN downscaled N times (box filter,
                                                 RGB) as OUT
+    png_luma.py --regions 'X0,Y0,X1,Y1;...' FILE.png...
+                                                mean luma of each region of each image
+                                                (pixels x0 <= x < x1, y0 <= y < y1, y from
+                                                the top row)
     png_luma.py --diff A.png B.png              how B differs from A (same size): mean luma of
                                                 each, mean signed and absolute luma difference,
                                                 and the share of pixels whose largest channel
@@ -68,13 +72,18 @@ def rgb(bpp, line, x):
     return line[x * bpp], line[x * bpp + 1], line[x * bpp + 2]
 
 
-def mean_luma(width, height, bpp, rows):
+def mean_luma(width, height, bpp, rows, box=None):
+    """Over the whole image, or over box (x0, y0, x1, y1): x0 <= x < x1, y0 <= y < y1, y
+    counted from the top row."""
+    x0, y0, x1, y1 = box or (0, 0, width, height)
+    if not (0 <= x0 < x1 <= width and 0 <= y0 < y1 <= height):
+        raise SystemExit(f"region {x0},{y0},{x1},{y1} is not inside the {width}x{height} image")
     total = 0.0
-    for line in rows:
-        for x in range(width):
+    for line in rows[y0:y1]:
+        for x in range(x0, x1):
             r, g, b = rgb(bpp, line, x)
             total += 0.2126 * r + 0.7152 * g + 0.0722 * b
-    return total / (width * height)
+    return total / ((x1 - x0) * (y1 - y0))
 
 
 def write_png(path, width, height, rows):
@@ -136,6 +145,12 @@ def main(args):
         sw, sh, small = shrink(w, h, bpp, rows, n)
         write_png(dst, sw, sh, small)
         print(f"{dst}: {sw}x{sh} from {src}")
+        return
+    if args[:1] == ["--regions"] and len(args) >= 3:
+        boxes = [tuple(int(v) for v in box.split(",")) for box in args[1].split(";")]
+        for path in args[2:]:
+            image = read_png(path)
+            print(path + ": " + "  ".join(f"{','.join(map(str, box))} {mean_luma(*image, box):.2f}" for box in boxes))
         return
     if not args:
         raise SystemExit(__doc__)

@@ -457,6 +457,20 @@ pub struct Lighting {
     pub color_material: Option<ColorMaterial>,
 }
 
+impl Lighting {
+    /// Whether the front material's diffuse colour follows the vertex colour
+    /// (`glColorMaterial` on `GL_DIFFUSE` or `GL_AMBIENT_AND_DIFFUSE`).
+    pub fn tracks_diffuse(&self) -> bool {
+        self.color_material.is_some_and(|c| matches!(c.mode, ColorMaterialMode::Diffuse | ColorMaterialMode::AmbientAndDiffuse))
+    }
+
+    /// The front material's diffuse colour, unless it follows the vertex colour: the base
+    /// colour a lit draw is traced with in place of its vertex colours.
+    pub fn untracked_diffuse(&self) -> Option<[f32; 4]> {
+        (!self.tracks_diffuse()).then_some(self.front.diffuse)
+    }
+}
+
 /// The fog equation (section 3.10).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum FogMode {
@@ -655,6 +669,29 @@ impl Default for RasterState {
             draw_buffers: DrawBuffers::default(),
             read_buffer: ColorBuffer::Back,
             framebuffer: super::Framebuffer::Window,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_diffuse_colour_is_untracked_unless_colour_material_sets_it() {
+        let mut lighting = Lighting::default();
+        lighting.front.diffuse = [0.25, 0.5, 0.75, 1.0];
+        assert_eq!(lighting.untracked_diffuse(), Some([0.25, 0.5, 0.75, 1.0]), "no colour material");
+        for (mode, tracked) in [
+            (ColorMaterialMode::Emission, false),
+            (ColorMaterialMode::Ambient, false),
+            (ColorMaterialMode::Specular, false),
+            (ColorMaterialMode::Diffuse, true),
+            (ColorMaterialMode::AmbientAndDiffuse, true),
+        ] {
+            lighting.color_material = Some(ColorMaterial { face: Face::Front, mode });
+            assert_eq!(lighting.tracks_diffuse(), tracked, "{mode:?}");
+            assert_eq!(lighting.untracked_diffuse(), (!tracked).then_some(lighting.front.diffuse), "{mode:?}");
         }
     }
 }

@@ -22,7 +22,7 @@ use xxhash_rust::xxh3::Xxh3;
 use super::gpu_types::{GpuCorner, GpuLayerCorners, GpuTriangleAttributes};
 use super::shader_constants::TRACED_UNITS;
 use super::surfaces::Surface;
-use crate::frame::state::{ColorMaterialMode, Lighting};
+use crate::frame::state::Lighting;
 use crate::frame::{Draw, Frame, Framebuffer, Topology};
 
 /// Whether `draw` is traced: a triangle draw of a traced class into the window's framebuffer,
@@ -92,7 +92,7 @@ fn hash_shading(h: &mut Xxh3, draw: &Draw, unit: usize) {
         if let Some(lighting) = &draw.state.lighting {
             h.update(bytemuck::cast_slice(&draw.vertices.normal.values));
             h.update(bytemuck::cast_slice(&lighting.front.diffuse));
-            h.update(&[u8::from(tracks_diffuse(lighting))]);
+            h.update(&[u8::from(lighting.tracks_diffuse())]);
         }
     }
     if let Some(m) = texture_matrix(draw, unit) {
@@ -103,11 +103,6 @@ fn hash_shading(h: &mut Xxh3, draw: &Draw, unit: usize) {
 /// Whether texture unit `unit` of `draw` has a target enabled.
 pub fn enabled(draw: &Draw, unit: usize) -> bool {
     draw.texture_units.get(unit).is_some_and(Option::is_some)
-}
-
-/// Whether the lit base colour follows the vertex colour (`glColorMaterial` on diffuse).
-fn tracks_diffuse(lighting: &Lighting) -> bool {
-    lighting.color_material.is_some_and(|c| matches!(c.mode, ColorMaterialMode::Diffuse | ColorMaterialMode::AmbientAndDiffuse))
 }
 
 /// Unit `unit`'s texture matrix when the unit is enabled and it is not the identity.
@@ -129,7 +124,7 @@ fn texcoord(draw: &Draw, unit: usize, matrix: Option<Mat4>, i: usize) -> [f32; 2
 
 /// The colour of `draw`'s vertex `i` that OpenGL feeds its texture stage (see the module doc).
 fn base_color(draw: &Draw, i: usize) -> [f32; 4] {
-    let diffuse = draw.state.lighting.as_ref().filter(|l| !tracks_diffuse(l)).map(|l| l.front.diffuse);
+    let diffuse = draw.state.lighting.as_ref().and_then(Lighting::untracked_diffuse);
     diffuse.or_else(|| draw.vertices.color.get(i)).unwrap_or([1.0; 4])
 }
 

@@ -8,7 +8,7 @@ use glam::{Mat4, Vec4};
 
 use super::static_world::{Offered, StaticWorld, WorldTriangles};
 use crate::frame::Draw;
-use crate::frame::state::{ColorMaterialMode, Lighting};
+use crate::frame::state::Lighting;
 use crate::frame::class::MaterialOverride;
 use crate::frame::world::ChunkShading;
 
@@ -25,15 +25,10 @@ fn unorm8(c: [f32; 4]) -> [u8; 4] {
     c.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
 }
 
-/// Whether a lit draw's diffuse colour follows the vertex colour (`glColorMaterial`).
-fn tracks_diffuse(lighting: &Lighting) -> bool {
-    lighting.color_material.is_some_and(|c| matches!(c.mode, ColorMaterialMode::Diffuse | ColorMaterialMode::AmbientAndDiffuse))
-}
-
 /// The material's diffuse colour that lit `draw` is traced with as its base colour (`None`:
 /// unlit, or its diffuse colour tracks the vertex colour).
 pub fn lit_diffuse(draw: &Draw) -> Option<[f32; 4]> {
-    draw.state.lighting.as_ref().filter(|l| !tracks_diffuse(l)).map(|l| l.front.diffuse)
+    draw.state.lighting.as_ref().and_then(Lighting::untracked_diffuse)
 }
 
 impl WorldFeed {
