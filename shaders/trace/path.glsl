@@ -56,6 +56,9 @@ vec2 window_xy(mat4 projection, vec3 p) {
     return frame.viewport.xy + (clip.xy / clip.w * 0.5 + 0.5) * frame.viewport.zw;
 }
 
+// Uses camera_ray and window_xy.
+#include "trace/forward_projection.glsl"
+
 // Traces traced pixel `pixel` (may lie outside the image: only counts then; every invocation
 // of a subgroup must call it, for the counters' subgroup sums).
 void trace_pixel(uvec2 pixel) {
@@ -105,6 +108,10 @@ void trace_pixel(uvec2 pixel) {
         primary += 1u;
         TraceHit hit;
         bool hit_found = in_viewport && trace_closest(origin, dir, 0.0, 1e30, hit);
+        // A gradient sample repeats its source's sample of last frame (index + 1; 0: none).
+        uint source_index;
+        uint repeated = gradient && hit_found && repeat_source(pixel, scale, sample_index, origin, dir, hit, rng, primary, source_index)
+            ? source_index + 1u : 0u;
         if (!hit_found) {
             radiance = environment(dir);
         }
@@ -132,7 +139,7 @@ void trace_pixel(uvec2 pixel) {
                 g.material = packUnorm4x8(vec4(s.roughness, s.metalness, 0.0, 0.0));
                 g.instance = hit.instance;
                 g.surface = materials[inst.material].key;
-                g.gradient = gradient && all(lessThan(abs(g.motion), vec2(1e-4))) ? 1u : 0u;
+                g.gradient = repeated;
             }
             vec3 emitted = s.emission;
             if (bsdf_density > 0.0 && s.emitter_density > 0.0) {
