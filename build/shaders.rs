@@ -57,6 +57,7 @@ const LAYOUTS: &[LayoutFile] = &[
                     mirror("LayerCorners", Rust::Struct("GpuLayerCorners")),
                     mirror("Material", Rust::Struct("GpuMaterial")),
                     mirror("Emitter", Rust::Struct("GpuEmitter")),
+                    mirror("RadiosityTriangle", Rust::Struct("GpuRadiosityTriangle")),
                     mirror("Light", Rust::Struct("GpuLight")),
                     mirror("Instance", Rust::Struct("GpuInstance")),
                     mirror("Counters", Rust::Struct("GpuCounters")),

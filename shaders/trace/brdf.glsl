@@ -42,13 +42,18 @@ float ggx_alpha(Surface s) {
     return max(s.roughness * s.roughness, 1e-3);
 }
 
+// The reflectance of the Lambertian lobe: the share of an irradiance it reflects.
+vec3 brdf_diffuse_albedo(Surface s) {
+    return s.albedo * (1.0 - s.metalness) * (1.0 - s.specular);
+}
+
 // The Lambertian lobe of brdf_eval_cos alone.
 vec3 brdf_diffuse_cos(Surface s, vec3 v, vec3 l) {
     float nl = dot(s.normal, l);
     if (nl <= 0.0 || dot(s.normal, v) <= 0.0 || dot(s.geometric, l) <= 0.0) {
         return vec3(0.0);
     }
-    return s.albedo * (1.0 - s.metalness) * (1.0 - s.specular) / PI * nl;
+    return brdf_diffuse_albedo(s) / PI * nl;
 }
 
 // f(v, l) * cos(n, l): the reflected radiance per unit incident radiance from l.

@@ -53,46 +53,28 @@ layout(set = TRACE_SET, binding = BINDING_TLAS_NODES, std430) readonly buffer Tl
     BvhNode tlas_nodes[];
 };
 bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out TraceHit hit) {
-    hit.t = tmax;
-    hit.instance = BVH_NONE;
-    hit.triangle = BVH_NONE;
-    hit.bary = vec2(0.0);
+    BvhRay ray = bvh_start(origin, dir, tmax, hit);
     bool found = false;
-    vec3 o = origin;
-    vec3 d = dir;
-    vec3 inv = bvh_inverse(dir);
-    uint instance = BVH_NONE;  // BVH_NONE: in the TLAS
-    uint blas_root = 0u;
-    uint first_triangle = 0u;
-    bool alpha_tested = false;
-    uint base = 0u;            // stack entries below this belong to the TLAS
     uint stack[BVH_STACK_SIZE];
     uint sp = 0u;
     uint next = 0u;
     while (true) {
         bvh_nodes_visited++;
         if ((next & BVH_LEAF) != 0u) {
-            instance = next & ~BVH_LEAF;
-            o = bvh_transform(instances[instance].eye_to_object, origin, 1.0);
-            d = bvh_transform(instances[instance].eye_to_object, dir, 0.0);
-            inv = bvh_inverse(d);
-            blas_root = instances[instance].blas_root;
-            first_triangle = instances[instance].first_triangle;
-            alpha_tested = (instances[instance].flags & INSTANCE_ALPHA_TESTED) != 0u;
-            base = sp;
+            bvh_enter(ray, next & ~BVH_LEAF, origin, dir, sp);
             next = 0u;
         }
-        BvhNode n = instance == BVH_NONE ? tlas_nodes[next] : blas_nodes[blas_root + next];
-        float entry[2] = float[2](bvh_box(n.children[0].min, n.children[0].max, o, inv, tmin, hit.t), bvh_box(n.children[1].min, n.children[1].max, o, inv, tmin, hit.t));
+        BvhNode n = ray.instance == BVH_NONE ? tlas_nodes[next] : blas_nodes[ray.blas_root + next];
+        float entry[2] = float[2](bvh_box(n.children[0].min, n.children[0].max, ray.o, ray.inv, tmin, hit.t), bvh_box(n.children[1].min, n.children[1].max, ray.o, ray.inv, tmin, hit.t));
         uvec2 order = entry[1] < entry[0] ? uvec2(1u, 0u) : uvec2(0u, 1u);
-        if (instance != BVH_NONE) {
+        if (ray.instance != BVH_NONE) {
             for (uint i = 0u; i < 2u; i++) {
                 uint c = order[i];
                 uint meta = n.children[c].meta;
                 if (!(entry[c] < BVH_MISS) || (meta & BVH_LEAF) == 0u) {
                     continue;
                 }
-                if (bvh_leaf(first_triangle + n.children[c].index, meta & ~BVH_LEAF, instance, alpha_tested, o, d, tmin, any_hit, hit)) {
+                if (bvh_leaf(ray.first_triangle + n.children[c].index, meta & ~BVH_LEAF, ray.instance, ray.alpha_tested, ray.o, ray.d, tmin, any_hit, hit)) {
                     found = true;
                     if (any_hit) {
                         return true;
@@ -106,7 +88,7 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
             uint meta = n.children[c].meta;
             bool leaf = (meta & BVH_LEAF) != 0u;
             // Hit, still in range after this node's leaves, an inner node or (TLAS) an instance.
-            if (!(entry[c] < BVH_MISS && entry[c] <= hit.t && (instance == BVH_NONE || !leaf) && meta != BVH_LEAF)) {
+            if (!(entry[c] < BVH_MISS && entry[c] <= hit.t && (ray.instance == BVH_NONE || !leaf) && meta != BVH_LEAF)) {
                 continue;
             }
             uint index = n.children[c].index;
@@ -119,11 +101,8 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
             }
         }
         if (next == BVH_NONE) {
-            if (instance != BVH_NONE && sp == base) {
-                instance = BVH_NONE;
-                o = origin;
-                d = dir;
-                inv = bvh_inverse(dir);
+            if (ray.instance != BVH_NONE && sp == ray.base) {
+                bvh_leave(ray, origin, dir);
             }
             if (sp == 0u) {
                 return found;

@@ -1,5 +1,6 @@
 // What both compute traversals (bvh.glsl: binary nodes; bvh_wide.glsl: wide nodes with
 // quantised boxes) share: the ray-box and ray-triangle tests, the instance transform, the
+// traversal's ray and instance state (BvhRay: start, entering and leaving an instance), the
 // statistics and the two queries over the including file's bvh_trace(). Include from those
 // files only.
 
@@ -67,6 +68,49 @@ bool bvh_triangle(BvhTriangle tri, vec3 o, vec3 d, float tmin, float tmax, out f
 vec3 bvh_transform(vec4 rows[3], vec3 v, float w) {
     vec4 h = vec4(v, w);
     return vec3(dot(rows[0], h), dot(rows[1], h), dot(rows[2], h));
+}
+
+// Where a traversal is: the ray in the space of the tree being walked (eye space in the TLAS;
+// in a BLAS, the instance's object space through its eye_to_object rows, the direction not
+// renormalised so that t stays comparable) and the instance being walked.
+struct BvhRay {
+    vec3 o;
+    vec3 d;
+    vec3 inv;              // bvh_inverse(d)
+    uint instance;         // BVH_NONE: in the TLAS
+    uint blas_root;
+    uint first_triangle;
+    bool alpha_tested;
+    uint base;             // stack entries below this belong to the TLAS
+};
+
+// The start of a traversal of the ray (origin, dir) up to tmax: in the TLAS, no hit yet.
+BvhRay bvh_start(vec3 origin, vec3 dir, float tmax, out TraceHit hit) {
+    hit.t = tmax;
+    hit.instance = BVH_NONE;
+    hit.triangle = BVH_NONE;
+    hit.bary = vec2(0.0);
+    return BvhRay(origin, dir, bvh_inverse(dir), BVH_NONE, 0u, 0u, false, 0u);
+}
+
+// Enters the BLAS of `instance`, its entries on the stack from `sp` on.
+void bvh_enter(inout BvhRay ray, uint instance, vec3 origin, vec3 dir, uint sp) {
+    ray.instance = instance;
+    ray.o = bvh_transform(instances[instance].eye_to_object, origin, 1.0);
+    ray.d = bvh_transform(instances[instance].eye_to_object, dir, 0.0);
+    ray.inv = bvh_inverse(ray.d);
+    ray.blas_root = instances[instance].blas_root;
+    ray.first_triangle = instances[instance].first_triangle;
+    ray.alpha_tested = (instances[instance].flags & INSTANCE_ALPHA_TESTED) != 0u;
+    ray.base = sp;
+}
+
+// Back in the TLAS, the ray (origin, dir) in eye space.
+void bvh_leave(inout BvhRay ray, vec3 origin, vec3 dir) {
+    ray.instance = BVH_NONE;
+    ray.o = origin;
+    ray.d = dir;
+    ray.inv = bvh_inverse(dir);
 }
 
 // Work of this invocation's traversals so far (statistics: nodes visited, triangles tested).

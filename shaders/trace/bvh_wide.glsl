@@ -108,21 +108,22 @@ void bvh_wide_test(vec3 origin, uint frame, uvec2 meta, uvec4 q0, uvec4 q1, uvec
     inner = inner >= BVH_WIDE_INNER ? inner : 0u;
 }
 
+// Reads the fields of node `at` of `nodes` (tlas_wide_nodes or blas_wide_nodes) one by one
+// (no struct copy) into the variables of the same names in bvh_trace.
+#define BVH_WIDE_READ(nodes, at) \
+    node_origin = nodes[at].origin; \
+    frame = nodes[at].frame; \
+    child_base = nodes[at].child_base; \
+    leaf_base = nodes[at].leaf_base; \
+    meta = nodes[at].meta; \
+    q0 = nodes[at].bounds[0]; \
+    q1 = nodes[at].bounds[1]; \
+    q2 = nodes[at].bounds[2]
+
 bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out TraceHit hit) {
-    hit.t = tmax;
-    hit.instance = BVH_NONE;
-    hit.triangle = BVH_NONE;
-    hit.bary = vec2(0.0);
+    BvhRay ray = bvh_start(origin, dir, tmax, hit);
+    uint oct_inv = bvh_wide_octant(ray.inv);
     bool found = false;
-    vec3 o = origin;
-    vec3 d = dir;
-    vec3 inv = bvh_inverse(dir);
-    uint oct_inv = bvh_wide_octant(inv);
-    uint instance = BVH_NONE;  // BVH_NONE: in the TLAS
-    uint blas_root = 0u;
-    uint first_triangle = 0u;
-    bool alpha_tested = false;
-    uint base = 0u;            // stack entries below this belong to the TLAS
     uvec2 stack[BVH_WIDE_STACK];
     uint sp = 0u;
     // The root: the one inner child (slot 0) of a node group at node 0.
@@ -133,8 +134,8 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
         if (leaves.y != 0u) {
             uint bit = uint(findLSB(leaves.y));
             leaves.y &= leaves.y - 1u;
-            if (instance != BVH_NONE) {
-                if (bvh_leaf_triangle(first_triangle + leaves.x + bit, instance, alpha_tested, o, d, tmin, hit)) {
+            if (ray.instance != BVH_NONE) {
+                if (bvh_leaf_triangle(ray.first_triangle + leaves.x + bit, ray.instance, ray.alpha_tested, ray.o, ray.d, tmin, hit)) {
                     found = true;
                     if (any_hit) {
                         return true;
@@ -148,15 +149,8 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
                 stack[sp] = leaves;
                 sp++;
             }
-            instance = tlas_wide_words[leaves.x + bit];
-            o = bvh_transform(instances[instance].eye_to_object, origin, 1.0);
-            d = bvh_transform(instances[instance].eye_to_object, dir, 0.0);
-            inv = bvh_inverse(d);
-            oct_inv = bvh_wide_octant(inv);
-            blas_root = instances[instance].blas_root;
-            first_triangle = instances[instance].first_triangle;
-            alpha_tested = (instances[instance].flags & INSTANCE_ALPHA_TESTED) != 0u;
-            base = sp;
+            bvh_enter(ray, tlas_wide_words[leaves.x + bit], origin, dir, sp);
+            oct_inv = bvh_wide_octant(ray.inv);
             group = uvec2(0u, (BVH_WIDE_INNER << oct_inv) | 1u);
             leaves.y = 0u;
             continue;
@@ -173,7 +167,6 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
                 sp++;
             }
             bvh_nodes_visited++;
-            // The node's fields, read one by one (no struct copy).
             vec3 node_origin;
             uint frame;
             uint child_base;
@@ -182,51 +175,33 @@ bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out 
             uvec4 q0;
             uvec4 q1;
             uvec4 q2;
-            if (instance == BVH_NONE) {
-                node_origin = tlas_wide_nodes[at].origin;
-                frame = tlas_wide_nodes[at].frame;
-                child_base = tlas_wide_nodes[at].child_base;
-                leaf_base = tlas_wide_nodes[at].leaf_base;
-                meta = tlas_wide_nodes[at].meta;
-                q0 = tlas_wide_nodes[at].bounds[0];
-                q1 = tlas_wide_nodes[at].bounds[1];
-                q2 = tlas_wide_nodes[at].bounds[2];
+            if (ray.instance == BVH_NONE) {
+                BVH_WIDE_READ(tlas_wide_nodes, at);
             } else {
-                at += blas_root;
-                node_origin = blas_wide_nodes[at].origin;
-                frame = blas_wide_nodes[at].frame;
-                child_base = blas_wide_nodes[at].child_base;
-                leaf_base = blas_wide_nodes[at].leaf_base;
-                meta = blas_wide_nodes[at].meta;
-                q0 = blas_wide_nodes[at].bounds[0];
-                q1 = blas_wide_nodes[at].bounds[1];
-                q2 = blas_wide_nodes[at].bounds[2];
+                BVH_WIDE_READ(blas_wide_nodes, ray.blas_root + at);
             }
             uint inner;
             uint hits;
-            bvh_wide_test(node_origin, frame, meta, q0, q1, q2, o, inv, oct_inv, tmin, hit.t, inner, hits);
+            bvh_wide_test(node_origin, frame, meta, q0, q1, q2, ray.o, ray.inv, oct_inv, tmin, hit.t, inner, hits);
             group = uvec2(child_base, inner);
             leaves = uvec2(leaf_base, hits);
             // TLAS: the children wait while the instances are entered.
-            if (instance == BVH_NONE && hits != 0u && group.y >= BVH_WIDE_INNER && sp < BVH_WIDE_STACK) {
+            if (ray.instance == BVH_NONE && hits != 0u && group.y >= BVH_WIDE_INNER && sp < BVH_WIDE_STACK) {
                 stack[sp] = group;
                 sp++;
                 group = uvec2(0u);
             }
             continue;
         }
-        if (group.y != 0u && instance == BVH_NONE) {
+        if (group.y != 0u && ray.instance == BVH_NONE) {
             // A popped leaf group: TLAS instances left to enter.
             leaves = group;
             group = uvec2(0u);
             continue;
         }
-        if (instance != BVH_NONE && sp == base) {
-            instance = BVH_NONE;
-            o = origin;
-            d = dir;
-            inv = bvh_inverse(dir);
-            oct_inv = bvh_wide_octant(inv);
+        if (ray.instance != BVH_NONE && sp == ray.base) {
+            bvh_leave(ray, origin, dir);
+            oct_inv = bvh_wide_octant(ray.inv);
         }
         if (sp == 0u) {
             return found;

@@ -42,6 +42,8 @@ layout(set = TRACE_SET, binding = BINDING_COUNTERS, std430) buffer Counters {
     uint specular_rays;
     uint nodes_visited;     // BVH nodes (TLAS and BLAS) visited by all rays
     uint triangles_tested;  // ray-triangle tests of all rays
+    uint sky_rays;          // shadow rays towards the sky (in shadow_rays too)
+    uint sky_unoccluded;    // those that found the sky
 } counters;
 
 #endif

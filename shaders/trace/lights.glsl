@@ -1,6 +1,7 @@
 // Direct light from the scene's lights (GL lights converted by src/render/trace/lights.rs):
 // next-event estimation with one shadow ray per light; directional lights of an angular size
-// and sphere lights are sampled uniformly in the cone of directions they fill.
+// and sphere lights are sampled uniformly in the cone of directions they fill. On baked
+// surfaces a dynamic light brings what the game's dynamic-light pass brings (lights.rs).
 
 #ifndef TRACE_LIGHTS_GLSL
 #define TRACE_LIGHTS_GLSL
@@ -24,6 +25,65 @@ vec3 offset_ray(vec3 p, vec3 n) {
         abs(p.x) < origin ? p.x + float_scale * n.x : p_i.x,
         abs(p.y) < origin ? p.y + float_scale * n.y : p_i.y,
         abs(p.z) < origin ? p.z + float_scale * n.z : p_i.z);
+}
+
+// A direction l from p towards positional light `light` at distance d2 > 0 squared, and the
+// length of the shadow ray along it: for a sphere (radiance.a > 0) a direction uniform in the
+// cone it fills, of solid angle 2 pi (1 - cos_max) (all directions from inside it), the ray
+// ending on the sphere (the near root from outside, the far from inside); for a point its
+// centre. Returns 1 - cos_max (written without cancellation; 0 for a point).
+float sample_sphere(Light light, vec3 p, float d2, vec2 u, out vec3 l, out float distance) {
+    vec3 to_center = light.position.xyz - p;
+    float r = light.radiance.a;
+    if (r <= 0.0) {
+        distance = sqrt(d2);
+        l = to_center / distance;
+        return 0.0;
+    }
+    float r2 = r * r;
+    bool outside = d2 > r2;
+    float cos_max = outside ? sqrt(1.0 - r2 / d2) : -1.0;
+    l = sample_cone(to_center / sqrt(d2), cos_max, u);
+    float b = dot(l, to_center);
+    float h = sqrt(max(r2 - (d2 - b * b), 0.0));
+    distance = outside ? b - h : b + h;
+    return outside ? (r2 / d2) / (1.0 + cos_max) : 2.0;
+}
+
+// What dynamic light i's pass brings to a baked surface s that shows display colour `shown`,
+// in display units (render::trace::lights's module doc): colour (radiance over pi falloff,
+// display-encoded) x the height fade x min(1, falloff / d^2), 0 below the texture's floor,
+// times `shown` for a pass that modulates; 0 where s faces away from the light or a shadow
+// ray to its sphere is occluded (none from inside the sphere).
+vec3 dynamic_pass_light(Surface s, vec3 shown, uint i, inout Rng rng, inout uint shadow_rays) {
+    Light light = lights[i];
+    vec3 to_center = light.position.xyz - s.position;
+    float d2 = dot(to_center, to_center);
+    float h = abs(dot(to_center, light.spot.xyz));
+    float across2 = max(d2 - h * h, 0.0);
+    float reach = light.params.z;
+    float fade = h < 0.5 * reach ? 1.0 : max(2.0 * (reach - h) / reach, 0.0);
+    float falloff = light.params.y;
+    if (fade == 0.0 || falloff <= 0.0 || falloff < light.params.x * across2 || d2 <= 0.0) {
+        return vec3(0.0);
+    }
+    vec3 color = linear_to_srgb(light.radiance.rgb / (3.14159265 * falloff));
+    vec3 brought = color * (fade * min(1.0, falloff / max(across2, 1e-30)));
+    if (light.params.w < -1.5) {
+        brought *= shown;
+    }
+    float r = light.radiance.a;
+    if (d2 <= r * r || all(equal(brought, vec3(0.0)))) {
+        return brought;
+    }
+    vec3 l;
+    float distance;
+    sample_sphere(light, s.position, d2, rng_next2(rng), l, distance);
+    if (dot(l, s.geometric) <= 0.0) {
+        return vec3(0.0);
+    }
+    shadow_rays += 1u;
+    return trace_any(offset_ray(s.position, s.geometric), l, 0.0, distance * 0.9999) ? vec3(0.0) : brought;
 }
 
 // The reflected radiance towards v at a point of instance `instance` due to light i, shadow
@@ -59,25 +119,9 @@ vec3 direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rng, inout
         if (light.params.w < 0.0 && d2 <= r * r) {
             return vec3(0.0);
         }
-        if (r > 0.0) {
-            // A sphere of radiance I / (pi r^2) (lights.rs): a direction uniform in the cone it
-            // fills, of solid angle 2 pi (1 - cos_max) (all directions from inside it), so
-            // incident = radiance * solid angle. 1 - cos_max is written without cancellation.
-            float r2 = r * r;
-            bool outside = d2 > r2;
-            float cos_max = outside ? sqrt(1.0 - r2 / d2) : -1.0;
-            float one_minus_cos = outside ? (r2 / d2) / (1.0 + cos_max) : 2.0;
-            l = sample_cone(axis, cos_max, rng_next2(rng));
-            // The shadow ray ends on the sphere: the near root from outside, the far from inside.
-            float b = dot(l, to_center);
-            float h = sqrt(max(r2 - (d2 - b * b), 0.0));
-            distance = outside ? b - h : b + h;
-            incident = light.radiance.rgb * (2.0 * one_minus_cos / r2);
-        } else {
-            l = axis;
-            distance = d;
-            incident = light.radiance.rgb / d2;
-        }
+        // A sphere of radiance I / (pi r^2) (lights.rs): incident = radiance * solid angle.
+        float one_minus_cos = sample_sphere(light, s.position, d2, rng_next2(rng), l, distance);
+        incident = r > 0.0 ? light.radiance.rgb * (2.0 * one_minus_cos / (r * r)) : light.radiance.rgb / d2;
         float falloff = light_falloff(light, d, axis);
         if (falloff == 0.0) {
             return vec3(0.0);

@@ -7,11 +7,17 @@
 // weighted likewise against continuation rays that miss), `bounces` indirect bounces and the
 // environment (trace/environment.glsl: the sky cube map or the clear colour) through every
 // continuation ray that misses (cosine-weighted diffuse or GGX visible-normal specular), and through
-// primary rays that miss; a baked surface (render::trace::material) ends the path with its
+// primary rays that miss; a vertex-lit model with an ambient light (render::trace::vertex_light)
+// samples neither emitters nor the sky, and its continuation rays that meet nothing within the
+// model's width bring that light instead of the level's; a baked surface (render::trace::material) ends the path with its
 // emission and the light of the dynamic lights (render::trace::lights); adds its share of the
 // noisy radiance (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
 // (trace/gbuffer.glsl), whole and split into the denoiser's channels: direct light at the
-// primary hit and indirect light, demodulated (trace/channels.glsl). The tracer runs it once per sample of the frame (see `dispatch` in
+// primary hit and indirect light, demodulated (trace/channels.glsl). With radiosity
+// (render::trace::radiosity), the first vertex that a diffuse continuation ray reaches on the
+// static world adds radiosity's indirect light there (the light of every later bounce,
+// reflected by the surface's diffuse albedo) after its next-event estimation, and the path
+// ends. The tracer runs it once per sample of the frame (see `dispatch` in
 // src/render/trace/compute.rs for why). src/render/trace/mod.rs describes
 // the scene it reads. Ray counts and traversal work are summed per subgroup (subgroup
 // arithmetic, which lavapipe and the desktop drivers have) and added to the counters once per
@@ -34,6 +40,7 @@ layout(push_constant) uniform Pass {
 #include "trace/sky_sampling.glsl"
 #include "trace/channels.glsl"
 #include "trace/gradient.glsl"
+#include "trace/radiosity.glsl"
 
 // The eye-space ray through window position `window` (GL window coordinates, y up).
 void camera_ray(vec2 window, out vec3 origin, out vec3 dir) {
@@ -84,6 +91,7 @@ void trace_pixel(uvec2 pixel) {
     g.surface = 0u;
     g.gradient = 0u;
     uint primary = 0u, shadow = 0u, diffuse = 0u, specular = 0u;
+    SkyRays sky_rays = SkyRays(0u, 0u);
 
     vec3 radiance = vec3(0.0);
     // The channels (trace/gbuffer.glsl): the primary hit's next-event estimation, and the
@@ -95,7 +103,8 @@ void trace_pixel(uvec2 pixel) {
         // A gradient sample (trace/gradient.glsl) draws last frame's random numbers.
         bool gradient = (frame.flags.x & FRAME_GRADIENTS) != 0u && frame.counts.x > 0u
             && all(equal(pixel, gradient_pixel(pixel / GRADIENT_STRATUM, frame.counts.x)));
-        Rng rng = rng_seed(pixel, gradient ? frame.counts.x - 1u : frame.counts.x, sample_index);
+        uint seed_frame = gradient ? frame.counts.x - 1u : frame.counts.x;
+        Rng rng = rng_seed(pixel, seed_frame, sample_index);
         // The first sample of a frame goes through the pixel centre, so the G-buffer is stable.
         vec2 jitter = sample_index == 0u ? vec2(0.5) : rng_next2(rng);
         vec2 window = (vec2(pixel) + jitter) * scale;
@@ -123,6 +132,8 @@ void trace_pixel(uvec2 pixel) {
         // with which the previous vertex chose the ray that reached this one, when it also
         // sampled emitters (the MIS weight of the emission found here).
         float bsdf_density = 0.0;
+        // Whether the ray that reached this vertex was a diffuse continuation ray.
+        bool diffuse_arrival = false;
         for (uint depth = 0u; hit_found; depth++) {
             cone_width += cone_spread * hit.t;
             Surface s = surface_at(hit, origin, dir, cone_width);
@@ -147,33 +158,55 @@ void trace_pixel(uvec2 pixel) {
                 emitted -= (1.0 - w) * s.sampled_emission;
             }
             radiance += throughput * emitted;
-            // A baked surface (render::trace::material) only emits, and reflects the dynamic
-            // lights its bake cannot hold (render::trace::lights): the path ends.
+            // A vertex-lit model's light from every direction (render::trace::vertex_light):
+            // the level's light at the model, which the light of emitters and the sky would
+            // count a second time.
+            vec4 ambient = materials[instances[hit.instance].material].ambient;
+            bool ambient_lit = ambient.a > 0.0;
+            // A baked surface (render::trace::material) only emits, and shows the dynamic
+            // lights its bake cannot hold as the game's passes bring them, added to what it
+            // shows in display units (render::trace::lights): the path ends.
             vec3 lit = vec3(0.0);
             if (s.baked) {
+                vec3 shown = linear_to_srgb(s.emission);
+                vec3 brought = vec3(0.0);
                 for (uint i = 0u; i < light_count; i++) {
                     if (lights[i].params.w < 0.0) {
-                        lit += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
+                        brought += dynamic_pass_light(s, shown, i, rng, shadow);
                     }
                 }
+                // Not the surface's albedo times light (a pass that adds brings its colour over
+                // any albedo): it stays out of the demodulated channels, unfiltered, as the
+                // emission it is added to (denoise/modulate.comp).
+                lit = throughput * max(srgb_to_linear(shown + brought) - srgb_to_linear(shown), vec3(0.0));
                 radiance += lit;
-                if (depth == 0u) {
-                    direct = lit;
-                }
                 break;
             }
+            // The first diffuse bounce on the static world ends the path with radiosity's
+            // light (below): no continuation ray weighs the emitter and sky samples there.
+            vec3 bounced;
+            bool radiosity_vertex = diffuse_arrival && radiosity_at(hit, bounced);
             for (uint i = 0u; i < light_count; i++) {
                 lit += throughput * direct_light(s, v, hit.instance, i, rng, shadow);
             }
-            if (emitter_count > 0u) {
-                lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces, rng, shadow);
+            if (emitter_count > 0u && !ambient_lit) {
+                lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces && !radiosity_vertex, rng, shadow);
             }
-            if (sky_sampled()) {
-                lit += throughput * sky_light(s, v, rng, shadow);
+            // The sky sample is taken with the frame's probability, chosen for a tile of pixels
+            // together.
+            float sky_chance = ambient_lit ? 0.0 : sky_selection();
+            if (sky_chance > 0.0 && sky_chosen(pixel, seed_frame, sample_index, depth, sky_chance)) {
+                lit += throughput * sky_light(s, v, sky_chance, !radiosity_vertex, rng, shadow, sky_rays);
             }
             radiance += lit;
             if (depth == 0u) {
                 direct = lit;
+            }
+            // Radiosity's indirect light (the bounced light only: the direct light was sampled
+            // above), and the path ends.
+            if (radiosity_vertex) {
+                radiance += throughput * brdf_diffuse_albedo(s) * bounced;
+                break;
             }
             vec3 l;
             bool chose_specular;
@@ -186,12 +219,13 @@ void trace_pixel(uvec2 pixel) {
                 break;
             }
             throughput *= brdf_eval_cos(s, v, l) / pdf;
-            bsdf_density = emitter_count > 0u ? pdf : 0.0;
+            bsdf_density = emitter_count > 0u && !ambient_lit ? pdf : 0.0;
             if (chose_specular) {
                 specular += 1u;
             } else {
                 diffuse += 1u;
             }
+            diffuse_arrival = !chose_specular;
             if (all(equal(throughput, vec3(0.0)))) {
                 break;
             }
@@ -204,10 +238,15 @@ void trace_pixel(uvec2 pixel) {
             // After a bounce the cone spreads as wide as the lobe sampled (textures seen by
             // diffuse rays are read from small levels).
             cone_spread = max(cone_spread, chose_specular ? ggx_alpha(s) : 1.0);
-            if (!trace_closest(origin, dir, 0.0, 1e30, hit)) {
-                // The sky sample of this vertex found this light too (trace/sky_sampling.glsl).
-                float w = sky_sampled() ? mis_weight(pdf, sky_density(dir)) : 1.0;
-                radiance += throughput * environment(dir) * w;
+            if (!trace_closest(origin, dir, 0.0, ambient_lit ? ambient.a : 1e30, hit)) {
+                if (ambient_lit) {
+                    radiance += throughput * ambient.rgb;
+                } else {
+                    // The sky sample of this vertex, taken with probability `sky_chance`, found
+                    // this light too (trace/sky_sampling.glsl).
+                    float w = sky_chance > 0.0 ? mis_weight(pdf, sky_chance * sky_density(dir)) : 1.0;
+                    radiance += throughput * environment(dir) * w;
+                }
                 break;
             }
             if (depth == bounces) {
@@ -233,6 +272,7 @@ void trace_pixel(uvec2 pixel) {
     // One atomic per subgroup and counter.
     uvec4 rays = subgroupAdd(uvec4(primary, shadow, diffuse, specular));
     uvec2 work = subgroupAdd(uvec2(bvh_nodes_visited, bvh_triangles_tested));
+    uvec2 sky = subgroupAdd(uvec2(sky_rays.traced, sky_rays.unoccluded));
     if (subgroupElect()) {
         atomicAdd(counters.primary_rays, rays.x);
         atomicAdd(counters.shadow_rays, rays.y);
@@ -240,6 +280,8 @@ void trace_pixel(uvec2 pixel) {
         atomicAdd(counters.specular_rays, rays.w);
         atomicAdd(counters.nodes_visited, work.x);
         atomicAdd(counters.triangles_tested, work.y);
+        atomicAdd(counters.sky_rays, sky.x);
+        atomicAdd(counters.sky_unoccluded, sky.y);
     }
 }
 

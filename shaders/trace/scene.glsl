@@ -23,6 +23,8 @@ layout(set = TRACE_SET, binding = BINDING_FRAME, std430) readonly buffer TraceFr
     uvec4 size;                 // traced width, height; window width, height
     uvec4 counts;               // frame index (random seed), samples per pixel, bounces, lights
     uvec4 flags;                // x: FRAME_* bits; y: instance count; z: emitter count; w unused
+    vec4 sampling;              // x: probability that a path vertex samples the sky
+                                // (trace/sky_sampling.glsl); y, z, w unused
 } frame;
 
 // The shading attributes of one triangle corner.
@@ -68,6 +70,8 @@ layout(set = TRACE_SET, binding = BINDING_LAYER_CORNERS, std430) readonly buffer
 
 struct Material {
     vec4 emission;      // linear emitted radiance (rgb); a: emissive scale applied to the raster colour
+    vec4 ambient;       // a vertex-lit model's light from every direction (rgb, linear radiance), taken by its
+                        // continuation rays that meet nothing within a (the model's width); a = 0: none
     Layer layer[MATERIAL_LAYERS]; // layer u < TRACED_UNITS: texture unit u (corner coordinates uv[u]); then the passes
     float roughness;    // GGX alpha = roughness^2
     float metalness;
@@ -80,7 +84,7 @@ struct Material {
     uint emitters;      // the instance's first Emitter (one per triangle, BVH order), or NO_EMITTER
     uint key;           // a hash of what the material shows (the temporal pass's history follows it)
     uint tint;          // with MATERIAL_TINT_PRIMARY: the primary colours' RGB in the albedo (packUnorm4x8, display-encoded)
-    uint pad;
+    uint radiosity;     // the instance's first RadiosityTriangle (one per triangle, BVH order), or NO_RADIOSITY
 };
 
 layout(set = TRACE_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials {
@@ -99,6 +103,16 @@ struct Emitter {
 
 layout(set = TRACE_SET, binding = BINDING_EMITTERS, std430) readonly buffer Emitters {
     Emitter emitters[];
+};
+
+// Radiosity's indirect light at the corners of a static-world triangle (render::trace::radiosity):
+// irradiance / pi, linear RGB per corner, read by trace/radiosity.glsl.
+struct RadiosityTriangle {
+    float corner[9];    // corner k's red, green, blue at 3k .. 3k + 2
+};
+
+layout(set = TRACE_SET, binding = BINDING_RADIOSITY, std430) readonly buffer Radiosity {
+    RadiosityTriangle radiosity_triangles[];
 };
 
 layout(set = TRACE_SET, binding = BINDING_LIGHTS, std430) readonly buffer Lights {

@@ -173,8 +173,19 @@ pub struct DynamicLight {
     /// over `[-radius/2, radius/2]` around the centre, as in Quake 3).
     pub radius: f32,
     /// The falloff's inverse-square strength, eye-space units squared: at distance `d` from
-    /// the centre in the plane of a surface the pass brings `color · falloff / d²`.
+    /// the centre across [`DynamicLight::axis`] the pass's texture holds `falloff / d²` (at
+    /// most 1).
     pub falloff: f32,
+    /// Eye-space unit direction along which the pass projects its texture (Quake 3: the
+    /// world's z): `d` is measured across it, and the colour fades with the height `h` along
+    /// it (1 up to `radius / 2`, then linearly to 0 at `radius`).
+    pub axis: [f32; 3],
+    /// The faintest texel of the falloff texture that is not black (display units): where
+    /// `falloff / d²` falls below it the pass brings nothing.
+    pub floor: f32,
+    /// How the pass brings its texture times `color` times the height fade, `b`: added
+    /// (`GL_ONE, GL_ONE`), or times the colour under it (`GL_DST_COLOR, GL_ONE`).
+    pub modulates: bool,
 }
 
 /// Most passes a traced surface keeps as layers (the base's texture units not counted); passes

@@ -52,20 +52,30 @@ pub struct StoragePool {
 }
 
 impl Default for StoragePool {
-    /// A pool that keeps up to [`StoragePool::DEFAULT_LIMIT`] bytes.
+    /// A pool that keeps up to [`StoragePool::DEFAULT_LIMIT`] bytes of capacity.
     fn default() -> StoragePool {
         StoragePool::new(StoragePool::DEFAULT_LIMIT)
     }
 }
 
 impl StoragePool {
-    /// The limit of [`StoragePool::default`]: the default frame budget
-    /// (`translate::frame_memory`), so a sink keeps about one frame's storage.
-    pub const DEFAULT_LIMIT: usize = 256 << 20;
+    /// The limit of [`StoragePool::default`]: that of [`StoragePool::for_budget`] for the
+    /// default frame budget (256 MB, `translate::frame_memory`).
+    pub const DEFAULT_LIMIT: usize = 2 * (256 << 20);
 
     /// An empty pool that keeps up to `limit` bytes of capacity.
     pub fn new(limit: usize) -> StoragePool {
         StoragePool { spare: Vec::new(), bytes: 0, limit }
+    }
+
+    /// An empty pool that keeps the storage of frames (or frame parts) of up to `budget` bytes
+    /// of vertices, indices and edge masks: twice the budget of capacity, as the vectors of a
+    /// draw grown batch by batch double their capacity and so hold up to twice what they store
+    /// (a draw merged up to its most vertices, 4 M, holds about 1.5 times). With less, the
+    /// largest draws of a frame of millions of vertices were freed at every frame and mapped
+    /// and faulted in again at the next.
+    pub fn for_budget(budget: usize) -> StoragePool {
+        StoragePool::new(budget.saturating_mul(2))
     }
 
     /// Bytes of capacity it holds.
@@ -156,6 +166,33 @@ mod tests {
         assert_eq!(pool.take().indices.capacity(), 10);
         assert_eq!(pool.bytes(), 0);
         assert!(pool.take().indices.capacity() == 0, "then new storage");
+    }
+
+    #[test]
+    fn a_pool_keeps_a_budget_of_draws_grown_batch_by_batch() {
+        // A frame part as a frame of immediate-mode batches of 3000 vertices leaves it: its draws
+        // grew by appending until they held up to the budget (vertices, indices, edge masks).
+        let budget = 4 << 20;
+        let mut batch = Vertices::with_units(1);
+        batch.position = vec![[1.0; 4]; 3000];
+        batch.color.values = (0..3000).map(|i| [i as f32; 4]).collect();
+        batch.texcoords[0].values = (0..3000).map(|i| [i as f32; 4]).collect();
+        let mut frame = Frame::default();
+        let mut stored = 0;
+        while stored < budget {
+            let mut draw = Draw::default();
+            while draw.vertices.len() < 20_000 && stored < budget {
+                draw.vertices.append(&batch);
+                draw.indices.extend(0..3000);
+                stored += 3000 * (3 * 16 + 4);
+            }
+            frame.draws.push(draw);
+        }
+        let draws = frame.draws.len();
+        let mut pool = StoragePool::for_budget(budget);
+        pool.keep_frame(frame);
+        assert_eq!(pool.len(), draws, "every draw's storage kept ({} bytes of capacity)", pool.bytes());
+        assert!(pool.bytes() > budget, "capacity beyond what the draws stored: a pool of one budget frees some");
     }
 
     #[test]

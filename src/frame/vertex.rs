@@ -66,6 +66,14 @@ impl<T: Copy + PartialEq> Attrib<T> {
         }
     }
 
+    /// The values of the vertices from `from` on: the shared value stays shared.
+    pub fn tail(&self, from: usize) -> Attrib<T> {
+        match self.values.len() {
+            1 => self.clone(),
+            _ => Attrib { values: self.values.get(from..).unwrap_or_default().to_vec() },
+        }
+    }
+
     /// Stores one value per vertex for `count` vertices.
     pub fn expand(&mut self, count: usize) {
         if self.values.len() == 1 && count > 1 {
@@ -147,6 +155,22 @@ impl Vertices {
         }
     }
 
+    /// The vertices from `from` on (none when `from` is past the last), each attribute
+    /// copied over that range only.
+    pub fn tail(&self, from: usize) -> Vertices {
+        let from = from.min(self.len());
+        Vertices {
+            position: self.position[from..].to_vec(),
+            normal: self.normal.tail(from),
+            color: self.color.tail(from),
+            secondary_color: self.secondary_color.tail(from),
+            texcoords: self.texcoords.iter().map(|t| t.tail(from)).collect(),
+            fog_coord: self.fog_coord.tail(from),
+            color_index: self.color_index.tail(from),
+            generic: self.generic.iter().map(|g| g.tail(from)).collect(),
+        }
+    }
+
     /// Appends every vertex of `other`. Into no vertex, the result equals `other` (the storage
     /// of texture units and generic attributes `other` lacks is dropped, the rest reused).
     pub fn append(&mut self, other: &Vertices) {
@@ -213,6 +237,27 @@ mod tests {
         b.texcoords[0].push([5.0, 0.0, 0.0, 1.0], 0);
         a.append(&b);
         assert_eq!(a.texcoords[0].values, vec![[0.0, 0.0, 0.0, 1.0], [5.0, 0.0, 0.0, 1.0]]);
+    }
+
+    #[test]
+    fn a_tail_holds_the_last_vertices_and_keeps_shared_values_shared() {
+        let mut v = Vertices::with_units(2);
+        for i in 0..5 {
+            v.position.push([i as f32; 4]);
+            v.color.push([0.5; 4], i);
+            v.texcoords[1].push([i as f32 * 2.0; 4], i);
+        }
+        let tail = v.tail(3);
+        assert_eq!(tail.position, vec![[3.0; 4], [4.0; 4]]);
+        assert_eq!(tail.color.values, vec![[0.5; 4]], "shared");
+        assert_eq!(tail.texcoords[1].values, vec![[6.0; 4], [8.0; 4]]);
+        assert!(tail.texcoords[0].values.is_empty() && tail.normal.values.is_empty());
+        for i in 0..2 {
+            assert_eq!(tail.texcoords[1].get(i), v.texcoords[1].get(3 + i));
+            assert_eq!(tail.color.get(i), v.color.get(3 + i));
+        }
+        assert_eq!(v.tail(0), v);
+        assert!(v.tail(9).is_empty());
     }
 
     #[test]

@@ -20,7 +20,9 @@
 //!
 //! Without a [`RayTracer`] (raster mode) steps 2 to 5 are left out and every draw is
 //! rasterized; ambient occlusion ([`AmbientOcclusion`], when enabled) then runs once, after
-//! the last opaque 3D draw ([`crate::render::ao::place`]). Radiosity (issue 19) is a stage between 3 and 4.
+//! the last opaque 3D draw ([`crate::render::ao::place`]). Radiosity ([`RadiosityStage`], when
+//! enabled) runs before step 1, once per frame: its indirect light goes to the raster draws of
+//! the static world, or to step 2 (the path's first diffuse bounce on the static world).
 //!
 //! Failures degrade (DESIGN.md, "Files, variables, conventions"), each said once on stderr:
 //! tracing stages that cannot be created or fail in a frame (a shader the driver cannot
@@ -49,7 +51,7 @@ use crate::render::fog::settings::FogSettings;
 use crate::render::hud::canvas::Canvas;
 use crate::render::hud::{Display, FrameInfo, Hud};
 use crate::render::radiosity::settings::Settings as RadiositySettings;
-use crate::render::radiosity::stage::RadiosityStage;
+use crate::render::radiosity::stage::{FrameIndirect, RadiosityStage};
 use crate::render::raster::device::{Device, Error, Result};
 use crate::render::raster::dump::Dump;
 use crate::render::raster::output::FrameOutput;
@@ -82,10 +84,13 @@ pub struct Renderer {
     ao: Option<AmbientOcclusion>,
     /// The number of the last frame that got ambient occlusion (it runs once per frame).
     occluded_frame: Option<u64>,
-    /// Radiosity of raster frames, when enabled.
+    /// Radiosity, when enabled: the indirect light of raster frames' static draws and of the
+    /// path tracer's first diffuse bounce on the static world.
     radiosity: Option<RadiosityStage>,
-    /// The number of the last frame whose indirect light was set (once per frame).
+    /// The number of the last frame whose indirect light was found (once per frame).
     radiosity_frame: Option<u64>,
+    /// That frame's indirect light.
+    indirect: Option<FrameIndirect>,
     /// The storage of the draws of frames drawn, for the context to fill again.
     spent: StoragePool,
 }
@@ -119,7 +124,7 @@ impl Renderer {
     /// Creates the renderer with no [`FrameOutput`]: frames stay in the framebuffer.
     pub fn without_outputs() -> Result<Renderer> {
         let hud = Display::of_process().hud.then(Hud::default);
-        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud, ao: None, occluded_frame: None, radiosity: None, radiosity_frame: None, spent: StoragePool::default() })
+        Ok(Renderer { raster: Raster::new()?, tracing: None, retired: None, failed: false, replaced: false, target: None, hud, ao: None, occluded_frame: None, radiosity: None, radiosity_frame: None, indirect: None, spent: StoragePool::default() })
     }
 
     /// Path traces the traced draws of the next frames with `settings`, with the back end
@@ -165,8 +170,9 @@ impl Renderer {
         Ok(())
     }
 
-    /// Lights the static world of the next raster frames with radiosity ([`RadiosityStage`]
-    /// with `settings`, the frame's lights read as the tracer's `lights` settings say).
+    /// Lights the static world of the next frames with radiosity ([`RadiosityStage`] with
+    /// `settings`, the frame's lights read as the tracer's `lights` settings say): raster
+    /// frames' static draws, and traced frames' paths at their first diffuse bounce on it.
     pub fn enable_radiosity(&mut self, settings: RadiositySettings, lights: LightSettings) {
         if self.radiosity.is_none() {
             self.radiosity = Some(RadiosityStage::new(settings, lights));
@@ -203,14 +209,15 @@ impl Renderer {
         let occlusion_at = (self.tracing.is_none() && self.ao.is_some() && self.occluded_frame != Some(frame.number))
             .then(|| crate::render::ao::place(frame).map(|(at, _)| at))
             .flatten();
-        // Radiosity's indirect light of a raster frame, once, before its draws.
+        // Radiosity's indirect light of the frame, once, before its draws: the raster draws'
+        // or the tracer's.
         if self.radiosity_frame != Some(frame.number) {
             self.radiosity_frame = Some(frame.number);
-            let indirect = match &mut self.radiosity {
-                Some(stage) if self.tracing.is_none() => stage.update(self.raster.device(), frame),
-                _ => None,
+            self.indirect = match &mut self.radiosity {
+                Some(stage) => stage.update(self.raster.device(), frame),
+                None => None,
             };
-            self.raster.set_indirect(indirect);
+            self.raster.set_indirect(self.indirect.clone().filter(|_| self.tracing.is_none()));
         }
         // Raster composite up to the traced image's (or the occlusion's) place: clears, pixel
         // operations, draws.
@@ -222,7 +229,7 @@ impl Renderer {
             && self.raster.recorded_draws(frame) == at
         {
             let mut rec = self.raster.recorder_into(None, frame.size)?;
-            let traced = tracing.record(&mut rec, frame, surfaces, &frame.draws[at]);
+            let traced = tracing.record(&mut rec, frame, surfaces, &frame.draws[at], self.indirect.as_ref());
             self.raster.skip_draw(frame, at);
             match traced {
                 Err(e @ Error::Vulkan(_, ash::vk::Result::ERROR_DEVICE_LOST)) => return Err(e),
@@ -341,16 +348,16 @@ impl Renderer {
 
 impl Tracing {
     /// Records the traced stages of `frame`, whose traced surfaces are `surfaces`, into `rec`
-    /// (the window's framebuffer, at the place of `camera`, the first traced draw).
-    fn record(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw) -> Result<()> {
+    /// (the window's framebuffer, at the place of `camera`, the first traced draw), with
+    /// radiosity's `indirect` light when there is one.
+    fn record(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw, indirect: Option<&FrameIndirect>) -> Result<()> {
         // Upload and acceleration structures.
-        let mut scene = self.backend.build(rec, frame, surfaces, camera)?;
+        let mut scene = self.backend.build(rec, frame, surfaces, camera, indirect)?;
         if self.denoiser.as_ref().is_some_and(Denoiser::wants_gradient_samples) {
             scene.frame.flags[0] |= FRAME_GRADIENTS;
         }
         // Trace: the G-buffer and radiance (nothing when no geometry is on the GPU yet).
         let Some(radiance) = self.backend.trace(rec, &scene)? else { return Ok(()) };
-        // Radiosity (issue 19) comes here, as a stage on `radiance`.
         // Denoise (A-SVGF), or resolve (the tracer's temporal filter); tone mapping.
         let image = match &mut self.denoiser {
             Some(denoiser) => denoiser.record(rec, &scene.frame, &radiance)?,

@@ -109,7 +109,7 @@ fn renderer_for_mode(dump: Option<raster::dump::Dump>) -> raster::device::Result
         eprintln!("glrt: ambient occlusion is not available: {e}");
     }
     let radiosity = radiosity::settings::Settings::of_process();
-    if radiosity.enabled && !matches!(rendering, devices::Rendering::PathTrace { .. }) {
+    if radiosity.enabled {
         renderer.enable_radiosity(radiosity, trace::lights::LightSettings::of(&trace::settings::Settings::of_process()));
     }
     if matches!(rendering, devices::Rendering::PathTrace { .. }) {

@@ -1,6 +1,6 @@
 //! The layouts of a pass whose shaders read one descriptor set and push constants: the set
 //! layout of its bindings and the pipeline layout over it, made and destroyed together (the
-//! ambient occlusion's passes; `radiosity::gpu::pass` makes the same pair by hand).
+//! ambient occlusion's passes, `radiosity::gpu::pass`).
 
 use ash::vk;
 

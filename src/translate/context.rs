@@ -119,7 +119,7 @@ impl Context {
             programs: Default::default(),
             frame: Frame::default(),
             frame_memory: super::frame_memory::FrameMemory::new(super::frame_memory::configured_budget()),
-            storage: crate::frame::storage::StoragePool::new(usize::try_from(super::frame_memory::configured_budget()).unwrap_or(usize::MAX)),
+            storage: crate::frame::storage::StoragePool::for_budget(usize::try_from(super::frame_memory::configured_budget()).unwrap_or(usize::MAX)),
             sink: config.sink,
             single_buffered: false,
             drawable_size: None,

@@ -38,7 +38,7 @@ use glrt::frame::{Frame, FrameSink, Target, Topology};
 use glrt::render::ao::settings::AoSettings;
 use glrt::render::frame::Renderer;
 use glrt::render::trace::bvh::cpu::{self, Instance, Scene};
-use glrt::render::trace::bvh::{Blas, Tlas};
+use glrt::render::trace::bvh::{Blas, Layout, Tlas};
 use glrt::replay::{self, reader::Capture};
 
 use super::images::Image;
@@ -94,8 +94,8 @@ fn triangles(walls: bool) -> Vec<[Vec3; 3]> {
 /// kernel size, under `distribution` from `count` directions; `None` where the pixel sees no
 /// surface.
 fn traced(triangles: &[[Vec3; 3]], size: [i32; 2], ray: impl Fn(i32, i32) -> Vec3, s: &AoSettings, distribution: Distribution, count: usize) -> Vec<Option<f64>> {
-    let blas = Blas::build(triangles);
-    let tlas = Tlas::build(&[blas.bounds]);
+    let blas = Blas::build(triangles, Layout::Binary);
+    let tlas = Tlas::build(&[blas.bounds], Layout::Binary);
     let instances = [Instance::new(&Affine3A::IDENTITY, 0, 0, false)];
     let scene = Scene { tlas: &tlas.nodes, blas_nodes: &blas.nodes, triangles: &blas.triangles, instances: &instances };
     let m = s.samples as usize;

@@ -3,7 +3,7 @@
 //! own Xvfb; one test binary: the demo's frames ([`demo`]), presentation on X windows
 //! ([`present`]), captures and replays ([`capture_replay`], [`pathtrace_replay`]), the
 //! denoiser's quality on the demo's replay ([`denoise`]), raster + radiosity on it
-//! ([`radiosity_raster`]), hash
+//! ([`radiosity_raster`]) and radiosity in the path tracer ([`radiosity_traced`]), hash
 //! tracking of a re-batching program ([`classify_rebatch`]), pass-through ([`passthrough`]),
 //! glrt as a glvnd vendor ([`glvnd_vendor`]), programs run by `glrt run` ([`glrt_run`]), an SFML-style program's window changing frame
 //! after frame ([`sfml_style`]), a Windows OpenGL program under Wine ([`wine`]), and images against Mesa ([`raster_vs_mesa`]) and an NVIDIA
@@ -26,6 +26,7 @@ mod passthrough;
 mod pathtrace_replay;
 mod present;
 mod radiosity_raster;
+mod radiosity_traced;
 mod raster_vs_mesa;
 mod raster_vs_nvidia;
 mod sfml_style;

@@ -17,7 +17,7 @@ use crate::programs::lib_dir;
 const BLOCK: usize = 4;
 
 /// The mean of each `BLOCK` × `BLOCK` block of `image`, per channel.
-fn blocks(image: &Image) -> Vec<Vec<[f64; 3]>> {
+pub fn blocks(image: &Image) -> Vec<Vec<[f64; 3]>> {
     (0..image.height / BLOCK)
         .map(|by| {
             (0..image.width / BLOCK)
@@ -39,7 +39,7 @@ fn blocks(image: &Image) -> Vec<Vec<[f64; 3]>> {
 }
 
 /// RMSE (0..255) of the blocks `rows` × `columns` of `a` against `b`, and `a`'s mean there.
-fn region(a: &[Vec<[f64; 3]>], b: &[Vec<[f64; 3]>], rows: std::ops::Range<usize>, columns: std::ops::Range<usize>) -> (f64, [f64; 3]) {
+pub fn region(a: &[Vec<[f64; 3]>], b: &[Vec<[f64; 3]>], rows: std::ops::Range<usize>, columns: std::ops::Range<usize>) -> (f64, [f64; 3]) {
     let (mut squared, mut mean, mut n) = (0.0, [0.0; 3], 0.0);
     for y in rows {
         for x in columns.clone() {

@@ -78,22 +78,24 @@ struct World {
 
 impl World {
     fn new(placed: &[(Vec<[Vec3; 3]>, Affine3A, bool)], layout: Layout) -> World {
-        let (mut nodes, mut wide, mut triangles, mut instances, mut instance_words, mut bounds) = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let (mut nodes, mut gpu_nodes, mut triangles, mut instances, mut instance_words, mut bounds) = (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for (tris, object_to_eye, alpha) in placed {
-            let blas = Blas::build(tris);
-            let (binary_root, wide_root, first) = blas.append_to(&mut nodes, &mut wide, &mut triangles);
+            // The CPU traverses the binary nodes, the GPU those of `layout` (of the same tree).
+            let blas = Blas::build(tris, layout);
+            let (binary_root, root, first) = (nodes.len() as u32, (gpu_nodes.len() as u64 / layout.node_size()) as u32, triangles.len() as u32);
+            nodes.extend_from_slice(&blas.nodes);
+            gpu_nodes.extend_from_slice(blas.node_bytes());
+            triangles.extend_from_slice(&blas.triangles);
             bounds.push(blas.bounds.transformed(object_to_eye));
             let inst = Instance::new(object_to_eye, binary_root, first, *alpha);
             let rows = cpu::affine_rows(object_to_eye);
             for row in rows.iter().chain(&inst.eye_to_object).chain(&rows) {
                 instance_words.extend(row.to_array().map(f32::to_bits));
             }
-            let root = if layout == Layout::Wide { wide_root } else { binary_root };
             instance_words.extend([root, first, if *alpha { INSTANCE_ALPHA_TESTED } else { 0 }, 0]);
             instances.push(inst);
         }
-        let gpu_nodes = if layout == Layout::Wide { bytemuck::cast_slice(&wide).to_vec() } else { bytemuck::cast_slice(&nodes).to_vec() };
-        World { tlas: Tlas::build(&bounds), nodes, triangles, instances, gpu_nodes, instance_words, layout }
+        World { tlas: Tlas::build(&bounds, layout), nodes, triangles, instances, gpu_nodes, instance_words, layout }
     }
 
     fn scene(&self) -> Scene<'_> {
@@ -153,7 +155,7 @@ fn trace_on_gpu(device: &Device, world: &World, rays: &[Ray]) -> Vec<GpuResult> 
     let ray_words: Vec<f32> = rays.iter().flat_map(|r| [r.origin.x, r.origin.y, r.origin.z, r.tmin, r.dir.x, r.dir.y, r.dir.z, r.tmax]).collect();
     let buffers = [
         (bindings::BLAS_NODES, upload(device, "blas", &world.gpu_nodes, MemoryLocation::CpuToGpu)),
-        (bindings::TLAS_NODES, upload(device, "tlas", world.layout.tlas_bytes(&world.tlas), MemoryLocation::CpuToGpu)),
+        (bindings::TLAS_NODES, upload(device, "tlas", world.tlas.node_bytes(), MemoryLocation::CpuToGpu)),
         (bindings::TRIANGLES, upload(device, "triangles", bytemuck::cast_slice(&world.triangles), MemoryLocation::CpuToGpu)),
         (bindings::INSTANCES, upload(device, "instances", bytemuck::cast_slice(&world.instance_words), MemoryLocation::CpuToGpu)),
         (RAYS, upload(device, "rays", bytemuck::cast_slice(&ray_words), MemoryLocation::CpuToGpu)),

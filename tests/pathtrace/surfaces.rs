@@ -12,6 +12,8 @@
 //!   estimation of emitters and without (continuation rays alone): the two estimators of one
 //!   integral agree, which is what multiple importance sampling promises;
 //! - a dynamic light lights a traced floor and not a vertex-lit one (whose colours hold it);
+//! - a vertex-lit model reflects the ambient light of its colours, and not the level's light
+//!   besides;
 //! - a texture environment changed between still frames restarts the accumulation of the
 //!   pixels it shows.
 
@@ -444,7 +446,7 @@ fn a_dynamic_light_does_not_light_a_vertex_lit_model_again() {
         let (mut ctx, _renderer) = floor_context(Settings { spp: 4, bounces: 1, ..Settings::default() }, move |frame| {
             classified::lit(frame, |d| d.vertices.position[0][0] < 0.0, SurfaceLighting::VertexLit);
             if light {
-                frame.lights.push(DynamicLight { position: [0.0, -0.5, -3.5], color: [1.0; 3], radius: 2.0, falloff: 0.25 });
+                frame.lights.push(DynamicLight { position: [0.0, -0.5, -3.5], color: [1.0; 3], radius: 2.0, falloff: 0.25, axis: [0.0, 1.0, 0.0], floor: 0.3, modulates: false });
             }
         });
         for _ in 0..2 {
@@ -468,6 +470,86 @@ fn a_dynamic_light_does_not_light_a_vertex_lit_model_again() {
     eprintln!("dynamic light: vertex-lit half {model_lit:.2} (without it {model_dark:.2}), traced half {floor_lit:.2} (without it {floor_dark:.2})");
     assert!(floor_lit >= floor_dark + 20.0, "the light lights the traced half: {floor_lit:.2} against {floor_dark:.2}");
     assert!((model_lit - model_dark).abs() <= 0.5, "the vertex-lit half is not lit again: {model_lit:.2} against {model_dark:.2}");
+}
+
+/// A sphere of `radius` around `centre` (eye space), its vertices' colours lit as Quake 3
+/// lights a model: `ambient + max(0, n · towards) · directed` (grey), with their normals; 12
+/// rows of 24 quads as separate triangles.
+fn lit_sphere(ctx: &mut Context, centre: DVec3, radius: f64, towards: DVec3, [ambient, directed]: [f64; 2]) {
+    let (rows, columns) = (12, 24);
+    let normal = |r: usize, c: usize| {
+        let (theta, phi) = (std::f64::consts::PI * r as f64 / rows as f64, std::f64::consts::TAU * c as f64 / columns as f64);
+        DVec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin())
+    };
+    unsafe {
+        dispatch::glBegin(ctx, gl::GL_TRIANGLES);
+        for r in 0..rows {
+            for c in 0..columns {
+                for (r, c) in [(r, c), (r + 1, c), (r + 1, c + 1), (r, c), (r + 1, c + 1), (r, c + 1)] {
+                    let n = normal(r, c);
+                    let light = (ambient + directed * n.dot(towards).max(0.0)).min(1.0) as f32;
+                    let p = centre + n * radius;
+                    dispatch::glColor3f(ctx, light, light, light);
+                    dispatch::glNormal3f(ctx, n.x as f32, n.y as f32, n.z as f32);
+                    dispatch::glVertex3f(ctx, p.x as f32, p.y as f32, p.z as f32);
+                }
+            }
+        }
+        dispatch::glEnd(ctx);
+    }
+}
+
+/// The mean 8-bit red of the pixels of `image` that see the sphere of `radius` around
+/// `centre` at least `margin` inside its outline (all four corners' rays).
+fn sphere_mean(image: &[[u8; 4]], centre: DVec3, radius: f64, margin: f64) -> (f64, usize) {
+    let inside = |d: DVec3| {
+        let d = d.normalize();
+        (centre - d * d.dot(centre)).length() < radius - margin
+    };
+    let pixels: Vec<f64> = (0..FLOOR_SIZE * FLOOR_SIZE)
+        .filter(|i| {
+            let (x, y) = (f64::from(i % FLOOR_SIZE), f64::from(i / FLOOR_SIZE));
+            [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)].iter().all(|&(dx, dy)| inside(window_ray(x + dx, y + dy)))
+        })
+        .map(|i| f64::from(image[i as usize][0]))
+        .collect();
+    (pixels.iter().sum::<f64>() / pixels.len() as f64, pixels.len())
+}
+
+/// A vertex-lit model's ambient light is light from every direction: a sphere whose colours
+/// are lit as Quake 3 lights a model, ambient 0.3 and directed 0.6 from straight behind it,
+/// shows the camera its side that only the ambient lights (the raster image: 0.3, 76.5 of
+/// 255). Traced with nothing else in the scene, it reflects that ambient (its mean within
+/// 6 % of 76.5; black without it); under a bright baked ceiling (grey 0.8) farther from it
+/// than it is wide, it shows the same, not the ceiling's light besides (the ambient is the
+/// level's light at the model: both would count it twice): the two means within 2 levels.
+#[test]
+fn a_vertex_lit_model_takes_its_ambient_light_from_every_direction_once() {
+    let (centre, radius) = (DVec3::new(0.0, 0.0, -4.0), 1.5);
+    let image = |ceiling: bool| {
+        let (mut ctx, _renderer) = floor_context(Settings { spp: 16, bounces: 1, ..Settings::default() }, |frame| {
+            classified::without_world(frame);
+            classified::lit(frame, |d| d.vertices.position[0][1] > 4.0, SurfaceLighting::Baked);
+            classified::lit(frame, |d| d.vertices.position[0][1] <= 4.0, SurfaceLighting::VertexLit);
+        });
+        for _ in 0..3 {
+            clear(&mut ctx);
+            if ceiling {
+                unsafe { dispatch::glShadeModel(&mut ctx, gl::GL_FLAT) };
+                horizontal(&mut ctx, 5.0, [-10.0, 10.0, -14.0, 0.0], 0.8);
+                unsafe { dispatch::glShadeModel(&mut ctx, gl::GL_SMOOTH) };
+            }
+            lit_sphere(&mut ctx, centre, radius, DVec3::NEG_Z, [0.3, 0.6]);
+            ctx.end_frame();
+        }
+        read(&mut ctx, FLOOR_SIZE)
+    };
+    let ((alone, pixels), (under, _)) = (sphere_mean(&image(false), centre, radius, 0.1), sphere_mean(&image(true), centre, radius, 0.1));
+    let raster = 0.3 * 255.0;
+    eprintln!("vertex-lit sphere's ambient side over {pixels} pixels: alone {alone:.2}, under a baked ceiling {under:.2}, raster {raster:.1}");
+    assert!(pixels >= 100, "{pixels} pixels");
+    assert!((alone - raster).abs() <= 0.06 * raster, "lit by its ambient as the raster shows it: {alone:.2} against {raster:.1}");
+    assert!((under - alone).abs() <= 2.0, "not lit a second time by the ceiling: {under:.2} against {alone:.2}");
 }
 
 /// The image of a floor (unlit, white: albedo 1, its light traced) under a black patch of

@@ -128,7 +128,12 @@ fn rect([x0, y0, x1, y1]: [f32; 4], z: f32, color: [f32; 4], state: RasterState,
 
 /// A frame clearing colour to black, depth to 1 and stencil to 0, then drawing `draws`.
 fn frame(draws: Vec<Draw>) -> Frame {
-    let clear = Clear {
+    Frame { number: 0, draws, clears: vec![clear_all()], size: [SIZE as u32; 2], ..Frame::default() }
+}
+
+/// A clear before the first draw: colour to black, depth to 1, stencil to 0.
+pub fn clear_all() -> Clear {
+    Clear {
         before_draw: 0,
         color: Some([0.0, 0.0, 0.0, 0.0]),
         depth: Some(1.0),
@@ -140,8 +145,7 @@ fn frame(draws: Vec<Draw>) -> Frame {
         stencil_mask: 0xff,
         draw_buffers: Default::default(),
         framebuffer: Default::default(),
-    };
-    Frame { number: 0, draws, clears: vec![clear], size: [SIZE as u32; 2], ..Frame::default() }
+    }
 }
 
 /// The window's pixels as RGBA8, rows bottom to top.

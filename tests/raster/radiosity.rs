@@ -12,7 +12,7 @@ use glam::{Mat4, Vec3};
 use glrt::frame::class::DrawClass;
 use glrt::frame::pixels::PixelBuffer;
 use glrt::frame::state::{Lighting, Material};
-use glrt::frame::{Attrib, Clear, Draw, Frame, RasterState, Topology};
+use glrt::frame::{Attrib, Draw, Frame, RasterState, Topology};
 use glrt::render::radiosity::patches::{Patch, Patches};
 use glrt::render::radiosity::stage::FrameIndirect;
 use glrt::render::radiosity::transfer::IndirectLight;
@@ -29,20 +29,7 @@ fn frame(number: u64, class: DrawClass) -> Frame {
     let mut draw = Draw { vertex_count: 4, topology: Topology::Triangles, indices: vec![0, 1, 2, 0, 2, 3], state: Arc::new(state), class, ..Draw::default() };
     draw.vertices.position = positions;
     draw.vertices.normal = Attrib { values: vec![[0.0, 0.0, 1.0]] };
-    let clear = Clear {
-        before_draw: 0,
-        color: Some([0.0; 4]),
-        depth: Some(1.0),
-        stencil: Some(0),
-        accum: None,
-        scissor: None,
-        color_mask: [true; 4],
-        depth_mask: true,
-        stencil_mask: 0xff,
-        draw_buffers: Default::default(),
-        framebuffer: Default::default(),
-    };
-    Frame { number, draws: vec![draw], clears: vec![clear], size: [SIZE as u32; 2], ..Frame::default() }
+    Frame { number, draws: vec![draw], clears: vec![crate::program::clear_all()], size: [SIZE as u32; 2], ..Frame::default() }
 }
 
 /// The centre pixel of `frame` drawn by `raster`, RGB 0..255.

@@ -32,7 +32,7 @@ use glam::{Affine3A, DVec3, Vec3};
 use super::patches::{Patches, area, face_normal};
 use super::shader_constants;
 use crate::render::trace::bvh::cpu::{self, Instance, Scene};
-use crate::render::trace::bvh::{Blas, Tlas};
+use crate::render::trace::bvh::{Blas, Layout, Tlas};
 
 /// Visibility rays per source patch and receiver point.
 const VISIBILITY_SAMPLES: usize = shader_constants::VISIBILITY_SAMPLES as usize;
@@ -63,8 +63,8 @@ impl FormFactors {
 /// The form factors between all `patches` (rows computed on every available core).
 pub fn compute(patches: &Patches) -> FormFactors {
     let n = patches.patches.len();
-    let blas = Blas::build(&patches.triangles);
-    let tlas = Tlas::build(&[blas.bounds]);
+    let blas = Blas::build(&patches.triangles, Layout::Binary);
+    let tlas = Tlas::build(&[blas.bounds], Layout::Binary);
     let instances = [Instance::new(&Affine3A::IDENTITY, 0, 0, false)];
     let scene = Scene { tlas: &tlas.nodes, blas_nodes: &blas.nodes, triangles: &blas.triangles, instances: &instances };
     let mut values = vec![0.0f32; n * n];

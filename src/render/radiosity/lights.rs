@@ -44,7 +44,7 @@ mod tests {
         let eye = view.transform_point3(world);
         let frame = Frame {
             view: Some(View { view, ..View::default() }),
-            lights: vec![DynamicLight { position: eye.to_array(), color: [1.0; 3], radius: 50.0, falloff: 100.0 }],
+            lights: vec![DynamicLight { position: eye.to_array(), color: [1.0; 3], radius: 50.0, falloff: 100.0, axis: [0.0, 0.0, 1.0], floor: 0.3, modulates: false }],
             ..Frame::default()
         };
         let out = of_frame(&frame, &LightSettings::default());

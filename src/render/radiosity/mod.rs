@@ -19,8 +19,9 @@
 //! the world frame) and adds their emission, and [`gpu::gather`] multiplies the compressed
 //! matrix (its BC1 image sampled by the device) with that primary radiosity, the two run in
 //! turn by [`gpu::update`]; [`transfer`] turns the result into the indirect light on the
-//! raster draws of the static world, and [`stage`] runs it all for the renderer's raster
-//! frames. Not yet here: the tracer's use of the radiosity.
+//! raster draws of the static world, and [`stage`] runs it all for the renderer's frames; the
+//! path tracer reads the same indirect light at its first diffuse bounce on the static world
+//! ([`crate::render::trace::radiosity`]).
 
 pub mod bc1;
 pub mod bounces;

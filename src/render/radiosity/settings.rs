@@ -5,7 +5,8 @@
 //!
 //! ```toml
 //! [radiosity]
-//! enabled = false             # raster frames: radiosity's indirect light on the static world
+//! enabled = false             # radiosity's indirect light on the static world: raster frames'
+//!                             # static draws, traced frames' first diffuse bounce on it
 //! patch_size = 0.0            # side of a patch, world units; 0: chosen to fit the budget
 //! radiosity_bounces = 3       # k of the k-bounce matrix, 1..=16
 //! top_share = 0.04            # share of the matrix kept exactly, 0..=1
@@ -21,8 +22,9 @@ pub const DENSE_BYTES_PER_ENTRY: usize = 2 * 3 * 4;
 /// The `[radiosity]` table.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
-    /// Whether raster frames light the static world with radiosity (`enabled`,
-    /// [`super::stage`]).
+    /// Whether radiosity lights the static world (`enabled`, [`super::stage`]): raster
+    /// frames' static draws ([`super::transfer`]) and, path traced, the first diffuse bounce
+    /// on it ([`crate::render::trace::radiosity`]).
     pub enabled: bool,
     /// Side of a patch in world units; 0: the smallest that fits the budget (`patch_size`).
     pub patch_size: f32,
@@ -59,15 +61,11 @@ impl Table for Settings {
 }
 
 impl Settings {
-    /// The process's settings (`glrt.toml` and the environment), read once; problems are
-    /// reported once.
+    /// The settings of this process, read at the first call from the process's
+    /// configuration ([`crate::config::process_table`]); problems are reported then.
     pub fn of_process() -> Settings {
         static SETTINGS: std::sync::OnceLock<Settings> = std::sync::OnceLock::new();
-        *SETTINGS.get_or_init(|| {
-            let (settings, problems) = crate::config::Config::of_process().table::<Settings>();
-            crate::config::warn(&problems);
-            settings
-        })
+        crate::config::process_table(&SETTINGS)
     }
 
     /// The most patches whose dense matrices fit the budget.

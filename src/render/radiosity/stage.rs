@@ -1,14 +1,15 @@
-//! The renderer's radiosity stage for raster frames (`[radiosity] enabled`): the static
+//! The renderer's radiosity stage (`[radiosity] enabled`), for raster and traced frames: the static
 //! world's patches and compressed k-bounce matrix, built once per static world (the form
 //! factors on the device, else on the CPU; the matrix from the disk cache when it has it,
 //! [`precompute::load_or_build`]), then per frame the update on the device
 //! ([`Update`]: direct light from the frame's lights, then the product) whenever the lights
-//! or the world changed, and its [`IndirectLight`] for the raster draws ([`super::transfer`]).
+//! or the world changed, and its [`IndirectLight`] for the raster draws ([`super::transfer`])
+//! or the tracer ([`crate::render::trace::radiosity`]).
 //!
 //! The precompute blocks the frame that meets a new static world (said once on stderr, with
 //! its time); the memory budget bounds its size ([`precompute::patches_within_budget`]). A
-//! stage that fails (device memory, a shader) says so once and stops: frames keep GL's
-//! ambient term.
+//! stage that fails (device memory, a shader) says so once and stops: raster frames keep GL's
+//! ambient term, traced paths their bounces.
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -70,7 +71,7 @@ impl RadiosityStage {
         match self.try_update(device, frame) {
             Ok(light) => Some(FrameIndirect { light, eye_to_world: view.view.inverse() }),
             Err(e) => {
-                eprintln!("glrt: radiosity stopped: {e}; the static world keeps GL's ambient light");
+                eprintln!("glrt: radiosity stopped: {e}; the static world keeps GL's ambient light (raster) or traced bounces");
                 self.failed = true;
                 if let Some(world) = self.world.take() {
                     world.update.destroy(device);

@@ -983,13 +983,30 @@ fn draw_in_buffers(rec: &mut Recorder<'_>, draw: &Draw) -> Result<()> {
 }
 
 /// The primitives of `draw` from index `from` on (whole primitives: `from` is a multiple of
-/// the primitive size, as the draw only ever grows by whole primitives).
+/// the primitive size, as the draw only ever grows by whole primitives), with only the
+/// vertices from the first one they use on (the draw grew by appending vertices: what was
+/// recorded before is not copied again).
 fn tail(draw: &Draw, from: usize) -> Draw {
+    let indices = draw.indices.get(from..).unwrap_or_default();
+    let first = indices.iter().copied().min().unwrap_or(0);
     let edges_from = if draw.edge_masks.is_empty() { 0 } else { from / 3 };
     Draw {
-        indices: draw.indices.get(from..).unwrap_or_default().to_vec(),
+        vertex_count: draw.vertex_count.saturating_sub(first as usize),
+        topology: draw.topology,
+        vertices: draw.vertices.tail(first as usize),
+        indices: indices.iter().map(|&i| i - first).collect(),
         edge_masks: draw.edge_masks.get(edges_from..).unwrap_or_default().to_vec(),
-        ..draw.clone()
+        modelview: draw.modelview,
+        projection: draw.projection,
+        texture_matrices: draw.texture_matrices.clone(),
+        source: draw.source,
+        state: draw.state.clone(),
+        textures: draw.textures.clone(),
+        texture_units: draw.texture_units.clone(),
+        program: draw.program.clone(),
+        class: draw.class,
+        instance: draw.instance,
+        layer: draw.layer.clone(),
     }
 }
 
@@ -1002,5 +1019,32 @@ pub(crate) fn log_once(what: &'static str) {
         && seen.get_or_insert_with(HashSet::new).insert(what)
     {
         log::warn!("glrt: {what}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tail_draws_the_same_vertices_without_those_recorded_before() {
+        // Two triangles, then two more merged in with three vertices of their own.
+        let mut draw = Draw::default();
+        draw.vertices.position = (0..6).map(|i| [i as f32, 0.0, 0.0, 1.0]).collect();
+        draw.vertices.color.values = (0..6).map(|i| [i as f32 / 8.0, 0.5, 0.5, 1.0]).collect();
+        draw.vertices.texcoords = vec![crate::frame::Attrib { values: vec![[0.25, 0.5, 0.0, 1.0]] }];
+        draw.vertex_count = 6;
+        draw.indices = vec![0, 1, 2, 2, 1, 0, 3, 4, 5, 5, 4, 3];
+        draw.edge_masks = vec![1, 2, 3, 4];
+        let t = tail(&draw, 6);
+        assert_eq!(t.indices, vec![0, 1, 2, 2, 1, 0]);
+        assert_eq!((t.vertices.len(), t.vertex_count), (3, 3), "only the vertices the tail uses");
+        assert_eq!(t.edge_masks, vec![3, 4]);
+        assert!(Arc::ptr_eq(&t.state, &draw.state));
+        let (whole, part) = (ff::vertex::pack(&draw), ff::vertex::pack(&t));
+        for (j, &i) in t.indices.iter().enumerate() {
+            assert_eq!(ff::vertex::get(&part, i), ff::vertex::get(&whole, draw.indices[6 + j]), "index {j}");
+        }
+        assert!(tail(&draw, 12).indices.is_empty());
     }
 }

@@ -42,8 +42,11 @@ glsl_constants! {
     /// The sky's distribution of directions: per cell, its probability and the cumulative
     /// probability (`super::sky_distribution`, `sky_sampling.glsl`).
     const SKY_DISTRIBUTION: u32 = 17;
+    /// Radiosity's indirect light at the corners of the static world's triangles
+    /// (`scene.glsl`, `radiosity.glsl`; [`super::radiosity`]).
+    const RADIOSITY: u32 = 18;
     /// Number of storage-buffer bindings (`0..COUNT`).
-    const COUNT: u32 = 18;
+    const COUNT: u32 = 19;
     /// The environment cube map of the sky draws ([`super::sky`]), a combined image sampler
     /// (`environment.glsl`).
     const SKY: u32 = COUNT;

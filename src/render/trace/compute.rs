@@ -25,6 +25,7 @@ use super::instances::{self, Source};
 use super::lights::{self, LightSettings};
 use super::material::{self, MaterialDefaults};
 use super::pipelines::TracePipelines;
+use super::radiosity::TracedRadiosity;
 use super::resident::{NewGeometry, Resident};
 use super::scene;
 use super::settings::{KNEE, Settings, Tonemap};
@@ -33,6 +34,7 @@ use super::shader_constants::{
 };
 use super::surfaces::Surfaces;
 use super::sky::Sky;
+use super::sky_selection::SkySelection;
 use super::stats::{PassSeconds, RayCounts, SceneCounts, Statistics};
 use super::texels::TexelPool;
 use super::tracks::Tracks;
@@ -41,6 +43,7 @@ use super::{GpuScene, Radiance, RayTracer, TracedImage, bindings};
 use crate::frame::class::SurfaceLighting;
 use crate::frame::{Draw, Frame};
 use crate::render::pass_times::{self, SlotStamps};
+use crate::render::radiosity::stage::FrameIndirect;
 use crate::render::raster::device::{Buffer, Check, Device, Result};
 use crate::render::raster::renderer::Recorder;
 
@@ -102,7 +105,11 @@ pub struct ComputeTracer {
     accelerations: Option<Accelerations>,
     /// The top-level acceleration structure of the frame being traced (hardware tracer).
     top_level: vk::AccelerationStructureKHR,
+    /// Radiosity's values on the static world's geometries.
+    radiosity: TracedRadiosity,
     statistics: Statistics,
+    /// How often path vertices sample the sky, from the counters read last.
+    sky_selection: SkySelection,
 }
 
 impl ComputeTracer {
@@ -141,10 +148,12 @@ impl ComputeTracer {
             frame_index: 0,
             parity: 0,
             previous: None,
-            tlas: Tlas::build(&[]),
+            tlas: Tlas::build(&[], settings.bvh),
             accelerations: hardware.then(|| Accelerations::new(device, slots)),
             top_level: vk::AccelerationStructureKHR::null(),
+            radiosity: TracedRadiosity::default(),
             statistics: Statistics::default(),
+            sky_selection: SkySelection::default(),
         })
     }
 
@@ -159,6 +168,7 @@ impl ComputeTracer {
             let ticks = stamps.read(device, slot)?;
             Some(PassSeconds { trace: pass_times::seconds(device, ticks[2], ticks[3]), build: pass_times::seconds(device, ticks[0], ticks[1]) })
         });
+        self.sky_selection.observe(rays.sky, rays.sky_unoccluded);
         self.statistics.rays = rays;
         self.statistics.totals.add(rays, seconds);
     }
@@ -234,7 +244,8 @@ impl ComputeTracer {
         let light_slice = push(bytemuck::cast_slice(&scene.lights))?;
         let emitter_slice = push(bytemuck::cast_slice(&scene.emitters))?;
         let sky_cells_slice = push(bytemuck::cast_slice(&scene.sky_cells))?;
-        let tlas_slice = push(self.settings.bvh.tlas_bytes(&self.tlas))?;
+        let radiosity_slice = push(bytemuck::cast_slice(&scene.radiosity))?;
+        let tlas_slice = push(self.tlas.node_bytes())?;
         let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
         let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(None) };
         let Some(sky) = &self.sky else { return Ok(None) };
@@ -259,6 +270,7 @@ impl ComputeTracer {
         table[bindings::LAYER_CORNERS as usize] = (layer_corners.0, 0, layer_corners.1);
         table[bindings::EMITTERS as usize] = emitter_slice;
         table[bindings::SKY_DISTRIBUTION as usize] = sky_cells_slice;
+        table[bindings::RADIOSITY as usize] = radiosity_slice;
 
         let pool = self.pools[slot];
         // Safety (this block): the pool's sets of this slot's previous frame are finished (the
@@ -332,8 +344,8 @@ impl RayTracer for ComputeTracer {
     /// Gathers the instances, builds the BVHs of new geometry (or refits the last BVH of a
     /// moved dynamic draw) on the CPU and uploads them with the texels, draws the sky cube
     /// when it changed, builds the top-level BVH over the instances on the CPU and lists the
-    /// emissive triangles.
-    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw) -> Result<GpuScene> {
+    /// emissive triangles and, with radiosity, its values on the static world's triangles.
+    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw, indirect: Option<&FrameIndirect>) -> Result<GpuScene> {
         let slot = rec.slot();
         let device = rec.device;
         self.read_counters(device, slot);
@@ -393,6 +405,8 @@ impl RayTracer for ComputeTracer {
         let mut top_instances = Vec::new();
         let mut emitter_list = EmitterList::default();
         let mut recovered: Vec<GpuLight> = Vec::new();
+        let mut radiosity = Vec::new();
+        self.radiosity.begin_frame(indirect.map(|i| &i.light));
         let mut signature = Xxh3::new();
         // New texture contents (an updated lightmap, an animated texture) restart accumulation.
         for t in &refs {
@@ -416,12 +430,22 @@ impl RayTracer for ComputeTracer {
                 }
             }
             material.key = material::key(&material);
-            // The direct light a vertex-lit model's colours hold, for that model alone.
+            // Radiosity's indirect light on the static world's triangles.
+            if let Some(indirect) = indirect
+                && let Some(front) = item.static_world_front()
+                && let Some((triangles, _, _)) = self.resident.contents(item.key)
+                && let Some(values) = self.radiosity.values(item.key, triangles, &(indirect.eye_to_world * item.object_to_eye), front)
+            {
+                material.radiosity = radiosity.len() as u32;
+                radiosity.extend_from_slice(values);
+            }
+            // The light a vertex-lit model's colours hold, for that model alone.
             if let Source::Surface(surface) = &item.source
                 && surface.base.instance.is_some_and(|i| i.lighting == SurfaceLighting::VertexLit)
                 && let Some(light) = vertex_light::recover(surface.base, &item.object_to_eye, instances.len() as u32)
             {
-                recovered.push(light);
+                recovered.push(light.directed);
+                material.ambient = light.ambient;
             }
             let flags = if material.alpha_func != 7 { INSTANCE_ALPHA_TESTED } else { 0 };
             if self.accelerations.is_some() {
@@ -456,7 +480,7 @@ impl RayTracer for ComputeTracer {
         let top_started = std::time::Instant::now();
         match &mut self.accelerations {
             Some(accelerations) => self.top_level = accelerations.build_top(device, cmd, slot, &top_instances)?,
-            None => self.tlas = Tlas::build(&bounds),
+            None => self.tlas = Tlas::build(&bounds, self.settings.bvh),
         }
         if let Some(stamps) = &self.timestamps {
             stamps.frame(slot).write(device, cmd, 1, vk::PipelineStageFlags2::ALL_COMMANDS);
@@ -468,6 +492,7 @@ impl RayTracer for ComputeTracer {
         let mut lights: Vec<GpuLight> = lights::of_frame(frame, draws.iter().copied(), &light_settings);
         lights.extend(recovered);
         signature.update(bytemuck::cast_slice(&lights));
+        signature.update(bytemuck::cast_slice(&radiosity));
 
         // Camera and sizes.
         let state = &camera.state;
@@ -529,11 +554,12 @@ impl RayTracer for ComputeTracer {
                 emitters.len() as u32,
                 0,
             ],
+            sampling: [self.sky_selection.probability(), 0.0, 0.0, 0.0],
         };
         self.previous = Some(Previous { signature, projection, view: frame.view.map(|v| v.view) });
         self.frame_index = self.frame_index.wrapping_add(1);
         self.statistics.frames += 1;
-        Ok(GpuScene { frame: gpu_frame, instances, materials, lights, emitters, sky_cells })
+        Ok(GpuScene { frame: gpu_frame, instances, materials, lights, emitters, sky_cells, radiosity })
     }
 
     /// Dispatches `pathtrace.comp` once per sample into the G-buffer and the accumulation

@@ -33,6 +33,9 @@ pub struct GpuFrame {
     pub counts: [u32; 4],
     /// `FRAME_*` bits, instance count, emitter count ([`GpuEmitter`]), unused.
     pub flags: [u32; 4],
+    /// The probability that a path vertex samples the sky ([`super::sky_selection`]); three
+    /// unused.
+    pub sampling: [f32; 4],
 }
 
 /// `Corner` of `scene.glsl`: the shading attributes of one triangle corner.
@@ -97,12 +100,16 @@ pub struct GpuLayerCorners {
     pub covered: u32,
 }
 
-/// `Material` of `scene.glsl`: one per instance, 448 bytes (six layers of 64).
+/// `Material` of `scene.glsl`: one per instance, 464 bytes (six layers of 64).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuMaterial {
     /// Linear emitted radiance (rgb); a: emissive scale applied to the raster colour.
     pub emission: [f32; 4],
+    /// A vertex-lit model's ambient light ([`super::vertex_light::ModelLight::ambient`]):
+    /// linear radiance from every direction (rgb), which its continuation rays take when they
+    /// meet nothing within `a`, the model's width; a = 0: none (traced light lights it).
+    pub ambient: [f32; 4],
     /// Layer `u < TRACED_UNITS`: texture unit `u`; then pass `k` at `TRACED_UNITS + k`.
     pub layer: [GpuLayer; MATERIAL_LAYERS],
     /// Roughness (GGX alpha = roughness²).
@@ -131,8 +138,20 @@ pub struct GpuMaterial {
     /// The RGB (display-encoded, packed as `packUnorm4x8`) that replaces the primary
     /// colours' in the albedo with `MATERIAL_TINT_PRIMARY` ([`super::material`]).
     pub tint: u32,
-    /// Padding.
-    pub pad: u32,
+    /// The instance's first record in the radiosity buffer ([`GpuRadiosityTriangle`], one
+    /// per triangle in BVH order), or `NO_RADIOSITY`: the path's first diffuse bounce on it
+    /// reads radiosity's indirect light and ends ([`super::radiosity`]).
+    pub radiosity: u32,
+}
+
+/// `RadiosityTriangle` of `scene.glsl`: radiosity's indirect light at the three corners of a
+/// static-world triangle ([`super::radiosity`]), irradiance / π (linear RGB per corner, the
+/// corners in the triangle's order).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuRadiosityTriangle {
+    /// Corner `k`'s red, green and blue at `3k..3k + 3`.
+    pub corner: [f32; 9],
 }
 
 /// `Emitter` of `scene.glsl`: one emissive triangle of the frame, an entry of the alias table
@@ -214,6 +233,10 @@ pub struct GpuCounters {
     pub nodes_visited: u32,
     /// Ray-triangle tests of all rays.
     pub triangles_tested: u32,
+    /// Shadow rays towards the sky (counted in `shadow_rays` too).
+    pub sky_rays: u32,
+    /// Those of them that found the sky unoccluded.
+    pub sky_unoccluded: u32,
 }
 
 /// Bytes of the ray counters.
@@ -221,7 +244,7 @@ pub const COUNTER_BYTES: u64 = size_of::<GpuCounters>() as u64;
 
 include!(concat!(env!("OUT_DIR"), "/layouts/trace_gpu_types.rs"));
 
-const _: () = assert!(size_of::<GpuMaterial>() == 448 && size_of::<GpuLayerCorners>() == 40, "the sizes the docs give");
+const _: () = assert!(size_of::<GpuMaterial>() == 464 && size_of::<GpuLayerCorners>() == 40, "the sizes the docs give");
 
 const _: () = assert!(MAX_PASSES == crate::frame::class::MAX_LAYERS, "a material traces every layer a surface may have");
 

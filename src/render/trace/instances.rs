@@ -20,6 +20,7 @@ use super::settings::Lightmaps;
 use super::shader_constants::{MATERIAL_LAYERS, TRACED_UNITS};
 use super::surfaces::Surface;
 use crate::frame::class::SurfaceLighting;
+use crate::frame::state::Winding;
 use crate::frame::world::StaticChunk;
 use crate::frame::{Draw, Frame, RasterState, TextureRef, TextureUnit};
 
@@ -114,6 +115,16 @@ impl<'a> Item<'a> {
         match &self.source {
             Source::Surface(s) => material::material(s, textures, defaults, lightmaps),
             Source::Chunk(c) => chunks::material(c, textures[0], defaults),
+        }
+    }
+
+    /// The front side of its triangles when they are the static world's (a chunk, or a
+    /// surface whose draw the chunks hold whole): radiosity lights those
+    /// ([`super::radiosity`]).
+    pub fn static_world_front(&self) -> Option<Winding> {
+        match &self.source {
+            Source::Surface(s) => chunks::is_covered(s.base).then_some(s.base.state.front_face),
+            Source::Chunk(c) => Some(c.shading.state.front_face),
         }
     }
 

@@ -35,8 +35,18 @@
 //! any vertex-lit model (their colours hold it too: [`super::material`]'s
 //! `MATERIAL_VERTEX_LIT`). It
 //! reaches as far as its radius, as the program's pass does (`params.z`: the light fades
-//! smoothly to nothing there, `shaders/trace/lights.glsl`). Baked surfaces reflect it too
-//! (`params.w = -1`): their bake holds the level's lights, never a rocket's.
+//! smoothly to nothing there, `shaders/trace/lights.glsl`).
+//!
+//! A **baked** surface shows the game's raster colour `C` (its bake holds the level's
+//! lights, never a rocket's), and the game lights it by the pass, not by a physical light:
+//! there the dynamic light brings what the pass brings, `b = colour · m(h) · min(1, falloff
+//! / d²)` (0 below the texture's floor; `d` across the pass's projection axis, `m` its fade
+//! with the height `h` along it, [`DynamicLight`]), added to `C` in display units (or `C · b`
+//! for a pass that modulates), where a shadow ray to the sphere finds it unoccluded. A point
+//! light reflected by the albedo, in linear units, brought a fifth of the pass's light on
+//! Quake 3's floors (issue 16). The packing (`params.w < 0`: a dynamic light): `spot.xyz` the
+//! projection axis (`spot.w = -2`: no spot cone), `params.x` the floor, `params.y` the
+//! falloff, `params.w` -1 for a pass that adds, -2 for one that modulates.
 
 use glam::{Mat4, Vec3};
 
@@ -118,8 +128,8 @@ pub fn dynamic(light: &DynamicLight, settings: &LightSettings) -> GpuLight {
     GpuLight {
         position: [x, y, z, 1.0],
         radiance: [intensity.x, intensity.y, intensity.z, settings.radius.max(DYNAMIC_SOURCE * light.radius)],
-        spot: [0.0, 0.0, -1.0, -2.0],
-        params: [0.0, 1.0, light.radius, -1.0],
+        spot: [light.axis[0], light.axis[1], light.axis[2], -2.0],
+        params: [light.floor, light.falloff, light.radius, if light.modulates { -2.0 } else { -1.0 }],
     }
 }
 
@@ -190,14 +200,17 @@ mod tests {
     }
 
     #[test]
-    fn a_dynamic_light_is_a_point_light_of_its_falloff_that_baked_surfaces_reflect() {
-        let light = DynamicLight { position: [1.0, 2.0, -30.0], color: [1.0, 0.5, 0.0], radius: 200.0, falloff: 2451.0 };
+    fn a_dynamic_light_is_a_point_light_of_its_falloff_and_its_pass_on_baked_surfaces() {
+        let light = DynamicLight { position: [1.0, 2.0, -30.0], color: [1.0, 0.5, 0.0], radius: 200.0, falloff: 2451.0, axis: [0.0, 1.0, 0.0], floor: 0.3, modulates: false };
         let l = dynamic(&light, &LightSettings::default());
         assert_eq!(l.position, [1.0, 2.0, -30.0, 1.0]);
         // I / d² = π · linear(c) · falloff / d²: GL's diffuse c with attenuation 1 / (d² / falloff).
         let pi = std::f32::consts::PI;
         assert!((l.radiance[0] - pi * 2451.0).abs() < 0.1 && (l.radiance[1] - pi * 2451.0 * srgb_to_linear(0.5)).abs() < 0.1 && l.radiance[2] == 0.0, "{l:?}");
-        assert_eq!((l.spot[3], l.params[2], l.params[3]), (-2.0, 200.0, -1.0), "no spot; reaches its radius; reflected by baked surfaces");
+        assert_eq!((l.spot[3], l.params[2], l.params[3]), (-2.0, 200.0, -1.0), "no spot; reaches its radius; a pass that adds");
+        assert_eq!((l.spot, l.params[0], l.params[1]), ([0.0, 1.0, 0.0, -2.0], 0.3, 2451.0), "the pass on baked surfaces: axis, floor, falloff");
+        let modulates = dynamic(&DynamicLight { modulates: true, ..light }, &LightSettings::default());
+        assert_eq!(modulates.params[3], -2.0);
         assert_eq!(l.radiance[3], 25.0, "a sphere of an eighth of its radius");
     }
 

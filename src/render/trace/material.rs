@@ -36,7 +36,7 @@
 //! A vertex-lit model's colours also hold the dynamic lights near it (games add them to the
 //! model's light, as Quake 3's `R_SetupEntityLighting` does): [`MATERIAL_VERTEX_LIT`] keeps
 //! the dynamic lights of [`super::lights`] from lighting it a second time (its light comes
-//! from its colours, [`super::vertex_light`]).
+//! from its colours, [`super::vertex_light`], which also sets the material's `ambient`).
 //!
 //! A [`SurfaceLighting::Baked`] surface ([`MATERIAL_BAKED`]) holds light the game baked:
 //! direct and indirect, everything that arrives at it. Tracing computes that light itself, so
@@ -63,7 +63,7 @@ use super::shader_constants::{
     BLEND_DST_ALPHA, BLEND_DST_RGB, BLEND_EQUATION_ALPHA, BLEND_EQUATION_RGB, BLEND_SRC_ALPHA, BLEND_SRC_RGB, EQUATION_ADD, EQUATION_MAX, EQUATION_MIN,
     EQUATION_REVERSE_SUBTRACT, EQUATION_SUBTRACT, FACTOR_CONSTANT_ALPHA, FACTOR_CONSTANT_COLOR, FACTOR_DST_ALPHA, FACTOR_DST_COLOR, FACTOR_ONE,
     FACTOR_ONE_MINUS_CONSTANT_ALPHA, FACTOR_ONE_MINUS_CONSTANT_COLOR, FACTOR_ONE_MINUS_DST_ALPHA, FACTOR_ONE_MINUS_DST_COLOR, FACTOR_ONE_MINUS_SRC_ALPHA,
-    FACTOR_ONE_MINUS_SRC_COLOR, FACTOR_SRC_ALPHA, FACTOR_SRC_ALPHA_SATURATE, FACTOR_SRC_COLOR, FACTOR_ZERO, LAYER_BAKED_LIGHT, LAYER_COLOR, LAYER_EMISSION,
+    FACTOR_ONE_MINUS_SRC_COLOR, FACTOR_SRC_ALPHA, FACTOR_SRC_ALPHA_SATURATE, FACTOR_SRC_COLOR, FACTOR_ZERO, LAYER_BAKED_LIGHT, LAYER_COLOR, LAYER_EMISSION, NO_RADIOSITY,
     LAYER_OFF, MATERIAL_BAKED, MATERIAL_LAYERS, MATERIAL_TINT_PRIMARY, MATERIAL_VERTEX_LIT, MAX_PASSES, NO_EMITTER, NO_TEXTURE, TRACED_UNITS,
 };
 use super::surfaces::Surface;
@@ -236,6 +236,7 @@ pub fn material(surface: &Surface, textures: [Option<u32>; MATERIAL_LAYERS], def
     };
     GpuMaterial {
         emission,
+        ambient: [0.0; 4],
         layer: layers,
         roughness,
         metalness: over.metalness.clamp(0.0, 1.0),
@@ -248,7 +249,7 @@ pub fn material(surface: &Surface, textures: [Option<u32>; MATERIAL_LAYERS], def
         emitters: NO_EMITTER,
         key: 0,
         tint: pack_unorm(tint),
-        pad: 0,
+        radiosity: NO_RADIOSITY,
     }
 }
 
@@ -258,12 +259,13 @@ fn pack_unorm(v: Vec3) -> u32 {
     byte(v.x) | byte(v.y) << 8 | byte(v.z) << 16 | 255 << 24
 }
 
-/// A hash of what `m` shows: every field but those that say where its passes' corners and
-/// emitter entries are (they move when the buffers are repacked or the list changes) and the
+/// A hash of what `m` shows: every field but those that say where its passes' corners,
+/// emitter entries and radiosity records are (they move when the buffers are repacked or the
+/// lists change), the
 /// tint (a summary of the vertex colours, which change as a model moves and are not in the
-/// key either).
+/// key either) and the ambient light (light, not what the surface is).
 pub fn key(m: &GpuMaterial) -> u32 {
-    let shown = GpuMaterial { layer_corners: 0, emitters: 0, key: 0, tint: 0, ..*m };
+    let shown = GpuMaterial { layer_corners: 0, emitters: 0, key: 0, tint: 0, radiosity: 0, ambient: [0.0; 4], ..*m };
     xxh3_64(bytemuck::bytes_of(&shown)) as u32
 }
 
@@ -365,6 +367,7 @@ mod tests {
         let m = material(&Surface { base: &model, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);
         assert_eq!(m.tint, u32::MAX);
         assert_eq!(key(&m), key(&GpuMaterial { tint: 0xff_33_ff_33, ..m }), "the tint is not in the key");
+        assert_eq!(key(&m), key(&GpuMaterial { ambient: [0.1, 0.2, 0.3, 2.0], ..m }), "nor the ambient light");
     }
 
     /// Each pass is a layer after the units: its unit 0, role, blend function and alpha test.
@@ -432,7 +435,7 @@ mod tests {
     fn the_key_follows_what_the_material_shows() {
         let draw = base(TextureEnv::default(), SurfaceLighting::Traced, 0);
         let m = material(&Surface { base: &draw, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);
-        let placed = GpuMaterial { layer_corners: 40, emitters: 3, ..m };
+        let placed = GpuMaterial { layer_corners: 40, emitters: 3, radiosity: 7, ..m };
         assert_eq!(key(&m), key(&placed), "where its records are is not what it shows");
         let replaced = base(TextureEnv { mode: EnvMode::Replace, ..TextureEnv::default() }, SurfaceLighting::Traced, 0);
         let other = material(&Surface { base: &replaced, passes: Vec::new() }, ALL, &MaterialDefaults::default(), Lightmaps::Keep);

@@ -32,7 +32,9 @@
 //! decal passes) are one traced surface ([`surfaces`]), evaluated as the rasterizer would draw
 //! it and split into albedo, baked light and emission ([`material`]); layer draws are then not
 //! rasterized. Emissive surfaces (additive passes, emissive materials) are also light sources
-//! that next-event estimation samples ([`emitters`]).
+//! that next-event estimation samples ([`emitters`]). With radiosity on, a path's first
+//! diffuse bounce on the static world reads radiosity's indirect light there and ends
+//! ([`radiosity`]).
 //!
 //! Parts shared by the back ends:
 //! - [`surfaces`]: which draws are traced, grouped into surfaces; [`scene`]: traced surfaces
@@ -40,6 +42,7 @@
 //!   geometries; [`instances`]: a frame's instances, surfaces and chunks; [`emitters`]: the
 //!   emissive triangles and their alias table; [`lights`]: GL lights as physical lights;
 //!   [`vertex_light`]: the direct light a vertex-lit model's colours hold, a light of its own;
+//!   [`radiosity`]: radiosity's indirect light per corner of the static world's triangles;
 //!   [`sky`]: the sky draws as the environment cube map; [`sky_distribution`]: a
 //!   distribution of directions by the sky's luminance, which next-event estimation samples
 //!   (`shaders/trace/sky_sampling.glsl`); [`gpu_types`]: the structures the
@@ -72,12 +75,14 @@ pub mod instances;
 pub mod lights;
 pub mod material;
 pub mod pipelines;
+pub mod radiosity;
 pub mod resident;
 pub mod scene;
 pub mod settings;
 pub mod shader_constants;
 pub mod sky;
 pub mod sky_distribution;
+pub mod sky_selection;
 pub mod stats;
 pub mod surfaces;
 pub mod texels;
@@ -89,7 +94,8 @@ use ash::vk;
 use crate::frame::{Draw, Frame};
 use crate::render::raster::device::{Device, Result};
 use crate::render::raster::renderer::Recorder;
-use gpu_types::{GpuEmitter, GpuFrame, GpuInstance, GpuLight, GpuMaterial};
+use crate::render::radiosity::stage::FrameIndirect;
+use gpu_types::{GpuEmitter, GpuFrame, GpuInstance, GpuLight, GpuMaterial, GpuRadiosityTriangle};
 use settings::Settings;
 use surfaces::Surfaces;
 use stats::Statistics;
@@ -97,17 +103,17 @@ use stats::Statistics;
 /// A ray-tracing back end: turns the traced surfaces of a frame into a traced image,
 /// recording into the frame's command buffer at the place of its first traced draw
 /// ([`surfaces::Surfaces::first`]). The renderer calls [`RayTracer::build`], [`RayTracer::trace`]
-/// and [`RayTracer::resolve`] in that order, once per frame; stages of other modules
-/// (radiosity) go between `trace` and `resolve`, reading and writing the radiance; the
-/// denoiser ([`crate::render::denoise`]) takes the place of `resolve`.
+/// and [`RayTracer::resolve`] in that order, once per frame; the denoiser
+/// ([`crate::render::denoise`]) takes the place of `resolve`.
 pub trait RayTracer: Send {
     /// Upload and acceleration structures: gathers the frame's traced surfaces, `surfaces`
     /// (`camera`, the first base, gives the projection and viewport), and the static world's
     /// chunks as instances, uploads new geometry and textures, builds or refits the
     /// bottom-level acceleration structures of new or moved geometry and the top level over
-    /// the instances, and lists the emissive triangles. Returns the records the tracing shaders
-    /// read.
-    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw) -> Result<GpuScene>;
+    /// the instances, and lists the emissive triangles; with radiosity's `indirect` light, the
+    /// static world's triangles get its values ([`radiosity`]). Returns the records the
+    /// tracing shaders read.
+    fn build(&mut self, rec: &mut Recorder<'_>, frame: &Frame, surfaces: &Surfaces, camera: &Draw, indirect: Option<&FrameIndirect>) -> Result<GpuScene>;
 
     /// Traces `scene` into the G-buffer (primary hits) and the radiance accumulated for this
     /// frame; `None` when nothing could be traced (no geometry on the GPU yet).
@@ -145,6 +151,9 @@ pub struct GpuScene {
     /// probability ([`sky_distribution::SkyDistribution::cells`]; empty: the sky is not
     /// sampled).
     pub sky_cells: Vec<[f32; 2]>,
+    /// Radiosity's indirect light at the corners of the static world's triangles
+    /// ([`radiosity`]; empty without radiosity).
+    pub radiosity: Vec<GpuRadiosityTriangle>,
 }
 
 /// A traced frame's G-buffer and radiance, in the back end's per-pixel buffers until

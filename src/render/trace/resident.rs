@@ -74,10 +74,13 @@ struct Built {
 }
 
 impl Built {
-    /// Builds the BVH of `geometry`, or with `bvh` false only stores its triangles
+    /// Builds the BVH of `geometry` for `layout`, or with `None` only stores its triangles
     /// ([`Blas::unordered`]).
-    fn new(geometry: &Geometry, bvh: bool) -> Built {
-        let blas = if bvh { Blas::build(&geometry.triangles) } else { Blas::unordered(&geometry.triangles) };
+    fn new(geometry: &Geometry, layout: Option<Layout>) -> Built {
+        let blas = match layout {
+            Some(layout) => Blas::build(&geometry.triangles, layout),
+            None => Blas::unordered(&geometry.triangles),
+        };
         let (attributes, layer_corners) = ordered(&blas, geometry);
         Built { built_cost: sah_cost(&blas.nodes), blas, attributes, layer_corners, passes: geometry.passes }
     }
@@ -204,14 +207,14 @@ impl Resident {
                 Some(Refit::InPlace) => in_place.push(new.key),
                 Some(Refit::Elsewhere(built)) => to_place.push((new.key, Arc::new(built))),
                 None => {
-                    to_place.push((new.key, Arc::new(Built::new(&new.geometry, self.layout.is_some()))));
+                    to_place.push((new.key, Arc::new(Built::new(&new.geometry, self.layout))));
                     self.built += 1;
                     continue;
                 }
             }
             self.refitted += 1;
         }
-        let n: u64 = to_place.iter().map(|(_, b)| self.node_count(b)).sum();
+        let n: u64 = to_place.iter().map(|(_, b)| b.blas.node_count() as u64).sum();
         let t: u64 = to_place.iter().map(|(_, b)| b.blas.triangles.len() as u64).sum();
         let c: u64 = to_place.iter().map(|(_, b)| b.layer_corners.len() as u64).sum();
         if !self.nodes.fits(n) || !self.triangles.fits(t) || !self.attributes.fits(t) || !self.layer_corners.fits(c) {
@@ -254,11 +257,6 @@ impl Resident {
         Some(Refit::InPlace)
     }
 
-    /// Nodes of `built` in the node buffer's layout.
-    fn node_count(&self, built: &Built) -> u64 {
-        self.layout.unwrap_or_default().blas_len(&built.blas) as u64
-    }
-
     /// Copies `built` to the free end of the buffers.
     fn place(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, built: &Built) -> Result<Placement> {
         let placement = Placement {
@@ -268,7 +266,7 @@ impl Resident {
             bounds: built.blas.bounds,
         };
         self.write(device, cmd, ring, built, &placement)?;
-        self.nodes.used += self.node_count(built);
+        self.nodes.used += built.blas.node_count() as u64;
         self.triangles.used += built.blas.triangles.len() as u64;
         self.attributes.used += built.attributes.len() as u64;
         self.layer_corners.used += built.layer_corners.len() as u64;
@@ -279,7 +277,7 @@ impl Resident {
     fn write(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, built: &Built, placement: &Placement) -> Result<()> {
         let (root, first, corners) = (u64::from(placement.blas_root), u64::from(placement.first_triangle), u64::from(placement.first_layer_corners));
         for (shared, at, bytes) in [
-            (&self.nodes, root, self.layout.unwrap_or_default().blas_bytes(&built.blas)),
+            (&self.nodes, root, built.blas.node_bytes()),
             (&self.triangles, first, bytemuck::cast_slice(&built.blas.triangles)),
             (&self.attributes, first, bytemuck::cast_slice(&built.attributes)),
             (&self.layer_corners, corners, bytemuck::cast_slice(&built.layer_corners)),
@@ -298,7 +296,7 @@ impl Resident {
         device.wait_idle()?;
         self.entries.retain(|_, e| frame.saturating_sub(e.last_used) < KEEP_FRAMES);
         let live = |size: fn(&Built) -> usize| self.entries.values().map(|e| size(&e.built) as u64).sum::<u64>();
-        let live_nodes = self.entries.values().map(|e| self.node_count(&e.built)).sum::<u64>() + more[0];
+        let live_nodes = self.entries.values().map(|e| e.built.blas.node_count() as u64).sum::<u64>() + more[0];
         let live_triangles = live(|b| b.blas.triangles.len()) + more[1];
         let live_corners = live(|b| b.layer_corners.len()) + more[2];
         let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_DST;
@@ -387,7 +385,7 @@ mod tests {
 
     #[test]
     fn a_refit_keeps_the_layout_until_the_tree_degrades() {
-        let built = Built::new(&grid(32, Vec3::ZERO, |i| i), true);
+        let built = Built::new(&grid(32, Vec3::ZERO, |i| i), Some(Layout::Binary));
         let moved = grid(32, Vec3::new(3.0, -2.0, 1.0), |i| i);
         let refitted = built.clone().refitted(&moved).expect("a rigid move keeps the tree as good");
         assert_eq!((refitted.blas.nodes.len(), refitted.blas.order.clone()), (built.blas.nodes.len(), built.blas.order.clone()));
@@ -411,8 +409,26 @@ mod tests {
     }
 
     #[test]
+    fn a_geometry_gets_the_nodes_of_the_buffer_layout_only() {
+        let g = grid(32, Vec3::ZERO, |i| i);
+        let binary = Built::new(&g, Some(Layout::Binary));
+        assert!(binary.blas.wide.is_none());
+        assert_eq!(binary.blas.node_bytes().len() as u64, binary.blas.nodes.len() as u64 * Layout::Binary.node_size());
+        let wide = Built::new(&g, Some(Layout::Wide));
+        let collapsed = wide.blas.wide.as_ref().expect("a wide tree for the wide layout").nodes.len();
+        assert_eq!(wide.blas.node_count(), collapsed);
+        assert_eq!(wide.blas.node_bytes().len() as u64, collapsed as u64 * Layout::Wide.node_size());
+        let none = Built::new(&g, None);
+        assert_eq!((none.blas.wide.is_none(), none.blas.node_count()), (true, 1));
+        // A refit keeps the layout.
+        let refitted = wide.refitted(&grid(32, Vec3::new(3.0, -2.0, 1.0), |i| i)).expect("a rigid move");
+        assert_eq!(refitted.blas.node_count(), collapsed);
+        assert_eq!(refitted.blas.wide.as_ref().map(|w| w.nodes[0].origin), Some([3.0, -2.0, 1.0]));
+    }
+
+    #[test]
     fn without_bvhs_triangles_keep_their_order_and_refit_in_place() {
-        let built = Built::new(&grid(32, Vec3::ZERO, |i| i), false);
+        let built = Built::new(&grid(32, Vec3::ZERO, |i| i), None);
         assert_eq!(built.blas.order, (0..1024).collect::<Vec<u32>>());
         assert_eq!(built.blas.nodes.len(), 1, "one root of two empty leaves");
         assert_eq!(built.attributes[7].corner[0].uv[0][0], 7.0);

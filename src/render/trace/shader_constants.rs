@@ -45,6 +45,9 @@ glsl_constants! {
     const MATERIAL_VERTEX_LIT: u32 = 4;
     /// `GpuMaterial::emitters` of a surface that is not in the emitter list.
     const NO_EMITTER: u32 = u32::MAX;
+    /// `GpuMaterial::radiosity` of a surface without radiosity's light (not in the static
+    /// world, or radiosity off).
+    const NO_RADIOSITY: u32 = u32::MAX;
 
     /// Blend factor of a pass (`GpuLayer::blend`, OpenGL 1.5 table 4.2): `GL_ZERO`.
     const FACTOR_ZERO: u32 = 0;

@@ -34,6 +34,10 @@ pub struct RayCounts {
     pub nodes_visited: u64,
     /// Ray-triangle intersection tests of all rays.
     pub triangles_tested: u64,
+    /// Shadow rays towards the sky (in `shadow` too).
+    pub sky: u64,
+    /// Those of them that found the sky.
+    pub sky_unoccluded: u64,
 }
 
 impl RayCounts {
@@ -47,6 +51,8 @@ impl RayCounts {
             specular: c.specular_rays.into(),
             nodes_visited: c.nodes_visited.into(),
             triangles_tested: c.triangles_tested.into(),
+            sky: c.sky_rays.into(),
+            sky_unoccluded: c.sky_unoccluded.into(),
         })
     }
 
@@ -139,6 +145,8 @@ impl Totals {
         r.specular += rays.specular;
         r.nodes_visited += rays.nodes_visited;
         r.triangles_tested += rays.triangles_tested;
+        r.sky += rays.sky;
+        r.sky_unoccluded += rays.sky_unoccluded;
         if let Some(s) = seconds {
             self.trace_seconds += s.trace;
             self.build_seconds += s.build;
@@ -170,7 +178,7 @@ impl Totals {
         let per_ray = |work: u64| work as f64 / r.total().max(1) as f64;
         let scenes = self.scenes.max(1) as f64;
         let mut line = format!(
-            "path tracer: {} frames; scene: {:.0} triangles in {:.0} instances with {:.0} passes, {:.0} emitter triangles, {:.1} BVHs built and {:.1} refitted per frame; per frame: {:.0} primary, {:.0} shadow, {:.0} diffuse, {:.0} specular rays; per ray: {:.1} nodes, {:.1} triangle tests",
+            "path tracer: {} frames; scene: {:.0} triangles in {:.0} instances with {:.0} passes, {:.0} emitter triangles, {:.1} BVHs built and {:.1} refitted per frame; per frame: {:.0} primary, {:.0} shadow ({:.0} to the sky, {:.1} % of them unoccluded), {:.0} diffuse, {:.0} specular rays; per ray: {:.1} nodes, {:.1} triangle tests",
             self.frames,
             self.scene.triangles as f64 / scenes,
             self.scene.instances as f64 / scenes,
@@ -180,6 +188,8 @@ impl Totals {
             self.scene.refitted as f64 / scenes,
             r.primary as f64 / n,
             r.shadow as f64 / n,
+            r.sky as f64 / n,
+            100.0 * r.sky_unoccluded as f64 / r.sky.max(1) as f64,
             r.diffuse as f64 / n,
             r.specular as f64 / n,
             per_ray(r.nodes_visited),
@@ -211,16 +221,16 @@ mod tests {
 
     #[test]
     fn counters_are_read_in_shader_order() {
-        let bytes: Vec<u8> = (1u32..=6).flat_map(u32::to_le_bytes).collect();
+        let bytes: Vec<u8> = (1u32..=8).flat_map(u32::to_le_bytes).collect();
         let r = RayCounts::from_counters(&bytes).unwrap();
-        assert_eq!(r, RayCounts { primary: 1, shadow: 2, diffuse: 3, specular: 4, nodes_visited: 5, triangles_tested: 6 });
-        assert_eq!(RayCounts::from_counters(&bytes[..20]), None);
+        assert_eq!(r, RayCounts { primary: 1, shadow: 2, diffuse: 3, specular: 4, nodes_visited: 5, triangles_tested: 6, sky: 7, sky_unoccluded: 8 });
+        assert_eq!(RayCounts::from_counters(&bytes[..28]), None);
     }
 
     #[test]
     fn the_summary_gives_rates_of_the_timed_pass() {
         let mut t = Totals::default();
-        let frame = RayCounts { primary: 1_000_000, shadow: 2_000_000, diffuse: 500_000, specular: 0, nodes_visited: 35_000_000, triangles_tested: 7_000_000 };
+        let frame = RayCounts { primary: 1_000_000, shadow: 2_000_000, diffuse: 500_000, specular: 0, nodes_visited: 35_000_000, triangles_tested: 7_000_000, sky: 400_000, sky_unoccluded: 100_000 };
         let timed = Some(PassSeconds { trace: 0.001, build: 0.0005 });
         t.add(frame, timed);
         t.add(frame, timed);
@@ -228,6 +238,7 @@ mod tests {
         t.add_scene(&SceneCounts { draw_instances: 5, triangles: 3000, refitted: 1, emitters: 10, build_micros: 1000, ..SceneCounts::default() });
         let s = t.summary();
         assert!(s.contains("2 frames; scene: 2000 triangles in 4 instances with 1 passes, 5 emitter triangles, 1.5 BVHs built and 0.5 refitted per frame"), "{s}");
+        assert!(s.contains("2000000 shadow (400000 to the sky, 25.0 % of them unoccluded)"), "{s}");
         assert!(s.contains("per ray: 10.0 nodes, 2.0 triangle tests"), "{s}");
         assert!(s.contains("tracing pass 1.000 ms per frame; Mrays/s: 1000.0 primary, 2000.0 shadow, 500.0 diffuse, 0.0 specular, 3500.0 all"), "{s}");
         assert!(s.contains("acceleration structures per frame: 2.000 ms CPU, 0.500 ms GPU"), "{s}");

@@ -1,28 +1,36 @@
-//! The direct light a vertex-lit model's colours hold (issue 16). Quake-3-class engines light
-//! a model on the CPU, per vertex, as `ambient + max(0, n · l) · directed` (a light grid
-//! sampled at the model's origin, `RB_CalcDiffuseColor`), and hash tracking marks such a draw
-//! [`SurfaceLighting::VertexLit`]: it is traced with its texture as albedo, lit by traced
-//! light. Its ambient part is what traced light brings anyway (light bounced off the baked
-//! world, which emits its raster colour, and the sky); its directed part is the game's direct
-//! light (the sun, lamps), which no traced source holds: those lights are baked into the
-//! lightmaps, not drawn. Left out, a model is darker than the game shows it.
+//! The light a vertex-lit model's colours hold (issue 16). Quake-3-class engines light a model
+//! on the CPU, per vertex, as `ambient + max(0, n · l) · directed` (a light grid sampled at
+//! the model's origin, `RB_CalcDiffuseColor`), and hash tracking marks such a draw
+//! [`SurfaceLighting::VertexLit`]: it is traced with its texture as albedo, lit by the light
+//! [`recover`] finds in its colours. Both parts are the level's light at the model, which no
+//! traced source holds as the game shows it: the directed part is its direct light (the sun,
+//! lamps: baked into the lightmaps, not drawn), the ambient part the light from everywhere
+//! else (the grid's share of the world's bounced light, the sky, the level's lamps seen from
+//! afar). Traced light from the baked world is a weak stand-in for the latter in a dark level,
+//! and both together would count that light twice.
+//!
+//! So the model keeps both parts: the directed part as a directional light of that instance
+//! alone ([`GpuLight`] `params.w`), sampled by next-event estimation like a GL light (it
+//! lights the diffuse lobe alone: the game's lighting is Lambertian), with shadow rays as long
+//! as the model is wide (its own parts shadow it; the level's occlusion is already in the
+//! game's grid); the ambient part as radiance arriving from every direction
+//! ([`ModelLight::ambient`], the material's `ambient`): `shaders/trace/path.glsl` gives it to
+//! the model's continuation rays that meet nothing within the model's width, in place of the
+//! level's traced light (rays that meet its own parts or the floor under it within that width
+//! go on: occlusion and bounce light between them), and samples neither the sky nor emitters
+//! from it (their light is in its colours, as the dynamic lights' is, [`super::lights`]).
 //!
 //! Games also tint models through the same colours (OpenArena's green player coats: the
 //! colours are the light times the coat's colour). Light alone would leave that hue out of a
 //! traced model, whose albedo is its texture, so the albedo keeps the colours' common hue,
 //! [`tint`] (their mean colour scaled to a brightest channel of 1: a chromaticity, the light's
-//! strength left out), and the light [`recover`] finds is divided by it, so that the model
-//! is lit as brightly as before and its hue comes from its colours.
+//! strength left out), and the light [`recover`] finds (both parts) is divided by it, so that
+//! the model is lit as brightly as before and its hue comes from its colours.
 //!
 //! [`recover`] fits that lighting model to the draw's vertex colours and normals (the draw's
-//! own, else the smoothed normals of its triangles), and makes its directed part a directional
-//! light of that instance alone ([`GpuLight`] `params.w`), sampled by next-event estimation
-//! like a GL light (it lights the diffuse lobe alone: the game's lighting is Lambertian, and
-//! the light is divided by the tint, which only the albedo holds), with shadow rays as long
-//! as the model is wide (its own parts shadow it; the level's occlusion is already in the
-//! game's grid). Draws whose colours do not follow
-//! their normals (painted colours, a constant colour, lighting the fit cannot explain) get no
-//! light.
+//! own, else the smoothed normals of its triangles). Draws whose colours do not follow their
+//! normals (painted colours, a constant colour, lighting the fit cannot explain) get no light
+//! of their own: traced light lights them.
 
 use std::collections::HashMap;
 
@@ -197,12 +205,25 @@ pub fn tint(draw: &Draw) -> Vec3 {
 /// The smallest linear tint a light is divided by (a channel the colours hardly have).
 const MIN_TINT: f32 = 1.0 / 256.0;
 
-/// The directional light of instance `instance` (its index in the frame's instances) that
-/// `draw`'s vertex colours hold, seen through `object_to_eye` (see the module doc): its
-/// irradiance makes a white Lambertian surface facing it as much brighter, in linear light, as
-/// the game's directed colour makes it (`π (linear(ambient + directed) − linear(ambient))`),
-/// divided by the linear [`tint`] the model's albedo holds.
-pub fn recover(draw: &Draw, object_to_eye: &Mat4, instance: u32) -> Option<GpuLight> {
+/// The light of a vertex-lit model's colours ([`recover`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ModelLight {
+    /// The directed part: a directional light of the model's instance alone.
+    pub directed: GpuLight,
+    /// The ambient part: linear radiance arriving from every direction (rgb), divided by the
+    /// linear [`tint`] as the directed part is; a: the model's width, in eye space (how far
+    /// its continuation rays look for its own parts before they take this radiance).
+    pub ambient: [f32; 4],
+}
+
+/// The light that `draw`'s vertex colours hold, for instance `instance` (its index in the
+/// frame's instances), seen through `object_to_eye` (see the module doc), both parts divided
+/// by the linear [`tint`] the model's albedo holds: the directed part's irradiance makes a
+/// white Lambertian surface facing it as much brighter, in linear light, as the game's
+/// directed colour makes it (`π (linear(ambient + directed) − linear(ambient))`); the ambient
+/// radiance `linear(ambient)` is what a white Lambertian surface reflects under it, as the
+/// game shows the ambient colour.
+pub fn recover(draw: &Draw, object_to_eye: &Mat4, instance: u32) -> Option<ModelLight> {
     let colours = &draw.vertices.color.values;
     if colours.len() != draw.vertices.len() {
         return None;
@@ -211,17 +232,22 @@ pub fn recover(draw: &Draw, object_to_eye: &Mat4, instance: u32) -> Option<GpuLi
     let colours: Vec<DVec3> = colours.iter().map(|c| DVec3::new(f64::from(c[0]), f64::from(c[1]), f64::from(c[2]))).collect();
     let lighting = fit(&normals, &colours)?;
     let linear = |v: Vec3| Vec3::new(srgb_to_linear(v.x), srgb_to_linear(v.y), srgb_to_linear(v.z));
+    let tint = linear(tint(draw)).max(Vec3::splat(MIN_TINT));
     let full = (lighting.ambient + lighting.directed).min(Vec3::ONE);
-    let irradiance = (linear(full) - linear(lighting.ambient)).max(Vec3::ZERO) * std::f32::consts::PI / linear(tint(draw)).max(Vec3::splat(MIN_TINT));
+    let irradiance = (linear(full) - linear(lighting.ambient)).max(Vec3::ZERO) * std::f32::consts::PI / tint;
+    let ambient = linear(lighting.ambient) / tint;
     // Shadow rays as long as the model is wide, in eye space.
     let points: Vec<Vec3> = draw.vertices.position.iter().map(|p| object_to_eye.project_point3(Vec3::from_slice(&p[..3]))).collect();
     let centre = points.iter().copied().sum::<Vec3>() / points.len().max(1) as f32;
     let width = 2.0 * points.iter().map(|p| p.distance(centre)).fold(0.0, f32::max);
-    Some(GpuLight {
-        position: [lighting.towards.x, lighting.towards.y, lighting.towards.z, 0.0],
-        radiance: [irradiance.x, irradiance.y, irradiance.z, 0.0],
-        spot: [0.0, 0.0, 0.0, -2.0],
-        params: [0.0, 1.0, width, (instance + 1) as f32],
+    Some(ModelLight {
+        directed: GpuLight {
+            position: [lighting.towards.x, lighting.towards.y, lighting.towards.z, 0.0],
+            radiance: [irradiance.x, irradiance.y, irradiance.z, 0.0],
+            spot: [0.0, 0.0, 0.0, -2.0],
+            params: [0.0, 1.0, width, (instance + 1) as f32],
+        },
+        ambient: [ambient.x, ambient.y, ambient.z, width],
     })
 }
 
@@ -326,28 +352,39 @@ mod tests {
         // Lit from +x: the +x corners get ambient + directed, the others ambient.
         let colour = |p: [f32; 4]| if p[0] > 0.5 { [0.25 + 0.5, 0.25 + 0.5, 0.25 + 0.5, 1.0] } else { [0.25, 0.25, 0.25, 1.0] };
         draw.vertices.color.values = draw.vertices.position.iter().map(|&p| colour(p)).collect();
-        let light = recover(&draw, &Mat4::from_translation(Vec3::new(0.0, 0.0, -5.0)), 7).expect("a light");
+        let recovered = recover(&draw, &Mat4::from_translation(Vec3::new(0.0, 0.0, -5.0)), 7).expect("a light");
+        let light = recovered.directed;
         assert!(light.position[0] > 0.95 && light.position[3] == 0.0, "{light:?}");
         // Wound the other way, the same light.
         let mut clockwise = draw.clone();
         clockwise.indices.chunks_exact_mut(3).for_each(|t| t.swap(0, 1));
-        assert_eq!(recover(&clockwise, &Mat4::from_translation(Vec3::new(0.0, 0.0, -5.0)), 7), Some(light));
+        assert_eq!(recover(&clockwise, &Mat4::from_translation(Vec3::new(0.0, 0.0, -5.0)), 7), Some(recovered));
         assert_eq!(light.params[3], 8.0, "instance 7 alone");
         assert!((light.params[2] - 2.0).abs() < 0.1, "shadow rays as long as the model is wide: {light:?}");
         let expected = std::f32::consts::PI * (srgb_to_linear(0.75) - srgb_to_linear(0.25));
         assert!((light.radiance[0] - expected).abs() < 0.02 * expected, "{light:?}, expected {expected}");
         assert_eq!(tint(&draw), Vec3::ONE, "grey colours: no hue");
+        // The ambient part: linear(0.25) from every direction, what the game shows on the
+        // corners the directed light does not reach, in rays as long as the model is wide.
+        let ambient = srgb_to_linear(0.25);
+        assert!(recovered.ambient[..3].iter().all(|a| (a - ambient).abs() < 0.02 * ambient), "{recovered:?}, expected {ambient}");
+        assert_eq!(recovered.ambient[3], light.params[2], "ambient rays as long as the shadow rays");
 
         // The same light through a green coat: the colours times (0.35, 1, 0.35).
         let green = Vec3::new(0.35, 1.0, 0.35);
         let mut coated = draw.clone();
         coated.vertices.color.values.iter_mut().for_each(|c| *c = [c[0] * green.x, c[1], c[2] * green.z, c[3]]);
         assert!(tint(&coated).abs_diff_eq(green, 1e-5), "{}", tint(&coated));
-        let through = recover(&coated, &Mat4::from_translation(Vec3::new(0.0, 0.0, -5.0)), 7).expect("a light");
+        let coat = recover(&coated, &Mat4::from_translation(Vec3::new(0.0, 0.0, -5.0)), 7).expect("a light");
+        let through = coat.directed;
         assert!((through.radiance[1] - expected).abs() < 0.02 * expected, "green as before: {through:?}");
         // Red: what the coat's colours add, once the albedo multiplies the tint back.
         let red = std::f32::consts::PI * (srgb_to_linear(0.75 * green.x) - srgb_to_linear(0.25 * green.x));
         assert!((through.radiance[0] * srgb_to_linear(green.x) - red).abs() < 0.02 * red, "{through:?}, expected {red} / tint");
+        // The ambient part likewise: green as before, red once the albedo multiplies the tint.
+        assert!((coat.ambient[1] - ambient).abs() < 0.02 * ambient, "{coat:?}");
+        let red = srgb_to_linear(0.25 * green.x);
+        assert!((coat.ambient[0] * srgb_to_linear(green.x) - red).abs() < 0.02 * red, "{coat:?}, expected {red} / tint");
     }
 
     /// A sphere of `rows` × `columns` quads lit as Quake 3 lights a model (ambient + max(0,
@@ -405,7 +442,12 @@ mod tests {
         let towards = Vec3::new(0.6, 0.7, 0.4).normalize();
         for draw in [&shared, &split] {
             let light = recover(draw, &eye, 3).expect("a light");
-            assert!(Vec3::from_slice(&light.position[..3]).dot(towards) > 0.995, "{light:?}");
+            assert!(Vec3::from_slice(&light.directed.position[..3]).dot(towards) > 0.995, "{light:?}");
+            // The ambient (0.3, 0.285, 0.21) over the tint (1, 0.95, 0.7): linear(0.3) in
+            // each channel, from every direction (the colours clamped to 1 where the light is
+            // strongest raise the fitted ambient by up to 0.02 in display terms: 17 % linear).
+            let ambient = srgb_to_linear(0.3);
+            assert!(light.ambient[..3].iter().all(|a| (a - ambient).abs() < 0.2 * ambient), "{light:?}, expected {ambient}");
         }
     }
 }

@@ -17,7 +17,7 @@
 //! per height, at most 1) among a scan of heights; where several heights explain them equally (a flat
 //! floor wholly within `r/2` of the light), the one nearest the viewer's height, which lies
 //! on the lit side. [`falloff`] reads the falloff texture (bright at its centre, black at its
-//! corners) for the strength of its inverse-square falloff.
+//! corners) for the strength of its inverse-square falloff and its faintest texel.
 //!
 //! [`DynamicLights`] collects the lights of one frame's passes in eye space, one per light: the
 //! passes of a light drawn over several batches (a floor and a wall) are pooled, and its
@@ -173,13 +173,22 @@ fn height_and_color(vertices: &[PassVertex], r: f32, eye_height: f32) -> Result<
     Ok((z, weighted / mm, z_hi - z_lo))
 }
 
-/// The strength of a radial falloff texture's inverse-square falloff, as a multiple of the
-/// light's radius squared (`falloff / r²` of [`DynamicLight`]): the median over the texels
+/// What a radial falloff texture brings as a function of the distance from its centre.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Falloff {
+    /// The strength of its inverse-square falloff, as a multiple of the light's radius
+    /// squared (`falloff / r²` of [`DynamicLight`]).
+    pub strength: f32,
+    /// Its faintest texel that is not black ([`DynamicLight::floor`]).
+    pub floor: f32,
+}
+
+/// The falloff of a radial falloff texture: its strength is the median over the texels
 /// between black and full of brightness times squared distance from the centre (distances
 /// in widths of the texture, which spans `r`). `None` when the texture is not a radial
 /// falloff: not 2D RGBA8 of at least 4 × 4 texels, brightest elsewhere than around its
 /// centre, or not black at its corners.
-pub fn falloff(texture: &TextureRef) -> Option<f32> {
+pub fn falloff(texture: &TextureRef) -> Option<Falloff> {
     let content = &texture.content;
     let image = content.faces.first()?.first()?.as_ref()?;
     let (w, h) = (image.width as usize, image.height as usize);
@@ -210,19 +219,22 @@ pub fn falloff(texture: &TextureRef) -> Option<f32> {
         return None;
     }
     strengths.sort_by(f32::total_cmp);
-    Some(strengths[strengths.len() / 2])
+    let floor = (0..h).flat_map(|y| (0..w).map(move |x| (x, y))).map(|(x, y)| brightness(x, y)).filter(|&b| b > 0.0).fold(1.0, f32::min);
+    Some(Falloff { strength: strengths[strengths.len() / 2], floor })
 }
 
 /// Whether `draw`'s state is that of a dynamic-light pass: triangles of the fixed-function
 /// pipeline, added or multiplied in over what is drawn (`GL_EQUAL` depth, or `GL_LEQUAL`
-/// without depth writes), unit 0 alone textured with coordinates as issued.
-fn is_candidate(draw: &Draw) -> bool {
+/// without depth writes), unit 0 alone textured with coordinates as issued. `Some(true)`
+/// when it multiplies the colour under it (`GL_DST_COLOR, GL_ONE`), `Some(false)` when it adds.
+fn is_candidate(draw: &Draw) -> Option<bool> {
     use BlendFactor::{DstColor, One, SrcAlpha};
     let s = &draw.state;
     let later = s.depth_test == Some(CompareFunc::Equal) || (s.depth_test == Some(CompareFunc::LessEqual) && !s.depth_write);
     let adds = s.blend.is_some_and(|b| b.equation_rgb == BlendEquation::Add && matches!((b.src_rgb, b.dst_rgb), (One, One) | (SrcAlpha, One) | (DstColor, One)));
     let unit0 = draw.texture_units.first().copied().flatten().is_some_and(|u| u.texgen.iter().all(Option::is_none));
-    later && adds && unit0 && draw.topology == Topology::Triangles && draw.program.is_none() && s.logic_op.is_none() && draw.texture_units.iter().skip(1).all(Option::is_none)
+    let candidate = later && adds && unit0 && draw.topology == Topology::Triangles && draw.program.is_none() && s.logic_op.is_none() && draw.texture_units.iter().skip(1).all(Option::is_none);
+    candidate.then(|| s.blend.is_some_and(|b| b.src_rgb == DstColor))
 }
 
 /// The vertices of `draw` that its triangles use, as a pass's vertices (`None` when one lacks
@@ -253,8 +265,10 @@ struct Group {
     modelview: Mat4,
     /// The light as the best single pass placed it (colours checked pass by pass).
     fit: Fit,
-    /// Falloff strength of its texture, a multiple of the radius squared.
-    strength: f32,
+    /// Falloff of its texture.
+    falloff: Falloff,
+    /// Whether its passes multiply the colour under them ([`DynamicLight::modulates`]).
+    modulates: bool,
     /// The viewer's height in the object space.
     eye_height: f32,
     /// Every pass's vertices.
@@ -271,7 +285,9 @@ impl Group {
         let scale = self.modelview.x_axis.truncate().length();
         let position = self.modelview.transform_point3(f.origin.with_z(z));
         let radius = f.radius * scale;
-        (DynamicLight { position: position.to_array(), color: color.to_array(), radius, falloff: self.strength * radius * radius }, spread * scale)
+        let axis = self.modelview.z_axis.truncate().normalize_or_zero().to_array();
+        let falloff = self.falloff.strength * radius * radius;
+        (DynamicLight { position: position.to_array(), color: color.to_array(), radius, falloff, axis, floor: self.falloff.floor, modulates: self.modulates }, spread * scale)
     }
 }
 
@@ -291,17 +307,15 @@ impl DynamicLights {
     /// Whether `draw` is a dynamic-light pass; if so its light is added, or joins the passes
     /// of the same light (the same modelview, centre and radius within a thousandth of it).
     pub fn take(&mut self, draw: &Draw) -> bool {
-        if !is_candidate(draw) {
-            return false;
-        }
-        let Some(strength) = draw.textures.first().and_then(Option::as_ref).and_then(falloff) else { return false };
+        let Some(modulates) = is_candidate(draw) else { return false };
+        let Some(falloff) = draw.textures.first().and_then(Option::as_ref).and_then(falloff) else { return false };
         let Some(vertices) = pass_vertices(draw) else { return false };
         let eye = draw.modelview.inverse().w_axis;
         let eye_height = eye.z / eye.w;
         let Ok(fit) = fit(&vertices, eye_height) else { return false };
         let same = |g: &Group| {
             let r = fit.radius;
-            g.modelview == draw.modelview && g.fit.origin.truncate().distance(fit.origin.truncate()) < 1e-3 * r && (g.fit.radius - r).abs() < 1e-3 * r
+            g.modelview == draw.modelview && g.modulates == modulates && g.fit.origin.truncate().distance(fit.origin.truncate()) < 1e-3 * r && (g.fit.radius - r).abs() < 1e-3 * r
         };
         match self.groups.iter_mut().find(|g| same(g)) {
             Some(g) => {
@@ -310,7 +324,7 @@ impl DynamicLights {
                 }
                 g.vertices.extend(vertices);
             }
-            None => self.groups.push(Group { modelview: draw.modelview, fit, strength, eye_height, vertices }),
+            None => self.groups.push(Group { modelview: draw.modelview, fit, falloff, modulates, eye_height, vertices }),
         }
         true
     }
@@ -435,11 +449,13 @@ mod tests {
         let alone = fit(&high, 60.0).expect("a fit");
         assert!(alone.height_spread > 150.0, "{alone:?}");
         let fit = fit(&low, 60.0).expect("a fit");
-        let group = Group { modelview: Mat4::IDENTITY, fit, strength: 0.06, eye_height: 60.0, vertices: [high, low].concat() };
+        let falloff = Falloff { strength: 0.06, floor: 0.3 };
+        let group = Group { modelview: Mat4::IDENTITY, fit, falloff, modulates: false, eye_height: 60.0, vertices: [high, low].concat() };
         let (light, spread) = group.light();
         eprintln!("two floors: height {:.2} (spread {spread:.2}), colour {:?}", light.position[2], light.color);
         assert!((light.position[2] - 78.5).abs() < 1.5 && spread < 3.0, "{light:?}");
         assert!(Vec3::from_array(light.color).abs_diff_eq(color, 0.01) && (light.falloff - 0.06 * r * r).abs() < 1.0, "{light:?}");
+        assert_eq!((light.axis, light.floor, light.modulates), ([0.0, 0.0, 1.0], 0.3, false), "projected along the object's z");
     }
 
     /// Quake 3's dynamic light image (`R_CreateDlightImage`): 16 × 16, 4000 / d² of the
@@ -467,7 +483,9 @@ mod tests {
     fn quake_3s_falloff_texture_is_a_radial_falloff_of_its_strength() {
         // 4000 / d² over 255, with d in texels (16 per r): 4000 / (255 · 256) of r².
         let k = falloff(&texture(16, q3_image())).expect("a falloff");
-        assert!((k - 4000.0 / (255.0 * 256.0)).abs() < 0.002, "{k}");
+        assert!((k.strength - 4000.0 / (255.0 * 256.0)).abs() < 0.002, "{k:?}");
+        // The faintest texel: 4000 / (4.5² + 5.5²) = 79.2 (the next, 6.5² + 3.5², gives 73: black).
+        assert_eq!(k.floor, 79.0 / 255.0, "{k:?}");
         assert_eq!(falloff(&texture(16, vec![255; 16 * 16 * 4])), None, "white: not black at the corners");
         let mut off_centre = q3_image();
         off_centre[..4].copy_from_slice(&[255; 4]);

@@ -67,7 +67,8 @@ struct Traced {
     draw: usize,
     tags: Tags,
     geometry: u64,
-    /// Hash of the textures, draw state and material: the static world's material key.
+    /// Hash of the textures, draw state, material and lit diffuse colour: the static world's
+    /// material key.
     material_key: u64,
     material: MaterialOverride,
     /// Its texture units that hold baked light ([`Instance::light_units`]).
@@ -266,7 +267,10 @@ impl Classifier {
             let material = self.config.material(hashes[0], tags);
             let [m0, m1] = material.key();
             let light_units = lighting::light_units(draw, |u| hashes[u].is_some_and(|h| self.config.is_lightmap(h)));
-            let material_key = keys::combine(&[texture, state, m0, m1]);
+            // The world keeps a triangle's colours as first offered: a lit draw's diffuse colour
+            // (its base colour) is in the key, so that a `glMaterial` change makes new triangles.
+            let diffuse = world_feed::lit_diffuse(draw).map_or(0, |d| keys::combine(&d.map(|c| u64::from(c.to_bits()))));
+            let material_key = keys::combine(&[texture, state, m0, m1, diffuse]);
             self.traced.push(Traced { draw: i, tags, geometry, material_key, material, light_units, baked_layer: false });
         }
     }
@@ -573,6 +577,41 @@ mod tests {
             let f = classify(&mut c, k, vec![draw(10, 0.0, camera), draw(3, 30.0 + k as f32 * 0.37, camera)]);
             assert!(!marked(&f)[1], "frame {k}");
         }
+    }
+
+    /// A lit wall whose `glMaterial` diffuse colour changes (red, then blue) is traced blue:
+    /// drawn blue twice, it is in the world again (its draw marked, so the tracer shades it
+    /// by the chunks), and the chunks hold it blue; the red triangles, no longer drawn where
+    /// the view shows their cell drawn, are released. Before, the chunks kept it red.
+    #[test]
+    fn a_lit_wall_whose_diffuse_colour_changes_is_held_in_its_new_colour() {
+        let mut c = Classifier::with_config(config::Config::default());
+        let camera = Mat4::from_translation(Vec3::new(-4.0, -0.5, -20.0));
+        let wall = |diffuse: [f32; 4]| {
+            let mut d = draw(8, 0.0, camera);
+            let mut lighting = crate::frame::state::Lighting::default();
+            lighting.front.diffuse = diffuse;
+            d.state = Arc::new(RasterState { lighting: Some(lighting), ..(*d.state).clone() });
+            d.vertices.color = Attrib { values: vec![[1.0; 4]] };
+            d
+        };
+        let (red, blue) = ([1.0, 0.0, 0.0, 1.0], [0.0, 0.0, 1.0, 1.0]);
+        let colours = |f: &Frame| {
+            let mut seen: Vec<[u8; 4]> = f.static_world.iter().flat_map(|c| c.colors.iter().copied()).collect();
+            seen.dedup();
+            seen
+        };
+        for n in 0..2 {
+            classify(&mut c, n, vec![wall(red)]);
+        }
+        let held = classify(&mut c, 2, vec![wall(red)]);
+        assert_eq!(colours(&held), [[255, 0, 0, 255]]);
+        classify(&mut c, 3, vec![wall(blue)]);
+        let f = classify(&mut c, 4, vec![wall(blue)]);
+        assert!(f.draws[0].instance.unwrap().in_static_world);
+        assert!(colours(&f).contains(&[0, 0, 255, 255]), "the chunks hold the wall blue: {:?}", colours(&f));
+        let f = (5..5 + u64::from(static_world::RELEASE_FRAMES) + 1).map(|n| classify(&mut c, n, vec![wall(blue)])).last().expect("frames");
+        assert_eq!(colours(&f), [[0, 0, 255, 255]], "the red triangles released");
     }
 
     #[test]

@@ -30,6 +30,12 @@ fn tracks_diffuse(lighting: &Lighting) -> bool {
     lighting.color_material.is_some_and(|c| matches!(c.mode, ColorMaterialMode::Diffuse | ColorMaterialMode::AmbientAndDiffuse))
 }
 
+/// The material's diffuse colour that lit `draw` is traced with as its base colour (`None`:
+/// unlit, or its diffuse colour tracks the vertex colour).
+pub fn lit_diffuse(draw: &Draw) -> Option<[f32; 4]> {
+    draw.state.lighting.as_ref().filter(|l| !tracks_diffuse(l)).map(|l| l.front.diffuse)
+}
+
 impl WorldFeed {
     /// Offers the triangles of `draw`, taken to the world by `model`, as material
     /// `material_key` with the parameters `material`.
@@ -41,7 +47,7 @@ impl WorldFeed {
         let uv_matrix = draw.texture_matrices.first().copied().flatten().filter(|m| *m != Mat4::IDENTITY);
         // The base colour the tracer shades with: the vertex colour, or the material's diffuse
         // colour of a lit draw whose diffuse does not track the colour (`trace::scene`).
-        let lit_diffuse = draw.state.lighting.as_ref().filter(|l| !tracks_diffuse(l)).map(|l| l.front.diffuse);
+        let lit_diffuse = lit_diffuse(draw);
         let colors = Some(&draw.vertices.color).filter(|c| lit_diffuse.is_some_and(|d| d != [1.0; 4]) || c.values.iter().any(|c| *c != [1.0; 4]));
         let identity = *model == Mat4::IDENTITY;
         for &i in &draw.indices {

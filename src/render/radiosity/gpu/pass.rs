@@ -4,14 +4,17 @@
 //! buffers, host-visible storage buffers the caller writes before a dispatch, one
 //! host-visible storage buffer the dispatches write and the caller reads after each, push
 //! constants, and one descriptor set (set 0, the tracer's set number, so that
-//! `trace/bvh.glsl` binds as in the tracer). On devices whose timestamps time compute work
-//! (GPUs; not CPU devices, as the denoiser's), each dispatch is timed.
+//! `trace/bvh.glsl` binds as in the tracer), its layouts a [`PassLayout`]. On devices whose
+//! timestamps time compute work ([`pass_times::supported`]: GPUs, not CPU devices), each
+//! dispatch is timed.
 
 use std::time::{Duration, Instant};
 
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 
+use crate::render::pass_layout::PassLayout;
+use crate::render::pass_times::{self, SlotStamps};
 use crate::render::raster::device::{Buffer, Check, Device, Image, Result};
 use crate::render::trace::pipelines::compute_pipeline;
 
@@ -59,9 +62,8 @@ pub struct ComputePass {
     sampler: vk::Sampler,
     output: Buffer,
     /// Two timestamps around each dispatch, on devices that time compute work.
-    timestamps: vk::QueryPool,
-    set_layout: vk::DescriptorSetLayout,
-    layout: vk::PipelineLayout,
+    timestamps: Option<SlotStamps>,
+    layout: PassLayout,
     pipeline: vk::Pipeline,
     descriptor_pool: vk::DescriptorPool,
     set: vk::DescriptorSet,
@@ -80,9 +82,8 @@ impl ComputePass {
             image: None,
             sampler: vk::Sampler::null(),
             output,
-            timestamps: vk::QueryPool::null(),
-            set_layout: vk::DescriptorSetLayout::null(),
-            layout: vk::PipelineLayout::null(),
+            timestamps: None,
+            layout: PassLayout { set: vk::DescriptorSetLayout::null(), pipeline: vk::PipelineLayout::null() },
             pipeline: vk::Pipeline::null(),
             descriptor_pool: vk::DescriptorPool::null(),
             set: vk::DescriptorSet::null(),
@@ -103,22 +104,18 @@ impl ComputePass {
     fn create(&mut self, device: &Device, spirv: &[u8], inputs: &Inputs) -> Result<()> {
         let raw = &device.raw;
         let bindings: Vec<u32> = inputs.storage.iter().map(|(b, _)| *b).chain(inputs.host.iter().map(|(b, _)| *b)).chain([inputs.output.0]).collect();
-        let binding = |b, ty| vk::DescriptorSetLayoutBinding::default().binding(b).descriptor_type(ty).descriptor_count(1).stage_flags(vk::ShaderStageFlags::COMPUTE);
         let layout_bindings: Vec<_> = bindings
             .iter()
-            .map(|&b| binding(b, vk::DescriptorType::STORAGE_BUFFER))
-            .chain(inputs.image.as_ref().map(|i| binding(i.binding, vk::DescriptorType::COMBINED_IMAGE_SAMPLER)))
+            .map(|&b| (b, vk::DescriptorType::STORAGE_BUFFER))
+            .chain(inputs.image.as_ref().map(|i| (i.binding, vk::DescriptorType::COMBINED_IMAGE_SAMPLER)))
             .collect();
+        self.layout = PassLayout::new(device, &layout_bindings, vk::ShaderStageFlags::COMPUTE, inputs.push_bytes)?;
+        self.timestamps = SlotStamps::new(device, 2, 1)?;
         // Safety (this function): valid create infos of live objects; everything made is
         // recorded in `self`, whose `destroy` frees it after the GPU is done.
         unsafe {
-            self.set_layout = raw.create_descriptor_set_layout(&vk::DescriptorSetLayoutCreateInfo::default().bindings(&layout_bindings), None).check("vkCreateDescriptorSetLayout")?;
-            let set_layouts = [self.set_layout];
-            let push = [vk::PushConstantRange { stage_flags: vk::ShaderStageFlags::COMPUTE, offset: 0, size: inputs.push_bytes }];
-            self.layout = raw
-                .create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&set_layouts).push_constant_ranges(&push), None)
-                .check("vkCreatePipelineLayout")?;
-            self.pipeline = compute_pipeline(device, self.layout, spirv)?;
+            let set_layouts = [self.layout.set];
+            self.pipeline = compute_pipeline(device, self.layout.pipeline, spirv)?;
             let sizes = [
                 vk::DescriptorPoolSize { ty: vk::DescriptorType::STORAGE_BUFFER, descriptor_count: bindings.len() as u32 },
                 vk::DescriptorPoolSize { ty: vk::DescriptorType::COMBINED_IMAGE_SAMPLER, descriptor_count: 1 },
@@ -134,10 +131,6 @@ impl ComputePass {
                 .allocate_command_buffers(&vk::CommandBufferAllocateInfo::default().command_pool(self.command_pool).level(vk::CommandBufferLevel::PRIMARY).command_buffer_count(1))
                 .check("vkAllocateCommandBuffers")?[0];
             self.fence = raw.create_fence(&vk::FenceCreateInfo::default(), None).check("vkCreateFence")?;
-            let timed = device.properties.limits.timestamp_compute_and_graphics == vk::TRUE && device.properties.device_type != vk::PhysicalDeviceType::CPU;
-            if timed {
-                self.timestamps = raw.create_query_pool(&vk::QueryPoolCreateInfo::default().query_type(vk::QueryType::TIMESTAMP).query_count(2), None).check("vkCreateQueryPool")?;
-            }
             if inputs.image.is_some() {
                 let info = vk::SamplerCreateInfo::default()
                     .mag_filter(vk::Filter::NEAREST)
@@ -223,14 +216,9 @@ impl ComputePass {
 
     /// The GPU time of the last dispatch, on devices that time compute work.
     pub fn last_dispatch_time(&self, device: &Device) -> Option<Duration> {
-        if self.timestamps == vk::QueryPool::null() {
-            return None;
-        }
-        let mut ticks = [0u64; 2];
-        // Safety: both queries were written by the last dispatch, which was waited for.
-        unsafe { device.raw.get_query_pool_results(self.timestamps, 0, &mut ticks, vk::QueryResultFlags::TYPE_64) }.ok()?;
-        let nanoseconds = ticks[1].wrapping_sub(ticks[0]) as f64 * f64::from(device.properties.limits.timestamp_period);
-        Some(Duration::from_nanos(nanoseconds as u64))
+        // Both queries were written by the last dispatch, which was waited for.
+        let ticks = self.timestamps.as_ref()?.read(device, 0)?;
+        Some(Duration::from_secs_f64(pass_times::seconds(device, ticks[0], ticks[1])))
     }
 
     /// Records `record` into the command buffer, submits it and waits for it.
@@ -251,22 +239,21 @@ impl ComputePass {
 
     /// One dispatch of `groups` with the push constants `push`; waits for it.
     pub fn run(&mut self, device: &Device, push: &[u8], groups: [u32; 3]) -> Result<()> {
-        let (pipeline, layout, set, timestamps) = (self.pipeline, self.layout, self.set, self.timestamps);
+        let (pipeline, layout, set) = (self.pipeline, self.layout.pipeline, self.set);
+        let stamps = self.timestamps.as_ref().map(|t| t.frame(0));
         self.submit(device, |raw, cmd| {
             let barrier = [vk::MemoryBarrier::default().src_access_mask(vk::AccessFlags::SHADER_WRITE).dst_access_mask(vk::AccessFlags::HOST_READ)];
-            let timed = timestamps != vk::QueryPool::null();
             // Safety: recording with live objects.
             unsafe {
                 raw.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline);
                 raw.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, layout, 0, &[set], &[]);
                 raw.cmd_push_constants(cmd, layout, vk::ShaderStageFlags::COMPUTE, 0, push);
-                if timed {
-                    raw.cmd_reset_query_pool(cmd, timestamps, 0, 2);
-                    raw.cmd_write_timestamp(cmd, vk::PipelineStageFlags::TOP_OF_PIPE, timestamps, 0);
+                if let Some(stamps) = stamps {
+                    stamps.write(device, cmd, 0, vk::PipelineStageFlags2::TOP_OF_PIPE);
                 }
                 raw.cmd_dispatch(cmd, groups[0], groups[1], groups[2]);
-                if timed {
-                    raw.cmd_write_timestamp(cmd, vk::PipelineStageFlags::BOTTOM_OF_PIPE, timestamps, 1);
+                if let Some(stamps) = stamps {
+                    stamps.write(device, cmd, 1, vk::PipelineStageFlags2::COMPUTE_SHADER);
                 }
                 raw.cmd_pipeline_barrier(cmd, vk::PipelineStageFlags::COMPUTE_SHADER, vk::PipelineStageFlags::HOST, vk::DependencyFlags::empty(), &barrier, &[], &[]);
             }
@@ -291,13 +278,14 @@ impl ComputePass {
         // Safety: the GPU is done with every object; null handles are ignored.
         unsafe {
             device.raw.destroy_fence(self.fence, None);
-            device.raw.destroy_query_pool(self.timestamps, None);
             device.raw.destroy_sampler(self.sampler, None);
             device.raw.destroy_command_pool(self.command_pool, None);
             device.raw.destroy_descriptor_pool(self.descriptor_pool, None);
             device.raw.destroy_pipeline(self.pipeline, None);
-            device.raw.destroy_pipeline_layout(self.layout, None);
-            device.raw.destroy_descriptor_set_layout(self.set_layout, None);
+        }
+        self.layout.destroy(device);
+        if let Some(stamps) = self.timestamps {
+            stamps.destroy(device);
         }
         for b in self.buffers.into_iter().chain(self.host) {
             device.destroy_buffer(b);

@@ -11,7 +11,7 @@ use crate::render::radiosity::patches::Patches;
 use crate::render::radiosity::shader_constants::{BINDING_PATCH_TRIANGLES, BINDING_PATCHES};
 use crate::render::trace::bindings;
 use crate::render::trace::bvh::cpu::affine_rows;
-use crate::render::trace::bvh::{Blas, Tlas};
+use crate::render::trace::bvh::{Blas, Layout, Tlas};
 use crate::render::trace::gpu_types::GpuInstance;
 
 /// A patch as the shaders read it (`Patch`).
@@ -58,8 +58,8 @@ pub struct PatchScene {
 impl PatchScene {
     /// The scene of `patches`.
     pub fn new(patches: &Patches) -> PatchScene {
-        let blas = Blas::build(&patches.triangles);
-        let tlas = Tlas::build(&[blas.bounds]);
+        let blas = Blas::build(&patches.triangles, Layout::Binary);
+        let tlas = Tlas::build(&[blas.bounds], Layout::Binary);
         let rows = affine_rows(&Affine3A::IDENTITY).map(|r| r.to_array());
         let instance = GpuInstance { object_to_eye: rows, eye_to_object: rows, previous_object_to_eye: rows, blas_root: 0, first_triangle: 0, flags: 0, material: 0 };
         let gpu_patches = patches

@@ -79,11 +79,22 @@ pub fn pack(draw: &Draw) -> Vec<f32> {
 }
 
 /// [`pack`] into `out` (upload memory), [`VERTEX_FLOATS`] per vertex: as many vertices as
-/// both hold.
+/// both hold. Every float of each vertex is written once, in order (upload memory may be
+/// write-combined). Draws whose per-vertex attributes are among the colour, the normal and
+/// the coordinates of units 0 and 1 (the others shared by all vertices or absent: nearly
+/// every draw) take a loop specialised for that layout (`Common`); the rest look at each
+/// attribute of each vertex (`Columns::vertex`).
 pub fn pack_into(draw: &Draw, out: &mut [f32]) {
     let columns = Columns::of(&draw.vertices);
-    for (i, vertex) in out.chunks_exact_mut(VERTEX_FLOATS).take(draw.vertices.len()).enumerate() {
-        vertex.copy_from_slice(&columns.vertex(i));
+    let n = draw.vertices.len().min(out.len() / VERTEX_FLOATS);
+    let out = &mut out[..n * VERTEX_FLOATS];
+    match Common::of(&columns, n) {
+        Some(common) => common.pack(out),
+        None => {
+            for (i, vertex) in out.chunks_exact_mut(VERTEX_FLOATS).enumerate() {
+                vertex.copy_from_slice(&columns.vertex(i));
+            }
+        }
     }
 }
 
@@ -109,6 +120,23 @@ impl<'a, T: Copy> Column<'a, T> {
         match self {
             Column::Each(values) => values.get(i).copied().unwrap_or(initial),
             Column::One(value) => *value,
+        }
+    }
+
+    /// The value shared by every vertex (`initial` for a column of one value each).
+    fn shared(&self, initial: T) -> T {
+        match self {
+            Column::Each(_) => initial,
+            Column::One(value) => *value,
+        }
+    }
+
+    /// The first `n` values of a column of one value each (`Some(&[])` for a shared value;
+    /// `None` when it holds fewer than `n`).
+    fn each(&self, n: usize) -> Option<&'a [T]> {
+        match self {
+            Column::Each(values) => values.get(..n),
+            Column::One(_) => Some(&[]),
         }
     }
 }
@@ -154,6 +182,117 @@ impl<'a> Columns<'a> {
             out[at..at + 4].copy_from_slice(&column.get(i, ORIGIN));
         }
         out
+    }
+}
+
+/// A packed vertex as its ten vec4s.
+type Quads = [[f32; 4]; VERTEX_FLOATS / 4];
+
+// The vec4s `Common` writes: position, colour, secondary colour (alpha 0), normal with the
+// fog coordinate, units 0 to 3, then the rasterization attribute and the indirect light.
+const _: () = assert!(
+    POSITION == 0 && COLOR == 4 && SECONDARY == 8 && NORMAL == 12 && FOG_COORD == 15 && TEXCOORD == 16 && RASTER == 32 && INDIRECT == 36 && VERTEX_FLOATS == 40
+);
+
+// Bits of a [`Common`] layout: which attributes have one value per vertex.
+/// The colour.
+const EACH_COLOR: u8 = 1;
+/// The normal.
+const EACH_NORMAL: u8 = 2;
+/// Unit 0's texture coordinates.
+const EACH_UNIT0: u8 = 4;
+/// Unit 1's texture coordinates.
+const EACH_UNIT1: u8 = 8;
+
+/// A draw whose per-vertex attributes are the position and any of the colour, the normal and
+/// the coordinates of units 0 and 1, each holding a value for every packed vertex: the
+/// vertex's vec4s that all vertices share are made once ([`Common::shared`]).
+struct Common<'a> {
+    /// The packed vertex of the shared values (position and per-vertex attributes zero).
+    shared: Quads,
+    position: &'a [[f32; 4]],
+    /// Per-vertex values, empty where shared.
+    color: &'a [[f32; 4]],
+    normal: &'a [[f32; 3]],
+    unit0: &'a [[f32; 4]],
+    unit1: &'a [[f32; 4]],
+    /// `EACH_*` bits of the attributes stored per vertex.
+    layout: u8,
+}
+
+impl<'a> Common<'a> {
+    /// The common layout of the first `n` vertices of `c`, `None` when it has another.
+    fn of(c: &Columns<'a>, n: usize) -> Option<Common<'a>> {
+        if matches!(c.secondary, Column::Each(_)) || matches!(c.fog, Column::Each(_)) || c.texcoords[2..].iter().any(|t| matches!(t, Column::Each(_))) {
+            return None;
+        }
+        let (color, normal, unit0, unit1) = (c.color.each(n)?, c.normal.each(n)?, c.texcoords[0].each(n)?, c.texcoords[1].each(n)?);
+        let [r, g, b] = c.secondary.shared(BLACK);
+        let [x, y, z] = c.normal.shared(UP);
+        let bit = |values: usize, bit: u8| if values > 0 { bit } else { 0 };
+        Some(Common {
+            shared: [
+                [0.0; 4],
+                c.color.shared(WHITE),
+                [r, g, b, 0.0],
+                [x, y, z, c.fog.shared(0.0)],
+                c.texcoords[0].shared(ORIGIN),
+                c.texcoords[1].shared(ORIGIN),
+                c.texcoords[2].shared(ORIGIN),
+                c.texcoords[3].shared(ORIGIN),
+                [0.0; 4],
+                [0.0; 4],
+            ],
+            position: c.position.get(..n)?,
+            color,
+            normal,
+            unit0,
+            unit1,
+            layout: bit(color.len(), EACH_COLOR) | bit(normal.len(), EACH_NORMAL) | bit(unit0.len(), EACH_UNIT0) | bit(unit1.len(), EACH_UNIT1),
+        })
+    }
+
+    /// Packs every vertex into `out` (exactly their [`VERTEX_FLOATS`] each), by the loop made
+    /// for this layout.
+    fn pack(&self, out: &mut [f32]) {
+        macro_rules! by_layout {
+            ($($layout:literal)*) => {
+                match self.layout {
+                    $($layout => self.rows::<$layout>(out),)*
+                    _ => self.rows::<15>(out),
+                }
+            };
+        }
+        by_layout!(0 1 2 3 4 5 6 7 8 9 10 11 12 13 14);
+    }
+
+    /// Packs the vertices of layout `L` (`EACH_*` bits): the vec4s of per-vertex attributes
+    /// from their columns, the others from [`Common::shared`].
+    #[inline(always)]
+    fn rows<const L: u8>(&self, out: &mut [f32]) {
+        let s = &self.shared;
+        let (color, normal, unit0, unit1) = (self.color, self.normal, self.unit0, self.unit1);
+        for (i, (vertex, position)) in out.chunks_exact_mut(VERTEX_FLOATS).zip(self.position).enumerate() {
+            let normal = if L & EACH_NORMAL != 0 {
+                let [x, y, z] = normal[i];
+                [x, y, z, s[3][3]]
+            } else {
+                s[3]
+            };
+            let quads: Quads = [
+                *position,
+                if L & EACH_COLOR != 0 { color[i] } else { s[1] },
+                s[2],
+                normal,
+                if L & EACH_UNIT0 != 0 { unit0[i] } else { s[4] },
+                if L & EACH_UNIT1 != 0 { unit1[i] } else { s[5] },
+                s[6],
+                s[7],
+                s[8],
+                s[9],
+            ];
+            vertex.copy_from_slice(quads.as_flattened());
+        }
     }
 }
 
@@ -215,6 +354,81 @@ mod tests {
         set_indirect(&mut lit, &[[0.1, 0.2, 0.3], [0.4, 0.5, 0.6]]);
         assert_eq!(&get(&lit, 1)[INDIRECT..INDIRECT + 4], &[0.4, 0.5, 0.6, 0.0]);
         assert_eq!(&get(&lit, 1)[..INDIRECT], &second[..INDIRECT], "the rest untouched");
+    }
+
+    /// Packed vertex `i` of `v` by definition: each attribute's value ([`Attrib::get`]) or
+    /// its initial value, at its offset; zero elsewhere.
+    fn by_definition(v: &crate::frame::Vertices, i: usize) -> [f32; VERTEX_FLOATS] {
+        let mut out = [0.0; VERTEX_FLOATS];
+        out[POSITION..POSITION + 4].copy_from_slice(&v.position[i]);
+        out[COLOR..COLOR + 4].copy_from_slice(&v.color.get(i).unwrap_or([1.0; 4]));
+        out[SECONDARY..SECONDARY + 3].copy_from_slice(&v.secondary_color.get(i).unwrap_or([0.0; 3]));
+        out[NORMAL..NORMAL + 3].copy_from_slice(&v.normal.get(i).unwrap_or([0.0, 0.0, 1.0]));
+        out[FOG_COORD] = v.fog_coord.get(i).unwrap_or(0.0);
+        for unit in 0..MAX_UNITS {
+            let t = v.texcoords.get(unit).and_then(|t| t.get(i)).unwrap_or([0.0, 0.0, 0.0, 1.0]);
+            out[TEXCOORD + 4 * unit..TEXCOORD + 4 * unit + 4].copy_from_slice(&t);
+        }
+        out
+    }
+
+    /// An attribute of `n` vertices with no value (`how` 0), one shared value (1), one value
+    /// each (2) or fewer values than vertices (3); values made from `seed` by `value`.
+    fn attrib<T: Copy>(how: usize, n: usize, seed: f32, value: impl Fn(f32) -> T) -> Attrib<T> {
+        let count = [0, 1, n, n - 1][how];
+        Attrib { values: (0..count).map(|i| value(seed + i as f32 * 0.5)).collect() }
+    }
+
+    #[test]
+    fn every_layout_packs_as_defined() {
+        let n = 5;
+        let quad = |x: f32| [x, x + 0.125, x + 0.25, x + 0.375];
+        let triple = |x: f32| [x, x + 0.125, x + 0.25];
+        let (mut specialised, mut general) = (0, 0);
+        // Colour, secondary colour, normal, fog coordinate, units 0 to 3: each absent, shared,
+        // per vertex or short (3^8 layouts without a short column, plus each short one).
+        for code in 0..4usize.pow(8) {
+            let how: Vec<usize> = (0..8).map(|a| code / 4usize.pow(a) % 4).collect();
+            if how.iter().filter(|&&h| h == 3).count() > 1 {
+                continue;
+            }
+            let mut draw = Draw::default();
+            let v = &mut draw.vertices;
+            v.position = (0..n).map(|i| quad(i as f32)).collect();
+            v.color = attrib(how[0], n, 10.0, quad);
+            v.secondary_color = attrib(how[1], n, 20.0, triple);
+            v.normal = attrib(how[2], n, 30.0, triple);
+            v.fog_coord = attrib(how[3], n, 40.0, |x| x);
+            v.texcoords = (0..MAX_UNITS).map(|u| attrib(how[4 + u], n, 50.0 + 10.0 * u as f32, quad)).collect();
+            let columns = Columns::of(&draw.vertices);
+            match Common::of(&columns, n) {
+                Some(_) => specialised += 1,
+                None => general += 1,
+            }
+            // One float more than the vertices need: left as it was.
+            let mut out = vec![-7.0; n * VERTEX_FLOATS + 1];
+            pack_into(&draw, &mut out);
+            for i in 0..n {
+                let packed: Vec<u32> = get(&out, i as u32).iter().map(|f| f.to_bits()).collect();
+                let defined: Vec<u32> = by_definition(&draw.vertices, i).iter().map(|f| f.to_bits()).collect();
+                assert_eq!(packed, defined, "layout {how:?}, vertex {i}");
+            }
+            assert_eq!(out[n * VERTEX_FLOATS], -7.0, "layout {how:?}: past the vertices");
+        }
+        // Colour, normal, units 0 and 1 in any of 3 forms, the others in 2 forms: 3^4 * 2^4.
+        assert_eq!(specialised, 81 * 16);
+        assert!(general > 0);
+    }
+
+    #[test]
+    fn packs_as_many_vertices_as_fit() {
+        let mut draw = Draw::default();
+        draw.vertices.position = vec![[1.0; 4], [2.0; 4], [3.0; 4]];
+        draw.vertices.color.values = vec![[0.5; 4], [0.25; 4], [0.125; 4]];
+        let mut out = vec![0.0; 2 * VERTEX_FLOATS + 3];
+        pack_into(&draw, &mut out);
+        assert_eq!(&get(&out, 1)[COLOR..COLOR + 4], &[0.25; 4]);
+        assert_eq!(&out[2 * VERTEX_FLOATS..], &[0.0; 3], "no part of a third vertex");
     }
 
     #[test]

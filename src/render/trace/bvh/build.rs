@@ -14,7 +14,7 @@ use obvhs::BvhBuildParams;
 use obvhs::bvh2::Bvh2;
 
 use super::wide::{self, GpuWideNode, Widened, widen};
-use super::{Aabb, GpuChild, GpuNode, GpuTriangle, MAX_COORD};
+use super::{Aabb, GpuChild, GpuNode, GpuTriangle, Layout, MAX_COORD};
 use crate::render::trace::shader_constants::{BVH_LEAF, BVH_MAX_DEPTH, BVH_WIDE_COUNT, BVH_WIDE_LEAVES};
 
 /// The bottom-level BVH of one triangle set, in object space. Node and triangle indices are
@@ -22,11 +22,13 @@ use crate::render::trace::shader_constants::{BVH_LEAF, BVH_MAX_DEPTH, BVH_WIDE_C
 #[derive(Clone, Debug, PartialEq)]
 pub struct Blas {
     /// The nodes, root first; never empty (an empty set has one node of two empty leaves).
+    /// Built in both layouts: the wide tree is collapsed from it and refitted through it.
     pub nodes: Vec<GpuNode>,
-    /// `nodes` collapsed into wide nodes ([`widen`]), root first.
-    pub wide: Widened,
-    /// The triangles in BVH order (the leaves of a wide node consecutive): leaves of both
-    /// layouts reference ranges of it.
+    /// `nodes` collapsed into wide nodes ([`widen`]), root first; only when built for
+    /// [`Layout::Wide`].
+    pub wide: Option<Widened>,
+    /// The triangles in BVH order (with a wide tree, the leaves of a wide node consecutive):
+    /// leaves of both layouts reference ranges of it.
     pub triangles: Vec<GpuTriangle>,
     /// `order[k]`: the index in the input of stored triangle `k` (reorders per-triangle
     /// shading attributes the same way).
@@ -41,11 +43,11 @@ pub struct Blas {
 pub struct Tlas {
     /// The nodes, root first; never empty.
     pub nodes: Vec<GpuNode>,
-    /// `nodes` collapsed into wide nodes ([`widen`]), root first, as words; then, from word
-    /// `20 *` [`Tlas::wide_count`] on, the instance of each wide leaf (the nodes' `leaf_base`
-    /// counts in words of this buffer).
-    pub wide: Vec<u32>,
-    /// Wide nodes at the start of `wide`.
+    /// Only when built for [`Layout::Wide`]: `nodes` collapsed into wide nodes ([`widen`]),
+    /// root first, as words; then, from word `20 *` [`Tlas::wide_count`] on, the instance of
+    /// each wide leaf (the nodes' `leaf_base` counts in words of this buffer).
+    pub wide: Option<Vec<u32>>,
+    /// Wide nodes at the start of `wide` (0 without it).
     pub wide_count: usize,
 }
 
@@ -67,21 +69,25 @@ const _: () = assert!(BLAS_LEAF_SIZE <= 1 << BVH_WIDE_COUNT.bits && 2 * BLAS_LEA
 const FALLBACK_LEAF_SIZE: usize = 4;
 
 impl Blas {
-    /// Builds the BVH of `triangles` (each `[v0, v1, v2]`, object space). Never panics: see the
-    /// module doc for empty, degenerate and non-finite input.
-    pub fn build(triangles: &[[Vec3; 3]]) -> Blas {
+    /// Builds the BVH of `triangles` (each `[v0, v1, v2]`, object space) for `layout`: the
+    /// binary tree, and with [`Layout::Wide`] its wide collapse. Never panics: see the module
+    /// doc for empty, degenerate and non-finite input.
+    pub fn build(triangles: &[[Vec3; 3]], layout: Layout) -> Blas {
         let params = BvhBuildParams { max_prims_per_leaf: BLAS_LEAF_SIZE, ..BvhBuildParams::fast_build() };
-        Self::build_limited(triangles, params, BVH_MAX_DEPTH)
+        Self::build_limited(triangles, layout, params, BVH_MAX_DEPTH)
     }
 
     /// [`Blas::build`] with obvhs' `params`, trees deeper than `max_depth` nodes rebuilt by
     /// median split.
-    pub(super) fn build_limited(triangles: &[[Vec3; 3]], params: BvhBuildParams, max_depth: usize) -> Blas {
+    pub(super) fn build_limited(triangles: &[[Vec3; 3]], layout: Layout, params: BvhBuildParams, max_depth: usize) -> Blas {
         let clean: Vec<[Vec3; 3]> = triangles.iter().map(sanitize).collect();
         let boxes: Vec<Aabb> = clean.iter().map(|t| Aabb::of_points(t)).collect();
-        let (mut nodes, order) = build_nodes(&boxes, params, FALLBACK_LEAF_SIZE, max_depth);
-        let wide = widen(&nodes);
-        let order = renumber_leaves(&mut nodes, &order, &wide.leaves);
+        let (mut nodes, mut order) = build_nodes(&boxes, params, FALLBACK_LEAF_SIZE, max_depth);
+        let wide = (layout == Layout::Wide).then(|| {
+            let wide = widen(&nodes);
+            order = renumber_leaves(&mut nodes, &order, &wide.leaves);
+            wide
+        });
         let triangles = order.iter().map(|&i| GpuTriangle::new(&clean[i as usize])).collect();
         let bounds = boxes.iter().fold(Aabb::EMPTY, |b, t| b.union(t));
         Blas { wide, nodes, triangles, order, bounds }
@@ -94,7 +100,7 @@ impl Blas {
         let clean: Vec<[Vec3; 3]> = triangles.iter().map(sanitize).collect();
         let bounds = clean.iter().fold(Aabb::EMPTY, |b, t| b.union(&Aabb::of_points(t)));
         let triangles = clean.iter().map(GpuTriangle::new).collect();
-        let Blas { nodes, wide, .. } = Blas::build(&[]);
+        let Blas { nodes, wide, .. } = Blas::build(&[], Layout::Binary);
         Blas { nodes, wide, triangles, order: (0..clean.len() as u32).collect(), bounds }
     }
 
@@ -127,31 +133,37 @@ impl Blas {
             }
         }
         self.bounds = clean.iter().fold(Aabb::EMPTY, |b, t| b.union(&Aabb::of_points(t)));
-        wide::refit(&self.nodes, &mut self.wide);
+        if let Some(wide) = &mut self.wide {
+            wide::refit(&self.nodes, wide);
+        }
         true
     }
 
-    /// Appends this BVH to shared node buffers (binary and wide) and a triangle buffer;
-    /// returns the `blas_root` an instance of it records in each layout (binary, wide) and its
-    /// `first_triangle`.
-    pub fn append_to(&self, nodes: &mut Vec<GpuNode>, wide: &mut Vec<GpuWideNode>, triangles: &mut Vec<GpuTriangle>) -> (u32, u32, u32) {
-        let at = (nodes.len() as u32, wide.len() as u32, triangles.len() as u32);
-        nodes.extend_from_slice(&self.nodes);
-        wide.extend_from_slice(&self.wide.nodes);
-        triangles.extend_from_slice(&self.triangles);
-        at
+    /// The nodes of the layout it was built for (wide when it has a wide tree), as the GPU
+    /// reads them.
+    pub fn node_bytes(&self) -> &[u8] {
+        match &self.wide {
+            Some(wide) => bytemuck::cast_slice(&wide.nodes),
+            None => bytemuck::cast_slice(&self.nodes),
+        }
+    }
+
+    /// Nodes of the layout it was built for.
+    pub fn node_count(&self) -> usize {
+        self.wide.as_ref().map_or(self.nodes.len(), |wide| wide.nodes.len())
     }
 }
 
 impl Tlas {
     /// Builds the BVH over instances whose eye-space boxes are `instance_bounds` (indexed as
-    /// the instance buffer). Fast enough to run every frame for ~10k instances (PLOC, "fast").
-    pub fn build(instance_bounds: &[Aabb]) -> Tlas {
-        Self::build_limited(instance_bounds, BVH_MAX_DEPTH)
+    /// the instance buffer) for `layout` (the binary tree, and with [`Layout::Wide`] its wide
+    /// collapse). Fast enough to run every frame for ~10k instances (PLOC, "fast").
+    pub fn build(instance_bounds: &[Aabb], layout: Layout) -> Tlas {
+        Self::build_limited(instance_bounds, layout, BVH_MAX_DEPTH)
     }
 
     /// [`Tlas::build`] with trees deeper than `max_depth` nodes rebuilt by median split.
-    pub(super) fn build_limited(instance_bounds: &[Aabb], max_depth: usize) -> Tlas {
+    pub(super) fn build_limited(instance_bounds: &[Aabb], layout: Layout, max_depth: usize) -> Tlas {
         let live: Vec<u32> = (0..instance_bounds.len() as u32).filter(|&i| instance_bounds[i as usize].is_finite()).collect();
         let boxes: Vec<Aabb> = live.iter().map(|&i| instance_bounds[i as usize]).collect();
         let params = BvhBuildParams { max_prims_per_leaf: 1, ..BvhBuildParams::fast_build() };
@@ -159,6 +171,9 @@ impl Tlas {
         // Leaves hold one primitive: point them at the instance itself.
         for child in nodes.iter_mut().flat_map(|n| n.children.iter_mut()).filter(|c| c.is_leaf() && c.meta != BVH_LEAF) {
             child.index = live[order[child.index as usize] as usize];
+        }
+        if layout == Layout::Binary {
+            return Tlas { nodes, wide: None, wide_count: 0 };
         }
         let Widened { nodes: mut wide_nodes, leaves, .. } = widen(&nodes);
         let wide_count = wide_nodes.len();
@@ -168,12 +183,21 @@ impl Tlas {
         }
         let mut wide: Vec<u32> = bytemuck::cast_slice(&wide_nodes).to_vec();
         wide.extend(leaves.iter().map(|&(instance, _)| instance));
-        Tlas { wide, wide_count, nodes }
+        Tlas { wide: Some(wide), wide_count, nodes }
     }
 
-    /// The wide nodes at the start of [`Tlas::wide`].
+    /// The wide nodes at the start of [`Tlas::wide`] (none without it).
     pub fn wide_nodes(&self) -> &[GpuWideNode] {
-        bytemuck::cast_slice(&self.wide[..self.wide_count * size_of::<GpuWideNode>() / 4])
+        self.wide.as_ref().map_or(&[], |wide| bytemuck::cast_slice(&wide[..self.wide_count * size_of::<GpuWideNode>() / 4]))
+    }
+
+    /// The nodes the GPU reads: the wide buffer (nodes, then instances) when it has one, else
+    /// the binary nodes.
+    pub fn node_bytes(&self) -> &[u8] {
+        match &self.wide {
+            Some(wide) => bytemuck::cast_slice(wide),
+            None => bytemuck::cast_slice(&self.nodes),
+        }
     }
 }
 

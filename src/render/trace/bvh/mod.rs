@@ -27,10 +27,11 @@
 //! - children come after their parents (node 0 is the root): [`Blas::refit`] sweeps backwards.
 //! - a [`GpuTriangle`] is `v0, e1 = v1 - v0, e2 = v2 - v0` (Möller–Trumbore), 48 bytes.
 //!
-//! Every BVH is also kept collapsed into compressed wide nodes ([`wide`]: 80 bytes, up to 8
-//! children with byte-quantised boxes in slots ordered by ray octant, the same leaves and
-//! triangle order: the triangles are ordered so that each wide node's leaves are consecutive);
-//! [`Layout`] picks which of the two the GPU traverses.
+//! A BVH built for [`Layout::Wide`] is also collapsed into compressed wide nodes ([`wide`]: 80
+//! bytes, up to 8 children with byte-quantised boxes in slots ordered by ray octant, the same
+//! leaves and triangle order: the triangles are ordered so that each wide node's leaves are
+//! consecutive), which the GPU then traverses; one built for [`Layout::Binary`] has no wide
+//! tree (the collapse took about 40 % of a BLAS build's CPU time, bench/pathtrace.md).
 //!
 //! Robustness: non-finite positions make their triangle degenerate (collapsed onto its first
 //! finite vertex, or the origin): it is kept in place, so `order` stays a permutation and refit
@@ -69,30 +70,6 @@ impl Layout {
         match self {
             Layout::Wide => size_of::<GpuWideNode>() as u64,
             Layout::Binary => size_of::<GpuNode>() as u64,
-        }
-    }
-
-    /// The nodes of `blas` in this layout, as bytes.
-    pub fn blas_bytes(self, blas: &Blas) -> &[u8] {
-        match self {
-            Layout::Wide => bytemuck::cast_slice(&blas.wide.nodes),
-            Layout::Binary => bytemuck::cast_slice(&blas.nodes),
-        }
-    }
-
-    /// The nodes of `tlas` in this layout, as bytes.
-    pub fn tlas_bytes(self, tlas: &Tlas) -> &[u8] {
-        match self {
-            Layout::Wide => bytemuck::cast_slice(&tlas.wide),
-            Layout::Binary => bytemuck::cast_slice(&tlas.nodes),
-        }
-    }
-
-    /// Nodes of `blas` in this layout.
-    pub fn blas_len(self, blas: &Blas) -> usize {
-        match self {
-            Layout::Wide => blas.wide.nodes.len(),
-            Layout::Binary => blas.nodes.len(),
         }
     }
 

@@ -7,7 +7,7 @@ use glam::{Affine3A, Quat, Vec2, Vec3};
 use obvhs::BvhBuildParams;
 
 use super::cpu::{self, Hit, Instance, Scene};
-use super::{Aabb, Blas, GpuNode, GpuTriangle, Tlas, sah_cost};
+use super::{Aabb, Blas, GpuNode, GpuTriangle, GpuWideNode, Layout, Tlas, sah_cost};
 use crate::render::trace::shader_constants::BVH_MAX_DEPTH;
 
 /// A deterministic xorshift generator.
@@ -75,11 +75,13 @@ impl Built {
         let mut instances = Vec::new();
         let mut bounds = Vec::new();
         for (p, b) in placed.iter().zip(&blas) {
-            let (root, _, first) = b.append_to(&mut nodes, &mut Vec::new(), &mut triangles);
+            let (root, first) = (nodes.len() as u32, triangles.len() as u32);
+            nodes.extend_from_slice(&b.nodes);
+            triangles.extend_from_slice(&b.triangles);
             instances.push(Instance::new(&p.object_to_eye, root, first, p.alpha_tested));
             bounds.push(b.bounds.transformed(&p.object_to_eye));
         }
-        Built { blas, tlas: Tlas::build(&bounds), nodes, triangles, instances }
+        Built { blas, tlas: Tlas::build(&bounds, Layout::Binary), nodes, triangles, instances }
     }
 
     fn scene(&self) -> Scene<'_> {
@@ -89,7 +91,7 @@ impl Built {
 
 /// Builds each placed geometry's BLAS and the TLAS.
 fn build(placed: &[Placed]) -> Built {
-    Built::new(placed, placed.iter().map(|p| Blas::build(p.triangles)).collect())
+    Built::new(placed, placed.iter().map(|p| Blas::build(p.triangles, Layout::Binary)).collect())
 }
 
 /// Rejects odd triangles (the alpha test of these tests).
@@ -205,10 +207,10 @@ fn mesh_and_transformed_instances_match_brute_force() {
 
 #[test]
 fn empty_and_degenerate_input() {
-    let empty = Blas::build(&[]);
+    let empty = Blas::build(&[], Layout::Binary);
     assert_eq!((empty.nodes.len(), empty.triangles.len(), empty.order.len()), (1, 0, 0));
     assert!(empty.bounds.is_empty());
-    let tlas = Tlas::build(&[]);
+    let tlas = Tlas::build(&[], Layout::Binary);
     assert_eq!(tlas.nodes.len(), 1);
     let scene = Scene { tlas: &tlas.nodes, blas_nodes: &empty.nodes, triangles: &[], instances: &[] };
     assert_eq!(cpu::closest(&scene, Vec3::ZERO, Vec3::NEG_Z, 0.0, f32::INFINITY, even), None);
@@ -224,13 +226,13 @@ fn empty_and_degenerate_input() {
         [Vec3::new(-1.0, -1.0, -2.0), Vec3::new(1.0, -1.0, -2.0), Vec3::new(0.0, 1.0, -2.0)],
         [Vec3::splat(1e30), Vec3::splat(-1e30), Vec3::new(1e30, 0.0, 0.0)],
     ];
-    let blas = Blas::build(&tris);
+    let blas = Blas::build(&tris, Layout::Binary);
     assert!(blas.bounds.is_finite());
     let mut order = blas.order.clone();
     order.sort_unstable();
     assert_eq!(order, [0, 1, 2, 3, 4, 5]);
     let instances = [Instance::new(&Affine3A::IDENTITY, 0, 0, false)];
-    let tlas = Tlas::build(&[blas.bounds, Aabb::EMPTY, Aabb { min: Vec3::splat(nan), max: Vec3::ONE }]);
+    let tlas = Tlas::build(&[blas.bounds, Aabb::EMPTY, Aabb { min: Vec3::splat(nan), max: Vec3::ONE }], Layout::Binary);
     let scene = Scene { tlas: &tlas.nodes, blas_nodes: &blas.nodes, triangles: &blas.triangles, instances: &instances };
     let hit = cpu::closest(&scene, Vec3::ZERO, Vec3::NEG_Z, 0.0, f32::INFINITY, even).expect("the good triangle");
     assert_eq!((hit.t, hit.instance, blas.order[hit.triangle as usize]), (2.0, 0, 4));
@@ -244,10 +246,43 @@ fn empty_and_degenerate_input() {
 }
 
 #[test]
+fn only_the_selected_layout_is_built() {
+    let mut rng = Rng(31);
+    let tris = soup(&mut rng, 5000, 0.05);
+    let binary = Blas::build(&tris, Layout::Binary);
+    assert!(binary.wide.is_none(), "no wide collapse for the binary layout");
+    assert_eq!(binary.node_count(), binary.nodes.len());
+    assert_eq!(binary.node_bytes().len(), binary.nodes.len() * size_of::<GpuNode>());
+
+    let wide = Blas::build(&tris, Layout::Wide);
+    let collapsed = wide.wide.as_ref().expect("the wide collapse");
+    assert_eq!(wide.node_count(), collapsed.nodes.len());
+    assert_eq!(wide.node_bytes().len(), collapsed.nodes.len() * size_of::<GpuWideNode>());
+    assert!(collapsed.nodes.len() * 2 < wide.nodes.len(), "{} wide nodes for {} binary", collapsed.nodes.len(), wide.nodes.len());
+    // The same binary tree under both (its leaves renumbered for the wide one's order).
+    assert_eq!(wide.nodes.len(), binary.nodes.len());
+    assert_eq!(sah_cost(&wide.nodes), sah_cost(&binary.nodes));
+    for blas in [&binary, &wide] {
+        let mut order = blas.order.clone();
+        order.sort_unstable();
+        assert_eq!(order, (0..5000).collect::<Vec<u32>>());
+    }
+
+    let boxes: Vec<Aabb> = (0..300).map(|i| Aabb { min: Vec3::new(i as f32, 0.0, 0.0), max: Vec3::new(i as f32 + 0.5, 1.0, 1.0) }).collect();
+    let tlas = Tlas::build(&boxes, Layout::Binary);
+    assert_eq!((tlas.wide.is_none(), tlas.wide_count, tlas.wide_nodes().len()), (true, 0, 0));
+    assert_eq!(tlas.node_bytes().len(), tlas.nodes.len() * size_of::<GpuNode>());
+    let tlas = Tlas::build(&boxes, Layout::Wide);
+    assert!(tlas.wide_count > 0 && tlas.wide_count * 2 < tlas.nodes.len());
+    // The wide nodes, then one word per instance.
+    assert_eq!(tlas.node_bytes().len(), tlas.wide_count * size_of::<GpuWideNode>() + 300 * 4);
+}
+
+#[test]
 fn refit_follows_moved_vertices() {
     let mut rng = Rng(777);
     let before = soup(&mut rng, 2000, 0.1);
-    let mut blas = Blas::build(&before);
+    let mut blas = Blas::build(&before, Layout::Binary);
     let after: Vec<[Vec3; 3]> = before
         .iter()
         .map(|t| {
@@ -274,14 +309,14 @@ fn wobbled(ball: &[[Vec3; 3]], time: f32, centre: Vec3) -> Vec<[Vec3; 3]> {
 #[test]
 fn a_refitted_deformed_mesh_hits_as_a_fresh_build() {
     let ball = sphere(40, 80);
-    let mut refitted = Blas::build(&wobbled(&ball, 0.0, Vec3::ZERO));
+    let mut refitted = Blas::build(&wobbled(&ball, 0.0, Vec3::ZERO), Layout::Binary);
     // Ten frames of animation, refitted each frame; the mesh also drifts sideways.
     let mut shape = Vec::new();
     for frame in 1..=10 {
         shape = wobbled(&ball, 0.3 * frame as f32, Vec3::new(0.05 * frame as f32, 0.0, 0.0));
         assert!(refitted.refit(&shape));
     }
-    let fresh = Blas::build(&shape);
+    let fresh = Blas::build(&shape, Layout::Binary);
     let placed = [Placed { triangles: &shape, object_to_eye: Affine3A::from_rotation_y(0.4), alpha_tested: false }];
     let (a, b) = (Built::new(&placed, vec![refitted]), Built::new(&placed, vec![fresh]));
     let (sa, sb) = (a.scene(), b.scene());
@@ -312,17 +347,17 @@ fn a_refitted_deformed_mesh_hits_as_a_fresh_build() {
 fn deep_subtrees_are_rebalanced_within_the_depth_limit() {
     let mut rng = Rng(31337);
     let tris = soup(&mut rng, 1000, 0.05);
-    let full = Blas::build(&tris);
+    let full = Blas::build(&tris, Layout::Binary);
     let limit = 10; // 1000 / 4 per leaf = 250 leaves: a median split is 8 deep
     assert!(depth(&full.nodes, 0) > limit, "PLOC's tree is already shallow; pick a lower limit");
-    let shallow = Blas::build_limited(&tris, BvhBuildParams::fast_build(), limit);
+    let shallow = Blas::build_limited(&tris, Layout::Binary, BvhBuildParams::fast_build(), limit);
     assert!(depth(&shallow.nodes, 0) <= limit);
     let placed = [Placed { triangles: &tris, object_to_eye: Affine3A::IDENTITY, alpha_tested: false }];
     let built = Built::new(&placed, vec![shallow]);
     check_rays(&built, &placed, &mut rng, 2000, 1.5);
 
     let boxes: Vec<Aabb> = (0..3000).map(|_| Aabb::of_points(&[rng.vec(1.0), rng.vec(1.0)])).collect();
-    let tlas = Tlas::build_limited(&boxes, 12);
+    let tlas = Tlas::build_limited(&boxes, Layout::Binary, 12);
     assert!(depth(&tlas.nodes, 0) <= 12);
     let mut leaves: Vec<u32> = tlas.nodes.iter().flat_map(|n| n.children).filter(|c| c.is_leaf()).map(|c| c.index).collect();
     leaves.sort_unstable();
@@ -357,7 +392,7 @@ fn bvh_build_speed() {
     for (name, params) in presets {
         for max_depth in [BVH_MAX_DEPTH, 48, 1000] {
             let start = Instant::now();
-            let blas = Blas::build_limited(&tris, BvhBuildParams { max_prims_per_leaf: 8, ..params }, max_depth);
+            let blas = Blas::build_limited(&tris, Layout::Binary, BvhBuildParams { max_prims_per_leaf: 8, ..params }, max_depth);
             println!(
                 "{name}, depth limit {max_depth}: {} triangles in {:.0} ms, SAH {:.1}, {} nodes, depth {}",
                 tris.len(),
@@ -375,7 +410,7 @@ fn bvh_build_speed() {
         })
         .collect();
     let start = Instant::now();
-    let tlas = Tlas::build(&boxes);
+    let tlas = Tlas::build(&boxes, Layout::Binary);
     println!("TLAS: 10k instances in {:.2} ms, SAH {:.1}, depth {}", start.elapsed().as_secs_f64() * 1e3, sah_cost(&tlas.nodes), depth(&tlas.nodes, 0));
 }
 
@@ -388,7 +423,7 @@ fn refit_speed() {
     for (rings, segments) in [(50, 100), (160, 320)] {
         let ball = sphere(rings, segments);
         let frames = 30;
-        let mut blas = Blas::build(&wobbled(&ball, 0.0, Vec3::ZERO));
+        let mut blas = Blas::build(&wobbled(&ball, 0.0, Vec3::ZERO), Layout::Binary);
         let (mut build_s, mut refit_s) = (0.0, 0.0);
         let mut fresh = blas.clone();
         for frame in 1..=frames {
@@ -397,7 +432,7 @@ fn refit_speed() {
             assert!(blas.refit(&shape));
             refit_s += start.elapsed().as_secs_f64();
             let start = Instant::now();
-            fresh = Blas::build(&shape);
+            fresh = Blas::build(&shape, Layout::Binary);
             build_s += start.elapsed().as_secs_f64();
         }
         println!(
@@ -408,6 +443,54 @@ fn refit_speed() {
             build_s / refit_s,
             sah_cost(&blas.nodes),
             sah_cost(&fresh.nodes)
+        );
+    }
+}
+
+/// CPU seconds of this process so far, all threads (`utime + stime` of `/proc/self/stat`, in
+/// ticks of 1/100 s): unlike wall time, not counting waits for a CPU on a loaded machine.
+fn process_cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").expect("/proc/self/stat");
+    // The fields after the command's closing parenthesis; utime and stime are the 14th and 15th.
+    let fields: Vec<&str> = stat[stat.rfind(')').expect("(comm)") + 2..].split_whitespace().collect();
+    (fields[11].parse::<u64>().expect("utime") + fields[12].parse::<u64>().expect("stime")) as f64 / 100.0
+}
+
+/// CPU time of BLAS and TLAS builds per layout: 40 meshes of 25,000 triangles (the 1M-triangle
+/// world's size) and a TLAS of 500 instances, 5 times over
+/// (`cargo test --lib trace::bvh -- --ignored --nocapture layout_build_cost`).
+#[test]
+#[ignore]
+fn layout_build_cost() {
+    let ball = sphere(100, 125);
+    let meshes: Vec<Vec<[Vec3; 3]>> = (0..40).map(|k| ball.iter().map(|t| t.map(|v| v * (1.0 + k as f32 * 0.01) + Vec3::X * k as f32)).collect()).collect();
+    let mut rng = Rng(3);
+    let boxes: Vec<Aabb> = (0..500)
+        .map(|_| {
+            let c = rng.vec(50.0);
+            Aabb { min: c - rng.vec(1.0).abs(), max: c + rng.vec(1.0).abs() }
+        })
+        .collect();
+    for layout in [Layout::Binary, Layout::Wide, Layout::Binary, Layout::Wide] {
+        let (cpu, wall) = (process_cpu_seconds(), Instant::now());
+        let mut nodes = 0;
+        for _ in 0..5 {
+            nodes += meshes.iter().map(|m| Blas::build(m, layout).node_bytes().len()).sum::<usize>();
+        }
+        let blas = (process_cpu_seconds() - cpu, wall.elapsed().as_secs_f64());
+        let (cpu, wall) = (process_cpu_seconds(), Instant::now());
+        for _ in 0..50 {
+            nodes += Tlas::build(&boxes, layout).node_bytes().len();
+        }
+        let tlas = (process_cpu_seconds() - cpu, wall.elapsed().as_secs_f64());
+        println!(
+            "{}: BLAS {:.1} ms CPU ({:.1} ms wall) per 25k triangles, TLAS of 500 {:.2} ms CPU ({:.2} wall); {} node bytes",
+            layout.name(),
+            blas.0 * 1e3 / 200.0,
+            blas.1 * 1e3 / 200.0,
+            tlas.0 * 1e3 / 50.0,
+            tlas.1 * 1e3 / 50.0,
+            nodes
         );
     }
 }

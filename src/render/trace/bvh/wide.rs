@@ -338,7 +338,7 @@ mod tests {
     use glam::Vec3;
 
     use super::*;
-    use crate::render::trace::bvh::{Blas, Tlas};
+    use crate::render::trace::bvh::{Blas, Layout, Tlas};
     use crate::render::trace::shader_constants::BVH_MAX_DEPTH;
 
     /// A deterministic xorshift generator's next value in [0, 1).
@@ -394,6 +394,11 @@ mod tests {
         (bounds, deepest)
     }
 
+    /// The wide tree of `blas`, built for [`Layout::Wide`].
+    fn wide_of(blas: &Blas) -> &Widened {
+        blas.wide.as_ref().expect("a BLAS built for the wide layout")
+    }
+
     /// Checks `blas`'s wide tree against its binary tree: each wide leaf is a binary leaf
     /// (same triangles) whose box it holds, the leaves cover every triangle once; returns the
     /// wide tree's depth.
@@ -402,7 +407,7 @@ mod tests {
             blas.nodes.iter().flat_map(|n| n.children).filter(|c| c.is_leaf() && c.meta != BVH_LEAF).map(|c| ((c.index, c.meta & !BVH_LEAF), c.bounds())).collect();
         let leaf_box = |first: u32, count: u32| *binary.get(&(first, count)).expect("a binary leaf of the same triangles");
         let mut ranges = Vec::new();
-        let (_, depth) = walk(&blas.wide.nodes, 0, 1, &leaf_box, &mut ranges);
+        let (_, depth) = walk(&wide_of(blas).nodes, 0, 1, &leaf_box, &mut ranges);
         ranges.sort_unstable();
         let mut next_first = 0;
         for (first, count) in &ranges {
@@ -422,13 +427,14 @@ mod tests {
             ("one", vec![[Vec3::ZERO, Vec3::X, Vec3::Y]]),
             ("none", Vec::new()),
         ] {
-            let blas = Blas::build(&triangles);
+            let blas = Blas::build(&triangles, Layout::Wide);
+            let wide = wide_of(&blas);
             let depth = check_blas(name, &blas, triangles.len());
             assert!(depth <= BVH_MAX_DEPTH, "{name}: {depth}");
             if triangles.len() > 1000 {
-                let filled = blas.wide.nodes.iter().map(|n| (0..BVH_WIDTH).filter(|&s| n.child(s) != WideChild::Empty).count()).sum::<usize>();
-                let per_node = filled as f32 / blas.wide.nodes.len() as f32;
-                assert!(per_node > 3.5 && blas.wide.nodes.len() * 5 < blas.nodes.len() * 2, "{name}: {per_node} children per node, {} wide nodes for {} binary", blas.wide.nodes.len(), blas.nodes.len());
+                let filled = wide.nodes.iter().map(|n| (0..BVH_WIDTH).filter(|&s| n.child(s) != WideChild::Empty).count()).sum::<usize>();
+                let per_node = filled as f32 / wide.nodes.len() as f32;
+                assert!(per_node > 3.5 && wide.nodes.len() * 5 < blas.nodes.len() * 2, "{name}: {per_node} children per node, {} wide nodes for {} binary", wide.nodes.len(), blas.nodes.len());
             }
         }
     }
@@ -485,18 +491,18 @@ mod tests {
     #[test]
     fn a_refit_keeps_the_tree_and_holds_the_moved_boxes() {
         let triangles = soup(5000, 0.05, 1.0, Vec3::ZERO);
-        let mut blas = Blas::build(&triangles);
+        let mut blas = Blas::build(&triangles, Layout::Wide);
         let moved: Vec<[Vec3; 3]> = triangles.iter().map(|t| t.map(|v| v * Vec3::new(2.0, 0.5, 1.0) + Vec3::new(v.y * v.y, 0.0, -3.0))).collect();
         let before = blas.clone();
         assert!(blas.refit(&moved));
         assert_eq!(blas.order, before.order);
-        assert_eq!(blas.wide.sources, before.wide.sources);
-        for (a, b) in blas.wide.nodes.iter().zip(&before.wide.nodes) {
+        assert_eq!(wide_of(&blas).sources, wide_of(&before).sources);
+        for (a, b) in wide_of(&blas).nodes.iter().zip(&wide_of(&before).nodes) {
             assert_eq!((a.child_base, a.leaf_base, a.meta, BVH_WIDE_IMASK.get(a.frame)), (b.child_base, b.leaf_base, b.meta, BVH_WIDE_IMASK.get(b.frame)));
         }
         check_blas("refitted", &blas, triangles.len());
         // The same boxes as a fresh collapse of the refitted binary tree would quantise.
-        assert_eq!(blas.wide.nodes[0].origin, <[f32; 3]>::from(blas.bounds.min));
+        assert_eq!(wide_of(&blas).nodes[0].origin, <[f32; 3]>::from(blas.bounds.min));
     }
 
     #[test]
@@ -508,9 +514,9 @@ mod tests {
             })
             .chain([Aabb::EMPTY])
             .collect();
-        let tlas = Tlas::build(&boxes);
+        let tlas = Tlas::build(&boxes, Layout::Wide);
         let nodes = tlas.wide_nodes();
-        let instance = |word: u32| tlas.wide[word as usize];
+        let instance = |word: u32| tlas.wide.as_ref().expect("a wide TLAS")[word as usize];
         let mut ranges = Vec::new();
         let (_, depth) = walk(nodes, 0, 1, &|first, count| {
             assert_eq!(count, 1);
