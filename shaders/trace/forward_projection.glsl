@@ -5,8 +5,9 @@
 // onto the hit triangle and forward to this frame with its instance's transforms. The gradient
 // sample is then traced from this frame's camera through that surface point with the
 // source's random numbers of last frame (the caller seeds them), so that its difference with
-// the source's sample of last frame is the change of the lighting alone. Included by
-// trace/path.glsl, which defines camera_ray and window_xy.
+// the source's sample of last frame is the change of the lighting alone; its directions are
+// drawn in last frame's eye space (replay_rotation, trace/sampling.glsl), where the source
+// drew them. Included by trace/path.glsl, which defines camera_ray and window_xy.
 
 #ifndef TRACE_FORWARD_PROJECTION_GLSL
 #define TRACE_FORWARD_PROJECTION_GLSL
@@ -33,6 +34,15 @@ bool gradient_source(vec3 position, uint instance, vec2 scale, out uvec2 source)
     ivec2 at = ivec2(floor(window_xy(frame.previous_projection, previous) / scale));
     source = uvec2(at);
     return all(greaterThanEqual(at, ivec2(0))) && all(lessThan(at, ivec2(frame.size.xy)));
+}
+
+// The rotation of instance `inst`'s transform to eye space since last frame (the camera's
+// turn for the static world), made orthonormal.
+mat3 eye_rotation_since_last_frame(Instance inst) {
+    mat3 m = mat3(instance_matrix(inst.object_to_eye)) * inverse(mat3(instance_matrix(inst.previous_object_to_eye)));
+    vec3 x = normalize(m[0]);
+    vec3 y = normalize(m[1] - dot(m[1], x) * x);
+    return mat3(x, y, cross(x, y));
 }
 
 // Where last frame's primary ray of traced pixel `source` (through window position
@@ -62,20 +72,19 @@ bool forward_project(TraceHit hit, vec2 previous_window, out vec3 target) {
 }
 
 // Gradient pixel `pixel` (its primary ray origin, dir hit `hit`) repeats the sample its source
-// traced last frame: where the surface stayed in place the source is the pixel itself, whose
-// random numbers the caller drew (rng); where it moved, the primary ray is traced again through
-// the forward-projected point (`rays` counts it) and rng re-seeded with the source's numbers of
-// last frame. False where no sample can be repeated (the source outside the image or last
-// frame's gradient pixel, drawn with older numbers; the projected point off the pixel or
-// hidden): the sample then stays as traced and is no gradient sample.
+// (written to `source`) traced last frame: where the surface stayed in place the source is
+// the pixel itself, whose random numbers the caller drew (rng); where it moved, the primary
+// ray is traced again through the forward-projected point (`rays` counts it), rng re-seeded
+// with the source's numbers of last frame and replay_rotation set to the surface's turn.
+// False where no sample can be repeated (the source outside the image or last frame's
+// gradient pixel, drawn with older numbers; the projected point off the pixel or hidden): the
+// sample then stays as traced and is no gradient sample.
 bool repeat_source(uvec2 pixel, vec2 scale, uint sample_index, inout vec3 origin, inout vec3 dir, inout TraceHit hit, inout Rng rng,
-                   inout uint rays, out uint source_index) {
+                   inout uint rays, out uvec2 source) {
     vec3 position = origin + hit.t * dir;
-    uvec2 source;
     if (!gradient_source(position, hit.instance, scale, source)) {
         return false;
     }
-    source_index = source.y * frame.size.x + source.x;
     Instance inst = instances[hit.instance];
     vec3 previous = instance_transform(inst.previous_object_to_eye, vec4(instance_transform(inst.eye_to_object, vec4(position, 1.0)), 1.0));
     vec2 motion = window_xy(frame.projection, position) - window_xy(frame.previous_projection, previous);
@@ -106,6 +115,7 @@ bool repeat_source(uvec2 pixel, vec2 scale, uint sample_index, inout vec3 origin
     dir = d;
     hit = h;
     rng = source_rng;
+    replay_rotation = eye_rotation_since_last_frame(inst);
     return true;
 }
 

@@ -117,10 +117,11 @@ void trace_pixel(uvec2 pixel) {
         primary += 1u;
         TraceHit hit;
         bool hit_found = in_viewport && trace_closest(origin, dir, 0.0, 1e30, hit);
-        // A gradient sample repeats its source's sample of last frame (index + 1; 0: none).
-        uint source_index;
-        uint repeated = gradient && hit_found && repeat_source(pixel, scale, sample_index, origin, dir, hit, rng, primary, source_index)
-            ? source_index + 1u : 0u;
+        // A gradient sample repeats its source's sample of last frame, drawing the source's
+        // numbers (and the sky choices of its tile).
+        uvec2 source;
+        bool repeated = gradient && hit_found && repeat_source(pixel, scale, sample_index, origin, dir, hit, rng, primary, source);
+        uvec2 seed_pixel = repeated ? source : pixel;
         if (!hit_found) {
             radiance = environment(dir);
         }
@@ -150,7 +151,7 @@ void trace_pixel(uvec2 pixel) {
                 g.material = packUnorm4x8(vec4(s.roughness, s.metalness, 0.0, 0.0));
                 g.instance = hit.instance;
                 g.surface = materials[inst.material].key;
-                g.gradient = repeated;
+                g.gradient = repeated ? source.y * size.x + source.x + 1u : 0u;
             }
             vec3 emitted = s.emission;
             if (bsdf_density > 0.0 && s.emitter_density > 0.0) {
@@ -192,11 +193,11 @@ void trace_pixel(uvec2 pixel) {
             if (emitter_count > 0u && !ambient_lit) {
                 lit += throughput * emitter_light(s, v, cone_width, max(cone_spread, 1.0), depth < bounces && !radiosity_vertex, rng, shadow);
             }
-            // The sky sample is taken with the frame's probability, chosen for a tile of pixels
-            // together.
-            float sky_chance = ambient_lit ? 0.0 : sky_selection();
-            if (sky_chance > 0.0 && sky_chosen(pixel, seed_frame, sample_index, depth, sky_chance)) {
-                lit += throughput * sky_light(s, v, sky_chance, !radiosity_vertex, rng, shadow, sky_rays);
+            // The sky sample is taken with the frame's probability (last frame's where the
+            // path draws last frame's numbers), chosen for a tile of pixels together.
+            float sky_chance = ambient_lit ? 0.0 : sky_selection(gradient);
+            if (sky_chance > 0.0 && sky_chosen(seed_pixel, seed_frame, sample_index, depth, sky_chance)) {
+                lit += throughput * sky_light(s, v, sky_chance, gradient, !radiosity_vertex, rng, shadow, sky_rays);
             }
             radiance += lit;
             if (depth == 0u) {
@@ -244,7 +245,7 @@ void trace_pixel(uvec2 pixel) {
                 } else {
                     // The sky sample of this vertex, taken with probability `sky_chance`, found
                     // this light too (trace/sky_sampling.glsl).
-                    float w = sky_chance > 0.0 ? mis_weight(pdf, sky_chance * sky_density(dir)) : 1.0;
+                    float w = sky_chance > 0.0 ? mis_weight(pdf, sky_chance * sky_density(dir, gradient)) : 1.0;
                     radiance += throughput * environment(dir) * w;
                 }
                 break;

@@ -21,9 +21,9 @@
 //!    The change of its luminance against the source's sample of last frame is the change
 //!    of the lighting, free of noise;
 //! 1. `temporal.comp`: reprojection with disocclusion tests (material, eye distance, normal),
-//!    running means of light and running mean and variance of luminance, history length,
-//!    shortened to (1 − λ) where the gradients of the strata around say the lighting changed
-//!    by λ;
+//!    running means of light and running mean and variance of luminance, history length
+//!    (whole frames), shortened by λ of itself, rounded to whole frames, where the gradients
+//!    of the strata around say the lighting changed by λ;
 //!    it also packs each pixel's surface (normal and eye distance) into the 8-byte guide the
 //!    spatial passes read;
 //! 2. `variance.comp`: the variance from the moments, estimated spatially where the history
