@@ -2,9 +2,9 @@
 #extension GL_GOOGLE_include_directive : require
 // A-SVGF, temporal gradients (Schied et al. 2018, section 4; Quake II RTX's
 // asvgf_gradient_img): one invocation per 3x3 stratum of traced pixels. Its gradient sample
-// (trace/gradient.glsl), traced this frame with last frame's random numbers over a surface
-// that stayed in place, is compared with the sample last frame traced there (the history's
-// `traced` luminance): the change of each channel's luminance and the larger of the two,
+// (trace/gradient.glsl), traced this frame with last frame's random numbers of its source
+// pixel over the surface point the source saw (trace/forward_projection.glsl), is compared
+// with the sample last frame traced at the source (the history's `traced` luminance there): the change of each channel's luminance and the larger of the two,
 // summed apart over strata by the temporal pass, whose ratio is how much the lighting
 // changed (0: not at all, 1: entirely). Strata without a valid sample write zeros.
 
@@ -21,10 +21,11 @@ void main() {
     int at = pixel_index(ivec2(gradient_pixel(stratum, pass.frame_index)));
     if (at >= 0) {
         GSample g = gbuffer[at];
-        if (g.gradient != 0u && g.instance != MISS && same_surface(uint(at), g)) {
+        uint source = g.gradient - 1u;
+        if (g.gradient != 0u && g.instance != MISS && same_surface(source, g)) {
             // Rounded as the history's is, so that an unchanged sample differs by nothing.
             vec2 now = unpackHalf2x16(packHalf2x16(min(vec2(luminance(g.direct.rgb), luminance(g.indirect.rgb)), HALF_MAX)));
-            vec2 before = unpackHalf2x16(moments_previous[at].traced);
+            vec2 before = unpackHalf2x16(moments_previous[source].traced);
             change = vec4(abs(now.x - before.x), max(now.x, before.x), abs(now.y - before.y), max(now.y, before.y));
         }
     }

@@ -13,8 +13,11 @@
 // the records to this frame's history. With DENOISE_FLAG_GRADIENTS the temporal gradients
 // of the 3x3 strata around the pixel's (gradient.comp: changes and luminances summed apart,
 // as Quake II RTX's asvgf_gradient_atrous filters them) give how much the lighting changed,
-// lambda in 0..1, and the history kept is shortened to (1 - lambda) of its length: where a
-// light was switched the new light replaces the old at once, elsewhere nothing changes.
+// lambda in 0..1, and the history kept is shortened by lambda of its length, rounded to whole
+// frames: where a light was switched the new light replaces the old at once, elsewhere
+// nothing changes (the history is kept in whole frames, and the few per cent by which a
+// forward-projected sample differs from its source while the camera moves would otherwise,
+// truncated, take a frame off every frame and hold the history at 1).
 
 #include "denoise/common.glsl"
 #include "trace/gradient.glsl"
@@ -119,7 +122,7 @@ void main() {
     if (g.instance != MISS && cap > 0.0 && reproject(vec2(pixel) + 0.5 - g.motion, g, h) > 0.0) {
         frames = min(h.frames, cap);
         if ((pass.size.z & DENOISE_FLAG_GRADIENTS) != 0u) {
-            frames *= 1.0 - lighting_change(pixel);
+            frames -= round(frames * lighting_change(pixel));
         }
         float alpha = 1.0 / (frames + 1.0);
         direct = mix(h.direct, direct, alpha);

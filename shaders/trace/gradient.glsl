@@ -1,11 +1,11 @@
 // Temporal gradient samples (A-SVGF, Schied et al. 2018, section 4; Quake II RTX's
 // asvgf_fwd_project and asvgf_gradient_*): in every GRADIENT_STRATUM² stratum of traced
-// pixels one pixel a frame is traced again with the random numbers it had last frame, so
-// that where its surface did not move the difference of the two samples is the change of
-// the lighting alone, without noise. The tracer (trace/path.glsl, with FRAME_GRADIENTS)
-// picks the pixel and its seed; the denoiser (shaders/denoise/gradient.comp) compares.
-// Only samples that stayed in place (motion vector 0: a still camera over still surfaces)
-// are compared: forward projection of moved samples is not built.
+// pixels one pixel a frame repeats a sample of last frame (its random numbers, its surface
+// point), so that the difference of the two samples is the change of the lighting alone,
+// without noise. The tracer (trace/path.glsl, with FRAME_GRADIENTS)
+// picks the pixel and its seed, and where its surface moved traces it through the point last
+// frame's sample saw, with that sample's random numbers (trace/forward_projection.glsl); the
+// denoiser (shaders/denoise/gradient.comp) compares.
 
 #ifndef TRACE_GRADIENT_GLSL
 #define TRACE_GRADIENT_GLSL

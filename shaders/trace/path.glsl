@@ -80,6 +80,9 @@ struct NextEvent {
     bool samples_emitters;
     uint light_count;
     float sky_chance;
+    // Whether the path draws last frame's numbers (a gradient sample: the sky sample then
+    // takes last frame's cells), and the pixel whose numbers it draws.
+    bool last_frame;
     uvec2 pixel;
     uint seed_frame;
     uint sample_index;
@@ -100,11 +103,11 @@ ShadowSample emitter_sample(Surface s, vec3 v, NextEvent ne, inout Rng rng) {
         ? emitter_light(s, v, ne.cone_width, ne.spread, ne.emitter_weighted, rng) : unshadowed(vec3(0.0));
 }
 
-// The next-event sample of the sky, taken with the frame's probability (chosen for a tile of
-// pixels together).
+// The next-event sample of the sky, taken with the frame's probability (last frame's where the
+// path draws last frame's numbers), chosen for a tile of pixels together.
 ShadowSample sky_sample_at(Surface s, vec3 v, NextEvent ne, inout Rng rng) {
     return ne.sky_chance > 0.0 && sky_chosen(ne.pixel, ne.seed_frame, ne.sample_index, ne.depth, ne.sky_chance)
-        ? sky_light(s, v, ne.sky_chance, ne.sky_weighted, rng) : unshadowed(vec3(0.0));
+        ? sky_light(s, v, ne.sky_chance, ne.last_frame, ne.sky_weighted, rng) : unshadowed(vec3(0.0));
 }
 
 // Traces sample n's shadow ray from `origin` (counted in `shadow_rays`, and in `sky_rays` for
@@ -125,6 +128,9 @@ void next_event_add(ShadowSample n, vec3 origin, bool baked, vec3 throughput, bo
         lit += throughput * n.light;
     }
 }
+
+// Uses camera_ray and window_xy.
+#include "trace/forward_projection.glsl"
 
 // Traces traced pixel `pixel` (may lie outside the image: only counts then; every invocation
 // of a subgroup must call it, for the counters' subgroup sums).
@@ -177,6 +183,11 @@ void trace_pixel(uvec2 pixel) {
         primary += 1u;
         TraceHit hit;
         bool hit_found = in_viewport && trace_closest(origin, dir, 0.0, 1e30, hit);
+        // A gradient sample repeats its source's sample of last frame, drawing the source's
+        // numbers (and the sky choices of its tile).
+        uvec2 source;
+        bool repeated = gradient && hit_found && repeat_source(pixel, scale, sample_index, origin, dir, hit, rng, primary, source);
+        uvec2 seed_pixel = repeated ? source : pixel;
         if (!hit_found) {
             radiance = environment(dir);
         }
@@ -206,7 +217,7 @@ void trace_pixel(uvec2 pixel) {
                 g.material = packUnorm4x8(vec4(s.roughness, s.metalness, 0.0, 0.0));
                 g.instance = hit.instance;
                 g.surface = materials[inst.material].key;
-                g.gradient = gradient && all(lessThan(abs(g.motion), vec2(1e-4))) ? 1u : 0u;
+                g.gradient = repeated ? source.y * size.x + source.x + 1u : 0u;
             }
             vec3 emitted = s.emission;
             if (bsdf_density > 0.0 && s.emitter_density > 0.0) {
@@ -232,10 +243,10 @@ void trace_pixel(uvec2 pixel) {
             // light (below): no continuation ray weighs the emitter and sky samples there.
             vec3 bounced;
             bool radiosity_vertex = !s.baked && diffuse_arrival && radiosity_at(hit, bounced);
-            float sky_chance = ambient_lit || s.baked ? 0.0 : sky_selection();
+            float sky_chance = ambient_lit || s.baked ? 0.0 : sky_selection(gradient);
             vec3 shadow_origin = offset_ray(s.position, s.geometric);
             NextEvent ne = NextEvent(hit.instance, shown, cone_width, max(cone_spread, 1.0),
-                depth < bounces && !radiosity_vertex, !radiosity_vertex, emitter_count > 0u && !ambient_lit, light_count, sky_chance, pixel, seed_frame, sample_index, depth);
+                depth < bounces && !radiosity_vertex, !radiosity_vertex, emitter_count > 0u && !ambient_lit, light_count, sky_chance, gradient, seed_pixel, seed_frame, sample_index, depth);
             // One call site of the traversal for every sample (lights 0..light_count - 1, one
             // emitter, the sky): a megakernel inlines each call (bench/pathtrace.md).
             for (uint k = 0u; k < light_count + 2u; k++) {
@@ -297,7 +308,7 @@ void trace_pixel(uvec2 pixel) {
                 } else {
                     // The sky sample of this vertex, taken with probability `sky_chance`, found
                     // this light too (trace/sky_sampling.glsl).
-                    float w = sky_chance > 0.0 ? mis_weight(pdf, sky_chance * sky_density(dir)) : 1.0;
+                    float w = sky_chance > 0.0 ? mis_weight(pdf, sky_chance * sky_density(dir, gradient)) : 1.0;
                     radiance += throughput * environment(dir) * w;
                 }
                 break;

@@ -20,7 +20,7 @@ struct GSample {
     uint material;      // roughness, metalness as unorm8 in bytes 0 and 1
     uint instance;      // index of the instance hit, 0xffffffff on a miss
     uint surface;       // the key of the material hit (Material.key; 0 on a miss): history follows it
-    uint gradient;      // 1: a gradient sample (trace/gradient.glsl) whose surface stayed in place
+    uint gradient;      // a gradient sample (trace/gradient.glsl): 1 + the index of the pixel whose sample of last frame it repeats; 0: none
     uint pad[2];
 };
 

@@ -6,12 +6,21 @@
 
 const float PI = 3.14159265358979;
 
-// An orthonormal basis around unit n (Duff et al. 2017): columns t, b, n.
+// The rotation from last frame's eye space to this frame's while a gradient sample replays a
+// sample of last frame on a surface that moved in eye space (trace/forward_projection.glsl
+// sets it; the identity otherwise): bases are then built around directions turned back into
+// last frame's eye space and turned forward again, so that the same random numbers give the
+// directions last frame's sample drew, carried along with the surface.
+mat3 replay_rotation = mat3(1.0);
+
+// An orthonormal basis around unit n (Duff et al. 2017, in the eye space of replay_rotation):
+// columns t, b, n.
 mat3 basis(vec3 n) {
-    float s = n.z >= 0.0 ? 1.0 : -1.0;
-    float a = -1.0 / (s + n.z);
-    float b = n.x * n.y * a;
-    return mat3(vec3(1.0 + s * n.x * n.x * a, s * b, -s * n.x), vec3(b, s + n.y * n.y * a, -n.y), n);
+    vec3 m = transpose(replay_rotation) * n;
+    float s = m.z >= 0.0 ? 1.0 : -1.0;
+    float a = -1.0 / (s + m.z);
+    float b = m.x * m.y * a;
+    return replay_rotation * mat3(vec3(1.0 + s * m.x * m.x * a, s * b, -s * m.x), vec3(b, s + m.y * m.y * a, -m.y), m);
 }
 
 // Cosine-weighted direction around unit n; pdf = cos / pi.

@@ -24,7 +24,8 @@ layout(set = TRACE_SET, binding = BINDING_FRAME, std430) readonly buffer TraceFr
     uvec4 counts;               // frame index (random seed), samples per pixel, bounces, lights
     uvec4 flags;                // x: FRAME_* bits; y: instance count; z: emitter count; w unused
     vec4 sampling;              // x: probability that a path vertex samples the sky
-                                // (trace/sky_sampling.glsl); y, z, w unused
+                                // (trace/sky_sampling.glsl); y: last frame's (0 where its
+                                // cells are not held); z, w unused
 } frame;
 
 // The shading attributes of one triangle corner.

@@ -15,15 +15,15 @@
 //!
 //! 0. `gradient.comp` (with `[denoise] gradients`): temporal gradients (A-SVGF, Schied et al.
 //!    2018): the tracer traces one pixel of every 3x3 stratum with last frame's random
-//!    numbers (`shaders/trace/gradient.glsl`, `FRAME_GRADIENTS`); where its surface stayed
-//!    in place, the change of its luminance against last frame's sample there is the change
-//!    of the lighting, free of noise. Samples that moved are not compared (forward
-//!    projection of last frame's samples, which would give gradients while the camera moves,
-//!    is not built);
+//!    numbers (`shaders/trace/gradient.glsl`, `FRAME_GRADIENTS`) of the pixel that saw its
+//!    surface last frame (its source): where the surface moved, through the surface point
+//!    the source's sample saw, forward projected (`shaders/trace/forward_projection.glsl`).
+//!    The change of its luminance against the source's sample of last frame is the change
+//!    of the lighting, free of noise;
 //! 1. `temporal.comp`: reprojection with disocclusion tests (material, eye distance, normal),
-//!    running means of light and running mean and variance of luminance, history length,
-//!    shortened to (1 − λ) where the gradients of the strata around say the lighting changed
-//!    by λ;
+//!    running means of light and running mean and variance of luminance, history length
+//!    (whole frames), shortened by λ of itself, rounded to whole frames, where the gradients
+//!    of the strata around say the lighting changed by λ;
 //!    it also packs each pixel's surface (normal and eye distance) into the 8-byte guide the
 //!    spatial passes read;
 //! 2. `variance.comp`: the variance from the moments, estimated spatially where the history

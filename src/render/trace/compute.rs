@@ -110,6 +110,16 @@ pub struct ComputeTracer {
     statistics: Statistics,
     /// How often path vertices sample the sky, from the counters read last.
     sky_selection: SkySelection,
+    /// How last frame's path vertices sampled the sky, which its gradient samples replay.
+    last_sky: SkySampled,
+}
+
+/// The sky distribution's cells a frame sampled (empty: it did not sample the sky) and the
+/// probability with which its path vertices did.
+#[derive(Default)]
+struct SkySampled {
+    cells: Vec<[f32; 2]>,
+    probability: f32,
 }
 
 impl ComputeTracer {
@@ -154,6 +164,7 @@ impl ComputeTracer {
             radiosity: TracedRadiosity::default(),
             statistics: Statistics::default(),
             sky_selection: SkySelection::default(),
+            last_sky: SkySampled::default(),
         })
     }
 
@@ -504,9 +515,19 @@ impl RayTracer for ComputeTracer {
             Some(sky) => sky.update(rec, frame)?,
             None => None,
         };
-        let sky_cells = match (&self.sky, sky) {
+        let mut sky_cells = match (&self.sky, sky) {
             (Some(s), Some(_)) if self.settings.sky_sampling => s.distribution().map(|d| d.cells()).unwrap_or_default(),
             _ => Vec::new(),
+        };
+        // Gradient samples replay last frame's sky sampling (its cells follow this frame's)
+        // where both frames sampled the sky.
+        let sampled = SkySampled { cells: sky_cells.clone(), probability: self.sky_selection.probability() };
+        let last_sky = std::mem::replace(&mut self.last_sky, sampled);
+        let replayed_sky = if !sky_cells.is_empty() && last_sky.cells.len() == sky_cells.len() {
+            sky_cells.extend_from_slice(&last_sky.cells);
+            last_sky.probability
+        } else {
+            0.0
         };
         signature.update(bytemuck::cast_slice(&camera.projection.to_cols_array()));
         signature.update(bytemuck::cast_slice(&environment));
@@ -554,7 +575,7 @@ impl RayTracer for ComputeTracer {
                 emitters.len() as u32,
                 0,
             ],
-            sampling: [self.sky_selection.probability(), 0.0, 0.0, 0.0],
+            sampling: [self.sky_selection.probability(), replayed_sky, 0.0, 0.0],
         };
         self.previous = Some(Previous { signature, projection, view: frame.view.map(|v| v.view) });
         self.frame_index = self.frame_index.wrapping_add(1);

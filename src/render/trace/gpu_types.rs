@@ -33,8 +33,8 @@ pub struct GpuFrame {
     pub counts: [u32; 4],
     /// `FRAME_*` bits, instance count, emitter count ([`GpuEmitter`]), unused.
     pub flags: [u32; 4],
-    /// The probability that a path vertex samples the sky ([`super::sky_selection`]); three
-    /// unused.
+    /// The probability that a path vertex samples the sky ([`super::sky_selection`]), last
+    /// frame's (0 where the sky distribution holds no cells of last frame's); two unused.
     pub sampling: [f32; 4],
 }
 

@@ -149,7 +149,7 @@ pub struct GpuScene {
     pub emitters: Vec<GpuEmitter>,
     /// The sky's distribution of directions, per cell its probability and cumulative
     /// probability ([`sky_distribution::SkyDistribution::cells`]; empty: the sky is not
-    /// sampled).
+    /// sampled), followed by last frame's cells where the frame's `sampling[1]` is above 0.
     pub sky_cells: Vec<[f32; 2]>,
     /// Radiosity's indirect light at the corners of the static world's triangles
     /// ([`radiosity`]; empty without radiosity).
