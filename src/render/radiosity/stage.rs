@@ -20,6 +20,7 @@ use super::form_factors::{self, FormFactors};
 use super::gpu::update::Update;
 use super::patches::Patches;
 use super::precompute;
+use super::progress::Progress;
 use super::settings::Settings;
 use super::transfer::IndirectLight;
 use crate::frame::Frame;
@@ -89,7 +90,7 @@ impl RadiosityStage {
                 old.update.destroy(device);
             }
             let start = Instant::now();
-            let r = precompute::load_or_build(&frame.static_world, &self.settings, Some(&crate::config::cache_dir()), &mut |p| form_factors_on(device, p));
+            let r = precompute::load_or_build(&frame.static_world, &self.settings, Some(&crate::config::cache_dir()), &mut |p| form_factors_on(Some(device), p));
             for note in &r.notes {
                 eprintln!("glrt: radiosity: {note}");
             }
@@ -120,28 +121,25 @@ impl RadiosityStage {
     }
 }
 
-/// The form factors of `p` on `device`, or on the CPU when that fails; says that it is
-/// precomputing and how long it took.
-fn form_factors_on(device: &Device, p: &Patches) -> FormFactors {
+/// The form factors of `p` on `device`, or on the CPU when there is none or it fails, with
+/// their progress on stderr ([`Progress::Stderr`]).
+pub fn form_factors_on(device: Option<&Device>, p: &Patches) -> FormFactors {
     let n = p.patches.len();
-    eprintln!("glrt: radiosity: precomputing the form factors of {n} patches on {} (once per static world; the matrix is cached)", device.name());
-    let start = Instant::now();
-    let mut quarters = 0;
-    let mut progress = |done: usize, total: usize| {
-        let q = 4 * done / total.max(1);
-        if q > quarters && q < 4 {
-            quarters = q;
-            eprintln!("glrt: radiosity: form factors {}% ({:.0} s)", 25 * q, start.elapsed().as_secs_f64());
-        }
-    };
-    match super::gpu::form_factors::compute(device, p, &mut progress) {
-        Ok(f) => {
-            eprintln!("glrt: radiosity: form factors in {:.1} s", start.elapsed().as_secs_f64());
-            f
-        }
-        Err(e) => {
-            eprintln!("glrt: radiosity: form factors on the device failed ({e}): computing them on the CPU");
-            form_factors::compute(p)
+    if let Some(device) = device {
+        let stage = Progress::Stderr.stage(&format!("form factors of {n} patches on {} (once per static world; the matrix is cached)", device.name()), n as u64, "rows");
+        let mut counted = 0;
+        let result = super::gpu::form_factors::compute(device, p, &mut |done, _| {
+            stage.add(done.saturating_sub(counted) as u64);
+            counted = counted.max(done);
+        });
+        stage.finish();
+        match result {
+            Ok(f) => return f,
+            Err(e) => eprintln!("glrt: radiosity: form factors on {} failed ({e}): computing them on the CPU", device.name()),
         }
     }
+    let stage = Progress::Stderr.stage(&format!("form factors of {n} patches on the CPU"), 1, "matrix");
+    let f = form_factors::compute(p);
+    stage.finish();
+    f
 }
