@@ -69,27 +69,8 @@ impl ColourMatrix {
         for c in 0..3 {
             let (a, b) = (&self.channels[c], &other.channels[c]);
             out.channels[c].par_chunks_mut(ROWS * n).enumerate().for_each(|(t, rows)| {
-                let first = t * ROWS;
-                let height = rows.len() / n;
-                for j0 in (0..n).step_by(COLUMNS) {
-                    let j1 = (j0 + COLUMNS).min(n);
-                    for k0 in (0..n).step_by(INNER) {
-                        let k1 = (k0 + INNER).min(n);
-                        for r in 0..height {
-                            let i = first + r;
-                            let row = &mut rows[r * n + j0..r * n + j1];
-                            for k in k0..k1 {
-                                let x = a[i * n + k];
-                                if x != 0.0 {
-                                    for (o, &y) in row.iter_mut().zip(&b[k * n + j0..k * n + j1]) {
-                                        *o += x * y;
-                                    }
-                                }
-                            }
-                        }
-                    }
-                }
-                rows_done(height as u64);
+                block_rows(a, b, n, t * ROWS, rows);
+                rows_done((rows.len() / n) as u64);
             });
         }
         out
@@ -107,5 +88,48 @@ impl ColourMatrix {
     /// Bytes of the three dense f32 matrices.
     pub fn bytes(&self) -> usize {
         3 * self.n * self.n * size_of::<f32>()
+    }
+}
+
+/// Rows `first..` of `a · b` (`n × n` each) into `rows` (zeroed, whole rows), block by block:
+/// with AVX2 where the CPU has it (the same operations, 8 lanes instead of 4: the same sums).
+fn block_rows(a: &[f32], b: &[f32], n: usize, first: usize, rows: &mut [f32]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // Safety: the CPU has AVX2.
+        return unsafe { block_rows_avx2(a, b, n, first, rows) };
+    }
+    block_rows_portable(a, b, n, first, rows);
+}
+
+/// [`block_rows_portable`] compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn block_rows_avx2(a: &[f32], b: &[f32], n: usize, first: usize, rows: &mut [f32]) {
+    block_rows_portable(a, b, n, first, rows);
+}
+
+/// See [`block_rows`]: per block of columns and inner indices, each row adds `a[i][k] · b[k]`
+/// for `k` in order (the i-k-j product's order for every entry).
+#[inline(always)]
+fn block_rows_portable(a: &[f32], b: &[f32], n: usize, first: usize, rows: &mut [f32]) {
+    let height = rows.len() / n;
+    for j0 in (0..n).step_by(COLUMNS) {
+        let j1 = (j0 + COLUMNS).min(n);
+        for k0 in (0..n).step_by(INNER) {
+            let k1 = (k0 + INNER).min(n);
+            for r in 0..height {
+                let i = first + r;
+                let row = &mut rows[r * n + j0..r * n + j1];
+                for k in k0..k1 {
+                    let x = a[i * n + k];
+                    if x != 0.0 {
+                        for (o, &y) in row.iter_mut().zip(&b[k * n + j0..k * n + j1]) {
+                            *o += x * y;
+                        }
+                    }
+                }
+            }
+        }
     }
 }
