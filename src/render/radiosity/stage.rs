@@ -63,7 +63,7 @@ struct Pending {
 enum Held {
     Nothing,
     Pending(Pending),
-    Ready(World),
+    Ready(Box<World>),
 }
 
 /// The radiosity stage.
@@ -188,7 +188,7 @@ impl RadiosityStage {
     }
 
     /// The world of a finished precompute `r` on `device`, saying what it took.
-    fn world_of(&self, device: &Device, chunks: Vec<u64>, r: StaticRadiosity, start: Instant, frames_without: u64) -> crate::render::raster::device::Result<World> {
+    fn world_of(&self, device: &Device, chunks: Vec<u64>, r: StaticRadiosity, start: Instant, frames_without: u64) -> crate::render::raster::device::Result<Box<World>> {
         for note in &r.notes {
             eprintln!("glrt: radiosity: {note}");
         }
@@ -199,7 +199,7 @@ impl RadiosityStage {
             start.elapsed().as_secs_f64()
         );
         let update = Update::new(device, &r.patches, &r.matrix)?;
-        Ok(World { chunks, patches: r.patches, update, last: None })
+        Ok(Box::new(World { chunks, patches: r.patches, update, last: None }))
     }
 
     /// Frees the device's objects (the device idle).
