@@ -64,7 +64,7 @@ fn radiosity_brings_the_demos_raster_frame_towards_its_path_traced_reference() {
     let lit_image = Image::load_png(&replay_frame_3_with(
         "demo",
         "raster-radiosity",
-        &[raster[0], ("GLRT_RADIOSITY", "1"), ("GLRT_RADIOSITY_BUDGET_MB", "1"), ("XDG_CACHE_HOME", cache_var)],
+        &[raster[0], ("GLRT_RADIOSITY", "1"), ("GLRT_RADIOSITY_BUDGET_MB", "1"), ("GLRT_RADIOSITY_WAIT", "1"), ("XDG_CACHE_HOME", cache_var)],
     ));
     let cached = std::fs::read_dir(cache.join("glrt/radiosity")).map_or(0, |d| d.count());
     assert_eq!(cached, 1, "the run wrote its matrix to the cache");

@@ -33,6 +33,7 @@ fn traced(tag: &str, bounces: &str, spp: &str, radiosity: bool) -> Vec<Vec<[f64;
         ("GLRT_SPP", spp),
         ("GLRT_RADIOSITY", if radiosity { "1" } else { "0" }),
         ("GLRT_RADIOSITY_BUDGET_MB", "1"),
+        ("GLRT_RADIOSITY_WAIT", "1"),
         ("XDG_CACHE_HOME", cache),
     ];
     blocks(&Image::load_png(&replay_frame_3_with("demo", tag, &env)))

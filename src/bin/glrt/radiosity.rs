@@ -7,7 +7,8 @@
 //! light under the last frame's lights, then the product with the matrix).
 //!
 //! The form factors are computed on the Vulkan device (`GLRT_DEVICE`) with a progress bar;
-//! without one, or when it fails, on the CPU, with a message saying why.
+//! without one, or when it fails, on the CPU, with a message saying why. `--precompute N` times
+//! the CPU stages after the form factors on a synthetic closed box of about N patches.
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -17,19 +18,21 @@ use glam::Vec3;
 use glrt::frame::FrameSink;
 use glrt::render::radiosity;
 use glrt::render::radiosity::compress::CompressedMatrix;
-use glrt::render::radiosity::form_factors::{self, FormFactors};
 use glrt::render::radiosity::gpu::gather::synthetic;
 use glrt::render::radiosity::gpu::update::{Update, UpdateTime};
 use glrt::render::radiosity::patches::Patches;
 use glrt::render::radiosity::precompute;
 use glrt::render::radiosity::settings::Settings;
-use glrt::render::radiosity::test_scenes::closed_box;
+use glrt::render::radiosity::stage::form_factors_on;
+use glrt::render::radiosity::bounces::{colour_matrix, k_bounce};
+use glrt::render::radiosity::compress::{REORDER_PASSES, compress};
+use glrt::render::radiosity::progress::Progress;
+use glrt::render::radiosity::test_scenes::{closed_box, disc_form_factors};
 use glrt::render::raster::device::Device;
 use glrt::render::trace::gpu_types::GpuLight;
 use glrt::render::trace::lights::LightSettings;
 use glrt::replay::{self, reader::Capture};
 
-use crate::progress::counted;
 
 /// The static world of the last frame presented, and that frame's lights in the world frame.
 #[derive(Clone, Default)]
@@ -40,28 +43,6 @@ impl FrameSink for LastWorld {
         let lights = radiosity::lights::of_frame(&frame, &LightSettings::of(&glrt::render::trace::settings::Settings::of_process()));
         *self.0.lock() = (frame.static_world.to_vec(), lights);
     }
-}
-
-/// The form factors of `p` on `device` when there is one and it succeeds, else on the CPU;
-/// says where and how long on stderr.
-fn form_factors_on(device: &Option<Device>, p: &Patches) -> FormFactors {
-    let n = p.patches.len();
-    let start = Instant::now();
-    if let Some(device) = device {
-        let bar = counted("form factors", "rows", || n as u64);
-        let result = glrt::render::radiosity::gpu::form_factors::compute(device, p, &mut |done, _| bar.set_position(done as u64));
-        bar.finish_and_clear();
-        match result {
-            Ok(f) => {
-                eprintln!("glrt: form factors of {n} patches on {}: {:.2} s", device.name(), start.elapsed().as_secs_f64());
-                return f;
-            }
-            Err(e) => eprintln!("glrt: form factors on {} failed ({e}): computing them on the CPU", device.name()),
-        }
-    }
-    let f = form_factors::compute(p);
-    eprintln!("glrt: form factors of {n} patches on the CPU: {:.2} s", start.elapsed().as_secs_f64());
-    f
 }
 
 /// Runs the precompute (or with `matrix_only`, builds or loads the renderer's matrix) on
@@ -78,11 +59,11 @@ pub fn run(capture: &Capture, matrix_only: bool) -> Result<(), String> {
     let settings = Settings::of_process();
     let device = Device::new().map_err(|e| eprintln!("glrt: no Vulkan device for the form factors ({e}): they are computed on the CPU")).ok();
     if !matrix_only {
-        print!("{}", precompute::run(&chunks, &settings, &mut |p| form_factors_on(&device, p)).markdown());
+        print!("{}", precompute::run(&chunks, &settings, &mut |p| form_factors_on(device.as_ref(), p)).markdown());
         return Ok(());
     }
     let start = Instant::now();
-    let r = precompute::load_or_build(&chunks, &settings, Some(&glrt::config::cache_dir()), &mut |p| form_factors_on(&device, p));
+    let r = precompute::load_or_build(&chunks, &settings, Some(&glrt::config::cache_dir()), &mut |p| form_factors_on(device.as_ref(), p));
     for note in &r.notes {
         eprintln!("glrt: {note}");
     }
@@ -114,6 +95,38 @@ pub fn time_synthetic(n: usize) -> Result<(), String> {
     };
     time_updates(&device, &p, &m, &[light(0.25, 0.25), light(0.75, 0.25), light(0.25, 0.75), light(0.75, 0.75)]);
     Ok(())
+}
+
+/// `glrt radiosity --precompute N`: the precompute's CPU stages timed for the inside of a
+/// closed box of about `n` patches of size 1, albedo 0.5, with [`disc_form_factors`]; each
+/// stage's time on stderr ([`Progress::Stderr`]), the totals on stdout.
+pub fn time_precompute(n: usize) {
+    let side = ((n as f64 / 6.0).sqrt().round() as usize).max(1) as f32;
+    let mut p = closed_box(side, 1.0);
+    for patch in &mut p.patches {
+        patch.albedo = Vec3::splat(0.5);
+    }
+    let n = p.patches.len();
+    let start = Instant::now();
+    let f = disc_form_factors(&p);
+    let t_form = start.elapsed();
+    let albedo: Vec<Vec3> = p.patches.iter().map(|x| x.albedo).collect();
+    let settings = Settings::of_process();
+    let start = Instant::now();
+    let k = k_bounce(&colour_matrix(&f, &albedo), settings.bounces, Progress::Stderr);
+    let t_k = start.elapsed();
+    let start = Instant::now();
+    let m = compress(&k, settings.top_share, REORDER_PASSES, precompute::RANGE, Progress::Stderr);
+    let t_compress = start.elapsed();
+    println!(
+        "precompute of {n} patches (a box of side {side}) on {} threads: disc form factors {:.2} s, colour and k-bounce matrix (k = {}) {:.2} s, compression {:.2} s ({} bytes)",
+        rayon::current_num_threads(),
+        t_form.as_secs_f64(),
+        settings.bounces,
+        t_k.as_secs_f64(),
+        t_compress.as_secs_f64(),
+        m.bytes()
+    );
 }
 
 /// [`UPDATES`] per-frame updates of `patches` with matrix `m` under `lights` on `device`;

@@ -12,6 +12,7 @@ use glam::Vec3;
 
 use super::form_factors::FormFactors;
 use super::matrix::ColourMatrix;
+use super::progress::Progress;
 
 /// The colour matrix: `F_ij` times receiver `i`'s albedo, per channel (eq. 4).
 pub fn colour_matrix(f: &FormFactors, albedo: &[Vec3]) -> ColourMatrix {
@@ -28,16 +29,19 @@ pub fn colour_matrix(f: &FormFactors, albedo: &[Vec3]) -> ColourMatrix {
 }
 
 /// The k-bounce matrix `Σ_{h=1..k} (F^C)^h` (eq. 7), by Horner's rule:
-/// `S_1 = F^C`, `S_{h+1} = F^C + F^C · S_h` (`k − 1` products). `k = 0` gives the zero matrix.
-pub fn k_bounce(colour: &ColourMatrix, k: u32) -> ColourMatrix {
+/// `S_1 = F^C`, `S_{h+1} = F^C + F^C · S_h` (`k − 1` products, their rows counted on
+/// `progress`). `k = 0` gives the zero matrix.
+pub fn k_bounce(colour: &ColourMatrix, k: u32, progress: Progress) -> ColourMatrix {
     if k == 0 {
         return ColourMatrix::zeros(colour.n);
     }
+    let stage = progress.stage(&format!("k-bounce matrix (k = {k})"), u64::from(k - 1) * 3 * colour.n as u64, "rows");
     let mut sum = colour.clone();
     for _ in 1..k {
-        sum = colour.multiply(&sum);
+        sum = colour.multiply(&sum, &|rows| stage.add(rows));
         sum.add(colour);
     }
+    stage.finish();
     sum
 }
 

@@ -179,13 +179,14 @@ mod tests {
     use super::*;
     use crate::render::radiosity::bounces::{colour_matrix, k_bounce};
     use crate::render::radiosity::compress::{REORDER_PASSES, compress};
+    use crate::render::radiosity::progress::Progress;
     use crate::render::radiosity::test_scenes::unit_box;
 
     #[test]
     fn a_matrix_comes_back_whole_and_a_damaged_file_is_refused_with_a_reason() {
         let (p, f) = unit_box();
         let albedo: Vec<_> = p.patches.iter().map(|x| x.albedo * 0.5).collect();
-        let m = compress(&k_bounce(&colour_matrix(f, &albedo), 3), 0.04, REORDER_PASSES, LogRange::Fitted);
+        let m = compress(&k_bounce(&colour_matrix(f, &albedo), 3, Progress::Quiet), 0.04, REORDER_PASSES, LogRange::Fitted, Progress::Quiet);
         let settings = Settings::default();
         let k = key(p.world_hash, &settings, LogRange::Fitted, REORDER_PASSES);
         assert_ne!(k, key(p.world_hash, &Settings { bounces: 2, ..settings }, LogRange::Fitted, REORDER_PASSES));

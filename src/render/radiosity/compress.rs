@@ -7,9 +7,11 @@
 //! back exact: the sparse part stores them minus what their texels decode to.
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use super::bc1::Bc1Matrix;
 use super::matrix::ColourMatrix;
+use super::progress::Progress;
 use super::quantise;
 use super::reorder::{self, Codes};
 use super::sparse::{self, SparseRows};
@@ -45,8 +47,8 @@ pub struct CompressedMatrix {
 
 /// Compresses `m`: the `top_share` largest entries exact, the rest quantised over `range`,
 /// reordered by `passes` greedy passes (alternately rows and columns, from rows) and
-/// BC1-encoded.
-pub fn compress(m: &ColourMatrix, top_share: f32, passes: u32, range: LogRange) -> CompressedMatrix {
+/// BC1-encoded; the passes and the blocks are stages on `progress`.
+pub fn compress(m: &ColourMatrix, top_share: f32, passes: u32, range: LogRange, progress: Progress) -> CompressedMatrix {
     let n = m.n;
     let (sparse, rest) = sparse::split_top(m, top_share);
     let max = rest.channels.iter().flatten().fold(0.0f32, |a, &b| a.max(b));
@@ -54,14 +56,19 @@ pub fn compress(m: &ColourMatrix, top_share: f32, passes: u32, range: LogRange) 
         LogRange::Seed => quantise::LOG_SHIFT,
         LogRange::Fitted => quantise::fitted_shift(rest.channels.iter().flatten().copied()),
     };
-    let mut codes: Codes = std::array::from_fn(|c| rest.channels[c].iter().map(|&x| quantise::encode(x, max, shift)).collect());
+    let mut codes: Codes = std::array::from_fn(|c| rest.channels[c].par_iter().map(|&x| quantise::encode(x, max, shift)).collect());
     let mut order: Vec<u32> = (0..n as u32).collect();
     for pass in 0..passes {
-        let step = reorder::greedy_order(&codes, n, pass % 2 == 1);
+        let by_columns = pass % 2 == 1;
+        let stage = progress.stage(&format!("reordering pass {} of {passes} ({})", pass + 1, if by_columns { "columns" } else { "rows" }), n as u64, "lines");
+        let step = reorder::greedy_order(&codes, n, by_columns, &stage);
+        stage.finish();
         codes = reorder::permute(&codes, n, &step);
         order = step.iter().map(|&k| order[k as usize]).collect();
     }
-    let texture = Bc1Matrix::encode(&codes, n);
+    let stage = progress.stage("BC1 blocks", n.div_ceil(4) as u64, "rows of blocks");
+    let texture = Bc1Matrix::encode(&codes, n, &stage);
+    stage.finish();
     // The kept entries' texels (zeroed, then blurred by BC1 among large neighbours) decode to
     // something: the sparse part stores the exact value minus it, so the sum is exact.
     let decoded = texture.decode();

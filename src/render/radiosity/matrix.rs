@@ -2,6 +2,14 @@
 //! matrix holds the light reflected per channel), with the products radiosity needs.
 
 use glam::Vec3;
+use rayon::prelude::*;
+
+/// Result rows of one task of [`ColourMatrix::multiply`].
+const ROWS: usize = 16;
+/// Inner indices of one block: with [`COLUMNS`], 512 KiB of the right factor, kept in L2.
+const INNER: usize = 128;
+/// Columns of one block.
+const COLUMNS: usize = 1024;
 
 /// Three row-major `n × n` matrices, red, green and blue: entry `(i, j)` of channel `c` is
 /// `channels[c][i * n + j]`.
@@ -48,30 +56,21 @@ impl ColourMatrix {
             .collect()
     }
 
-    /// `self · other`, channel by channel (rows on every available core).
-    pub fn multiply(&self, other: &ColourMatrix) -> ColourMatrix {
+    /// `self · other`, channel by channel, on every core; `rows_done` is told of each block
+    /// of result rows finished (`3 n` rows in all). Cache-blocked ([`ROWS`] result rows,
+    /// [`INNER`] inner indices, [`COLUMNS`] columns a block); each entry's sum still runs over
+    /// the inner index in order, so the result is the plain i-k-j product's, bit for bit.
+    pub fn multiply(&self, other: &ColourMatrix, rows_done: &(dyn Fn(u64) + Sync)) -> ColourMatrix {
         let n = self.n;
         let mut out = ColourMatrix::zeros(n);
-        let threads = std::thread::available_parallelism().map_or(1, |t| t.get());
-        let rows_per_thread = n.div_ceil(threads).max(1);
+        if n == 0 {
+            return out;
+        }
         for c in 0..3 {
             let (a, b) = (&self.channels[c], &other.channels[c]);
-            std::thread::scope(|s| {
-                for (t, rows) in out.channels[c].chunks_mut(rows_per_thread * n.max(1)).enumerate() {
-                    s.spawn(move || {
-                        for (k, row) in rows.chunks_mut(n).enumerate() {
-                            let i = t * rows_per_thread + k;
-                            // i-k-j order: rows of `b` are read contiguously.
-                            for (m, &x) in a[i * n..(i + 1) * n].iter().enumerate() {
-                                if x != 0.0 {
-                                    for (r, &y) in row.iter_mut().zip(&b[m * n..(m + 1) * n]) {
-                                        *r += x * y;
-                                    }
-                                }
-                            }
-                        }
-                    });
-                }
+            out.channels[c].par_chunks_mut(ROWS * n).enumerate().for_each(|(t, rows)| {
+                block_rows(a, b, n, t * ROWS, rows);
+                rows_done((rows.len() / n) as u64);
             });
         }
         out
@@ -89,5 +88,48 @@ impl ColourMatrix {
     /// Bytes of the three dense f32 matrices.
     pub fn bytes(&self) -> usize {
         3 * self.n * self.n * size_of::<f32>()
+    }
+}
+
+/// Rows `first..` of `a · b` (`n × n` each) into `rows` (zeroed, whole rows), block by block:
+/// with AVX2 where the CPU has it (the same operations, 8 lanes instead of 4: the same sums).
+fn block_rows(a: &[f32], b: &[f32], n: usize, first: usize, rows: &mut [f32]) {
+    #[cfg(target_arch = "x86_64")]
+    if std::arch::is_x86_feature_detected!("avx2") {
+        // Safety: the CPU has AVX2.
+        return unsafe { block_rows_avx2(a, b, n, first, rows) };
+    }
+    block_rows_portable(a, b, n, first, rows);
+}
+
+/// [`block_rows_portable`] compiled for AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+fn block_rows_avx2(a: &[f32], b: &[f32], n: usize, first: usize, rows: &mut [f32]) {
+    block_rows_portable(a, b, n, first, rows);
+}
+
+/// See [`block_rows`]: per block of columns and inner indices, each row adds `a[i][k] · b[k]`
+/// for `k` in order (the i-k-j product's order for every entry).
+#[inline(always)]
+fn block_rows_portable(a: &[f32], b: &[f32], n: usize, first: usize, rows: &mut [f32]) {
+    let height = rows.len() / n;
+    for j0 in (0..n).step_by(COLUMNS) {
+        let j1 = (j0 + COLUMNS).min(n);
+        for k0 in (0..n).step_by(INNER) {
+            let k1 = (k0 + INNER).min(n);
+            for r in 0..height {
+                let i = first + r;
+                let row = &mut rows[r * n + j0..r * n + j1];
+                for k in k0..k1 {
+                    let x = a[i * n + k];
+                    if x != 0.0 {
+                        for (o, &y) in row.iter_mut().zip(&b[k * n + j0..k * n + j1]) {
+                            *o += x * y;
+                        }
+                    }
+                }
+            }
+        }
     }
 }

@@ -33,6 +33,7 @@ pub mod lights;
 pub mod matrix;
 pub mod patches;
 pub mod precompute;
+pub mod progress;
 pub mod quantise;
 pub mod reorder;
 pub mod settings;

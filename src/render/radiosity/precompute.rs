@@ -16,6 +16,7 @@ use super::cache;
 use super::compress::{self, CompressedMatrix, Errors, LogRange, compress};
 use super::form_factors::FormFactors;
 use super::patches::{self, Patches, area};
+use super::progress::Progress;
 use super::settings::Settings;
 use crate::frame::world::StaticChunk;
 
@@ -97,13 +98,20 @@ pub fn load_or_build(chunks: &[Arc<StaticChunk>], settings: &Settings, cache: Op
     }
     let f = form_factors(&patches);
     let albedo: Vec<Vec3> = patches.patches.iter().map(|x| x.albedo).collect();
-    let matrix = compress(&k_bounce(&colour_matrix(&f, &albedo), settings.bounces), settings.top_share, compress::REORDER_PASSES, RANGE);
+    let matrix = matrix_of(&f, &albedo, settings, Progress::Stderr);
     if let Some(file) = &cache_file {
         if let Err(e) = cache::save(file, key, &matrix) {
             notes.push(e);
         }
     }
     StaticRadiosity { patches, matrix, loaded: false, cache_file, notes }
+}
+
+/// The renderer's compressed k-bounce matrix of form factors `f` and albedos `albedo` (the
+/// settings' bounces and top share, [`RANGE`], [`compress::REORDER_PASSES`] passes), its stages
+/// on `progress`.
+pub fn matrix_of(f: &FormFactors, albedo: &[Vec3], settings: &Settings, progress: Progress) -> CompressedMatrix {
+    compress(&k_bounce(&colour_matrix(f, albedo), settings.bounces, progress), settings.top_share, compress::REORDER_PASSES, RANGE, progress)
 }
 
 /// One compression of the k-bounce matrix.
@@ -165,7 +173,7 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, form_factors: &mut 
     let albedo: Vec<Vec3> = p.patches.iter().map(|x| x.albedo).collect();
     let start = Instant::now();
     let colour = colour_matrix(&f, &albedo);
-    let k = k_bounce(&colour, settings.bounces);
+    let k = k_bounce(&colour, settings.bounces, Progress::Stderr);
     let t_k = start.elapsed();
     let total: f64 = k.channels.iter().flatten().map(|&x| f64::from(x)).sum();
     let compressed = [LogRange::Seed, LogRange::Fitted]
@@ -173,7 +181,7 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, form_factors: &mut 
         .flat_map(|range| (0..=compress::REORDER_PASSES).map(move |passes| (range, passes)))
         .map(|(range, passes)| {
             let start = Instant::now();
-            let c = compress(&k, settings.top_share, passes, range);
+            let c = compress(&k, settings.top_share, passes, range, Progress::Quiet);
             let t = start.elapsed();
             Compressed { range, passes, time: t, bytes: c.bytes(), errors: compress::errors(&k, &c.decompress()) }
         })

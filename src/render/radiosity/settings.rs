@@ -11,6 +11,8 @@
 //! radiosity_bounces = 3       # k of the k-bounce matrix, 1..=16
 //! top_share = 0.04            # share of the matrix kept exactly, 0..=1
 //! radiosity_budget_mb = 256   # memory of the precompute's dense matrices, MiB, 1..=65536
+//! radiosity_wait = false      # frames wait for a new static world's precompute instead of
+//!                             # being drawn without radiosity until it is ready
 //! ```
 
 use crate::config::{Key, Table, integer_in, number, number_in, switch};
@@ -34,11 +36,15 @@ pub struct Settings {
     pub top_share: f32,
     /// MiB the precompute's dense matrices may take (`radiosity_budget_mb`).
     pub budget_mb: u32,
+    /// Whether the frame that meets a new static world waits for its precompute
+    /// (`radiosity_wait`); else frames are drawn without radiosity until it is ready
+    /// ([`super::stage`]).
+    pub wait: bool,
 }
 
 impl Default for Settings {
     fn default() -> Settings {
-        Settings { enabled: false, patch_size: 0.0, bounces: 3, top_share: 0.04, budget_mb: 256 }
+        Settings { enabled: false, patch_size: 0.0, bounces: 3, top_share: 0.04, budget_mb: 256, wait: false }
     }
 }
 
@@ -50,6 +56,7 @@ impl Table for Settings {
         Key { name: "radiosity_bounces", set: |s, v| integer_in(v, 1..=16).map(|x| s.bounces = x as u32) },
         Key { name: "top_share", set: |s, v| number_in(v, 0.0..=1.0).map(|x| s.top_share = x as f32) },
         Key { name: "radiosity_budget_mb", set: |s, v| integer_in(v, 1..=65536).map(|x| s.budget_mb = x as u32) },
+        Key { name: "radiosity_wait", set: |s, v| switch(v).map(|b| s.wait = b) },
     ];
 
     fn variable(name: &str) -> String {
@@ -85,14 +92,21 @@ mod tests {
 
     #[test]
     fn every_key_is_read_from_the_file_and_the_environment() {
-        let body = "enabled = true\npatch_size = 0.5\nradiosity_bounces = 5\ntop_share = 0.1\nradiosity_budget_mb = 64\n";
+        let body = "enabled = true\npatch_size = 0.5\nradiosity_bounces = 5\ntop_share = 0.1\nradiosity_budget_mb = 64\nradiosity_wait = true\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
-        assert_eq!(s, Settings { enabled: true, patch_size: 0.5, bounces: 5, top_share: 0.1, budget_mb: 64 });
-        let env = [("GLRT_RADIOSITY", "0"), ("GLRT_PATCH_SIZE", "2"), ("GLRT_RADIOSITY_BOUNCES", "1"), ("GLRT_TOP_SHARE", "0"), ("GLRT_RADIOSITY_BUDGET_MB", "1")];
+        assert_eq!(s, Settings { enabled: true, patch_size: 0.5, bounces: 5, top_share: 0.1, budget_mb: 64, wait: true });
+        let env = [
+            ("GLRT_RADIOSITY", "0"),
+            ("GLRT_PATCH_SIZE", "2"),
+            ("GLRT_RADIOSITY_BOUNCES", "1"),
+            ("GLRT_TOP_SHARE", "0"),
+            ("GLRT_RADIOSITY_BUDGET_MB", "1"),
+            ("GLRT_RADIOSITY_WAIT", "0"),
+        ];
         let (s, problems) = read(body, &env);
         assert!(problems.is_empty(), "{problems:?}");
-        assert_eq!(s, Settings { enabled: false, patch_size: 2.0, bounces: 1, top_share: 0.0, budget_mb: 1 });
+        assert_eq!(s, Settings { enabled: false, patch_size: 2.0, bounces: 1, top_share: 0.0, budget_mb: 1, wait: false });
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
         // 1 MiB of two dense colour matrices: 209 patches (209² · 24 bytes < 2^20).
         assert_eq!(s.max_patches(), 209);

@@ -6,12 +6,17 @@
 //! or the world changed, and its [`IndirectLight`] for the raster draws ([`super::transfer`])
 //! or the tracer ([`crate::render::trace::radiosity`]).
 //!
-//! The precompute blocks the frame that meets a new static world (said once on stderr, with
-//! its time); the memory budget bounds its size ([`precompute::patches_within_budget`]). A
-//! stage that fails (device memory, a shader) says so once and stops: raster frames keep GL's
-//! ambient term, traced paths their bounces.
-
+//! The precompute of a new static world runs on a thread of its own, with a Vulkan device of
+//! its own for the form factors (the renderer's queue is never shared): the frames meanwhile
+//! are drawn without radiosity (raster: GL's ambient term; traced: the paths' own bounces), then
+//! it switches on; stderr says both, with the frames drawn without it. `radiosity_wait` makes
+//! the frame that meets the world wait for it instead (tests, comparisons). The memory budget
+//! bounds the precompute's size ([`precompute::patches_within_budget`]). A stage that fails
+//! (device memory, a shader) says so once and stops: raster frames keep GL's ambient term,
+//! traced paths their bounces.
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
+use std::thread::JoinHandle;
 use std::time::Instant;
 
 use glam::{Mat4, Vec3};
@@ -19,13 +24,20 @@ use glam::{Mat4, Vec3};
 use super::form_factors::{self, FormFactors};
 use super::gpu::update::Update;
 use super::patches::Patches;
-use super::precompute;
+use super::precompute::{self, StaticRadiosity};
+use super::progress::Progress;
 use super::settings::Settings;
 use super::transfer::IndirectLight;
 use crate::frame::Frame;
+use crate::frame::world::StaticChunk;
 use crate::render::raster::device::Device;
 use crate::render::trace::gpu_types::GpuLight;
 use crate::render::trace::lights::LightSettings;
+
+/// Largest change of a light's number, relative to its size (at least 1), still taken as no
+/// change: the lights come back to the world frame through each frame's recovered view, whose
+/// round-off moves a light that did not move by about this much.
+const LIGHT_TOLERANCE: f32 = 1.0e-4;
 
 /// The static world the stage holds, and its last update.
 struct World {
@@ -37,11 +49,34 @@ struct World {
     last: Option<(Vec<GpuLight>, Arc<IndirectLight>)>,
 }
 
+/// A static world whose matrix is being precomputed on its own thread.
+struct Pending {
+    /// Ids of its chunks, sorted.
+    chunks: Vec<u64>,
+    thread: JoinHandle<StaticRadiosity>,
+    start: Instant,
+    /// Frames drawn without radiosity while it runs.
+    frames_without: u64,
+}
+
+/// What the stage holds.
+enum Held {
+    Nothing,
+    Pending(Pending),
+    Ready(Box<World>),
+}
+
 /// The radiosity stage.
 pub struct RadiosityStage {
     settings: Settings,
     lights: LightSettings,
-    world: Option<World>,
+    /// The disk cache's directory ([`crate::config::cache_dir`] unless told otherwise).
+    cache: PathBuf,
+    held: Held,
+    /// Frames drawn without radiosity while a precompute ran, over the stage's life.
+    frames_without: u64,
+    /// Updates run on the device (direct light and product), over the stage's life.
+    updates: u64,
     /// Set after a failure: the stage does nothing more.
     failed: bool,
 }
@@ -58,22 +93,38 @@ pub struct FrameIndirect {
 impl RadiosityStage {
     /// A stage with `settings`, the frame's lights read as the tracer reads them (`lights`).
     pub fn new(settings: Settings, lights: LightSettings) -> RadiosityStage {
-        RadiosityStage { settings, lights, world: None, failed: false }
+        RadiosityStage { settings, lights, cache: crate::config::cache_dir(), held: Held::Nothing, frames_without: 0, updates: 0, failed: false }
     }
 
-    /// The indirect light of `frame`: none without a static world or a recovered view, or
-    /// after a failure.
+    /// The stage with its matrices cached under `dir` instead.
+    pub fn with_cache_dir(self, dir: PathBuf) -> RadiosityStage {
+        RadiosityStage { cache: dir, ..self }
+    }
+
+    /// Frames drawn without radiosity because its precompute was running.
+    pub fn frames_without(&self) -> u64 {
+        self.frames_without
+    }
+
+    /// Updates run on the device (direct light and product): one per frame whose lights or
+    /// static world changed.
+    pub fn updates(&self) -> u64 {
+        self.updates
+    }
+
+    /// The indirect light of `frame`: none without a static world or a recovered view, while
+    /// the precompute runs, or after a failure.
     pub fn update(&mut self, device: &Device, frame: &Frame) -> Option<FrameIndirect> {
         if self.failed || frame.static_world.is_empty() {
             return None;
         }
         let view = frame.view.as_ref()?;
         match self.try_update(device, frame) {
-            Ok(light) => Some(FrameIndirect { light, eye_to_world: view.view.inverse() }),
+            Ok(light) => light.map(|light| FrameIndirect { light, eye_to_world: view.view.inverse() }),
             Err(e) => {
                 eprintln!("glrt: radiosity stopped: {e}; the static world keeps GL's ambient light (raster) or traced bounces");
                 self.failed = true;
-                if let Some(world) = self.world.take() {
+                if let Held::Ready(world) = std::mem::replace(&mut self.held, Held::Nothing) {
                     world.update.destroy(device);
                 }
                 None
@@ -81,67 +132,117 @@ impl RadiosityStage {
         }
     }
 
-    fn try_update(&mut self, device: &Device, frame: &Frame) -> crate::render::raster::device::Result<Arc<IndirectLight>> {
+    fn try_update(&mut self, device: &Device, frame: &Frame) -> crate::render::raster::device::Result<Option<Arc<IndirectLight>>> {
         let mut chunks: Vec<u64> = frame.static_world.iter().map(|c| c.id).collect();
         chunks.sort_unstable();
-        if self.world.as_ref().is_none_or(|w| w.chunks != chunks) {
-            if let Some(old) = self.world.take() {
+        let held_chunks = match &self.held {
+            Held::Nothing => None,
+            Held::Pending(p) => Some(&p.chunks),
+            Held::Ready(w) => Some(&w.chunks),
+        };
+        if held_chunks != Some(&chunks) {
+            // A precompute of an older world runs on to its end, unused.
+            if let Held::Ready(old) = std::mem::replace(&mut self.held, Held::Nothing) {
                 old.update.destroy(device);
             }
-            let start = Instant::now();
-            let r = precompute::load_or_build(&frame.static_world, &self.settings, Some(&crate::config::cache_dir()), &mut |p| form_factors_on(device, p));
-            for note in &r.notes {
-                eprintln!("glrt: radiosity: {note}");
+            eprintln!("glrt: radiosity: a new static world: precomputing its matrix on a thread of its own; frames are drawn without radiosity until it is ready");
+            let world: Vec<Arc<StaticChunk>> = frame.static_world.to_vec();
+            let (settings, cache) = (self.settings, self.cache.clone());
+            let thread = std::thread::Builder::new().name("glrt-radiosity".into()).spawn(move || precompute_on_own_device(&world, &settings, &cache));
+            match thread {
+                Ok(thread) => self.held = Held::Pending(Pending { chunks, thread, start: Instant::now(), frames_without: 0 }),
+                Err(e) => {
+                    eprintln!("glrt: radiosity: no thread for the precompute ({e}): computing it in this frame");
+                    let r = precompute_on_own_device(&frame.static_world, &self.settings, &self.cache);
+                    self.held = Held::Ready(self.world_of(device, chunks, r, Instant::now(), 0)?);
+                }
             }
-            let how = if r.loaded { "loaded" } else { "computed" };
-            eprintln!("glrt: radiosity: {} patches, matrix {how} in {:.1} s", r.patches.patches.len(), start.elapsed().as_secs_f64());
-            let update = Update::new(device, &r.patches, &r.matrix)?;
-            self.world = Some(World { chunks, patches: r.patches, update, last: None });
         }
-        let world = self.world.as_mut().expect("built above");
+        if let Held::Pending(pending) = &mut self.held {
+            if !(self.settings.wait || pending.thread.is_finished()) {
+                pending.frames_without += 1;
+                self.frames_without += 1;
+                return Ok(None);
+            }
+            let Held::Pending(pending) = std::mem::replace(&mut self.held, Held::Nothing) else { unreachable!("matched above") };
+            let Ok(r) = pending.thread.join() else {
+                self.failed = true;
+                eprintln!("glrt: radiosity stopped: its precompute panicked; the static world keeps GL's ambient light (raster) or traced bounces");
+                return Ok(None);
+            };
+            self.held = Held::Ready(self.world_of(device, pending.chunks, r, pending.start, pending.frames_without)?);
+        }
+        let Held::Ready(world) = &mut self.held else { return Ok(None) };
         let lights = super::lights::of_frame(frame, &self.lights);
         if let Some((last, light)) = &world.last
-            && *last == lights
+            && same_lights(last, &lights)
         {
-            return Ok(light.clone());
+            return Ok(Some(light.clone()));
         }
         let (r, _) = world.update.run(device, &lights)?;
+        self.updates += 1;
         let primary: Vec<Vec3> = r.direct.iter().map(|l| l.primary).collect();
         let light = Arc::new(IndirectLight::new(&world.patches, &r.radiosity, &primary));
         world.last = Some((lights, light.clone()));
-        Ok(light)
+        Ok(Some(light))
+    }
+
+    /// The world of a finished precompute `r` on `device`, saying what it took.
+    fn world_of(&self, device: &Device, chunks: Vec<u64>, r: StaticRadiosity, start: Instant, frames_without: u64) -> crate::render::raster::device::Result<Box<World>> {
+        for note in &r.notes {
+            eprintln!("glrt: radiosity: {note}");
+        }
+        let how = if r.loaded { "loaded" } else { "computed" };
+        eprintln!(
+            "glrt: radiosity: {} patches, matrix {how} in {:.1} s; radiosity on ({frames_without} frames were drawn without it)",
+            r.patches.patches.len(),
+            start.elapsed().as_secs_f64()
+        );
+        let update = Update::new(device, &r.patches, &r.matrix)?;
+        Ok(Box::new(World { chunks, patches: r.patches, update, last: None }))
     }
 
     /// Frees the device's objects (the device idle).
     pub fn destroy(&mut self, device: &Device) {
-        if let Some(world) = self.world.take() {
+        if let Held::Ready(world) = std::mem::replace(&mut self.held, Held::Nothing) {
             world.update.destroy(device);
         }
     }
 }
 
-/// The form factors of `p` on `device`, or on the CPU when that fails; says that it is
-/// precomputing and how long it took.
-fn form_factors_on(device: &Device, p: &Patches) -> FormFactors {
+/// Whether the lights `b` are the lights `a` (to [`LIGHT_TOLERANCE`]).
+fn same_lights(a: &[GpuLight], b: &[GpuLight]) -> bool {
+    let close = |x: &[f32; 4], y: &[f32; 4]| x.iter().zip(y).all(|(&x, &y)| (x - y).abs() <= LIGHT_TOLERANCE * x.abs().max(y.abs()).max(1.0));
+    a.len() == b.len() && a.iter().zip(b).all(|(a, b)| close(&a.position, &b.position) && close(&a.radiance, &b.radiance) && close(&a.spot, &b.spot) && close(&a.params, &b.params))
+}
+
+/// The precompute of `world` (the matrix of the disk cache under `cache` when it has it), the
+/// form factors on a Vulkan device of this thread's own (the renderer's queue is not shared),
+/// else the CPU.
+fn precompute_on_own_device(world: &[Arc<StaticChunk>], settings: &Settings, cache: &Path) -> StaticRadiosity {
+    let device = Device::new().map_err(|e| eprintln!("glrt: radiosity: no Vulkan device of its own for the form factors ({e}): they are computed on the CPU")).ok();
+    precompute::load_or_build(world, settings, Some(cache), &mut |p| form_factors_on(device.as_ref(), p))
+}
+
+/// The form factors of `p` on `device`, or on the CPU when there is none or it fails, with
+/// their progress on stderr ([`Progress::Stderr`]).
+pub fn form_factors_on(device: Option<&Device>, p: &Patches) -> FormFactors {
     let n = p.patches.len();
-    eprintln!("glrt: radiosity: precomputing the form factors of {n} patches on {} (once per static world; the matrix is cached)", device.name());
-    let start = Instant::now();
-    let mut quarters = 0;
-    let mut progress = |done: usize, total: usize| {
-        let q = 4 * done / total.max(1);
-        if q > quarters && q < 4 {
-            quarters = q;
-            eprintln!("glrt: radiosity: form factors {}% ({:.0} s)", 25 * q, start.elapsed().as_secs_f64());
-        }
-    };
-    match super::gpu::form_factors::compute(device, p, &mut progress) {
-        Ok(f) => {
-            eprintln!("glrt: radiosity: form factors in {:.1} s", start.elapsed().as_secs_f64());
-            f
-        }
-        Err(e) => {
-            eprintln!("glrt: radiosity: form factors on the device failed ({e}): computing them on the CPU");
-            form_factors::compute(p)
+    if let Some(device) = device {
+        let stage = Progress::Stderr.stage(&format!("form factors of {n} patches on {} (once per static world; the matrix is cached)", device.name()), n as u64, "rows");
+        let mut counted = 0;
+        let result = super::gpu::form_factors::compute(device, p, &mut |done, _| {
+            stage.add(done.saturating_sub(counted) as u64);
+            counted = counted.max(done);
+        });
+        stage.finish();
+        match result {
+            Ok(f) => return f,
+            Err(e) => eprintln!("glrt: radiosity: form factors on {} failed ({e}): computing them on the CPU", device.name()),
         }
     }
+    let stage = Progress::Stderr.stage(&format!("form factors of {n} patches on the CPU"), 1, "matrix");
+    let f = form_factors::compute(p);
+    stage.finish();
+    f
 }

@@ -8,6 +8,7 @@ use super::bounces::{colour_matrix, gather, k_bounce, neumann};
 use super::compress::{self, LogRange, compress};
 use super::form_factors::{self, FormFactors};
 use super::patches::{self, Patches};
+use super::progress::Progress;
 use super::test_scenes::{closed_box, quad, unit_box};
 
 /// The form factor from the patches `receivers` (as one surface: area-weighted) to the
@@ -144,7 +145,7 @@ fn a_closed_box_with_one_emitter_matches_the_exact_solution() {
     let colour = colour_matrix(f, &albedo);
     let mut previous = f32::INFINITY;
     for k in [1, 3, 8, 40] {
-        let secondary = k_bounce(&colour, k).apply(&emission);
+        let secondary = k_bounce(&colour, k, Progress::Quiet).apply(&emission);
         let error = (0..n).map(|i| (emission[i] + secondary[i] - exact[i]).abs().max_element()).fold(0.0f32, f32::max);
         let bound = 10.0 * 0.8f32.powi(k as i32 + 1) / 0.2;
         assert!(error <= bound && error < previous, "k = {k}: error {error}, bound {bound}");
@@ -168,6 +169,21 @@ fn a_closed_box_with_one_emitter_matches_the_exact_solution() {
 }
 
 #[test]
+fn disc_form_factors_are_close_to_the_exact_ones_in_a_box() {
+    let (p, exact) = unit_box();
+    let disc = super::test_scenes::disc_form_factors(p);
+    // Rows of a closed box sum to 1; the disc approximation overestimates near neighbours
+    // (point to disc), so its rows sum a little above.
+    for i in 0..p.patches.len() {
+        let (a, b): (f32, f32) = (disc.row(i).iter().sum(), exact.row(i).iter().sum());
+        assert!((b - 1.0).abs() < 1e-3 && (a - b).abs() < 0.15, "row {i}: disc {a}, exact {b}");
+    }
+    // Opposite faces, far apart: within 10 %.
+    let far = |f: &FormFactors| surface_form_factor(p, f, |n| n.z > 0.5, |n| n.z < -0.5);
+    assert!((far(&disc) / far(exact) - 1.0).abs() < 0.1, "{} vs {}", far(&disc), far(exact));
+}
+
+#[test]
 fn the_k_bounce_matrix_equals_k_explicit_bounces() {
     let p = closed_box(2.0, 0.5);
     let f = form_factors::compute(&p);
@@ -175,7 +191,7 @@ fn the_k_bounce_matrix_equals_k_explicit_bounces() {
     let primary: Vec<Vec3> = (0..f.n).map(|i| Vec3::new((i % 5) as f32, 1.0, (i % 2) as f32)).collect();
     let colour = colour_matrix(&f, &albedo);
     for k in 1..=4 {
-        let by_matrix = k_bounce(&colour, k).apply(&primary);
+        let by_matrix = k_bounce(&colour, k, Progress::Quiet).apply(&primary);
         let mut incident = primary.clone();
         let mut explicit = vec![Vec3::ZERO; f.n];
         for _ in 0..k {
@@ -188,19 +204,19 @@ fn the_k_bounce_matrix_equals_k_explicit_bounces() {
             assert!((*a - *b).abs().max_element() <= 1.0e-5 * b.max_element().max(1.0), "k = {k}: {a} vs {b}");
         }
     }
-    assert_eq!(k_bounce(&colour, 0), super::matrix::ColourMatrix::zeros(f.n));
+    assert_eq!(k_bounce(&colour, 0, Progress::Quiet), super::matrix::ColourMatrix::zeros(f.n));
 }
 
 #[test]
 fn compression_keeps_the_top_share_exact_and_the_rest_close() {
     let (p, f) = unit_box();
     let albedo: Vec<Vec3> = p.patches.iter().map(|x| if x.normal.x.abs() > 0.5 { Vec3::new(0.8, 0.2, 0.2) } else { Vec3::splat(0.6) }).collect();
-    let m = k_bounce(&colour_matrix(f, &albedo), 3);
+    let m = k_bounce(&colour_matrix(f, &albedo), 3, Progress::Quiet);
     let n = m.n;
     let total: f64 = m.channels.iter().flatten().map(|&x| f64::from(x)).sum();
     let mut sums = Vec::new();
     for (range, passes) in [LogRange::Seed, LogRange::Fitted].into_iter().flat_map(|r| (0..=2).map(move |p| (r, p))) {
-        let c = compress(&m, compress::TOP_SHARE, passes, range);
+        let c = compress(&m, compress::TOP_SHARE, passes, range, Progress::Quiet);
         assert_eq!(c.sparse.len(), (0.04 * (n * n) as f32).round() as usize);
         let mut order = c.order.clone();
         order.sort_unstable();
@@ -228,6 +244,6 @@ fn compression_keeps_the_top_share_exact_and_the_rest_close() {
         assert!(sums[3 + passes] * 1.5 < sums[passes], "{sums:?}");
     }
     // Everything kept exactly: the round trip is exact.
-    let all = compress(&m, 1.0, 0, LogRange::Seed).decompress();
+    let all = compress(&m, 1.0, 0, LogRange::Seed, Progress::Quiet).decompress();
     assert_eq!(compress::errors(&m, &all).max, 0.0);
 }
