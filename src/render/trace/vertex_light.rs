@@ -342,6 +342,20 @@ mod tests {
         }
     }
 
+    /// The colours the game gives vertices of `normals` under `ambient` and `directed` light
+    /// from `towards`, lit through its own normals: each of ours turned by a pseudo-random
+    /// offset of up to `turn` per axis.
+    fn game_colours(normals: &[DVec3], turn: f64, towards: DVec3, ambient: DVec3, directed: DVec3) -> Vec<DVec3> {
+        (0u64..)
+            .zip(normals)
+            .map(|(i, &n)| {
+                let offset = DVec3::from_array(std::array::from_fn(|k| ((i * 2654435761 + k as u64 * 40503) % 1000) as f64 / 500.0 - 1.0));
+                let game = (n + turn * offset).normalize();
+                (ambient + directed * game.dot(towards).max(0.0)).min(DVec3::ONE)
+            })
+            .collect()
+    }
+
     #[test]
     fn lighting_through_normals_other_than_the_game_s_is_still_recovered() {
         // The game lit its own normals (here each turned by up to ~30°, as a model's stored
@@ -349,14 +363,7 @@ mod tests {
         let normals = sphere(300);
         let towards = DVec3::new(0.3, 0.8, -0.5).normalize();
         let (ambient, directed) = (DVec3::new(0.3, 0.28, 0.22), DVec3::new(0.9, 0.85, 0.5));
-        let colours: Vec<DVec3> = (0u64..)
-            .zip(&normals)
-            .map(|(i, &n)| {
-                let turn = DVec3::from_array(std::array::from_fn(|k| ((i * 2654435761 + k as u64 * 40503) % 1000) as f64 / 500.0 - 1.0));
-                let game = (n + 0.6 * turn).normalize();
-                (ambient + directed * game.dot(towards).max(0.0)).min(DVec3::ONE)
-            })
-            .collect();
+        let colours = game_colours(&normals, 0.6, towards, ambient, directed);
         let l = fit(&normals, &colours).expect("a light");
         assert!(l.towards.as_dvec3().dot(towards) > 0.99, "{l:?}");
         // The ambient is the game's (the fit's constant part, 0.36, is capped at the darkest
@@ -378,14 +385,7 @@ mod tests {
         let normals = sphere(300);
         let towards = DVec3::new(0.3, 0.8, -0.5).normalize();
         let (ambient, directed) = (DVec3::new(0.314, 0.282, 0.22), DVec3::new(3.2, 3.3, 0.6));
-        let colours: Vec<DVec3> = (0u64..)
-            .zip(&normals)
-            .map(|(i, &n)| {
-                let turn = DVec3::from_array(std::array::from_fn(|k| ((i * 2654435761 + k as u64 * 40503) % 1000) as f64 / 500.0 - 1.0));
-                let game = (n + turn).normalize();
-                (ambient + directed * game.dot(towards).max(0.0)).min(DVec3::ONE)
-            })
-            .collect();
+        let colours = game_colours(&normals, 1.0, towards, ambient, directed);
         let l = fit(&normals, &colours).expect("a light");
         assert!(l.towards.as_dvec3().dot(towards) > 0.9, "{l:?}");
         assert!((l.ambient.as_dvec3() - ambient).abs().max_element() < 1e-6, "the game's ambient: {l:?}");
