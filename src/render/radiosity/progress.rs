@@ -8,7 +8,9 @@ use std::io::IsTerminal;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::ProgressBar;
+
+use crate::logging::progress;
 
 /// Where a precompute's progress goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -24,7 +26,7 @@ impl Progress {
     pub fn stage(self, name: &str, total: u64, unit: &str) -> Stage {
         let output = match self {
             Progress::Quiet => Output::Quiet,
-            Progress::Stderr if std::io::stderr().is_terminal() => Output::Bar(bar(name, total, unit)),
+            Progress::Stderr if std::io::stderr().is_terminal() => Output::Bar(progress::bar(&format!("glrt: radiosity: {name}"), total, unit)),
             Progress::Stderr => Output::Lines,
         };
         Stage { name: name.to_owned(), total, done: AtomicU64::new(0), start: Instant::now(), output }
@@ -86,17 +88,6 @@ fn quarter_line(name: &str, before: u64, after: u64, total: u64, elapsed: Durati
     }
     let left = elapsed.as_secs_f64() * (total - after) as f64 / after.max(1) as f64;
     Some(format!("glrt: radiosity: {name}: {}% after {:.1} s, about {left:.0} s left", 25 * q, elapsed.as_secs_f64()))
-}
-
-/// A bar of `total` `unit` labelled `name` on stderr.
-fn bar(name: &str, total: u64, unit: &str) -> ProgressBar {
-    let bar = ProgressBar::with_draw_target(Some(total), ProgressDrawTarget::stderr());
-    let template = format!("glrt: radiosity: {{msg}} [{{bar:30}}] {{pos}}/{{len}} {unit}, {{elapsed}} elapsed, {{eta}} left");
-    let style = ProgressStyle::with_template(&template).expect("a valid template").progress_chars("=> ");
-    bar.set_style(style);
-    bar.set_message(name.to_owned());
-    bar.enable_steady_tick(Duration::from_secs(1));
-    bar
 }
 
 #[cfg(test)]

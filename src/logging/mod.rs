@@ -1,6 +1,8 @@
 //! Logging to standard error, enabled by `GLRT_LOG=error|warn|info|debug|trace` (off when
 //! unset). Installed once, when the first context is created.
 
+pub mod progress;
+
 use std::sync::Once;
 
 use log::{Level, LevelFilter, Log, Metadata, Record};
