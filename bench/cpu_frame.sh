@@ -77,7 +77,7 @@ inclusive() {
             colon = index(rest, ":")
             if ((rest == name || (colon > 0 && substr(rest, colon + 1) == name)) && cost + 0 > most) most = cost + 0
         }
-        END { printf "%d\n", most }'
+        END { printf "%.0f\n", most }'
 }
 
 # Instructions per frame of function $1 over frames $a..$b.
