@@ -16,6 +16,9 @@ struct Instance {
     uint first_triangle;     // index of the geometry's first triangle in the triangle buffers
     uint flags;              // INSTANCE_* bits
     uint material;           // index into the material buffer
+    uint previous_triangles; // first of a deforming mesh's last-frame triangles (scene.glsl
+                             // previous_triangles), or NO_PREVIOUS_TRIANGLES
+    uint pad0, pad1, pad2;
 };
 
 layout(set = TRACE_SET, binding = BINDING_INSTANCES, std430) readonly buffer Instances {

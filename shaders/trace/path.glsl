@@ -212,6 +212,11 @@ void trace_pixel(uvec2 pixel) {
                 g.depth = window_depth(frame.projection, s.position);
                 g.view_z = -s.position.z;
                 vec3 object = instance_transform(inst.eye_to_object, vec4(s.position, 1.0));
+                if (inst.previous_triangles != NO_PREVIOUS_TRIANGLES) {
+                    // A deforming mesh: the same point of the triangle in its last shape.
+                    BvhTriangle was = previous_triangles[inst.previous_triangles + hit.triangle - inst.first_triangle];
+                    object = was.v0 + hit.bary.x * was.e1 + hit.bary.y * was.e2;
+                }
                 vec3 previous = instance_transform(inst.previous_object_to_eye, vec4(object, 1.0));
                 g.motion = (window_xy(frame.projection, s.position) - window_xy(frame.previous_projection, previous)) / scale;
                 g.material = packUnorm4x8(vec4(s.roughness, s.metalness, 0.0, 0.0));

@@ -21,6 +21,12 @@ layout(set = TRACE_SET, binding = BINDING_TRIANGLES, std430) readonly buffer Tri
     BvhTriangle triangles[];
 };
 
+// A deforming mesh's triangles as they were last frame, in the order of its triangles now
+// (Instance.previous_triangles: the motion vectors of its hit points).
+layout(set = TRACE_SET, binding = BINDING_PREVIOUS_TRIANGLES, std430) readonly buffer PreviousTriangles {
+    BvhTriangle previous_triangles[];
+};
+
 // A ray's closest accepted hit.
 struct TraceHit {
     float t;        // distance along the ray, in units of its direction's length

@@ -47,25 +47,39 @@ fn context() -> Context {
     context_with(0, true, Some(DenoiseSettings { view: View::History, ..DenoiseSettings::default() }))
 }
 
-/// A quad facing the camera at depth `z` over `x0..x1` × `y0..y1`, moved by `dx` with
-/// `glTranslatef` (the same vertices every frame: a movable draw).
-fn square(ctx: &mut Context, z: f32, [x0, x1]: [f32; 2], [y0, y1]: [f32; 2], dx: f32) {
+/// How the small square of [`frame`] moves.
+#[derive(Clone, Copy, PartialEq)]
+enum Motion {
+    /// By `glTranslatef`, the same vertices every frame: a movable draw.
+    Transform,
+    /// By its vertices: a deforming mesh (hash tracking calls it dynamic).
+    Vertices,
+}
+
+/// A quad facing the camera at depth `z` over `x0..x1` × `y0..y1`, moved by `dx` as `motion`
+/// says.
+fn square(ctx: &mut Context, z: f32, [x0, x1]: [f32; 2], [y0, y1]: [f32; 2], dx: f32, motion: Motion) {
+    let (translate, shift) = match motion {
+        Motion::Transform => (dx, 0.0),
+        Motion::Vertices => (0.0, dx),
+    };
     // Safety: plain drawing calls on a current context.
     unsafe {
         dispatch::glPushMatrix(ctx);
-        dispatch::glTranslatef(ctx, dx, 0.0, 0.0);
+        dispatch::glTranslatef(ctx, translate, 0.0, 0.0);
         dispatch::glBegin(ctx, gl::GL_QUADS);
         dispatch::glNormal3f(ctx, 0.0, 0.0, 1.0);
         for [x, y] in [[x0, y0], [x1, y0], [x1, y1], [x0, y1]] {
-            dispatch::glVertex3f(ctx, x, y, z);
+            dispatch::glVertex3f(ctx, x + shift, y, z);
         }
         dispatch::glEnd(ctx);
         dispatch::glPopMatrix(ctx);
     }
 }
 
-/// One frame: a lit wall at z = −6 and the small square at z = −3, moved right by `dx`.
-fn frame(ctx: &mut Context, dx: f32) {
+/// One frame: a lit wall at z = −6 and the small square at z = −3, moved right by `dx` as
+/// `motion` says.
+fn frame(ctx: &mut Context, dx: f32, motion: Motion) {
     // Safety: plain state calls on a current context.
     unsafe {
         dispatch::glClearColor(ctx, 0.0, 0.0, 0.0, 1.0);
@@ -76,8 +90,8 @@ fn frame(ctx: &mut Context, dx: f32) {
         let position = [0.0f32, 0.0, 1.0, 0.0];
         dispatch::glLightfv(ctx, gl::GL_LIGHT0, gl::GL_POSITION, position.as_ptr());
     }
-    square(ctx, -6.0, [-8.0, 8.0], [-8.0, 8.0], 0.0);
-    square(ctx, -3.0, [-1.2, -0.2], [-0.5, 0.5], dx);
+    square(ctx, -6.0, [-8.0, 8.0], [-8.0, 8.0], 0.0, Motion::Transform);
+    square(ctx, -3.0, [-1.2, -0.2], [-0.5, 0.5], dx, motion);
     ctx.end_frame();
 }
 
@@ -87,25 +101,38 @@ fn history_at(ctx: &mut Context, p: [f32; 3]) -> u8 {
     lavapipe::pixel(ctx, window(p[0]), window(p[1]))[0]
 }
 
-#[test]
-fn a_moved_square_keeps_its_history_and_the_wall_it_uncovered_starts_again() {
+/// The square moves by `motion` for four frames and jumps; returns the history lengths of a
+/// wall pixel never covered, of a square pixel at its new place and of the wall it uncovered.
+fn histories_after_a_jump(motion: Motion) -> [u8; 3] {
     let mut ctx = context();
     // The square creeps right (so that hash tracking sees it move from the start: a square
     // that stood still would join the static world), then jumps.
     for k in 0..4 {
-        frame(&mut ctx, 0.1 * k as f32);
+        frame(&mut ctx, 0.1 * k as f32, motion);
     }
     // Now it covers x −0.9..0.1 at z = −3: on the wall at z = −6 that is x −1.8..0.2.
     let wall = history_at(&mut ctx, [3.0, 3.0, -6.0]);
     let square = history_at(&mut ctx, [-0.4, 0.0, -3.0]);
     assert_eq!((wall, square), (4, 4), "four frames: every pixel has four frames of history");
-    frame(&mut ctx, 1.7);
+    frame(&mut ctx, 1.7, motion);
     // The square covers x 0.5..1.5 at z = −3 now.
-    let wall = history_at(&mut ctx, [3.0, 3.0, -6.0]);
-    let moved = history_at(&mut ctx, [1.0, 0.0, -3.0]);
-    let uncovered = history_at(&mut ctx, [-1.2, 0.0, -6.0]);
+    [[3.0, 3.0, -6.0], [1.0, 0.0, -3.0], [-1.2, 0.0, -6.0]].map(|p| history_at(&mut ctx, p))
+}
+
+#[test]
+fn a_moved_square_keeps_its_history_and_the_wall_it_uncovered_starts_again() {
+    let [wall, moved, uncovered] = histories_after_a_jump(Motion::Transform);
     assert_eq!(wall, 5, "a wall pixel never covered keeps its history");
     assert_eq!(moved, 5, "the square's pixels at its new place are reprojected to where it was");
+    assert_eq!(uncovered, 1, "the wall the square uncovered has no history (disocclusion)");
+}
+
+#[test]
+fn a_deforming_square_is_reprojected_through_its_last_shape() {
+    // Its transform never changes: only last frame's triangles say where its points were.
+    let [wall, moved, uncovered] = histories_after_a_jump(Motion::Vertices);
+    assert_eq!(wall, 5, "a wall pixel never covered keeps its history");
+    assert_eq!(moved, 5, "the square's pixels at its new place are reprojected to where its last shape had them");
     assert_eq!(uncovered, 1, "the wall the square uncovered has no history (disocclusion)");
 }
 
@@ -127,7 +154,7 @@ fn corner(ctx: &mut Context, lit: bool, dx: f32) {
         let position = [0.5f32, 1.0, 1.0, 0.0];
         dispatch::glLightfv(ctx, gl::GL_LIGHT0, gl::GL_POSITION, position.as_ptr());
     }
-    square(ctx, -6.0, [-8.0, 8.0], [-8.0, 8.0], dx);
+    square(ctx, -6.0, [-8.0, 8.0], [-8.0, 8.0], dx, Motion::Transform);
     // Safety: as above.
     unsafe {
         dispatch::glPushMatrix(ctx);

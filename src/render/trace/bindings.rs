@@ -45,8 +45,11 @@ glsl_constants! {
     /// Radiosity's indirect light at the corners of the static world's triangles
     /// (`scene.glsl`, `radiosity.glsl`; [`super::radiosity`]).
     const RADIOSITY: u32 = 18;
+    /// Deforming meshes' last-frame triangles, in their new shapes' BVH order (`triangles.glsl`;
+    /// [`super::resident::Resident::previous`]).
+    const PREVIOUS_TRIANGLES: u32 = 19;
     /// Number of storage-buffer bindings (`0..COUNT`).
-    const COUNT: u32 = 19;
+    const COUNT: u32 = 20;
     /// The environment cube map of the sky draws ([`super::sky`]), a combined image sampler
     /// (`environment.glsl`).
     const SKY: u32 = COUNT;

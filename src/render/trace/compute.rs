@@ -30,7 +30,7 @@ use super::resident::{NewGeometry, Resident};
 use super::scene;
 use super::settings::{KNEE, Settings, Tonemap};
 use super::shader_constants::{
-    FRAME_PERSPECTIVE, FRAME_SKY, FRAME_SKY_SAMPLED, FRAME_STILL, INSTANCE_ALPHA_TESTED, MATERIAL_LAYERS, TONEMAP_ACES, TONEMAP_CLAMP, TONEMAP_KNEE, TONEMAP_REINHARD, TRACE_GROUP,
+    FRAME_PERSPECTIVE, FRAME_SKY, FRAME_SKY_SAMPLED, FRAME_STILL, INSTANCE_ALPHA_TESTED, MATERIAL_LAYERS, NO_PREVIOUS_TRIANGLES, TONEMAP_ACES, TONEMAP_CLAMP, TONEMAP_KNEE, TONEMAP_REINHARD, TRACE_GROUP,
 };
 use super::surfaces::Surfaces;
 use super::sky::Sky;
@@ -256,6 +256,7 @@ impl ComputeTracer {
         let emitter_slice = push(bytemuck::cast_slice(&scene.emitters))?;
         let sky_cells_slice = push(bytemuck::cast_slice(&scene.sky_cells))?;
         let radiosity_slice = push(bytemuck::cast_slice(&scene.radiosity))?;
+        let previous_slice = push(bytemuck::cast_slice(&scene.previous_triangles))?;
         let tlas_slice = push(self.tlas.node_bytes())?;
         let textures_slice = push(bytemuck::cast_slice(self.texels.textures()))?;
         let Some((texel_buffer, _)) = &self.texel_buffer else { return Ok(None) };
@@ -282,6 +283,7 @@ impl ComputeTracer {
         table[bindings::EMITTERS as usize] = emitter_slice;
         table[bindings::SKY_DISTRIBUTION as usize] = sky_cells_slice;
         table[bindings::RADIOSITY as usize] = radiosity_slice;
+        table[bindings::PREVIOUS_TRIANGLES as usize] = previous_slice;
 
         let pool = self.pools[slot];
         // Safety (this block): the pool's sets of this slot's previous frame are finished (the
@@ -417,6 +419,7 @@ impl RayTracer for ComputeTracer {
         let mut emitter_list = EmitterList::default();
         let mut recovered: Vec<GpuLight> = Vec::new();
         let mut radiosity = Vec::new();
+        let mut previous_triangles = Vec::new();
         self.radiosity.begin_frame(indirect.map(|i| &i.light));
         let mut signature = Xxh3::new();
         // New texture contents (an updated lightmap, an animated texture) restart accumulation.
@@ -458,6 +461,14 @@ impl RayTracer for ComputeTracer {
                 recovered.push(light.directed);
                 material.ambient = light.ambient;
             }
+            // A deforming mesh's last shape (its motion vectors).
+            let previous = match self.resident.previous(item.key) {
+                Some(triangles) => {
+                    previous_triangles.extend_from_slice(triangles);
+                    (previous_triangles.len() - triangles.len()) as u32
+                }
+                None => NO_PREVIOUS_TRIANGLES,
+            };
             let flags = if material.alpha_func != 7 { INSTANCE_ALPHA_TESTED } else { 0 };
             if self.accelerations.is_some() {
                 top_instances.push(TopInstance { key: item.key, rows: gpu_types::rows(&item.object_to_eye), index: instances.len() as u32, opaque: flags == 0 });
@@ -470,6 +481,10 @@ impl RayTracer for ComputeTracer {
                 first_triangle: placement.first_triangle,
                 flags,
                 material: materials.len() as u32,
+                previous_triangles: previous,
+                pad0: 0,
+                pad1: 0,
+                pad2: 0,
             });
             materials.push(material);
             bounds.push(placement.bounds.transformed(&Affine3A::from_mat4(item.object_to_eye)));
@@ -580,7 +595,7 @@ impl RayTracer for ComputeTracer {
         self.previous = Some(Previous { signature, projection, view: frame.view.map(|v| v.view) });
         self.frame_index = self.frame_index.wrapping_add(1);
         self.statistics.frames += 1;
-        Ok(GpuScene { frame: gpu_frame, instances, materials, lights, emitters, sky_cells, radiosity })
+        Ok(GpuScene { frame: gpu_frame, instances, materials, lights, emitters, sky_cells, radiosity, previous_triangles })
     }
 
     /// Dispatches `pathtrace.comp` once per sample into the G-buffer and the accumulation

@@ -208,6 +208,16 @@ pub struct GpuInstance {
     pub flags: u32,
     /// Index into the material buffer.
     pub material: u32,
+    /// First of its geometry's last-frame triangles in the previous-triangle buffer (a
+    /// deforming mesh's last shape, in its BVH order; [`super::resident::Resident::previous`]),
+    /// or `NO_PREVIOUS_TRIANGLES` (its shape did not change, or it is new).
+    pub previous_triangles: u32,
+    /// Padding to the GLSL struct's 16-byte multiple.
+    pub pad0: u32,
+    /// Padding.
+    pub pad1: u32,
+    /// Padding.
+    pub pad2: u32,
 }
 
 /// Per-pixel bytes of the G-buffer (`GSample` of `gbuffer.glsl`).

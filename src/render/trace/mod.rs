@@ -154,6 +154,9 @@ pub struct GpuScene {
     /// Radiosity's indirect light at the corners of the static world's triangles
     /// ([`radiosity`]; empty without radiosity).
     pub radiosity: Vec<GpuRadiosityTriangle>,
+    /// Deforming meshes' last-frame triangles ([`resident::Resident::previous`]), each mesh's
+    /// from its instance's `previous_triangles` on.
+    pub previous_triangles: Vec<bvh::GpuTriangle>,
 }
 
 /// A traced frame's G-buffer and radiance, in the back end's per-pixel buffers until

@@ -17,6 +17,11 @@
 //! refitted one takes its place in the buffers (same sizes: written in place, after a barrier
 //! so that frames still in flight finish reading the old shape first); otherwise it is placed
 //! at the free end like a new one.
+//!
+//! Motion: a geometry that replaces another (refitted or built anew) keeps, for the frame it
+//! arrives in, the triangles it replaced in its own BVH order ([`Resident::previous`]): the
+//! tracer reads where a deforming mesh's hit point was last frame from them (motion vectors
+//! of the denoiser).
 
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -108,6 +113,16 @@ fn ordered(blas: &Blas, geometry: &Geometry) -> (Vec<GpuTriangleAttributes>, Vec
     (attributes, corners)
 }
 
+/// `triangles` (stored in `order`: stored triangle `k` is input triangle `order[k]`) in
+/// `new_order`, another order of the same input triangles.
+fn in_order_of(triangles: &[GpuTriangle], order: &[u32], new_order: &[u32]) -> Vec<GpuTriangle> {
+    let mut stored_at = vec![0u32; order.len()];
+    for (k, &input) in order.iter().enumerate() {
+        stored_at[input as usize] = k as u32;
+    }
+    new_order.iter().map(|&input| triangles[stored_at[input as usize] as usize]).collect()
+}
+
 /// Where a refitted geometry goes.
 enum Refit {
     /// Into the place of the geometry it replaces (entry re-keyed already).
@@ -153,6 +168,9 @@ pub struct Resident {
     pub built: u32,
     /// Geometries whose BVH the last [`Resident::insert_all`] refitted.
     pub refitted: u32,
+    /// For each geometry the last [`Resident::insert_all`] placed in place of another, that
+    /// one's triangles in the new one's order.
+    previous: HashMap<u64, Vec<GpuTriangle>>,
     /// The layout of the compute tracer's BVHs, whose nodes the node buffer holds; `None`:
     /// geometries get no BVH, their triangles stay in input order under an empty root (the
     /// hardware tracer builds its own structures).
@@ -183,6 +201,7 @@ impl Resident {
             uploaded: 0,
             built: 0,
             refitted: 0,
+            previous: HashMap::new(),
             layout,
         }
     }
@@ -200,9 +219,17 @@ impl Resident {
     /// placement.
     pub fn insert_all(&mut self, device: &Device, cmd: vk::CommandBuffer, ring: &mut Ring, geometries: Vec<NewGeometry>, frame: u64) -> Result<()> {
         (self.uploaded, self.built, self.refitted) = (0, 0, 0);
+        self.previous.clear();
         let mut in_place = Vec::new();
         let mut to_place: Vec<(u64, Arc<Built>)> = Vec::new();
+        // The triangles (and their input order) of the geometries replaced, copied before a
+        // refit takes them.
+        let mut replaced: Vec<(u64, Vec<GpuTriangle>, Vec<u32>)> = Vec::new();
         for new in geometries {
+            let from = new.refit_from.and_then(|from| self.entries.get(&from));
+            if let Some(old) = from.filter(|e| e.built.blas.order.len() == new.geometry.triangles.len()) {
+                replaced.push((new.key, old.built.blas.triangles.clone(), old.built.blas.order.clone()));
+            }
             match self.refit(&new, frame) {
                 Some(Refit::InPlace) => in_place.push(new.key),
                 Some(Refit::Elsewhere(built)) => to_place.push((new.key, Arc::new(built))),
@@ -234,7 +261,18 @@ impl Resident {
             let placement = self.place(device, cmd, ring, &built)?;
             self.entries.insert(key, Entry { built, placement, last_used: frame });
         }
+        for (key, triangles, order) in replaced {
+            if let Some(entry) = self.entries.get(&key) {
+                self.previous.insert(key, in_order_of(&triangles, &order, &entry.built.blas.order));
+            }
+        }
         Ok(())
+    }
+
+    /// The triangles that geometry `key` replaced this frame (the same dynamic instance's last
+    /// shape), in `key`'s BVH order; `None` for a geometry that replaced none.
+    pub fn previous(&self, key: u64) -> Option<&[GpuTriangle]> {
+        self.previous.get(&key).map(Vec::as_slice)
     }
 
     /// Refits the BVH of `new.refit_from` to `new` (see the module doc). In place, the entry
@@ -406,6 +444,19 @@ mod tests {
         let mut one_pass = moved.clone();
         one_pass.passes = 1;
         assert!(built.refitted(&one_pass).is_none(), "another number of passes");
+    }
+
+    #[test]
+    fn a_replaced_shape_is_given_in_the_order_of_its_successor() {
+        let old = Built::new(&grid(32, Vec3::ZERO, |i| i), Some(Layout::Binary));
+        // Built anew (not refitted): another BVH order of the same input triangles.
+        let new = Built::new(&grid(32, Vec3::new(5.0, 0.0, 0.0), |i| i * 397 % 1024), Some(Layout::Binary));
+        assert_ne!(old.blas.order, new.blas.order);
+        let previous = in_order_of(&old.blas.triangles, &old.blas.order, &new.blas.order);
+        for (k, &input) in new.blas.order.iter().enumerate() {
+            let was = old.blas.order.iter().position(|&i| i == input).unwrap();
+            assert_eq!(previous[k], old.blas.triangles[was], "stored triangle {k} is input triangle {input}");
+        }
     }
 
     #[test]

@@ -48,6 +48,8 @@ glsl_constants! {
     /// `GpuMaterial::radiosity` of a surface without radiosity's light (not in the static
     /// world, or radiosity off).
     const NO_RADIOSITY: u32 = u32::MAX;
+    /// `GpuInstance::previous_triangles` of an instance whose shape is last frame's (or new).
+    const NO_PREVIOUS_TRIANGLES: u32 = u32::MAX;
 
     /// Blend factor of a pass (`GpuLayer::blend`, OpenGL 1.5 table 4.2): `GL_ZERO`.
     const FACTOR_ZERO: u32 = 0;

@@ -13,6 +13,7 @@ use crate::render::trace::bindings;
 use crate::render::trace::bvh::cpu::affine_rows;
 use crate::render::trace::bvh::{Blas, Layout, Tlas};
 use crate::render::trace::gpu_types::GpuInstance;
+use crate::render::trace::shader_constants::NO_PREVIOUS_TRIANGLES;
 
 /// A patch as the shaders read it (`Patch`).
 #[repr(C)]
@@ -61,7 +62,7 @@ impl PatchScene {
         let blas = Blas::build(&patches.triangles, Layout::Binary);
         let tlas = Tlas::build(&[blas.bounds], Layout::Binary);
         let rows = affine_rows(&Affine3A::IDENTITY).map(|r| r.to_array());
-        let instance = GpuInstance { object_to_eye: rows, eye_to_object: rows, previous_object_to_eye: rows, blas_root: 0, first_triangle: 0, flags: 0, material: 0 };
+        let instance = GpuInstance { object_to_eye: rows, eye_to_object: rows, previous_object_to_eye: rows, blas_root: 0, first_triangle: 0, flags: 0, material: 0, previous_triangles: NO_PREVIOUS_TRIANGLES, pad0: 0, pad1: 0, pad2: 0 };
         let gpu_patches = patches
             .patches
             .iter()
