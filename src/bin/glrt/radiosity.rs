@@ -129,10 +129,13 @@ pub fn time_precompute(n: usize) {
     );
 }
 
-/// [`UPDATES`] per-frame updates of `patches` with matrix `m` under `lights` on `device`;
-/// prints the best times of each pass and what the last one gave.
+/// [`UPDATES`] per-frame updates of `patches` with matrix `m` under `lights` on `device`, the
+/// direct light in the settings' slices of points (`radiosity_direct_slices`); prints the
+/// times of the first (all the points), the best of the others' (one slice each) and what the
+/// last one gave.
 fn time_updates(device: &Device, patches: &Patches, m: &CompressedMatrix, lights: &[GpuLight]) {
-    let result = Update::new(device, patches, m).and_then(|mut update| {
+    let slices = Settings::of_process().direct_slices;
+    let result = Update::new(device, patches, m, slices).and_then(|mut update| {
         let runs: Result<Vec<_>, _> = (0..UPDATES).map(|_| update.run(device, lights)).collect();
         update.destroy(device);
         runs
@@ -142,19 +145,23 @@ fn time_updates(device: &Device, patches: &Patches, m: &CompressedMatrix, lights
         Err(e) => return eprintln!("glrt: the per-frame update on {} failed: {e}", device.name()),
     };
     let times: Vec<UpdateTime> = runs.iter().map(|(_, t)| *t).collect();
-    let best = |f: &dyn Fn(&UpdateTime) -> Option<std::time::Duration>| times.iter().filter_map(f).map(|d| d.as_secs_f64() * 1e3).fold(f64::INFINITY, f64::min);
-    let gpu = |f: &dyn Fn(&UpdateTime) -> Option<std::time::Duration>| {
-        let t = best(f);
-        if t.is_finite() { format!("{t:.3} ms on the GPU") } else { "no GPU timestamps".to_owned() }
+    let line = |what: &str, times: &[UpdateTime]| {
+        let best = |f: &dyn Fn(&UpdateTime) -> Option<std::time::Duration>| times.iter().filter_map(f).map(|d| d.as_secs_f64() * 1e3).fold(f64::INFINITY, f64::min);
+        let gpu = |f: &dyn Fn(&UpdateTime) -> Option<std::time::Duration>| {
+            let t = best(f);
+            if t.is_finite() { format!("{t:.3} ms on the GPU") } else { "no GPU timestamps".to_owned() }
+        };
+        println!(
+            "{what}: direct light {:.3} ms wall ({}), product {:.3} ms wall ({})",
+            best(&|t| Some(t.direct.wall)),
+            gpu(&|t| t.direct.gpu),
+            best(&|t| Some(t.gather.wall)),
+            gpu(&|t| t.gather.gpu),
+        );
     };
-    println!(
-        "per-frame update on {}, best of {UPDATES}: direct light {:.3} ms wall ({}), product {:.3} ms wall ({})",
-        device.name(),
-        best(&|t| Some(t.direct.wall)),
-        gpu(&|t| t.direct.gpu),
-        best(&|t| Some(t.gather.wall)),
-        gpu(&|t| t.gather.gpu),
-    );
+    println!("per-frame update on {}, direct-light slices: {slices}", device.name());
+    line("first update (all the points)", &times[..1]);
+    line(&format!("next updates (one slice each), best of {}", UPDATES - 1), &times[1..]);
     if let Some((r, _)) = runs.last() {
         let mean = |v: &mut dyn Iterator<Item = Vec3>| v.fold(Vec3::ZERO, |a, b| a + b) / r.radiosity.len().max(1) as f32;
         let irradiance = mean(&mut r.direct.iter().map(|l| l.irradiance));

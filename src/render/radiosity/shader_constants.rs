@@ -11,7 +11,8 @@ glsl_constants! {
     /// Most receiver points of a patch: the centroids of its first triangles.
     const RECEIVER_POINTS: u32 = 8;
     /// Points a patch receives direct light at (`radiosity/direct.comp`): the centroids of the
-    /// four quarters of its area.
+    /// four quarters of its area. An update traces them all or a slice of them
+    /// (`radiosity_direct_slices`: 1, 2 or 4 slices, each a divisor of this).
     const DIRECT_POINTS: u32 = 4;
 
     /// The patches (`Patch` of `radiosity/form_factors.comp`).
@@ -43,6 +44,10 @@ glsl_constants! {
     /// Each patch's direct irradiance and primary radiosity (`PatchLight`), written by the
     /// direct-light pass.
     const BINDING_DIRECT: u32 = 25;
+    /// Each patch's irradiance at each of its direct-light points (`vec4` per point, patch
+    /// after patch), kept on the device from update to update: an update that traces a slice
+    /// of the points takes the others from here.
+    const BINDING_DIRECT_POINTS: u32 = 26;
 
     /// Invocations per workgroup of the form-factor pass (one per source patch), of the
     /// direct-light pass (one per patch) and of the gathering pass (one row, these invocations

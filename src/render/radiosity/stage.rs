@@ -3,7 +3,8 @@
 //! factors on the device, else on the CPU; the matrix from the disk cache when it has it,
 //! [`precompute::load_or_build`]), then per frame the update on the device
 //! ([`Update`]: direct light from the frame's lights, then the product) whenever the lights
-//! or the world changed, and its [`IndirectLight`] for the raster draws ([`super::transfer`])
+//! or the world changed, and after a change of the lights until the direct light's slices of
+//! points are all the new lights' ([`Update::settled`]), and its [`IndirectLight`] for the raster draws ([`super::transfer`])
 //! or the tracer ([`crate::render::trace::radiosity`]).
 //!
 //! The precompute of a new static world runs on a thread of its own, with a Vulkan device of
@@ -27,17 +28,13 @@ use super::patches::Patches;
 use super::precompute::{self, StaticRadiosity};
 use super::progress::Progress;
 use super::settings::Settings;
+use super::lights::same_lights;
 use super::transfer::IndirectLight;
 use crate::frame::Frame;
 use crate::frame::world::StaticChunk;
 use crate::render::raster::device::Device;
 use crate::render::trace::gpu_types::GpuLight;
 use crate::render::trace::lights::LightSettings;
-
-/// Largest change of a light's number, relative to its size (at least 1), still taken as no
-/// change: the lights come back to the world frame through each frame's recovered view, whose
-/// round-off moves a light that did not move by about this much.
-const LIGHT_TOLERANCE: f32 = 1.0e-4;
 
 /// The static world the stage holds, and its last update.
 struct World {
@@ -176,6 +173,7 @@ impl RadiosityStage {
         let lights = super::lights::of_frame(frame, &self.lights);
         if let Some((last, light)) = &world.last
             && same_lights(last, &lights)
+            && world.update.settled()
         {
             return Ok(Some(light.clone()));
         }
@@ -198,7 +196,7 @@ impl RadiosityStage {
             r.patches.patches.len(),
             start.elapsed().as_secs_f64()
         );
-        let update = Update::new(device, &r.patches, &r.matrix)?;
+        let update = Update::new(device, &r.patches, &r.matrix, self.settings.direct_slices)?;
         Ok(Box::new(World { chunks, patches: r.patches, update, last: None }))
     }
 
@@ -208,12 +206,6 @@ impl RadiosityStage {
             world.update.destroy(device);
         }
     }
-}
-
-/// Whether the lights `b` are the lights `a` (to [`LIGHT_TOLERANCE`]).
-fn same_lights(a: &[GpuLight], b: &[GpuLight]) -> bool {
-    let close = |x: &[f32; 4], y: &[f32; 4]| x.iter().zip(y).all(|(&x, &y)| (x - y).abs() <= LIGHT_TOLERANCE * x.abs().max(y.abs()).max(1.0));
-    a.len() == b.len() && a.iter().zip(b).all(|(a, b)| close(&a.position, &b.position) && close(&a.radiance, &b.radiance) && close(&a.spot, &b.spot) && close(&a.params, &b.params))
 }
 
 /// The precompute of `world` (the matrix of the disk cache under `cache` when it has it), the
