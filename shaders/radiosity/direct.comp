@@ -11,12 +11,15 @@
 // radiosity, which the gathering pass (radiosity/gather.comp) bounces, is its emission plus its
 // albedo times that irradiance.
 //
-// An update traces a slice of the points: those k with k % point_stride == point_phase (all of
-// them with stride 1). Each point's irradiance is kept (point_irradiance); the points of the
-// other slices are taken from the updates that traced them. One invocation per (patch, traced
-// point, light), one shadow ray each; neighbouring invocations light neighbouring patches
-// (the patches come in spatial order) with the same point and light, so that their rays run
-// through the same nodes.
+// An update traces one of pass.slices slices of the (patch, point) pairs: pair (i, k) is in
+// slice (i * RADIOSITY_DIRECT_POINTS + k) % slices (all of them with 1 slice). Up to
+// RADIOSITY_DIRECT_POINTS slices, every patch traces the points k with k % slices == phase;
+// past it, one point of every (slices / RADIOSITY_DIRECT_POINTS)-th patch. Each point's
+// irradiance is kept (point_irradiance), and so is each patch's light (patch_lights): the
+// points of the other slices, and the patches of others, are the updates' that traced them.
+// One invocation per (traced patch, traced point, light), one shadow ray each; neighbouring
+// invocations light neighbouring patches (the patches come in spatial order) with the same
+// point and light, so that their rays run through the same nodes.
 
 // No alpha-tested geometry in the patches' BVH: every hit counts (bvh.glsl needs this first).
 bool trace_alpha_accept(uint instance, uint triangle, vec2 bary) {
@@ -60,8 +63,8 @@ layout(push_constant) uniform DirectPass {
     uint light_count;
     uint patches_per_group;  // patches a workgroup lights
     uint lanes;              // invocations per patch: a multiple of the traced points
-    uint point_stride;       // the slices: 1, 2 or 4, a divisor of RADIOSITY_DIRECT_POINTS
-    uint point_phase;        // the slice traced: points k with k % point_stride == point_phase
+    uint slices;             // 1, 2, 4, 8 or 16: a divisor or a multiple of RADIOSITY_DIRECT_POINTS
+    uint phase;              // the slice traced
 } pass;
 
 // The irradiance light i brings to point p of normal n, shadow ray included.
@@ -163,18 +166,21 @@ shared vec3 partial[RADIOSITY_GROUP];
 void main() {
     uint per_group = pass.patches_per_group;
     uint lanes = pass.lanes;
-    uint traced = RADIOSITY_DIRECT_POINTS / pass.point_stride;
+    uint point_stride = min(pass.slices, RADIOSITY_DIRECT_POINTS);
+    uint point_phase = pass.phase % point_stride;
+    uint patch_stride = max(pass.slices / RADIOSITY_DIRECT_POINTS, 1u);
+    uint traced = RADIOSITY_DIRECT_POINTS / point_stride;
     uint lid = gl_LocalInvocationID.x;
     uint slot = lid % per_group;
     uint lane = lid / per_group;
-    uint i = gl_WorkGroupID.x * per_group + slot;
+    uint i = (gl_WorkGroupID.x * per_group + slot) * patch_stride + pass.phase / point_stride;
     bool in_range = lane < lanes && i < pass.patch_count;
     vec3 sum = vec3(0.0);
     if (in_range) {
         Patch receiver = patches[i];
         if (receiver.normal != vec3(0.0) && receiver.count > 0u) {
             uint t = lane % traced;
-            vec3 p = direct_point(receiver, t * pass.point_stride + pass.point_phase);
+            vec3 p = direct_point(receiver, t * point_stride + point_phase);
             uint pairs = traced * pass.light_count;
             for (uint pair = lane; pair < pairs; pair += lanes) {
                 sum += irradiance_of(pair / traced, p, receiver.normal);
@@ -189,9 +195,9 @@ void main() {
     vec3 irradiance = vec3(0.0);
     for (uint k = 0u; k < RADIOSITY_DIRECT_POINTS; k++) {
         uint at = i * RADIOSITY_DIRECT_POINTS + k;
-        if (k % pass.point_stride == pass.point_phase) {
+        if (k % point_stride == point_phase) {
             vec3 point = vec3(0.0);
-            for (uint l = k / pass.point_stride; l < lanes; l += traced) {
+            for (uint l = k / point_stride; l < lanes; l += traced) {
                 point += partial[l * per_group + slot];
             }
             point_irradiance[at] = vec4(point, 0.0);

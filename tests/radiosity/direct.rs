@@ -182,7 +182,7 @@ fn updates_in_slices_of_points_reach_the_whole_direct_light_of_new_lights_after_
     let (before, after) = (point(Vec3::new(2.0, 2.0, 1.0), 4.0), point(Vec3::new(0.3, 3.0, 1.5), 6.0));
     let (whole, _) = light(&device, &p, &[after]);
     let differ = |a: &[PatchLight], b: &[PatchLight]| a.iter().zip(b).map(|(x, y)| (x.irradiance - y.irradiance).abs().max_element() / y.irradiance.max_element().max(1e-3)).fold(0.0f32, f32::max);
-    for slices in [2, 4] {
+    for slices in [2, 4, 16] {
         let mut direct = Direct::new(&device, &p, slices).expect("the direct-light pass");
         direct.run(&device, &[before]).expect("a dispatch");
         assert!(direct.settled(), "the first update traces every point");

@@ -13,9 +13,9 @@
 //! radiosity_budget_mb = 256   # memory of the precompute's dense matrices, MiB, 1..=65536
 //! radiosity_wait = false      # frames wait for a new static world's precompute instead of
 //!                             # being drawn without radiosity until it is ready
-//! radiosity_direct_slices = 4 # 1, 2 or 4: an update traces the shadow rays of this share of
-//!                             # each patch's direct-light points, the others kept from earlier
-//!                             # updates (new lights are whole after this many updates)
+//! radiosity_direct_slices = 4 # 1, 2, 4, 8 or 16: an update traces the shadow rays of one
+//!                             # slice of the patches' direct-light points, the others kept
+//!                             # from earlier updates (new lights are whole after this many)
 //! ```
 
 use crate::config::{Key, Table, integer_in, number, number_in, switch};
@@ -44,7 +44,7 @@ pub struct Settings {
     /// ([`super::stage`]).
     pub wait: bool,
     /// Slices of the patches' direct-light points, one traced per update
-    /// (`radiosity_direct_slices`: 1, 2 or 4; [`super::gpu::direct`]).
+    /// (`radiosity_direct_slices`: 1, 2, 4, 8 or 16; [`super::gpu::direct`]).
     pub direct_slices: u32,
 }
 
@@ -63,7 +63,7 @@ impl Table for Settings {
         Key { name: "top_share", set: |s, v| number_in(v, 0.0..=1.0).map(|x| s.top_share = x as f32) },
         Key { name: "radiosity_budget_mb", set: |s, v| integer_in(v, 1..=65536).map(|x| s.budget_mb = x as u32) },
         Key { name: "radiosity_wait", set: |s, v| switch(v).map(|b| s.wait = b) },
-        Key { name: "radiosity_direct_slices", set: |s, v| number(v, |x| [1.0, 2.0, 4.0].contains(&x), "1, 2 or 4").map(|x| s.direct_slices = x as u32) },
+        Key { name: "radiosity_direct_slices", set: |s, v| number(v, |x| [1.0, 2.0, 4.0, 8.0, 16.0].contains(&x), "1, 2, 4, 8 or 16").map(|x| s.direct_slices = x as u32) },
     ];
 
     fn variable(name: &str) -> String {
@@ -127,7 +127,7 @@ mod tests {
             ("top_share = 1.5", "top_share: expected a number in 0..=1, found 1.5"),
             ("patch_size = -1", "patch_size: expected a number >= 0, found -1"),
             ("radiosity_budget_mb = 0", "radiosity_budget_mb: expected an integer in 1..=65536, found 0"),
-            ("radiosity_direct_slices = 3", "radiosity_direct_slices: expected 1, 2 or 4, found 3"),
+            ("radiosity_direct_slices = 3", "radiosity_direct_slices: expected 1, 2, 4, 8 or 16, found 3"),
         ] {
             let (s, problems) = read(line, &[]);
             assert_eq!(s, Settings::default(), "{line}");

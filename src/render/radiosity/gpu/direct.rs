@@ -7,10 +7,11 @@
 //! one invocation per (patch, traced point, light), summed per patch in shared memory
 //! (`patches_per_group` patches a workgroup, neighbouring invocations on neighbouring patches).
 //!
-//! Amortised over updates: with `slices` > 1 an update traces one slice of every patch's
-//! points (points `k` with `k % slices` the slice, slices in turn) and takes the others'
-//! irradiance from the updates that traced them, kept on the device. The first update traces
-//! them all. After the lights change, the patches' light is that of the new lights after
+//! Amortised over updates: with `slices` > 1 an update traces one slice of the (patch, point)
+//! pairs, slices in turn, and takes the others' irradiance from the updates that traced them,
+//! kept on the device: up to [`DIRECT_POINTS`] slices, `DIRECT_POINTS / slices` points of every
+//! patch; past it, one point of every `slices / DIRECT_POINTS`-th patch. The first update
+//! traces them all. After the lights change, the patches' light is that of the new lights after
 //! `slices` updates ([`Direct::settled`]); until then it mixes the new lights' points with the
 //! older lights' (a latency of `slices - 1` updates, for `1 / slices` of the shadow rays).
 //!
@@ -65,11 +66,11 @@ pub struct GpuDirectPass {
     pub patches_per_group: u32,
     /// Invocations per patch ([`Workgroup`]).
     pub lanes: u32,
-    /// The slices of the points: the update traces points `k` with `k % point_stride ==
-    /// point_phase`.
-    pub point_stride: u32,
+    /// Slices of the (patch, point) pairs: pair `(i, k)` is in slice `(i * DIRECT_POINTS + k) %
+    /// slices`.
+    pub slices: u32,
     /// The slice traced.
-    pub point_phase: u32,
+    pub phase: u32,
 }
 
 include!(concat!(env!("OUT_DIR"), "/layouts/radiosity_direct_types.rs"));
@@ -99,9 +100,10 @@ pub struct Direct {
 
 impl Direct {
     /// Uploads `patches` (their BVH, albedo and emission) to `device`, for updates that
-    /// trace one of `slices` (1, 2 or 4: a divisor of [`DIRECT_POINTS`]) slices of the points.
+    /// trace one of `slices` (a divisor or a multiple of [`DIRECT_POINTS`]) slices of the
+    /// (patch, point) pairs.
     pub fn new(device: &Device, patches: &Patches, slices: u32) -> Result<Direct> {
-        assert!(slices >= 1 && DIRECT_POINTS % slices == 0, "{slices} slices of {DIRECT_POINTS} points");
+        assert!(slices >= 1 && (DIRECT_POINTS % slices == 0 || slices % DIRECT_POINTS == 0), "{slices} slices of {DIRECT_POINTS} points");
         let n = patches.patches.len();
         let scene = PatchScene::new(patches);
         let surfaces: Vec<GpuPatchSurface> =
@@ -127,24 +129,25 @@ impl Direct {
         let lights = strongest(lights, MAX_LIGHTS);
         let bytes: &[u8] = bytemuck::cast_slice(&lights);
         self.pass.host_input(0)[..bytes.len()].copy_from_slice(bytes);
-        let (stride, phase) = match self.next {
+        let (slices, phase) = match self.next {
             None => (1, 0),
             Some(phase) => (self.slices, phase),
         };
-        let group = Workgroup::of(DIRECT_POINTS / stride, lights.len() as u32);
+        let group = Workgroup::of(DIRECT_POINTS / slices.min(DIRECT_POINTS), lights.len() as u32);
+        let patches = (self.n as u32).div_ceil((slices / DIRECT_POINTS).max(1));
         let push = GpuDirectPass {
             patch_count: self.n as u32,
             light_count: lights.len() as u32,
             patches_per_group: group.patches,
             lanes: group.lanes,
-            point_stride: stride,
-            point_phase: phase,
+            slices,
+            phase,
         };
-        let time = self.pass.run_timed(device, bytemuck::bytes_of(&push), [(self.n as u32).div_ceil(group.patches).max(1), 1, 1])?;
+        let time = self.pass.run_timed(device, bytemuck::bytes_of(&push), [patches.div_ceil(group.patches).max(1), 1, 1])?;
         if !same_lights(&self.lights, &lights) {
             self.stale = self.slices;
         }
-        self.stale = if stride == 1 { 0 } else { self.stale.saturating_sub(1) };
+        self.stale = if slices == 1 { 0 } else { self.stale.saturating_sub(1) };
         self.next = Some((phase + 1) % self.slices);
         self.lights = lights;
         let out: &[GpuPatchLight] = bytemuck::cast_slice(&self.pass.output()[..self.n * size_of::<GpuPatchLight>()]);
