@@ -49,6 +49,17 @@ glsl_constants! {
     /// of the points takes the others from here.
     const BINDING_DIRECT_POINTS: u32 = 26;
 
+    /// The product pass's left factor (`radiosity/product.comp`: one channel of the colour
+    /// matrix, row-major `f32`).
+    const BINDING_PRODUCT_LEFT: u32 = 27;
+    /// Its right factor (the k-bounce sum so far).
+    const BINDING_PRODUCT_RIGHT: u32 = 28;
+    /// The rows of the result a dispatch computes.
+    const BINDING_PRODUCT_ROWS: u32 = 29;
+    /// Side of the square of results one workgroup of the product pass computes (16 × 16
+    /// invocations of 4 × 4 results each).
+    const PRODUCT_TILE: u32 = 64;
+
     /// Invocations per workgroup of the form-factor pass (one per source patch), of the
     /// direct-light pass (one per patch) and of the gathering pass (one row, these invocations
     /// across its columns).
