@@ -34,8 +34,9 @@ layout(push_constant) uniform ProductPass {
     uint pad;
 } pass;
 
-shared float left_tile[DEPTH][TILE];   // [k][row]
-shared float right_tile[DEPTH][TILE];  // [k][column]
+// The staged factors, 4 rows (columns) a vec4, so that an invocation reads its 4 with one load.
+shared vec4 left_tile[DEPTH][TILE / 4u];   // [k][row / 4][row % 4]
+shared vec4 right_tile[DEPTH][TILE / 4u];  // [k][column / 4][column % 4]
 
 void main() {
     uint n = pass.n;
@@ -59,15 +60,15 @@ void main() {
             uint r = e / DEPTH;
             uint kl = e % DEPTH;
             uint i = row0 + r;
-            left_tile[kl][r] = (i < end && k0 + kl < n) ? left[i * n + k0 + kl] : 0.0;
+            left_tile[kl][r / 4u][r % 4u] = (i < end && k0 + kl < n) ? left[i * n + k0 + kl] : 0.0;
             uint kr = e / TILE;
             uint c = e % TILE;
-            right_tile[kr][c] = (k0 + kr < n && column0 + c < n) ? right[(k0 + kr) * n + column0 + c] : 0.0;
+            right_tile[kr][c / 4u][c % 4u] = (k0 + kr < n && column0 + c < n) ? right[(k0 + kr) * n + column0 + c] : 0.0;
         }
         barrier();
         for (uint k = 0u; k < DEPTH; k++) {
-            vec4 l = vec4(left_tile[k][ty * 4u], left_tile[k][ty * 4u + 1u], left_tile[k][ty * 4u + 2u], left_tile[k][ty * 4u + 3u]);
-            vec4 r = vec4(right_tile[k][tx * 4u], right_tile[k][tx * 4u + 1u], right_tile[k][tx * 4u + 2u], right_tile[k][tx * 4u + 3u]);
+            vec4 l = left_tile[k][ty];
+            vec4 r = right_tile[k][tx];
             for (uint a = 0u; a < 4u; a++) {
                 for (uint b = 0u; b < 4u; b++) {
                     sum[a][b] += l[a] * r[b];
