@@ -101,7 +101,8 @@ pub fn time_synthetic(n: usize) -> Result<(), String> {
 /// `glrt radiosity --precompute N`: the precompute's stages after the real form factors
 /// timed for the inside of a closed box of about `n` patches of size 1, albedo 0.5, with
 /// [`disc_form_factors`]: the colour matrix, the k-bounce matrix on the Vulkan device
-/// (`GLRT_DEVICE`; on the CPU without one, or when the matrix does not fit it) and the
+/// (`GLRT_DEVICE`; on the CPU without one, on a CPU device, or when the matrix does not fit
+/// it: [`OnDevice`]) and the
 /// compression; each stage's progress on stderr ([`Progress::Stderr`]), then the stage times
 /// and the process's peak resident memory after each. Refused, with the budget's message,
 /// when the dense matrices exceed `radiosity_budget_mb`.
@@ -135,13 +136,14 @@ pub fn time_precompute(n: usize) -> Result<(), String> {
     drop(f);
     timed("colour matrix", start);
     let start = Instant::now();
-    let k = OnDevice(device.as_ref()).k_bounce(&colour, settings.bounces, Progress::Stderr);
+    let mut steps = OnDevice(device.as_ref());
+    let on = steps.product_device().map_or_else(|| "the CPU".to_owned(), |d| d.name());
+    let k = steps.k_bounce(&colour, settings.bounces, Progress::Stderr);
     drop(colour);
     timed("k-bounce matrix", start);
     let start = Instant::now();
     let m = compress(&k, settings.top_share, REORDER_PASSES, precompute::RANGE, Progress::Stderr);
     timed("compression (reordering, BC1)", start);
-    let on = device.as_ref().map_or_else(|| "the CPU".to_owned(), |d| d.name());
     println!(
         "precompute of {patches} patches (a box of side {side}), k = {}, the k-bounce matrix on {on} ({} CPU threads); dense matrices {} MiB, compressed {} bytes:",
         settings.bounces,

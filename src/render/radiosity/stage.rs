@@ -220,8 +220,17 @@ fn precompute_on_own_device(world: &[Arc<StaticChunk>], settings: &Settings, cac
 
 /// The precompute's heavy steps on a Vulkan device (the form factors, the k-bounce matrix),
 /// each on the CPU without one or when the device fails, with a message saying why; their
-/// progress on stderr ([`Progress::Stderr`]).
+/// progress on stderr ([`Progress::Stderr`]). On a CPU device (lavapipe) the k-bounce matrix
+/// is the CPU's: its blocked product on every core is about 10x faster than the device's
+/// compute there (bench/radiosity.md, session 21).
 pub struct OnDevice<'a>(pub Option<&'a Device>);
+
+impl<'a> OnDevice<'a> {
+    /// The device the k-bounce matrix is computed on: a GPU, not a CPU device.
+    pub fn product_device(&self) -> Option<&'a Device> {
+        self.0.filter(|d| d.properties.device_type != ash::vk::PhysicalDeviceType::CPU)
+    }
+}
 
 impl Steps for OnDevice<'_> {
     fn form_factors(&mut self, p: &Patches) -> FormFactors {
@@ -246,7 +255,7 @@ impl Steps for OnDevice<'_> {
     }
 
     fn k_bounce(&mut self, colour: &ColourMatrix, k: u32, progress: Progress) -> ColourMatrix {
-        if let Some(device) = self.0 {
+        if let Some(device) = self.product_device() {
             match super::gpu::product::k_bounce(device, colour, k, progress) {
                 Ok(m) => return m,
                 Err(e) => eprintln!("glrt: radiosity: the k-bounce matrix on {} failed ({e}): computing it on the CPU", device.name()),
