@@ -197,3 +197,26 @@ fn strongest(lights: &[GpuLight], most: usize) -> Vec<GpuLight> {
     }
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_workgroup_gives_each_patch_a_multiple_of_its_traced_points_within_the_group() {
+        // 4 lights: all 4 points (16 pairs, 4 patches) or one point (4 pairs, 16 patches).
+        assert_eq!(Workgroup::of(4, 4), Workgroup { patches: 4, lanes: 16 });
+        assert_eq!(Workgroup::of(1, 4), Workgroup { patches: 16, lanes: 4 });
+        // No lights: one invocation per point still writes the patch.
+        assert_eq!(Workgroup::of(2, 0), Workgroup { patches: 32, lanes: 2 });
+        // More pairs than invocations: one patch, its invocations looping.
+        assert_eq!(Workgroup::of(4, 100), Workgroup { patches: 1, lanes: GROUP });
+        for traced in [1, 2, 4] {
+            for lights in 0..40 {
+                let w = Workgroup::of(traced, lights);
+                assert!(w.patches * w.lanes <= GROUP && w.lanes % traced == 0, "{traced} points, {lights} lights: {w:?}");
+                assert!(w.lanes >= (traced * lights).min(GROUP), "{traced} points, {lights} lights: {w:?}");
+            }
+        }
+    }
+}
