@@ -125,6 +125,8 @@ const LAYOUTS: &[LayoutFile] = &[
             ],
         )],
     },
+    // render::radiosity::gpu::product
+    LayoutFile { name: "radiosity_product_types", shaders: &[("radiosity/product.comp", &[mirror("ProductPass", Rust::Struct("GpuProductPass"))])] },
     // render::radiosity::gpu::gather
     LayoutFile {
         name: "radiosity_gather_types",

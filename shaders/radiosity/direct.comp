@@ -1,15 +1,25 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// Direct light on the patches (render::radiosity::gpu::direct), once per frame: one invocation
-// per (patch, point, light) pair (RADIOSITY_DIRECT_POINTS points a patch, the centroids of the
-// quarters of its area, lifted off it), each the irradiance of one light of the frame
-// (trace/light.glsl, taken to the static world's frame by render::radiosity::lights) that a
-// shadow ray through the patches' BVH (trace/bvh.glsl, stopping at the first hit) reaches;
-// a patch's pairs are summed in shared memory and averaged over its points. I · falloff ·
-// cos / d² of a positional light (a sphere light counts as a point at its centre: its
-// irradiance where all of it is above the horizon; the shadow ray ends on its surface), E · cos
-// of a directional one (its centre direction). The patch's primary radiosity, which the gathering pass (radiosity/gather.comp)
-// bounces, is its emission plus its albedo times that irradiance.
+// Direct light on the patches (render::radiosity::gpu::direct), once per update: each patch's
+// irradiance at RADIOSITY_DIRECT_POINTS points (the centroids of the quarters of its area,
+// lifted off it), the sum over the frame's lights (trace/light.glsl, taken to the static
+// world's frame by render::radiosity::lights) that a shadow ray through the patches' BVH
+// (trace/bvh.glsl, stopping at the first hit) reaches; the patch's irradiance is the mean over
+// its points. I · falloff · cos / d² of a positional light (a sphere light counts as a point at
+// its centre: its irradiance where all of it is above the horizon; the shadow ray ends on its
+// surface), E · cos of a directional one (its centre direction). The patch's primary
+// radiosity, which the gathering pass (radiosity/gather.comp) bounces, is its emission plus its
+// albedo times that irradiance.
+//
+// An update traces one of pass.slices slices of the (patch, point) pairs: pair (i, k) is in
+// slice (i * RADIOSITY_DIRECT_POINTS + k) % slices (all of them with 1 slice). Up to
+// RADIOSITY_DIRECT_POINTS slices, every patch traces the points k with k % slices == phase;
+// past it, one point of every (slices / RADIOSITY_DIRECT_POINTS)-th patch. Each point's
+// irradiance is kept (point_irradiance), and so is each patch's light (patch_lights): the
+// points of the other slices, and the patches of others, are the updates' that traced them.
+// One invocation per (traced patch, traced point, light), one shadow ray each; neighbouring
+// invocations light neighbouring patches (the patches come in spatial order) with the same
+// point and light, so that their rays run through the same nodes.
 
 // No alpha-tested geometry in the patches' BVH: every hit counts (bvh.glsl needs this first).
 bool trace_alpha_accept(uint instance, uint triangle, vec2 bary) {
@@ -44,11 +54,17 @@ layout(set = TRACE_SET, binding = RADIOSITY_BINDING_DIRECT, std430) writeonly bu
     PatchLight patch_lights[];
 };
 
+layout(set = TRACE_SET, binding = RADIOSITY_BINDING_DIRECT_POINTS, std430) buffer PointIrradiance {
+    vec4 point_irradiance[];  // patch i's point k at i * RADIOSITY_DIRECT_POINTS + k
+};
+
 layout(push_constant) uniform DirectPass {
     uint patch_count;
     uint light_count;
-    uint patches_per_group;  // max(1, RADIOSITY_GROUP / (RADIOSITY_DIRECT_POINTS * light_count))
-    uint pad0;
+    uint patches_per_group;  // patches a workgroup lights
+    uint lanes;              // invocations per patch: a multiple of the traced points
+    uint slices;             // 1, 2, 4, 8 or 16: a divisor or a multiple of RADIOSITY_DIRECT_POINTS
+    uint phase;              // the slice traced
 } pass;
 
 // The irradiance light i brings to point p of normal n, shadow ray included.
@@ -141,26 +157,33 @@ vec3 direct_point(Patch receiver, uint k) {
 
 shared vec3 partial[RADIOSITY_GROUP];
 
-// One workgroup lights pass.patches_per_group patches; each patch's
-// RADIOSITY_GROUP / patches_per_group invocations share its RADIOSITY_DIRECT_POINTS × light_count
-// (point, light) pairs, one shadow ray each, and the first of them sums their irradiance in a
-// fixed order (the same result in every run).
+// One workgroup lights pass.patches_per_group patches (slot), each with pass.lanes invocations
+// (lane), invocation lane * patches_per_group + slot. A patch's (traced point, light) pairs are
+// numbered pair = light * traced + t; lane takes the pairs lane, lane + lanes, ..., all of one
+// traced point t = lane % traced (lanes is a multiple of traced). The first invocation of the
+// patch sums each traced point's lanes in a fixed order (the same result in every run), keeps
+// those points and averages them with the kept ones of the other slices.
 void main() {
     uint per_group = pass.patches_per_group;
-    uint lanes = RADIOSITY_GROUP / per_group;
+    uint lanes = pass.lanes;
+    uint point_stride = min(pass.slices, RADIOSITY_DIRECT_POINTS);
+    uint point_phase = pass.phase % point_stride;
+    uint patch_stride = max(pass.slices / RADIOSITY_DIRECT_POINTS, 1u);
+    uint traced = RADIOSITY_DIRECT_POINTS / point_stride;
     uint lid = gl_LocalInvocationID.x;
-    uint slot = lid / lanes;
-    uint lane = lid - slot * lanes;
-    uint i = gl_WorkGroupID.x * per_group + slot;
-    bool in_range = slot < per_group && i < pass.patch_count;
+    uint slot = lid % per_group;
+    uint lane = lid / per_group;
+    uint i = (gl_WorkGroupID.x * per_group + slot) * patch_stride + pass.phase / point_stride;
+    bool in_range = lane < lanes && i < pass.patch_count;
     vec3 sum = vec3(0.0);
     if (in_range) {
         Patch receiver = patches[i];
         if (receiver.normal != vec3(0.0) && receiver.count > 0u) {
-            uint pairs = RADIOSITY_DIRECT_POINTS * pass.light_count;
-            for (uint j = lane; j < pairs; j += lanes) {
-                vec3 p = direct_point(receiver, j % RADIOSITY_DIRECT_POINTS);
-                sum += irradiance_of(j / RADIOSITY_DIRECT_POINTS, p, receiver.normal);
+            uint t = lane % traced;
+            vec3 p = direct_point(receiver, t * point_stride + point_phase);
+            uint pairs = traced * pass.light_count;
+            for (uint pair = lane; pair < pairs; pair += lanes) {
+                sum += irradiance_of(pair / traced, p, receiver.normal);
             }
         }
     }
@@ -170,8 +193,18 @@ void main() {
         return;
     }
     vec3 irradiance = vec3(0.0);
-    for (uint k = 0u; k < lanes; k++) {
-        irradiance += partial[lid + k];
+    for (uint k = 0u; k < RADIOSITY_DIRECT_POINTS; k++) {
+        uint at = i * RADIOSITY_DIRECT_POINTS + k;
+        if (k % point_stride == point_phase) {
+            vec3 point = vec3(0.0);
+            for (uint l = k / point_stride; l < lanes; l += traced) {
+                point += partial[l * per_group + slot];
+            }
+            point_irradiance[at] = vec4(point, 0.0);
+            irradiance += point;
+        } else {
+            irradiance += point_irradiance[at].rgb;
+        }
     }
     irradiance /= float(RADIOSITY_DIRECT_POINTS);
     PatchSurface s = surfaces[i];

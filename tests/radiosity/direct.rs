@@ -59,9 +59,10 @@ fn point_irradiance(light: Vec3, intensity: f32) -> impl Fn(Vec3, Vec3) -> f32 {
     }
 }
 
-/// The direct light of `patches` from `lights`, and the pass's wall time in ms.
+/// The direct light of `patches` from `lights`, and the pass's wall time in ms (the first
+/// update traces all the points, whatever the slices).
 fn light(device: &Device, p: &Patches, lights: &[GpuLight]) -> (Vec<PatchLight>, f64) {
-    let mut direct = Direct::new(device, p).expect("the direct-light pass");
+    let mut direct = Direct::new(device, p, 4).expect("the direct-light pass");
     let (out, time) = direct.run(device, lights).expect("a dispatch");
     direct.destroy(device);
     assert_eq!(out.len(), p.patches.len());
@@ -169,4 +170,38 @@ fn emission_adds_to_the_primary_radiosity_and_lights_beyond_the_pass_are_dropped
     // One strong light fewer: one weak light is in.
     let (out, _) = light(&device, &p, &lights[1..]);
     assert!(out.iter().all(|l| l.irradiance.x > 0.0 && l.irradiance.x < 1e-3), "{:?}", out[0]);
+}
+
+#[test]
+fn updates_in_slices_of_points_reach_the_whole_direct_light_of_new_lights_after_one_update_per_slice() {
+    let device = lavapipe::select(Device::new);
+    // The floor and plate of the shadow test, a point light that moves from one side to the other.
+    let floor = quad(1, Vec3::ZERO, Vec3::X * 4.0, Vec3::Y * 4.0);
+    let plate = quad(2, Vec3::new(0.5, 0.5, 0.5), Vec3::X, Vec3::Y);
+    let p = patches::build(&[floor, plate], 0.5);
+    let (before, after) = (point(Vec3::new(2.0, 2.0, 1.0), 4.0), point(Vec3::new(0.3, 3.0, 1.5), 6.0));
+    let (whole, _) = light(&device, &p, &[after]);
+    let differ = |a: &[PatchLight], b: &[PatchLight]| a.iter().zip(b).map(|(x, y)| (x.irradiance - y.irradiance).abs().max_element() / y.irradiance.max_element().max(1e-3)).fold(0.0f32, f32::max);
+    for slices in [2, 4, 16] {
+        let mut direct = Direct::new(&device, &p, slices).expect("the direct-light pass");
+        direct.run(&device, &[before]).expect("a dispatch");
+        assert!(direct.settled(), "the first update traces every point");
+        let mut out = Vec::new();
+        for k in 1..=slices {
+            out = direct.run(&device, &[after]).expect("a dispatch").0;
+            assert_eq!(direct.settled(), k == slices, "{slices} slices, update {k}");
+            if k < slices {
+                assert!(differ(&out, &whole) > 0.05, "{slices} slices, update {k}: still partly the old light's");
+            }
+        }
+        // Each point the sum over the lights in the same order as tracing every point: equal
+        // (measured: 0 difference).
+        let d = differ(&out, &whole);
+        println!("{slices} slices: after {slices} updates under the new light, largest relative difference from tracing every point {d:e}");
+        assert!(d < 1e-5, "{d}");
+        // The same lights again: still settled, the same light.
+        let again = direct.run(&device, &[after]).expect("a dispatch").0;
+        assert!(direct.settled() && differ(&again, &whole) < 1e-5);
+        direct.destroy(&device);
+    }
 }

@@ -10,5 +10,6 @@ mod lavapipe;
 mod direct;
 mod form_factors;
 mod gather;
+mod product;
 mod stage;
 mod update;

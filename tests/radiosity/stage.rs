@@ -56,12 +56,24 @@ fn frames_go_on_without_radiosity_until_its_precompute_is_done_then_it_switches_
     let again = stage.update(&device, &frame([1.0, 1.0, 1.5 * (1.0 + 1e-6)])).expect("radiosity on");
     assert!(std::sync::Arc::ptr_eq(&again.light, &indirect.light));
     assert_eq!(stage.updates(), 1);
-    let moved = stage.update(&device, &frame([1.0, 1.0, 0.6])).expect("radiosity on");
+    let first = stage.update(&device, &frame([1.0, 1.0, 0.6])).expect("radiosity on");
     assert_eq!((stage.updates(), stage.frames_without()), (2, frames_without));
+    // The direct light's points come in 4 slices (the default), one traced per update: the
+    // frames after the move update again until all 4 are the new light's, then stop.
+    assert_eq!(settings.direct_slices, 4);
+    let mut moved = first.clone();
+    for updates in [3, 4, 5, 5] {
+        moved = stage.update(&device, &frame([1.0, 1.0, 0.6])).expect("radiosity on");
+        assert_eq!(stage.updates(), updates);
+    }
     // Nearer the floor, the floor is lit far more strongly (6x below the light), and the
     // bottom of a wall gets more of its bounce (measured: 1.19x).
     let wall = |l: &glrt::render::radiosity::transfer::IndirectLight| l.at(Vec3::new(0.0, 1.0, 0.25), Vec3::X);
     assert!(wall(&moved.light).x > 1.1 * wall(&indirect.light).x, "{} vs {}", wall(&moved.light), wall(&indirect.light));
+    // The first update after the move, a quarter of the points lit by the new light, lies
+    // between the two.
+    let (old, partial, new) = (wall(&indirect.light).x, wall(&first.light).x, wall(&moved.light).x);
+    assert!(old < partial && partial < new, "{old} {partial} {new}");
 
     // The matrix went to the cache: a new stage loads it (still on its thread: one frame without).
     let mut cached = RadiosityStage::new(settings, LightSettings::default()).with_cache_dir(cache.clone());

@@ -30,7 +30,7 @@ fn a_point_light_in_a_grey_box_bounces_with_the_energy_of_k_bounces() {
     let k = k_bounce(&colour_matrix(&f, &albedo), 3, Progress::Quiet);
     let m = compress(&k, 0.04, REORDER_PASSES, LogRange::Fitted, Progress::Quiet);
     let light = GpuLight { position: [0.7, 1.2, 1.5, 1.0], radiance: [10.0, 10.0, 10.0, 0.0], spot: [0.0, 0.0, -1.0, -2.0], params: [0.0, 1.0, 0.0, 0.0] };
-    let mut update = Update::new(&device, &p, &m).expect("the update's passes");
+    let mut update = Update::new(&device, &p, &m, 1).expect("the update's passes");
     let (r, time) = update.run(&device, &[light]).expect("an update");
     update.destroy(&device);
 

@@ -86,9 +86,10 @@ enum Command {
         /// matrix) on the device (GLRT_DEVICE)
         #[arg(long, value_name = "N", conflicts_with_all = ["matrix", "file"])]
         synthetic: Option<usize>,
-        /// Instead of a capture's matrix, time the precompute's CPU stages (k-bounce matrix,
-        /// reordering passes, BC1 blocks) for the inside of a closed box of about N patches
-        /// (albedo 0.5; form factors by the disc approximation, without visibility)
+        /// Instead of a capture's matrix, time the precompute's stages (colour matrix, k-bounce
+        /// matrix on the Vulkan device or the CPU, reordering passes and BC1 blocks) and the
+        /// peak memory after each, for the inside of a closed box of about N patches (albedo
+        /// 0.5; form factors by the disc approximation, without visibility)
         #[arg(long, value_name = "N", conflicts_with_all = ["matrix", "file", "synthetic"])]
         precompute: Option<usize>,
         /// The capture file.
@@ -111,10 +112,7 @@ fn main() -> ExitCode {
         Command::Dump { file } => Capture::open(&file).and_then(|capture| dump(&capture)),
         Command::Run(args) => run::run(&args),
         Command::Radiosity { synthetic: Some(n), .. } => radiosity::time_synthetic(n),
-        Command::Radiosity { precompute: Some(n), .. } => {
-            radiosity::time_precompute(n);
-            Ok(())
-        }
+        Command::Radiosity { precompute: Some(n), .. } => radiosity::time_precompute(n),
         Command::Radiosity { matrix, file, .. } => file
             .ok_or_else(|| "radiosity: a capture file, --synthetic N or --precompute N".to_owned())
             .and_then(|file| Capture::open(&file))

@@ -6,9 +6,10 @@
 //! then times the per-frame update on the device (`radiosity::gpu::update`: the patches' direct
 //! light under the last frame's lights, then the product with the matrix).
 //!
-//! The form factors are computed on the Vulkan device (`GLRT_DEVICE`) with a progress bar;
-//! without one, or when it fails, on the CPU, with a message saying why. `--precompute N` times
-//! the CPU stages after the form factors on a synthetic closed box of about N patches.
+//! The form factors and the k-bounce matrix are computed on the Vulkan device (`GLRT_DEVICE`)
+//! with a progress bar; without one, or when it fails, on the CPU, with a message saying why.
+//! `--precompute N` times the stages after the form factors, and the peak memory, on a
+//! synthetic closed box of about N patches.
 
 use std::sync::Arc;
 use std::time::Instant;
@@ -21,10 +22,10 @@ use glrt::render::radiosity::compress::CompressedMatrix;
 use glrt::render::radiosity::gpu::gather::synthetic;
 use glrt::render::radiosity::gpu::update::{Update, UpdateTime};
 use glrt::render::radiosity::patches::Patches;
-use glrt::render::radiosity::precompute;
-use glrt::render::radiosity::settings::Settings;
-use glrt::render::radiosity::stage::form_factors_on;
-use glrt::render::radiosity::bounces::{colour_matrix, k_bounce};
+use glrt::render::radiosity::precompute::{self, Steps};
+use glrt::render::radiosity::settings::{DENSE_BYTES_PER_ENTRY, Settings};
+use glrt::render::radiosity::stage::OnDevice;
+use glrt::render::radiosity::bounces::colour_matrix;
 use glrt::render::radiosity::compress::{REORDER_PASSES, compress};
 use glrt::render::radiosity::progress::Progress;
 use glrt::render::radiosity::test_scenes::{closed_box, disc_form_factors};
@@ -59,11 +60,11 @@ pub fn run(capture: &Capture, matrix_only: bool) -> Result<(), String> {
     let settings = Settings::of_process();
     let device = Device::new().map_err(|e| eprintln!("glrt: no Vulkan device for the form factors ({e}): they are computed on the CPU")).ok();
     if !matrix_only {
-        print!("{}", precompute::run(&chunks, &settings, &mut |p| form_factors_on(device.as_ref(), p)).markdown());
+        print!("{}", precompute::run(&chunks, &settings, &mut OnDevice(device.as_ref())).markdown());
         return Ok(());
     }
     let start = Instant::now();
-    let r = precompute::load_or_build(&chunks, &settings, Some(&glrt::config::cache_dir()), &mut |p| form_factors_on(device.as_ref(), p));
+    let r = precompute::load_or_build(&chunks, &settings, Some(&glrt::config::cache_dir()), &mut OnDevice(device.as_ref()));
     for note in &r.notes {
         eprintln!("glrt: {note}");
     }
@@ -97,42 +98,85 @@ pub fn time_synthetic(n: usize) -> Result<(), String> {
     Ok(())
 }
 
-/// `glrt radiosity --precompute N`: the precompute's CPU stages timed for the inside of a
-/// closed box of about `n` patches of size 1, albedo 0.5, with [`disc_form_factors`]; each
-/// stage's time on stderr ([`Progress::Stderr`]), the totals on stdout.
-pub fn time_precompute(n: usize) {
+/// `glrt radiosity --precompute N`: the precompute's stages after the real form factors
+/// timed for the inside of a closed box of about `n` patches of size 1, albedo 0.5, with
+/// [`disc_form_factors`]: the colour matrix, the k-bounce matrix on the Vulkan device
+/// (`GLRT_DEVICE`; on the CPU without one, on a CPU device, or when the matrix does not fit
+/// it: [`OnDevice`]) and the
+/// compression; each stage's progress on stderr ([`Progress::Stderr`]), then the stage times
+/// and the process's peak resident memory after each. Refused, with the budget's message,
+/// when the dense matrices exceed `radiosity_budget_mb`.
+pub fn time_precompute(n: usize) -> Result<(), String> {
+    let settings = Settings::of_process();
     let side = ((n as f64 / 6.0).sqrt().round() as usize).max(1) as f32;
+    let patches = 6 * (side as usize).pow(2);
+    let dense = patches * patches * DENSE_BYTES_PER_ENTRY;
+    if patches > settings.max_patches() {
+        return Err(format!(
+            "radiosity: {patches} patches need {} MiB of dense matrices (colour and k-bounce, 3 channels of f32 each), past the budget of {} MiB \
+             (radiosity_budget_mb, GLRT_RADIOSITY_BUDGET_MB): at most {} patches; a static world this large gets larger patches",
+            dense >> 20,
+            settings.budget_mb,
+            settings.max_patches()
+        ));
+    }
+    let device = Device::new().map_err(|e| eprintln!("glrt: no Vulkan device for the k-bounce matrix ({e}): it is computed on the CPU")).ok();
     let mut p = closed_box(side, 1.0);
     for patch in &mut p.patches {
         patch.albedo = Vec3::splat(0.5);
     }
-    let n = p.patches.len();
+    let mut stages: Vec<(&str, f64, u64)> = Vec::new();
+    let mut timed = |name, start: Instant| stages.push((name, start.elapsed().as_secs_f64(), peak_resident_bytes()));
     let start = Instant::now();
     let f = disc_form_factors(&p);
-    let t_form = start.elapsed();
-    let albedo: Vec<Vec3> = p.patches.iter().map(|x| x.albedo).collect();
-    let settings = Settings::of_process();
+    timed("disc form factors (CPU)", start);
     let start = Instant::now();
-    let k = k_bounce(&colour_matrix(&f, &albedo), settings.bounces, Progress::Stderr);
-    let t_k = start.elapsed();
+    let albedo: Vec<Vec3> = p.patches.iter().map(|x| x.albedo).collect();
+    let colour = colour_matrix(&f, &albedo);
+    drop(f);
+    timed("colour matrix", start);
+    let start = Instant::now();
+    let mut steps = OnDevice(device.as_ref());
+    let on = steps.product_device().map_or_else(|| "the CPU".to_owned(), |d| d.name());
+    let k = steps.k_bounce(&colour, settings.bounces, Progress::Stderr);
+    drop(colour);
+    timed("k-bounce matrix", start);
     let start = Instant::now();
     let m = compress(&k, settings.top_share, REORDER_PASSES, precompute::RANGE, Progress::Stderr);
-    let t_compress = start.elapsed();
+    timed("compression (reordering, BC1)", start);
     println!(
-        "precompute of {n} patches (a box of side {side}) on {} threads: disc form factors {:.2} s, colour and k-bounce matrix (k = {}) {:.2} s, compression {:.2} s ({} bytes)",
-        rayon::current_num_threads(),
-        t_form.as_secs_f64(),
+        "precompute of {patches} patches (a box of side {side}), k = {}, the k-bounce matrix on {on} ({} CPU threads); dense matrices {} MiB, compressed {} bytes:",
         settings.bounces,
-        t_k.as_secs_f64(),
-        t_compress.as_secs_f64(),
+        rayon::current_num_threads(),
+        dense >> 20,
         m.bytes()
     );
+    println!("| stage | s | peak resident memory after it, MiB |\n| --- | ---: | ---: |");
+    for (name, seconds, peak) in &stages {
+        println!("| {name} | {seconds:.2} | {} |", peak >> 20);
+    }
+    println!("| all | {:.2} | |", stages.iter().map(|s| s.1).sum::<f64>());
+    Ok(())
 }
 
-/// [`UPDATES`] per-frame updates of `patches` with matrix `m` under `lights` on `device`;
-/// prints the best times of each pass and what the last one gave.
+/// The process's peak resident memory in bytes (`VmHWM` of `/proc/self/status`; 0 where it
+/// cannot be read).
+fn peak_resident_bytes() -> u64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+        .map_or(0, |kb| kb * 1024)
+}
+
+/// [`UPDATES`] per-frame updates of `patches` with matrix `m` under `lights` on `device`, the
+/// direct light in the settings' slices of points (`radiosity_direct_slices`); prints the
+/// times of the first (all the points), the best of the others' (one slice each) and what the
+/// last one gave.
 fn time_updates(device: &Device, patches: &Patches, m: &CompressedMatrix, lights: &[GpuLight]) {
-    let result = Update::new(device, patches, m).and_then(|mut update| {
+    let slices = Settings::of_process().direct_slices;
+    let result = Update::new(device, patches, m, slices).and_then(|mut update| {
         let runs: Result<Vec<_>, _> = (0..UPDATES).map(|_| update.run(device, lights)).collect();
         update.destroy(device);
         runs
@@ -142,19 +186,23 @@ fn time_updates(device: &Device, patches: &Patches, m: &CompressedMatrix, lights
         Err(e) => return eprintln!("glrt: the per-frame update on {} failed: {e}", device.name()),
     };
     let times: Vec<UpdateTime> = runs.iter().map(|(_, t)| *t).collect();
-    let best = |f: &dyn Fn(&UpdateTime) -> Option<std::time::Duration>| times.iter().filter_map(f).map(|d| d.as_secs_f64() * 1e3).fold(f64::INFINITY, f64::min);
-    let gpu = |f: &dyn Fn(&UpdateTime) -> Option<std::time::Duration>| {
-        let t = best(f);
-        if t.is_finite() { format!("{t:.3} ms on the GPU") } else { "no GPU timestamps".to_owned() }
+    let line = |what: &str, times: &[UpdateTime]| {
+        let best = |f: &dyn Fn(&UpdateTime) -> Option<std::time::Duration>| times.iter().filter_map(f).map(|d| d.as_secs_f64() * 1e3).fold(f64::INFINITY, f64::min);
+        let gpu = |f: &dyn Fn(&UpdateTime) -> Option<std::time::Duration>| {
+            let t = best(f);
+            if t.is_finite() { format!("{t:.3} ms on the GPU") } else { "no GPU timestamps".to_owned() }
+        };
+        println!(
+            "{what}: direct light {:.3} ms wall ({}), product {:.3} ms wall ({})",
+            best(&|t| Some(t.direct.wall)),
+            gpu(&|t| t.direct.gpu),
+            best(&|t| Some(t.gather.wall)),
+            gpu(&|t| t.gather.gpu),
+        );
     };
-    println!(
-        "per-frame update on {}, best of {UPDATES}: direct light {:.3} ms wall ({}), product {:.3} ms wall ({})",
-        device.name(),
-        best(&|t| Some(t.direct.wall)),
-        gpu(&|t| t.direct.gpu),
-        best(&|t| Some(t.gather.wall)),
-        gpu(&|t| t.gather.gpu),
-    );
+    println!("per-frame update on {}, direct-light slices: {slices}", device.name());
+    line("first update (all the points)", &times[..1]);
+    line(&format!("next updates (one slice each), best of {}", UPDATES - 1), &times[1..]);
     if let Some((r, _)) = runs.last() {
         let mean = |v: &mut dyn Iterator<Item = Vec3>| v.fold(Vec3::ZERO, |a, b| a + b) / r.radiosity.len().max(1) as f32;
         let irradiance = mean(&mut r.direct.iter().map(|l| l.irradiance));

@@ -1,13 +1,19 @@
 //! The frame's lights in the static world's frame, where the patches are: the tracer's lights
 //! ([`crate::render::trace::lights::of_frame`], in the frame's eye space) taken back through
 //! the recovered view. The view is taken as rigid (rotation and translation): positions,
-//! directions and spot axes move, intensities and reaches stay.
+//! directions and spot axes move, intensities and reaches stay; and whether two updates'
+//! lights are the same ([`same_lights`]).
 
 use glam::{Mat4, Vec3};
 
 use crate::frame::Frame;
 use crate::render::trace::gpu_types::GpuLight;
 use crate::render::trace::lights::{self, LightSettings};
+
+/// Largest change of a light's number, relative to its size (at least 1), still taken as no
+/// change: the lights come back to the world frame through each frame's recovered view, whose
+/// round-off moves a light that did not move by about this much.
+pub const LIGHT_TOLERANCE: f32 = 1.0e-4;
 
 /// `light` (eye space) in the world frame, `eye_to_world` the inverse of the view.
 pub fn to_world(light: &GpuLight, eye_to_world: &Mat4) -> GpuLight {
@@ -29,6 +35,12 @@ pub fn of_frame(frame: &Frame, settings: &LightSettings) -> Vec<GpuLight> {
     };
     let eye_to_world = view.view.inverse();
     lights::of_frame(frame, &frame.draws, settings).iter().map(|l| to_world(l, &eye_to_world)).collect()
+}
+
+/// Whether the lights `b` are the lights `a` (to [`LIGHT_TOLERANCE`]).
+pub fn same_lights(a: &[GpuLight], b: &[GpuLight]) -> bool {
+    let close = |x: &[f32; 4], y: &[f32; 4]| x.iter().zip(y).all(|(&x, &y)| (x - y).abs() <= LIGHT_TOLERANCE * x.abs().max(y.abs()).max(1.0));
+    a.len() == b.len() && a.iter().zip(b).all(|(a, b)| close(&a.position, &b.position) && close(&a.radiance, &b.radiance) && close(&a.spot, &b.spot) && close(&a.params, &b.params))
 }
 
 #[cfg(test)]

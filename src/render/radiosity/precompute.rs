@@ -2,7 +2,9 @@
 //! the memory budget, form factors, the colour and k-bounce matrices, the compressed matrix
 //! after 0, 1 and 2 reordering passes, the k-bounce light against the Neumann series, and the
 //! per-frame cost of the dense product against classic gathering. `glrt radiosity` prints
-//! [`Report`]; `bench/radiosity.md` keeps its numbers.
+//! [`Report`]; `bench/radiosity.md` keeps its numbers. The two heavy steps, the form factors
+//! and the k-bounce matrix, run where the caller's [`Steps`] say (a Vulkan device:
+//! [`super::stage::OnDevice`]; a form-factor function alone: the k-bounce matrix on the CPU).
 
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
@@ -15,10 +17,30 @@ use super::bounces::{colour_matrix, gather, k_bounce, neumann};
 use super::cache;
 use super::compress::{self, CompressedMatrix, Errors, LogRange, compress};
 use super::form_factors::FormFactors;
+use super::matrix::ColourMatrix;
 use super::patches::{self, Patches, area};
 use super::progress::Progress;
 use super::settings::Settings;
 use crate::frame::world::StaticChunk;
+
+/// Where the precompute's two heavy steps run.
+pub trait Steps {
+    /// The form factors of `p`.
+    fn form_factors(&mut self, p: &Patches) -> FormFactors;
+    /// The k-bounce matrix of `colour` with `k` bounces, its progress on `progress`.
+    fn k_bounce(&mut self, colour: &ColourMatrix, k: u32, progress: Progress) -> ColourMatrix;
+}
+
+/// A form-factor function, the k-bounce matrix on the CPU ([`k_bounce`]).
+impl<F: FnMut(&Patches) -> FormFactors> Steps for F {
+    fn form_factors(&mut self, p: &Patches) -> FormFactors {
+        self(p)
+    }
+
+    fn k_bounce(&mut self, colour: &ColourMatrix, k: u32, progress: Progress) -> ColourMatrix {
+        k_bounce(colour, k, progress)
+    }
+}
 
 /// Factor the automatic patch size grows by while the patches exceed the budget.
 const GROWTH: f32 = 1.25;
@@ -81,9 +103,9 @@ pub struct StaticRadiosity {
 
 /// The patches of `chunks` and their compressed matrix: read from the cache under the
 /// directory `cache` when it holds this world's under these settings, else computed (the
-/// form factors by `form_factors`) and written there. A cache file that cannot be used is
+/// heavy steps by `steps`) and written there. A cache file that cannot be used is
 /// recomputed, with a note saying why.
-pub fn load_or_build(chunks: &[Arc<StaticChunk>], settings: &Settings, cache: Option<&Path>, form_factors: &mut dyn FnMut(&Patches) -> FormFactors) -> StaticRadiosity {
+pub fn load_or_build(chunks: &[Arc<StaticChunk>], settings: &Settings, cache: Option<&Path>, steps: &mut dyn Steps) -> StaticRadiosity {
     let (patches, note) = patches_within_budget(chunks, settings);
     let mut notes: Vec<String> = note.into_iter().collect();
     let key = cache::key(patches.world_hash, settings, RANGE, compress::REORDER_PASSES);
@@ -96,9 +118,9 @@ pub fn load_or_build(chunks: &[Arc<StaticChunk>], settings: &Settings, cache: Op
             Err(e) => notes.push(format!("{e}: recomputing")),
         }
     }
-    let f = form_factors(&patches);
+    let f = steps.form_factors(&patches);
     let albedo: Vec<Vec3> = patches.patches.iter().map(|x| x.albedo).collect();
-    let matrix = matrix_of(&f, &albedo, settings, Progress::Stderr);
+    let matrix = matrix_of(&f, &albedo, settings, steps, Progress::Stderr);
     if let Some(file) = &cache_file {
         if let Err(e) = cache::save(file, key, &matrix) {
             notes.push(e);
@@ -108,10 +130,10 @@ pub fn load_or_build(chunks: &[Arc<StaticChunk>], settings: &Settings, cache: Op
 }
 
 /// The renderer's compressed k-bounce matrix of form factors `f` and albedos `albedo` (the
-/// settings' bounces and top share, [`RANGE`], [`compress::REORDER_PASSES`] passes), its stages
-/// on `progress`.
-pub fn matrix_of(f: &FormFactors, albedo: &[Vec3], settings: &Settings, progress: Progress) -> CompressedMatrix {
-    compress(&k_bounce(&colour_matrix(f, albedo), settings.bounces, progress), settings.top_share, compress::REORDER_PASSES, RANGE, progress)
+/// settings' bounces and top share, [`RANGE`], [`compress::REORDER_PASSES`] passes), the
+/// k-bounce matrix by `steps`, its stages on `progress`.
+pub fn matrix_of(f: &FormFactors, albedo: &[Vec3], settings: &Settings, steps: &mut dyn Steps, progress: Progress) -> CompressedMatrix {
+    compress(&steps.k_bounce(&colour_matrix(f, albedo), settings.bounces, progress), settings.top_share, compress::REORDER_PASSES, RANGE, progress)
 }
 
 /// One compression of the k-bounce matrix.
@@ -161,19 +183,19 @@ pub struct Report {
     pub frame_times: [Duration; 2],
 }
 
-/// Runs the precompute on `chunks`, the form factors by `form_factors` (the primary light of
-/// the comparisons: 1 on every patch).
-pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, form_factors: &mut dyn FnMut(&Patches) -> FormFactors) -> Report {
+/// Runs the precompute on `chunks`, the heavy steps by `steps` (the primary light of the
+/// comparisons: 1 on every patch).
+pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Steps) -> Report {
     let start = Instant::now();
     let (p, note) = patches_within_budget(chunks, settings);
     let t_patches = start.elapsed();
     let start = Instant::now();
-    let f = form_factors(&p);
+    let f = steps.form_factors(&p);
     let t_form = start.elapsed();
     let albedo: Vec<Vec3> = p.patches.iter().map(|x| x.albedo).collect();
     let start = Instant::now();
     let colour = colour_matrix(&f, &albedo);
-    let k = k_bounce(&colour, settings.bounces, Progress::Stderr);
+    let k = steps.k_bounce(&colour, settings.bounces, Progress::Stderr);
     let t_k = start.elapsed();
     let total: f64 = k.channels.iter().flatten().map(|&x| f64::from(x)).sum();
     let compressed = [LogRange::Seed, LogRange::Fitted]

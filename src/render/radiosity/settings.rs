@@ -13,6 +13,9 @@
 //! radiosity_budget_mb = 256   # memory of the precompute's dense matrices, MiB, 1..=65536
 //! radiosity_wait = false      # frames wait for a new static world's precompute instead of
 //!                             # being drawn without radiosity until it is ready
+//! radiosity_direct_slices = 4 # 1, 2, 4, 8 or 16: an update traces the shadow rays of one
+//!                             # slice of the patches' direct-light points, the others kept
+//!                             # from earlier updates (new lights are whole after this many)
 //! ```
 
 use crate::config::{Key, Table, integer_in, number, number_in, switch};
@@ -40,11 +43,14 @@ pub struct Settings {
     /// (`radiosity_wait`); else frames are drawn without radiosity until it is ready
     /// ([`super::stage`]).
     pub wait: bool,
+    /// Slices of the patches' direct-light points, one traced per update
+    /// (`radiosity_direct_slices`: 1, 2, 4, 8 or 16; [`super::gpu::direct`]).
+    pub direct_slices: u32,
 }
 
 impl Default for Settings {
     fn default() -> Settings {
-        Settings { enabled: false, patch_size: 0.0, bounces: 3, top_share: 0.04, budget_mb: 256, wait: false }
+        Settings { enabled: false, patch_size: 0.0, bounces: 3, top_share: 0.04, budget_mb: 256, wait: false, direct_slices: 4 }
     }
 }
 
@@ -57,6 +63,7 @@ impl Table for Settings {
         Key { name: "top_share", set: |s, v| number_in(v, 0.0..=1.0).map(|x| s.top_share = x as f32) },
         Key { name: "radiosity_budget_mb", set: |s, v| integer_in(v, 1..=65536).map(|x| s.budget_mb = x as u32) },
         Key { name: "radiosity_wait", set: |s, v| switch(v).map(|b| s.wait = b) },
+        Key { name: "radiosity_direct_slices", set: |s, v| number(v, |x| [1.0, 2.0, 4.0, 8.0, 16.0].contains(&x), "1, 2, 4, 8 or 16").map(|x| s.direct_slices = x as u32) },
     ];
 
     fn variable(name: &str) -> String {
@@ -92,10 +99,10 @@ mod tests {
 
     #[test]
     fn every_key_is_read_from_the_file_and_the_environment() {
-        let body = "enabled = true\npatch_size = 0.5\nradiosity_bounces = 5\ntop_share = 0.1\nradiosity_budget_mb = 64\nradiosity_wait = true\n";
+        let body = "enabled = true\npatch_size = 0.5\nradiosity_bounces = 5\ntop_share = 0.1\nradiosity_budget_mb = 64\nradiosity_wait = true\nradiosity_direct_slices = 2\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
-        assert_eq!(s, Settings { enabled: true, patch_size: 0.5, bounces: 5, top_share: 0.1, budget_mb: 64, wait: true });
+        assert_eq!(s, Settings { enabled: true, patch_size: 0.5, bounces: 5, top_share: 0.1, budget_mb: 64, wait: true, direct_slices: 2 });
         let env = [
             ("GLRT_RADIOSITY", "0"),
             ("GLRT_PATCH_SIZE", "2"),
@@ -103,10 +110,11 @@ mod tests {
             ("GLRT_TOP_SHARE", "0"),
             ("GLRT_RADIOSITY_BUDGET_MB", "1"),
             ("GLRT_RADIOSITY_WAIT", "0"),
+            ("GLRT_RADIOSITY_DIRECT_SLICES", "1"),
         ];
         let (s, problems) = read(body, &env);
         assert!(problems.is_empty(), "{problems:?}");
-        assert_eq!(s, Settings { enabled: false, patch_size: 2.0, bounces: 1, top_share: 0.0, budget_mb: 1, wait: false });
+        assert_eq!(s, Settings { enabled: false, patch_size: 2.0, bounces: 1, top_share: 0.0, budget_mb: 1, wait: false, direct_slices: 1 });
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
         // 1 MiB of two dense colour matrices: 209 patches (209² · 24 bytes < 2^20).
         assert_eq!(s.max_patches(), 209);
@@ -119,6 +127,7 @@ mod tests {
             ("top_share = 1.5", "top_share: expected a number in 0..=1, found 1.5"),
             ("patch_size = -1", "patch_size: expected a number >= 0, found -1"),
             ("radiosity_budget_mb = 0", "radiosity_budget_mb: expected an integer in 1..=65536, found 0"),
+            ("radiosity_direct_slices = 3", "radiosity_direct_slices: expected 1, 2, 4, 8 or 16, found 3"),
         ] {
             let (s, problems) = read(line, &[]);
             assert_eq!(s, Settings::default(), "{line}");

@@ -11,7 +11,8 @@ glsl_constants! {
     /// Most receiver points of a patch: the centroids of its first triangles.
     const RECEIVER_POINTS: u32 = 8;
     /// Points a patch receives direct light at (`radiosity/direct.comp`): the centroids of the
-    /// four quarters of its area.
+    /// four quarters of its area. An update traces them all or a slice of them
+    /// (`radiosity_direct_slices`: 1, 2 or 4 slices, each a divisor of this).
     const DIRECT_POINTS: u32 = 4;
 
     /// The patches (`Patch` of `radiosity/form_factors.comp`).
@@ -43,6 +44,21 @@ glsl_constants! {
     /// Each patch's direct irradiance and primary radiosity (`PatchLight`), written by the
     /// direct-light pass.
     const BINDING_DIRECT: u32 = 25;
+    /// Each patch's irradiance at each of its direct-light points (`vec4` per point, patch
+    /// after patch), kept on the device from update to update: an update that traces a slice
+    /// of the points takes the others from here.
+    const BINDING_DIRECT_POINTS: u32 = 26;
+
+    /// The product pass's left factor (`radiosity/product.comp`: one channel of the colour
+    /// matrix, row-major `f32`).
+    const BINDING_PRODUCT_LEFT: u32 = 27;
+    /// Its right factor (the k-bounce sum so far).
+    const BINDING_PRODUCT_RIGHT: u32 = 28;
+    /// The rows of the result a dispatch computes.
+    const BINDING_PRODUCT_ROWS: u32 = 29;
+    /// Side of the square of results one workgroup of the product pass computes (16 × 16
+    /// invocations of 4 × 4 results each).
+    const PRODUCT_TILE: u32 = 64;
 
     /// Invocations per workgroup of the form-factor pass (one per source patch), of the
     /// direct-light pass (one per patch) and of the gathering pass (one row, these invocations

@@ -1,9 +1,10 @@
 //! The renderer's radiosity stage (`[radiosity] enabled`), for raster and traced frames: the static
 //! world's patches and compressed k-bounce matrix, built once per static world (the form
-//! factors on the device, else on the CPU; the matrix from the disk cache when it has it,
+//! factors and the k-bounce matrix on the device, else on the CPU: [`OnDevice`]; the matrix from the disk cache when it has it,
 //! [`precompute::load_or_build`]), then per frame the update on the device
 //! ([`Update`]: direct light from the frame's lights, then the product) whenever the lights
-//! or the world changed, and its [`IndirectLight`] for the raster draws ([`super::transfer`])
+//! or the world changed, and after a change of the lights until the direct light's slices of
+//! points are all the new lights' ([`Update::settled`]), and its [`IndirectLight`] for the raster draws ([`super::transfer`])
 //! or the tracer ([`crate::render::trace::radiosity`]).
 //!
 //! The precompute of a new static world runs on a thread of its own, with a Vulkan device of
@@ -21,23 +22,21 @@ use std::time::Instant;
 
 use glam::{Mat4, Vec3};
 
+use super::bounces;
 use super::form_factors::{self, FormFactors};
 use super::gpu::update::Update;
+use super::matrix::ColourMatrix;
 use super::patches::Patches;
-use super::precompute::{self, StaticRadiosity};
+use super::precompute::{self, StaticRadiosity, Steps};
 use super::progress::Progress;
 use super::settings::Settings;
+use super::lights::same_lights;
 use super::transfer::IndirectLight;
 use crate::frame::Frame;
 use crate::frame::world::StaticChunk;
 use crate::render::raster::device::Device;
 use crate::render::trace::gpu_types::GpuLight;
 use crate::render::trace::lights::LightSettings;
-
-/// Largest change of a light's number, relative to its size (at least 1), still taken as no
-/// change: the lights come back to the world frame through each frame's recovered view, whose
-/// round-off moves a light that did not move by about this much.
-const LIGHT_TOLERANCE: f32 = 1.0e-4;
 
 /// The static world the stage holds, and its last update.
 struct World {
@@ -176,6 +175,7 @@ impl RadiosityStage {
         let lights = super::lights::of_frame(frame, &self.lights);
         if let Some((last, light)) = &world.last
             && same_lights(last, &lights)
+            && world.update.settled()
         {
             return Ok(Some(light.clone()));
         }
@@ -198,7 +198,7 @@ impl RadiosityStage {
             r.patches.patches.len(),
             start.elapsed().as_secs_f64()
         );
-        let update = Update::new(device, &r.patches, &r.matrix)?;
+        let update = Update::new(device, &r.patches, &r.matrix, self.settings.direct_slices)?;
         Ok(Box::new(World { chunks, patches: r.patches, update, last: None }))
     }
 
@@ -210,39 +210,57 @@ impl RadiosityStage {
     }
 }
 
-/// Whether the lights `b` are the lights `a` (to [`LIGHT_TOLERANCE`]).
-fn same_lights(a: &[GpuLight], b: &[GpuLight]) -> bool {
-    let close = |x: &[f32; 4], y: &[f32; 4]| x.iter().zip(y).all(|(&x, &y)| (x - y).abs() <= LIGHT_TOLERANCE * x.abs().max(y.abs()).max(1.0));
-    a.len() == b.len() && a.iter().zip(b).all(|(a, b)| close(&a.position, &b.position) && close(&a.radiance, &b.radiance) && close(&a.spot, &b.spot) && close(&a.params, &b.params))
-}
-
 /// The precompute of `world` (the matrix of the disk cache under `cache` when it has it), the
-/// form factors on a Vulkan device of this thread's own (the renderer's queue is not shared),
+/// heavy steps on a Vulkan device of this thread's own (the renderer's queue is not shared),
 /// else the CPU.
 fn precompute_on_own_device(world: &[Arc<StaticChunk>], settings: &Settings, cache: &Path) -> StaticRadiosity {
-    let device = Device::new().map_err(|e| eprintln!("glrt: radiosity: no Vulkan device of its own for the form factors ({e}): they are computed on the CPU")).ok();
-    precompute::load_or_build(world, settings, Some(cache), &mut |p| form_factors_on(device.as_ref(), p))
+    let device = Device::new().map_err(|e| eprintln!("glrt: radiosity: no Vulkan device of its own for the form factors and the k-bounce matrix ({e}): they are computed on the CPU")).ok();
+    precompute::load_or_build(world, settings, Some(cache), &mut OnDevice(device.as_ref()))
 }
 
-/// The form factors of `p` on `device`, or on the CPU when there is none or it fails, with
-/// their progress on stderr ([`Progress::Stderr`]).
-pub fn form_factors_on(device: Option<&Device>, p: &Patches) -> FormFactors {
-    let n = p.patches.len();
-    if let Some(device) = device {
-        let stage = Progress::Stderr.stage(&format!("form factors of {n} patches on {} (once per static world; the matrix is cached)", device.name()), n as u64, "rows");
-        let mut counted = 0;
-        let result = super::gpu::form_factors::compute(device, p, &mut |done, _| {
-            stage.add(done.saturating_sub(counted) as u64);
-            counted = counted.max(done);
-        });
-        stage.finish();
-        match result {
-            Ok(f) => return f,
-            Err(e) => eprintln!("glrt: radiosity: form factors on {} failed ({e}): computing them on the CPU", device.name()),
-        }
+/// The precompute's heavy steps on a Vulkan device (the form factors, the k-bounce matrix),
+/// each on the CPU without one or when the device fails, with a message saying why; their
+/// progress on stderr ([`Progress::Stderr`]). On a CPU device (lavapipe) the k-bounce matrix
+/// is the CPU's: its blocked product on every core is about 10x faster than the device's
+/// compute there (bench/radiosity.md, session 21).
+pub struct OnDevice<'a>(pub Option<&'a Device>);
+
+impl<'a> OnDevice<'a> {
+    /// The device the k-bounce matrix is computed on: a GPU, not a CPU device.
+    pub fn product_device(&self) -> Option<&'a Device> {
+        self.0.filter(|d| d.properties.device_type != ash::vk::PhysicalDeviceType::CPU)
     }
-    let stage = Progress::Stderr.stage(&format!("form factors of {n} patches on the CPU"), 1, "matrix");
-    let f = form_factors::compute(p);
-    stage.finish();
-    f
+}
+
+impl Steps for OnDevice<'_> {
+    fn form_factors(&mut self, p: &Patches) -> FormFactors {
+        let n = p.patches.len();
+        if let Some(device) = self.0 {
+            let stage = Progress::Stderr.stage(&format!("form factors of {n} patches on {} (once per static world; the matrix is cached)", device.name()), n as u64, "rows");
+            let mut counted = 0;
+            let result = super::gpu::form_factors::compute(device, p, &mut |done, _| {
+                stage.add(done.saturating_sub(counted) as u64);
+                counted = counted.max(done);
+            });
+            stage.finish();
+            match result {
+                Ok(f) => return f,
+                Err(e) => eprintln!("glrt: radiosity: form factors on {} failed ({e}): computing them on the CPU", device.name()),
+            }
+        }
+        let stage = Progress::Stderr.stage(&format!("form factors of {n} patches on the CPU"), 1, "matrix");
+        let f = form_factors::compute(p);
+        stage.finish();
+        f
+    }
+
+    fn k_bounce(&mut self, colour: &ColourMatrix, k: u32, progress: Progress) -> ColourMatrix {
+        if let Some(device) = self.product_device() {
+            match super::gpu::product::k_bounce(device, colour, k, progress) {
+                Ok(m) => return m,
+                Err(e) => eprintln!("glrt: radiosity: the k-bounce matrix on {} failed ({e}): computing it on the CPU", device.name()),
+            }
+        }
+        bounces::k_bounce(colour, k, progress)
+    }
 }

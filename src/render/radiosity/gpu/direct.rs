@@ -4,8 +4,16 @@
 //! centroids of the quarters of its area), with one shadow ray per point and light through the
 //! tracer's BVH traversal over the patches' [`PatchScene`]; and its primary radiosity, emission
 //! plus albedo times that irradiance, which [`super::gather::Gather`] bounces. One dispatch of
-//! one invocation per (patch, point, light), summed per patch in shared memory
-//! (`patches_per_group` patches a workgroup).
+//! one invocation per (patch, traced point, light), summed per patch in shared memory
+//! (`patches_per_group` patches a workgroup, neighbouring invocations on neighbouring patches).
+//!
+//! Amortised over updates: with `slices` > 1 an update traces one slice of the (patch, point)
+//! pairs, slices in turn, and takes the others' irradiance from the updates that traced them,
+//! kept on the device: up to [`DIRECT_POINTS`] slices, `DIRECT_POINTS / slices` points of every
+//! patch; past it, one point of every `slices / DIRECT_POINTS`-th patch. The first update
+//! traces them all. After the lights change, the patches' light is that of the new lights after
+//! `slices` updates ([`Direct::settled`]); until then it mixes the new lights' points with the
+//! older lights' (a latency of `slices - 1` updates, for `1 / slices` of the shadow rays).
 //!
 //! The shader takes a sphere light as a point at its centre (exact where the whole sphere is
 //! above a patch's horizon, as `trace::lights` explains) and a directional light of an
@@ -17,8 +25,9 @@ use glam::Vec3;
 
 use super::pass::{ComputePass, DispatchTime, Inputs};
 use super::scene::PatchScene;
+use crate::render::radiosity::lights::same_lights;
 use crate::render::radiosity::patches::Patches;
-use crate::render::radiosity::shader_constants::{BINDING_DIRECT, BINDING_LIGHTS, BINDING_PATCH_SURFACES, DIRECT_POINTS, GROUP};
+use crate::render::radiosity::shader_constants::{BINDING_DIRECT, BINDING_DIRECT_POINTS, BINDING_LIGHTS, BINDING_PATCH_SURFACES, DIRECT_POINTS, GROUP};
 use crate::render::raster::device::{Device, Result};
 use crate::render::trace::gpu_types::GpuLight;
 
@@ -53,10 +62,15 @@ pub struct GpuDirectPass {
     pub patch_count: u32,
     /// Lights.
     pub light_count: u32,
-    /// Patches one workgroup lights ([`patches_per_group`]).
+    /// Patches one workgroup lights ([`Workgroup`]).
     pub patches_per_group: u32,
-    /// Padding.
-    pub pad0: u32,
+    /// Invocations per patch ([`Workgroup`]).
+    pub lanes: u32,
+    /// Slices of the (patch, point) pairs: pair `(i, k)` is in slice `(i * DIRECT_POINTS + k) %
+    /// slices`.
+    pub slices: u32,
+    /// The slice traced.
+    pub phase: u32,
 }
 
 include!(concat!(env!("OUT_DIR"), "/layouts/radiosity_direct_types.rs"));
@@ -74,17 +88,30 @@ pub struct PatchLight {
 pub struct Direct {
     pass: ComputePass,
     n: usize,
+    /// Slices of the points, each traced by one update.
+    slices: u32,
+    /// The slice the next update traces; `None` before the first update, which traces all.
+    next: Option<u32>,
+    /// The lights of the last update.
+    lights: Vec<GpuLight>,
+    /// Slices last traced under other lights than the last update's.
+    stale: u32,
 }
 
 impl Direct {
-    /// Uploads `patches` (their BVH, albedo and emission) to `device`.
-    pub fn new(device: &Device, patches: &Patches) -> Result<Direct> {
+    /// Uploads `patches` (their BVH, albedo and emission) to `device`, for updates that
+    /// trace one of `slices` (a divisor or a multiple of [`DIRECT_POINTS`]) slices of the
+    /// (patch, point) pairs.
+    pub fn new(device: &Device, patches: &Patches, slices: u32) -> Result<Direct> {
+        assert!(slices >= 1 && (DIRECT_POINTS % slices == 0 || slices % DIRECT_POINTS == 0), "{slices} slices of {DIRECT_POINTS} points");
         let n = patches.patches.len();
         let scene = PatchScene::new(patches);
         let surfaces: Vec<GpuPatchSurface> =
             patches.patches.iter().map(|p| GpuPatchSurface { albedo: p.albedo.extend(0.0).to_array(), emission: p.emission.extend(0.0).to_array() }).collect();
+        let points = vec![0u8; n.max(1) * DIRECT_POINTS as usize * 16];
         let mut storage = scene.storage();
         storage.push((BINDING_PATCH_SURFACES, bytemuck::cast_slice(&surfaces)));
+        storage.push((BINDING_DIRECT_POINTS, &points));
         let inputs = Inputs {
             storage,
             host: vec![(BINDING_LIGHTS, (MAX_LIGHTS * size_of::<GpuLight>()) as u64)],
@@ -93,20 +120,45 @@ impl Direct {
             push_bytes: size_of::<GpuDirectPass>() as u32,
         };
         let spirv = include_bytes!(concat!(env!("OUT_DIR"), "/shaders/radiosity/direct.comp.spv"));
-        Ok(Direct { pass: ComputePass::new(device, spirv, &inputs)?, n })
+        Ok(Direct { pass: ComputePass::new(device, spirv, &inputs)?, n, slices, next: None, lights: Vec::new(), stale: 0 })
     }
 
-    /// Every patch's direct light from `lights` (in the patches' frame), and the time it took.
+    /// Every patch's direct light from `lights` (in the patches' frame) as this update's slice
+    /// of the points and the kept others give it, and the time it took.
     pub fn run(&mut self, device: &Device, lights: &[GpuLight]) -> Result<(Vec<PatchLight>, DispatchTime)> {
         let lights = strongest(lights, MAX_LIGHTS);
         let bytes: &[u8] = bytemuck::cast_slice(&lights);
         self.pass.host_input(0)[..bytes.len()].copy_from_slice(bytes);
-        let per_group = patches_per_group(lights.len());
-        let push = GpuDirectPass { patch_count: self.n as u32, light_count: lights.len() as u32, patches_per_group: per_group, pad0: 0 };
-        let time = self.pass.run_timed(device, bytemuck::bytes_of(&push), [(self.n as u32).div_ceil(per_group).max(1), 1, 1])?;
+        let (slices, phase) = match self.next {
+            None => (1, 0),
+            Some(phase) => (self.slices, phase),
+        };
+        let group = Workgroup::of(DIRECT_POINTS / slices.min(DIRECT_POINTS), lights.len() as u32);
+        let patches = (self.n as u32).div_ceil((slices / DIRECT_POINTS).max(1));
+        let push = GpuDirectPass {
+            patch_count: self.n as u32,
+            light_count: lights.len() as u32,
+            patches_per_group: group.patches,
+            lanes: group.lanes,
+            slices,
+            phase,
+        };
+        let time = self.pass.run_timed(device, bytemuck::bytes_of(&push), [patches.div_ceil(group.patches).max(1), 1, 1])?;
+        if !same_lights(&self.lights, &lights) {
+            self.stale = self.slices;
+        }
+        self.stale = if slices == 1 { 0 } else { self.stale.saturating_sub(1) };
+        self.next = Some((phase + 1) % self.slices);
+        self.lights = lights;
         let out: &[GpuPatchLight] = bytemuck::cast_slice(&self.pass.output()[..self.n * size_of::<GpuPatchLight>()]);
         let light = out.iter().map(|p| PatchLight { irradiance: Vec3::from_slice(&p.irradiance[..3]), primary: Vec3::from_slice(&p.primary[..3]) }).collect();
         Ok((light, time))
+    }
+
+    /// Whether every point was traced under the last update's lights: the direct light is
+    /// theirs, not partly an earlier update's.
+    pub fn settled(&self) -> bool {
+        self.stale == 0
     }
 
     /// Frees the device's objects.
@@ -115,11 +167,23 @@ impl Direct {
     }
 }
 
-/// How many patches one workgroup of [`GROUP`] invocations lights when there are `lights`
-/// lights: as many as leave each patch at least one invocation per (point, light) pair, and one
-/// patch per workgroup (its invocations looping over the pairs) when it has more pairs than that.
-fn patches_per_group(lights: usize) -> u32 {
-    (GROUP / (DIRECT_POINTS * lights as u32).max(1)).max(1)
+/// How a workgroup of [`GROUP`] invocations is shared between patches.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Workgroup {
+    /// Patches it lights.
+    patches: u32,
+    /// Invocations per patch, a multiple of the traced points.
+    lanes: u32,
+}
+
+impl Workgroup {
+    /// For `traced` points (a divisor of [`GROUP`]) and `lights` lights: one invocation per
+    /// (point, light) pair and as many patches as fit, or one patch per workgroup when it has
+    /// more pairs than [`GROUP`] (its invocations looping over them).
+    fn of(traced: u32, lights: u32) -> Workgroup {
+        let pairs = (traced * lights).max(traced);
+        if pairs >= GROUP { Workgroup { patches: 1, lanes: GROUP } } else { Workgroup { patches: GROUP / pairs, lanes: pairs } }
+    }
 }
 
 /// `lights`, or the `most` of them with the largest intensity (or irradiance) when there are
@@ -132,4 +196,27 @@ fn strongest(lights: &[GpuLight], most: usize) -> Vec<GpuLight> {
         out.truncate(most);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_workgroup_gives_each_patch_a_multiple_of_its_traced_points_within_the_group() {
+        // 4 lights: all 4 points (16 pairs, 4 patches) or one point (4 pairs, 16 patches).
+        assert_eq!(Workgroup::of(4, 4), Workgroup { patches: 4, lanes: 16 });
+        assert_eq!(Workgroup::of(1, 4), Workgroup { patches: 16, lanes: 4 });
+        // No lights: one invocation per point still writes the patch.
+        assert_eq!(Workgroup::of(2, 0), Workgroup { patches: 32, lanes: 2 });
+        // More pairs than invocations: one patch, its invocations looping.
+        assert_eq!(Workgroup::of(4, 100), Workgroup { patches: 1, lanes: GROUP });
+        for traced in [1, 2, 4] {
+            for lights in 0..40 {
+                let w = Workgroup::of(traced, lights);
+                assert!(w.patches * w.lanes <= GROUP && w.lanes % traced == 0, "{traced} points, {lights} lights: {w:?}");
+                assert!(w.lanes >= (traced * lights).min(GROUP), "{traced} points, {lights} lights: {w:?}");
+            }
+        }
+    }
 }

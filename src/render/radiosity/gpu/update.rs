@@ -42,9 +42,10 @@ pub struct Update {
 }
 
 impl Update {
-    /// Uploads `patches` and their compressed matrix `matrix` to `device`.
-    pub fn new(device: &Device, patches: &Patches, matrix: &CompressedMatrix) -> Result<Update> {
-        let direct = Direct::new(device, patches)?;
+    /// Uploads `patches` and their compressed matrix `matrix` to `device`, the direct light
+    /// traced in `slices` slices of the points ([`Direct`]).
+    pub fn new(device: &Device, patches: &Patches, matrix: &CompressedMatrix, slices: u32) -> Result<Update> {
+        let direct = Direct::new(device, patches, slices)?;
         match Gather::new(device, matrix) {
             Ok(gather) => Ok(Update { direct, gather }),
             Err(e) => {
@@ -60,6 +61,11 @@ impl Update {
         let primary: Vec<Vec3> = direct.iter().map(|l| l.primary).collect();
         let (radiosity, gather_time) = self.gather.run(device, &primary)?;
         Ok((Radiosity { direct, radiosity }, UpdateTime { direct: direct_time, gather: gather_time }))
+    }
+
+    /// Whether the last update's direct light is wholly its lights' ([`Direct::settled`]).
+    pub fn settled(&self) -> bool {
+        self.direct.settled()
     }
 
     /// Frees the device's objects.
