@@ -3,7 +3,8 @@
 //! Vulkan 1.2 device, lavapipe included. Its stages: [`RayTracer::build`] gathers the instances
 //! of a [`Frame`] (traced draws and the static world's chunks, [`super::instances`]), builds or
 //! refits their bottom-level BVHs, uploads geometry and texels and builds the top-level BVH;
-//! [`RayTracer::trace`] runs `pathtrace.comp`, one dispatch per sample; [`RayTracer::resolve`]
+//! [`RayTracer::trace`] runs `pathtrace.comp`, one dispatch per sample (then, with temporal
+//! gradients, its gradient pass, one invocation per stratum); [`RayTracer::resolve`]
 //! runs the temporal pass and tone mapping (`trace_resolve.comp`) into the image that
 //! [`super::composite`] draws.
 //!
