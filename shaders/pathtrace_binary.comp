@@ -11,5 +11,5 @@
 layout(local_size_x = TRACE_GROUP, local_size_y = TRACE_GROUP) in;
 
 void main() {
-    trace_pixel(gl_GlobalInvocationID.xy);
+    trace_invocation(gl_GlobalInvocationID.xy);
 }

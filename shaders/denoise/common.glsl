@@ -23,7 +23,6 @@ layout(push_constant) uniform DenoisePass {
                     // frames of a moving camera's history
     uvec4 size;     // traced width, height; DENOISE_FLAG_* bits; à-trous step (pixels)
     uvec2 signal;   // records (pixels) into `signal` read and written
-    uint frame_index; // the tracer's frame index (GpuFrame.counts.x): which pixels are gradient samples
 } pass;
 
 // The temporal light of one pixel: the demodulated direct and indirect light (half floats:

@@ -2,32 +2,31 @@
 #extension GL_GOOGLE_include_directive : require
 // A-SVGF, temporal gradients (Schied et al. 2018, section 4; Quake II RTX's
 // asvgf_gradient_img): one invocation per 3x3 stratum of traced pixels. Its gradient sample
-// (trace/gradient.glsl), traced this frame with last frame's random numbers of its source
-// pixel over the surface point the source saw (trace/forward_projection.glsl), is compared
-// with the sample last frame traced at the source (the history's `traced` luminance there): the change of each channel's luminance and the larger of the two,
-// summed apart over strata by the temporal pass, whose ratio is how much the lighting
-// changed (0: not at all, 1: entirely). Strata without a valid sample write zeros.
+// (trace/gradient.glsl, the stratum's G-buffer record after the pixels'), traced this frame
+// by the tracer's gradient pass with last frame's random numbers of its source pixel over the
+// surface point the source saw (trace/forward_projection.glsl), is compared with the sample
+// last frame traced at the source (the history's `traced` luminance there): the change of each
+// channel's luminance and the larger of the two, summed apart over strata by the temporal
+// pass, whose ratio is how much the lighting changed (0: not at all, 1: entirely). Strata
+// without a valid sample write zeros.
 
 #include "denoise/common.glsl"
 #include "trace/gradient.glsl"
 
 void main() {
     uvec2 stratum = gl_GlobalInvocationID.xy;
-    uvec2 strata = (pass.size.xy + GRADIENT_STRATUM - 1u) / GRADIENT_STRATUM;
+    uvec2 strata = gradient_strata(pass.size.xy);
     if (any(greaterThanEqual(stratum, strata))) {
         return;
     }
     vec4 change = vec4(0.0);
-    int at = pixel_index(ivec2(gradient_pixel(stratum, pass.frame_index)));
-    if (at >= 0) {
-        GSample g = gbuffer[at];
-        uint source = g.gradient - 1u;
-        if (g.gradient != 0u && g.instance != MISS && same_surface(source, g)) {
-            // Rounded as the history's is, so that an unchanged sample differs by nothing.
-            vec2 now = unpackHalf2x16(packHalf2x16(min(vec2(luminance(g.direct.rgb), luminance(g.indirect.rgb)), HALF_MAX)));
-            vec2 before = unpackHalf2x16(moments_previous[source].traced);
-            change = vec4(abs(now.x - before.x), max(now.x, before.x), abs(now.y - before.y), max(now.y, before.y));
-        }
+    GSample g = gbuffer[gradient_record(stratum, pass.size.xy)];
+    uint source = g.gradient - 1u;
+    if (g.gradient != 0u && g.instance != MISS && same_surface(source, g)) {
+        // Rounded as the history's is, so that an unchanged sample differs by nothing.
+        vec2 now = unpackHalf2x16(packHalf2x16(min(vec2(luminance(g.direct.rgb), luminance(g.indirect.rgb)), HALF_MAX)));
+        vec2 before = unpackHalf2x16(moments_previous[source].traced);
+        change = vec4(abs(now.x - before.x), max(now.x, before.x), abs(now.y - before.y), max(now.y, before.y));
     }
     gradient[stratum.y * strata.x + stratum.x] = pack_half4(change);
 }

@@ -88,7 +88,7 @@ float reproject(vec2 previous, GSample g, out Past blended) {
 // How much the lighting around `pixel` changed since last frame, 0..1 (the larger of the
 // channels'), from the gradients of the 3x3 strata around its own.
 float lighting_change(ivec2 pixel) {
-    ivec2 strata = ivec2((pass.size.xy + GRADIENT_STRATUM - 1u) / GRADIENT_STRATUM);
+    ivec2 strata = ivec2(gradient_strata(pass.size.xy));
     ivec2 centre = pixel / int(GRADIENT_STRATUM);
     vec4 sum = vec4(0.0);
     for (int dy = -1; dy <= 1; dy++) {

@@ -76,9 +76,10 @@ bool forward_project(TraceHit hit, vec2 previous_window, out vec3 target) {
 // the pixel itself, whose random numbers the caller drew (rng); where it moved, the primary
 // ray is traced again through the forward-projected point (`rays` counts it), rng re-seeded
 // with the source's numbers of last frame and replay_rotation set to the surface's turn.
-// False where no sample can be repeated (the source outside the image or last frame's
-// gradient pixel, drawn with older numbers; the projected point off the pixel or hidden): the
-// sample then stays as traced and is no gradient sample.
+// False where no sample can be repeated (the source outside the image; the projected point
+// off the pixel or hidden): there is no gradient sample then. Every pixel's sample of last
+// frame was drawn with that frame's numbers (the main pass traces them all; gradient samples
+// have their own records), so every source can be repeated.
 bool repeat_source(uvec2 pixel, vec2 scale, uint sample_index, inout vec3 origin, inout vec3 dir, inout TraceHit hit, inout Rng rng,
                    inout uint rays, out uvec2 source) {
     vec3 position = origin + hit.t * dir;
@@ -90,9 +91,6 @@ bool repeat_source(uvec2 pixel, vec2 scale, uint sample_index, inout vec3 origin
     vec2 motion = window_xy(frame.projection, position) - window_xy(frame.previous_projection, previous);
     if (all(lessThan(abs(motion), vec2(1e-4 * max(scale.x, scale.y))))) {
         return true;
-    }
-    if (all(equal(source, gradient_pixel(source / GRADIENT_STRATUM, frame.counts.x - 1u)))) {
-        return false;
     }
     Rng source_rng = rng_seed(source, frame.counts.x - 1u, sample_index);
     vec2 jitter = sample_index == 0u ? vec2(0.5) : rng_next2(source_rng);

@@ -9,7 +9,8 @@
 #include "trace/bindings.glsl"
 #include "trace/samples.glsl"
 
-// What the primary ray of a pixel saw this frame.
+// What the primary ray of a pixel saw this frame, per traced pixel, then per gradient stratum
+// (gradient_record of trace/gradient.glsl).
 layout(set = TRACE_SET, binding = BINDING_GBUFFER, std430) buffer GBuffer {
     GSample gbuffer[];
 };

@@ -18,7 +18,8 @@
 // static world adds radiosity's indirect light there (the light of every later bounce,
 // reflected by the surface's diffuse albedo) after its next-event estimation, and the path
 // ends. The tracer runs it once per sample of the frame (see `dispatch` in
-// src/render/trace/compute.rs for why). src/render/trace/mod.rs describes
+// src/render/trace/compute.rs for why), and with temporal gradients a second time per sample
+// over the strata's gradient samples (trace_invocation, trace/gradient.glsl). src/render/trace/mod.rs describes
 // the scene it reads. Ray counts and traversal work are summed per subgroup (subgroup
 // arithmetic, which lavapipe and the desktop drivers have) and added to the counters once per
 // subgroup.
@@ -30,9 +31,12 @@
 #ifndef TRACE_PATH_GLSL
 #define TRACE_PATH_GLSL
 
-// The sample of the frame this dispatch traces, 0 to samples - 1.
+// The sample of the frame this dispatch traces, 0 to samples - 1, and which pass it is: the
+// main pass (0), one invocation per traced pixel, or the gradient pass (1), one per gradient
+// stratum (trace/gradient.glsl).
 layout(push_constant) uniform Pass {
     uint sample_index;
+    uint gradients;
 } pass;
 
 #include "trace/emitters.glsl"
@@ -132,11 +136,13 @@ void next_event_add(ShadowSample n, vec3 origin, bool baked, vec3 throughput, bo
 // Uses camera_ray and window_xy.
 #include "trace/forward_projection.glsl"
 
-// Traces traced pixel `pixel` (may lie outside the image: only counts then; every invocation
-// of a subgroup must call it, for the counters' subgroup sums).
-void trace_pixel(uvec2 pixel) {
+// Traces a sample of traced pixel `pixel` into G-buffer record `index` where `recorded`
+// (otherwise only counts; every invocation of a subgroup must call it, for the counters'
+// subgroup sums): where `traced`, the pixel's sample of this frame, or with `gradient` its
+// gradient sample (trace/gradient.glsl), which repeats a sample of last frame with its random
+// numbers and is traced no further where it can repeat none (the record then shows a miss).
+void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint index) {
     uvec2 size = frame.size.xy;
-    bool inside = all(lessThan(pixel, size));
     uint samples = max(frame.counts.y, 1u);
     uint bounces = frame.counts.z;
     uint light_count = frame.counts.w;
@@ -165,10 +171,8 @@ void trace_pixel(uvec2 pixel) {
     vec3 direct = vec3(0.0);
     vec3 before_continuation = vec3(0.0);
     bool continued = false;
-    if (inside) {
-        // A gradient sample (trace/gradient.glsl) draws last frame's random numbers.
-        bool gradient = (frame.flags.x & FRAME_GRADIENTS) != 0u && frame.counts.x > 0u
-            && all(equal(pixel, gradient_pixel(pixel / GRADIENT_STRATUM, frame.counts.x)));
+    if (traced) {
+        // A gradient sample draws last frame's random numbers.
         uint seed_frame = gradient ? frame.counts.x - 1u : frame.counts.x;
         Rng rng = rng_seed(pixel, seed_frame, sample_index);
         // The first sample of a frame goes through the pixel centre, so the G-buffer is stable.
@@ -191,6 +195,8 @@ void trace_pixel(uvec2 pixel) {
         if (!hit_found) {
             radiance = environment(dir);
         }
+        // A gradient sample that repeats nothing is not compared: no need to shade it.
+        hit_found = hit_found && (repeated || !gradient);
         // Vertex `depth` of the path: emission, next-event estimation towards every light and
         // one emitter, then a continuation ray; the environment is found by continuation rays
         // that miss (also after the last vertex, so bounces = 0 is direct light with the sky
@@ -324,15 +330,14 @@ void trace_pixel(uvec2 pixel) {
         }
     }
 
-    uint index = pixel.y * size.x + pixel.x;
     vec3 indirect = continued ? radiance - before_continuation : vec3(0.0);
-    if (inside && sample_index == 0u) {
+    if (recorded && sample_index == 0u) {
         vec3 demodulate = 1.0 / (demodulating_albedo(g.albedo) * float(samples));
         g.radiance = vec4(radiance / float(samples), 1.0);
         g.direct = vec4(direct * demodulate, 0.0);
         g.indirect = vec4(indirect * demodulate, 0.0);
         gbuffer[index] = g;
-    } else if (inside) {
+    } else if (recorded) {
         vec3 demodulate = 1.0 / (demodulating_albedo(gbuffer[index].albedo) * float(samples));
         gbuffer[index].radiance.rgb += radiance / float(samples);
         gbuffer[index].direct.rgb += direct * demodulate;
@@ -351,6 +356,25 @@ void trace_pixel(uvec2 pixel) {
         atomicAdd(counters.triangles_tested, work.y);
         atomicAdd(counters.sky_rays, sky.x);
         atomicAdd(counters.sky_unoccluded, sky.y);
+    }
+}
+
+// The tracing pass's invocation `id` (every invocation of a subgroup must call it): in the main
+// pass traced pixel `id`'s sample, into its G-buffer record; in the gradient pass (with
+// FRAME_GRADIENTS, from the second frame) the gradient sample of stratum `id`, into the
+// stratum's record after the pixels' (gradient_record), which shows a miss where the stratum
+// has no sample. The gradient samples have a pass of their own, so that their extra primary ray
+// and their replays keep no lane of the main pass waiting.
+void trace_invocation(uvec2 id) {
+    uvec2 size = frame.size.xy;
+    if (pass.gradients == 0u) {
+        bool inside = all(lessThan(id, size));
+        trace_pixel(id, inside, false, inside, id.y * size.x + id.x);
+    } else {
+        bool recorded = all(lessThan(id, gradient_strata(size)));
+        uvec2 pixel = gradient_pixel(id, frame.counts.x);
+        bool traced = recorded && frame.counts.x > 0u && all(lessThan(pixel, size));
+        trace_pixel(pixel, traced, true, recorded, recorded ? gradient_record(id, size) : 0u);
     }
 }
 

@@ -4,7 +4,8 @@
 #ifndef TRACE_SAMPLES_GLSL
 #define TRACE_SAMPLES_GLSL
 
-// What the primary ray of a pixel saw this frame. The lighting channels are demodulated (trace/channels.glsl): direct is the light of the
+// What the primary ray of a pixel saw this frame (the G-buffer's records: one per traced pixel,
+// then one per gradient stratum, its gradient sample, trace/gradient.glsl). The lighting channels are demodulated (trace/channels.glsl): direct is the light of the
 // next-event estimation at the primary hit (lights and emitters), indirect all light that
 // reached the primary hit through its continuation ray; radiance minus both, remodulated, is
 // the primary hit's own emission (baked light, emissive surfaces) or the environment of a miss.
@@ -20,7 +21,7 @@ struct GSample {
     uint material;      // roughness, metalness as unorm8 in bytes 0 and 1
     uint instance;      // index of the instance hit, 0xffffffff on a miss
     uint surface;       // the key of the material hit (Material.key; 0 on a miss): history follows it
-    uint gradient;      // a gradient sample (trace/gradient.glsl): 1 + the index of the pixel whose sample of last frame it repeats; 0: none
+    uint gradient;      // a stratum's gradient sample (trace/gradient.glsl): 1 + the index of the pixel whose sample of last frame it repeats; 0: none (and every pixel's record)
     uint pad[2];
 };
 

@@ -14,10 +14,11 @@
 //! (`shaders/denoise/`):
 //!
 //! 0. `gradient.comp` (with `[denoise] gradients`): temporal gradients (A-SVGF, Schied et al.
-//!    2018): the tracer traces one pixel of every 3x3 stratum with last frame's random
-//!    numbers (`shaders/trace/gradient.glsl`, `FRAME_GRADIENTS`) of the pixel that saw its
-//!    surface last frame (its source): where the surface moved, through the surface point
-//!    the source's sample saw, forward projected (`shaders/trace/forward_projection.glsl`).
+//!    2018): the tracer's gradient pass traces one pixel of every 3x3 stratum again with last
+//!    frame's random numbers (`shaders/trace/gradient.glsl`, `FRAME_GRADIENTS`) of the pixel
+//!    that saw its surface last frame (its source), into the stratum's G-buffer record after
+//!    the pixels': where the surface moved, through the surface point the source's sample
+//!    saw, forward projected (`shaders/trace/forward_projection.glsl`).
 //!    The change of its luminance against the source's sample of last frame is the change
 //!    of the lighting, free of noise;
 //! 1. `temporal.comp`: reprojection with disocclusion tests (material, eye distance, normal),
@@ -65,10 +66,10 @@ use crate::render::raster::device::{Buffer, Check, Device, Result};
 use crate::render::pass_times::PassTimes;
 use crate::render::raster::renderer::Recorder;
 use crate::render::trace::compute::{MOVING_HISTORY, barrier};
-use crate::render::trace::gpu_types::{GSAMPLE_BYTES, GpuFrame, OUTPUT_SAMPLE_BYTES};
+use crate::render::trace::gpu_types::{GSAMPLE_BYTES, GpuFrame, OUTPUT_SAMPLE_BYTES, gbuffer_records, gradient_strata};
 use crate::render::trace::shader_constants::{FRAME_STILL, FRAME_TONEMAP_MASK, TRACE_GROUP};
 use crate::render::trace::{Radiance, TracedImage};
-use pipelines::{DenoisePass, DenoisePipelines, GRADIENT_BYTES, GRADIENT_STRATUM, GUIDE_BYTES, HISTORY_LIGHT_BYTES, HISTORY_MOMENTS_BYTES, SIGNAL_BYTES};
+use pipelines::{DenoisePass, DenoisePipelines, GRADIENT_BYTES, GUIDE_BYTES, HISTORY_LIGHT_BYTES, HISTORY_MOMENTS_BYTES, SIGNAL_BYTES};
 use settings::{DenoiseSettings, View};
 use shader_constants::{
     BINDING_COUNT, BINDING_GBUFFER, BINDING_GRADIENT, BINDING_GUIDE, BINDING_GUIDE_PREVIOUS, BINDING_LIGHT, BINDING_LIGHT_PREVIOUS, BINDING_MOMENTS, BINDING_MOMENTS_PREVIOUS, BINDING_OUTPUT,
@@ -171,7 +172,8 @@ impl Denoiser {
             }
         };
         let history = [first, second];
-        let strata = u64::from(radiance.size[0].div_ceil(GRADIENT_STRATUM)) * u64::from(radiance.size[1].div_ceil(GRADIENT_STRATUM));
+        let [sx, sy] = gradient_strata(radiance.size);
+        let strata = u64::from(sx) * u64::from(sy);
         let [signal, gradient] = match device.create_storage_buffers([("glrt denoiser signal", 2 * n * SIGNAL_BYTES), ("glrt denoiser gradients", strata * GRADIENT_BYTES)]) {
             Ok(b) => b,
             Err(e) => {
@@ -222,7 +224,7 @@ impl Denoiser {
                 let (previous, current) = (&pixels.history[parity], &pixels.history[parity ^ 1]);
                 let whole = |b: &Buffer| (b.raw, b.size);
                 let mut table = [(vk::Buffer::null(), 0); BINDING_COUNT as usize];
-                table[BINDING_GBUFFER as usize] = (pixels.gbuffer, n * GSAMPLE_BYTES);
+                table[BINDING_GBUFFER as usize] = (pixels.gbuffer, gbuffer_records(pixels.size) * GSAMPLE_BYTES);
                 table[BINDING_OUTPUT as usize] = (pixels.output, n * OUTPUT_SAMPLE_BYTES);
                 table[BINDING_LIGHT_PREVIOUS as usize] = whole(&previous.light);
                 table[BINDING_LIGHT as usize] = whole(&current.light);
@@ -261,13 +263,12 @@ impl Denoiser {
             | if self.settings.view == View::History { FLAG_VIEW_HISTORY } else { 0 }
             | if self.settings.gradients { FLAG_GRADIENTS } else { 0 };
         let params = [frame.params[0], frame.params[1], frame.params[2], MOVING_HISTORY];
-        let frame_index = frame.counts[0];
         let pixel_groups = [w.div_ceil(TRACE_GROUP), h.div_ceil(TRACE_GROUP)];
-        let stratum_groups = [w.div_ceil(GRADIENT_STRATUM).div_ceil(TRACE_GROUP), h.div_ceil(GRADIENT_STRATUM).div_ceil(TRACE_GROUP)];
+        let stratum_groups = gradient_strata(radiance.size).map(|s| s.div_ceil(TRACE_GROUP));
         let d = &device.raw;
         let layout = self.pipelines.layout;
         let dispatch = |pipeline: vk::Pipeline, groups: [u32; 2], step: u32, source: u32, destination: u32| {
-            let pass = DenoisePass { params, size: [w, h, flags, step], signal: [source, destination], frame_index };
+            let pass = DenoisePass { params, size: [w, h, flags, step], signal: [source, destination] };
             // Safety: `cmd` records outside a rendering pass (the tracer ended it); the sets'
             // buffers live until the frame finishes.
             unsafe {

@@ -20,8 +20,6 @@ pub struct DenoisePass {
     pub size: [u32; 4],
     /// Record offsets (in pixels) into the signal: read, written.
     pub signal: [u32; 2],
-    /// The tracer's frame index (`GpuFrame::counts[0]`): which pixels are gradient samples.
-    pub frame_index: u32,
 }
 
 /// Bytes of [`DenoisePass`].
@@ -98,7 +96,5 @@ pub const HISTORY_MOMENTS_BYTES: u64 = 12;
 pub const GUIDE_BYTES: u64 = 8;
 /// Bytes of one stratum's temporal gradients (`gradient` of `denoise/common.glsl`).
 pub const GRADIENT_BYTES: u64 = 8;
-/// Traced pixels per side of a gradient stratum (`GRADIENT_STRATUM` of `trace/gradient.glsl`).
-pub const GRADIENT_STRATUM: u32 = 3;
 /// Per-pixel bytes of the spatial passes' signal (`Signal`).
 pub const SIGNAL_BYTES: u64 = 16;

@@ -27,7 +27,8 @@ glsl_constants! {
     const TEXTURES: u32 = 9;
     /// Running radiance sums per pixel (`gbuffer.glsl`).
     const ACCUMULATION: u32 = 10;
-    /// The primary-hit G-buffer per pixel (`gbuffer.glsl`).
+    /// The primary-hit G-buffer per pixel, then per gradient stratum (`gbuffer.glsl`,
+    /// [`super::gpu_types::gbuffer_records`]).
     const GBUFFER: u32 = 11;
     /// Tone-mapped colour and depth per pixel, read by the composite (`gbuffer.glsl`).
     const OUTPUT: u32 = 12;

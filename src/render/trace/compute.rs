@@ -3,7 +3,8 @@
 //! Vulkan 1.2 device, lavapipe included. Its stages: [`RayTracer::build`] gathers the instances
 //! of a [`Frame`] (traced draws and the static world's chunks, [`super::instances`]), builds or
 //! refits their bottom-level BVHs, uploads geometry and texels and builds the top-level BVH;
-//! [`RayTracer::trace`] runs `pathtrace.comp`, one dispatch per sample; [`RayTracer::resolve`]
+//! [`RayTracer::trace`] runs `pathtrace.comp`, one dispatch per sample (then, with temporal
+//! gradients, its gradient pass, one invocation per stratum); [`RayTracer::resolve`]
 //! runs the temporal pass and tone mapping (`trace_resolve.comp`) into the image that
 //! [`super::composite`] draws.
 //!
@@ -30,7 +31,8 @@ use super::resident::{NewGeometry, Resident};
 use super::scene;
 use super::settings::{KNEE, Settings, Tonemap};
 use super::shader_constants::{
-    FRAME_PERSPECTIVE, FRAME_SKY, FRAME_SKY_SAMPLED, FRAME_STILL, INSTANCE_ALPHA_TESTED, MATERIAL_LAYERS, NO_PREVIOUS_TRIANGLES, TONEMAP_ACES, TONEMAP_CLAMP, TONEMAP_KNEE, TONEMAP_REINHARD, TRACE_GROUP,
+    FRAME_GRADIENTS, FRAME_PERSPECTIVE, FRAME_SKY, FRAME_SKY_SAMPLED, FRAME_STILL, INSTANCE_ALPHA_TESTED, MATERIAL_LAYERS, NO_PREVIOUS_TRIANGLES, TONEMAP_ACES, TONEMAP_CLAMP, TONEMAP_KNEE, TONEMAP_REINHARD,
+    TRACE_GROUP,
 };
 use super::surfaces::Surfaces;
 use super::sky::Sky;
@@ -51,9 +53,10 @@ use crate::render::raster::renderer::Recorder;
 /// denoiser's temporal pass keeps as many).
 pub const MOVING_HISTORY: f32 = 8.0;
 
-/// Timestamps per frame in flight: builds start and end, tracing pass start and end (in the
-/// order they are recorded: the first resets the frame's queries).
-const TIMESTAMPS: u32 = 4;
+/// Timestamps per frame in flight: builds start and end, tracing pass start, the end of its
+/// main pass (the start of its gradient pass) and its end (in the order they are recorded:
+/// the first resets the frame's queries).
+const TIMESTAMPS: u32 = 5;
 
 /// Per-pixel buffers of one traced size.
 struct PixelBuffers {
@@ -177,7 +180,11 @@ impl ComputeTracer {
         let Some(rays) = self.counters.get_mut(slot).and_then(|b| RayCounts::from_counters(b.mapped())) else { return };
         let seconds = self.timestamps.as_ref().and_then(|stamps| {
             let ticks = stamps.read(device, slot)?;
-            Some(PassSeconds { trace: pass_times::seconds(device, ticks[2], ticks[3]), build: pass_times::seconds(device, ticks[0], ticks[1]) })
+            Some(PassSeconds {
+                trace: pass_times::seconds(device, ticks[2], ticks[4]),
+                gradient: pass_times::seconds(device, ticks[3], ticks[4]),
+                build: pass_times::seconds(device, ticks[0], ticks[1]),
+            })
         });
         self.sky_selection.observe(rays.sky, rays.sky_unoccluded);
         self.statistics.rays = rays;
@@ -220,7 +227,7 @@ impl ComputeTracer {
         let make = |name, bytes: u64| device.create_buffer(name, n * bytes, usage, MemoryLocation::GpuOnly);
         self.pixels = Some(PixelBuffers {
             size,
-            gbuffer: make("glrt G-buffer", gpu_types::GSAMPLE_BYTES)?,
+            gbuffer: device.create_buffer("glrt G-buffer", gpu_types::gbuffer_records(size) * gpu_types::GSAMPLE_BYTES, usage, MemoryLocation::GpuOnly)?,
             accumulation: [make("glrt accumulation", gpu_types::ACCUM_SAMPLE_BYTES)?, make("glrt accumulation", gpu_types::ACCUM_SAMPLE_BYTES)?],
             output: make("glrt traced output", gpu_types::OUTPUT_SAMPLE_BYTES)?,
         });
@@ -321,7 +328,6 @@ impl ComputeTracer {
             };
             d.cmd_fill_buffer(cmd, counters.raw, 0, vk::WHOLE_SIZE, 0);
             barrier(d, cmd, vk::PipelineStageFlags2::TRANSFER, stage);
-            let groups = [gpu_frame.size[0].div_ceil(TRACE_GROUP), gpu_frame.size[1].div_ceil(TRACE_GROUP)];
             let bind_point = self.pipelines.trace_bind_point();
             d.cmd_bind_descriptor_sets(cmd, bind_point, self.pipelines.layout, 0, &[set], &[]);
             d.cmd_bind_pipeline(cmd, bind_point, self.pipelines.pathtrace);
@@ -335,16 +341,30 @@ impl ComputeTracer {
             // ray) silently lost the light of the later samples: beyond about 48 samples of 3
             // bounces in tests/pathtrace/cornell.rs's Cornell box.
             // The hardware tracer launches per sample too (the same shader body).
-            for sample in 0..gpu_frame.counts[1] {
-                d.cmd_push_constants(cmd, self.pipelines.layout, push_stages, 0, &sample.to_ne_bytes());
-                match &self.pipelines.table {
-                    Some(table) => table.trace(cmd, gpu_frame.size[0], gpu_frame.size[1]),
-                    None => d.cmd_dispatch(cmd, groups[0], groups[1], 1),
+            // Then, with temporal gradients, the gradient pass (`trace_invocation` of
+            // trace/path.glsl), once per sample: one invocation per gradient stratum, so that
+            // the gradient samples' extra work keeps no lane of the main pass waiting.
+            let size = [gpu_frame.size[0], gpu_frame.size[1]];
+            // Pass `pass` (0: main, 1: gradients) over `extent` invocations, once per sample.
+            let trace_pass = |pass: u32, extent: [u32; 2]| {
+                for sample in 0..gpu_frame.counts[1] {
+                    d.cmd_push_constants(cmd, self.pipelines.layout, push_stages, 0, bytemuck::bytes_of(&[sample, pass]));
+                    match &self.pipelines.table {
+                        Some(table) => table.trace(cmd, extent[0], extent[1]),
+                        None => d.cmd_dispatch(cmd, extent[0].div_ceil(TRACE_GROUP), extent[1].div_ceil(TRACE_GROUP), 1),
+                    }
+                    barrier(d, cmd, stage, stage | vk::PipelineStageFlags2::COMPUTE_SHADER);
                 }
-                barrier(d, cmd, stage, stage | vk::PipelineStageFlags2::COMPUTE_SHADER);
-            }
+            };
+            trace_pass(0, size);
             if let Some(stamps) = &self.timestamps {
                 stamps.frame(slot).write(device, cmd, 3, stage);
+            }
+            if gpu_frame.flags[0] & FRAME_GRADIENTS != 0 {
+                trace_pass(1, gpu_types::gradient_strata(size));
+            }
+            if let Some(stamps) = &self.timestamps {
+                stamps.frame(slot).write(device, cmd, 4, stage);
             }
             self.unread[slot] = true;
             set

@@ -6,7 +6,7 @@
 
 use bytemuck::{Pod, Zeroable};
 
-use super::shader_constants::{MATERIAL_LAYERS, MAX_PASSES, TRACED_UNITS};
+use super::shader_constants::{GRADIENT_STRATUM, MATERIAL_LAYERS, MAX_PASSES, TRACED_UNITS};
 
 /// `TraceFrameBlock` of `scene.glsl`: camera, settings and counts of one frame.
 #[repr(C)]
@@ -220,7 +220,7 @@ pub struct GpuInstance {
     pub pad2: u32,
 }
 
-/// Per-pixel bytes of the G-buffer (`GSample` of `gbuffer.glsl`).
+/// Bytes of a G-buffer record (`GSample` of `gbuffer.glsl`).
 pub const GSAMPLE_BYTES: u64 = 96;
 /// Per-pixel bytes of the accumulation buffers (`AccumSample`).
 pub const ACCUM_SAMPLE_BYTES: u64 = 32;
@@ -258,6 +258,19 @@ const _: () = assert!(size_of::<GpuMaterial>() == 464 && size_of::<GpuLayerCorne
 
 const _: () = assert!(MAX_PASSES == crate::frame::class::MAX_LAYERS, "a material traces every layer a surface may have");
 
+/// Temporal gradient strata per side of a traced image of `size` (`gradient_strata` of
+/// `trace/gradient.glsl`; those at the far edges may be partial).
+pub fn gradient_strata(size: [u32; 2]) -> [u32; 2] {
+    size.map(|s| s.div_ceil(GRADIENT_STRATUM))
+}
+
+/// The G-buffer's records for a traced image of `size`: one per pixel, then one per gradient
+/// stratum, the tracer's gradient pass's samples (`gradient_record` of `trace/gradient.glsl`).
+pub fn gbuffer_records(size: [u32; 2]) -> u64 {
+    let strata = gradient_strata(size);
+    u64::from(size[0]) * u64::from(size[1]) + u64::from(strata[0]) * u64::from(strata[1])
+}
+
 /// The rows of the affine part of `m` (its last row is taken as 0, 0, 0, 1).
 pub fn rows(m: &glam::Mat4) -> [[f32; 4]; 3] {
     let t = m.transpose();
@@ -267,6 +280,13 @@ pub fn rows(m: &glam::Mat4) -> [[f32; 4]; 3] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_gbuffer_holds_a_record_per_pixel_and_per_stratum() {
+        assert_eq!(gradient_strata([80, 60]), [27, 20]);
+        assert_eq!(gbuffer_records([80, 60]), 80 * 60 + 27 * 20);
+        assert_eq!(gbuffer_records([3, 3]), 10);
+    }
 
     #[test]
     fn rows_are_the_affine_rows() {

@@ -13,8 +13,9 @@ use crate::render::raster::device::{Check, Device, Error, Result};
 use crate::render::raster::pipelines::shader_module;
 use super::hardware::pipeline::ShaderTable;
 
-/// Push constants of the compute pipelines: the sample a tracing dispatch traces (`pathtrace.comp`'s `Pass`).
-pub const TRACE_PUSH_BYTES: u32 = 4;
+/// Push constants of the compute pipelines: the sample a tracing dispatch traces and whether
+/// it is the gradient pass (`pathtrace.comp`'s `Pass`).
+pub const TRACE_PUSH_BYTES: u32 = 8;
 
 include!(concat!(env!("OUT_DIR"), "/layouts/trace_push_constants.rs"));
 

@@ -105,9 +105,13 @@ glsl_constants! {
     /// `GpuFrame::flags[0]`: the scene and camera are as they were last frame (the history
     /// cap is `accumulate`: accumulation while still).
     const FRAME_STILL: u32 = 16;
-    /// `GpuFrame::flags[0]`: one pixel of every 3x3 is traced with last frame's random
-    /// numbers, a temporal gradient sample for the denoiser (`trace/gradient.glsl`).
+    /// `GpuFrame::flags[0]`: the tracer's gradient pass traces one pixel of every 3x3 again
+    /// with last frame's random numbers, a temporal gradient sample for the denoiser
+    /// (`trace/gradient.glsl`).
     const FRAME_GRADIENTS: u32 = 32;
+    /// Traced pixels per side of a temporal gradient stratum: each has one gradient sample a
+    /// frame (`trace/gradient.glsl`, [`super::gpu_types::gradient_strata`]).
+    const GRADIENT_STRATUM: u32 = 3;
     /// `GpuFrame::flags[0]`: next-event estimation samples the sky (`super::sky_distribution`,
     /// the `SKY_DISTRIBUTION` binding holds its cells).
     const FRAME_SKY_SAMPLED: u32 = 64;

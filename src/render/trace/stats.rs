@@ -89,8 +89,10 @@ pub struct SceneCounts {
 /// GPU seconds of one frame's passes, from timestamps.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct PassSeconds {
-    /// The tracing pass.
+    /// The tracing pass (its gradient pass included).
     pub trace: f64,
+    /// The tracing pass's gradient pass (`trace/gradient.glsl`; 0 without one).
+    pub gradient: f64,
     /// Geometry uploads and acceleration-structure builds.
     pub build: f64,
 }
@@ -104,6 +106,8 @@ pub struct Totals {
     pub rays: RayCounts,
     /// GPU seconds of the tracing pass, summed over the frames that had timestamps.
     pub trace_seconds: f64,
+    /// GPU seconds of the tracing pass's gradient pass, summed over the same frames.
+    pub gradient_seconds: f64,
     /// Frames whose pass time is in `trace_seconds`.
     pub timed_frames: u64,
     /// GPU seconds of the frames' uploads and acceleration-structure builds, summed over the
@@ -149,6 +153,7 @@ impl Totals {
         r.sky_unoccluded += rays.sky_unoccluded;
         if let Some(s) = seconds {
             self.trace_seconds += s.trace;
+            self.gradient_seconds += s.gradient;
             self.build_seconds += s.build;
             self.timed_frames += 1;
         }
@@ -198,8 +203,9 @@ impl Totals {
         if self.timed_frames == self.frames && self.trace_seconds > 0.0 {
             let rate = |count: u64| count as f64 / self.trace_seconds / 1e6;
             line += &format!(
-                "; tracing pass {:.3} ms per frame; Mrays/s: {:.1} primary, {:.1} shadow, {:.1} diffuse, {:.1} specular, {:.1} all",
+                "; tracing pass {:.3} ms per frame ({:.3} ms of it the gradient pass); Mrays/s: {:.1} primary, {:.1} shadow, {:.1} diffuse, {:.1} specular, {:.1} all",
                 self.trace_seconds * 1e3 / n,
+                self.gradient_seconds * 1e3 / n,
                 rate(r.primary),
                 rate(r.shadow),
                 rate(r.diffuse),
@@ -231,7 +237,7 @@ mod tests {
     fn the_summary_gives_rates_of_the_timed_pass() {
         let mut t = Totals::default();
         let frame = RayCounts { primary: 1_000_000, shadow: 2_000_000, diffuse: 500_000, specular: 0, nodes_visited: 35_000_000, triangles_tested: 7_000_000, sky: 400_000, sky_unoccluded: 100_000 };
-        let timed = Some(PassSeconds { trace: 0.001, build: 0.0005 });
+        let timed = Some(PassSeconds { trace: 0.001, gradient: 0.0002, build: 0.0005 });
         t.add(frame, timed);
         t.add(frame, timed);
         t.add_scene(&SceneCounts { draw_instances: 1, chunk_instances: 2, triangles: 1000, built: 3, passes: 2, build_micros: 3000, ..SceneCounts::default() });
@@ -240,7 +246,7 @@ mod tests {
         assert!(s.contains("2 frames; scene: 2000 triangles in 4 instances with 1 passes, 5 emitter triangles, 1.5 BVHs built and 0.5 refitted per frame"), "{s}");
         assert!(s.contains("2000000 shadow (400000 to the sky, 25.0 % of them unoccluded)"), "{s}");
         assert!(s.contains("per ray: 10.0 nodes, 2.0 triangle tests"), "{s}");
-        assert!(s.contains("tracing pass 1.000 ms per frame; Mrays/s: 1000.0 primary, 2000.0 shadow, 500.0 diffuse, 0.0 specular, 3500.0 all"), "{s}");
+        assert!(s.contains("tracing pass 1.000 ms per frame (0.200 ms of it the gradient pass); Mrays/s: 1000.0 primary, 2000.0 shadow, 500.0 diffuse, 0.0 specular, 3500.0 all"), "{s}");
         assert!(s.contains("acceleration structures per frame: 2.000 ms CPU, 0.500 ms GPU"), "{s}");
         t.add(frame, None);
         let s = t.summary();
