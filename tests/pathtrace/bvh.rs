@@ -16,7 +16,8 @@ use glrt::render::raster::device::{Buffer, Device};
 use glrt::render::trace::bindings;
 use glrt::render::trace::bvh::cpu::{self, Instance, Scene};
 use glrt::render::trace::bvh::{Blas, GpuNode, GpuTriangle, Layout, Tlas};
-use glrt::render::trace::shader_constants::INSTANCE_ALPHA_TESTED;
+use glrt::render::trace::gpu_types::GpuInstance;
+use glrt::render::trace::shader_constants::{INSTANCE_ALPHA_TESTED, NO_PREVIOUS_TRIANGLES};
 
 /// Bindings of the test shader's rays and results.
 const RAYS: u32 = 15;
@@ -71,7 +72,7 @@ struct World {
     instances: Vec<Instance>,
     /// The GPU's BLAS nodes in the layout of `layout`.
     gpu_nodes: Vec<u8>,
-    /// `Instance` records of `instance.glsl` (160 bytes each), with the BLAS roots of `layout`.
+    /// `Instance` records of `instance.glsl` ([`GpuInstance`]), with the BLAS roots of `layout`.
     instance_words: Vec<u32>,
     layout: Layout,
 }
@@ -88,11 +89,21 @@ impl World {
             triangles.extend_from_slice(&blas.triangles);
             bounds.push(blas.bounds.transformed(object_to_eye));
             let inst = Instance::new(object_to_eye, binary_root, first, *alpha);
-            let rows = cpu::affine_rows(object_to_eye);
-            for row in rows.iter().chain(&inst.eye_to_object).chain(&rows) {
-                instance_words.extend(row.to_array().map(f32::to_bits));
-            }
-            instance_words.extend([root, first, if *alpha { INSTANCE_ALPHA_TESTED } else { 0 }, 0]);
+            let rows = cpu::affine_rows(object_to_eye).map(|r| r.to_array());
+            let record = GpuInstance {
+                object_to_eye: rows,
+                eye_to_object: inst.eye_to_object.map(|r| r.to_array()),
+                previous_object_to_eye: rows,
+                blas_root: root,
+                first_triangle: first,
+                flags: if *alpha { INSTANCE_ALPHA_TESTED } else { 0 },
+                material: 0,
+                previous_triangles: NO_PREVIOUS_TRIANGLES,
+                pad0: 0,
+                pad1: 0,
+                pad2: 0,
+            };
+            instance_words.extend_from_slice(bytemuck::cast_slice(&[record]));
             instances.push(inst);
         }
         World { tlas: Tlas::build(&bounds, layout), nodes, triangles, instances, gpu_nodes, instance_words, layout }
