@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use super::class::{MaterialOverride, SurfaceLighting};
+use super::class::MaterialOverride;
 use super::{RasterState, TextureRef, TextureUnit};
 
 /// Texture units a chunk carries (units 0 and 1: a surface texture and a lightmap or detail
@@ -15,8 +15,8 @@ pub const CHUNK_UNITS: usize = 2;
 /// How a chunk's triangles are shaded besides their textures and material: the state of the
 /// draw that offered the chunk's first triangle. The static world's material key hashes the
 /// parts of it that split chunks (alpha test function, culling, lighting on or off, texture
-/// environments, light units, lighting); the rest (the lit material's colours, the alpha
-/// reference) is that draw's.
+/// environments, light units); the rest (the lit material's colours, the alpha reference) is
+/// that draw's.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct ChunkShading {
     /// Raster state of the draw.
@@ -26,9 +26,6 @@ pub struct ChunkShading {
     /// The units whose texture holds baked light (bit `u`: unit `u`), as
     /// [`super::class::Instance::light_units`] of the draw.
     pub light_units: u8,
-    /// Where the triangles' light comes from: `Traced`, or `Baked` (light the game baked in a
-    /// unit or in the colours); [`super::class::Instance::lighting`] of the draw.
-    pub lighting: SurfaceLighting,
 }
 
 /// A piece of the persistent static world: world-space triangles of one material, stable

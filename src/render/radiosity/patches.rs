@@ -31,7 +31,6 @@ use crate::frame::state::Winding;
 use crate::frame::world::StaticChunk;
 use crate::render::trace::chunks;
 use crate::render::trace::material::MaterialDefaults;
-use crate::render::trace::settings::Lightmaps;
 use crate::render::trace::shader_constants::MATERIAL_LAYERS;
 use crate::render::trace::scene::srgb_to_linear;
 use crate::render::trace::texels::average_color;
@@ -124,7 +123,7 @@ pub fn build(chunks: &[Arc<StaticChunk>], patch_size: f32) -> Patches {
         let texture = chunks::texture(chunk, 0).map_or(Vec3::ONE, |t| {
             *averages.entry((t.id, t.version)).or_insert_with(|| average_color(&t.content).map_or(Vec3::ONE, |w| linear(unpack(w))))
         });
-        let material = chunks::material(chunk, [None; MATERIAL_LAYERS], &MaterialDefaults::default(), Lightmaps::default());
+        let material = chunks::material(chunk, [None; MATERIAL_LAYERS], &MaterialDefaults::default());
         let own_emission = Vec3::new(material.emission[0], material.emission[1], material.emission[2]);
         let clockwise = chunk.shading.state.front_face == Winding::Cw;
         for (t, corners) in chunk.positions.chunks_exact(3).enumerate() {

@@ -8,10 +8,9 @@
 //!   whose modelview is the view.
 //! - **Shading.** A chunk is shaded as a draw of its triangles with the chunk's draw state
 //!   ([`crate::frame::world::ChunkShading`]) would be ([`scene::geometry`],
-//!   [`material::material`]): a surface without passes, its light traced or baked as the
-//!   draw's was (a baked chunk emits its raster colour); the textures of units 0 and 1 with
-//!   their environments and the units that hold baked light (a lightmap on unit 1 is a
-//!   baked-light layer, as it is of the draw), the `glrt.toml` material,
+//!   [`material::material`]): a surface without passes whose light is traced; the textures of
+//!   units 0 and 1 with their environments and the units that hold baked light (a lightmap
+//!   on unit 1 is a baked-light layer, as it is of the draw), the `glrt.toml` material,
 //!   the alpha test, and as base colour the primary colour the chunk keeps per corner (Quake 3
 //!   draws lightmapped world surfaces white, its vertex-lit ones with baked light in the
 //!   colour: either way what the draw itself would be traced with), or the lit material's
@@ -83,10 +82,10 @@ pub fn geometry(chunk: &StaticChunk) -> Geometry {
     scene::geometry(&Surface { base: &as_draw(chunk, true), passes: Vec::new() })
 }
 
-/// The material of `chunk`, whose [`textures`] are `textures` in the texel pool; a baked
-/// chunk is traced as `lightmaps` says.
-pub fn material(chunk: &StaticChunk, textures: [Option<u32>; MATERIAL_LAYERS], defaults: &MaterialDefaults, lightmaps: Lightmaps) -> GpuMaterial {
-    material::material(&Surface { base: &as_draw(chunk, false), passes: Vec::new() }, textures, defaults, lightmaps)
+/// The material of `chunk`, whose [`textures`] are `textures` in the texel pool.
+pub fn material(chunk: &StaticChunk, textures: [Option<u32>; MATERIAL_LAYERS], defaults: &MaterialDefaults) -> GpuMaterial {
+    // The lighting of a chunk is traced: how baked surfaces are traced does not matter.
+    material::material(&Surface { base: &as_draw(chunk, false), passes: Vec::new() }, textures, defaults, Lightmaps::default())
 }
 
 /// `chunk` as the draw of its triangles in the world frame: its state, textures, light units,
@@ -114,7 +113,6 @@ fn as_draw(chunk: &StaticChunk, vertices: bool) -> Draw {
             material: chunk.material,
             in_static_world: true,
             light_units: chunk.shading.light_units,
-            lighting: chunk.shading.lighting,
             ..Instance::default()
         }),
         ..Draw::default()
@@ -139,8 +137,7 @@ mod tests {
     use crate::frame::state::CompareFunc;
     use crate::frame::world::ChunkShading;
     use crate::frame::texture::{EnvMode, TextureEnv};
-    use crate::frame::class::SurfaceLighting;
-    use crate::render::trace::shader_constants::{LAYER_BAKED_LIGHT, LAYER_OFF, MATERIAL_BAKED, NO_TEXTURE};
+    use crate::render::trace::shader_constants::{LAYER_BAKED_LIGHT, LAYER_OFF, NO_TEXTURE};
 
     fn chunk(colors: Vec<[u8; 4]>, state: RasterState) -> StaticChunk {
         StaticChunk {
@@ -151,7 +148,7 @@ mod tests {
             positions: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [5.0, 0.0, 0.0], [6.0, 0.0, 0.0], [5.0, 1.0, 0.0]],
             texcoords: [vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.5], [0.5, 0.5], [0.5, 0.5]], Vec::new()],
             colors,
-            shading: ChunkShading { state: Arc::new(state), texture_units: [Some(TextureUnit::default()), None], light_units: 0, lighting: SurfaceLighting::Traced },
+            shading: ChunkShading { state: Arc::new(state), texture_units: [Some(TextureUnit::default()), None], light_units: 0 },
         }
     }
 
@@ -172,7 +169,7 @@ mod tests {
         assert_eq!(g.triangles[1][1], glam::Vec3::new(6.0, 0.0, 0.0));
         let corner = g.attributes[1].corner[0];
         assert_eq!((corner.uv[0], corner.color, corner.normal), ([0.5, 0.5], scene::pack_unorm8([0.0, 0.0, 1.0, 1.0]), 0));
-        let m = material(&c, POOLED, &MaterialDefaults::default(), Lightmaps::Keep);
+        let m = material(&c, POOLED, &MaterialDefaults::default());
         assert_eq!((m.layer[0].texture, m.roughness, m.metalness, m.alpha_func, m.alpha_ref), (4, 0.3, 1.0, CompareFunc::Greater as u32, 0.5));
         assert_eq!((m.layer[1].texture, m.layer[1].role), (NO_TEXTURE, LAYER_OFF), "no unit 1");
 
@@ -188,14 +185,13 @@ mod tests {
         assert_eq!((lit.attributes[0].corner[1].color, lit.attributes[0].corner[1].normal), (scene::pack_unorm8([1.0; 4]), 0));
         let red = geometry(&chunk(vec![[255, 0, 0, 255]; 6], lit_state));
         assert_eq!(red.attributes[1].corner[0].color, scene::pack_unorm8([1.0, 0.0, 0.0, 1.0]));
-        assert_eq!(material(&c, [None; MATERIAL_LAYERS], &MaterialDefaults::default(), Lightmaps::Keep).layer[0].texture, NO_TEXTURE);
+        assert_eq!(material(&c, [None; MATERIAL_LAYERS], &MaterialDefaults::default()).layer[0].texture, NO_TEXTURE);
     }
 
     /// A chunk of a draw with a lightmap on unit 1 is shaded as that draw: the same textures,
-    /// material layers (unit 1 a baked-light layer), lighting (GL-lit, or baked: emitting its
-    /// raster colour unless lightmaps are ignored) and corners (unit 1's coordinates).
+    /// material layers (unit 1 a baked-light layer) and corners (unit 1's coordinates).
     #[test]
-    fn a_lightmapped_chunk_has_the_layers_and_lighting_of_its_draw() {
+    fn a_lightmapped_chunk_has_the_layers_of_its_draw() {
         let mut c = chunk(Vec::new(), RasterState::default());
         let lightmap = TextureUnit { env: TextureEnv { mode: EnvMode::Modulate, ..TextureEnv::default() }, ..TextureUnit::default() };
         c.textures = [Some(texture_ref(7)), Some(texture_ref(8))];
@@ -219,20 +215,10 @@ mod tests {
         let ids = |t: [Option<&TextureRef>; MATERIAL_LAYERS]| t.map(|t| t.map(|t| t.id));
         assert_eq!(ids(textures(&c)), [Some(7), Some(8), None, None, None, None]);
         assert_eq!(ids(textures(&c)), ids(material::textures(&surface)));
-        for lighting in [SurfaceLighting::Traced, SurfaceLighting::Baked] {
-            c.shading.lighting = lighting;
-            draw.instance = draw.instance.map(|i| Instance { lighting, ..i });
-            let surface = Surface { base: &draw, passes: Vec::new() };
-            for lightmaps in [Lightmaps::Keep, Lightmaps::Ignore] {
-                let m = material(&c, POOLED, &MaterialDefaults::default(), lightmaps);
-                assert_eq!((m.layer[1].texture, m.layer[1].role), (5, LAYER_BAKED_LIGHT));
-                let baked = lighting == SurfaceLighting::Baked && lightmaps == Lightmaps::Keep;
-                assert_eq!(m.flags & MATERIAL_BAKED != 0, baked, "{lighting:?}, {lightmaps:?}");
-                let drawn = material::material(&surface, POOLED, &MaterialDefaults::default(), lightmaps);
-                assert_eq!(bytemuck::bytes_of(&m), bytemuck::bytes_of(&drawn), "{lighting:?}, {lightmaps:?}");
-            }
-        }
-        let surface = Surface { base: &draw, passes: Vec::new() };
+        let m = material(&c, POOLED, &MaterialDefaults::default());
+        assert_eq!((m.layer[1].texture, m.layer[1].role), (5, LAYER_BAKED_LIGHT));
+        let drawn = material::material(&surface, POOLED, &MaterialDefaults::default(), Lightmaps::default());
+        assert_eq!(bytemuck::bytes_of(&m), bytemuck::bytes_of(&drawn));
         let g = geometry(&c);
         assert_eq!(g.attributes[1].corner[2].uv, [[0.5, 0.5], [5.0 / 8.0, 1.0 - 5.0 / 16.0]]);
         assert_eq!(g, scene::geometry(&surface));

@@ -4,12 +4,12 @@
 //! scene buffers take from it (geometry when new, textures, material).
 //!
 //! Chunks carry the base's texture units 0 and 1 (textures, coordinates, environments and
-//! which of them hold baked light) and whether its light is traced or baked: a lightmapped
-//! world, GL-lit or baked, is traced as chunks. A surface that needs more ([`own_instance`]:
-//! passes, or light in its vertex colours that changes, `VertexLit`) is traced as drawn even
+//! which of them hold baked light: a lightmapped world is traced as chunks), traced as a
+//! surface whose light is traced. A surface that needs more ([`own_instance`]: passes, or a
+//! lighting other than traced: baked, or lit by its vertex colours) is traced as drawn even
 //! when the world holds its triangles, and the chunks of its material (the same textures,
 //! environments and draw state) are left out: that geometry is traced through its draws,
-//! without anti-culling, until chunks carry passes.
+//! without anti-culling, until chunks carry passes and lighting.
 
 use glam::Mat4;
 
@@ -48,10 +48,10 @@ pub struct Item<'a> {
 }
 
 /// Whether `surface` cannot be traced through the static world's chunks: it has passes, or
-/// it is a vertex-lit model (see the module doc).
+/// its light is not traced (see the module doc).
 pub fn own_instance(surface: &Surface) -> bool {
-    let vertex_lit = surface.base.instance.is_some_and(|i| i.lighting == SurfaceLighting::VertexLit);
-    !surface.passes.is_empty() || vertex_lit
+    let traced_light = surface.base.instance.is_none_or(|i| i.lighting == SurfaceLighting::Traced);
+    !surface.passes.is_empty() || !traced_light
 }
 
 /// What chunks split materials by, of `draw`: the textures (when enabled) and environments of
@@ -115,7 +115,7 @@ impl<'a> Item<'a> {
     pub fn material(&self, textures: [Option<u32>; MATERIAL_LAYERS], defaults: &MaterialDefaults, lightmaps: Lightmaps) -> GpuMaterial {
         match &self.source {
             Source::Surface(s) => material::material(s, textures, defaults, lightmaps),
-            Source::Chunk(c) => chunks::material(c, textures, defaults, lightmaps),
+            Source::Chunk(c) => chunks::material(c, textures, defaults),
         }
     }
 
@@ -145,7 +145,6 @@ mod tests {
     use super::*;
     use crate::frame::class::{DrawClass, Instance, View};
     use crate::frame::world::ChunkShading;
-    use crate::render::trace::shader_constants::MATERIAL_BAKED;
 
     /// A static draw of one triangle, in the static world, textured with texture `id` on
     /// unit 0, lit as `lighting` says.
@@ -182,26 +181,21 @@ mod tests {
             positions: vec![[0.0; 3]; 3],
             texcoords: [Vec::new(), Vec::new()],
             colors: Vec::new(),
-            shading: ChunkShading {
-                state: draw.state.clone(),
-                texture_units: [unit(0), unit(1)],
-                light_units: draw.instance.map_or(0, |i| i.light_units),
-                lighting: draw.instance.map_or(SurfaceLighting::Traced, |i| i.lighting),
-            },
+            shading: ChunkShading { state: draw.state.clone(), texture_units: [unit(0), unit(1)], light_units: draw.instance.map_or(0, |i| i.light_units) },
         })
     }
 
     #[test]
     fn surfaces_chunks_cannot_shade_are_traced_as_drawn_and_their_chunks_left_out() {
         let traced = world_draw(1, SurfaceLighting::Traced);
-        let vertex_lit = world_draw(2, SurfaceLighting::VertexLit);
-        let vertex_lit_too = world_draw(2, SurfaceLighting::VertexLit);
+        let baked = world_draw(2, SurfaceLighting::Baked);
+        let baked_too = world_draw(2, SurfaceLighting::Baked);
         let lit_lightmapped = lightmapped(world_draw(3, SurfaceLighting::Traced), 4);
-        let other_lightmap = lightmapped(world_draw(2, SurfaceLighting::Baked), 5);
-        let chunks = [chunk_of(&traced, 10), chunk_of(&vertex_lit, 11), chunk_of(&lit_lightmapped, 12), chunk_of(&other_lightmap, 13)];
+        let other_lightmap = lightmapped(world_draw(2, SurfaceLighting::Traced), 5);
+        let chunks = [chunk_of(&traced, 10), chunk_of(&baked, 11), chunk_of(&lit_lightmapped, 12), chunk_of(&other_lightmap, 13)];
         let frame = Frame { view: Some(View::default()), static_world: chunks.to_vec().into(), ..Frame::default() };
-        let surfaces = [&traced, &vertex_lit, &vertex_lit_too, &lit_lightmapped, &other_lightmap].map(|base| Surface { base, passes: Vec::new() }).to_vec();
-        assert_eq!(surfaces.iter().map(own_instance).collect::<Vec<_>>(), [false, true, true, false, false], "vertex-lit: own instances; a second unit, baked light: chunks");
+        let surfaces = [&traced, &baked, &baked_too, &lit_lightmapped].map(|base| Surface { base, passes: Vec::new() }).to_vec();
+        assert_eq!(surfaces.iter().map(own_instance).collect::<Vec<_>>(), [false, true, true, false], "light not traced: own instances; a second unit: chunks");
         let (items, covered) = gather(&frame, surfaces, None);
         let what: Vec<String> = items
             .iter()
@@ -210,11 +204,9 @@ mod tests {
                 Source::Chunk(c) => format!("chunk {}", c.id),
             })
             .collect();
-        assert_eq!(what, ["draw 2", "draw 2", "chunk 10", "chunk 12", "chunk 13"], "the vertex-lit draws are traced, their chunk is not; a chunk with another unit 1 is another material");
-        assert_eq!(covered, 3, "the other draws are the world's");
+        assert_eq!(what, ["draw 2", "draw 2", "chunk 10", "chunk 12", "chunk 13"], "the baked draws are traced, their chunk is not; a chunk with another unit 1 is another material");
+        assert_eq!(covered, 2, "the traced draws are the world's");
         let lightmap_layers = items[3].textures().map(|t| t.map(|t| t.id));
         assert_eq!(lightmap_layers[..2], [Some(3), Some(4)], "the chunk's textures are its draw's");
-        let baked = items[4].material([Some(0), Some(1), None, None, None, None], &MaterialDefaults::default(), Lightmaps::Keep);
-        assert_ne!(baked.flags & MATERIAL_BAKED, 0, "a baked chunk is traced baked");
     }
 }

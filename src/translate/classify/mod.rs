@@ -26,17 +26,17 @@
 //! 5. the static world ([`world_feed`] → `static_world`): every traced draw not tagged
 //!    `dynamic` whose vertices are in the world frame (model ≈ identity) or which is a
 //!    `Static` instance (taken to the world by its model) is offered as world-space
-//!    triangles, unless the chunks would lose what it is: a draw with layers, a draw lit by
-//!    its vertex colours (`VertexLit`: its light changes from frame to frame), or whose first
-//!    texture holds light (the static world's radiosity takes a chunk's first texture as its
-//!    albedo). Chunks carry the textures and coordinates of units 0 and 1, which of them hold
-//!    light, whether the light is traced or baked (a lightmapped world, baked or GL-lit, is
-//!    offered: the tracer shades its chunks as the draws), the colours and the draw state;
-//!    not the layers (other draws of the frame): such draws are traced as drawn (without
+//!    triangles, unless the chunks would lose what it is: a draw with layers, a draw whose
+//!    lighting is not `Traced` (baked, or lit by its vertex colours), or whose first texture
+//!    holds light (the static world's radiosity takes a chunk's first texture as its albedo).
+//!    Chunks carry the textures and coordinates of units 0 and 1, which of them hold light
+//!    (a traced-lit draw with a lightmap on unit 1 is offered: the tracer shades its chunks
+//!    as the draw), the colours and the draw state; not the layers (other draws of the frame)
+//!    nor a lighting other than `Traced`: such draws are traced as drawn (without
 //!    anti-culling), and their triangles offered in earlier frames leave the world as any
-//!    triangle not drawn does. The units that hold light and the lighting are in the world's
-//!    material key. A camera cut clears the world first; an instance whose triangles are all
-//!    in the world is marked ([`Instance::in_static_world`]);
+//!    triangle not drawn does. The units that hold light are in the material key. A camera
+//!    cut clears the world first; an instance whose triangles are all in the world is marked
+//!    ([`Instance::in_static_world`]);
 //! 6. statistics ([`crate::frame::class::FrameStats`]).
 
 pub mod config;
@@ -62,7 +62,6 @@ use matching::{Found, Matcher, Probe, Record};
 use routing::{Before, Tags};
 use static_world::StaticWorld;
 use view::{ViewInput, ViewTracker, same_place};
-use world_feed::WorldMaterial;
 
 /// What the classifier keeps of a traced draw while it works on a frame.
 #[derive(Clone, Copy, Debug, Default)]
@@ -177,14 +176,14 @@ impl Classifier {
             let class = traced_class(t.tags, f, view.as_ref(), &draw.modelview, recovered.cut);
             let colours = &mut self.colours;
             let lighting = lighting::surface_lighting(draw, class, t.light_units, t.baked_layer, || colours.changed(f.id, &draw.vertices.color.values, frame.number));
-            // Chunks carry units 0 and 1, the colours and traced or baked light, not layers nor
-            // light in changing colours (rule 5).
+            // Chunks carry units 0 and 1 and the colours, not layers nor a lighting other than
+            // traced (rule 5).
             let unit_light = lighting::first_unit(draw).is_some_and(|u| t.light_units >> u & 1 != 0);
-            let chunks_hold_it = self.layers.layers_of(k) == 0 && lighting != SurfaceLighting::VertexLit && !unit_light;
+            let chunks_hold_it = self.layers.layers_of(k) == 0 && lighting == SurfaceLighting::Traced && !unit_light;
             let model = model_of(inverse.as_ref(), draw, f, class == DrawClass::Static && !t.tags.static_ && !recovered.cut);
             let in_world = chunks_hold_it && !t.tags.dynamic && (class == DrawClass::Static || model.as_ref().is_some_and(view::is_identity));
             let offered = match model {
-                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, WorldMaterial { key: t.material_key, material: t.material, lighting, light_units: t.light_units })),
+                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material_key, t.material, t.light_units)),
                 _ => None,
             };
             if class == DrawClass::Static && f.matched == Match::New && offered.is_none() {
@@ -760,10 +759,9 @@ mod tests {
             let expected = if number == 0 { [Traced, Baked, Baked, Baked, Traced] } else { [Traced, Baked, VertexLit, VertexLit, Traced] };
             assert_eq!(lighting, expected, "frame {number}");
             assert_eq!(f.draws[2].class, DrawClass::Static, "same geometry, same place");
-            // Chunks hold traced and baked light, not light in changing colours: the standing
-            // model, baked in frame 0, is vertex-lit from frame 1 on and never joins.
+            // Chunks do not say how a surface is lit: only the traced-lit ones are offered.
             let in_world: Vec<bool> = f.draws.iter().map(|d| d.instance.unwrap().in_static_world).collect();
-            assert_eq!(in_world, [number > 0, number > 0, false, false, number > 0], "frame {number}");
+            assert_eq!(in_world, [number > 0, false, false, false, number > 0], "frame {number}");
         }
     }
 

@@ -981,8 +981,7 @@ mod tests {
         let colors: Vec<[u8; 4]> = (0..positions.len()).map(|i| [i as u8, 0, 255, 255]).collect();
         let state = crate::frame::RasterState { depth_write: true, ..Default::default() };
         let unit = Some(crate::frame::TextureUnit::default());
-        let lighting = crate::frame::class::SurfaceLighting::Baked;
-        let shading = ChunkShading { state: Arc::new(state), texture_units: [unit, unit], light_units: 0b10, lighting };
+        let shading = ChunkShading { state: Arc::new(state), texture_units: [unit, unit], light_units: 0b10 };
         let texture = |id| TextureRef { id, version: 1, content: Arc::default() };
         let (surface, lightmap) = (texture(3), texture(4));
         let mut last = None;

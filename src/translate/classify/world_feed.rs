@@ -2,15 +2,14 @@
 //! traced draw, built in reused buffers and offered to [`StaticWorld::offer`], with what a
 //! renderer shades them with (the textures and coordinates of units 0 and 1, after their
 //! texture matrices; base colours when not all white — the vertex colours, or a lit draw's
-//! diffuse material colour — and the draw state with how its light is traced).
+//! diffuse material colour — and the draw state with the units that hold baked light).
 
 use glam::{Mat4, Vec4};
 
 use super::static_world::{Offered, StaticWorld, WorldTriangles};
-use super::keys;
 use crate::frame::Draw;
 use crate::frame::state::Lighting;
-use crate::frame::class::{MaterialOverride, SurfaceLighting};
+use crate::frame::class::MaterialOverride;
 use crate::frame::world::{CHUNK_UNITS, ChunkShading};
 
 /// Buffers reused from draw to draw (no allocation once they have grown).
@@ -19,19 +18,6 @@ pub struct WorldFeed {
     positions: Vec<[f32; 3]>,
     texcoords: [Vec<[f32; 2]>; CHUNK_UNITS],
     colors: Vec<[u8; 4]>,
-}
-
-/// What the world keeps of a draw's material besides its textures and state.
-#[derive(Clone, Copy, Debug)]
-pub struct WorldMaterial {
-    /// The draw's material key (textures, state, `glrt.toml` material, light units).
-    pub key: u64,
-    /// Its `glrt.toml` parameters.
-    pub material: MaterialOverride,
-    /// How its light is traced (`Traced` or `Baked`; the world splits by it too).
-    pub lighting: SurfaceLighting,
-    /// Its units that hold baked light.
-    pub light_units: u8,
 }
 
 /// `c` as unorm8 RGBA.
@@ -46,8 +32,10 @@ pub fn lit_diffuse(draw: &Draw) -> Option<[f32; 4]> {
 }
 
 impl WorldFeed {
-    /// Offers the triangles of `draw`, taken to the world by `model`, as material `material`.
-    pub fn offer(&mut self, world: &mut StaticWorld, draw: &Draw, model: &Mat4, material: WorldMaterial) -> Offered {
+    /// Offers the triangles of `draw`, taken to the world by `model`, as material
+    /// `material_key` with the parameters `material`, its units `light_units` holding baked
+    /// light.
+    pub fn offer(&mut self, world: &mut StaticWorld, draw: &Draw, model: &Mat4, material_key: u64, material: MaterialOverride, light_units: u8) -> Offered {
         self.positions.clear();
         self.colors.clear();
         let units: [_; CHUNK_UNITS] = std::array::from_fn(|u| {
@@ -82,10 +70,10 @@ impl WorldFeed {
         let texcoords = std::array::from_fn(|u| (self.texcoords[u].len() == self.positions.len()).then_some(&self.texcoords[u][..]));
         let colors = (self.colors.len() == self.positions.len()).then_some(&self.colors[..]);
         let texture_units = std::array::from_fn(|u| draw.texture_units.get(u).copied().flatten());
-        let shading = ChunkShading { state: draw.state.clone(), texture_units, light_units: material.light_units, lighting: material.lighting };
+        let shading = ChunkShading { state: draw.state.clone(), texture_units, light_units };
         world.offer(WorldTriangles {
-            material_key: keys::combine(&[material.key, material.lighting as u64]),
-            material: material.material,
+            material_key,
+            material,
             textures: std::array::from_fn(|u| draw.textures.get(u).and_then(Option::as_ref)),
             positions: &self.positions,
             texcoords,
