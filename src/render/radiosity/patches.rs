@@ -31,6 +31,7 @@ use crate::frame::state::Winding;
 use crate::frame::world::StaticChunk;
 use crate::render::trace::chunks;
 use crate::render::trace::material::MaterialDefaults;
+use crate::render::trace::shader_constants::MATERIAL_LAYERS;
 use crate::render::trace::scene::srgb_to_linear;
 use crate::render::trace::texels::average_color;
 
@@ -84,14 +85,14 @@ type Key = ([i32; 3], i64, [i32; 3]);
 pub fn chunk_hash(chunk: &StaticChunk) -> u64 {
     let mut h = Xxh3::new();
     h.update(bytemuck::cast_slice(&chunk.positions));
-    h.update(bytemuck::cast_slice(&chunk.texcoords));
+    h.update(bytemuck::cast_slice(&chunk.texcoords[0]));
     h.update(bytemuck::cast_slice(&chunk.colors));
     h.update(&chunk.material_key.to_le_bytes());
     let m = &chunk.material;
     for x in [m.roughness, m.metalness, m.emissive] {
         h.update(&x.to_le_bytes());
     }
-    if let Some(t) = chunks::texture(chunk) {
+    if let Some(t) = chunks::texture(chunk, 0) {
         h.update(&t.id.to_le_bytes());
         h.update(&t.version.to_le_bytes());
     }
@@ -119,10 +120,10 @@ pub fn build(chunks: &[Arc<StaticChunk>], patch_size: f32) -> Patches {
     let mut averages: HashMap<(u32, u64), Vec3> = HashMap::new();
     let mut cells: BTreeMap<Key, Vec<Fragment>> = BTreeMap::new();
     for (_, chunk) in ordered {
-        let texture = chunks::texture(chunk).map_or(Vec3::ONE, |t| {
+        let texture = chunks::texture(chunk, 0).map_or(Vec3::ONE, |t| {
             *averages.entry((t.id, t.version)).or_insert_with(|| average_color(&t.content).map_or(Vec3::ONE, |w| linear(unpack(w))))
         });
-        let material = chunks::material(chunk, None, &MaterialDefaults::default());
+        let material = chunks::material(chunk, [None; MATERIAL_LAYERS], &MaterialDefaults::default());
         let own_emission = Vec3::new(material.emission[0], material.emission[1], material.emission[2]);
         let clockwise = chunk.shading.state.front_face == Winding::Cw;
         for (t, corners) in chunk.positions.chunks_exact(3).enumerate() {
@@ -230,9 +231,9 @@ mod tests {
             id,
             material_key: 1,
             material: MaterialOverride { emissive, ..MaterialOverride::default() },
-            texture: None,
+            textures: [None, None],
             positions: p.to_vec(),
-            texcoords: Vec::new(),
+            texcoords: [Vec::new(), Vec::new()],
             colors: vec![color; 6],
             shading: ChunkShading::default(),
         })

@@ -21,9 +21,9 @@ pub fn quad(id: u64, origin: Vec3, u: Vec3, v: Vec3) -> Arc<StaticChunk> {
         id,
         material_key: 1,
         material: MaterialOverride::default(),
-        texture: None,
+        textures: [None, None],
         positions,
-        texcoords: Vec::new(),
+        texcoords: [Vec::new(), Vec::new()],
         colors: Vec::new(),
         shading: ChunkShading::default(),
     })

@@ -3,12 +3,13 @@
 //! ([`super::chunks`]); for each, the key of its geometry in the GPU cache and what the
 //! scene buffers take from it (geometry when new, textures, material).
 //!
-//! Chunks carry the base's unit 0 alone, traced as a surface whose light is traced. A surface
-//! that needs more ([`own_instance`]: passes, a second unit, light that is not traced) is
-//! traced as drawn even when the world holds its triangles, and the chunks of its material
-//! (the same unit-0 texture, environment and draw state) are left out, together with every
-//! chunk that holds a draw's second unit: that geometry is traced through its draws, without
-//! anti-culling, until chunks carry passes and lighting.
+//! Chunks carry the base's texture units 0 and 1 (textures, coordinates, environments and
+//! which of them hold baked light: a lightmapped world is traced as chunks), traced as a
+//! surface whose light is traced. A surface that needs more ([`own_instance`]: passes, or a
+//! lighting other than traced: baked, or lit by its vertex colours) is traced as drawn even
+//! when the world holds its triangles, and the chunks of its material (the same textures,
+//! environments and draw state) are left out: that geometry is traced through its draws,
+//! without anti-culling, until chunks carry passes and lighting.
 
 use glam::Mat4;
 
@@ -17,11 +18,11 @@ use super::gpu_types::GpuMaterial;
 use super::material::{self, MaterialDefaults};
 use super::scene::{self, Geometry};
 use super::settings::Lightmaps;
-use super::shader_constants::{MATERIAL_LAYERS, TRACED_UNITS};
+use super::shader_constants::MATERIAL_LAYERS;
 use super::surfaces::Surface;
 use crate::frame::class::SurfaceLighting;
 use crate::frame::state::Winding;
-use crate::frame::world::StaticChunk;
+use crate::frame::world::{CHUNK_UNITS, StaticChunk};
 use crate::frame::{Draw, Frame, RasterState, TextureRef, TextureUnit};
 
 /// Where an instance's geometry comes from.
@@ -46,23 +47,24 @@ pub struct Item<'a> {
     pub previous_object_to_eye: Mat4,
 }
 
-/// Whether `surface` cannot be traced through the static world's chunks (see the module doc).
+/// Whether `surface` cannot be traced through the static world's chunks: it has passes, or
+/// its light is not traced (see the module doc).
 pub fn own_instance(surface: &Surface) -> bool {
-    let base = surface.base;
-    let traced_light = base.instance.is_none_or(|i| i.lighting == SurfaceLighting::Traced && i.light_units == 0);
-    !surface.passes.is_empty() || !traced_light || (1..TRACED_UNITS).any(|u| scene::enabled(base, u))
+    let traced_light = surface.base.instance.is_none_or(|i| i.lighting == SurfaceLighting::Traced);
+    !surface.passes.is_empty() || !traced_light
 }
 
-/// What chunks split materials by, of `draw`: its unit-0 texture (when enabled), unit-0
-/// environment and draw state.
-fn material_of(draw: &Draw) -> (Option<u32>, Option<TextureUnit>, &RasterState) {
-    let texture = draw.textures.first().and_then(Option::as_ref).filter(|_| scene::enabled(draw, 0)).map(|t| t.id);
-    (texture, draw.texture_units.first().copied().flatten(), &draw.state)
+/// What chunks split materials by, of `draw`: the textures (when enabled) and environments of
+/// its carried units, and its draw state.
+fn material_of(draw: &Draw) -> ([Option<u32>; CHUNK_UNITS], [Option<TextureUnit>; CHUNK_UNITS], &RasterState) {
+    let textures = std::array::from_fn(|u| draw.textures.get(u).and_then(Option::as_ref).filter(|_| scene::enabled(draw, u)).map(|t| t.id));
+    (textures, std::array::from_fn(|u| draw.texture_units.get(u).copied().flatten()), &draw.state)
 }
 
 /// Whether `chunk` holds triangles of the material of `draw`.
 fn chunk_of_material(chunk: &StaticChunk, draw: &Draw) -> bool {
-    (chunks::texture(chunk).map(|t| t.id), chunk.shading.texture_unit, &*chunk.shading.state) == material_of(draw)
+    let textures = std::array::from_fn(|u| chunks::texture(chunk, u).map(|t| t.id));
+    (textures, chunk.shading.texture_units, &*chunk.shading.state) == material_of(draw)
 }
 
 /// The instances of `frame` whose traced surfaces are `surfaces`, and how many surfaces were
@@ -85,7 +87,7 @@ pub fn gather<'a>(frame: &'a Frame, surfaces: Vec<Surface<'a>>, previous_view: O
         items.push(Item { source: Source::Surface(surface), key, object_to_eye: draw.modelview, previous_object_to_eye: previous });
     }
     if let Some((view, list)) = world {
-        for chunk in list.iter().filter(|c| c.shading.second_unit.is_none() && !own.iter().any(|d| chunk_of_material(c, d))) {
+        for chunk in list.iter().filter(|c| !own.iter().any(|d| chunk_of_material(c, d))) {
             items.push(Item { source: Source::Chunk(chunk), key: chunks::key(chunk), object_to_eye: view, previous_object_to_eye: previous_view.unwrap_or(view) });
         }
     }
@@ -101,12 +103,11 @@ impl<'a> Item<'a> {
         }
     }
 
-    /// The textures it is shaded with, per layer ([`material::textures`]; chunks carry unit 0
-    /// only).
+    /// The textures it is shaded with, per layer ([`material::textures`], [`chunks::textures`]).
     pub fn textures(&self) -> [Option<&'a TextureRef>; MATERIAL_LAYERS] {
         match &self.source {
             Source::Surface(s) => material::textures(s),
-            Source::Chunk(c) => std::array::from_fn(|i| if i == 0 { chunks::texture(c) } else { None }),
+            Source::Chunk(c) => chunks::textures(c),
         }
     }
 
@@ -114,7 +115,7 @@ impl<'a> Item<'a> {
     pub fn material(&self, textures: [Option<u32>; MATERIAL_LAYERS], defaults: &MaterialDefaults, lightmaps: Lightmaps) -> GpuMaterial {
         match &self.source {
             Source::Surface(s) => material::material(s, textures, defaults, lightmaps),
-            Source::Chunk(c) => chunks::material(c, textures[0], defaults),
+            Source::Chunk(c) => chunks::material(c, textures, defaults),
         }
     }
 
@@ -161,17 +162,26 @@ mod tests {
         }
     }
 
+    /// `draw` with texture `id` on unit 1 too, which holds baked light.
+    fn lightmapped(mut draw: Draw, id: u32) -> Draw {
+        draw.textures.push(Some(crate::frame::TextureRef { id, version: 1, content: Arc::default() }));
+        draw.texture_units.push(Some(TextureUnit::default()));
+        draw.instance = draw.instance.map(|i| Instance { light_units: 0b10, ..i });
+        draw
+    }
+
     /// A chunk of the material of `draw`.
     fn chunk_of(draw: &Draw, id: u64) -> Arc<StaticChunk> {
+        let unit = |u: usize| draw.texture_units.get(u).copied().flatten();
         Arc::new(StaticChunk {
             id,
             material_key: id,
             material: Default::default(),
-            texture: draw.textures[0].clone(),
+            textures: std::array::from_fn(|u| draw.textures.get(u).cloned().flatten()),
             positions: vec![[0.0; 3]; 3],
-            texcoords: Vec::new(),
+            texcoords: [Vec::new(), Vec::new()],
             colors: Vec::new(),
-            shading: ChunkShading { state: draw.state.clone(), texture_unit: draw.texture_units[0], second_unit: None },
+            shading: ChunkShading { state: draw.state.clone(), texture_units: [unit(0), unit(1)], light_units: draw.instance.map_or(0, |i| i.light_units) },
         })
     }
 
@@ -180,12 +190,12 @@ mod tests {
         let traced = world_draw(1, SurfaceLighting::Traced);
         let baked = world_draw(2, SurfaceLighting::Baked);
         let baked_too = world_draw(2, SurfaceLighting::Baked);
-        let chunks = [chunk_of(&traced, 10), chunk_of(&baked, 11)];
-        let mut with_second_unit = (*chunk_of(&traced, 12)).clone();
-        with_second_unit.shading.second_unit = Some(TextureUnit::default());
-        let frame = Frame { view: Some(View::default()), static_world: vec![chunks[0].clone(), chunks[1].clone(), Arc::new(with_second_unit)].into(), ..Frame::default() };
-        let surfaces = [&traced, &baked, &baked_too].map(|base| Surface { base, passes: Vec::new() }).to_vec();
-        assert!(!own_instance(&surfaces[0]) && own_instance(&surfaces[1]));
+        let lit_lightmapped = lightmapped(world_draw(3, SurfaceLighting::Traced), 4);
+        let other_lightmap = lightmapped(world_draw(2, SurfaceLighting::Traced), 5);
+        let chunks = [chunk_of(&traced, 10), chunk_of(&baked, 11), chunk_of(&lit_lightmapped, 12), chunk_of(&other_lightmap, 13)];
+        let frame = Frame { view: Some(View::default()), static_world: chunks.to_vec().into(), ..Frame::default() };
+        let surfaces = [&traced, &baked, &baked_too, &lit_lightmapped].map(|base| Surface { base, passes: Vec::new() }).to_vec();
+        assert_eq!(surfaces.iter().map(own_instance).collect::<Vec<_>>(), [false, true, true, false], "light not traced: own instances; a second unit: chunks");
         let (items, covered) = gather(&frame, surfaces, None);
         let what: Vec<String> = items
             .iter()
@@ -194,7 +204,9 @@ mod tests {
                 Source::Chunk(c) => format!("chunk {}", c.id),
             })
             .collect();
-        assert_eq!(what, ["draw 2", "draw 2", "chunk 10"], "the baked draws are traced, their chunk and the two-unit chunk are not");
-        assert_eq!(covered, 1, "the traced draw is the world's");
+        assert_eq!(what, ["draw 2", "draw 2", "chunk 10", "chunk 12", "chunk 13"], "the baked draws are traced, their chunk is not; a chunk with another unit 1 is another material");
+        assert_eq!(covered, 2, "the traced draws are the world's");
+        let lightmap_layers = items[3].textures().map(|t| t.map(|t| t.id));
+        assert_eq!(lightmap_layers[..2], [Some(3), Some(4)], "the chunk's textures are its draw's");
     }
 }

@@ -28,13 +28,15 @@
 //!    `Static` instance (taken to the world by its model) is offered as world-space
 //!    triangles, unless the chunks would lose what it is: a draw with layers, a draw whose
 //!    lighting is not `Traced` (baked, or lit by its vertex colours), or whose first texture
-//!    holds light. Chunks carry that texture, unit 0's coordinates, the colours and the draw state,
-//!    not the layers (other draws of the frame), nor unit 1, nor how the surface is lit; such
-//!    draws are traced as drawn (without anti-culling), and their triangles offered in earlier
-//!    frames leave the world as any triangle not drawn does. A traced-lit draw whose second
-//!    unit holds light is offered: its chunks are its albedo, all the tracer takes of it.
-//!    A camera cut clears the world first; an instance whose triangles are all in the world
-//!    is marked ([`Instance::in_static_world`]);
+//!    holds light (the static world's radiosity takes a chunk's first texture as its albedo).
+//!    Chunks carry the textures and coordinates of units 0 and 1, which of them hold light
+//!    (a traced-lit draw with a lightmap on unit 1 is offered: the tracer shades its chunks
+//!    as the draw), the colours and the draw state; not the layers (other draws of the frame)
+//!    nor a lighting other than `Traced`: such draws are traced as drawn (without
+//!    anti-culling), and their triangles offered in earlier frames leave the world as any
+//!    triangle not drawn does. The units that hold light are in the material key. A camera
+//!    cut clears the world first; an instance whose triangles are all in the world is marked
+//!    ([`Instance::in_static_world`]);
 //! 6. statistics ([`crate::frame::class::FrameStats`]).
 
 pub mod config;
@@ -174,13 +176,14 @@ impl Classifier {
             let class = traced_class(t.tags, f, view.as_ref(), &draw.modelview, recovered.cut);
             let colours = &mut self.colours;
             let lighting = lighting::surface_lighting(draw, class, t.light_units, t.baked_layer, || colours.changed(f.id, &draw.vertices.color.values, frame.number));
-            // Chunks carry unit 0 and the colours, not layers nor how the surface is lit (rule 5).
+            // Chunks carry units 0 and 1 and the colours, not layers nor a lighting other than
+            // traced (rule 5).
             let unit_light = lighting::first_unit(draw).is_some_and(|u| t.light_units >> u & 1 != 0);
             let chunks_hold_it = self.layers.layers_of(k) == 0 && lighting == SurfaceLighting::Traced && !unit_light;
             let model = model_of(inverse.as_ref(), draw, f, class == DrawClass::Static && !t.tags.static_ && !recovered.cut);
             let in_world = chunks_hold_it && !t.tags.dynamic && (class == DrawClass::Static || model.as_ref().is_some_and(view::is_identity));
             let offered = match model {
-                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material_key, t.material)),
+                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material_key, t.material, t.light_units)),
                 _ => None,
             };
             if class == DrawClass::Static && f.matched == Match::New && offered.is_none() {
@@ -268,9 +271,11 @@ impl Classifier {
             let [m0, m1] = material.key();
             let light_units = lighting::light_units(draw, |u| hashes[u].is_some_and(|h| self.config.is_lightmap(h)));
             // The world keeps a triangle's colours as first offered: a lit draw's diffuse colour
-            // (its base colour) is in the key, so that a `glMaterial` change makes new triangles.
+            // (its base colour) is in the key, so that a `glMaterial` change makes new triangles;
+            // so are the units holding light, which chunks carry (a draw with layers, whose
+            // passes may add light units below, is not offered).
             let diffuse = world_feed::lit_diffuse(draw).map_or(0, |d| keys::combine(&d.map(|c| u64::from(c.to_bits()))));
-            let material_key = keys::combine(&[texture, state, m0, m1, diffuse]);
+            let material_key = keys::combine(&[texture, state, m0, m1, diffuse, u64::from(light_units)]);
             self.traced.push(Traced { draw: i, tags, geometry, material_key, material, light_units, baked_layer: false });
         }
     }
@@ -554,7 +559,7 @@ mod tests {
         let listed = MaterialOverride { roughness: 0.1, metalness: 1.0, emissive: 1.0 };
         assert_eq!(f.draws[0].instance.unwrap().material, listed, "[materials], emissive from the list");
         assert_eq!(f.draws[1].instance.unwrap().material, MaterialOverride::default());
-        let chunks: Vec<(Option<u32>, MaterialOverride)> = f.static_world.iter().map(|c| (c.texture.as_ref().map(|t| t.id), c.material)).collect();
+        let chunks: Vec<(Option<u32>, MaterialOverride)> = f.static_world.iter().map(|c| (c.textures[0].as_ref().map(|t| t.id), c.material)).collect();
         assert!(chunks.contains(&(Some(5), listed)) && chunks.contains(&(None, MaterialOverride::default())), "{chunks:?}");
         assert!(chunks.iter().all(|&(id, m)| (id == Some(5)) == (m == listed)), "{chunks:?}");
     }

@@ -30,9 +30,9 @@
 //!   hold more than [`MAX_CHUNKS_PER_CELL`] chunks, they are merged into one (the merge counts as
 //!   new and released chunks). When nothing joins or leaves, the chunk list is the same `Arc` and
 //!   the upload is zero. A chunk carries what a renderer shades its triangles with when no draw
-//!   of them is in the frame: per corner the texture coordinates and primary colour as first
-//!   offered, and the texture, material and draw state ([`ChunkShading`]) of the draw that
-//!   offered its first triangle.
+//!   of them is in the frame: per corner the texture coordinates of units 0 and 1 and the
+//!   primary colour as first offered, and the textures, material and draw state
+//!   ([`ChunkShading`]) of the draw that offered its first triangle.
 //! - **Anti-culling.** A triangle the program stops drawing stays: a wall behind the camera is
 //!   still in the traced scene, for shadows and bounced light.
 //! - **Release.** Everything goes on [`StaticWorld::clear`] (camera cut, level change) or when
@@ -65,7 +65,7 @@ use glam::{Mat4, Vec3, Vec4};
 
 use crate::frame::TextureRef;
 use crate::frame::class::MaterialOverride;
-use crate::frame::world::{ChunkShading, StaticChunk};
+use crate::frame::world::{CHUNK_UNITS, ChunkShading, StaticChunk};
 
 /// Size of the grid vertices are quantised to, in world units: coarse enough that two copies of
 /// a triangle through the program's transforms usually land on the same points, fine enough
@@ -128,12 +128,13 @@ pub struct WorldTriangles<'a> {
     pub material_key: u64,
     /// Surface parameters (the same for every offer of one `material_key`).
     pub material: MaterialOverride,
-    /// Texture of unit 0.
-    pub texture: Option<&'a TextureRef>,
+    /// Texture of each carried unit.
+    pub textures: [Option<&'a TextureRef>; CHUNK_UNITS],
     /// World-space positions, 3 per triangle (a trailing partial triangle is ignored).
     pub positions: &'a [[f32; 3]],
-    /// Texture coordinates of unit 0, 3 per triangle (ignored unless as long as `positions`).
-    pub texcoords: Option<&'a [[f32; 2]]>,
+    /// Texture coordinates of each carried unit, 3 per triangle (ignored unless as long as
+    /// `positions`).
+    pub texcoords: [Option<&'a [[f32; 2]]>; CHUNK_UNITS],
     /// Primary colours, 3 per triangle (ignored unless as long as `positions`; `None`: white).
     pub colors: Option<&'a [[u8; 4]]>,
     /// Draw state (the same for every offer of one `material_key` in what the key hashes).
@@ -180,7 +181,7 @@ pub struct WorldUpdate {
 #[derive(Clone, Copy)]
 struct Tri {
     positions: [[f32; 3]; 3],
-    texcoords: Option<[[f32; 2]; 3]>,
+    texcoords: [Option<[[f32; 2]; 3]>; CHUNK_UNITS],
     colors: Option<[[u8; 4]; 3]>,
 }
 
@@ -195,7 +196,7 @@ struct Pending {
 /// What the renderer draws a chunk's triangles with besides their key.
 #[derive(Clone)]
 struct Look {
-    texture: Option<TextureRef>,
+    textures: [Option<TextureRef>; CHUNK_UNITS],
     material: MaterialOverride,
     shading: ChunkShading,
 }
@@ -334,7 +335,7 @@ impl StaticWorld {
     /// frame.
     pub fn offer(&mut self, t: WorldTriangles<'_>) -> Offered {
         let count = t.positions.len() / 3;
-        let texcoords = t.texcoords.filter(|uv| uv.len() >= count * 3);
+        let texcoords = t.texcoords.map(|uv| uv.filter(|uv| uv.len() >= count * 3));
         let colors = t.colors.filter(|c| c.len() >= count * 3);
         let mut offered = Offered { triangles: count, ..Offered::default() };
         // First pass: triangles already in the world; the others wait in `unknown`.
@@ -368,12 +369,12 @@ impl StaticWorld {
                 Entry::Occupied(_) => {} // offered twice in this frame, or in a changing draw
                 Entry::Vacant(entry) => {
                     let positions = [t.positions[3 * i], t.positions[3 * i + 1], t.positions[3 * i + 2]];
-                    let uv = texcoords.map(|uv| [uv[3 * i], uv[3 * i + 1], uv[3 * i + 2]]);
+                    let uv = texcoords.map(|uv| uv.map(|uv| [uv[3 * i], uv[3 * i + 1], uv[3 * i + 2]]));
                     let rgba = colors.map(|c| [c[3 * i], c[3 * i + 1], c[3 * i + 2]]);
                     entry.insert(Pending {
                         tick: self.tick,
                         material: t.material_key,
-                        look: Look { texture: t.texture.cloned(), material: t.material, shading: t.shading.clone() },
+                        look: Look { textures: t.textures.map(Option::<&TextureRef>::cloned), material: t.material, shading: t.shading.clone() },
                         tri: Tri { positions, texcoords: uv, colors: rgba },
                     });
                     offered.new_triangles += 1;
@@ -585,8 +586,10 @@ impl StaticWorld {
         (0..live.keys.len())
             .map(|i| {
                 let positions = [c.positions[3 * i], c.positions[3 * i + 1], c.positions[3 * i + 2]];
-                let texcoords = (!c.texcoords.is_empty())
-                    .then(|| [c.texcoords[3 * i], c.texcoords[3 * i + 1], c.texcoords[3 * i + 2]]);
+                let texcoords = std::array::from_fn(|u| {
+                    let uv = &c.texcoords[u];
+                    (!uv.is_empty()).then(|| [uv[3 * i], uv[3 * i + 1], uv[3 * i + 2]])
+                });
                 let colors = (!c.colors.is_empty()).then(|| [c.colors[3 * i], c.colors[3 * i + 1], c.colors[3 * i + 2]]);
                 Moved { key: live.keys[i], tri: Tri { positions, texcoords, colors }, seen: live.seen[i], missed: live.missed[i] }
             })
@@ -604,11 +607,11 @@ impl StaticWorld {
         });
         let id = self.next_id;
         self.next_id += 1;
-        let with_uv = tris.iter().any(|t| t.tri.texcoords.is_some());
+        let with_uv: [bool; CHUNK_UNITS] = std::array::from_fn(|u| tris.iter().any(|t| t.tri.texcoords[u].is_some()));
         let with_colors = tris.iter().any(|t| t.tri.colors.is_some());
         let n = tris.len();
         let mut positions = Vec::with_capacity(n * 3);
-        let mut texcoords = Vec::with_capacity(if with_uv { n * 3 } else { 0 });
+        let mut texcoords: [Vec<[f32; 2]>; CHUNK_UNITS] = with_uv.map(|with| Vec::with_capacity(if with { n * 3 } else { 0 }));
         let mut colors = Vec::with_capacity(if with_colors { n * 3 } else { 0 });
         let (mut keys, mut seen, mut missed) = (Vec::with_capacity(n), Vec::with_capacity(n), Vec::with_capacity(n));
         let (mut min, mut max) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
@@ -618,8 +621,10 @@ impl StaticWorld {
                 max = max.max(Vec3::from(p));
             }
             positions.extend_from_slice(&t.tri.positions);
-            if with_uv {
-                texcoords.extend_from_slice(&t.tri.texcoords.unwrap_or_default());
+            for ((uv, with), out) in t.tri.texcoords.iter().zip(with_uv).zip(&mut texcoords) {
+                if with {
+                    out.extend_from_slice(&uv.unwrap_or_default());
+                }
             }
             if with_colors {
                 colors.extend_from_slice(&t.tri.colors.unwrap_or([[255; 4]; 3]));
@@ -633,7 +638,7 @@ impl StaticWorld {
             id,
             material_key: material,
             material: look.material,
-            texture: look.texture,
+            textures: look.textures,
             positions,
             texcoords,
             colors,
@@ -674,7 +679,7 @@ impl StaticWorld {
         for index in touched {
             let Some(Some(live)) = self.chunks.get(index as usize) else { continue };
             let (material, cell) = (live.chunk.material_key, live.cell);
-            let look = Look { texture: live.chunk.texture.clone(), material: live.chunk.material, shading: live.chunk.shading.clone() };
+            let look = Look { textures: live.chunk.textures.clone(), material: live.chunk.material, shading: live.chunk.shading.clone() };
             if let Entry::Occupied(mut group) = self.groups.entry((material, cell)) {
                 group.get_mut().retain(|&other| other != index);
                 if group.get().is_empty() {
@@ -926,7 +931,7 @@ mod tests {
     /// Offers `positions` (and `texcoords`) of `material` with default shading.
     fn offer_plain(world: &mut StaticWorld, material: u64, positions: &[[f32; 3]], texcoords: Option<&[[f32; 2]]>) -> Offered {
         let shading = ChunkShading::default();
-        world.offer(WorldTriangles { material_key: material, material: MaterialOverride::default(), texture: None, positions, texcoords, colors: None, shading: &shading })
+        world.offer(WorldTriangles { material_key: material, material: MaterialOverride::default(), textures: [None; CHUNK_UNITS], positions, texcoords: [texcoords, None], colors: None, shading: &shading })
     }
 
     /// Every chunk triangle's key: the world holds each once.
@@ -968,22 +973,26 @@ mod tests {
     }
 
     #[test]
-    fn chunks_carry_colours_coordinates_and_the_draw_state() {
+    fn chunks_carry_colours_coordinates_of_both_units_and_the_draw_state() {
         let mut world = StaticWorld::new();
         let positions = wall(2);
         let texcoords: Vec<[f32; 2]> = positions.iter().map(|p| [p[0], p[1]]).collect();
+        let lightmap_texcoords: Vec<[f32; 2]> = positions.iter().map(|p| [p[0] / 16.0, 0.5 - p[1] / 16.0]).collect();
         let colors: Vec<[u8; 4]> = (0..positions.len()).map(|i| [i as u8, 0, 255, 255]).collect();
         let state = crate::frame::RasterState { depth_write: true, ..Default::default() };
-        let shading = ChunkShading { state: Arc::new(state), texture_unit: Some(crate::frame::TextureUnit::default()), second_unit: None };
+        let unit = Some(crate::frame::TextureUnit::default());
+        let shading = ChunkShading { state: Arc::new(state), texture_units: [unit, unit], light_units: 0b10 };
+        let texture = |id| TextureRef { id, version: 1, content: Arc::default() };
+        let (surface, lightmap) = (texture(3), texture(4));
         let mut last = None;
         for f in 0..2 {
             world.begin_frame(f, front_view());
             let o = world.offer(WorldTriangles {
                 material_key: 1,
                 material: MaterialOverride::default(),
-                texture: None,
+                textures: [Some(&surface), Some(&lightmap)],
                 positions: &positions,
-                texcoords: Some(&texcoords),
+                texcoords: [Some(&texcoords), Some(&lightmap_texcoords)],
                 colors: Some(&colors),
                 shading: &shading,
             });
@@ -993,12 +1002,13 @@ mod tests {
         let update = last.unwrap();
         assert_eq!(update.triangles, 4);
         for c in update.chunks.iter() {
-            assert_eq!((c.shading.clone(), c.colors.len(), c.texcoords.len()), (shading.clone(), c.positions.len(), c.positions.len()));
+            assert_eq!((c.shading.clone(), c.colors.len()), (shading.clone(), c.positions.len()));
+            assert_eq!(c.textures.clone().map(|t| t.map(|t| t.id)), [Some(3), Some(4)]);
             for (k, p) in c.positions.iter().enumerate() {
                 let i = positions.iter().position(|q| q == p).unwrap();
-                assert_eq!((c.colors[k][2], c.texcoords[k]), (255, texcoords[i]));
+                assert_eq!((c.colors[k][2], c.texcoords[0][k], c.texcoords[1][k]), (255, texcoords[i], lightmap_texcoords[i]));
             }
-            assert_eq!(c.upload_bytes(), c.positions.len() as u64 * 24);
+            assert_eq!(c.upload_bytes(), c.positions.len() as u64 * 32, "12 + 8 + 8 + 4 bytes a corner");
         }
     }
 

@@ -1,8 +1,8 @@
 //! The seam to the persistent static world (`static_world`): the world-space triangles of one
 //! traced draw, built in reused buffers and offered to [`StaticWorld::offer`], with what a
-//! renderer shades them with (unit 0's coordinates after its texture matrix, base colours
-//! when not all white — the vertex colours, or a lit draw's diffuse material colour — and the
-//! draw state).
+//! renderer shades them with (the textures and coordinates of units 0 and 1, after their
+//! texture matrices; base colours when not all white — the vertex colours, or a lit draw's
+//! diffuse material colour — and the draw state with the units that hold baked light).
 
 use glam::{Mat4, Vec4};
 
@@ -10,13 +10,13 @@ use super::static_world::{Offered, StaticWorld, WorldTriangles};
 use crate::frame::Draw;
 use crate::frame::state::Lighting;
 use crate::frame::class::MaterialOverride;
-use crate::frame::world::ChunkShading;
+use crate::frame::world::{CHUNK_UNITS, ChunkShading};
 
 /// Buffers reused from draw to draw (no allocation once they have grown).
 #[derive(Default)]
 pub struct WorldFeed {
     positions: Vec<[f32; 3]>,
-    texcoords: Vec<[f32; 2]>,
+    texcoords: [Vec<[f32; 2]>; CHUNK_UNITS],
     colors: Vec<[u8; 4]>,
 }
 
@@ -33,13 +33,17 @@ pub fn lit_diffuse(draw: &Draw) -> Option<[f32; 4]> {
 
 impl WorldFeed {
     /// Offers the triangles of `draw`, taken to the world by `model`, as material
-    /// `material_key` with the parameters `material`.
-    pub fn offer(&mut self, world: &mut StaticWorld, draw: &Draw, model: &Mat4, material_key: u64, material: MaterialOverride) -> Offered {
+    /// `material_key` with the parameters `material`, its units `light_units` holding baked
+    /// light.
+    pub fn offer(&mut self, world: &mut StaticWorld, draw: &Draw, model: &Mat4, material_key: u64, material: MaterialOverride, light_units: u8) -> Offered {
         self.positions.clear();
-        self.texcoords.clear();
         self.colors.clear();
-        let texcoords = draw.vertices.texcoords.first().filter(|t| !t.values.is_empty());
-        let uv_matrix = draw.texture_matrices.first().copied().flatten().filter(|m| *m != Mat4::IDENTITY);
+        let units: [_; CHUNK_UNITS] = std::array::from_fn(|u| {
+            let texcoords = draw.vertices.texcoords.get(u).filter(|t| !t.values.is_empty());
+            let matrix = draw.texture_matrices.get(u).copied().flatten().filter(|m| *m != Mat4::IDENTITY);
+            (texcoords, matrix)
+        });
+        self.texcoords.iter_mut().for_each(Vec::clear);
         // The base colour the tracer shades with: the vertex colour, or the material's diffuse
         // colour of a lit draw whose diffuse does not track the colour (`trace::scene`).
         let lit_diffuse = lit_diffuse(draw);
@@ -50,10 +54,12 @@ impl WorldFeed {
             let w = if identity { Vec4::from_array(*p) } else { *model * Vec4::from_array(*p) };
             let w = if w.w != 0.0 && w.w != 1.0 { w / w.w } else { w };
             self.positions.push([w.x, w.y, w.z]);
-            if let Some(t) = texcoords.and_then(|t| t.get(i as usize)) {
-                let t = uv_matrix.map_or(Vec4::from_array(t), |m| m * Vec4::from_array(t));
-                let q = if t.w != 0.0 { t.w } else { 1.0 };
-                self.texcoords.push([t.x / q, t.y / q]);
+            for ((texcoords, matrix), out) in units.iter().zip(&mut self.texcoords) {
+                if let Some(t) = texcoords.and_then(|t| t.get(i as usize)) {
+                    let t = matrix.map_or(Vec4::from_array(t), |m| m * Vec4::from_array(t));
+                    let q = if t.w != 0.0 { t.w } else { 1.0 };
+                    out.push([t.x / q, t.y / q]);
+                }
             }
             if let Some(c) = colors.and_then(|c| c.get(i as usize)) {
                 self.colors.push(unorm8(lit_diffuse.unwrap_or(c)));
@@ -61,14 +67,14 @@ impl WorldFeed {
         }
         let whole = self.positions.len() / 3 * 3;
         self.positions.truncate(whole);
-        let texcoords = (self.texcoords.len() == self.positions.len()).then_some(&self.texcoords[..]);
+        let texcoords = std::array::from_fn(|u| (self.texcoords[u].len() == self.positions.len()).then_some(&self.texcoords[u][..]));
         let colors = (self.colors.len() == self.positions.len()).then_some(&self.colors[..]);
-        let second_unit = draw.texture_units.get(1).copied().flatten().filter(|_| draw.textures.get(1).is_some_and(Option::is_some));
-        let shading = ChunkShading { state: draw.state.clone(), texture_unit: draw.texture_units.first().copied().flatten(), second_unit };
+        let texture_units = std::array::from_fn(|u| draw.texture_units.get(u).copied().flatten());
+        let shading = ChunkShading { state: draw.state.clone(), texture_units, light_units };
         world.offer(WorldTriangles {
             material_key,
             material,
-            texture: draw.textures.iter().flatten().next(),
+            textures: std::array::from_fn(|u| draw.textures.get(u).and_then(Option::as_ref)),
             positions: &self.positions,
             texcoords,
             colors,
