@@ -7,7 +7,9 @@
 
 use std::mem::size_of;
 
-use super::{Attrib, Frame, Vertices};
+use glam::Mat4;
+
+use super::{Attrib, Frame, TextureRef, TextureUnit, Vertices};
 
 /// The storage of one draw: empty, with the capacity it had.
 #[derive(Debug, Default)]
@@ -18,6 +20,13 @@ pub struct DrawStorage {
     pub indices: Vec<u32>,
     /// Edge masks.
     pub edge_masks: Vec<u8>,
+    /// The per-unit lists of a draw (a few entries each, kept so that a new draw allocates
+    /// none of them).
+    pub texture_matrices: Vec<Option<Mat4>>,
+    /// See `texture_matrices`.
+    pub textures: Vec<Option<TextureRef>>,
+    /// See `texture_matrices`.
+    pub texture_units: Vec<Option<TextureUnit>>,
 }
 
 impl DrawStorage {
@@ -96,7 +105,14 @@ impl StoragePool {
     /// Keeps the storage of `frame`'s draws; the rest of the frame is dropped now.
     pub fn keep_frame(&mut self, frame: Frame) {
         for draw in frame.draws {
-            self.keep(DrawStorage { vertices: draw.vertices, indices: draw.indices, edge_masks: draw.edge_masks });
+            self.keep(DrawStorage {
+                vertices: draw.vertices,
+                indices: draw.indices,
+                edge_masks: draw.edge_masks,
+                texture_matrices: draw.texture_matrices,
+                textures: draw.textures,
+                texture_units: draw.texture_units,
+            });
         }
     }
 
@@ -109,6 +125,9 @@ impl StoragePool {
         storage.vertices.clear();
         storage.indices.clear();
         storage.edge_masks.clear();
+        storage.texture_matrices.clear();
+        storage.textures.clear();
+        storage.texture_units.clear();
         self.bytes += bytes;
         self.spare.push(storage);
     }

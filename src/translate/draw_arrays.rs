@@ -164,7 +164,7 @@ impl Context {
     /// them. With colours from an array, colour material (section 2.14.3) leaves the material
     /// with the last element's colour, as the `glColor` of each `glArrayElement` would; the
     /// renderer applies each vertex's colour to the draw.
-    fn submit(&mut self, primitive: Primitive, batch: &Batch, order: Option<&[u32]>, color_array: bool) {
+    fn submit(&mut self, primitive: Primitive, batch: &mut Batch, order: Option<&[u32]>, color_array: bool) {
         let last = order.map_or(batch.vertices.position.len().checked_sub(1), |o| o.last().map(|&i| i as usize));
         if let Some(color) = last.filter(|_| color_array).and_then(|k| batch.vertices.color.get(k)) {
             self.apply_color_material(color);
@@ -183,7 +183,7 @@ impl Context {
         let mut order = std::mem::take(&mut self.fetch.order);
         let generic = self.generic_attributes();
         if let Some((ordered, from_arrays)) = self.fetch(elements, command, generic, &mut batch, &mut order) {
-            self.submit(primitive, &batch, ordered.then_some(order.as_slice()), from_arrays.color);
+            self.submit(primitive, &mut batch, ordered.then_some(order.as_slice()), from_arrays.color);
         }
         self.fetch.order = order;
         self.immediate.batch = batch;
@@ -205,7 +205,7 @@ impl Context {
         self.lists.record(ListOp::Deferred(Box::new(move |ctx| {
             let mut f = fetched.clone();
             f.take_current(ctx.immediate.current(), ctx.generic_attributes());
-            ctx.submit(primitive, &f.batch, f.order.as_deref(), f.from_arrays.color);
+            ctx.submit(primitive, &mut f.batch, f.order.as_deref(), f.from_arrays.color);
         })));
     }
 

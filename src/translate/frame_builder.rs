@@ -17,7 +17,7 @@ use super::lighting::without_tracked_material;
 use super::limits::MAX_TEXTURE_UNITS;
 use crate::frame::program::ProgramDraw;
 use crate::frame::storage::{DrawStorage, StoragePool};
-use crate::frame::{Draw, DrawSource, Frame, RasterState, TextureRef, TextureUnit, Topology, Vertices};
+use crate::frame::{Attrib, Draw, DrawSource, Frame, RasterState, TextureRef, TextureUnit, Topology, Vertices};
 
 /// A merged draw never grows past this many vertices, so its indices stay far from `u32`
 /// overflow and the renderer's uploads stay bounded.
@@ -77,7 +77,7 @@ impl Context {
     pub(crate) fn emit_batch(
         &mut self,
         primitive: Primitive,
-        batch: &Batch,
+        batch: &mut Batch,
         order: Option<&[u32]>,
         assembled: &Assembled,
         source: DrawSource,
@@ -94,7 +94,7 @@ impl Context {
             return;
         }
         let key = self.batch_key(primitive.topology(), source, state);
-        push_batch(&mut self.frame, &mut self.storage, key, &batch.vertices, assembled);
+        push_batch(&mut self.frame, &mut self.storage, key, &mut batch.vertices, assembled);
         self.keep_frame_in_budget();
     }
 
@@ -182,13 +182,20 @@ fn mergeable(last: &Draw, key: &BatchKey, extra: usize) -> bool {
 
 /// Appends a batch to `frame`: into its last draw when `mergeable` and no clear or pixel
 /// operation came after that draw, else as a new draw, in storage taken from `storage`.
-pub fn push_batch(frame: &mut Frame, storage: &mut StoragePool, key: BatchKey, vertices: &Vertices, assembled: &Assembled) {
+/// `vertices` are copied into a draw they are merged into. A new draw whose spare storage is
+/// no larger than theirs takes them whole instead, and `vertices` is left empty in that
+/// storage (the same texture units): the larger storage goes to the draw either way, where
+/// batches merged after this one grow it.
+pub fn push_batch(frame: &mut Frame, storage: &mut StoragePool, key: BatchKey, vertices: &mut Vertices, assembled: &Assembled) {
     // A clear or pixel operation after the last draw must stay between it and this batch.
     let cleared_since = frame.clears.last().is_some_and(|c| c.before_draw >= frame.draws.len());
     let pixels_since = frame.pixels.last().is_some_and(|p| p.before_draw >= frame.draws.len());
     let merge = !cleared_since && !pixels_since && frame.draws.last().is_some_and(|last| mergeable(last, &key, vertices.len()));
     if !merge {
-        let spare: DrawStorage = storage.take();
+        let mut spare: DrawStorage = storage.take();
+        spare.texture_matrices.extend_from_slice(&key.texture_matrices);
+        spare.textures.extend(key.textures);
+        spare.texture_units.extend_from_slice(&key.texture_units);
         frame.draws.push(Draw {
             vertices: spare.vertices,
             indices: spare.indices,
@@ -197,10 +204,10 @@ pub fn push_batch(frame: &mut Frame, storage: &mut StoragePool, key: BatchKey, v
             source: key.source,
             modelview: key.modelview,
             projection: key.projection,
-            texture_matrices: key.texture_matrices.to_vec(),
+            texture_matrices: spare.texture_matrices,
             state: key.state,
-            textures: key.textures.to_vec(),
-            texture_units: key.texture_units.to_vec(),
+            textures: spare.textures,
+            texture_units: spare.texture_units,
             program: key.program,
             // Not `..Draw::default()`, which would allocate a default raster state per draw.
             vertex_count: 0,
@@ -211,7 +218,15 @@ pub fn push_batch(frame: &mut Frame, storage: &mut StoragePool, key: BatchKey, v
     }
     let draw = frame.draws.last_mut().expect("a draw was just pushed or merged into");
     let base = draw.vertices.len() as u32;
-    draw.vertices.append(vertices);
+    if base == 0 && vertices.position.capacity() >= draw.vertices.position.capacity() {
+        // Appending to no vertex gives `vertices` (Vertices::append): taken without a copy.
+        let units = vertices.texcoords.len();
+        std::mem::swap(&mut draw.vertices, vertices);
+        vertices.clear();
+        vertices.texcoords.resize(units, Attrib::default());
+    } else {
+        draw.vertices.append(vertices);
+    }
     draw.vertex_count = draw.vertices.len();
     draw.indices.extend(assembled.indices.iter().map(|&i| i + base));
     draw.edge_masks.extend_from_slice(&assembled.edge_masks);
@@ -222,7 +237,7 @@ mod tests {
     use super::*;
     use crate::frame::Clear;
     use crate::translate::{dispatch, gl};
-    use crate::translate::immediate::{Batch, CurrentAttribs};
+    use crate::translate::immediate::{Batch, CurrentAttribs, bits};
 
     fn quad(ctx: &mut Context, x: f32) {
         unsafe {
@@ -347,17 +362,44 @@ mod tests {
         for i in 0..3 {
             batch.push([i as f32, 0.0, 0.0, 1.0], &current, 0);
         }
-        let v = &batch.vertices;
         let a = Assembled { indices: vec![0, 1, 2], edge_masks: vec![0b101] };
         let mut storage = StoragePool::default();
-        push_batch(&mut frame, &mut storage, BatchKey::default(), v, &a);
-        push_batch(&mut frame, &mut storage, BatchKey::default(), v, &a);
+        push_batch(&mut frame, &mut storage, BatchKey::default(), &mut batch.vertices.clone(), &a);
+        push_batch(&mut frame, &mut storage, BatchKey::default(), &mut batch.vertices.clone(), &a);
         assert_eq!(frame.draws.len(), 1);
         assert_eq!(frame.draws[0].indices, vec![0, 1, 2, 3, 4, 5]);
         assert_eq!(frame.draws[0].edge_masks, vec![0b101, 0b101]);
+        assert_eq!(frame.draws[0].vertices.position.iter().map(|p| p[0]).collect::<Vec<_>>(), [0.0, 1.0, 2.0, 0.0, 1.0, 2.0]);
         let other = BatchKey { source: DrawSource::List(3), ..BatchKey::default() };
-        push_batch(&mut frame, &mut storage, other, v, &a);
+        push_batch(&mut frame, &mut storage, other, &mut batch.vertices.clone(), &a);
         assert_eq!(frame.draws.len(), 2, "another source starts another draw");
+    }
+
+    #[test]
+    fn a_new_draw_takes_the_batch_s_vertices_unless_its_spare_storage_is_larger() {
+        let mut batch = Batch::default();
+        let current = CurrentAttribs { color: [0.5, 0.25, 1.0, 1.0], ..CurrentAttribs::default() };
+        for i in 0..3 {
+            batch.push([i as f32, 0.0, 0.0, 1.0], &CurrentAttribs { texcoords: [[i as f32, 1.0, 0.0, 1.0]; MAX_TEXTURE_UNITS], ..current }, bits::ALL);
+        }
+        let a = Assembled { indices: vec![0, 1, 2], edge_masks: vec![0b111] };
+        let (mut frame, mut storage) = (Frame::default(), StoragePool::default());
+        let mut vertices = batch.vertices.clone();
+        let (held, units) = (vertices.position.as_ptr(), vertices.texcoords.len());
+        push_batch(&mut frame, &mut storage, BatchKey::default(), &mut vertices, &a);
+        let draw = &frame.draws[0];
+        assert_eq!(draw.vertices, batch.vertices, "the draw holds what appending would give");
+        assert_eq!(draw.vertices.position.as_ptr(), held, "not copied");
+        assert!(vertices.is_empty() && vertices.texcoords.len() == units, "the batch is left empty with its units");
+        // A larger spare storage goes to the draw, and the batch is copied into it.
+        let mut spare = StoragePool::default();
+        spare.keep_frame(Frame { draws: vec![Draw { vertices: Vertices { position: Vec::with_capacity(1000), ..Vertices::default() }, ..Draw::default() }], ..Frame::default() });
+        let mut frame = Frame::default();
+        let mut vertices = batch.vertices.clone();
+        push_batch(&mut frame, &mut spare, BatchKey::default(), &mut vertices, &a);
+        assert_eq!(frame.draws[0].vertices, batch.vertices);
+        assert!(frame.draws[0].vertices.position.capacity() >= 1000);
+        assert_eq!(vertices, batch.vertices, "copied, not taken");
     }
 
     #[test]

@@ -15,9 +15,10 @@
 //! `GLRT_FRAME_BUDGET_MB` ([`MemorySettings`], 256 MB by default). A frame is not split while
 //! an occlusion query is active: its count would span two parts.
 
-use std::collections::HashSet;
 use std::mem::{size_of, size_of_val};
 use std::sync::{Arc, OnceLock};
+
+use rustc_hash::FxHashSet;
 
 use super::Context;
 use crate::config::{Config, Key, Table, integer_in};
@@ -73,14 +74,18 @@ pub struct FrameMemory {
     clears: usize,
     /// Pixel operations counted.
     pixels: usize,
-    /// Addresses of the texture images counted (alive while the frame holds them).
-    images: HashSet<usize>,
+    /// Addresses of the texture contents counted (alive while the frame holds them): a
+    /// content's images are looked at once per frame, not once per draw.
+    contents: FxHashSet<usize>,
+    /// Addresses of the texture images counted (alive while the frame holds them; contents
+    /// of other versions may share images).
+    images: FxHashSet<usize>,
 }
 
 impl FrameMemory {
     /// Nothing counted yet, against a budget of `budget` bytes.
     pub fn new(budget: u64) -> FrameMemory {
-        FrameMemory { budget, bytes: 0, draws: 0, last_draw: 0, clears: 0, pixels: 0, images: HashSet::new() }
+        FrameMemory { budget, bytes: 0, draws: 0, last_draw: 0, clears: 0, pixels: 0, contents: FxHashSet::default(), images: FxHashSet::default() }
     }
 
     /// The budget in bytes.
@@ -118,6 +123,9 @@ impl FrameMemory {
 
     /// Bytes of the images of `t` not counted yet (and now counted).
     fn new_images(&mut self, t: &TextureRef) -> u64 {
+        if !self.contents.insert(Arc::as_ptr(&t.content) as usize) {
+            return 0;
+        }
         let mut bytes = 0;
         for image in t.content.faces.iter().flatten().flatten() {
             if self.images.insert(Arc::as_ptr(image) as usize) {
@@ -138,9 +146,13 @@ impl FrameMemory {
         self.bytes > self.budget / READ_BACK_SHARE
     }
 
-    /// Forgets what was counted: the frame was handed to the renderer.
+    /// Forgets what was counted: the frame was handed to the renderer. The sets keep their
+    /// storage for the next frame.
     pub fn reset(&mut self) {
-        *self = FrameMemory::new(self.budget);
+        let (mut contents, mut images) = (std::mem::take(&mut self.contents), std::mem::take(&mut self.images));
+        contents.clear();
+        images.clear();
+        *self = FrameMemory { contents, images, ..FrameMemory::new(self.budget) };
     }
 }
 

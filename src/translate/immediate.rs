@@ -297,11 +297,11 @@ impl Context {
             return self.set_error_in(gl::GL_INVALID_OPERATION, "glEnd");
         };
         let mut assembled = std::mem::take(&mut self.immediate.assembled);
-        let batch = self.immediate.take_batch();
+        let mut batch = self.immediate.take_batch();
         assembled.clear();
         assemble_batch(primitive, &batch, None, &mut assembled);
         let source = self.immediate_source();
-        self.emit_with_begin_material(|ctx| ctx.emit_batch(primitive, &batch, None, &assembled, source));
+        self.emit_with_begin_material(|ctx| ctx.emit_batch(primitive, &mut batch, None, &assembled, source));
         self.immediate.assembled = assembled;
         self.immediate.batch = batch;
     }

@@ -68,12 +68,27 @@ fn level_image(level: &Level, shared: Option<&Palette>) -> Arc<TexImage> {
     }
 }
 
-/// Builds the reference of `obj` for a draw, reusing the cached one while nothing changed.
-fn texture_ref(name: u32, obj: &mut TextureObject, target: Target, shared: Option<(&Palette, u64)>) -> TextureRef {
-    let key = shared.map_or(obj.version, |(_, v)| v.max(obj.version) ^ (1 << 63));
+/// The key of `obj`'s cached snapshot for its content version and the shared palette's.
+fn snapshot_key(obj: &TextureObject, shared: Option<(&Palette, u64)>) -> u64 {
+    shared.map_or(obj.version, |(_, v)| v.max(obj.version) ^ (1 << 63))
+}
+
+/// The reference of `obj` for a draw when it is complete ([`is_complete`]). A cached snapshot
+/// of the current key is returned without the check: snapshots are built only of complete
+/// objects, and every change of images or parameters drops them
+/// ([`TextureObject::touch`]), so the object is as complete as when it was built. A draw
+/// thus costs one comparison per texture, not a walk over its mipmap levels.
+fn complete_ref(name: u32, obj: &mut TextureObject, target: Target, shared: Option<(&Palette, u64)>) -> Option<TextureRef> {
+    let key = snapshot_key(obj, shared);
     if let Some((_, r)) = obj.snapshot.as_ref().filter(|(k, _)| *k == key) {
-        return r.clone();
+        return Some(r.clone());
     }
+    is_complete(obj, target).then(|| texture_ref(name, obj, target, shared))
+}
+
+/// Builds the reference of `obj` for a draw and caches it as its snapshot.
+fn texture_ref(name: u32, obj: &mut TextureObject, target: Target, shared: Option<(&Palette, u64)>) -> TextureRef {
+    let key = snapshot_key(obj, shared);
     let palette = shared.map(|(p, _)| p);
     let faces = (0..target.faces())
         .map(|f| obj.faces.get(f).map_or_else(Vec::new, |levels| levels.iter().map(|l| l.as_ref().map(|l| level_image(l, palette))).collect()))
@@ -109,7 +124,7 @@ impl Context {
             let p = &obj.params;
             let depth = obj.level(0, p.levels[0].max(0) as usize).is_some_and(|l| l.base == Base::Texel(TexelFormat::Depth));
             let words = sampler_depth(p.compare_mode, p.compare_func, p.depth_mode, depth);
-            (is_complete(obj, target).then(|| texture_ref(name, obj, target, None)), words)
+            (complete_ref(name, obj, target, None), words)
         })
     }
 
@@ -135,7 +150,10 @@ impl Context {
             let target = units[unit].then(|| self.enabled_target(unit)).flatten()?;
             let name = self.texture.bindings[unit][target.index()];
             self.with_object(target, name, |obj| {
-                (is_complete(obj, target) && !is_integer(obj)).then(|| texture_ref(name, obj, target, shared.as_ref().map(|(p, v)| (p, *v))))
+                if is_integer(obj) {
+                    return None;
+                }
+                complete_ref(name, obj, target, shared.as_ref().map(|(p, v)| (p, *v)))
             })
         })
     }
@@ -174,6 +192,25 @@ mod tests {
         assert_eq!(mip.content.faces[0][1].as_ref().unwrap().texels, [64, 0, 0, 64]);
         // A cube map enabled as well wins over 2D, but it is incomplete.
         ctx.glEnable(gl::GL_TEXTURE_CUBE_MAP);
+        assert_eq!(ctx.texture_snapshot()[0], None);
+    }
+
+    #[test]
+    fn a_cached_snapshot_does_not_outlive_the_completeness_it_was_built_for() {
+        let (mut ctx, _) = Context::with_recording();
+        ctx.glEnable(gl::GL_TEXTURE_2D);
+        ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_LINEAR as i32);
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 0, gl::GL_RGBA as i32, 2, 2, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        let complete = ctx.texture_snapshot()[0].clone().expect("one level, no mipmaps: complete");
+        assert_eq!(ctx.texture_snapshot()[0].as_ref().map(|t| t.version), Some(complete.version), "the cached snapshot");
+        // A mipmapping filter without the levels makes it incomplete, though its images are the same.
+        ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_MIN_FILTER, gl::GL_LINEAR_MIPMAP_LINEAR as i32);
+        assert_eq!(ctx.texture_snapshot()[0], None);
+        unsafe { dispatch::glTexImage2D(&mut ctx, gl::GL_TEXTURE_2D, 1, gl::GL_RGBA as i32, 1, 1, 0, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, std::ptr::null()) };
+        let mipmapped = ctx.texture_snapshot()[0].clone().expect("complete with its 1x1 level");
+        assert!(mipmapped.version > complete.version);
+        // A base level past the levels given: incomplete again.
+        ctx.glTexParameteri(gl::GL_TEXTURE_2D, gl::GL_TEXTURE_BASE_LEVEL, 2);
         assert_eq!(ctx.texture_snapshot()[0], None);
     }
 }
