@@ -367,15 +367,20 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
 // and their replays keep no lane of the main pass waiting.
 void trace_invocation(uvec2 id) {
     uvec2 size = frame.size.xy;
-    if (pass.gradients == 0u) {
-        bool inside = all(lessThan(id, size));
-        trace_pixel(id, inside, false, inside, id.y * size.x + id.x);
-    } else {
-        bool recorded = all(lessThan(id, gradient_strata(size)));
-        uvec2 pixel = gradient_pixel(id, frame.counts.x);
-        bool traced = recorded && frame.counts.x > 0u && all(lessThan(pixel, size));
-        trace_pixel(pixel, traced, true, recorded, recorded ? gradient_record(id, size) : 0u);
+    bool gradient = pass.gradients != 0u;
+    uvec2 pixel = id;
+    bool recorded = all(lessThan(id, size));
+    bool traced = recorded;
+    uint record = id.y * size.x + id.x;
+    if (gradient) {
+        recorded = all(lessThan(id, gradient_strata(size)));
+        pixel = gradient_pixel(id, frame.counts.x);
+        traced = recorded && frame.counts.x > 0u && all(lessThan(pixel, size));
+        record = recorded ? gradient_record(id, size) : 0u;
     }
+    // One call: a megakernel inlines each call site of the path (two made NVIDIA's compiler
+    // take minutes).
+    trace_pixel(pixel, traced, gradient, recorded, record);
 }
 
 #endif
