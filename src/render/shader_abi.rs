@@ -100,7 +100,7 @@ mod tests {
         let members: Vec<_> = light.members.iter().map(|m| (m.name.as_str(), m.offset)).collect();
         assert_eq!(members, [("position", 0), ("radiance", 16), ("spot", 32), ("params", 48)]);
         assert_eq!(light.size, 64, "the stride of `lights[]`");
-        assert_eq!(pathtrace().layout("Pass").expect("the push constants").size, 4, "a block's size is its end");
+        assert_eq!(pathtrace().layout("Pass").expect("the push constants").size, 8, "a block's size is its end");
         assert!(pathtrace().layout("NoSuchStruct").is_err());
     }
 
@@ -134,18 +134,18 @@ mod tests {
         };
         let light = "pub position: [f32; 4], pub radiance: [f32; 4], pub spot: [f32; 4], pub params: [f32; 4]";
         let triangle = "pub v0: [f32; 3], pub pad0: u32, pub e1: [f32; 3], pub pad1: u32, pub e2: [f32; 3], pub pad2: u32";
-        rustc("right", &source(light, triangle, 4)).expect("the right mirror compiles");
+        rustc("right", &source(light, triangle, 8)).expect("the right mirror compiles");
 
         let swapped = "pub position: [f32; 4], pub spot: [f32; 4], pub radiance: [f32; 4], pub params: [f32; 4]";
-        let e = rustc("swapped", &source(swapped, triangle, 4)).expect_err("fields swapped");
+        let e = rustc("swapped", &source(swapped, triangle, 8)).expect_err("fields swapped");
         assert!(e.contains("GpuLight.radiance: `Light.radiance` is at byte 16 in pathtrace.comp"), "{e}");
         let retyped = "pub position: [f32; 4], pub radiance: [f32; 4], pub spot: [f32; 4], pub params: [u32; 4]";
-        let e = rustc("retyped", &source(retyped, triangle, 4)).expect_err("a field of another type");
+        let e = rustc("retyped", &source(retyped, triangle, 8)).expect_err("a field of another type");
         assert!(e.contains("expected `&[f32; 4]`, found `&[u32; 4]`"), "{e}");
         let padded = "pub v0: [f32; 3], pub pad0: u32, pub e1: [f32; 3], pub pad1: u32, pub e2: [f32; 3], pub pad2: u32, pub more: u32";
-        let e = rustc("long", &source(light, padded, 4)).expect_err("a struct of another size");
+        let e = rustc("long", &source(light, padded, 8)).expect_err("a struct of another size");
         assert!(e.contains("Triangle: `BvhTriangle` is 48 bytes in pathtrace.comp"), "{e}");
-        let e = rustc("push", &source(light, triangle, 8)).expect_err("a size constant that is off");
-        assert!(e.contains("PUSH_BYTES: `Pass` is 4 bytes in pathtrace.comp"), "{e}");
+        let e = rustc("push", &source(light, triangle, 4)).expect_err("a size constant that is off");
+        assert!(e.contains("PUSH_BYTES: `Pass` is 8 bytes in pathtrace.comp"), "{e}");
     }
 }

@@ -59,7 +59,8 @@ fn radiosity_brings_the_demos_raster_frame_towards_its_path_traced_reference() {
     let cache = lib_dir().join("radiosity-raster-cache");
     let _ = std::fs::remove_dir_all(&cache);
     let raster = [("GLRT_MODE", "raster")];
-    let plain_image = Image::load_png(&replay_frame_3_with("demo", "raster", &[raster[0], ("GLRT_RADIOSITY", "0")]));
+    // Its own folder: `pathtrace_replay`'s raster test writes "demo-raster" at the same time.
+    let plain_image = Image::load_png(&replay_frame_3_with("demo", "raster-plain", &[raster[0], ("GLRT_RADIOSITY", "0")]));
     let cache_var = cache.to_str().expect("a UTF-8 path");
     let lit_image = Image::load_png(&replay_frame_3_with(
         "demo",
