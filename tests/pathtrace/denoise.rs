@@ -119,21 +119,25 @@ fn histories_after_a_jump(motion: Motion) -> [u8; 3] {
     [[3.0, 3.0, -6.0], [1.0, 0.0, -3.0], [-1.2, 0.0, -6.0]].map(|p| history_at(&mut ctx, p))
 }
 
+/// After the jump of [`histories_after_a_jump`]: the wall never covered and the square's
+/// pixels at their new place (reprojected to where `where_it_was` says) keep their 5 frames of
+/// history, the wall the square uncovered starts again (a disocclusion).
+fn assert_reprojected(motion: Motion, where_it_was: &str) {
+    let [wall, moved, uncovered] = histories_after_a_jump(motion);
+    assert_eq!(wall, 5, "a wall pixel never covered keeps its history");
+    assert_eq!(moved, 5, "the square's pixels at its new place are reprojected to where {where_it_was} had them");
+    assert_eq!(uncovered, 1, "the wall the square uncovered has no history (disocclusion)");
+}
+
 #[test]
 fn a_moved_square_keeps_its_history_and_the_wall_it_uncovered_starts_again() {
-    let [wall, moved, uncovered] = histories_after_a_jump(Motion::Transform);
-    assert_eq!(wall, 5, "a wall pixel never covered keeps its history");
-    assert_eq!(moved, 5, "the square's pixels at its new place are reprojected to where it was");
-    assert_eq!(uncovered, 1, "the wall the square uncovered has no history (disocclusion)");
+    assert_reprojected(Motion::Transform, "its last transform");
 }
 
 #[test]
 fn a_deforming_square_is_reprojected_through_its_last_shape() {
     // Its transform never changes: only last frame's triangles say where its points were.
-    let [wall, moved, uncovered] = histories_after_a_jump(Motion::Vertices);
-    assert_eq!(wall, 5, "a wall pixel never covered keeps its history");
-    assert_eq!(moved, 5, "the square's pixels at its new place are reprojected to where its last shape had them");
-    assert_eq!(uncovered, 1, "the wall the square uncovered has no history (disocclusion)");
+    assert_reprojected(Motion::Vertices, "its last shape");
 }
 
 /// One frame of the room corner: a wall at z = −6 and a floor at y = −2 (its light reaches

@@ -105,13 +105,18 @@ fn a_point_light_in_a_closed_box_gives_the_inverse_square_cosine_irradiance() {
     assert!(brightest > 7.0 && brightest < 10.0, "{brightest}");
 }
 
+/// The patches of a 4 × 4 floor at z = 0 facing up and a unit plate over [0.5, 1.5]² at
+/// z = 0.5 facing up.
+fn floor_and_plate() -> Patches {
+    let floor = quad(1, Vec3::ZERO, Vec3::X * 4.0, Vec3::Y * 4.0);
+    let plate = quad(2, Vec3::new(0.5, 0.5, 0.5), Vec3::X, Vec3::Y);
+    patches::build(&[floor, plate], 0.5)
+}
+
 #[test]
 fn a_plate_casts_an_exact_shadow_from_a_point_light_and_a_sun() {
     let device = lavapipe::select(Device::new);
-    // A 4 × 4 floor at z = 0 facing up and a unit plate over [0.5, 1.5]² at z = 0.5 facing up.
-    let floor = quad(1, Vec3::ZERO, Vec3::X * 4.0, Vec3::Y * 4.0);
-    let plate = quad(2, Vec3::new(0.5, 0.5, 0.5), Vec3::X, Vec3::Y);
-    let p = patches::build(&[floor, plate], 0.5);
+    let p = floor_and_plate();
     let on_plate = |i: usize| p.patches[i].position.z > 0.25;
     let corners = |i: usize| p.triangles[p.patches[i].triangles.clone()].iter().flatten().copied().collect::<Vec<Vec3>>();
     let within = |i: usize, lo: f32, hi: f32| corners(i).iter().all(|c| c.x >= lo - 1e-4 && c.x <= hi + 1e-4 && c.y >= lo - 1e-4 && c.y <= hi + 1e-4);
@@ -176,9 +181,7 @@ fn emission_adds_to_the_primary_radiosity_and_lights_beyond_the_pass_are_dropped
 fn updates_in_slices_of_points_reach_the_whole_direct_light_of_new_lights_after_one_update_per_slice() {
     let device = lavapipe::select(Device::new);
     // The floor and plate of the shadow test, a point light that moves from one side to the other.
-    let floor = quad(1, Vec3::ZERO, Vec3::X * 4.0, Vec3::Y * 4.0);
-    let plate = quad(2, Vec3::new(0.5, 0.5, 0.5), Vec3::X, Vec3::Y);
-    let p = patches::build(&[floor, plate], 0.5);
+    let p = floor_and_plate();
     let (before, after) = (point(Vec3::new(2.0, 2.0, 1.0), 4.0), point(Vec3::new(0.3, 3.0, 1.5), 6.0));
     let (whole, _) = light(&device, &p, &[after]);
     let differ = |a: &[PatchLight], b: &[PatchLight]| a.iter().zip(b).map(|(x, y)| (x.irradiance - y.irradiance).abs().max_element() / y.irradiance.max_element().max(1e-3)).fold(0.0f32, f32::max);
