@@ -38,8 +38,9 @@ struct PatchSurface {
 };
 
 struct PatchLight {
-    vec4 irradiance; // direct irradiance (rgb), averaged over the patch's points
-    vec4 primary;    // emission + albedo * irradiance (rgb)
+    vec4 irradiance; // direct irradiance (rgb), averaged over the patch's points; w: BVH nodes
+                     // its shadow rays of this update visited, in all
+    vec4 primary;    // emission + albedo * irradiance (rgb); w: the most nodes one of them visited
 };
 
 layout(set = TRACE_SET, binding = RADIOSITY_BINDING_LIGHTS, std430) readonly buffer Lights {
@@ -156,13 +157,16 @@ vec3 direct_point(Patch receiver, uint k) {
 }
 
 shared vec3 partial[RADIOSITY_GROUP];
+// Each invocation's BVH nodes visited: in all, and by its longest traversal.
+shared uvec2 work[RADIOSITY_GROUP];
 
 // One workgroup lights pass.patches_per_group patches (slot), each with pass.lanes invocations
 // (lane), invocation lane * patches_per_group + slot. A patch's (traced point, light) pairs are
 // numbered pair = light * traced + t; lane takes the pairs lane, lane + lanes, ..., all of one
 // traced point t = lane % traced (lanes is a multiple of traced). The first invocation of the
 // patch sums each traced point's lanes in a fixed order (the same result in every run), keeps
-// those points and averages them with the kept ones of the other slices.
+// those points and averages them with the kept ones of the other slices, and the traversal
+// work of the patch's rays (statistics for `glrt radiosity --synthetic`).
 void main() {
     uint per_group = pass.patches_per_group;
     uint lanes = pass.lanes;
@@ -176,6 +180,7 @@ void main() {
     uint i = (gl_WorkGroupID.x * per_group + slot) * patch_stride + pass.phase / point_stride;
     bool in_range = lane < lanes && i < pass.patch_count;
     vec3 sum = vec3(0.0);
+    uint longest = 0u;
     if (in_range) {
         Patch receiver = patches[i];
         if (receiver.normal != vec3(0.0) && receiver.count > 0u) {
@@ -183,11 +188,14 @@ void main() {
             vec3 p = direct_point(receiver, t * point_stride + point_phase);
             uint pairs = traced * pass.light_count;
             for (uint pair = lane; pair < pairs; pair += lanes) {
+                uint before = bvh_nodes_visited;
                 sum += irradiance_of(pair / traced, p, receiver.normal);
+                longest = max(longest, bvh_nodes_visited - before);
             }
         }
     }
     partial[lid] = sum;
+    work[lid] = uvec2(bvh_nodes_visited, longest);
     barrier();
     if (!in_range || lane != 0u) {
         return;
@@ -207,6 +215,11 @@ void main() {
         }
     }
     irradiance /= float(RADIOSITY_DIRECT_POINTS);
+    uvec2 nodes = uvec2(0u);
+    for (uint l = 0u; l < lanes; l++) {
+        uvec2 w = work[l * per_group + slot];
+        nodes = uvec2(nodes.x + w.x, max(nodes.y, w.y));
+    }
     PatchSurface s = surfaces[i];
-    patch_lights[i] = PatchLight(vec4(irradiance, 0.0), vec4(s.emission.rgb + s.albedo.rgb * irradiance, 0.0));
+    patch_lights[i] = PatchLight(vec4(irradiance, float(nodes.x)), vec4(s.emission.rgb + s.albedo.rgb * irradiance, float(nodes.y)));
 }

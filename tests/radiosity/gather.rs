@@ -6,7 +6,8 @@
 use glam::Vec3;
 
 use glrt::render::radiosity::bounces::{colour_matrix, k_bounce};
-use glrt::render::radiosity::compress::{LogRange, REORDER_PASSES, compress};
+use glrt::render::radiosity::compress::{LogRange, Reorder, compress};
+use glrt::render::radiosity::reorder::Search;
 use glrt::render::radiosity::gpu::gather::{Gather, synthetic};
 use glrt::render::radiosity::progress::Progress;
 use glrt::render::radiosity::test_scenes::unit_box;
@@ -20,7 +21,7 @@ fn the_product_from_the_bc1_image_equals_the_cpu_product() {
     let (p, f) = unit_box();
     // A grey box, redder on the floor; one emitting ceiling patch and a little light on all.
     let albedo: Vec<Vec3> = p.patches.iter().map(|x| if x.normal.z > 0.5 { Vec3::new(0.8, 0.3, 0.2) } else { Vec3::splat(0.5) }).collect();
-    let m = compress(&k_bounce(&colour_matrix(f, &albedo), 3, Progress::Quiet), 0.04, REORDER_PASSES, LogRange::Fitted, Progress::Quiet);
+    let m = compress(&k_bounce(&colour_matrix(f, &albedo), 3, Progress::Quiet), 0.04, Reorder::seed(Search::SKETCH), LogRange::Fitted, Progress::Quiet);
     let lamp = p.patches.iter().position(|x| x.normal.z < -0.5).expect("a ceiling patch");
     let primary: Vec<Vec3> = (0..p.patches.len()).map(|i| if i == lamp { Vec3::splat(10.0) } else { Vec3::new(0.01, 0.02, 0.03) * (i % 7) as f32 }).collect();
 

@@ -6,7 +6,8 @@
 use glam::Vec3;
 
 use glrt::render::radiosity::bounces::{colour_matrix, k_bounce};
-use glrt::render::radiosity::compress::{LogRange, REORDER_PASSES, compress};
+use glrt::render::radiosity::compress::{LogRange, Reorder, compress};
+use glrt::render::radiosity::reorder::Search;
 use glrt::render::radiosity::gpu;
 use glrt::render::radiosity::gpu::update::Update;
 use glrt::render::radiosity::progress::Progress;
@@ -28,7 +29,7 @@ fn a_point_light_in_a_grey_box_bounces_with_the_energy_of_k_bounces() {
     let f = gpu::form_factors::compute(&device, &p, &mut |_, _| {}).expect("form factors");
     let albedo: Vec<Vec3> = p.patches.iter().map(|x| x.albedo).collect();
     let k = k_bounce(&colour_matrix(&f, &albedo), 3, Progress::Quiet);
-    let m = compress(&k, 0.04, REORDER_PASSES, LogRange::Fitted, Progress::Quiet);
+    let m = compress(&k, 0.04, Reorder::seed(Search::SKETCH), LogRange::Fitted, Progress::Quiet);
     let light = GpuLight { position: [0.7, 1.2, 1.5, 1.0], radiance: [10.0, 10.0, 10.0, 0.0], spot: [0.0, 0.0, -1.0, -2.0], params: [0.0, 1.0, 0.0, 0.0] };
     let mut update = Update::new(&device, &p, &m, 1).expect("the update's passes");
     let (r, time) = update.run(&device, &[light]).expect("an update");

@@ -92,6 +92,11 @@ enum Command {
         /// 0.5; form factors by the disc approximation, without visibility)
         #[arg(long, value_name = "N", conflicts_with_all = ["matrix", "file", "synthetic"])]
         precompute: Option<usize>,
+        /// With --precompute: then compresses the k-bounce matrix again with each reordering
+        /// (none; exact and sketched searches, 1 and 2 passes), of the patches in the order
+        /// they are built in and shuffled, and prints each one's errors, bytes and time
+        #[arg(long, requires = "precompute")]
+        orderings: bool,
         /// The capture file.
         #[arg(required_unless_present_any = ["synthetic", "precompute"])]
         file: Option<PathBuf>,
@@ -112,7 +117,7 @@ fn main() -> ExitCode {
         Command::Dump { file } => Capture::open(&file).and_then(|capture| dump(&capture)),
         Command::Run(args) => run::run(&args),
         Command::Radiosity { synthetic: Some(n), .. } => radiosity::time_synthetic(n),
-        Command::Radiosity { precompute: Some(n), .. } => radiosity::time_precompute(n),
+        Command::Radiosity { precompute: Some(n), orderings, .. } => radiosity::time_precompute(n, orderings),
         Command::Radiosity { matrix, file, .. } => file
             .ok_or_else(|| "radiosity: a capture file, --synthetic N or --precompute N".to_owned())
             .and_then(|file| Capture::open(&file))

@@ -26,9 +26,11 @@ use glrt::render::radiosity::precompute::{self, Steps};
 use glrt::render::radiosity::settings::{DENSE_BYTES_PER_ENTRY, Settings};
 use glrt::render::radiosity::stage::OnDevice;
 use glrt::render::radiosity::bounces::colour_matrix;
-use glrt::render::radiosity::compress::{REORDER_PASSES, compress};
+use glrt::render::radiosity::compress::{self, REORDER_PASSES, Reorder, compress};
+use glrt::render::radiosity::matrix::ColourMatrix;
 use glrt::render::radiosity::progress::Progress;
-use glrt::render::radiosity::test_scenes::{closed_box, disc_form_factors};
+use glrt::render::radiosity::reorder::Search;
+use glrt::render::radiosity::test_scenes::{closed_box, disc_form_factors, shuffled_order};
 use glrt::render::raster::device::Device;
 use glrt::render::trace::gpu_types::GpuLight;
 use glrt::render::trace::lights::LightSettings;
@@ -105,8 +107,9 @@ pub fn time_synthetic(n: usize) -> Result<(), String> {
 /// it: [`OnDevice`]) and the
 /// compression; each stage's progress on stderr ([`Progress::Stderr`]), then the stage times
 /// and the process's peak resident memory after each. Refused, with the budget's message,
-/// when the dense matrices exceed `radiosity_budget_mb`.
-pub fn time_precompute(n: usize) -> Result<(), String> {
+/// when the dense matrices exceed `radiosity_budget_mb`. With `orderings`, then
+/// [`compare_orderings`] on the k-bounce matrix.
+pub fn time_precompute(n: usize, orderings: bool) -> Result<(), String> {
     let settings = Settings::of_process();
     let side = ((n as f64 / 6.0).sqrt().round() as usize).max(1) as f32;
     let patches = 6 * (side as usize).pow(2);
@@ -142,7 +145,7 @@ pub fn time_precompute(n: usize) -> Result<(), String> {
     drop(colour);
     timed("k-bounce matrix", start);
     let start = Instant::now();
-    let m = compress(&k, settings.top_share, REORDER_PASSES, precompute::RANGE, Progress::Stderr);
+    let m = compress(&k, settings.top_share, precompute::reorder_of(&settings), precompute::RANGE, Progress::Stderr);
     timed("compression (reordering, BC1)", start);
     println!(
         "precompute of {patches} patches (a box of side {side}), k = {}, the k-bounce matrix on {on} ({} CPU threads); dense matrices {} MiB, compressed {} bytes:",
@@ -156,7 +159,46 @@ pub fn time_precompute(n: usize) -> Result<(), String> {
         println!("| {name} | {seconds:.2} | {} |", peak >> 20);
     }
     println!("| all | {:.2} | |", stages.iter().map(|s| s.1).sum::<f64>());
+    if orderings {
+        compare_orderings(&k, settings.top_share);
+    }
     Ok(())
+}
+
+/// Compresses `k` (top share `top_share`, [`precompute::RANGE`]) with each reordering — none,
+/// the exact and the sketched search ([`Search::SKETCH`]) with 1 and 2 passes, and sketches
+/// of fewer and more positions or one candidate with 2 passes — of its patches
+/// in their order and shuffled ([`shuffled_order`]), and prints a Markdown table of each
+/// one's errors, bytes and time (the seed's table, `bench/radiosity.md`).
+fn compare_orderings(k: &ColourMatrix, top_share: f32) {
+    let total: f64 = k.channels.iter().flatten().map(|&x| f64::from(x)).sum();
+    println!("\n| patches | search | passes | mean error | max error | summed error | summed / sum of entries | compressed bytes | s |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+    let shuffled = k.permuted(&shuffled_order(k.n, 0x5eed));
+    for (patches, m) in [("as built", k), ("shuffled", &shuffled)] {
+        let sketch = |samples, candidates| Search::Sketch { samples, candidates };
+        let runs = [
+            (Search::Exact, 0),
+            (Search::Exact, 1),
+            (Search::Exact, REORDER_PASSES),
+            (Search::SKETCH, 1),
+            (Search::SKETCH, REORDER_PASSES),
+            (sketch(64, 16), REORDER_PASSES),
+            (sketch(256, 1), REORDER_PASSES),
+            (sketch(1024, 16), REORDER_PASSES),
+        ];
+        for (search, passes) in runs {
+            let start = Instant::now();
+            let c = compress(m, top_share, Reorder { passes, search }, precompute::RANGE, Progress::Quiet);
+            let seconds = start.elapsed().as_secs_f64();
+            let e = compress::errors(m, &c.decompress());
+            let name = match (passes, search) {
+                (0, _) => "none".to_owned(),
+                (_, Search::Exact) => "exact".to_owned(),
+                (_, Search::Sketch { samples, candidates }) => format!("sketch ({samples} positions, {candidates} candidates)"),
+            };
+            println!("| {patches} | {name} | {passes} | {:.3e} | {:.4} | {:.4} | {:.4} | {} | {seconds:.2} |", e.mean, e.max, e.sum, e.sum / total.max(f64::MIN_POSITIVE), c.bytes());
+        }
+    }
 }
 
 /// The process's peak resident memory in bytes (`VmHWM` of `/proc/self/status`; 0 where it
@@ -192,12 +234,16 @@ fn time_updates(device: &Device, patches: &Patches, m: &CompressedMatrix, lights
             let t = best(f);
             if t.is_finite() { format!("{t:.3} ms on the GPU") } else { "no GPU timestamps".to_owned() }
         };
+        let w = times[times.len() - 1].direct_work;
         println!(
-            "{what}: direct light {:.3} ms wall ({}), product {:.3} ms wall ({})",
+            "{what}: direct light {:.3} ms wall ({}), product {:.3} ms wall ({}); the last one's shadow rays: {} (patch, point, light) pairs, {:.1} BVH nodes visited a pair, {} by the longest ray",
             best(&|t| Some(t.direct.wall)),
             gpu(&|t| t.direct.gpu),
             best(&|t| Some(t.gather.wall)),
             gpu(&|t| t.gather.gpu),
+            w.pairs,
+            w.nodes as f64 / w.pairs.max(1) as f64,
+            w.longest,
         );
     };
     println!("per-frame update on {}, direct-light slices: {slices}", device.name());

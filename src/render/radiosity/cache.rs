@@ -16,7 +16,8 @@ use std::path::{Path, PathBuf};
 use xxhash_rust::xxh3::{Xxh3, xxh3_64};
 
 use super::bc1::Bc1Matrix;
-use super::compress::{CompressedMatrix, LogRange};
+use super::compress::{CompressedMatrix, LogRange, Reorder};
+use super::reorder::Search;
 use super::settings::Settings;
 use super::sparse::SparseRows;
 
@@ -26,9 +27,9 @@ const MAGIC: &[u8; 8] = b"GLRTRAD\0";
 pub const VERSION: u32 = 1;
 
 /// The key of the matrix of the world `world_hash` (see
-/// [`super::patches::world_hash`]) under `settings`, compressed over `range` with `passes`
-/// reordering passes.
-pub fn key(world_hash: u64, settings: &Settings, range: LogRange, passes: u32) -> u64 {
+/// [`super::patches::world_hash`]) under `settings`, compressed over `range` and reordered by
+/// `reorder`.
+pub fn key(world_hash: u64, settings: &Settings, range: LogRange, reorder: Reorder) -> u64 {
     let mut h = Xxh3::new();
     h.update(b"radiosity matrix");
     h.update(&VERSION.to_le_bytes());
@@ -36,7 +37,12 @@ pub fn key(world_hash: u64, settings: &Settings, range: LogRange, passes: u32) -
     h.update(&settings.bounces.to_le_bytes());
     h.update(&settings.top_share.to_le_bytes());
     h.update(&[range as u8]);
-    h.update(&passes.to_le_bytes());
+    h.update(&reorder.passes.to_le_bytes());
+    let search = match reorder.search {
+        Search::Exact => [0; 3],
+        Search::Sketch { samples, candidates } => [1, samples, candidates],
+    };
+    h.update(bytemuck::cast_slice(&search));
     h.digest()
 }
 
@@ -178,7 +184,7 @@ pub fn save(path: &Path, key: u64, m: &CompressedMatrix) -> Result<(), String> {
 mod tests {
     use super::*;
     use crate::render::radiosity::bounces::{colour_matrix, k_bounce};
-    use crate::render::radiosity::compress::{REORDER_PASSES, compress};
+    use crate::render::radiosity::compress::compress;
     use crate::render::radiosity::progress::Progress;
     use crate::render::radiosity::test_scenes::unit_box;
 
@@ -186,12 +192,15 @@ mod tests {
     fn a_matrix_comes_back_whole_and_a_damaged_file_is_refused_with_a_reason() {
         let (p, f) = unit_box();
         let albedo: Vec<_> = p.patches.iter().map(|x| x.albedo * 0.5).collect();
-        let m = compress(&k_bounce(&colour_matrix(f, &albedo), 3, Progress::Quiet), 0.04, REORDER_PASSES, LogRange::Fitted, Progress::Quiet);
+        let reorder = Reorder::seed(Search::SKETCH);
+        let m = compress(&k_bounce(&colour_matrix(f, &albedo), 3, Progress::Quiet), 0.04, reorder, LogRange::Fitted, Progress::Quiet);
         let settings = Settings::default();
-        let k = key(p.world_hash, &settings, LogRange::Fitted, REORDER_PASSES);
-        assert_ne!(k, key(p.world_hash, &Settings { bounces: 2, ..settings }, LogRange::Fitted, REORDER_PASSES));
-        assert_ne!(k, key(p.world_hash, &settings, LogRange::Seed, REORDER_PASSES));
-        assert_ne!(k, key(p.world_hash ^ 1, &settings, LogRange::Fitted, REORDER_PASSES));
+        let k = key(p.world_hash, &settings, LogRange::Fitted, reorder);
+        assert_ne!(k, key(p.world_hash, &Settings { bounces: 2, ..settings }, LogRange::Fitted, reorder));
+        assert_ne!(k, key(p.world_hash, &settings, LogRange::Seed, reorder));
+        assert_ne!(k, key(p.world_hash ^ 1, &settings, LogRange::Fitted, reorder));
+        assert_ne!(k, key(p.world_hash, &settings, LogRange::Fitted, Reorder::seed(Search::Exact)));
+        assert_ne!(k, key(p.world_hash, &settings, LogRange::Fitted, Reorder { passes: 1, ..reorder }));
 
         let dir = std::env::temp_dir().join(format!("glrt-radiosity-cache-{}", std::process::id()));
         let file = path(&dir, k);

@@ -1,7 +1,7 @@
 //! The seed's compressed k-bounce matrix (seed 004, §4.2): the top share of entries exact
 //! ([`sparse`](super::sparse)), the rest log-quantised ([`quantise`](super::quantise): over
 //! the seed's fixed range or one fitted to the values, [`LogRange`]),
-//! reordered by greedy passes ([`reorder`](super::reorder)) and stored as BC1 blocks
+//! reordered by greedy passes ([`reorder`](super::reorder), [`Reorder`]) and stored as BC1 blocks
 //! ([`bc1`](super::bc1)); and the error of the round trip, as the seed's table reports it
 //! (mean, max and summed absolute error over every entry and channel). The kept entries come
 //! back exact: the sparse part stores them minus what their texels decode to.
@@ -13,13 +13,30 @@ use super::bc1::Bc1Matrix;
 use super::matrix::ColourMatrix;
 use super::progress::Progress;
 use super::quantise;
-use super::reorder::{self, Codes};
+use super::reorder::{self, Codes, Search};
 use super::sparse::{self, SparseRows};
 
 /// The seed's share of entries kept exactly.
 pub const TOP_SHARE: f32 = 0.04;
 /// The seed's reordering passes (rows, then columns).
 pub const REORDER_PASSES: u32 = 2;
+
+/// How the quantised part is reordered: greedy passes (alternately rows and columns, from
+/// rows), each finding the nearest line by `search`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Reorder {
+    /// Passes.
+    pub passes: u32,
+    /// How a pass finds the nearest line.
+    pub search: Search,
+}
+
+impl Reorder {
+    /// The seed's two passes, searched by `search`.
+    pub const fn seed(search: Search) -> Reorder {
+        Reorder { passes: REORDER_PASSES, search }
+    }
+}
 
 /// How the quantised part is log-scaled ([`quantise`](super::quantise)).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -46,9 +63,10 @@ pub struct CompressedMatrix {
 }
 
 /// Compresses `m`: the `top_share` largest entries exact, the rest quantised over `range`,
-/// reordered by `passes` greedy passes (alternately rows and columns, from rows) and
-/// BC1-encoded; the passes and the blocks are stages on `progress`.
-pub fn compress(m: &ColourMatrix, top_share: f32, passes: u32, range: LogRange, progress: Progress) -> CompressedMatrix {
+/// reordered by `reorder` and BC1-encoded; the passes and the blocks are stages on
+/// `progress`.
+pub fn compress(m: &ColourMatrix, top_share: f32, reorder: Reorder, range: LogRange, progress: Progress) -> CompressedMatrix {
+    let passes = reorder.passes;
     let n = m.n;
     let (sparse, rest) = sparse::split_top(m, top_share);
     let max = rest.channels.iter().flatten().fold(0.0f32, |a, &b| a.max(b));
@@ -60,8 +78,12 @@ pub fn compress(m: &ColourMatrix, top_share: f32, passes: u32, range: LogRange, 
     let mut order: Vec<u32> = (0..n as u32).collect();
     for pass in 0..passes {
         let by_columns = pass % 2 == 1;
-        let stage = progress.stage(&format!("reordering pass {} of {passes} ({})", pass + 1, if by_columns { "columns" } else { "rows" }), n as u64, "lines");
-        let step = reorder::greedy_order(&codes, n, by_columns, &stage);
+        let search = match reorder.search {
+            Search::Exact => "exact search",
+            Search::Sketch { .. } => "sketched search",
+        };
+        let stage = progress.stage(&format!("reordering pass {} of {passes} ({}, {search})", pass + 1, if by_columns { "columns" } else { "rows" }), n as u64, "lines");
+        let step = reorder::greedy_order(&codes, n, by_columns, reorder.search, &stage);
         stage.finish();
         codes = reorder::permute(&codes, n, &step);
         order = step.iter().map(|&k| order[k as usize]).collect();

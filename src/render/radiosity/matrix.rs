@@ -41,6 +41,12 @@ impl ColourMatrix {
         }
     }
 
+    /// The matrix with rows and columns both permuted by `order`: entry `(a, b)` is
+    /// `self`'s `(order[a], order[b])`.
+    pub fn permuted(&self, order: &[u32]) -> ColourMatrix {
+        ColourMatrix { n: self.n, channels: std::array::from_fn(|c| super::reorder::permute_square(&self.channels[c], self.n, order)) }
+    }
+
     /// `self · v`, channel by channel (f64 sums).
     pub fn apply(&self, v: &[Vec3]) -> Vec<Vec3> {
         let n = self.n;

@@ -15,7 +15,7 @@ use glam::Vec3;
 
 use super::bounces::{colour_matrix, gather, k_bounce, neumann};
 use super::cache;
-use super::compress::{self, CompressedMatrix, Errors, LogRange, compress};
+use super::compress::{self, CompressedMatrix, Errors, LogRange, Reorder, compress};
 use super::form_factors::FormFactors;
 use super::matrix::ColourMatrix;
 use super::patches::{self, Patches, area};
@@ -91,7 +91,7 @@ pub const RANGE: LogRange = LogRange::Fitted;
 pub struct StaticRadiosity {
     /// The patches.
     pub patches: Patches,
-    /// The compressed k-bounce matrix ([`RANGE`], [`compress::REORDER_PASSES`] passes).
+    /// The compressed k-bounce matrix ([`RANGE`], reordered as [`reorder_of`] says).
     pub matrix: CompressedMatrix,
     /// Whether the matrix came from the cache.
     pub loaded: bool,
@@ -108,7 +108,7 @@ pub struct StaticRadiosity {
 pub fn load_or_build(chunks: &[Arc<StaticChunk>], settings: &Settings, cache: Option<&Path>, steps: &mut dyn Steps) -> StaticRadiosity {
     let (patches, note) = patches_within_budget(chunks, settings);
     let mut notes: Vec<String> = note.into_iter().collect();
-    let key = cache::key(patches.world_hash, settings, RANGE, compress::REORDER_PASSES);
+    let key = cache::key(patches.world_hash, settings, RANGE, reorder_of(settings));
     let cache_file = cache.map(|dir| cache::path(dir, key));
     if let Some(file) = &cache_file {
         match cache::load(file, key) {
@@ -130,10 +130,15 @@ pub fn load_or_build(chunks: &[Arc<StaticChunk>], settings: &Settings, cache: Op
 }
 
 /// The renderer's compressed k-bounce matrix of form factors `f` and albedos `albedo` (the
-/// settings' bounces and top share, [`RANGE`], [`compress::REORDER_PASSES`] passes), the
-/// k-bounce matrix by `steps`, its stages on `progress`.
+/// settings' bounces and top share, [`RANGE`], [`reorder_of`] the settings), the k-bounce
+/// matrix by `steps`, its stages on `progress`.
 pub fn matrix_of(f: &FormFactors, albedo: &[Vec3], settings: &Settings, steps: &mut dyn Steps, progress: Progress) -> CompressedMatrix {
-    compress(&steps.k_bounce(&colour_matrix(f, albedo), settings.bounces, progress), settings.top_share, compress::REORDER_PASSES, RANGE, progress)
+    compress(&steps.k_bounce(&colour_matrix(f, albedo), settings.bounces, progress), settings.top_share, reorder_of(settings), RANGE, progress)
+}
+
+/// The renderer's reordering: the seed's two passes, searched as `radiosity_reorder` says.
+pub fn reorder_of(settings: &Settings) -> Reorder {
+    Reorder::seed(settings.reorder)
 }
 
 /// One compression of the k-bounce matrix.
@@ -169,7 +174,7 @@ pub struct Report {
     /// Bytes: dense form factors, dense k-bounce colour matrix.
     pub dense_bytes: [usize; 2],
     /// The compressions: the seed's log range, then the fitted one, each after 0, 1 and 2
-    /// reordering passes.
+    /// reordering passes searched as the settings say.
     pub compressed: Vec<Compressed>,
     /// Sum of the k-bounce matrix's entries (the scale of the summed errors).
     pub total: f64,
@@ -203,7 +208,7 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Ste
         .flat_map(|range| (0..=compress::REORDER_PASSES).map(move |passes| (range, passes)))
         .map(|(range, passes)| {
             let start = Instant::now();
-            let c = compress(&k, settings.top_share, passes, range, Progress::Quiet);
+            let c = compress(&k, settings.top_share, Reorder { passes, ..reorder_of(settings) }, range, Progress::Quiet);
             let t = start.elapsed();
             Compressed { range, passes, time: t, bytes: c.bytes(), errors: compress::errors(&k, &c.decompress()) }
         })

@@ -16,9 +16,13 @@
 //! radiosity_direct_slices = 4 # 1, 2, 4, 8 or 16: an update traces the shadow rays of one
 //!                             # slice of the patches' direct-light points, the others kept
 //!                             # from earlier updates (new lights are whole after this many)
+//! radiosity_reorder = "sketch" # how the matrix's reordering passes find the nearest line:
+//!                             # "sketch" (by sketches of the lines, O(n²)) or "exact" (the
+//!                             # seed's search over whole lines, O(n³))
 //! ```
 
-use crate::config::{Key, Table, integer_in, number, number_in, switch};
+use super::reorder::Search;
+use crate::config::{Key, Table, integer_in, number, number_in, one_of, switch};
 
 /// Bytes per entry of the precompute's dense matrices: the colour matrix and the k-bounce sum,
 /// three `f32` channels each.
@@ -46,11 +50,14 @@ pub struct Settings {
     /// Slices of the patches' direct-light points, one traced per update
     /// (`radiosity_direct_slices`: 1, 2, 4, 8 or 16; [`super::gpu::direct`]).
     pub direct_slices: u32,
+    /// How the reordering passes find the nearest line (`radiosity_reorder`: `"sketch"`,
+    /// [`Search::SKETCH`], or `"exact"`, [`Search::Exact`]).
+    pub reorder: Search,
 }
 
 impl Default for Settings {
     fn default() -> Settings {
-        Settings { enabled: false, patch_size: 0.0, bounces: 3, top_share: 0.04, budget_mb: 256, wait: false, direct_slices: 4 }
+        Settings { enabled: false, patch_size: 0.0, bounces: 3, top_share: 0.04, budget_mb: 256, wait: false, direct_slices: 4, reorder: Search::SKETCH }
     }
 }
 
@@ -64,6 +71,7 @@ impl Table for Settings {
         Key { name: "radiosity_budget_mb", set: |s, v| integer_in(v, 1..=65536).map(|x| s.budget_mb = x as u32) },
         Key { name: "radiosity_wait", set: |s, v| switch(v).map(|b| s.wait = b) },
         Key { name: "radiosity_direct_slices", set: |s, v| number(v, |x| [1.0, 2.0, 4.0, 8.0, 16.0].contains(&x), "1, 2, 4, 8 or 16").map(|x| s.direct_slices = x as u32) },
+        Key { name: "radiosity_reorder", set: |s, v| one_of(v, &["sketch", "exact"]).map(|i| s.reorder = [Search::SKETCH, Search::Exact][i]) },
     ];
 
     fn variable(name: &str) -> String {
@@ -99,10 +107,10 @@ mod tests {
 
     #[test]
     fn every_key_is_read_from_the_file_and_the_environment() {
-        let body = "enabled = true\npatch_size = 0.5\nradiosity_bounces = 5\ntop_share = 0.1\nradiosity_budget_mb = 64\nradiosity_wait = true\nradiosity_direct_slices = 2\n";
+        let body = "enabled = true\npatch_size = 0.5\nradiosity_bounces = 5\ntop_share = 0.1\nradiosity_budget_mb = 64\nradiosity_wait = true\nradiosity_direct_slices = 2\nradiosity_reorder = \"exact\"\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
-        assert_eq!(s, Settings { enabled: true, patch_size: 0.5, bounces: 5, top_share: 0.1, budget_mb: 64, wait: true, direct_slices: 2 });
+        assert_eq!(s, Settings { enabled: true, patch_size: 0.5, bounces: 5, top_share: 0.1, budget_mb: 64, wait: true, direct_slices: 2, reorder: Search::Exact });
         let env = [
             ("GLRT_RADIOSITY", "0"),
             ("GLRT_PATCH_SIZE", "2"),
@@ -111,10 +119,11 @@ mod tests {
             ("GLRT_RADIOSITY_BUDGET_MB", "1"),
             ("GLRT_RADIOSITY_WAIT", "0"),
             ("GLRT_RADIOSITY_DIRECT_SLICES", "1"),
+            ("GLRT_RADIOSITY_REORDER", "sketch"),
         ];
         let (s, problems) = read(body, &env);
         assert!(problems.is_empty(), "{problems:?}");
-        assert_eq!(s, Settings { enabled: false, patch_size: 2.0, bounces: 1, top_share: 0.0, budget_mb: 1, wait: false, direct_slices: 1 });
+        assert_eq!(s, Settings { enabled: false, patch_size: 2.0, bounces: 1, top_share: 0.0, budget_mb: 1, wait: false, direct_slices: 1, reorder: Search::SKETCH });
         assert_eq!(read("", &[]), (Settings::default(), vec![]));
         // 1 MiB of two dense colour matrices: 209 patches (209² · 24 bytes < 2^20).
         assert_eq!(s.max_patches(), 209);
@@ -128,6 +137,7 @@ mod tests {
             ("patch_size = -1", "patch_size: expected a number >= 0, found -1"),
             ("radiosity_budget_mb = 0", "radiosity_budget_mb: expected an integer in 1..=65536, found 0"),
             ("radiosity_direct_slices = 3", "radiosity_direct_slices: expected 1, 2, 4, 8 or 16, found 3"),
+            ("radiosity_reorder = \"fast\"", "radiosity_reorder: expected one of \"sketch\", \"exact\", found \"fast\""),
         ] {
             let (s, problems) = read(line, &[]);
             assert_eq!(s, Settings::default(), "{line}");

@@ -5,11 +5,12 @@
 use glam::Vec3;
 
 use super::bounces::{colour_matrix, gather, k_bounce, neumann};
-use super::compress::{self, LogRange, compress};
+use super::compress::{self, LogRange, Reorder, compress};
 use super::form_factors::{self, FormFactors};
 use super::patches::{self, Patches};
 use super::progress::Progress;
-use super::test_scenes::{closed_box, quad, unit_box};
+use super::reorder::Search;
+use super::test_scenes::{closed_box, quad, shuffled_order, unit_box};
 
 /// The form factor from the patches `receivers` (as one surface: area-weighted) to the
 /// patches `sources`.
@@ -216,7 +217,7 @@ fn compression_keeps_the_top_share_exact_and_the_rest_close() {
     let total: f64 = m.channels.iter().flatten().map(|&x| f64::from(x)).sum();
     let mut sums = Vec::new();
     for (range, passes) in [LogRange::Seed, LogRange::Fitted].into_iter().flat_map(|r| (0..=2).map(move |p| (r, p))) {
-        let c = compress(&m, compress::TOP_SHARE, passes, range, Progress::Quiet);
+        let c = compress(&m, compress::TOP_SHARE, Reorder { passes, search: Search::Exact }, range, Progress::Quiet);
         assert_eq!(c.sparse.len(), (0.04 * (n * n) as f32).round() as usize);
         let mut order = c.order.clone();
         order.sort_unstable();
@@ -244,6 +245,25 @@ fn compression_keeps_the_top_share_exact_and_the_rest_close() {
         assert!(sums[3 + passes] * 1.5 < sums[passes], "{sums:?}");
     }
     // Everything kept exactly: the round trip is exact.
-    let all = compress(&m, 1.0, 0, LogRange::Seed, Progress::Quiet).decompress();
+    let all = compress(&m, 1.0, Reorder { passes: 0, search: Search::Exact }, LogRange::Seed, Progress::Quiet).decompress();
     assert_eq!(compress::errors(&m, &all).max, 0.0);
+}
+
+#[test]
+fn the_sketched_reordering_compresses_about_as_well_as_the_exact_one_and_the_same_every_run() {
+    // The unit box's k-bounce matrix (96 patches) with its patches shuffled, so that the
+    // passes have an order to restore; sketches of 16 positions of 96, 4 candidates.
+    let (p, f) = unit_box();
+    let albedo: Vec<Vec3> = p.patches.iter().map(|x| if x.normal.x.abs() > 0.5 { Vec3::new(0.8, 0.2, 0.2) } else { Vec3::splat(0.6) }).collect();
+    let m = k_bounce(&colour_matrix(f, &albedo), 3, Progress::Quiet).permuted(&shuffled_order(p.patches.len(), 3));
+    let run = |search: Search, passes: u32| compress(&m, compress::TOP_SHARE, Reorder { passes, search }, LogRange::Fitted, Progress::Quiet);
+    let sketch = Search::Sketch { samples: 16, candidates: 4 };
+    let sketched = run(sketch, 2);
+    assert_eq!(sketched, run(sketch, 2));
+    let mut order = sketched.order.clone();
+    order.sort_unstable();
+    assert_eq!(order, (0..m.n as u32).collect::<Vec<_>>());
+    let [none, sketched, exact] = [run(sketch, 0), sketched, run(Search::Exact, 2)].map(|c| compress::errors(&m, &c.decompress()));
+    eprintln!("summed errors: shuffled {}, sketched {}, exact {}", none.sum, sketched.sum, exact.sum);
+    assert!(sketched.sum <= 1.2 * exact.sum && sketched.mean <= 1.2 * exact.mean && sketched.sum < none.sum, "shuffled {none:?}, sketched {sketched:?}, exact {exact:?}");
 }

@@ -48,9 +48,9 @@ pub struct GpuPatchSurface {
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuPatchLight {
-    /// Direct irradiance (rgb).
+    /// Direct irradiance (rgb); w: BVH nodes the patch's shadow rays of this update visited.
     pub irradiance: [f32; 4],
-    /// Primary radiosity (rgb).
+    /// Primary radiosity (rgb); w: the most nodes one of those rays visited.
     pub primary: [f32; 4],
 }
 
@@ -84,6 +84,18 @@ pub struct PatchLight {
     pub primary: Vec3,
 }
 
+/// The BVH traversal work of an update's shadow rays (the tracer's `bvh_nodes_visited`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TraversalWork {
+    /// (patch, point, light) pairs traced (a pair whose light is behind its point traces no
+    /// ray).
+    pub pairs: u64,
+    /// Nodes visited in all.
+    pub nodes: u64,
+    /// The most nodes one ray visited.
+    pub longest: u32,
+}
+
 /// The patches on the device and the pass that lights them.
 pub struct Direct {
     pass: ComputePass,
@@ -96,6 +108,8 @@ pub struct Direct {
     lights: Vec<GpuLight>,
     /// Slices last traced under other lights than the last update's.
     stale: u32,
+    /// The last update's traversal work.
+    work: TraversalWork,
 }
 
 impl Direct {
@@ -120,7 +134,7 @@ impl Direct {
             push_bytes: size_of::<GpuDirectPass>() as u32,
         };
         let spirv = include_bytes!(concat!(env!("OUT_DIR"), "/shaders/radiosity/direct.comp.spv"));
-        Ok(Direct { pass: ComputePass::new(device, spirv, &inputs)?, n, slices, next: None, lights: Vec::new(), stale: 0 })
+        Ok(Direct { pass: ComputePass::new(device, spirv, &inputs)?, n, slices, next: None, lights: Vec::new(), stale: 0, work: TraversalWork::default() })
     }
 
     /// Every patch's direct light from `lights` (in the patches' frame) as this update's slice
@@ -150,9 +164,22 @@ impl Direct {
         self.stale = if slices == 1 { 0 } else { self.stale.saturating_sub(1) };
         self.next = Some((phase + 1) % self.slices);
         self.lights = lights;
+        let (point_stride, patch_stride) = (slices.min(DIRECT_POINTS), (slices / DIRECT_POINTS).max(1));
         let out: &[GpuPatchLight] = bytemuck::cast_slice(&self.pass.output()[..self.n * size_of::<GpuPatchLight>()]);
+        // The patches this update traced (the others keep an earlier update's numbers).
+        let traced = || out.iter().skip((phase / point_stride) as usize).step_by(patch_stride as usize);
+        self.work = TraversalWork {
+            pairs: traced().count() as u64 * u64::from(DIRECT_POINTS / point_stride) * self.lights.len() as u64,
+            nodes: traced().map(|p| p.irradiance[3] as u64).sum(),
+            longest: traced().map(|p| p.primary[3] as u32).max().unwrap_or(0),
+        };
         let light = out.iter().map(|p| PatchLight { irradiance: Vec3::from_slice(&p.irradiance[..3]), primary: Vec3::from_slice(&p.primary[..3]) }).collect();
         Ok((light, time))
+    }
+
+    /// The last update's BVH traversal work.
+    pub fn work(&self) -> TraversalWork {
+        self.work
     }
 
     /// Whether every point was traced under the last update's lights: the direct light is

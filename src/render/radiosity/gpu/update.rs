@@ -9,7 +9,7 @@
 
 use glam::Vec3;
 
-use super::direct::{Direct, PatchLight};
+use super::direct::{Direct, PatchLight, TraversalWork};
 use super::gather::Gather;
 use super::pass::DispatchTime;
 use crate::render::radiosity::compress::CompressedMatrix;
@@ -33,6 +33,8 @@ pub struct UpdateTime {
     pub direct: DispatchTime,
     /// The product.
     pub gather: DispatchTime,
+    /// The direct light's BVH traversal work.
+    pub direct_work: TraversalWork,
 }
 
 /// The patches and their matrix on the device, and the two passes.
@@ -60,7 +62,7 @@ impl Update {
         let (direct, direct_time) = self.direct.run(device, lights)?;
         let primary: Vec<Vec3> = direct.iter().map(|l| l.primary).collect();
         let (radiosity, gather_time) = self.gather.run(device, &primary)?;
-        Ok((Radiosity { direct, radiosity }, UpdateTime { direct: direct_time, gather: gather_time }))
+        Ok((Radiosity { direct, radiosity }, UpdateTime { direct: direct_time, gather: gather_time, direct_work: self.direct.work() }))
     }
 
     /// Whether the last update's direct light is wholly its lights' ([`Direct::settled`]).
