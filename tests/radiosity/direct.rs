@@ -189,14 +189,22 @@ fn updates_in_slices_of_points_reach_the_whole_direct_light_of_new_lights_after_
         let mut direct = Direct::new(&device, &p, slices).expect("the direct-light pass");
         direct.run(&device, &[before]).expect("a dispatch");
         assert!(direct.settled(), "the first update traces every point");
+        // Its traversal work: every (patch, point, light) pair, each ray at least the root.
+        let all = direct.work();
+        assert_eq!(all.pairs, 4 * p.patches.len() as u64, "{all:?}");
+        assert!(all.longest >= 1 && all.nodes >= u64::from(all.longest) && all.nodes >= all.pairs / 2, "{all:?}");
         let mut out = Vec::new();
+        let mut pairs = 0;
         for k in 1..=slices {
             out = direct.run(&device, &[after]).expect("a dispatch").0;
+            pairs += direct.work().pairs;
             assert_eq!(direct.settled(), k == slices, "{slices} slices, update {k}");
             if k < slices {
                 assert!(differ(&out, &whole) > 0.05, "{slices} slices, update {k}: still partly the old light's");
             }
         }
+        // The slices' pairs make every pair once.
+        assert_eq!(pairs, all.pairs, "{slices} slices");
         // Each point the sum over the lights in the same order as tracing every point: equal
         // (measured: 0 difference).
         let d = differ(&out, &whole);

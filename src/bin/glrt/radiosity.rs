@@ -169,7 +169,8 @@ pub fn time_precompute(n: usize, orderings: bool) -> Result<(), String> {
 /// the exact and the sketched search ([`Search::SKETCH`]) with 1 and 2 passes, and sketches
 /// of fewer and more positions or one candidate with 2 passes — of its patches
 /// in their order and shuffled ([`shuffled_order`]), and prints a Markdown table of each
-/// one's errors, bytes and time (the seed's table, `bench/radiosity.md`).
+/// one's errors, bytes and time (the seed's table, `bench/radiosity.md`); each pass's time is
+/// on stderr.
 fn compare_orderings(k: &ColourMatrix, top_share: f32) {
     let total: f64 = k.channels.iter().flatten().map(|&x| f64::from(x)).sum();
     println!("\n| patches | search | passes | mean error | max error | summed error | summed / sum of entries | compressed bytes | s |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
@@ -188,7 +189,7 @@ fn compare_orderings(k: &ColourMatrix, top_share: f32) {
         ];
         for (search, passes) in runs {
             let start = Instant::now();
-            let c = compress(m, top_share, Reorder { passes, search }, precompute::RANGE, Progress::Quiet);
+            let c = compress(m, top_share, Reorder { passes, search }, precompute::RANGE, Progress::Stderr);
             let seconds = start.elapsed().as_secs_f64();
             let e = compress::errors(m, &c.decompress());
             let name = match (passes, search) {
