@@ -1,6 +1,6 @@
 //! The precompute on the CPU, step by step with its times, sizes and errors: patches within
 //! the memory budget, form factors, the colour and k-bounce matrices, the compressed matrix
-//! after 0, 1 and 2 reordering passes, the k-bounce light against the Neumann series, and the
+//! after 0, 1 and 2 reordering passes (exact and sketched searches), the k-bounce light against the Neumann series, and the
 //! per-frame cost of the dense product against classic gathering. `glrt radiosity` prints
 //! [`Report`]; `bench/radiosity.md` keeps its numbers. The two heavy steps, the form factors
 //! and the k-bounce matrix, run where the caller's [`Steps`] say (a Vulkan device:
@@ -20,6 +20,7 @@ use super::form_factors::FormFactors;
 use super::matrix::ColourMatrix;
 use super::patches::{self, Patches, area};
 use super::progress::Progress;
+use super::reorder::Search;
 use super::settings::Settings;
 use crate::frame::world::StaticChunk;
 
@@ -148,6 +149,8 @@ pub struct Compressed {
     pub range: LogRange,
     /// Its reordering passes.
     pub passes: u32,
+    /// How they searched.
+    pub search: Search,
     /// Time to compress.
     pub time: Duration,
     /// Bytes.
@@ -173,8 +176,9 @@ pub struct Report {
     pub bounces: u32,
     /// Bytes: dense form factors, dense k-bounce colour matrix.
     pub dense_bytes: [usize; 2],
-    /// The compressions: the seed's log range, then the fitted one, each after 0, 1 and 2
-    /// reordering passes searched as the settings say.
+    /// The compressions: the seed's log range, then the fitted one, each without reordering,
+    /// then after 1 and 2 passes of the exact search, then of the sketched one
+    /// ([`Search::SKETCH`]).
     pub compressed: Vec<Compressed>,
     /// Sum of the k-bounce matrix's entries (the scale of the summed errors).
     pub total: f64,
@@ -203,14 +207,16 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Ste
     let k = steps.k_bounce(&colour, settings.bounces, Progress::Stderr);
     let t_k = start.elapsed();
     let total: f64 = k.channels.iter().flatten().map(|&x| f64::from(x)).sum();
+    let reorderings = std::iter::once(Reorder { passes: 0, search: Search::Exact })
+        .chain([Search::Exact, Search::SKETCH].into_iter().flat_map(|search| (1..=compress::REORDER_PASSES).map(move |passes| Reorder { passes, search })));
     let compressed = [LogRange::Seed, LogRange::Fitted]
         .into_iter()
-        .flat_map(|range| (0..=compress::REORDER_PASSES).map(move |passes| (range, passes)))
-        .map(|(range, passes)| {
+        .flat_map(|range| reorderings.clone().map(move |reorder| (range, reorder)))
+        .map(|(range, reorder)| {
             let start = Instant::now();
-            let c = compress(&k, settings.top_share, Reorder { passes, ..reorder_of(settings) }, range, Progress::Quiet);
+            let c = compress(&k, settings.top_share, reorder, range, Progress::Quiet);
             let t = start.elapsed();
-            Compressed { range, passes, time: t, bytes: c.bytes(), errors: compress::errors(&k, &c.decompress()) }
+            Compressed { range, passes: reorder.passes, search: reorder.search, time: t, bytes: c.bytes(), errors: compress::errors(&k, &c.decompress()) }
         })
         .collect();
     let ones = vec![Vec3::ONE; f.n];
@@ -272,14 +278,19 @@ impl Report {
         if let Some(c) = self.compressed.last() {
             let _ = writeln!(s, "| compressed (BC1 + exact top share + order) | {} | {:.3} |", c.bytes, mib(c.bytes));
         }
-        let _ = writeln!(s, "\n| log range | reordering passes | mean error | max error | summed error | summed / sum of entries | compress ms |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |");
+        let _ = writeln!(s, "\n| log range | reordering passes | search | mean error | max error | summed error | summed / sum of entries | compress ms |\n| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: |");
         for c in &self.compressed {
             let e = &c.errors;
             let range = match c.range {
                 LogRange::Seed => "seed (shift 25)",
                 LogRange::Fitted => "fitted",
             };
-            let _ = writeln!(s, "| {range} | {} | {:.3e} | {:.4} | {:.4} | {:.4} | {:.1} |", c.passes, e.mean, e.max, e.sum, e.sum / self.total.max(f64::MIN_POSITIVE), ms(c.time));
+            let search = match (c.passes, c.search) {
+                (0, _) => "",
+                (_, Search::Exact) => "exact",
+                (_, Search::Sketch { .. }) => "sketch",
+            };
+            let _ = writeln!(s, "| {range} | {} | {search} | {:.3e} | {:.4} | {:.4} | {:.4} | {:.1} |", c.passes, e.mean, e.max, e.sum, e.sum / self.total.max(f64::MIN_POSITIVE), ms(c.time));
         }
         let _ = writeln!(s, "\nk bounces against the Neumann series ({} bounces to converge to {TOLERANCE:e}), primary light 1 on every patch; largest error / largest converged value:\n", self.neumann_bounces);
         let _ = writeln!(s, "| k | error |\n| ---: | ---: |");
@@ -320,7 +331,7 @@ mod tests {
         let report = run(&chunks, &Settings { patch_size: 1.0, ..settings }, &mut form_factors::compute);
         assert_eq!((report.patches, report.triangles, report.bounces), (24, 12, 3));
         assert_eq!(report.dense_bytes, [24 * 24 * 4, 24 * 24 * 12]);
-        assert_eq!(report.compressed.len(), 6);
+        assert_eq!(report.compressed.len(), 10);
         // In a closed box each bounce is ρ = 0.216 of the one before: ~9 bounces to 1e-6; k
         // bounces fall short by ρ^(k+1) / (1 - ρ) against ρ / (1 - ρ) converged: ρ^k of it.
         assert!((8..=12).contains(&report.neumann_bounces), "{}", report.neumann_bounces);

@@ -59,7 +59,7 @@ pub struct PatchScene {
 impl PatchScene {
     /// The scene of `patches`.
     pub fn new(patches: &Patches) -> PatchScene {
-        let blas = Blas::build(&patches.triangles, Layout::Binary);
+        let blas = Blas::build_thorough(&patches.triangles, Layout::Binary);
         let tlas = Tlas::build(&[blas.bounds], Layout::Binary);
         let rows = affine_rows(&Affine3A::IDENTITY).map(|r| r.to_array());
         let instance = GpuInstance { object_to_eye: rows, eye_to_object: rows, previous_object_to_eye: rows, blas_root: 0, first_triangle: 0, flags: 0, material: 0, previous_triangles: NO_PREVIOUS_TRIANGLES, pad0: 0, pad1: 0, pad2: 0 };

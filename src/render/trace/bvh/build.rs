@@ -77,6 +77,14 @@ impl Blas {
         Self::build_limited(triangles, layout, params, BVH_MAX_DEPTH)
     }
 
+    /// [`Blas::build`] with obvhs' slow preset (wider PLOC search, more SAH reinsertion;
+    /// without pre-splitting, so each triangle is in one leaf): for a BVH built once and
+    /// traversed by many rays (the radiosity patches').
+    pub fn build_thorough(triangles: &[[Vec3; 3]], layout: Layout) -> Blas {
+        let params = BvhBuildParams { max_prims_per_leaf: BLAS_LEAF_SIZE, pre_split: false, ..BvhBuildParams::slow_build() };
+        Self::build_limited(triangles, layout, params, BVH_MAX_DEPTH)
+    }
+
     /// [`Blas::build`] with obvhs' `params`, trees deeper than `max_depth` nodes rebuilt by
     /// median split.
     pub(super) fn build_limited(triangles: &[[Vec3; 3]], layout: Layout, params: BvhBuildParams, max_depth: usize) -> Blas {
