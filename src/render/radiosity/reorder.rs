@@ -58,7 +58,8 @@ pub fn greedy_order(codes: &Codes, n: usize, by_columns: bool, search: Search, p
     let mut order = Vec::with_capacity(n);
     let mut current = 0usize;
     for _ in 0..n {
-        let last = remaining.pop().expect("a line not placed");
+        // `current` is among them: it leaves, the last one takes its slot.
+        let Some(last) = remaining.pop() else { break };
         if last as usize != current {
             let k = at[current] as usize;
             remaining[k] = last;

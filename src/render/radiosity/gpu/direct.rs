@@ -19,6 +19,10 @@
 //! above a patch's horizon, as `trace::lights` explains) and a directional light of an
 //! angular size as its centre direction: one deterministic shadow ray each, no noise from frame
 //! to frame. The sky's light is not gathered.
+//!
+//! Each update also counts its shadow rays' BVH traversal work ([`TraversalWork`]: nodes
+//! visited in all and by the longest ray), which bounds the pass's time on a GPU that the rays
+//! do not fill (`bench/radiosity.md`).
 
 use bytemuck::{Pod, Zeroable};
 use glam::Vec3;
