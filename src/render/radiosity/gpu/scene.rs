@@ -143,3 +143,23 @@ fn planes(patches: &Patches) -> Vec<Vec<[Vec3; 3]>> {
     }
     planes.into_values().collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::render::radiosity::test_scenes::closed_box;
+
+    #[test]
+    fn a_closed_box_is_six_planes_of_its_walls_triangles() {
+        let p = closed_box(2.0, 0.5);
+        let planes = planes(&p);
+        assert_eq!(planes.len(), 6);
+        for plane in &planes {
+            // 16 patches of two triangles, all in one wall: one coordinate the same everywhere.
+            assert_eq!(plane.len(), 32);
+            let flat = (0..3).filter(|&a| plane.iter().flatten().all(|v| v[a] == plane[0][0][a])).count();
+            assert_eq!(flat, 1, "{plane:?}");
+        }
+        assert_eq!(planes.iter().map(Vec::len).sum::<usize>(), p.triangles.len());
+    }
+}
