@@ -20,7 +20,7 @@
 //! temporal = true           # temporal filter with reprojection while moving
 //! sky_sampling = true       # next-event estimation of the sky (its cube map's luminance)
 //! sky_size = 128            # faces of the sky's environment cube map, pixels, 16..=2048
-//! tracer = "auto"           # "auto", "hardware" (VK_KHR_ray_tracing_pipeline), "compute"
+//! tracer = "auto"           # "auto" (the faster where both run, measured), "hardware" (VK_KHR_ray_tracing_pipeline), "compute"
 //! bvh = "binary"            # the compute tracer's BVH nodes: "binary" or "wide" (8 children, compressed)
 //! chunk_regions = 2         # the hardware tracer merges the static world's chunks of n³ world cells, 0..=64 (0: none)
 //! ```
@@ -70,7 +70,9 @@ pub enum Lightmaps {
 /// Which ray-tracing back end traces ([`super::backend`] decides for `Auto`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Tracer {
-    /// The hardware back end where the device has it, else the compute one (`"auto"`).
+    /// Where the device has the hardware back end, the faster of the two, measured in a
+    /// program's first frames and remembered ([`super::auto`]); else the compute one
+    /// (`"auto"`).
     #[default]
     Auto,
     /// The ray-tracing pipeline ([`super::hardware`]); the compute one, with a message, on a
