@@ -1015,6 +1015,11 @@ mod tests {
                 assert_eq!((c.colors[k][2], c.texcoords[0][k], c.texcoords[1][k]), (255, texcoords[i], lightmap_texcoords[i]));
             }
             assert_eq!(c.upload_bytes(), c.positions.len() as u64 * 32, "12 + 8 + 8 + 4 bytes a corner");
+            let size = world.cell_size.expect("fixed when the first triangles joined");
+            for tri in c.positions.chunks_exact(3) {
+                let tri: [[f32; 3]; 3] = [tri[0], tri[1], tri[2]];
+                assert_eq!(c.cell, (centroid(&tri) / size).floor().as_ivec3().to_array(), "the grid cell its triangles were grouped in");
+            }
         }
     }
 
