@@ -280,9 +280,13 @@ impl Accelerations {
     }
 
     /// Records the builds of the merged bottom levels of `runs` (their members, in order) that
-    /// have none ([`regions::plan`]), retires those no run names, then a barrier when anything
-    /// was built; returns each run's [`regions::members_key`].
+    /// have none ([`regions::plan`]), retires those no run names (unless there is no run: a
+    /// frame without the static world, such as a menu, keeps them for its return), then a
+    /// barrier when anything was built; returns each run's [`regions::members_key`].
     fn build_merged(&mut self, device: &Device, cmd: vk::CommandBuffer, resident: &Resident, runs: &[Vec<Member>]) -> Result<Vec<u64>> {
+        if runs.is_empty() {
+            return Ok(Vec::new());
+        }
         let keys: Vec<u64> = runs.iter().map(|m| regions::members_key(m)).collect();
         let (build, retire) = regions::plan(&self.merged, &keys);
         let frames = self.frames;

@@ -17,8 +17,8 @@
 //! - **Rebuild.** A merged structure is keyed by its members ([`Member`]: geometry key and
 //!   opacity, in order): it is built when a run of chunks appears whose members have no
 //!   structure (a new chunk in the region, a released one), reused while they stay, and
-//!   retired in the first frame that no longer traces it ([`plan`]). Other regions keep
-//!   theirs.
+//!   retired in the first frame that traces merged chunks but not these ([`plan`]; a frame
+//!   without the static world keeps them). Other regions keep theirs.
 
 use std::collections::HashMap;
 use std::ops::Range;
