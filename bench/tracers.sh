@@ -11,11 +11,11 @@
 #   bash bench/tracers.sh BIN_DIR OUT_DIR [FRAMES] [SIZE] [regions]
 # BIN_DIR holds a release build's libglrt.so and glrt-demo.
 # With `regions` (issue 21 item 1, bench/pathtrace.md "Merged chunk regions"): instead, the
-# hardware tracer with GLRT_CHUNK_REGIONS=0 (an instance per chunk, as before), 2, 4 (the
-# default) and 8, then the compute tracer, on the three scenes, two rounds alternating (the
+# hardware tracer with GLRT_CHUNK_REGIONS=0 (an instance per chunk, as before), 2 (the
+# default), 4 and 8, then the compute tracer, on the three scenes, two rounds alternating (the
 # summary gives instances, of chunks and in the top level, and the tracing pass's ms); then
-# parity, 64-spp frames of the demo (120) and q3 (300) merged (4) and unmerged (0), to compare
-# with `python3 scripts/png_luma.py --diff OUT/demo-120-regions0.png OUT/demo-120-regions4.png`.
+# parity, 64-spp frames of the demo (120) and q3 (300) merged (2) and unmerged (0), to compare
+# with `python3 scripts/png_luma.py --diff OUT/demo-120-regions0.png OUT/demo-120-regions2.png`.
 set -uo pipefail
 bin=$(cd "$1" && pwd)
 out=$2
@@ -48,7 +48,7 @@ if [[ $mode == regions ]]; then
         run "r$round-q3-compute" "GLRT_TRACER=compute" --q3 --frames "$frames"
         run "r$round-rebatch-compute" "GLRT_TRACER=compute" --rebatch --detail 11 --frames "$frames"
     done
-    for regions in 0 4; do
+    for regions in 0 2; do
         s="GLRT_TRACER=hardware GLRT_CHUNK_REGIONS=$regions GLRT_SPP=64"
         run "parity-demo-regions$regions" "$s" --first-frame 120 --frames 2 --screenshot "$out/demo-120-regions$regions.png"
         run "parity-q3-regions$regions" "$s" --q3 --first-frame 300 --frames 2 --screenshot "$out/q3-300-regions$regions.png"

@@ -22,7 +22,7 @@
 //! sky_size = 128            # faces of the sky's environment cube map, pixels, 16..=2048
 //! tracer = "auto"           # "auto" (the faster where both run, measured), "hardware" (VK_KHR_ray_tracing_pipeline), "compute"
 //! bvh = "binary"            # the compute tracer's BVH nodes: "binary" or "wide" (8 children, compressed)
-//! chunk_regions = 4         # the hardware tracer merges the static world's chunks of n³ world cells, 0..=64 (0: none)
+//! chunk_regions = 2         # the hardware tracer merges the static world's chunks of n³ world cells, 0..=64 (0: none)
 //! ```
 
 use glam::Vec3;
@@ -152,7 +152,7 @@ impl Default for Settings {
             sky_size: 128,
             tracer: Tracer::Auto,
             bvh: Layout::Binary,
-            chunk_regions: 4,
+            chunk_regions: 2,
         }
     }
 }
