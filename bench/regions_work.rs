@@ -4,8 +4,8 @@
 //! hardware tracer) and one BLAS. Rays: 20,000 from random points of random triangles, on a
 //! random side, in directions around its normal (diffuse-like), closest hit; every variant must
 //! find the same hits (a line per ray that does not). bench/pathtrace.md, "Merged chunk regions".
-//! Not built by cargo (a bench tool); run it as an example:
-//!   cp bench/regions_work.rs examples/ && cargo run --example regions_work -- tests/fixtures/demo.glrtcap
+//! A bench tool built as an example:
+//!   cargo run --release --example regions_work -- tests/fixtures/demo.glrtcap
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex};
 use glam::Vec3;
