@@ -222,22 +222,17 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             Surface s = surface_at(hit, origin, dir, cone_width);
             vec3 v = -dir;
             if (depth == 0u && sample_index == 0u) {
-                Instance inst = instances[hit.instance];
                 g.albedo = packUnorm4x8(vec4(s.albedo, s.alpha));
                 g.normal = pack_normal(s.normal);
                 g.depth = window_depth(frame.projection, s.position);
                 g.view_z = -s.position.z;
-                vec3 object = instance_transform(inst.eye_to_object, vec4(s.position, 1.0));
-                if (inst.previous_triangles != NO_PREVIOUS_TRIANGLES) {
-                    // A deforming mesh: the same point of the triangle in its last shape.
-                    BvhTriangle was = previous_triangles[inst.previous_triangles + hit.triangle - inst.first_triangle];
-                    object = was.v0 + hit.bary.x * was.e1 + hit.bary.y * was.e2;
-                }
-                vec3 previous = instance_transform(inst.previous_object_to_eye, vec4(object, 1.0));
+                // Where the point was last frame (a deforming mesh's: the same point of the
+                // triangle in its last shape).
+                vec3 previous = previous_position(hit, s.position);
                 g.motion = (window_xy(frame.projection, s.position) - window_xy(frame.previous_projection, previous)) / scale;
                 g.material = pack_material(s.roughness, s.metalness, s.specular, max(dot(s.normal, v), 0.0));
                 g.instance = hit.instance;
-                g.surface = materials[inst.material].key;
+                g.surface = materials[instances[hit.instance].material].key;
                 g.gradient = repeated ? source.y * size.x + source.x + 1u : 0u;
             }
             vec3 emitted = s.emission;
