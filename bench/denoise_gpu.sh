@@ -6,7 +6,7 @@
 # render::pass_times) print as "denoiser: N frames timed; GPU ms per frame: gradient …,
 # temporal …, variance …, a-trous …, modulate …, all …", and the tracing pass's time too.
 #   bash bench/denoise_gpu.sh BIN_DIR [FRAMES]
-# BIN_DIR holds a release build's libglrt.so and glrt-demo. On the GPU machine (run tool, from
+# BIN_DIR holds a release build's glrt-demo and libglrt.so (or libGL.so.1, as .dev does). On the GPU machine (run tool, from
 # the repo root, carrying .gl as bench/games_gpu.sh does) the NVIDIA Vulkan driver is set up
 # first. SIZES="WxH ..." and TRACERS="hardware compute" override what is timed.
 set -uo pipefail
@@ -14,7 +14,8 @@ bin=$(cd "$1" && pwd)
 frames=${2:-200}
 sizes=${SIZES:-1920x1080 1280x720}
 tracers=${TRACERS:-hardware compute}
-ln -sf libglrt.so "$bin/libGL.so.1"
+# A BIN_DIR with libglrt.so (target/release) gets its libGL.so.1 link; .dev holds libGL.so.1.
+if [[ -e "$bin/libglrt.so" ]]; then ln -sf libglrt.so "$bin/libGL.so.1"; fi
 if compgen -G ".gl/*.deb" > /dev/null; then
     for f in .gl/*.deb; do dpkg -x "$f" /; done
     ldconfig
