@@ -7,7 +7,7 @@
 # temporal …, variance …, a-trous …, modulate …, all …", and the tracing pass's time too.
 #   bash bench/denoise_gpu.sh BIN_DIR [FRAMES]
 # BIN_DIR holds a release build's glrt-demo and libglrt.so (or libGL.so.1, as .dev does). On the GPU machine (run tool, from
-# the repo root, carrying .gl as bench/games_gpu.sh does) the NVIDIA Vulkan driver is set up
+# the repo root, carrying .gl; bench/gpu_driver.sh) the NVIDIA Vulkan driver is set up
 # first. SIZES="WxH ..." and TRACERS="hardware compute" override what is timed.
 set -uo pipefail
 bin=$(cd "$1" && pwd)
@@ -16,11 +16,7 @@ sizes=${SIZES:-1920x1080 1280x720}
 tracers=${TRACERS:-hardware compute}
 # A BIN_DIR with libglrt.so (target/release) gets its libGL.so.1 link; .dev holds libGL.so.1.
 if [[ -e "$bin/libglrt.so" ]]; then ln -sf libglrt.so "$bin/libGL.so.1"; fi
-if compgen -G ".gl/*.deb" > /dev/null; then
-    for f in .gl/*.deb; do dpkg -x "$f" /; done
-    ldconfig
-    export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-fi
+source "$(dirname "$0")/gpu_driver.sh"
 clean=(env -u GLRT_TRACE -u GLRT_CAPTURE -u GLRT_DUMP -u GLRT_PASSTHROUGH -u GLRT_CONFIG GLRT_LOG=info LD_LIBRARY_PATH="$bin")
 for size in $sizes; do
     for tracer in $tracers; do
