@@ -20,11 +20,7 @@ sizes=${SIZES:-1280x720 1920x1080 3840x2160}
 modes=${MODES:-raster pathtrace}
 mkdir -p "$out"
 ln -sf libglrt.so "$bin/libGL.so.1"
-if compgen -G ".gl/*.deb" > /dev/null; then
-    for f in .gl/*.deb; do dpkg -x "$f" /; done
-    ldconfig
-    export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-fi
+source "$(dirname "$0")/gpu_driver.sh"
 clean=(env -u GLRT_TRACE -u GLRT_CAPTURE -u GLRT_DUMP -u GLRT_PASSTHROUGH -u GLRT_CONFIG GLRT_LOG=info LD_LIBRARY_PATH="$bin")
 # The fog of each scene: the demo's room is y-up in metres-like units (the eye 2.2 above the
 # floor), the Quake-3-like level z-up in Quake units (64 a metre); densities chosen by eye on

@@ -1,7 +1,6 @@
 #!/usr/bin/env bash
 # GPU machine: CPU per frame of Quake-3-class captures (issue 17), raster / path traced frame times.
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+source "$(dirname "$0")/gpu_driver.sh"
 nvidia-smi -L; nproc
 d=.dev; xz -dkf $d/glrt.xz $d/libGL.so.1.xz; chmod +x $d/glrt $d/glrt-demo
 xz -dc $d/openarena-1280x720-f340-440.glrtcap.xz > /tmp/oa.glrtcap

@@ -7,8 +7,7 @@
 set -uo pipefail
 tag=${1:-run}
 bin=$(cd "${2:-.dev}" && pwd)
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+source "$(dirname "$0")/gpu_driver.sh"
 nvidia-smi -L
 o=$OUT/$tag; mkdir -p $o
 xz -dc .dev/openarena-1280x720-f340-440.glrtcap.xz > /tmp/oa.glrtcap

@@ -1,7 +1,6 @@
 #!/usr/bin/env bash
 # On the GPU machine: run the raster test binary with 4 test threads until it hangs, then dump stacks.
-for f in .gl/*.deb; do dpkg -x $f /; done; ldconfig
-export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+source "$(dirname "$0")/gpu_driver.sh"
 mkdir -p /tmp/eu; for f in .dbg/*.deb; do dpkg -x $f /tmp/eu; done
 export LD_LIBRARY_PATH=/tmp/eu/usr/lib/x86_64-linux-gnu
 xz -dc .dbg/raster.xz > /tmp/raster; chmod +x /tmp/raster

@@ -97,9 +97,11 @@ const LAYOUTS: &[LayoutFile] = &[
                     mirror("HistoryLight", Rust::SizeConstant("HISTORY_LIGHT_BYTES")),
                     mirror("HistoryMoments", Rust::SizeConstant("HISTORY_MOMENTS_BYTES")),
                     mirror("Guide", Rust::SizeConstant("GUIDE_BYTES")),
+                    mirror("HistorySpecular", Rust::SizeConstant("HISTORY_SPECULAR_BYTES")),
                 ],
             ),
-            ("denoise/atrous.comp", &[mirror("Signal", Rust::SizeConstant("SIGNAL_BYTES"))]),
+            ("denoise/atrous.comp", &[mirror("Signal", Rust::SizeConstant("SIGNAL_BYTES")), mirror("SpecularSignal", Rust::SizeConstant("SPECULAR_SIGNAL_BYTES"))]),
+            ("denoise/gradient.comp", &[mirror("Gradient", Rust::SizeConstant("GRADIENT_BYTES"))]),
         ],
     },
     // render::radiosity::gpu::scene

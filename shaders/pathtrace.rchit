@@ -13,7 +13,9 @@ hitAttributeEXT vec2 bary;
 
 void main() {
     payload.t = gl_HitTEXT;
-    payload.instance = gl_InstanceCustomIndexEXT;
-    payload.triangle = instances[gl_InstanceCustomIndexEXT].first_triangle + gl_PrimitiveID;
+    // A merged region's geometry k is the chunk of record custom index + k (hardware.glsl).
+    uint instance = gl_InstanceCustomIndexEXT + gl_GeometryIndexEXT;
+    payload.instance = instance;
+    payload.triangle = instances[instance].first_triangle + gl_PrimitiveID;
     payload.bary = bary;
 }

@@ -5,7 +5,8 @@
 // Every record is packed for the filter's memory traffic: light in half floats, the surface
 // (normal and eye distance) in one 8-byte guide, each kind in its own tightly packed buffer.
 // A frame's history is the three records `HistoryLight`, `HistoryMoments` and `Guide`
-// (36 bytes a pixel); the last frame's are read (`*_previous`), this frame's written.
+// (36 bytes a pixel), and with the specular channel (DENOISE_FLAG_SPECULAR) `HistorySpecular`
+// (16 more); the last frame's are read (`*_previous`), this frame's written.
 
 #ifndef DENOISE_COMMON_GLSL
 #define DENOISE_COMMON_GLSL
@@ -23,6 +24,7 @@ layout(push_constant) uniform DenoisePass {
                     // frames of a moving camera's history
     uvec4 size;     // traced width, height; DENOISE_FLAG_* bits; à-trous step (pixels)
     uvec2 signal;   // records (pixels) into `signal` read and written
+    uvec2 specular; // records (pixels) into `specular_signal` read and written
 } pass;
 
 // The temporal light of one pixel: the demodulated direct and indirect light (half floats:
@@ -54,6 +56,33 @@ struct Guide {
 struct Signal {
     uvec2 direct;
     uvec2 indirect;
+};
+
+// The specular channel's history of one pixel (half floats): light rg; light b and the
+// luminance of this frame's traced sample (which next frame's gradient sample is compared
+// with); the running mean and variance of its luminance; its own history length in frames
+// (bits 0-15: a glossy lobe keeps fewer frames while the camera moves) and the primary hit's
+// roughness (unorm16, bits 16-31: the à-trous filter's lobe-aware weights).
+struct HistorySpecular {
+    uint light_rg;
+    uint light_b_traced;
+    uint moments;
+    uint frames_roughness;
+};
+
+// The specular light and the variance of its luminance between the spatial passes (half
+// floats: rg, then b and variance), in a buffer of its own: only the first
+// DENOISE_SPECULAR_ITERATIONS à-trous iterations read it.
+struct SpecularSignal {
+    uvec2 light;
+};
+
+// The temporal gradient of one 3x3 stratum: per channel |change| and the larger of the two
+// luminances (half floats), summed apart by the temporal pass.
+struct Gradient {
+    uint direct;
+    uint indirect;
+    uint specular;
 };
 
 layout(set = 0, binding = DENOISE_BINDING_GBUFFER, std430) readonly buffer GBuffer {
@@ -92,12 +121,32 @@ layout(set = 0, binding = DENOISE_BINDING_SIGNAL, std430) buffer Signals {
     Signal signal[];
 };
 
-// Per 3x3 stratum (trace/gradient.glsl): the temporal gradient of each channel's luminance
-// as |change| and the larger of the two luminances, to be summed apart (half floats:
-// direct, then indirect).
+// Per 3x3 stratum (trace/gradient.glsl): the temporal gradients.
 layout(set = 0, binding = DENOISE_BINDING_GRADIENT, std430) buffer Gradients {
-    uvec2 gradient[];
+    Gradient gradient[];
 };
+
+layout(set = 0, binding = DENOISE_BINDING_SPECULAR_PREVIOUS, std430) readonly buffer SpecularPrevious {
+    HistorySpecular specular_previous[];
+};
+
+layout(set = 0, binding = DENOISE_BINDING_SPECULAR, std430) buffer Specular {
+    HistorySpecular specular[];
+};
+
+layout(set = 0, binding = DENOISE_BINDING_SPECULAR_SIGNAL, std430) buffer SpecularSignals {
+    SpecularSignal specular_signal[];
+};
+
+// Whether this pass filters the specular channel too (else it holds nothing).
+bool with_specular() {
+    return (pass.size.z & DENOISE_FLAG_SPECULAR) != 0u;
+}
+
+// What the output shows (DENOISE_VIEW_*).
+uint view() {
+    return (pass.size.z >> DENOISE_VIEW_SHIFT) & DENOISE_VIEW_MASK;
+}
 
 const uint MISS = 0xffffffffu;
 
@@ -139,6 +188,26 @@ uint pack_frames_surface(float frames, uint key) {
 
 float history_frames(HistoryLight h) {
     return float(h.frames_surface & 0xffffu);
+}
+
+float specular_frames(HistorySpecular h) {
+    return float(h.frames_roughness & 0xffffu);
+}
+
+float specular_roughness(HistorySpecular h) {
+    return float(h.frames_roughness >> 16) / 65535.0;
+}
+
+vec3 specular_light(HistorySpecular h) {
+    return vec3(unpackHalf2x16(h.light_rg), unpackHalf2x16(h.light_b_traced).x);
+}
+
+// `h` with its light replaced by `light` (the traced luminance kept).
+HistorySpecular with_specular_light(HistorySpecular h, vec3 light) {
+    light = clamp(light, -HALF_MAX, HALF_MAX);
+    h.light_rg = packHalf2x16(light.rg);
+    h.light_b_traced = (h.light_b_traced & 0xffff0000u) | (packHalf2x16(vec2(light.b, 0.0)) & 0xffffu);
+    return h;
 }
 
 // A pixel's guide from its G-buffer sample.

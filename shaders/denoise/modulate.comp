@@ -1,11 +1,13 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
-// A-SVGF, the last pass: the filtered light of each channel (signal at signal.x) multiplied
-// back by the albedo it was divided by (trace/channels.glsl), plus the primary hit's own
-// emission (the traced radiance less both channels, unfiltered: baked light and emitters are
-// not noisy); pixels whose ray missed keep their radiance. Then exposure, tone mapping and
-// display encoding into the output the composite draws, as the temporal pass does. With
-// DENOISE_FLAG_VIEW_HISTORY the output is each pixel's history length instead.
+// A-SVGF, the last pass: the filtered light of each channel (signal at signal.x, the specular
+// channel's at specular.x with DENOISE_FLAG_SPECULAR) multiplied back by the factor it was
+// divided by (trace/channels.glsl), plus the primary hit's own emission (the traced radiance
+// less the three channels, unfiltered: baked light and emitters are not noisy); pixels whose
+// ray missed keep their radiance. Then exposure, tone mapping and display encoding into the
+// output the composite draws, as the temporal pass does. Other views (DENOISE_VIEW_*) show
+// each pixel's history length, or one channel of this frame's traced sample remodulated, or
+// all of them (unfiltered: the traced radiance again, through the channels).
 
 #include "denoise/common.glsl"
 #include "trace/channels.glsl"
@@ -19,16 +21,29 @@ void main() {
     }
     uint index = uint(at);
     GSample g = gbuffer[index];
+    uint shown = view();
     vec3 display;
-    if ((pass.size.z & DENOISE_FLAG_VIEW_HISTORY) != 0u) {
+    if (shown == DENOISE_VIEW_HISTORY) {
         display = vec3(min(history_frames(light[index]), 255.0) / 255.0);
     } else {
-        vec3 color = g.radiance.rgb;
+        vec3 color = g.radiance;
         if (g.instance != MISS) {
-            Signal s = signal[pass.signal.x + index];
             vec3 albedo = demodulating_albedo(g.albedo);
-            vec3 emission = max(g.radiance.rgb - albedo * (g.direct.rgb + g.indirect.rgb), vec3(0.0));
-            color = emission + albedo * max(unpack_half4(s.direct).rgb + unpack_half4(s.indirect).rgb, vec3(0.0));
+            vec3 reflectance = demodulating_reflectance(g.albedo, g.material);
+            vec3 direct = albedo * g.direct, indirect = albedo * g.indirect, specular = reflectance * g.specular;
+            vec3 emission = max(g.radiance - direct - indirect - specular, vec3(0.0));
+            if (shown == DENOISE_VIEW_COLOR) {
+                Signal s = signal[pass.signal.x + index];
+                vec3 filtered = albedo * max(unpack_half4(s.direct).rgb + unpack_half4(s.indirect).rgb, vec3(0.0));
+                if (with_specular()) {
+                    filtered += reflectance * max(unpack_half4(specular_signal[pass.specular.x + index].light).rgb, vec3(0.0));
+                }
+                color = emission + filtered;
+            } else {
+                color = shown == DENOISE_VIEW_DIRECT ? direct : shown == DENOISE_VIEW_INDIRECT ? indirect : shown == DENOISE_VIEW_SPECULAR ? specular : emission + direct + indirect + specular;
+            }
+        } else if (shown != DENOISE_VIEW_COLOR && shown != DENOISE_VIEW_UNFILTERED) {
+            color = vec3(0.0);
         }
         display = display_color(color * pass.params.x, pass.size.z & DENOISE_FLAG_TONEMAP_MASK, pass.params.z);
     }

@@ -56,24 +56,24 @@ vec3 brdf_diffuse_cos(Surface s, vec3 v, vec3 l) {
     return brdf_diffuse_albedo(s) / PI * nl;
 }
 
-// f(v, l) * cos(n, l): the reflected radiance per unit incident radiance from l.
-vec3 brdf_eval_cos(Surface s, vec3 v, vec3 l) {
+// The GGX specular lobe of brdf_eval_cos alone (the denoiser's specular channel,
+// trace/channels.glsl).
+vec3 brdf_specular_cos(Surface s, vec3 v, vec3 l) {
     float nl = dot(s.normal, l);
     float nv = dot(s.normal, v);
-    if (nl <= 0.0 || nv <= 0.0 || dot(s.geometric, l) <= 0.0) {
+    if (nl <= 0.0 || nv <= 0.0 || dot(s.geometric, l) <= 0.0 || brdf_specular_probability(s) <= 0.0) {
         return vec3(0.0);
     }
-    vec3 f0 = brdf_f0(s);
-    vec3 result = brdf_diffuse_cos(s, v, l);
-    if (brdf_specular_probability(s) > 0.0) {
-        vec3 h = normalize(v + l);
-        float alpha = ggx_alpha(s);
-        float d = ggx_d(max(dot(s.normal, h), 0.0), alpha);
-        float g = ggx_g1(nv, alpha) * ggx_g1(nl, alpha);
-        vec3 f = fresnel_schlick(f0, max(dot(v, h), 0.0));
-        result += f * (d * g / (4.0 * nv));
-    }
-    return result;
+    vec3 h = normalize(v + l);
+    float alpha = ggx_alpha(s);
+    float d = ggx_d(max(dot(s.normal, h), 0.0), alpha);
+    float g = ggx_g1(nv, alpha) * ggx_g1(nl, alpha);
+    return fresnel_schlick(brdf_f0(s), max(dot(v, h), 0.0)) * (d * g / (4.0 * nv));
+}
+
+// f(v, l) * cos(n, l): the reflected radiance per unit incident radiance from l.
+vec3 brdf_eval_cos(Surface s, vec3 v, vec3 l) {
+    return brdf_diffuse_cos(s, v, l) + brdf_specular_cos(s, v, l);
 }
 
 // The density of brdf_sample() choosing l (solid angle).

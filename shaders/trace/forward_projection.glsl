@@ -7,7 +7,9 @@
 // source's random numbers of last frame (the caller seeds them), so that its difference with
 // the source's sample of last frame is the change of the lighting alone; its directions are
 // drawn in last frame's eye space (replay_rotation, trace/sampling.glsl), where the source
-// drew them. Included by trace/path.glsl, which defines camera_ray and window_xy.
+// drew them. A deforming mesh's point is followed through its triangle's last shape
+// (Instance.previous_triangles: the same barycentric point), as its motion vector is.
+// Included by trace/path.glsl, which defines camera_ray and window_xy.
 
 #ifndef TRACE_FORWARD_PROJECTION_GLSL
 #define TRACE_FORWARD_PROJECTION_GLSL
@@ -21,12 +23,23 @@ mat4 instance_matrix(vec4 rows[3]) {
     return transpose(mat4(rows[0], rows[1], rows[2], vec4(0.0, 0.0, 0.0, 1.0)));
 }
 
-// The traced pixel that saw eye-space point `position` of instance `instance` last frame, or
-// false when it lies outside the traced image.
-bool gradient_source(vec3 position, uint instance, vec2 scale, out uvec2 source) {
-    Instance inst = instances[instance];
+// Where the point of `hit` at eye-space `position` was last frame, in last frame's eye space:
+// the same object-space point through last frame's transform, or on a deforming mesh the same
+// barycentric point of its triangle's last shape.
+vec3 previous_position(TraceHit hit, vec3 position) {
+    Instance inst = instances[hit.instance];
     vec3 object = instance_transform(inst.eye_to_object, vec4(position, 1.0));
-    vec3 previous = instance_transform(inst.previous_object_to_eye, vec4(object, 1.0));
+    if (inst.previous_triangles != NO_PREVIOUS_TRIANGLES) {
+        BvhTriangle was = previous_triangles[inst.previous_triangles + hit.triangle - inst.first_triangle];
+        object = was.v0 + hit.bary.x * was.e1 + hit.bary.y * was.e2;
+    }
+    return instance_transform(inst.previous_object_to_eye, vec4(object, 1.0));
+}
+
+// The traced pixel that saw the point of `hit` at eye-space `position` last frame, or false
+// when it lies outside the traced image.
+bool gradient_source(vec3 position, TraceHit hit, vec2 scale, out uvec2 source) {
+    vec3 previous = previous_position(hit, position);
     vec4 clip = frame.previous_projection * vec4(previous, 1.0);
     if (clip.w <= 0.0 && (frame.flags.x & FRAME_PERSPECTIVE) != 0u) {
         return false;
@@ -48,11 +61,24 @@ mat3 eye_rotation_since_last_frame(Instance inst) {
 // Where last frame's primary ray of traced pixel `source` (through window position
 // `previous_window`) met the plane of triangle `hit.triangle` of instance `hit.instance`, in
 // this frame's eye space: false when the ray runs along the plane or meets it behind the camera.
+// On a deforming mesh the plane is the triangle's last shape's, and the point found there is
+// carried to the same barycentric point of its shape now.
 bool forward_project(TraceHit hit, vec2 previous_window, out vec3 target) {
     Instance inst = instances[hit.instance];
-    vec3 v0, v1, v2;
-    trace_triangle_vertices(hit.triangle, v0, v1, v2);
-    vec3 n = cross(v1 - v0, v2 - v0);
+    vec3 v0, e1, e2;
+    bool deforming = inst.previous_triangles != NO_PREVIOUS_TRIANGLES;
+    if (deforming) {
+        BvhTriangle was = previous_triangles[inst.previous_triangles + hit.triangle - inst.first_triangle];
+        v0 = was.v0;
+        e1 = was.e1;
+        e2 = was.e2;
+    } else {
+        vec3 v1, v2;
+        trace_triangle_vertices(hit.triangle, v0, v1, v2);
+        e1 = v1 - v0;
+        e2 = v2 - v0;
+    }
+    vec3 n = cross(e1, e2);
     // Last frame's ray in last frame's eye space (camera_ray with last frame's projection).
     vec2 ndc = 2.0 * (previous_window - frame.viewport.xy) / frame.viewport.zw - 1.0;
     mat4 unproject = inverse(frame.previous_projection);
@@ -67,7 +93,18 @@ bool forward_project(TraceHit hit, vec2 previous_window, out vec3 target) {
         return false;
     }
     float t = dot(v0 - origin, n) / facing;
-    target = instance_transform(inst.object_to_eye, vec4(origin + t * dir, 1.0));
+    vec3 point = origin + t * dir;
+    if (deforming) {
+        // Its barycentrics in the last shape (n is not 0: the ray met the plane), then the
+        // same point of the triangle now.
+        vec3 p = point - v0;
+        float d00 = dot(e1, e1), d01 = dot(e1, e2), d11 = dot(e2, e2), d20 = dot(p, e1), d21 = dot(p, e2);
+        vec2 bary = vec2(d11 * d20 - d01 * d21, d00 * d21 - d01 * d20) / dot(n, n);
+        vec3 c0, c1, c2;
+        trace_triangle_vertices(hit.triangle, c0, c1, c2);
+        point = c0 + bary.x * (c1 - c0) + bary.y * (c2 - c0);
+    }
+    target = instance_transform(inst.object_to_eye, vec4(point, 1.0));
     return t > 0.0;
 }
 
@@ -83,11 +120,11 @@ bool forward_project(TraceHit hit, vec2 previous_window, out vec3 target) {
 bool repeat_source(uvec2 pixel, vec2 scale, uint sample_index, inout vec3 origin, inout vec3 dir, inout TraceHit hit, inout Rng rng,
                    inout uint rays, out uvec2 source) {
     vec3 position = origin + hit.t * dir;
-    if (!gradient_source(position, hit.instance, scale, source)) {
+    if (!gradient_source(position, hit, scale, source)) {
         return false;
     }
     Instance inst = instances[hit.instance];
-    vec3 previous = instance_transform(inst.previous_object_to_eye, vec4(instance_transform(inst.eye_to_object, vec4(position, 1.0)), 1.0));
+    vec3 previous = previous_position(hit, position);
     vec2 motion = window_xy(frame.projection, position) - window_xy(frame.previous_projection, previous);
     if (all(lessThan(abs(motion), vec2(1e-4 * max(scale.x, scale.y))))) {
         return true;

@@ -3,11 +3,15 @@
 // frame's top-level acceleration structure. Each instance's custom index is its index into
 // `instances`, its geometry's primitive k is the instance's triangle first_triangle + k (the
 // bottom-level structures are built from the triangle buffer in BVH order), and rays are in
-// eye space as for the compute tracer, so hits mean the same to shading.
+// eye space as for the compute tracer, so hits mean the same to shading. The chunks of a
+// region of the static world are one instance of a structure with a geometry per chunk
+// (render::trace::hardware::regions): geometry g is the chunk whose record is the custom index
+// + g, so the hit shaders take gl_InstanceCustomIndexEXT + gl_GeometryIndexEXT (0 elsewhere).
 //
 // Shaders: pathtrace.rchit records the closest hit in the payload, pathtrace.rmiss marks a
 // miss, pathtrace.rahit runs the alpha test (trace_alpha_accept, surface.glsl) for the
-// instances without VK_GEOMETRY_INSTANCE_FORCE_OPAQUE (those with INSTANCE_ALPHA_TESTED).
+// instances without VK_GEOMETRY_INSTANCE_FORCE_OPAQUE and the merged chunks without
+// VK_GEOMETRY_OPAQUE (those with INSTANCE_ALPHA_TESTED).
 
 #ifndef TRACE_HARDWARE_GLSL
 #define TRACE_HARDWARE_GLSL

@@ -32,16 +32,18 @@ vec3 offset_ray(vec3 p, vec3 n) {
 
 // A next-event sample of a path vertex: the light it brings where its shadow ray, leaving the
 // vertex along `dir` up to `distance`, is not occluded; `distance` 0: no ray, `light` counts
-// as it is.
+// as it is; `specular` is the part of `light` the surface's specular lobe reflects (the
+// denoiser's specular channel, trace/channels.glsl).
 struct ShadowSample {
     vec3 light;
+    vec3 specular;
     vec3 dir;
     float distance;
 };
 
 // A sample that brings `light` without a shadow ray (nothing, for vec3(0.0)).
 ShadowSample unshadowed(vec3 light) {
-    return ShadowSample(light, vec3(0.0, 0.0, 1.0), 0.0);
+    return ShadowSample(light, vec3(0.0), vec3(0.0, 0.0, 1.0), 0.0);
 }
 
 // A direction l from p towards positional light `light` at distance d2 > 0 squared, and the
@@ -99,7 +101,7 @@ ShadowSample dynamic_pass_light(Surface s, vec3 shown, uint i, inout Rng rng) {
     if (dot(l, s.geometric) <= 0.0) {
         return unshadowed(vec3(0.0));
     }
-    return ShadowSample(brought, l, distance * 0.9999);
+    return ShadowSample(brought, vec3(0.0), l, distance * 0.9999);
 }
 
 // The reflected radiance towards v at a point of instance `instance` due to light i where its
@@ -147,11 +149,12 @@ ShadowSample direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rn
     // The light of a model's vertex colours is the game's Lambertian lighting (divided by
     // the hue the model's albedo keeps, render::trace::vertex_light): it lights the diffuse
     // lobe alone.
-    vec3 f = light.params.w > 0.0 ? brdf_diffuse_cos(s, v, l) : brdf_eval_cos(s, v, l);
+    vec3 fs = light.params.w > 0.0 ? vec3(0.0) : brdf_specular_cos(s, v, l);
+    vec3 f = brdf_diffuse_cos(s, v, l) + fs;
     if (all(equal(f, vec3(0.0))) || all(equal(incident, vec3(0.0)))) {
         return unshadowed(vec3(0.0));
     }
-    return ShadowSample(f * incident, l, distance * 0.9999);
+    return ShadowSample(f * incident, fs * incident, l, distance * 0.9999);
 }
 
 #endif

@@ -13,7 +13,10 @@
 // emission and the light of the dynamic lights (render::trace::lights); adds its share of the
 // noisy radiance (1 / `samples`) to the G-buffer, which sample 0 writes with the primary hit
 // (trace/gbuffer.glsl), whole and split into the denoiser's channels: direct light at the
-// primary hit and indirect light, demodulated (trace/channels.glsl). With radiosity
+// primary hit and indirect light, and with FRAME_SPECULAR the specular lobe's share of both
+// apart (the specular parts of the primary hit's next-event samples, and the specular lobe's
+// share of brdf_eval_cos in the direction of its continuation ray times all the light that
+// ray brings), demodulated (trace/channels.glsl). With radiosity
 // (render::trace::radiosity), the first vertex that a diffuse continuation ray reaches on the
 // static world adds radiosity's indirect light there (the light of every later bounce,
 // reflected by the surface's diffuse albedo) after its next-event estimation, and the path
@@ -115,9 +118,10 @@ ShadowSample sky_sample_at(Surface s, vec3 v, NextEvent ne, inout Rng rng) {
 }
 
 // Traces sample n's shadow ray from `origin` (counted in `shadow_rays`, and in `sky_rays` for
-// the sky's) and adds its light where it is not occluded: to `lit` through the path's
-// `throughput`, or on a baked surface to `brought` (display units).
-void next_event_add(ShadowSample n, vec3 origin, bool baked, vec3 throughput, bool sky, inout vec3 lit, inout vec3 brought, inout uint shadow_rays, inout SkyRays sky_rays) {
+// the sky's) and adds its light where it is not occluded: to `lit` (its specular lobe's part
+// also to `lit_specular`) through the path's `throughput`, or on a baked surface to `brought`
+// (display units).
+void next_event_add(ShadowSample n, vec3 origin, bool baked, vec3 throughput, bool sky, inout vec3 lit, inout vec3 lit_specular, inout vec3 brought, inout uint shadow_rays, inout SkyRays sky_rays) {
     if (n.distance > 0.0) {
         shadow_rays += 1u;
         sky_rays.traced += sky ? 1u : 0u;
@@ -130,6 +134,7 @@ void next_event_add(ShadowSample n, vec3 origin, bool baked, vec3 throughput, bo
         brought += n.light;
     } else {
         lit += throughput * n.light;
+        lit_specular += throughput * n.specular;
     }
 }
 
@@ -152,7 +157,7 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
 
     uint sample_index = pass.sample_index;
     GSample g;
-    g.radiance = vec4(0.0);
+    g.radiance = vec3(0.0);
     g.albedo = 0u;
     g.normal = 0u;
     g.depth = 1.0;
@@ -171,6 +176,11 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
     vec3 direct = vec3(0.0);
     vec3 before_continuation = vec3(0.0);
     bool continued = false;
+    // With FRAME_SPECULAR: the specular lobe's part of `direct`, and its share of the primary
+    // hit's brdf_eval_cos in the direction of the continuation ray (per colour).
+    bool split = (frame.flags.x & FRAME_SPECULAR) != 0u;
+    vec3 direct_specular = vec3(0.0);
+    vec3 specular_share = vec3(0.0);
     if (traced) {
         // A gradient sample draws last frame's random numbers.
         uint seed_frame = gradient ? frame.counts.x - 1u : frame.counts.x;
@@ -212,22 +222,17 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             Surface s = surface_at(hit, origin, dir, cone_width);
             vec3 v = -dir;
             if (depth == 0u && sample_index == 0u) {
-                Instance inst = instances[hit.instance];
                 g.albedo = packUnorm4x8(vec4(s.albedo, s.alpha));
                 g.normal = pack_normal(s.normal);
                 g.depth = window_depth(frame.projection, s.position);
                 g.view_z = -s.position.z;
-                vec3 object = instance_transform(inst.eye_to_object, vec4(s.position, 1.0));
-                if (inst.previous_triangles != NO_PREVIOUS_TRIANGLES) {
-                    // A deforming mesh: the same point of the triangle in its last shape.
-                    BvhTriangle was = previous_triangles[inst.previous_triangles + hit.triangle - inst.first_triangle];
-                    object = was.v0 + hit.bary.x * was.e1 + hit.bary.y * was.e2;
-                }
-                vec3 previous = instance_transform(inst.previous_object_to_eye, vec4(object, 1.0));
+                // Where the point was last frame (a deforming mesh's: the same point of the
+                // triangle in its last shape).
+                vec3 previous = previous_position(hit, s.position);
                 g.motion = (window_xy(frame.projection, s.position) - window_xy(frame.previous_projection, previous)) / scale;
-                g.material = packUnorm4x8(vec4(s.roughness, s.metalness, 0.0, 0.0));
+                g.material = pack_material(s.roughness, s.metalness, s.specular, max(dot(s.normal, v), 0.0));
                 g.instance = hit.instance;
-                g.surface = materials[inst.material].key;
+                g.surface = materials[instances[hit.instance].material].key;
                 g.gradient = repeated ? source.y * size.x + source.x + 1u : 0u;
             }
             vec3 emitted = s.emission;
@@ -250,6 +255,7 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             vec3 shown = s.baked ? linear_to_srgb(s.emission) : vec3(0.0);
             vec3 brought = vec3(0.0);
             vec3 lit = vec3(0.0);
+            vec3 lit_specular = vec3(0.0);
             // The first diffuse bounce on the static world ends the path with radiosity's
             // light (below): no continuation ray weighs the emitter and sky samples there.
             vec3 bounced;
@@ -263,7 +269,7 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             for (uint k = 0u; k < light_count + 2u; k++) {
                 ShadowSample n = k < light_count ? light_sample(s, v, ne, k, rng)
                     : k == light_count ? emitter_sample(s, v, ne, rng) : sky_sample_at(s, v, ne, rng);
-                next_event_add(n, shadow_origin, s.baked, throughput, k == light_count + 1u, lit, brought, shadow, sky_rays);
+                next_event_add(n, shadow_origin, s.baked, throughput, k == light_count + 1u, lit, lit_specular, brought, shadow, sky_rays);
             }
             if (s.baked) {
                 // Not the surface's albedo times light (a pass that adds brings its colour over
@@ -276,6 +282,7 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             radiance += lit;
             if (depth == 0u) {
                 direct = lit;
+                direct_specular = lit_specular;
             }
             // Radiosity's indirect light (the bounced light only: the direct light was sampled
             // above), and the path ends.
@@ -293,7 +300,12 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             if (pdf <= 0.0) {
                 break;
             }
-            throughput *= brdf_eval_cos(s, v, l) / pdf;
+            vec3 reflected_specular = brdf_specular_cos(s, v, l);
+            vec3 reflected = brdf_diffuse_cos(s, v, l) + reflected_specular;
+            if (depth == 0u) {
+                specular_share = reflected_specular / max(reflected, vec3(1e-30));
+            }
+            throughput *= reflected / pdf;
             bsdf_density = emitter_count > 0u && !ambient_lit ? pdf : 0.0;
             if (chose_specular) {
                 specular += 1u;
@@ -331,17 +343,25 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
     }
 
     vec3 indirect = continued ? radiance - before_continuation : vec3(0.0);
+    vec3 specular_light = vec3(0.0);
+    if (split) {
+        specular_light = direct_specular + specular_share * indirect;
+        direct -= direct_specular;
+        indirect -= specular_share * indirect;
+    }
     if (recorded && sample_index == 0u) {
         vec3 demodulate = 1.0 / (demodulating_albedo(g.albedo) * float(samples));
-        g.radiance = vec4(radiance / float(samples), 1.0);
-        g.direct = vec4(direct * demodulate, 0.0);
-        g.indirect = vec4(indirect * demodulate, 0.0);
+        g.radiance = radiance / float(samples);
+        g.direct = direct * demodulate;
+        g.indirect = indirect * demodulate;
+        g.specular = specular_light / (demodulating_reflectance(g.albedo, g.material) * float(samples));
         gbuffer[index] = g;
     } else if (recorded) {
         vec3 demodulate = 1.0 / (demodulating_albedo(gbuffer[index].albedo) * float(samples));
-        gbuffer[index].radiance.rgb += radiance / float(samples);
-        gbuffer[index].direct.rgb += direct * demodulate;
-        gbuffer[index].indirect.rgb += indirect * demodulate;
+        gbuffer[index].radiance += radiance / float(samples);
+        gbuffer[index].direct += direct * demodulate;
+        gbuffer[index].indirect += indirect * demodulate;
+        gbuffer[index].specular += specular_light / (demodulating_reflectance(gbuffer[index].albedo, gbuffer[index].material) * float(samples));
     }
     // One atomic per subgroup and counter.
     uvec4 rays = subgroupAdd(uvec4(primary, shadow, diffuse, specular));

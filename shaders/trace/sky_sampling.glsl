@@ -146,11 +146,13 @@ struct SkyRays {
 ShadowSample sky_light(Surface s, vec3 v, float selection, bool last_frame, bool weighted, inout Rng rng) {
     vec3 l;
     float density = selection * sky_sample(vec3(rng_next2(rng), rng_next(rng)), last_frame, l);
-    vec3 f = brdf_eval_cos(s, v, l);
+    vec3 fs = brdf_specular_cos(s, v, l);
+    vec3 f = brdf_diffuse_cos(s, v, l) + fs;
     if (density <= 0.0 || all(equal(f, vec3(0.0)))) {
         return unshadowed(vec3(0.0));
     }
-    return ShadowSample(f * environment(l) * ((weighted ? mis_weight(density, brdf_pdf(s, v, l)) : 1.0) / density), l, 1e30);
+    vec3 scale = environment(l) * ((weighted ? mis_weight(density, brdf_pdf(s, v, l)) : 1.0) / density);
+    return ShadowSample(f * scale, fs * scale, l, 1e30);
 }
 
 #endif

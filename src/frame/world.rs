@@ -49,6 +49,10 @@ pub struct StaticChunk {
     pub colors: Vec<[u8; 4]>,
     /// Draw state the triangles are shaded with.
     pub shading: ChunkShading,
+    /// The cell of the world's spatial grid its triangles were grouped in (chunks of one
+    /// cell lie close together: a renderer may merge them, as
+    /// [`crate::render::trace::hardware::regions`] does).
+    pub cell: [i32; 3],
 }
 
 impl StaticChunk {

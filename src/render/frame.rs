@@ -59,7 +59,7 @@ use crate::render::raster::renderer::{FRAMES_IN_FLIGHT, Raster, Recorder};
 use crate::render::trace::composite::Composite;
 use crate::render::trace::lights::LightSettings;
 use crate::render::trace::settings::Settings;
-use crate::render::trace::shader_constants::FRAME_GRADIENTS;
+use crate::render::trace::shader_constants::{FRAME_GRADIENTS, FRAME_SPECULAR};
 use crate::render::trace::surfaces::Surfaces;
 use crate::render::trace::{self, RayTracer};
 
@@ -355,6 +355,9 @@ impl Tracing {
         let mut scene = self.backend.build(rec, frame, surfaces, camera, indirect)?;
         if self.denoiser.as_ref().is_some_and(Denoiser::wants_gradient_samples) {
             scene.frame.flags[0] |= FRAME_GRADIENTS;
+        }
+        if self.denoiser.as_ref().is_some_and(Denoiser::wants_specular_channel) {
+            scene.frame.flags[0] |= FRAME_SPECULAR;
         }
         // Trace: the G-buffer and radiance (nothing when no geometry is on the GPU yet).
         let Some(radiance) = self.backend.trace(rec, &scene)? else { return Ok(()) };

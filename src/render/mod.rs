@@ -82,7 +82,7 @@ impl Mode {
 /// CPU) and the tracer setting.
 pub fn rendering_on(device_type: ash::vk::PhysicalDeviceType, ray_tracing: bool) -> devices::Rendering {
     let cpu = device_type == ash::vk::PhysicalDeviceType::CPU;
-    let tracer = trace::backend_name(ray_tracing, trace::settings::Settings::of_process().tracer);
+    let tracer = trace::backend_name(ray_tracing, trace::settings::Settings::of_process().tracer, None);
     match Mode::of_process() {
         Ok(Mode::PathTrace) => devices::Rendering::PathTrace { tracer },
         Ok(Mode::Default) if cpu => devices::Rendering::Raster { by_default: true },

@@ -13,6 +13,10 @@
 //! reaches the converged one within a few frames with gradients, and slowly without. And the
 //! temporal stability of raw samples, the tracer's temporal filter and A-SVGF on the lit,
 //! still scene: the mean frame-to-frame change.
+//!
+//! The specular channel (`shaders/trace/channels.glsl`): a glossy wall's highlight is in it
+//! and not in the diffuse channels, seen through the channel views (`view = "specular"` and
+//! the others), and the channels remodulated give back the raw traced image.
 
 use crate::lavapipe;
 
@@ -274,4 +278,110 @@ fn denoised_frames_of_a_still_scene_change_less_from_frame_to_frame_than_raw_one
     assert!(raw > 0.5, "raw samples are noisy: {raw:.3}");
     assert!(temporal < raw, "the temporal filter: raw {raw:.3}, temporal {temporal:.3}");
     assert!(denoised < 0.25 * raw && denoised < 0.25 * temporal, "raw {raw:.3}, temporal {temporal:.3}, A-SVGF {denoised:.3}");
+}
+
+/// One frame of two walls side by side facing the camera at z = −6, diffuse 0.6, lit by GL
+/// light 0, a directional light from the front right (next-event estimation without noise),
+/// under a grey clear colour (the environment continuation rays find): on the left (x < 0)
+/// Lambertian, on the right glossy (`GL_SPECULAR` white, shininess 64: dielectric F0 0.04,
+/// roughness 0.42), its highlight where the light's mirror direction meets the eye, about a
+/// quarter of the image right of the centre.
+fn glossy_and_matte_walls(ctx: &mut Context) {
+    let black = [0.0f32, 0.0, 0.0, 1.0];
+    // Safety: plain state calls on a current context; the arrays outlive them.
+    unsafe {
+        dispatch::glClearColor(ctx, 0.3, 0.3, 0.3, 1.0);
+        dispatch::glClear(ctx, gl::GL_COLOR_BUFFER_BIT | gl::GL_DEPTH_BUFFER_BIT);
+        dispatch::glEnable(ctx, gl::GL_DEPTH_TEST);
+        dispatch::glEnable(ctx, gl::GL_LIGHTING);
+        dispatch::glEnable(ctx, gl::GL_LIGHT0);
+        dispatch::glLightfv(ctx, gl::GL_LIGHT0, gl::GL_POSITION, [0.3f32, 0.0, 1.0, 0.0].as_ptr());
+        dispatch::glLightModelfv(ctx, gl::GL_LIGHT_MODEL_AMBIENT, black.as_ptr());
+        dispatch::glMaterialfv(ctx, gl::GL_FRONT_AND_BACK, gl::GL_AMBIENT, black.as_ptr());
+        dispatch::glMaterialfv(ctx, gl::GL_FRONT_AND_BACK, gl::GL_DIFFUSE, [0.6f32, 0.6, 0.6, 1.0].as_ptr());
+        dispatch::glMaterialf(ctx, gl::GL_FRONT_AND_BACK, gl::GL_SHININESS, 64.0);
+        dispatch::glMaterialfv(ctx, gl::GL_FRONT_AND_BACK, gl::GL_SPECULAR, black.as_ptr());
+    }
+    square(ctx, -6.0, [-8.0, 0.0], [-8.0, 8.0], 0.0, Motion::Transform);
+    // Safety: as above.
+    unsafe { dispatch::glMaterialfv(ctx, gl::GL_FRONT_AND_BACK, gl::GL_SPECULAR, [1.0f32; 4].as_ptr()) };
+    square(ctx, -6.0, [0.0, 8.0], [-8.0, 8.0], 0.0, Motion::Transform);
+    ctx.end_frame();
+}
+
+/// The red values of the Lambertian wall's pixels (columns 0 to 14) and of the glossy wall's
+/// (17 to 31) of [`glossy_and_matte_walls`] (0 bounces: direct light, and the environment
+/// through the continuation ray), traced in a context that denoises with `denoise` (none: the
+/// raw samples, no temporal filter).
+fn walls_image(denoise: Option<DenoiseSettings>) -> [Vec<i32>; 2] {
+    let mut ctx = context_with(0, denoise.is_some(), denoise);
+    glossy_and_matte_walls(&mut ctx);
+    let image = lavapipe::read_rgba(&mut ctx, SIZE);
+    let columns = |xs: std::ops::Range<i32>| (0..SIZE).flat_map(|y| xs.clone().map(move |x| (y * SIZE + x) as usize)).map(|i| i32::from(image[i][0])).collect();
+    [columns(0..15), columns(17..SIZE)]
+}
+
+/// [`walls_image`] showing `view`, specular split off or not.
+fn channel_image(view: View, specular: bool) -> [Vec<i32>; 2] {
+    walls_image(Some(DenoiseSettings { view, specular, ..DenoiseSettings::default() }))
+}
+
+fn largest(values: &[i32]) -> i32 {
+    values.iter().copied().max().unwrap_or(0)
+}
+
+fn smallest(values: &[i32]) -> i32 {
+    values.iter().copied().min().unwrap_or(0)
+}
+
+fn mean_of(values: &[i32]) -> f64 {
+    values.iter().map(|&v| f64::from(v)).sum::<f64>() / values.len().max(1) as f64
+}
+
+/// The tracer's specular channel (`shaders/trace/channels.glsl`, `FRAME_SPECULAR`) holds the
+/// light the glossy wall's specular lobe reflects and the diffuse channels do not; the
+/// channels remodulated give back the raw traced image; with `[denoise] specular = false`
+/// specular light rides the direct channel again.
+#[test]
+fn specular_light_is_a_channel_of_its_own_and_the_channels_remodulated_give_the_traced_image() {
+    let [matte_specular, glossy_specular] = channel_image(View::Specular, true);
+    let [matte_direct, glossy_direct] = channel_image(View::Direct, true);
+    let [matte_indirect, glossy_indirect] = channel_image(View::Indirect, true);
+    let unfiltered = channel_image(View::Unfiltered, true);
+    let raw = walls_image(None);
+    let [_, glossy_specular_off] = channel_image(View::Specular, false);
+    let [_, glossy_direct_off] = channel_image(View::Direct, false);
+    let difference = unfiltered.concat().iter().zip(&raw.concat()).map(|(a, b)| (a - b).abs()).max().unwrap_or(0);
+    eprintln!(
+        "red 0..255, Lambertian / glossy wall: specular channel largest {} / {}, smallest {} / {}; direct largest {} / {}; indirect mean {:.2} / {:.2}; \
+         unfiltered against raw: largest difference {difference}, means {:.2} / {:.2}; specular off: glossy wall's specular channel largest {}, direct largest {}",
+        largest(&matte_specular),
+        largest(&glossy_specular),
+        smallest(&matte_specular),
+        smallest(&glossy_specular),
+        largest(&matte_direct),
+        largest(&glossy_direct),
+        mean_of(&matte_indirect),
+        mean_of(&glossy_indirect),
+        mean_of(&unfiltered.concat()),
+        mean_of(&raw.concat()),
+        largest(&glossy_specular_off),
+        largest(&glossy_direct_off),
+    );
+    // A Lambertian wall reflects nothing specular; the glossy wall's highlight is in the
+    // specular channel.
+    assert_eq!(largest(&matte_specular), 0, "the Lambertian wall's specular channel is black");
+    let (peak, least) = (largest(&glossy_specular), smallest(&glossy_specular));
+    assert!(peak >= 60 && peak > least + 30, "the glossy wall's highlight is in the specular channel: {least}..{peak}");
+    // The diffuse channels hold no specular light: the glossy wall's diffuse lobe reflects
+    // (1 − F0) of the Lambertian wall's (the same everywhere under a directional light), never
+    // more.
+    assert!(smallest(&matte_direct) >= 100, "the direct channel holds the diffuse light");
+    assert!(largest(&glossy_direct) <= smallest(&matte_direct), "direct: the glossy wall's at most the Lambertian wall's");
+    assert!(mean_of(&glossy_indirect) <= mean_of(&matte_indirect) + 1.0, "indirect: the glossy wall's at most the Lambertian wall's");
+    // Emission plus the three channels remodulated is what was traced.
+    assert!(difference <= 1, "the channels remodulated against the raw image: {difference}");
+    // Without the specular channel the highlight rides the direct channel.
+    assert_eq!(largest(&glossy_specular_off), 0, "specular off: the specular channel is black");
+    assert!(largest(&glossy_direct_off) >= largest(&glossy_direct) + 20, "specular off: the direct channel holds the highlight");
 }

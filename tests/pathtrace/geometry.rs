@@ -156,3 +156,14 @@ fn a_moving_mesh_refits_its_bvh_and_is_seen_where_it_is() {
     assert!(now.abs_diff(204) <= 2, "the quad where it is now is lit: {now}");
     assert_eq!(before, 0, "where the quad was there is nothing now");
 }
+
+/// `tracer = "auto"` (the default) on a device without the ray-tracing extensions (lavapipe)
+/// makes the compute tracer at once: no trial of the hardware one (`trace::auto`), whose
+/// first frames would trace with the hardware tracer.
+#[test]
+fn auto_keeps_the_compute_tracer_without_the_extensions() {
+    let (_ctx, renderer) = context();
+    let renderer = renderer.lock().unwrap();
+    assert!(!renderer.device().ray_tracing, "lavapipe has no VK_KHR_ray_tracing_pipeline");
+    assert_eq!(renderer.tracer().map(|t| t.name()), Some("compute"));
+}

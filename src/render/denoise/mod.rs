@@ -8,10 +8,15 @@
 //! albedo, material key, motion vectors (from the instances' transforms of this and the last
 //! frame: rigid motion; dynamic meshes' previous vertex positions are not kept, so a mesh
 //! that deforms in place reprojects as if it stood still and its history is dropped only
-//! where the disocclusion tests fail), and two lighting channels demodulated by albedo,
-//! direct light at the primary hit and indirect light (the tracer does not separate specular:
-//! it is part of both). Each channel is filtered apart, in five compute passes per frame
-//! (`shaders/denoise/`):
+//! where the disocclusion tests fail), and three lighting channels: direct light at the
+//! primary hit and indirect light as its diffuse lobe reflects them, demodulated by albedo,
+//! and what its specular lobe reflects of both, demodulated by the lobe's directional albedo
+//! (`shaders/trace/channels.glsl`; with `[denoise] specular = false` the tracer does not split
+//! it off, `FRAME_SPECULAR`, and specular light rides the diffuse channels). Each channel is
+//! filtered apart, in five compute passes per frame (`shaders/denoise/`); the specular
+//! channel in the same passes, with its own history length (shorter while the camera moves
+//! and the lobe is glossy; its own gradients) and only in the first
+//! `SPECULAR_ITERATIONS` à-trous iterations, with lobe-aware normal weights:
 //!
 //! 0. `gradient.comp` (with `[denoise] gradients`): temporal gradients (A-SVGF, Schied et al.
 //!    2018): the tracer's gradient pass traces one pixel of every 3x3 stratum again with last
@@ -46,7 +51,8 @@
 //! pixel for both channels, against 32 in single floats), surfaces in the 8-byte guide
 //! (an à-trous tap reads 24 bytes from two tightly packed buffers instead of fields spread
 //! over the 96-byte G-buffer sample and a 32-byte signal), and a frame's history in 36 bytes
-//! a pixel in three buffers (against 64 in one). No binding exceeds a quarter of the
+//! a pixel in three buffers (against 64 in one), 52 with the specular channel's record (and
+//! 8 bytes a pixel in each half of its signal). No binding exceeds a quarter of the
 //! G-buffer's size.
 //!
 //! The passes are timed on GPUs ([`crate::render::pass_times`]; CPU devices have no
@@ -69,14 +75,14 @@ use crate::render::trace::compute::{MOVING_HISTORY, barrier};
 use crate::render::trace::gpu_types::{GSAMPLE_BYTES, GpuFrame, OUTPUT_SAMPLE_BYTES, gbuffer_records, gradient_strata};
 use crate::render::trace::shader_constants::{FRAME_STILL, FRAME_TONEMAP_MASK, TRACE_GROUP};
 use crate::render::trace::{Radiance, TracedImage};
-use pipelines::{DenoisePass, DenoisePipelines, GRADIENT_BYTES, GUIDE_BYTES, HISTORY_LIGHT_BYTES, HISTORY_MOMENTS_BYTES, SIGNAL_BYTES};
-use settings::{DenoiseSettings, View};
+use pipelines::{DenoisePass, DenoisePipelines, GRADIENT_BYTES, GUIDE_BYTES, HISTORY_LIGHT_BYTES, HISTORY_MOMENTS_BYTES, HISTORY_SPECULAR_BYTES, SIGNAL_BYTES, SPECULAR_SIGNAL_BYTES};
+use settings::DenoiseSettings;
 use shader_constants::{
     BINDING_COUNT, BINDING_GBUFFER, BINDING_GRADIENT, BINDING_GUIDE, BINDING_GUIDE_PREVIOUS, BINDING_LIGHT, BINDING_LIGHT_PREVIOUS, BINDING_MOMENTS, BINDING_MOMENTS_PREVIOUS, BINDING_OUTPUT,
-    BINDING_SIGNAL, FLAG_FEEDBACK, FLAG_GRADIENTS, FLAG_VIEW_HISTORY,
+    BINDING_SIGNAL, BINDING_SPECULAR, BINDING_SPECULAR_PREVIOUS, BINDING_SPECULAR_SIGNAL, FLAG_FEEDBACK, FLAG_GRADIENTS, FLAG_SPECULAR, SPECULAR_ITERATIONS, VIEW_SHIFT,
 };
 
-/// One frame's history: what the next frame reprojects (36 bytes a pixel in all).
+/// One frame's history: what the next frame reprojects (52 bytes a pixel in all).
 struct FrameHistory {
     /// `HistoryLight` records: light and history length.
     light: Buffer,
@@ -84,22 +90,29 @@ struct FrameHistory {
     moments: Buffer,
     /// `Guide` records: the surfaces (normal and eye distance), also the spatial passes'.
     guide: Buffer,
+    /// `HistorySpecular` records: the specular channel's light, moments and history length.
+    specular: Buffer,
 }
 
 impl FrameHistory {
     /// The buffers of `n` pixels (none left behind on failure).
     fn new(device: &Device, n: u64) -> Result<FrameHistory> {
-        let [light, moments, guide] = device.create_storage_buffers([("glrt denoiser history light", n * HISTORY_LIGHT_BYTES), ("glrt denoiser history moments", n * HISTORY_MOMENTS_BYTES), ("glrt denoiser guides", n * GUIDE_BYTES)])?;
-        Ok(FrameHistory { light, moments, guide })
+        let [light, moments, guide, specular] = device.create_storage_buffers([
+            ("glrt denoiser history light", n * HISTORY_LIGHT_BYTES),
+            ("glrt denoiser history moments", n * HISTORY_MOMENTS_BYTES),
+            ("glrt denoiser guides", n * GUIDE_BYTES),
+            ("glrt denoiser history specular", n * HISTORY_SPECULAR_BYTES),
+        ])?;
+        Ok(FrameHistory { light, moments, guide, specular })
     }
 
-    fn buffers(&self) -> [&Buffer; 3] {
-        [&self.light, &self.moments, &self.guide]
+    fn buffers(&self) -> [&Buffer; 4] {
+        [&self.light, &self.moments, &self.guide, &self.specular]
     }
 
     /// Frees the buffers (the GPU must be done with them).
     fn destroy(self, device: &Device) {
-        for b in [self.light, self.moments, self.guide] {
+        for b in [self.light, self.moments, self.guide, self.specular] {
             device.destroy_buffer(b);
         }
     }
@@ -118,6 +131,8 @@ struct PixelBuffers {
     history: [FrameHistory; 2],
     /// The spatial passes' two signals, one after the other.
     signal: Buffer,
+    /// The two specular signals, one after the other.
+    specular_signal: Buffer,
     /// The temporal gradients, one record per 3x3 stratum.
     gradient: Buffer,
     pool: vk::DescriptorPool,
@@ -174,7 +189,12 @@ impl Denoiser {
         let history = [first, second];
         let [sx, sy] = gradient_strata(radiance.size);
         let strata = u64::from(sx) * u64::from(sy);
-        let [signal, gradient] = match device.create_storage_buffers([("glrt denoiser signal", 2 * n * SIGNAL_BYTES), ("glrt denoiser gradients", strata * GRADIENT_BYTES)]) {
+        let buffers = device.create_storage_buffers([
+            ("glrt denoiser signal", 2 * n * SIGNAL_BYTES),
+            ("glrt denoiser specular signal", 2 * n * SPECULAR_SIGNAL_BYTES),
+            ("glrt denoiser gradients", strata * GRADIENT_BYTES),
+        ]);
+        let [signal, specular_signal, gradient] = match buffers {
             Ok(b) => b,
             Err(e) => {
                 history.into_iter().for_each(|h| h.destroy(device));
@@ -187,6 +207,7 @@ impl Denoiser {
             output: radiance.output,
             history,
             signal,
+            specular_signal,
             gradient,
             pool: vk::DescriptorPool::null(),
             sets: [vk::DescriptorSet::null(); 2],
@@ -234,6 +255,9 @@ impl Denoiser {
                 table[BINDING_GUIDE as usize] = whole(&current.guide);
                 table[BINDING_SIGNAL as usize] = whole(&pixels.signal);
                 table[BINDING_GRADIENT as usize] = whole(&pixels.gradient);
+                table[BINDING_SPECULAR_PREVIOUS as usize] = whole(&previous.specular);
+                table[BINDING_SPECULAR as usize] = whole(&current.specular);
+                table[BINDING_SPECULAR_SIGNAL as usize] = whole(&pixels.specular_signal);
                 let infos = table.map(|(buffer, range)| [vk::DescriptorBufferInfo { buffer, offset: 0, range }]);
                 let writes: Vec<vk::WriteDescriptorSet> = infos
                     .iter()
@@ -260,15 +284,19 @@ impl Denoiser {
         let still = frame.flags[0] & FRAME_STILL != 0;
         let flags = (frame.flags[0] & FRAME_TONEMAP_MASK)
             | if still { 0 } else { FLAG_FEEDBACK }
-            | if self.settings.view == View::History { FLAG_VIEW_HISTORY } else { 0 }
+            | self.settings.view.code() << VIEW_SHIFT
             | if self.settings.gradients { FLAG_GRADIENTS } else { 0 };
+        // The passes that filter the specular channel carry FLAG_SPECULAR.
+        let specular = if self.settings.specular { FLAG_SPECULAR } else { 0 };
         let params = [frame.params[0], frame.params[1], frame.params[2], MOVING_HISTORY];
         let pixel_groups = [w.div_ceil(TRACE_GROUP), h.div_ceil(TRACE_GROUP)];
         let stratum_groups = gradient_strata(radiance.size).map(|s| s.div_ceil(TRACE_GROUP));
         let d = &device.raw;
         let layout = self.pipelines.layout;
-        let dispatch = |pipeline: vk::Pipeline, groups: [u32; 2], step: u32, source: u32, destination: u32| {
-            let pass = DenoisePass { params, size: [w, h, flags, step], signal: [source, destination] };
+        // A pass: its pipeline, work groups, flags, à-trous step, and offsets into the signal
+        // and the specular signal (read, written).
+        let dispatch = |pipeline: vk::Pipeline, groups: [u32; 2], flags: u32, step: u32, signal: [u32; 2], specular: [u32; 2]| {
+            let pass = DenoisePass { params, size: [w, h, flags, step], signal, specular };
             // Safety: `cmd` records outside a rendering pass (the tracer ended it); the sets'
             // buffers live until the frame finishes.
             unsafe {
@@ -285,27 +313,34 @@ impl Denoiser {
                 stamps.write(device, cmd, k, vk::PipelineStageFlags2::COMPUTE_SHADER);
             }
         };
-        let run = |pipeline: vk::Pipeline, step: u32, source: u32, destination: u32| dispatch(pipeline, pixel_groups, step, source, destination);
+        let run = |pipeline: vk::Pipeline, flags: u32, step: u32, signal: [u32; 2], specular: [u32; 2]| dispatch(pipeline, pixel_groups, flags, step, signal, specular);
         // Safety: as above.
         unsafe { d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, layout, 0, &[set], &[]) };
         stamp(0);
         if self.settings.gradients {
-            dispatch(self.pipelines.gradient, stratum_groups, 1, 0, 0);
+            dispatch(self.pipelines.gradient, stratum_groups, flags | specular, 1, [0, 0], [0, 0]);
         }
         stamp(1);
-        // The signal ping-pongs between its halves, starting at 0 and n.
-        run(self.pipelines.temporal, 1, 0, 0);
+        // The signals ping-pong between their halves, starting at 0 and n; the variance pass
+        // estimates the specular signal in place.
+        run(self.pipelines.temporal, flags | specular, 1, [0, 0], [0, 0]);
         stamp(2);
-        run(self.pipelines.variance, 1, 0, n);
+        run(self.pipelines.variance, flags | specular, 1, [0, n], [0, 0]);
         stamp(3);
-        let mut current = n;
+        let (mut current, mut current_specular) = (n, 0);
         for iteration in 0..self.settings.iterations {
             let other = n - current;
-            run(self.pipelines.atrous, 1 << iteration, current, other);
+            if iteration < SPECULAR_ITERATIONS {
+                let other_specular = n - current_specular;
+                run(self.pipelines.atrous, flags | specular, 1 << iteration, [current, other], [current_specular, other_specular]);
+                current_specular = other_specular;
+            } else {
+                run(self.pipelines.atrous, flags, 1 << iteration, [current, other], [0, 0]);
+            }
             current = other;
         }
         stamp(4);
-        run(self.pipelines.modulate, 1, current, 0);
+        run(self.pipelines.modulate, flags | specular, 1, [current, 0], [current_specular, 0]);
         stamp(5);
         // Safety: as above.
         unsafe { barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::HOST) };
@@ -315,6 +350,12 @@ impl Denoiser {
     /// Whether the tracer should trace gradient samples (`FRAME_GRADIENTS`) for this stage.
     pub fn wants_gradient_samples(&self) -> bool {
         self.settings.gradients
+    }
+
+    /// Whether the tracer should split specular light into its own channel (`FRAME_SPECULAR`)
+    /// for this stage.
+    pub fn wants_specular_channel(&self) -> bool {
+        self.settings.specular
     }
 
     /// Frees the GPU objects (the GPU must be idle), after logging the passes' times.
@@ -334,5 +375,6 @@ fn destroy_pixels(device: &Device, p: PixelBuffers) {
     unsafe { device.raw.destroy_descriptor_pool(p.pool, None) };
     p.history.into_iter().for_each(|h| h.destroy(device));
     device.destroy_buffer(p.signal);
+    device.destroy_buffer(p.specular_signal);
     device.destroy_buffer(p.gradient);
 }

@@ -20,6 +20,8 @@ pub struct DenoisePass {
     pub size: [u32; 4],
     /// Record offsets (in pixels) into the signal: read, written.
     pub signal: [u32; 2],
+    /// Record offsets (in pixels) into the specular signal: read, written.
+    pub specular: [u32; 2],
 }
 
 /// Bytes of [`DenoisePass`].
@@ -94,7 +96,11 @@ pub const HISTORY_LIGHT_BYTES: u64 = 16;
 pub const HISTORY_MOMENTS_BYTES: u64 = 12;
 /// Per-pixel bytes of one frame's surfaces (`Guide`).
 pub const GUIDE_BYTES: u64 = 8;
-/// Bytes of one stratum's temporal gradients (`gradient` of `denoise/common.glsl`).
-pub const GRADIENT_BYTES: u64 = 8;
+/// Per-pixel bytes of one frame's specular history (`HistorySpecular`).
+pub const HISTORY_SPECULAR_BYTES: u64 = 16;
+/// Bytes of one stratum's temporal gradients (`Gradient` of `denoise/common.glsl`).
+pub const GRADIENT_BYTES: u64 = 12;
 /// Per-pixel bytes of the spatial passes' signal (`Signal`).
 pub const SIGNAL_BYTES: u64 = 16;
+/// Per-pixel bytes of the specular signal (`SpecularSignal`).
+pub const SPECULAR_SIGNAL_BYTES: u64 = 8;

@@ -25,8 +25,15 @@ glsl_constants! {
     const BINDING_SIGNAL: u32 = 8;
     /// The temporal gradients per 3x3 stratum (`gradient.comp`), read by the temporal pass.
     const BINDING_GRADIENT: u32 = 9;
+    /// Last frame's specular history (`HistorySpecular`), read.
+    const BINDING_SPECULAR_PREVIOUS: u32 = 10;
+    /// This frame's specular history, written.
+    const BINDING_SPECULAR: u32 = 11;
+    /// The specular signal the first à-trous iterations ping-pong (`SpecularSignal`), two
+    /// halves, at the pass's specular offsets.
+    const BINDING_SPECULAR_SIGNAL: u32 = 12;
     /// Number of bindings (`0..BINDING_COUNT`, all storage buffers).
-    const BINDING_COUNT: u32 = 10;
+    const BINDING_COUNT: u32 = 13;
 
     /// Pass flags: the tone mapping operator (`TONEMAP_*` of the tracer), bits 0 and 1.
     const FLAG_TONEMAP_MASK: u32 = 3;
@@ -34,13 +41,32 @@ glsl_constants! {
     /// the camera moves, as in SVGF); without it the history keeps the unfiltered mean
     /// (accumulation while everything stands still converges to the traced mean).
     const FLAG_FEEDBACK: u32 = 4;
-    /// Pass flags: the output shows each pixel's history length (frames, as grey levels
-    /// 0..=255) instead of its colour (`[denoise] view = "history"`).
-    const FLAG_VIEW_HISTORY: u32 = 8;
     /// Pass flags: temporal gradients shorten the history where the lighting changed
     /// (`[denoise] gradients`).
     const FLAG_GRADIENTS: u32 = 16;
+    /// Pass flags: the pass filters the specular channel too (`[denoise] specular`; the
+    /// à-trous filter in its first `SPECULAR_ITERATIONS` iterations only).
+    const FLAG_SPECULAR: u32 = 32;
+    /// Pass flags: what the output shows, `VIEW_*`, in bits `VIEW_SHIFT..` (`VIEW_MASK`).
+    const VIEW_SHIFT: u32 = 6;
+    /// The view's bits, shifted down.
+    const VIEW_MASK: u32 = 7;
+    /// View: the denoised colour.
+    const VIEW_COLOR: u32 = 0;
+    /// View: each pixel's history length (frames, as grey levels 0..=255).
+    const VIEW_HISTORY: u32 = 1;
+    /// View: this frame's traced direct diffuse light, remodulated (unfiltered).
+    const VIEW_DIRECT: u32 = 2;
+    /// View: this frame's traced indirect diffuse light, remodulated (unfiltered).
+    const VIEW_INDIRECT: u32 = 3;
+    /// View: this frame's traced specular light, remodulated (unfiltered).
+    const VIEW_SPECULAR: u32 = 4;
+    /// View: emission plus the three channels remodulated, unfiltered: the traced radiance
+    /// through the channels.
+    const VIEW_UNFILTERED: u32 = 5;
 
     /// Frames of history below which the variance is estimated spatially (`variance.comp`).
     const YOUNG_HISTORY: u32 = 4;
+    /// À-trous iterations that filter the specular channel (the first ones, steps 1 and 2).
+    const SPECULAR_ITERATIONS: u32 = 2;
 }

@@ -236,6 +236,7 @@ mod tests {
             texcoords: [Vec::new(), Vec::new()],
             colors: vec![color; 6],
             shading: ChunkShading::default(),
+            cell: [0; 3],
         })
     }
 

@@ -26,6 +26,7 @@ pub fn quad(id: u64, origin: Vec3, u: Vec3, v: Vec3) -> Arc<StaticChunk> {
         texcoords: [Vec::new(), Vec::new()],
         colors: Vec::new(),
         shading: ChunkShading::default(),
+        cell: [0; 3],
     })
 }
 

@@ -149,6 +149,7 @@ mod tests {
             texcoords: [vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.5], [0.5, 0.5], [0.5, 0.5]], Vec::new()],
             colors,
             shading: ChunkShading { state: Arc::new(state), texture_units: [Some(TextureUnit::default()), None], light_units: 0 },
+            cell: [0; 3],
         }
     }
 

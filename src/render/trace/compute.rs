@@ -21,6 +21,7 @@ use xxhash_rust::xxh3::Xxh3;
 use super::bvh::Tlas;
 use super::emitters::{self, EmitterList, Estimate};
 use super::hardware::accel::{Accelerations, TopInstance};
+use super::hardware::regions;
 use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight};
 use super::instances::{self, Source};
 use super::lights::{self, LightSettings};
@@ -388,7 +389,14 @@ impl RayTracer for ComputeTracer {
         let draws: Vec<&Draw> = traced.iter().map(|s| s.base).collect();
 
         let previous_view = self.previous.and_then(|p| p.view).filter(|_| !frame.stats.camera_cut);
-        let (items, covered_draws) = instances::gather(frame, traced, previous_view);
+        let (mut items, covered_draws) = instances::gather(frame, traced, previous_view);
+        // The hardware tracer merges the chunks of a region: they go together, after the rest.
+        let region_size = if self.accelerations.is_some() { self.settings.chunk_regions } else { 0 };
+        let region_of = |item: &instances::Item| match &item.source {
+            Source::Chunk(c) => regions::region(c.cell, region_size),
+            Source::Surface(_) => None,
+        };
+        items.sort_by_key(region_of);
 
         let build_started = std::time::Instant::now();
         if let Some(stamps) = &self.timestamps {
@@ -412,7 +420,7 @@ impl RayTracer for ComputeTracer {
         self.resident.insert_all(device, cmd, rec.ring, new, frame.number)?;
         if let Some(accelerations) = &mut self.accelerations {
             accelerations.begin_frame(device);
-            let keys: Vec<u64> = items.iter().map(|item| item.key).collect();
+            let keys: Vec<u64> = items.iter().filter(|item| region_of(item).is_none()).map(|item| item.key).collect();
             accelerations.build_bottom(device, cmd, &self.resident, &keys, &|key| replaced.iter().find(|r| r.0 == key).map(|r| r.1))?;
         }
         build_micros += build_started.elapsed().as_micros() as u64;
@@ -491,7 +499,8 @@ impl RayTracer for ComputeTracer {
             };
             let flags = if material.alpha_func != 7 { INSTANCE_ALPHA_TESTED } else { 0 };
             if self.accelerations.is_some() {
-                top_instances.push(TopInstance { key: item.key, rows: gpu_types::rows(&item.object_to_eye), index: instances.len() as u32, opaque: flags == 0 });
+                let (rows, index, opaque) = (gpu_types::rows(&item.object_to_eye), instances.len() as u32, flags == 0);
+                top_instances.push(TopInstance { key: item.key, rows, index, opaque, region: region_of(item) });
             }
             instances.push(GpuInstance {
                 object_to_eye: gpu_types::rows(&item.object_to_eye),
@@ -525,8 +534,11 @@ impl RayTracer for ComputeTracer {
         counts.emitters = emitter_list.len() as u32;
         let top_started = std::time::Instant::now();
         match &mut self.accelerations {
-            Some(accelerations) => self.top_level = accelerations.build_top(device, cmd, slot, &top_instances)?,
-            None => self.tlas = Tlas::build(&bounds, self.settings.bvh),
+            Some(accelerations) => (self.top_level, counts.top_instances) = accelerations.build_top(device, cmd, slot, &top_instances, &self.resident)?,
+            None => {
+                self.tlas = Tlas::build(&bounds, self.settings.bvh);
+                counts.top_instances = instances.len() as u32;
+            }
         }
         if let Some(stamps) = &self.timestamps {
             stamps.frame(slot).write(device, cmd, 1, vk::PipelineStageFlags2::ALL_COMMANDS);

@@ -182,6 +182,7 @@ mod tests {
             texcoords: [Vec::new(), Vec::new()],
             colors: Vec::new(),
             shading: ChunkShading { state: draw.state.clone(), texture_units: [unit(0), unit(1)], light_units: draw.instance.map_or(0, |i| i.light_units) },
+            cell: [0; 3],
         })
     }
 

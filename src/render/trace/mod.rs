@@ -5,10 +5,11 @@
 //! [`RayTracer::resolve`], then [`composite`].
 //!
 //! A ray-tracing back end implements [`RayTracer`]; [`backend`] chooses it for a device (one
-//! place). Today the only one is [`compute`], BVH traversal in compute shaders, which runs on
-//! every Vulkan 1.2 device, lavapipe included (DESIGN.md, "Ray tracing back ends"); a hardware
-//! back end (`VK_KHR_ray_tracing_pipeline`) goes beside it, reading the same [`GpuScene`] and
-//! writing the same G-buffer, radiance and output layouts (`shaders/trace/gbuffer.glsl`).
+//! place; with `tracer = "auto"` on a device that runs both, [`auto`] measures them). The
+//! compute one, [`compute`], BVH traversal in compute shaders, runs on every Vulkan 1.2
+//! device, lavapipe included (DESIGN.md, "Ray tracing back ends"); the hardware one
+//! ([`hardware`], `VK_KHR_ray_tracing_pipeline`) goes beside it, reading the same [`GpuScene`]
+//! and writing the same G-buffer, radiance and output layouts (`shaders/trace/gbuffer.glsl`).
 //!
 //! Space: rays are traced in the **eye space of the current frame** (camera at the origin,
 //! looking down −z, as OpenGL's modelview leaves it). Each traced draw is an instance whose
@@ -63,6 +64,7 @@
 //! - [`resident`]: geometries and their BVHs on the GPU; [`pipelines`]: the compute pipelines;
 //!   [`bindings`]: their descriptor bindings, shared with `shaders/trace/bindings.glsl`.
 
+pub mod auto;
 pub mod bindings;
 pub mod bvh;
 pub mod chunks;
@@ -184,37 +186,67 @@ pub struct TracedImage {
 }
 
 /// Whether [`backend`] makes the hardware tracer for a device with (`true`) or without
-/// [`Device::ray_tracing`] under `tracer`.
+/// [`Device::ray_tracing`] under `tracer` (with `auto`, at least for its trial).
 pub fn uses_hardware(ray_tracing: bool, tracer: settings::Tracer) -> bool {
     ray_tracing && tracer != settings::Tracer::Compute
 }
 
-/// The name of the back end [`backend`] makes for a device with or without
-/// [`Device::ray_tracing`] (`glrt info`, the HUD), and why.
-pub fn backend_name(ray_tracing: bool, tracer: settings::Tracer) -> &'static str {
-    match (uses_hardware(ray_tracing, tracer), tracer) {
-        (true, _) => "hardware tracer: the device has VK_KHR_ray_tracing_pipeline",
-        (false, settings::Tracer::Compute) => "compute tracer: tracer = \"compute\"",
-        (false, _) => "compute tracer: the device has no VK_KHR_ray_tracing_pipeline",
+/// The back end [`backend`] makes for a device with or without [`Device::ray_tracing`] (`glrt
+/// info`, the HUD), and why; `remembered`: the choice [`auto`] remembered for the device and
+/// program (`Some(true)`: hardware).
+pub fn backend_name(ray_tracing: bool, tracer: settings::Tracer, remembered: Option<bool>) -> &'static str {
+    match (uses_hardware(ray_tracing, tracer), tracer, remembered) {
+        (true, settings::Tracer::Auto, Some(true)) => "hardware tracer: measured faster than the compute tracer on this device for this program (remembered)",
+        (true, settings::Tracer::Auto, Some(false)) => "compute tracer: measured faster than the hardware tracer on this device for this program (remembered)",
+        (true, settings::Tracer::Auto, None) => {
+            "auto: the device has VK_KHR_ray_tracing_pipeline; a program's first frames trace with both tracers and keep the one whose tracing pass is faster (remembered per device and program in ~/.cache/glrt/tracers)"
+        }
+        (true, _, _) => "hardware tracer: tracer = \"hardware\"",
+        (false, settings::Tracer::Compute, _) => "compute tracer: tracer = \"compute\"",
+        (false, _, _) => "compute tracer: the device has no VK_KHR_ray_tracing_pipeline",
     }
 }
 
 /// The ray-tracing back end for `device`, with `settings`, for `frames_in_flight` frames in
-/// flight: the hardware tracer ([`hardware`]) where the device has
-/// [`Device::ray_tracing`] and `settings.tracer` allows it, else the compute tracer; a hardware
-/// tracer that cannot be made (a driver refusing the pipeline) falls back to the compute one
-/// with a message.
+/// flight: the compute tracer ([`compute`]) on a device without [`Device::ray_tracing`] or
+/// with `tracer = "compute"`; the hardware tracer ([`hardware`]) with `tracer = "hardware"`;
+/// with `auto`, the back end [`auto`] remembered for the device and this program, else a
+/// [`auto::Trial`] of both. A hardware tracer that cannot be made (a driver refusing the
+/// pipeline) falls back to the compute one with a message.
 pub fn backend(device: &Device, settings: Settings, frames_in_flight: usize) -> Result<Box<dyn RayTracer>> {
     let hardware = uses_hardware(device.ray_tracing, settings.tracer);
     if settings.tracer == settings::Tracer::Hardware && !hardware {
         crate::render::raster::renderer::log_once("tracer = \"hardware\": the device has no VK_KHR_ray_tracing_pipeline; tracing with compute shaders");
     }
-    match compute::ComputeTracer::new(device, settings, frames_in_flight, hardware) {
-        Ok(tracer) => Ok(Box::new(tracer)),
-        Err(e) if hardware => {
+    let compute = || -> Result<Box<dyn RayTracer>> { Ok(Box::new(compute::ComputeTracer::new(device, settings, frames_in_flight, false)?)) };
+    if !hardware {
+        return compute();
+    }
+    let (choices, key) = (auto::Choices::of_user(), auto::choice_key(&device.properties, &auto::program()));
+    let remembered = (settings.tracer == settings::Tracer::Auto).then(|| choices.get(&key)).flatten();
+    if remembered == Some(false) {
+        log::info!("glrt: {}", backend_name(true, settings.tracer, remembered));
+        return compute();
+    }
+    let tracer = match compute::ComputeTracer::new(device, settings, frames_in_flight, true) {
+        Ok(tracer) => tracer,
+        Err(e) => {
             log::warn!("glrt: the hardware ray tracer could not be made ({e}); tracing with compute shaders");
-            Ok(Box::new(compute::ComputeTracer::new(device, settings, frames_in_flight, false)?))
+            return compute();
         }
-        Err(e) => Err(e),
+    };
+    if settings.tracer == settings::Tracer::Hardware || remembered == Some(true) {
+        if remembered.is_some() {
+            log::info!("glrt: {}", backend_name(true, settings.tracer, remembered));
+        }
+        return Ok(Box::new(tracer));
+    }
+    match compute() {
+        Ok(other) => Ok(Box::new(auto::Trial::new(Box::new(tracer), other, choices, key))),
+        Err(e) => {
+            let mut tracer = tracer;
+            tracer.destroy(device);
+            Err(e)
+        }
     }
 }

@@ -20,8 +20,9 @@
 //! temporal = true           # temporal filter with reprojection while moving
 //! sky_sampling = true       # next-event estimation of the sky (its cube map's luminance)
 //! sky_size = 128            # faces of the sky's environment cube map, pixels, 16..=2048
-//! tracer = "auto"           # "auto", "hardware" (VK_KHR_ray_tracing_pipeline), "compute"
+//! tracer = "auto"           # "auto" (the faster where both run, measured), "hardware" (VK_KHR_ray_tracing_pipeline), "compute"
 //! bvh = "binary"            # the compute tracer's BVH nodes: "binary" or "wide" (8 children, compressed)
+//! chunk_regions = 2         # the hardware tracer merges the static world's chunks of n³ world cells, 0..=64 (0: none)
 //! ```
 
 use glam::Vec3;
@@ -69,7 +70,9 @@ pub enum Lightmaps {
 /// Which ray-tracing back end traces ([`super::backend`] decides for `Auto`).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Tracer {
-    /// The hardware back end where the device has it, else the compute one (`"auto"`).
+    /// Where the device has the hardware back end, the faster of the two, measured in a
+    /// program's first frames and remembered ([`super::auto`]); else the compute one
+    /// (`"auto"`).
     #[default]
     Auto,
     /// The ray-tracing pipeline ([`super::hardware`]); the compute one, with a message, on a
@@ -123,6 +126,10 @@ pub struct Settings {
     pub tracer: Tracer,
     /// The node layout of the compute tracer's BVHs.
     pub bvh: Layout,
+    /// Cells of the static world's grid per side of a region whose chunks the hardware
+    /// tracer merges into one bottom-level structure ([`super::hardware::regions`]), 0..=64;
+    /// 0: a structure and an instance per chunk.
+    pub chunk_regions: u32,
 }
 
 impl Default for Settings {
@@ -145,6 +152,7 @@ impl Default for Settings {
             sky_size: 128,
             tracer: Tracer::Auto,
             bvh: Layout::Binary,
+            chunk_regions: 2,
         }
     }
 }
@@ -173,6 +181,7 @@ impl Table for Settings {
         Key { name: "sky_size", set: |s, v| integer_in(v, 16..=2048).map(|x| s.sky_size = x as u32) },
         Key { name: "tracer", set: |s, v| one_of(v, &["auto", "hardware", "compute"]).map(|i| s.tracer = [Tracer::Auto, Tracer::Hardware, Tracer::Compute][i]) },
         Key { name: "bvh", set: |s, v| one_of(v, &["wide", "binary"]).map(|i| s.bvh = [Layout::Wide, Layout::Binary][i]) },
+        Key { name: "chunk_regions", set: |s, v| integer_in(v, 0..=64).map(|x| s.chunk_regions = x as u32) },
     ];
 }
 
@@ -197,7 +206,7 @@ mod tests {
     #[test]
     fn every_key_is_read() {
         let body = "spp = 8\nbounces = 0\nresolution_scale = 0.5\nlight_scale = 2\nsun_direction = [0, 2, 0]\nsun_angle = 0\nlight_radius = 0.25\n\
-                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"ignore\"\nsample_emitters = false\ntemporal = false\nsky_sampling = false\nsky_size = 64\ntracer = \"compute\"\nbvh = \"wide\"\n";
+                    tonemap = \"reinhard\"\nexposure = -1.5\naccumulate = 65536\nlightmaps = \"ignore\"\nsample_emitters = false\ntemporal = false\nsky_sampling = false\nsky_size = 64\ntracer = \"compute\"\nbvh = \"wide\"\nchunk_regions = 0\n";
         let (s, problems) = read(body, &[]);
         assert!(problems.is_empty(), "{problems:?}");
         let expected = Settings {
@@ -218,6 +227,7 @@ mod tests {
             sky_size: 64,
             tracer: Tracer::Compute,
             bvh: Layout::Wide,
+            chunk_regions: 0,
         };
         assert_eq!(s, expected);
         assert_eq!(read("tonemap = \"none\"\n", &[]).0.tonemap, Tonemap::Clamp);
@@ -228,7 +238,8 @@ mod tests {
         assert_eq!(read("tracer = \"hardware\"\n", &[]).0.tracer, Tracer::Hardware);
         assert_eq!(read("bvh = \"binary\"\n", &[("GLRT_BVH", "wide")]).0.bvh, Layout::Wide);
         assert_eq!(Settings::default().bvh, Layout::Binary);
-        assert_eq!(Settings::KEYS.len(), 17);
+        assert_eq!(read("", &[("GLRT_CHUNK_REGIONS", "8")]).0.chunk_regions, 8);
+        assert_eq!(Settings::KEYS.len(), 18);
     }
 
     #[test]

@@ -115,6 +115,10 @@ glsl_constants! {
     /// `GpuFrame::flags[0]`: next-event estimation samples the sky (`super::sky_distribution`,
     /// the `SKY_DISTRIBUTION` binding holds its cells).
     const FRAME_SKY_SAMPLED: u32 = 64;
+    /// `GpuFrame::flags[0]`: the tracer splits the specular lobe's light off the direct and
+    /// indirect channels into the G-buffer's specular channel, for the denoiser
+    /// (`trace/channels.glsl`, `[denoise] specular`).
+    const FRAME_SPECULAR: u32 = 128;
     /// Cells per side of a cube face in the sky's distribution of directions
     /// (`super::sky_distribution`, `trace/sky_sampling.glsl`).
     const SKY_CELLS: usize = 16;

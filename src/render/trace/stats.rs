@@ -69,6 +69,9 @@ pub struct SceneCounts {
     pub draw_instances: u32,
     /// Instances of static-world chunks.
     pub chunk_instances: u32,
+    /// Instances of the top level: draws and chunks, but the hardware tracer's merged
+    /// regions of chunks count once ([`super::hardware::regions`]).
+    pub top_instances: u32,
     /// Traced draws left out because the static world holds all their triangles.
     pub covered_draws: u32,
     /// Passes (draws of class `Layer`) traced in the surfaces of the draw instances.
@@ -128,6 +131,8 @@ pub struct SceneTotals {
     pub instances: u64,
     /// Instances of chunks.
     pub chunk_instances: u64,
+    /// Instances of the top level.
+    pub top_instances: u64,
     /// Passes traced in surfaces.
     pub passes: u64,
     /// Triangles in the emitter lists.
@@ -168,6 +173,7 @@ impl Totals {
         t.triangles += counts.triangles;
         t.instances += u64::from(counts.draw_instances + counts.chunk_instances);
         t.chunk_instances += u64::from(counts.chunk_instances);
+        t.top_instances += u64::from(counts.top_instances);
         t.passes += u64::from(counts.passes);
         t.emitters += u64::from(counts.emitters);
         t.built += u64::from(counts.built);
@@ -186,11 +192,12 @@ impl Totals {
         let per_ray = |work: u64| work as f64 / r.total().max(1) as f64;
         let scenes = self.scenes.max(1) as f64;
         let mut line = format!(
-            "path tracer: {} frames; scene: {:.0} triangles in {:.0} instances ({:.0} of chunks) with {:.0} passes, {:.0} emitter triangles, {:.1} BVHs built and {:.1} refitted per frame; per frame: {:.0} primary, {:.0} shadow ({:.0} to the sky, {:.1} % of them unoccluded), {:.0} diffuse, {:.0} specular rays; per ray: {:.1} nodes, {:.1} triangle tests",
+            "path tracer: {} frames; scene: {:.0} triangles in {:.0} instances ({:.0} of chunks; {:.0} in the top level) with {:.0} passes, {:.0} emitter triangles, {:.1} BVHs built and {:.1} refitted per frame; per frame: {:.0} primary, {:.0} shadow ({:.0} to the sky, {:.1} % of them unoccluded), {:.0} diffuse, {:.0} specular rays; per ray: {:.1} nodes, {:.1} triangle tests",
             self.frames,
             self.scene.triangles as f64 / scenes,
             self.scene.instances as f64 / scenes,
             self.scene.chunk_instances as f64 / scenes,
+            self.scene.top_instances as f64 / scenes,
             self.scene.passes as f64 / scenes,
             self.scene.emitters as f64 / scenes,
             self.scene.built as f64 / scenes,
@@ -244,10 +251,10 @@ mod tests {
         let timed = Some(PassSeconds { trace: 0.001, gradient: 0.0002, build: 0.0005 });
         t.add(frame, timed);
         t.add(frame, timed);
-        t.add_scene(&SceneCounts { draw_instances: 1, chunk_instances: 2, triangles: 1000, built: 3, passes: 2, build_micros: 3000, ..SceneCounts::default() });
-        t.add_scene(&SceneCounts { draw_instances: 5, triangles: 3000, refitted: 1, emitters: 10, build_micros: 1000, ..SceneCounts::default() });
+        t.add_scene(&SceneCounts { draw_instances: 1, chunk_instances: 2, top_instances: 2, triangles: 1000, built: 3, passes: 2, build_micros: 3000, ..SceneCounts::default() });
+        t.add_scene(&SceneCounts { draw_instances: 5, top_instances: 4, triangles: 3000, refitted: 1, emitters: 10, build_micros: 1000, ..SceneCounts::default() });
         let s = t.summary();
-        assert!(s.contains("2 frames; scene: 2000 triangles in 4 instances (1 of chunks) with 1 passes, 5 emitter triangles, 1.5 BVHs built and 0.5 refitted per frame"), "{s}");
+        assert!(s.contains("2 frames; scene: 2000 triangles in 4 instances (1 of chunks; 3 in the top level) with 1 passes, 5 emitter triangles, 1.5 BVHs built and 0.5 refitted per frame"), "{s}");
         assert!(s.contains("2000000 shadow (400000 to the sky, 25.0 % of them unoccluded)"), "{s}");
         assert!(s.contains("per ray: 10.0 nodes, 2.0 triangle tests"), "{s}");
         assert!(s.contains("tracing pass 1.000 ms per frame (0.200 ms of it the gradient pass); Mrays/s: 1000.0 primary, 2000.0 shadow, 500.0 diffuse, 0.0 specular, 3500.0 all"), "{s}");

@@ -270,12 +270,12 @@ impl Classifier {
             let material = self.config.material(hashes[0], tags);
             let [m0, m1] = material.key();
             let light_units = lighting::light_units(draw, |u| hashes[u].is_some_and(|h| self.config.is_lightmap(h)));
-            // The world keeps a triangle's colours as first offered: a lit draw's diffuse colour
-            // (its base colour) is in the key, so that a `glMaterial` change makes new triangles;
-            // so are the units holding light, which chunks carry (a draw with layers, whose
-            // passes may add light units below, is not offered).
-            let diffuse = world_feed::lit_diffuse(draw).map_or(0, |d| keys::combine(&d.map(|c| u64::from(c.to_bits()))));
-            let material_key = keys::combine(&[texture, state, m0, m1, diffuse, u64::from(light_units)]);
+            // The world keeps a triangle's colours and material as first offered: a lit draw's
+            // GL material is in the key, so that a `glMaterial` change makes new triangles; so
+            // are the units holding light, which chunks carry (a draw with layers, whose passes
+            // may add light units below, is not offered).
+            let lit = world_feed::lit_material_key(draw);
+            let material_key = keys::combine(&[texture, state, m0, m1, lit, u64::from(light_units)]);
             self.traced.push(Traced { draw: i, tags, geometry, material_key, material, light_units, baked_layer: false });
         }
     }
@@ -617,6 +617,35 @@ mod tests {
         assert!(colours(&f).contains(&[0, 0, 255, 255]), "the chunks hold the wall blue: {:?}", colours(&f));
         let f = (5..5 + u64::from(static_world::RELEASE_FRAMES) + 1).map(|n| classify(&mut c, n, vec![wall(blue)])).last().expect("frames");
         assert_eq!(colours(&f), [[0, 0, 255, 255]], "the red triangles released");
+    }
+
+    /// A lit wall whose `glMaterial` specular colour and shininess are set after it joined
+    /// the world is held with its new material: the tracer shades chunks by their state as
+    /// first offered, so the change must make new triangles (before, the wall stayed matte).
+    #[test]
+    fn a_lit_wall_whose_specular_material_changes_is_held_with_it() {
+        let mut c = Classifier::with_config(config::Config::default());
+        let camera = Mat4::from_translation(Vec3::new(-4.0, -0.5, -20.0));
+        let wall = |specular: [f32; 4], shininess: f32| {
+            let mut d = draw(8, 0.0, camera);
+            let mut lighting = crate::frame::state::Lighting::default();
+            (lighting.front.specular, lighting.front.shininess) = (specular, shininess);
+            d.state = Arc::new(RasterState { lighting: Some(lighting), ..(*d.state).clone() });
+            d
+        };
+        let held = |f: &Frame| {
+            let mut seen: Vec<([f32; 4], f32)> = f.static_world.iter().filter_map(|c| c.shading.state.lighting.as_ref()).map(|l| (l.front.specular, l.front.shininess)).collect();
+            seen.dedup();
+            seen
+        };
+        let (matte, glossy) = (([0.0, 0.0, 0.0, 1.0], 0.0), ([1.0; 4], 32.0));
+        let f = (0..3).map(|n| classify(&mut c, n, vec![wall(matte.0, matte.1)])).last().expect("frames");
+        assert_eq!(held(&f), [matte]);
+        let f = (3..5).map(|n| classify(&mut c, n, vec![wall(glossy.0, glossy.1)])).last().expect("frames");
+        assert!(f.draws[0].instance.unwrap().in_static_world);
+        assert!(held(&f).contains(&glossy), "the chunks hold the wall glossy: {:?}", held(&f));
+        let f = (5..5 + u64::from(static_world::RELEASE_FRAMES) + 1).map(|n| classify(&mut c, n, vec![wall(glossy.0, glossy.1)])).last().expect("frames");
+        assert_eq!(held(&f), [glossy], "the matte triangles released");
     }
 
     #[test]

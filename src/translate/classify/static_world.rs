@@ -259,6 +259,8 @@ pub struct StaticWorld {
     cell_size: Option<f32>,
     /// Tick in which a triangle of each spatial cell was last offered.
     cells: Vec<u64>,
+    /// Grid coordinates of each cell (by index).
+    cell_coords: Vec<[i32; 3]>,
     cell_index: Map<[i32; 3], u32>,
     /// (material, cell) → indices of its chunks.
     groups: Map<(u64, u32), Vec<u32>>,
@@ -301,6 +303,7 @@ impl StaticWorld {
             near: Map::default(),
             cell_size: None,
             cells: Vec::new(),
+            cell_coords: Vec::new(),
             cell_index: Map::default(),
             groups: Map::default(),
             chunks: Vec::new(),
@@ -424,6 +427,7 @@ impl StaticWorld {
         self.near.clear();
         self.cell_size = None;
         self.cells.clear();
+        self.cell_coords.clear();
         self.cell_index.clear();
         self.groups.clear();
         self.chunks.clear();
@@ -567,9 +571,10 @@ impl StaticWorld {
 
     /// Index of the cell at `coords` (created if new), marked drawn in this frame.
     fn cell(&mut self, coords: [i32; 3]) -> u32 {
-        let cells = &mut self.cells;
+        let (cells, cell_coords) = (&mut self.cells, &mut self.cell_coords);
         let index = *self.cell_index.entry(coords).or_insert_with(|| {
             cells.push(0);
+            cell_coords.push(coords);
             (cells.len() - 1) as u32
         });
         cells[index as usize] = self.tick;
@@ -643,6 +648,7 @@ impl StaticWorld {
             texcoords,
             colors,
             shading: look.shading,
+            cell: self.cell_coords.get(cell as usize).copied().unwrap_or_default(),
         });
         self.changes.new_chunks += 1;
         self.changes.upload_bytes += chunk.upload_bytes();
@@ -1009,6 +1015,11 @@ mod tests {
                 assert_eq!((c.colors[k][2], c.texcoords[0][k], c.texcoords[1][k]), (255, texcoords[i], lightmap_texcoords[i]));
             }
             assert_eq!(c.upload_bytes(), c.positions.len() as u64 * 32, "12 + 8 + 8 + 4 bytes a corner");
+            let size = world.cell_size.expect("fixed when the first triangles joined");
+            for tri in c.positions.chunks_exact(3) {
+                let tri: [[f32; 3]; 3] = [tri[0], tri[1], tri[2]];
+                assert_eq!(c.cell, (centroid(&tri) / size).floor().as_ivec3().to_array(), "the grid cell its triangles were grouped in");
+            }
         }
     }
 

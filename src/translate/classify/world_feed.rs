@@ -6,6 +6,7 @@
 
 use glam::{Mat4, Vec4};
 
+use super::keys;
 use super::static_world::{Offered, StaticWorld, WorldTriangles};
 use crate::frame::Draw;
 use crate::frame::state::Lighting;
@@ -29,6 +30,17 @@ fn unorm8(c: [f32; 4]) -> [u8; 4] {
 /// unlit, or its diffuse colour tracks the vertex colour).
 pub fn lit_diffuse(draw: &Draw) -> Option<[f32; 4]> {
     draw.state.lighting.as_ref().and_then(Lighting::untracked_diffuse)
+}
+
+/// Hash of what the tracer takes from a lit draw's front material (`trace::material`): the
+/// diffuse colour unless it tracks the vertex colour, the specular colour, the shininess and
+/// the emission; 0 for an unlit draw. The world keeps a triangle's material as first offered,
+/// so a `glMaterial` change must make new triangles.
+pub fn lit_material_key(draw: &Draw) -> u64 {
+    let Some(l) = draw.state.lighting.as_ref() else { return 0 };
+    let colour = |c: [f32; 4]| keys::combine(&c.map(|v| u64::from(v.to_bits())));
+    let diffuse = l.untracked_diffuse().map_or(0, colour);
+    keys::combine(&[diffuse, colour(l.front.specular), u64::from(l.front.shininess.to_bits()), colour(l.front.emission)])
 }
 
 impl WorldFeed {

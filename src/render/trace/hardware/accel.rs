@@ -8,6 +8,9 @@
 //! memory of each build, are freed once every frame in flight that could read them has
 //! finished (`slots` frames later).
 //!
+//! The static world's chunks of one region share one bottom-level structure, a geometry per
+//! chunk, and one instance ([`super::regions`]).
+//!
 //! Geometry that replaces last frame's shape of a dynamic draw (same triangles, moved) is an
 //! update (`ALLOW_UPDATE`, `MODE_UPDATE`) of that shape's structure into a new one when it has
 //! one, else built with `PREFER_FAST_BUILD | ALLOW_UPDATE`; everything else is built with
@@ -18,7 +21,9 @@ use std::collections::HashMap;
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 
+use super::regions::{self, Member, Placed};
 use crate::render::raster::device::{Buffer, Check, Device, Result};
+use crate::render::trace::bvh::GpuTriangle;
 use crate::render::trace::resident::Resident;
 
 /// An acceleration structure and the buffer holding it.
@@ -57,6 +62,9 @@ pub struct TopInstance {
     pub index: u32,
     /// Whether it skips the any-hit shader (no alpha test).
     pub opaque: bool,
+    /// The region of a static-world chunk merged with the others of its region
+    /// ([`super::regions`]); `None`: traced as its own instance.
+    pub region: Option<[i32; 3]>,
 }
 
 /// A bottom level being built or updated.
@@ -75,6 +83,8 @@ struct Pending {
 pub struct Accelerations {
     ext: ash::khr::acceleration_structure::Device,
     bottom: HashMap<u64, Structure>,
+    /// Merged bottom levels of regions, by [`regions::members_key`].
+    merged: HashMap<u64, Structure>,
     top: Vec<Option<TopLevel>>,
     /// What waits for the frames in flight, with the frame it was retired in.
     retired: Vec<(u64, Retired)>,
@@ -105,6 +115,7 @@ impl Accelerations {
         Accelerations {
             ext: ash::khr::acceleration_structure::Device::new(&device.instance, &device.raw),
             bottom: HashMap::new(),
+            merged: HashMap::new(),
             top: (0..slots).map(|_| None).collect(),
             retired: Vec::new(),
             frames: 0,
@@ -195,14 +206,7 @@ impl Accelerations {
             if triangles.is_empty() {
                 continue;
             }
-            let positions: Vec<[f32; 3]> = triangles
-                .iter()
-                .flat_map(|t| {
-                    let v0 = t.v0;
-                    let corner = |e: [f32; 3]| [v0[0] + e[0], v0[1] + e[1], v0[2] + e[2]];
-                    [v0, corner(t.e1), corner(t.e2)]
-                })
-                .collect();
+            let positions = corners(triangles);
             let bytes: &[u8] = bytemuck::cast_slice(&positions);
             let mut vertices = Self::input_buffer(device, "glrt BLAS vertices", bytes.len() as u64, MemoryLocation::CpuToGpu)?;
             vertices.mapped()[..bytes.len()].copy_from_slice(bytes);
@@ -275,24 +279,142 @@ impl Accelerations {
         Ok(())
     }
 
-    /// Records the build of frame slot `slot`'s top level over `instances` (those whose
-    /// geometry has a bottom level), then a barrier before tracing reads it; returns it.
-    pub fn build_top(&mut self, device: &Device, cmd: vk::CommandBuffer, slot: usize, instances: &[TopInstance]) -> Result<vk::AccelerationStructureKHR> {
-        let records: Vec<vk::AccelerationStructureInstanceKHR> = instances
-            .iter()
-            .filter_map(|i| {
-                let blas = self.bottom.get(&i.key)?;
-                let r = &i.rows;
-                let flags = vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE
-                    | if i.opaque { vk::GeometryInstanceFlagsKHR::FORCE_OPAQUE } else { vk::GeometryInstanceFlagsKHR::FORCE_NO_OPAQUE };
-                Some(vk::AccelerationStructureInstanceKHR {
-                    transform: vk::TransformMatrixKHR { matrix: [r[0][0], r[0][1], r[0][2], r[0][3], r[1][0], r[1][1], r[1][2], r[1][3], r[2][0], r[2][1], r[2][2], r[2][3]] },
-                    instance_custom_index_and_mask: vk::Packed24_8::new(i.index, 0xff),
-                    instance_shader_binding_table_record_offset_and_flags: vk::Packed24_8::new(0, flags.as_raw() as u8),
-                    acceleration_structure_reference: vk::AccelerationStructureReferenceKHR { device_handle: blas.address },
+    /// Records the builds of the merged bottom levels of `runs` (their members, in order) that
+    /// have none ([`regions::plan`]), retires those no run names (unless there is no run: a
+    /// frame without the static world, such as a menu, keeps them for its return), then a
+    /// barrier when anything was built; returns each run's [`regions::members_key`].
+    fn build_merged(&mut self, device: &Device, cmd: vk::CommandBuffer, resident: &Resident, runs: &[Vec<Member>]) -> Result<Vec<u64>> {
+        if runs.is_empty() {
+            return Ok(Vec::new());
+        }
+        let keys: Vec<u64> = runs.iter().map(|m| regions::members_key(m)).collect();
+        let (build, retire) = regions::plan(&self.merged, &keys);
+        let frames = self.frames;
+        for key in retire {
+            if let Some(s) = self.merged.remove(&key) {
+                self.retired.push((frames, Retired::Structure(s)));
+            }
+        }
+        /// A merged bottom level being built: a geometry per member.
+        struct Merge {
+            key: u64,
+            geometries: Vec<vk::AccelerationStructureGeometryKHR<'static>>,
+            counts: Vec<u32>,
+            scratch_offset: u64,
+            structure: Structure,
+        }
+        let mut pending: Vec<Merge> = Vec::new();
+        let mut scratch_size = 0u64;
+        for key in build {
+            let Some(members) = keys.iter().position(|&k| k == key).map(|i| &runs[i]) else { continue };
+            let contents: Vec<&[GpuTriangle]> = members.iter().map(|m| resident.contents(m.key).map_or(&[][..], |c| c.0)).collect();
+            let positions: Vec<[f32; 3]> = contents.iter().flat_map(|t| corners(t)).collect();
+            if positions.is_empty() {
+                continue;
+            }
+            let bytes: &[u8] = bytemuck::cast_slice(&positions);
+            let mut vertices = Self::input_buffer(device, "glrt merged BLAS vertices", bytes.len() as u64, MemoryLocation::CpuToGpu)?;
+            vertices.mapped()[..bytes.len()].copy_from_slice(bytes);
+            let base = address(device, &vertices);
+            self.retired.push((frames, Retired::Buffer(vertices)));
+            let counts: Vec<u32> = contents.iter().map(|t| t.len() as u32).collect();
+            let mut first = 0u64;
+            let geometries: Vec<vk::AccelerationStructureGeometryKHR<'static>> = members
+                .iter()
+                .zip(&counts)
+                .map(|(m, &count)| {
+                    let geometry = triangle_geometry(base + first * 36, count);
+                    first += u64::from(count);
+                    if m.opaque { geometry.flags(vk::GeometryFlagsKHR::OPAQUE) } else { geometry }
                 })
+                .collect();
+            let info = vk::AccelerationStructureBuildGeometryInfoKHR::default()
+                .ty(vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL)
+                .flags(vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_TRACE)
+                .mode(vk::BuildAccelerationStructureModeKHR::BUILD)
+                .geometries(&geometries);
+            let mut sizes = vk::AccelerationStructureBuildSizesInfoKHR::default();
+            // Safety: valid build info, a count per geometry.
+            unsafe { self.ext.get_acceleration_structure_build_sizes(vk::AccelerationStructureBuildTypeKHR::DEVICE, &info, &counts, &mut sizes) };
+            let structure = match self.create_structure(device, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, sizes.acceleration_structure_size) {
+                Ok(s) => s,
+                Err(e) => {
+                    for p in pending {
+                        self.retired.push((frames, Retired::Structure(p.structure)));
+                    }
+                    return Err(e);
+                }
+            };
+            let scratch_offset = align_up(scratch_size, self.scratch_alignment);
+            scratch_size = scratch_offset + sizes.build_scratch_size;
+            pending.push(Merge { key, geometries, counts, scratch_offset, structure });
+        }
+        if pending.is_empty() {
+            return Ok(keys);
+        }
+        let scratch = match Self::input_buffer(device, "glrt merged BLAS scratch", scratch_size + self.scratch_alignment, MemoryLocation::GpuOnly) {
+            Ok(b) => b,
+            Err(e) => {
+                for p in pending {
+                    self.retired.push((frames, Retired::Structure(p.structure)));
+                }
+                return Err(e);
+            }
+        };
+        let scratch_base = align_up(address(device, &scratch), self.scratch_alignment);
+        let infos: Vec<vk::AccelerationStructureBuildGeometryInfoKHR> = pending
+            .iter()
+            .map(|p| {
+                vk::AccelerationStructureBuildGeometryInfoKHR::default()
+                    .ty(vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL)
+                    .flags(vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_TRACE)
+                    .mode(vk::BuildAccelerationStructureModeKHR::BUILD)
+                    .dst_acceleration_structure(p.structure.raw)
+                    .geometries(&p.geometries)
+                    .scratch_data(vk::DeviceOrHostAddressKHR { device_address: scratch_base + p.scratch_offset })
             })
             .collect();
+        let ranges: Vec<Vec<vk::AccelerationStructureBuildRangeInfoKHR>> =
+            pending.iter().map(|p| p.counts.iter().map(|&c| vk::AccelerationStructureBuildRangeInfoKHR::default().primitive_count(c)).collect()).collect();
+        let range_refs: Vec<&[vk::AccelerationStructureBuildRangeInfoKHR]> = ranges.iter().map(Vec::as_slice).collect();
+        // Safety: `cmd` is recording outside a rendering pass; the vertex and scratch buffers
+        // live until the frame finishes (retired); scratch regions do not overlap.
+        unsafe {
+            self.ext.cmd_build_acceleration_structures(cmd, &infos, &range_refs);
+            build_barrier(&device.raw, cmd);
+        }
+        self.retired.push((frames, Retired::Buffer(scratch)));
+        for p in pending {
+            self.merged.insert(p.key, p.structure);
+        }
+        Ok(keys)
+    }
+
+    /// Records the build of frame slot `slot`'s top level over `instances` (those whose
+    /// geometry has a bottom level; the chunks of a region as one instance of their merged
+    /// bottom level, built first when new), then a barrier before tracing reads it; returns it
+    /// and its instance count.
+    pub fn build_top(&mut self, device: &Device, cmd: vk::CommandBuffer, slot: usize, instances: &[TopInstance], resident: &Resident) -> Result<(vk::AccelerationStructureKHR, u32)> {
+        let placed: Vec<Placed> = instances.iter().map(|i| Placed { region: i.region, index: i.index, rows: i.rows }).collect();
+        let runs = regions::runs(&placed);
+        let members: Vec<Vec<Member>> = runs.iter().map(|r| instances[r.clone()].iter().map(|i| Member { key: i.key, opaque: i.opaque }).collect()).collect();
+        let keys = self.build_merged(device, cmd, resident, &members)?;
+        let record = |i: &TopInstance, flags: vk::GeometryInstanceFlagsKHR, blas: &Structure| {
+            let r = &i.rows;
+            vk::AccelerationStructureInstanceKHR {
+                transform: vk::TransformMatrixKHR { matrix: [r[0][0], r[0][1], r[0][2], r[0][3], r[1][0], r[1][1], r[1][2], r[1][3], r[2][0], r[2][1], r[2][2], r[2][3]] },
+                instance_custom_index_and_mask: vk::Packed24_8::new(i.index, 0xff),
+                instance_shader_binding_table_record_offset_and_flags: vk::Packed24_8::new(0, flags.as_raw() as u8),
+                acceleration_structure_reference: vk::AccelerationStructureReferenceKHR { device_handle: blas.address },
+            }
+        };
+        let alone = instances.iter().filter(|i| i.region.is_none()).filter_map(|i| {
+            let opacity = if i.opaque { vk::GeometryInstanceFlagsKHR::FORCE_OPAQUE } else { vk::GeometryInstanceFlagsKHR::FORCE_NO_OPAQUE };
+            Some(record(i, vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE | opacity, self.bottom.get(&i.key)?))
+        });
+        // A run's geometries carry their opacity; its first chunk's record is the custom index.
+        let merged = runs.iter().zip(&keys).filter_map(|(r, key)| Some(record(&instances[r.start], vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE, self.merged.get(key)?)));
+        let records: Vec<vk::AccelerationStructureInstanceKHR> = alone.chain(merged).collect();
         let count = records.len() as u32;
         let capacity = records.len().max(1).next_power_of_two();
         if self.top[slot].as_ref().is_none_or(|t| t.capacity < records.len()) {
@@ -325,7 +447,7 @@ impl Accelerations {
             self.ext.cmd_build_acceleration_structures(cmd, &[info], &[&range]);
             build_barrier(&device.raw, cmd);
         }
-        Ok(top.structure.raw)
+        Ok((top.structure.raw, count))
     }
 
     /// Frees everything (the GPU must be idle).
@@ -333,7 +455,7 @@ impl Accelerations {
         for (_, r) in std::mem::take(&mut self.retired) {
             self.free(device, r);
         }
-        for (_, s) in std::mem::take(&mut self.bottom) {
+        for (_, s) in std::mem::take(&mut self.bottom).into_iter().chain(std::mem::take(&mut self.merged)) {
             self.destroy_structure(device, s);
         }
         for top in std::mem::take(&mut self.top).into_iter().flatten() {
@@ -342,6 +464,18 @@ impl Accelerations {
             device.destroy_buffer(top.instances);
         }
     }
+}
+
+/// The corner positions of `triangles`, three per triangle (the build input).
+fn corners(triangles: &[GpuTriangle]) -> Vec<[f32; 3]> {
+    triangles
+        .iter()
+        .flat_map(|t| {
+            let v0 = t.v0;
+            let corner = |e: [f32; 3]| [v0[0] + e[0], v0[1] + e[1], v0[2] + e[2]];
+            [v0, corner(t.e1), corner(t.e2)]
+        })
+        .collect()
 }
 
 /// The bytes of instance records (`VkAccelerationStructureInstanceKHR` is 64 plain bytes).
@@ -356,7 +490,7 @@ fn triangle_geometry<'a>(vertices: u64, triangles: u32) -> vk::AccelerationStruc
         .vertex_format(vk::Format::R32G32B32_SFLOAT)
         .vertex_data(vk::DeviceOrHostAddressConstKHR { device_address: vertices })
         .vertex_stride(12)
-        .max_vertex(triangles * 3 - 1)
+        .max_vertex((triangles * 3).saturating_sub(1))
         .index_type(vk::IndexType::NONE_KHR);
     vk::AccelerationStructureGeometryKHR::default()
         .geometry_type(vk::GeometryTypeKHR::TRIANGLES)

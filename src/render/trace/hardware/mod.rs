@@ -8,6 +8,8 @@
 //!
 //! - [`accel`]: a bottom-level structure per resident geometry, a top level per frame.
 //! - [`pipeline`]: the ray-tracing pipeline and its shader binding table.
+//! - [`regions`]: the static world's chunks of a region merged into one bottom level.
 
 pub mod accel;
 pub mod pipeline;
+pub mod regions;
