@@ -5,17 +5,13 @@
 # with the direct light's BVH traversal work, and the largest precompute the budget allows.
 #   bash bench/radiosity19.sh BIN_DIR [STEPS]
 # BIN_DIR holds a release build's glrt (cargo build --release --bin glrt). STEPS picks among
-# "update order4k pre16k pre32k refuse64k" (all by default). On the GPU machine (run tool,
-# from the repo root, carrying .gl as bench/games_gpu.sh does) the NVIDIA Vulkan driver is set
-# up first.
+# "update order4k pre16k pre16kexact pre32k refuse64k" (all but pre16kexact by default). On the GPU machine (run tool,
+# from the repo root, carrying .gl; bench/gpu_driver.sh) the NVIDIA Vulkan driver is set up
+# first.
 set -uo pipefail
 bin=$(cd "$1" && pwd)
 steps=${2:-update order4k pre16k pre32k refuse64k}
-if compgen -G ".gl/*.deb" > /dev/null; then
-    for f in .gl/*.deb; do dpkg -x "$f" /; done
-    ldconfig
-    export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-fi
+source "$(dirname "$0")/gpu_driver.sh"
 export XDG_CACHE_HOME=$(mktemp -d)
 for step in $steps; do
     case $step in
