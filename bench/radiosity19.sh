@@ -5,9 +5,9 @@
 # with the direct light's BVH traversal work, and the largest precompute the budget allows.
 #   bash bench/radiosity19.sh BIN_DIR [STEPS]
 # BIN_DIR holds a release build's glrt (cargo build --release --bin glrt). STEPS picks among
-# "update order4k pre16k pre16kexact pre32k refuse64k" (all but pre16kexact by default). On the GPU machine (run tool,
-# from the repo root, carrying .gl; bench/gpu_driver.sh) the NVIDIA Vulkan driver is set up
-# first.
+# "update order4k pre16k pre16kexact pre32k refuse64k" (all but pre16kexact by default). On
+# the GPU machine (run tool, from the repo root, carrying .gl; bench/gpu_driver.sh) the NVIDIA
+# Vulkan driver is set up first.
 set -uo pipefail
 bin=$(cd "$1" && pwd)
 steps=${2:-update order4k pre16k pre32k refuse64k}
