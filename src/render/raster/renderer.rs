@@ -406,8 +406,13 @@ impl Recorder<'_> {
         let set_key = SetKey { layout: self.pipelines.set_layout, buffers: &[(uniform.buffer, ff::UNIFORM_SIZE as u64)], images: &images };
         let set = self.descriptors.get(self.device, &set_key)?;
         // The draw's own vertices, packed into upload memory once for the batches that use them:
-        // in a compact format but for a program's draws and those radiosity lights.
-        let own_format = if program.is_none() && indirect.is_none() { ff::VertexFormat::of(&draw.vertices, state.lighting.is_some()) } else { ff::VertexFormat::FULL };
+        // in a compact format but for a program's draws and those radiosity lights. The batches
+        // that use them differ only in their keys' primitive and facing, which no attribute's
+        // reading depends on: the first one's key chooses the format.
+        let own_format = match batches.iter().find(|b| b.vertices == ff::BatchVertices::Draw) {
+            Some(batch) if program.is_none() && indirect.is_none() => ff::VertexFormat::of(&draw.vertices, &batch.shader),
+            _ => ff::VertexFormat::FULL,
+        };
         let mut own_vertices = None;
         for batch in &batches {
             let index_count = batch.indices.len(draw);

@@ -14,9 +14,14 @@
 //! colour is only clamped, so clamping and rounding it here is that conversion. A lit draw
 //! reads the colour in the lighting equation (the colour material): it keeps floats.
 
-use super::shader_interface::{LOCATION_COLOR, LOCATION_FOG_COORD, LOCATION_NORMAL, LOCATION_POSITION, LOCATION_SECONDARY, LOCATION_TEXCOORD};
+use super::key::{CLIP, GENERAL, ShaderKey, UNIT};
+use super::shader_interface::{
+    COLOR_MATERIAL, FOG_COORD, LIGHTING, LOCATION_COLOR, LOCATION_FOG_COORD, LOCATION_NORMAL, LOCATION_POSITION, LOCATION_SECONDARY, LOCATION_TEXCOORD, TEXCOORDS_UNUSED,
+    TEXGEN,
+};
 use super::vertex::{BLACK, Columns, ORIGIN, UP, VERTEX_ATTRIBUTES, VERTEX_FLOATS, WHITE};
 use crate::frame::{Draw, Vertices};
+use crate::render::shader_abi::Field;
 use crate::render::texenv::codes::MAX_UNITS;
 
 /// The vertex binding of the shared values (stride 0); the draw's vertices are at binding 0
@@ -110,10 +115,13 @@ impl VertexFormat {
     /// The full layout of [`super::vertex`] ([`VERTEX_FLOATS`] floats per vertex), nothing shared.
     pub const FULL: VertexFormat = VertexFormat(FULL);
 
-    /// The compact format of `v`: the position and each attribute that holds one value per
-    /// vertex (more than one value), the colour as bytes unless `lit` (see the module doc).
-    pub fn of(v: &Vertices, lit: bool) -> VertexFormat {
-        let each = |values: usize, bit: u16| if values > 1 { bit } else { 0 };
+    /// The compact format of `v` drawn with `key`: the position and each attribute that holds
+    /// one value per vertex (more than one value) and that `ff.vert` reads under `key` (see
+    /// [`read_by`]), the colour as bytes unless lit (see the module doc).
+    pub fn of(v: &Vertices, key: &ShaderKey) -> VertexFormat {
+        let read = read_by(key);
+        let lit = LIGHTING.get(key.words[GENERAL]) != 0;
+        let each = |values: usize, bit: u16| if values > 1 { bit & read } else { 0 };
         let mut bits = each(v.color.values.len(), if lit { COLOR_FLOAT } else { COLOR_UNORM })
             | each(v.secondary_color.values.len(), SECONDARY)
             | each(v.normal.values.len(), NORMAL)
@@ -163,6 +171,23 @@ impl VertexFormat {
         out.extend(shared);
         out
     }
+}
+
+/// The attributes (format bits) `ff.vert` reads under `key`: the colour unless lit without
+/// the colour material, the secondary colour unlit, the normal lit or where a unit whose
+/// coordinates are read generates them, the fog coordinate under [`FOG_COORD`], the
+/// coordinates of units not in [`TEXCOORDS_UNUSED`].
+fn read_by(key: &ShaderKey) -> u16 {
+    let general = key.words[GENERAL];
+    let lit = LIGHTING.get(general) != 0;
+    let unused = TEXCOORDS_UNUSED.get(key.words[CLIP]);
+    let units = (0..MAX_UNITS).filter(|&u| unused & 1 << u == 0);
+    let texgen = units.clone().any(|u| Field::new(TEXGEN.shift, 12).get(key.words[UNIT + u]) != 0);
+    let mut read = if !lit || COLOR_MATERIAL.get(general) != 0 { COLOR_FLOAT | COLOR_UNORM } else { 0 };
+    read |= if lit { 0 } else { SECONDARY };
+    read |= if lit || texgen { NORMAL } else { 0 };
+    read |= if FOG_COORD.get(general) != 0 { FOG } else { 0 };
+    units.fold(read, |read, u| read | UNIT0 << u)
 }
 
 /// The shared vertex of a compact format: the full-layout vertex of the values every vertex
@@ -261,6 +286,7 @@ fn unorm8x4(color: [f32; 4]) -> u32 {
 
 #[cfg(test)]
 mod tests {
+    use super::super::vertex;
     use super::*;
     use crate::frame::Attrib;
 
@@ -270,23 +296,50 @@ mod tests {
         v
     }
 
+    /// The key of an unlit (`lit` false) or lit draw with the colour material in which
+    /// `ff.vert` reads every attribute: the fog coordinate, every unit textured.
+    fn reading_all(lit: bool) -> ShaderKey {
+        let mut key = ShaderKey::default();
+        FOG_COORD.set(&mut key.words[GENERAL], 1);
+        if lit {
+            LIGHTING.set(&mut key.words[GENERAL], 1);
+            COLOR_MATERIAL.set(&mut key.words[GENERAL], 5);
+        }
+        key
+    }
+
     #[test]
-    fn the_format_holds_what_varies_over_the_draw() {
+    fn the_format_holds_what_varies_over_the_draw_and_is_read() {
         let mut v = vertices(3);
-        assert_eq!((VertexFormat::of(&v, false), VertexFormat::of(&v, false).stride()), (VertexFormat(0), 16), "positions only");
+        let (unlit, lit) = (reading_all(false), reading_all(true));
+        assert_eq!((VertexFormat::of(&v, &unlit), VertexFormat::of(&v, &unlit).stride()), (VertexFormat(0), 16), "positions only");
         // The benchmark's glColor3f + glTexCoord2f + glVertex3f, every value changing.
         v.color.values = vec![[0.5; 4], [0.25; 4], [1.0; 4]];
         v.texcoords[0].values = vec![[0.0; 4]; 3];
-        let unlit = VertexFormat::of(&v, false);
-        assert_eq!((unlit, unlit.stride()), (VertexFormat(COLOR_UNORM | UNIT0), 16 + 4 + 16));
-        let lit = VertexFormat::of(&v, true);
-        assert_eq!((lit, lit.stride()), (VertexFormat(COLOR_FLOAT | UNIT0), 16 + 16 + 16));
-        // A shared colour, normal and fog coordinate stay out; unit 2 varies.
+        let f = VertexFormat::of(&v, &unlit);
+        assert_eq!((f, f.stride()), (VertexFormat(COLOR_UNORM | UNIT0), 16 + 4 + 16));
+        let f = VertexFormat::of(&v, &lit);
+        assert_eq!((f, f.stride()), (VertexFormat(COLOR_FLOAT | UNIT0), 16 + 16 + 16));
+        // Untextured (unit 0's coordinates unused): the colour only.
+        let mut untextured = unlit;
+        TEXCOORDS_UNUSED.set(&mut untextured.words[CLIP], 0b1111);
+        assert_eq!(VertexFormat::of(&v, &untextured), VertexFormat(COLOR_UNORM));
+        // Lit without the colour material: no colour; with normals per vertex: the normal.
+        let mut plain = ShaderKey::default();
+        LIGHTING.set(&mut plain.words[GENERAL], 1);
+        v.normal.values = vec![[0.0, 1.0, 0.0]; 3];
+        assert_eq!(VertexFormat::of(&v, &plain), VertexFormat(NORMAL | UNIT0));
+        // Unlit, the normal only for a unit that generates coordinates (sphere map on unit 0).
+        assert_eq!(VertexFormat::of(&v, &unlit), VertexFormat(COLOR_UNORM | UNIT0));
+        let mut sphere = unlit;
+        TEXGEN.set(&mut sphere.words[UNIT], 3);
+        assert_eq!(VertexFormat::of(&v, &sphere), VertexFormat(COLOR_UNORM | NORMAL | UNIT0));
+        // A shared colour and fog coordinate stay out; unit 2 varies.
+        v.normal.values.truncate(1);
         v.color.values.truncate(1);
-        v.normal.values = vec![[0.0, 1.0, 0.0]];
         v.fog_coord.values = vec![2.0];
         v.texcoords[2].values = vec![[1.0; 4]; 3];
-        let f = VertexFormat::of(&v, false);
+        let f = VertexFormat::of(&v, &unlit);
         assert_eq!((f, f.stride()), (VertexFormat(UNIT0 | UNIT0 << 2), 16 + 32));
         let on_zero: Vec<_> = f.attributes().iter().filter(|a| a.binding == 0).map(|a| (a.location, a.offset)).collect();
         assert_eq!(on_zero, vec![(LOCATION_POSITION, 0), (LOCATION_TEXCOORD, 16), (LOCATION_TEXCOORD + 2, 32)]);
@@ -365,23 +418,30 @@ mod tests {
             v.normal = attrib(how[2], n, 30.0, triple);
             v.fog_coord = attrib(how[3], n, 40.0, |x| x);
             v.texcoords = (0..MAX_UNITS).map(|u| attrib(how[4 + u], n, 50.0 + 10.0 * u as f32, quad)).collect();
-            let full = super::super::vertex::pack(&draw);
+            let full = vertex::pack(&draw);
             let shared = shared(&draw);
             for lit in [false, true] {
-                let format = VertexFormat::of(&draw.vertices, lit);
+                let format = VertexFormat::of(&draw.vertices, &reading_all(lit));
                 let words = format.stride() as usize / 4;
                 // One word more than the vertices need: left as it was.
                 let mut packed = vec![7; n * words + 1];
                 pack_into(&draw, format, &mut packed);
                 assert_eq!(packed[n * words], 7, "layout {how:?}: past the vertices");
                 for i in 0..n {
-                    let mut expected: Vec<f32> = super::super::vertex::get(&full, i as u32).to_vec();
+                    let mut expected: Vec<f32> = vertex::get(&full, i as u32).to_vec();
                     if format.0 & COLOR_UNORM != 0 {
-                        for c in &mut expected[super::super::vertex::COLOR..super::super::vertex::COLOR + 4] {
+                        for c in &mut expected[vertex::COLOR..vertex::COLOR + 4] {
                             *c = (c.clamp(0.0, 1.0) * 255.0).round() / 255.0;
                         }
                     }
-                    let got = fetch(format, &packed, &shared, i);
+                    let mut got = fetch(format, &packed, &shared, i);
+                    // What ff.vert does not read comes from the shared vertex (any value).
+                    let read = read_by(&reading_all(lit));
+                    for (bit, at, n) in [(SECONDARY, vertex::SECONDARY, 4), (NORMAL, vertex::NORMAL, 3)] {
+                        if read & bit == 0 {
+                            got[at..at + n].copy_from_slice(&expected[at..at + n]);
+                        }
+                    }
                     assert_eq!(got.map(f32::to_bits).to_vec(), expected.iter().map(|f| f.to_bits()).collect::<Vec<_>>(), "layout {how:?}, lit {lit}, vertex {i}");
                 }
             }

@@ -102,6 +102,10 @@ pub fn shader_key(draw: &Draw, primitive: Primitive, facing: Facing) -> ShaderKe
             // coordinates are still generated (they are unused).
             words[UNIT + u] = texgen_bits(&unit);
         }
+        if draw.program.is_none() && TARGET.get(words[UNIT + u]) == 0 {
+            let unused = TEXCOORDS_UNUSED.get(words[CLIP]) | 1 << u;
+            TEXCOORDS_UNUSED.set(&mut words[CLIP], unused);
+        }
     }
     ShaderKey { words }
 }
