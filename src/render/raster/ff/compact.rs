@@ -44,10 +44,6 @@ const UNIT0: u16 = 32;
 /// The full layout of [`super::vertex`] at binding 0 and nothing else.
 const FULL: u16 = 1 << 15;
 
-/// The most 32-bit words of a compact vertex: position, colour, secondary colour, normal, fog
-/// coordinate and every unit's coordinates.
-const MAX_WORDS: usize = 4 + 4 + 4 + 3 + 1 + 4 * MAX_UNITS;
-
 /// How the draw's own vertices are laid out in upload memory.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct VertexFormat(u16);
@@ -240,39 +236,37 @@ fn rows_of(bits: u16, c: &Columns<'_>, out: &mut [u32]) {
 fn rows_with(bits: u16, c: &Columns<'_>, out: &mut [u32]) {
     let words = VertexFormat(bits).stride() as usize / 4;
     for (i, (vertex, position)) in out.chunks_exact_mut(words).zip(c.position).enumerate() {
-        let mut w = [0u32; MAX_WORDS];
         let mut k = 0;
-        put(&mut w, &mut k, position);
+        put(vertex, &mut k, position);
         if bits & COLOR_UNORM != 0 {
-            w[k] = unorm8x4(c.color.get(i, WHITE));
+            vertex[k] = unorm8x4(c.color.get(i, WHITE));
             k += 1;
         }
         if bits & COLOR_FLOAT != 0 {
-            put(&mut w, &mut k, &c.color.get(i, WHITE));
+            put(vertex, &mut k, &c.color.get(i, WHITE));
         }
         if bits & SECONDARY != 0 {
             let [r, g, b] = c.secondary.get(i, BLACK);
-            put(&mut w, &mut k, &[r, g, b, 0.0]);
+            put(vertex, &mut k, &[r, g, b, 0.0]);
         }
         if bits & NORMAL != 0 {
-            put(&mut w, &mut k, &c.normal.get(i, UP));
+            put(vertex, &mut k, &c.normal.get(i, UP));
         }
         if bits & FOG != 0 {
-            put(&mut w, &mut k, &[c.fog.get(i, 0.0)]);
+            put(vertex, &mut k, &[c.fog.get(i, 0.0)]);
         }
         for (u, t) in c.texcoords.iter().enumerate() {
             if bits & (UNIT0 << u) != 0 {
-                put(&mut w, &mut k, &t.get(i, ORIGIN));
+                put(vertex, &mut k, &t.get(i, ORIGIN));
             }
         }
-        vertex.copy_from_slice(&w[..words]);
     }
 }
 
-/// Writes `values` as words at `w[*k..]` and moves `k` past them.
+/// Writes `values` as words at `vertex[*k..]` and moves `k` past them.
 #[inline(always)]
-fn put(w: &mut [u32; MAX_WORDS], k: &mut usize, values: &[f32]) {
-    for (slot, v) in w[*k..*k + values.len()].iter_mut().zip(values) {
+fn put(vertex: &mut [u32], k: &mut usize, values: &[f32]) {
+    for (slot, v) in vertex[*k..*k + values.len()].iter_mut().zip(values) {
         *slot = v.to_bits();
     }
     *k += values.len();
