@@ -106,8 +106,9 @@ pub struct Batch {
 /// Where the vertices of a [`Batch`] come from.
 #[derive(Clone, Debug, PartialEq)]
 pub enum BatchVertices {
-    /// The draw's own vertices, packed ([`vertex::pack_into`]) where they are uploaded, once
-    /// for all the batches of the draw that use them.
+    /// The draw's own vertices, packed where they are uploaded ([`compact::pack_into`] in the
+    /// draw's [`VertexFormat`], or [`vertex::pack_into`]), once for all the batches of the
+    /// draw that use them.
     Draw,
     /// Vertices made for the batch ([`convert`]), packed, [`VERTEX_FLOATS`] per vertex.
     Expanded(Vec<f32>),
