@@ -134,11 +134,18 @@ impl VertexFormat {
     }
 
     /// Bytes per vertex at binding 0.
-    pub fn stride(self) -> u32 {
-        if self.is_full() {
+    pub const fn stride(self) -> u32 {
+        if self.0 & FULL != 0 {
             return 4 * VERTEX_FLOATS as u32;
         }
-        16 + SLOTS.iter().filter(|s| self.0 & s.bit != 0).map(|s| s.format.bytes()).sum::<u32>()
+        let (mut bytes, mut i) = (16, 0);
+        while i < SLOTS.len() {
+            if self.0 & SLOTS[i].bit != 0 {
+                bytes += SLOTS[i].format.bytes();
+            }
+            i += 1;
+        }
+        bytes
     }
 
     /// The vertex bindings as (binding, stride in bytes): binding 0 per vertex and, for a
@@ -221,20 +228,20 @@ pub fn pack_into(draw: &Draw, format: VertexFormat, out: &mut [u32]) {
     by_format!(0, C, F, N, C | N, F | N, T0, C | T0, F | T0, N | T0, C | N | T0, F | N | T0, T0 | T1, C | T0 | T1, F | T0 | T1, N | T0 | T1, F | N | T0 | T1);
 }
 
-/// The loop of format `B`, its tests made at compile time.
+/// The loop of format `B`, its tests and vertex size made at compile time.
 fn rows<const B: u16>(c: &Columns<'_>, out: &mut [u32]) {
-    rows_with(B, c, out)
+    rows_with(B, const { VertexFormat(B).stride() as usize / 4 }, c, out)
 }
 
 /// The loop of any compact format `bits`.
 #[inline(never)]
 fn rows_of(bits: u16, c: &Columns<'_>, out: &mut [u32]) {
-    rows_with(bits, c, out)
+    rows_with(bits, VertexFormat(bits).stride() as usize / 4, c, out)
 }
 
+/// Packs the vertices of format `bits`, `words` (its stride in words) each.
 #[inline(always)]
-fn rows_with(bits: u16, c: &Columns<'_>, out: &mut [u32]) {
-    let words = VertexFormat(bits).stride() as usize / 4;
+fn rows_with(bits: u16, words: usize, c: &Columns<'_>, out: &mut [u32]) {
     for (i, (vertex, position)) in out.chunks_exact_mut(words).zip(c.position).enumerate() {
         let mut k = 0;
         put(vertex, &mut k, position);
@@ -274,8 +281,10 @@ fn put(vertex: &mut [u32], k: &mut usize, values: &[f32]) {
 
 /// A colour clamped to [0, 1] and rounded to 8 bits per component, as `R8G8B8A8_UNORM` lays
 /// it out in memory.
+#[inline(always)]
 fn unorm8x4(color: [f32; 4]) -> u32 {
-    u32::from_ne_bytes(color.map(|c| (c.clamp(0.0, 1.0) * 255.0 + 0.5) as u8))
+    // `max` then `min` also take NaN to 0.
+    u32::from_ne_bytes(color.map(|c| (c.max(0.0).min(1.0) * 255.0 + 0.5) as u8))
 }
 
 #[cfg(test)]
