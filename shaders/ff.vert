@@ -203,8 +203,10 @@ void main() {
     f_back = back;
     f_back2 = back2;
 
+    // Units whose coordinates nothing reads (no texturing, no program) leave them zero.
+    uint unused = field(KEY_CLIP, TEXCOORDS_UNUSED_SHIFT, TEXCOORDS_UNUSED_BITS);
     for (int i = 0; i < MAX_UNITS; i++) {
-        v_tex[i] = texcoord(i, eye, n);
+        v_tex[i] = (unused & (1u << uint(i))) != 0u ? vec4(0.0) : texcoord(i, eye, n);
     }
 
     // Fog distance (section 3.10): the fog coordinate, or the eye-space depth |z_e|.

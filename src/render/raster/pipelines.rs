@@ -99,6 +99,8 @@ pub struct PipelineKey {
     pub program: Option<u64>,
     /// Fixed per-fragment state.
     pub fixed: FixedState,
+    /// How the vertices are laid out (the vertex input state).
+    pub vertex_format: ff::VertexFormat,
 }
 
 /// The raster state baked into a pipeline, as Vulkan values.
@@ -353,19 +355,25 @@ impl Pipelines {
             vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::VERTEX).module(vertex).name(c"main").specialization_info(&spec),
             vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::FRAGMENT).module(fragment).name(c"main").specialization_info(&spec),
         ];
-        let mut vertex_bindings = vec![vk::VertexInputBindingDescription {
-            binding: 0,
-            stride: (ff::VERTEX_FLOATS * 4) as u32,
-            input_rate: vk::VertexInputRate::VERTEX,
-        }];
-        let mut attributes: Vec<_> = ff::VERTEX_ATTRIBUTES
+        let format = key.vertex_format;
+        let mut vertex_bindings: Vec<_> = format
+            .bindings()
+            .into_iter()
+            .map(|(binding, stride)| vk::VertexInputBindingDescription { binding, stride, input_rate: vk::VertexInputRate::VERTEX })
+            .collect();
+        let mut attributes: Vec<_> = format
+            .attributes()
             .iter()
             .map(|a| vk::VertexInputAttributeDescription {
                 location: a.location,
-                binding: 0,
-                format: [vk::Format::R32_SFLOAT, vk::Format::R32G32_SFLOAT, vk::Format::R32G32B32_SFLOAT, vk::Format::R32G32B32A32_SFLOAT]
-                    [(a.components.clamp(1, 4) - 1) as usize],
-                offset: a.offset * 4,
+                binding: a.binding,
+                format: match a.format {
+                    ff::compact::InputFormat::Float(n) => {
+                        [vk::Format::R32_SFLOAT, vk::Format::R32G32_SFLOAT, vk::Format::R32G32B32_SFLOAT, vk::Format::R32G32B32A32_SFLOAT][(n.clamp(1, 4) - 1) as usize]
+                    }
+                    ff::compact::InputFormat::Unorm8x4 => vk::Format::R8G8B8A8_UNORM,
+                },
+                offset: a.offset,
             })
             .collect();
         // Generic attributes of a program's vertex stage: vec4s at binding 1, in the order of

@@ -40,6 +40,7 @@ use super::ff;
 use super::pipelines::{FixedState, PipelineKey, Pipelines};
 use super::target::{Plane, Target};
 use super::textures::Textures;
+use super::upload::Slice;
 use super::{conv, multisample, pixel_ops, readback};
 use crate::frame::pixels::{PixelBuffer, PixelOp};
 use crate::render::fog::FrameFog;
@@ -404,7 +405,14 @@ impl Recorder<'_> {
         })?;
         let set_key = SetKey { layout: self.pipelines.set_layout, buffers: &[(uniform.buffer, ff::UNIFORM_SIZE as u64)], images: &images };
         let set = self.descriptors.get(self.device, &set_key)?;
-        // The draw's own vertices, packed into upload memory once for the batches that use them.
+        // The draw's own vertices, packed into upload memory once for the batches that use them:
+        // in a compact format but for a program's draws and those radiosity lights. The batches
+        // that use them differ only in their keys' primitive and facing, which no attribute's
+        // reading depends on: the first one's key chooses the format.
+        let own_format = match batches.iter().find(|b| b.vertices == ff::BatchVertices::Draw) {
+            Some(batch) if program.is_none() && indirect.is_none() => ff::VertexFormat::of(&draw.vertices, &batch.shader),
+            _ => ff::VertexFormat::FULL,
+        };
         let mut own_vertices = None;
         for batch in &batches {
             let index_count = batch.indices.len(draw);
@@ -417,19 +425,10 @@ impl Recorder<'_> {
             if state.logic_op.is_some() && !features.logic_op {
                 log_once("the device has no logicOp feature: glLogicOp is ignored");
             }
-            let vertices = match (&batch.vertices, own_vertices) {
-                (ff::BatchVertices::Draw, Some(packed)) => packed,
-                (ff::BatchVertices::Draw, None) => {
-                    let floats = draw.vertices.len() * ff::VERTEX_FLOATS;
-                    let packed = self.ring.push_with(self.device, floats, 16, |out: &mut [f32]| {
-                        ff::vertex::pack_into(draw, out);
-                        if let Some(indirect) = indirect.as_deref() {
-                            ff::vertex::set_indirect(out, indirect);
-                        }
-                    })?;
-                    *own_vertices.insert(packed)
-                }
-                (ff::BatchVertices::Expanded(expanded), _) => self.ring.push_slice(self.device, expanded, 16)?,
+            let (vertex_format, (vertices, shared)) = match (&batch.vertices, own_vertices) {
+                (ff::BatchVertices::Draw, Some(packed)) => (own_format, packed),
+                (ff::BatchVertices::Draw, None) => (own_format, *own_vertices.insert(self.pack_own(draw, own_format, indirect.as_deref())?)),
+                (ff::BatchVertices::Expanded(expanded), _) => (ff::VertexFormat::FULL, (self.ring.push_slice(self.device, expanded, 16)?, None)),
             };
             let generic = if batch.generic.is_empty() { None } else { Some(self.ring.push_slice(self.device, &batch.generic, 16)?) };
             let indices = self.ring.push_with(self.device, index_count, 4, |out: &mut [u32]| batch.indices.write(draw, out))?;
@@ -451,6 +450,7 @@ impl Recorder<'_> {
                     polygon_mode,
                     program: program.map(|(id, _)| id),
                     fixed: FixedState { samples, ..fixed },
+                    vertex_format,
                 };
                 let Some(pipeline) = self.pipelines.get(self.device, &key)? else { continue };
                 let [x, y, width, height, near, far] = viewport;
@@ -464,6 +464,9 @@ impl Recorder<'_> {
                         d.cmd_bind_descriptor_sets(self.cmd, vk::PipelineBindPoint::GRAPHICS, self.pipelines.layout, 1, &[program_set], &offsets);
                     }
                     d.cmd_bind_vertex_buffers(self.cmd, 0, &[vertices.buffer], &[vertices.offset]);
+                    if let Some(shared) = shared {
+                        d.cmd_bind_vertex_buffers(self.cmd, ff::compact::SHARED_BINDING, &[shared.buffer], &[shared.offset]);
+                    }
                     if let Some(generic) = generic {
                         d.cmd_bind_vertex_buffers(self.cmd, 1, &[generic.buffer], &[generic.offset]);
                     }
@@ -473,6 +476,26 @@ impl Recorder<'_> {
             }
         }
         Ok(())
+    }
+
+    /// Packs the draw's own vertices into upload memory in `format`, with radiosity's
+    /// `indirect` light in the full layout: the vertices, and for a compact format the shared
+    /// vertex ([`ff::compact::shared`]).
+    fn pack_own(&mut self, draw: &Draw, format: ff::VertexFormat, indirect: Option<&[[f32; 3]]>) -> Result<(Slice, Option<Slice>)> {
+        if format.is_full() {
+            let floats = draw.vertices.len() * ff::VERTEX_FLOATS;
+            let packed = self.ring.push_with(self.device, floats, 16, |out: &mut [f32]| {
+                ff::vertex::pack_into(draw, out);
+                if let Some(indirect) = indirect {
+                    ff::vertex::set_indirect(out, indirect);
+                }
+            })?;
+            return Ok((packed, None));
+        }
+        let words = draw.vertices.len() * format.stride() as usize / 4;
+        let packed = self.ring.push_with(self.device, words, 16, |out: &mut [u32]| ff::compact::pack_into(draw, format, out))?;
+        let shared = self.ring.push_slice(self.device, &ff::compact::shared(draw), 16)?;
+        Ok((packed, Some(shared)))
     }
 }
 

@@ -102,6 +102,10 @@ pub fn shader_key(draw: &Draw, primitive: Primitive, facing: Facing) -> ShaderKe
             // coordinates are still generated (they are unused).
             words[UNIT + u] = texgen_bits(&unit);
         }
+        if draw.program.is_none() && TARGET.get(words[UNIT + u]) == 0 {
+            let unused = TEXCOORDS_UNUSED.get(words[CLIP]) | 1 << u;
+            TEXCOORDS_UNUSED.set(&mut words[CLIP], unused);
+        }
     }
     ShaderKey { words }
 }
@@ -288,6 +292,19 @@ mod tests {
         let w = key.words[UNIT + 1];
         assert_eq!((TARGET.get(w), FORMAT.get(w), ENV.get(w)), (3, 3, 3));
         assert_eq!(key.words[COMBINE_RGB + 1], 0, "combiner words only for COMBINE");
+        assert_eq!(TEXCOORDS_UNUSED.get(key.words[CLIP]), 0b1101, "only unit 1 reads its coordinates");
+        // A program may read every unit's coordinates.
+        let mut draw = textured(TexelFormat::Intensity, TextureKind::D3, env);
+        let program = crate::frame::program::ShaderProgram { id: 1, vertex: None, fragment: None, samplers: Vec::new(), attributes: Vec::new() };
+        draw.program = Some(Arc::new(crate::frame::program::ProgramDraw {
+            program: Arc::new(program),
+            builtins: Arc::from(Vec::new()),
+            uniforms: Arc::from(Vec::new()),
+            textures: Vec::new(),
+            point_size_from_shader: false,
+            two_side: false,
+        }));
+        assert_eq!(TEXCOORDS_UNUSED.get(shader_key(&draw, Primitive::Triangle, Facing::Front).words[CLIP]), 0);
     }
 
     #[test]

@@ -8,12 +8,16 @@
 //! is the draw's, the same for all its batches: the renderer writes it once per draw. A draw whose
 //! vertex stage is an OpenGL 2.0 program's is not converted: [`native`] makes its batches.
 //! The draw's own vertices and indices are not copied here: the renderer packs them
-//! ([`vertex::pack_into`]) and rotates them ([`BatchIndices::write`]) straight into upload
-//! memory.
+//! ([`compact::pack_into`] in the draw's [`VertexFormat`], or [`vertex::pack_into`]) and
+//! rotates them ([`BatchIndices::write`]) straight into upload memory.
 //!
 //! The contract with the Vulkan side (`render::raster` device code):
-//! - vertices are interleaved `f32`s, [`VERTEX_FLOATS`] per vertex, with the attributes of
-//!   [`VERTEX_ATTRIBUTES`];
+//! - vertices are laid out as their [`VertexFormat`] says (part of the pipeline key): the
+//!   vertex input is [`VertexFormat::bindings`] and [`VertexFormat::attributes`]; in the full
+//!   layout, interleaved `f32`s, [`VERTEX_FLOATS`] per vertex, with the attributes of
+//!   [`VERTEX_ATTRIBUTES`]; in a compact one, the per-vertex attributes at binding 0 and one
+//!   full-layout vertex of the shared values ([`compact::shared`]) at
+//!   [`compact::SHARED_BINDING`], stride 0;
 //! - descriptor set 0: binding 0 is a dynamic uniform buffer holding the draw's
 //!   [`uniforms::block`] (std140, exactly [`UNIFORM_SIZE`] bytes), visible to both stages, after
 //!   [`uniforms::set_framebuffer_height`] wrote the height of the render target into them;
@@ -39,6 +43,7 @@
 //!   width stays 1 and no point size or wide-line feature is needed, except for [`native`]
 //!   batches (the state's line width, `gl_PointSize`, [`Batch::polygon_mode`]).
 
+pub mod compact;
 pub mod convert;
 pub mod indices;
 pub mod key;
@@ -47,6 +52,7 @@ pub mod shader_interface;
 pub mod uniforms;
 pub mod vertex;
 
+pub use compact::VertexFormat;
 pub use indices::BatchIndices;
 pub use key::ShaderKey;
 pub use vertex::{VERTEX_ATTRIBUTES, VERTEX_FLOATS, VertexAttribute};
@@ -100,8 +106,9 @@ pub struct Batch {
 /// Where the vertices of a [`Batch`] come from.
 #[derive(Clone, Debug, PartialEq)]
 pub enum BatchVertices {
-    /// The draw's own vertices, packed ([`vertex::pack_into`]) where they are uploaded, once
-    /// for all the batches of the draw that use them.
+    /// The draw's own vertices, packed where they are uploaded ([`compact::pack_into`] in the
+    /// draw's [`VertexFormat`], or [`vertex::pack_into`]), once for all the batches of the
+    /// draw that use them.
     Draw,
     /// Vertices made for the batch ([`convert`]), packed, [`VERTEX_FLOATS`] per vertex.
     Expanded(Vec<f32>),

@@ -105,6 +105,10 @@ glsl_fields! {
     /// diffuse colour, added to the rest of the light in linear units
     /// (`crate::render::radiosity::transfer`).
     RADIOSITY = (6, 1);
+    /// Clip word: bit `u` set when nothing reads texture unit `u`'s coordinates (the unit does
+    /// not texture and no program runs): `ff.vert` leaves them zero, and the compact vertex
+    /// formats (`super::compact`) do not carry them.
+    TEXCOORDS_UNUSED = (7, 4);
 
     /// Unit word: 0 no texturing, 1 1D, 2 2D, 3 3D, 4 cube map, 5 rectangle (coordinates in
     /// texels). The base format and texture function sit beside it (`texenv::codes`).

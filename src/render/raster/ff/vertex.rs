@@ -100,14 +100,14 @@ pub fn pack_into(draw: &Draw, out: &mut [f32]) {
 
 /// One attribute of every vertex: one value each, or one value for all.
 #[derive(Clone, Copy)]
-enum Column<'a, T> {
+pub(super) enum Column<'a, T> {
     Each(&'a [T]),
     One(T),
 }
 
 impl<'a, T: Copy> Column<'a, T> {
     /// The column of `a`, `initial` where it has no value (as [`crate::frame::Attrib::get`]).
-    fn of(a: &'a crate::frame::Attrib<T>, initial: T) -> Column<'a, T> {
+    pub(super) fn of(a: &'a crate::frame::Attrib<T>, initial: T) -> Column<'a, T> {
         match a.values.len() {
             0 => Column::One(initial),
             1 => Column::One(a.values[0]),
@@ -116,7 +116,7 @@ impl<'a, T: Copy> Column<'a, T> {
     }
 
     #[inline(always)]
-    fn get(&self, i: usize, initial: T) -> T {
+    pub(super) fn get(&self, i: usize, initial: T) -> T {
         match self {
             Column::Each(values) => values.get(i).copied().unwrap_or(initial),
             Column::One(value) => *value,
@@ -142,22 +142,27 @@ impl<'a, T: Copy> Column<'a, T> {
 }
 
 /// The attributes of a draw's vertices, each looked at once (not once per vertex).
-struct Columns<'a> {
-    position: &'a [[f32; 4]],
-    color: Column<'a, [f32; 4]>,
-    secondary: Column<'a, [f32; 3]>,
-    normal: Column<'a, [f32; 3]>,
-    fog: Column<'a, f32>,
-    texcoords: [Column<'a, [f32; 4]>; MAX_UNITS],
+pub(super) struct Columns<'a> {
+    pub(super) position: &'a [[f32; 4]],
+    pub(super) color: Column<'a, [f32; 4]>,
+    pub(super) secondary: Column<'a, [f32; 3]>,
+    pub(super) normal: Column<'a, [f32; 3]>,
+    pub(super) fog: Column<'a, f32>,
+    pub(super) texcoords: [Column<'a, [f32; 4]>; MAX_UNITS],
 }
 
-const WHITE: [f32; 4] = [1.0; 4];
-const BLACK: [f32; 3] = [0.0; 3];
-const UP: [f32; 3] = [0.0, 0.0, 1.0];
-const ORIGIN: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
+/// The initial colour.
+pub(super) const WHITE: [f32; 4] = [1.0; 4];
+/// The initial secondary colour.
+pub(super) const BLACK: [f32; 3] = [0.0; 3];
+/// The initial normal.
+pub(super) const UP: [f32; 3] = [0.0, 0.0, 1.0];
+/// The initial texture coordinates.
+pub(super) const ORIGIN: [f32; 4] = [0.0, 0.0, 0.0, 1.0];
 
 impl<'a> Columns<'a> {
-    fn of(v: &'a crate::frame::Vertices) -> Columns<'a> {
+    /// The columns of `v`'s attributes.
+    pub(super) fn of(v: &'a crate::frame::Vertices) -> Columns<'a> {
         Columns {
             position: &v.position,
             color: Column::of(&v.color, WHITE),
@@ -170,7 +175,7 @@ impl<'a> Columns<'a> {
 
     /// Packed vertex `i`.
     #[inline(always)]
-    fn vertex(&self, i: usize) -> [f32; VERTEX_FLOATS] {
+    pub(super) fn vertex(&self, i: usize) -> [f32; VERTEX_FLOATS] {
         let mut out = [0.0; VERTEX_FLOATS];
         out[POSITION..POSITION + 4].copy_from_slice(&self.position[i]);
         out[COLOR..COLOR + 4].copy_from_slice(&self.color.get(i, WHITE));
