@@ -290,8 +290,8 @@ fn unorm8x4(color: [f32; 4]) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::super::vertex;
+    use super::super::vertex::tests::attrib;
     use super::*;
-    use crate::frame::Attrib;
 
     fn vertices(n: usize) -> Vertices {
         let mut v = Vertices::with_units(MAX_UNITS);
@@ -393,13 +393,6 @@ mod tests {
             }
         }
         out
-    }
-
-    /// An attribute of `n` vertices with no value (`how` 0), one shared value (1), one value
-    /// each (2) or fewer values than vertices (3).
-    fn attrib<T: Copy>(how: usize, n: usize, seed: f32, value: impl Fn(f32) -> T) -> Attrib<T> {
-        let count = [0, 1, n, n - 1][how];
-        Attrib { values: (0..count).map(|i| value(seed + i as f32 * 0.3)).collect() }
     }
 
     #[test]

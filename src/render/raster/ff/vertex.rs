@@ -334,7 +334,7 @@ pub fn get(packed: &[f32], i: u32) -> &[f32] {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::frame::Attrib;
 
@@ -378,8 +378,9 @@ mod tests {
     }
 
     /// An attribute of `n` vertices with no value (`how` 0), one shared value (1), one value
-    /// each (2) or fewer values than vertices (3); values made from `seed` by `value`.
-    fn attrib<T: Copy>(how: usize, n: usize, seed: f32, value: impl Fn(f32) -> T) -> Attrib<T> {
+    /// each (2) or fewer values than vertices (3); values made from `seed` by `value` (also
+    /// the compact format's tests).
+    pub(crate) fn attrib<T: Copy>(how: usize, n: usize, seed: f32, value: impl Fn(f32) -> T) -> Attrib<T> {
         let count = [0, 1, n, n - 1][how];
         Attrib { values: (0..count).map(|i| value(seed + i as f32 * 0.5)).collect() }
     }
