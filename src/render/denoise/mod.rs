@@ -6,14 +6,17 @@
 //!
 //! It reads the G-buffer every back end writes (`shaders/trace/samples.glsl`): depth, normal,
 //! albedo, material key, motion vectors (from the instances' transforms of this and the last
-//! frame: rigid motion; dynamic meshes' previous vertex positions are not kept, so a mesh
-//! that deforms in place reprojects as if it stood still and its history is dropped only
-//! where the disocclusion tests fail), and three lighting channels: direct light at the
-//! primary hit and indirect light as its diffuse lobe reflects them, demodulated by albedo,
-//! and what its specular lobe reflects of both, demodulated by the lobe's directional albedo
+//! frame, and for a dynamic mesh that deforms, the same point of its triangle in last frame's
+//! shape: `Resident::previous`), and three lighting channels: direct light at the primary
+//! hit and indirect light as its diffuse lobe reflects them, demodulated by albedo, and what
+//! its specular lobe reflects of both, demodulated by the lobe's directional albedo
 //! (`shaders/trace/channels.glsl`; with `[denoise] specular = false` the tracer does not split
-//! it off, `FRAME_SPECULAR`, and specular light rides the diffuse channels). Each channel is
-//! filtered apart, in five compute passes per frame (`shaders/denoise/`); the specular
+//! it off, `FRAME_SPECULAR`, and specular light rides the diffuse channels).
+//! Indirect diffuse light is one demodulated RGB value, not the seed's L1 spherical
+//! harmonics: SH keep the direction light came from so that normal-mapped detail can be lit
+//! after filtering, and GL 1.x surfaces have no normal maps (the filter's normal weights
+//! already keep geometric edges), so RGB holds the same image in a quarter of the bytes (3 values for 12). Each
+//! channel is filtered apart, in five compute passes per frame (`shaders/denoise/`); the specular
 //! channel in the same passes, with its own history length (shorter while the camera moves
 //! and the lobe is glossy; its own gradients) and only in the first
 //! `SPECULAR_ITERATIONS` à-trous iterations, with lobe-aware normal weights:
