@@ -29,7 +29,7 @@ for step in $steps; do
         # 4,056 patches: errors, bytes and time of no reordering, the exact search (1 and 2
         # passes) and the sketched ones, patches as built and shuffled (~1 minute).
         echo "== radiosity --precompute 4096 --orderings"
-        timeout 300 "$bin/glrt" radiosity --precompute 4096 --orderings
+        GLRT_RADIOSITY_BUDGET_MB=1024 timeout 300 "$bin/glrt" radiosity --precompute 4096 --orderings
         ;;
     pre16k)
         # 16,224 patches with the default (sketched) reordering: every stage's time and the
