@@ -33,14 +33,17 @@ pub fn lit_diffuse(draw: &Draw) -> Option<[f32; 4]> {
 }
 
 /// Hash of what the tracer takes from a lit draw's front material (`trace::material`): the
-/// diffuse colour unless it tracks the vertex colour, the specular colour, the shininess and
-/// the emission; 0 for an unlit draw. The world keeps a triangle's material as first offered,
-/// so a `glMaterial` change must make new triangles.
+/// diffuse colour unless it tracks the vertex colour, the specular colour's RGB and, where it
+/// is not black, the shininess, and the emission's RGB (alphas are not read); 0 for an unlit
+/// draw. The world keeps a triangle's material as first offered, so a `glMaterial` change
+/// must make new triangles, and only a change the tracer sees (a program that resets the
+/// specular colour to a transparent black keeps its walls).
 pub fn lit_material_key(draw: &Draw) -> u64 {
     let Some(l) = draw.state.lighting.as_ref() else { return 0 };
-    let colour = |c: [f32; 4]| keys::combine(&c.map(|v| u64::from(v.to_bits())));
-    let diffuse = l.untracked_diffuse().map_or(0, colour);
-    keys::combine(&[diffuse, colour(l.front.specular), u64::from(l.front.shininess.to_bits()), colour(l.front.emission)])
+    let rgb = |c: [f32; 4]| keys::combine(&[c[0], c[1], c[2]].map(|v| u64::from(v.to_bits())));
+    let diffuse = l.untracked_diffuse().map_or(0, |d| keys::combine(&d.map(|v| u64::from(v.to_bits()))));
+    let shininess = if l.front.specular[..3].iter().any(|&c| c > 0.0) { u64::from(l.front.shininess.to_bits()) } else { 0 };
+    keys::combine(&[diffuse, rgb(l.front.specular), shininess, rgb(l.front.emission)])
 }
 
 impl WorldFeed {
