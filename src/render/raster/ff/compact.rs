@@ -290,7 +290,7 @@ fn unorm8x4(color: [f32; 4]) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::super::vertex;
-    use super::super::vertex::tests::attrib;
+    use super::super::vertex::tests::{attrib, attribute_cases};
     use super::*;
 
     fn vertices(n: usize) -> Vertices {
@@ -400,11 +400,7 @@ mod tests {
         let n = 4;
         let quad = |x: f32| [x.fract(), 1.0 - x.fract(), x, x + 0.125];
         let triple = |x: f32| [x, x + 0.125, x + 0.25];
-        for code in 0..4usize.pow(8) {
-            let how: Vec<usize> = (0..8).map(|a| code / 4usize.pow(a) % 4).collect();
-            if how.iter().filter(|&&h| h == 3).count() > 1 {
-                continue;
-            }
+        for how in attribute_cases() {
             let mut draw = Draw::default();
             let v = &mut draw.vertices;
             v.position = (0..n).map(|i| [i as f32, 2.0, 3.0, 1.0]).collect();

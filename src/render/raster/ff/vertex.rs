@@ -377,6 +377,13 @@ pub(crate) mod tests {
         out
     }
 
+    /// How each of colour, secondary colour, normal, fog coordinate and units 0 to 3 is given
+    /// (for [`attrib`]): absent, shared, per vertex or short, every combination with at most
+    /// one short attribute (3^8 without a short one, plus each short one).
+    pub(crate) fn attribute_cases() -> impl Iterator<Item = [usize; 8]> {
+        (0..4usize.pow(8)).map(|code| std::array::from_fn(|a| code / 4usize.pow(a as u32) % 4)).filter(|how: &[usize; 8]| how.iter().filter(|&&h| h == 3).count() <= 1)
+    }
+
     /// An attribute of `n` vertices with no value (`how` 0), one shared value (1), one value
     /// each (2) or fewer values than vertices (3); values made from `seed` by `value` (also
     /// the compact format's tests).
@@ -391,13 +398,7 @@ pub(crate) mod tests {
         let quad = |x: f32| [x, x + 0.125, x + 0.25, x + 0.375];
         let triple = |x: f32| [x, x + 0.125, x + 0.25];
         let (mut specialised, mut general) = (0, 0);
-        // Colour, secondary colour, normal, fog coordinate, units 0 to 3: each absent, shared,
-        // per vertex or short (3^8 layouts without a short column, plus each short one).
-        for code in 0..4usize.pow(8) {
-            let how: Vec<usize> = (0..8).map(|a| code / 4usize.pow(a) % 4).collect();
-            if how.iter().filter(|&&h| h == 3).count() > 1 {
-                continue;
-            }
+        for how in attribute_cases() {
             let mut draw = Draw::default();
             let v = &mut draw.vertices;
             v.position = (0..n).map(|i| quad(i as f32)).collect();
