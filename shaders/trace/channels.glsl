@@ -34,4 +34,16 @@ vec3 demodulating_reflectance(uint albedo, uint material) {
     return max(f0 * ab.x + ab.y, vec3(0.01));
 }
 
+// A share per colour (0..1) packed in one word, 10 bits each: what a path carries of its
+// primary hit through its bounces (trace/path.glsl), the light of its continuation ray split
+// by it (exactly: the diffuse part is the rest).
+uint pack_share(vec3 share) {
+    uvec3 q = uvec3(round(clamp(share, 0.0, 1.0) * 1023.0));
+    return q.r | (q.g << 10) | (q.b << 20);
+}
+
+vec3 unpack_share(uint packed) {
+    return vec3(uvec3(packed, packed >> 10, packed >> 20) & 1023u) / 1023.0;
+}
+
 #endif

@@ -58,6 +58,7 @@ ShadowSample emitter_light(Surface s, vec3 v, float cone_width, float spread, bo
     float cos_light = abs(dot(n, l)) / area2;
     vec3 fs = brdf_specular_cos(s, v, l);
     vec3 f = brdf_diffuse_cos(s, v, l) + fs;
+    uint share = specular_share(f, fs);
     if (cos_light <= 1e-6 || all(equal(f, vec3(0.0)))) {
         return unshadowed(vec3(0.0));
     }
@@ -76,8 +77,7 @@ ShadowSample emitter_light(Surface s, vec3 v, float cone_width, float spread, bo
     }
     float density = e.probability * 2.0 / area2 * d2 / cos_light;
     float w = weighted ? mis_weight(density, brdf_pdf(s, v, l)) : 1.0;
-    vec3 scale = emitted * (w / density);
-    return ShadowSample(f * scale, fs * scale, l, d * 0.999);
+    return ShadowSample(f * emitted * (w / density), share, l, d * 0.999);
 }
 
 #endif

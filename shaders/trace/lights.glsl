@@ -11,6 +11,7 @@
 
 #include "trace/surface.glsl"
 #include "trace/random.glsl"
+#include "trace/channels.glsl"
 
 // A point just off the surface, on the side of `n`, far enough that a ray leaving it does not
 // hit the surface again (Wächter and Binder 2019, "A Fast and Robust Method for Avoiding
@@ -32,18 +33,26 @@ vec3 offset_ray(vec3 p, vec3 n) {
 
 // A next-event sample of a path vertex: the light it brings where its shadow ray, leaving the
 // vertex along `dir` up to `distance`, is not occluded; `distance` 0: no ray, `light` counts
-// as it is; `specular` is the part of `light` the surface's specular lobe reflects (the
-// denoiser's specular channel, trace/channels.glsl).
+// as it is; `specular` is the share of `light` the surface's specular lobe reflects, per
+// colour (pack_share of trace/channels.glsl: the denoiser's specular channel; one word, as
+// the sample is held while its shadow ray is traced).
 struct ShadowSample {
     vec3 light;
-    vec3 specular;
+    uint specular;
     vec3 dir;
     float distance;
 };
 
 // A sample that brings `light` without a shadow ray (nothing, for vec3(0.0)).
 ShadowSample unshadowed(vec3 light) {
-    return ShadowSample(light, vec3(0.0), vec3(0.0, 0.0, 1.0), 0.0);
+    return ShadowSample(light, 0u, vec3(0.0, 0.0, 1.0), 0.0);
+}
+
+// ShadowSample.specular of light reflected by a surface's lobes, `f` both (brdf_eval_cos),
+// `specular` the specular one alone (packed at once: the samples hold it, not both lobes,
+// while they read the emitter's texels or the sky).
+uint specular_share(vec3 f, vec3 specular) {
+    return pack_share(specular / max(f, vec3(1e-30)));
 }
 
 // A direction l from p towards positional light `light` at distance d2 > 0 squared, and the
@@ -101,7 +110,7 @@ ShadowSample dynamic_pass_light(Surface s, vec3 shown, uint i, inout Rng rng) {
     if (dot(l, s.geometric) <= 0.0) {
         return unshadowed(vec3(0.0));
     }
-    return ShadowSample(brought, vec3(0.0), l, distance * 0.9999);
+    return ShadowSample(brought, 0u, l, distance * 0.9999);
 }
 
 // The reflected radiance towards v at a point of instance `instance` due to light i where its
@@ -154,7 +163,7 @@ ShadowSample direct_light(Surface s, vec3 v, uint instance, uint i, inout Rng rn
     if (all(equal(f, vec3(0.0))) || all(equal(incident, vec3(0.0)))) {
         return unshadowed(vec3(0.0));
     }
-    return ShadowSample(f * incident, fs * incident, l, distance * 0.9999);
+    return ShadowSample(f * incident, specular_share(f, fs), l, distance * 0.9999);
 }
 
 #endif

@@ -16,7 +16,12 @@
 // primary hit and indirect light, and with FRAME_SPECULAR the specular lobe's share of both
 // apart (the specular parts of the primary hit's next-event samples, and the specular lobe's
 // share of brdf_eval_cos in the direction of its continuation ray times all the light that
-// ray brings), demodulated (trace/channels.glsl). With radiosity
+// ray brings), demodulated (trace/channels.glsl). The primary hit's record is written as soon
+// as it is known (its surface before the next-event samples, its direct light after them)
+// and the rest of the path's light is added at its end, so that the path carries nothing of
+// the primary hit through its bounces but the specular share (one packed word): the
+// megakernel's registers are its occupancy (bench/denoise.md, "The specular channel's
+// cost"). With radiosity
 // (render::trace::radiosity), the first vertex that a diffuse continuation ray reaches on the
 // static world adds radiosity's indirect light there (the light of every later bounce,
 // reflected by the surface's diffuse albedo) after its next-event estimation, and the path
@@ -74,8 +79,6 @@ vec2 window_xy(mat4 projection, vec3 p) {
 // direction.
 struct NextEvent {
     uint instance;
-    // A baked surface's shown colour (display units; trace/lights.glsl dynamic_pass_light).
-    vec3 shown;
     float cone_width;
     float spread;
     // Whether a continuation ray leaving the vertex also finds emitters (then the emitter
@@ -101,7 +104,7 @@ ShadowSample light_sample(Surface s, vec3 v, NextEvent ne, uint k, inout Rng rng
     if (!s.baked) {
         return direct_light(s, v, ne.instance, k, rng);
     }
-    return lights[k].params.w < 0.0 ? dynamic_pass_light(s, ne.shown, k, rng) : unshadowed(vec3(0.0));
+    return lights[k].params.w < 0.0 ? dynamic_pass_light(s, linear_to_srgb(s.emission), k, rng) : unshadowed(vec3(0.0));
 }
 
 // The next-event sample of one emitter.
@@ -118,10 +121,10 @@ ShadowSample sky_sample_at(Surface s, vec3 v, NextEvent ne, inout Rng rng) {
 }
 
 // Traces sample n's shadow ray from `origin` (counted in `shadow_rays`, and in `sky_rays` for
-// the sky's) and adds its light where it is not occluded: to `lit` (its specular lobe's part
-// also to `lit_specular`) through the path's `throughput`, or on a baked surface to `brought`
-// (display units).
-void next_event_add(ShadowSample n, vec3 origin, bool baked, vec3 throughput, bool sky, inout vec3 lit, inout vec3 lit_specular, inout vec3 brought, inout uint shadow_rays, inout SkyRays sky_rays) {
+// the sky's) and adds its light where it is not occluded to `lit`: through the path's
+// `throughput` (its specular lobe's part also to `lit_specular`), or on a baked surface as it
+// is (display units).
+void next_event_add(ShadowSample n, vec3 origin, bool baked, vec3 throughput, bool sky, inout vec3 lit, inout vec3 lit_specular, inout uint shadow_rays, inout SkyRays sky_rays) {
     if (n.distance > 0.0) {
         shadow_rays += 1u;
         sky_rays.traced += sky ? 1u : 0u;
@@ -131,15 +134,33 @@ void next_event_add(ShadowSample n, vec3 origin, bool baked, vec3 throughput, bo
         sky_rays.unoccluded += sky ? 1u : 0u;
     }
     if (baked) {
-        brought += n.light;
+        lit += n.light;
     } else {
         lit += throughput * n.light;
-        lit_specular += throughput * n.specular;
+        lit_specular += throughput * n.light * unpack_share(n.specular);
     }
 }
 
 // Uses camera_ray and window_xy.
 #include "trace/forward_projection.glsl"
+
+// The record of a primary ray that met nothing (and of a gradient sample that repeats
+// nothing), without light: every record starts as it.
+GSample missed_sample() {
+    return GSample(vec3(0.0), 0u, vec3(0.0), 0u, vec3(0.0), 1.0, vec3(0.0), 0.0, vec2(0.0), 0u, 0xffffffffu, 0u, 0u, uint[2](0u, 0u));
+}
+
+// Adds light to G-buffer record `index`, `weight` (1 / samples) of it: `radiance` whole, and
+// demodulated by the record's primary hit (trace/channels.glsl) the diffuse lobe's `direct`
+// and `indirect` light and the specular lobe's `specular` light.
+void record_light(uint index, float weight, vec3 radiance, vec3 direct, vec3 indirect, vec3 specular) {
+    uint albedo = gbuffer[index].albedo;
+    vec3 demodulate = weight / demodulating_albedo(albedo);
+    gbuffer[index].radiance += weight * radiance;
+    gbuffer[index].direct += direct * demodulate;
+    gbuffer[index].indirect += indirect * demodulate;
+    gbuffer[index].specular += specular * (weight / demodulating_reflectance(albedo, gbuffer[index].material));
+}
 
 // Traces a sample of traced pixel `pixel` into G-buffer record `index` where `recorded`
 // (otherwise only counts; every invocation of a subgroup must call it, for the counters'
@@ -156,31 +177,21 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
     vec2 scale = vec2(frame.size.zw) / vec2(size);
 
     uint sample_index = pass.sample_index;
-    GSample g;
-    g.radiance = vec3(0.0);
-    g.albedo = 0u;
-    g.normal = 0u;
-    g.depth = 1.0;
-    g.view_z = 0.0;
-    g.motion = vec2(0.0);
-    g.material = 0u;
-    g.instance = 0xffffffffu;
-    g.surface = 0u;
-    g.gradient = 0u;
+    float weight = 1.0 / float(samples);
     uint primary = 0u, shadow = 0u, diffuse = 0u, specular = 0u;
     SkyRays sky_rays = SkyRays(0u, 0u);
+    if (recorded && sample_index == 0u) {
+        gbuffer[index] = missed_sample();
+    }
 
+    // The light not yet added to the record: after the primary hit's next-event samples
+    // (added with its direct light), what its continuation ray brought (indirect light).
     vec3 radiance = vec3(0.0);
-    // The channels (trace/gbuffer.glsl): the primary hit's next-event estimation, and the
-    // radiance before its continuation ray (what comes after is indirect light).
-    vec3 direct = vec3(0.0);
-    vec3 before_continuation = vec3(0.0);
     bool continued = false;
-    // With FRAME_SPECULAR: the specular lobe's part of `direct`, and its share of the primary
-    // hit's brdf_eval_cos in the direction of the continuation ray (per colour).
+    // With FRAME_SPECULAR the specular lobe's share of the primary hit's brdf_eval_cos in the
+    // direction of its continuation ray (pack_share).
     bool split = (frame.flags.x & FRAME_SPECULAR) != 0u;
-    vec3 direct_specular = vec3(0.0);
-    vec3 specular_share = vec3(0.0);
+    uint specular_share = 0u;
     if (traced) {
         // A gradient sample draws last frame's random numbers.
         uint seed_frame = gradient ? frame.counts.x - 1u : frame.counts.x;
@@ -221,7 +232,8 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             cone_width += cone_spread * hit.t;
             Surface s = surface_at(hit, origin, dir, cone_width);
             vec3 v = -dir;
-            if (depth == 0u && sample_index == 0u) {
+            if (depth == 0u && sample_index == 0u && recorded) {
+                GSample g = missed_sample();
                 g.albedo = packUnorm4x8(vec4(s.albedo, s.alpha));
                 g.normal = pack_normal(s.normal);
                 g.depth = window_depth(frame.projection, s.position);
@@ -234,6 +246,7 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
                 g.instance = hit.instance;
                 g.surface = materials[instances[hit.instance].material].key;
                 g.gradient = repeated ? source.y * size.x + source.x + 1u : 0u;
+                gbuffer[index] = g;
             }
             vec3 emitted = s.emission;
             if (bsdf_density > 0.0 && s.emitter_density > 0.0) {
@@ -252,8 +265,6 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             // lights its bake cannot hold as the game's passes bring them, added to what it
             // shows in display units (render::trace::lights). next_event_add traces the samples'
             // shadow rays.
-            vec3 shown = s.baked ? linear_to_srgb(s.emission) : vec3(0.0);
-            vec3 brought = vec3(0.0);
             vec3 lit = vec3(0.0);
             vec3 lit_specular = vec3(0.0);
             // The first diffuse bounce on the static world ends the path with radiosity's
@@ -262,27 +273,31 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             bool radiosity_vertex = !s.baked && diffuse_arrival && radiosity_at(hit, bounced);
             float sky_chance = ambient_lit || s.baked ? 0.0 : sky_selection(gradient);
             vec3 shadow_origin = offset_ray(s.position, s.geometric);
-            NextEvent ne = NextEvent(hit.instance, shown, cone_width, max(cone_spread, 1.0),
+            NextEvent ne = NextEvent(hit.instance, cone_width, max(cone_spread, 1.0),
                 depth < bounces && !radiosity_vertex, !radiosity_vertex, emitter_count > 0u && !ambient_lit, light_count, sky_chance, gradient, seed_pixel, seed_frame, sample_index, depth);
             // One call site of the traversal for every sample (lights 0..light_count - 1, one
             // emitter, the sky): a megakernel inlines each call (bench/pathtrace.md).
             for (uint k = 0u; k < light_count + 2u; k++) {
                 ShadowSample n = k < light_count ? light_sample(s, v, ne, k, rng)
                     : k == light_count ? emitter_sample(s, v, ne, rng) : sky_sample_at(s, v, ne, rng);
-                next_event_add(n, shadow_origin, s.baked, throughput, k == light_count + 1u, lit, lit_specular, brought, shadow, sky_rays);
+                next_event_add(n, shadow_origin, s.baked, throughput, k == light_count + 1u, lit, lit_specular, shadow, sky_rays);
             }
             if (s.baked) {
                 // Not the surface's albedo times light (a pass that adds brings its colour over
                 // any albedo): it stays out of the demodulated channels, unfiltered, as the
                 // emission it is added to (denoise/modulate.comp). The path ends.
-                lit = throughput * max(srgb_to_linear(shown + brought) - srgb_to_linear(shown), vec3(0.0));
-                radiance += lit;
+                vec3 shown = linear_to_srgb(s.emission);
+                radiance += throughput * max(srgb_to_linear(shown + lit) - srgb_to_linear(shown), vec3(0.0));
                 break;
             }
             radiance += lit;
             if (depth == 0u) {
-                direct = lit;
-                direct_specular = lit_specular;
+                // The primary hit's emission and direct light go to its record now.
+                vec3 direct_specular = split ? lit_specular : vec3(0.0);
+                if (recorded) {
+                    record_light(index, weight, radiance, lit - direct_specular, vec3(0.0), direct_specular);
+                }
+                radiance = vec3(0.0);
             }
             // Radiosity's indirect light (the bounced light only: the direct light was sampled
             // above), and the path ends.
@@ -302,8 +317,8 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             }
             vec3 reflected_specular = brdf_specular_cos(s, v, l);
             vec3 reflected = brdf_diffuse_cos(s, v, l) + reflected_specular;
-            if (depth == 0u) {
-                specular_share = reflected_specular / max(reflected, vec3(1e-30));
+            if (depth == 0u && split) {
+                specular_share = pack_share(reflected_specular / max(reflected, vec3(1e-30)));
             }
             throughput *= reflected / pdf;
             bsdf_density = emitter_count > 0u && !ambient_lit ? pdf : 0.0;
@@ -316,10 +331,7 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             if (all(equal(throughput, vec3(0.0)))) {
                 break;
             }
-            if (depth == 0u) {
-                before_continuation = radiance;
-                continued = true;
-            }
+            continued = true;
             origin = offset_ray(s.position, s.geometric);
             dir = l;
             // After a bounce the cone spreads as wide as the lobe sampled (textures seen by
@@ -342,26 +354,12 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
         }
     }
 
-    vec3 indirect = continued ? radiance - before_continuation : vec3(0.0);
-    vec3 specular_light = vec3(0.0);
-    if (split) {
-        specular_light = direct_specular + specular_share * indirect;
-        direct -= direct_specular;
-        indirect -= specular_share * indirect;
-    }
-    if (recorded && sample_index == 0u) {
-        vec3 demodulate = 1.0 / (demodulating_albedo(g.albedo) * float(samples));
-        g.radiance = radiance / float(samples);
-        g.direct = direct * demodulate;
-        g.indirect = indirect * demodulate;
-        g.specular = specular_light / (demodulating_reflectance(g.albedo, g.material) * float(samples));
-        gbuffer[index] = g;
-    } else if (recorded) {
-        vec3 demodulate = 1.0 / (demodulating_albedo(gbuffer[index].albedo) * float(samples));
-        gbuffer[index].radiance += radiance / float(samples);
-        gbuffer[index].direct += direct * demodulate;
-        gbuffer[index].indirect += indirect * demodulate;
-        gbuffer[index].specular += specular_light / (demodulating_reflectance(gbuffer[index].albedo, gbuffer[index].material) * float(samples));
+    if (recorded) {
+        // What the continuation ray of the primary hit brought is indirect light, its
+        // specular lobe's share apart.
+        vec3 indirect = continued ? radiance : vec3(0.0);
+        vec3 indirect_specular = unpack_share(specular_share) * indirect;
+        record_light(index, weight, radiance, vec3(0.0), indirect - indirect_specular, indirect_specular);
     }
     // One atomic per subgroup and counter.
     uvec4 rays = subgroupAdd(uvec4(primary, shadow, diffuse, specular));

@@ -151,8 +151,8 @@ ShadowSample sky_light(Surface s, vec3 v, float selection, bool last_frame, bool
     if (density <= 0.0 || all(equal(f, vec3(0.0)))) {
         return unshadowed(vec3(0.0));
     }
-    vec3 scale = environment(l) * ((weighted ? mis_weight(density, brdf_pdf(s, v, l)) : 1.0) / density);
-    return ShadowSample(f * scale, fs * scale, l, 1e30);
+    uint share = specular_share(f, fs);
+    return ShadowSample(f * environment(l) * ((weighted ? mis_weight(density, brdf_pdf(s, v, l)) : 1.0) / density), share, l, 1e30);
 }
 
 #endif
