@@ -1,5 +1,6 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_control_flow_attributes : require
 // A-SVGF, one iteration of the edge-avoiding à-trous wavelet filter (Dammertz et al. 2010;
 // Schied et al. 2017, section 4.3): a 5x5 B3-spline kernel whose taps are `size.w` pixels
 // apart (1, 2, 4, ... over the iterations), each tap weighted by how alike its surface is
@@ -9,7 +10,7 @@
 // more. With DENOISE_FLAG_FEEDBACK the first iteration's light is this frame's history's.
 // Reads the signal at signal.x, writes it at signal.y; the surfaces come from the packed
 // guides (8 bytes a tap), the light from the packed signal (8 bytes a channel and tap).
-// With DENOISE_FLAG_SPECULAR (the first DENOISE_SPECULAR_ITERATIONS iterations: a specular
+// With SPECULAR_CHANNEL (the first DENOISE_SPECULAR_ITERATIONS iterations: a specular
 // lobe's light varies over shorter distances than diffuse light) the specular channel too,
 // from specular.x to specular.y, with weights that follow its lobe: the normal weight's
 // exponent grows as the roughness (of the centre's surface, kept in its specular history)
@@ -98,8 +99,10 @@ void main() {
     vec4 indirect = kernel[0] * kernel[0] * centre_indirect * vec4(1.0, 1.0, 1.0, kernel[0] * kernel[0]);
     vec4 specular_sum = kernel[0] * kernel[0] * centre_specular * vec4(1.0, 1.0, 1.0, kernel[0] * kernel[0]);
     vec3 total = vec3(kernel[0] * kernel[0]);
-    for (int dy = -2; dy <= 2; dy++) {
-        for (int dx = -2; dx <= 2; dx++) {
+    // Unrolled (the specular channel's taps made compilers keep the loop): the taps' loads
+    // are then issued together.
+    [[unroll]] for (int dy = -2; dy <= 2; dy++) {
+        [[unroll]] for (int dx = -2; dx <= 2; dx++) {
             if (dx == 0 && dy == 0) {
                 continue;
             }

@@ -5,7 +5,7 @@
 // Every record is packed for the filter's memory traffic: light in half floats, the surface
 // (normal and eye distance) in one 8-byte guide, each kind in its own tightly packed buffer.
 // A frame's history is the three records `HistoryLight`, `HistoryMoments` and `Guide`
-// (36 bytes a pixel), and with the specular channel (DENOISE_FLAG_SPECULAR) `HistorySpecular`
+// (36 bytes a pixel), and with the specular channel (SPECULAR_CHANNEL) `HistorySpecular`
 // (16 more); the last frame's are read (`*_previous`), this frame's written.
 
 #ifndef DENOISE_COMMON_GLSL
@@ -138,9 +138,13 @@ layout(set = 0, binding = DENOISE_BINDING_SPECULAR_SIGNAL, std430) buffer Specul
     SpecularSignal specular_signal[];
 };
 
-// Whether this pass filters the specular channel too (else it holds nothing).
+// Whether this pass filters the specular channel too (else it holds nothing): a
+// specialisation constant (render::denoise::pipelines), so that the pipelines without it
+// hold none of its loads or arithmetic, and neither its registers.
+layout(constant_id = DENOISE_SPECULAR_CONSTANT) const bool SPECULAR_CHANNEL = false;
+
 bool with_specular() {
-    return (pass.size.z & DENOISE_FLAG_SPECULAR) != 0u;
+    return SPECULAR_CHANNEL;
 }
 
 // What the output shows (DENOISE_VIEW_*).

@@ -8,7 +8,7 @@
 // last frame traced at the source (the history's `traced` luminance there): the change of each
 // channel's luminance and the larger of the two, summed apart over strata by the temporal
 // pass, whose ratio is how much the lighting changed (0: not at all, 1: entirely); with
-// DENOISE_FLAG_SPECULAR the specular channel's too (zeros without). Strata without a valid
+// SPECULAR_CHANNEL the specular channel's too (zeros without). Strata without a valid
 // sample write zeros.
 
 #include "denoise/common.glsl"

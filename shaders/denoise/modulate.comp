@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // A-SVGF, the last pass: the filtered light of each channel (signal at signal.x, the specular
-// channel's at specular.x with DENOISE_FLAG_SPECULAR) multiplied back by the factor it was
+// channel's at specular.x with SPECULAR_CHANNEL) multiplied back by the factor it was
 // divided by (trace/channels.glsl), plus the primary hit's own emission (the traced radiance
 // less the three channels, unfiltered: baked light and emitters are not noisy); pixels whose
 // ray missed keep their radiance. Then exposure, tone mapping and display encoding into the

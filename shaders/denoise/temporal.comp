@@ -18,7 +18,7 @@
 // nothing changes (the history is kept in whole frames, and the few per cent by which a
 // forward-projected sample differs from its source while the camera moves would otherwise,
 // truncated, take a frame off every frame and hold the history at 1).
-// With DENOISE_FLAG_SPECULAR the specular channel is accumulated alike, through the same
+// With SPECULAR_CHANNEL the specular channel is accumulated alike, through the same
 // reprojection, with a history length of its own: its strata's gradients shorten it apart
 // (a view-dependent highlight changes as the eye moves where diffuse light does not), and
 // while the camera moves it keeps at most the moving history times roughness / 0.5 frames

@@ -5,7 +5,7 @@
 // estimated from the moments of the 7x7 pixels around it on the same surface (depth and
 // normal weights as in the à-trous filter), and raised for the youngest histories so that
 // the filter blurs them more. Older pixels pass through. Reads the signal at signal.x and
-// this frame's history, writes the signal at signal.y; with DENOISE_FLAG_SPECULAR the
+// this frame's history, writes the signal at signal.y; with SPECULAR_CHANNEL the
 // specular channel alike (its own history length), in place at specular.x.
 
 #include "denoise/common.glsl"

@@ -17,8 +17,9 @@
 //! after filtering, and GL 1.x surfaces have no normal maps (the filter's normal weights
 //! already keep geometric edges), so RGB holds the same image in a quarter of the bytes (3 values for 12). Each
 //! channel is filtered apart, in five compute passes per frame (`shaders/denoise/`); the specular
-//! channel in the same passes, with its own history length (shorter while the camera moves
-//! and the lobe is glossy; its own gradients) and only in the first
+//! channel in the same passes (their pipelines specialised with it, [`pipelines`]: without
+//! it they hold none of its code), with its own history length (shorter while the camera
+//! moves and the lobe is glossy; its own gradients) and only in the first
 //! `SPECULAR_ITERATIONS` à-trous iterations, with lobe-aware normal weights:
 //!
 //! 0. `gradient.comp` (with `[denoise] gradients`): temporal gradients (A-SVGF, Schied et al.
@@ -82,7 +83,7 @@ use pipelines::{DenoisePass, DenoisePipelines, GRADIENT_BYTES, GUIDE_BYTES, HIST
 use settings::DenoiseSettings;
 use shader_constants::{
     BINDING_COUNT, BINDING_GBUFFER, BINDING_GRADIENT, BINDING_GUIDE, BINDING_GUIDE_PREVIOUS, BINDING_LIGHT, BINDING_LIGHT_PREVIOUS, BINDING_MOMENTS, BINDING_MOMENTS_PREVIOUS, BINDING_OUTPUT,
-    BINDING_SIGNAL, BINDING_SPECULAR, BINDING_SPECULAR_PREVIOUS, BINDING_SPECULAR_SIGNAL, FLAG_FEEDBACK, FLAG_GRADIENTS, FLAG_SPECULAR, SPECULAR_ITERATIONS, VIEW_SHIFT,
+    BINDING_SIGNAL, BINDING_SPECULAR, BINDING_SPECULAR_PREVIOUS, BINDING_SPECULAR_SIGNAL, FLAG_FEEDBACK, FLAG_GRADIENTS, SPECULAR_ITERATIONS, VIEW_SHIFT,
 };
 
 /// One frame's history: what the next frame reprojects (52 bytes a pixel in all).
@@ -159,7 +160,7 @@ pub struct Denoiser {
 impl Denoiser {
     /// Creates the pipelines; the buffers come with the first frame.
     pub fn new(device: &Device, settings: DenoiseSettings) -> Result<Denoiser> {
-        let mut pipelines = DenoisePipelines::new(device)?;
+        let mut pipelines = DenoisePipelines::new(device, settings.specular)?;
         let times = match PassTimes::new(device, "denoiser", &STEPS) {
             Ok(t) => t,
             Err(e) => {
@@ -289,8 +290,6 @@ impl Denoiser {
             | if still { 0 } else { FLAG_FEEDBACK }
             | self.settings.view.code() << VIEW_SHIFT
             | if self.settings.gradients { FLAG_GRADIENTS } else { 0 };
-        // The passes that filter the specular channel carry FLAG_SPECULAR.
-        let specular = if self.settings.specular { FLAG_SPECULAR } else { 0 };
         let params = [frame.params[0], frame.params[1], frame.params[2], MOVING_HISTORY];
         let pixel_groups = [w.div_ceil(TRACE_GROUP), h.div_ceil(TRACE_GROUP)];
         let stratum_groups = gradient_strata(radiance.size).map(|s| s.div_ceil(TRACE_GROUP));
@@ -321,21 +320,21 @@ impl Denoiser {
         unsafe { d.cmd_bind_descriptor_sets(cmd, vk::PipelineBindPoint::COMPUTE, layout, 0, &[set], &[]) };
         stamp(0);
         if self.settings.gradients {
-            dispatch(self.pipelines.gradient, stratum_groups, flags | specular, 1, [0, 0], [0, 0]);
+            dispatch(self.pipelines.gradient, stratum_groups, flags, 1, [0, 0], [0, 0]);
         }
         stamp(1);
         // The signals ping-pong between their halves, starting at 0 and n; the variance pass
         // estimates the specular signal in place.
-        run(self.pipelines.temporal, flags | specular, 1, [0, 0], [0, 0]);
+        run(self.pipelines.temporal, flags, 1, [0, 0], [0, 0]);
         stamp(2);
-        run(self.pipelines.variance, flags | specular, 1, [0, n], [0, 0]);
+        run(self.pipelines.variance, flags, 1, [0, n], [0, 0]);
         stamp(3);
         let (mut current, mut current_specular) = (n, 0);
         for iteration in 0..self.settings.iterations {
             let other = n - current;
-            if iteration < SPECULAR_ITERATIONS {
+            if iteration < SPECULAR_ITERATIONS && self.settings.specular {
                 let other_specular = n - current_specular;
-                run(self.pipelines.atrous, flags | specular, 1 << iteration, [current, other], [current_specular, other_specular]);
+                run(self.pipelines.atrous_specular, flags, 1 << iteration, [current, other], [current_specular, other_specular]);
                 current_specular = other_specular;
             } else {
                 run(self.pipelines.atrous, flags, 1 << iteration, [current, other], [0, 0]);
@@ -343,7 +342,7 @@ impl Denoiser {
             current = other;
         }
         stamp(4);
-        run(self.pipelines.modulate, flags | specular, 1, [current, 0], [current_specular, 0]);
+        run(self.pipelines.modulate, flags, 1, [current, 0], [current_specular, 0]);
         stamp(5);
         // Safety: as above.
         unsafe { barrier(d, cmd, vk::PipelineStageFlags2::COMPUTE_SHADER, vk::PipelineStageFlags2::FRAGMENT_SHADER | vk::PipelineStageFlags2::HOST) };

@@ -1,13 +1,16 @@
 //! The denoiser's Vulkan objects that do not change with the frame: the layout of its
 //! descriptor sets ([`super::shader_constants`]'s bindings, all storage buffers), the push
-//! constants of a pass ([`DenoisePass`]) and the five compute pipelines.
+//! constants of a pass ([`DenoisePass`]) and the compute pipelines of the five passes, each
+//! with the specular channel or without it (the specialisation constant `SPECULAR_CONSTANT`):
+//! with `[denoise] specular = false` no pass holds the channel's code, and the à-trous
+//! iterations past the first `SPECULAR_ITERATIONS` run without it either way.
 
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
 
-use super::shader_constants::BINDING_COUNT;
+use super::shader_constants::{BINDING_COUNT, SPECULAR_CONSTANT};
 use crate::render::raster::device::{Check, Device, Result};
-use crate::render::trace::pipelines::{completed, compute_pipeline, descriptor_set_layout};
+use crate::render::trace::pipelines::{completed, descriptor_set_layout, specialised_compute_pipeline};
 
 /// Push constants of every pass (`DenoisePass` of `shaders/denoise/common.glsl`).
 #[repr(C)]
@@ -35,21 +38,26 @@ pub struct DenoisePipelines {
     pub set_layout: vk::DescriptorSetLayout,
     /// Layout of every pass.
     pub layout: vk::PipelineLayout,
-    /// Temporal gradients per stratum (`gradient.comp`).
+    /// Temporal gradients per stratum (`gradient.comp`), with the specular channel's where
+    /// the denoiser has it (as the passes below but `atrous`).
     pub gradient: vk::Pipeline,
     /// Temporal accumulation with reprojection (`temporal.comp`).
     pub temporal: vk::Pipeline,
     /// Spatial variance of young histories (`variance.comp`).
     pub variance: vk::Pipeline,
-    /// One à-trous iteration (`atrous.comp`).
+    /// One à-trous iteration without the specular channel (`atrous.comp`).
     pub atrous: vk::Pipeline,
+    /// One of the first `SPECULAR_ITERATIONS` à-trous iterations with the specular channel
+    /// (null without it).
+    pub atrous_specular: vk::Pipeline,
     /// Remodulation and tone mapping (`modulate.comp`).
     pub modulate: vk::Pipeline,
 }
 
 impl DenoisePipelines {
-    /// Creates the layouts and pipelines.
-    pub fn new(device: &Device) -> Result<DenoisePipelines> {
+    /// Creates the layouts and pipelines, the passes with the specular channel where
+    /// `specular`.
+    pub fn new(device: &Device, specular: bool) -> Result<DenoisePipelines> {
         let set_layout = descriptor_set_layout(device, BINDING_COUNT, &[], &[], vk::ShaderStageFlags::COMPUTE)?;
         let set_layouts = [set_layout];
         let push = [vk::PushConstantRange { stage_flags: vk::ShaderStageFlags::COMPUTE, offset: 0, size: PASS_BYTES }];
@@ -63,14 +71,26 @@ impl DenoisePipelines {
             temporal: vk::Pipeline::null(),
             variance: vk::Pipeline::null(),
             atrous: vk::Pipeline::null(),
+            atrous_specular: vk::Pipeline::null(),
             modulate: vk::Pipeline::null(),
         };
+        // The constants of a pass with the specular channel or without it.
+        let with = |on: bool| {
+            let mut constants = [0; SPECULAR_CONSTANT as usize + 1];
+            constants[SPECULAR_CONSTANT as usize] = u32::from(on);
+            constants
+        };
         let make = |pipelines: &mut DenoisePipelines| {
-            pipelines.gradient = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/gradient.comp.spv")))?;
-            pipelines.temporal = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/temporal.comp.spv")))?;
-            pipelines.variance = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/variance.comp.spv")))?;
-            pipelines.atrous = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/atrous.comp.spv")))?;
-            pipelines.modulate = compute_pipeline(device, layout, include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/modulate.comp.spv")))?;
+            let pass = |spirv: &[u8], on: bool| specialised_compute_pipeline(device, layout, spirv, &with(on));
+            let atrous = include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/atrous.comp.spv"));
+            pipelines.gradient = pass(include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/gradient.comp.spv")), specular)?;
+            pipelines.temporal = pass(include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/temporal.comp.spv")), specular)?;
+            pipelines.variance = pass(include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/variance.comp.spv")), specular)?;
+            pipelines.atrous = pass(atrous, false)?;
+            if specular {
+                pipelines.atrous_specular = pass(atrous, true)?;
+            }
+            pipelines.modulate = pass(include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/modulate.comp.spv")), specular)?;
             Ok(())
         };
         completed(device, pipelines, make, DenoisePipelines::destroy)
@@ -80,7 +100,7 @@ impl DenoisePipelines {
     pub fn destroy(&mut self, device: &Device) {
         // Safety: the GPU is done with them; each is destroyed once (null handles are ignored).
         unsafe {
-            for p in [self.gradient, self.temporal, self.variance, self.atrous, self.modulate] {
+            for p in [self.gradient, self.temporal, self.variance, self.atrous, self.atrous_specular, self.modulate] {
                 device.raw.destroy_pipeline(p, None);
             }
             device.raw.destroy_pipeline_layout(self.layout, None);

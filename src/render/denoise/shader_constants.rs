@@ -44,9 +44,6 @@ glsl_constants! {
     /// Pass flags: temporal gradients shorten the history where the lighting changed
     /// (`[denoise] gradients`).
     const FLAG_GRADIENTS: u32 = 16;
-    /// Pass flags: the pass filters the specular channel too (`[denoise] specular`; the
-    /// à-trous filter in its first `SPECULAR_ITERATIONS` iterations only).
-    const FLAG_SPECULAR: u32 = 32;
     /// Pass flags: what the output shows, `VIEW_*`, in bits `VIEW_SHIFT..` (`VIEW_MASK`).
     const VIEW_SHIFT: u32 = 6;
     /// The view's bits, shifted down.
@@ -69,4 +66,8 @@ glsl_constants! {
     const YOUNG_HISTORY: u32 = 4;
     /// À-trous iterations that filter the specular channel (the first ones, steps 1 and 2).
     const SPECULAR_ITERATIONS: u32 = 2;
+    /// The specialisation constant (`constant_id`) of every pass: whether it filters the
+    /// specular channel too (`[denoise] specular`; the à-trous filter in its first
+    /// `SPECULAR_ITERATIONS` iterations only), `SPECULAR_CHANNEL` of `denoise/common.glsl`.
+    const SPECULAR_CONSTANT: u32 = 0;
 }

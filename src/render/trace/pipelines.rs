@@ -67,11 +67,19 @@ pub(crate) fn completed<T>(device: &Device, mut objects: T, make: impl FnOnce(&m
 
 /// A compute pipeline of `layout` from the SPIR-V `spirv` (its entry point `main`).
 pub(crate) fn compute_pipeline(device: &Device, layout: vk::PipelineLayout, spirv: &[u8]) -> Result<vk::Pipeline> {
+    specialised_compute_pipeline(device, layout, spirv, &[])
+}
+
+/// [`compute_pipeline`] with the specialisation constants `constants`: the 32-bit value of
+/// `constant_id` k at index k (a bool is 0 or 1).
+pub(crate) fn specialised_compute_pipeline(device: &Device, layout: vk::PipelineLayout, spirv: &[u8], constants: &[u32]) -> Result<vk::Pipeline> {
     if crate::faults::fires(crate::faults::Fault::ShaderCompile) {
         return Err(Error::Vulkan("vkCreateComputePipelines", vk::Result::ERROR_INVALID_SHADER_NV));
     }
     let module = shader_module(device, spirv)?;
-    let stage = vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::COMPUTE).module(module).name(c"main");
+    let entries: Vec<vk::SpecializationMapEntry> = (0..constants.len() as u32).map(|i| vk::SpecializationMapEntry { constant_id: i, offset: 4 * i, size: 4 }).collect();
+    let specialization = vk::SpecializationInfo::default().map_entries(&entries).data(bytemuck::cast_slice(constants));
+    let stage = vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::COMPUTE).module(module).name(c"main").specialization_info(&specialization);
     let info = vk::ComputePipelineCreateInfo::default().stage(stage).layout(layout);
     // Safety: the module and layout are alive; the module is destroyed after creation.
     let result = unsafe { device.raw.create_compute_pipelines(vk::PipelineCache::null(), &[info], None) };
