@@ -3,7 +3,7 @@
 # channel's cost, again"): release builds of main before the branch (.dev/base) and of the
 # branch (.dev/new), xz-compressed as bench/session22_gpu.sh takes them (glrt, glrt-demo,
 # libglrt.so), on the GPU machine (run tool, from the repo root, carrying .gl and .dev).
-#   bash bench/h20_cost_gpu.sh trace denoise
+#   bash bench/h20_cost_gpu.sh trace; bash bench/h20_cost_gpu.sh denoise   (two device commands)
 # trace: the tracing pass, base against new, both tracers, demo and q3 (two rounds) and the
 # 1M world (session22_gpu.sh's section). denoise: the denoiser's passes at 1920x1080, base and
 # new with the channel on and off (bench/denoise_gpu.sh), and new with the à-trous loop left to
