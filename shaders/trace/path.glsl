@@ -124,14 +124,14 @@ ShadowSample sky_sample_at(Surface s, vec3 v, NextEvent ne, inout Rng rng) {
 // the sky's) and adds its light where it is not occluded to `lit`: through the path's
 // `throughput` (its specular lobe's part also to `lit_specular`), or on a baked surface as it
 // is (display units).
-void next_event_add(ShadowSample n, vec3 origin, bool baked, vec3 throughput, bool sky, inout vec3 lit, inout vec3 lit_specular, inout uint shadow_rays, inout SkyRays sky_rays) {
+void next_event_add(ShadowSample n, vec3 origin, bool baked, vec3 throughput, bool sky, inout vec3 lit, inout vec3 lit_specular, inout uint shadow_rays, inout uint sky_rays) {
     if (n.distance > 0.0) {
         shadow_rays += 1u;
-        sky_rays.traced += sky ? 1u : 0u;
+        sky_rays += sky ? SKY_RAY_TRACED : 0u;
         if (trace_any(origin, n.dir, 0.0, n.distance)) {
             return;
         }
-        sky_rays.unoccluded += sky ? 1u : 0u;
+        sky_rays += sky ? SKY_RAY_UNOCCLUDED : 0u;
     }
     if (baked) {
         lit += n.light;
@@ -178,8 +178,9 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
 
     uint sample_index = pass.sample_index;
     float weight = 1.0 / float(samples);
-    uint primary = 0u, shadow = 0u, diffuse = 0u, specular = 0u;
-    SkyRays sky_rays = SkyRays(0u, 0u);
+    // Rays counted (render::trace::stats): primary, shadow, the continuation rays in one word
+    // (diffuse in bits 0-15, specular in 16-31: at most 9 of each) and the sky's (sky_sampling.glsl).
+    uint primary = 0u, shadow = 0u, continuation = 0u, sky_rays = 0u;
     if (recorded && sample_index == 0u) {
         gbuffer[index] = missed_sample();
     }
@@ -322,11 +323,7 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
             }
             throughput *= reflected / pdf;
             bsdf_density = emitter_count > 0u && !ambient_lit ? pdf : 0.0;
-            if (chose_specular) {
-                specular += 1u;
-            } else {
-                diffuse += 1u;
-            }
+            continuation += chose_specular ? 0x10000u : 1u;
             diffuse_arrival = !chose_specular;
             if (all(equal(throughput, vec3(0.0)))) {
                 break;
@@ -362,9 +359,9 @@ void trace_pixel(uvec2 pixel, bool traced, bool gradient, bool recorded, uint in
         record_light(index, weight, radiance, vec3(0.0), indirect - indirect_specular, indirect_specular);
     }
     // One atomic per subgroup and counter.
-    uvec4 rays = subgroupAdd(uvec4(primary, shadow, diffuse, specular));
+    uvec4 rays = subgroupAdd(uvec4(primary, shadow, continuation & 0xffffu, continuation >> 16));
     uvec2 work = subgroupAdd(uvec2(bvh_nodes_visited, bvh_triangles_tested));
-    uvec2 sky = subgroupAdd(uvec2(sky_rays.traced, sky_rays.unoccluded));
+    uvec2 sky = subgroupAdd(uvec2(sky_rays & 0xffffu, sky_rays >> 16));
     if (subgroupElect()) {
         atomicAdd(counters.primary_rays, rays.x);
         atomicAdd(counters.shadow_rays, rays.y);

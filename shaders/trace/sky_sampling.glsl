@@ -130,19 +130,18 @@ bool sky_chosen(uvec2 pixel, uint frame_index, uint sample_index, uint depth, fl
     return rng_next(tile) < chance;
 }
 
-// Rays of the sky samples: traced, and those that found the sky (render::trace::sky_selection
-// reads them).
-struct SkyRays {
-    uint traced;
-    uint unoccluded;
-};
+// Rays of the sky samples of a path, in one word (a path carries it through its bounces, and
+// it has at most 9 of each: [pathtrace] bounces is at most 8): traced (bits 0-15), and those
+// that found the sky (bits 16-31; render::trace::sky_selection reads them).
+const uint SKY_RAY_TRACED = 1u;
+const uint SKY_RAY_UNOCCLUDED = 0x10000u;
 
 // The sky's light reflected towards v at s from one sky sample taken with probability
 // `selection`, from this frame's cells or with `last_frame` last frame's, where its shadow ray
 // to infinity is not occluded; `weighted`: a continuation ray leaves s and finds the sky where
 // it misses, so the sample takes its MIS weight (where the path ends at s, at radiosity's
 // vertex, it counts whole). Its ray is traced whenever the sample has a direction (the counts
-// of SkyRays then follow the sky's visibility alone).
+// of sky rays then follow the sky's visibility alone).
 ShadowSample sky_light(Surface s, vec3 v, float selection, bool last_frame, bool weighted, inout Rng rng) {
     vec3 l;
     float density = selection * sky_sample(vec3(rng_next2(rng), rng_next(rng)), last_frame, l);
