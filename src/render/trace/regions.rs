@@ -1,29 +1,47 @@
 //! Merged bottom levels of the static world (issue 21, "merged into larger BLASes per
-//! region"): the driver's traversal pays per instance (on the H200 the hardware tracer lost
-//! 1.2 ms going from 28 to 268 instances), so the hardware tracer traces the chunks of one
-//! region as one instance of one bottom-level structure instead of an instance per chunk.
+//! region"): both tracers pay per instance in the top level (on the H200 the hardware tracer
+//! lost 1.2 ms going from 28 to 268 instances; a CPU model of the compute tracer's BVHs,
+//! `bench/regions_work.rs`, halves its node visits per ray with regions of 2³ cells), so each
+//! traces the chunks of one region as one instance of one bottom level instead of an instance
+//! per chunk. One rule for both back ends ([`region`], [`runs`], [`members_key`]):
 //!
 //! - **Region.** A region is a cube of `size`³ cells of the world's spatial grid (the cells the
 //!   static world groups chunks by, [`crate::frame::world::StaticChunk::cell`]), `size` the
 //!   `[pathtrace]` key `chunk_regions` (0: no merging, a structure per chunk as before).
 //! - **Order.** The tracer sorts its items stably by region (`None`, the surfaces and chunks
 //!   traced alone, first), so a region's chunks and their instance records are consecutive.
-//! - **Shading.** A region's structure holds one geometry per chunk, in the order of their
-//!   instance records; its instance's custom index is the first chunk's record, and the hit
-//!   shaders take `gl_InstanceCustomIndexEXT + gl_GeometryIndexEXT` as the instance: each
-//!   chunk keeps its own record (material, first triangle, emitters, radiosity), unchanged.
-//!   A chunk's geometry is opaque unless it is alpha tested (then its any-hit shader runs),
-//!   as the instance flags of an unmerged chunk say.
-//! - **Rebuild.** A merged structure is keyed by its members ([`Member`]: geometry key and
-//!   opacity, in order): it is built when a run of chunks appears whose members have no
-//!   structure (a new chunk in the region, a released one), reused while they stay, and
-//!   retired in the first frame that traces merged chunks but not these ([`plan`]; a frame
-//!   without the static world keeps them). Other regions keep theirs.
+//! - **Shading is untouched.** Every chunk keeps its own instance record (material, first
+//!   triangle, emitters, radiosity) and its own triangles; a hit in a merged bottom level is
+//!   resolved to the chunk's record and triangle before shading.
+//!
+//! The hardware tracer (`hardware::accel`): a region's structure holds one geometry per chunk,
+//! in the order of their instance records; its instance's custom index is the first chunk's
+//! record, and the hit shaders take `gl_InstanceCustomIndexEXT + gl_GeometryIndexEXT` as the
+//! instance. A chunk's geometry is opaque unless it is alpha tested (then its any-hit shader
+//! runs), as the instance flags of an unmerged chunk say. A merged structure is keyed by its
+//! members ([`Member`]: geometry key and opacity, in order): it is built when a run of chunks
+//! appears whose members have no structure (a new chunk in the region, a released one), reused
+//! while they stay, and retired in the first frame that traces merged chunks but not these
+//! ([`plan`]; a frame without the static world keeps them). Other regions keep theirs.
+//!
+//! The compute tracer (`compute`): a run of two or more chunks is one resident geometry keyed
+//! by [`members_key`] (opacity is not part of it: alpha tests are per chunk record), a BVH
+//! over the members' triangles ([`crate::render::trace::bvh::Blas::merged`]) whose triangles
+//! name their chunk (its place in the run) and their index in that chunk's triangles; it is
+//! built with the chunks and dropped, like any geometry, when unused. The frame's instance
+//! records get one more record per run ([`merge_records`]: `INSTANCE_MERGED`, the run's first
+//! record in `first_member`), which the top level holds instead of the run's chunks; the
+//! traversal resolves a hit in it to the chunk's record and triangle (`bvh_resolve` of
+//! `shaders/trace/bvh_common.glsl`), alpha-testing the chunks that are alpha tested.
 
 use std::collections::HashMap;
 use std::ops::Range;
 
 use xxhash_rust::xxh3::Xxh3;
+
+use super::bvh::Aabb;
+use super::gpu_types::GpuInstance;
+use super::shader_constants::{INSTANCE_ALPHA_TESTED, INSTANCE_MERGED, NO_PREVIOUS_TRIANGLES};
 
 /// The region of a chunk in `cell`, for regions of `size` cells a side; `None` when `size` is
 /// 0 (chunks are not merged).
@@ -100,6 +118,47 @@ pub fn plan<T>(built: &HashMap<u64, T>, wanted: &[u64]) -> (Vec<u64>, Vec<u64>) 
     }
     let retire = built.keys().copied().filter(|k| !wanted.contains(k)).collect();
     (build, retire)
+}
+
+/// A run's merged bottom level as the compute tracer placed it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct MergedRun {
+    /// The run's chunk records, consecutive.
+    pub records: Range<u32>,
+    /// Its root in the BLAS node buffer.
+    pub blas_root: u32,
+    /// Its first triangle in the triangle buffer.
+    pub first_triangle: u32,
+    /// Its box in eye space.
+    pub bounds: Aabb,
+}
+
+/// Adds a record per merged run to `records` (the frame's instance records) and `bounds`
+/// (their eye-space boxes, which the top level is built over): the run's first record with
+/// the merged bottom level's root and triangles, `INSTANCE_MERGED` (and
+/// `INSTANCE_ALPHA_TESTED` when a chunk of it is), `first_member` its first record; the
+/// run's chunks leave the top level (their boxes become empty), their records stay for
+/// shading. Returns the instances in the top level. A run whose records are not all there is
+/// left as it is.
+pub fn merge_records(records: &mut Vec<GpuInstance>, bounds: &mut Vec<Aabb>, runs: &[MergedRun]) -> u32 {
+    for run in runs {
+        let range = run.records.start as usize..run.records.end as usize;
+        let Some(chunks) = records.get(range.clone()).filter(|c| !c.is_empty()) else { continue };
+        let Some(boxes) = bounds.get_mut(range) else { continue };
+        let alpha = chunks.iter().fold(0, |a, c| a | (c.flags & INSTANCE_ALPHA_TESTED));
+        let merged = GpuInstance {
+            blas_root: run.blas_root,
+            first_triangle: run.first_triangle,
+            flags: INSTANCE_MERGED | alpha,
+            previous_triangles: NO_PREVIOUS_TRIANGLES,
+            first_member: run.records.start,
+            ..chunks[0]
+        };
+        boxes.fill(Aabb::EMPTY);
+        records.push(merged);
+        bounds.push(run.bounds);
+    }
+    bounds.iter().filter(|b| b.is_finite()).count() as u32
 }
 
 #[cfg(test)]
