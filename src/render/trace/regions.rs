@@ -186,6 +186,28 @@ mod tests {
         assert_eq!(runs(&[at(None, 0), at(a, 1)]), [1..2], "a region of one chunk is a run of one");
     }
 
+    /// The compute tracer's top level: a merged run's chunks leave it (their records stay, for
+    /// shading), its merged record joins it, naming the first chunk's record and alpha-tested
+    /// when a chunk is; a run whose records are missing changes nothing.
+    #[test]
+    fn merged_records_replace_their_chunks_in_the_top_level() {
+        let record = |i: u32, flags: u32| GpuInstance { blas_root: 100 + i, first_triangle: 1000 + i, flags, material: i, ..GpuInstance::default() };
+        let mut records = vec![record(0, 0), record(1, 0), record(2, INSTANCE_ALPHA_TESTED), record(3, 0), record(4, 0), record(5, 0)];
+        let unit = |x: f32| Aabb { min: glam::Vec3::splat(x), max: glam::Vec3::splat(x + 1.0) };
+        let mut bounds: Vec<Aabb> = (0..6).map(|i| unit(i as f32)).collect();
+        bounds[5] = Aabb::EMPTY;
+        let run = |records: Range<u32>, at: u32| MergedRun { records, blas_root: at, first_triangle: 10 * at, bounds: unit(at as f32) };
+        let runs = [run(1..3, 50), run(3..5, 60), run(4..9, 70)];
+        assert_eq!(merge_records(&mut records, &mut bounds, &runs), 3, "instance 0 and two merged runs (5 has no box)");
+        assert_eq!(records.len(), 8, "the run beyond the records is left");
+        assert_eq!((records[6].blas_root, records[6].first_triangle, records[6].first_member), (50, 500, 1));
+        assert_eq!(records[6].flags, INSTANCE_MERGED | INSTANCE_ALPHA_TESTED, "a chunk of it is alpha tested");
+        assert_eq!((records[7].flags, records[7].first_member, records[7].previous_triangles), (INSTANCE_MERGED, 3, NO_PREVIOUS_TRIANGLES));
+        assert_eq!(records[..6].iter().map(|r| (r.blas_root, r.flags)).collect::<Vec<_>>(), [(100, 0), (101, 0), (102, 1), (103, 0), (104, 0), (105, 0)], "chunk records are kept");
+        assert_eq!(bounds.iter().map(Aabb::is_finite).collect::<Vec<_>>(), [true, false, false, false, false, false, true, true]);
+        assert_eq!(bounds[6], unit(50.0));
+    }
+
     /// The rule of rebuilding: a region's structure is built when its chunks change, and only
     /// then; a region that is gone is retired.
     #[test]
