@@ -118,6 +118,8 @@ pub struct ComputeTracer {
     sky_selection: SkySelection,
     /// How last frame's path vertices sampled the sky, which its gradient samples replay.
     last_sky: SkySampled,
+    /// How long the static world's runs of chunks have stayed the same (merged BVHs).
+    settling: regions::Settling,
 }
 
 /// The sky distribution's cells a frame sampled (empty: it did not sample the sky) and the
@@ -171,6 +173,7 @@ impl ComputeTracer {
             statistics: Statistics::default(),
             sky_selection: SkySelection::default(),
             last_sky: SkySampled::default(),
+            settling: regions::Settling::default(),
         })
     }
 
@@ -399,18 +402,17 @@ impl RayTracer for ComputeTracer {
             Source::Surface(_) => None,
         };
         items.sort_by_key(region_of);
-        // The compute tracer's merged BVHs: runs of two chunks or more (the hardware tracer
-        // finds its runs over its instance records).
+        // The compute tracer's merged BVHs: runs of two chunks or more, built once settled
+        // (the hardware tracer finds its runs over its instance records).
         let merged_runs: Vec<(Range<usize>, u64)> = match self.accelerations {
             Some(_) => Vec::new(),
             None => {
                 let placed: Vec<Placed> = items.iter().enumerate().map(|(i, item)| Placed { region: region_of(item), index: i as u32, rows: gpu_types::rows(&item.object_to_eye) }).collect();
-                let runs = regions::runs(&placed).into_iter().filter(|run| run.len() > 1);
-                runs.map(|run| {
-                    let members: Vec<Member> = items[run.clone()].iter().map(|item| Member { key: item.key, opaque: true }).collect();
-                    (run, regions::members_key(&members))
-                })
-                .collect()
+                let runs: Vec<Range<usize>> = regions::runs(&placed).into_iter().filter(|run| run.len() > 1).collect();
+                let keys: Vec<u64> = runs.iter().map(|run| regions::members_key(&items[run.clone()].iter().map(|item| Member { key: item.key, opaque: true }).collect::<Vec<_>>())).collect();
+                let settled = self.settling.settled(&keys, frame.number);
+                let resident = &mut self.resident;
+                runs.into_iter().zip(keys).zip(settled).filter(|((_, key), settled)| *settled || resident.lookup(*key, frame.number).is_some()).map(|(run, _)| run).collect()
             }
         };
 

@@ -27,14 +27,17 @@
 //! The compute tracer (`compute`): a run of two or more chunks is one resident geometry keyed
 //! by [`members_key`] (opacity is not part of it: alpha tests are per chunk record), a BVH
 //! over the members' triangles ([`crate::render::trace::bvh::Blas::merged`]) whose triangles
-//! name their chunk (its place in the run) and their index in that chunk's triangles; it is
-//! built with the chunks and dropped, like any geometry, when unused. The frame's instance
+//! name their chunk (its place in the run) and their index in that chunk's triangles. It is
+//! built once the run's chunks have stayed the same for [`SETTLE_FRAMES`] frames ([`Settling`]:
+//! while the static world grows, a region would otherwise be rebuilt on the CPU at each new
+//! chunk; its chunks are traced one by one meanwhile), used from then on while it is resident
+//! and dropped, like any geometry, when unused. The frame's instance
 //! records get one more record per run ([`merge_records`]: `INSTANCE_MERGED`, the run's first
 //! record in `first_member`), which the top level holds instead of the run's chunks; the
 //! traversal resolves a hit in it to the chunk's record and triangle (`bvh_resolve` of
 //! `shaders/trace/bvh_common.glsl`), alpha-testing the chunks that are alpha tested.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 use std::ops::Range;
 
 use xxhash_rust::xxh3::Xxh3;
@@ -118,6 +121,28 @@ pub fn plan<T>(built: &HashMap<u64, T>, wanted: &[u64]) -> (Vec<u64>, Vec<u64>) 
     }
     let retire = built.keys().copied().filter(|k| !wanted.contains(k)).collect();
     (build, retire)
+}
+
+/// Frames a run's chunks stay the same before the compute tracer builds its merged BVH: a
+/// region still growing (the static world takes in what the camera sees, a chunk at a time)
+/// is traced chunk by chunk meanwhile instead of rebuilt on the CPU at every new chunk.
+pub const SETTLE_FRAMES: u64 = 8;
+
+/// How long each run of the last frames has had the same chunks ([`SETTLE_FRAMES`]).
+#[derive(Debug, Default)]
+pub struct Settling {
+    /// A run's [`members_key`] and the first frame of the frames in a row it was traced in.
+    since: HashMap<u64, u64>,
+}
+
+impl Settling {
+    /// Whether each run of `keys` (this frame's, [`members_key`]) has had its chunks for
+    /// [`SETTLE_FRAMES`] frames; forgets the runs not traced in `frame`.
+    pub fn settled(&mut self, keys: &[u64], frame: u64) -> Vec<bool> {
+        let traced: HashSet<u64> = keys.iter().copied().collect();
+        self.since.retain(|k, _| traced.contains(k));
+        keys.iter().map(|&k| frame.saturating_sub(*self.since.entry(k).or_insert(frame)) >= SETTLE_FRAMES).collect()
+    }
 }
 
 /// A run's merged bottom level as the compute tracer placed it.
@@ -206,6 +231,20 @@ mod tests {
         assert_eq!(records[..6].iter().map(|r| (r.blas_root, r.flags)).collect::<Vec<_>>(), [(100, 0), (101, 0), (102, 1), (103, 0), (104, 0), (105, 0)], "chunk records are kept");
         assert_eq!(bounds.iter().map(Aabb::is_finite).collect::<Vec<_>>(), [true, false, false, false, false, false, true, true]);
         assert_eq!(bounds[6], unit(50.0));
+    }
+
+    /// A run is settled after SETTLE_FRAMES frames in a row with the same chunks; a frame
+    /// without it starts it again.
+    #[test]
+    fn a_run_settles_after_frames_with_the_same_chunks() {
+        let mut settling = Settling::default();
+        let (a, b) = (members_key(&[Member { key: 1, opaque: true }]), members_key(&[Member { key: 2, opaque: true }]));
+        assert_eq!(settling.settled(&[a], 10), [false]);
+        assert_eq!(settling.settled(&[a, b], 10 + SETTLE_FRAMES - 1), [false, false]);
+        assert_eq!(settling.settled(&[a, b], 10 + SETTLE_FRAMES), [true, false]);
+        assert_eq!(settling.settled(&[b], 11 + SETTLE_FRAMES), [false], "a left");
+        assert_eq!(settling.settled(&[a, b], 12 + SETTLE_FRAMES), [false, false], "a starts again");
+        assert_eq!(settling.settled(&[a, b], 10 + 2 * SETTLE_FRAMES), [false, true]);
     }
 
     /// The rule of rebuilding: a region's structure is built when its chunks change, and only
