@@ -1,7 +1,7 @@
 //! Merged bottom levels of the static world (issue 21, "merged into larger BLASes per
 //! region"): both tracers pay per instance in the top level (on the H200 the hardware tracer
-//! lost 1.2 ms going from 28 to 268 instances; a CPU model of the compute tracer's BVHs,
-//! `bench/regions_work.rs`, halves its node visits per ray with regions of 2³ cells), so each
+//! lost 1.2 ms going from 28 to 268 instances; the compute tracer visits 5–15 % fewer nodes
+//! per ray with regions of 2³ cells on lavapipe, bench/pathtrace.md), so each
 //! traces the chunks of one region as one instance of one bottom level instead of an instance
 //! per chunk. One rule for both back ends ([`region`], [`runs`], [`members_key`]):
 //!
