@@ -2,7 +2,7 @@
 # Immediate-mode throughput (issue 17): frames of 100,000 and of 10 million vertices
 # (glColor3f + glTexCoord2f + glVertex3f each, GL_TRIANGLES, 3000 vertices per glBegin/glEnd,
 # glFinish + swap at the end of each frame), not culled and culled (GL_CULL_FACE on with
-# glCullFace(GL_FRONT_AND_BACK): every triangle culled), best of 3 frames each, through Mesa's
+# glCullFace(GL_FRONT_AND_BACK): every triangle culled), the median of 4 frames after the first, through Mesa's
 # libGL.so.1 (llvmpipe, in a GLX window under Xvfb) and glrt's (GLRT_MODE=raster, in a GLX
 # window under Xvfb and headless), all in one run; prints vertices per second and glrt / Mesa
 # for each case. Mesa has no headless context in glrt-demo (--headless is glrt's
@@ -10,7 +10,7 @@
 #   bash bench/immediate.sh [VERTICES...]        (default: 100000 10000000)
 # Environment: BENCH_PROFILE=release|debug (default release), GLRT_DIR (a folder holding a
 # built glrt-demo and libGL.so.1 to measure instead of building), MESA_LIBGL (default the
-# system libGL.so.1), SIZE (window size, default 64x64), FRAMES (default 3), GLRT_MODE (default
+# system libGL.so.1), SIZE (window size, default 64x64), FRAMES (default 5), GLRT_MODE (default
 # raster), CALLGRIND=1 to add callgrind's instructions per vertex (repeatable where wall times
 # are not): the difference of 200,000- and 100,000-vertex single-frame runs / 100,000, glrt
 # headless and Mesa in GLX, culled and not.
@@ -21,7 +21,7 @@ cd "$(dirname "$0")/.."
 profile=${BENCH_PROFILE:-release}
 mesa=${MESA_LIBGL:-/usr/lib/x86_64-linux-gnu/libGL.so.1}
 size=${SIZE:-64x64}
-frames=${FRAMES:-3}
+frames=${FRAMES:-5}
 export GLRT_MODE=${GLRT_MODE:-raster}
 
 if [[ -n ${GLRT_DIR:-} ]]; then
@@ -34,7 +34,7 @@ fi
 demo="$dir/glrt-demo"
 xvfb=(xvfb-run -a -s "-screen 0 1024x768x24")
 
-# Vertices per second of the best frame of one run: $1 = glx or headless, then the demo's flags.
+# Vertices per second of the median frame after the first of one run: $1 = glx or headless, then the demo's flags.
 rate() {
     local how=$1 out
     shift
@@ -43,11 +43,11 @@ rate() {
     else
         out=$("$demo" --headless --size "$size" --frames "$frames" "$@")
     fi
-    grep -o 'best of .* vertices/s' <<<"$out" | grep -o '[0-9.]* vertices/s$' | cut -d' ' -f1
+    grep -o 'median of .* vertices/s' <<<"$out" | grep -o '[0-9.]* vertices/s$' | cut -d' ' -f1
 }
 
 echo "# Immediate mode, $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) CPUs, load $(cut -d' ' -f1 /proc/loadavg)," \
-    "commit $(git rev-parse --short HEAD), $profile build, window $size, best of $frames frames, GLRT_MODE=$GLRT_MODE"
+    "commit $(git rev-parse --short HEAD), $profile build, window $size, median of $((frames - 1)) frames after the first, GLRT_MODE=$GLRT_MODE"
 printf '%-12s %-6s %14s %16s %18s %10s %15s\n' vertices culled "Mesa GLX v/s" "glrt GLX v/s" "glrt headless v/s" "GLX ratio" "headless ratio"
 for vertices in "$@"; do
     for cull in no yes; do

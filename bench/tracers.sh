@@ -12,7 +12,8 @@
 # BIN_DIR holds a release build's libglrt.so and glrt-demo.
 # With `regions` (issue 21 item 1, bench/pathtrace.md "Merged chunk regions"): instead, the
 # hardware tracer with GLRT_CHUNK_REGIONS=0 (an instance per chunk, as before), 2 (the
-# default), 4 and 8, then the compute tracer, on the three scenes, two rounds alternating (the
+# default), 4 and 8, then the compute tracer (its default regions; bench/compute_regions_gpu.sh
+# sweeps them), on the three scenes, two rounds alternating (the
 # summary gives instances, of chunks and in the top level, and the tracing pass's ms); then
 # parity, 64-spp frames of the demo (120) and q3 (300) merged (2) and unmerged (0), to compare
 # with `python3 scripts/png_luma.py --diff OUT/demo-120-regions0.png OUT/demo-120-regions2.png`.

@@ -1,7 +1,8 @@
 // What both compute traversals (bvh.glsl: binary nodes; bvh_wide.glsl: wide nodes with
 // quantised boxes) share: the ray-box and ray-triangle tests, the instance transform, the
 // traversal's ray and instance state (BvhRay: start, entering and leaving an instance), the
-// statistics and the two queries over the including file's bvh_trace(). Include from those
+// statistics, the hits in merged regions of chunks (bvh_resolve) and the two queries over the
+// including file's bvh_trace(). Include from those
 // files only.
 
 #ifndef TRACE_BVH_COMMON_GLSL
@@ -117,6 +118,25 @@ void bvh_leave(inout BvhRay ray, vec3 origin, vec3 dir) {
 uint bvh_nodes_visited = 0u;
 uint bvh_triangles_tested = 0u;
 
+// The chunk record and global triangle a hit on global triangle `triangle` of `instance`
+// names: the same, or in the merged BVH of a region's chunks (INSTANCE_MERGED), the chunk's
+// own record and triangle, which the merged triangle copies (trace/triangles.glsl), so that
+// shading reads what it reads for an unmerged chunk.
+void bvh_resolve(inout uint instance, inout uint triangle) {
+    if ((instances[instance].flags & INSTANCE_MERGED) != 0u) {
+        uint member = instances[instance].first_member + triangles[triangle].member;
+        triangle = instances[member].first_triangle + triangles[triangle].member_triangle;
+        instance = member;
+    }
+}
+
+// The alpha test of a hit in an alpha-tested instance (trace_alpha_accept); in a merged one,
+// of the chunk hit, when that chunk is alpha tested.
+bool bvh_alpha_accept(uint instance, uint triangle, vec2 bary) {
+    bvh_resolve(instance, triangle);
+    return (instances[instance].flags & INSTANCE_ALPHA_TESTED) == 0u || trace_alpha_accept(instance, triangle, bary);
+}
+
 // Tests global triangle `triangle` of `instance` against the ray (o, d) in the instance's
 // space: whether it is hit with tmin < t < hit.t and accepted (alpha-tested instances ask
 // trace_alpha_accept); then `hit` holds it.
@@ -127,7 +147,7 @@ bool bvh_leaf_triangle(uint triangle, uint instance, bool alpha_tested, vec3 o, 
     if (!bvh_triangle(triangles[triangle], o, d, tmin, hit.t, t, bary)) {
         return false;
     }
-    if (alpha_tested && !trace_alpha_accept(instance, triangle, bary)) {
+    if (alpha_tested && !bvh_alpha_accept(instance, triangle, bary)) {
         return false;
     }
     hit.t = t;
@@ -157,9 +177,14 @@ bool bvh_leaf(uint first, uint count, uint instance, bool alpha_tested, vec3 o, 
 // first accepted hit.
 bool bvh_trace(vec3 origin, vec3 dir, float tmin, float tmax, bool any_hit, out TraceHit hit);
 
-// The closest accepted hit with tmin < t < tmax; false (hit.t = tmax) when none.
+// The closest accepted hit with tmin < t < tmax; false (hit.t = tmax) when none. A hit in a
+// merged region names the chunk's record and triangle (bvh_resolve).
 bool trace_closest(vec3 origin, vec3 dir, float tmin, float tmax, out TraceHit hit) {
-    return bvh_trace(origin, dir, tmin, tmax, false, hit);
+    bool found = bvh_trace(origin, dir, tmin, tmax, false, hit);
+    if (found) {
+        bvh_resolve(hit.instance, hit.triangle);
+    }
+    return found;
 }
 
 // Whether any accepted hit has tmin < t < tmax (shadow rays); stops at the first.

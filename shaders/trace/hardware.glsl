@@ -5,7 +5,7 @@
 // bottom-level structures are built from the triangle buffer in BVH order), and rays are in
 // eye space as for the compute tracer, so hits mean the same to shading. The chunks of a
 // region of the static world are one instance of a structure with a geometry per chunk
-// (render::trace::hardware::regions): geometry g is the chunk whose record is the custom index
+// (render::trace::regions): geometry g is the chunk whose record is the custom index
 // + g, so the hit shaders take gl_InstanceCustomIndexEXT + gl_GeometryIndexEXT (0 elsewhere).
 //
 // Shaders: pathtrace.rchit records the closest hit in the payload, pathtrace.rmiss marks a

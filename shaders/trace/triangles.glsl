@@ -1,7 +1,11 @@
 // The traced triangles and what a traversal returns, shared by both tracers' traversals
 // (bvh.glsl, hardware.glsl) and shading. Layout (std430, mirrored by render::trace::bvh's
 // GpuTriangle): BvhTriangle = v0, e1 = v1 - v0, e2 = v2 - v0, each padded to 16 bytes, in
-// BVH order (an instance's triangle k is global triangle first_triangle + k).
+// BVH order (an instance's triangle k is global triangle first_triangle + k). In the BVH of a
+// merged region of the static world's chunks (render::trace::regions, INSTANCE_MERGED) the
+// first two pads name the chunk triangle each copies: member (the chunk's record, counted
+// from the instance's first_member) and member_triangle (its index from that chunk's
+// first_triangle).
 
 #ifndef TRACE_TRIANGLES_GLSL
 #define TRACE_TRIANGLES_GLSL
@@ -10,9 +14,9 @@
 
 struct BvhTriangle {
     vec3 v0;
-    uint pad0;
+    uint member;           // merged BVHs: the chunk record, from the instance's first_member
     vec3 e1;
-    uint pad1;
+    uint member_triangle;  // merged BVHs: the triangle, from that chunk's first_triangle
     vec3 e2;
     uint pad2;
 };

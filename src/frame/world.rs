@@ -50,8 +50,7 @@ pub struct StaticChunk {
     /// Draw state the triangles are shaded with.
     pub shading: ChunkShading,
     /// The cell of the world's spatial grid its triangles were grouped in (chunks of one
-    /// cell lie close together: a renderer may merge them, as the hardware tracer's regions
-    /// do).
+    /// cell lie close together: a renderer may merge them, as the tracers' regions do).
     pub cell: [i32; 3],
 }
 

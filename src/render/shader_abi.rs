@@ -133,7 +133,7 @@ mod tests {
             format!("#[repr(C)] pub struct GpuLight {{ {light} }}\n#[repr(C)] pub struct Triangle {{ {triangle} }}\npub const PUSH_BYTES: u32 = {push};\n{checks}")
         };
         let light = "pub position: [f32; 4], pub radiance: [f32; 4], pub spot: [f32; 4], pub params: [f32; 4]";
-        let triangle = "pub v0: [f32; 3], pub pad0: u32, pub e1: [f32; 3], pub pad1: u32, pub e2: [f32; 3], pub pad2: u32";
+        let triangle = "pub v0: [f32; 3], pub member: u32, pub e1: [f32; 3], pub member_triangle: u32, pub e2: [f32; 3], pub pad2: u32";
         rustc("right", &source(light, triangle, 8)).expect("the right mirror compiles");
 
         let swapped = "pub position: [f32; 4], pub spot: [f32; 4], pub radiance: [f32; 4], pub params: [f32; 4]";
@@ -142,7 +142,7 @@ mod tests {
         let retyped = "pub position: [f32; 4], pub radiance: [f32; 4], pub spot: [f32; 4], pub params: [u32; 4]";
         let e = rustc("retyped", &source(retyped, triangle, 8)).expect_err("a field of another type");
         assert!(e.contains("expected `&[f32; 4]`, found `&[u32; 4]`"), "{e}");
-        let padded = "pub v0: [f32; 3], pub pad0: u32, pub e1: [f32; 3], pub pad1: u32, pub e2: [f32; 3], pub pad2: u32, pub more: u32";
+        let padded = "pub v0: [f32; 3], pub member: u32, pub e1: [f32; 3], pub member_triangle: u32, pub e2: [f32; 3], pub pad2: u32, pub more: u32";
         let e = rustc("long", &source(light, padded, 8)).expect_err("a struct of another size");
         assert!(e.contains("Triangle: `BvhTriangle` is 48 bytes in pathtrace.comp"), "{e}");
         let e = rustc("push", &source(light, triangle, 4)).expect_err("a size constant that is off");

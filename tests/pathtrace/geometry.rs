@@ -21,8 +21,13 @@ const SIZE: i32 = 24;
 /// A tracing context (direct light only, hard shadows, tone mapping off) on a `SIZE`²
 /// drawable with a 60° perspective camera at the origin looking down −z, and its renderer.
 fn context() -> (Context, Arc<Mutex<Renderer>>) {
+    context_with(Settings::default())
+}
+
+/// [`context`] with the rest of `settings`.
+fn context_with(settings: Settings) -> (Context, Arc<Mutex<Renderer>>) {
     let mut renderer = lavapipe::renderer_with(Renderer::without_outputs);
-    let settings = Settings { spp: 1, bounces: 0, sun_angle: 0.0, tonemap: Tonemap::Clamp, exposure: 0.0, ..Settings::default() };
+    let settings = Settings { spp: 1, bounces: 0, sun_angle: 0.0, tonemap: Tonemap::Clamp, exposure: 0.0, ..settings };
     renderer.enable_tracing(settings).expect("the tracer's pipelines");
     let renderer = Arc::new(Mutex::new(renderer));
     let mut ctx = Context::new(ContextConfig { share: None, sink: Box::new(lavapipe::Shared(renderer.clone())) });
@@ -123,6 +128,62 @@ fn a_culled_static_wall_still_casts_its_shadow_and_world_draws_are_traced_once()
     assert!(lit.abs_diff(204) <= 2, "the floor without a roof is lit: {lit}");
     assert!(beside.abs_diff(204) <= 2, "beside the roof's shadow the floor is lit: {beside}");
     assert!(shadowed <= 2, "under the culled roof the floor is in shadow: {shadowed}");
+}
+
+/// The window's pixels, RGBA rows.
+fn pixels(ctx: &mut Context) -> Vec<u8> {
+    let mut out = vec![0u8; (SIZE * SIZE * 4) as usize];
+    unsafe { dispatch::glReadPixels(ctx, 0, 0, SIZE, SIZE, gl::GL_RGBA, gl::GL_UNSIGNED_BYTE, out.as_mut_ptr().cast()) };
+    out
+}
+
+/// A lit floor of four quads and a small roof over part of it, all on one side of the world's
+/// grid origin (x > 0, y < 0, z < 0), so that with `chunk_regions` = 64 their chunks lie in one
+/// region; the light straight above.
+fn region_frame(ctx: &mut Context) {
+    clear(ctx);
+    light(ctx, [0.0, 1.0, 0.0]);
+    for (x, z) in [([0.1, 2.0], [-1.0, -5.0]), ([2.0, 4.0], [-1.0, -5.0]), ([0.1, 2.0], [-5.0, -9.0]), ([2.0, 4.0], [-5.0, -9.0])] {
+        horizontal(ctx, -1.0, x, z);
+    }
+    horizontal(ctx, -0.5, [0.5, 2.0], [-3.0, -5.0]);
+    ctx.end_frame();
+}
+
+/// The scene of [`region_frame`] with its chunks in one region (`chunk_regions` = 64, the grid
+/// being 8 cells across) and in regions of their own (0): once its chunks have stayed the same
+/// for `SETTLE_FRAMES` frames, the compute tracer traces the region through one merged BVH
+/// (built once, then one instance in the top level for them all), and the image is the same
+/// pixel for pixel: hits in it shade as the chunks' own, the roof's shadow (any-hit rays
+/// through it) falls on the floor as before.
+#[test]
+fn a_merged_region_shades_as_its_chunks() {
+    let (mut merged, merged_renderer) = context_with(Settings { chunk_regions: 64, ..Settings::default() });
+    let (mut apart, apart_renderer) = context_with(Settings { chunk_regions: 0, ..Settings::default() });
+    let mut merged_at = None;
+    for k in 0..14 {
+        region_frame(&mut merged);
+        region_frame(&mut apart);
+        let (c, a) = (counts(&merged_renderer), counts(&apart_renderer));
+        if c.top_instances < c.chunk_instances {
+            assert_eq!((merged_at.is_none(), c.top_instances, c.built), (true, 1, 1), "frame {k}: merged once, into one instance: {c:?}");
+            merged_at = Some(k);
+            break;
+        }
+        assert_eq!((a.top_instances, a.chunk_instances), (c.top_instances, c.chunk_instances), "frame {k}: {c:?}");
+    }
+    let at = merged_at.expect("the region is merged within 14 frames");
+    assert!(at >= 8, "not before its chunks have stayed the same for SETTLE_FRAMES frames: {at}");
+    region_frame(&mut merged);
+    region_frame(&mut apart);
+    let (c, a) = (counts(&merged_renderer), counts(&apart_renderer));
+    assert!(a.chunk_instances >= 3 && a.top_instances == a.chunk_instances && a.draw_instances == 0, "{a:?}");
+    assert_eq!((c.chunk_instances, c.top_instances, c.built), (a.chunk_instances, 1, 0), "the merged BVH is kept: {c:?}");
+    let shadowed = pixel_of(&mut merged, [1.2, -1.0, -4.0]);
+    let beside = pixel_of(&mut merged, [1.2, -1.0, -7.5]);
+    assert!(beside.abs_diff(204) <= 2, "the floor through the merged BVH is lit as a chunk: {beside}");
+    assert!(shadowed <= 2, "the roof through the merged BVH shadows it: {shadowed}");
+    assert!(pixels(&mut merged) == pixels(&mut apart), "merged and apart make the same image");
 }
 
 /// A lit quad facing the camera that slides right every frame (new vertices, same indices):

@@ -195,8 +195,10 @@ pub struct Pipelines {
     pub program_set_layout: vk::DescriptorSetLayout,
     /// The pipeline layout.
     pub layout: vk::PipelineLayout,
-    vertex: vk::ShaderModule,
-    fragment: vk::ShaderModule,
+    /// The fixed-function stages (vertex, fragment) with every varying.
+    full: [vk::ShaderModule; 2],
+    /// The fixed-function stages of lean keys ([`ff::ShaderKey::lean`]).
+    lean: [vk::ShaderModule; 2],
     programs: Programs,
     depth_format: vk::Format,
     /// Each pipeline with the submission that last used it.
@@ -234,14 +236,14 @@ impl Pipelines {
             let layout = d
                 .create_pipeline_layout(&vk::PipelineLayoutCreateInfo::default().set_layouts(&sets), None)
                 .check("vkCreatePipelineLayout")?;
-            let vertex = shader_module(device, ff::vertex_spirv())?;
-            let fragment = shader_module(device, ff::fragment_spirv())?;
+            let full = [shader_module(device, ff::vertex_spirv(false))?, shader_module(device, ff::fragment_spirv(false))?];
+            let lean = [shader_module(device, ff::vertex_spirv(true))?, shader_module(device, ff::fragment_spirv(true))?];
             Ok(Pipelines {
                 set_layout,
                 program_set_layout,
                 layout,
-                vertex,
-                fragment,
+                full,
+                lean,
                 programs: Programs::default(),
                 depth_format: device.depth_format,
                 cache: HashMap::new(),
@@ -349,8 +351,11 @@ impl Pipelines {
             Some(id) => Some(self.programs.modules(id).ok_or_else(|| Error::Memory(format!("program {id} has no shader modules")))?),
             None => None,
         };
-        let vertex = program.and_then(|p| p.vertex).unwrap_or(self.vertex);
-        let fragment = program.and_then(|p| p.fragment).unwrap_or(self.fragment);
+        // A program's stages pair with the full fixed-function ones, whose varyings its
+        // generated code writes and reads.
+        let [ff_vertex, ff_fragment] = if program.is_none() && key.shader.lean() { self.lean } else { self.full };
+        let vertex = program.and_then(|p| p.vertex).unwrap_or(ff_vertex);
+        let fragment = program.and_then(|p| p.fragment).unwrap_or(ff_fragment);
         let stages = [
             vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::VERTEX).module(vertex).name(c"main").specialization_info(&spec),
             vk::PipelineShaderStageCreateInfo::default().stage(vk::ShaderStageFlags::FRAGMENT).module(fragment).name(c"main").specialization_info(&spec),
@@ -472,8 +477,9 @@ impl Pipelines {
                 device.raw.destroy_pipeline(p, None);
             }
             self.programs.destroy(device);
-            device.raw.destroy_shader_module(self.vertex, None);
-            device.raw.destroy_shader_module(self.fragment, None);
+            for module in self.full.into_iter().chain(self.lean) {
+                device.raw.destroy_shader_module(module, None);
+            }
             device.raw.destroy_pipeline_layout(self.layout, None);
             device.raw.destroy_descriptor_set_layout(self.set_layout, None);
             device.raw.destroy_descriptor_set_layout(self.program_set_layout, None);

@@ -13,6 +13,8 @@
 //! ray-tracing pipeline (`pathtrace.rgen`) instead of `pathtrace.comp`; everything else is
 //! shared.
 
+use std::ops::Range;
+
 use ash::vk;
 use glam::{Affine3A, Mat4};
 use gpu_allocator::MemoryLocation;
@@ -21,13 +23,13 @@ use xxhash_rust::xxh3::Xxh3;
 use super::bvh::Tlas;
 use super::emitters::{self, EmitterList, Estimate};
 use super::hardware::accel::{Accelerations, TopInstance};
-use super::hardware::regions;
 use super::gpu_types::{self, GpuFrame, GpuInstance, GpuLight};
 use super::instances::{self, Source};
 use super::lights::{self, LightSettings};
 use super::material::{self, MaterialDefaults};
 use super::pipelines::TracePipelines;
 use super::radiosity::TracedRadiosity;
+use super::regions::{self, MergedRun, Member, Placed};
 use super::resident::{NewGeometry, Resident};
 use super::scene;
 use super::settings::{KNEE, Settings, Tonemap};
@@ -116,6 +118,8 @@ pub struct ComputeTracer {
     sky_selection: SkySelection,
     /// How last frame's path vertices sampled the sky, which its gradient samples replay.
     last_sky: SkySampled,
+    /// How long the static world's runs of chunks have stayed the same (merged BVHs).
+    settling: regions::Settling,
 }
 
 /// The sky distribution's cells a frame sampled (empty: it did not sample the sky) and the
@@ -169,6 +173,7 @@ impl ComputeTracer {
             statistics: Statistics::default(),
             sky_selection: SkySelection::default(),
             last_sky: SkySampled::default(),
+            settling: regions::Settling::default(),
         })
     }
 
@@ -390,13 +395,26 @@ impl RayTracer for ComputeTracer {
 
         let previous_view = self.previous.and_then(|p| p.view).filter(|_| !frame.stats.camera_cut);
         let (mut items, covered_draws) = instances::gather(frame, traced, previous_view);
-        // The hardware tracer merges the chunks of a region: they go together, after the rest.
-        let region_size = if self.accelerations.is_some() { self.settings.chunk_regions } else { 0 };
+        // The chunks of a region are merged ([`regions`]): they go together, after the rest.
+        let region_size = self.settings.chunk_regions;
         let region_of = |item: &instances::Item| match &item.source {
             Source::Chunk(c) => regions::region(c.cell, region_size),
             Source::Surface(_) => None,
         };
         items.sort_by_key(region_of);
+        // The compute tracer's merged BVHs: runs of two chunks or more, built once settled
+        // (the hardware tracer finds its runs over its instance records).
+        let merged_runs: Vec<(Range<usize>, u64)> = match self.accelerations {
+            Some(_) => Vec::new(),
+            None => {
+                let placed: Vec<Placed> = items.iter().enumerate().map(|(i, item)| Placed { region: region_of(item), index: i as u32, rows: gpu_types::rows(&item.object_to_eye) }).collect();
+                let runs: Vec<Range<usize>> = regions::runs(&placed).into_iter().filter(|run| run.len() > 1).collect();
+                let keys: Vec<u64> = runs.iter().map(|run| regions::members_key(&items[run.clone()].iter().map(|item| Member { key: item.key, opaque: true }).collect::<Vec<_>>())).collect();
+                let settled = self.settling.settled(&keys, frame.number);
+                let resident = &mut self.resident;
+                runs.into_iter().zip(keys).zip(settled).filter(|((_, key), settled)| *settled || resident.lookup(*key, frame.number).is_some()).map(|(run, _)| run).collect()
+            }
+        };
 
         let build_started = std::time::Instant::now();
         if let Some(stamps) = &self.timestamps {
@@ -413,7 +431,15 @@ impl RayTracer for ComputeTracer {
                     Source::Surface(surface) => self.tracks.refit_source(surface.base),
                     Source::Chunk(_) => None,
                 };
-                new.push(NewGeometry { key: item.key, geometry: item.geometry(), refit_from });
+                new.push(NewGeometry { key: item.key, geometry: item.geometry(), refit_from, members: Vec::new() });
+            }
+        }
+        for (run, key) in &merged_runs {
+            if self.resident.lookup(*key, frame.number).is_none() && !new.iter().any(|n| n.key == *key) {
+                let members = &items[run.clone()];
+                let triangles = members.iter().flat_map(|item| item.geometry().triangles).collect();
+                let geometry = scene::Geometry { triangles, ..scene::Geometry::default() };
+                new.push(NewGeometry { key: *key, geometry, refit_from: None, members: members.iter().map(|item| item.key).collect() });
             }
         }
         let replaced: Vec<(u64, u64)> = new.iter().filter_map(|n| Some((n.key, n.refit_from?))).collect();
@@ -456,8 +482,11 @@ impl RayTracer for ComputeTracer {
             signature.update(&t.version.to_le_bytes());
         }
         let mut counts = SceneCounts { covered_draws, built: self.resident.built, refitted: self.resident.refitted, ..SceneCounts::default() };
+        // Each item's record, when it has one.
+        let mut record_of: Vec<Option<u32>> = vec![None; items.len()];
         for (i, item) in items.iter().enumerate() {
             let Some(placement) = self.resident.lookup(item.key, frame.number) else { continue };
+            record_of[i] = Some(instances.len() as u32);
             let mut material = item.material(texture_of[i], &defaults, self.settings.lightmaps);
             material.layer_corners = placement.first_layer_corners;
             if self.settings.sample_emitters
@@ -511,7 +540,7 @@ impl RayTracer for ComputeTracer {
                 flags,
                 material: materials.len() as u32,
                 previous_triangles: previous,
-                pad0: 0,
+                first_member: 0,
                 pad1: 0,
                 pad2: 0,
             });
@@ -536,8 +565,18 @@ impl RayTracer for ComputeTracer {
         match &mut self.accelerations {
             Some(accelerations) => (self.top_level, counts.top_instances) = accelerations.build_top(device, cmd, slot, &top_instances, &self.resident)?,
             None => {
+                // A run's chunks leave the top level for its merged BVH (whose records follow).
+                let placed: Vec<MergedRun> = merged_runs
+                    .iter()
+                    .filter_map(|(run, key)| {
+                        let (first, last) = (record_of[run.start]?, record_of[run.end - 1]?);
+                        let merged = self.resident.lookup(*key, frame.number)?;
+                        let bounds = merged.bounds.transformed(&Affine3A::from_mat4(items[run.start].object_to_eye));
+                        (last - first + 1 == run.len() as u32).then_some(MergedRun { records: first..last + 1, blas_root: merged.blas_root, first_triangle: merged.first_triangle, bounds })
+                    })
+                    .collect();
+                counts.top_instances = regions::merge_records(&mut instances, &mut bounds, &placed);
                 self.tlas = Tlas::build(&bounds, self.settings.bvh);
-                counts.top_instances = instances.len() as u32;
             }
         }
         if let Some(stamps) = &self.timestamps {

@@ -212,9 +212,10 @@ pub struct GpuInstance {
     /// deforming mesh's last shape, in its BVH order; [`super::resident::Resident::previous`]),
     /// or `NO_PREVIOUS_TRIANGLES` (its shape did not change, or it is new).
     pub previous_triangles: u32,
+    /// With `INSTANCE_MERGED` (a merged region of chunks, [`super::regions`]): the record of
+    /// its first chunk, which its triangles' `member` counts from; 0 elsewhere.
+    pub first_member: u32,
     /// Padding to the GLSL struct's 16-byte multiple.
-    pub pad0: u32,
-    /// Padding.
     pub pad1: u32,
     /// Padding.
     pub pad2: u32,

@@ -44,7 +44,8 @@
 //!   emissive triangles and their alias table; [`lights`]: GL lights as physical lights;
 //!   [`vertex_light`]: the direct light a vertex-lit model's colours hold, a light of its own;
 //!   [`radiosity`]: radiosity's indirect light per corner of the static world's triangles;
-//!   [`sky`]: the sky draws as the environment cube map; [`sky_distribution`]: a
+//!   [`regions`]: the static world's chunks of a region traced as one bottom level (both
+//!   back ends); [`sky`]: the sky draws as the environment cube map; [`sky_distribution`]: a
 //!   distribution of directions by the sky's luminance, which next-event estimation samples
 //!   (`shaders/trace/sky_sampling.glsl`); [`gpu_types`]: the structures the
 //!   shaders read, checked against the compiled SPIR-V;
@@ -78,6 +79,7 @@ pub mod lights;
 pub mod material;
 pub mod pipelines;
 pub mod radiosity;
+pub mod regions;
 pub mod resident;
 pub mod scene;
 pub mod settings;

@@ -50,6 +50,12 @@ pub struct NewGeometry {
     /// A resident geometry with the same triangle count that this one replaces (a dynamic
     /// instance's last shape): its BVH is refitted rather than a new one built.
     pub refit_from: Option<u64>,
+    /// A merged region of the static world's chunks ([`super::regions`]): the keys of its
+    /// members, each resident or placed in the same [`Resident::insert_all`], whose input
+    /// triangles `geometry` holds in turn (and no attributes: shading reads the members').
+    /// Its BVH's triangles name their member and place there ([`Blas::merged`]). Empty for
+    /// any other geometry.
+    pub members: Vec<u64>,
 }
 
 /// A geometry's place in the shared buffers.
@@ -86,6 +92,11 @@ impl Built {
             Some(layout) => Blas::build(&geometry.triangles, layout),
             None => Blas::unordered(&geometry.triangles),
         };
+        Built::of(blas, geometry)
+    }
+
+    /// `blas` with `geometry`'s attributes and pass corners in its order.
+    fn of(blas: Blas, geometry: &Geometry) -> Built {
         let (attributes, layer_corners) = ordered(&blas, geometry);
         Built { built_cost: sah_cost(&blas.nodes), blas, attributes, layer_corners, passes: geometry.passes }
     }
@@ -101,8 +112,12 @@ impl Built {
     }
 }
 
-/// The attributes and pass corners of `geometry` in the triangle order of `blas`.
+/// The attributes and pass corners of `geometry` in the triangle order of `blas` (none when
+/// it has no attributes: a merged region's).
 fn ordered(blas: &Blas, geometry: &Geometry) -> (Vec<GpuTriangleAttributes>, Vec<GpuLayerCorners>) {
+    if geometry.attributes.is_empty() {
+        return (Vec::new(), Vec::new());
+    }
     let attributes = blas.order.iter().map(|&i| geometry.attributes.get(i as usize).copied().unwrap_or_default()).collect();
     let n = geometry.passes;
     let corners = blas
@@ -225,6 +240,7 @@ impl Resident {
         // The triangles (and their input order) of the geometries replaced, copied before a
         // refit takes them.
         let mut replaced: Vec<(u64, Vec<GpuTriangle>, Vec<u32>)> = Vec::new();
+        let (merged, geometries): (Vec<NewGeometry>, Vec<NewGeometry>) = geometries.into_iter().partition(|g| !g.members.is_empty());
         for new in geometries {
             let from = new.refit_from.and_then(|from| self.entries.get(&from));
             if let Some(old) = from.filter(|e| e.built.blas.order.len() == new.geometry.triangles.len()) {
@@ -240,6 +256,17 @@ impl Resident {
                 }
             }
             self.refitted += 1;
+        }
+        // Merged regions, over their members' storage order (members placed above included).
+        for new in merged {
+            let order = |key: &u64| match self.entries.get(key) {
+                Some(entry) => Some(entry.built.blas.order.as_slice()),
+                None => to_place.iter().find(|(k, _)| k == key).map(|(_, b)| b.blas.order.as_slice()),
+            };
+            let Some(orders) = new.members.iter().map(order).collect::<Option<Vec<&[u32]>>>() else { continue };
+            let Some(blas) = Blas::merged(&new.geometry.triangles, &orders, self.layout.unwrap_or_default()) else { continue };
+            to_place.push((new.key, Arc::new(Built::of(blas, &new.geometry))));
+            self.built += 1;
         }
         let n: u64 = to_place.iter().map(|(_, b)| b.blas.node_count() as u64).sum();
         let t: u64 = to_place.iter().map(|(_, b)| b.blas.triangles.len() as u64).sum();
@@ -306,7 +333,8 @@ impl Resident {
         self.write(device, cmd, ring, built, &placement)?;
         self.nodes.used += built.blas.node_count() as u64;
         self.triangles.used += built.blas.triangles.len() as u64;
-        self.attributes.used += built.attributes.len() as u64;
+        // Attributes share the triangles' indices (a merged region's range stays unwritten).
+        self.attributes.used = self.triangles.used;
         self.layer_corners.used += built.layer_corners.len() as u64;
         Ok(placement)
     }

@@ -22,7 +22,7 @@
 //! sky_size = 128            # faces of the sky's environment cube map, pixels, 16..=2048
 //! tracer = "auto"           # "auto" (the faster where both run, measured), "hardware" (VK_KHR_ray_tracing_pipeline), "compute"
 //! bvh = "binary"            # the compute tracer's BVH nodes: "binary" or "wide" (8 children, compressed)
-//! chunk_regions = 2         # the hardware tracer merges the static world's chunks of n³ world cells, 0..=64 (0: none)
+//! chunk_regions = 2         # both tracers merge the static world's chunks of n³ world cells, 0..=64 (0: none)
 //! ```
 
 use glam::Vec3;
@@ -126,9 +126,9 @@ pub struct Settings {
     pub tracer: Tracer,
     /// The node layout of the compute tracer's BVHs.
     pub bvh: Layout,
-    /// Cells of the static world's grid per side of a region whose chunks the hardware
-    /// tracer merges into one bottom-level structure ([`super::hardware::regions`]), 0..=64;
-    /// 0: a structure and an instance per chunk.
+    /// Cells of the static world's grid per side of a region whose chunks the tracers merge
+    /// into one bottom-level structure ([`super::regions`]), 0..=64; 0: a structure and an
+    /// instance per chunk.
     pub chunk_regions: u32,
 }
 

@@ -94,6 +94,9 @@ glsl_constants! {
 
     /// `GpuInstance::flags`: traversal runs the alpha test (`trace_alpha_accept`).
     const INSTANCE_ALPHA_TESTED: u32 = 1;
+    /// `GpuInstance::flags`: the merged BVH of a region's chunks ([`super::regions`]); with
+    /// `INSTANCE_ALPHA_TESTED` when some chunk of it is alpha tested.
+    const INSTANCE_MERGED: u32 = 2;
 
     /// `GpuFrame::flags[0]`: the bits of the tone mapping operator, `TONEMAP_*`.
     const FRAME_TONEMAP_MASK: u32 = 3;

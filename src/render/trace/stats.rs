@@ -70,7 +70,7 @@ pub struct SceneCounts {
     /// Instances of static-world chunks.
     pub chunk_instances: u32,
     /// Instances of the top level: draws and chunks, but the hardware tracer's merged
-    /// regions of chunks count once ([`super::hardware::regions`]).
+    /// regions of chunks count once ([`super::regions`]).
     pub top_instances: u32,
     /// Traced draws left out because the static world holds all their triangles.
     pub covered_draws: u32,

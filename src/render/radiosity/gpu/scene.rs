@@ -87,7 +87,7 @@ impl PatchScene {
                 flags: 0,
                 material: 0,
                 previous_triangles: NO_PREVIOUS_TRIANGLES,
-                pad0: 0,
+                first_member: 0,
                 pad1: 0,
                 pad2: 0,
             });

@@ -66,6 +66,26 @@ impl ShaderKey {
         RADIOSITY.set(&mut self.words[CLIP], on as u32);
         self
     }
+
+    /// Whether the key reads only the primary colour and unit 0's coordinates of
+    /// `ff_varyings.glsl`, so that the lean stages (`ff_lean.vert`, `ff_lean.frag`) can draw
+    /// it: filled triangles, smooth shading, no GL fog, the back colours equal
+    /// to the front ones (no two-sided lighting), a secondary colour that is zero or not
+    /// summed (lighting without `GL_SEPARATE_SPECULAR_COLOR` makes it zero, section 2.14.1),
+    /// units 1 to 3 unused. Each interpolated varying costs a CPU rasterizer per triangle
+    /// (lavapipe's setup computes and stores its plane equations), which draws of this key,
+    /// most of old games', skip.
+    pub fn lean(&self) -> bool {
+        let general = self.words[GENERAL];
+        let lit = LIGHTING.get(general) != 0;
+        let secondary_zero = lit && SEPARATE_SPECULAR.get(general) == 0;
+        PRIMITIVE.get(general) == PRIM_TRIANGLE
+            && FLAT.get(general) == 0
+            && FOG.get(general) == 0
+            && !(lit && TWO_SIDE.get(general) != 0)
+            && (COLOR_SUM.get(general) == 0 || secondary_zero)
+            && TEXCOORDS_UNUSED.get(self.words[CLIP]) & 0b1110 == 0b1110
+    }
 }
 
 /// `1 +` the index of `func` in the order of the GL enums (`GL_NEVER` + i).
@@ -230,6 +250,31 @@ mod tests {
             texture_units: vec![None, Some(TextureUnit { env, texgen: [None; 4] })],
             ..Draw::default()
         }
+    }
+
+    #[test]
+    fn lean_keys_read_the_primary_colour_and_unit_0_of_smooth_triangles() {
+        let key = |draw: &Draw, primitive| shader_key(draw, primitive, Facing::Rasterizer);
+        let plain = Draw::default();
+        assert!(key(&plain, Primitive::Triangle).lean(), "unlit, untextured triangles");
+        assert!(!key(&plain, Primitive::Line).lean(), "expanded lines read v_raster");
+        assert!(!key(&plain, Primitive::Point).lean());
+        let flat = Draw { state: Arc::new(RasterState { shade_model: ShadeModel::Flat, ..RasterState::default() }), ..Draw::default() };
+        assert!(!key(&flat, Primitive::Triangle).lean(), "flat shading reads the provoking colours");
+        let summed = Draw { state: Arc::new(RasterState { color_sum: true, ..RasterState::default() }), ..Draw::default() };
+        assert!(!key(&summed, Primitive::Triangle).lean(), "an unlit colour sum adds the secondary colour");
+        let fogged = Draw { state: Arc::new(RasterState { fog: Some(Fog::default()), ..RasterState::default() }), ..Draw::default() };
+        assert!(!key(&fogged, Primitive::Triangle).lean(), "GL fog reads the fog distance");
+        let mut lighting = Lighting::default();
+        let lit = |l: &Lighting| Draw { state: Arc::new(RasterState { lighting: Some(l.clone()), ..RasterState::default() }), ..Draw::default() };
+        assert!(key(&lit(&lighting), Primitive::Triangle).lean(), "lit: the secondary colour is zero");
+        lighting.model.separate_specular = true;
+        assert!(!key(&lit(&lighting), Primitive::Triangle).lean(), "the specular colour is summed");
+        lighting.model.separate_specular = false;
+        lighting.model.two_side = true;
+        assert!(!key(&lit(&lighting), Primitive::Triangle).lean(), "back faces have their own colours");
+        let env = TextureEnv::default();
+        assert!(!key(&textured(TexelFormat::Rgba, TextureKind::D2, env), Primitive::Triangle).lean(), "unit 1 textures");
     }
 
     #[test]

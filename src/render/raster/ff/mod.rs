@@ -63,14 +63,22 @@ use crate::frame::{Draw, Topology};
 /// Size of the uniform block every batch carries, in bytes.
 pub const UNIFORM_SIZE: usize = size_of::<uniforms::FfBlock>();
 
-/// The SPIR-V of the vertex shader.
-pub fn vertex_spirv() -> &'static [u8] {
-    include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ff.vert.spv"))
+/// The SPIR-V of the vertex shader: with every varying, or the lean one ([`ShaderKey::lean`]).
+pub fn vertex_spirv(lean: bool) -> &'static [u8] {
+    if lean {
+        include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ff_lean.vert.spv"))
+    } else {
+        include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ff.vert.spv"))
+    }
 }
 
-/// The SPIR-V of the fragment shader.
-pub fn fragment_spirv() -> &'static [u8] {
-    include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ff.frag.spv"))
+/// The SPIR-V of the fragment shader: with every varying, or the lean one ([`ShaderKey::lean`]).
+pub fn fragment_spirv(lean: bool) -> &'static [u8] {
+    if lean {
+        include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ff_lean.frag.spv"))
+    } else {
+        include_bytes!(concat!(env!("OUT_DIR"), "/shaders/ff.frag.spv"))
+    }
 }
 
 /// What the Vulkan side draws for (part of) one [`Draw`], in order: the batches of a draw

@@ -112,6 +112,34 @@ impl Blas {
         Blas { nodes, wide, triangles, order: (0..clean.len() as u32).collect(), bounds }
     }
 
+    /// One BVH over the triangles of several geometries, its members (the static world's
+    /// chunks of a region, [`crate::render::trace::regions`]): `triangles` holds each member's
+    /// input triangles in turn, `members[m]` is member `m`'s stored order ([`Blas::order`]
+    /// of its own storage). Each stored triangle names where its copy lies in the members'
+    /// storage: [`GpuTriangle::member`] `m` and [`GpuTriangle::member_triangle`], its index
+    /// there. `None` when the counts of `members` do not add up to `triangles`. Never
+    /// refitted (a refit would clear the names).
+    pub fn merged(triangles: &[[Vec3; 3]], members: &[&[u32]], layout: Layout) -> Option<Blas> {
+        if members.iter().map(|order| order.len()).sum::<usize>() != triangles.len() {
+            return None;
+        }
+        // Input triangle j: its member and its index in that member's storage.
+        let mut names: Vec<(u32, u32)> = vec![(0, 0); triangles.len()];
+        let mut first = 0;
+        for (m, order) in members.iter().enumerate() {
+            for (stored, &input) in order.iter().enumerate() {
+                let name = names.get_mut(first + input as usize)?;
+                *name = (m as u32, stored as u32);
+            }
+            first += order.len();
+        }
+        let mut blas = Blas::build(triangles, layout);
+        for (t, &input) in blas.triangles.iter_mut().zip(&blas.order) {
+            (t.member, t.member_triangle) = names[input as usize];
+        }
+        Some(blas)
+    }
+
     /// Moves the vertices of a built BVH: `triangles` is the same set in the same input order
     /// with new positions. Stores them and updates every box bottom-up, keeping the tree (its
     /// quality drops as the geometry drifts from the built shape; rebuild then). Returns false

@@ -227,19 +227,20 @@ pub struct GpuNode {
     pub children: [GpuChild; 2],
 }
 
-/// A triangle as the traversal tests it (`BvhTriangle` in `bvh.glsl`): a vertex and the two
-/// edges from it, each padded to a `vec4`.
+/// A triangle as the traversal tests it (`BvhTriangle` in `triangles.glsl`): a vertex and the
+/// two edges from it, each padded to a `vec4`; in a merged BVH, the padding names the member
+/// triangle it copies.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq, Pod, Zeroable)]
 pub struct GpuTriangle {
     /// The first vertex.
     pub v0: [f32; 3],
-    /// Padding (`v0.w`).
-    pub pad0: u32,
+    /// In a merged BVH ([`Blas::merged`]): the member whose triangle this is (0 elsewhere).
+    pub member: u32,
     /// `v1 - v0`.
     pub e1: [f32; 3],
-    /// Padding (`e1.w`).
-    pub pad1: u32,
+    /// In a merged BVH: the triangle's index in its member's storage (0 elsewhere).
+    pub member_triangle: u32,
     /// `v2 - v0`.
     pub e2: [f32; 3],
     /// Padding (`e2.w`).
@@ -251,6 +252,6 @@ include!(concat!(env!("OUT_DIR"), "/layouts/trace_bvh.rs"));
 impl GpuTriangle {
     /// The stored form of `[v0, v1, v2]` (already sanitised).
     fn new(t: &[Vec3; 3]) -> GpuTriangle {
-        GpuTriangle { v0: t[0].into(), pad0: 0, e1: (t[1] - t[0]).into(), pad1: 0, e2: (t[2] - t[0]).into(), pad2: 0 }
+        GpuTriangle { v0: t[0].into(), member: 0, e1: (t[1] - t[0]).into(), member_triangle: 0, e2: (t[2] - t[0]).into(), pad2: 0 }
     }
 }

@@ -300,6 +300,32 @@ fn refit_follows_moved_vertices() {
     assert!(hits > 500, "only {hits} hits");
 }
 
+/// A merged BVH holds every member triangle once, each naming the member and the place there
+/// of the triangle it copies (the same stored triangle), in both layouts and whatever order
+/// the members store their triangles in; members whose counts do not add up are refused.
+#[test]
+fn merged_triangles_name_their_member_and_place() {
+    let mut rng = Rng(4242);
+    let members = [soup(&mut rng, 300, 0.1), sphere(6, 8), Vec::new(), soup(&mut rng, 50, 0.3)];
+    for layout in [Layout::Binary, Layout::Wide] {
+        // The members' own storage: built (BVH order), or in input order (the hardware tracer's).
+        let stored: Vec<Blas> = members.iter().enumerate().map(|(m, t)| if m == 1 { Blas::unordered(t) } else { Blas::build(t, layout) }).collect();
+        let orders: Vec<&[u32]> = stored.iter().map(|b| b.order.as_slice()).collect();
+        let all: Vec<[Vec3; 3]> = members.concat();
+        let merged = Blas::merged(&all, &orders, layout).expect("the counts add up");
+        assert_eq!(merged.triangles.len(), all.len());
+        let mut seen = std::collections::HashSet::new();
+        for t in &merged.triangles {
+            let copied = stored[t.member as usize].triangles[t.member_triangle as usize];
+            assert_eq!((t.v0, t.e1, t.e2), (copied.v0, copied.e1, copied.e2), "{layout:?}: member {} triangle {}", t.member, t.member_triangle);
+            assert!(seen.insert((t.member, t.member_triangle)), "each member triangle once");
+        }
+        assert_eq!(merged.bounds, stored.iter().fold(Aabb::EMPTY, |b, s| b.union(&s.bounds)));
+        assert_eq!(merged.wide.is_some(), layout == Layout::Wide);
+        assert!(Blas::merged(&all[1..], &orders, layout).is_none(), "a triangle short");
+    }
+}
+
 /// The sphere of [`sphere`] wobbled at `time` (every vertex moved along its direction, as an
 /// animated mesh deforms), placed at `centre`.
 fn wobbled(ball: &[[Vec3; 3]], time: f32, centre: Vec3) -> Vec<[Vec3; 3]> {

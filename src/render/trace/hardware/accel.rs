@@ -21,7 +21,7 @@ use std::collections::HashMap;
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 
-use super::regions::{self, Member, Placed};
+use crate::render::trace::regions::{self, Member, Placed};
 use crate::render::raster::device::{Buffer, Check, Device, Result};
 use crate::render::trace::bvh::GpuTriangle;
 use crate::render::trace::resident::Resident;

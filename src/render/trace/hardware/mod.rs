@@ -8,8 +8,7 @@
 //!
 //! - [`accel`]: a bottom-level structure per resident geometry, a top level per frame.
 //! - [`pipeline`]: the ray-tracing pipeline and its shader binding table.
-//! - [`regions`]: the static world's chunks of a region merged into one bottom level.
+//! - The static world's chunks of a region are merged into one bottom level ([`super::regions`]).
 
 pub mod accel;
 pub mod pipeline;
-pub mod regions;
