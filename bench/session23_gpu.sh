@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Session 23's runs on the GPU machine (logs bench/session23-h200-*.log). Run by the device tool
+# from the repo root, carrying .gl and .dev, where .dev/NAME/*.xz hold xz-compressed stripped
+# release builds (glrt, glrt-demo, libglrt.so) of the builds compared (base23 = main 997be7e,
+# new, and others named by the sections), and .dev/openarena-1280x720-f340-440.glrtcap.xz the
+# OpenArena capture (scripts/openarena.sh capture 1280x720 340..440).
+#   OUT=DIR bash bench/session23_gpu.sh SECTION...
+set -uo pipefail
+source "$(dirname "$0")/gpu_driver.sh"
+OUT=${OUT:-/tmp/out}
+unpack() { local b=$1 d=/tmp/$1; [[ -x $d/glrt-demo ]] && return; mkdir -p $d; for f in .dev/$b/*.xz; do xz -dc $f > $d/$(basename $f .xz); done; chmod +x $d/*; ln -sf libglrt.so $d/libGL.so.1; }
+for b in .dev/*/; do b=$(basename $b); compgen -G ".dev/$b/*.xz" >/dev/null && unpack $b; done
+[[ -f /tmp/oa.glrtcap ]] || xz -dc .dev/openarena-1280x720-f340-440.glrtcap.xz > /tmp/oa.glrtcap
+clean=(env -u GLRT_TRACE -u GLRT_CAPTURE -u GLRT_DUMP -u GLRT_PASSTHROUGH -u GLRT_MODE -u GLRT_TRACER GLRT_LOG=info GLRT_MODE=pathtrace)
+summary() { grep -E "tracing pass|path tracer|chose|error|panick|WARN|frame time" | tr '\n' ' '; echo; }
+# demo BIN NAME "VARS" ARGS...: one glrt-demo run at 1280x720, its summary on one line.
+demo() { local b=$1 name=$2 vars=$3; shift 3; echo -n "$b $name: "; timeout 200 "${clean[@]}" LD_LIBRARY_PATH=/tmp/$b $vars /tmp/$b/glrt-demo --headless --size 1280x720 "$@" 2>&1 | summary; }
+for section in "$@"; do
+case $section in
+regions) # the compute tracer over merged regions (h21-compute)
+  bash bench/compute_regions_gpu.sh /tmp/new $OUT/regions trace parity ;;
+oa) # CPU per frame of the OpenArena capture, base23 against new, two rounds
+  for r in 1 2; do for b in base23 new; do for m in raster pathtrace; do echo "== r$r $b oa $m"; GLRT_TRACER=hardware GLRT_MODE=$m timeout 200 /tmp/$b/glrt replay /tmp/oa.glrtcap --frames 340..440 --bench 2>&1 | tail -3; done; done; done ;;
+trace) # both tracers, demo and q3, base23 against $NEW (default new)
+  n=${NEW:-new}
+  for r in 1 2; do for b in base23 $n; do for t in compute hardware; do
+    demo $b "r$r $t demo" "GLRT_TRACER=$t" --frames 200
+    demo $b "r$r $t q3" "GLRT_TRACER=$t" --q3 --frames 200
+  done; done; done ;;
+denoise) # the denoiser's passes at 1080p, base23 against $NEW
+  for b in base23 ${NEW:-new}; do echo "=== $b"; SIZES=1920x1080 TRACERS=compute bash bench/denoise_gpu.sh /tmp/$b 200; done ;;
+esac
+done
