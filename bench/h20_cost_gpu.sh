@@ -1,21 +1,27 @@
 #!/usr/bin/env bash
-# The specular channel's cost after branch h20-cost (issue 20; bench/denoise.md, "The specular
-# channel's cost, again"): release builds of main before the branch (.dev/base) and of the
-# branch (.dev/new), xz-compressed as bench/session22_gpu.sh takes them (glrt, glrt-demo,
-# libglrt.so), on the GPU machine (run tool, from the repo root, carrying .gl and .dev).
-#   bash bench/h20_cost_gpu.sh trace; bash bench/h20_cost_gpu.sh denoise   (two device commands)
-# trace: the tracing pass, base against new, both tracers, demo and q3 (two rounds) and the
-# 1M world (session22_gpu.sh's section). denoise: the denoiser's passes at 1920x1080, base and
-# new with the channel on and off (bench/denoise_gpu.sh), and new with the à-trous loop left to
-# the driver's compiler (GLRT_DENOISE_UNROLL=0) against unrolled (the default).
+# Branch h20-cost's GPU runs (issue 20; bench/denoise.md, "The specular channel's cost,
+# again"), on bench/session23_gpu.sh's set-up (.dev/base23 = main 997be7e, and this branch's
+# stripped release build xz-compressed in .dev/h20cost, or NEW=NAME), from the repo root on the
+# GPU machine (run tool, carrying .gl and .dev); two device commands:
+#   bash bench/h20_cost_gpu.sh trace     # session23's trace section (demo, q3) and the 1M world
+#   bash bench/h20_cost_gpu.sh denoise   # session23's denoise section and the à-trous loop A/B
 set -uo pipefail
 cd "$(dirname "$0")/.."
-bash bench/session22_gpu.sh > /dev/null 2>&1 # unpacks .dev/{base,new} into /tmp/{base,new}
+n=${NEW:-h20cost}
 for section in "$@"; do
 case $section in
-trace) bash bench/session22_gpu.sh trace ;;
+trace)
+  NEW=$n bash bench/session23_gpu.sh trace
+  # The 1M-triangle world (no lights: what the channel costs it is the megakernel's registers).
+  source bench/gpu_driver.sh
+  for b in base23 $n; do for t in compute hardware; do
+    echo -n "$b $t 1M: "
+    timeout 200 env -u GLRT_TRACE -u GLRT_CAPTURE -u GLRT_DUMP -u GLRT_PASSTHROUGH GLRT_LOG=info GLRT_MODE=pathtrace GLRT_TRACER=$t LD_LIBRARY_PATH=/tmp/$b \
+      /tmp/$b/glrt-demo --headless --size 1280x720 --rebatch --detail 11 --frames 100 2>&1 | grep -E "tracing pass|error|panick" | tr '\n' ' '; echo
+  done; done ;;
 denoise)
-  for b in base new; do echo "=== $b"; SIZES=1920x1080 TRACERS=hardware bash bench/denoise_gpu.sh /tmp/$b 200; done
-  echo "=== new, GLRT_DENOISE_UNROLL=0"; GLRT_DENOISE_UNROLL=0 SIZES=1920x1080 TRACERS=hardware bash bench/denoise_gpu.sh /tmp/new 200 ;;
+  NEW=$n bash bench/session23_gpu.sh denoise
+  echo "=== $n, GLRT_DENOISE_UNROLL=0 (atrous_loop.comp)"
+  GLRT_DENOISE_UNROLL=0 SIZES=1920x1080 TRACERS=compute bash bench/denoise_gpu.sh /tmp/$n 200 ;;
 esac
 done
