@@ -4,7 +4,7 @@
 # stripped release build xz-compressed in .dev/h20cost, or NEW=NAME), from the repo root on the
 # GPU machine (run tool, carrying .gl and .dev); two device commands:
 #   bash bench/h20_cost_gpu.sh trace     # session23's trace section (demo, q3) and the 1M world
-#   bash bench/h20_cost_gpu.sh denoise   # session23's denoise section and the à-trous loop A/B
+#   bash bench/h20_cost_gpu.sh denoise   # session23's denoise section
 set -uo pipefail
 cd "$(dirname "$0")/.."
 n=${NEW:-h20cost}
@@ -21,7 +21,8 @@ trace)
   done; done ;;
 denoise)
   NEW=$n bash bench/session23_gpu.sh denoise
-  echo "=== $n, GLRT_DENOISE_UNROLL=0 (atrous_loop.comp)"
-  GLRT_DENOISE_UNROLL=0 SIZES=1920x1080 TRACERS=compute bash bench/denoise_gpu.sh /tmp/$n 200 ;;
+  # (session 23 lease B also ran h20-cost's unrolled à-trous taps against the loop, chosen by
+  # GLRT_DENOISE_UNROLL; the loop won and the variable is gone.)
+  ;;
 esac
 done

@@ -4,10 +4,6 @@
 //! with the specular channel or without it (the specialisation constant `SPECULAR_CONSTANT`):
 //! with `[denoise] specular = false` no pass holds the channel's code, and the à-trous
 //! iterations past the first `SPECULAR_ITERATIONS` run without it either way.
-//!
-//! The à-trous taps are unrolled (`atrous.comp`); for one comparison on the GPU (branch
-//! h20-cost, bench/denoise.md) `GLRT_DENOISE_UNROLL=0` takes `atrous_loop.comp` instead, the
-//! same filter with the loop left to the driver's compiler. The loser goes after that run.
 
 use ash::vk;
 use bytemuck::{Pod, Zeroable};
@@ -86,11 +82,7 @@ impl DenoisePipelines {
         };
         let make = |pipelines: &mut DenoisePipelines| {
             let pass = |spirv: &[u8], on: bool| specialised_compute_pipeline(device, layout, spirv, &with(on));
-            let atrous: &[u8] = if std::env::var("GLRT_DENOISE_UNROLL").is_ok_and(|v| v == "0") {
-                include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/atrous_loop.comp.spv"))
-            } else {
-                include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/atrous.comp.spv"))
-            };
+            let atrous: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/atrous.comp.spv"));
             pipelines.gradient = pass(include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/gradient.comp.spv")), specular)?;
             pipelines.temporal = pass(include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/temporal.comp.spv")), specular)?;
             pipelines.variance = pass(include_bytes!(concat!(env!("OUT_DIR"), "/shaders/denoise/variance.comp.spv")), specular)?;
