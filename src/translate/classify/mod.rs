@@ -39,6 +39,7 @@
 //!    ([`Instance::in_static_world`]);
 //! 6. statistics ([`crate::frame::class::FrameStats`]).
 
+pub mod baked_world;
 pub mod config;
 pub mod dlights;
 pub mod keys;
@@ -183,7 +184,7 @@ impl Classifier {
             let model = model_of(inverse.as_ref(), draw, f, class == DrawClass::Static && !t.tags.static_ && !recovered.cut);
             let in_world = chunks_hold_it && !t.tags.dynamic && (class == DrawClass::Static || model.as_ref().is_some_and(view::is_identity));
             let offered = match model {
-                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material_key, t.material, t.light_units)),
+                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material_key, t.material, t.light_units, true)),
                 _ => None,
             };
             if class == DrawClass::Static && f.matched == Match::New && offered.is_none() {
