@@ -89,7 +89,7 @@ pub fn run(capture: &Capture, matrix_only: bool, baked: bool) -> Result<(), Stri
     let settings = Settings::of_process();
     let device = Device::new().map_err(|e| eprintln!("glrt: no Vulkan device for the form factors ({e}): they are computed on the CPU")).ok();
     if !matrix_only {
-        let report = precompute::run(&chunks, &settings, &mut OnDevice(device.as_ref()));
+        let report = precompute::run(&chunks, &settings, &mut OnDevice(device.as_ref())).map_err(|e| format!("radiosity: {e}"))?;
         print!("{}", report.markdown());
         if let Some(device) = &device {
             println!("\nthe renderer's compressed matrix ({} bytes) under the last frame's {} lights:", report.matrix.bytes(), lights.len());

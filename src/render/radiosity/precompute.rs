@@ -216,10 +216,14 @@ pub struct Report {
 }
 
 /// Runs the precompute on `chunks`, the heavy steps by `steps` (the primary light of the
-/// comparisons: 1 on every patch).
-pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Steps) -> Report {
+/// comparisons: 1 on every patch); `Err` with the budget's note when the world gets no
+/// patches.
+pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Steps) -> Result<Report, String> {
     let start = Instant::now();
     let (p, note) = patches_within_budget(chunks, settings);
+    if p.patches.is_empty() {
+        return Err(note.unwrap_or_else(|| "the static world has no patches (no area)".to_owned()));
+    }
     let t_patches = start.elapsed();
     let start = Instant::now();
     let f = steps.form_factors(&p);
@@ -267,7 +271,7 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Ste
     let start = Instant::now();
     std::hint::black_box(k.apply(&ones));
     let t_dense = start.elapsed();
-    Report {
+    Ok(Report {
         notes: note.into_iter().collect(),
         triangles: chunks.iter().map(|c| c.triangles()).sum(),
         patch_size: patch_size_of(&p, settings),
@@ -282,7 +286,7 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Ste
         neumann_bounces: converged.bounces,
         gauss_seidel_sweeps: sweeps,
         frame_times: [t_dense, t_classic, t_gauss_seidel],
-    }
+    })
 }
 
 /// The patch size `p` was built at: the setting, or the automatic size (the square root of
@@ -369,7 +373,7 @@ mod tests {
         assert!(note.starts_with("9600 patches of size 0.05 exceed the memory budget of 1 MiB (209 patches): using larger patches"), "{note}");
         assert!(note.ends_with(&format!("{} patches", p.patches.len())), "{note}");
 
-        let report = run(&chunks, &Settings { patch_size: 1.0, ..settings }, &mut form_factors::compute);
+        let report = run(&chunks, &Settings { patch_size: 1.0, ..settings }, &mut form_factors::compute).expect("patches");
         assert_eq!((report.patches.patches.len(), report.triangles, report.bounces), (24, 12, 3));
         assert_eq!(report.dense_bytes, [24 * 24 * 4, 24 * 24 * 12]);
         assert_eq!(report.compressed.len(), 10);
