@@ -187,6 +187,11 @@ pub struct Report {
     pub triangles: usize,
     /// Patch size used.
     pub patch_size: f32,
+    /// The patches' area-weighted mean albedo.
+    pub mean_albedo: Vec3,
+    /// The form factors' mean row sum (1 in a closed world, less where patches see the sky
+    /// or nothing).
+    pub mean_row_sum: f64,
     /// Times: patches, form factors, k-bounce matrix.
     pub times: [Duration; 3],
     /// Bounces of the k-bounce matrix.
@@ -225,8 +230,11 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Ste
         return Err(note.unwrap_or_else(|| "the static world has no patches (no area)".to_owned()));
     }
     let t_patches = start.elapsed();
+    let mean_albedo = p.patches.iter().map(|x| x.albedo * x.area).sum::<Vec3>() / p.patches.iter().map(|x| x.area).sum::<f32>().max(f32::MIN_POSITIVE);
+    eprintln!("glrt: radiosity: {} patches, area-weighted mean albedo {mean_albedo:.4}", p.patches.len());
     let start = Instant::now();
     let f = steps.form_factors(&p);
+    let mean_row_sum = (0..f.n).map(|i| f.row(i).iter().map(|&x| f64::from(x)).sum::<f64>()).sum::<f64>() / f.n as f64;
     let t_form = start.elapsed();
     let albedo: Vec<Vec3> = p.patches.iter().map(|x| x.albedo).collect();
     let start = Instant::now();
@@ -275,6 +283,8 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Ste
         notes: note.into_iter().collect(),
         triangles: chunks.iter().map(|c| c.triangles()).sum(),
         patch_size: patch_size_of(&p, settings),
+        mean_albedo,
+        mean_row_sum,
         patches: p,
         times: [t_patches, t_form, t_k],
         bounces: settings.bounces,
@@ -304,7 +314,15 @@ impl Report {
         for note in &self.notes {
             let _ = writeln!(s, "note: {note}\n");
         }
-        let _ = writeln!(s, "static world: {} triangles, patch size {:.4}, {} patches\n", self.triangles, self.patch_size, self.patches.patches.len());
+        let _ = writeln!(
+            s,
+            "static world: {} triangles, patch size {:.4}, {} patches; area-weighted mean albedo {:.4}, mean form-factor row sum {:.4}\n",
+            self.triangles,
+            self.patch_size,
+            self.patches.patches.len(),
+            self.mean_albedo,
+            self.mean_row_sum
+        );
         let _ = writeln!(s, "| step | ms |\n| --- | ---: |");
         for (name, t) in ["patches", "form factors", &format!("k-bounce matrix (k = {})", self.bounces)].iter().zip(self.times) {
             let _ = writeln!(s, "| {name} | {:.1} |", ms(t));
@@ -386,7 +404,8 @@ mod tests {
             assert!((e - expected).abs() < 0.02 * expected + 1e-4, "k = {}: {e} vs {expected}", h + 1);
         }
         let md = report.markdown();
-        assert!(md.contains("static world: 12 triangles, patch size 1.0000, 24 patches"), "{md}");
+        assert!(md.contains("static world: 12 triangles, patch size 1.0000, 24 patches; area-weighted mean albedo [0.2158, 0.2158, 0.2158], mean form-factor row sum "), "{md}");
+        assert!((report.mean_row_sum - 1.0).abs() < 1.0e-3, "closed: {}", report.mean_row_sum);
         assert!(md.contains("| form factors, dense f32 | 2304 |"), "{md}");
     }
 
