@@ -404,7 +404,7 @@ mod tests {
             assert!((e - expected).abs() < 0.02 * expected + 1e-4, "k = {}: {e} vs {expected}", h + 1);
         }
         let md = report.markdown();
-        assert!(md.contains("static world: 12 triangles, patch size 1.0000, 24 patches; area-weighted mean albedo [0.2158, 0.2158, 0.2158], mean form-factor row sum "), "{md}");
+        assert!(md.contains("static world: 12 triangles, patch size 1.0000, 24 patches; area-weighted mean albedo [0.2159, 0.2159, 0.2159], mean form-factor row sum "), "{md}");
         assert!((report.mean_row_sum - 1.0).abs() < 1.0e-3, "closed: {}", report.mean_row_sum);
         assert!(md.contains("| form factors, dense f32 | 2304 |"), "{md}");
     }
