@@ -5,7 +5,10 @@
 # with the direct light's BVH traversal work, and the largest precompute the budget allows.
 #   bash bench/radiosity19.sh BIN_DIR [STEPS]
 # BIN_DIR holds a release build's glrt (cargo build --release --bin glrt). STEPS picks among
-# "update order4k pre16k pre16kexact pre32k refuse64k" (all but pre16kexact by default). On
+# "update order4k pre16k pre16kexact pre32k refuse64k q3fixture oa4k oa8k oa16k" (all but
+# pre16kexact and the q3/oa steps by default; session 23: the seed's table on a Quake-3 map,
+# one step a command, each up to ~10 minutes; the OpenArena capture taken from
+# $GLRT_OA_CAPTURE, default .dev/openarena-1280x720-f340-440.glrtcap.xz, carried with .dev). On
 # the GPU machine (run tool, from the repo root, carrying .gl; bench/gpu_driver.sh) the NVIDIA
 # Vulkan driver is set up first.
 set -uo pipefail
@@ -53,6 +56,25 @@ for step in $steps; do
         # the host's 128 GiB with the rest of the precompute; refused with the budget's message.
         echo "== radiosity --precompute 65536"
         GLRT_RADIOSITY_BUDGET_MB=65536 timeout 60 "$bin/glrt" radiosity --precompute 65536
+        ;;
+    q3fixture|oa4k|oa8k|oa16k)
+        # The seed's table on a Quake-3 map's static world, lightmapped draws included
+        # (--baked): memory, errors after 0/1/2 passes (seed and fitted log ranges), the CPU's
+        # dense product against Jacobi and Gauss–Seidel gathering to convergence, then the
+        # renderer's compressed update on the GPU under the last frame's lights. The budget
+        # sets the patch count (n² · 24 bytes: 384 MiB ~ 4k, 1536 ~ 8k, 6144 ~ 16k); over 4,096
+        # patches the report compresses with the sketched search only (the exact one is O(n³)).
+        if [ $step = q3fixture ]; then
+            capture=tests/fixtures/q3.glrtcap budget=6144
+        else
+            capture=$XDG_CACHE_HOME/oa.glrtcap
+            [ -f "$capture" ] || xz -dc "${GLRT_OA_CAPTURE:-.dev/openarena-1280x720-f340-440.glrtcap.xz}" > "$capture" \
+                || python3 -c 'import lzma, shutil, sys; shutil.copyfileobj(lzma.open(sys.argv[1]), open(sys.argv[2], "wb"))' "${GLRT_OA_CAPTURE:-.dev/openarena-1280x720-f340-440.glrtcap.xz}" "$capture"
+            case $step in oa4k) budget=384 ;; oa8k) budget=1536 ;; *) budget=6144 ;; esac
+        fi
+        echo "== radiosity --baked $capture, budget $budget MiB"
+        timed=$([ -x /usr/bin/time ] && echo "/usr/bin/time -v")  # peak memory where GNU time is installed
+        GLRT_RADIOSITY_BUDGET_MB=$budget $timed timeout 590 "$bin/glrt" radiosity --baked "$capture" 2>&1 | grep -vE "% after|^\s+(Page|Volun|Invol|Swaps|File|Socket|Signals|Average|Exit|Minor|Major|Percent|System|User)"
         ;;
     esac
 done

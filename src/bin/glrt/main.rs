@@ -97,6 +97,13 @@ enum Command {
         /// they are built in and shuffled, and prints each one's errors, bytes and time
         #[arg(long, requires = "precompute")]
         orderings: bool,
+        /// With a capture: the static world also holds the opaque static draws whose light is
+        /// baked (lightmaps, vertex colours), which a game's radiosity leaves out (their bounced
+        /// light is the bake's), so that a lightmapped game's geometry and albedos can be
+        /// measured (a Quake-3 map); their vertex colours are dropped, the albedo is the
+        /// texture's that does not hold light
+        #[arg(long, conflicts_with_all = ["synthetic", "precompute"])]
+        baked: bool,
         /// The capture file.
         #[arg(required_unless_present_any = ["synthetic", "precompute"])]
         file: Option<PathBuf>,
@@ -118,10 +125,10 @@ fn main() -> ExitCode {
         Command::Run(args) => run::run(&args),
         Command::Radiosity { synthetic: Some(n), .. } => radiosity::time_synthetic(n),
         Command::Radiosity { precompute: Some(n), orderings, .. } => radiosity::time_precompute(n, orderings),
-        Command::Radiosity { matrix, file, .. } => file
+        Command::Radiosity { matrix, baked, file, .. } => file
             .ok_or_else(|| "radiosity: a capture file, --synthetic N or --precompute N".to_owned())
             .and_then(|file| Capture::open(&file))
-            .and_then(|capture| radiosity::run(&capture, matrix)),
+            .and_then(|capture| radiosity::run(&capture, matrix, baked)),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

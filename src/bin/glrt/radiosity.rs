@@ -1,7 +1,9 @@
 //! `glrt radiosity FILE`: replays a capture without drawing and runs the radiosity precompute
 //! on the static world of its last frame with the `[radiosity]` settings (`glrt.toml`,
-//! `GLRT_*`): times, sizes and errors as Markdown (`glrt::render::radiosity::precompute`).
-//! With `--matrix`, only the compressed matrix the renderer uses, read from the disk cache
+//! `GLRT_*`): times, sizes and errors as Markdown (`glrt::render::radiosity::precompute`),
+//! then the per-frame update with the renderer's compressed matrix timed on the device as
+//! `--matrix` does. With `--baked`, the static world includes the draws whose light is baked
+//! (`glrt::translate::classify::baked_world`: a Quake-3 map's). With `--matrix`, only the compressed matrix the renderer uses, read from the disk cache
 //! when it holds it, else computed and written there; it says which and how long it took,
 //! then times the per-frame update on the device (`radiosity::gpu::update`: the patches' direct
 //! light under the last frame's lights, then the product with the matrix).
@@ -35,34 +37,64 @@ use glrt::render::raster::device::Device;
 use glrt::render::trace::gpu_types::GpuLight;
 use glrt::render::trace::lights::LightSettings;
 use glrt::replay::{self, reader::Capture};
+use glrt::translate::classify::baked_world::BakedWorld;
 
 
-/// The static world of the last frame presented, and that frame's lights in the world frame.
+/// What [`run`] keeps of the frames presented.
+#[derive(Default)]
+struct Seen {
+    /// The static world of the last frame, with the baked world's chunks when there is one.
+    chunks: Vec<Arc<glrt::frame::world::StaticChunk>>,
+    /// The last frame's lights in the world frame.
+    lights: Vec<GpuLight>,
+    /// With `--baked`: the baked static draws of every frame so far.
+    baked: Option<BakedWorld>,
+}
+
+/// The sink that fills [`Seen`].
 #[derive(Clone, Default)]
-struct LastWorld(Arc<parking_lot::Mutex<(Vec<Arc<glrt::frame::world::StaticChunk>>, Vec<GpuLight>)>>);
+struct LastWorld(Arc<parking_lot::Mutex<Seen>>);
 
 impl FrameSink for LastWorld {
     fn present(&mut self, frame: glrt::frame::Frame) {
         let lights = radiosity::lights::of_frame(&frame, &LightSettings::of(&glrt::render::trace::settings::Settings::of_process()));
-        *self.0.lock() = (frame.static_world.to_vec(), lights);
+        let mut seen = self.0.lock();
+        let mut chunks = frame.static_world.to_vec();
+        if let Some(baked) = &mut seen.baked {
+            baked.add(&frame);
+            chunks.extend(baked.chunks().iter().cloned());
+        }
+        (seen.chunks, seen.lights) = (chunks, lights);
     }
 }
 
 /// Runs the precompute (or with `matrix_only`, builds or loads the renderer's matrix) on
-/// `capture`'s last static world and prints what it measured.
-pub fn run(capture: &Capture, matrix_only: bool) -> Result<(), String> {
+/// `capture`'s last static world and prints what it measured; with `baked`, the world
+/// includes the static draws whose light is baked ([`BakedWorld`]), which a game's radiosity
+/// leaves out.
+pub fn run(capture: &Capture, matrix_only: bool, baked: bool) -> Result<(), String> {
     let world = LastWorld::default();
+    world.0.lock().baked = baked.then(BakedWorld::default);
     let sink = world.clone();
     let options = replay::Options { sink: Some(replay::SinkWrapper(Arc::new(move |_| Box::new(sink.clone())))), ..Default::default() };
     replay::run(capture, &options)?;
-    let (chunks, lights) = world.0.lock().clone();
+    let Seen { chunks, lights, .. } = std::mem::take(&mut *world.0.lock());
     if chunks.is_empty() {
-        return Err("radiosity: the capture's last frame has no static world".to_owned());
+        let hint = if baked { "" } else { " (--baked takes the draws whose light is baked too)" };
+        return Err(format!("radiosity: the capture's last frame has no static world{hint}"));
+    }
+    if baked {
+        eprintln!("glrt: radiosity: {} chunks of {} triangles, baked draws included", chunks.len(), chunks.iter().map(|c| c.triangles()).sum::<usize>());
     }
     let settings = Settings::of_process();
     let device = Device::new().map_err(|e| eprintln!("glrt: no Vulkan device for the form factors ({e}): they are computed on the CPU")).ok();
     if !matrix_only {
-        print!("{}", precompute::run(&chunks, &settings, &mut OnDevice(device.as_ref())).markdown());
+        let report = precompute::run(&chunks, &settings, &mut OnDevice(device.as_ref())).map_err(|e| format!("radiosity: {e}"))?;
+        print!("{}", report.markdown());
+        if let Some(device) = &device {
+            println!("\nthe renderer's compressed matrix ({} bytes) under the last frame's {} lights:", report.matrix.bytes(), lights.len());
+            time_updates(device, &report.patches, &report.matrix, &lights);
+        }
         return Ok(());
     }
     let start = Instant::now();

@@ -51,6 +51,9 @@ impl Bc1Matrix {
     /// The codes the blocks decode to (`n × n`).
     pub fn decode(&self) -> Codes {
         let (n, side) = (self.n, self.side);
+        if side == 0 {
+            return std::array::from_fn(|_| Vec::new());
+        }
         let mut rgba = vec![0u8; side * side * 4];
         Format::Bc1.decompress(&self.blocks, side, side, &mut rgba);
         std::array::from_fn(|c| (0..n * n).map(|k| rgba[((k / n) * side + k % n) * 4 + c]).collect())

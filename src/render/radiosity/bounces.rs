@@ -62,12 +62,12 @@ pub fn gather(f: &FormFactors, albedo: &[Vec3], incident: &[Vec3]) -> Vec<Vec3> 
 
 /// The secondary light of every bounce: the Neumann series `Σ_{h≥1} incident⁽ʰ⁾`, summed by
 /// [`gather`] until a bounce adds less than `tolerance` times the sum on every patch and
-/// channel (or `max_bounces` were summed).
+/// channel (or `max_bounces` were summed); or the same fixed point by [`gauss_seidel`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Converged {
     /// The secondary light per patch.
     pub secondary: Vec<Vec3>,
-    /// Bounces summed.
+    /// Bounces summed (Jacobi gathering), or sweeps made ([`gauss_seidel`]).
     pub bounces: u32,
 }
 
@@ -87,4 +87,40 @@ pub fn neumann(f: &FormFactors, albedo: &[Vec3], primary: &[Vec3], tolerance: f3
         }
     }
     Converged { secondary, bounces: max_bounces }
+}
+
+/// The secondary light of every bounce by Gauss–Seidel gathering: sweeps over the patches in
+/// order, each setting its radiosity `B_i = primary_i + colour_i ∘ Σ_j F_ij B_j` from the
+/// newest values (this sweep's for the patches before it), until a sweep changes no patch's
+/// secondary light `B_i − primary_i` by more than `tolerance` times itself on any channel (or
+/// `max_sweeps` were made). It converges to [`neumann`]'s fixed point in fewer sweeps than
+/// Jacobi's bounces, each sweep costing one bounce's `n²` multiply-adds per channel.
+pub fn gauss_seidel(f: &FormFactors, albedo: &[Vec3], primary: &[Vec3], tolerance: f32, max_sweeps: u32) -> Converged {
+    let mut b: Vec<[f64; 3]> = primary.iter().map(|p| [p.x, p.y, p.z].map(f64::from)).collect();
+    for sweep in 1..=max_sweeps {
+        let mut settled = true;
+        for i in 0..f.n {
+            let mut sum = [0.0f64; 3];
+            for (&fij, x) in f.row(i).iter().zip(&b) {
+                for (c, s) in sum.iter_mut().enumerate() {
+                    *s += f64::from(fij) * x[c];
+                }
+            }
+            for c in 0..3 {
+                let new = f64::from(primary[i][c]) + f64::from(albedo[i][c]) * sum[c];
+                let secondary = new - f64::from(primary[i][c]);
+                settled &= (new - b[i][c]).abs() <= secondary.abs() * f64::from(tolerance);
+                b[i][c] = new;
+            }
+        }
+        if settled {
+            return Converged { secondary: secondary_of(&b, primary), bounces: sweep };
+        }
+    }
+    Converged { secondary: secondary_of(&b, primary), bounces: max_sweeps }
+}
+
+/// `b − primary`, per patch.
+fn secondary_of(b: &[[f64; 3]], primary: &[Vec3]) -> Vec<Vec3> {
+    b.iter().zip(primary).map(|(b, p)| Vec3::new(b[0] as f32, b[1] as f32, b[2] as f32) - *p).collect()
 }

@@ -12,7 +12,8 @@
 //!   patch, opposite sides of a thin wall stay apart.
 //! - **Attributes.** Position: the area-weighted centroid; normal: the area-weighted mean of
 //!   the fragments' normals (front side by the chunk's `glFrontFace`); albedo: the chunk's
-//!   corner colour times its unit-0 texture's average colour, decoded to linear, area-weighted
+//!   corner colour times the average colour of its [`albedo_texture`] (unit 0's; unit 1's
+//!   where unit 0 holds baked light), decoded to linear, area-weighted
 //!   (the texture environment is not applied, and alpha-tested texels count as opaque);
 //!   emission: the chunk material's emitted radiance ([`chunks::material`]: GL material
 //!   emission plus `glrt.toml` `emissive` times the surface colour), area-weighted.
@@ -28,7 +29,8 @@ use glam::{DVec3, Vec3};
 use xxhash_rust::xxh3::Xxh3;
 
 use crate::frame::state::Winding;
-use crate::frame::world::StaticChunk;
+use crate::frame::TextureRef;
+use crate::frame::world::{CHUNK_UNITS, StaticChunk};
 use crate::render::trace::chunks;
 use crate::render::trace::material::MaterialDefaults;
 use crate::render::trace::shader_constants::MATERIAL_LAYERS;
@@ -92,11 +94,19 @@ pub fn chunk_hash(chunk: &StaticChunk) -> u64 {
     for x in [m.roughness, m.metalness, m.emissive] {
         h.update(&x.to_le_bytes());
     }
-    if let Some(t) = chunks::texture(chunk, 0) {
+    if let Some(t) = albedo_texture(chunk) {
         h.update(&t.id.to_le_bytes());
         h.update(&t.version.to_le_bytes());
     }
     h.digest()
+}
+
+/// The texture whose average colour is `chunk`'s albedo: that of its first carried unit that
+/// does not hold baked light (unit 0 for the static world's chunks, which never have light
+/// there; the baked draws of `translate::classify::baked_world` may), `None` when that unit
+/// has none or every unit holds light.
+pub fn albedo_texture(chunk: &StaticChunk) -> Option<&TextureRef> {
+    (0..CHUNK_UNITS).find(|&u| chunk.shading.light_units >> u & 1 == 0).and_then(|u| chunks::texture(chunk, u))
 }
 
 /// The hash of a static world as patches of `patch_size` see it: its chunks' content hashes
@@ -120,7 +130,7 @@ pub fn build(chunks: &[Arc<StaticChunk>], patch_size: f32) -> Patches {
     let mut averages: HashMap<(u32, u64), Vec3> = HashMap::new();
     let mut cells: BTreeMap<Key, Vec<Fragment>> = BTreeMap::new();
     for (_, chunk) in ordered {
-        let texture = chunks::texture(chunk, 0).map_or(Vec3::ONE, |t| {
+        let texture = albedo_texture(chunk).map_or(Vec3::ONE, |t| {
             *averages.entry((t.id, t.version)).or_insert_with(|| average_color(&t.content).map_or(Vec3::ONE, |w| linear(unpack(w))))
         });
         let material = chunks::material(chunk, [None; MATERIAL_LAYERS], &MaterialDefaults::default());

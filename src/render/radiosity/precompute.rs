@@ -1,7 +1,8 @@
 //! The precompute on the CPU, step by step with its times, sizes and errors: patches within
 //! the memory budget, form factors, the colour and k-bounce matrices, the compressed matrix
 //! after 0, 1 and 2 reordering passes (exact and sketched searches), the k-bounce light against the Neumann series, and the
-//! per-frame cost of the dense product against classic gathering. `glrt radiosity` prints
+//! per-frame cost of the dense product against classic gathering (Jacobi and Gauss–Seidel) to
+//! convergence; the renderer's compressed matrix is kept for timing its product on a device. `glrt radiosity` prints
 //! [`Report`]; `bench/radiosity.md` keeps its numbers. The two heavy steps, the form factors
 //! and the k-bounce matrix, run where the caller's [`Steps`] say (a Vulkan device:
 //! [`super::stage::OnDevice`]; a form-factor function alone: the k-bounce matrix on the CPU).
@@ -13,7 +14,7 @@ use std::time::{Duration, Instant};
 
 use glam::Vec3;
 
-use super::bounces::{colour_matrix, gather, k_bounce, neumann};
+use super::bounces::{colour_matrix, gather, gauss_seidel, k_bounce, neumann};
 use super::cache;
 use super::compress::{self, CompressedMatrix, Errors, LogRange, Reorder, compress};
 use super::form_factors::FormFactors;
@@ -47,11 +48,15 @@ impl<F: FnMut(&Patches) -> FormFactors> Steps for F {
 const GROWTH: f32 = 1.25;
 /// Relative size of the last bounce at which the Neumann series counts as converged.
 const TOLERANCE: f32 = 1.0e-6;
+/// Most patches the report compresses with the seed's exact search too when the settings ask
+/// for the sketched one (the exact passes are O(n³): 75 s each at 16k patches on 16 cores).
+pub const EXACT_REPORT_PATCHES: usize = 4096;
 
 /// The patches of `chunks` at the settings' patch size, or, when it is 0, at the smallest
 /// size (from `sqrt(area / max patches)` up, by [`GROWTH`]) whose patches fit the budget.
 /// When a given size makes more patches than the budget holds, the automatic size is used
-/// instead and the note says so.
+/// instead and the note says so. A world that no size fits (more surface orientations than
+/// the budget's patches) gets no patches, and a note saying so.
 pub fn patches_within_budget(chunks: &[Arc<StaticChunk>], settings: &Settings) -> (Patches, Option<String>) {
     let max = settings.max_patches();
     let mut note = None;
@@ -71,6 +76,11 @@ pub fn patches_within_budget(chunks: &[Arc<StaticChunk>], settings: &Settings) -
     if !(total > 0.0) {
         return (patches::build(&[], 1.0), note);
     }
+    // Past the world's extent a larger size merges nothing more: the patches are then one per
+    // surface orientation (quantised normal), which a world of curved surfaces may have more
+    // of than the budget holds.
+    let (lo, hi) = chunks.iter().flat_map(|c| c.positions.iter()).map(|&p| Vec3::from(p)).filter(|p| p.is_finite()).fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(p), hi.max(p)));
+    let extent = (hi - lo).length();
     let mut size = (total / max as f32).sqrt();
     loop {
         let p = patches::build(chunks, size);
@@ -79,6 +89,15 @@ pub fn patches_within_budget(chunks: &[Arc<StaticChunk>], settings: &Settings) -
                 *n = format!("{n}; size {size:.4}, {} patches", p.patches.len());
             }
             return (p, note);
+        }
+        if !(size <= extent) {
+            let refused = format!(
+                "the static world makes {} patches even at size {size:.4} (past its extent: one per surface orientation), more than the memory budget of {} MiB holds ({max} patches): radiosity is off (raise radiosity_budget_mb)",
+                p.patches.len(),
+                settings.budget_mb
+            );
+            let note = note.map_or_else(|| refused.clone(), |n| format!("{n}; {refused}"));
+            return (patches::build(&[], 1.0), Some(note));
         }
         size *= GROWTH;
     }
@@ -168,8 +187,11 @@ pub struct Report {
     pub triangles: usize,
     /// Patch size used.
     pub patch_size: f32,
-    /// Patches.
-    pub patches: usize,
+    /// The patches' area-weighted mean albedo.
+    pub mean_albedo: Vec3,
+    /// The form factors' mean row sum (1 in a closed world, less where patches see the sky
+    /// or nothing).
+    pub mean_row_sum: f64,
     /// Times: patches, form factors, k-bounce matrix.
     pub times: [Duration; 3],
     /// Bounces of the k-bounce matrix.
@@ -178,8 +200,12 @@ pub struct Report {
     pub dense_bytes: [usize; 2],
     /// The compressions: the seed's log range, then the fitted one, each without reordering,
     /// then after 1 and 2 passes of the exact search, then of the sketched one
-    /// ([`Search::SKETCH`]).
+    /// ([`Search::SKETCH`]); over [`EXACT_REPORT_PATCHES`] patches only the settings' search.
     pub compressed: Vec<Compressed>,
+    /// The patches.
+    pub patches: Patches,
+    /// The compressed matrix the renderer would use ([`RANGE`], [`reorder_of`] the settings).
+    pub matrix: CompressedMatrix,
     /// Sum of the k-bounce matrix's entries (the scale of the summed errors).
     pub total: f64,
     /// Relative error (largest over patches and channels, against the largest value) of
@@ -187,19 +213,28 @@ pub struct Report {
     pub truncation: Vec<f32>,
     /// Bounces the Neumann series took to converge.
     pub neumann_bounces: u32,
-    /// Per frame on one core: the dense k-bounce product, and classic gathering to
-    /// convergence.
-    pub frame_times: [Duration; 2],
+    /// Sweeps Gauss–Seidel gathering took to converge.
+    pub gauss_seidel_sweeps: u32,
+    /// Per frame on one core: the dense k-bounce product, classic gathering to convergence
+    /// (Jacobi: the Neumann series) and Gauss–Seidel gathering to convergence.
+    pub frame_times: [Duration; 3],
 }
 
 /// Runs the precompute on `chunks`, the heavy steps by `steps` (the primary light of the
-/// comparisons: 1 on every patch).
-pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Steps) -> Report {
+/// comparisons: 1 on every patch); `Err` with the budget's note when the world gets no
+/// patches.
+pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Steps) -> Result<Report, String> {
     let start = Instant::now();
     let (p, note) = patches_within_budget(chunks, settings);
+    if p.patches.is_empty() {
+        return Err(note.unwrap_or_else(|| "the static world has no patches (no area)".to_owned()));
+    }
     let t_patches = start.elapsed();
+    let mean_albedo = p.patches.iter().map(|x| x.albedo * x.area).sum::<Vec3>() / p.patches.iter().map(|x| x.area).sum::<f32>().max(f32::MIN_POSITIVE);
+    eprintln!("glrt: radiosity: {} patches, area-weighted mean albedo {mean_albedo:.4}", p.patches.len());
     let start = Instant::now();
     let f = steps.form_factors(&p);
+    let mean_row_sum = (0..f.n).map(|i| f.row(i).iter().map(|&x| f64::from(x)).sum::<f64>()).sum::<f64>() / f.n as f64;
     let t_form = start.elapsed();
     let albedo: Vec<Vec3> = p.patches.iter().map(|x| x.albedo).collect();
     let start = Instant::now();
@@ -207,22 +242,30 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Ste
     let k = steps.k_bounce(&colour, settings.bounces, Progress::Stderr);
     let t_k = start.elapsed();
     let total: f64 = k.channels.iter().flatten().map(|&x| f64::from(x)).sum();
+    let searches = if settings.reorder == Search::Exact || f.n <= EXACT_REPORT_PATCHES { vec![Search::Exact, Search::SKETCH] } else { vec![settings.reorder] };
     let reorderings = std::iter::once(Reorder { passes: 0, search: Search::Exact })
-        .chain([Search::Exact, Search::SKETCH].into_iter().flat_map(|search| (1..=compress::REORDER_PASSES).map(move |passes| Reorder { passes, search })));
-    let compressed = [LogRange::Seed, LogRange::Fitted]
-        .into_iter()
-        .flat_map(|range| reorderings.clone().map(move |reorder| (range, reorder)))
-        .map(|(range, reorder)| {
-            let start = Instant::now();
-            let c = compress(&k, settings.top_share, reorder, range, Progress::Quiet);
-            let t = start.elapsed();
-            Compressed { range, passes: reorder.passes, search: reorder.search, time: t, bytes: c.bytes(), errors: compress::errors(&k, &c.decompress()) }
-        })
-        .collect();
+        .chain(searches.into_iter().flat_map(|search| (1..=compress::REORDER_PASSES).map(move |passes| Reorder { passes, search })));
+    let mut compressed = Vec::new();
+    let mut matrix = None;
+    for (range, reorder) in [LogRange::Seed, LogRange::Fitted].into_iter().flat_map(|range| reorderings.clone().map(move |reorder| (range, reorder))) {
+        let stage = Progress::Stderr.stage(&format!("report: compression ({range:?} log range, {} passes, {:?})", reorder.passes, reorder.search), 1, "compressions");
+        let start = Instant::now();
+        let c = compress(&k, settings.top_share, reorder, range, Progress::Quiet);
+        let t = start.elapsed();
+        compressed.push(Compressed { range, passes: reorder.passes, search: reorder.search, time: t, bytes: c.bytes(), errors: compress::errors(&k, &c.decompress()) });
+        stage.finish();
+        if (range, reorder) == (RANGE, reorder_of(settings)) {
+            matrix = Some(c);
+        }
+    }
+    let matrix = matrix.unwrap_or_else(|| compress(&k, settings.top_share, reorder_of(settings), RANGE, Progress::Quiet));
     let ones = vec![Vec3::ONE; f.n];
     let start = Instant::now();
     let converged = neumann(&f, &albedo, &ones, TOLERANCE, 10_000);
     let t_classic = start.elapsed();
+    let start = Instant::now();
+    let sweeps = gauss_seidel(&f, &albedo, &ones, TOLERANCE, 10_000).bounces;
+    let t_gauss_seidel = start.elapsed();
     let largest = converged.secondary.iter().map(|v| v.max_element()).fold(0.0f32, f32::max).max(f32::MIN_POSITIVE);
     let mut truncation = Vec::new();
     let (mut incident, mut sum) = (ones.clone(), vec![Vec3::ZERO; f.n]);
@@ -236,20 +279,24 @@ pub fn run(chunks: &[Arc<StaticChunk>], settings: &Settings, steps: &mut dyn Ste
     let start = Instant::now();
     std::hint::black_box(k.apply(&ones));
     let t_dense = start.elapsed();
-    Report {
+    Ok(Report {
         notes: note.into_iter().collect(),
         triangles: chunks.iter().map(|c| c.triangles()).sum(),
         patch_size: patch_size_of(&p, settings),
-        patches: f.n,
+        mean_albedo,
+        mean_row_sum,
+        patches: p,
         times: [t_patches, t_form, t_k],
         bounces: settings.bounces,
         dense_bytes: [f.bytes(), k.bytes()],
         compressed,
+        matrix,
         total,
         truncation,
         neumann_bounces: converged.bounces,
-        frame_times: [t_dense, t_classic],
-    }
+        gauss_seidel_sweeps: sweeps,
+        frame_times: [t_dense, t_classic, t_gauss_seidel],
+    })
 }
 
 /// The patch size `p` was built at: the setting, or the automatic size (the square root of
@@ -267,17 +314,25 @@ impl Report {
         for note in &self.notes {
             let _ = writeln!(s, "note: {note}\n");
         }
-        let _ = writeln!(s, "static world: {} triangles, patch size {:.4}, {} patches\n", self.triangles, self.patch_size, self.patches);
+        let _ = writeln!(
+            s,
+            "static world: {} triangles, patch size {:.4}, {} patches; area-weighted mean albedo {:.4}, mean form-factor row sum {:.4}\n",
+            self.triangles,
+            self.patch_size,
+            self.patches.patches.len(),
+            self.mean_albedo,
+            self.mean_row_sum
+        );
         let _ = writeln!(s, "| step | ms |\n| --- | ---: |");
         for (name, t) in ["patches", "form factors", &format!("k-bounce matrix (k = {})", self.bounces)].iter().zip(self.times) {
             let _ = writeln!(s, "| {name} | {:.1} |", ms(t));
         }
         let _ = writeln!(s, "\n| matrix | bytes | MiB |\n| --- | ---: | ---: |");
         let _ = writeln!(s, "| form factors, dense f32 | {} | {:.3} |", self.dense_bytes[0], mib(self.dense_bytes[0]));
+        let _ = writeln!(s, "| colour matrix, dense f32 x 3 | {} | {:.3} |", self.dense_bytes[1], mib(self.dense_bytes[1]));
         let _ = writeln!(s, "| k-bounce colour matrix, dense f32 x 3 | {} | {:.3} |", self.dense_bytes[1], mib(self.dense_bytes[1]));
-        if let Some(c) = self.compressed.last() {
-            let _ = writeln!(s, "| compressed (BC1 + exact top share + order) | {} | {:.3} |", c.bytes, mib(c.bytes));
-        }
+        let c = self.matrix.bytes();
+        let _ = writeln!(s, "| compressed (BC1 + exact top share + order) | {c} | {:.3} |", mib(c));
         let _ = writeln!(s, "\n| log range | reordering passes | search | mean error | max error | summed error | summed / sum of entries | compress ms |\n| --- | ---: | --- | ---: | ---: | ---: | ---: | ---: |");
         for c in &self.compressed {
             let e = &c.errors;
@@ -290,14 +345,22 @@ impl Report {
                 (_, Search::Exact) => "exact",
                 (_, Search::Sketch { .. }) => "sketch",
             };
-            let _ = writeln!(s, "| {range} | {} | {search} | {:.3e} | {:.4} | {:.4} | {:.4} | {:.1} |", c.passes, e.mean, e.max, e.sum, e.sum / self.total.max(f64::MIN_POSITIVE), ms(c.time));
+            let _ = writeln!(s, "| {range} | {} | {search} | {:.3e} | {:.3e} | {:.4} | {:.4} | {:.1} |", c.passes, e.mean, e.max, e.sum, e.sum / self.total.max(f64::MIN_POSITIVE), ms(c.time));
         }
         let _ = writeln!(s, "\nk bounces against the Neumann series ({} bounces to converge to {TOLERANCE:e}), primary light 1 on every patch; largest error / largest converged value:\n", self.neumann_bounces);
         let _ = writeln!(s, "| k | error |\n| ---: | ---: |");
         for (h, e) in self.truncation.iter().enumerate() {
             let _ = writeln!(s, "| {} | {e:.4} |", h + 1);
         }
-        let _ = writeln!(s, "\nper frame (CPU, f64 sums): dense k-bounce product {:.2} ms; classic gathering to convergence {:.2} ms", ms(self.frame_times[0]), ms(self.frame_times[1]));
+        let _ = writeln!(
+            s,
+            "\nper frame (CPU, one core, f64 sums): dense k-bounce product {:.2} ms; classic gathering to convergence: Jacobi {:.2} ms ({} bounces), Gauss–Seidel {:.2} ms ({} sweeps)",
+            ms(self.frame_times[0]),
+            ms(self.frame_times[1]),
+            self.neumann_bounces,
+            ms(self.frame_times[2]),
+            self.gauss_seidel_sweeps
+        );
         s
     }
 }
@@ -328,8 +391,8 @@ mod tests {
         assert!(note.starts_with("9600 patches of size 0.05 exceed the memory budget of 1 MiB (209 patches): using larger patches"), "{note}");
         assert!(note.ends_with(&format!("{} patches", p.patches.len())), "{note}");
 
-        let report = run(&chunks, &Settings { patch_size: 1.0, ..settings }, &mut form_factors::compute);
-        assert_eq!((report.patches, report.triangles, report.bounces), (24, 12, 3));
+        let report = run(&chunks, &Settings { patch_size: 1.0, ..settings }, &mut form_factors::compute).expect("patches");
+        assert_eq!((report.patches.patches.len(), report.triangles, report.bounces), (24, 12, 3));
         assert_eq!(report.dense_bytes, [24 * 24 * 4, 24 * 24 * 12]);
         assert_eq!(report.compressed.len(), 10);
         // In a closed box each bounce is ρ = 0.216 of the one before: ~9 bounces to 1e-6; k
@@ -341,8 +404,31 @@ mod tests {
             assert!((e - expected).abs() < 0.02 * expected + 1e-4, "k = {}: {e} vs {expected}", h + 1);
         }
         let md = report.markdown();
-        assert!(md.contains("static world: 12 triangles, patch size 1.0000, 24 patches"), "{md}");
+        assert!(md.contains("static world: 12 triangles, patch size 1.0000, 24 patches; area-weighted mean albedo [0.2159, 0.2159, 0.2159], mean form-factor row sum "), "{md}");
+        assert!((report.mean_row_sum - 1.0).abs() < 1.0e-3, "closed: {}", report.mean_row_sum);
         assert!(md.contains("| form factors, dense f32 | 2304 |"), "{md}");
+    }
+
+    #[test]
+    fn a_world_of_more_orientations_than_the_budget_holds_gets_no_patches_and_a_note() {
+        // 40 × 40 small quads facing as many directions (a curved world): more quantised
+        // normals than the 209 patches of 1 MiB, whatever the size.
+        let chunks: Vec<_> = (0..1600u64)
+            .map(|k| {
+                let (a, b) = ((k / 40) as f32 * 0.078, (k % 40) as f32 * 0.157);
+                let n = Vec3::new(a.sin() * b.cos(), a.sin() * b.sin(), a.cos());
+                let u = n.any_orthonormal_vector();
+                quad(k, Vec3::new((k % 40) as f32, (k / 40) as f32, 0.0), u * 0.5, n.cross(u) * 0.5)
+            })
+            .collect();
+        let settings = Settings { budget_mb: 1, ..Settings::default() };
+        let (p, note) = patches_within_budget(&chunks, &settings);
+        assert!(p.patches.is_empty(), "{} patches", p.patches.len());
+        let note = note.expect("a note");
+        assert!(note.starts_with("the static world makes ") && note.ends_with("more than the memory budget of 1 MiB holds (209 patches): radiosity is off (raise radiosity_budget_mb)"), "{note}");
+        // A budget that holds them: patches.
+        let (p, note) = patches_within_budget(&chunks, &Settings { budget_mb: 64, ..settings });
+        assert!(!p.patches.is_empty() && note.is_none(), "{note:?}");
     }
 
     #[test]

@@ -153,7 +153,8 @@ impl RadiosityStage {
                 Err(e) => {
                     eprintln!("glrt: radiosity: no thread for the precompute ({e}): computing it in this frame");
                     let r = precompute_on_own_device(&frame.static_world, &self.settings, &self.cache);
-                    self.held = Held::Ready(self.world_of(device, chunks, r, Instant::now(), 0)?);
+                    let Some(world) = self.world_of(device, chunks, r, Instant::now(), 0)? else { return Ok(None) };
+                    self.held = Held::Ready(world);
                 }
             }
         }
@@ -169,7 +170,8 @@ impl RadiosityStage {
                 eprintln!("glrt: radiosity stopped: its precompute panicked; the static world keeps GL's ambient light (raster) or traced bounces");
                 return Ok(None);
             };
-            self.held = Held::Ready(self.world_of(device, pending.chunks, r, pending.start, pending.frames_without)?);
+            let Some(world) = self.world_of(device, pending.chunks, r, pending.start, pending.frames_without)? else { return Ok(None) };
+            self.held = Held::Ready(world);
         }
         let Held::Ready(world) = &mut self.held else { return Ok(None) };
         let lights = super::lights::of_frame(frame, &self.lights);
@@ -187,10 +189,17 @@ impl RadiosityStage {
         Ok(Some(light))
     }
 
-    /// The world of a finished precompute `r` on `device`, saying what it took.
-    fn world_of(&self, device: &Device, chunks: Vec<u64>, r: StaticRadiosity, start: Instant, frames_without: u64) -> crate::render::raster::device::Result<Box<World>> {
+    /// The world of a finished precompute `r` on `device`, saying what it took; `None`, and
+    /// radiosity stopped, when the world has no patches (more surface orientations than the
+    /// budget holds: [`precompute::patches_within_budget`]'s note says so).
+    fn world_of(&mut self, device: &Device, chunks: Vec<u64>, r: StaticRadiosity, start: Instant, frames_without: u64) -> crate::render::raster::device::Result<Option<Box<World>>> {
         for note in &r.notes {
             eprintln!("glrt: radiosity: {note}");
+        }
+        if r.patches.patches.is_empty() {
+            eprintln!("glrt: radiosity stopped: the static world has no patches; it keeps GL's ambient light (raster) or traced bounces");
+            self.failed = true;
+            return Ok(None);
         }
         let how = if r.loaded { "loaded" } else { "computed" };
         eprintln!(
@@ -199,7 +208,7 @@ impl RadiosityStage {
             start.elapsed().as_secs_f64()
         );
         let update = Update::new(device, &r.patches, &r.matrix, self.settings.direct_slices)?;
-        Ok(Box::new(World { chunks, patches: r.patches, update, last: None }))
+        Ok(Some(Box::new(World { chunks, patches: r.patches, update, last: None })))
     }
 
     /// Frees the device's objects (the device idle).

@@ -39,6 +39,7 @@
 //!    ([`Instance::in_static_world`]);
 //! 6. statistics ([`crate::frame::class::FrameStats`]).
 
+pub mod baked_world;
 pub mod config;
 pub mod dlights;
 pub mod keys;
@@ -183,7 +184,7 @@ impl Classifier {
             let model = model_of(inverse.as_ref(), draw, f, class == DrawClass::Static && !t.tags.static_ && !recovered.cut);
             let in_world = chunks_hold_it && !t.tags.dynamic && (class == DrawClass::Static || model.as_ref().is_some_and(view::is_identity));
             let offered = match model {
-                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material_key, t.material, t.light_units)),
+                Some(m) if in_world => Some(self.feed.offer(&mut self.world, draw, &m, t.material_key, t.material, t.light_units, true)),
                 _ => None,
             };
             if class == DrawClass::Static && f.matched == Match::New && offered.is_none() {
@@ -743,6 +744,33 @@ mod tests {
         let bases = [0, 4, 6, 10, 11].map(|i| lit(&partial.draws[i]));
         use SurfaceLighting::{Baked, Traced};
         assert_eq!(bases, [(Baked, 0b10), (Baked, 0), (Baked, 0b01), (Traced, 0), (Traced, 0b10)], "read back");
+    }
+
+    #[test]
+    fn the_baked_world_holds_the_static_draws_whose_light_is_baked() {
+        let (texture, page) = (sized(1, 64, 64), sized(2, 128, 128));
+        let camera = Mat4::from_translation(Vec3::new(0.0, -1.0, -20.0));
+        let mut c = Classifier::with_config(config::Config::default());
+        let mut baked = baked_world::BakedWorld::default();
+        for number in 0..3 {
+            // Quake 3's multitexture (a lightmap on unit 1) with constant vertex colours, a
+            // lightmap base with the texture multiplied over it, and a plain wall (traced: the
+            // static world's, not the baked world's).
+            let floor = coloured(textured(4, 0.0, camera, &[(&texture, 1.0), (&page, 1.0 / 16.0)]), |_| [0.5, 0.4, 0.3, 1.0]);
+            let lightmap_base = textured(2, 20.0, camera, &[(&page, 1.0 / 16.0)]);
+            let texture_pass = pass(&lightmap_base, 0..2, &[(&texture, 1.0)], (BlendFactor::Zero, BlendFactor::SrcColor), CompareFunc::LessEqual);
+            let f = classify(&mut c, number, vec![floor, lightmap_base, texture_pass, draw(2, 40.0, camera)]);
+            baked.add(&f);
+            // Triangles join in the second frame that offers them.
+            let triangles: usize = baked.chunks().iter().map(|c| c.triangles()).sum();
+            assert_eq!((triangles, f.stats.static_world_triangles), if number > 0 { (6, 2) } else { (0, 0) }, "frame {number}");
+        }
+        // A chunk per material, with the units that hold light and without the colours.
+        let mut units: Vec<(u8, Option<u32>)> = baked.chunks().iter().map(|c| (c.shading.light_units, c.textures[0].as_ref().map(|t| t.id))).collect();
+        units.sort_unstable();
+        units.dedup();
+        assert_eq!(units, [(0b01, Some(2)), (0b10, Some(1))]);
+        assert!(baked.chunks().iter().all(|c| c.colors.is_empty()));
     }
 
     #[test]

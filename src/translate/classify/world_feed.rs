@@ -49,8 +49,10 @@ pub fn lit_material_key(draw: &Draw) -> u64 {
 impl WorldFeed {
     /// Offers the triangles of `draw`, taken to the world by `model`, as material
     /// `material_key` with the parameters `material`, its units `light_units` holding baked
-    /// light.
-    pub fn offer(&mut self, world: &mut StaticWorld, draw: &Draw, model: &Mat4, material_key: u64, material: MaterialOverride, light_units: u8) -> Offered {
+    /// light; without `colours`, every corner white (a surface whose colours are light, not
+    /// albedo: [`super::baked_world`]).
+    #[allow(clippy::too_many_arguments)]
+    pub fn offer(&mut self, world: &mut StaticWorld, draw: &Draw, model: &Mat4, material_key: u64, material: MaterialOverride, light_units: u8, colours: bool) -> Offered {
         self.positions.clear();
         self.colors.clear();
         let units: [_; CHUNK_UNITS] = std::array::from_fn(|u| {
@@ -62,7 +64,7 @@ impl WorldFeed {
         // The base colour the tracer shades with: the vertex colour, or the material's diffuse
         // colour of a lit draw whose diffuse does not track the colour (`trace::scene`).
         let lit_diffuse = lit_diffuse(draw);
-        let colors = Some(&draw.vertices.color).filter(|c| lit_diffuse.is_some_and(|d| d != [1.0; 4]) || c.values.iter().any(|c| *c != [1.0; 4]));
+        let colors = Some(&draw.vertices.color).filter(|c| colours && (lit_diffuse.is_some_and(|d| d != [1.0; 4]) || c.values.iter().any(|c| *c != [1.0; 4])));
         let identity = *model == Mat4::IDENTITY;
         for &i in &draw.indices {
             let Some(p) = draw.vertices.position.get(i as usize) else { continue };
