@@ -19,7 +19,7 @@ use super::shader_interface::{
     COLOR_MATERIAL, FOG_COORD, LIGHTING, LOCATION_COLOR, LOCATION_FOG_COORD, LOCATION_NORMAL, LOCATION_POSITION, LOCATION_SECONDARY, LOCATION_TEXCOORD, TEXCOORDS_UNUSED,
     TEXGEN,
 };
-use super::vertex::{BLACK, Columns, ORIGIN, UP, VERTEX_ATTRIBUTES, VERTEX_FLOATS, WHITE};
+use super::vertex::{BLACK, Column, Columns, ORIGIN, UP, VERTEX_ATTRIBUTES, VERTEX_FLOATS, WHITE};
 use crate::frame::{Draw, Vertices};
 use crate::render::shader_abi::Field;
 use crate::render::texenv::codes::MAX_UNITS;
@@ -239,32 +239,96 @@ fn rows_of(bits: u16, c: &Columns<'_>, out: &mut [u32]) {
     rows_with(bits, VertexFormat(bits).stride() as usize / 4, c, out)
 }
 
-/// Packs the vertices of format `bits`, `words` (its stride in words) each.
+/// Packs the vertices of format `bits`, `words` (its stride in words) each. When every
+/// stored attribute holds a value for each vertex (as translate makes them), the values are
+/// read from slices of the vertex count, without a test per vertex; a column shorter than the
+/// vertices is read per vertex, its initial value past its end.
 #[inline(always)]
 fn rows_with(bits: u16, words: usize, c: &Columns<'_>, out: &mut [u32]) {
-    for (i, (vertex, position)) in out.chunks_exact_mut(words).zip(c.position).enumerate() {
+    let n = (out.len() / words).min(c.position.len());
+    let (out, position) = (&mut out[..n * words], &c.position[..n]);
+    let slices = (
+        each_stored(bits, COLOR_UNORM | COLOR_FLOAT, &c.color, n),
+        each_stored(bits, SECONDARY, &c.secondary, n),
+        each_stored(bits, NORMAL, &c.normal, n),
+        each_stored(bits, FOG, &c.fog, n),
+        each_stored(bits, UNIT0, &c.texcoords[0], n),
+        each_stored(bits, UNIT0 << 1, &c.texcoords[1], n),
+        each_stored(bits, UNIT0 << 2, &c.texcoords[2], n),
+        each_stored(bits, UNIT0 << 3, &c.texcoords[3], n),
+    );
+    match slices {
+        (Some(color), Some(secondary), Some(normal), Some(fog), Some(t0), Some(t1), Some(t2), Some(t3)) =>
+        {
+            let texcoords = [t0, t1, t2, t3];
+            write_rows(bits, words, out, position, |i| Attributes {
+                color: if bits & (COLOR_UNORM | COLOR_FLOAT) != 0 { color[i] } else { WHITE },
+                secondary: if bits & SECONDARY != 0 { secondary[i] } else { BLACK },
+                normal: if bits & NORMAL != 0 { normal[i] } else { UP },
+                fog: if bits & FOG != 0 { fog[i] } else { 0.0 },
+                texcoords: std::array::from_fn(|u| if bits & (UNIT0 << u) != 0 { texcoords[u][i] } else { ORIGIN }),
+            })
+        }
+        _ => write_rows(bits, words, out, position, |i| Attributes {
+            color: c.color.get(i, WHITE),
+            secondary: c.secondary.get(i, BLACK),
+            normal: c.normal.get(i, UP),
+            fog: c.fog.get(i, 0.0),
+            texcoords: std::array::from_fn(|u| c.texcoords[u].get(i, ORIGIN)),
+        }),
+    }
+}
+
+/// The `n` values of `column` when format `bits` stores it (`bit`), none when it does not;
+/// `None` when it is stored but holds fewer values (or one shared value).
+#[inline(always)]
+fn each_stored<'a, T>(bits: u16, bit: u16, column: &Column<'a, T>, n: usize) -> Option<&'a [T]> {
+    if bits & bit == 0 {
+        return Some(&[]);
+    }
+    match column {
+        Column::Each(values) => values.get(..n),
+        Column::One(_) => None,
+    }
+}
+
+/// The attributes of one vertex besides its position (those of its format are written).
+struct Attributes {
+    color: [f32; 4],
+    secondary: [f32; 3],
+    normal: [f32; 3],
+    fog: f32,
+    texcoords: [[f32; 4]; MAX_UNITS],
+}
+
+/// Writes each vertex of `position` in format `bits` (`words` words each) into `out`, its
+/// other attributes from `vertex(i)`.
+#[inline(always)]
+fn write_rows(bits: u16, words: usize, out: &mut [u32], position: &[[f32; 4]], vertex: impl Fn(usize) -> Attributes) {
+    for (i, (row, position)) in out.chunks_exact_mut(words).zip(position).enumerate() {
+        let a = vertex(i);
         let mut k = 0;
-        put(vertex, &mut k, position);
+        put(row, &mut k, position);
         if bits & COLOR_UNORM != 0 {
-            vertex[k] = unorm8x4(c.color.get(i, WHITE));
+            row[k] = unorm8x4(a.color);
             k += 1;
         }
         if bits & COLOR_FLOAT != 0 {
-            put(vertex, &mut k, &c.color.get(i, WHITE));
+            put(row, &mut k, &a.color);
         }
         if bits & SECONDARY != 0 {
-            let [r, g, b] = c.secondary.get(i, BLACK);
-            put(vertex, &mut k, &[r, g, b, 0.0]);
+            let [r, g, b] = a.secondary;
+            put(row, &mut k, &[r, g, b, 0.0]);
         }
         if bits & NORMAL != 0 {
-            put(vertex, &mut k, &c.normal.get(i, UP));
+            put(row, &mut k, &a.normal);
         }
         if bits & FOG != 0 {
-            put(vertex, &mut k, &[c.fog.get(i, 0.0)]);
+            put(row, &mut k, &[a.fog]);
         }
-        for (u, t) in c.texcoords.iter().enumerate() {
+        for (u, t) in a.texcoords.iter().enumerate() {
             if bits & (UNIT0 << u) != 0 {
-                put(vertex, &mut k, &t.get(i, ORIGIN));
+                put(row, &mut k, t);
             }
         }
     }
@@ -283,8 +347,13 @@ fn put(vertex: &mut [u32], k: &mut usize, values: &[f32]) {
 /// it out in memory.
 #[inline(always)]
 fn unorm8x4(color: [f32; 4]) -> u32 {
-    // `max` then `min` also take NaN to 0.
-    u32::from_ne_bytes(color.map(|c| (c.max(0.0).min(1.0) * 255.0 + 0.5) as u8))
+    // `max` then `min` also take NaN to 0; the rounded value is then in [0.5, 255.5], which
+    // truncates to a byte without the saturating conversion's tests.
+    u32::from_ne_bytes(color.map(|c| {
+        let scaled = c.max(0.0).min(1.0) * 255.0 + 0.5;
+        // Safety: finite and in [0.5, 255.5], so it fits in an i32.
+        (unsafe { scaled.to_int_unchecked::<i32>() }) as u8
+    }))
 }
 
 #[cfg(test)]
