@@ -239,97 +239,73 @@ fn rows_of(bits: u16, c: &Columns<'_>, out: &mut [u32]) {
     rows_with(bits, VertexFormat(bits).stride() as usize / 4, c, out)
 }
 
-/// Packs the vertices of format `bits`, `words` (its stride in words) each. When every
-/// stored attribute holds a value for each vertex (as translate makes them), the values are
-/// read from slices of the vertex count, without a test per vertex; a column shorter than the
-/// vertices is read per vertex, its initial value past its end.
+/// Packs the vertices of format `bits`, `words` (its stride in words) each, every stored
+/// attribute read from a slice of one value per vertex (no test of the column per vertex).
 #[inline(always)]
 fn rows_with(bits: u16, words: usize, c: &Columns<'_>, out: &mut [u32]) {
     let n = (out.len() / words).min(c.position.len());
     let (out, position) = (&mut out[..n * words], &c.position[..n]);
-    let slices = (
-        each_stored(bits, COLOR_UNORM | COLOR_FLOAT, &c.color, n),
-        each_stored(bits, SECONDARY, &c.secondary, n),
-        each_stored(bits, NORMAL, &c.normal, n),
-        each_stored(bits, FOG, &c.fog, n),
-        each_stored(bits, UNIT0, &c.texcoords[0], n),
-        each_stored(bits, UNIT0 << 1, &c.texcoords[1], n),
-        each_stored(bits, UNIT0 << 2, &c.texcoords[2], n),
-        each_stored(bits, UNIT0 << 3, &c.texcoords[3], n),
-    );
-    match slices {
-        (Some(color), Some(secondary), Some(normal), Some(fog), Some(t0), Some(t1), Some(t2), Some(t3)) =>
-        {
-            let texcoords = [t0, t1, t2, t3];
-            write_rows(bits, words, out, position, |i| Attributes {
-                color: if bits & (COLOR_UNORM | COLOR_FLOAT) != 0 { color[i] } else { WHITE },
-                secondary: if bits & SECONDARY != 0 { secondary[i] } else { BLACK },
-                normal: if bits & NORMAL != 0 { normal[i] } else { UP },
-                fog: if bits & FOG != 0 { fog[i] } else { 0.0 },
-                texcoords: std::array::from_fn(|u| if bits & (UNIT0 << u) != 0 { texcoords[u][i] } else { ORIGIN }),
-            })
-        }
-        _ => write_rows(bits, words, out, position, |i| Attributes {
-            color: c.color.get(i, WHITE),
-            secondary: c.secondary.get(i, BLACK),
-            normal: c.normal.get(i, UP),
-            fog: c.fog.get(i, 0.0),
-            texcoords: std::array::from_fn(|u| c.texcoords[u].get(i, ORIGIN)),
-        }),
-    }
-}
-
-/// The `n` values of `column` when format `bits` stores it (`bit`), none when it does not;
-/// `None` when it is stored but holds fewer values (or one shared value).
-#[inline(always)]
-fn each_stored<'a, T>(bits: u16, bit: u16, column: &Column<'a, T>, n: usize) -> Option<&'a [T]> {
-    if bits & bit == 0 {
-        return Some(&[]);
-    }
-    match column {
-        Column::Each(values) => values.get(..n),
-        Column::One(_) => None,
-    }
-}
-
-/// The attributes of one vertex besides its position (those of its format are written).
-struct Attributes {
-    color: [f32; 4],
-    secondary: [f32; 3],
-    normal: [f32; 3],
-    fog: f32,
-    texcoords: [[f32; 4]; MAX_UNITS],
-}
-
-/// Writes each vertex of `position` in format `bits` (`words` words each) into `out`, its
-/// other attributes from `vertex(i)`.
-#[inline(always)]
-fn write_rows(bits: u16, words: usize, out: &mut [u32], position: &[[f32; 4]], vertex: impl Fn(usize) -> Attributes) {
+    let mut padded = Padded::default();
+    let color = stored_values(bits & (COLOR_UNORM | COLOR_FLOAT) != 0, &c.color, n, WHITE, &mut padded.color);
+    let secondary = stored_values(bits & SECONDARY != 0, &c.secondary, n, BLACK, &mut padded.secondary);
+    let normal = stored_values(bits & NORMAL != 0, &c.normal, n, UP, &mut padded.normal);
+    let fog = stored_values(bits & FOG != 0, &c.fog, n, 0.0, &mut padded.fog);
+    let [p0, p1, p2, p3] = &mut padded.texcoords;
+    let texcoords = [
+        stored_values(bits & UNIT0 != 0, &c.texcoords[0], n, ORIGIN, p0),
+        stored_values(bits & (UNIT0 << 1) != 0, &c.texcoords[1], n, ORIGIN, p1),
+        stored_values(bits & (UNIT0 << 2) != 0, &c.texcoords[2], n, ORIGIN, p2),
+        stored_values(bits & (UNIT0 << 3) != 0, &c.texcoords[3], n, ORIGIN, p3),
+    ];
     for (i, (row, position)) in out.chunks_exact_mut(words).zip(position).enumerate() {
-        let a = vertex(i);
         let mut k = 0;
         put(row, &mut k, position);
         if bits & COLOR_UNORM != 0 {
-            row[k] = unorm8x4(a.color);
+            row[k] = unorm8x4(color[i]);
             k += 1;
         }
         if bits & COLOR_FLOAT != 0 {
-            put(row, &mut k, &a.color);
+            put(row, &mut k, &color[i]);
         }
         if bits & SECONDARY != 0 {
-            let [r, g, b] = a.secondary;
+            let [r, g, b] = secondary[i];
             put(row, &mut k, &[r, g, b, 0.0]);
         }
         if bits & NORMAL != 0 {
-            put(row, &mut k, &a.normal);
+            put(row, &mut k, &normal[i]);
         }
         if bits & FOG != 0 {
-            put(row, &mut k, &[a.fog]);
+            put(row, &mut k, &[fog[i]]);
         }
-        for (u, t) in a.texcoords.iter().enumerate() {
+        for (u, t) in texcoords.iter().enumerate() {
             if bits & (UNIT0 << u) != 0 {
-                put(row, &mut k, t);
+                put(row, &mut k, &t[i]);
             }
+        }
+    }
+}
+
+/// Copies of stored columns that hold fewer values than the vertices (translate makes none),
+/// padded with the attribute's initial value.
+#[derive(Default)]
+struct Padded {
+    color: Vec<[f32; 4]>,
+    secondary: Vec<[f32; 3]>,
+    normal: Vec<[f32; 3]>,
+    fog: Vec<f32>,
+    texcoords: [Vec<[f32; 4]>; MAX_UNITS],
+}
+
+/// The first `n` values of `column` when it is `stored` (none when not): the column's own, or
+/// a copy in `padded` of those it has followed by `initial`.
+#[inline(always)]
+fn stored_values<'a, T: Copy>(stored: bool, column: &Column<'a, T>, n: usize, initial: T, padded: &'a mut Vec<T>) -> &'a [T] {
+    match column {
+        _ if !stored => &[],
+        Column::Each(values) if values.len() >= n => &values[..n],
+        _ => {
+            padded.extend((0..n).map(|i| column.get(i, initial)));
+            padded
         }
     }
 }
