@@ -142,9 +142,8 @@ impl Context {
                     Span::Range(first, first.saturating_add(count).min(vertex_count.max(first)) - first)
                 }
                 Elements::Indices(indices) => {
-                    // Folds of `min`/`max` (vectorised; `Iterator::min` compares one by one).
-                    let min = if indices.is_empty() { 0 } else { indices.iter().fold(u32::MAX, |m, &i| m.min(i)) };
-                    let max = indices.iter().fold(0, |m, &i| m.max(i));
+                    let min = indices.iter().copied().min().unwrap_or(0);
+                    let max = indices.iter().copied().max().unwrap_or(0);
                     let span = (max - min) as usize + 1;
                     if span <= indices.len().saturating_mul(SPARSE_FACTOR).max(64) {
                         order.extend(indices.iter().map(|&i| i - min));
