@@ -312,11 +312,10 @@ fn stored_values<'a, T: Copy>(stored: bool, column: &Column<'a, T>, n: usize, in
 
 /// Writes `values` as words at `vertex[*k..]` and moves `k` past them.
 #[inline(always)]
-fn put(vertex: &mut [u32], k: &mut usize, values: &[f32]) {
-    for (slot, v) in vertex[*k..*k + values.len()].iter_mut().zip(values) {
-        *slot = v.to_bits();
-    }
-    *k += values.len();
+fn put<const N: usize>(vertex: &mut [u32], k: &mut usize, values: &[f32; N]) {
+    // One copy of the value's `N` words (a vector move), not a loop over them.
+    vertex[*k..*k + N].copy_from_slice(&values.map(f32::to_bits));
+    *k += N;
 }
 
 /// A colour clamped to [0, 1] and rounded to 8 bits per component, as `R8G8B8A8_UNORM` lays
