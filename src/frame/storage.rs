@@ -139,7 +139,9 @@ impl StoragePool {
         for storage in other.spare.drain(..) {
             self.keep(storage);
         }
-        self.spare.sort_by_key(DrawStorage::capacity_bytes);
+        // Each storage's size summed once, not at every comparison (a frame gives back
+        // hundreds of draws' storage).
+        self.spare.sort_by_cached_key(DrawStorage::capacity_bytes);
     }
 
     /// Empty storage for a new draw: the largest kept, or new.

@@ -83,24 +83,43 @@ impl Span<'_> {
 /// # Safety
 /// Client-memory elements of `span` must be readable (the program vouches for them).
 unsafe fn convert<T: Component, const S: usize>(src: &Source, span: Span<'_>, out: &mut Vec<[f32; 4]>) {
-    let (base, stride, normalized, valid) = (src.base, src.stride, src.normalized, src.len());
+    // Safety: as the caller's.
+    unsafe {
+        if src.normalized { convert_as::<T, S, true>(src, span, out) } else { convert_as::<T, S, false>(src, span, out) }
+    }
+}
+
+/// [`convert`] with `normalized` known at compile time (no test per component).
+///
+/// # Safety
+/// As [`convert`].
+#[inline(always)]
+unsafe fn convert_as<T: Component, const S: usize, const NORMALIZED: bool>(src: &Source, span: Span<'_>, out: &mut Vec<[f32; 4]>) {
+    let (base, stride, normalized, valid) = (src.base, src.stride, NORMALIZED, src.len());
     match span {
         Span::Range(first, count) => {
             let readable = count.min(valid.saturating_sub(first));
             src.note_reads(Span::Range(first, readable));
             let start = base.wrapping_add(first.wrapping_mul(stride));
-            // Safety: within a buffer store (checked by `valid`), or client memory.
-            out.extend((0..readable).map(|j| unsafe { load::<T, S>(start.wrapping_add(j * stride), normalized) }));
+            out.reserve(count);
+            let spare = &mut out.spare_capacity_mut()[..readable];
+            for (j, slot) in spare.iter_mut().enumerate() {
+                // Safety: within a buffer store (checked by `valid`), or client memory.
+                slot.write(unsafe { load::<T, S>(start.wrapping_add(j * stride), normalized) });
+            }
+            // Safety: the `readable` elements after the length were just written.
+            unsafe { out.set_len(out.len() + readable) };
             out.resize(out.len() + (count - readable), [0.0; 4]);
         }
         Span::Gather(indices) => {
+            let noted = src.is_client() && super::capture::reads::enabled();
             out.extend(indices.iter().map(|&i| {
                 let i = i as usize;
                 if i >= valid {
                     return [0.0; 4];
                 }
                 let p = base.wrapping_add(i.wrapping_mul(stride));
-                if src.is_client() {
+                if noted {
                     super::capture::reads::note(p, src.element_bytes());
                 }
                 // Safety: within a buffer store (checked by `valid`), or client memory.
@@ -140,7 +159,7 @@ impl Source {
     /// Reports the bytes of each element of `span` as read (client memory only: a capture
     /// holds exactly what the draw read, element by element).
     pub(crate) fn note_reads(&self, span: Span<'_>) {
-        if !self.is_client() {
+        if !self.is_client() || !super::capture::reads::enabled() {
             return;
         }
         let (base, stride, elem) = (self.base, self.stride, self.element_bytes());

@@ -3,8 +3,19 @@
 
 /// `ubyte` c → c / (2^8 − 1).
 pub fn norm_u8(c: u8) -> f32 {
-    f32::from(c) / 255.0
+    UNORM8[usize::from(c)]
 }
+
+/// [`norm_u8`] of every byte, computed once (colour arrays convert four bytes a vertex).
+static UNORM8: [f32; 256] = {
+    let mut table = [0.0; 256];
+    let mut c = 0;
+    while c < 256 {
+        table[c] = c as f32 / 255.0;
+        c += 1;
+    }
+    table
+};
 /// `byte` c → (2c + 1) / (2^8 − 1).
 pub fn norm_i8(c: i8) -> f32 {
     (2.0 * f32::from(c) + 1.0) / 255.0

@@ -151,6 +151,9 @@ pub struct Recorder<'a> {
     pub indirect: Option<FrameIndirect>,
     /// The pipeline and dynamic state set in the rendering pass.
     tracked: Tracked,
+    /// The last draw's uniform block and where it was uploaded: a draw with the same block
+    /// (consecutive draws of one transform and state) reads that copy.
+    uniform: Option<(ff::uniforms::FfBlock, Slice)>,
 }
 
 impl Recorder<'_> {
@@ -229,6 +232,7 @@ impl Recorder<'_> {
             fog: None,
             indirect: None,
             tracked: Tracked::default(),
+            uniform: None,
         };
         let result = record(&mut rec);
         rec.end_rendering();
@@ -393,16 +397,21 @@ impl Recorder<'_> {
         };
         note_missing_features(features, &batches, draw);
         // The draw's uniform block, the same for all its batches, written once where the GPU
-        // reads it, and the descriptor set that holds it.
-        let block = ff::uniforms::block(draw);
-        let fog = self.fog.as_ref().filter(|_| self.framebuffer.is_none()).map(|fog| fog.for_draw(draw, h));
-        let uniform = self.ring.push_with(self.device, ff::UNIFORM_SIZE, block_align, |out: &mut [u8]| {
-            out.copy_from_slice(bytemuck::bytes_of(&block));
-            ff::uniforms::set_framebuffer_height(out, h);
-            if let Some(fog) = &fog {
-                ff::uniforms::set_height_fog(out, fog);
+        // reads it (or not at all when the previous draw's is the same, byte for byte), and
+        // the descriptor set that holds it.
+        let mut block = ff::uniforms::block(draw);
+        ff::uniforms::set_framebuffer_height(bytemuck::bytes_of_mut(&mut block), h);
+        if let Some(fog) = self.fog.as_ref().filter(|_| self.framebuffer.is_none()) {
+            ff::uniforms::set_height_fog(bytemuck::bytes_of_mut(&mut block), &fog.for_draw(draw, h));
+        }
+        let uniform = match &self.uniform {
+            Some((last, slice)) if bytemuck::bytes_of(last) == bytemuck::bytes_of(&block) => *slice,
+            _ => {
+                let slice = self.ring.push_slice(self.device, bytemuck::bytes_of(&block), block_align)?;
+                self.uniform = Some((block, slice));
+                slice
             }
-        })?;
+        };
         let set_key = SetKey { layout: self.pipelines.set_layout, buffers: &[(uniform.buffer, ff::UNIFORM_SIZE as u64)], images: &images };
         let set = self.descriptors.get(self.device, &set_key)?;
         // The draw's own vertices, packed into upload memory once for the batches that use them:
@@ -644,6 +653,7 @@ impl Raster {
             fog: parts.frame_fog,
             indirect: parts.frame_indirect.clone(),
             tracked: Tracked::default(),
+            uniform: None,
         })
     }
 

@@ -32,10 +32,10 @@
 //! border colour (custom with `VK_EXT_custom_border_color`, else the closest of Vulkan's three),
 //! LOD range and the unit's LOD bias; mipmapping off = `maxLod` 0.
 
-use std::collections::HashMap;
 use std::sync::{Arc, Weak};
 
 use ash::vk;
+use rustc_hash::FxHashMap;
 
 use super::device::{Check, Device, Image, Result};
 use crate::render::texenv::codes::MAX_UNITS;
@@ -84,10 +84,10 @@ pub struct Textures {
     white: Option<[Image; 3]>,
     /// The opaque black 2D, 3D and cube textures.
     black: Option<[Image; 3]>,
-    entries: HashMap<(u32, u64), Entry>,
+    entries: FxHashMap<(u32, u64), Entry>,
     /// Versions that could not be created (too large, out of memory): sampled as white.
-    failed: std::collections::HashSet<(u32, u64)>,
-    samplers: HashMap<SamplerKey, vk::Sampler>,
+    failed: rustc_hash::FxHashSet<(u32, u64)>,
+    samplers: FxHashMap<SamplerKey, vk::Sampler>,
     /// Presented frames so far.
     frame: u64,
     /// Whether `R32_SFLOAT` can be sampled with linear filtering.
@@ -116,7 +116,7 @@ impl Textures {
             props.optimal_tiling_features.contains(vk::FormatFeatureFlags::SAMPLED_IMAGE_FILTER_LINEAR | vk::FormatFeatureFlags::TRANSFER_DST)
         };
         let (float_depth, float_color) = (filters(vk::Format::R32_SFLOAT), filters(vk::Format::R32G32B32A32_SFLOAT));
-        Textures { white: None, black: None, entries: HashMap::new(), failed: Default::default(), samplers: HashMap::new(), frame: 0, float_depth, float_color }
+        Textures { white: None, black: None, entries: FxHashMap::default(), failed: Default::default(), samplers: FxHashMap::default(), frame: 0, float_depth, float_color }
     }
 
     /// Whether [`Textures::upload`] would record commands for `textures` (then the caller

@@ -31,6 +31,13 @@ pub fn enable() {
     ENABLED.store(true, Ordering::Relaxed);
 }
 
+/// Whether reports may be kept anywhere in the process: callers that would report many
+/// ranges (an array's elements, one by one) test this once instead of per [`note`].
+#[inline]
+pub fn enabled() -> bool {
+    ENABLED.load(Ordering::Relaxed)
+}
+
 /// Reports that the current GL call read `len` bytes of client memory at `ptr`.
 #[inline]
 pub fn note<T>(ptr: *const T, len: usize) {

@@ -19,7 +19,7 @@ use super::shader_interface::{
     COLOR_MATERIAL, FOG_COORD, LIGHTING, LOCATION_COLOR, LOCATION_FOG_COORD, LOCATION_NORMAL, LOCATION_POSITION, LOCATION_SECONDARY, LOCATION_TEXCOORD, TEXCOORDS_UNUSED,
     TEXGEN,
 };
-use super::vertex::{BLACK, Columns, ORIGIN, UP, VERTEX_ATTRIBUTES, VERTEX_FLOATS, WHITE};
+use super::vertex::{BLACK, Column, Columns, ORIGIN, UP, VERTEX_ATTRIBUTES, VERTEX_FLOATS, WHITE};
 use crate::frame::{Draw, Vertices};
 use crate::render::shader_abi::Field;
 use crate::render::texenv::codes::MAX_UNITS;
@@ -239,52 +239,96 @@ fn rows_of(bits: u16, c: &Columns<'_>, out: &mut [u32]) {
     rows_with(bits, VertexFormat(bits).stride() as usize / 4, c, out)
 }
 
-/// Packs the vertices of format `bits`, `words` (its stride in words) each.
+/// Packs the vertices of format `bits`, `words` (its stride in words) each, every stored
+/// attribute read from a slice of one value per vertex (no test of the column per vertex).
 #[inline(always)]
 fn rows_with(bits: u16, words: usize, c: &Columns<'_>, out: &mut [u32]) {
-    for (i, (vertex, position)) in out.chunks_exact_mut(words).zip(c.position).enumerate() {
+    let n = (out.len() / words).min(c.position.len());
+    let (out, position) = (&mut out[..n * words], &c.position[..n]);
+    let mut padded = Padded::default();
+    let color = stored_values(bits & (COLOR_UNORM | COLOR_FLOAT) != 0, &c.color, n, WHITE, &mut padded.color);
+    let secondary = stored_values(bits & SECONDARY != 0, &c.secondary, n, BLACK, &mut padded.secondary);
+    let normal = stored_values(bits & NORMAL != 0, &c.normal, n, UP, &mut padded.normal);
+    let fog = stored_values(bits & FOG != 0, &c.fog, n, 0.0, &mut padded.fog);
+    let [p0, p1, p2, p3] = &mut padded.texcoords;
+    let texcoords = [
+        stored_values(bits & UNIT0 != 0, &c.texcoords[0], n, ORIGIN, p0),
+        stored_values(bits & (UNIT0 << 1) != 0, &c.texcoords[1], n, ORIGIN, p1),
+        stored_values(bits & (UNIT0 << 2) != 0, &c.texcoords[2], n, ORIGIN, p2),
+        stored_values(bits & (UNIT0 << 3) != 0, &c.texcoords[3], n, ORIGIN, p3),
+    ];
+    for (i, (row, position)) in out.chunks_exact_mut(words).zip(position).enumerate() {
         let mut k = 0;
-        put(vertex, &mut k, position);
+        put(row, &mut k, position);
         if bits & COLOR_UNORM != 0 {
-            vertex[k] = unorm8x4(c.color.get(i, WHITE));
+            row[k] = unorm8x4(color[i]);
             k += 1;
         }
         if bits & COLOR_FLOAT != 0 {
-            put(vertex, &mut k, &c.color.get(i, WHITE));
+            put(row, &mut k, &color[i]);
         }
         if bits & SECONDARY != 0 {
-            let [r, g, b] = c.secondary.get(i, BLACK);
-            put(vertex, &mut k, &[r, g, b, 0.0]);
+            let [r, g, b] = secondary[i];
+            put(row, &mut k, &[r, g, b, 0.0]);
         }
         if bits & NORMAL != 0 {
-            put(vertex, &mut k, &c.normal.get(i, UP));
+            put(row, &mut k, &normal[i]);
         }
         if bits & FOG != 0 {
-            put(vertex, &mut k, &[c.fog.get(i, 0.0)]);
+            put(row, &mut k, &[fog[i]]);
         }
-        for (u, t) in c.texcoords.iter().enumerate() {
+        for (u, t) in texcoords.iter().enumerate() {
             if bits & (UNIT0 << u) != 0 {
-                put(vertex, &mut k, &t.get(i, ORIGIN));
+                put(row, &mut k, &t[i]);
             }
+        }
+    }
+}
+
+/// Copies of stored columns that hold fewer values than the vertices (translate makes none),
+/// padded with the attribute's initial value.
+#[derive(Default)]
+struct Padded {
+    color: Vec<[f32; 4]>,
+    secondary: Vec<[f32; 3]>,
+    normal: Vec<[f32; 3]>,
+    fog: Vec<f32>,
+    texcoords: [Vec<[f32; 4]>; MAX_UNITS],
+}
+
+/// The first `n` values of `column` when it is `stored` (none when not): the column's own, or
+/// a copy in `padded` of those it has followed by `initial`.
+#[inline(always)]
+fn stored_values<'a, T: Copy>(stored: bool, column: &Column<'a, T>, n: usize, initial: T, padded: &'a mut Vec<T>) -> &'a [T] {
+    match column {
+        _ if !stored => &[],
+        Column::Each(values) if values.len() >= n => &values[..n],
+        _ => {
+            padded.extend((0..n).map(|i| column.get(i, initial)));
+            padded
         }
     }
 }
 
 /// Writes `values` as words at `vertex[*k..]` and moves `k` past them.
 #[inline(always)]
-fn put(vertex: &mut [u32], k: &mut usize, values: &[f32]) {
-    for (slot, v) in vertex[*k..*k + values.len()].iter_mut().zip(values) {
-        *slot = v.to_bits();
-    }
-    *k += values.len();
+fn put<const N: usize>(vertex: &mut [u32], k: &mut usize, values: &[f32; N]) {
+    // One copy of the value's `N` words (a vector move), not a loop over them.
+    vertex[*k..*k + N].copy_from_slice(&values.map(f32::to_bits));
+    *k += N;
 }
 
 /// A colour clamped to [0, 1] and rounded to 8 bits per component, as `R8G8B8A8_UNORM` lays
 /// it out in memory.
 #[inline(always)]
 fn unorm8x4(color: [f32; 4]) -> u32 {
-    // `max` then `min` also take NaN to 0.
-    u32::from_ne_bytes(color.map(|c| (c.max(0.0).min(1.0) * 255.0 + 0.5) as u8))
+    // `max` then `min` also take NaN to 0; the rounded value is then in [0.5, 255.5], which
+    // truncates to a byte without the saturating conversion's tests.
+    u32::from_ne_bytes(color.map(|c| {
+        let scaled = c.max(0.0).min(1.0) * 255.0 + 0.5;
+        // Safety: finite and in [0.5, 255.5], so it fits in an i32.
+        (unsafe { scaled.to_int_unchecked::<i32>() }) as u8
+    }))
 }
 
 #[cfg(test)]
