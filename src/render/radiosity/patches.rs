@@ -151,7 +151,11 @@ pub fn build(chunks: &[Arc<StaticChunk>], patch_size: f32) -> Patches {
             let albedo = (color * texture).clamp(Vec3::ZERO, Vec3::ONE);
             let emission = own_emission + material.emission[3] * albedo;
             split(tri, patch_size, MAX_SPLIT_DEPTH, &mut |fragment| {
-                cells.entry(key(&fragment, patch_size)).or_default().push(Fragment { triangle: fragment, albedo, emission });
+                // Far from the origin a sliver's halves can round onto one line: such a
+                // fragment has no area to give a patch (a cell of only those would be 0 / 0).
+                if area(&fragment) > 0.0 {
+                    cells.entry(key(&fragment, patch_size)).or_default().push(Fragment { triangle: fragment, albedo, emission });
+                }
             });
         }
     }
@@ -268,6 +272,26 @@ mod tests {
         }
         // Coarser than the square: one patch.
         assert_eq!(build(&world, 2.0).patches.len(), 1);
+    }
+
+    #[test]
+    fn a_sliver_far_from_the_origin_makes_no_patch_without_area() {
+        // A sliver two f32 steps high at x, y = 4096: its halves' corners round onto one line,
+        // so some fragments have no area; a cell of only those made a patch of zero area whose
+        // position and albedo were 0 / 0 (NaN: OpenArena's map at 14,916 patches).
+        let (x, y) = (4096.0, 4096.0);
+        let p = [[x, y, 0.0], [x + 100.0, y, 0.0], [x + 100.0, y + 1.0e-3, 0.0]];
+        let mut chunk = Arc::unwrap_or_clone(square(1, [200; 4], 0.0));
+        chunk.positions = p.to_vec();
+        chunk.colors = vec![[200; 4]; 3];
+        let patches = build(&[Arc::new(chunk)], 1.0);
+        assert!(!patches.patches.is_empty());
+        for x in &patches.patches {
+            assert!(x.area > 0.0 && x.position.is_finite() && x.albedo.is_finite() && x.emission.is_finite(), "{x:?}");
+        }
+        for t in &patches.triangles {
+            assert!(area(t) > 0.0, "{t:?}");
+        }
     }
 
     #[test]
