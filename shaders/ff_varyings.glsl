@@ -50,6 +50,19 @@ void ff_varyings_in() {
 #endif
 }
 #else
+// The colours of a vertex, interpolated and for flat shading (ff.vert and translated
+// programs' vertex stages).
+void ff_colors_out(vec4 front, vec4 front2, vec4 back, vec4 back2) {
+    v_front = front;
+    v_front2 = front2;
+    v_back = back;
+    v_back2 = back2;
+    f_front = front;
+    f_front2 = front2;
+    f_back = back;
+    f_back2 = back2;
+}
+
 // Called last in ff.vert's main.
 void ff_varyings_out() {
 #ifdef FF_LEAN

@@ -192,14 +192,7 @@ void main() {
         back = front;
         back2 = front2;
     }
-    v_front = front;
-    v_front2 = front2;
-    v_back = back;
-    v_back2 = back2;
-    f_front = front;
-    f_front2 = front2;
-    f_back = back;
-    f_back2 = back2;
+    ff_colors_out(front, front2, back, back2);
 
     // Units whose coordinates nothing reads (no texturing, no program) leave them zero.
     uint unused = field(KEY_CLIP, TEXCOORDS_UNUSED_SHIFT, TEXCOORDS_UNUSED_BITS);

@@ -21,14 +21,7 @@ void main() {
     vec4 front2 = clamp(glrt_FrontSecondaryColor, 0.0, 1.0);
     vec4 back = two_side ? clamp(glrt_BackColor, 0.0, 1.0) : front;
     vec4 back2 = two_side ? clamp(glrt_BackSecondaryColor, 0.0, 1.0) : front2;
-    v_front = front;
-    v_front2 = front2;
-    v_back = back;
-    v_back2 = back2;
-    f_front = front;
-    f_front2 = front2;
-    f_back = back;
-    f_back2 = back2;
+    ff_colors_out(front, front2, back, back2);
     for (int i = 0; i < MAX_UNITS; i++) {
         v_tex[i] = glrt_TexCoord[i];
     }
